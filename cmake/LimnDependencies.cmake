@@ -1,0 +1,22 @@
+# Every dependency comes from Debian 12 packages (scripts/setup.sh installs them).
+# The recipes are the ones known to work here (../shared/docs/toolchain.md).
+find_package(Threads REQUIRED)
+find_package(PkgConfig REQUIRED)
+find_package(glm CONFIG REQUIRED)
+find_package(OpenMesh CONFIG REQUIRED)
+find_package(TinyGLTF CONFIG REQUIRED)
+find_package(Vulkan REQUIRED COMPONENTS glslangValidator)
+pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+
+# Debian's OpenSubdiv CMake config names static libraries the package does not ship.
+find_path(OSD_INCLUDE_DIR opensubdiv/version.h REQUIRED)
+find_library(OSD_CPU_LIBRARY osdCPU REQUIRED)
+if(NOT TARGET OpenSubdiv::osdCPU)
+  add_library(OpenSubdiv::osdCPU SHARED IMPORTED)
+  set_target_properties(OpenSubdiv::osdCPU PROPERTIES
+    IMPORTED_LOCATION "${OSD_CPU_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${OSD_INCLUDE_DIR}")
+endif()
+
+find_package(GTest CONFIG REQUIRED)
+find_package(benchmark CONFIG QUIET)

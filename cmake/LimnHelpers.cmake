@@ -1,0 +1,27 @@
+# limn_library(NAME SOURCES... DEPS ...): one layer of lib/, with limn's warnings.
+function(limn_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR}/lib)
+  target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE limn_warnings ${ARG_PRIVATE_DEPS})
+endfunction()
+
+# limn_tool(NAME SOURCES... DEPS ...): a thin command-line program built into bin/.
+function(limn_tool name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE limn_warnings ${ARG_DEPS})
+endfunction()
+
+# limn_gtest(NAME SOURCES... DEPS ...): a GoogleTest executable registered with CTest.
+function(limn_gtest name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE limn_warnings GTest::gtest_main ${ARG_DEPS})
+  target_compile_definitions(${name} PRIVATE
+    LIMN_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
+    LIMN_BIN_DIR="${CMAKE_BINARY_DIR}/bin"
+    LIMN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+endfunction()
+include(GoogleTest)

@@ -1,0 +1,329 @@
+#include "base/cli.h"
+
+#include "base/error.h"
+
+#include <charconv>
+#include <clocale>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <new>
+#include <sstream>
+
+#ifndef LIMN_VERSION
+#define LIMN_VERSION "0.1.0"
+#endif
+
+namespace limn::cli {
+
+const char* const kDefaultExitCodes = "Exit codes:\n"
+                                      "  0  success\n"
+                                      "  1  bad input or failed processing\n"
+                                      "  2  usage error\n"
+                                      "  3  missing capability (for example no Vulkan device)\n";
+
+namespace {
+
+std::string g_tool = "limn";
+bool g_quiet = false;
+bool g_verbose = false;
+
+[[noreturn]] void usageError(const std::string& message) {
+    throw Error(ErrorKind::Usage, message + " (see --help)");
+}
+
+std::string formatNumber(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+double parseDouble(const std::string& option, const std::string& text) {
+    double value = 0;
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    auto [ptr, ec] = std::from_chars(begin, end, value);
+    if (ec != std::errc() || ptr != end || !std::isfinite(value))
+        usageError(option + ": '" + text + "' is not a number");
+    return value;
+}
+
+} // namespace
+
+Parser::Parser(std::string tool, std::string synopsis, std::string summary, Common& common,
+               bool hasOutput, bool hasDepfile)
+    : tool_(std::move(tool)), synopsis_(std::move(synopsis)), summary_(std::move(summary)),
+      exitCodes_(kDefaultExitCodes) {
+    if (hasOutput)
+        text("-o, --output", "FILE", &common.output, "output file; - for standard output");
+    if (hasDepfile)
+        text("--depfile", "FILE",
+             &common.depfile, "also write a Make rule 'OUTPUT: INPUTS...' to FILE");
+    flag("-q, --quiet", &common.quiet, "silence warnings");
+    flag("-v, --verbose", &common.verbose, "print details on stderr");
+    flag("-h, --help", &showHelp_, "print this help and exit");
+    flag("--version", &showVersion_, "print the version and exit");
+}
+
+Parser::Option& Parser::add(const std::string& names) {
+    Option o;
+    std::stringstream ss(names);
+    std::string part;
+    while (std::getline(ss, part, ',')) {
+        auto first = part.find_first_not_of(' ');
+        part = part.substr(first);
+        if (part.rfind("--", 0) == 0)
+            o.longName = part;
+        else
+            o.shortName = part;
+    }
+    options_.push_back(std::move(o));
+    return options_.back();
+}
+
+Parser& Parser::flag(const std::string& names, bool* out, const std::string& help) {
+    Option& o = add(names);
+    o.help = help;
+    o.flagOut = out;
+    return *this;
+}
+
+Parser& Parser::text(const std::string& names, const std::string& metavar, std::string* out,
+                     const std::string& help) {
+    Option& o = add(names);
+    o.metavar = metavar;
+    o.help = help;
+    o.defaultText = *out;
+    o.set = [out](const std::string& v) { *out = v; };
+    return *this;
+}
+
+Parser& Parser::integer(const std::string& names, const std::string& metavar, int* out, int lo,
+                        int hi, const std::string& help) {
+    Option& o = add(names);
+    std::string name = o.longName.empty() ? o.shortName : o.longName;
+    o.metavar = metavar;
+    o.help = help + " (" + std::to_string(lo) + " to " + std::to_string(hi) + ")";
+    o.defaultText = std::to_string(*out);
+    o.set = [out, lo, hi, name](const std::string& v) {
+        int value = 0;
+        auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), value);
+        if (ec != std::errc() || ptr != v.data() + v.size())
+            usageError(name + ": '" + v + "' is not an integer");
+        if (value < lo || value > hi)
+            usageError(name + ": " + v + " is out of range " + std::to_string(lo) + " to " +
+                       std::to_string(hi));
+        *out = value;
+    };
+    return *this;
+}
+
+Parser& Parser::real(const std::string& names, const std::string& metavar, double* out, double lo,
+                     double hi, const std::string& help) {
+    Option& o = add(names);
+    std::string name = o.longName.empty() ? o.shortName : o.longName;
+    o.metavar = metavar;
+    o.help = help + " (" + formatNumber(lo) + " to " + formatNumber(hi) + ")";
+    o.defaultText = formatNumber(*out);
+    o.set = [out, lo, hi, name](const std::string& v) {
+        double value = parseDouble(name, v);
+        if (value < lo || value > hi)
+            usageError(name + ": " + v + " is out of range " + formatNumber(lo) + " to " +
+                       formatNumber(hi));
+        *out = value;
+    };
+    return *this;
+}
+
+Parser& Parser::choice(const std::string& names, std::string* out,
+                       std::vector<std::string> choices, const std::string& help) {
+    Option& o = add(names);
+    std::string name = o.longName.empty() ? o.shortName : o.longName;
+    std::string list;
+    for (const auto& c : choices) list += (list.empty() ? "" : "|") + c;
+    o.metavar = list;
+    o.help = help;
+    o.defaultText = *out;
+    o.set = [out, choices, name, list](const std::string& v) {
+        for (const auto& c : choices)
+            if (c == v) {
+                *out = v;
+                return;
+            }
+        usageError(name + ": '" + v + "' is not one of " + list);
+    };
+    return *this;
+}
+
+Parser& Parser::custom(const std::string& names, const std::string& metavar,
+                       std::function<void(const std::string&)> set,
+                       const std::string& defaultText, const std::string& help) {
+    Option& o = add(names);
+    o.metavar = metavar;
+    o.help = help;
+    o.defaultText = defaultText;
+    o.set = std::move(set);
+    return *this;
+}
+
+Parser& Parser::positional(const std::string& metavar, std::string* out, const std::string& help) {
+    positionals_.emplace_back(metavar, out);
+    positionalHelp_.push_back(help);
+    return *this;
+}
+
+Parser& Parser::notes(const std::string& text) {
+    notes_ += text;
+    return *this;
+}
+
+Parser& Parser::exitCodes(const std::string& table) {
+    exitCodes_ = table;
+    return *this;
+}
+
+const Parser::Option* Parser::find(const std::string& name) const {
+    for (const auto& o : options_)
+        if (o.longName == name || o.shortName == name) return &o;
+    return nullptr;
+}
+
+std::string Parser::help() const {
+    std::ostringstream out;
+    out << "Usage: " << tool_ << " " << synopsis_ << "\n\n" << summary_ << "\n";
+    if (!positionals_.empty()) {
+        out << "\nArguments:\n";
+        for (size_t i = 0; i < positionals_.size(); ++i) {
+            std::string left = "  " + positionals_[i].first;
+            out << left << std::string(left.size() < 28 ? 28 - left.size() : 1, ' ')
+                << positionalHelp_[i] << " [default: -]\n";
+        }
+    }
+    out << "\nOptions:\n";
+    for (const auto& o : options_) {
+        std::string left = "  ";
+        left += o.shortName.empty() ? "    " : o.shortName + ", ";
+        left += o.longName;
+        if (!o.metavar.empty()) left += " " + o.metavar;
+        out << left;
+        if (left.size() >= 28)
+            out << "\n" << std::string(28, ' ');
+        else
+            out << std::string(28 - left.size(), ' ');
+        out << o.help;
+        if (o.set && !o.defaultText.empty()) out << " [default: " << o.defaultText << "]";
+        out << "\n";
+    }
+    if (!notes_.empty()) out << "\n" << notes_;
+    if (!notes_.empty() && notes_.back() != '\n') out << "\n";
+    out << "\n" << exitCodes_;
+    return out.str();
+}
+
+bool Parser::parse(int argc, char** argv) {
+    size_t nextPositional = 0;
+    bool onlyPositionals = false;
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i];
+        if (!onlyPositionals && arg == "--") {
+            onlyPositionals = true;
+            continue;
+        }
+        if (!onlyPositionals && arg.size() > 1 && arg[0] == '-') {
+            std::string name = arg, value;
+            bool hasValue = false;
+            if (arg.rfind("--", 0) == 0) {
+                auto eq = arg.find('=');
+                if (eq != std::string::npos) {
+                    name = arg.substr(0, eq);
+                    value = arg.substr(eq + 1);
+                    hasValue = true;
+                }
+            } else if (arg.size() > 2) { // -oFILE
+                name = arg.substr(0, 2);
+                value = arg.substr(2);
+                hasValue = true;
+            }
+            const Option* o = find(name);
+            if (!o) usageError("unknown option '" + name + "'");
+            if (o->flagOut) {
+                if (hasValue) usageError(name + " takes no value");
+                *o->flagOut = true;
+                continue;
+            }
+            if (!hasValue) {
+                if (i + 1 >= argc) usageError(name + " needs a value (" + o->metavar + ")");
+                value = argv[++i];
+            }
+            o->set(value);
+            continue;
+        }
+        if (nextPositional >= positionals_.size()) usageError("unexpected argument '" + arg + "'");
+        *positionals_[nextPositional++].second = arg;
+    }
+    if (showHelp_) {
+        std::cout << help();
+        std::cout.flush();
+        return false;
+    }
+    if (showVersion_) {
+        std::cout << tool_ << " " << LIMN_VERSION << "\n";
+        std::cout.flush();
+        return false;
+    }
+    return true;
+}
+
+std::vector<double> parseNumberList(const std::string& option, const std::string& value,
+                                    size_t count) {
+    std::vector<double> out;
+    std::stringstream ss(value);
+    std::string part;
+    while (std::getline(ss, part, ',')) out.push_back(parseDouble(option, part));
+    if (out.size() != count)
+        usageError(option + ": expected " + std::to_string(count) +
+                   " comma-separated numbers, got '" + value + "'");
+    return out;
+}
+
+void setTool(const std::string& tool) { g_tool = tool; }
+void setVerbosity(bool quiet, bool verbose) {
+    g_quiet = quiet;
+    g_verbose = verbose;
+}
+
+void warn(const std::string& message) {
+    if (!g_quiet) std::fprintf(stderr, "%s: warning: %s\n", g_tool.c_str(), message.c_str());
+}
+
+void info(const std::string& message) {
+    if (g_verbose) std::fprintf(stderr, "%s: %s\n", g_tool.c_str(), message.c_str());
+}
+
+void printWarnings(const Warnings& warnings, const std::string& file) {
+    for (const auto& w : warnings.messages) warn((file.empty() ? "" : file + ": ") + w);
+}
+
+int run(const std::string& tool, int argc, char** argv,
+        const std::function<int(int, char**)>& body) {
+    std::setlocale(LC_ALL, "C");
+    std::locale::global(std::locale::classic());
+    setTool(tool);
+    try {
+        return body(argc, argv);
+    } catch (const Error& e) {
+        std::string where;
+        if (!e.file().empty()) where += (e.file() == "-" ? "<stdin>" : e.file()) + ": ";
+        if (!e.where().empty()) where += e.where() + ": ";
+        std::fprintf(stderr, "%s: error: %s%s\n", tool.c_str(), where.c_str(), e.what());
+        return static_cast<int>(e.kind());
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "%s: error: out of memory\n", tool.c_str());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: error: internal error: %s\n", tool.c_str(), e.what());
+        return 1;
+    }
+}
+
+} // namespace limn::cli

@@ -1,0 +1,271 @@
+#include "mesh/gltf.h"
+
+#include "base/error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat4x4.hpp>
+#include <tiny_gltf.h>
+
+#include <cstring>
+#include <map>
+
+namespace limn {
+
+namespace {
+
+// Images are not needed for geometry; skipping them avoids decoding megabytes of PNG.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+               const unsigned char*, int, void*) {
+    return true;
+}
+
+// A bounds-checked view of one accessor's elements.
+class AccessorView {
+public:
+    AccessorView(const tinygltf::Model& model, int index, const std::string& what) : what_(what) {
+        if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+            throwBadInput(what + ": accessor " + std::to_string(index) + " does not exist");
+        const auto& a = model.accessors[index];
+        if (a.sparse.isSparse) throwBadInput(what + ": sparse accessors are not supported");
+        if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
+            throwBadInput(what + ": accessor " + std::to_string(index) + " has no buffer view");
+        const auto& view = model.bufferViews[a.bufferView];
+        if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()))
+            throwBadInput(what + ": buffer view refers to a missing buffer");
+        const auto& buffer = model.buffers[view.buffer].data;
+        components_ = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
+        componentSize_ = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+        if (components_ <= 0 || componentSize_ <= 0)
+            throwBadInput(what + ": unsupported accessor type");
+        componentType_ = a.componentType;
+        normalized_ = a.normalized;
+        count_ = a.count;
+        size_t elementSize = size_t(components_) * size_t(componentSize_);
+        stride_ = view.byteStride ? view.byteStride : elementSize;
+        if (stride_ < elementSize) throwBadInput(what + ": byte stride smaller than an element");
+        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+            throwBadInput(what + ": buffer view runs past its buffer");
+        if (a.byteOffset > view.byteLength)
+            throwBadInput(what + ": accessor offset runs past its buffer view");
+        size_t avail = view.byteLength - a.byteOffset;
+        if (count_ > 0 && (count_ - 1 > (avail - std::min(avail, elementSize)) / stride_ ||
+                           avail < elementSize))
+            throwBadInput(what + ": " + std::to_string(count_) +
+                          " elements run past the end of the buffer view");
+        base_ = buffer.data() + view.byteOffset + a.byteOffset;
+    }
+
+    size_t count() const { return count_; }
+    int components() const { return components_; }
+
+    double component(size_t element, int c) const {
+        const uint8_t* p = base_ + element * stride_ + size_t(c) * size_t(componentSize_);
+        switch (componentType_) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+            float f;
+            std::memcpy(&f, p, 4);
+            return f;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized_ ? p[0] / 255.0 : p[0];
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            auto v = static_cast<int8_t>(p[0]);
+            return normalized_ ? std::max(v / 127.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            return normalized_ ? v / 65535.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            int16_t v;
+            std::memcpy(&v, p, 2);
+            return normalized_ ? std::max(v / 32767.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            uint32_t v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
+        default: throwBadInput(what_ + ": unsupported component type");
+        }
+    }
+
+    uint32_t index(size_t element) const {
+        if (componentType_ != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            componentType_ != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            componentType_ != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            throwBadInput(what_ + ": indices must be unsigned integers");
+        return static_cast<uint32_t>(component(element, 0));
+    }
+
+private:
+    std::string what_;
+    const uint8_t* base_ = nullptr;
+    size_t count_ = 0, stride_ = 0;
+    int components_ = 0, componentSize_ = 0, componentType_ = 0;
+    bool normalized_ = false;
+};
+
+glm::dmat4 nodeMatrix(const tinygltf::Node& n) {
+    if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
+    glm::dmat4 m(1.0);
+    if (n.translation.size() == 3)
+        m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+    if (n.rotation.size() == 4) // glTF stores x, y, z, w
+        m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
+    if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+    return m;
+}
+
+struct Welder {
+    Mesh mesh;
+    std::map<std::array<double, 3>, uint32_t> positionIndex;
+    std::map<std::array<double, 2>, uint32_t> uvIndex;
+    bool anyUV = false, anyWithoutUV = false;
+    size_t degenerate = 0, skippedPrimitives = 0;
+
+    uint32_t weldPosition(const glm::dvec3& p) {
+        auto [it, inserted] = positionIndex.try_emplace({p.x, p.y, p.z},
+                                                         static_cast<uint32_t>(mesh.positions.size()));
+        if (inserted) mesh.positions.push_back(p);
+        return it->second;
+    }
+    uint32_t weldUV(const glm::dvec2& uv) {
+        auto [it, inserted] = uvIndex.try_emplace({uv.x, uv.y}, static_cast<uint32_t>(mesh.uvs.size()));
+        if (inserted) mesh.uvs.push_back(uv);
+        return it->second;
+    }
+
+    void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                      const glm::dmat4& transform, const std::string& what) {
+        int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES) {
+            ++skippedPrimitives;
+            return;
+        }
+        auto pos = prim.attributes.find("POSITION");
+        if (pos == prim.attributes.end()) throwBadInput(what + " has no POSITION attribute");
+        AccessorView positions(model, pos->second, what + " POSITION");
+        if (positions.components() != 3) throwBadInput(what + " POSITION is not a 3-vector");
+        std::vector<uint32_t> welded(positions.count());
+        for (size_t i = 0; i < positions.count(); ++i) {
+            glm::dvec4 p(positions.component(i, 0), positions.component(i, 1),
+                         positions.component(i, 2), 1.0);
+            welded[i] = weldPosition(glm::dvec3(transform * p));
+        }
+        std::vector<uint32_t> uvs;
+        auto tc = prim.attributes.find("TEXCOORD_0");
+        if (tc != prim.attributes.end()) {
+            AccessorView texcoords(model, tc->second, what + " TEXCOORD_0");
+            if (texcoords.components() != 2 || texcoords.count() != positions.count())
+                throwBadInput(what + " TEXCOORD_0 does not match POSITION");
+            uvs.resize(texcoords.count());
+            for (size_t i = 0; i < texcoords.count(); ++i)
+                uvs[i] = weldUV({texcoords.component(i, 0), 1.0 - texcoords.component(i, 1)});
+            anyUV = true;
+        } else {
+            anyWithoutUV = true;
+        }
+        std::vector<uint32_t> corners;
+        if (prim.indices >= 0) {
+            AccessorView indices(model, prim.indices, what + " indices");
+            corners.resize(indices.count());
+            for (size_t i = 0; i < indices.count(); ++i) {
+                corners[i] = indices.index(i);
+                if (corners[i] >= positions.count())
+                    throwBadInput(what + " index " + std::to_string(corners[i]) +
+                                  " is past the " + std::to_string(positions.count()) +
+                                  " vertices");
+            }
+        } else {
+            corners.resize(positions.count());
+            for (size_t i = 0; i < corners.size(); ++i) corners[i] = static_cast<uint32_t>(i);
+        }
+        if (corners.size() % 3) throwBadInput(what + " index count is not a multiple of 3");
+        for (size_t t = 0; t < corners.size(); t += 3) {
+            uint32_t a = welded[corners[t]], b = welded[corners[t + 1]], c = welded[corners[t + 2]];
+            if (a == b || b == c || a == c) { // collapsed by welding or degenerate in the file
+                ++degenerate;
+                continue;
+            }
+            uint32_t tri[3] = {a, b, c};
+            mesh.addFace(tri);
+            for (int k = 0; k < 3; ++k)
+                mesh.uvIndices.push_back(uvs.empty() ? ~0u : uvs[corners[t + k]]);
+        }
+    }
+
+    void addNode(const tinygltf::Model& model, int nodeIndex, const glm::dmat4& parent, int depth) {
+        if (nodeIndex < 0 || nodeIndex >= static_cast<int>(model.nodes.size()))
+            throwBadInput("node " + std::to_string(nodeIndex) + " does not exist");
+        if (depth > 256) throwBadInput("node hierarchy deeper than 256 (a cycle?)");
+        const auto& node = model.nodes[nodeIndex];
+        glm::dmat4 transform = parent * nodeMatrix(node);
+        if (node.mesh >= 0) {
+            if (node.mesh >= static_cast<int>(model.meshes.size()))
+                throwBadInput("node " + std::to_string(nodeIndex) + " refers to a missing mesh");
+            const auto& m = model.meshes[node.mesh];
+            for (size_t p = 0; p < m.primitives.size(); ++p)
+                addPrimitive(model, m.primitives[p], transform,
+                             "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p));
+        }
+        for (int child : node.children) addNode(model, child, transform, depth + 1);
+    }
+};
+
+} // namespace
+
+Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
+              Warnings& warnings) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(skipImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    bool ok;
+    if (binary)
+        ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                         static_cast<unsigned int>(bytes.size()), baseDir);
+    else
+        ok = loader.LoadASCIIFromString(&model, &err, &warn,
+                                        reinterpret_cast<const char*>(bytes.data()),
+                                        static_cast<unsigned int>(bytes.size()), baseDir);
+    if (!ok) {
+        while (!err.empty() && err.back() == '\n') err.pop_back();
+        throwBadInput("glTF: " + (err.empty() ? std::string("cannot parse") : err));
+    }
+    Welder w;
+    std::vector<int> roots;
+    if (!model.scenes.empty()) {
+        int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+        if (scene >= static_cast<int>(model.scenes.size()))
+            throwBadInput("glTF: default scene does not exist");
+        roots = model.scenes[scene].nodes;
+    } else { // no scene: every node that is nobody's child
+        std::vector<bool> isChild(model.nodes.size());
+        for (const auto& n : model.nodes)
+            for (int c : n.children)
+                if (c >= 0 && c < static_cast<int>(isChild.size())) isChild[c] = true;
+        for (size_t i = 0; i < model.nodes.size(); ++i)
+            if (!isChild[i]) roots.push_back(static_cast<int>(i));
+    }
+    for (int root : roots) w.addNode(model, root, glm::dmat4(1.0), 0);
+    if (w.skippedPrimitives)
+        warnings.add(std::to_string(w.skippedPrimitives) +
+                     " non-triangle primitives (points, lines, strips, fans) skipped");
+    if (w.degenerate)
+        warnings.add(std::to_string(w.degenerate) +
+                     " degenerate triangles (two corners at the same position) dropped");
+    if (w.anyUV && w.anyWithoutUV) {
+        warnings.add("some primitives have TEXCOORD_0 and some do not; UVs dropped");
+        w.mesh.uvs.clear();
+        w.mesh.uvIndices.clear();
+    } else if (!w.anyUV) {
+        w.mesh.uvIndices.clear();
+    }
+    validateMesh(w.mesh);
+    return std::move(w.mesh);
+}
+
+} // namespace limn

@@ -1,0 +1,19 @@
+// glTF 2.0 (.gltf with external or data: buffers, .glb) through tinygltf: every triangle
+// primitive of every mesh instanced by the scene, node transforms applied, vertices welded by
+// exact position (glTF splits them at UV seams), TEXCOORD_0 kept as face-varying UVs.
+#pragma once
+
+#include "base/warnings.h"
+#include "mesh/mesh.h"
+
+#include <span>
+#include <string>
+
+namespace limn {
+
+// `baseDir` resolves external buffers (empty for stdin: then only embedded buffers work).
+// UVs are converted to limn's convention (v up, as in OBJ): v_limn = 1 - v_gltf.
+Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
+              Warnings& warnings);
+
+} // namespace limn

@@ -1,0 +1,94 @@
+#include "mesh/import.h"
+
+#include "base/error.h"
+#include "base/io.h"
+#include "container/container.h"
+#include "mesh/gltf.h"
+#include "mesh/mesh_chunks.h"
+#include "mesh/obj.h"
+#include "mesh/openmesh_io.h"
+
+#include <cstring>
+
+namespace limn {
+
+MeshFormat formatFromExtension(const std::string& ext) {
+    if (ext == ".obj") return MeshFormat::Obj;
+    if (ext == ".gltf") return MeshFormat::Gltf;
+    if (ext == ".glb") return MeshFormat::Glb;
+    if (ext == ".ply") return MeshFormat::Ply;
+    if (ext == ".off") return MeshFormat::Off;
+    if (ext == ".limn") return MeshFormat::Container;
+    return MeshFormat::Unknown;
+}
+
+MeshFormat formatFromContent(std::span<const uint8_t> bytes) {
+    auto startsWith = [&](const char* s) {
+        size_t n = std::strlen(s);
+        return bytes.size() >= n && std::memcmp(bytes.data(), s, n) == 0;
+    };
+    if (looksLikeContainer(bytes)) return MeshFormat::Container;
+    if (startsWith("glTF")) return MeshFormat::Glb;
+    if (startsWith("ply")) return MeshFormat::Ply;
+    for (const char* off : {"OFF", "COFF", "NOFF", "STOFF", "CNOFF", "STCOFF", "4OFF", "nOFF"})
+        if (startsWith(off)) return MeshFormat::Off;
+    size_t i = 0;
+    while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\r' ||
+                                bytes[i] == '\n' || bytes[i] == 0xEF || bytes[i] == 0xBB ||
+                                bytes[i] == 0xBF))
+        ++i;
+    if (i < bytes.size() && bytes[i] == '{') return MeshFormat::Gltf;
+    return MeshFormat::Obj;
+}
+
+const char* formatName(MeshFormat f) {
+    switch (f) {
+    case MeshFormat::Obj: return "OBJ";
+    case MeshFormat::Gltf: return "glTF";
+    case MeshFormat::Glb: return "GLB";
+    case MeshFormat::Ply: return "PLY";
+    case MeshFormat::Off: return "OFF";
+    case MeshFormat::Container: return ".limn";
+    case MeshFormat::Unknown: break;
+    }
+    return "unknown";
+}
+
+Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings) {
+    MeshFormat format = isStdio(path) ? formatFromContent(bytes) : formatFromExtension(extensionOf(path));
+    if (format == MeshFormat::Unknown) {
+        Error e(ErrorKind::BadInput, "unknown mesh format '" + extensionOf(path) +
+                                         "'; limn reads .obj, .gltf, .glb, .ply, .off and .limn");
+        e.setFile(path);
+        throw e;
+    }
+    try {
+        switch (format) {
+        case MeshFormat::Obj: return readObj(bytes, warnings);
+        case MeshFormat::Gltf: return readGltf(bytes, false, directoryOf(path), warnings);
+        case MeshFormat::Glb: return readGltf(bytes, true, directoryOf(path), warnings);
+        case MeshFormat::Ply: return readWithOpenMesh(bytes, ".ply", warnings);
+        case MeshFormat::Off: return readWithOpenMesh(bytes, ".off", warnings);
+        case MeshFormat::Container: return loadMesh(parseContainer(bytes));
+        case MeshFormat::Unknown: break;
+        }
+    } catch (Error& e) {
+        e.setFile(path);
+        throw;
+    }
+    return {};
+}
+
+Mesh importMeshFile(const std::string& path, Warnings& warnings) {
+    auto bytes = readInput(path);
+    return importMesh(path, bytes, warnings);
+}
+
+std::string exportMesh(const Mesh& mesh, const std::string& path) {
+    std::string ext = extensionOf(path);
+    if (ext == ".ply") return writePly(mesh);
+    if (ext == ".off") return writeOff(mesh);
+    return writeObj(mesh);
+}
+
+} // namespace limn

@@ -1,0 +1,123 @@
+#include "topology/features.h"
+
+#include <opensubdiv/sdc/crease.h>
+#include <opensubdiv/sdc/options.h>
+
+#include <algorithm>
+#include <string>
+#include <unordered_map>
+
+namespace limn {
+
+SchemeOptions resolveSchemeOptions(const Tags& tags, std::optional<BoundaryRule> boundaryOverride) {
+    SchemeOptions o;
+    if (tags.boundary) o.boundary = *tags.boundary;
+    if (boundaryOverride) o.boundary = *boundaryOverride;
+    if (tags.creaseMethod) o.creaseMethod = *tags.creaseMethod;
+    if (tags.triangles) o.triangles = *tags.triangles;
+    if (tags.fvar) o.fvar = *tags.fvar;
+    return o;
+}
+
+Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule boundary,
+                        Warnings& warnings) {
+    Sharpness s;
+    s.edge.assign(topo.edgeCount(), 0.0f);
+    s.vertex.assign(topo.vertexCount(), 0.0f);
+
+    // Edge lookup by vertex pair, only for the tagged vertices (tags are few, meshes are large).
+    std::unordered_map<uint64_t, uint32_t> edgeOf;
+    if (!tags.creases.empty()) {
+        for (uint32_t e = 0; e < topo.edgeCount(); ++e) {
+            auto [a, b] = topo.edgeVertices(e);
+            edgeOf[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)] = e;
+        }
+    }
+    size_t missing = 0;
+    for (const auto& c : tags.creases) {
+        auto it = edgeOf.find((uint64_t(std::min(c.v0, c.v1)) << 32) | std::max(c.v0, c.v1));
+        if (it == edgeOf.end()) {
+            if (missing++ == 0)
+                warnings.add("crease tag (" + std::to_string(c.v0) + "," + std::to_string(c.v1) +
+                             ") names no edge of the mesh; ignored");
+            continue;
+        }
+        s.edge[it->second] = c.sharpness; // a later tag for the same edge wins, as in Far
+    }
+    if (missing > 1)
+        warnings.add(std::to_string(missing - 1) + " more crease tags name no edge; ignored");
+    for (const auto& c : tags.corners) s.vertex[c.vertex] = c.sharpness;
+
+    const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
+    for (uint32_t e = 0; e < topo.edgeCount(); ++e)
+        if (topo.edgeIsBoundary(e) || topo.edgeIsNonManifold(e)) s.edge[e] = inf;
+
+    // Non-manifold edges at each vertex, for the "non-manifold crease" exception.
+    std::vector<uint8_t> nonManifoldEdges(topo.vertexCount(), 0);
+    for (uint32_t e = 0; e < topo.edgeCount(); ++e)
+        if (topo.edgeIsNonManifold(e))
+            for (uint32_t v : topo.edgeVertices(e))
+                nonManifoldEdges[v] = static_cast<uint8_t>(std::min(nonManifoldEdges[v] + 1, 255));
+    for (uint32_t v = 0; v < topo.vertexCount(); ++v) {
+        bool corner = topo.vertexFaceCount(v) == 1 && topo.vertexEdgeCount(v) == 2;
+        if (corner && boundary == BoundaryRule::EdgeAndCorner)
+            s.vertex[v] = inf;
+        else if (topo.vertexIsNonManifold(v) && nonManifoldEdges[v] != 2)
+            s.vertex[v] = inf;
+    }
+    return s;
+}
+
+VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v) {
+    int sharpEdges = 0;
+    for (uint32_t h : topo.vertexOutgoing(v)) {
+        // Each incident edge once: outgoing half-edges cover interior edges once each; boundary
+        // edges arriving at v (no outgoing twin) are counted from prev().
+        if (sharp.edge[topo.edge(h)] > 0) ++sharpEdges;
+        uint32_t p = topo.prev(h);
+        if (topo.twin(p) == kNone && sharp.edge[topo.edge(p)] > 0) ++sharpEdges;
+    }
+    OpenSubdiv::Sdc::Crease crease;
+    auto rule = crease.DetermineVertexVertexRule(sharp.vertex[v], sharpEdges);
+    return static_cast<VertexRule>(rule);
+}
+
+Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
+                             const std::vector<uint8_t>& faceIsHole, BoundaryRule boundary) {
+    const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
+    Regularity r;
+    r.vertexRegular.assign(topo.vertexCount(), 0);
+    for (uint32_t v = 0; v < topo.vertexCount(); ++v) {
+        if (topo.vertexIsIsolated(v) || topo.vertexIsNonManifold(v)) continue;
+        uint32_t faces = topo.vertexFaceCount(v);
+        bool allQuads = true, interiorEdgesSmooth = true;
+        for (uint32_t h : topo.vertexOutgoing(v)) {
+            if (topo.faceSize(topo.face(h)) != 4) allQuads = false;
+            if (topo.twin(h) != kNone && sharp.edge[topo.edge(h)] > 0) interiorEdgesSmooth = false;
+        }
+        if (!allQuads || !interiorEdgesSmooth) continue;
+        if (!topo.vertexIsBoundary(v)) {
+            r.vertexRegular[v] = faces == 4 && sharp.vertex[v] == 0;
+        } else if (faces == 2) {
+            r.vertexRegular[v] = sharp.vertex[v] == 0 && boundary != BoundaryRule::None;
+        } else if (faces == 1) {
+            r.vertexRegular[v] = sharp.vertex[v] >= inf;
+        }
+    }
+    r.faceRegular.assign(topo.faceCount(), 0);
+    r.faceHasNoLimit.assign(topo.faceCount(), 0);
+    for (uint32_t f = 0; f < topo.faceCount(); ++f) {
+        bool noLimit = !faceIsHole.empty() && faceIsHole[f];
+        bool regular = topo.faceSize(f) == 4;
+        for (uint32_t v : topo.faceVertices(f)) {
+            if (!r.vertexRegular[v]) regular = false;
+            if (boundary == BoundaryRule::None && topo.vertexIsBoundary(v) && sharp.vertex[v] < inf)
+                noLimit = true;
+        }
+        r.faceHasNoLimit[f] = noLimit;
+        r.faceRegular[f] = regular && !noLimit;
+    }
+    return r;
+}
+
+} // namespace limn

@@ -1,0 +1,61 @@
+// Catmull-Clark features of a mesh level: edge and vertex sharpness (from tags plus OpenSubdiv's
+// base-level sharpening), vertex rules, and which vertices and faces are regular, i.e. where the
+// limit surface is exactly a bicubic B-spline patch of the 4x4 control points around a face
+// (paper 000, section 3.2). Shared by limn-classify and the subdivision tables so both agree.
+#pragma once
+
+#include "base/warnings.h"
+#include "mesh/mesh.h"
+#include "topology/topology.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace limn {
+
+// The subdivision options a mesh is refined with, resolved from its tags and the command line.
+struct SchemeOptions {
+    BoundaryRule boundary = BoundaryRule::EdgeOnly;
+    CreaseMethod creaseMethod = CreaseMethod::Uniform;
+    TriangleSubdivision triangles = TriangleSubdivision::Catmark;
+    FVarRule fvar = FVarRule::All;
+};
+
+// Tags win over defaults; `boundaryOverride` (from --boundary) wins over the tag.
+SchemeOptions resolveSchemeOptions(const Tags& tags, std::optional<BoundaryRule> boundaryOverride);
+
+// Vertex rules, as Sdc::Crease::Rule.
+enum class VertexRule : uint8_t { Smooth = 1, Dart = 2, Crease = 4, Corner = 8 };
+
+struct Sharpness {
+    std::vector<float> edge;   // per topology edge
+    std::vector<float> vertex; // per vertex
+};
+
+// Base-level sharpness exactly as OpenSubdiv's Far factory prepares it: crease and corner tags,
+// then boundary and non-manifold edges infinitely sharp, corner vertices (one face, two edges)
+// infinitely sharp under edge-and-corner, non-manifold vertices sharp unless they lie on a
+// non-manifold crease. Crease tags naming no edge are reported as warnings and ignored.
+Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule boundary,
+                        Warnings& warnings);
+
+VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v);
+
+// Per-vertex and per-face regularity at one level. A vertex is patch-regular when the surface
+// around it follows the uniform B-spline rules: interior, 4 quads, no sharp incident edge and no
+// vertex sharpness; or a boundary vertex with 2 quads whose interior edge is smooth (the boundary
+// is then a B-spline with phantom points P_-1 = 2 P_0 - P_1, math.md C.4); or an infinitely sharp
+// corner with 1 quad (edge-and-corner). A face is regular when it is a quad with 4 patch-regular
+// corners: its 4x4 neighbourhood is then a B-spline patch (boundary faces with phantom points).
+struct Regularity {
+    std::vector<uint8_t> vertexRegular;
+    std::vector<uint8_t> faceRegular;
+    // Faces without a limit surface: holes, and under boundary rule "none" faces that touch a
+    // boundary vertex that is not infinitely sharp (as OpenSubdiv's Bfr/Far decide).
+    std::vector<uint8_t> faceHasNoLimit;
+};
+
+Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
+                             const std::vector<uint8_t>& faceIsHole, BoundaryRule boundary);
+
+} // namespace limn

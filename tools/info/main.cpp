@@ -1,0 +1,172 @@
+// limn-info: summarizes a .limn container (or any mesh limn reads): counts, histograms, feature
+// classification and the chunks it holds. Human-readable by default, one JSON object with --json.
+#include "base/cli.h"
+#include "base/error.h"
+#include "base/io.h"
+#include "base/json.h"
+#include "container/container.h"
+#include "mesh/import.h"
+#include "mesh/mesh_chunks.h"
+#include "topology/classification.h"
+
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+using namespace limn;
+
+namespace {
+
+const char* boundaryName(BoundaryRule b) {
+    switch (b) {
+    case BoundaryRule::None: return "none";
+    case BoundaryRule::EdgeOnly: return "edge";
+    case BoundaryRule::EdgeAndCorner: return "edge-corner";
+    }
+    return "?";
+}
+
+struct Summary {
+    size_t vertices = 0, faces = 0;
+    std::map<uint32_t, size_t> faceSizes, interiorValence;
+    size_t extraordinary = 0, regularFaces = 0, irregularFaces = 0, holeFaces = 0;
+    size_t uvs = 0;
+    Classification c;
+};
+
+Summary summarize(const Mesh& mesh, const Classification& c) {
+    Summary s;
+    s.c = c;
+    s.vertices = mesh.vertexCount();
+    s.faces = mesh.faceCount();
+    s.uvs = mesh.uvs.size();
+    for (size_t f = 0; f < mesh.faceCount(); ++f) {
+        ++s.faceSizes[mesh.faceSize(f)];
+        uint32_t flags = c.faceFlags[f];
+        if (flags & kFaceNoLimit)
+            ++s.holeFaces;
+        else if (flags & kFaceRegular)
+            ++s.regularFaces;
+        else
+            ++s.irregularFaces;
+    }
+    // Faces around each interior vertex (boundary and unused vertices excluded).
+    std::vector<uint32_t> facesAround(mesh.vertexCount(), 0);
+    for (uint32_t v : mesh.faceVertices) ++facesAround[v];
+    for (size_t v = 0; v < mesh.vertexCount(); ++v) {
+        uint32_t flags = c.vertexFlags[v];
+        if (flags & (kVertexBoundary | kVertexIsolated)) continue;
+        ++s.interiorValence[facesAround[v]];
+    }
+    for (size_t v = 0; v < mesh.vertexCount(); ++v)
+        if ((c.vertexFlags[v] & kVertexExtraordinary) && !(c.vertexFlags[v] & kVertexIsolated))
+            ++s.extraordinary;
+    return s;
+}
+
+void histogram(JsonWriter& j, const std::string& key, const std::map<uint32_t, size_t>& h) {
+    j.key(key).beginObject();
+    for (const auto& [k, n] : h) j.field(std::to_string(k), n);
+    j.endObject();
+}
+
+std::string histogramText(const std::map<uint32_t, size_t>& h) {
+    std::string s;
+    for (const auto& [k, n] : h) s += (s.empty() ? "" : ", ") + std::to_string(k) + ": " + std::to_string(n);
+    return s.empty() ? "-" : s;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    return cli::run("limn-info", argc, argv, [](int ac, char** av) {
+        cli::Common common;
+        std::string input = "-";
+        bool json = false;
+        cli::Parser parser("limn-info", "[options] [INPUT|-]",
+                           "Summarizes a .limn container (or a mesh file, classified on the fly).",
+                           common, /*hasOutput=*/false, /*hasDepfile=*/false);
+        parser.positional("INPUT", &input, ".limn container or mesh file")
+            .flag("--json", &json, "print one JSON object instead of text")
+            .notes("JSON fields: vertices, faces, face_size_histogram, edges, boundary_edges,\n"
+                   "nonmanifold_edges, interior_valence_histogram (faces around each interior\n"
+                   "vertex), extraordinary_vertices, regular_faces, irregular_faces, hole_faces\n"
+                   "(holes and faces without a limit surface), uv_seam_edges, boundary_rule and\n"
+                   "chunks (type, version, bytes).\n");
+        if (!parser.parse(ac, av)) return 0;
+        cli::setVerbosity(common.quiet, common.verbose);
+
+        auto bytes = readInput(input);
+        Warnings warnings;
+        Container container;
+        Mesh mesh;
+        Classification c;
+        try {
+            if (looksLikeContainer(bytes)) {
+                container = parseContainer(bytes);
+                mesh = loadMesh(container);
+            } else {
+                mesh = importMesh(input, bytes, warnings);
+            }
+            if (const Chunk* clsf = container.find(kClassificationChunk)) {
+                c = decodeClassificationChunk(*clsf, mesh);
+            } else {
+                Topology topo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets,
+                              mesh.faceVertices);
+                c = classifyMesh(mesh, topo, resolveSchemeOptions(mesh.tags, {}), warnings);
+            }
+        } catch (Error& e) {
+            e.setFile(input);
+            throw;
+        }
+        cli::printWarnings(warnings, input == "-" ? "<stdin>" : input);
+        Summary s = summarize(mesh, c);
+
+        if (json) {
+            JsonWriter j;
+            j.beginObject();
+            j.field("vertices", s.vertices).field("faces", s.faces);
+            histogram(j, "face_size_histogram", s.faceSizes);
+            j.field("edges", c.edges)
+                .field("boundary_edges", c.boundaryEdges)
+                .field("nonmanifold_edges", c.nonManifoldEdges);
+            histogram(j, "interior_valence_histogram", s.interiorValence);
+            j.field("extraordinary_vertices", s.extraordinary)
+                .field("regular_faces", s.regularFaces)
+                .field("irregular_faces", s.irregularFaces)
+                .field("hole_faces", s.holeFaces)
+                .field("uvs", s.uvs)
+                .field("uv_seam_edges", c.uvSeamEdges)
+                .field("boundary_rule", boundaryName(c.options.boundary));
+            j.key("chunks").beginArray();
+            for (const auto& ch : container.chunks) {
+                j.beginObject();
+                j.field("type", ch.type.str()).field("version", ch.version).field("bytes", ch.payload.size());
+                j.endObject();
+            }
+            j.endArray();
+            j.endObject();
+            std::cout << j.str() << "\n";
+        } else {
+            std::printf("%s\n", input == "-" ? "<stdin>" : input.c_str());
+            std::printf("  vertices               %zu\n", s.vertices);
+            std::printf("  faces                  %zu (sizes %s)\n", s.faces, histogramText(s.faceSizes).c_str());
+            std::printf("  edges                  %u (%u boundary, %u non-manifold, %u UV seam)\n",
+                        c.edges, c.boundaryEdges, c.nonManifoldEdges, c.uvSeamEdges);
+            std::printf("  interior valences      %s\n", histogramText(s.interiorValence).c_str());
+            std::printf("  extraordinary vertices %zu\n", s.extraordinary);
+            std::printf("  regular faces          %zu\n", s.regularFaces);
+            std::printf("  irregular faces        %zu\n", s.irregularFaces);
+            std::printf("  holes / no limit       %zu\n", s.holeFaces);
+            std::printf("  UVs                    %zu\n", s.uvs);
+            std::printf("  boundary rule          %s\n", boundaryName(c.options.boundary));
+            if (!container.chunks.empty()) {
+                std::printf("  chunks                ");
+                for (const auto& ch : container.chunks)
+                    std::printf(" %s v%u (%zu bytes)", ch.type.str().c_str(), ch.version, ch.payload.size());
+                std::printf("\n");
+            }
+        }
+        return 0;
+    });
+}
