@@ -17,7 +17,7 @@ endfunction()
 function(limn_gtest name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE limn_warnings GTest::gtest_main ${ARG_DEPS})
+  target_link_libraries(${name} PRIVATE limn_warnings GTest::gtest_main limn_test_support ${ARG_DEPS})
   target_compile_definitions(${name} PRIVATE
     LIMN_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
     LIMN_BIN_DIR="${CMAKE_BINARY_DIR}/bin"

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Configures and builds limn into a build directory. Usage: scripts/build.sh [release|asan|fuzz]
+#   release  build/       optimized with debug info (default)
+#   asan     build-asan/  AddressSanitizer + UndefinedBehaviorSanitizer
+#   fuzz     build-fuzz/  clang with libFuzzer targets (and ASan)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+kind=${1:-release}
+case "$kind" in
+  release) dir=build; flags=() ;;
+  asan)    dir=build-asan; flags=(-DLIMN_SANITIZE=ON) ;;
+  fuzz)    dir=build-fuzz; flags=(-DLIMN_FUZZ=ON -DLIMN_SANITIZE=ON
+                                  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++) ;;
+  *) echo "usage: scripts/build.sh [release|asan|fuzz]" >&2; exit 2 ;;
+esac
+if [ ! -f "$dir/build.ninja" ]; then
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${flags[@]}" >/dev/null
+fi
+cmake --build "$dir"

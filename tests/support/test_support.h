@@ -1,0 +1,46 @@
+// Helpers shared by limn's tests: paths to the shared models and built tools, running a tool as
+// a subprocess (the way users and Makefiles run it), and scratch directories.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace limn::test {
+
+// ../shared next to the source tree (models, docs). Tests may read it; the project never does.
+std::filesystem::path sharedDir();
+std::filesystem::path modelPath(const std::string& relative); // sharedDir()/"models"/relative
+// The directory the tools are built into (<build>/bin).
+std::filesystem::path binDir();
+std::filesystem::path tool(const std::string& name); // binDir()/name
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out; // stdout
+    std::string err; // stderr
+};
+
+// Runs `argv` (argv[0] a path) with `input` on stdin, capturing stdout and stderr. No shell.
+RunResult run(const std::vector<std::string>& argv, const std::string& input = {});
+
+// A fresh directory under the system temp dir, removed when the object dies.
+class ScratchDir {
+public:
+    ScratchDir();
+    ~ScratchDir();
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+private:
+    std::filesystem::path path_;
+};
+
+std::string readFile(const std::filesystem::path& path);
+std::vector<uint8_t> readBytes(const std::filesystem::path& path);
+void writeFile(const std::filesystem::path& path, const std::string& contents);
+
+} // namespace limn::test
