@@ -13,7 +13,7 @@ Classification classifyMesh(const Mesh& mesh, const Topology& topo, const Scheme
     Sharpness sharp = baseSharpness(topo, mesh.tags, options.boundary, warnings);
     std::vector<uint8_t> hole(F, 0);
     for (uint32_t f : mesh.tags.holes) hole[f] = 1;
-    Regularity reg = analyzeRegularity(topo, sharp, hole, options.boundary);
+    Regularity reg = analyzeRegularity(topo, sharp, sharp.faceNoLimit);
 
     c.vertexValence.resize(V);
     c.vertexFlags.assign(V, 0);
@@ -48,7 +48,7 @@ Classification classifyMesh(const Mesh& mesh, const Topology& topo, const Scheme
         uint32_t flags = 0;
         if (reg.faceRegular[f]) flags |= kFaceRegular;
         if (hole[f]) flags |= kFaceHole;
-        if (reg.faceHasNoLimit[f]) flags |= kFaceNoLimit;
+        if (sharp.faceNoLimit[f]) flags |= kFaceNoLimit;
         if (topo.faceSize(f) != 4) flags |= kFaceNonQuad;
         for (uint32_t h = topo.faceHalfedge(f); h < topo.faceHalfedge(f) + topo.faceSize(f); ++h) {
             if (topo.edgeIsBoundary(topo.edge(h))) flags |= kFaceBoundary;

@@ -49,6 +49,23 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
     for (const auto& c : tags.corners) s.vertex[c.vertex] = c.sharpness;
 
     const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
+    s.faceNoLimit.assign(topo.faceCount(), 0);
+    for (uint32_t f : tags.holes) s.faceNoLimit[f] = 1;
+    if (boundary == BoundaryRule::None) {
+        // Before boundaries are sharpened: a vertex with a boundary edge that is not tagged
+        // infinitely sharp takes all its faces out of the surface.
+        for (uint32_t v = 0; v < topo.vertexCount(); ++v) {
+            bool exclude = false;
+            for (uint32_t h : topo.vertexOutgoing(v)) {
+                uint32_t p = topo.prev(h);
+                if ((topo.twin(h) == kNone && s.edge[topo.edge(h)] < inf) ||
+                    (topo.twin(p) == kNone && s.edge[topo.edge(p)] < inf))
+                    exclude = true;
+            }
+            if (exclude)
+                for (uint32_t h : topo.vertexOutgoing(v)) s.faceNoLimit[topo.face(h)] = 1;
+        }
+    }
     for (uint32_t e = 0; e < topo.edgeCount(); ++e)
         if (topo.edgeIsBoundary(e) || topo.edgeIsNonManifold(e)) s.edge[e] = inf;
 
@@ -83,7 +100,7 @@ VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v) 
 }
 
 Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
-                             const std::vector<uint8_t>& faceIsHole, BoundaryRule boundary) {
+                             const std::vector<uint8_t>& faceNoLimit) {
     const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
     Regularity r;
     r.vertexRegular.assign(topo.vertexCount(), 0);
@@ -99,23 +116,17 @@ Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
         if (!topo.vertexIsBoundary(v)) {
             r.vertexRegular[v] = faces == 4 && sharp.vertex[v] == 0;
         } else if (faces == 2) {
-            r.vertexRegular[v] = sharp.vertex[v] == 0 && boundary != BoundaryRule::None;
+            r.vertexRegular[v] = sharp.vertex[v] == 0;
         } else if (faces == 1) {
             r.vertexRegular[v] = sharp.vertex[v] >= inf;
         }
     }
     r.faceRegular.assign(topo.faceCount(), 0);
-    r.faceHasNoLimit.assign(topo.faceCount(), 0);
     for (uint32_t f = 0; f < topo.faceCount(); ++f) {
-        bool noLimit = !faceIsHole.empty() && faceIsHole[f];
-        bool regular = topo.faceSize(f) == 4;
-        for (uint32_t v : topo.faceVertices(f)) {
+        bool regular = topo.faceSize(f) == 4 && !faceNoLimit[f];
+        for (uint32_t v : topo.faceVertices(f))
             if (!r.vertexRegular[v]) regular = false;
-            if (boundary == BoundaryRule::None && topo.vertexIsBoundary(v) && sharp.vertex[v] < inf)
-                noLimit = true;
-        }
-        r.faceHasNoLimit[f] = noLimit;
-        r.faceRegular[f] = regular && !noLimit;
+        r.faceRegular[f] = regular;
     }
     return r;
 }

@@ -30,12 +30,17 @@ enum class VertexRule : uint8_t { Smooth = 1, Dart = 2, Crease = 4, Corner = 8 }
 struct Sharpness {
     std::vector<float> edge;   // per topology edge
     std::vector<float> vertex; // per vertex
+    // Faces without a limit surface: holes, and under boundary rule "none" every face around a
+    // vertex that has a boundary edge not tagged infinitely sharp (as OpenSubdiv's Far factory
+    // makes them holes before it sharpens boundaries).
+    std::vector<uint8_t> faceNoLimit;
 };
 
 // Base-level sharpness exactly as OpenSubdiv's Far factory prepares it: crease and corner tags,
 // then boundary and non-manifold edges infinitely sharp, corner vertices (one face, two edges)
 // infinitely sharp under edge-and-corner, non-manifold vertices sharp unless they lie on a
-// non-manifold crease. Crease tags naming no edge are reported as warnings and ignored.
+// non-manifold crease; plus the faces without a limit surface (holes, boundary rule "none").
+// Crease tags naming no edge are reported as warnings and ignored.
 Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule boundary,
                         Warnings& warnings);
 
@@ -49,13 +54,10 @@ VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v);
 // corners: its 4x4 neighbourhood is then a B-spline patch (boundary faces with phantom points).
 struct Regularity {
     std::vector<uint8_t> vertexRegular;
-    std::vector<uint8_t> faceRegular;
-    // Faces without a limit surface: holes, and under boundary rule "none" faces that touch a
-    // boundary vertex that is not infinitely sharp (as OpenSubdiv's Bfr/Far decide).
-    std::vector<uint8_t> faceHasNoLimit;
+    std::vector<uint8_t> faceRegular; // never set for faces without a limit surface
 };
 
 Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
-                             const std::vector<uint8_t>& faceIsHole, BoundaryRule boundary);
+                             const std::vector<uint8_t>& faceNoLimit);
 
 } // namespace limn

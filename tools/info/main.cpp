@@ -7,9 +7,11 @@
 #include "container/container.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
+#include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
 
 #include <cstdio>
+#include <optional>
 #include <iostream>
 #include <map>
 
@@ -92,7 +94,11 @@ int main(int argc, char** argv) {
                    "nonmanifold_edges, interior_valence_histogram (faces around each interior\n"
                    "vertex), extraordinary_vertices, regular_faces, irregular_faces, hole_faces\n"
                    "(holes and faces without a limit surface), uv_seam_edges, boundary_rule and\n"
-                   "chunks (type, version, bytes).\n");
+                   "chunks (type, version, bytes). With subdivision tables (limn-tables): depth,\n"
+                   "uniform, table_bytes, table_vertices, patches, limit_points,\n"
+                   "approximate_limit_points and levels (per level 0..N: vertices computed at that\n"
+                   "level, regular_patches drawn at it, irregular_faces: faces refined further, or\n"
+                   "at the last level drawn at their limit corners).\n");
         if (!parser.parse(ac, av)) return 0;
         cli::setVerbosity(common.quiet, common.verbose);
 
@@ -119,6 +125,17 @@ int main(int argc, char** argv) {
             e.setFile(input);
             throw;
         }
+        std::optional<Tables> tables;
+        size_t tableBytes = 0;
+        if (const Chunk* tb = container.find(kTablesChunk)) {
+            try {
+                tables = decodeTablesChunk(*tb, &mesh);
+            } catch (Error& e) {
+                e.setFile(input);
+                throw;
+            }
+            tableBytes = tb->payload.size();
+        }
         cli::printWarnings(warnings, input == "-" ? "<stdin>" : input);
         Summary s = summarize(mesh, c);
 
@@ -138,6 +155,24 @@ int main(int argc, char** argv) {
                 .field("uvs", s.uvs)
                 .field("uv_seam_edges", c.uvSeamEdges)
                 .field("boundary_rule", boundaryName(c.options.boundary));
+            if (tables) {
+                j.field("depth", tables->depth)
+                    .field("uniform", tables->uniform)
+                    .field("table_bytes", tableBytes)
+                    .field("table_vertices", tables->totalVertices)
+                    .field("patches", tables->patches.size())
+                    .field("limit_points", tables->limitPosition.rows())
+                    .field("approximate_limit_points", tables->approximateLimitPoints);
+                j.key("levels").beginArray();
+                for (const auto& L : tables->levels) {
+                    j.beginObject();
+                    j.field("vertices", L.count())
+                        .field("regular_patches", L.regularPatches)
+                        .field("irregular_faces", L.irregularFaces);
+                    j.endObject();
+                }
+                j.endArray();
+            }
             j.key("chunks").beginArray();
             for (const auto& ch : container.chunks) {
                 j.beginObject();
@@ -160,6 +195,17 @@ int main(int argc, char** argv) {
             std::printf("  holes / no limit       %zu\n", s.holeFaces);
             std::printf("  UVs                    %zu\n", s.uvs);
             std::printf("  boundary rule          %s\n", boundaryName(c.options.boundary));
+            if (tables) {
+                std::printf("  tables                 depth %u %s, %zu bytes, %u vertices, %zu patches, "
+                            "%zu limit points (%u approximate)\n",
+                            tables->depth, tables->uniform ? "uniform" : "adaptive", tableBytes,
+                            tables->totalVertices, tables->patches.size(),
+                            tables->limitPosition.rows(), tables->approximateLimitPoints);
+                for (size_t l = 0; l < tables->levels.size(); ++l)
+                    std::printf("    level %zu: %u vertices, %u regular patches, %u irregular faces\n", l,
+                                tables->levels[l].count(), tables->levels[l].regularPatches,
+                                tables->levels[l].irregularFaces);
+            }
             if (!container.chunks.empty()) {
                 std::printf("  chunks                ");
                 for (const auto& ch : container.chunks)

@@ -1,0 +1,91 @@
+#include "subdiv/evaluate.h"
+
+#include <glm/geometric.hpp>
+
+namespace limn {
+
+namespace {
+
+glm::dvec3 apply(const StencilTable& table, size_t row, std::span<const glm::dvec3> V) {
+    glm::dvec3 sum(0.0);
+    for (uint32_t i = table.start[row]; i < table.start[row + 1]; ++i)
+        sum += double(table.weights[i]) * V[table.indices[i]];
+    return sum;
+}
+
+} // namespace
+
+std::vector<glm::dvec3> evaluateVertices(const Tables& t, std::span<const glm::dvec3> control) {
+    std::vector<glm::dvec3> V(t.totalVertices);
+    for (size_t i = 0; i < t.levels[0].count(); ++i) V[i] = control[i];
+    for (uint32_t l = 1; l <= t.depth; ++l) {
+        const LevelInfo& info = t.levels[l];
+        const StencilTable& faces = t.facePoints[l - 1];
+        uint32_t out = info.first;
+        for (size_t r = 0; r < faces.rows(); ++r) {
+            glm::dvec3 sum(0.0);
+            uint32_t n = faces.start[r + 1] - faces.start[r];
+            for (uint32_t i = faces.start[r]; i < faces.start[r + 1]; ++i) sum += V[faces.indices[i]];
+            V[out++] = sum / double(n);
+        }
+        for (size_t r = 0; r < t.edgePoints[l - 1].rows(); ++r) V[out++] = apply(t.edgePoints[l - 1], r, V);
+        for (size_t r = 0; r < t.vertexPoints[l - 1].rows(); ++r)
+            V[out++] = apply(t.vertexPoints[l - 1], r, V);
+    }
+    return V;
+}
+
+void bsplineBasis(double t, double b[4], double d[4]) {
+    double t2 = t * t, t3 = t2 * t, s = 1 - t;
+    b[0] = s * s * s / 6;
+    b[1] = (3 * t3 - 6 * t2 + 4) / 6;
+    b[2] = (-3 * t3 + 3 * t2 + 3 * t + 1) / 6;
+    b[3] = t3 / 6;
+    d[0] = -s * s / 2;
+    d[1] = (9 * t2 - 12 * t) / 6;
+    d[2] = (-9 * t2 + 6 * t + 3) / 6;
+    d[3] = t2 / 2;
+}
+
+SurfacePoint evaluatePatch(const Patch& p, std::span<const glm::dvec3> V, double s, double t) {
+    glm::dvec3 P[4][4]; // P[i][j], i along u
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) P[i][j] = V[p.cv[4 * j + i]];
+    // Phantom columns first, then phantom rows over all columns (overwriting the corners), so a
+    // corner phantom is 4 P11 - 2 P21 - 2 P12 + P22.
+    for (int j = 0; j < 4; ++j) {
+        if (p.boundary & kBoundaryU0) P[0][j] = 2.0 * P[1][j] - P[2][j];
+        if (p.boundary & kBoundaryU1) P[3][j] = 2.0 * P[2][j] - P[1][j];
+    }
+    for (int i = 0; i < 4; ++i) {
+        if (p.boundary & kBoundaryV0) P[i][0] = 2.0 * P[i][1] - P[i][2];
+        if (p.boundary & kBoundaryV1) P[i][3] = 2.0 * P[i][2] - P[i][1];
+    }
+    double bu[4], du[4], bv[4], dv[4];
+    bsplineBasis(s, bu, du);
+    bsplineBasis(t, bv, dv);
+    SurfacePoint r{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            r.position += bu[i] * bv[j] * P[i][j];
+            r.du += du[i] * bv[j] * P[i][j];
+            r.dv += bu[i] * dv[j] * P[i][j];
+        }
+    r.du /= double(p.size);
+    r.dv /= double(p.size);
+    r.normal = glm::normalize(glm::cross(r.du, r.dv));
+    return r;
+}
+
+std::vector<LimitPoint> evaluateLimitPoints(const Tables& t, std::span<const glm::dvec3> V) {
+    std::vector<LimitPoint> out(t.limitPosition.rows());
+    for (size_t i = 0; i < out.size(); ++i) {
+        out[i].position = apply(t.limitPosition, i, V);
+        out[i].tangent1 = apply(t.limitTangent1, i, V);
+        out[i].tangent2 = apply(t.limitTangent2, i, V);
+        out[i].normal = glm::normalize(glm::cross(out[i].tangent1, out[i].tangent2));
+    }
+    return out;
+}
+
+} // namespace limn

@@ -1,0 +1,36 @@
+// A CPU evaluator of the tables: the same arithmetic the GPU passes do, in double precision, for
+// tests and reference renders. Straightforward on purpose.
+#pragma once
+
+#include "subdiv/tables.h"
+
+#include <glm/vec3.hpp>
+
+#include <span>
+#include <vector>
+
+namespace limn {
+
+// All table vertices (levels concatenated) from the control points, level by level: face
+// points, then edge points, then vertex points (they read the level's face points).
+std::vector<glm::dvec3> evaluateVertices(const Tables& tables, std::span<const glm::dvec3> control);
+
+struct SurfacePoint {
+    glm::dvec3 position, du, dv, normal; // du, dv: derivatives in the patch's ptex u and v
+};
+
+// The bicubic B-spline of paper 000 eq. (1) at patch-local (s, t) in [0,1]^2, with phantom
+// points beyond boundary edges (math.md C.4). Derivatives are per unit of ptex u and v.
+SurfacePoint evaluatePatch(const Patch& patch, std::span<const glm::dvec3> vertices, double s,
+                           double t);
+
+struct LimitPoint {
+    glm::dvec3 position, tangent1, tangent2, normal;
+};
+
+std::vector<LimitPoint> evaluateLimitPoints(const Tables& tables, std::span<const glm::dvec3> vertices);
+
+// Uniform cubic B-spline basis and its derivative at t in [0,1] (paper 000, section 3.2).
+void bsplineBasis(double t, double b[4], double d[4]);
+
+} // namespace limn

@@ -1,0 +1,245 @@
+#include "subdiv/level.h"
+
+#include "subdiv/sdc_masks.h"
+
+#include <opensubdiv/sdc/catmarkScheme.h>
+
+#include <algorithm>
+
+namespace limn {
+
+namespace {
+
+using OpenSubdiv::Sdc::Crease;
+
+VertexRule ruleFrom(const Crease& crease, float vertexSharpness, int sharpEdges) {
+    return static_cast<VertexRule>(crease.DetermineVertexVertexRule(vertexSharpness, sharpEdges));
+}
+
+Crease::Rule sdcRule(uint8_t r) { return static_cast<Crease::Rule>(r); }
+
+// Sharpness of the child edge of `e` at its end vertex `v` (Vtr's subdivideEdgeSharpness).
+float childEdgeSharpness(const Level& L, const Crease& crease, uint32_t e, uint32_t v,
+                         std::vector<float>& scratch) {
+    float s = L.edgeSharpness[e];
+    if (s <= 0) return 0;
+    if (Crease::IsInfinite(s)) return Crease::SHARPNESS_INFINITE;
+    if (crease.IsUniform()) return crease.SubdivideUniformSharpness(s);
+    scratch.clear();
+    for (uint32_t h : L.topo.vertexOutgoing(v)) {
+        scratch.push_back(L.edgeSharpness[L.topo.edge(h)]);
+        uint32_t p = L.topo.prev(h);
+        if (L.topo.twin(p) == kNone) scratch.push_back(L.edgeSharpness[L.topo.edge(p)]);
+    }
+    return crease.SubdivideEdgeSharpnessAtVertex(s, static_cast<int>(scratch.size()), scratch.data());
+}
+
+} // namespace
+
+void assignVertexRules(Level& L) {
+    Crease crease;
+    L.vertexRule.assign(L.topo.vertexCount(), static_cast<uint8_t>(VertexRule::Smooth));
+    for (uint32_t v = 0; v < L.topo.vertexCount(); ++v) {
+        int sharp = 0;
+        for (uint32_t h : L.topo.vertexOutgoing(v)) {
+            if (L.edgeSharpness[L.topo.edge(h)] > 0) ++sharp;
+            uint32_t p = L.topo.prev(h);
+            if (L.topo.twin(p) == kNone && L.edgeSharpness[L.topo.edge(p)] > 0) ++sharp;
+        }
+        L.vertexRule[v] = static_cast<uint8_t>(ruleFrom(crease, L.vertexSharpness[v], sharp));
+    }
+}
+
+Level makeBaseLevel(const Topology& topo, const Sharpness& sharpness,
+                    const std::vector<uint8_t>& faceNoLimit) {
+    Level L;
+    L.depth = 0;
+    L.topo = topo;
+    L.edgeSharpness = sharpness.edge;
+    L.vertexSharpness = sharpness.vertex;
+    assignVertexRules(L);
+    L.frames.resize(topo.faceCount());
+    uint32_t ptex = 0;
+    for (uint32_t f = 0; f < topo.faceCount(); ++f) {
+        L.frames[f].ptex = ptex;
+        ptex += topo.faceSize(f) == 4 ? 1 : topo.faceSize(f);
+    }
+    L.noLimit = faceNoLimit;
+    L.complete.assign(topo.faceCount(), 1);
+    L.vertexOrigin.assign(topo.vertexCount(), VertexOrigin::Base);
+    return L;
+}
+
+Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
+                  const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
+    const Topology& T = P.topo;
+    const uint32_t F = T.faceCount(), E = T.edgeCount(), V = T.vertexCount();
+    Crease crease(toSdcOptions(options));
+
+    // Which parent components get a child vertex.
+    std::vector<uint8_t> edgeUsed(E, 0), vertexUsed(V, 0), faceCenter(F, 0);
+    for (uint32_t f = 0; f < F; ++f) {
+        if (!selected[f]) continue;
+        for (uint32_t h = T.faceHalfedge(f); h < T.faceHalfedge(f) + T.faceSize(f); ++h) {
+            edgeUsed[T.edge(h)] = 1;
+            vertexUsed[T.vertex(h)] = 1;
+        }
+    }
+    for (uint32_t v = 0; v < V; ++v)
+        if (vertexUsed[v])
+            for (uint32_t h : T.vertexOutgoing(v)) faceCenter[T.face(h)] = 1;
+
+    Level C;
+    C.depth = P.depth + 1;
+    std::vector<uint32_t> faceChild(F, kNone), edgeChild(E, kNone), vertexChild(V, kNone);
+    uint32_t next = 0;
+    for (uint32_t f = 0; f < F; ++f)
+        if (faceCenter[f]) {
+            faceChild[f] = next++;
+            C.vertexOrigin.push_back(VertexOrigin::Face);
+            C.vertexParent.push_back(f);
+        }
+    C.facePointCount = next;
+    for (uint32_t e = 0; e < E; ++e)
+        if (edgeUsed[e]) {
+            edgeChild[e] = next++;
+            C.vertexOrigin.push_back(VertexOrigin::Edge);
+            C.vertexParent.push_back(e);
+        }
+    C.edgePointCount = next - C.facePointCount;
+    for (uint32_t v = 0; v < V; ++v)
+        if (vertexUsed[v]) {
+            vertexChild[v] = next++;
+            C.vertexOrigin.push_back(VertexOrigin::Vertex);
+            C.vertexParent.push_back(v);
+        }
+    C.vertexPointCount = next - C.facePointCount - C.edgePointCount;
+    const uint32_t childV = next;
+
+    // Child faces: corner k of a parent face gives the quad (v_k, e_k, f, e_{k-1}) with child
+    // corner 0 at the parent's corner k (OpenSubdiv's child and ptex sub-face convention).
+    std::vector<uint32_t> offsets{0}, corners;
+    for (uint32_t f = 0; f < F; ++f) {
+        if (!selected[f]) continue;
+        const uint32_t n = T.faceSize(f), h0 = T.faceHalfedge(f);
+        const FaceFrame& pf = P.frames[f];
+        for (uint32_t k = 0; k < n; ++k) {
+            uint32_t h = h0 + k;
+            corners.insert(corners.end(), {vertexChild[T.vertex(h)], edgeChild[T.edge(h)],
+                                           faceChild[f], edgeChild[T.edge(T.prev(h))]});
+            offsets.push_back(static_cast<uint32_t>(corners.size()));
+            FaceFrame cf;
+            if (P.depth == 0 && n != 4) { // a non-quad's sub-faces are ptex faces of their own
+                cf.ptex = ptexBase[f] + k;
+                cf.rotation = 0;
+                cf.u0 = cf.v0 = 0;
+                cf.size = 1;
+            } else {
+                static const double offU[4] = {0, 1, 1, 0}, offV[4] = {0, 0, 1, 1};
+                uint32_t j = (k + 4 - pf.rotation) % 4; // which ptex corner parent corner k is
+                cf.ptex = pf.ptex;
+                cf.size = pf.size / 2;
+                cf.u0 = pf.u0 + offU[j] * cf.size;
+                cf.v0 = pf.v0 + offV[j] * cf.size;
+                cf.rotation = static_cast<uint8_t>((4 - j) % 4);
+            }
+            C.frames.push_back(cf);
+            C.noLimit.push_back(P.noLimit[f]);
+            C.faceParent.push_back(f);
+        }
+    }
+    C.topo = Topology(childV, offsets, corners);
+    C.complete.assign(C.topo.faceCount(), 0); // the caller marks the children of refined faces
+
+    // Child sharpness (Vtr's subdivideEdgeSharpness / subdivideVertexSharpness) computed from
+    // the parent, so it is right even for child vertices at the fringe of the sparse level.
+    std::vector<float> scratch;
+    std::vector<float> edgeChildSharp(2 * E, 0.0f); // child edge of e at its end 0 / end 1
+    for (uint32_t e = 0; e < E; ++e) {
+        if (!edgeUsed[e]) continue;
+        auto ends = T.edgeVertices(e);
+        edgeChildSharp[2 * e] = childEdgeSharpness(P, crease, e, ends[0], scratch);
+        edgeChildSharp[2 * e + 1] = childEdgeSharpness(P, crease, e, ends[1], scratch);
+    }
+    C.vertexSharpness.assign(childV, 0.0f);
+    C.vertexRule.assign(childV, static_cast<uint8_t>(VertexRule::Smooth));
+    for (uint32_t e = 0; e < E; ++e)
+        if (edgeUsed[e]) {
+            int sharp = (edgeChildSharp[2 * e] > 0) + (edgeChildSharp[2 * e + 1] > 0);
+            C.vertexRule[edgeChild[e]] = static_cast<uint8_t>(ruleFrom(crease, 0.0f, sharp));
+        }
+    for (uint32_t v = 0; v < V; ++v) {
+        if (!vertexUsed[v]) continue;
+        float s = crease.SubdivideVertexSharpness(P.vertexSharpness[v]);
+        int sharp = 0;
+        for (uint32_t h : T.vertexOutgoing(v)) {
+            auto ends = T.edgeVertices(T.edge(h));
+            if (edgeChildSharp[2 * T.edge(h) + (ends[0] == v ? 0 : 1)] > 0) ++sharp;
+            uint32_t p = T.prev(h);
+            if (T.twin(p) == kNone) {
+                auto pe = T.edgeVertices(T.edge(p));
+                if (edgeChildSharp[2 * T.edge(p) + (pe[0] == v ? 0 : 1)] > 0) ++sharp;
+            }
+        }
+        C.vertexSharpness[vertexChild[v]] = s;
+        C.vertexRule[vertexChild[v]] = static_cast<uint8_t>(ruleFrom(crease, s, sharp));
+    }
+    C.edgeSharpness.assign(C.topo.edgeCount(), 0.0f);
+    for (uint32_t ce = 0; ce < C.topo.edgeCount(); ++ce) {
+        auto [a, b] = C.topo.edgeVertices(ce);
+        if (C.vertexOrigin[a] == VertexOrigin::Vertex) std::swap(a, b);
+        if (C.vertexOrigin[a] != VertexOrigin::Edge || C.vertexOrigin[b] != VertexOrigin::Vertex) continue;
+        uint32_t e = C.vertexParent[a], v = C.vertexParent[b];
+        auto ends = T.edgeVertices(e);
+        C.edgeSharpness[ce] = edgeChildSharp[2 * e + (ends[0] == v ? 0 : 1)];
+    }
+
+    // Stencils, with Sdc's masks and the parent/child rules as PrimvarRefiner passes them.
+    OpenSubdiv::Sdc::Scheme<OpenSubdiv::Sdc::SCHEME_CATMARK> scheme(toSdcOptions(options));
+    st.facePoints.assign(C.facePointCount, {});
+    st.edgePoints.assign(C.edgePointCount, {});
+    st.vertexPoints.assign(C.vertexPointCount, {});
+    for (uint32_t f = 0; f < F; ++f)
+        if (faceCenter[f]) {
+            auto fv = T.faceVertices(f);
+            st.facePoints[faceChild[f]].assign(fv.begin(), fv.end());
+        }
+    SdcMask mask(64);
+    for (uint32_t e = 0; e < E; ++e) {
+        if (!edgeUsed[e]) continue;
+        uint32_t cv = edgeChild[e];
+        SdcEdge hood(T, e, P.edgeSharpness[e]);
+        if (mask.edgeWeights.size() < 2) mask = SdcMask(2);
+        auto pRule = P.edgeSharpness[e] > 0 ? Crease::RULE_CREASE : Crease::RULE_SMOOTH;
+        scheme.ComputeEdgeVertexMask(hood, mask, pRule, sdcRule(C.vertexRule[cv]));
+        auto ends = T.edgeVertices(e);
+        auto& row = st.edgePoints[cv - C.facePointCount];
+        row.push_back({ends[0], mask.VertexWeight(0), false});
+        row.push_back({ends[1], mask.VertexWeight(1), false});
+        uint32_t h = T.edgeHalfedge(e);
+        uint32_t faces[2] = {T.face(h), T.twin(h) == kNone ? kNone : T.face(T.twin(h))};
+        for (int i = 0; i < mask.GetNumFaceWeights(); ++i) {
+            if (mask.FaceWeight(i) == 0) continue;
+            row.push_back({faceChild[faces[i]], mask.FaceWeight(i), true});
+        }
+    }
+    VertexNeighborhood hood;
+    for (uint32_t v = 0; v < V; ++v) {
+        if (!vertexUsed[v]) continue;
+        uint32_t cv = vertexChild[v];
+        gatherNeighborhood(T, v, hood);
+        if (static_cast<int>(mask.edgeWeights.size()) < static_cast<int>(hood.edges.size()))
+            mask = SdcMask(static_cast<int>(hood.edges.size()) * 2);
+        SdcVertex sv(hood, P.edgeSharpness, P.vertexSharpness[v], C.vertexSharpness[cv]);
+        scheme.ComputeVertexVertexMask(sv, mask, sdcRule(P.vertexRule[v]), sdcRule(C.vertexRule[cv]));
+        auto& row = st.vertexPoints[cv - C.facePointCount - C.edgePointCount];
+        row.push_back({v, mask.VertexWeight(0), false});
+        for (int i = 0; i < mask.GetNumEdgeWeights(); ++i)
+            if (mask.EdgeWeight(i) != 0) row.push_back({hood.ringVertex[i], mask.EdgeWeight(i), false});
+        for (int i = 0; i < mask.GetNumFaceWeights(); ++i)
+            if (mask.FaceWeight(i) != 0) row.push_back({faceChild[hood.faces[i]], mask.FaceWeight(i), true});
+    }
+    return C;
+}
+
+} // namespace limn

@@ -1,0 +1,367 @@
+#include "subdiv/tables.h"
+
+#include "base/error.h"
+#include "container/container.h"
+#include "subdiv/level.h"
+#include "subdiv/limit_masks.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <map>
+#include <string>
+
+namespace limn {
+
+namespace {
+
+// Patch corner k's three outer control points (a, d, b) and the corner itself, as indices into
+// cv[16] = P_{i,j} at 4*j + i (see Patch): a lies beyond the corner away from corner k+1, b away
+// from corner k-1, d diagonally.
+constexpr int kCornerCV[4] = {5, 6, 10, 9};
+constexpr int kOuterCV[4][3] = {{4, 0, 1}, {2, 3, 7}, {11, 15, 14}, {13, 12, 8}};
+
+Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase,
+                  const std::vector<uint32_t>& remap) {
+    const Topology& T = L.topo;
+    const FaceFrame& fr = L.frames[f];
+    Patch p{};
+    auto global = [&](uint32_t v) { return levelBase + remap[v]; };
+    for (int k = 0; k < 4; ++k) {
+        uint32_t e0 = T.faceHalfedge(f) + (fr.rotation + k) % 4;
+        p.cv[kCornerCV[k]] = global(T.vertex(e0));
+        if (T.twin(e0) == kNone) p.boundary |= static_cast<uint8_t>(1u << k);
+        uint32_t a = kNone, d = kNone, b = kNone;
+        uint32_t e1 = T.rotateCCW(e0);
+        if (e1 != kNone) {
+            a = T.vertex(T.prev(e1));
+            uint32_t e2 = T.rotateCCW(e1);
+            if (e2 != kNone) {
+                d = T.vertex(T.next(T.next(e2)));
+                b = T.vertex(T.prev(e2));
+            }
+        }
+        if (b == kNone) {
+            uint32_t e3 = T.rotateCW(e0);
+            if (e3 != kNone) b = T.destination(e3);
+        }
+        const uint32_t outer[3] = {a, d, b};
+        for (int i = 0; i < 3; ++i)
+            p.cv[kOuterCV[k][i]] = outer[i] == kNone ? 0 : global(outer[i]);
+    }
+    p.ptex = fr.ptex;
+    p.u0 = static_cast<float>(fr.u0);
+    p.v0 = static_cast<float>(fr.v0);
+    p.size = static_cast<float>(fr.size);
+    p.level = static_cast<uint8_t>(L.depth);
+    return p;
+}
+
+void requireManifold(const Topology& T) {
+    for (uint32_t e = 0; e < T.edgeCount(); ++e)
+        if (T.edgeIsNonManifold(e)) {
+            auto [a, b] = T.edgeVertices(e);
+            throwBadInput("edge (" + std::to_string(a) + "," + std::to_string(b) +
+                          ") is non-manifold (" + std::to_string(T.edgeFaceCount(e)) +
+                          " faces, or faces of opposite orientation); subdivision tables need a "
+                          "manifold, consistently oriented mesh");
+        }
+    for (uint32_t v = 0; v < T.vertexCount(); ++v)
+        if (T.vertexIsNonManifold(v))
+            throwBadInput("vertex " + std::to_string(v) +
+                          " is non-manifold (separate fans of faces meet there); subdivision "
+                          "tables need a manifold mesh");
+}
+
+// Faces sharing a vertex with a marked face.
+std::vector<uint8_t> oneRing(const Topology& T, const std::vector<uint8_t>& marked) {
+    std::vector<uint8_t> vertexMarked(T.vertexCount(), 0), out(T.faceCount(), 0);
+    for (uint32_t f = 0; f < T.faceCount(); ++f)
+        if (marked[f])
+            for (uint32_t v : T.faceVertices(f)) vertexMarked[v] = 1;
+    for (uint32_t v = 0; v < T.vertexCount(); ++v)
+        if (vertexMarked[v])
+            for (uint32_t h : T.vertexOutgoing(v)) out[T.face(h)] = 1;
+    return out;
+}
+
+} // namespace
+
+uint64_t topologyHash(const Mesh& mesh, const SchemeOptions& options) {
+    auto bytesOf = [](const auto& v) {
+        return std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(v.data()),
+                                        v.size() * sizeof(v[0]));
+    };
+    uint64_t h = hashBytes(bytesOf(mesh.faceOffsets));
+    h = hashBytes(bytesOf(mesh.faceVertices), h);
+    uint8_t opts[4] = {uint8_t(options.boundary), uint8_t(options.creaseMethod),
+                       uint8_t(options.triangles), uint8_t(options.fvar)};
+    h = hashBytes(opts, h);
+    for (const auto& c : mesh.tags.creases) {
+        uint32_t w[3] = {c.v0, c.v1, 0};
+        std::memcpy(&w[2], &c.sharpness, 4);
+        h = hashBytes({reinterpret_cast<const uint8_t*>(w), 12}, h);
+    }
+    for (const auto& c : mesh.tags.corners) {
+        uint32_t w[2] = {c.vertex, 0};
+        std::memcpy(&w[1], &c.sharpness, 4);
+        h = hashBytes({reinterpret_cast<const uint8_t*>(w), 8}, h);
+    }
+    h = hashBytes(bytesOf(mesh.tags.holes), h);
+    uint32_t vcount = static_cast<uint32_t>(mesh.vertexCount());
+    return hashBytes({reinterpret_cast<const uint8_t*>(&vcount), 4}, h);
+}
+
+Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesOptions& opts,
+                   Warnings& warnings) {
+    if (opts.depth < 0 || opts.depth > kMaxDepth)
+        throw Error(ErrorKind::Usage, "depth " + std::to_string(opts.depth) + " is outside 0.." +
+                                          std::to_string(kMaxDepth));
+    const uint32_t N = static_cast<uint32_t>(opts.depth);
+    Topology baseTopo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
+    requireManifold(baseTopo);
+    if (N == 0)
+        for (uint32_t f = 0; f < baseTopo.faceCount(); ++f)
+            if (baseTopo.faceSize(f) != 4)
+                throwBadInput("face " + std::to_string(f) + " has " +
+                              std::to_string(baseTopo.faceSize(f)) +
+                              " sides; depth 0 draws faces at their limit corners and needs an "
+                              "all-quad mesh (non-quads are split at the first level: use "
+                              "--depth 1 or more)");
+
+    Sharpness sharp = baseSharpness(baseTopo, mesh.tags, options.boundary, warnings);
+    std::vector<Level> levels;
+    levels.push_back(makeBaseLevel(baseTopo, sharp, sharp.faceNoLimit));
+    std::vector<uint32_t> ptexBase(baseTopo.faceCount());
+    for (uint32_t f = 0; f < baseTopo.faceCount(); ++f) ptexBase[f] = levels[0].frames[f].ptex;
+
+    std::vector<LevelStencils> stencils(1);
+    std::vector<std::vector<uint8_t>> irregularSets; // T_l
+    std::vector<std::vector<uint8_t>> patchSets;     // D_l \ T_l with a limit surface
+    for (uint32_t l = 0;; ++l) {
+        Level& L = levels[l];
+        const uint32_t F = L.topo.faceCount();
+        std::vector<uint8_t> regular(F, 0);
+        if (!opts.uniform) {
+            Sharpness s{L.edgeSharpness, L.vertexSharpness, L.noLimit};
+            regular = analyzeRegularity(L.topo, s, L.noLimit).faceRegular;
+        }
+        std::vector<uint8_t> T(F, 0), P(F, 0);
+        for (uint32_t f = 0; f < F; ++f) {
+            if (!L.complete[f] || L.noLimit[f]) continue;
+            (regular[f] ? P : T)[f] = 1;
+        }
+        irregularSets.push_back(T);
+        patchSets.push_back(P);
+        if (l == N) break;
+        std::vector<uint8_t> S = opts.uniform ? std::vector<uint8_t>(F, 1) : oneRing(L.topo, T);
+        if (std::find(S.begin(), S.end(), 1) == S.end()) {
+            // Nothing left to refine: the remaining levels are empty.
+            for (uint32_t m = l + 1; m <= N; ++m) {
+                Level empty;
+                empty.depth = m;
+                levels.push_back(std::move(empty));
+                stencils.emplace_back();
+                irregularSets.emplace_back();
+                patchSets.emplace_back();
+            }
+            break;
+        }
+        // Guard memory before refining: every selected face makes about 4 children per level.
+        uint64_t selected = std::count(S.begin(), S.end(), 1);
+        uint64_t estimate = selected * 4 * 2;
+        if (estimate > kMaxLevelVertices)
+            throwBadInput("level " + std::to_string(l + 1) + " would need about " +
+                          std::to_string(estimate) + " vertices (more than " +
+                          std::to_string(kMaxLevelVertices) + "); use a lower --depth" +
+                          (opts.uniform ? " or adaptive tables" : ""));
+        LevelStencils st;
+        Level child = refineLevel(L, S, options, ptexBase, st);
+        for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf)
+            child.complete[cf] = T[child.faceParent[cf]];
+        levels.push_back(std::move(child));
+        stencils.push_back(std::move(st));
+    }
+
+    // Limit points of the corners of T_N, one per (vertex, sector) (paper 000, 4.4).
+    const Level& LN = levels[N];
+    struct LimitKey {
+        uint32_t vertex, sector;
+        bool operator<(const LimitKey& o) const {
+            return vertex != o.vertex ? vertex < o.vertex : sector < o.sector;
+        }
+    };
+    std::map<LimitKey, uint32_t> limitIndex;
+    std::vector<LimitMasks> limitMasksList;
+    std::vector<uint32_t> limitLocalVertex;
+    std::vector<std::array<uint32_t, 4>> irregularCorners;
+    std::vector<uint32_t> irregularFaceIds;
+    VertexNeighborhood hood;
+    const auto& TN = irregularSets[N];
+    for (uint32_t f = 0; f < TN.size(); ++f) {
+        if (!TN[f]) continue;
+        const FaceFrame& fr = LN.frames[f];
+        std::array<uint32_t, 4> corners{};
+        for (int k = 0; k < 4; ++k) {
+            uint32_t h = LN.topo.faceHalfedge(f) + (fr.rotation + k) % 4;
+            uint32_t v = LN.topo.vertex(h);
+            gatherNeighborhood(LN.topo, v, hood);
+            auto rule = static_cast<VertexRule>(LN.vertexRule[v]);
+            auto sectors = vertexSectors(hood, rule, LN.edgeSharpness);
+            uint32_t ringPos = static_cast<uint32_t>(
+                std::find(hood.faces.begin(), hood.faces.end(), f) - hood.faces.begin());
+            uint32_t s = 0;
+            for (uint32_t i = 0; i < sectors.size(); ++i) {
+                uint32_t rel = (ringPos + static_cast<uint32_t>(hood.faces.size()) - sectors[i].firstFace) %
+                               static_cast<uint32_t>(hood.faces.size());
+                if (rel < sectors[i].faceCount) s = i;
+            }
+            auto [it, inserted] = limitIndex.try_emplace({v, s}, static_cast<uint32_t>(limitMasksList.size()));
+            if (inserted) {
+                limitMasksList.push_back(limitMasks(hood, rule, sectors[s], LN.edgeSharpness,
+                                                    LN.vertexSharpness[v]));
+                limitLocalVertex.push_back(v);
+            }
+            corners[k] = it->second;
+        }
+        irregularCorners.push_back(corners);
+        irregularFaceIds.push_back(f);
+    }
+
+    // Prune to the vertices something reads, from the last level down (paper 000 keeps all; the
+    // tables then grow with the support region only).
+    std::vector<std::vector<uint8_t>> needed(N + 1);
+    for (uint32_t l = 0; l <= N; ++l) needed[l].assign(levels[l].topo.vertexCount(), 0);
+    std::fill(needed[0].begin(), needed[0].end(), 1); // the control points are uploaded anyway
+    auto markPatch = [&](uint32_t l, uint32_t f) {
+        const Topology& T = levels[l].topo;
+        // The 16 points are the vertices of the faces around the patch's corners.
+        for (uint32_t v : T.faceVertices(f))
+            for (uint32_t h : T.vertexOutgoing(v))
+                for (uint32_t w : T.faceVertices(T.face(h))) needed[l][w] = 1;
+    };
+    for (uint32_t l = 0; l <= N; ++l)
+        for (uint32_t f = 0; f < patchSets[l].size(); ++f)
+            if (patchSets[l][f]) markPatch(l, f);
+    for (const auto& m : limitMasksList)
+        for (const auto* list : {&m.position, &m.tangent1, &m.tangent2})
+            for (const auto& wp : *list) needed[N][wp.vertex] = 1;
+    for (uint32_t l = N; l >= 1; --l) {
+        const Level& L = levels[l];
+        const LevelStencils& st = stencils[l];
+        const uint32_t fp = L.facePointCount, ep = L.edgePointCount;
+        for (uint32_t i = 0; i < ep; ++i)
+            if (needed[l][fp + i])
+                for (const auto& e : st.edgePoints[i])
+                    (e.fromFacePoint ? needed[l] : needed[l - 1])[e.index] = 1;
+        for (uint32_t i = 0; i < L.vertexPointCount; ++i)
+            if (needed[l][fp + ep + i])
+                for (const auto& e : st.vertexPoints[i])
+                    (e.fromFacePoint ? needed[l] : needed[l - 1])[e.index] = 1;
+        for (uint32_t i = 0; i < fp; ++i)
+            if (needed[l][i])
+                for (uint32_t v : st.facePoints[i]) needed[l - 1][v] = 1;
+    }
+
+    // Global numbering: level by level, keeping face, edge, vertex point order.
+    Tables t;
+    t.depth = N;
+    t.uniform = opts.uniform;
+    t.options = options;
+    t.topologyHash = topologyHash(mesh, options);
+    std::vector<std::vector<uint32_t>> remap(N + 1);
+    uint32_t next = 0;
+    for (uint32_t l = 0; l <= N; ++l) {
+        const Level& L = levels[l];
+        LevelInfo info;
+        info.first = next;
+        remap[l].assign(L.topo.vertexCount(), kNone);
+        uint32_t local = 0;
+        for (uint32_t v = 0; v < L.topo.vertexCount(); ++v) {
+            if (!needed[l][v]) continue;
+            remap[l][v] = local++;
+            if (l == 0) continue;
+            if (v < L.facePointCount)
+                ++info.facePoints;
+            else if (v < L.facePointCount + L.edgePointCount)
+                ++info.edgePoints;
+            else
+                ++info.vertexPoints;
+        }
+        if (l == 0) info.vertexPoints = local; // level 0: the control points
+        next += local;
+        for (uint8_t p : patchSets[l]) info.regularPatches += p;
+        for (uint8_t x : irregularSets[l]) info.irregularFaces += x;
+        t.levels.push_back(info);
+    }
+    t.totalVertices = next;
+
+    for (uint32_t l = 1; l <= N; ++l) {
+        const Level& L = levels[l];
+        const LevelStencils& st = stencils[l];
+        const uint32_t base = t.levels[l].first, parentBase = t.levels[l - 1].first;
+        auto src = [&](const StencilEntry& e) {
+            return e.fromFacePoint ? base + remap[l][e.index] : parentBase + remap[l - 1][e.index];
+        };
+        StencilTable faces, edges, verts;
+        for (uint32_t i = 0; i < L.facePointCount; ++i) {
+            if (!needed[l][i]) continue;
+            for (uint32_t v : st.facePoints[i]) faces.indices.push_back(parentBase + remap[l - 1][v]);
+            faces.addRow();
+        }
+        for (uint32_t i = 0; i < L.edgePointCount; ++i) {
+            if (!needed[l][L.facePointCount + i]) continue;
+            for (const auto& e : st.edgePoints[i]) {
+                edges.indices.push_back(src(e));
+                edges.weights.push_back(static_cast<float>(e.weight));
+            }
+            edges.addRow();
+        }
+        for (uint32_t i = 0; i < L.vertexPointCount; ++i) {
+            if (!needed[l][L.facePointCount + L.edgePointCount + i]) continue;
+            for (const auto& e : st.vertexPoints[i]) {
+                verts.indices.push_back(src(e));
+                verts.weights.push_back(static_cast<float>(e.weight));
+            }
+            verts.addRow();
+        }
+        t.facePoints.push_back(std::move(faces));
+        t.edgePoints.push_back(std::move(edges));
+        t.vertexPoints.push_back(std::move(verts));
+    }
+
+    for (uint32_t l = 0; l <= N; ++l)
+        for (uint32_t f = 0; f < patchSets[l].size(); ++f)
+            if (patchSets[l][f]) t.patches.push_back(gatherPatch(levels[l], f, t.levels[l].first, remap[l]));
+
+    const uint32_t baseN = t.levels[N].first;
+    for (size_t i = 0; i < limitMasksList.size(); ++i) {
+        const LimitMasks& m = limitMasksList[i];
+        auto emit = [&](StencilTable& table, const std::vector<WeightedPoint>& list) {
+            for (const auto& wp : list) {
+                table.indices.push_back(baseN + remap[N][wp.vertex]);
+                table.weights.push_back(static_cast<float>(wp.weight));
+            }
+            table.addRow();
+        };
+        emit(t.limitPosition, m.position);
+        emit(t.limitTangent1, m.tangent1);
+        emit(t.limitTangent2, m.tangent2);
+        t.limitVertex.push_back(baseN + remap[N][limitLocalVertex[i]]);
+        t.limitExact.push_back(m.exact ? 1 : 0);
+        if (!m.exact) ++t.approximateLimitPoints;
+    }
+    for (size_t i = 0; i < irregularFaceIds.size(); ++i) {
+        const FaceFrame& fr = LN.frames[irregularFaceIds[i]];
+        IrregularFace face{};
+        for (int k = 0; k < 4; ++k) face.corner[k] = irregularCorners[i][k];
+        face.ptex = fr.ptex;
+        face.u0 = static_cast<float>(fr.u0);
+        face.v0 = static_cast<float>(fr.v0);
+        face.size = static_cast<float>(fr.size);
+        t.irregular.push_back(face);
+    }
+    return t;
+}
+
+} // namespace limn

@@ -1,0 +1,99 @@
+// Feature-adaptive subdivision tables (paper 000, 4.1; Nießner et al. 2012): everything the GPU
+// needs to compute the surface every frame, built from topology alone.
+//
+// Isolation: at level l, T_l are the faces that are not regular B-spline patches (among the
+// children of T_{l-1}; all faces at level 0). Refining T_l needs the full one-ring of its
+// vertices, so the faces sharing a vertex with T_l (S_l) are refined; the children of T_l have
+// complete neighbourhoods at level l+1. Regular children of T_l become patches at level l+1;
+// T_N is drawn at its limit positions. Every base face's ptex domain is covered exactly once.
+#pragma once
+
+#include "base/warnings.h"
+#include "mesh/mesh.h"
+#include "topology/features.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace limn {
+
+// A flattened stencil table (CSR): row r is sum(weights[i] * V[indices[i]]) for
+// i in [start[r], start[r+1]). Indices are global vertex indices (all levels concatenated).
+struct StencilTable {
+    std::vector<uint32_t> start{0};
+    std::vector<uint32_t> indices;
+    std::vector<float> weights; // empty for face points: they are plain averages
+    size_t rows() const { return start.size() - 1; }
+    void addRow() { start.push_back(static_cast<uint32_t>(indices.size())); }
+};
+
+// The vertices of level l are [first, first+count): face points, then edge points, then vertex
+// points. Level 0 is the control mesh (count = its vertex count, no stencils).
+struct LevelInfo {
+    uint32_t first = 0;
+    uint32_t facePoints = 0, edgePoints = 0, vertexPoints = 0;
+    uint32_t count() const { return facePoints + edgePoints + vertexPoints; }
+    uint32_t regularPatches = 0;  // patches drawn at this level
+    uint32_t irregularFaces = 0;  // |T_l|: faces refined further (or, at level N, drawn at limit)
+};
+
+// Boundary mask bits of a regular patch: the patch edge lies on the mesh boundary and the row
+// beyond it is a phantom row P_-1 = 2 P_0 - P_1 (math.md C.4).
+enum PatchBoundary : uint8_t { kBoundaryV0 = 1, kBoundaryU1 = 2, kBoundaryV1 = 4, kBoundaryU0 = 8 };
+
+// A bicubic B-spline patch (paper 000, eq. 1). cv[4*j + i] is P_{i,j}: i runs along ptex u,
+// j along ptex v; the patch covers the face whose corners are P11, P21, P22, P12, which is
+// [u0, u0+size] x [v0, v0+size] of ptex face `ptex`. Missing points (beyond a boundary) hold
+// index 0 and are replaced by phantoms as `boundary` says.
+struct Patch {
+    uint32_t cv[16];
+    uint32_t ptex;
+    float u0, v0, size;
+    uint8_t level;
+    uint8_t boundary;
+};
+
+// A face left irregular at level N, drawn at the limit positions of its corners. corner[i] is a
+// limit point; corner 0 is at (u0, v0), then counter-clockwise like the ptex axes.
+struct IrregularFace {
+    uint32_t corner[4];
+    uint32_t ptex;
+    float u0, v0, size;
+};
+
+// Ptex coordinates stay exact in float down to 2^-16; deeper levels would not tile exactly.
+inline constexpr int kMaxDepth = 16;
+// A level with more vertices than this is refused (about 10 GB of tables).
+inline constexpr uint64_t kMaxLevelVertices = 1ull << 28;
+
+struct TablesOptions {
+    int depth = 3;
+    bool uniform = false;
+};
+
+struct Tables {
+    uint32_t depth = 0;
+    bool uniform = false;
+    SchemeOptions options;
+    uint64_t topologyHash = 0; // of the faces and tags the tables were built from
+    std::vector<LevelInfo> levels; // 0..depth
+    uint32_t totalVertices = 0;
+    // Per level 1..depth (index l-1): the three passes of paper 000, 4.2.
+    std::vector<StencilTable> facePoints, edgePoints, vertexPoints;
+    std::vector<Patch> patches; // sorted by level
+    std::vector<IrregularFace> irregular;
+    // Limit points (paper 000, 4.4; math.md C): position and two tangents per point.
+    StencilTable limitPosition, limitTangent1, limitTangent2;
+    std::vector<uint32_t> limitVertex; // the level-N vertex (global index) of each limit point
+    std::vector<uint8_t> limitExact;     // per limit point: 0 where the masks only approximate
+    uint32_t approximateLimitPoints = 0; // count of those (see docs)
+};
+
+// Hash of what tables depend on: faces, tags and scheme options (never positions).
+uint64_t topologyHash(const Mesh& mesh, const SchemeOptions& options);
+
+// Throws Error(BadInput) for non-manifold meshes and depth out of range.
+Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesOptions& opts,
+                   Warnings& warnings);
+
+} // namespace limn

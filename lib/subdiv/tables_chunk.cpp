@@ -1,0 +1,219 @@
+#include "subdiv/tables_chunk.h"
+
+#include "base/bytes.h"
+#include "base/error.h"
+
+#include <cmath>
+
+namespace limn {
+
+namespace {
+
+void writeTable(ByteWriter& w, const StencilTable& t, bool weights) {
+    w.write<uint32_t>(static_cast<uint32_t>(t.rows()));
+    w.write<uint32_t>(static_cast<uint32_t>(t.indices.size()));
+    w.write<uint32_t>(weights ? 1u : 0u);
+    w.write<uint32_t>(0);
+    w.writeArray(t.start);
+    w.writeArray(t.indices);
+    if (weights) w.writeArray(t.weights);
+}
+
+// Reads a stencil table with `rows` rows whose sources must lie in [lo0, hi0) or [lo1, hi1).
+StencilTable readTable(ByteReader& r, const std::string& what, uint32_t rows, bool weights,
+                       uint32_t lo0, uint32_t hi0, uint32_t lo1 = 0, uint32_t hi1 = 0) {
+    StencilTable t;
+    uint32_t n = r.read<uint32_t>(), entries = r.read<uint32_t>(), hasWeights = r.read<uint32_t>();
+    if (r.read<uint32_t>() != 0) r.fail(what + ": reserved field is not zero");
+    if (n != rows) r.fail(what + ": " + std::to_string(n) + " rows, expected " + std::to_string(rows));
+    if (hasWeights != (weights ? 1u : 0u)) r.fail(what + ": weight flag is wrong");
+    t.start = r.readArray<uint32_t>(uint64_t(rows) + 1, (what + " starts").c_str());
+    t.indices = r.readArray<uint32_t>(entries, (what + " indices").c_str());
+    if (weights) t.weights = r.readArray<float>(entries, (what + " weights").c_str());
+    if (t.start[0] != 0 || t.start[rows] != entries)
+        r.fail(what + ": row starts do not span the " + std::to_string(entries) + " entries");
+    for (uint32_t i = 0; i < rows; ++i)
+        if (t.start[i + 1] < t.start[i] || t.start[i + 1] - t.start[i] > (1u << 16))
+            r.fail(what + ": row " + std::to_string(i) + " has a bad length");
+    for (uint32_t i = 0; i < entries; ++i) {
+        uint32_t x = t.indices[i];
+        if (!((x >= lo0 && x < hi0) || (x >= lo1 && x < hi1)))
+            r.fail(what + ": entry " + std::to_string(i) + " reads vertex " + std::to_string(x) +
+                   " outside the levels it may read");
+        if (weights && !std::isfinite(t.weights[i]))
+            r.fail(what + ": entry " + std::to_string(i) + " has a non-finite weight");
+    }
+    for (uint32_t i = 0; !weights && i < rows; ++i)
+        if (t.start[i + 1] == t.start[i]) r.fail(what + ": face point " + std::to_string(i) + " is empty");
+    return t;
+}
+
+bool isDyadic(float x, uint32_t maxDepth) {
+    float scaled = x * float(1u << maxDepth);
+    return std::isfinite(x) && scaled == std::floor(scaled);
+}
+
+} // namespace
+
+uint32_t ptexFaceCount(const Mesh& mesh) {
+    uint32_t n = 0;
+    for (size_t f = 0; f < mesh.faceCount(); ++f) n += mesh.faceSize(f) == 4 ? 1 : mesh.faceSize(f);
+    return n;
+}
+
+Chunk encodeTablesChunk(const Tables& t) {
+    ByteWriter w;
+    w.write<uint32_t>(t.depth);
+    w.write<uint32_t>(t.uniform ? 1u : 0u);
+    w.write<uint8_t>(static_cast<uint8_t>(t.options.boundary));
+    w.write<uint8_t>(static_cast<uint8_t>(t.options.creaseMethod));
+    w.write<uint8_t>(static_cast<uint8_t>(t.options.triangles));
+    w.write<uint8_t>(static_cast<uint8_t>(t.options.fvar));
+    w.write<uint32_t>(0);
+    w.write<uint64_t>(t.topologyHash);
+    w.write<uint32_t>(t.totalVertices);
+    w.write<uint32_t>(static_cast<uint32_t>(t.patches.size()));
+    w.write<uint32_t>(static_cast<uint32_t>(t.irregular.size()));
+    w.write<uint32_t>(static_cast<uint32_t>(t.limitPosition.rows()));
+    for (const auto& L : t.levels)
+        for (uint32_t x : {L.first, L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches,
+                           L.irregularFaces})
+            w.write<uint32_t>(x);
+    for (uint32_t l = 0; l < t.depth; ++l) {
+        writeTable(w, t.facePoints[l], false);
+        writeTable(w, t.edgePoints[l], true);
+        writeTable(w, t.vertexPoints[l], true);
+    }
+    for (const auto& p : t.patches) {
+        w.writeArray(std::span<const uint32_t>(p.cv, 16));
+        w.write<uint32_t>(p.ptex);
+        w.write<float>(p.u0);
+        w.write<float>(p.v0);
+        w.write<float>(p.size);
+        w.write<uint32_t>(uint32_t(p.level) | uint32_t(p.boundary) << 8);
+    }
+    for (const auto& q : t.irregular) {
+        w.writeArray(std::span<const uint32_t>(q.corner, 4));
+        w.write<uint32_t>(q.ptex);
+        w.write<float>(q.u0);
+        w.write<float>(q.v0);
+        w.write<float>(q.size);
+    }
+    writeTable(w, t.limitPosition, true);
+    writeTable(w, t.limitTangent1, true);
+    writeTable(w, t.limitTangent2, true);
+    w.writeArray(t.limitVertex);
+    for (uint8_t e : t.limitExact) w.write<uint32_t>(e ? 0u : 1u); // bit 0: approximate
+    return {kTablesChunk, 1, w.take()};
+}
+
+Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
+    if (chunk.version > 1)
+        throwBadInput("chunk TBLS version " + std::to_string(chunk.version) +
+                      " is newer than this limn reads (1); upgrade limn");
+    ByteReader r(chunk.payload, "chunk TBLS");
+    Tables t;
+    t.depth = r.read<uint32_t>();
+    if (t.depth > uint32_t(kMaxDepth)) r.fail("depth " + std::to_string(t.depth) + " is out of range");
+    uint32_t flags = r.read<uint32_t>();
+    if (flags > 1) r.fail("unknown flags");
+    t.uniform = flags & 1;
+    uint8_t b = r.read<uint8_t>(), m = r.read<uint8_t>(), tri = r.read<uint8_t>(), fv = r.read<uint8_t>();
+    if (b > 2 || m > 1 || tri > 1 || fv > 5) r.fail("scheme option out of range");
+    t.options = {static_cast<BoundaryRule>(b), static_cast<CreaseMethod>(m),
+                 static_cast<TriangleSubdivision>(tri), static_cast<FVarRule>(fv)};
+    if (r.read<uint32_t>() != 0) r.fail("reserved field is not zero");
+    t.topologyHash = r.read<uint64_t>();
+    if (mesh && t.topologyHash != topologyHash(*mesh, t.options))
+        throwBadInput("the subdivision tables were built for a different mesh topology or tags; "
+                      "re-run limn-tables", "chunk TBLS");
+    t.totalVertices = r.read<uint32_t>();
+    uint32_t patches = r.read<uint32_t>(), irregular = r.read<uint32_t>(), limits = r.read<uint32_t>();
+    uint64_t sum = 0;
+    for (uint32_t l = 0; l <= t.depth; ++l) {
+        LevelInfo L;
+        L.first = r.read<uint32_t>();
+        L.facePoints = r.read<uint32_t>();
+        L.edgePoints = r.read<uint32_t>();
+        L.vertexPoints = r.read<uint32_t>();
+        L.regularPatches = r.read<uint32_t>();
+        L.irregularFaces = r.read<uint32_t>();
+        if (L.first != sum) r.fail("level " + std::to_string(l) + " does not start where the previous ends");
+        sum += uint64_t(L.facePoints) + L.edgePoints + L.vertexPoints;
+        if (sum > t.totalVertices) r.fail("level vertex counts exceed the total");
+        t.levels.push_back(L);
+    }
+    if (sum != t.totalVertices) r.fail("level vertex counts do not add up to the total");
+    if (mesh && t.levels[0].count() != mesh->vertexCount())
+        r.fail("level 0 has " + std::to_string(t.levels[0].count()) + " vertices, the mesh " +
+               std::to_string(mesh->vertexCount()));
+    for (uint32_t l = 1; l <= t.depth; ++l) {
+        const LevelInfo &P = t.levels[l - 1], &L = t.levels[l];
+        std::string lv = "level " + std::to_string(l);
+        uint32_t parentEnd = P.first + P.count(), faceEnd = L.first + L.facePoints;
+        t.facePoints.push_back(readTable(r, lv + " face points", L.facePoints, false, P.first, parentEnd));
+        t.edgePoints.push_back(readTable(r, lv + " edge points", L.edgePoints, true, P.first, parentEnd,
+                                         L.first, faceEnd));
+        t.vertexPoints.push_back(readTable(r, lv + " vertex points", L.vertexPoints, true, P.first,
+                                           parentEnd, L.first, faceEnd));
+    }
+    const uint32_t ptexCount = mesh ? ptexFaceCount(*mesh) : 0xFFFFFFFFu;
+    auto checkDomain = [&](uint32_t ptex, float u0, float v0, float size, const std::string& what) {
+        if (ptex >= ptexCount) r.fail(what + " refers to ptex face " + std::to_string(ptex) + " that does not exist");
+        if (!(size > 0) || !isDyadic(size, kMaxDepth) || !isDyadic(u0, kMaxDepth) ||
+            !isDyadic(v0, kMaxDepth) || u0 < 0 || v0 < 0 || u0 + size > 1 || v0 + size > 1)
+            r.fail(what + " has a domain outside its ptex face");
+    };
+    if (patches > r.remaining() / 84) r.fail("patch count " + std::to_string(patches) + " is too large");
+    t.patches.resize(patches);
+    for (uint32_t i = 0; i < patches; ++i) {
+        Patch& p = t.patches[i];
+        std::string what = "patch " + std::to_string(i);
+        for (uint32_t& cv : p.cv) cv = r.read<uint32_t>();
+        p.ptex = r.read<uint32_t>();
+        p.u0 = r.read<float>();
+        p.v0 = r.read<float>();
+        p.size = r.read<float>();
+        uint32_t packed = r.read<uint32_t>();
+        p.level = static_cast<uint8_t>(packed & 0xFF);
+        p.boundary = static_cast<uint8_t>((packed >> 8) & 0xFF);
+        if ((packed >> 16) != 0 || p.boundary > 15 || p.level > t.depth) r.fail(what + ": bad level or boundary mask");
+        const LevelInfo& L = t.levels[p.level];
+        for (uint32_t cv : p.cv)
+            if (cv >= t.totalVertices || (cv != 0 && (cv < L.first || cv >= L.first + L.count())))
+                r.fail(what + " has a control point outside its level");
+        checkDomain(p.ptex, p.u0, p.v0, p.size, what);
+    }
+    if (irregular > r.remaining() / 32) r.fail("irregular face count is too large");
+    t.irregular.resize(irregular);
+    for (uint32_t i = 0; i < irregular; ++i) {
+        IrregularFace& q = t.irregular[i];
+        for (uint32_t& c : q.corner) {
+            c = r.read<uint32_t>();
+            if (c >= limits) r.fail("irregular face " + std::to_string(i) + " refers to a missing limit point");
+        }
+        q.ptex = r.read<uint32_t>();
+        q.u0 = r.read<float>();
+        q.v0 = r.read<float>();
+        q.size = r.read<float>();
+        checkDomain(q.ptex, q.u0, q.v0, q.size, "irregular face " + std::to_string(i));
+    }
+    const LevelInfo& LN = t.levels[t.depth];
+    uint32_t lo = LN.first, hi = LN.first + LN.count();
+    t.limitPosition = readTable(r, "limit positions", limits, true, lo, hi);
+    t.limitTangent1 = readTable(r, "limit tangents 1", limits, true, lo, hi);
+    t.limitTangent2 = readTable(r, "limit tangents 2", limits, true, lo, hi);
+    t.limitVertex = r.readArray<uint32_t>(limits, "limit vertices");
+    for (uint32_t v : t.limitVertex)
+        if (v < lo || v >= hi) r.fail("a limit point's vertex is not at the last level");
+    auto flags32 = r.readArray<uint32_t>(limits, "limit flags");
+    for (uint32_t f : flags32) {
+        if (f > 1) r.fail("unknown limit point flag");
+        t.limitExact.push_back(f ? 0 : 1);
+        t.approximateLimitPoints += f;
+    }
+    if (!r.atEnd()) r.fail(std::to_string(r.remaining()) + " unexpected bytes after the last field");
+    return t;
+}
+
+} // namespace limn

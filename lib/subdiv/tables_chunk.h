@@ -1,0 +1,21 @@
+// Codec of the TBLS chunk (formats/limn.md, "Subdivision tables").
+#pragma once
+
+#include "container/container.h"
+#include "mesh/mesh.h"
+#include "subdiv/tables.h"
+
+namespace limn {
+
+inline constexpr FourCC kTablesChunk{"TBLS"};
+
+Chunk encodeTablesChunk(const Tables& tables);
+
+// Decodes and validates every count and index. With `mesh`, also checks that the tables were
+// built from this mesh's topology (hash of faces, tags and options) and that ptex ids exist.
+Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh);
+
+// Number of ptex faces of a mesh (OpenSubdiv's numbering: 1 per quad, n per n-gon).
+uint32_t ptexFaceCount(const Mesh& mesh);
+
+} // namespace limn

@@ -1,0 +1,278 @@
+// limn's subdivision tables against OpenSubdiv (the oracle): refined vertex positions, tiling of
+// the ptex domains, regular patches and limit points on real meshes with extraordinary vertices,
+// boundaries, creases, holes and non-quad faces.
+#include "mesh/import.h"
+#include "osd_oracle.h"
+#include "subdiv/evaluate.h"
+#include "subdiv/tables.h"
+#include "test_support.h"
+#include "topology/features.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+using namespace limn;
+
+namespace {
+
+struct Case {
+    std::string model;
+    int depth;
+    bool uniform;
+};
+
+std::string caseName(const ::testing::TestParamInfo<Case>& info) {
+    std::string s = info.param.model;
+    for (char& c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return s + "_d" + std::to_string(info.param.depth) + (info.param.uniform ? "_uniform" : "");
+}
+
+double diagonal(const Mesh& m) {
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const auto& p : m.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    return glm::length(hi - lo);
+}
+
+struct Fixture {
+    Mesh mesh;
+    SchemeOptions options;
+    Tables tables;
+    std::vector<glm::dvec3> vertices;
+    double diag = 1;
+};
+
+Fixture build(const Case& c) {
+    Fixture f;
+    Warnings w;
+    f.mesh = importMeshFile(test::modelPath(c.model).string(), w);
+    f.options = resolveSchemeOptions(f.mesh.tags, {});
+    TablesOptions opts;
+    opts.depth = c.depth;
+    opts.uniform = c.uniform;
+    f.tables = buildTables(f.mesh, f.options, opts, w);
+    f.vertices = evaluateVertices(f.tables, f.mesh.positions);
+    f.diag = diagonal(f.mesh);
+    return f;
+}
+
+class Tables : public ::testing::TestWithParam<Case> {};
+
+// Every vertex limn computes at level l coincides with a vertex of OpenSubdiv's uniform
+// refinement at level l (Far::PrimvarRefiner::Interpolate), to float precision.
+TEST_P(Tables, RefinedVerticesMatchOpenSubdiv) {
+    Fixture f = build(GetParam());
+    auto osd = test::osdUniformLevels(f.mesh, f.options, GetParam().depth);
+    const double tol = 1e-6 * f.diag, cell = 1e-4 * f.diag;
+    for (uint32_t l = 1; l <= f.tables.depth; ++l) {
+        std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
+        auto key = [&](glm::ivec3 c) {
+            return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) | (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) |
+                   uint64_t(uint32_t(c.z) & 0x1FFFFF);
+        };
+        for (uint32_t i = 0; i < osd[l].size(); ++i)
+            grid[key(glm::ivec3(glm::floor(osd[l][i] / cell)))].push_back(i);
+        const LevelInfo& info = f.tables.levels[l];
+        size_t unmatched = 0;
+        double worst = 0;
+        for (uint32_t v = info.first; v < info.first + info.count(); ++v) {
+            glm::ivec3 c(glm::floor(f.vertices[v] / cell));
+            double best = 1e300;
+            for (int dx = -1; dx <= 1; ++dx)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dz = -1; dz <= 1; ++dz) {
+                        auto it = grid.find(key(c + glm::ivec3(dx, dy, dz)));
+                        if (it == grid.end()) continue;
+                        for (uint32_t i : it->second) best = std::min(best, glm::length(osd[l][i] - f.vertices[v]));
+                    }
+            if (best > tol) ++unmatched;
+            else worst = std::max(worst, best);
+        }
+        EXPECT_EQ(unmatched, 0u) << "level " << l << ": " << unmatched << " of " << info.count()
+                                 << " vertices match no OpenSubdiv vertex within " << tol;
+        EXPECT_LE(worst, tol);
+    }
+}
+
+// For each ptex face, the patches and irregular faces cover its [0,1]^2 exactly once (sampled at
+// the centres of a grid finer than the finest level); holes and faces without a limit surface
+// are covered zero times.
+TEST_P(Tables, DomainsTileEveryPtexFaceOnce) {
+    Fixture f = build(GetParam());
+    test::OsdLimitSurface osd(f.mesh, f.options, 2);
+    const int res = 1 << (f.tables.depth + 1);
+    std::vector<std::vector<uint8_t>> cover(osd.ptexFaceCount(), std::vector<uint8_t>(res * res, 0));
+    auto paint = [&](uint32_t ptex, double u0, double v0, double size) {
+        ASSERT_LT(ptex, cover.size());
+        int i0 = int(std::lround(u0 * res)), j0 = int(std::lround(v0 * res)), n = int(std::lround(size * res));
+        ASSERT_NEAR(u0 * res, i0, 1e-6);
+        ASSERT_NEAR(v0 * res, j0, 1e-6);
+        for (int j = j0; j < j0 + n; ++j)
+            for (int i = i0; i < i0 + n; ++i) ++cover[ptex][j * res + i];
+    };
+    for (const auto& p : f.tables.patches) paint(p.ptex, p.u0, p.v0, p.size);
+    for (const auto& q : f.tables.irregular) paint(q.ptex, q.u0, q.v0, q.size);
+    for (int ptex = 0; ptex < osd.ptexFaceCount(); ++ptex) {
+        glm::dvec3 P, N;
+        bool hasLimit = osd.evaluate(ptex, 0.5, 0.5, P, N);
+        for (int c = 0; c < res * res; ++c)
+            ASSERT_EQ(cover[ptex][c], hasLimit ? 1 : 0) << "ptex " << ptex << " cell " << c;
+    }
+}
+
+// Points on regular patches equal OpenSubdiv's limit surface at the same (ptex, u, v): relative
+// 1e-5 of the bounding-box diagonal in position, 0.5 degrees in normal.
+TEST_P(Tables, RegularPatchesMatchOpenSubdivLimit) {
+    Fixture f = build(GetParam());
+    test::OsdLimitSurface osd(f.mesh, f.options, std::max(GetParam().depth, 2) + 2);
+    const double samples[3][2] = {{0.25, 0.5}, {0.75, 0.125}, {0.5, 0.875}};
+    double worstP = 0, worstN = 0;
+    for (const auto& p : f.tables.patches)
+        for (const auto& st : samples) {
+            SurfacePoint s = evaluatePatch(p, f.vertices, st[0], st[1]);
+            double u = p.u0 + st[0] * p.size, v = p.v0 + st[1] * p.size;
+            glm::dvec3 P, N;
+            ASSERT_TRUE(osd.evaluate(int(p.ptex), u, v, P, N));
+            worstP = std::max(worstP, glm::length(P - s.position) / f.diag);
+            worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, s.normal))) * 180 / M_PI);
+        }
+    EXPECT_LE(worstP, 1e-5);
+    EXPECT_LE(worstN, 0.5);
+}
+
+// Base vertices that are smooth corners: one face, two boundary edges, no vertex sharpness, under
+// edge-only (counted independently of limn, from the mesh and its tags).
+std::vector<uint8_t> smoothCorners(const Mesh& m, const SchemeOptions& o) {
+    std::vector<int> faces(m.vertexCount(), 0);
+    for (uint32_t v : m.faceVertices) ++faces[v];
+    std::vector<uint8_t> out(m.vertexCount(), 0);
+    if (o.boundary != BoundaryRule::EdgeOnly) return out;
+    for (size_t v = 0; v < m.vertexCount(); ++v) out[v] = faces[v] == 1;
+    for (const auto& c : m.tags.corners)
+        if (c.sharpness > 0) out[c.vertex] = 0;
+    return out;
+}
+
+// The base vertex at a ptex-face corner (u, v in {0,1}), or -1 inside a base face.
+int baseVertexAt(const Mesh& m, uint32_t ptex, double u, double v) {
+    uint32_t id = 0;
+    for (size_t f = 0; f < m.faceCount(); ++f) {
+        uint32_t n = m.faceSize(f), count = n == 4 ? 1 : n;
+        if (ptex < id + count) {
+            if (n == 4) {
+                if ((u != 0 && u != 1) || (v != 0 && v != 1)) return -1;
+                int corner = u == 0 ? (v == 0 ? 0 : 3) : (v == 0 ? 1 : 2);
+                return int(m.face(f)[corner]);
+            }
+            return (u == 0 && v == 0) ? int(m.face(f)[ptex - id]) : -1;
+        }
+        id += count;
+    }
+    return -1;
+}
+
+// Limit positions and normals at the corners of the irregular faces equal OpenSubdiv's limit
+// surface there, except where limn's tables report the masks as approximate. At smooth corners
+// the normal is checked by SmoothCornerNormal below instead: OpenSubdiv's end-cap patches fix it
+// at the value of their isolation level, while the exact surface keeps turning toward limn's.
+TEST_P(Tables, LimitPointsMatchOpenSubdiv) {
+    Fixture f = build(GetParam());
+    test::OsdLimitSurface osd(f.mesh, f.options, 10);
+    auto smooth = smoothCorners(f.mesh, f.options);
+    auto limits = evaluateLimitPoints(f.tables, f.vertices);
+    static const double cu[4] = {0, 1, 1, 0}, cv[4] = {0, 0, 1, 1};
+    double worstP = 0, worstN = 0;
+    size_t compared = 0;
+    for (const auto& q : f.tables.irregular)
+        for (int k = 0; k < 4; ++k) {
+            uint32_t li = q.corner[k];
+            if (!f.tables.limitExact[li]) continue;
+            double u = q.u0 + cu[k] * q.size, v = q.v0 + cv[k] * q.size;
+            // Pick OpenSubdiv's patch that has this corner and lies inside this face (the side
+            // of a crease matters; near extraordinary vertices its patches are much smaller).
+            // OpenSubdiv's derivatives can degenerate exactly at a patch corner, so its normal is
+            // taken a millionth of the face size inside (the position at the corner itself).
+            double du = (cu[k] ? -1e-6 : 1e-6) * q.size, dv = (cv[k] ? -1e-6 : 1e-6) * q.size;
+            glm::dvec3 P, N, Pin;
+            ASSERT_TRUE(osd.evaluate(int(q.ptex), u, v, u + du, v + dv, P, N));
+            ASSERT_TRUE(osd.evaluate(int(q.ptex), u + du, v + dv, Pin, N));
+            worstP = std::max(worstP, glm::length(P - limits[li].position) / f.diag);
+            int bv = baseVertexAt(f.mesh, q.ptex, u, v);
+            if (bv < 0 || !smooth[bv])
+                worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, limits[li].normal))) * 180 / M_PI);
+            ++compared;
+        }
+    EXPECT_LE(worstP, 1e-5) << compared << " corners compared";
+    EXPECT_LE(worstN, 0.5) << compared << " corners compared";
+}
+
+// A smooth corner's subdivision matrix has a Jordan block in the cross direction, so normals near
+// it converge like 1/level. The exact B-spline patches of a deep isolation approach the corner;
+// their normals must keep turning toward limn's corner normal, past OpenSubdiv's value (which
+// freezes at its end-cap level).
+TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
+    Warnings w;
+    Mesh m = importMeshFile(test::modelPath("quad/osd_catmark_fvar_bound2.obj").string(), w);
+    SchemeOptions o = resolveSchemeOptions(m.tags, {});
+    TablesOptions opts;
+    opts.depth = 14;
+    auto t = buildTables(m, o, opts, w);
+    auto V = evaluateVertices(t, m.positions);
+    auto L = evaluateLimitPoints(t, V);
+    // The corner (0,0) of ptex 0 is base vertex 0, a smooth corner.
+    ASSERT_EQ(baseVertexAt(m, 0, 0, 0), 0);
+    ASSERT_TRUE(smoothCorners(m, o)[0]);
+    glm::dvec3 corner(0);
+    for (const auto& q : t.irregular)
+        if (q.ptex == 0 && q.u0 == 0 && q.v0 == 0) corner = L[q.corner[0]].normal;
+    ASSERT_NE(glm::length(corner), 0.0);
+    test::OsdLimitSurface osd(m, o, 10);
+    glm::dvec3 P, Nosd;
+    ASSERT_TRUE(osd.evaluate(0, 1e-9, 1e-9, P, Nosd));
+    double osdAngle = std::acos(std::min(1.0, glm::dot(Nosd, corner)));
+    std::vector<double> angles(15, -1);
+    for (const auto& p : t.patches)
+        if (p.ptex == 0 && p.u0 == 0 && p.v0 == p.size) // the patch just above the corner
+            angles[p.level] = std::acos(std::min(1.0, glm::dot(evaluatePatch(p, V, 0, 0).normal, corner)));
+    for (int l = 6; l <= 14; ++l) {
+        ASSERT_GE(angles[l], 0) << "no patch at level " << l;
+        EXPECT_LT(angles[l], angles[l - 1]) << "level " << l;
+    }
+    EXPECT_LT(angles[14], osdAngle) << "the exact surface turns past OpenSubdiv's corner normal";
+}
+
+const Case kCases[] = {
+    {"quad/spot_control_mesh.obj", 1, false},
+    {"quad/spot_control_mesh.obj", 3, false},
+    {"quad/spot_control_mesh.obj", 2, true},
+    {"quad/blub_control_mesh.obj", 4, false},
+    {"quad/osd_catmark_xord_boundary.obj", 3, false},
+    {"quad/osd_catmark_fvar_bound2.obj", 3, false},
+    {"quad/osd_catmark_torus.obj", 2, false},
+    {"quad/osd_catmark_pyramid.obj", 3, false},
+    {"osd/catmark/catmark_cube_creases0.obj", 3, false},
+    {"osd/catmark/catmark_cube_creases2.obj", 3, false},
+    {"osd/catmark/catmark_cubes_semisharp.obj", 4, false},
+    {"osd/catmark/catmark_chaikin1.obj", 3, false},
+    {"osd/catmark/catmark_hole_test2.obj", 3, false},
+    {"osd/catmark/catmark_hole_test3.obj", 2, false},
+    {"osd/catmark/catmark_nonquads.obj", 3, false},
+    {"osd/catmark/catmark_edgecorner.obj", 3, false},
+    {"osd/catmark/catmark_edgeonly.obj", 3, false},
+    {"osd/catmark/catmark_edgenone.obj", 2, false},
+    {"osd/catmark/catmark_smoothtris1.obj", 2, false},
+    {"osd/catmark/catmark_gregory_test3.obj", 3, false},
+    {"osd/catmark/catmark_tent_creases1.obj", 3, false},
+    {"osd/catmark/catmark_helmet.obj", 2, false},
+};
+
+INSTANTIATE_TEST_SUITE_P(Shared, Tables, ::testing::ValuesIn(kCases), caseName);
+
+} // namespace

@@ -1,0 +1,181 @@
+#include "osd_oracle.h"
+
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/ptexIndices.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <glm/geometric.hpp>
+
+#include <stdexcept>
+
+namespace limn::test {
+
+namespace {
+
+using namespace OpenSubdiv;
+
+struct Point {
+    double p[3] = {0, 0, 0};
+    void Clear() { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const Point& s, double w) {
+        p[0] += w * s.p[0];
+        p[1] += w * s.p[1];
+        p[2] += w * s.p[2];
+    }
+};
+
+Sdc::Options sdcOptions(const SchemeOptions& o) {
+    Sdc::Options s;
+    s.SetVtxBoundaryInterpolation(o.boundary == BoundaryRule::None ? Sdc::Options::VTX_BOUNDARY_NONE
+                                  : o.boundary == BoundaryRule::EdgeOnly
+                                      ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    s.SetCreasingMethod(o.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
+                                                                : Sdc::Options::CREASE_UNIFORM);
+    s.SetTriangleSubdivision(o.triangles == TriangleSubdivision::Smooth
+                                 ? Sdc::Options::TRI_SUB_SMOOTH
+                                 : Sdc::Options::TRI_SUB_CATMARK);
+    return s;
+}
+
+struct Descriptor {
+    std::vector<int> sizes, verts, creaseVerts, cornerVerts, holes;
+    std::vector<float> creaseWeights, cornerWeights;
+    Far::TopologyDescriptor desc;
+    explicit Descriptor(const Mesh& m) {
+        for (size_t f = 0; f < m.faceCount(); ++f) sizes.push_back(static_cast<int>(m.faceSize(f)));
+        verts.assign(m.faceVertices.begin(), m.faceVertices.end());
+        for (const auto& c : m.tags.creases) {
+            creaseVerts.push_back(static_cast<int>(c.v0));
+            creaseVerts.push_back(static_cast<int>(c.v1));
+            creaseWeights.push_back(c.sharpness);
+        }
+        for (const auto& c : m.tags.corners) {
+            cornerVerts.push_back(static_cast<int>(c.vertex));
+            cornerWeights.push_back(c.sharpness);
+        }
+        holes.assign(m.tags.holes.begin(), m.tags.holes.end());
+        desc.numVertices = static_cast<int>(m.vertexCount());
+        desc.numFaces = static_cast<int>(m.faceCount());
+        desc.numVertsPerFace = sizes.data();
+        desc.vertIndicesPerFace = verts.data();
+        desc.numCreases = static_cast<int>(creaseWeights.size());
+        desc.creaseVertexIndexPairs = creaseVerts.data();
+        desc.creaseWeights = creaseWeights.data();
+        desc.numCorners = static_cast<int>(cornerWeights.size());
+        desc.cornerVertexIndices = cornerVerts.data();
+        desc.cornerWeights = cornerWeights.data();
+        desc.numHoles = static_cast<int>(holes.size());
+        desc.holeIndices = holes.data();
+    }
+};
+
+Far::TopologyRefiner* makeRefiner(const Mesh& mesh, const SchemeOptions& options) {
+    Descriptor d(mesh);
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    auto* r = Factory::Create(d.desc, Factory::Options(Sdc::SCHEME_CATMARK, sdcOptions(options)));
+    if (!r) throw std::runtime_error("OpenSubdiv refused the mesh");
+    return r;
+}
+
+} // namespace
+
+struct OsdLimitSurface::Impl {
+    std::unique_ptr<Far::TopologyRefiner> refiner;
+    std::unique_ptr<Far::PatchTable> table;
+    std::unique_ptr<Far::PatchMap> map;
+    std::vector<Point> verts;
+    int ptexCount = 0;
+};
+
+OsdLimitSurface::OsdLimitSurface(const Mesh& mesh, const SchemeOptions& options, int isolation)
+    : impl_(std::make_unique<Impl>()) {
+    impl_->refiner.reset(makeRefiner(mesh, options));
+    Far::PatchTableFactory::Options po(isolation);
+    po.SetPatchPrecision<double>();
+    po.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+    po.useInfSharpPatch = true;
+    po.generateLegacySharpCornerPatches = false;
+    impl_->refiner->RefineAdaptive(po.GetRefineAdaptiveOptions());
+    impl_->table.reset(Far::PatchTableFactory::Create(*impl_->refiner, po));
+    int nRef = impl_->refiner->GetNumVerticesTotal();
+    int nLoc = impl_->table->GetNumLocalPoints();
+    impl_->verts.resize(nRef + nLoc);
+    for (size_t i = 0; i < mesh.vertexCount(); ++i)
+        for (int k = 0; k < 3; ++k) impl_->verts[i].p[k] = mesh.positions[i][k];
+    Far::PrimvarRefinerReal<double> pr(*impl_->refiner);
+    Point* src = impl_->verts.data();
+    for (int l = 1; l < impl_->refiner->GetNumLevels(); ++l) {
+        Point* dst = src + impl_->refiner->GetLevel(l - 1).GetNumVertices();
+        pr.Interpolate(l, src, dst);
+        src = dst;
+    }
+    if (nLoc)
+        impl_->table->GetLocalPointStencilTable<double>()->UpdateValues(impl_->verts.data(),
+                                                                        impl_->verts.data() + nRef);
+    impl_->map = std::make_unique<Far::PatchMap>(*impl_->table);
+    impl_->ptexCount = Far::PtexIndices(*impl_->refiner).GetNumFaces();
+}
+
+OsdLimitSurface::~OsdLimitSurface() = default;
+
+int OsdLimitSurface::ptexFaceCount() const { return impl_->ptexCount; }
+
+bool OsdLimitSurface::evaluate(int ptex, double u, double v, glm::dvec3& P, glm::dvec3& N) const {
+    return evaluate(ptex, u, v, u, v, P, N);
+}
+
+bool OsdLimitSurface::evaluate(int ptex, double u, double v, double iu, double iv, glm::dvec3& P,
+                               glm::dvec3& N) const {
+    const auto* h = impl_->map->FindPatch(ptex, iu, iv);
+    if (!h) return false;
+    // EvaluateBasis takes ptex coordinates and maps them into the patch itself.
+    double wP[20], wDu[20], wDv[20];
+    impl_->table->EvaluateBasis(*h, u, v, wP, wDu, wDv);
+    Far::ConstIndexArray cv = impl_->table->GetPatchVertices(*h);
+    glm::dvec3 pos(0.0), du(0.0), dv(0.0);
+    for (int i = 0; i < cv.size(); ++i) {
+        const Point& q = impl_->verts[cv[i]];
+        glm::dvec3 x(q.p[0], q.p[1], q.p[2]);
+        pos += wP[i] * x;
+        du += wDu[i] * x;
+        dv += wDv[i] * x;
+    }
+    P = pos;
+    N = glm::normalize(glm::cross(du, dv));
+    return true;
+}
+
+std::vector<std::vector<glm::dvec3>> osdUniformLevels(const Mesh& mesh, const SchemeOptions& options,
+                                                      int depth) {
+    std::unique_ptr<Far::TopologyRefiner> r(makeRefiner(mesh, options));
+    Far::TopologyRefiner::UniformOptions uo(depth);
+    uo.fullTopologyInLastLevel = true;
+    r->RefineUniform(uo);
+    std::vector<Point> buf(r->GetNumVerticesTotal());
+    for (size_t i = 0; i < mesh.vertexCount(); ++i)
+        for (int k = 0; k < 3; ++k) buf[i].p[k] = mesh.positions[i][k];
+    Far::PrimvarRefinerReal<double> pr(*r);
+    Point* src = buf.data();
+    std::vector<std::vector<glm::dvec3>> out;
+    size_t offset = 0;
+    for (int l = 0; l <= depth; ++l) {
+        int n = r->GetLevel(l).GetNumVertices();
+        if (l > 0) {
+            Point* dst = src + r->GetLevel(l - 1).GetNumVertices();
+            pr.Interpolate(l, src, dst);
+            src = dst;
+        }
+        std::vector<glm::dvec3> level(n);
+        for (int i = 0; i < n; ++i)
+            level[i] = {buf[offset + i].p[0], buf[offset + i].p[1], buf[offset + i].p[2]};
+        offset += n;
+        out.push_back(std::move(level));
+    }
+    return out;
+}
+
+} // namespace limn::test

@@ -1,0 +1,39 @@
+// OpenSubdiv as the reference for tests (../shared/docs/opensubdiv.md): the limit surface at
+// (ptex, u, v) from an adaptive patch table with Gregory end caps and infinitely sharp patches,
+// and uniformly refined vertex positions per level. Built from a limn Mesh with the same scheme
+// options limn uses.
+#pragma once
+
+#include "mesh/mesh.h"
+#include "topology/features.h"
+
+#include <glm/vec3.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace limn::test {
+
+class OsdLimitSurface {
+public:
+    OsdLimitSurface(const Mesh& mesh, const SchemeOptions& options, int isolationLevel = 8);
+    ~OsdLimitSurface();
+
+    int ptexFaceCount() const;
+    // Evaluates the limit surface at (u, v) of ptex face `ptex`, using the patch that contains
+    // the point (insideU, insideV) (pass the same point to let OpenSubdiv choose; pass a point
+    // just inside a face to pick the side of a crease). Returns false on holes.
+    bool evaluate(int ptex, double u, double v, glm::dvec3& position, glm::dvec3& normal) const;
+    bool evaluate(int ptex, double u, double v, double insideU, double insideV,
+                  glm::dvec3& position, glm::dvec3& normal) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// Positions of every vertex of uniform refinement levels 0..depth (double precision).
+std::vector<std::vector<glm::dvec3>> osdUniformLevels(const Mesh& mesh, const SchemeOptions& options,
+                                                      int depth);
+
+} // namespace limn::test
