@@ -5,6 +5,7 @@
 
 #include "base/error.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -83,14 +84,15 @@ public:
     template <class T>
     void write(const T& value) {
         static_assert(std::is_trivially_copyable_v<T>);
-        const auto* p = reinterpret_cast<const uint8_t*>(&value);
-        bytes_.insert(bytes_.end(), p, p + sizeof(T));
+        size_t at = grow(sizeof(T));
+        std::memcpy(bytes_.data() + at, &value, sizeof(T));
     }
     template <class T>
     void writeArray(std::span<const T> values) {
         static_assert(std::is_trivially_copyable_v<T>);
-        const auto* p = reinterpret_cast<const uint8_t*>(values.data());
-        bytes_.insert(bytes_.end(), p, p + values.size_bytes());
+        if (values.empty()) return;
+        size_t at = grow(values.size_bytes());
+        std::memcpy(bytes_.data() + at, values.data(), values.size_bytes());
     }
     template <class T>
     void writeArray(const std::vector<T>& values) {
@@ -104,6 +106,13 @@ public:
     std::vector<uint8_t> take() { return std::move(bytes_); }
 
 private:
+    // Amortized growth: resize() alone would reallocate on every small write.
+    size_t grow(size_t n) {
+        size_t at = bytes_.size();
+        if (at + n > bytes_.capacity()) bytes_.reserve(std::max(2 * bytes_.capacity(), at + n + 256));
+        bytes_.resize(at + n);
+        return at;
+    }
     std::vector<uint8_t> bytes_;
 };
 

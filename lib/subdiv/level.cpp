@@ -50,23 +50,23 @@ void assignVertexRules(Level& L) {
     }
 }
 
-Level makeBaseLevel(const Topology& topo, const Sharpness& sharpness,
-                    const std::vector<uint8_t>& faceNoLimit) {
+Level makeBaseLevel(Topology topo, Sharpness sharpness) {
     Level L;
     L.depth = 0;
-    L.topo = topo;
-    L.edgeSharpness = sharpness.edge;
-    L.vertexSharpness = sharpness.vertex;
+    L.topo = std::move(topo);
+    L.edgeSharpness = std::move(sharpness.edge);
+    L.vertexSharpness = std::move(sharpness.vertex);
+    L.noLimit = std::move(sharpness.faceNoLimit);
     assignVertexRules(L);
-    L.frames.resize(topo.faceCount());
+    const Topology& T = L.topo;
+    L.frames.resize(T.faceCount());
     uint32_t ptex = 0;
-    for (uint32_t f = 0; f < topo.faceCount(); ++f) {
+    for (uint32_t f = 0; f < T.faceCount(); ++f) {
         L.frames[f].ptex = ptex;
-        ptex += topo.faceSize(f) == 4 ? 1 : topo.faceSize(f);
+        ptex += T.faceSize(f) == 4 ? 1 : T.faceSize(f);
     }
-    L.noLimit = faceNoLimit;
-    L.complete.assign(topo.faceCount(), 1);
-    L.vertexOrigin.assign(topo.vertexCount(), VertexOrigin::Base);
+    L.complete.assign(T.faceCount(), 1);
+    L.vertexOrigin.assign(T.vertexCount(), VertexOrigin::Base);
     return L;
 }
 
@@ -196,48 +196,50 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
 
     // Stencils, with Sdc's masks and the parent/child rules as PrimvarRefiner passes them.
     OpenSubdiv::Sdc::Scheme<OpenSubdiv::Sdc::SCHEME_CATMARK> scheme(toSdcOptions(options));
-    st.facePoints.assign(C.facePointCount, {});
-    st.edgePoints.assign(C.edgePointCount, {});
-    st.vertexPoints.assign(C.vertexPointCount, {});
+    // Rows are appended in child vertex order (face, edge, vertex points by parent index).
+    st = LevelStencils{};
     for (uint32_t f = 0; f < F; ++f)
         if (faceCenter[f]) {
             auto fv = T.faceVertices(f);
-            st.facePoints[faceChild[f]].assign(fv.begin(), fv.end());
+            st.faceVertices.insert(st.faceVertices.end(), fv.begin(), fv.end());
+            st.faceStart.push_back(static_cast<uint32_t>(st.faceVertices.size()));
         }
-    SdcMask mask(64);
+    uint32_t maxValence = 2;
+    for (uint32_t v = 0; v < V; ++v) maxValence = std::max(maxValence, T.vertexEdgeCount(v));
+    SdcMask mask(static_cast<int>(maxValence));
+    st.edgeEntries.reserve(4 * C.edgePointCount);
     for (uint32_t e = 0; e < E; ++e) {
         if (!edgeUsed[e]) continue;
         uint32_t cv = edgeChild[e];
         SdcEdge hood(T, e, P.edgeSharpness[e]);
-        if (mask.edgeWeights.size() < 2) mask = SdcMask(2);
         auto pRule = P.edgeSharpness[e] > 0 ? Crease::RULE_CREASE : Crease::RULE_SMOOTH;
         scheme.ComputeEdgeVertexMask(hood, mask, pRule, sdcRule(C.vertexRule[cv]));
         auto ends = T.edgeVertices(e);
-        auto& row = st.edgePoints[cv - C.facePointCount];
-        row.push_back({ends[0], mask.VertexWeight(0), false});
-        row.push_back({ends[1], mask.VertexWeight(1), false});
+        st.edgeEntries.push_back({ends[0], mask.VertexWeight(0), false});
+        st.edgeEntries.push_back({ends[1], mask.VertexWeight(1), false});
         uint32_t h = T.edgeHalfedge(e);
         uint32_t faces[2] = {T.face(h), T.twin(h) == kNone ? kNone : T.face(T.twin(h))};
-        for (int i = 0; i < mask.GetNumFaceWeights(); ++i) {
-            if (mask.FaceWeight(i) == 0) continue;
-            row.push_back({faceChild[faces[i]], mask.FaceWeight(i), true});
-        }
+        for (int i = 0; i < mask.GetNumFaceWeights(); ++i)
+            if (mask.FaceWeight(i) != 0)
+                st.edgeEntries.push_back({faceChild[faces[i]], mask.FaceWeight(i), true});
+        st.edgeStart.push_back(static_cast<uint32_t>(st.edgeEntries.size()));
     }
     VertexNeighborhood hood;
+    std::vector<float> ringSharpness;
     for (uint32_t v = 0; v < V; ++v) {
         if (!vertexUsed[v]) continue;
         uint32_t cv = vertexChild[v];
         gatherNeighborhood(T, v, hood);
-        if (static_cast<int>(mask.edgeWeights.size()) < static_cast<int>(hood.edges.size()))
-            mask = SdcMask(static_cast<int>(hood.edges.size()) * 2);
-        SdcVertex sv(hood, P.edgeSharpness, P.vertexSharpness[v], C.vertexSharpness[cv]);
+        SdcVertex sv(hood, P.edgeSharpness, P.vertexSharpness[v], C.vertexSharpness[cv], ringSharpness);
         scheme.ComputeVertexVertexMask(sv, mask, sdcRule(P.vertexRule[v]), sdcRule(C.vertexRule[cv]));
-        auto& row = st.vertexPoints[cv - C.facePointCount - C.edgePointCount];
-        row.push_back({v, mask.VertexWeight(0), false});
+        st.vertexEntries.push_back({v, mask.VertexWeight(0), false});
         for (int i = 0; i < mask.GetNumEdgeWeights(); ++i)
-            if (mask.EdgeWeight(i) != 0) row.push_back({hood.ringVertex[i], mask.EdgeWeight(i), false});
+            if (mask.EdgeWeight(i) != 0)
+                st.vertexEntries.push_back({hood.ringVertex[i], mask.EdgeWeight(i), false});
         for (int i = 0; i < mask.GetNumFaceWeights(); ++i)
-            if (mask.FaceWeight(i) != 0) row.push_back({faceChild[hood.faces[i]], mask.FaceWeight(i), true});
+            if (mask.FaceWeight(i) != 0)
+                st.vertexEntries.push_back({faceChild[hood.faces[i]], mask.FaceWeight(i), true});
+        st.vertexStart.push_back(static_cast<uint32_t>(st.vertexEntries.size()));
     }
     return C;
 }

@@ -50,15 +50,15 @@ struct StencilEntry {
     bool fromFacePoint;
 };
 
+// Flat rows (CSR): row r of a table is entries[start[r] .. start[r+1]).
 struct LevelStencils {
-    std::vector<std::vector<uint32_t>> facePoints; // parent vertices, averaged
-    std::vector<std::vector<StencilEntry>> edgePoints;
-    std::vector<std::vector<StencilEntry>> vertexPoints;
+    std::vector<uint32_t> faceStart{0}, faceVertices; // face points: parent vertices, averaged
+    std::vector<uint32_t> edgeStart{0}, vertexStart{0};
+    std::vector<StencilEntry> edgeEntries, vertexEntries;
 };
 
 // Builds level 0 from the control mesh topology: sharpness, rules, ptex frames, holes.
-Level makeBaseLevel(const Topology& topo, const Sharpness& sharpness,
-                    const std::vector<uint8_t>& faceNoLimit);
+Level makeBaseLevel(Topology topo, Sharpness sharpness);
 
 // Refines the `selected` faces of `parent` (all their children are created) and computes the
 // stencils of every new vertex with OpenSubdiv's Sdc masks. Face points are also made for every

@@ -42,9 +42,12 @@ std::vector<Sector> vertexSectors(const VertexNeighborhood& hood, VertexRule rul
     return sectors;
 }
 
-LimitMasks limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sector& sector,
-                      const std::vector<float>& edgeSharpness, float vertexSharpness) {
-    LimitMasks m;
+void limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sector& sector,
+                const std::vector<float>& edgeSharpness, float vertexSharpness, LimitMasks& m) {
+    m.position.clear();
+    m.tangent1.clear();
+    m.tangent2.clear();
+    m.exact = true;
     const uint32_t v = hood.vertex;
     const uint32_t n = static_cast<uint32_t>(hood.faces.size());
     const uint32_t E = static_cast<uint32_t>(hood.edges.size());
@@ -89,7 +92,7 @@ LimitMasks limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sec
             add(m.tangent2, ringVertex(1), 1);
             add(m.tangent2, v, -1);
             m.exact = false;
-            return m;
+            return;
         }
         // c2 and c3 of [HKD93] (math.md C.3); c3 is c2 rotated by one index.
         double a = A(n);
@@ -101,7 +104,7 @@ LimitMasks limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sec
             add(m.tangent2, hood.ringVertex[i], a * cim);
             add(m.tangent2, hood.diagonal[i], cim + ci);
         }
-        return m;
+        return;
     }
 
     // A sector of k faces between the sharp edges `lead` (e_0) and `trail` (e_k), treated as a
@@ -118,7 +121,7 @@ LimitMasks limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sec
         add(m.tangent1, v, -1);
         add(m.tangent2, e(k), 1);
         add(m.tangent2, v, -1);
-        return m;
+        return;
     }
     add(m.tangent1, e(0), 1);
     add(m.tangent1, e(k), -1);
@@ -151,7 +154,6 @@ LimitMasks limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sec
         add(m.tangent2, e(0), x0);
         add(m.tangent2, e(k), x0);
     }
-    return m;
 }
 
 } // namespace limn

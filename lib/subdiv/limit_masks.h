@@ -34,8 +34,9 @@ struct Sector {
 std::vector<Sector> vertexSectors(const VertexNeighborhood& hood, VertexRule rule,
                                   const std::vector<float>& edgeSharpness);
 
-// Limit position (shared by all sectors) and the tangents of `sector`.
-LimitMasks limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sector& sector,
-                      const std::vector<float>& edgeSharpness, float vertexSharpness);
+// Limit position (shared by all sectors) and the tangents of `sector`, into `out` (its vectors
+// are reused between calls).
+void limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sector& sector,
+                const std::vector<float>& edgeSharpness, float vertexSharpness, LimitMasks& out);
 
 } // namespace limn

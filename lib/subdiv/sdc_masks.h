@@ -23,7 +23,7 @@ struct SdcMask {
     bool faceCenters = false;
 
     explicit SdcMask(int maxValence)
-        : vertexWeights(1), edgeWeights(maxValence), faceWeights(maxValence) {}
+        : vertexWeights(2), edgeWeights(maxValence), faceWeights(maxValence) {} // 2: edge masks
     int GetNumVertexWeights() const { return vCount; }
     int GetNumEdgeWeights() const { return eCount; }
     int GetNumFaceWeights() const { return fCount; }
@@ -57,9 +57,12 @@ void gatherNeighborhood(const Topology& topo, uint32_t v, VertexNeighborhood& ou
 // Sdc's VERTEX interface over a gathered neighbourhood.
 class SdcVertex {
 public:
+    // `scratch` holds the ring's edge sharpness; reused between vertices to avoid allocations.
     SdcVertex(const VertexNeighborhood& hood, const std::vector<float>& edgeSharpness,
-              float vertexSharpness, float childVertexSharpness)
-        : hood_(hood), vertexSharpness_(vertexSharpness), childSharpness_(childVertexSharpness) {
+              float vertexSharpness, float childVertexSharpness, std::vector<float>& scratch)
+        : hood_(hood), sharp_(scratch), vertexSharpness_(vertexSharpness),
+          childSharpness_(childVertexSharpness) {
+        sharp_.clear();
         for (uint32_t e : hood.edges) sharp_.push_back(edgeSharpness[e]);
     }
     int GetNumEdges() const { return static_cast<int>(hood_.edges.size()); }
@@ -77,7 +80,7 @@ public:
 
 private:
     const VertexNeighborhood& hood_;
-    std::vector<float> sharp_;
+    std::vector<float>& sharp_;
     float vertexSharpness_, childSharpness_;
 };
 

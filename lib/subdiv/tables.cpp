@@ -131,9 +131,9 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
 
     Sharpness sharp = baseSharpness(baseTopo, mesh.tags, options.boundary, warnings);
     std::vector<Level> levels;
-    levels.push_back(makeBaseLevel(baseTopo, sharp, sharp.faceNoLimit));
-    std::vector<uint32_t> ptexBase(baseTopo.faceCount());
-    for (uint32_t f = 0; f < baseTopo.faceCount(); ++f) ptexBase[f] = levels[0].frames[f].ptex;
+    levels.push_back(makeBaseLevel(std::move(baseTopo), std::move(sharp)));
+    std::vector<uint32_t> ptexBase(levels[0].topo.faceCount());
+    for (uint32_t f = 0; f < ptexBase.size(); ++f) ptexBase[f] = levels[0].frames[f].ptex;
 
     std::vector<LevelStencils> stencils(1);
     std::vector<std::vector<uint8_t>> irregularSets; // T_l
@@ -143,8 +143,7 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         const uint32_t F = L.topo.faceCount();
         std::vector<uint8_t> regular(F, 0);
         if (!opts.uniform) {
-            Sharpness s{L.edgeSharpness, L.vertexSharpness, L.noLimit};
-            regular = analyzeRegularity(L.topo, s, L.noLimit).faceRegular;
+            regular = analyzeRegularity(L.topo, L.edgeSharpness, L.vertexSharpness, L.noLimit).faceRegular;
         }
         std::vector<uint8_t> T(F, 0), P(F, 0);
         for (uint32_t f = 0; f < F; ++f) {
@@ -192,8 +191,12 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         }
     };
     std::map<LimitKey, uint32_t> limitIndex;
-    std::vector<LimitMasks> limitMasksList;
+    // Limit stencils over level-N local vertices, remapped to global indices after pruning.
+    StencilTable localPosition, localTangent1, localTangent2;
+    std::vector<double> wPosition, wTangent1, wTangent2;
+    std::vector<uint8_t> limitExactLocal;
     std::vector<uint32_t> limitLocalVertex;
+    LimitMasks masks;
     std::vector<std::array<uint32_t, 4>> irregularCorners;
     std::vector<uint32_t> irregularFaceIds;
     VertexNeighborhood hood;
@@ -216,10 +219,21 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
                                static_cast<uint32_t>(hood.faces.size());
                 if (rel < sectors[i].faceCount) s = i;
             }
-            auto [it, inserted] = limitIndex.try_emplace({v, s}, static_cast<uint32_t>(limitMasksList.size()));
+            auto [it, inserted] = limitIndex.try_emplace({v, s}, static_cast<uint32_t>(limitLocalVertex.size()));
             if (inserted) {
-                limitMasksList.push_back(limitMasks(hood, rule, sectors[s], LN.edgeSharpness,
-                                                    LN.vertexSharpness[v]));
+                limitMasks(hood, rule, sectors[s], LN.edgeSharpness, LN.vertexSharpness[v], masks);
+                auto append = [](StencilTable& t, std::vector<double>& w,
+                                 const std::vector<WeightedPoint>& list) {
+                    for (const auto& wp : list) {
+                        t.indices.push_back(wp.vertex);
+                        w.push_back(wp.weight);
+                    }
+                    t.addRow();
+                };
+                append(localPosition, wPosition, masks.position);
+                append(localTangent1, wTangent1, masks.tangent1);
+                append(localTangent2, wTangent2, masks.tangent2);
+                limitExactLocal.push_back(masks.exact ? 1 : 0);
                 limitLocalVertex.push_back(v);
             }
             corners[k] = it->second;
@@ -243,24 +257,24 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     for (uint32_t l = 0; l <= N; ++l)
         for (uint32_t f = 0; f < patchSets[l].size(); ++f)
             if (patchSets[l][f]) markPatch(l, f);
-    for (const auto& m : limitMasksList)
-        for (const auto* list : {&m.position, &m.tangent1, &m.tangent2})
-            for (const auto& wp : *list) needed[N][wp.vertex] = 1;
+    for (const auto* table : {&localPosition, &localTangent1, &localTangent2})
+        for (uint32_t v : table->indices) needed[N][v] = 1;
     for (uint32_t l = N; l >= 1; --l) {
         const Level& L = levels[l];
         const LevelStencils& st = stencils[l];
         const uint32_t fp = L.facePointCount, ep = L.edgePointCount;
         for (uint32_t i = 0; i < ep; ++i)
             if (needed[l][fp + i])
-                for (const auto& e : st.edgePoints[i])
-                    (e.fromFacePoint ? needed[l] : needed[l - 1])[e.index] = 1;
+                for (uint32_t k = st.edgeStart[i]; k < st.edgeStart[i + 1]; ++k)
+                    (st.edgeEntries[k].fromFacePoint ? needed[l] : needed[l - 1])[st.edgeEntries[k].index] = 1;
         for (uint32_t i = 0; i < L.vertexPointCount; ++i)
             if (needed[l][fp + ep + i])
-                for (const auto& e : st.vertexPoints[i])
-                    (e.fromFacePoint ? needed[l] : needed[l - 1])[e.index] = 1;
+                for (uint32_t k = st.vertexStart[i]; k < st.vertexStart[i + 1]; ++k)
+                    (st.vertexEntries[k].fromFacePoint ? needed[l] : needed[l - 1])[st.vertexEntries[k].index] = 1;
         for (uint32_t i = 0; i < fp; ++i)
             if (needed[l][i])
-                for (uint32_t v : st.facePoints[i]) needed[l - 1][v] = 1;
+                for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k)
+                    needed[l - 1][st.faceVertices[k]] = 1;
     }
 
     // Global numbering: level by level, keeping face, edge, vertex point order.
@@ -306,25 +320,24 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         StencilTable faces, edges, verts;
         for (uint32_t i = 0; i < L.facePointCount; ++i) {
             if (!needed[l][i]) continue;
-            for (uint32_t v : st.facePoints[i]) faces.indices.push_back(parentBase + remap[l - 1][v]);
+            for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k)
+                faces.indices.push_back(parentBase + remap[l - 1][st.faceVertices[k]]);
             faces.addRow();
         }
-        for (uint32_t i = 0; i < L.edgePointCount; ++i) {
-            if (!needed[l][L.facePointCount + i]) continue;
-            for (const auto& e : st.edgePoints[i]) {
-                edges.indices.push_back(src(e));
-                edges.weights.push_back(static_cast<float>(e.weight));
+        auto emitRows = [&](StencilTable& out, uint32_t first, uint32_t count,
+                            const std::vector<uint32_t>& start, const std::vector<StencilEntry>& entries) {
+            for (uint32_t i = 0; i < count; ++i) {
+                if (!needed[l][first + i]) continue;
+                for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
+                    out.indices.push_back(src(entries[k]));
+                    out.weights.push_back(static_cast<float>(entries[k].weight));
+                }
+                out.addRow();
             }
-            edges.addRow();
-        }
-        for (uint32_t i = 0; i < L.vertexPointCount; ++i) {
-            if (!needed[l][L.facePointCount + L.edgePointCount + i]) continue;
-            for (const auto& e : st.vertexPoints[i]) {
-                verts.indices.push_back(src(e));
-                verts.weights.push_back(static_cast<float>(e.weight));
-            }
-            verts.addRow();
-        }
+        };
+        emitRows(edges, L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+        emitRows(verts, L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart,
+                 st.vertexEntries);
         t.facePoints.push_back(std::move(faces));
         t.edgePoints.push_back(std::move(edges));
         t.vertexPoints.push_back(std::move(verts));
@@ -335,22 +348,18 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
             if (patchSets[l][f]) t.patches.push_back(gatherPatch(levels[l], f, t.levels[l].first, remap[l]));
 
     const uint32_t baseN = t.levels[N].first;
-    for (size_t i = 0; i < limitMasksList.size(); ++i) {
-        const LimitMasks& m = limitMasksList[i];
-        auto emit = [&](StencilTable& table, const std::vector<WeightedPoint>& list) {
-            for (const auto& wp : list) {
-                table.indices.push_back(baseN + remap[N][wp.vertex]);
-                table.weights.push_back(static_cast<float>(wp.weight));
-            }
-            table.addRow();
-        };
-        emit(t.limitPosition, m.position);
-        emit(t.limitTangent1, m.tangent1);
-        emit(t.limitTangent2, m.tangent2);
-        t.limitVertex.push_back(baseN + remap[N][limitLocalVertex[i]]);
-        t.limitExact.push_back(m.exact ? 1 : 0);
-        if (!m.exact) ++t.approximateLimitPoints;
-    }
+    auto globalize = [&](StencilTable& out, const StencilTable& local, const std::vector<double>& w) {
+        out = local;
+        for (auto& v : out.indices) v = baseN + remap[N][v];
+        out.weights.assign(w.begin(), w.end());
+        std::transform(w.begin(), w.end(), out.weights.begin(), [](double x) { return float(x); });
+    };
+    globalize(t.limitPosition, localPosition, wPosition);
+    globalize(t.limitTangent1, localTangent1, wTangent1);
+    globalize(t.limitTangent2, localTangent2, wTangent2);
+    for (uint32_t v : limitLocalVertex) t.limitVertex.push_back(baseN + remap[N][v]);
+    t.limitExact = limitExactLocal;
+    for (uint8_t e : limitExactLocal) t.approximateLimitPoints += e ? 0 : 1;
     for (size_t i = 0; i < irregularFaceIds.size(); ++i) {
         const FaceFrame& fr = LN.frames[irregularFaceIds[i]];
         IrregularFace face{};

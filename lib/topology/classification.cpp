@@ -13,7 +13,7 @@ Classification classifyMesh(const Mesh& mesh, const Topology& topo, const Scheme
     Sharpness sharp = baseSharpness(topo, mesh.tags, options.boundary, warnings);
     std::vector<uint8_t> hole(F, 0);
     for (uint32_t f : mesh.tags.holes) hole[f] = 1;
-    Regularity reg = analyzeRegularity(topo, sharp, sharp.faceNoLimit);
+    Regularity reg = analyzeRegularity(topo, sharp.edge, sharp.vertex, sharp.faceNoLimit);
 
     c.vertexValence.resize(V);
     c.vertexFlags.assign(V, 0);

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <string>
-#include <unordered_map>
 
 namespace limn {
 
@@ -25,24 +24,16 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
     s.edge.assign(topo.edgeCount(), 0.0f);
     s.vertex.assign(topo.vertexCount(), 0.0f);
 
-    // Edge lookup by vertex pair, only for the tagged vertices (tags are few, meshes are large).
-    std::unordered_map<uint64_t, uint32_t> edgeOf;
-    if (!tags.creases.empty()) {
-        for (uint32_t e = 0; e < topo.edgeCount(); ++e) {
-            auto [a, b] = topo.edgeVertices(e);
-            edgeOf[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)] = e;
-        }
-    }
     size_t missing = 0;
     for (const auto& c : tags.creases) {
-        auto it = edgeOf.find((uint64_t(std::min(c.v0, c.v1)) << 32) | std::max(c.v0, c.v1));
-        if (it == edgeOf.end()) {
+        uint32_t edge = topo.findEdge(c.v0, c.v1);
+        if (edge == kNone) {
             if (missing++ == 0)
                 warnings.add("crease tag (" + std::to_string(c.v0) + "," + std::to_string(c.v1) +
                              ") names no edge of the mesh; ignored");
             continue;
         }
-        s.edge[it->second] = c.sharpness; // a later tag for the same edge wins, as in Far
+        s.edge[edge] = c.sharpness; // a later tag for the same edge wins, as in Far
     }
     if (missing > 1)
         warnings.add(std::to_string(missing - 1) + " more crease tags name no edge; ignored");
@@ -99,7 +90,8 @@ VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v) 
     return static_cast<VertexRule>(rule);
 }
 
-Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
+Regularity analyzeRegularity(const Topology& topo, const std::vector<float>& edgeSharpness,
+                             const std::vector<float>& vertexSharpness,
                              const std::vector<uint8_t>& faceNoLimit) {
     const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
     Regularity r;
@@ -110,15 +102,15 @@ Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
         bool allQuads = true, interiorEdgesSmooth = true;
         for (uint32_t h : topo.vertexOutgoing(v)) {
             if (topo.faceSize(topo.face(h)) != 4) allQuads = false;
-            if (topo.twin(h) != kNone && sharp.edge[topo.edge(h)] > 0) interiorEdgesSmooth = false;
+            if (topo.twin(h) != kNone && edgeSharpness[topo.edge(h)] > 0) interiorEdgesSmooth = false;
         }
         if (!allQuads || !interiorEdgesSmooth) continue;
         if (!topo.vertexIsBoundary(v)) {
-            r.vertexRegular[v] = faces == 4 && sharp.vertex[v] == 0;
+            r.vertexRegular[v] = faces == 4 && vertexSharpness[v] == 0;
         } else if (faces == 2) {
-            r.vertexRegular[v] = sharp.vertex[v] == 0;
+            r.vertexRegular[v] = vertexSharpness[v] == 0;
         } else if (faces == 1) {
-            r.vertexRegular[v] = sharp.vertex[v] >= inf;
+            r.vertexRegular[v] = vertexSharpness[v] >= inf;
         }
     }
     r.faceRegular.assign(topo.faceCount(), 0);

@@ -57,7 +57,8 @@ struct Regularity {
     std::vector<uint8_t> faceRegular; // never set for faces without a limit surface
 };
 
-Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
+Regularity analyzeRegularity(const Topology& topo, const std::vector<float>& edgeSharpness,
+                             const std::vector<float>& vertexSharpness,
                              const std::vector<uint8_t>& faceNoLimit);
 
 } // namespace limn

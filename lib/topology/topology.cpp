@@ -1,7 +1,6 @@
 #include "topology/topology.h"
 
 #include <algorithm>
-#include <numeric>
 
 namespace limn {
 
@@ -12,59 +11,61 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
     const uint32_t H = static_cast<uint32_t>(heVertex_.size());
     const uint32_t F = faceCount();
     heFace_.resize(H);
-    for (uint32_t f = 0; f < F; ++f)
+    allQuads_ = true;
+    for (uint32_t f = 0; f < F; ++f) {
+        if (faceOffsets_[f + 1] - faceOffsets_[f] != 4) allQuads_ = false;
         for (uint32_t h = faceOffsets_[f]; h < faceOffsets_[f + 1]; ++h) heFace_[h] = f;
+    }
 
-    // Group half-edges by undirected edge: sort (min,max,h) keys. Sorting keeps edge numbering
-    // deterministic; edges are then numbered in order of their first half-edge.
-    std::vector<std::pair<uint64_t, uint32_t>> keys(H);
+    // Group half-edges by undirected edge in linear time: bucket them by their smaller vertex
+    // (counting sort keeps half-edge order inside a bucket), then match larger vertices within
+    // the bucket. Edges are numbered in order of their first half-edge, so numbering is
+    // deterministic and follows face order.
+    std::vector<uint32_t> bucketStart(vertexCount_ + 1, 0), bucket(H), other(H);
     for (uint32_t h = 0; h < H; ++h) {
         uint32_t a = heVertex_[h], b = heVertex_[next(h)];
-        uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-        keys[h] = {key, h};
+        other[h] = std::max(a, b);
+        ++bucketStart[std::min(a, b) + 1];
     }
-    std::sort(keys.begin(), keys.end());
+    for (uint32_t v = 0; v < vertexCount_; ++v) bucketStart[v + 1] += bucketStart[v];
+    {
+        std::vector<uint32_t> fill(bucketStart.begin(), bucketStart.end() - 1);
+        for (uint32_t h = 0; h < H; ++h)
+            bucket[fill[std::min(heVertex_[h], heVertex_[next(h)])]++] = h;
+    }
     heEdge_.assign(H, kNone);
     heTwin_.assign(H, kNone);
-    std::vector<uint32_t> groupFirst; // index into keys of each group's start, in group order
-    for (uint32_t i = 0; i < H;) {
-        uint32_t j = i;
-        while (j < H && keys[j].first == keys[i].first) ++j;
-        groupFirst.push_back(i);
-        i = j;
-    }
-    groupFirst.push_back(H);
-    // Number edges by their smallest half-edge (= first appearance in face order).
-    std::vector<uint32_t> groupOrder(groupFirst.size() - 1);
-    std::iota(groupOrder.begin(), groupOrder.end(), 0u);
-    std::sort(groupOrder.begin(), groupOrder.end(), [&](uint32_t x, uint32_t y) {
-        return keys[groupFirst[x]].second < keys[groupFirst[y]].second;
-    });
-    const uint32_t E = static_cast<uint32_t>(groupOrder.size());
-    edgeVertices_.resize(E);
-    edgeFaceCount_.resize(E);
-    edgeHalfedge_.resize(E);
-    edgeNonManifold_.assign(E, 0);
-    for (uint32_t e = 0; e < E; ++e) {
-        uint32_t g = groupOrder[e];
-        uint32_t begin = groupFirst[g], end = groupFirst[g + 1];
-        uint32_t h0 = keys[begin].second; // smallest h (pairs sort by h within equal keys)
-        edgeHalfedge_[e] = h0;
-        edgeVertices_[e] = {heVertex_[h0], heVertex_[next(h0)]};
-        edgeFaceCount_[e] = end - begin;
-        for (uint32_t k = begin; k < end; ++k) heEdge_[keys[k].second] = e;
-        if (end - begin == 2) {
-            uint32_t h1 = keys[begin + 1].second;
+    uint32_t group[64];
+    for (uint32_t h0 = 0; h0 < H; ++h0) {
+        if (heEdge_[h0] != kNone) continue;
+        const uint32_t e = static_cast<uint32_t>(edgeVertices_.size());
+        const uint32_t lo = std::min(heVertex_[h0], heVertex_[next(h0)]);
+        uint32_t n = 0, count = 0;
+        for (uint32_t i = bucketStart[lo]; i < bucketStart[lo + 1]; ++i) {
+            uint32_t h = bucket[i];
+            if (other[h] != other[h0]) continue;
+            heEdge_[h] = e;
+            if (n < 64) group[n++] = h;
+            ++count;
+        }
+        edgeHalfedge_.push_back(h0);
+        edgeVertices_.push_back({heVertex_[h0], heVertex_[next(h0)]});
+        edgeFaceCount_.push_back(count);
+        uint8_t nonManifold = 0;
+        if (count == 2) {
+            uint32_t h1 = group[0] == h0 ? group[1] : group[0];
             if (heVertex_[h0] != heVertex_[h1]) { // opposite directions: a proper twin pair
                 heTwin_[h0] = h1;
                 heTwin_[h1] = h0;
             } else {
-                edgeNonManifold_[e] = 1; // two faces disagree about orientation
+                nonManifold = 1; // two faces disagree about orientation
             }
-        } else if (end - begin > 2) {
-            edgeNonManifold_[e] = 1;
+        } else if (count > 2) {
+            nonManifold = 1;
         }
+        edgeNonManifold_.push_back(nonManifold);
     }
+    const uint32_t E = static_cast<uint32_t>(edgeVertices_.size());
 
     // Vertex -> outgoing half-edges (CSR, in half-edge order).
     vertexFaceOffsets_.assign(vertexCount_ + 1, 0);
@@ -124,6 +125,17 @@ void Topology::vertexRing(uint32_t v, std::vector<uint32_t>& out) const {
         out.push_back(h);
         h = rotateCCW(h);
     } while (h != kNone && h != start);
+}
+
+uint32_t Topology::findEdge(uint32_t a, uint32_t b) const {
+    if (a >= vertexCount_ || b >= vertexCount_) return kNone;
+    for (uint32_t v : {a, b})
+        for (uint32_t h : vertexOutgoing(v)) {
+            uint32_t w = v == a ? b : a;
+            if (destination(h) == w) return edge(h);
+            if (vertex(prev(h)) == w) return edge(prev(h));
+        }
+    return kNone;
 }
 
 uint32_t Topology::nonManifoldEdgeCount() const {

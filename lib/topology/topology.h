@@ -39,10 +39,12 @@ public:
     uint32_t edge(uint32_t h) const { return heEdge_[h]; }
     uint32_t twin(uint32_t h) const { return heTwin_[h]; } // kNone on boundary / non-manifold
     uint32_t next(uint32_t h) const {
+        if (allQuads_) return (h & ~3u) | ((h + 1) & 3u); // refined levels: arithmetic only
         uint32_t f = heFace_[h];
         return h + 1 == faceOffsets_[f + 1] ? faceOffsets_[f] : h + 1;
     }
     uint32_t prev(uint32_t h) const {
+        if (allQuads_) return (h & ~3u) | ((h + 3) & 3u);
         uint32_t f = heFace_[h];
         return h == faceOffsets_[f] ? faceOffsets_[f + 1] - 1 : h - 1;
     }
@@ -85,12 +87,16 @@ public:
     // The outgoing half-edges of a manifold vertex in counter-clockwise order (math.md A.2).
     void vertexRing(uint32_t v, std::vector<uint32_t>& out) const;
 
+    // The edge joining a and b, or kNone. O(faces around a and b).
+    uint32_t findEdge(uint32_t a, uint32_t b) const;
+
     uint32_t nonManifoldEdgeCount() const;
     uint32_t boundaryEdgeCount() const;
 
 private:
     enum : uint8_t { kBoundary = 1, kNonManifold = 2 };
     uint32_t vertexCount_;
+    bool allQuads_ = false; // every face has 4 corners, so face f's half-edges are 4f..4f+3
     std::vector<uint32_t> faceOffsets_;
     std::vector<uint32_t> heVertex_, heFace_, heEdge_, heTwin_;
     std::vector<std::array<uint32_t, 2>> edgeVertices_;

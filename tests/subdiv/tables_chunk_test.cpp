@@ -1,0 +1,150 @@
+// The TBLS chunk: lossless round trip, a function of topology only, and hostile input.
+#include "base/error.h"
+#include "container/container.h"
+#include "mesh/import.h"
+#include "mesh/mesh_chunks.h"
+#include "subdiv/tables_chunk.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace limn;
+
+namespace {
+
+Mesh load(const std::string& model) {
+    Warnings w;
+    return importMeshFile(test::modelPath(model).string(), w);
+}
+
+Tables build(const Mesh& m, int depth, bool uniform = false) {
+    Warnings w;
+    TablesOptions o;
+    o.depth = depth;
+    o.uniform = uniform;
+    return buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
+}
+
+TEST(TablesChunk, RoundTripIsLossless) {
+    Mesh m = load("osd/catmark/catmark_cubes_semisharp.obj");
+    for (bool uniform : {false, true}) {
+        Chunk c = encodeTablesChunk(build(m, 3, uniform));
+        Tables t = decodeTablesChunk(c, &m);
+        EXPECT_EQ(encodeTablesChunk(t).payload, c.payload);
+        EXPECT_EQ(t.uniform, uniform);
+        EXPECT_EQ(t.depth, 3u);
+    }
+}
+
+// Tables are built from topology alone: moving every vertex changes no byte (paper 000: only the
+// GPU passes re-run when an animated mesh moves).
+TEST(TablesChunk, MovingVerticesChangesNoByte) {
+    Mesh m = load("quad/spot_control_mesh.obj");
+    Chunk before = encodeTablesChunk(build(m, 4));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+    for (auto& p : m.positions) p += glm::dvec3(jitter(rng), jitter(rng), jitter(rng));
+    EXPECT_EQ(encodeTablesChunk(build(m, 4)).payload, before.payload);
+}
+
+TEST(TablesChunk, RefusesTablesOfAnotherTopology) {
+    Mesh m = load("osd/catmark/catmark_cube_creases0.obj");
+    Chunk c = encodeTablesChunk(build(m, 2));
+    m.tags.creases.push_back({0, 1, 3.0f});
+    EXPECT_THROW(decodeTablesChunk(c, &m), Error);
+}
+
+TEST(TablesChunk, EveryTruncationIsRejected) {
+    Mesh m = load("quad/osd_catmark_pyramid.obj");
+    Chunk c = encodeTablesChunk(build(m, 2));
+    for (size_t n = 0; n < c.payload.size(); ++n) {
+        Chunk cut{c.type, c.version, {c.payload.begin(), c.payload.begin() + static_cast<long>(n)}};
+        EXPECT_THROW(decodeTablesChunk(cut, &m), Error) << "prefix of " << n << " bytes";
+    }
+    Chunk longer = c;
+    longer.payload.push_back(0);
+    EXPECT_THROW(decodeTablesChunk(longer, &m), Error);
+}
+
+// Random corruption never crashes the reader: it either rejects the chunk or returns tables
+// whose every index is in bounds (checked by evaluating nothing out of range under ASan).
+TEST(TablesChunk, CorruptedBytesAreRejectedOrSafe) {
+    Mesh m = load("quad/osd_catmark_xord_boundary.obj");
+    Chunk c = encodeTablesChunk(build(m, 2));
+    std::mt19937 rng(11);
+    size_t rejected = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        Chunk bad = c;
+        for (int k = 0; k < 1 + trial % 4; ++k)
+            bad.payload[rng() % bad.payload.size()] ^= static_cast<uint8_t>(1u << (rng() % 8));
+        try {
+            Tables t = decodeTablesChunk(bad, &m);
+            for (const auto& p : t.patches)
+                for (uint32_t cv : p.cv) ASSERT_LT(cv, t.totalVertices);
+        } catch (const Error&) {
+            ++rejected;
+        }
+    }
+    EXPECT_GT(rejected, 1500u);
+}
+
+TEST(TablesChunk, OutOfRangeIndexNamesTheTable) {
+    Mesh m = load("quad/osd_catmark_pyramid.obj");
+    Tables t = build(m, 1);
+    ASSERT_FALSE(t.edgePoints.empty());
+    ASSERT_FALSE(t.edgePoints[0].indices.empty());
+    t.edgePoints[0].indices[0] = t.totalVertices + 5;
+    try {
+        decodeTablesChunk(encodeTablesChunk(t), &m);
+        FAIL() << "accepted an out-of-range index";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("edge points"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Tables, DepthZeroNeedsQuads) {
+    EXPECT_NO_THROW(build(load("quad/osd_catmark_torus.obj"), 0));
+    EXPECT_THROW(build(load("quad/spot_control_mesh.obj"), 0), Error);
+}
+
+TEST(Tables, RefusesNonManifoldMeshesNamingTheEdge) {
+    try {
+        build(load("osd/catmark/catmark_nonman_edge100.obj"), 2);
+        FAIL() << "accepted a non-manifold mesh";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("non-manifold"), std::string::npos) << e.what();
+    }
+}
+
+// Feature-adaptive isolation: past the level where the semi-sharp features decay, each extra level
+// adds a bounded amount of work around the extraordinary vertices (paper 000, Figure 14).
+TEST(Tables, AdaptiveTablesGrowLinearlyWithDepth) {
+    Mesh m = load("quad/spot_control_mesh.obj");
+    auto bytes = [&](int d) { return encodeTablesChunk(build(m, d)).payload.size(); };
+    size_t b4 = bytes(4), b5 = bytes(5), b6 = bytes(6);
+    EXPECT_LT(b6 - b5, 2 * (b5 - b4)); // linear, not 4x per level
+    EXPECT_LT(b6, 3 * b4);
+}
+
+TEST(TablesTool, NeedsAClassifiedContainer) {
+    test::ScratchDir dir;
+    auto r = test::run({test::tool("limn-tables").string(),
+                        test::modelPath("quad/spot_control_mesh.obj").string(), "-o",
+                        (dir / "out.limn").string()});
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("limn-tables: error: "), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.limn"));
+    auto classified = test::run({test::tool("limn-classify").string(),
+                                 test::modelPath("quad/spot_control_mesh.obj").string()});
+    ASSERT_EQ(classified.exitCode, 0);
+    auto tables = test::run({test::tool("limn-tables").string(), "--depth", "2"}, classified.out);
+    ASSERT_EQ(tables.exitCode, 0) << tables.err;
+    auto again = test::run({test::tool("limn-tables").string(), "--depth", "2"}, classified.out);
+    EXPECT_EQ(tables.out, again.out) << "not deterministic";
+    auto bad = test::run({test::tool("limn-tables").string(), "--depth", "99"}, classified.out);
+    EXPECT_EQ(bad.exitCode, 2);
+}
+
+} // namespace
