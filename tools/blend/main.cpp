@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
             common);
         parser.positional("INPUT", &input, ".limn container (output of limn-classify)")
             .choice("--weights", &weights, {"cubic", "quintic"},
-                    "Hermite step of the blending weights: cubic gives a C1 surface, quintic C2")
+                    "Hermite step of the blending weights: cubic gives a C1\n"
+                    "                            surface, quintic C2")
             .choice("--chart", &chart, {"conformal", "characteristic", "isodistance"},
                     "radial exponent of interior charts: p = q (z^(4/k)), the Catmull-Clark\n"
                     "                            characteristic map's, or 1")
@@ -58,7 +59,12 @@ int main(int argc, char** argv) {
                    "Boundary vertices get half-disk charts, one-face corners bilinear patches.\n"
                    "The BLND layout is in formats/limn.md; the construction in docs/blend.md.\n"
                    "Example:\n"
-                   "  limn-classify spot.obj | limn-blend --quadrangulate -o spot.limn\n");
+                   "  limn-classify spot.obj | limn-blend --quadrangulate -o spot.limn\n")
+            .exitCodes("Exit codes:\n"
+                       "  0  success\n"
+                       "  1  bad input: not a container, damaged chunks, a non-quad face (without\n"
+                       "     --quadrangulate), a non-manifold edge or vertex\n"
+                       "  2  usage error\n");
         if (!parser.parse(ac, av)) return 0;
         cli::setVerbosity(common.quiet, common.verbose);
         const std::string name = input == "-" ? "<stdin>" : input;
