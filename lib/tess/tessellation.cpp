@@ -1,0 +1,267 @@
+#include "tess/tessellation.h"
+
+#include "base/error.h"
+#include "topology/topology.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace limn {
+
+namespace {
+
+// Canonical identity of a surface point, whichever ptex face it is reached from. Points on a
+// base edge are keyed by the edge and their position along it from its lower-numbered vertex;
+// points on the internal "spokes" of an n-gon (edge midpoint to centroid) by face and spoke.
+enum KeyKind : uint64_t { kInterior = 0, kVertex = 1, kEdge = 2, kSpoke = 3, kCentroid = 4 };
+
+uint64_t makeKey(uint64_t kind, uint64_t id, uint64_t a, uint64_t b) {
+    return kind << 61 | (id & 0x7FFFFFFull) << 34 | (a & 0x1FFFF) << 17 | (b & 0x1FFFF);
+}
+
+struct PtexFace {
+    uint32_t face;
+    int32_t sub; // -1 for a quad, else the sub-face index of an n-gon
+};
+
+class KeyMaker {
+public:
+    KeyMaker(const Mesh& mesh, const Topology& topo, uint32_t resolution)
+        : mesh_(mesh), topo_(topo), R_(resolution) {
+        for (uint32_t f = 0; f < mesh.faceCount(); ++f) {
+            uint32_t n = mesh.faceSize(f);
+            if (n == 4)
+                ptex_.push_back({f, -1});
+            else
+                for (uint32_t k = 0; k < n; ++k) ptex_.push_back({f, int32_t(k)});
+        }
+    }
+
+    // (U, V) in [0, R]^2 on ptex face p.
+    uint64_t key(uint32_t p, uint32_t U, uint32_t V) const {
+        const PtexFace pf = ptex_[p];
+        auto fv = mesh_.face(pf.face);
+        if (pf.sub < 0) {
+            if (U > 0 && U < R_ && V > 0 && V < R_) return makeKey(kInterior, p, U, V);
+            // Corners c0 (0,0), c1 (1,0), c2 (1,1), c3 (0,1); fractions along edges at 2R.
+            if (V == 0) return onEdge(fv[0], fv[1], 2 * U);
+            if (U == R_) return onEdge(fv[1], fv[2], 2 * V);
+            if (V == R_) return onEdge(fv[3], fv[2], 2 * U);
+            return onEdge(fv[0], fv[3], 2 * V);
+        }
+        const uint32_t n = static_cast<uint32_t>(fv.size()), k = uint32_t(pf.sub);
+        const uint32_t next = fv[(k + 1) % n], prev = fv[(k + n - 1) % n];
+        if (U > 0 && U < R_ && V > 0 && V < R_) return makeKey(kInterior, p, U, V);
+        if (V == 0) return onEdge(fv[k], next, U);  // half of base edge (k, k+1)
+        if (U == 0) return onEdge(fv[k], prev, V);  // half of base edge (k, k-1)
+        if (U == R_ && V == R_) return makeKey(kCentroid, pf.face, 0, 0);
+        if (U == R_) return makeKey(kSpoke, pf.face, k, V);            // mid(k, k+1) -> centre
+        return makeKey(kSpoke, pf.face, (k + n - 1) % n, U);           // mid(k-1, k) -> centre
+    }
+
+private:
+    // The point at fraction t/(2R) from a toward b on base edge (a, b).
+    uint64_t onEdge(uint32_t a, uint32_t b, uint32_t t) const {
+        if (t == 0) return makeKey(kVertex, a, 0, 0);
+        if (t == 2 * R_) return makeKey(kVertex, b, 0, 0);
+        uint32_t e = topo_.findEdge(a, b);
+        if (a > b) t = 2 * R_ - t;
+        return makeKey(kEdge, e, t, 0);
+    }
+
+    const Mesh& mesh_;
+    const Topology& topo_;
+    uint32_t R_;
+    std::vector<PtexFace> ptex_;
+};
+
+struct Element {
+    uint32_t ptex;
+    uint32_t U0, V0, W; // domain in units of 1/R
+    uint32_t S;         // own segments per side
+};
+
+} // namespace
+
+PtexPoint ptexOf(const Tables& t, const TessVertex& v) {
+    uint32_t P = static_cast<uint32_t>(t.patches.size());
+    float u0, v0, size;
+    uint32_t ptex;
+    if (v.element < P) {
+        const Patch& p = t.patches[v.element];
+        ptex = p.ptex, u0 = p.u0, v0 = p.v0, size = p.size;
+    } else {
+        const IrregularFace& q = t.irregular[v.element - P];
+        ptex = q.ptex, u0 = q.u0, v0 = q.v0, size = q.size;
+    }
+    return {ptex, u0 + double(v.s) / kTessParamOne * size, v0 + double(v.t) / kTessParamOne * size};
+}
+
+Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap) {
+    if (cap < 1) throw Error(ErrorKind::Usage, "the tessellation cap must be at least 1");
+    const uint32_t N = t.depth, R = 1u << N;
+    Topology topo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
+    KeyMaker keys(mesh, topo, R);
+
+    std::vector<Element> elements;
+    auto addElement = [&](uint32_t ptex, float u0, float v0, float size, uint32_t level) {
+        Element e;
+        e.ptex = ptex;
+        e.U0 = uint32_t(double(u0) * R);
+        e.V0 = uint32_t(double(v0) * R);
+        e.W = uint32_t(double(size) * R);
+        e.S = std::min(std::min<uint32_t>(1u << (N - level), cap), e.W);
+        elements.push_back(e);
+    };
+    for (const auto& p : t.patches) addElement(p.ptex, p.u0, p.v0, p.size, p.level);
+    for (const auto& q : t.irregular) addElement(q.ptex, q.u0, q.v0, q.size, N);
+
+    Tessellation out;
+    std::unordered_map<uint64_t, uint32_t> owner;
+    owner.reserve(elements.size() * 8);
+    auto visit = [&](uint32_t ei, uint32_t i, uint32_t j, uint32_t step) -> uint32_t {
+        const Element& e = elements[ei];
+        uint64_t k = keys.key(e.ptex, e.U0 + i * step, e.V0 + j * step);
+        auto [it, inserted] = owner.try_emplace(k, static_cast<uint32_t>(out.vertices.size()));
+        if (inserted) {
+            uint32_t unit = kTessParamOne / e.W; // e.W is a power of two <= R <= 2^16
+            out.vertices.push_back({ei, uint16_t(i * step * unit), uint16_t(j * step * unit)});
+        }
+        return it->second;
+    };
+    auto find = [&](const Element& e, uint32_t U, uint32_t V) -> uint32_t {
+        auto it = owner.find(keys.key(e.ptex, U, V));
+        return it == owner.end() ? kNone : it->second;
+    };
+
+    // Pass 1: every element registers its own grid points (owners in element order).
+    for (uint32_t ei = 0; ei < elements.size(); ++ei) {
+        const Element& e = elements[ei];
+        uint32_t step = e.W / e.S;
+        for (uint32_t j = 0; j <= e.S; ++j)
+            for (uint32_t i = 0; i <= e.S; ++i) visit(ei, i, j, step);
+        out.segments.push_back(e.S);
+    }
+
+    // Pass 2: triangulate. Each element edge gathers every point registered along it (its own and
+    // finer neighbours'); boundary cells are fanned from an inner corner, or from the cell centre
+    // when the element is a single cell, so no triangle is degenerate.
+    std::vector<uint32_t> ring;
+    for (uint32_t ei = 0; ei < elements.size(); ++ei) {
+        const Element e = elements[ei];
+        const uint32_t S = e.S, step = e.W / S;
+        // Points along each edge, in counter-clockwise order around the element, at unit spacing.
+        auto edgePoints = [&](int side, uint32_t from, uint32_t to, std::vector<uint32_t>& pts) {
+            pts.clear();
+            for (uint32_t x = from; x <= to; ++x) {
+                uint32_t U = 0, V = 0;
+                switch (side) {
+                case 0: U = e.U0 + x, V = e.V0; break;                 // v = 0, u increasing
+                case 1: U = e.U0 + e.W, V = e.V0 + x; break;           // u = 1, v increasing
+                case 2: U = e.U0 + e.W - x, V = e.V0 + e.W; break;     // v = 1, u decreasing
+                case 3: U = e.U0, V = e.V0 + e.W - x; break;           // u = 0, v decreasing
+                }
+                uint32_t id = find(e, U, V);
+                if (id != kNone) pts.push_back(id);
+            }
+        };
+        bool stitched[4] = {false, false, false, false};
+        std::vector<uint32_t> sidePts[4];
+        for (int side = 0; side < 4; ++side) {
+            edgePoints(side, 0, e.W, sidePts[side]);
+            stitched[side] = sidePts[side].size() != S + 1;
+            out.stitchedEdges += stitched[side];
+        }
+        auto grid = [&](uint32_t i, uint32_t j) { return find(e, e.U0 + i * step, e.V0 + j * step); };
+        auto tri = [&](uint32_t a, uint32_t b, uint32_t c) {
+            out.indices.insert(out.indices.end(), {a, b, c});
+        };
+        for (uint32_t j = 0; j < S; ++j)
+            for (uint32_t i = 0; i < S; ++i) {
+                bool onBoundary[4] = {j == 0 && stitched[0], i + 1 == S && stitched[1],
+                                      j + 1 == S && stitched[2], i == 0 && stitched[3]};
+                if (!onBoundary[0] && !onBoundary[1] && !onBoundary[2] && !onBoundary[3]) {
+                    uint32_t a = grid(i, j), b = grid(i + 1, j), c = grid(i + 1, j + 1), d = grid(i, j + 1);
+                    tri(a, b, c);
+                    tri(a, c, d);
+                    continue;
+                }
+                // The cell's boundary, counter-clockwise, with every point registered on it.
+                ring.clear();
+                std::vector<uint32_t> pts;
+                const uint32_t x0 = i * step, x1 = (i + 1) * step, y0 = j * step, y1 = (j + 1) * step;
+                edgePoints(0, x0, x1, pts);
+                if (j == 0) ring.insert(ring.end(), pts.begin(), pts.end() - 1);
+                else ring.push_back(grid(i, j));
+                if (i + 1 == S) {
+                    edgePoints(1, y0, y1, pts);
+                    ring.insert(ring.end(), pts.begin(), pts.end() - 1);
+                } else {
+                    ring.push_back(grid(i + 1, j));
+                }
+                if (j + 1 == S) {
+                    edgePoints(2, e.W - x1, e.W - x0, pts);
+                    ring.insert(ring.end(), pts.begin(), pts.end() - 1);
+                } else {
+                    ring.push_back(grid(i + 1, j + 1));
+                }
+                if (i == 0) {
+                    edgePoints(3, e.W - y1, e.W - y0, pts);
+                    ring.insert(ring.end(), pts.begin(), pts.end() - 1);
+                } else {
+                    ring.push_back(grid(i, j + 1));
+                }
+                if (S == 1) {
+                    // A single cell touching every side: fan from a new centre point, owned here.
+                    uint32_t centre = static_cast<uint32_t>(out.vertices.size());
+                    out.vertices.push_back({ei, uint16_t(kTessParamOne / 2), uint16_t(kTessParamOne / 2)});
+                    for (size_t r = 0; r < ring.size(); ++r) tri(centre, ring[r], ring[(r + 1) % ring.size()]);
+                    continue;
+                }
+                // Fan from an inner corner (one not on the element's boundary).
+                uint32_t apex = i + 1 < S && j + 1 < S ? grid(i + 1, j + 1)
+                                : i > 0 && j + 1 < S  ? grid(i, j + 1)
+                                : i > 0 && j > 0      ? grid(i, j)
+                                                      : grid(i + 1, j);
+                size_t a = std::find(ring.begin(), ring.end(), apex) - ring.begin();
+                for (size_t r = 1; r + 1 < ring.size(); ++r)
+                    tri(apex, ring[(a + r) % ring.size()], ring[(a + r + 1) % ring.size()]);
+            }
+    }
+    return out;
+}
+
+} // namespace limn
+
+#include "subdiv/evaluate.h"
+
+#include <glm/geometric.hpp>
+
+namespace limn {
+
+std::vector<TessPoint> evaluateTessellation(const Tables& t, const Tessellation& tess,
+                                            std::span<const glm::dvec3> V,
+                                            std::span<const LimitPoint> limits) {
+    std::vector<TessPoint> out(tess.vertices.size());
+    const uint32_t P = static_cast<uint32_t>(t.patches.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        const TessVertex& tv = tess.vertices[i];
+        double s = double(tv.s) / kTessParamOne, u = double(tv.t) / kTessParamOne;
+        if (tv.element < P) {
+            SurfacePoint p = evaluatePatch(t.patches[tv.element], V, s, u);
+            out[i] = {p.position, p.normal};
+            continue;
+        }
+        const IrregularFace& q = t.irregular[tv.element - P];
+        const double w[4] = {(1 - s) * (1 - u), s * (1 - u), s * u, (1 - s) * u};
+        glm::dvec3 pos(0.0), nrm(0.0);
+        for (int k = 0; k < 4; ++k) {
+            pos += w[k] * limits[q.corner[k]].position;
+            nrm += w[k] * limits[q.corner[k]].normal;
+        }
+        out[i] = {pos, glm::normalize(nrm)};
+    }
+    return out;
+}
+
+} // namespace limn

@@ -1,0 +1,61 @@
+// The tessellation that limn-render draws: every point of the surface grid exactly once, with
+// one owner that evaluates it, and triangles joining them built from topology (brief,
+// "Watertight to the bit"). A level-l patch gets min(2^(N-l), cap) segments per side (paper 000,
+// 4.3); where neighbours differ (the cap), the finer side's edge vertices are stitched into the
+// coarser element, so there is never a T-junction. Shared points are shared vertices, so both
+// sides use the same bits.
+#pragma once
+
+#include "mesh/mesh.h"
+#include "subdiv/tables.h"
+
+#include <glm/vec3.hpp>
+
+#include <span>
+
+#include <cstdint>
+#include <vector>
+
+namespace limn {
+
+// A surface point: `element` is a patch index (< patches.size()) or patches.size() + the index
+// of an irregular face; (s, t) are element-local parameters in units of 1/32768.
+struct TessVertex {
+    uint32_t element;
+    uint16_t s, t;
+};
+inline constexpr uint32_t kTessParamOne = 32768;
+
+struct Tessellation {
+    std::vector<TessVertex> vertices;
+    std::vector<uint32_t> indices; // triangles, counter-clockwise in (u, v)
+    std::vector<uint32_t> segments; // per element: segments per side of its own grid
+    uint32_t stitchedEdges = 0;     // element edges that needed stitching
+};
+
+// `cap` limits the segments per side of any element (>= 1).
+Tessellation buildTessellation(const Mesh& mesh, const Tables& tables, uint32_t cap);
+
+// The ptex face and (u, v) of a tessellation vertex.
+struct PtexPoint {
+    uint32_t ptex;
+    double u, v;
+};
+PtexPoint ptexOf(const Tables& tables, const TessVertex& v);
+
+} // namespace limn
+
+namespace limn {
+
+// CPU reference of what the renderer's vertex stage computes for each tessellation vertex:
+// the B-spline of its patch, or the bilinear blend of its irregular face's limit points
+// (normals blended and renormalized). `vertices` and `limits` from subdiv/evaluate.h.
+struct LimitPoint;
+struct TessPoint {
+    glm::dvec3 position, normal;
+};
+std::vector<TessPoint> evaluateTessellation(const Tables& tables, const Tessellation& tess,
+                                            std::span<const glm::dvec3> vertices,
+                                            std::span<const LimitPoint> limits);
+
+} // namespace limn
