@@ -1,6 +1,7 @@
 #include "tess/tessellation.h"
 
 #include "base/error.h"
+#include "topology/ptex.h"
 #include "topology/topology.h"
 
 #include <algorithm>
@@ -9,71 +10,6 @@
 namespace limn {
 
 namespace {
-
-// Canonical identity of a surface point, whichever ptex face it is reached from. Points on a
-// base edge are keyed by the edge and their position along it from its lower-numbered vertex;
-// points on the internal "spokes" of an n-gon (edge midpoint to centroid) by face and spoke.
-enum KeyKind : uint64_t { kInterior = 0, kVertex = 1, kEdge = 2, kSpoke = 3, kCentroid = 4 };
-
-uint64_t makeKey(uint64_t kind, uint64_t id, uint64_t a, uint64_t b) {
-    return kind << 61 | (id & 0x7FFFFFFull) << 34 | (a & 0x1FFFF) << 17 | (b & 0x1FFFF);
-}
-
-struct PtexFace {
-    uint32_t face;
-    int32_t sub; // -1 for a quad, else the sub-face index of an n-gon
-};
-
-class KeyMaker {
-public:
-    KeyMaker(const Mesh& mesh, const Topology& topo, uint32_t resolution)
-        : mesh_(mesh), topo_(topo), R_(resolution) {
-        for (uint32_t f = 0; f < mesh.faceCount(); ++f) {
-            uint32_t n = mesh.faceSize(f);
-            if (n == 4)
-                ptex_.push_back({f, -1});
-            else
-                for (uint32_t k = 0; k < n; ++k) ptex_.push_back({f, int32_t(k)});
-        }
-    }
-
-    // (U, V) in [0, R]^2 on ptex face p.
-    uint64_t key(uint32_t p, uint32_t U, uint32_t V) const {
-        const PtexFace pf = ptex_[p];
-        auto fv = mesh_.face(pf.face);
-        if (pf.sub < 0) {
-            if (U > 0 && U < R_ && V > 0 && V < R_) return makeKey(kInterior, p, U, V);
-            // Corners c0 (0,0), c1 (1,0), c2 (1,1), c3 (0,1); fractions along edges at 2R.
-            if (V == 0) return onEdge(fv[0], fv[1], 2 * U);
-            if (U == R_) return onEdge(fv[1], fv[2], 2 * V);
-            if (V == R_) return onEdge(fv[3], fv[2], 2 * U);
-            return onEdge(fv[0], fv[3], 2 * V);
-        }
-        const uint32_t n = static_cast<uint32_t>(fv.size()), k = uint32_t(pf.sub);
-        const uint32_t next = fv[(k + 1) % n], prev = fv[(k + n - 1) % n];
-        if (U > 0 && U < R_ && V > 0 && V < R_) return makeKey(kInterior, p, U, V);
-        if (V == 0) return onEdge(fv[k], next, U);  // half of base edge (k, k+1)
-        if (U == 0) return onEdge(fv[k], prev, V);  // half of base edge (k, k-1)
-        if (U == R_ && V == R_) return makeKey(kCentroid, pf.face, 0, 0);
-        if (U == R_) return makeKey(kSpoke, pf.face, k, V);            // mid(k, k+1) -> centre
-        return makeKey(kSpoke, pf.face, (k + n - 1) % n, U);           // mid(k-1, k) -> centre
-    }
-
-private:
-    // The point at fraction t/(2R) from a toward b on base edge (a, b).
-    uint64_t onEdge(uint32_t a, uint32_t b, uint32_t t) const {
-        if (t == 0) return makeKey(kVertex, a, 0, 0);
-        if (t == 2 * R_) return makeKey(kVertex, b, 0, 0);
-        uint32_t e = topo_.findEdge(a, b);
-        if (a > b) t = 2 * R_ - t;
-        return makeKey(kEdge, e, t, 0);
-    }
-
-    const Mesh& mesh_;
-    const Topology& topo_;
-    uint32_t R_;
-    std::vector<PtexFace> ptex_;
-};
 
 struct Element {
     uint32_t ptex;
@@ -101,7 +37,7 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap) 
     if (cap < 1) throw Error(ErrorKind::Usage, "the tessellation cap must be at least 1");
     const uint32_t N = t.depth, R = 1u << N;
     Topology topo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
-    KeyMaker keys(mesh, topo, R);
+    PtexMap keys(mesh, topo, R);
 
     std::vector<Element> elements;
     auto addElement = [&](uint32_t ptex, float u0, float v0, float size, uint32_t level) {
