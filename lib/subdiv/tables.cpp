@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <map>
 #include <string>
 
 namespace limn {
@@ -182,15 +181,11 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         stencils.push_back(std::move(st));
     }
 
-    // Limit points of the corners of T_N, one per (vertex, sector) (paper 000, 4.4).
+    // Limit points of the corners of T_N, one per (vertex, sector) (paper 000, 4.4). A vertex's
+    // neighbourhood and sectors are gathered once; its sectors' limit points are consecutive.
     const Level& LN = levels[N];
-    struct LimitKey {
-        uint32_t vertex, sector;
-        bool operator<(const LimitKey& o) const {
-            return vertex != o.vertex ? vertex < o.vertex : sector < o.sector;
-        }
-    };
-    std::map<LimitKey, uint32_t> limitIndex;
+    std::vector<uint32_t> limitBase(LN.topo.vertexCount(), kNone);
+    std::vector<uint8_t> limitSectors(LN.topo.vertexCount(), 0);
     // Limit stencils over level-N local vertices, remapped to global indices after pruning.
     StencilTable localPosition, localTangent1, localTangent2;
     std::vector<double> wPosition, wTangent1, wTangent2;
@@ -200,6 +195,22 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     std::vector<std::array<uint32_t, 4>> irregularCorners;
     std::vector<uint32_t> irregularFaceIds;
     VertexNeighborhood hood;
+    auto append = [](StencilTable& t, std::vector<double>& w, const std::vector<WeightedPoint>& list) {
+        for (const auto& wp : list) {
+            t.indices.push_back(wp.vertex);
+            w.push_back(wp.weight);
+        }
+        t.addRow();
+    };
+    // The sector of face f among the sectors around the vertex of `hood`.
+    auto sectorOf = [&](const std::vector<Sector>& sectors, uint32_t f) -> uint32_t {
+        const uint32_t n = static_cast<uint32_t>(hood.faces.size());
+        uint32_t ringPos = static_cast<uint32_t>(std::find(hood.faces.begin(), hood.faces.end(), f) -
+                                                 hood.faces.begin());
+        for (uint32_t i = 0; i < sectors.size(); ++i)
+            if ((ringPos + n - sectors[i].firstFace) % n < sectors[i].faceCount) return i;
+        return 0;
+    };
     const auto& TN = irregularSets[N];
     for (uint32_t f = 0; f < TN.size(); ++f) {
         if (!TN[f]) continue;
@@ -208,35 +219,27 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         for (int k = 0; k < 4; ++k) {
             uint32_t h = LN.topo.faceHalfedge(f) + (fr.rotation + k) % 4;
             uint32_t v = LN.topo.vertex(h);
-            gatherNeighborhood(LN.topo, v, hood);
             auto rule = static_cast<VertexRule>(LN.vertexRule[v]);
-            auto sectors = vertexSectors(hood, rule, LN.edgeSharpness);
-            uint32_t ringPos = static_cast<uint32_t>(
-                std::find(hood.faces.begin(), hood.faces.end(), f) - hood.faces.begin());
-            uint32_t s = 0;
-            for (uint32_t i = 0; i < sectors.size(); ++i) {
-                uint32_t rel = (ringPos + static_cast<uint32_t>(hood.faces.size()) - sectors[i].firstFace) %
-                               static_cast<uint32_t>(hood.faces.size());
-                if (rel < sectors[i].faceCount) s = i;
+            if (limitBase[v] == kNone) {
+                gatherNeighborhood(LN.topo, v, hood);
+                auto sectors = vertexSectors(hood, rule, LN.edgeSharpness);
+                limitBase[v] = static_cast<uint32_t>(limitLocalVertex.size());
+                limitSectors[v] = static_cast<uint8_t>(std::min<size_t>(sectors.size(), 255));
+                for (const Sector& sector : sectors) {
+                    limitMasks(hood, rule, sector, LN.edgeSharpness, LN.vertexSharpness[v], masks);
+                    append(localPosition, wPosition, masks.position);
+                    append(localTangent1, wTangent1, masks.tangent1);
+                    append(localTangent2, wTangent2, masks.tangent2);
+                    limitExactLocal.push_back(masks.exact ? 1 : 0);
+                    limitLocalVertex.push_back(v);
+                }
+                corners[k] = limitBase[v] + (sectors.size() > 1 ? sectorOf(sectors, f) : 0);
+            } else if (limitSectors[v] <= 1) {
+                corners[k] = limitBase[v];
+            } else {
+                gatherNeighborhood(LN.topo, v, hood);
+                corners[k] = limitBase[v] + sectorOf(vertexSectors(hood, rule, LN.edgeSharpness), f);
             }
-            auto [it, inserted] = limitIndex.try_emplace({v, s}, static_cast<uint32_t>(limitLocalVertex.size()));
-            if (inserted) {
-                limitMasks(hood, rule, sectors[s], LN.edgeSharpness, LN.vertexSharpness[v], masks);
-                auto append = [](StencilTable& t, std::vector<double>& w,
-                                 const std::vector<WeightedPoint>& list) {
-                    for (const auto& wp : list) {
-                        t.indices.push_back(wp.vertex);
-                        w.push_back(wp.weight);
-                    }
-                    t.addRow();
-                };
-                append(localPosition, wPosition, masks.position);
-                append(localTangent1, wTangent1, masks.tangent1);
-                append(localTangent2, wTangent2, masks.tangent2);
-                limitExactLocal.push_back(masks.exact ? 1 : 0);
-                limitLocalVertex.push_back(v);
-            }
-            corners[k] = it->second;
         }
         irregularCorners.push_back(corners);
         irregularFaceIds.push_back(f);

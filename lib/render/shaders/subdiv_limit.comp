@@ -1,0 +1,37 @@
+// Limit positions and normals of the irregular faces' corners (paper 000, 4.4, with the
+// corrected masks of math.md C): position and two tangents as weighted gathers over the last
+// level; normal = normalize(t1 x t2).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "limn_compute.glsl"
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Vertices { vec4 p[]; } vertices;
+layout(std430, binding = 1) readonly buffer Starts { uint s[]; } starts;   // 3 tables, rows of each
+layout(std430, binding = 2) readonly buffer Indices { uint i[]; } indices;
+layout(std430, binding = 3) readonly buffer Weights { float w[]; } weights;
+layout(std430, binding = 4) writeonly buffer Limits { vec4 v[]; } limits; // position, normal pairs
+
+layout(push_constant) uniform Push {
+    LIMN_DISPATCH_HEADER
+    layout(offset = 16) uint rowsPerTable; // rows of each table; starts holds 3 tables back to back
+} pc;
+
+vec3 gather(uint row) {
+    uint b = starts.s[row], e = starts.s[row + 1];
+    vec3 sum = vec3(0.0);
+    for (uint k = b; k < e; ++k) sum += weights.w[k] * vertices.p[indices.i[k]].xyz;
+    return sum;
+}
+
+void main() {
+    uint r = limnInvocationIndex(pc.limnRowInvocations);
+    if (r >= pc.limnCount) return;
+    uint stride = pc.rowsPerTable + 1;
+    vec3 position = gather(r);
+    vec3 t1 = gather(stride + r), t2 = gather(2 * stride + r);
+    vec3 n = cross(t1, t2);
+    float len = length(n);
+    limits.v[2 * r] = vec4(position, 1.0);
+    limits.v[2 * r + 1] = vec4(len > 0.0 ? n / len : vec3(0.0), len > 0.0 ? 1.0 : 0.0);
+}

@@ -1,0 +1,60 @@
+// The evaluation itself. The including shader declares, before including this file:
+//   buffer Vertices      { vec4 p[]; }          vertices;     // all table vertices
+//   buffer Patches       { Patch p[]; }         patches;
+//   buffer Irregulars    { IrregularFace f[]; } irregulars;
+//   buffer Limits        { vec4 v[]; }          limits;       // position, normal pairs
+//   buffer TessVertices  { uvec2 v[]; }         tessVertices; // element, s | t << 16
+// and a uint `patchCount`.
+#ifndef LIMN_SURFACE_EVAL_IMPL_GLSL
+#define LIMN_SURFACE_EVAL_IMPL_GLSL
+
+SurfaceSample evaluateTessVertex(uint vi, uint patchCount) {
+    uvec2 tv = tessVertices.v[vi];
+    float s = float(tv.y & 0xFFFFu) / 32768.0, t = float(tv.y >> 16) / 32768.0;
+    SurfaceSample r;
+    if (tv.x < patchCount) {
+        Patch pt = patches.p[tv.x];
+        uint mask = (pt.levelBoundary >> 8) & 0xFu;
+        float bu[4], du[4], bv[4], dv[4];
+        bspline(s, bu, du);
+        bspline(t, bv, dv);
+        foldPhantom(bu, (mask & BOUNDARY_U0) != 0u, (mask & BOUNDARY_U1) != 0u);
+        foldPhantom(du, (mask & BOUNDARY_U0) != 0u, (mask & BOUNDARY_U1) != 0u);
+        foldPhantom(bv, (mask & BOUNDARY_V0) != 0u, (mask & BOUNDARY_V1) != 0u);
+        foldPhantom(dv, (mask & BOUNDARY_V0) != 0u, (mask & BOUNDARY_V1) != 0u);
+        vec3 P = vec3(0.0), Du = vec3(0.0), Dv = vec3(0.0);
+        for (int j = 0; j < 4; ++j) {
+            vec3 row = vec3(0.0), rowDu = vec3(0.0), rowDv = vec3(0.0);
+            for (int i = 0; i < 4; ++i) {
+                vec3 c = vertices.p[pt.cv[4 * j + i]].xyz;
+                row += bu[i] * c;
+                rowDu += du[i] * c;
+            }
+            P += bv[j] * row;
+            Du += bv[j] * rowDu;
+            Dv += dv[j] * row;
+        }
+        vec3 n = cross(Du, Dv);
+        r.position = P;
+        r.normal = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0);
+        r.ptex = pt.ptex;
+        r.uv = vec2(pt.u0, pt.v0) + pt.size * vec2(s, t);
+        r.level = pt.levelBoundary & 0xFFu;
+    } else {
+        IrregularFace q = irregulars.f[tv.x - patchCount];
+        float w[4] = float[4]((1.0 - s) * (1.0 - t), s * (1.0 - t), s * t, (1.0 - s) * t);
+        vec3 P = vec3(0.0), N = vec3(0.0);
+        for (int k = 0; k < 4; ++k) {
+            P += w[k] * limits.v[2 * q.corner[k]].xyz;
+            N += w[k] * limits.v[2 * q.corner[k] + 1].xyz;
+        }
+        r.position = P;
+        r.normal = dot(N, N) > 0.0 ? normalize(N) : vec3(0.0);
+        r.ptex = q.ptex;
+        r.uv = vec2(q.u0, q.v0) + q.size * vec2(s, t);
+        r.level = 255u;
+    }
+    return r;
+}
+
+#endif
