@@ -60,8 +60,10 @@ public:
     // One line per device: why it was selected or skipped.
     const std::vector<std::string>& selectionReport() const { return report_; }
 
-    // Null when validation is off.
+    // Null when validation is off. Shared so that a caller can read it after the context is
+    // gone: destroying the device is when the layer reports objects that were never freed.
     ValidationLog* validationLog() const { return validationLog_.get(); }
+    std::shared_ptr<ValidationLog> sharedValidationLog() const { return validationLog_; }
 
     // A memory type allowed by `typeBits` with all `required` flags, preferring one that also has
     // `preferred`. Throws when none exists.
@@ -92,7 +94,7 @@ private:
     DeviceLimits limits_;
     VkPhysicalDeviceMemoryProperties memory_{};
     std::vector<std::string> report_;
-    std::unique_ptr<ValidationLog> validationLog_;
+    std::shared_ptr<ValidationLog> validationLog_;
     std::atomic<uint64_t> allocatedBytes_{0};
 };
 
