@@ -41,17 +41,30 @@ Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect) {
     cam.fovYRad = radians(spec.fovDeg);
     if (!spec.eye) {
         const double az = radians(spec.azimuthDeg), el = radians(spec.elevationDeg);
-        glm::dvec3 dir(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
-        // The half-angle the sphere must fit in: the narrower of the two fields of view.
-        double halfY = cam.fovYRad * 0.5;
-        double halfX = std::atan(std::tan(halfY) * aspect);
-        double half = std::min(halfY, halfX);
-        double distance = r / std::sin(half) * 1.05; // 5% margin around the silhouette
+        const glm::dvec3 dir(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
         cam.target = center;
-        cam.eye = center + dir * distance;
         cam.up = safeUp(-dir, glm::dvec3(0, 1, 0));
-        cam.nearPlane = std::max(distance - r * 1.02, distance * 1e-3);
-        cam.farPlane = distance + r * 1.02;
+        const glm::dvec3 right = glm::normalize(glm::cross(-dir, cam.up));
+        const glm::dvec3 up = glm::cross(right, -dir);
+        // The nearest distance along `dir` at which every box corner is inside both fields of
+        // view: a corner at (x, y) across and z towards the camera needs D >= z + |x| / tan(halfX)
+        // and D >= z + |y| / tan(halfY). Tighter than fitting the bounding sphere for flat or long
+        // boxes.
+        const double tanY = std::tan(cam.fovYRad * 0.5), tanX = tanY * aspect;
+        double distance = 0, zMax = -r, zMin = r;
+        for (int i = 0; i < 8; ++i) {
+            glm::dvec3 corner(i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                              i & 4 ? bounds.max.z : bounds.min.z);
+            glm::dvec3 d = corner - center;
+            double x = glm::dot(d, right), y = glm::dot(d, up), z = glm::dot(d, dir);
+            distance = std::max({distance, z + std::abs(x) / tanX, z + std::abs(y) / tanY});
+            zMax = std::max(zMax, z);
+            zMin = std::min(zMin, z);
+        }
+        distance = std::max(distance * 1.05, zMax + r * 0.05); // 5% margin; never inside the box
+        cam.eye = center + dir * distance;
+        cam.nearPlane = std::max((distance - zMax) * 0.98, distance * 1e-4);
+        cam.farPlane = (distance - zMin) * 1.02;
         return cam;
     }
     cam.eye = *spec.eye;

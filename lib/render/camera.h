@@ -34,8 +34,9 @@ struct Camera {
     glm::dmat4 viewProjection(double aspect) const { return projection(aspect) * view(); }
 };
 
-// With spec.eye unset: looks at the box centre from the azimuth/elevation direction, far enough
-// that the box's bounding sphere fits both the vertical and the horizontal field of view.
+// With spec.eye unset: looks at the box centre from the azimuth/elevation direction, from the
+// nearest distance at which all eight box corners fit both the vertical and horizontal fields of
+// view (plus a 5% margin).
 // Otherwise uses eye/target (default: box centre)/up (default +Y). Near and far always enclose
 // the bounding sphere. An up vector parallel to the view direction is replaced.
 Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect);

@@ -19,6 +19,9 @@ std::vector<uint8_t> encodePng(const Image& image) {
     OIIO::Filesystem::IOProxy* proxy = &memory;
     spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
     spec.attribute("png:compressionLevel", 6); // fixed, so the bytes never follow a default
+    // The pixels are stored as given: OpenImageIO would otherwise treat RGBA as premultiplied
+    // and divide by alpha on the way out.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
     auto out = OIIO::ImageOutput::create("png");
     if (!out || !out->open("image.png", spec) ||
         !out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) || !out->close())
@@ -32,6 +35,7 @@ Image decodePng(std::span<const uint8_t> bytes) {
     OIIO::ImageSpec config;
     OIIO::Filesystem::IOProxy* proxy = &memory;
     config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    config.attribute("oiio:UnassociatedAlpha", 1); // the stored values, not premultiplied ones
     auto in = OIIO::ImageInput::open("image.png", &config);
     if (!in) throw Error(ErrorKind::BadInput, "cannot decode PNG: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
