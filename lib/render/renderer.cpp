@@ -171,6 +171,10 @@ void Renderer::renderFrame() {
     g.staging.writeArray<glm::vec4>(draw_.controlPoints);
     timedIsCompute_.clear();
     g.cmd.begin();
+    // The topology, corners, UVs and indices were uploaded once, in earlier submissions; a fence
+    // wait orders those copies but does not make their writes visible to this frame's reads.
+    g.cmd.barrier(gpu::Access::TransferWrite,
+                  gpu::Access::ComputeRead | gpu::Access::VertexRead | gpu::Access::IndexRead);
     recordUpload();
     recordCompute();
     recordDraw();

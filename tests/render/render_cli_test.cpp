@@ -356,6 +356,9 @@ struct RefCase {
     std::vector<std::string> options;
 };
 
+// gtest prints parameters in test listings; the name says it all.
+void PrintTo(const RefCase& c, std::ostream* os) { *os << c.name; }
+
 std::vector<RefCase> referenceCases() {
     std::vector<RefCase> cases;
     std::ifstream in(std::string(LIMN_SOURCE_DIR) + "/tests/render/ref/cases.txt");
