@@ -31,7 +31,8 @@ Buffer::Buffer(Context& ctx, BufferDesc desc) : ctx_(&ctx), desc_(std::move(desc
     if ((desc_.usage & kStorage) && desc_.size > maxStorageBufferBytes(ctx)) {
         throw Error(ErrorKind::BadInput,
                     "GPU buffer '" + desc_.name + "' needs " + std::to_string(desc_.size) +
-                        " bytes (" + mib(desc_.size) + "), more than one storage buffer may hold (" +
+                        " bytes (" + mib(desc_.size) +
+                        "), more than one storage buffer may hold (" +
                         mib(maxStorageBufferBytes(ctx)) +
                         ": WebGPU's limit or the device's); split the data over several buffers "
                         "or lower the subdivision depth");
@@ -53,7 +54,9 @@ Buffer::Buffer(Context& ctx, BufferDesc desc) : ctx_(&ctx), desc_(std::move(desc
         vk.vkGetBufferMemoryRequirements(ctx.device(), buffer_, &req);
         VkMemoryPropertyFlags required = 0, preferred = 0, chosen = 0;
         switch (desc_.memory) {
-        case MemoryKind::Device: preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
+        case MemoryKind::Device:
+            preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+            break;
         case MemoryKind::Upload:
             required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
             preferred = VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
@@ -84,7 +87,9 @@ Buffer::Buffer(Context& ctx, BufferDesc desc) : ctx_(&ctx), desc_(std::move(desc
     }
 }
 
-Buffer::~Buffer() { release(); }
+Buffer::~Buffer() {
+    release();
+}
 
 void Buffer::release() {
     if (!ctx_) return;
@@ -98,7 +103,9 @@ void Buffer::release() {
     allocated_ = 0;
 }
 
-Buffer::Buffer(Buffer&& other) noexcept { *this = std::move(other); }
+Buffer::Buffer(Buffer&& other) noexcept {
+    *this = std::move(other);
+}
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
     if (this != &other) {
@@ -116,8 +123,8 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 
 void Buffer::requireMapped(const char* what, uint64_t offset, uint64_t bytes) const {
     if (!mapped_)
-        throw Error(ErrorKind::BadInput,
-                    std::string(what) + " on GPU buffer '" + desc_.name + "', which the CPU cannot see");
+        throw Error(ErrorKind::BadInput, std::string(what) + " on GPU buffer '" + desc_.name +
+                                             "', which the CPU cannot see");
     if (offset > desc_.size || bytes > desc_.size - offset)
         throw Error(ErrorKind::BadInput, std::string(what) + " of " + std::to_string(bytes) +
                                              " bytes at offset " + std::to_string(offset) +
@@ -132,7 +139,8 @@ void Buffer::write(std::span<const uint8_t> bytes, uint64_t offset) {
         VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
         range.memory = memory_;
         range.size = VK_WHOLE_SIZE;
-        check(ctx_->vk().vkFlushMappedMemoryRanges(ctx_->device(), 1, &range), "flushing a mapping");
+        check(ctx_->vk().vkFlushMappedMemoryRanges(ctx_->device(), 1, &range),
+              "flushing a mapping");
     }
 }
 

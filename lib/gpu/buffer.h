@@ -42,7 +42,7 @@ uint64_t maxStorageBufferBytes(const Context& ctx);
 uint64_t maxElementsPerStorageBuffer(const Context& ctx, uint64_t elementBytes);
 
 class Buffer {
-public:
+  public:
     // Throws Error(BadInput) naming the buffer when a storage buffer is too large.
     Buffer(Context& ctx, BufferDesc desc);
     ~Buffer();
@@ -72,7 +72,7 @@ public:
         return out;
     }
 
-private:
+  private:
     void release();
     void requireMapped(const char* what, uint64_t offset, uint64_t bytes) const;
 

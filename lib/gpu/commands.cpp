@@ -18,25 +18,43 @@ struct StageAccess {
     VkAccessFlags2 access = 0;
 };
 
+// Each kind of access: the pipeline stage it happens in and the access flag it needs.
+struct AccessMapping {
+    Access bit;
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+};
+constexpr AccessMapping kAccessMappings[] = {
+    {Access::TransferWrite, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
+    {Access::TransferRead, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT},
+    {Access::ComputeWrite, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT},
+    {Access::ComputeRead, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+     VK_ACCESS_2_SHADER_STORAGE_READ_BIT},
+    {Access::VertexRead, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
+     VK_ACCESS_2_SHADER_STORAGE_READ_BIT},
+    {Access::FragmentRead, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+     VK_ACCESS_2_SHADER_STORAGE_READ_BIT},
+    {Access::IndexRead, VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT, VK_ACCESS_2_INDEX_READ_BIT},
+    {Access::IndirectRead, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+     VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT},
+    {Access::HostRead, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT},
+    {Access::HostWrite, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT},
+};
+
 StageAccess toStageAccess(Access a) {
     StageAccess r;
-    auto has = [&](Access bit) { return static_cast<uint32_t>(a) & static_cast<uint32_t>(bit); };
-    if (has(Access::TransferWrite)) r.stage |= VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, r.access |= VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    if (has(Access::TransferRead)) r.stage |= VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, r.access |= VK_ACCESS_2_TRANSFER_READ_BIT;
-    if (has(Access::ComputeWrite)) r.stage |= VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, r.access |= VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    if (has(Access::ComputeRead)) r.stage |= VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, r.access |= VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-    if (has(Access::VertexRead)) r.stage |= VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT, r.access |= VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-    if (has(Access::FragmentRead)) r.stage |= VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, r.access |= VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-    if (has(Access::IndexRead)) r.stage |= VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT, r.access |= VK_ACCESS_2_INDEX_READ_BIT;
-    if (has(Access::IndirectRead)) r.stage |= VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, r.access |= VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
-    if (has(Access::HostRead)) r.stage |= VK_PIPELINE_STAGE_2_HOST_BIT, r.access |= VK_ACCESS_2_HOST_READ_BIT;
-    if (has(Access::HostWrite)) r.stage |= VK_PIPELINE_STAGE_2_HOST_BIT, r.access |= VK_ACCESS_2_HOST_WRITE_BIT;
+    for (const auto& m : kAccessMappings)
+        if (static_cast<uint32_t>(a) & static_cast<uint32_t>(m.bit)) {
+            r.stage |= m.stage;
+            r.access |= m.access;
+        }
     return r;
 }
 
 void imageBarrier(const VulkanFunctions& vk, VkCommandBuffer cmd, VkImage image,
-                  VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
-                  StageAccess src, StageAccess dst) {
+                  VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to, StageAccess src,
+                  StageAccess dst) {
     VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     b.srcStageMask = src.stage;
     b.srcAccessMask = src.access;
@@ -82,7 +100,9 @@ CommandBuffer::CommandBuffer(Context& ctx, uint32_t maxTimedPasses)
     }
 }
 
-CommandBuffer::~CommandBuffer() { release(); }
+CommandBuffer::~CommandBuffer() {
+    release();
+}
 
 void CommandBuffer::release() {
     const auto& vk = ctx_->vk();
@@ -96,7 +116,8 @@ void CommandBuffer::release() {
 
 void CommandBuffer::requireRecording(const char* what) const {
     if (!recording_)
-        throw Error(ErrorKind::BadInput, std::string("internal: ") + what + " outside begin()/submit");
+        throw Error(ErrorKind::BadInput,
+                    std::string("internal: ") + what + " outside begin()/submit");
 }
 
 void CommandBuffer::begin() {
@@ -123,20 +144,21 @@ void CommandBuffer::submitAndWait() {
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd_;
     check(vk.vkQueueSubmit(ctx_->queue(), 1, &submit, fence_), "vkQueueSubmit");
-    check(vk.vkWaitForFences(ctx_->device(), 1, &fence_, VK_TRUE, UINT64_MAX), "waiting for the GPU");
+    check(vk.vkWaitForFences(ctx_->device(), 1, &fence_, VK_TRUE, UINT64_MAX),
+          "waiting for the GPU");
     check(vk.vkResetFences(ctx_->device(), 1, &fence_), "vkResetFences");
 
     timedMs_.assign(timedNames_.size(), std::numeric_limits<double>::quiet_NaN());
     if (queries_ && !timedNames_.empty()) {
         std::vector<uint64_t> stamps(2 * timedNames_.size());
-        check(vk.vkGetQueryPoolResults(ctx_->device(), queries_, 0,
-                                       static_cast<uint32_t>(stamps.size()),
-                                       stamps.size() * sizeof(uint64_t), stamps.data(),
-                                       sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+        check(vk.vkGetQueryPoolResults(
+                  ctx_->device(), queries_, 0, static_cast<uint32_t>(stamps.size()),
+                  stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
+                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
               "reading GPU timestamps");
         for (size_t i = 0; i < timedNames_.size(); ++i)
-            timedMs_[i] = double(stamps[2 * i + 1] - stamps[2 * i]) *
-                          ctx_->limits().timestampPeriodNs * 1e-6;
+            timedMs_[i] =
+                double(stamps[2 * i + 1] - stamps[2 * i]) * ctx_->limits().timestampPeriodNs * 1e-6;
     }
 }
 
@@ -147,7 +169,8 @@ void CommandBuffer::copy(const Buffer& src, const Buffer& dst, uint64_t bytes, u
     if (srcOffset > src.size() || bytes > src.size() - srcOffset || dstOffset > dst.size() ||
         bytes > dst.size() - dstOffset)
         throw Error(ErrorKind::BadInput, "copy of " + std::to_string(bytes) + " bytes from '" +
-                                             src.name() + "' to '" + dst.name() + "' is out of bounds");
+                                             src.name() + "' to '" + dst.name() +
+                                             "' is out of bounds");
     if (bytes == 0) return;
     VkBufferCopy region{srcOffset, dstOffset, bytes};
     ctx_->vk().vkCmdCopyBuffer(cmd_, src.handle(), dst.handle(), 1, &region);
@@ -197,14 +220,17 @@ void CommandBuffer::dispatch(const ComputePipeline& pipeline, const BindGroup& b
     requireRecording("dispatch");
     if (inRendering_) throw Error(ErrorKind::BadInput, "internal: dispatch inside rendering");
     if (count == 0) return;
-    const uint64_t groups = (uint64_t(count) + pipeline.workgroupSize() - 1) / pipeline.workgroupSize();
+    const uint64_t groups =
+        (uint64_t(count) + pipeline.workgroupSize() - 1) / pipeline.workgroupSize();
     // A 2D grid whose x * y covers `groups` with as little waste as possible; the shader turns
     // it back into a linear index and drops the excess invocations.
     const uint64_t y = (groups + kMaxGroupsPerDimension - 1) / kMaxGroupsPerDimension;
     const uint64_t x = (groups + y - 1) / y;
-    if (y > kMaxGroupsPerDimension || x * pipeline.workgroupSize() > UINT32_MAX || y > ctx_->limits().maxComputeWorkGroupCount[1] ||
+    if (y > kMaxGroupsPerDimension || x * pipeline.workgroupSize() > UINT32_MAX ||
+        y > ctx_->limits().maxComputeWorkGroupCount[1] ||
         x > ctx_->limits().maxComputeWorkGroupCount[0])
-        throw Error(ErrorKind::BadInput, "pass '" + pipeline.name() + "': " + std::to_string(count) +
+        throw Error(ErrorKind::BadInput, "pass '" + pipeline.name() +
+                                             "': " + std::to_string(count) +
                                              " invocations exceed the dispatch limits");
     uint32_t header[4] = {count, static_cast<uint32_t>(x) * pipeline.workgroupSize(), 0, 0};
     bindAndPush(pipeline, VK_PIPELINE_BIND_POINT_COMPUTE, bindings,
@@ -217,14 +243,16 @@ void CommandBuffer::beginRendering(const RenderTarget& target, std::array<float,
     const auto& vk = ctx_->vk();
     // UNDEFINED discards last frame's contents; the source stages order this frame's writes after
     // the previous copy-out and depth use (write-after-read across submissions).
-    imageBarrier(vk, cmd_, target.colorImage(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0},
+    imageBarrier(vk, cmd_, target.colorImage(), VK_IMAGE_ASPECT_COLOR_BIT,
+                 VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0},
                  {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                   VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT});
     const VkPipelineStageFlags2 depthStages =
         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-    imageBarrier(vk, cmd_, target.depthImage(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                 VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, {depthStages, 0},
+    imageBarrier(vk, cmd_, target.depthImage(), VK_IMAGE_ASPECT_DEPTH_BIT,
+                 VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                 {depthStages, 0},
                  {depthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT});
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -246,7 +274,8 @@ void CommandBuffer::beginRendering(const RenderTarget& target, std::array<float,
     info.pColorAttachments = &color;
     info.pDepthAttachment = &depth;
     vk.vkCmdBeginRendering(cmd_, &info);
-    VkViewport viewport{0, float(target.height()), float(target.width()), -float(target.height()), 0, 1};
+    VkViewport viewport{
+        0, float(target.height()), float(target.width()), -float(target.height()), 0, 1};
     VkRect2D scissor{{0, 0}, {target.width(), target.height()}};
     vk.vkCmdSetViewport(cmd_, 0, 1, &viewport);
     vk.vkCmdSetScissor(cmd_, 0, 1, &scissor);
@@ -260,7 +289,8 @@ void CommandBuffer::endRendering() {
 }
 
 void CommandBuffer::draw(const GraphicsPipeline& pipeline, const BindGroup& bindings,
-                         uint32_t vertexCount, uint32_t instanceCount, std::span<const uint8_t> push) {
+                         uint32_t vertexCount, uint32_t instanceCount,
+                         std::span<const uint8_t> push) {
     requireRecording("draw");
     if (!inRendering_) throw Error(ErrorKind::BadInput, "internal: draw outside rendering");
     if (!vertexCount || !instanceCount) return;
@@ -274,7 +304,8 @@ void CommandBuffer::drawIndexed(const GraphicsPipeline& pipeline, const BindGrou
     requireRecording("drawIndexed");
     if (!inRendering_) throw Error(ErrorKind::BadInput, "internal: draw outside rendering");
     if (!(indices.usage() & kIndex))
-        throw Error(ErrorKind::BadInput, "internal: '" + indices.name() + "' is not an index buffer");
+        throw Error(ErrorKind::BadInput,
+                    "internal: '" + indices.name() + "' is not an index buffer");
     if (uint64_t(indexCount) * 4 > indices.size())
         throw Error(ErrorKind::BadInput, "internal: " + std::to_string(indexCount) +
                                              " indices overrun '" + indices.name() + "'");
@@ -287,10 +318,11 @@ void CommandBuffer::drawIndexed(const GraphicsPipeline& pipeline, const BindGrou
 void CommandBuffer::copyToReadback(const RenderTarget& target) {
     requireRecording("copyToReadback");
     const auto& vk = ctx_->vk();
-    imageBarrier(vk, cmd_, target.colorImage(), VK_IMAGE_ASPECT_COLOR_BIT,
-                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                 {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
-                 {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
+    imageBarrier(
+        vk, cmd_, target.colorImage(), VK_IMAGE_ASPECT_COLOR_BIT,
+        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
+        {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
     VkBufferImageCopy region{};
     region.bufferRowLength = target.rowPitch() / 4; // in texels
     region.bufferImageHeight = target.height();
@@ -305,12 +337,14 @@ void CommandBuffer::beginTimed(const std::string& name) {
     requireRecording("beginTimed");
     if (inTimed_) throw Error(ErrorKind::BadInput, "internal: timed passes do not nest");
     if (timedNames_.size() >= maxTimed_)
-        throw Error(ErrorKind::BadInput, "internal: more than " + std::to_string(maxTimed_) + " timed passes");
+        throw Error(ErrorKind::BadInput,
+                    "internal: more than " + std::to_string(maxTimed_) + " timed passes");
     uint32_t index = static_cast<uint32_t>(timedNames_.size());
     timedNames_.push_back(name);
     inTimed_ = true;
     if (queries_)
-        ctx_->vk().vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, 2 * index);
+        ctx_->vk().vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_,
+                                        2 * index);
 }
 
 void CommandBuffer::endTimed() {
@@ -319,7 +353,8 @@ void CommandBuffer::endTimed() {
     inTimed_ = false;
     uint32_t index = static_cast<uint32_t>(timedNames_.size() - 1);
     if (queries_)
-        ctx_->vk().vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, 2 * index + 1);
+        ctx_->vk().vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_,
+                                        2 * index + 1);
 }
 
 std::vector<PassTime> CommandBuffer::passTimes() const {
@@ -329,7 +364,8 @@ std::vector<PassTime> CommandBuffer::passTimes() const {
     return out;
 }
 
-void uploadNow(Context& ctx, const Buffer& dst, std::span<const uint8_t> bytes, uint64_t dstOffset) {
+void uploadNow(Context& ctx, const Buffer& dst, std::span<const uint8_t> bytes,
+               uint64_t dstOffset) {
     if (bytes.empty()) return;
     Buffer staging(ctx, {"staging for '" + dst.name() + "'", bytes.size(), 0, MemoryKind::Upload});
     staging.write(bytes);

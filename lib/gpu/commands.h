@@ -22,8 +22,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
@@ -55,7 +55,7 @@ struct PassTime {
 };
 
 class CommandBuffer {
-public:
+  public:
     explicit CommandBuffer(Context& ctx, uint32_t maxTimedPasses = 64);
     ~CommandBuffer();
     CommandBuffer(const CommandBuffer&) = delete;
@@ -113,7 +113,7 @@ public:
         return {reinterpret_cast<const uint8_t*>(&value), sizeof(T)};
     }
 
-private:
+  private:
     void release();
     void requireRecording(const char* what) const;
     void bindAndPush(const Pipeline& pipeline, VkPipelineBindPoint point, const BindGroup& bindings,
@@ -131,7 +131,8 @@ private:
 };
 
 // One-off transfers for setup and tests (each records and waits for its own submission).
-void uploadNow(Context& ctx, const Buffer& dst, std::span<const uint8_t> bytes, uint64_t dstOffset = 0);
+void uploadNow(Context& ctx, const Buffer& dst, std::span<const uint8_t> bytes,
+               uint64_t dstOffset = 0);
 std::vector<uint8_t> readbackNow(Context& ctx, const Buffer& src);
 
 template <class T>

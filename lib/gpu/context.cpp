@@ -29,20 +29,27 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBit
 
 DeviceType toDeviceType(VkPhysicalDeviceType t) {
     switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return DeviceType::DiscreteGpu;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return DeviceType::IntegratedGpu;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return DeviceType::VirtualGpu;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return DeviceType::Cpu;
-    default: return DeviceType::Other;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+        return DeviceType::DiscreteGpu;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+        return DeviceType::IntegratedGpu;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+        return DeviceType::VirtualGpu;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+        return DeviceType::Cpu;
+    default:
+        return DeviceType::Other;
     }
 }
 
 bool hasExtension(const std::vector<VkExtensionProperties>& list, const char* name) {
-    return std::any_of(list.begin(), list.end(),
-                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+    return std::any_of(list.begin(), list.end(), [&](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, name) == 0;
+    });
 }
 
-std::vector<VkExtensionProperties> deviceExtensions(const VulkanFunctions& vk, VkPhysicalDevice pd) {
+std::vector<VkExtensionProperties> deviceExtensions(const VulkanFunctions& vk,
+                                                    VkPhysicalDevice pd) {
     uint32_t n = 0;
     vk.vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
     std::vector<VkExtensionProperties> list(n);
@@ -51,7 +58,8 @@ std::vector<VkExtensionProperties> deviceExtensions(const VulkanFunctions& vk, V
     return list;
 }
 
-uint32_t graphicsComputeFamily(const VulkanFunctions& vk, VkPhysicalDevice pd, uint32_t* validBits) {
+uint32_t graphicsComputeFamily(const VulkanFunctions& vk, VkPhysicalDevice pd,
+                               uint32_t* validBits) {
     uint32_t n = 0;
     vk.vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
@@ -106,7 +114,8 @@ Context::Context(const ContextOptions& options) {
     try {
         createInstance(options);
         uint32_t count = 0;
-        check(vk_.vkEnumeratePhysicalDevices(instance_, &count, nullptr), "vkEnumeratePhysicalDevices");
+        check(vk_.vkEnumeratePhysicalDevices(instance_, &count, nullptr),
+              "vkEnumeratePhysicalDevices");
         std::vector<VkPhysicalDevice> physical(count);
         if (count)
             check(vk_.vkEnumeratePhysicalDevices(instance_, &count, physical.data()),
@@ -175,9 +184,10 @@ void Context::createInstance(const ContextOptions& options) {
         vk_.vkEnumerateInstanceLayerProperties(&n, nullptr);
         std::vector<VkLayerProperties> available(n);
         vk_.vkEnumerateInstanceLayerProperties(&n, available.data());
-        bool found = std::any_of(available.begin(), available.begin() + n, [](const VkLayerProperties& l) {
-            return std::strcmp(l.layerName, kValidationLayer) == 0;
-        });
+        bool found =
+            std::any_of(available.begin(), available.begin() + n, [](const VkLayerProperties& l) {
+                return std::strcmp(l.layerName, kValidationLayer) == 0;
+            });
         if (!found)
             throw Error(ErrorKind::Capability,
                         std::string("validation was asked for, but the layer ") + kValidationLayer +
@@ -259,7 +269,9 @@ void Context::createDevice(VkPhysicalDevice physical, bool core13) {
     vk_.vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 }
 
-Context::~Context() { release(); }
+Context::~Context() {
+    release();
+}
 
 void Context::release() {
     if (device_) {
@@ -278,7 +290,8 @@ void Context::release() {
 }
 
 uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
-                             VkMemoryPropertyFlags preferred, VkMemoryPropertyFlags* chosenFlags) const {
+                             VkMemoryPropertyFlags preferred,
+                             VkMemoryPropertyFlags* chosenFlags) const {
     uint32_t best = kNoFamily;
     for (uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
         VkMemoryPropertyFlags flags = memory_.memoryTypes[i].propertyFlags;
@@ -295,6 +308,8 @@ uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
     return best;
 }
 
-void Context::waitIdle() const { check(vk_.vkDeviceWaitIdle(device_), "vkDeviceWaitIdle"); }
+void Context::waitIdle() const {
+    check(vk_.vkDeviceWaitIdle(device_), "vkDeviceWaitIdle");
+}
 
 } // namespace limn::gpu

@@ -19,7 +19,7 @@
 namespace limn::gpu {
 
 struct ContextOptions {
-    std::string device;                    // case-insensitive substring of the name; empty: default
+    std::string device; // case-insensitive substring of the name; empty: default
     Validation validation = Validation::Off;
 };
 
@@ -33,12 +33,12 @@ struct DeviceLimits {
     uint64_t minStorageBufferOffsetAlignment = 1;
     uint64_t nonCoherentAtomSize = 1;
     uint32_t maxImageDimension2D = 0;
-    bool timestamps = false;   // timestamps on the graphics+compute queue
+    bool timestamps = false; // timestamps on the graphics+compute queue
     double timestampPeriodNs = 0;
 };
 
 class Context {
-public:
+  public:
     // Throws Error(Capability) when there is no loader, no device, no device matching
     // options.device, or validation was asked for and the layer is not installed.
     explicit Context(const ContextOptions& options = {});
@@ -76,7 +76,7 @@ public:
     uint64_t allocatedBytes() const { return allocatedBytes_; }
     void noteAllocation(int64_t delta) { allocatedBytes_ += static_cast<uint64_t>(delta); }
 
-private:
+  private:
     void createInstance(const ContextOptions& options);
     void createDevice(VkPhysicalDevice physical, bool core13);
     void release();

@@ -9,11 +9,16 @@ namespace {
 
 int rank(DeviceType type) {
     switch (type) {
-    case DeviceType::DiscreteGpu: return 0;
-    case DeviceType::IntegratedGpu: return 1;
-    case DeviceType::VirtualGpu: return 2;
-    case DeviceType::Cpu: return 3;
-    case DeviceType::Other: return 4;
+    case DeviceType::DiscreteGpu:
+        return 0;
+    case DeviceType::IntegratedGpu:
+        return 1;
+    case DeviceType::VirtualGpu:
+        return 2;
+    case DeviceType::Cpu:
+        return 3;
+    case DeviceType::Other:
+        return 4;
     }
     return 5;
 }
@@ -39,11 +44,16 @@ std::string join(const std::vector<std::string>& parts, const char* separator) {
 
 const char* deviceTypeName(DeviceType type) {
     switch (type) {
-    case DeviceType::DiscreteGpu: return "discrete GPU";
-    case DeviceType::IntegratedGpu: return "integrated GPU";
-    case DeviceType::VirtualGpu: return "virtual GPU";
-    case DeviceType::Cpu: return "CPU";
-    case DeviceType::Other: return "other";
+    case DeviceType::DiscreteGpu:
+        return "discrete GPU";
+    case DeviceType::IntegratedGpu:
+        return "integrated GPU";
+    case DeviceType::VirtualGpu:
+        return "virtual GPU";
+    case DeviceType::Cpu:
+        return "CPU";
+    case DeviceType::Other:
+        return "other";
     }
     return "?";
 }
@@ -63,7 +73,8 @@ DeviceChoice chooseDevice(const std::vector<DeviceCandidate>& devices, const std
         const auto& d = devices[i];
         std::string line = describe(d, i) + ": ";
         if (choice.index == i)
-            line += "selected" + std::string(needle.empty() ? "" : " (name matches '" + wanted + "')");
+            line +=
+                "selected" + std::string(needle.empty() ? "" : " (name matches '" + wanted + "')");
         else if (!needle.empty() && lower(d.name).find(needle) == std::string::npos)
             line += "skipped: name does not contain '" + wanted + "'";
         else if (!d.unsuitable.empty())

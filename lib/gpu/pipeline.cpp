@@ -19,7 +19,8 @@ namespace {
 
 std::array<uint32_t, 3> spirvLocalSize(std::span<const uint32_t> spirv) {
     constexpr uint32_t kMagic = 0x07230203, kOpExecutionMode = 16, kLocalSize = 17;
-    if (spirv.size() < 5 || spirv[0] != kMagic) throw Error(ErrorKind::BadInput, "not a SPIR-V module");
+    if (spirv.size() < 5 || spirv[0] != kMagic)
+        throw Error(ErrorKind::BadInput, "not a SPIR-V module");
     for (size_t i = 5; i < spirv.size();) {
         uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xFFFF;
         if (words == 0 || i + words > spirv.size())
@@ -33,7 +34,9 @@ std::array<uint32_t, 3> spirvLocalSize(std::span<const uint32_t> spirv) {
 
 // BindGroup ------------------------------------------------------------------------------------
 
-BindGroup::~BindGroup() { release(); }
+BindGroup::~BindGroup() {
+    release();
+}
 
 void BindGroup::release() {
     if (ctx_ && pool_) ctx_->vk().vkDestroyDescriptorPool(ctx_->device(), pool_, nullptr);
@@ -41,7 +44,9 @@ void BindGroup::release() {
     set_ = VK_NULL_HANDLE;
 }
 
-BindGroup::BindGroup(BindGroup&& other) noexcept { *this = std::move(other); }
+BindGroup::BindGroup(BindGroup&& other) noexcept {
+    *this = std::move(other);
+}
 
 BindGroup& BindGroup::operator=(BindGroup&& other) noexcept {
     if (this != &other) {
@@ -89,7 +94,9 @@ Pipeline::Pipeline(Context& ctx, std::string name, uint32_t storageBuffers, uint
     }
 }
 
-Pipeline::~Pipeline() { release(); }
+Pipeline::~Pipeline() {
+    release();
+}
 
 void Pipeline::release() {
     const auto& vk = ctx_->vk();
@@ -127,7 +134,8 @@ BindGroup Pipeline::bind(std::span<const BufferBinding> buffers) const {
         const Buffer& buf = *b.buffer;
         std::string which = "binding " + std::to_string(i) + " ('" + buf.name() + "')";
         if (!(buf.usage() & kStorage)) fail(name_, which + " is not a storage buffer");
-        uint64_t size = b.size == VK_WHOLE_SIZE ? buf.size() - std::min(b.offset, buf.size()) : b.size;
+        uint64_t size =
+            b.size == VK_WHOLE_SIZE ? buf.size() - std::min(b.offset, buf.size()) : b.size;
         if (b.offset > buf.size() || size > buf.size() - b.offset)
             fail(name_, which + ": range " + std::to_string(b.offset) + "+" + std::to_string(size) +
                             " is outside the buffer (" + std::to_string(buf.size()) + " bytes)");
@@ -156,7 +164,8 @@ BindGroup Pipeline::bind(std::span<const BufferBinding> buffers) const {
     alloc.descriptorPool = group.pool_;
     alloc.descriptorSetCount = 1;
     alloc.pSetLayouts = &setLayout_;
-    check(vk.vkAllocateDescriptorSets(ctx_->device(), &alloc, &group.set_), "vkAllocateDescriptorSets");
+    check(vk.vkAllocateDescriptorSets(ctx_->device(), &alloc, &group.set_),
+          "vkAllocateDescriptorSets");
     std::vector<VkWriteDescriptorSet> writes(infos.size());
     for (uint32_t i = 0; i < infos.size(); ++i) {
         writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -166,7 +175,8 @@ BindGroup Pipeline::bind(std::span<const BufferBinding> buffers) const {
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         writes[i].pBufferInfo = &infos[i];
     }
-    vk.vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    vk.vkUpdateDescriptorSets(ctx_->device(), static_cast<uint32_t>(writes.size()), writes.data(),
+                              0, nullptr);
     return group;
 }
 
@@ -221,9 +231,11 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
             VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
         VkPipelineInputAssemblyStateCreateInfo assembly{
             VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        assembly.topology = desc.primitive == Primitive::Lines ? VK_PRIMITIVE_TOPOLOGY_LINE_LIST
-                                                               : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+        assembly.topology = desc.primitive == Primitive::Lines
+                                ? VK_PRIMITIVE_TOPOLOGY_LINE_LIST
+                                : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        VkPipelineViewportStateCreateInfo viewport{
+            VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
         viewport.viewportCount = 1;
         viewport.scissorCount = 1;
         VkPipelineRasterizationStateCreateInfo raster{
@@ -239,17 +251,20 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
             VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
         depth.depthTestEnable = VK_TRUE;
         depth.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
-        depth.depthCompareOp = desc.depthTest == DepthTest::Less          ? VK_COMPARE_OP_LESS
-                               : desc.depthTest == DepthTest::LessOrEqual ? VK_COMPARE_OP_LESS_OR_EQUAL
-                                                                          : VK_COMPARE_OP_ALWAYS;
+        depth.depthCompareOp = desc.depthTest == DepthTest::Less ? VK_COMPARE_OP_LESS
+                               : desc.depthTest == DepthTest::LessOrEqual
+                                   ? VK_COMPARE_OP_LESS_OR_EQUAL
+                                   : VK_COMPARE_OP_ALWAYS;
         VkPipelineColorBlendAttachmentState attachment{};
         attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                     VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-        VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+        VkPipelineColorBlendStateCreateInfo blend{
+            VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
         blend.attachmentCount = 1;
         blend.pAttachments = &attachment;
         VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+        VkPipelineDynamicStateCreateInfo dynamic{
+            VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
         dynamic.dynamicStateCount = 2;
         dynamic.pDynamicStates = dynamicStates;
         VkFormat colorFormat = RenderTarget::kColorFormat;
@@ -258,7 +273,8 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
         rendering.pColorAttachmentFormats = &colorFormat;
         rendering.depthAttachmentFormat = RenderTarget::kDepthFormat;
 
-        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+                                          &rendering};
         info.stageCount = 2;
         info.pStages = stages;
         info.pVertexInputState = &vertexInput;
@@ -270,7 +286,8 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
         info.pColorBlendState = &blend;
         info.pDynamicState = &dynamic;
         info.layout = layout_;
-        VkResult r = vk.vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+        VkResult r = vk.vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr,
+                                                  &pipeline_);
         check(r, "creating graphics pipeline '" + name_ + "'");
     } catch (...) {
         if (vs) vk.vkDestroyShaderModule(ctx.device(), vs, nullptr);

@@ -31,14 +31,15 @@ inline constexpr uint32_t kDispatchHeaderBytes = 16;
 struct BufferBinding {
     const Buffer* buffer = nullptr;
     uint64_t offset = 0;
-    uint64_t size = VK_WHOLE_SIZE; // to the end of the buffer
+    uint64_t size = VK_WHOLE_SIZE;                 // to the end of the buffer
     BufferBinding(const Buffer& b) : buffer(&b) {} // NOLINT: implicit on purpose
-    BufferBinding(const Buffer& b, uint64_t off, uint64_t bytes) : buffer(&b), offset(off), size(bytes) {}
+    BufferBinding(const Buffer& b, uint64_t off, uint64_t bytes)
+        : buffer(&b), offset(off), size(bytes) {}
 };
 
 // The descriptor set binding buffers to a pipeline's bindings, in binding order.
 class BindGroup {
-public:
+  public:
     BindGroup() = default;
     ~BindGroup();
     BindGroup(BindGroup&& other) noexcept;
@@ -47,7 +48,7 @@ public:
     BindGroup& operator=(const BindGroup&) = delete;
     VkDescriptorSet handle() const { return set_; }
 
-private:
+  private:
     friend class Pipeline;
     void release();
     Context* ctx_ = nullptr;
@@ -57,7 +58,7 @@ private:
 
 // What compute and graphics pipelines share: the layout and the bind groups made for it.
 class Pipeline {
-public:
+  public:
     ~Pipeline();
     Pipeline(const Pipeline&) = delete;
     Pipeline& operator=(const Pipeline&) = delete;
@@ -74,7 +75,7 @@ public:
     uint32_t pushConstantBytes() const { return pushBytes_; } // the pipeline's own, header excluded
     VkShaderStageFlags stages() const { return stages_; }
 
-protected:
+  protected:
     Pipeline(Context& ctx, std::string name, uint32_t storageBuffers, uint32_t pushBytes,
              uint32_t headerBytes, VkShaderStageFlags stages);
     VkShaderModule createModule(std::span<const uint32_t> spirv, const char* stage) const;
@@ -97,11 +98,11 @@ struct ComputePipelineDesc {
 };
 
 class ComputePipeline : public Pipeline {
-public:
+  public:
     ComputePipeline(Context& ctx, const ComputePipelineDesc& desc);
     uint32_t workgroupSize() const { return localSize_; }
 
-private:
+  private:
     uint32_t localSize_ = 0;
 };
 
@@ -121,7 +122,7 @@ struct GraphicsPipelineDesc {
 // Draws into a RenderTarget (RGBA8 sRGB + D32 depth) with dynamic rendering. No culling: control
 // meshes may be open or inconsistently oriented, and the shading is two-sided.
 class GraphicsPipeline : public Pipeline {
-public:
+  public:
     GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
 };
 

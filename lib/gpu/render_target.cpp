@@ -42,8 +42,8 @@ RenderTarget::RenderTarget(Context& ctx, uint32_t width, uint32_t height)
         vk.vkGetImageMemoryRequirements(ctx.device(), image, &req);
         VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
         alloc.allocationSize = req.size;
-        alloc.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, 0,
-                                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, nullptr);
+        alloc.memoryTypeIndex =
+            ctx.memoryType(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, nullptr);
         check(vk.vkAllocateMemory(ctx.device(), &alloc, nullptr, &memory),
               "allocating a " + std::to_string(width) + "x" + std::to_string(height) + " image");
         allocated_ += req.size;
@@ -57,7 +57,8 @@ RenderTarget::RenderTarget(Context& ctx, uint32_t width, uint32_t height)
         check(vk.vkCreateImageView(ctx.device(), &viewInfo, nullptr, &view), "vkCreateImageView");
     };
     try {
-        makeImage(kColorFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+        makeImage(kColorFormat,
+                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                   VK_IMAGE_ASPECT_COLOR_BIT, color_, colorMemory_, colorView_);
         makeImage(kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                   VK_IMAGE_ASPECT_DEPTH_BIT, depth_, depthMemory_, depthView_);
@@ -67,7 +68,9 @@ RenderTarget::RenderTarget(Context& ctx, uint32_t width, uint32_t height)
     }
 }
 
-RenderTarget::~RenderTarget() { release(); }
+RenderTarget::~RenderTarget() {
+    release();
+}
 
 void RenderTarget::release() {
     const auto& vk = ctx_->vk();

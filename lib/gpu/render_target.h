@@ -14,7 +14,7 @@ namespace limn::gpu {
 class Context;
 
 class RenderTarget {
-public:
+  public:
     static constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;
     static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
     static constexpr uint32_t kRowAlignment = 256;
@@ -39,7 +39,7 @@ public:
     // 4 bytes per pixel (sRGB-encoded RGBA), rows tightly packed.
     std::vector<uint8_t> pixels() const;
 
-private:
+  private:
     void release();
     Context* ctx_;
     uint32_t width_, height_, rowPitch_;

@@ -17,7 +17,7 @@ enum class Validation {
 };
 
 class ValidationLog {
-public:
+  public:
     static constexpr size_t kKeptMessages = 64;
 
     enum class Severity { Warning, Error };
@@ -29,7 +29,7 @@ public:
     std::vector<std::string> messages() const;
     void clear();
 
-private:
+  private:
     mutable std::mutex mutex_; // the layer may call back from any thread that calls Vulkan
     uint32_t errors_ = 0, warnings_ = 0;
     std::vector<std::string> messages_;

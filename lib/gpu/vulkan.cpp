@@ -18,7 +18,8 @@ PFN_vkGetInstanceProcAddr openLoader() {
         void* lib = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
         if (!lib) lib = dlopen("libvulkan.so", RTLD_NOW | RTLD_LOCAL);
         if (lib)
-            getProc = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(lib, "vkGetInstanceProcAddr"));
+            getProc =
+                reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(lib, "vkGetInstanceProcAddr"));
     });
     return getProc;
 }
@@ -66,7 +67,8 @@ void loadDeviceFunctions(VulkanFunctions& vk, VkDevice device, bool core13) {
 const char* resultName(VkResult result) {
     switch (result) {
 #define LIMN_CASE(r)                                                                               \
-    case r: return #r;
+    case r:                                                                                        \
+        return #r;
         LIMN_CASE(VK_SUCCESS)
         LIMN_CASE(VK_NOT_READY)
         LIMN_CASE(VK_TIMEOUT)
@@ -84,7 +86,8 @@ const char* resultName(VkResult result) {
         LIMN_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
         LIMN_CASE(VK_ERROR_UNKNOWN)
 #undef LIMN_CASE
-    default: return "VkResult error";
+    default:
+        return "VkResult error";
     }
 }
 

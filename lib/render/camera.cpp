@@ -11,7 +11,9 @@ namespace limn::render {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-double radians(double deg) { return deg * kPi / 180.0; }
+double radians(double deg) {
+    return deg * kPi / 180.0;
+}
 
 // An up vector usable with this view direction.
 glm::dvec3 safeUp(glm::dvec3 forward, glm::dvec3 up) {
@@ -28,7 +30,9 @@ double Bounds::radius() const {
     return r > 0 && std::isfinite(r) ? r : 1.0;
 }
 
-glm::dmat4 Camera::view() const { return glm::lookAtRH(eye, target, safeUp(target - eye, up)); }
+glm::dmat4 Camera::view() const {
+    return glm::lookAtRH(eye, target, safeUp(target - eye, up));
+}
 
 glm::dmat4 Camera::projection(double aspect) const {
     return glm::perspectiveRH_ZO(fovYRad, aspect, nearPlane, farPlane);
@@ -41,7 +45,8 @@ Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect) {
     cam.fovYRad = radians(spec.fovDeg);
     if (!spec.eye) {
         const double az = radians(spec.azimuthDeg), el = radians(spec.elevationDeg);
-        const glm::dvec3 dir(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+        const glm::dvec3 dir(std::cos(el) * std::sin(az), std::sin(el),
+                             std::cos(el) * std::cos(az));
         cam.target = center;
         cam.up = safeUp(-dir, glm::dvec3(0, 1, 0));
         const glm::dvec3 right = glm::normalize(glm::cross(-dir, cam.up));
@@ -53,7 +58,8 @@ Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect) {
         const double tanY = std::tan(cam.fovYRad * 0.5), tanX = tanY * aspect;
         double distance = 0, zMax = -r, zMin = r;
         for (int i = 0; i < 8; ++i) {
-            glm::dvec3 corner(i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+            glm::dvec3 corner(i & 1 ? bounds.max.x : bounds.min.x,
+                              i & 2 ? bounds.max.y : bounds.min.y,
                               i & 4 ? bounds.max.z : bounds.min.z);
             glm::dvec3 d = corner - center;
             double x = glm::dot(d, right), y = glm::dot(d, up), z = glm::dot(d, dir);

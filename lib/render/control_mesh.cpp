@@ -68,7 +68,8 @@ ControlMeshDraw prepareControlMesh(const Mesh& mesh) {
     }
 
     const bool any = d.drawnFaces > 0;
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()),
+        hi(-std::numeric_limits<double>::infinity());
     for (size_t v = 0; v < mesh.vertexCount(); ++v) {
         if (any && !used[v]) continue;
         lo = glm::min(lo, mesh.positions[v]);

@@ -27,10 +27,10 @@ struct ControlMeshDraw {
     std::vector<glm::vec4> controlPoints; // positions as float, w = 1
     std::vector<uint32_t> faceOffsets;    // F + 1, for the face-normal pass (every face)
     std::vector<uint32_t> faceVertices;
-    std::vector<GpuCorner> corners;       // corners of drawn faces, face by face
-    std::vector<glm::vec2> uvs;           // float UVs; one (0, 0) when the mesh has none
-    std::vector<uint32_t> triangles;      // 3 per triangle, into corners
-    std::vector<uint32_t> edges;          // 2 per edge, into vertices, sorted
+    std::vector<GpuCorner> corners;  // corners of drawn faces, face by face
+    std::vector<glm::vec2> uvs;      // float UVs; one (0, 0) when the mesh has none
+    std::vector<uint32_t> triangles; // 3 per triangle, into corners
+    std::vector<uint32_t> edges;     // 2 per edge, into vertices, sorted
     uint32_t drawnFaces = 0;
     bool hasUVs = false;
     Bounds bounds; // of the vertices of drawn faces (all vertices if every face is a hole)

@@ -28,7 +28,8 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
     header += ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n";
     header += "comment limn-render: the triangles as drawn\n";
     header += "element vertex " + std::to_string(mesh.vertices.size()) + "\n";
-    for (const char* p : {"x", "y", "z", "nx", "ny", "nz"}) header += std::string("property float ") + p + "\n";
+    for (const char* p : {"x", "y", "z", "nx", "ny", "nz"})
+        header += std::string("property float ") + p + "\n";
     header += "property int ptex\nproperty float u\nproperty float v\n";
     header += "element face " + std::to_string(triangles) + "\n";
     header += "property list uchar int vertex_indices\nend_header\n";

@@ -11,7 +11,7 @@ namespace limn::render {
 
 struct Image {
     uint32_t width = 0, height = 0;
-    uint32_t channels = 4; // 3 (RGB) or 4 (RGBA)
+    uint32_t channels = 4;       // 3 (RGB) or 4 (RGBA)
     std::vector<uint8_t> pixels; // rows top to bottom, tightly packed
 
     const uint8_t* at(uint32_t x, uint32_t y) const {

@@ -39,14 +39,14 @@ constexpr float kWirePull = 2e-3f; // fraction of the distance to the eye
 
 struct Renderer::Gpu {
     Gpu(gpu::Context& ctx, const ControlMeshDraw& d, uint32_t width, uint32_t height)
-        : staging(ctx, {"control point staging", bytes(d.controlPoints), 0, gpu::MemoryKind::Upload}),
+        : staging(ctx,
+                  {"control point staging", bytes(d.controlPoints), 0, gpu::MemoryKind::Upload}),
           controlPoints(ctx, {"control points", bytes(d.controlPoints)}),
           vertices(ctx, {"vertices", bytes(d.controlPoints)}),
           faceOffsets(ctx, {"face offsets", bytes(d.faceOffsets)}),
           faceVertices(ctx, {"face vertices", bytes(d.faceVertices)}),
           faceNormals(ctx, {"face normals", (d.faceOffsets.size() - 1) * 16}),
-          corners(ctx, {"corners", bytes(d.corners)}),
-          uvs(ctx, {"uvs", bytes(d.uvs)}),
+          corners(ctx, {"corners", bytes(d.corners)}), uvs(ctx, {"uvs", bytes(d.uvs)}),
           triangles(ctx, {"triangle indices", bytes(d.triangles), gpu::kIndex}),
           edges(ctx, {"edge indices", bytes(d.edges), gpu::kIndex}),
           copyPoints(ctx, {"copy control points", copy_points_comp_spv, 2, sizeof(VertexPush)}),
@@ -106,7 +106,8 @@ void Renderer::recordCompute() {
     auto& g = *gpu_;
     const VertexPush level0{0};
     g.cmd.beginTimed("copy control points");
-    g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(draw_.controlPoints.size()), level0);
+    g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(draw_.controlPoints.size()),
+                   level0);
     g.cmd.endTimed();
     timedIsCompute_.push_back(true);
     // Subdivision passes (per level: face, edge, vertex points; then limit points) will be
@@ -145,16 +146,19 @@ void Renderer::recordDraw() {
     push.wirePull = kWirePull;
 
     std::array<float, 4> clear{};
-    for (int i = 0; i < 3; ++i) clear[i] = static_cast<float>(srgbToLinear(settings_.background[i]));
+    for (int i = 0; i < 3; ++i)
+        clear[i] = static_cast<float>(srgbToLinear(settings_.background[i]));
     clear[3] = settings_.alpha ? 0.0f : 1.0f;
 
     g.cmd.beginTimed("draw");
     g.cmd.beginRendering(g.target, clear);
     g.cmd.drawIndexed(g.meshPipeline, g.meshBindings, g.triangles,
-                      static_cast<uint32_t>(draw_.triangles.size()), 1, gpu::CommandBuffer::asBytes(push));
+                      static_cast<uint32_t>(draw_.triangles.size()), 1,
+                      gpu::CommandBuffer::asBytes(push));
     if (settings_.wire)
         g.cmd.drawIndexed(g.wirePipeline, g.wireBindings, g.edges,
-                          static_cast<uint32_t>(draw_.edges.size()), 1, gpu::CommandBuffer::asBytes(push));
+                          static_cast<uint32_t>(draw_.edges.size()), 1,
+                          gpu::CommandBuffer::asBytes(push));
     g.cmd.endRendering();
     g.cmd.endTimed();
     timedIsCompute_.push_back(false);
@@ -198,8 +202,10 @@ Image Renderer::image() const {
 }
 
 DrawnMesh Renderer::drawnMesh() {
-    auto vertices = gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->vertices, draw_.controlPoints.size());
-    auto normals = gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->faceNormals, draw_.faceOffsets.size() - 1);
+    auto vertices =
+        gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->vertices, draw_.controlPoints.size());
+    auto normals =
+        gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->faceNormals, draw_.faceOffsets.size() - 1);
     DrawnMesh out;
     out.vertices.reserve(draw_.corners.size());
     for (const GpuCorner& c : draw_.corners) {

@@ -20,8 +20,8 @@
 #include "mesh/mesh.h"
 #include "render/camera.h"
 #include "render/control_mesh.h"
-#include "render/png.h"
 #include "render/ply.h"
+#include "render/png.h"
 
 #include <glm/vec3.hpp>
 
@@ -47,11 +47,11 @@ struct FrameTimes {
     std::vector<gpu::PassTime> passes; // in recording order
     double computeMs = 0;              // upload + compute passes
     double drawMs = 0;
-    double totalMs = 0;                // every timed pass, readback included
+    double totalMs = 0; // every timed pass, readback included
 };
 
 class Renderer {
-public:
+  public:
     // Throws Error(BadInput) when --shade uv is asked of a mesh without UVs, or when a buffer
     // would exceed the storage-buffer limit.
     Renderer(gpu::Context& ctx, const Mesh& mesh, const RenderSettings& settings);
@@ -71,7 +71,7 @@ public:
     // Vertices the compute passes wrote per frame (for now the control points).
     uint32_t verticesEvaluated() const { return static_cast<uint32_t>(draw_.controlPoints.size()); }
 
-private:
+  private:
     void recordUpload();
     void recordCompute();
     void recordDraw();

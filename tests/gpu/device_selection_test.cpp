@@ -7,7 +7,8 @@ using namespace limn::gpu;
 
 namespace {
 
-DeviceCandidate device(std::string name, DeviceType type, std::vector<std::string> unsuitable = {}) {
+DeviceCandidate device(std::string name, DeviceType type,
+                       std::vector<std::string> unsuitable = {}) {
     return {std::move(name), type, "1.3.0", std::move(unsuitable)};
 }
 
@@ -41,12 +42,14 @@ TEST(DeviceSelection, NameIsCaseInsensitiveSubstring) {
                                             device("llvmpipe (LLVM 15)", DeviceType::Cpu)};
     auto c = chooseDevice(devices, "LLVMPIPE");
     EXPECT_EQ(c.index, 1u);
-    EXPECT_NE(c.report[0].find("name does not contain 'LLVMPIPE'"), std::string::npos) << c.report[0];
+    EXPECT_NE(c.report[0].find("name does not contain 'LLVMPIPE'"), std::string::npos)
+        << c.report[0];
 }
 
 TEST(DeviceSelection, NoMatchListsTheDevicesFound) {
-    std::vector<DeviceCandidate> devices = {device("llvmpipe (LLVM 15)", DeviceType::Cpu),
-                                            device("Broken", DeviceType::DiscreteGpu, {"no D32 depth attachments"})};
+    std::vector<DeviceCandidate> devices = {
+        device("llvmpipe (LLVM 15)", DeviceType::Cpu),
+        device("Broken", DeviceType::DiscreteGpu, {"no D32 depth attachments"})};
     auto c = chooseDevice(devices, "no-such-device");
     EXPECT_FALSE(c.index);
     EXPECT_NE(c.error.find("no-such-device"), std::string::npos) << c.error;

@@ -19,7 +19,7 @@ using namespace limn::gpu;
 namespace {
 
 class Gpu : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         ContextOptions options;
         options.validation = Validation::Synchronization;
@@ -68,9 +68,11 @@ TEST(GpuContext, UnknownDeviceIsAMissingCapability) {
 // mistake (a buffer with no usage flags) that only the layer can catch.
 TEST_F(Gpu, ValidationMessagesAreCounted) {
     auto* log = ctx->validationLog();
-    VkDebugUtilsMessengerCallbackDataEXT data{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CALLBACK_DATA_EXT};
+    VkDebugUtilsMessengerCallbackDataEXT data{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CALLBACK_DATA_EXT};
     data.pMessage = "limn test message";
-    ctx->vk().vkSubmitDebugUtilsMessageEXT(ctx->instance(), VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+    ctx->vk().vkSubmitDebugUtilsMessageEXT(ctx->instance(),
+                                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
                                            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT, &data);
     EXPECT_EQ(log->errors(), 1u);
     ASSERT_EQ(log->messages().size(), 1u);
@@ -185,9 +187,9 @@ TEST_F(Gpu, PipelinesStayWithinWebGpuLimits) {
     }
     ComputePipeline scale(*ctx, {"scale", scale_comp_spv, 2, 8});
     Buffer a(*ctx, {"a", 64});
-    EXPECT_THROW(scale.bind({a}), Error);                // wrong count
-    EXPECT_THROW(scale.bind({a, {a, 8, 8}}), Error);     // misaligned offset (>= 16 everywhere)
-    EXPECT_THROW(scale.bind({a, {a, 48, 32}}), Error);   // past the end
+    EXPECT_THROW(scale.bind({a}), Error);              // wrong count
+    EXPECT_THROW(scale.bind({a, {a, 8, 8}}), Error);   // misaligned offset (>= 16 everywhere)
+    EXPECT_THROW(scale.bind({a, {a, 48, 32}}), Error); // past the end
 }
 
 // A clear of an odd-sized target, read back through the padded rows.

@@ -11,7 +11,7 @@ namespace {
 // A quad, a triangle and a pentagon side by side; face 1 (the triangle) is a hole.
 Mesh mixedMesh() {
     Mesh m;
-    m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0},
+    m.positions = {{0, 0, 0}, {1, 0, 0},   {1, 1, 0},   {0, 1, 0}, {2, 0, 0},
                    {3, 0, 0}, {3.5, 1, 0}, {3, 2, 0.5}, {2, 2, 0}, {9, 9, 9}};
     m.addFace(std::vector<uint32_t>{0, 1, 2, 3});
     m.addFace(std::vector<uint32_t>{1, 4, 2});

@@ -1,6 +1,6 @@
 // PNG and PLY encodings: deterministic bytes, no metadata that varies, exact layouts.
-#include "render/png.h"
 #include "render/ply.h"
+#include "render/png.h"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,8 @@ std::vector<std::string> pngChunks(const std::vector<uint8_t>& png) {
     std::vector<std::string> chunks;
     size_t i = 8;
     while (i + 8 <= png.size()) {
-        uint32_t n = uint32_t(png[i]) << 24 | uint32_t(png[i + 1]) << 16 | uint32_t(png[i + 2]) << 8 | png[i + 3];
+        uint32_t n = uint32_t(png[i]) << 24 | uint32_t(png[i + 1]) << 16 |
+                     uint32_t(png[i + 2]) << 8 | png[i + 3];
         chunks.emplace_back(reinterpret_cast<const char*>(&png[i + 4]), 4);
         i += 12 + n;
     }
@@ -61,7 +62,9 @@ TEST(Png, GarbageIsAnError) {
 
 DrawnMesh oneTriangle() {
     DrawnMesh m;
-    m.vertices = {{0.1f, 0, 0, 0, 0, 1, 7, 0.5f, 0.25f}, {1, 0, 0, 0, 0, 1, 7, 1, 0}, {0, 1, 0, 0, 0, 1, 7, 0, 1}};
+    m.vertices = {{0.1f, 0, 0, 0, 0, 1, 7, 0.5f, 0.25f},
+                  {1, 0, 0, 0, 0, 1, 7, 1, 0},
+                  {0, 1, 0, 0, 0, 1, 7, 0, 1}};
     m.triangles = {0, 1, 2};
     return m;
 }

@@ -15,7 +15,9 @@ using namespace limn::test;
 
 namespace {
 
-std::string bin(const std::string& name) { return tool(name).string(); }
+std::string bin(const std::string& name) {
+    return tool(name).string();
+}
 
 // Classifies a model into a .limn in `dir` and returns its path.
 std::string classify(const ScratchDir& dir, const std::string& model, const std::string& name) {
@@ -44,17 +46,16 @@ bool samePixel(const uint8_t* a, std::initializer_list<int> b, int tolerance) {
 
 // A 3x3 grid of unit quads in the XY plane with the centre face a hole, plus a pentagon fan
 // beside it; coordinates that float cannot hold exactly (0.1 steps) to exercise the conversion.
-const char* kGridObj =
-    "v 0 0 0\nv 1.1 0 0\nv 2.2 0 0\nv 3.3 0 0\n"
-    "v 0 1.1 0\nv 1.1 1.1 0.1\nv 2.2 1.1 0.1\nv 3.3 1.1 0\n"
-    "v 0 2.2 0\nv 1.1 2.2 0.1\nv 2.2 2.2 0.1\nv 3.3 2.2 0\n"
-    "v 0 3.3 0\nv 1.1 3.3 0\nv 2.2 3.3 0\nv 3.3 3.3 0\n"
-    "v 4.4 0 0\nv 5.5 1.1 0.3\nv 4.95 2.7 0\nv 3.9 2.7 -0.2\n"
-    "f 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n"
-    "f 5 6 10 9\nf 6 7 11 10\nf 7 8 12 11\n"
-    "f 9 10 14 13\nf 10 11 15 14\nf 11 12 16 15\n"
-    "f 4 17 18 19 20\n"
-    "t hole 1/0/0 4\n";
+const char* kGridObj = "v 0 0 0\nv 1.1 0 0\nv 2.2 0 0\nv 3.3 0 0\n"
+                       "v 0 1.1 0\nv 1.1 1.1 0.1\nv 2.2 1.1 0.1\nv 3.3 1.1 0\n"
+                       "v 0 2.2 0\nv 1.1 2.2 0.1\nv 2.2 2.2 0.1\nv 3.3 2.2 0\n"
+                       "v 0 3.3 0\nv 1.1 3.3 0\nv 2.2 3.3 0\nv 3.3 3.3 0\n"
+                       "v 4.4 0 0\nv 5.5 1.1 0.3\nv 4.95 2.7 0\nv 3.9 2.7 -0.2\n"
+                       "f 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n"
+                       "f 5 6 10 9\nf 6 7 11 10\nf 7 8 12 11\n"
+                       "f 9 10 14 13\nf 10 11 15 14\nf 11 12 16 15\n"
+                       "f 4 17 18 19 20\n"
+                       "t hole 1/0/0 4\n";
 
 struct Ply {
     struct Vertex {
@@ -104,7 +105,8 @@ TEST(RenderCli, SameCommandSameBytes) {
     auto limn = classify(dir, modelPath("quad/spot_control_mesh.obj").string(), "spot");
     auto a = dir / "a.png", b = dir / "b.png";
     for (const auto& out : {a, b}) {
-        auto r = render({limn, "--size", "160x120", "--wire", "--view", "120,10", "-o", out.string()});
+        auto r =
+            render({limn, "--size", "160x120", "--wire", "--view", "120,10", "-o", out.string()});
         ASSERT_EQ(r.exitCode, 0) << r.err;
     }
     EXPECT_EQ(readFile(a), readFile(b));
@@ -117,11 +119,12 @@ TEST(RenderCli, SameCommandSameBytes) {
 TEST(RenderCli, ValidationLayerReportsNothing) {
     ScratchDir dir;
     auto limn = classify(dir, modelPath("quad/osd_catmark_fvar_bound1.obj").string(), "fvar");
-    for (std::vector<std::string> options :
-         {std::vector<std::string>{"--shade", "lit", "--wire"}, {"--shade", "normal", "--alpha"},
-          {"--shade", "uv"}, {"--bench", "2", "--wire"}}) {
-        std::vector<std::string> args = {limn, "--size", "64x48", "--sync-validation", "-v", "-o",
-                                         (dir / "out.png").string()};
+    for (std::vector<std::string> options : {std::vector<std::string>{"--shade", "lit", "--wire"},
+                                             {"--shade", "normal", "--alpha"},
+                                             {"--shade", "uv"},
+                                             {"--bench", "2", "--wire"}}) {
+        std::vector<std::string> args = {
+            limn, "--size", "64x48", "--sync-validation", "-v", "-o", (dir / "out.png").string()};
         args.insert(args.end(), options.begin(), options.end());
         auto r = render(args);
         EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -144,8 +147,9 @@ TEST(RenderCli, NoVulkanDriverIsExitCode3) {
     ScratchDir dir;
     auto limn = classify(dir, modelPath("quad/osd_catmark_cube.obj").string(), "cube");
     // The loader finds no driver at all.
-    auto r = run({"/usr/bin/env", "VK_ICD_FILENAMES=/nonexistent.json", "VK_DRIVER_FILES=/nonexistent.json",
-                  bin("limn-render"), limn, "-o", (dir / "x.png").string()});
+    auto r = run({"/usr/bin/env", "VK_ICD_FILENAMES=/nonexistent.json",
+                  "VK_DRIVER_FILES=/nonexistent.json", bin("limn-render"), limn, "-o",
+                  (dir / "x.png").string()});
     EXPECT_EQ(r.exitCode, 3) << r.err;
     EXPECT_NE(r.err.find("Vulkan"), std::string::npos) << r.err;
 }
@@ -174,7 +178,8 @@ TEST(RenderCli, AlphaMakesTheBackgroundTransparent) {
     ScratchDir dir;
     auto limn = classify(dir, modelPath("quad/osd_catmark_cube.obj").string(), "cube");
     auto out = dir / "a.png";
-    auto r = render({limn, "--size", "64x48", "--alpha", "--background", "1,0,0", "-o", out.string()});
+    auto r =
+        render({limn, "--size", "64x48", "--alpha", "--background", "1,0,0", "-o", out.string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto img = readPng(out);
     ASSERT_EQ(img.channels, 4u);
@@ -204,8 +209,8 @@ TEST(RenderCli, MeshOutHoldsTheControlMeshAsDrawn) {
     writeFile(dir / "grid.obj", kGridObj);
     auto limn = classify(dir, (dir / "grid.obj").string(), "grid");
     auto plyPath = dir / "grid.ply";
-    auto r = render({limn, "--size", "32x32", "--sync-validation", "--mesh-out", plyPath.string(), "-o",
-                     (dir / "grid.png").string()});
+    auto r = render({limn, "--size", "32x32", "--sync-validation", "--mesh-out", plyPath.string(),
+                     "-o", (dir / "grid.png").string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     Ply ply = parseBinaryPly(readFile(plyPath));
 
@@ -228,7 +233,8 @@ TEST(RenderCli, MeshOutHoldsTheControlMeshAsDrawn) {
         }
     }
     std::vector<int> ptex(faces.size());
-    for (size_t f = 1; f < faces.size(); ++f) ptex[f] = ptex[f - 1] + (faces[f - 1].size() == 4 ? 1 : int(faces[f - 1].size()));
+    for (size_t f = 1; f < faces.size(); ++f)
+        ptex[f] = ptex[f - 1] + (faces[f - 1].size() == 4 ? 1 : int(faces[f - 1].size()));
 
     size_t corner = 0, triangle = 0;
     for (size_t f = 0; f < faces.size(); ++f) {
@@ -257,7 +263,8 @@ TEST(RenderCli, MeshOutHoldsTheControlMeshAsDrawn) {
         const int first = int(corner - face.size());
         for (size_t i = 1; i + 1 < face.size(); ++i, ++triangle) {
             ASSERT_LT(triangle, ply.triangles.size());
-            EXPECT_EQ(ply.triangles[triangle], (std::array<int32_t, 3>{first, first + int(i), first + int(i) + 1}));
+            EXPECT_EQ(ply.triangles[triangle],
+                      (std::array<int32_t, 3>{first, first + int(i), first + int(i) + 1}));
         }
     }
     EXPECT_EQ(corner, ply.vertices.size());
@@ -305,10 +312,15 @@ TEST(RenderCli, UsageErrorsAreExitCode2) {
     ScratchDir dir;
     auto limn = classify(dir, modelPath("quad/osd_catmark_cube.obj").string(), "cube");
     std::string out = (dir / "x.png").string();
-    for (std::vector<std::string> bad :
-         {std::vector<std::string>{"--size", "0x10"}, {"--size", "100"}, {"--view", "10"},
-          {"--view", "0,0", "--eye", "1,2,3"}, {"--target", "0,0,0"}, {"--fov", "200"},
-          {"--background", "2,0,0"}, {"--shade", "levels"}, {"--bench", "5", "-o", "-"}}) {
+    for (std::vector<std::string> bad : {std::vector<std::string>{"--size", "0x10"},
+                                         {"--size", "100"},
+                                         {"--view", "10"},
+                                         {"--view", "0,0", "--eye", "1,2,3"},
+                                         {"--target", "0,0,0"},
+                                         {"--fov", "200"},
+                                         {"--background", "2,0,0"},
+                                         {"--shade", "levels"},
+                                         {"--bench", "5", "-o", "-"}}) {
         std::vector<std::string> args = {limn, "-o", out};
         args.insert(args.end(), bad.begin(), bad.end());
         auto r = render(args);
@@ -320,8 +332,9 @@ TEST(RenderCli, UsageErrorsAreExitCode2) {
 TEST(RenderCli, HelpListsDefaultsAndExitCodes) {
     auto r = render({"--help"});
     EXPECT_EQ(r.exitCode, 0);
-    for (const char* needle : {"--size WxH", "[default: 1024x768]", "[default: 30,20]", "--mesh-out",
-                               "--bench FRAMES", "--device NAME", "Exit codes", "3  missing capability"})
+    for (const char* needle :
+         {"--size WxH", "[default: 1024x768]", "[default: 30,20]", "--mesh-out", "--bench FRAMES",
+          "--device NAME", "Exit codes", "3  missing capability"})
         EXPECT_NE(r.out.find(needle), std::string::npos) << needle;
 }
 
@@ -357,7 +370,9 @@ struct RefCase {
 };
 
 // gtest prints parameters in test listings; the name says it all.
-void PrintTo(const RefCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const RefCase& c, std::ostream* os) {
+    *os << c.name;
+}
 
 std::vector<RefCase> referenceCases() {
     std::vector<RefCase> cases;
@@ -380,12 +395,14 @@ TEST_P(RenderReference, MatchesWithinTolerance) {
     ScratchDir dir;
     auto limn = classify(dir, modelPath(c.model).string(), c.name);
     auto out = dir / (c.name + ".png");
-    std::vector<std::string> args = {limn, "--size", "128x96", "--sync-validation", "-o", out.string()};
+    std::vector<std::string> args = {limn, "--size",    "128x96", "--sync-validation",
+                                     "-o", out.string()};
     args.insert(args.end(), c.options.begin(), c.options.end());
     auto r = render(args);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto got = readPng(out);
-    auto want = readPng(std::filesystem::path(LIMN_SOURCE_DIR) / "tests/render/ref" / (c.name + ".png"));
+    auto want =
+        readPng(std::filesystem::path(LIMN_SOURCE_DIR) / "tests/render/ref" / (c.name + ".png"));
     ASSERT_EQ(got.width, want.width);
     ASSERT_EQ(got.height, want.height);
     ASSERT_EQ(got.channels, want.channels);
@@ -405,11 +422,14 @@ TEST_P(RenderReference, MatchesWithinTolerance) {
     // The picture is not blank: some pixels differ from the top-left (background) one.
     size_t notBackground = 0;
     for (size_t p = 0; p < size_t(got.width) * got.height; ++p)
-        notBackground += std::memcmp(&got.pixels[p * got.channels], got.pixels.data(), got.channels) != 0;
+        notBackground +=
+            std::memcmp(&got.pixels[p * got.channels], got.pixels.data(), got.channels) != 0;
     EXPECT_GT(notBackground, size_t(got.width) * got.height / 50) << c.name;
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, RenderReference, ::testing::ValuesIn(referenceCases()),
-                         [](const ::testing::TestParamInfo<RefCase>& param) { return param.param.name; });
+                         [](const ::testing::TestParamInfo<RefCase>& param) {
+                             return param.param.name;
+                         });
 
 } // namespace

@@ -27,7 +27,9 @@ glm::dvec3 vec3Option(const std::string& option, const std::string& value) {
     return {v[0], v[1], v[2]};
 }
 
-[[noreturn]] void usage(const std::string& message) { throw Error(ErrorKind::Usage, message); }
+[[noreturn]] void usage(const std::string& message) {
+    throw Error(ErrorKind::Usage, message);
+}
 
 double median(std::vector<double> v) {
     if (v.empty()) return 0;
@@ -42,7 +44,9 @@ double peakRssMb() {
     return double(usage.ru_maxrss) / 1024.0; // kilobytes on Linux
 }
 
-std::string displayName(const std::string& path) { return isStdio(path) ? "<stdin>" : path; }
+std::string displayName(const std::string& path) {
+    return isStdio(path) ? "<stdin>" : path;
+}
 
 Mesh readMesh(const std::string& input, Warnings& warnings) {
     auto bytes = readInput(input);
@@ -51,7 +55,8 @@ Mesh readMesh(const std::string& input, Warnings& warnings) {
         Container container = parseContainer(bytes);
         // Subdivision tables (limn-tables) are not drawn yet: say so rather than pretend.
         if (container.has(FourCC("TBLS")))
-            warnings.add("the subdivision tables (TBLS) are not rendered yet; drawing the control mesh");
+            warnings.add(
+                "the subdivision tables (TBLS) are not rendered yet; drawing the control mesh");
         return loadMesh(container);
     } catch (Error& e) {
         e.setFile(displayName(input));
@@ -64,9 +69,11 @@ void checkValidation(const gpu::ValidationLog& log) {
     auto messages = log.messages();
     const size_t shown = std::min<size_t>(messages.size(), 10);
     for (size_t i = 0; i < shown; ++i)
-        if (log.errors() || messages[i].rfind("warning", 0) == 0) cli::warn("validation " + messages[i]);
+        if (log.errors() || messages[i].rfind("warning", 0) == 0)
+            cli::warn("validation " + messages[i]);
     if (log.errors())
-        throw Error(ErrorKind::BadInput, std::to_string(log.errors()) + " Vulkan validation errors, " +
+        throw Error(ErrorKind::BadInput, std::to_string(log.errors()) +
+                                             " Vulkan validation errors, " +
                                              std::to_string(log.warnings()) +
                                              " warnings (first ones above); no output written");
     cli::info("validation: 0 errors, " + std::to_string(log.warnings()) + " warnings");
@@ -80,55 +87,67 @@ int main(int argc, char** argv) {
         common.output.clear(); // "not given" matters with --bench
         std::string input = "-", shade = "lit", device, meshOut;
         render::RenderSettings settings;
-        bool wire = false, alpha = false, validate = false, syncValidation = false, meshAscii = false;
+        bool wire = false, alpha = false, validate = false, syncValidation = false,
+             meshAscii = false;
         bool viewGiven = false;
         int bench = 0;
-        cli::Parser parser(
-            "limn-render", "[options] [INPUT|-] -o OUTPUT.png",
-            "Renders a .limn container (output of limn-classify, limn-tables, limn-seams) headlessly\n"
-            "on Vulkan and writes a PNG: 8-bit sRGB, the same bytes for the same inputs and options.\n"
-            "A container without subdivision tables is drawn as its control mesh, flat shaded, with\n"
-            "n-gons as triangle fans; faces tagged as holes are not drawn.",
-            common);
+        cli::Parser parser("limn-render", "[options] [INPUT|-] -o OUTPUT.png",
+                           "Renders a .limn container (output of limn-classify, limn-tables, "
+                           "limn-seams) headlessly\n"
+                           "on Vulkan and writes a PNG: 8-bit sRGB, the same bytes for the same "
+                           "inputs and options.\n"
+                           "A container without subdivision tables is drawn as its control mesh, "
+                           "flat shaded, with\n"
+                           "n-gons as triangle fans; faces tagged as holes are not drawn.",
+                           common);
         parser.positional("INPUT", &input, ".limn container (or any mesh file limn-classify reads)")
-            .custom("--size", "WxH",
-                    [&](const std::string& v) {
-                        unsigned w = 0, h = 0;
-                        char x = 0, extra = 0;
-                        if (std::sscanf(v.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
-                            w < 1 || h < 1 || w > 16384 || h > 16384)
-                            usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
-                        settings.width = w;
-                        settings.height = h;
-                    },
-                    "1024x768", "image size in pixels (each 1 to 16384)")
-            .custom("--view", "AZ,EL",
-                    [&](const std::string& v) {
-                        auto n = cli::parseNumberList("--view", v, 2);
-                        if (n[1] < -90 || n[1] > 90) usage("--view: elevation must be -90 to 90");
-                        settings.view.azimuthDeg = n[0];
-                        settings.view.elevationDeg = n[1];
-                        viewGiven = true;
-                    },
-                    "30,20",
-                    "camera direction in degrees: azimuth around +Y from +Z towards +X, elevation\n"
-                    "                            (-90 to 90); the camera frames the bounding box")
-            .custom("--eye", "X,Y,Z", [&](const std::string& v) { settings.view.eye = vec3Option("--eye", v); },
-                    "", "explicit camera position (instead of --view)")
-            .custom("--target", "X,Y,Z",
-                    [&](const std::string& v) { settings.view.target = vec3Option("--target", v); },
-                    "", "point the explicit camera looks at [default: bounding-box centre]")
-            .custom("--up", "X,Y,Z", [&](const std::string& v) { settings.view.up = vec3Option("--up", v); },
-                    "", "up direction of the explicit camera [default: 0,1,0]")
+            .custom(
+                "--size", "WxH",
+                [&](const std::string& v) {
+                    unsigned w = 0, h = 0;
+                    char x = 0, extra = 0;
+                    if (std::sscanf(v.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
+                        w < 1 || h < 1 || w > 16384 || h > 16384)
+                        usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
+                    settings.width = w;
+                    settings.height = h;
+                },
+                "1024x768", "image size in pixels (each 1 to 16384)")
+            .custom(
+                "--view", "AZ,EL",
+                [&](const std::string& v) {
+                    auto n = cli::parseNumberList("--view", v, 2);
+                    if (n[1] < -90 || n[1] > 90) usage("--view: elevation must be -90 to 90");
+                    settings.view.azimuthDeg = n[0];
+                    settings.view.elevationDeg = n[1];
+                    viewGiven = true;
+                },
+                "30,20",
+                "camera direction in degrees: azimuth around +Y from +Z towards +X, elevation\n"
+                "                            (-90 to 90); the camera frames the bounding box")
+            .custom(
+                "--eye", "X,Y,Z",
+                [&](const std::string& v) { settings.view.eye = vec3Option("--eye", v); }, "",
+                "explicit camera position (instead of --view)")
+            .custom(
+                "--target", "X,Y,Z",
+                [&](const std::string& v) { settings.view.target = vec3Option("--target", v); }, "",
+                "point the explicit camera looks at [default: bounding-box centre]")
+            .custom(
+                "--up", "X,Y,Z",
+                [&](const std::string& v) { settings.view.up = vec3Option("--up", v); }, "",
+                "up direction of the explicit camera [default: 0,1,0]")
             .real("--fov", "DEG", &settings.view.fovDeg, 1, 170, "vertical field of view")
-            .custom("--background", "R,G,B",
-                    [&](const std::string& v) {
-                        auto c = cli::parseNumberList("--background", v, 3);
-                        for (double x : c)
-                            if (!(x >= 0 && x <= 1)) usage("--background: each component must be 0 to 1");
-                        settings.background = {c[0], c[1], c[2]};
-                    },
-                    "0.2,0.2,0.2", "background colour, sRGB components 0 to 1 (as stored in the PNG)")
+            .custom(
+                "--background", "R,G,B",
+                [&](const std::string& v) {
+                    auto c = cli::parseNumberList("--background", v, 3);
+                    for (double x : c)
+                        if (!(x >= 0 && x <= 1))
+                            usage("--background: each component must be 0 to 1");
+                    settings.background = {c[0], c[1], c[2]};
+                },
+                "0.2,0.2,0.2", "background colour, sRGB components 0 to 1 (as stored in the PNG)")
             .choice("--shade", &shade, {"lit", "normal", "uv"},
                     "lit: Lambert key light + ambient; normal: face normal * 0.5 + 0.5 as colour;\n"
                     "                            uv: (u, v, 0) as colour, needs UVs")
@@ -136,30 +155,36 @@ int main(int argc, char** argv) {
             .flag("--alpha", &alpha, "write RGBA with a transparent background (default RGB)")
             .text("--device", "NAME", &device,
                   "Vulkan device: case-insensitive substring of its name [default: a discrete or\n"
-                  "                            integrated GPU if present, else the CPU device (lavapipe)]")
+                  "                            integrated GPU if present, else the CPU device "
+                  "(lavapipe)]")
             .flag("--validate", &validate,
                   "enable the Vulkan validation layer; any validation error fails the run")
-            .flag("--sync-validation", &syncValidation, "as --validate, plus synchronization validation")
+            .flag("--sync-validation", &syncValidation,
+                  "as --validate, plus synchronization validation")
             .text("--mesh-out", "FILE.ply", &meshOut,
                   "also write the triangles as drawn (positions, face normals, ptex, uv) as PLY")
-            .flag("--mesh-ascii", &meshAscii, "write --mesh-out as ASCII PLY (default binary little-endian)")
+            .flag("--mesh-ascii", &meshAscii,
+                  "write --mesh-out as ASCII PLY (default binary little-endian)")
             .integer("--bench", "FRAMES", &bench, 0, 100000,
                      "render FRAMES frames after 3 warm-up frames and print one JSON object of\n"
                      "                            medians to standard output; 0 renders once")
-            .notes("Output: -o FILE.png, or -o - for standard output (refused on a terminal). With\n"
-                   "--bench, standard output carries the JSON and the image is written only with\n"
-                   "-o FILE.\n"
-                   "--mesh-out PLY: one vertex per drawn face corner (float x y z nx ny nz, int ptex,\n"
-                   "float u v) and the fan triangles as vertex_indices. ptex is the face's Ptex index\n"
-                   "(OpenSubdiv numbering: a quad has one Ptex face, an n-gon n; a fan triangle\n"
-                   "carries its face's first). u, v are 0 without UVs.\n"
-                   "--bench JSON: frames, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
-                   "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
-                   "record, submit, wait), triangles, vertices_evaluated, buffer_bytes, peak_rss_mb,\n"
-                   "device.\n"
-                   "Examples:\n"
-                   "  limn-classify spot.obj | limn-render --view 45,30 --wire -o spot.png\n"
-                   "  limn-render frog.limn --bench 50 --size 1920x1080\n");
+            .notes(
+                "Output: -o FILE.png, or -o - for standard output (refused on a terminal). With\n"
+                "--bench, standard output carries the JSON and the image is written only with\n"
+                "-o FILE.\n"
+                "--mesh-out PLY: one vertex per drawn face corner (float x y z nx ny nz, int "
+                "ptex,\n"
+                "float u v) and the fan triangles as vertex_indices. ptex is the face's Ptex "
+                "index\n"
+                "(OpenSubdiv numbering: a quad has one Ptex face, an n-gon n; a fan triangle\n"
+                "carries its face's first). u, v are 0 without UVs.\n"
+                "--bench JSON: frames, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
+                "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
+                "record, submit, wait), triangles, vertices_evaluated, buffer_bytes, peak_rss_mb,\n"
+                "device.\n"
+                "Examples:\n"
+                "  limn-classify spot.obj | limn-render --view 45,30 --wire -o spot.png\n"
+                "  limn-render frog.limn --bench 50 --size 1920x1080\n");
         parser.exitCodes("Exit codes:\n"
                          "  0  success\n"
                          "  1  bad input, failed processing or Vulkan validation errors\n"
@@ -184,7 +209,8 @@ int main(int argc, char** argv) {
         // Open outputs first: a refused terminal or an unwritable directory fails before any work.
         std::optional<OutputFile> png, ply;
         if (writeImage) png.emplace(common.output, OutputFile::Kind::Binary);
-        if (!meshOut.empty()) ply.emplace(meshOut, meshAscii ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
+        if (!meshOut.empty())
+            ply.emplace(meshOut, meshAscii ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
 
         Warnings warnings;
         Mesh mesh = readMesh(input, warnings);
@@ -203,9 +229,9 @@ int main(int argc, char** argv) {
             for (const auto& line : ctx.selectionReport()) cli::info(line);
             render::Renderer renderer(ctx, mesh, settings);
             const auto& cam = renderer.camera();
-            cli::info("camera eye " + std::to_string(cam.eye.x) + "," + std::to_string(cam.eye.y) + "," +
-                      std::to_string(cam.eye.z) + " target " + std::to_string(cam.target.x) + "," +
-                      std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
+            cli::info("camera eye " + std::to_string(cam.eye.x) + "," + std::to_string(cam.eye.y) +
+                      "," + std::to_string(cam.eye.z) + " target " + std::to_string(cam.target.x) +
+                      "," + std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
 
             if (bench) {
                 using Clock = std::chrono::steady_clock;
@@ -216,7 +242,8 @@ int main(int argc, char** argv) {
                 for (int i = 0; i < bench; ++i) {
                     auto t0 = Clock::now();
                     renderer.renderFrame();
-                    cpu.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+                    cpu.push_back(
+                        std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
                     auto t = renderer.frameTimes();
                     compute.push_back(t.computeMs);
                     draw.push_back(t.drawMs);
@@ -229,7 +256,9 @@ int main(int argc, char** argv) {
                 JsonWriter j;
                 j.beginObject().field("frames", bench);
                 j.key("gpu_ms").beginObject();
-                j.field("compute", median(compute)).field("draw", median(draw)).field("total", median(total));
+                j.field("compute", median(compute))
+                    .field("draw", median(draw))
+                    .field("total", median(total));
                 j.endObject();
                 j.key("passes").beginObject();
                 for (const auto& name : passOrder) j.field(name, median(passes[name]));
@@ -264,7 +293,8 @@ int main(int argc, char** argv) {
             ply->write(plyBytes);
             ply->commit();
         }
-        if (!common.depfile.empty() && writeImage) writeDepfile(common.depfile, common.output, {input});
+        if (!common.depfile.empty() && writeImage)
+            writeDepfile(common.depfile, common.output, {input});
         return 0;
     });
 }
