@@ -9,6 +9,8 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <sys/stat.h>
+#include <thread>
 
 using namespace limn;
 using namespace limn::test;
@@ -306,6 +308,23 @@ TEST(RenderCli, FailuresLeaveNoOutput) {
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.err.find("missing.limn"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "m.png"));
+}
+
+// Devices and pipes are written in place: an atomic rename would replace them with a plain file
+// (as root, `-o /dev/null` replaced /dev/null itself). Tested on a FIFO in a scratch directory,
+// so that a regression cannot damage the machine's /dev/null.
+TEST(RenderCli, WritesIntoDevicesAndPipesInPlace) {
+    ScratchDir dir;
+    auto limn = classify(dir, modelPath("quad/osd_catmark_cube.obj").string(), "cube");
+    auto fifo = dir / "png.fifo";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    std::string received;
+    std::thread reader([&] { received = readFile(fifo); });
+    auto r = render({limn, "--size", "16x16", "-o", fifo.string()});
+    reader.join();
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+    EXPECT_EQ(received.substr(0, 4), "\x89PNG");
 }
 
 TEST(RenderCli, UsageErrorsAreExitCode2) {
