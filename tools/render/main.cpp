@@ -204,6 +204,8 @@ int main(int argc, char** argv) {
         if (bench && isStdio(common.output) && !common.output.empty())
             usage("--bench prints JSON on standard output; write the image with -o FILE");
         const bool writeImage = !bench || !common.output.empty();
+        if (isStdio(meshOut) && !meshOut.empty() && (bench || (writeImage && isStdio(common.output))))
+            usage("--mesh-out - and the image (or --bench JSON) cannot share standard output");
         if (common.output.empty() && !bench) common.output = "-";
 
         // Open outputs first: a refused terminal or an unwritable directory fails before any work.
