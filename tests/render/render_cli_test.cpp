@@ -347,7 +347,8 @@ TEST(RenderCli, UsageErrorsAreExitCode2) {
                                          {"--fov", "200"},
                                          {"--background", "2,0,0"},
                                          {"--shade", "levels"},
-                                         {"--bench", "5", "-o", "-"}}) {
+                                         {"--bench", "5", "-o", "-"},
+                                         {"--mesh-out", "-", "-o", "-"}}) {
         std::vector<std::string> args = {limn, "-o", out};
         args.insert(args.end(), bad.begin(), bad.end());
         auto r = render(args);
