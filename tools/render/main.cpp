@@ -8,13 +8,12 @@
 #include "gpu/context.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
+#include "render/bench.h"
 #include "render/renderer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <iostream>
-#include <map>
 #include <optional>
 #include <sys/resource.h>
 
@@ -29,13 +28,6 @@ glm::dvec3 vec3Option(const std::string& option, const std::string& value) {
 
 [[noreturn]] void usage(const std::string& message) {
     throw Error(ErrorKind::Usage, message);
-}
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 double peakRssMb() {
@@ -204,7 +196,8 @@ int main(int argc, char** argv) {
         if (bench && isStdio(common.output) && !common.output.empty())
             usage("--bench prints JSON on standard output; write the image with -o FILE");
         const bool writeImage = !bench || !common.output.empty();
-        if (isStdio(meshOut) && !meshOut.empty() && (bench || (writeImage && isStdio(common.output))))
+        if (isStdio(meshOut) && !meshOut.empty() &&
+            (bench || (writeImage && isStdio(common.output))))
             usage("--mesh-out - and the image (or --bench JSON) cannot share standard output");
         if (common.output.empty() && !bench) common.output = "-";
 
@@ -236,36 +229,16 @@ int main(int argc, char** argv) {
                       "," + std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
 
             if (bench) {
-                using Clock = std::chrono::steady_clock;
-                for (int i = 0; i < 3; ++i) renderer.renderFrame(); // shader JIT, caches
-                std::vector<double> cpu, compute, draw, total;
-                std::map<std::string, std::vector<double>> passes;
-                std::vector<std::string> passOrder;
-                for (int i = 0; i < bench; ++i) {
-                    auto t0 = Clock::now();
-                    renderer.renderFrame();
-                    cpu.push_back(
-                        std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-                    auto t = renderer.frameTimes();
-                    compute.push_back(t.computeMs);
-                    draw.push_back(t.drawMs);
-                    total.push_back(t.totalMs);
-                    for (const auto& p : t.passes) {
-                        if (!passes.count(p.name)) passOrder.push_back(p.name);
-                        passes[p.name].push_back(p.ms);
-                    }
-                }
+                render::BenchResult b = render::runBenchmark(renderer, bench);
                 JsonWriter j;
-                j.beginObject().field("frames", bench);
+                j.beginObject().field("frames", b.frames);
                 j.key("gpu_ms").beginObject();
-                j.field("compute", median(compute))
-                    .field("draw", median(draw))
-                    .field("total", median(total));
+                j.field("compute", b.computeMs).field("draw", b.drawMs).field("total", b.totalMs);
                 j.endObject();
                 j.key("passes").beginObject();
-                for (const auto& name : passOrder) j.field(name, median(passes[name]));
+                for (const auto& [name, ms] : b.passes) j.field(name, ms);
                 j.endObject();
-                j.field("cpu_ms", median(cpu))
+                j.field("cpu_ms", b.cpuMs)
                     .field("triangles", renderer.triangleCount())
                     .field("vertices_evaluated", renderer.verticesEvaluated())
                     .field("buffer_bytes", ctx.allocatedBytes())
