@@ -91,6 +91,30 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
         }
         return;
     }
+    // An existing target that is not a regular file (/dev/null, a FIFO, a terminal device) is
+    // written in place: renaming a temporary file over it would replace the device or pipe with
+    // a plain file (as root, /dev/null itself).
+    struct stat st {};
+    if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+        if (S_ISDIR(st.st_mode)) {
+            Error e(ErrorKind::BadInput, "is a directory, not a file");
+            e.setFile(path_);
+            throw e;
+        }
+        fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+        if (fd_ < 0) {
+            Error e(ErrorKind::BadInput, std::string("cannot open output: ") + std::strerror(errno));
+            e.setFile(path_);
+            throw e;
+        }
+        if (kind == Kind::Binary && ::isatty(fd_) == 1) {
+            ::close(fd_);
+            fd_ = -1;
+            throw Error(ErrorKind::Usage,
+                        "refusing to write binary output to a terminal; use -o FILE or a pipe");
+        }
+        return;
+    }
     tempPath_ = directoryOf(path_) + ".limn-tmp-XXXXXX";
     std::vector<char> name(tempPath_.begin(), tempPath_.end());
     name.push_back('\0');
@@ -130,6 +154,10 @@ void OutputFile::commit() {
         throwIo("cannot write", path_);
     }
     fd_ = -1;
+    if (tempPath_.empty()) { // written in place (a device or pipe)
+        committed_ = true;
+        return;
+    }
     if (::rename(tempPath_.c_str(), path_.c_str()) != 0) throwIo("cannot rename into place", path_);
     committed_ = true;
 }

@@ -28,7 +28,8 @@ bool stderrIsTerminal();
 // Writes to `path` atomically: bytes go to a temporary file in the same directory, which commit()
 // renames over `path`. If the object is destroyed without commit() (an error was thrown), the
 // temporary file is removed and `path` is left untouched. For "-" the bytes go to stdout on commit;
-// binary output to a terminal is refused up front.
+// binary output to a terminal is refused up front. An existing path that is not a regular file
+// (/dev/null, a FIFO) is written in place, never replaced.
 class OutputFile {
 public:
     enum class Kind { Binary, Text };

@@ -1,0 +1,49 @@
+#include "render/bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+
+namespace limn::render {
+
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+} // namespace
+
+BenchResult runBenchmark(Renderer& renderer, int frames, int warmup) {
+    using Clock = std::chrono::steady_clock;
+    for (int i = 0; i < warmup; ++i) renderer.renderFrame();
+    std::vector<double> cpu, compute, draw, total;
+    std::map<std::string, std::vector<double>> passes;
+    std::vector<std::string> order;
+    for (int i = 0; i < frames; ++i) {
+        auto start = Clock::now();
+        renderer.renderFrame();
+        cpu.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+        FrameTimes t = renderer.frameTimes();
+        compute.push_back(t.computeMs);
+        draw.push_back(t.drawMs);
+        total.push_back(t.totalMs);
+        for (const auto& p : t.passes) {
+            if (!passes.count(p.name)) order.push_back(p.name);
+            passes[p.name].push_back(p.ms);
+        }
+    }
+    BenchResult r;
+    r.frames = frames;
+    r.computeMs = median(compute);
+    r.drawMs = median(draw);
+    r.totalMs = median(total);
+    r.cpuMs = median(cpu);
+    for (const auto& name : order) r.passes.emplace_back(name, median(passes[name]));
+    return r;
+}
+
+} // namespace limn::render

@@ -1,0 +1,72 @@
+#include "render/ply.h"
+
+#include <charconv>
+#include <cstring>
+
+namespace limn::render {
+
+namespace {
+
+void appendFloat(std::string& out, float f) {
+    char buf[32];
+    auto [p, ec] = std::to_chars(buf, buf + sizeof buf, f);
+    (void)ec;
+    out.append(buf, p);
+}
+
+template <class T>
+void appendRaw(std::vector<uint8_t>& out, const T& value) {
+    const auto* p = reinterpret_cast<const uint8_t*>(&value);
+    out.insert(out.end(), p, p + sizeof(T));
+}
+
+} // namespace
+
+std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
+    const size_t triangles = mesh.triangles.size() / 3;
+    std::string header = "ply\n";
+    header += ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n";
+    header += "comment limn-render: the triangles as drawn\n";
+    header += "element vertex " + std::to_string(mesh.vertices.size()) + "\n";
+    for (const char* p : {"x", "y", "z", "nx", "ny", "nz"})
+        header += std::string("property float ") + p + "\n";
+    header += "property int ptex\nproperty float u\nproperty float v\n";
+    header += "element face " + std::to_string(triangles) + "\n";
+    header += "property list uchar int vertex_indices\nend_header\n";
+
+    std::vector<uint8_t> out(header.begin(), header.end());
+    if (ascii) {
+        std::string body;
+        for (const auto& v : mesh.vertices) {
+            for (float f : {v.x, v.y, v.z, v.nx, v.ny, v.nz}) {
+                appendFloat(body, f);
+                body += ' ';
+            }
+            body += std::to_string(v.ptex) + ' ';
+            appendFloat(body, v.u);
+            body += ' ';
+            appendFloat(body, v.v);
+            body += '\n';
+        }
+        for (size_t t = 0; t < triangles; ++t)
+            body += "3 " + std::to_string(mesh.triangles[3 * t]) + ' ' +
+                    std::to_string(mesh.triangles[3 * t + 1]) + ' ' +
+                    std::to_string(mesh.triangles[3 * t + 2]) + '\n';
+        out.insert(out.end(), body.begin(), body.end());
+        return out;
+    }
+    out.reserve(out.size() + mesh.vertices.size() * 36 + triangles * 13);
+    for (const auto& v : mesh.vertices) {
+        for (float f : {v.x, v.y, v.z, v.nx, v.ny, v.nz}) appendRaw(out, f);
+        appendRaw(out, v.ptex);
+        appendRaw(out, v.u);
+        appendRaw(out, v.v);
+    }
+    for (size_t t = 0; t < triangles; ++t) {
+        out.push_back(3);
+        for (int k = 0; k < 3; ++k) appendRaw(out, static_cast<int32_t>(mesh.triangles[3 * t + k]));
+    }
+    return out;
+}
+
+} // namespace limn::render

@@ -1,0 +1,27 @@
+// The triangles limn-render drew, as PLY (--mesh-out): one vertex per drawn corner with
+// `float x y z nx ny nz`, `int ptex`, `float u v`, and faces as `list uchar int vertex_indices`.
+// Binary little-endian by default, ASCII on request; floats in ASCII are the shortest text that
+// reads back to the same float, so both forms carry the same values.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace limn::render {
+
+struct DrawnVertex {
+    float x = 0, y = 0, z = 0;
+    float nx = 0, ny = 0, nz = 0;
+    int32_t ptex = 0;
+    float u = 0, v = 0;
+};
+
+struct DrawnMesh {
+    std::vector<DrawnVertex> vertices;
+    std::vector<uint32_t> triangles; // 3 per triangle
+};
+
+std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii);
+
+} // namespace limn::render

@@ -1,0 +1,27 @@
+// 8-bit sRGB images and their PNG encoding through OpenImageIO. The bytes depend only on the
+// pixels: OpenImageIO writes IHDR, oFFs, IDAT and IEND, with no time stamp and no software or
+// version text (tests/render pins the chunk list), and the zlib level is fixed.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace limn::render {
+
+struct Image {
+    uint32_t width = 0, height = 0;
+    uint32_t channels = 4;       // 3 (RGB) or 4 (RGBA)
+    std::vector<uint8_t> pixels; // rows top to bottom, tightly packed
+
+    const uint8_t* at(uint32_t x, uint32_t y) const {
+        return pixels.data() + (size_t(y) * width + x) * channels;
+    }
+};
+
+std::vector<uint8_t> encodePng(const Image& image);
+// Throws Error(BadInput) when the bytes are not a PNG OpenImageIO can read. Any bit depth is
+// converted to 8 bits; the channel count is kept.
+Image decodePng(std::span<const uint8_t> bytes);
+
+} // namespace limn::render

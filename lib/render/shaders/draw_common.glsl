@@ -1,0 +1,26 @@
+// Push constants shared by the draw shaders; mirrors limn::render::DrawPush (renderer.cpp).
+#ifndef LIMN_DRAW_COMMON_GLSL
+#define LIMN_DRAW_COMMON_GLSL
+
+// Shading modes; mirror limn::render::Shade.
+#define SHADE_LIT 0u
+#define SHADE_NORMAL 1u
+#define SHADE_UV 2u
+
+layout(push_constant) uniform DrawPush {
+    mat4 viewProj;   // world -> clip, Y up, depth 0..1
+    vec4 eye;        // xyz: camera position (world)
+    vec4 light;      // xyz: unit direction towards the light (world)
+    vec4 wireColor;  // rgb linear
+    uint shade;      // SHADE_*
+    float wirePull;  // wire vertices move this fraction of the way to the eye (no z-fighting)
+    uint pad0, pad1;
+} pc;
+
+// Stored colours (normal, uv) are written so that the PNG holds the value itself: the sRGB
+// target encodes on write, so decode first.
+vec3 srgbToLinear(vec3 c) {
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+
+#endif

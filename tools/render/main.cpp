@@ -1,0 +1,275 @@
+// limn-render: renders a .limn container (or any mesh limn reads) headlessly on Vulkan and
+// writes a deterministic PNG. Without subdivision tables the control mesh is drawn, flat shaded.
+#include "base/cli.h"
+#include "base/error.h"
+#include "base/io.h"
+#include "base/json.h"
+#include "container/container.h"
+#include "gpu/context.h"
+#include "mesh/import.h"
+#include "mesh/mesh_chunks.h"
+#include "render/bench.h"
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <sys/resource.h>
+
+using namespace limn;
+
+namespace {
+
+glm::dvec3 vec3Option(const std::string& option, const std::string& value) {
+    auto v = cli::parseNumberList(option, value, 3);
+    return {v[0], v[1], v[2]};
+}
+
+[[noreturn]] void usage(const std::string& message) {
+    throw Error(ErrorKind::Usage, message);
+}
+
+double peakRssMb() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0; // kilobytes on Linux
+}
+
+std::string displayName(const std::string& path) {
+    return isStdio(path) ? "<stdin>" : path;
+}
+
+Mesh readMesh(const std::string& input, Warnings& warnings) {
+    auto bytes = readInput(input);
+    try {
+        if (!looksLikeContainer(bytes)) return importMesh(input, bytes, warnings);
+        Container container = parseContainer(bytes);
+        // Subdivision tables (limn-tables) are not drawn yet: say so rather than pretend.
+        if (container.has(FourCC("TBLS")))
+            warnings.add(
+                "the subdivision tables (TBLS) are not rendered yet; drawing the control mesh");
+        return loadMesh(container);
+    } catch (Error& e) {
+        e.setFile(displayName(input));
+        throw;
+    }
+}
+
+// Prints the first validation messages and fails when the layer reported errors.
+void checkValidation(const gpu::ValidationLog& log) {
+    auto messages = log.messages();
+    const size_t shown = std::min<size_t>(messages.size(), 10);
+    for (size_t i = 0; i < shown; ++i)
+        if (log.errors() || messages[i].rfind("warning", 0) == 0)
+            cli::warn("validation " + messages[i]);
+    if (log.errors())
+        throw Error(ErrorKind::BadInput, std::to_string(log.errors()) +
+                                             " Vulkan validation errors, " +
+                                             std::to_string(log.warnings()) +
+                                             " warnings (first ones above); no output written");
+    cli::info("validation: 0 errors, " + std::to_string(log.warnings()) + " warnings");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    return cli::run("limn-render", argc, argv, [](int ac, char** av) {
+        cli::Common common;
+        common.output.clear(); // "not given" matters with --bench
+        std::string input = "-", shade = "lit", device, meshOut;
+        render::RenderSettings settings;
+        bool wire = false, alpha = false, validate = false, syncValidation = false,
+             meshAscii = false;
+        bool viewGiven = false;
+        int bench = 0;
+        cli::Parser parser("limn-render", "[options] [INPUT|-] -o OUTPUT.png",
+                           "Renders a .limn container (output of limn-classify, limn-tables, "
+                           "limn-seams) headlessly\n"
+                           "on Vulkan and writes a PNG: 8-bit sRGB, the same bytes for the same "
+                           "inputs and options.\n"
+                           "A container without subdivision tables is drawn as its control mesh, "
+                           "flat shaded, with\n"
+                           "n-gons as triangle fans; faces tagged as holes are not drawn.",
+                           common);
+        parser.positional("INPUT", &input, ".limn container (or any mesh file limn-classify reads)")
+            .custom(
+                "--size", "WxH",
+                [&](const std::string& v) {
+                    unsigned w = 0, h = 0;
+                    char x = 0, extra = 0;
+                    if (std::sscanf(v.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
+                        w < 1 || h < 1 || w > 16384 || h > 16384)
+                        usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
+                    settings.width = w;
+                    settings.height = h;
+                },
+                "1024x768", "image size in pixels (each 1 to 16384)")
+            .custom(
+                "--view", "AZ,EL",
+                [&](const std::string& v) {
+                    auto n = cli::parseNumberList("--view", v, 2);
+                    if (n[1] < -90 || n[1] > 90) usage("--view: elevation must be -90 to 90");
+                    settings.view.azimuthDeg = n[0];
+                    settings.view.elevationDeg = n[1];
+                    viewGiven = true;
+                },
+                "30,20",
+                "camera direction in degrees: azimuth around +Y from +Z towards +X, elevation\n"
+                "                            (-90 to 90); the camera frames the bounding box")
+            .custom(
+                "--eye", "X,Y,Z",
+                [&](const std::string& v) { settings.view.eye = vec3Option("--eye", v); }, "",
+                "explicit camera position (instead of --view)")
+            .custom(
+                "--target", "X,Y,Z",
+                [&](const std::string& v) { settings.view.target = vec3Option("--target", v); }, "",
+                "point the explicit camera looks at [default: bounding-box centre]")
+            .custom(
+                "--up", "X,Y,Z",
+                [&](const std::string& v) { settings.view.up = vec3Option("--up", v); }, "",
+                "up direction of the explicit camera [default: 0,1,0]")
+            .real("--fov", "DEG", &settings.view.fovDeg, 1, 170, "vertical field of view")
+            .custom(
+                "--background", "R,G,B",
+                [&](const std::string& v) {
+                    auto c = cli::parseNumberList("--background", v, 3);
+                    for (double x : c)
+                        if (!(x >= 0 && x <= 1))
+                            usage("--background: each component must be 0 to 1");
+                    settings.background = {c[0], c[1], c[2]};
+                },
+                "0.2,0.2,0.2", "background colour, sRGB components 0 to 1 (as stored in the PNG)")
+            .choice("--shade", &shade, {"lit", "normal", "uv"},
+                    "lit: Lambert key light + ambient; normal: face normal * 0.5 + 0.5 as colour;\n"
+                    "                            uv: (u, v, 0) as colour, needs UVs")
+            .flag("--wire", &wire, "overlay the control mesh edges")
+            .flag("--alpha", &alpha, "write RGBA with a transparent background (default RGB)")
+            .text("--device", "NAME", &device,
+                  "Vulkan device: case-insensitive substring of its name [default: a discrete or\n"
+                  "                            integrated GPU if present, else the CPU device "
+                  "(lavapipe)]")
+            .flag("--validate", &validate,
+                  "enable the Vulkan validation layer; any validation error fails the run")
+            .flag("--sync-validation", &syncValidation,
+                  "as --validate, plus synchronization validation")
+            .text("--mesh-out", "FILE.ply", &meshOut,
+                  "also write the triangles as drawn (positions, face normals, ptex, uv) as PLY")
+            .flag("--mesh-ascii", &meshAscii,
+                  "write --mesh-out as ASCII PLY (default binary little-endian)")
+            .integer("--bench", "FRAMES", &bench, 0, 100000,
+                     "render FRAMES frames after 3 warm-up frames and print one JSON object of\n"
+                     "                            medians to standard output; 0 renders once")
+            .notes(
+                "Output: -o FILE.png, or -o - for standard output (refused on a terminal). With\n"
+                "--bench, standard output carries the JSON and the image is written only with\n"
+                "-o FILE.\n"
+                "--mesh-out PLY: one vertex per drawn face corner (float x y z nx ny nz, int "
+                "ptex,\n"
+                "float u v) and the fan triangles as vertex_indices. ptex is the face's Ptex "
+                "index\n"
+                "(OpenSubdiv numbering: a quad has one Ptex face, an n-gon n; a fan triangle\n"
+                "carries its face's first). u, v are 0 without UVs.\n"
+                "--bench JSON: frames, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
+                "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
+                "record, submit, wait), triangles, vertices_evaluated, buffer_bytes, peak_rss_mb,\n"
+                "device.\n"
+                "Examples:\n"
+                "  limn-classify spot.obj | limn-render --view 45,30 --wire -o spot.png\n"
+                "  limn-render frog.limn --bench 50 --size 1920x1080\n");
+        parser.exitCodes("Exit codes:\n"
+                         "  0  success\n"
+                         "  1  bad input, failed processing or Vulkan validation errors\n"
+                         "  2  usage error (including binary output to a terminal)\n"
+                         "  3  missing capability: no Vulkan loader or device, no device matching\n"
+                         "     --device, validation layer not installed\n");
+        if (!parser.parse(ac, av)) return 0;
+        cli::setVerbosity(common.quiet, common.verbose);
+
+        if (settings.view.eye && viewGiven) usage("--view and --eye exclude each other");
+        if ((settings.view.target || settings.view.up) && !settings.view.eye)
+            usage("--target and --up describe an explicit camera; give --eye too");
+        if (shade == "normal") settings.shade = render::Shade::Normal;
+        if (shade == "uv") settings.shade = render::Shade::Uv;
+        settings.wire = wire;
+        settings.alpha = alpha;
+        if (bench && isStdio(common.output) && !common.output.empty())
+            usage("--bench prints JSON on standard output; write the image with -o FILE");
+        const bool writeImage = !bench || !common.output.empty();
+        if (isStdio(meshOut) && !meshOut.empty() &&
+            (bench || (writeImage && isStdio(common.output))))
+            usage("--mesh-out - and the image (or --bench JSON) cannot share standard output");
+        if (common.output.empty() && !bench) common.output = "-";
+
+        // Open outputs first: a refused terminal or an unwritable directory fails before any work.
+        std::optional<OutputFile> png, ply;
+        if (writeImage) png.emplace(common.output, OutputFile::Kind::Binary);
+        if (!meshOut.empty())
+            ply.emplace(meshOut, meshAscii ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
+
+        Warnings warnings;
+        Mesh mesh = readMesh(input, warnings);
+        cli::printWarnings(warnings, displayName(input));
+
+        gpu::ContextOptions options;
+        options.device = device;
+        options.validation = syncValidation ? gpu::Validation::Synchronization
+                             : validate     ? gpu::Validation::On
+                                            : gpu::Validation::Off;
+        std::shared_ptr<gpu::ValidationLog> validation;
+        std::vector<uint8_t> pngBytes, plyBytes;
+        {
+            gpu::Context ctx(options);
+            validation = ctx.sharedValidationLog();
+            for (const auto& line : ctx.selectionReport()) cli::info(line);
+            render::Renderer renderer(ctx, mesh, settings);
+            const auto& cam = renderer.camera();
+            cli::info("camera eye " + std::to_string(cam.eye.x) + "," + std::to_string(cam.eye.y) +
+                      "," + std::to_string(cam.eye.z) + " target " + std::to_string(cam.target.x) +
+                      "," + std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
+
+            if (bench) {
+                render::BenchResult b = render::runBenchmark(renderer, bench);
+                JsonWriter j;
+                j.beginObject().field("frames", b.frames);
+                j.key("gpu_ms").beginObject();
+                j.field("compute", b.computeMs).field("draw", b.drawMs).field("total", b.totalMs);
+                j.endObject();
+                j.key("passes").beginObject();
+                for (const auto& [name, ms] : b.passes) j.field(name, ms);
+                j.endObject();
+                j.field("cpu_ms", b.cpuMs)
+                    .field("triangles", renderer.triangleCount())
+                    .field("vertices_evaluated", renderer.verticesEvaluated())
+                    .field("buffer_bytes", ctx.allocatedBytes())
+                    .field("peak_rss_mb", peakRssMb())
+                    .field("device", ctx.deviceName());
+                j.endObject();
+                std::cout << j.str() << "\n";
+                std::cout.flush();
+            } else {
+                renderer.renderFrame();
+            }
+            for (const auto& p : renderer.frameTimes().passes) {
+                char ms[32];
+                std::snprintf(ms, sizeof ms, "%.3f", p.ms);
+                cli::info("GPU " + p.name + ": " + ms + " ms");
+            }
+            if (writeImage) pngBytes = render::encodePng(renderer.image());
+            if (ply) plyBytes = render::encodePly(renderer.drawnMesh(), meshAscii);
+        }
+        if (validation) checkValidation(*validation);
+
+        if (png) {
+            png->write(pngBytes);
+            png->commit();
+        }
+        if (ply) {
+            ply->write(plyBytes);
+            ply->commit();
+        }
+        if (!common.depfile.empty() && writeImage)
+            writeDepfile(common.depfile, common.output, {input});
+        return 0;
+    });
+}
