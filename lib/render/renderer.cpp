@@ -1,6 +1,8 @@
 #include "render/renderer.h"
 
 #include "base/error.h"
+#include "render/control_mesh_pass.h"
+#include "render/subdivision_pass.h"
 #include "render_shaders.h"
 
 #include <glm/geometric.hpp>
@@ -12,18 +14,6 @@
 namespace limn::render {
 
 namespace {
-
-// Mirrors DrawPush in draw_common.glsl (std430 push-constant layout).
-struct DrawPush {
-    float viewProj[16];
-    float eye[4];
-    float light[4];
-    float wireColor[4];
-    uint32_t shade;
-    float wirePull;
-    uint32_t pad0 = 0, pad1 = 0;
-};
-static_assert(sizeof(DrawPush) == 128);
 
 struct VertexPush {
     uint32_t firstVertex;
@@ -37,89 +27,76 @@ constexpr float kWirePull = 2e-3f; // fraction of the distance to the eye
 
 } // namespace
 
+// What every frame shares: the per-frame upload of the control points, the copy into level 0 of
+// the pass's vertex buffer, the render target and the command buffer.
 struct Renderer::Gpu {
-    Gpu(gpu::Context& ctx, const ControlMeshDraw& d, uint32_t width, uint32_t height)
-        : staging(ctx,
-                  {"control point staging", bytes(d.controlPoints), 0, gpu::MemoryKind::Upload}),
-          controlPoints(ctx, {"control points", bytes(d.controlPoints)}),
-          vertices(ctx, {"vertices", bytes(d.controlPoints)}),
-          faceOffsets(ctx, {"face offsets", bytes(d.faceOffsets)}),
-          faceVertices(ctx, {"face vertices", bytes(d.faceVertices)}),
-          faceNormals(ctx, {"face normals", (d.faceOffsets.size() - 1) * 16}),
-          corners(ctx, {"corners", bytes(d.corners)}), uvs(ctx, {"uvs", bytes(d.uvs)}),
-          triangles(ctx, {"triangle indices", bytes(d.triangles), gpu::kIndex}),
-          edges(ctx, {"edge indices", bytes(d.edges), gpu::kIndex}),
+    Gpu(gpu::Context& ctx, uint64_t controlBytes, const gpu::Buffer& vertices, uint32_t width,
+        uint32_t height)
+        : staging(ctx, {"control point staging", controlBytes, 0, gpu::MemoryKind::Upload}),
+          controlPoints(ctx, {"control points", controlBytes}),
           copyPoints(ctx, {"copy control points", copy_points_comp_spv, 2, sizeof(VertexPush)}),
-          faceNormalsPass(ctx, {"face normals", face_normals_comp_spv, 4, sizeof(VertexPush)}),
-          meshPipeline(ctx, {"mesh", mesh_vert_spv, mesh_frag_spv, 4, sizeof(DrawPush)}),
-          wirePipeline(ctx, {"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
-                             gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false}),
           target(ctx, width, height), cmd(ctx) {
-        copyBindings = copyPoints.bind({controlPoints, vertices});
-        normalBindings = faceNormalsPass.bind({vertices, faceOffsets, faceVertices, faceNormals});
-        meshBindings = meshPipeline.bind({vertices, faceNormals, corners, uvs});
-        wireBindings = wirePipeline.bind({vertices});
-        // Topology is uploaded once; positions every frame.
-        gpu::uploadArrayNow<uint32_t>(ctx, faceOffsets, d.faceOffsets);
-        gpu::uploadArrayNow<uint32_t>(ctx, faceVertices, d.faceVertices);
-        gpu::uploadArrayNow<GpuCorner>(ctx, corners, d.corners);
-        gpu::uploadArrayNow<glm::vec2>(ctx, uvs, d.uvs);
-        gpu::uploadArrayNow<uint32_t>(ctx, triangles, d.triangles);
-        gpu::uploadArrayNow<uint32_t>(ctx, edges, d.edges);
+        copyBindings = copyPoints.bind({controlPoints, {vertices, 0, controlBytes}});
     }
-    template <class T>
-    static uint64_t bytes(const std::vector<T>& v) {
-        return v.size() * sizeof(T);
-    }
-
-    gpu::Buffer staging, controlPoints, vertices, faceOffsets, faceVertices, faceNormals, corners,
-        uvs, triangles, edges;
-    gpu::ComputePipeline copyPoints, faceNormalsPass;
-    gpu::GraphicsPipeline meshPipeline, wirePipeline;
-    gpu::BindGroup copyBindings, normalBindings, meshBindings, wireBindings;
+    gpu::Buffer staging, controlPoints;
+    gpu::ComputePipeline copyPoints;
+    gpu::BindGroup copyBindings;
     gpu::RenderTarget target;
     gpu::CommandBuffer cmd;
 };
 
-Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const RenderSettings& settings)
-    : ctx_(ctx), settings_(settings), draw_(prepareControlMesh(mesh)) {
-    if (settings.shade == Shade::Uv && !draw_.hasUVs)
+Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
+                   const RenderSettings& settings)
+    : ctx_(ctx), settings_(settings) {
+    if (settings.shade == Shade::Uv && !mesh.hasUVs())
         throw Error(ErrorKind::BadInput,
                     "--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade "
                     "lit or normal");
-    camera_ = frameCamera(settings.view, draw_.bounds, double(settings.width) / settings.height);
-    gpu_ = std::make_unique<Gpu>(ctx, draw_, settings.width, settings.height);
+    if (settings.shade == Shade::Levels && !tables)
+        throw Error(ErrorKind::BadInput,
+                    "--shade levels colours subdivision levels, and the container has no tables "
+                    "(TBLS); run limn-tables first");
+    Bounds bounds;
+    if (tables) {
+        SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap);
+        bounds = draw.bounds;
+        pass_ = std::make_unique<SubdivisionPass>(
+            ctx, std::move(draw),
+            settings.evalInCompute ? SubdivisionPass::Eval::Compute : SubdivisionPass::Eval::Vertex,
+            settings.evaluateVertices || settings.wire, settings.shade == Shade::Levels);
+    } else {
+        ControlMeshDraw draw = prepareControlMesh(mesh);
+        bounds = draw.bounds;
+        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw));
+    }
+    controlPoints_.reserve(mesh.vertexCount());
+    for (const auto& p : mesh.positions) controlPoints_.emplace_back(glm::vec3(p), 1.0f);
+    camera_ = frameCamera(settings.view, bounds, double(settings.width) / settings.height);
+    gpu_ = std::make_unique<Gpu>(ctx, controlPoints_.size() * sizeof(glm::vec4), pass_->vertexBuffer(),
+                                 settings.width, settings.height);
 }
 
 Renderer::~Renderer() = default;
 
+uint64_t Renderer::bufferBytes() const {
+    return pass_->bufferBytes() + gpu_->staging.size() + gpu_->controlPoints.size();
+}
+
 void Renderer::recordUpload() {
     auto& g = *gpu_;
-    g.cmd.beginTimed("upload");
+    timed_.begin(g.cmd, "upload", true);
     g.cmd.copy(g.staging, g.controlPoints);
     g.cmd.endTimed();
-    timedIsCompute_.push_back(true);
     g.cmd.barrier(gpu::Access::TransferWrite, gpu::Access::ComputeRead);
 }
 
 void Renderer::recordCompute() {
     auto& g = *gpu_;
-    const VertexPush level0{0};
-    g.cmd.beginTimed("copy control points");
-    g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(draw_.controlPoints.size()),
-                   level0);
+    timed_.begin(g.cmd, "copy control points", true);
+    g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(controlPoints_.size()), VertexPush{0});
     g.cmd.endTimed();
-    timedIsCompute_.push_back(true);
-    // Subdivision passes (per level: face, edge, vertex points; then limit points) will be
-    // recorded here, each followed by this same barrier.
     g.cmd.barrier(gpu::Access::ComputeWrite, gpu::Access::ComputeRead);
-
-    g.cmd.beginTimed("face normals");
-    g.cmd.dispatch(g.faceNormalsPass, g.normalBindings,
-                   static_cast<uint32_t>(draw_.faceOffsets.size() - 1), level0);
-    g.cmd.endTimed();
-    timedIsCompute_.push_back(true);
-    g.cmd.barrier(gpu::Access::ComputeWrite, gpu::Access::VertexRead | gpu::Access::TransferRead);
+    pass_->recordCompute(g.cmd, timed_);
 }
 
 void Renderer::recordDraw() {
@@ -150,33 +127,25 @@ void Renderer::recordDraw() {
         clear[i] = static_cast<float>(srgbToLinear(settings_.background[i]));
     clear[3] = settings_.alpha ? 0.0f : 1.0f;
 
-    g.cmd.beginTimed("draw");
+    timed_.begin(g.cmd, "draw", false);
     g.cmd.beginRendering(g.target, clear);
-    g.cmd.drawIndexed(g.meshPipeline, g.meshBindings, g.triangles,
-                      static_cast<uint32_t>(draw_.triangles.size()), 1,
-                      gpu::CommandBuffer::asBytes(push));
-    if (settings_.wire)
-        g.cmd.drawIndexed(g.wirePipeline, g.wireBindings, g.edges,
-                          static_cast<uint32_t>(draw_.edges.size()), 1,
-                          gpu::CommandBuffer::asBytes(push));
+    pass_->recordDraw(g.cmd, push, settings_.wire);
     g.cmd.endRendering();
     g.cmd.endTimed();
-    timedIsCompute_.push_back(false);
 
-    g.cmd.beginTimed("readback");
+    timed_.begin(g.cmd, "readback", false);
     g.cmd.copyToReadback(g.target);
     g.cmd.endTimed();
-    timedIsCompute_.push_back(false);
 }
 
 void Renderer::renderFrame() {
     auto& g = *gpu_;
     // The "animated mesh" path: the CPU writes this frame's control points, the GPU does the rest.
-    g.staging.writeArray<glm::vec4>(draw_.controlPoints);
-    timedIsCompute_.clear();
+    g.staging.writeArray<glm::vec4>(controlPoints_);
+    timed_.isCompute.clear();
     g.cmd.begin();
-    // The topology, corners, UVs and indices were uploaded once, in earlier submissions; a fence
-    // wait orders those copies but does not make their writes visible to this frame's reads.
+    // Topology and tables were uploaded once, in earlier submissions; a fence wait orders those
+    // copies but does not make their writes visible to this frame's reads.
     g.cmd.barrier(gpu::Access::TransferWrite,
                   gpu::Access::ComputeRead | gpu::Access::VertexRead | gpu::Access::IndexRead);
     recordUpload();
@@ -201,34 +170,14 @@ Image Renderer::image() const {
     return img;
 }
 
-DrawnMesh Renderer::drawnMesh() {
-    auto vertices =
-        gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->vertices, draw_.controlPoints.size());
-    auto normals =
-        gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->faceNormals, draw_.faceOffsets.size() - 1);
-    DrawnMesh out;
-    out.vertices.reserve(draw_.corners.size());
-    for (const GpuCorner& c : draw_.corners) {
-        DrawnVertex v;
-        const glm::vec4& p = vertices[c.vertex];
-        const glm::vec4& n = normals[c.face];
-        v.x = p.x, v.y = p.y, v.z = p.z;
-        v.nx = n.x, v.ny = n.y, v.nz = n.z;
-        v.ptex = static_cast<int32_t>(c.ptex);
-        v.u = draw_.uvs[c.uv].x;
-        v.v = draw_.uvs[c.uv].y;
-        out.vertices.push_back(v);
-    }
-    out.triangles = draw_.triangles;
-    return out;
-}
+DrawnMesh Renderer::drawnMesh() { return pass_->drawnMesh(); }
 
 FrameTimes Renderer::frameTimes() const {
     FrameTimes t;
     t.passes = gpu_->cmd.passTimes();
     for (size_t i = 0; i < t.passes.size(); ++i) {
         double ms = t.passes[i].ms;
-        if (i < timedIsCompute_.size() && timedIsCompute_[i])
+        if (i < timed_.isCompute.size() && timed_.isCompute[i])
             t.computeMs += ms;
         else if (t.passes[i].name == "draw")
             t.drawMs += ms;

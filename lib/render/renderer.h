@@ -2,11 +2,11 @@
 // the readback, recorded from scratch every frame as an animated mesh would be.
 //
 //   upload        staging -> controlPoints                      (transfer)
-//   compute       copy control points -> vertices[0, V)         (level 0 of the vertex buffer)
-//                 [subdivision passes go here: per level, face/edge/vertex points appended
-//                  to `vertices`, then limit points; see recordCompute]
-//                 face normals over the drawn level
-//   draw          fan triangles of the drawn faces (+ wire edges)
+//   compute       copy control points -> level 0 of the pass's vertex buffer
+//                 the pass's compute: for a subdivision surface, per level face, edge and
+//                 vertex points, then limit points (paper 000, 4.2, 4.4); for a control mesh,
+//                 face normals
+//   draw          the pass's draw (+ wire)
 //   readback      colour image -> host
 //
 // Every pass is timed with GPU timestamps (FrameTimes).
@@ -20,6 +20,8 @@
 #include "mesh/mesh.h"
 #include "render/camera.h"
 #include "render/control_mesh.h"
+#include "render/frame_pass.h"
+#include "subdiv/tables.h"
 #include "render/ply.h"
 #include "render/png.h"
 
@@ -31,7 +33,7 @@
 
 namespace limn::render {
 
-enum class Shade : uint32_t { Lit = 0, Normal = 1, Uv = 2 }; // mirrors SHADE_* (draw_common.glsl)
+enum class Shade : uint32_t { Lit = 0, Normal = 1, Uv = 2, Levels = 3 }; // mirrors SHADE_*
 
 struct RenderSettings {
     uint32_t width = 1024, height = 768;
@@ -40,6 +42,9 @@ struct RenderSettings {
     bool wire = false;
     glm::dvec3 background{0.2, 0.2, 0.2}; // sRGB-encoded, 0..1, as it appears in the PNG
     bool alpha = false;                   // RGBA output, background transparent
+    uint32_t tessCap = 64;                // segments per patch side, at most (subdivision)
+    bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)
+    bool evalInCompute = true;            // subdivision vertices: compute pass (else vertex stage)
 };
 
 // GPU milliseconds of one frame; NaN when the device has no timestamps.
@@ -52,9 +57,10 @@ struct FrameTimes {
 
 class Renderer {
   public:
-    // Throws Error(BadInput) when --shade uv is asked of a mesh without UVs, or when a buffer
-    // would exceed the storage-buffer limit.
-    Renderer(gpu::Context& ctx, const Mesh& mesh, const RenderSettings& settings);
+    // Draws the subdivision surface of `tables` when given, else the control mesh. Throws
+    // Error(BadInput) when --shade uv is asked of a mesh without UVs, --shade levels without
+    // tables, or when a buffer would exceed the storage-buffer limit.
+    Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables, const RenderSettings& settings);
     ~Renderer();
 
     // Records, submits and waits for one whole frame.
@@ -67,9 +73,10 @@ class Renderer {
     FrameTimes frameTimes() const;
 
     const Camera& camera() const { return camera_; }
-    uint32_t triangleCount() const { return static_cast<uint32_t>(draw_.triangles.size() / 3); }
-    // Vertices the compute passes wrote per frame (for now the control points).
-    uint32_t verticesEvaluated() const { return static_cast<uint32_t>(draw_.controlPoints.size()); }
+    uint64_t triangleCount() const { return pass_->triangleCount(); }
+    // Vertices computed per frame: table vertices, limit points, drawn surface vertices.
+    uint64_t verticesEvaluated() const { return pass_->verticesEvaluated(); }
+    uint64_t bufferBytes() const;
 
   private:
     void recordUpload();
@@ -78,11 +85,12 @@ class Renderer {
 
     gpu::Context& ctx_;
     RenderSettings settings_;
-    ControlMeshDraw draw_;
+    std::vector<glm::vec4> controlPoints_;
     Camera camera_;
+    std::unique_ptr<FramePass> pass_;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
-    std::vector<bool> timedIsCompute_;
+    TimedPasses timed_;
 };
 
 } // namespace limn::render

@@ -103,10 +103,15 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap) 
         };
         bool stitched[4] = {false, false, false, false};
         std::vector<uint32_t> sidePts[4];
+        const size_t firstIndex = out.indices.size();
         for (int side = 0; side < 4; ++side) {
             edgePoints(side, 0, e.W, sidePts[side]);
             stitched[side] = sidePts[side].size() != S + 1;
             out.stitchedEdges += stitched[side];
+            for (size_t k = 0; k + 1 < sidePts[side].size(); ++k) {
+                out.outline.push_back(sidePts[side][k]);
+                out.outline.push_back(sidePts[side][k + 1]);
+            }
         }
         auto grid = [&](uint32_t i, uint32_t j) { return find(e, e.U0 + i * step, e.V0 + j * step); };
         auto tri = [&](uint32_t a, uint32_t b, uint32_t c) {
@@ -163,6 +168,7 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap) 
                 for (size_t r = 1; r + 1 < ring.size(); ++r)
                     tri(apex, ring[(a + r) % ring.size()], ring[(a + r + 1) % ring.size()]);
             }
+        out.triangleCounts.push_back(static_cast<uint32_t>((out.indices.size() - firstIndex) / 3));
     }
     return out;
 }

@@ -30,6 +30,8 @@ struct Tessellation {
     std::vector<TessVertex> vertices;
     std::vector<uint32_t> indices; // triangles, counter-clockwise in (u, v)
     std::vector<uint32_t> segments; // per element: segments per side of its own grid
+    std::vector<uint32_t> triangleCounts; // per element: its triangles, emitted in element order
+    std::vector<uint32_t> outline;  // 2 per segment: every element's boundary (shared ones twice)
     uint32_t stitchedEdges = 0;     // element edges that needed stitching
 };
 

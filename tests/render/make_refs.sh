@@ -14,6 +14,11 @@ trap 'rm -rf "$tmp"' EXIT
 grep -v '^\s*#' ref/cases.txt | while read -r name model options; do
   [ -n "$name" ] || continue
   "$bin/limn-classify" "$models/$model" -o "$tmp/$name.limn"
+  case "$options" in
+    --tables=*) tables=${options%% *}; options=${options#"$tables"}
+                # shellcheck disable=SC2086
+                "$bin/limn-tables" "$tmp/$name.limn" -o "$tmp/$name.limn" $(echo "${tables#--tables=}" | tr , ' ') ;;
+  esac
   # shellcheck disable=SC2086
   "$bin/limn-render" "$tmp/$name.limn" --size 128x96 --validate $options -o "ref/$name.png"
   echo "ref/$name.png"

@@ -394,6 +394,7 @@ constexpr double kMaxDifferingFraction = 0.01;
 
 struct RefCase {
     std::string name, model;
+    std::vector<std::string> tables; // limn-tables arguments; empty: render the control mesh
     std::vector<std::string> options;
 };
 
@@ -410,7 +411,14 @@ std::vector<RefCase> referenceCases() {
         std::istringstream ls(line);
         RefCase c;
         ls >> c.name >> c.model;
-        for (std::string o; ls >> o;) c.options.push_back(o);
+        for (std::string o; ls >> o;) {
+            if (o.rfind("--tables=", 0) == 0) { // comma-separated limn-tables arguments
+                std::istringstream ts(o.substr(9));
+                for (std::string t; std::getline(ts, t, ',');) c.tables.push_back(t);
+                continue;
+            }
+            c.options.push_back(o);
+        }
         cases.push_back(c);
     }
     return cases;
@@ -422,6 +430,12 @@ TEST_P(RenderReference, MatchesWithinTolerance) {
     const RefCase& c = GetParam();
     ScratchDir dir;
     auto limn = classify(dir, modelPath(c.model).string(), c.name);
+    if (!c.tables.empty()) {
+        std::vector<std::string> args = {bin("limn-tables"), limn, "-o", limn};
+        args.insert(args.end(), c.tables.begin(), c.tables.end());
+        auto t = run(args);
+        ASSERT_EQ(t.exitCode, 0) << t.err;
+    }
     auto out = dir / (c.name + ".png");
     std::vector<std::string> args = {limn, "--size",    "128x96", "--sync-validation",
                                      "-o", out.string()};

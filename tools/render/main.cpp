@@ -9,6 +9,7 @@
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "render/bench.h"
+#include "subdiv/tables_chunk.h"
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -40,16 +41,24 @@ std::string displayName(const std::string& path) {
     return isStdio(path) ? "<stdin>" : path;
 }
 
-Mesh readMesh(const std::string& input, Warnings& warnings) {
-    auto bytes = readInput(input);
+// The mesh, and its subdivision tables when the container has them.
+struct Input {
+    Mesh mesh;
+    std::optional<Tables> tables;
+};
+
+Input readInput(const std::string& input, Warnings& warnings) {
+    auto bytes = limn::readInput(input);
     try {
-        if (!looksLikeContainer(bytes)) return importMesh(input, bytes, warnings);
+        Input in;
+        if (!looksLikeContainer(bytes)) {
+            in.mesh = importMesh(input, bytes, warnings);
+            return in;
+        }
         Container container = parseContainer(bytes);
-        // Subdivision tables (limn-tables) are not drawn yet: say so rather than pretend.
-        if (container.has(FourCC("TBLS")))
-            warnings.add(
-                "the subdivision tables (TBLS) are not rendered yet; drawing the control mesh");
-        return loadMesh(container);
+        in.mesh = loadMesh(container);
+        if (const Chunk* tb = container.find(kTablesChunk)) in.tables = decodeTablesChunk(*tb, &in.mesh);
+        return in;
     } catch (Error& e) {
         e.setFile(displayName(input));
         throw;
@@ -77,12 +86,12 @@ int main(int argc, char** argv) {
     return cli::run("limn-render", argc, argv, [](int ac, char** av) {
         cli::Common common;
         common.output.clear(); // "not given" matters with --bench
-        std::string input = "-", shade = "lit", device, meshOut;
+        std::string input = "-", shade = "lit", device, meshOut, eval = "compute";
         render::RenderSettings settings;
         bool wire = false, alpha = false, validate = false, syncValidation = false,
              meshAscii = false;
         bool viewGiven = false;
-        int bench = 0;
+        int bench = 0, tess = 64;
         cli::Parser parser("limn-render", "[options] [INPUT|-] -o OUTPUT.png",
                            "Renders a .limn container (output of limn-classify, limn-tables, "
                            "limn-seams) headlessly\n"
@@ -140,10 +149,17 @@ int main(int argc, char** argv) {
                     settings.background = {c[0], c[1], c[2]};
                 },
                 "0.2,0.2,0.2", "background colour, sRGB components 0 to 1 (as stored in the PNG)")
-            .choice("--shade", &shade, {"lit", "normal", "uv"},
-                    "lit: Lambert key light + ambient; normal: face normal * 0.5 + 0.5 as colour;\n"
-                    "                            uv: (u, v, 0) as colour, needs UVs")
-            .flag("--wire", &wire, "overlay the control mesh edges")
+            .choice("--shade", &shade, {"lit", "normal", "uv", "levels"},
+                    "lit: Lambert key light + ambient; normal: normal * 0.5 + 0.5 as colour;\n"
+                    "                            uv: (u, v, 0) as colour, needs UVs; levels: patches\n"
+                    "                            coloured by subdivision level (paper 000, Fig. 1),\n"
+                    "                            irregular faces blue, needs tables")
+            .flag("--wire", &wire, "overlay the control mesh edges, or the patch and face outlines")
+            .choice("--eval", &eval, {"compute", "vertex"},
+                    "subdivision surface: evaluate each drawn vertex once in a compute pass, or\n"
+                    "                            in the vertex stage as the draw needs it (paper 000, 4.3)")
+            .integer("--tess", "N", &tess, 1, 4096,
+                     "segments per side of a patch at most; a level-l patch gets 2^(N-l)")
             .flag("--alpha", &alpha, "write RGBA with a transparent background (default RGB)")
             .text("--device", "NAME", &device,
                   "Vulkan device: case-insensitive substring of its name [default: a discrete or\n"
@@ -191,6 +207,7 @@ int main(int argc, char** argv) {
             usage("--target and --up describe an explicit camera; give --eye too");
         if (shade == "normal") settings.shade = render::Shade::Normal;
         if (shade == "uv") settings.shade = render::Shade::Uv;
+        if (shade == "levels") settings.shade = render::Shade::Levels;
         settings.wire = wire;
         settings.alpha = alpha;
         if (bench && isStdio(common.output) && !common.output.empty())
@@ -208,8 +225,11 @@ int main(int argc, char** argv) {
             ply.emplace(meshOut, meshAscii ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
 
         Warnings warnings;
-        Mesh mesh = readMesh(input, warnings);
+        Input in = readInput(input, warnings);
         cli::printWarnings(warnings, displayName(input));
+        settings.tessCap = static_cast<uint32_t>(tess);
+        settings.evalInCompute = eval == "compute";
+        settings.evaluateVertices = !meshOut.empty();
 
         gpu::ContextOptions options;
         options.device = device;
@@ -222,7 +242,7 @@ int main(int argc, char** argv) {
             gpu::Context ctx(options);
             validation = ctx.sharedValidationLog();
             for (const auto& line : ctx.selectionReport()) cli::info(line);
-            render::Renderer renderer(ctx, mesh, settings);
+            render::Renderer renderer(ctx, in.mesh, in.tables ? &*in.tables : nullptr, settings);
             const auto& cam = renderer.camera();
             cli::info("camera eye " + std::to_string(cam.eye.x) + "," + std::to_string(cam.eye.y) +
                       "," + std::to_string(cam.eye.z) + " target " + std::to_string(cam.target.x) +
@@ -241,7 +261,7 @@ int main(int argc, char** argv) {
                 j.field("cpu_ms", b.cpuMs)
                     .field("triangles", renderer.triangleCount())
                     .field("vertices_evaluated", renderer.verticesEvaluated())
-                    .field("buffer_bytes", ctx.allocatedBytes())
+                    .field("buffer_bytes", renderer.bufferBytes())
                     .field("peak_rss_mb", peakRssMb())
                     .field("device", ctx.deviceName());
                 j.endObject();

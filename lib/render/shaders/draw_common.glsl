@@ -6,6 +6,10 @@
 #define SHADE_LIT 0u
 #define SHADE_NORMAL 1u
 #define SHADE_UV 2u
+#define SHADE_LEVELS 3u
+
+// DrawPush.flags
+#define DRAW_PULL_INDICES 1u // the vertex stage reads the index buffer itself (per-triangle data)
 
 layout(push_constant) uniform DrawPush {
     mat4 viewProj;   // world -> clip, Y up, depth 0..1
@@ -14,7 +18,8 @@ layout(push_constant) uniform DrawPush {
     vec4 wireColor;  // rgb linear
     uint shade;      // SHADE_*
     float wirePull;  // wire vertices move this fraction of the way to the eye (no z-fighting)
-    uint pad0, pad1;
+    uint patchCount; // subdivision draw: elements below this are patches, the rest irregular faces
+    uint flags;      // DRAW_*
 } pc;
 
 // Stored colours (normal, uv) are written so that the PNG holds the value itself: the sRGB

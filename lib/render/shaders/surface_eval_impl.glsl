@@ -9,7 +9,7 @@
 #define LIMN_SURFACE_EVAL_IMPL_GLSL
 
 SurfaceSample evaluateTessVertex(uint vi, uint patchCount) {
-    uvec2 tv = tessVertices.v[vi];
+    uvec2 tv = tessVertices.v[vi].xy;
     float s = float(tv.y & 0xFFFFu) / 32768.0, t = float(tv.y >> 16) / 32768.0;
     SurfaceSample r;
     if (tv.x < patchCount) {

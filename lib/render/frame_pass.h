@@ -1,0 +1,55 @@
+// What the renderer's frame draws: the control mesh, or the subdivision surface. The renderer
+// owns the upload, the camera, the render target and the readback; a FramePass owns the buffers
+// and pipelines of one kind of surface and records its compute passes and its draw.
+#pragma once
+
+#include "gpu/buffer.h"
+#include "gpu/commands.h"
+#include "render/ply.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace limn::render {
+
+// Mirrors DrawPush in shaders/draw_common.glsl (std430 push-constant layout).
+struct DrawPush {
+    float viewProj[16];
+    float eye[4];
+    float light[4];
+    float wireColor[4];
+    uint32_t shade;
+    float wirePull;
+    uint32_t patchCount = 0;
+    uint32_t flags = 0;
+};
+static_assert(sizeof(DrawPush) == 128);
+inline constexpr uint32_t kDrawPullIndices = 1; // DRAW_PULL_INDICES
+
+// Records which timed passes are compute (for FrameTimes).
+struct TimedPasses {
+    std::vector<bool> isCompute;
+    void begin(gpu::CommandBuffer& cmd, const std::string& name, bool compute) {
+        cmd.beginTimed(name);
+        isCompute.push_back(compute);
+    }
+};
+
+class FramePass {
+public:
+    virtual ~FramePass() = default;
+    // Where the control points (level 0) are copied each frame, as vec4.
+    virtual const gpu::Buffer& vertexBuffer() const = 0;
+    // After the control points are in place; ends with the barrier the draw needs.
+    virtual void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) = 0;
+    // Inside beginRendering/endRendering.
+    virtual void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) = 0;
+    // The triangles as drawn, read back after a frame.
+    virtual DrawnMesh drawnMesh() = 0;
+    virtual uint64_t triangleCount() const = 0;
+    virtual uint64_t verticesEvaluated() const = 0; // per frame, compute and vertex stages
+    virtual uint64_t bufferBytes() const = 0;
+};
+
+} // namespace limn::render

@@ -1,0 +1,40 @@
+// Shading of the subdivision surface: smooth limit normals; `levels` colours patches by the level
+// they were found at like paper 000's Figure 1 (grey, pink, yellow, green for levels 0-3, then
+// more), irregular faces drawn at their limit points in blue.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "draw_common.glsl"
+
+layout(location = 0) in vec3 inWorld;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUV;
+layout(location = 3) flat in uint inLevel;
+layout(location = 0) out vec4 outColor;
+
+const float kAmbient = 0.12;
+
+vec3 levelColour(uint level) {
+    if (level == 255u) return vec3(0.25, 0.45, 0.95); // irregular faces
+    const vec3 palette[8] = vec3[8](vec3(0.72, 0.72, 0.72), vec3(0.95, 0.55, 0.70),
+                                    vec3(0.95, 0.85, 0.35), vec3(0.45, 0.85, 0.45),
+                                    vec3(0.40, 0.85, 0.85), vec3(0.95, 0.60, 0.30),
+                                    vec3(0.70, 0.50, 0.90), vec3(0.55, 0.40, 0.30));
+    return palette[min(level, 7u)];
+}
+
+void main() {
+    vec3 n = normalize(inNormal);
+    if (pc.shade == SHADE_NORMAL) {
+        outColor = vec4(srgbToLinear(n * 0.5 + 0.5), 1.0);
+        return;
+    }
+    if (pc.shade == SHADE_UV) {
+        outColor = vec4(srgbToLinear(vec3(clamp(inUV, 0.0, 1.0), 0.0)), 1.0);
+        return;
+    }
+    vec3 albedo = pc.shade == SHADE_LEVELS ? srgbToLinear(levelColour(inLevel)) : vec3(0.80);
+    vec3 toEye = pc.eye.xyz - inWorld;
+    if (dot(n, toEye) < 0.0) n = -n; // two-sided, like the control mesh
+    float diffuse = max(dot(n, pc.light.xyz), 0.0);
+    outColor = vec4(albedo * (kAmbient + (1.0 - kAmbient) * diffuse), 1.0);
+}

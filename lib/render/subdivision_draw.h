@@ -1,0 +1,73 @@
+// The subdivision surface as the GPU draws it, prepared on the CPU once from the tables (topology
+// only; control points are uploaded per frame): the stencil tables of every level concatenated
+// for the face/edge/vertex passes (paper 000, 4.2), the limit stencils (4.4), the patches and
+// irregular faces, and the watertight tessellation (lib/tess) that the vertex stage evaluates
+// (4.3). Layouts mirror the GLSL structs in shaders/surface_eval.glsl.
+#pragma once
+
+#include "mesh/mesh.h"
+#include "render/camera.h"
+#include "subdiv/tables.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace limn::render {
+
+struct GpuPatch { // mirrors Patch in surface_eval.glsl
+    uint32_t cv[16];
+    uint32_t ptex;
+    float u0, v0, size;
+    uint32_t levelBoundary; // level | boundary << 8
+    uint32_t pad[3];
+};
+static_assert(sizeof(GpuPatch) == 96);
+
+struct GpuIrregularFace { // mirrors IrregularFace in surface_eval.glsl
+    uint32_t corner[4];
+    uint32_t ptex;
+    float u0, v0, size;
+};
+static_assert(sizeof(GpuIrregularFace) == 32);
+
+struct GpuTessVertex {   // mirrors the uvec4 in surface.vert
+    uint32_t element;    // patch index, or patch count + irregular face index
+    uint32_t st;         // s | t << 16, in 1/32768
+    float u, v;          // texture coordinates in the element's own face chart (0 without UVs)
+};
+static_assert(sizeof(GpuTessVertex) == 16);
+
+// One level's three passes: rows [firstRow, firstRow + count) of their tables write vertices
+// [firstOut, firstOut + count).
+struct LevelPasses {
+    uint32_t level;
+    uint32_t faceFirstOut, faceFirstRow, faceCount;
+    uint32_t edgeFirstOut, edgeFirstRow, edgeCount;
+    uint32_t vertexFirstOut, vertexFirstRow, vertexCount;
+};
+
+struct SubdivisionDraw {
+    uint32_t baseVertices = 0, totalVertices = 0;
+    std::vector<uint32_t> faceStarts, faceIndices;  // face-point rows of every level
+    std::vector<uint32_t> stencilStarts, stencilIndices; // edge- and vertex-point rows
+    std::vector<float> stencilWeights;
+    std::vector<LevelPasses> levels;
+    // Limit points: three tables (position, tangent 1, tangent 2) of limitCount rows each.
+    uint32_t limitCount = 0;
+    std::vector<uint32_t> limitStarts, limitIndices;
+    std::vector<float> limitWeights;
+    std::vector<GpuPatch> patches;
+    std::vector<GpuIrregularFace> irregular;
+    std::vector<GpuTessVertex> tessVertices;
+    std::vector<uint32_t> triangles;      // 3 per triangle, into tessVertices
+    std::vector<uint32_t> triangleLevels; // per triangle: its element's level, 255 if irregular
+    std::vector<uint32_t> wireLines;      // 2 per segment: the element edges, each once
+    uint32_t stitchedEdges = 0;
+    bool hasUVs = false;
+    Bounds bounds; // of the control points
+};
+
+// `tessCap` caps the segments per side of any patch (--tess).
+SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& tables, uint32_t tessCap);
+
+} // namespace limn::render

@@ -1,0 +1,198 @@
+#include "render/subdivision_pass.h"
+
+#include "base/error.h"
+#include "render_shaders.h"
+
+#include <cstring>
+
+namespace limn::render {
+
+namespace {
+
+struct LevelPush { // subdiv_face_points.comp, subdiv_stencils.comp
+    uint32_t firstOut, firstRow;
+};
+struct LimitPush { // subdiv_limit.comp
+    uint32_t rowsPerTable;
+};
+struct EvalPush { // surface_eval.comp
+    uint32_t patchCount;
+};
+
+// GPU buffers cannot be empty: absent tables get one zero element.
+template <class T>
+std::vector<T> nonEmpty(std::vector<T> v) {
+    if (v.empty()) v.resize(1);
+    return v;
+}
+
+template <class T>
+gpu::Buffer upload(gpu::Context& ctx, const std::string& name, const std::vector<T>& data,
+                   uint32_t usage = gpu::kStorage) {
+    auto d = nonEmpty(data);
+    gpu::Buffer b(ctx, {name, d.size() * sizeof(T), usage});
+    gpu::uploadArrayNow<T>(ctx, b, d);
+    return b;
+}
+
+} // namespace
+
+struct SubdivisionPass::Gpu {
+    Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate)
+        : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
+          faceStarts(upload(ctx, "face-point starts", d.faceStarts)),
+          faceIndices(upload(ctx, "face-point indices", d.faceIndices)),
+          stencilStarts(upload(ctx, "stencil starts", d.stencilStarts)),
+          stencilIndices(upload(ctx, "stencil indices", d.stencilIndices)),
+          stencilWeights(upload(ctx, "stencil weights", d.stencilWeights)),
+          limitStarts(upload(ctx, "limit starts", d.limitStarts)),
+          limitIndices(upload(ctx, "limit indices", d.limitIndices)),
+          limitWeights(upload(ctx, "limit weights", d.limitWeights)),
+          limits(ctx, {"limit points", uint64_t(std::max(d.limitCount, 1u)) * 32}),
+          patches(upload(ctx, "patches", d.patches)),
+          irregular(upload(ctx, "irregular faces", d.irregular)),
+          tessVertices(upload(ctx, "tessellation vertices", d.tessVertices)),
+          // Indices are also read by the vertex stage for --shade levels.
+          triangles(upload(ctx, "triangle indices", d.triangles, gpu::kIndex | gpu::kStorage)),
+          triangleLevels(upload(ctx, "triangle levels", d.triangleLevels)),
+          wireLines(upload(ctx, "wire lines", d.wireLines, gpu::kIndex)),
+          facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
+          stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
+          limitPass(ctx, {"limit points", subdiv_limit_comp_spv, 5, sizeof(LimitPush)}),
+          surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 7, sizeof(DrawPush)}),
+          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surface_frag_spv, 5,
+                             sizeof(DrawPush)}) {
+        faceBindings = facePass.bind({vertices, faceStarts, faceIndices});
+        stencilBindings = stencilPass.bind({vertices, stencilStarts, stencilIndices, stencilWeights});
+        limitBindings = limitPass.bind({vertices, limitStarts, limitIndices, limitWeights, limits});
+        surfaceBindings = surface.bind(
+            {vertices, patches, irregular, limits, tessVertices, triangles, triangleLevels});
+        if (evaluate) {
+            const uint64_t n = std::max<uint64_t>(d.tessVertices.size(), 1);
+            evalPositions = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated positions", n * 16});
+            evalNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated normals", n * 16});
+            evalInfo = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated ptex", n * 16});
+            evalPass = std::make_unique<gpu::ComputePipeline>(
+                ctx, gpu::ComputePipelineDesc{"evaluate surface", surface_eval_comp_spv, 8, sizeof(EvalPush)});
+            evalBindings = evalPass->bind({vertices, patches, irregular, limits, tessVertices,
+                                           *evalPositions, *evalNormals, *evalInfo});
+            wire = std::make_unique<gpu::GraphicsPipeline>(
+                ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
+                                               gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false});
+            wireBindings = wire->bind({*evalPositions});
+            fetchBindings = surfaceFetch.bind({*evalPositions, *evalNormals, tessVertices, triangles, triangleLevels});
+        }
+    }
+
+    gpu::Buffer vertices, faceStarts, faceIndices, stencilStarts, stencilIndices, stencilWeights,
+        limitStarts, limitIndices, limitWeights, limits, patches, irregular, tessVertices, triangles,
+        triangleLevels, wireLines;
+    gpu::ComputePipeline facePass, stencilPass, limitPass;
+    gpu::GraphicsPipeline surface, surfaceFetch;
+    gpu::BindGroup faceBindings, stencilBindings, limitBindings, surfaceBindings, fetchBindings;
+    std::unique_ptr<gpu::Buffer> evalPositions, evalNormals, evalInfo;
+    std::unique_ptr<gpu::ComputePipeline> evalPass;
+    std::unique_ptr<gpu::GraphicsPipeline> wire;
+    gpu::BindGroup evalBindings, wireBindings;
+};
+
+SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
+                                 bool keepEvaluated, bool levels)
+    : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
+      levels_(levels), gpu_(std::make_unique<Gpu>(ctx, draw_, evaluate_)) {}
+
+SubdivisionPass::~SubdivisionPass() = default;
+
+const gpu::Buffer& SubdivisionPass::vertexBuffer() const { return gpu_->vertices; }
+
+void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) {
+    auto& g = *gpu_;
+    const auto compute = gpu::Access::ComputeWrite, read = gpu::Access::ComputeRead;
+    for (const LevelPasses& p : draw_.levels) {
+        // Face points first: the edge and vertex points of the same level read them.
+        const std::string L = " L" + std::to_string(p.level);
+        timed.begin(cmd, "face points" + L, true);
+        cmd.dispatch(g.facePass, g.faceBindings, p.faceCount, LevelPush{p.faceFirstOut, p.faceFirstRow});
+        cmd.endTimed();
+        cmd.barrier(compute, read);
+        timed.begin(cmd, "edge points" + L, true);
+        cmd.dispatch(g.stencilPass, g.stencilBindings, p.edgeCount, LevelPush{p.edgeFirstOut, p.edgeFirstRow});
+        cmd.endTimed();
+        timed.begin(cmd, "vertex points" + L, true);
+        cmd.dispatch(g.stencilPass, g.stencilBindings, p.vertexCount,
+                     LevelPush{p.vertexFirstOut, p.vertexFirstRow});
+        cmd.endTimed();
+        cmd.barrier(compute, read);
+    }
+    timed.begin(cmd, "limit points", true);
+    cmd.dispatch(g.limitPass, g.limitBindings, draw_.limitCount, LimitPush{draw_.limitCount});
+    cmd.endTimed();
+    if (evaluate_) {
+        cmd.barrier(compute, read);
+        timed.begin(cmd, "evaluate surface", true);
+        cmd.dispatch(*g.evalPass, g.evalBindings, static_cast<uint32_t>(draw_.tessVertices.size()),
+                     EvalPush{static_cast<uint32_t>(draw_.patches.size())});
+        cmd.endTimed();
+    }
+    cmd.barrier(compute, gpu::Access::VertexRead | gpu::Access::TransferRead);
+}
+
+void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) {
+    auto& g = *gpu_;
+    push.patchCount = static_cast<uint32_t>(draw_.patches.size());
+    const auto& pipeline = eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
+    const auto& bindings = eval_ == Eval::Compute ? g.fetchBindings : g.surfaceBindings;
+    if (levels_) {
+        push.flags |= kDrawPullIndices;
+        cmd.draw(pipeline, bindings, static_cast<uint32_t>(draw_.triangles.size()), 1,
+                 gpu::CommandBuffer::asBytes(push));
+    } else {
+        push.flags &= ~kDrawPullIndices;
+        cmd.drawIndexed(pipeline, bindings, g.triangles, static_cast<uint32_t>(draw_.triangles.size()),
+                        1, gpu::CommandBuffer::asBytes(push));
+    }
+    if (wire && g.wire)
+        cmd.drawIndexed(*g.wire, g.wireBindings, g.wireLines, static_cast<uint32_t>(draw_.wireLines.size()),
+                        1, gpu::CommandBuffer::asBytes(push));
+}
+
+DrawnMesh SubdivisionPass::drawnMesh() {
+    if (!evaluate_) throw Error(ErrorKind::BadInput, "internal: the surface was not evaluated into buffers");
+    const size_t n = draw_.tessVertices.size();
+    auto pos = gpu::readbackArrayNow<glm::vec4>(ctx_, *gpu_->evalPositions, n);
+    auto nrm = gpu::readbackArrayNow<glm::vec4>(ctx_, *gpu_->evalNormals, n);
+    auto info = gpu::readbackArrayNow<glm::uvec4>(ctx_, *gpu_->evalInfo, n);
+    DrawnMesh out;
+    out.vertices.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        DrawnVertex& v = out.vertices[i];
+        v.x = pos[i].x, v.y = pos[i].y, v.z = pos[i].z;
+        v.nx = nrm[i].x, v.ny = nrm[i].y, v.nz = nrm[i].z;
+        v.ptex = static_cast<int32_t>(info[i].x);
+        std::memcpy(&v.u, &info[i].y, 4);
+        std::memcpy(&v.v, &info[i].z, 4);
+    }
+    out.triangles = draw_.triangles;
+    return out;
+}
+
+uint64_t SubdivisionPass::verticesEvaluated() const {
+    // Table vertices computed by the passes, limit points, and tessellation vertices evaluated
+    // by the vertex stage (at least once each; the draw may evaluate a shared one more often).
+    return draw_.totalVertices - draw_.baseVertices + draw_.limitCount + draw_.tessVertices.size();
+}
+
+uint64_t SubdivisionPass::bufferBytes() const {
+    auto& g = *gpu_;
+    uint64_t sum = 0;
+    for (const gpu::Buffer* b : {&g.vertices, &g.faceStarts, &g.faceIndices, &g.stencilStarts,
+                                 &g.stencilIndices, &g.stencilWeights, &g.limitStarts, &g.limitIndices,
+                                 &g.limitWeights, &g.limits, &g.patches, &g.irregular, &g.tessVertices,
+                                 &g.triangles, &g.triangleLevels, &g.wireLines})
+        sum += b->size();
+    for (const auto* b : {g.evalPositions.get(), g.evalNormals.get(), g.evalInfo.get()})
+        if (b) sum += b->size();
+    return sum;
+}
+
+} // namespace limn::render

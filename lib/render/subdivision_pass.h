@@ -1,0 +1,42 @@
+// The subdivision surface's GPU frame (paper 000, 4.2-4.4): per level a face-point, an
+// edge-point and a vertex-point compute pass over the tables, a limit-point pass, then the draw
+// of the watertight tessellation whose vertices the vertex stage evaluates.
+#pragma once
+
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "render/frame_pass.h"
+#include "render/subdivision_draw.h"
+
+#include <memory>
+
+namespace limn::render {
+
+class SubdivisionPass : public FramePass {
+public:
+    // Where the tessellation vertices are evaluated: in the vertex stage as the draw needs them
+    // (paper 000, 4.3), or once each by a compute pass that the draw then reads.
+    enum class Eval { Vertex, Compute };
+    // `keepEvaluated`: with Eval::Vertex, also evaluate every vertex into buffers (for --wire,
+    // which draws lines through them, and --mesh-out).
+    SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval, bool keepEvaluated, bool levels);
+    ~SubdivisionPass() override;
+
+    const gpu::Buffer& vertexBuffer() const override;
+    void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) override;
+    void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) override;
+    DrawnMesh drawnMesh() override;
+    uint64_t triangleCount() const override { return draw_.triangles.size() / 3; }
+    uint64_t verticesEvaluated() const override;
+    uint64_t bufferBytes() const override;
+
+private:
+    gpu::Context& ctx_;
+    SubdivisionDraw draw_;
+    Eval eval_;
+    bool evaluate_, levels_;
+    struct Gpu;
+    std::unique_ptr<Gpu> gpu_;
+};
+
+} // namespace limn::render
