@@ -304,6 +304,10 @@ TEST(RenderCli, FailuresLeaveNoOutput) {
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("no texture coordinates"), std::string::npos) << r.err;
     EXPECT_EQ(readFile(out), "previous contents");
+    r = render({limn, "--shade", "levels", "-o", out.string()}); // no subdivision tables
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("limn-tables"), std::string::npos) << r.err;
+    EXPECT_EQ(readFile(out), "previous contents");
     for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
         EXPECT_EQ(entry.path().filename().string().rfind(".limn-tmp", 0), std::string::npos);
     r = render({(dir / "missing.limn").string(), "-o", (dir / "m.png").string()});
@@ -346,7 +350,7 @@ TEST(RenderCli, UsageErrorsAreExitCode2) {
                                          {"--target", "0,0,0"},
                                          {"--fov", "200"},
                                          {"--background", "2,0,0"},
-                                         {"--shade", "levels"},
+                                         {"--shade", "sparkles"},
                                          {"--bench", "5", "-o", "-"},
                                          {"--mesh-out", "-", "-o", "-"}}) {
         std::vector<std::string> args = {limn, "-o", out};
