@@ -1,5 +1,6 @@
 #include "render/subdivision_draw.h"
 
+#include "base/error.h"
 #include "tess/tessellation.h"
 #include "topology/ptex.h"
 #include "topology/topology.h"
@@ -26,7 +27,42 @@ uint32_t appendRows(const StencilTable& t, std::vector<uint32_t>& starts, std::v
 
 } // namespace
 
-SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t tessCap) {
+namespace {
+
+// The UVs a vertex samples the displacement at, from its element's seam record (paper 000,
+// Figures 8 and 9): a corner takes every face around it, an edge point both sides' UVs
+// interpolated along the edge, an interior point its own face's, in the order the seams list
+// them (increasing face), so copies of a point compute the same average.
+void sideUVsOf(const ElementSeams& es, const Seams& seams, const TessVertex& tv, std::vector<glm::vec2>& out) {
+    out.clear();
+    const bool s0 = tv.s == 0, s1 = tv.s == kTessParamOne, t0 = tv.t == 0, t1 = tv.t == kTessParamOne;
+    const double s = double(tv.s) / kTessParamOne, t = double(tv.t) / kTessParamOne;
+    if ((s0 || s1) && (t0 || t1)) {
+        int k = s0 ? (t0 ? 0 : 3) : (t0 ? 1 : 2);
+        for (uint32_t i = 0; i < es.cornerCount[k]; ++i) out.push_back(seams.uvs[es.cornerFirst[k] + i]);
+        return;
+    }
+    int edge = -1;
+    double x = 0;
+    if (t0) edge = 0, x = s;
+    else if (s1) edge = 1, x = t;
+    else if (t1) edge = 2, x = 1 - s;
+    else if (s0) edge = 3, x = 1 - t;
+    if (edge >= 0) {
+        for (uint32_t i = 0; i < es.edgeSides[edge]; ++i) {
+            glm::dvec2 a(seams.uvs[es.edgeFirst[edge] + 2 * i]), b(seams.uvs[es.edgeFirst[edge] + 2 * i + 1]);
+            out.push_back(glm::vec2(a + x * (b - a)));
+        }
+        return;
+    }
+    const glm::dvec2 c[4] = {glm::dvec2(es.own[0]), glm::dvec2(es.own[1]), glm::dvec2(es.own[2]), glm::dvec2(es.own[3])};
+    out.push_back(glm::vec2((1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2] + (1 - s) * t * c[3]));
+}
+
+} // namespace
+
+SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t tessCap,
+                                   const DisplacementPlan* displacement) {
     SubdivisionDraw d;
     d.baseVertices = t.levels[0].count();
     d.totalVertices = t.totalVertices;
@@ -65,21 +101,41 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         d.irregular.push_back(g);
     }
 
-    Tessellation tess = buildTessellation(mesh, t, tessCap);
-    d.stitchedEdges = tess.stitchedEdges;
     d.hasUVs = mesh.hasUVs();
-    Topology topo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
-    PtexMap ptex(mesh, topo, 1u << t.depth);
+    Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs);
+    d.stitchedEdges = tess.stitchedEdges;
     d.tessVertices.reserve(tess.vertices.size());
-    for (const TessVertex& v : tess.vertices) {
+    for (size_t i = 0; i < tess.vertices.size(); ++i) {
+        const TessVertex& v = tess.vertices[i];
         GpuTessVertex g{v.element, uint32_t(v.s) | uint32_t(v.t) << 16, 0, 0};
-        if (d.hasUVs) {
-            PtexPoint pp = ptexOf(t, v);
-            glm::dvec2 uv = ptex.ownUV(pp.ptex, pp.u, pp.v);
-            g.u = static_cast<float>(uv.x);
-            g.v = static_cast<float>(uv.y);
-        }
+        if (d.hasUVs) g.u = tess.uvs[i].x, g.v = tess.uvs[i].y;
         d.tessVertices.push_back(g);
+    }
+    if (displacement) {
+        if (!d.hasUVs) throw Error(ErrorKind::BadInput, "displacement needs texture coordinates; the mesh has none");
+        std::vector<glm::vec2> sides;
+        for (size_t i = 0; i < tess.vertices.size(); ++i) {
+            if (displacement->seamFix) {
+                const TessVertex& v = tess.vertices[i];
+                sideUVsOf(displacement->seams->elements[v.element], *displacement->seams, v, sides);
+            } else {
+                sides.assign(1, tess.uvs[i]);
+            }
+            d.sideRanges.push_back({uint32_t(d.sideUVs.size()), uint32_t(sides.size())});
+            d.sideUVs.insert(d.sideUVs.end(), sides.begin(), sides.end());
+        }
+        // Triangles around each point (all copies of a seam point together), in index order.
+        std::vector<uint32_t> count(tess.vertices.size() + 1, 0);
+        for (uint32_t idx : tess.indices) ++count[tess.geometry[idx] + 1];
+        for (size_t i = 0; i < tess.vertices.size(); ++i) count[i + 1] += count[i];
+        d.incidentTriangles.resize(tess.indices.size());
+        std::vector<uint32_t> fill(count.begin(), count.end() - 1);
+        for (size_t k = 0; k < tess.indices.size(); ++k)
+            d.incidentTriangles[fill[tess.geometry[tess.indices[k]]]++] = static_cast<uint32_t>(k / 3);
+        for (size_t i = 0; i < tess.vertices.size(); ++i) {
+            uint32_t g = tess.geometry[i];
+            d.incidentRanges.push_back({count[g], count[g + 1] - count[g]});
+        }
     }
     d.triangles = std::move(tess.indices);
     // Per triangle: the level of the element that made it (triangles are emitted element by

@@ -7,7 +7,10 @@
 
 #include "mesh/mesh.h"
 #include "render/camera.h"
+#include "seams/seams.h"
 #include "subdiv/tables.h"
+
+#include <glm/vec2.hpp>
 
 #include <cstdint>
 #include <vector>
@@ -62,12 +65,25 @@ struct SubdivisionDraw {
     std::vector<uint32_t> triangles;      // 3 per triangle, into tessVertices
     std::vector<uint32_t> triangleLevels; // per triangle: its element's level, 255 if irregular
     std::vector<uint32_t> wireLines;      // 2 per segment: the element edges, each once
+    // Displacement (paper 000, 4.5): per drawn vertex the range of UVs its samples are taken at
+    // (sideUVs), and the range of the triangles around its point (for the displaced normals).
+    std::vector<glm::uvec2> sideRanges, incidentRanges;
+    std::vector<glm::vec2> sideUVs;
+    std::vector<uint32_t> incidentTriangles;
     uint32_t stitchedEdges = 0;
     bool hasUVs = false;
     Bounds bounds; // of the control points
 };
 
-// `tessCap` caps the segments per side of any patch (--tess).
-SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& tables, uint32_t tessCap);
+struct DisplacementPlan {
+    const Seams* seams = nullptr; // the SEAM data of these tables
+    bool seamFix = true;          // average every face's sample (false: each side its own)
+};
+
+// `tessCap` caps the segments per side of any patch (--tess). Vertices on UV seams are split per
+// side when the mesh has UVs (texture lookups stay in their chart; positions are shared). With a
+// displacement plan, also the sample UVs and the normal neighbourhoods of every vertex.
+SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& tables, uint32_t tessCap,
+                                   const DisplacementPlan* displacement = nullptr);
 
 } // namespace limn::render

@@ -5,6 +5,7 @@
 #include "topology/topology.h"
 
 #include <algorithm>
+#include <map>
 #include <unordered_map>
 
 namespace limn {
@@ -33,8 +34,11 @@ PtexPoint ptexOf(const Tables& t, const TessVertex& v) {
     return {ptex, u0 + double(v.s) / kTessParamOne * size, v0 + double(v.t) / kTessParamOne * size};
 }
 
-Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap) {
+Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap, bool splitUVSeams) {
     if (cap < 1) throw Error(ErrorKind::Usage, "the tessellation cap must be at least 1");
+    if (splitUVSeams && !mesh.hasUVs())
+        throw Error(ErrorKind::BadInput, "the mesh has no texture coordinates to split seams by");
+    const bool withUV = mesh.hasUVs();
     const uint32_t N = t.depth, R = 1u << N;
     Topology topo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
     PtexMap keys(mesh, topo, R);
@@ -53,21 +57,55 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap) 
     for (const auto& q : t.irregular) addElement(q.ptex, q.u0, q.v0, q.size, N);
 
     Tessellation out;
-    std::unordered_map<uint64_t, uint32_t> owner;
+    std::unordered_map<uint64_t, uint32_t> owner;  // geometric point -> its first vertex
+    std::unordered_map<uint64_t, bool> onUVSeam;   // geometric point -> its faces disagree on UV
+    std::map<std::pair<uint64_t, std::pair<float, float>>, uint32_t> copies; // (point, UV) -> copy
     owner.reserve(elements.size() * 8);
-    auto visit = [&](uint32_t ei, uint32_t i, uint32_t j, uint32_t step) -> uint32_t {
-        const Element& e = elements[ei];
-        uint64_t k = keys.key(e.ptex, e.U0 + i * step, e.V0 + j * step);
-        auto [it, inserted] = owner.try_emplace(k, static_cast<uint32_t>(out.vertices.size()));
-        if (inserted) {
-            uint32_t unit = kTessParamOne / e.W; // e.W is a power of two <= R <= 2^16
-            out.vertices.push_back({ei, uint16_t(i * step * unit), uint16_t(j * step * unit)});
+    std::vector<PtexMap::ChartUV> charts;
+    auto uvOf = [&](const Element& e, uint32_t U, uint32_t V) {
+        return glm::vec2(keys.ownUV(e.ptex, double(U) / R, double(V) / R));
+    };
+    auto seamPoint = [&](const Element& e, uint32_t U, uint32_t V, uint64_t k) {
+        auto [it, inserted] = onUVSeam.try_emplace(k, false);
+        if (inserted && (k >> 61) != 0) { // base vertices and edges only; interiors have one chart
+            keys.charts(e.ptex, U, V, charts);
+            for (const auto& c : charts) it->second |= glm::vec2(c.uv) != glm::vec2(charts[0].uv);
         }
         return it->second;
     };
-    auto find = [&](const Element& e, uint32_t U, uint32_t V) -> uint32_t {
-        auto it = owner.find(keys.key(e.ptex, U, V));
-        return it == owner.end() ? kNone : it->second;
+    // The vertex element `e` uses at (U, V): the point's own vertex, or at a UV seam the copy for
+    // e's chart (made on first use, sharing the first vertex's geometry).
+    auto vertexFor = [&](uint32_t ei, uint32_t U, uint32_t V, bool create) -> uint32_t {
+        const Element& e = elements[ei];
+        uint64_t k = keys.key(e.ptex, U, V);
+        auto it = owner.find(k);
+        if (it == owner.end()) {
+            if (!create) return kNone;
+            uint32_t unit = kTessParamOne / e.W; // e.W is a power of two <= R <= 2^16
+            it = owner.emplace(k, static_cast<uint32_t>(out.vertices.size())).first;
+            out.vertices.push_back({ei, uint16_t((U - e.U0) * unit), uint16_t((V - e.V0) * unit)});
+            out.geometry.push_back(it->second);
+            if (withUV) out.uvs.push_back(uvOf(e, U, V));
+        }
+        if (!splitUVSeams || !seamPoint(e, U, V, k)) return it->second;
+        glm::vec2 uv = uvOf(e, U, V);
+        const uint32_t first = it->second;
+        if (out.uvs[first] == uv) return first;
+        auto [c, inserted] = copies.try_emplace({k, {uv.x, uv.y}}, static_cast<uint32_t>(out.vertices.size()));
+        if (inserted) {
+            out.vertices.push_back(out.vertices[first]);
+            out.geometry.push_back(first);
+            out.uvs.push_back(uv);
+        }
+        return c->second;
+    };
+    auto visit = [&](uint32_t ei, uint32_t i, uint32_t j, uint32_t step) {
+        const Element& e = elements[ei];
+        return vertexFor(ei, e.U0 + i * step, e.V0 + j * step, true);
+    };
+    uint32_t current = 0; // the element being triangulated (pass 2)
+    auto find = [&](const Element&, uint32_t U, uint32_t V) -> uint32_t {
+        return vertexFor(current, U, V, false);
     };
 
     // Pass 1: every element registers its own grid points (owners in element order).
@@ -85,6 +123,7 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap) 
     std::vector<uint32_t> ring;
     for (uint32_t ei = 0; ei < elements.size(); ++ei) {
         const Element e = elements[ei];
+        current = ei;
         const uint32_t S = e.S, step = e.W / S;
         // Points along each edge, in counter-clockwise order around the element, at unit spacing.
         auto edgePoints = [&](int side, uint32_t from, uint32_t to, std::vector<uint32_t>& pts) {
@@ -156,6 +195,10 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap) 
                     // A single cell touching every side: fan from a new centre point, owned here.
                     uint32_t centre = static_cast<uint32_t>(out.vertices.size());
                     out.vertices.push_back({ei, uint16_t(kTessParamOne / 2), uint16_t(kTessParamOne / 2)});
+                    out.geometry.push_back(centre);
+                    if (withUV)
+                        out.uvs.push_back(glm::vec2(keys.ownUV(e.ptex, (e.U0 + 0.5 * e.W) / R,
+                                                               (e.V0 + 0.5 * e.W) / R)));
                     for (size_t r = 0; r < ring.size(); ++r) tri(centre, ring[r], ring[(r + 1) % ring.size()]);
                     continue;
                 }

@@ -9,6 +9,7 @@
 #include "mesh/mesh.h"
 #include "subdiv/tables.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <span>
@@ -28,6 +29,11 @@ inline constexpr uint32_t kTessParamOne = 32768;
 
 struct Tessellation {
     std::vector<TessVertex> vertices;
+    // With UV splitting: per vertex, the UV in the chart of the element that made it, and the
+    // vertex whose position it shares (itself for the first; UV-seam copies name the first).
+    // Copies keep the first one's (element, s, t), so they evaluate to the same bits.
+    std::vector<glm::vec2> uvs;
+    std::vector<uint32_t> geometry;
     std::vector<uint32_t> indices; // triangles, counter-clockwise in (u, v)
     std::vector<uint32_t> segments; // per element: segments per side of its own grid
     std::vector<uint32_t> triangleCounts; // per element: its triangles, emitted in element order
@@ -35,8 +41,11 @@ struct Tessellation {
     uint32_t stitchedEdges = 0;     // element edges that needed stitching
 };
 
-// `cap` limits the segments per side of any element (>= 1).
-Tessellation buildTessellation(const Mesh& mesh, const Tables& tables, uint32_t cap);
+// `cap` limits the segments per side of any element (>= 1). With `splitUVSeams` (the mesh must
+// have UVs), a point whose faces give it different UVs gets one vertex per distinct UV, so
+// textures and displacement can be looked up per side; all copies share the first's geometry.
+Tessellation buildTessellation(const Mesh& mesh, const Tables& tables, uint32_t cap,
+                               bool splitUVSeams = false);
 
 // The ptex face and (u, v) of a tessellation vertex.
 struct PtexPoint {

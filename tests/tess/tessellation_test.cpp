@@ -104,6 +104,43 @@ TEST_P(Tess, PatchVerticesLieOnTheLimitSurface) {
     EXPECT_LE(worst, 1e-5);
 }
 
+// Split at UV seams (for textures and displacement): copies share their first vertex's geometry,
+// so mapping every index through `geometry` still gives the closed surface, and every copy
+// carries a UV different from its first vertex's.
+TEST(TessSplit, SeamCopiesShareGeometryAndCloseTheSurface) {
+    Warnings w;
+    Mesh mesh = importMeshFile(test::modelPath("quad/spot_control_mesh.obj").string(), w);
+    TablesOptions o;
+    o.depth = 2;
+    Tables t = buildTables(mesh, resolveSchemeOptions(mesh.tags, {}), o, w);
+    Tessellation plain = buildTessellation(mesh, t, 64, false);
+    Tessellation split = buildTessellation(mesh, t, 64, true);
+    ASSERT_EQ(split.geometry.size(), split.vertices.size());
+    ASSERT_EQ(split.uvs.size(), split.vertices.size());
+    size_t copies = 0;
+    for (uint32_t v = 0; v < split.vertices.size(); ++v) {
+        uint32_t g = split.geometry[v];
+        ASSERT_LE(g, v);
+        ASSERT_EQ(split.geometry[g], g);
+        if (g == v) continue;
+        ++copies;
+        EXPECT_EQ(split.vertices[v].element, split.vertices[g].element);
+        EXPECT_EQ(split.vertices[v].s, split.vertices[g].s);
+        EXPECT_EQ(split.vertices[v].t, split.vertices[g].t);
+        EXPECT_NE(split.uvs[v], split.uvs[g]);
+    }
+    EXPECT_GT(copies, 0u);
+    EXPECT_EQ(split.vertices.size() - copies, plain.vertices.size());
+    EXPECT_EQ(split.indices.size(), plain.indices.size());
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (size_t i = 0; i < split.indices.size(); i += 3)
+        for (int k = 0; k < 3; ++k) {
+            uint32_t a = split.geometry[split.indices[i + k]], b = split.geometry[split.indices[i + (k + 1) % 3]];
+            ++edges[{std::min(a, b), std::max(a, b)}];
+        }
+    for (const auto& [e, n] : edges) EXPECT_EQ(n, 2);
+}
+
 const Case kCases[] = {
     {"quad/spot_control_mesh.obj", 1, false, 64, true},
     {"quad/spot_control_mesh.obj", 3, false, 64, true},
