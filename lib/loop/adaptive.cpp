@@ -1,5 +1,6 @@
 #include "loop/adaptive.h"
 
+#include "loop/hierarchy.h"
 #include "loop/rules.h"
 
 #include <glm/geometric.hpp>
@@ -30,6 +31,8 @@ std::vector<uint8_t> splitDecisions(const Level& level, const std::vector<glm::d
 }
 
 AdaptiveResult subdivide(const TriMesh& control, const AdaptiveOptions& options) {
+    if (options.positions == Positions::Exact && !options.uniform)
+        return subdivideOnHierarchy(control, options);
     AdaptiveResult result;
     result.mesh = control;
     const double diagonal = boundingBoxDiagonal(control.positions);

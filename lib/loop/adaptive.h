@@ -18,12 +18,19 @@ enum class Normalization {
     EdgeLength,  // F(d) = d / |e|, |e| the edge's current length
 };
 
+// Where the vertices of the result come from.
+enum class Positions {
+    Exact, // the uniform Loop hierarchy of the control mesh (hierarchy.h)
+    Paper, // Loop's masks re-applied to the adaptive mesh at each level (paper 004, math.md B.7)
+};
+
 struct AdaptiveOptions {
     int levels = 2;
     double epsilon = 0.001;
     Normalization normalization = Normalization::BoundingBox;
     Metric metric = Metric::Full;
     EvenUpdate evenUpdate = EvenUpdate::Split;
+    Positions positions = Positions::Exact;
     bool uniform = false;
 };
 

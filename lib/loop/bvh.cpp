@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -42,69 +43,103 @@ double pointTriangleSquaredDistance(const glm::dvec3& p, const glm::dvec3& a, co
     return dist2(a + ab * v + ac * w);
 }
 
-TriangleBvh::TriangleBvh(const std::vector<glm::dvec3>& P, const std::vector<Tri>& triangles) {
+namespace {
+
+float roundDown(double x) {
+    float f = static_cast<float>(x);
+    return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float roundUp(double x) {
+    float f = static_cast<float>(x);
+    return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+// Spreads the low 21 bits of x to every third bit (for a 63-bit Morton code).
+uint64_t spreadBits(uint64_t x) {
+    x &= 0x1FFFFF;
+    x = (x | x << 32) & 0x1F00000000FFFFull;
+    x = (x | x << 16) & 0x1F0000FF0000FFull;
+    x = (x | x << 8) & 0x100F00F00F00F00Full;
+    x = (x | x << 4) & 0x10C30C30C30C30C3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+}
+
+} // namespace
+
+// Triangles are sorted along a Morton curve of their centroids, then the tree halves that order
+// recursively; boxes are unions of the children's. One sort and one linear pass: a few hundred
+// milliseconds for millions of triangles, and the order (hence the tree) is deterministic.
+TriangleBvh::TriangleBvh(const std::vector<glm::dvec3>& P, const std::vector<Tri>& triangles)
+    : positions_(&P) {
     const uint32_t n = static_cast<uint32_t>(triangles.size());
     if (n == 0) return;
     std::vector<glm::dvec3> centroid(n);
-    for (uint32_t t = 0; t < n; ++t)
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (uint32_t t = 0; t < n; ++t) {
         centroid[t] = (P[triangles[t][0]] + P[triangles[t][1]] + P[triangles[t][2]]) / 3.0;
-    std::vector<uint32_t> order(n);
-    std::iota(order.begin(), order.end(), 0u);
-    constexpr uint32_t kLeafSize = 4;
-    struct Task {
-        uint32_t node, begin, end;
-    };
+        lo = glm::min(lo, centroid[t]);
+        hi = glm::max(hi, centroid[t]);
+    }
+    glm::dvec3 scale = glm::dvec3(2097151.0) / glm::max(hi - lo, glm::dvec3(1e-300));
+    std::vector<std::pair<uint64_t, uint32_t>> keys(n);
+    for (uint32_t t = 0; t < n; ++t) {
+        glm::dvec3 q = (centroid[t] - lo) * scale;
+        keys[t] = {spreadBits(static_cast<uint64_t>(q.x)) | spreadBits(static_cast<uint64_t>(q.y)) << 1 |
+                       spreadBits(static_cast<uint64_t>(q.z)) << 2,
+                   t};
+    }
+    std::sort(keys.begin(), keys.end());
+    tris_.resize(n);
+    for (uint32_t i = 0; i < n; ++i) tris_[i] = triangles[keys[i].second];
     nodes_.reserve(2 * (n / kLeafSize + 1));
     nodes_.push_back({});
-    std::vector<Task> stack{{0, 0, n}};
-    while (!stack.empty()) {
-        Task task = stack.back();
-        stack.pop_back();
-        glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo, clo = lo, chi = hi;
-        for (uint32_t i = task.begin; i < task.end; ++i) {
-            const Tri& t = triangles[order[i]];
-            for (uint32_t v : t) {
-                lo = glm::min(lo, P[v]);
-                hi = glm::max(hi, P[v]);
-            }
-            clo = glm::min(clo, centroid[order[i]]);
-            chi = glm::max(chi, centroid[order[i]]);
+    build(0, 0, n);
+}
+
+void TriangleBvh::build(uint32_t node, uint32_t begin, uint32_t end) {
+    Node n;
+    if (end - begin <= kLeafSize) {
+        const auto& P = *positions_;
+        for (int k = 0; k < 3; ++k) {
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (uint32_t i = begin; i < end; ++i)
+                for (uint32_t v : tris_[i]) {
+                    lo = std::min(lo, P[v][k]);
+                    hi = std::max(hi, P[v][k]);
+                }
+            n.lo[k] = roundDown(lo);
+            n.hi[k] = roundUp(hi);
         }
-        nodes_[task.node].lo = lo;
-        nodes_[task.node].hi = hi;
-        if (task.end - task.begin <= kLeafSize) {
-            nodes_[task.node].first = static_cast<uint32_t>(tris_.size());
-            nodes_[task.node].count = task.end - task.begin;
-            for (uint32_t i = task.begin; i < task.end; ++i) {
-                const Tri& t = triangles[order[i]];
-                tris_.push_back({P[t[0]], P[t[1]], P[t[2]]});
-            }
-            continue;
-        }
-        glm::dvec3 ext = chi - clo;
-        int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
-        uint32_t mid = task.begin + (task.end - task.begin) / 2;
-        std::nth_element(order.begin() + task.begin, order.begin() + mid, order.begin() + task.end,
-                         [&](uint32_t x, uint32_t y) {
-                             if (centroid[x][axis] != centroid[y][axis])
-                                 return centroid[x][axis] < centroid[y][axis];
-                             return x < y;
-                         });
-        uint32_t left = static_cast<uint32_t>(nodes_.size());
-        nodes_[task.node].first = left;
-        nodes_[task.node].count = 0;
-        nodes_.push_back({});
-        nodes_.push_back({});
-        stack.push_back({left + 1, mid, task.end});
-        stack.push_back({left, task.begin, mid});
+        n.first = begin;
+        n.count = end - begin;
+        nodes_[node] = n;
+        return;
     }
+    const uint32_t left = static_cast<uint32_t>(nodes_.size());
+    nodes_.push_back({});
+    nodes_.push_back({});
+    const uint32_t mid = begin + (end - begin) / 2;
+    build(left, begin, mid);
+    build(left + 1, mid, end);
+    for (int k = 0; k < 3; ++k) {
+        n.lo[k] = std::min(nodes_[left].lo[k], nodes_[left + 1].lo[k]);
+        n.hi[k] = std::max(nodes_[left].hi[k], nodes_[left + 1].hi[k]);
+    }
+    n.first = left;
+    n.count = 0;
+    nodes_[node] = n;
 }
 
 namespace {
 
-double boxSquaredDistance(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi) {
-    glm::dvec3 d = glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0));
-    return glm::dot(d, d);
+double boxSquaredDistance(const glm::dvec3& p, const float* lo, const float* hi) {
+    double sum = 0;
+    for (int k = 0; k < 3; ++k) {
+        double d = std::max({static_cast<double>(lo[k]) - p[k], p[k] - static_cast<double>(hi[k]), 0.0});
+        sum += d * d;
+    }
+    return sum;
 }
 
 } // namespace
@@ -119,9 +154,10 @@ double TriangleBvh::squaredDistance(const glm::dvec3& p) const {
         const Node& node = nodes_[stack[--top]];
         if (boxSquaredDistance(p, node.lo, node.hi) >= best) continue;
         if (node.count > 0) {
+            const auto& P = *positions_;
             for (uint32_t i = node.first; i < node.first + node.count; ++i)
-                best = std::min(best, pointTriangleSquaredDistance(p, tris_[i][0], tris_[i][1],
-                                                                   tris_[i][2]));
+                best = std::min(best, pointTriangleSquaredDistance(p, P[tris_[i][0]], P[tris_[i][1]],
+                                                                   P[tris_[i][2]]));
             continue;
         }
         uint32_t l = node.first, r = node.first + 1;

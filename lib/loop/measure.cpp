@@ -1,6 +1,7 @@
 #include "loop/measure.h"
 
 #include "loop/adaptive.h"
+#include "loop/metric.h"
 #include "loop/rules.h"
 
 #include <algorithm>
@@ -62,21 +63,30 @@ OneSided distances(const std::vector<glm::dvec3>& points, const TriangleBvh& tar
     return r;
 }
 
+// Uniform Loop to `level`, every vertex at its limit position. The last step takes the limits
+// straight from the level below (limits do not change under refinement: E5/B.3 for the even
+// vertices, B.4's L(o) for the odd ones), which saves building the finest topology.
 TriMesh limitReference(const TriMesh& control, int level) {
     TriMesh base = control;
     base.uvs.clear();
     base.uvTriangles.clear();
     AdaptiveOptions uniform;
     uniform.uniform = true;
-    uniform.levels = level;
-    TriMesh mesh = subdivide(base, uniform).mesh;
-    std::vector<glm::dvec3> limit;
-    {
-        Level l(mesh);
-        limit = limitPositions(l);
+    uniform.levels = level - 1;
+    TriMesh coarse = level > 0 ? subdivide(base, uniform).mesh : base;
+    Level l(coarse);
+    if (level == 0) {
+        TriMesh out = coarse;
+        out.positions = limitPositions(l);
+        return out;
     }
-    mesh.positions = std::move(limit);
-    return mesh;
+    auto even = evenPositions(l), odd = oddPositions(l);
+    std::vector<uint8_t> all(l.topology().edgeCount(), 1);
+    TriMesh out = refine(l, all, EvenUpdate::All, even, odd).mesh;
+    std::vector<glm::dvec3> evenLimit = limitPositions(l), oddLimit = oddLimitPositions(l, even, odd);
+    std::copy(evenLimit.begin(), evenLimit.end(), out.positions.begin());
+    std::copy(oddLimit.begin(), oddLimit.end(), out.positions.begin() + evenLimit.size());
+    return out;
 }
 
 } // namespace

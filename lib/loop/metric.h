@@ -15,13 +15,20 @@
 namespace limn::loop {
 
 enum class Metric {
-    Full,   // |o − L(o)|, the paper's metric
+    Full,   // |o − L(o)|: the paper's metric
     Normal, // the part of o − L(o) off the surface: along the mean of the two face normals for an
-            // interior edge, perpendicular to the edge for a sharp one (math.md B.4 "optional fix")
+            // interior edge, perpendicular to the edge for a sharp one (math.md B.4, "optional fix")
+    Chord,  // |(a + b)/2 − L(o)|: the gap between the unsplit edge's midpoint and the limit surface
+            // there, i.e. the error the edge leaves if it is not split (limn's variant)
 };
 
-// d(e) for every edge of the level, unnormalized. `even` and `odd` are evenPositions() and
-// oddPositions() of the same level.
+// L(o_e) for every edge: the limit positions of the odd vertices (formulas above). `even` and `odd`
+// are evenPositions() and oddPositions() of the same level. These are also the limit positions of
+// the odd vertices of the uniformly refined mesh, so no topology of that mesh is needed.
+std::vector<glm::dvec3> oddLimitPositions(const Level& level, const std::vector<glm::dvec3>& even,
+                                          const std::vector<glm::dvec3>& odd);
+
+// d(e) for every edge of the level, unnormalized.
 std::vector<double> edgeDistances(const Level& level, const std::vector<glm::dvec3>& even,
                                   const std::vector<glm::dvec3>& odd, Metric metric);
 

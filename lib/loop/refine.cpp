@@ -49,6 +49,57 @@ private:
 
 } // namespace
 
+void appendTemplate(const Tri& corner, const Tri& mid, const std::vector<glm::dvec3>& P,
+                    TriMesh& out, const Tri* uvCorner, const Tri* uvMid) {
+    const bool uv = uvCorner != nullptr;
+    int count = 0;
+    for (uint32_t m : mid) count += m != kNone ? 1 : 0;
+    // Rotation r: x = corner r, y = corner r+1, z = corner r+2; edge i joins corner i and i+1.
+    auto emit = [&](int r, std::initializer_list<int> codes) {
+        // Codes: 0..2 = x, y, z; 3..5 = m_xy, m_yz, m_zx.
+        Tri t{}, tuv{};
+        int j = 0;
+        for (int c : codes) {
+            int idx = (r + c % 3) % 3;
+            t[j] = c < 3 ? corner[idx] : mid[idx];
+            if (uv) tuv[j] = c < 3 ? (*uvCorner)[idx] : (*uvMid)[idx];
+            ++j;
+        }
+        out.triangles.push_back(t);
+        if (uv) out.uvTriangles.push_back(tuv);
+    };
+    enum { X = 0, Y = 1, Z = 2, MXY = 3, MYZ = 4, MZX = 5 };
+    if (count == 0) {
+        emit(0, {X, Y, Z});
+    } else if (count == 3) {
+        emit(0, {X, MXY, MZX});
+        emit(0, {MXY, Y, MYZ});
+        emit(0, {MZX, MYZ, Z});
+        emit(0, {MXY, MYZ, MZX});
+    } else if (count == 1) {
+        int r = 0;
+        while (mid[r] == kNone) ++r; // the split edge becomes xy
+        emit(r, {X, MXY, Z});
+        emit(r, {MXY, Y, Z});
+    } else {
+        int u = 0;
+        while (mid[u] != kNone) ++u; // the unsplit edge becomes zx: rotation r = u + 1
+        int r = (u + 1) % 3;
+        uint32_t x = corner[r], z = corner[(r + 2) % 3], mxy = mid[r], myz = mid[(r + 1) % 3];
+        // Diagonal by the larger minimum compactness on the new positions; ties take A.
+        double qa = std::min(compactness(P[x], P[mxy], P[myz]), compactness(P[x], P[myz], P[z]));
+        double qb = std::min(compactness(P[x], P[mxy], P[z]), compactness(P[mxy], P[myz], P[z]));
+        emit(r, {MXY, Y, MYZ});
+        if (qa >= qb) {
+            emit(r, {X, MXY, MYZ}); // A: diagonal x–m_yz
+            emit(r, {X, MYZ, Z});
+        } else {
+            emit(r, {X, MXY, Z}); // B: diagonal m_xy–z
+            emit(r, {MXY, MYZ, Z});
+        }
+    }
+}
+
 Refinement refine(const Level& level, std::span<const uint8_t> split, EvenUpdate update,
                   const std::vector<glm::dvec3>& even, const std::vector<glm::dvec3>& odd) {
     const Topology& topo = level.topology();
@@ -87,24 +138,19 @@ Refinement refine(const Level& level, std::span<const uint8_t> split, EvenUpdate
         }
     }
 
+    std::sort(out.creases.begin(), out.creases.end());
+
     const bool uv = in.hasUVs();
     if (uv) out.uvs = in.uvs;
     OddUVs oddUVs(out.uvs, uv ? E : 0);
     out.triangles.reserve(in.triangles.size() * 2);
-    const auto& P = out.positions;
-
-    // Retriangulation templates (math.md B.6; paper 004, Fig. 4). Corners (x,y,z) are rotated so
-    // that the cases read as in math.md; m_xy is the odd vertex on edge xy.
     for (uint32_t f = 0; f < in.triangleCount(); ++f) {
         uint32_t h0 = topo.faceHalfedge(f);
         uint32_t hs[3] = {h0, topo.next(h0), topo.prev(h0)};
-        uint32_t vs[3], mids[3], uvs[3] = {0, 0, 0}, uvMids[3] = {0, 0, 0};
-        int count = 0;
+        Tri vs{}, mids{}, uvs{}, uvMids{};
         for (int i = 0; i < 3; ++i) {
             vs[i] = topo.vertex(hs[i]);
-            uint32_t e = topo.edge(hs[i]);
-            mids[i] = oddIndex[e];
-            count += split[e] ? 1 : 0;
+            mids[i] = oddIndex[topo.edge(hs[i])];
         }
         if (uv) {
             for (int i = 0; i < 3; ++i) uvs[i] = in.uvTriangles[f][topo.cornerIndex(hs[i])];
@@ -116,50 +162,7 @@ Refinement refine(const Level& level, std::span<const uint8_t> split, EvenUpdate
                 uvMids[i] = forward ? oddUVs.get(e, ua, ub) : oddUVs.get(e, ub, ua);
             }
         }
-        // Rotation r: x = corner r, y = corner r+1, z = corner r+2; edge i joins corner i, i+1.
-        auto emit = [&](int r, std::initializer_list<int> corners) {
-            // Corner codes: 0..2 = x,y,z; 3..5 = m_xy, m_yz, m_zx.
-            Tri t{}, tuv{};
-            int j = 0;
-            for (int c : corners) {
-                int idx = (r + c % 3) % 3;
-                t[j] = c < 3 ? vs[idx] : mids[idx];
-                tuv[j] = c < 3 ? uvs[idx] : uvMids[idx];
-                ++j;
-            }
-            out.triangles.push_back(t);
-            if (uv) out.uvTriangles.push_back(tuv);
-        };
-        enum { X = 0, Y = 1, Z = 2, MXY = 3, MYZ = 4, MZX = 5 };
-        if (count == 0) {
-            emit(0, {X, Y, Z});
-        } else if (count == 3) {
-            emit(0, {X, MXY, MZX});
-            emit(0, {MXY, Y, MYZ});
-            emit(0, {MZX, MYZ, Z});
-            emit(0, {MXY, MYZ, MZX});
-        } else if (count == 1) {
-            int r = 0;
-            while (mids[r] == kNone) ++r; // the split edge becomes xy
-            emit(r, {X, MXY, Z});
-            emit(r, {MXY, Y, Z});
-        } else {
-            int u = 0;
-            while (mids[u] != kNone) ++u; // the unsplit edge becomes zx: rotation r = u + 1
-            int r = (u + 1) % 3;
-            uint32_t x = vs[r], z = vs[(r + 2) % 3], mxy = mids[r], myz = mids[(r + 1) % 3];
-            // Diagonal by the larger minimum compactness on the new positions; ties take A.
-            double qa = std::min(compactness(P[x], P[mxy], P[myz]), compactness(P[x], P[myz], P[z]));
-            double qb = std::min(compactness(P[x], P[mxy], P[z]), compactness(P[mxy], P[myz], P[z]));
-            emit(r, {MXY, Y, MYZ});
-            if (qa >= qb) {
-                emit(r, {X, MXY, MYZ}); // A: diagonal x–m_yz
-                emit(r, {X, MYZ, Z});
-            } else {
-                emit(r, {X, MXY, Z});   // B: diagonal m_xy–z
-                emit(r, {MXY, MYZ, Z});
-            }
-        }
+        appendTemplate(vs, mids, out.positions, out, uv ? &uvs : nullptr, uv ? &uvMids : nullptr);
     }
     return result;
 }

@@ -31,6 +31,14 @@ struct Refinement {
 Refinement refine(const Level& level, std::span<const uint8_t> split, EvenUpdate update,
                   const std::vector<glm::dvec3>& even, const std::vector<glm::dvec3>& odd);
 
+// Appends the retriangulation of one triangle (math.md B.6; paper 004, Fig. 4) to `out`:
+// `corner` its counter-clockwise corners, `mid[i]` the vertex splitting edge (corner i, corner i+1)
+// or kNone. Two split edges: the corner between them is cut off and the remaining quad is split by
+// the diagonal whose two triangles have the larger minimum compactness on positions `P` (ties: the
+// diagonal from the corner opposite the cut-off one). With `uvCorner`/`uvMid`, the UV triangles too.
+void appendTemplate(const Tri& corner, const Tri& mid, const std::vector<glm::dvec3>& P,
+                    TriMesh& out, const Tri* uvCorner = nullptr, const Tri* uvMid = nullptr);
+
 // Compactness 4√3·A/(l0² + l1² + l2²) of a triangle (paper 004, eq. (3)): 1 for an equilateral
 // triangle, towards 0 for slivers, 0 for a degenerate one.
 double compactness(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
