@@ -8,11 +8,24 @@
 #include "loop/measure.h"
 #include "mesh/import.h"
 
+#include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 
 using namespace limn;
 
 namespace {
+
+double parseEpsilon(const std::string& text) {
+    double value = 0;
+    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(value))
+        throw Error(ErrorKind::Usage, "--epsilon: '" + text + "' is not a number (see --help)");
+    if (value < 0 || value > 1e300)
+        throw Error(ErrorKind::Usage, "--epsilon: " + text + " is out of range 0 to 1e300 (see --help)");
+    return value;
+}
 
 void writeStats(const loop::TriMesh& input, const loop::AdaptiveResult& result,
                 const loop::Measurement* m) {
@@ -54,7 +67,9 @@ void writeStats(const loop::TriMesh& input, const loop::AdaptiveResult& result,
 int main(int argc, char** argv) {
     return cli::run("limn-loop", argc, argv, [](int ac, char** av) {
         cli::Common common;
-        std::string input = "-", normalize = "bbox", metric = "full", even = "split", boundary;
+        std::string input = "-", normalize = "bbox", metric = "full", even = "split", positions = "exact",
+                    boundary;
+        std::optional<double> epsilon;
         loop::AdaptiveOptions options;
         bool triangulate = false, stats = false, measure = false;
         int measureLevel = 0, measureSamples = 200000;
@@ -66,14 +81,17 @@ int main(int argc, char** argv) {
             common);
         parser.positional("INPUT", &input, "triangle mesh: .obj, .gltf, .glb, .ply, .off or .limn")
             .integer("--levels", "L", &options.levels, 0, 8, "subdivision levels")
-            .real("--epsilon", "E", &options.epsilon, 0, 1e300,
-                  "split an edge when its normalized distance d >= E (0 splits every edge)")
+            .custom("--epsilon", "E", [&](const std::string& v) { epsilon = parseEpsilon(v); },
+                    "2e-05 with bbox, 0.0025 with edge",
+                    "split an edge when its normalized distance d >= E (0 to 1e300; 0 splits every edge)")
             .choice("--normalize", &normalize, {"bbox", "edge"},
-                    "d divided by the control mesh's bounding-box diagonal, or by the edge length")
-            .choice("--metric", &metric, {"full", "normal"},
-                    "distance |o - L(o)| (the paper's), or only its part along the surface normal")
+                    "d divided by the control mesh's bounding-box diagonal, or by the edge's length")
+            .choice("--metric", &metric, {"full", "normal", "chord"},
+                    "d = |o - L(o)| (paper); its normal part; or |(a+b)/2 - L(o)| (gap left unsplit)")
+            .choice("--positions", &positions, {"exact", "paper"},
+                    "vertices on the input's uniform Loop hierarchy, or Loop's rules re-applied (paper)")
             .choice("--even", &even, {"split", "all"},
-                    "move only vertices at a split edge to their even position, or all vertices")
+                    "vertices move to their even position only at a split edge, or all vertices")
             .flag("--uniform", &options.uniform, "split every edge: plain Loop subdivision")
             .flag("--triangulate", &triangulate, "split polygons into triangle fans instead of refusing them")
             .choice("--boundary", &boundary, {"none", "edge", "edge-corner"},
@@ -85,16 +103,31 @@ int main(int argc, char** argv) {
                      "reference level for --measure; 0 picks levels+2, fewer above 5M triangles")
             .integer("--measure-samples", "N", &measureSamples, 1000, 100000000,
                      "samples per direction for --measure")
+            .exitCodes("Exit codes:\n"
+                       "  0  success\n"
+                       "  1  bad input (polygon without --triangulate, non-manifold edge or vertex,\n"
+                       "     semi-sharp crease or corner, hole tag, unreadable file) or failed output\n"
+                       "  2  usage error\n")
             .notes("Output format by the extension of -o: .obj (with UVs and tags), .ply, .off;\n"
-                   "standard output gets OBJ. Infinitely sharp creases and corners (sharpness >= 10)\n"
-                   "and the boundary rules are supported; semi-sharp ones are refused.\n"
-                   "Example:\n  limn-loop --levels 2 --epsilon 0.001 --stats cat.obj -o cat2.obj\n");
+                   "standard output gets OBJ. UVs are interpolated linearly. Infinitely sharp creases\n"
+                   "and corners (sharpness >= 10) and the boundary rules are supported; semi-sharp\n"
+                   "ones, holes and non-manifold meshes are refused. A level that splits no edge ends\n"
+                   "the refinement. --stats prints {input, levels: [{level, edges, split, vertices,\n"
+                   "faces}], output[, measure]}; --measure adds the distance to the input's limit\n"
+                   "surface relative to its bounding-box diagonal (max and RMS, both directions).\n"
+                   "Examples:\n"
+                   "  limn-loop --levels 2 cat.obj -o cat2.obj\n"
+                   "  limn-loop --uniform --levels 3 --stats --measure spot.obj -o spot3.ply\n");
         if (!parser.parse(ac, av)) return 0;
         cli::setVerbosity(common.quiet, common.verbose);
         if (measure && !stats) throw Error(ErrorKind::Usage, "--measure needs --stats (see --help)");
         options.normalization = normalize == "edge" ? loop::Normalization::EdgeLength
                                                     : loop::Normalization::BoundingBox;
-        options.metric = metric == "normal" ? loop::Metric::Normal : loop::Metric::Full;
+        options.epsilon = epsilon.value_or(normalize == "edge" ? 0.0025 : 2e-5);
+        options.metric = metric == "normal"  ? loop::Metric::Normal
+                         : metric == "chord" ? loop::Metric::Chord
+                                             : loop::Metric::Full;
+        options.positions = positions == "paper" ? loop::Positions::Paper : loop::Positions::Exact;
         options.evenUpdate = even == "all" ? loop::EvenUpdate::All : loop::EvenUpdate::Split;
         loop::ImportOptions importOptions;
         importOptions.triangulate = triangulate;
