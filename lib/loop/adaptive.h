@@ -26,7 +26,7 @@ enum class Positions {
 
 struct AdaptiveOptions {
     int levels = 2;
-    double epsilon = 0.001;
+    double epsilon = 2e-5; // the CLI default for bounding-box normalization (docs/loop.md)
     Normalization normalization = Normalization::BoundingBox;
     Metric metric = Metric::Full;
     EvenUpdate evenUpdate = EvenUpdate::Split;

@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -67,11 +68,10 @@ uint64_t spreadBits(uint64_t x) {
 
 } // namespace
 
-// Triangles are sorted along a Morton curve of their centroids, then the tree halves that order
-// recursively; boxes are unions of the children's. One sort and one linear pass: a few hundred
-// milliseconds for millions of triangles, and the order (hence the tree) is deterministic.
-TriangleBvh::TriangleBvh(const std::vector<glm::dvec3>& P, const std::vector<Tri>& triangles)
-    : positions_(&P) {
+// Triangles are sorted along a Morton curve of their centroids, then the tree splits that order
+// recursively where the highest differing code bit flips (a "linear BVH"); boxes are unions of the
+// children's. One sort and one linear pass, and the order (hence the tree) is deterministic.
+TriangleBvh::TriangleBvh(const std::vector<glm::dvec3>& P, const std::vector<Tri>& triangles) {
     const uint32_t n = static_cast<uint32_t>(triangles.size());
     if (n == 0) return;
     std::vector<glm::dvec3> centroid(n);
@@ -91,22 +91,27 @@ TriangleBvh::TriangleBvh(const std::vector<glm::dvec3>& P, const std::vector<Tri
     }
     std::sort(keys.begin(), keys.end());
     tris_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) tris_[i] = triangles[keys[i].second];
+    for (uint32_t i = 0; i < n; ++i) {
+        const Tri& t = triangles[keys[i].second];
+        tris_[i] = {P[t[0]], P[t[1]], P[t[2]]};
+    }
+    std::vector<uint64_t> codes(n);
+    for (uint32_t i = 0; i < n; ++i) codes[i] = keys[i].first;
     nodes_.reserve(2 * (n / kLeafSize + 1));
     nodes_.push_back({});
-    build(0, 0, n);
+    build(codes, 0, 0, n);
 }
 
-void TriangleBvh::build(uint32_t node, uint32_t begin, uint32_t end) {
+void TriangleBvh::build(const std::vector<uint64_t>& codes, uint32_t node, uint32_t begin,
+                        uint32_t end) {
     Node n;
     if (end - begin <= kLeafSize) {
-        const auto& P = *positions_;
         for (int k = 0; k < 3; ++k) {
             double lo = std::numeric_limits<double>::infinity(), hi = -lo;
             for (uint32_t i = begin; i < end; ++i)
-                for (uint32_t v : tris_[i]) {
-                    lo = std::min(lo, P[v][k]);
-                    hi = std::max(hi, P[v][k]);
+                for (const glm::dvec3& p : tris_[i]) {
+                    lo = std::min(lo, p[k]);
+                    hi = std::max(hi, p[k]);
                 }
             n.lo[k] = roundDown(lo);
             n.hi[k] = roundUp(hi);
@@ -119,9 +124,18 @@ void TriangleBvh::build(uint32_t node, uint32_t begin, uint32_t end) {
     const uint32_t left = static_cast<uint32_t>(nodes_.size());
     nodes_.push_back({});
     nodes_.push_back({});
-    const uint32_t mid = begin + (end - begin) / 2;
-    build(left, begin, mid);
-    build(left + 1, mid, end);
+    // Split where the highest differing Morton bit flips (a spatial split, as in an octree), or in
+    // the middle of a run of equal codes.
+    uint32_t mid = begin + (end - begin) / 2;
+    if (uint64_t diff = codes[begin] ^ codes[end - 1]; diff != 0) {
+        uint64_t bit = uint64_t(1) << (63 - std::countl_zero(diff));
+        mid = static_cast<uint32_t>(
+            std::partition_point(codes.begin() + begin, codes.begin() + end,
+                                 [bit](uint64_t c) { return (c & bit) == 0; }) -
+            codes.begin());
+    }
+    build(codes, left, begin, mid);
+    build(codes, left + 1, mid, end);
     for (int k = 0; k < 3; ++k) {
         n.lo[k] = std::min(nodes_[left].lo[k], nodes_[left + 1].lo[k]);
         n.hi[k] = std::max(nodes_[left].hi[k], nodes_[left + 1].hi[k]);
@@ -147,17 +161,15 @@ double boxSquaredDistance(const glm::dvec3& p, const float* lo, const float* hi)
 double TriangleBvh::squaredDistance(const glm::dvec3& p) const {
     double best = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return best;
-    uint32_t stack[64];
+    uint32_t stack[160]; // depth <= 63 bit splits + 32 halvings; each level leaves one entry
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const Node& node = nodes_[stack[--top]];
         if (boxSquaredDistance(p, node.lo, node.hi) >= best) continue;
         if (node.count > 0) {
-            const auto& P = *positions_;
             for (uint32_t i = node.first; i < node.first + node.count; ++i)
-                best = std::min(best, pointTriangleSquaredDistance(p, P[tris_[i][0]], P[tris_[i][1]],
-                                                                   P[tris_[i][2]]));
+                best = std::min(best, pointTriangleSquaredDistance(p, tris_[i][0], tris_[i][1], tris_[i][2]));
             continue;
         }
         uint32_t l = node.first, r = node.first + 1;

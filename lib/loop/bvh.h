@@ -14,7 +14,6 @@ namespace limn::loop {
 
 class TriangleBvh {
 public:
-    // Keeps a pointer to `positions`, which must outlive the tree (and not move).
     TriangleBvh(const std::vector<glm::dvec3>& positions, const std::vector<Tri>& triangles);
     TriangleBvh(const TriangleBvh&) = delete;
     TriangleBvh& operator=(const TriangleBvh&) = delete;
@@ -24,16 +23,15 @@ public:
 
 private:
     static constexpr uint32_t kLeafSize = 4;
-    void build(uint32_t node, uint32_t begin, uint32_t end);
+    void build(const std::vector<uint64_t>& codes, uint32_t node, uint32_t begin, uint32_t end);
 
     struct Node {
         float lo[3], hi[3]; // rounded outwards, so the box still contains its triangles
         uint32_t first = 0; // leaf: first triangle in tris_; inner: left child (right = first+1)
         uint32_t count = 0; // triangles in a leaf; 0 for an inner node
     };
-    const std::vector<glm::dvec3>* positions_;
     std::vector<Node> nodes_;
-    std::vector<Tri> tris_; // triangles in leaf order
+    std::vector<std::array<glm::dvec3, 3>> tris_; // triangle corners in leaf order (cache-friendly)
 };
 
 // Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5).
