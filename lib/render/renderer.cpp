@@ -56,15 +56,35 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         throw Error(ErrorKind::BadInput,
                     "--shade levels colours subdivision levels, and the container has no tables "
                     "(TBLS); run limn-tables first");
+    if (settings.shade == Shade::Texture && !settings.texture)
+        throw Error(ErrorKind::Usage, "--shade texture needs --texture MAP");
+    if ((settings.texture || settings.displacementMap) && !mesh.hasUVs())
+        throw Error(ErrorKind::BadInput, "--texture and --displace need texture coordinates; the mesh has none");
+    if (settings.displacementMap && !tables)
+        throw Error(ErrorKind::BadInput, "--displace displaces the subdivision surface; the container has "
+                                         "no tables (TBLS): run limn-tables first");
     Bounds bounds;
     if (tables) {
-        SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap);
+        DisplacementPlan plan{settings.seams, settings.seamFix};
+        if (settings.displacementMap && !settings.seams)
+            throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
+        SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap,
+                                                  settings.displacementMap ? &plan : nullptr);
         bounds = draw.bounds;
+        if (settings.displacementMap) { // leave room for the displaced surface in the framing
+            glm::dvec3 pad(std::abs(settings.displaceScale) * 0.5);
+            bounds.min -= pad, bounds.max += pad;
+        }
+        SubdivisionPass::Displacement displacement{settings.displacementMap, float(settings.displaceScale),
+                                                   float(settings.displaceMid)};
         pass_ = std::make_unique<SubdivisionPass>(
             ctx, std::move(draw),
             settings.evalInCompute ? SubdivisionPass::Eval::Compute : SubdivisionPass::Eval::Vertex,
-            settings.evaluateVertices || settings.wire, settings.shade == Shade::Levels);
+            settings.evaluateVertices || settings.wire, settings.shade == Shade::Levels,
+            settings.displacementMap ? &displacement : nullptr, settings.texture);
     } else {
+        if (settings.texture)
+            throw Error(ErrorKind::BadInput, "--texture is drawn on the subdivision surface; run limn-tables first");
         ControlMeshDraw draw = prepareControlMesh(mesh);
         bounds = draw.bounds;
         pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw));

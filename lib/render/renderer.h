@@ -24,6 +24,8 @@
 #include "subdiv/tables.h"
 #include "render/ply.h"
 #include "render/png.h"
+#include "render/texture_image.h"
+#include "seams/seams.h"
 
 #include <glm/vec3.hpp>
 
@@ -33,7 +35,7 @@
 
 namespace limn::render {
 
-enum class Shade : uint32_t { Lit = 0, Normal = 1, Uv = 2, Levels = 3 }; // mirrors SHADE_*
+enum class Shade : uint32_t { Lit = 0, Normal = 1, Uv = 2, Levels = 3, Texture = 4 }; // SHADE_*
 
 struct RenderSettings {
     uint32_t width = 1024, height = 768;
@@ -45,6 +47,12 @@ struct RenderSettings {
     uint32_t tessCap = 64;                // segments per patch side, at most (subdivision)
     bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)
     bool evalInCompute = true;            // subdivision vertices: compute pass (else vertex stage)
+    // Displacement of the subdivision surface (paper 000, 4.5) and a colour texture.
+    const FloatImage* displacementMap = nullptr;
+    double displaceScale = 1, displaceMid = 0;
+    bool seamFix = true;
+    const Seams* seams = nullptr; // for the seam fix; required with a displacement map
+    const FloatImage* texture = nullptr;
 };
 
 // GPU milliseconds of one frame; NaN when the device has no timestamps.

@@ -3,6 +3,8 @@
 #include "base/error.h"
 #include "render_shaders.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace limn::render {
@@ -18,6 +20,37 @@ struct LimitPush { // subdiv_limit.comp
 struct EvalPush { // surface_eval.comp
     uint32_t patchCount;
 };
+struct DisplacePush { // displace.comp
+    float scale, mid;
+};
+
+// The displacement map for displace.comp: width, height, then channel 0 of each texel.
+std::vector<uint32_t> mapWords(const FloatImage& img) {
+    std::vector<uint32_t> w{img.width, img.height};
+    w.reserve(2 + size_t(img.width) * img.height);
+    for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
+        uint32_t bits;
+        std::memcpy(&bits, &img.values[i * img.channels], 4);
+        w.push_back(bits);
+    }
+    return w;
+}
+
+// The colour texture for surface.frag: width, height, then sRGB RGBA8 texels (one white texel
+// when there is none).
+std::vector<uint32_t> textureWords(const FloatImage* img) {
+    if (!img) return {1, 1, 0xFFFFFFFFu};
+    std::vector<uint32_t> w{img->width, img->height};
+    for (size_t i = 0; i < size_t(img->width) * img->height; ++i) {
+        uint32_t c = 0;
+        for (uint32_t k = 0; k < 3; ++k) {
+            float v = img->values[i * img->channels + std::min(k, img->channels - 1)];
+            c |= uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)) << (8 * k);
+        }
+        w.push_back(c | 0xFF000000u);
+    }
+    return w;
+}
 
 // GPU buffers cannot be empty: absent tables get one zero element.
 template <class T>
@@ -38,7 +71,8 @@ gpu::Buffer upload(gpu::Context& ctx, const std::string& name, const std::vector
 } // namespace
 
 struct SubdivisionPass::Gpu {
-    Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate)
+    Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate, const Displacement* disp,
+        const FloatImage* colour)
         : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
           faceStarts(upload(ctx, "face-point starts", d.faceStarts)),
           faceIndices(upload(ctx, "face-point indices", d.faceIndices)),
@@ -56,17 +90,18 @@ struct SubdivisionPass::Gpu {
           triangles(upload(ctx, "triangle indices", d.triangles, gpu::kIndex | gpu::kStorage)),
           triangleLevels(upload(ctx, "triangle levels", d.triangleLevels)),
           wireLines(upload(ctx, "wire lines", d.wireLines, gpu::kIndex)),
+          texture(upload(ctx, "colour texture", textureWords(colour))),
           facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
           stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
           limitPass(ctx, {"limit points", subdiv_limit_comp_spv, 5, sizeof(LimitPush)}),
-          surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 7, sizeof(DrawPush)}),
-          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surface_frag_spv, 5,
+          surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 8, sizeof(DrawPush)}),
+          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surface_frag_spv, 8,
                              sizeof(DrawPush)}) {
         faceBindings = facePass.bind({vertices, faceStarts, faceIndices});
         stencilBindings = stencilPass.bind({vertices, stencilStarts, stencilIndices, stencilWeights});
         limitBindings = limitPass.bind({vertices, limitStarts, limitIndices, limitWeights, limits});
         surfaceBindings = surface.bind(
-            {vertices, patches, irregular, limits, tessVertices, triangles, triangleLevels});
+            {vertices, patches, irregular, limits, tessVertices, triangles, triangleLevels, texture});
         if (evaluate) {
             const uint64_t n = std::max<uint64_t>(d.tessVertices.size(), 1);
             evalPositions = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated positions", n * 16});
@@ -79,14 +114,40 @@ struct SubdivisionPass::Gpu {
             wire = std::make_unique<gpu::GraphicsPipeline>(
                 ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
                                                gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false});
-            wireBindings = wire->bind({*evalPositions});
-            fetchBindings = surfaceFetch.bind({*evalPositions, *evalNormals, tessVertices, triangles, triangleLevels});
+            const gpu::Buffer* drawnPositions = evalPositions.get();
+            const gpu::Buffer* drawnNormals = evalNormals.get();
+            if (disp) {
+                sideRanges = std::make_unique<gpu::Buffer>(upload(ctx, "displacement sample ranges", d.sideRanges));
+                sideUVs = std::make_unique<gpu::Buffer>(upload(ctx, "displacement sample UVs", d.sideUVs));
+                map = std::make_unique<gpu::Buffer>(upload(ctx, "displacement map", mapWords(*disp->map)));
+                displaced = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced positions", n * 16});
+                incidentRanges = std::make_unique<gpu::Buffer>(upload(ctx, "incident ranges", d.incidentRanges));
+                incident = std::make_unique<gpu::Buffer>(upload(ctx, "incident triangles", d.incidentTriangles));
+                displacedNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced normals", n * 16});
+                displacePass = std::make_unique<gpu::ComputePipeline>(
+                    ctx, gpu::ComputePipelineDesc{"displace", displace_comp_spv, 6, sizeof(DisplacePush)});
+                normalsPass = std::make_unique<gpu::ComputePipeline>(
+                    ctx, gpu::ComputePipelineDesc{"displaced normals", displaced_normals_comp_spv, 5, 0});
+                displaceBindings = displacePass->bind({*evalPositions, *evalNormals, *sideRanges, *sideUVs,
+                                                       *map, *displaced});
+                normalsBindings = normalsPass->bind({*displaced, triangles, *incidentRanges, *incident,
+                                                     *displacedNormals});
+                drawnPositions = displaced.get();
+                drawnNormals = displacedNormals.get();
+            }
+            wireBindings = wire->bind({*drawnPositions});
+            fetchBindings = surfaceFetch.bind({*drawnPositions, *drawnNormals, tessVertices, triangles,
+                                               triangleLevels, triangles, triangles, texture});
         }
     }
 
     gpu::Buffer vertices, faceStarts, faceIndices, stencilStarts, stencilIndices, stencilWeights,
         limitStarts, limitIndices, limitWeights, limits, patches, irregular, tessVertices, triangles,
-        triangleLevels, wireLines;
+        triangleLevels, wireLines, texture;
+    std::unique_ptr<gpu::Buffer> sideRanges, sideUVs, map, displaced, incidentRanges, incident,
+        displacedNormals;
+    std::unique_ptr<gpu::ComputePipeline> displacePass, normalsPass;
+    gpu::BindGroup displaceBindings, normalsBindings;
     gpu::ComputePipeline facePass, stencilPass, limitPass;
     gpu::GraphicsPipeline surface, surfaceFetch;
     gpu::BindGroup faceBindings, stencilBindings, limitBindings, surfaceBindings, fetchBindings;
@@ -97,9 +158,20 @@ struct SubdivisionPass::Gpu {
 };
 
 SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
-                                 bool keepEvaluated, bool levels)
+                                 bool keepEvaluated, bool levels, const Displacement* displacement,
+                                 const FloatImage* texture)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
-      levels_(levels), gpu_(std::make_unique<Gpu>(ctx, draw_, evaluate_)) {}
+      levels_(levels), displace_(displacement != nullptr) {
+    if (displacement) {
+        if (eval != Eval::Compute)
+            throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
+                                          "come from a compute pass over the displaced vertices)");
+        if (draw_.sideRanges.size() != draw_.tessVertices.size())
+            throw Error(ErrorKind::BadInput, "internal: draw data prepared without a displacement plan");
+        displacement_ = *displacement;
+    }
+    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture);
+}
 
 SubdivisionPass::~SubdivisionPass() = default;
 
@@ -134,6 +206,18 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
                      EvalPush{static_cast<uint32_t>(draw_.patches.size())});
         cmd.endTimed();
     }
+    if (displace_) {
+        const uint32_t n = static_cast<uint32_t>(draw_.tessVertices.size());
+        cmd.barrier(compute, read);
+        timed.begin(cmd, "displace", true);
+        cmd.dispatch(*g.displacePass, g.displaceBindings, n,
+                     DisplacePush{displacement_.scale, displacement_.mid});
+        cmd.endTimed();
+        cmd.barrier(compute, read);
+        timed.begin(cmd, "displaced normals", true);
+        cmd.dispatch(*g.normalsPass, g.normalsBindings, n);
+        cmd.endTimed();
+    }
     cmd.barrier(compute, gpu::Access::VertexRead | gpu::Access::TransferRead);
 }
 
@@ -159,8 +243,8 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wi
 DrawnMesh SubdivisionPass::drawnMesh() {
     if (!evaluate_) throw Error(ErrorKind::BadInput, "internal: the surface was not evaluated into buffers");
     const size_t n = draw_.tessVertices.size();
-    auto pos = gpu::readbackArrayNow<glm::vec4>(ctx_, *gpu_->evalPositions, n);
-    auto nrm = gpu::readbackArrayNow<glm::vec4>(ctx_, *gpu_->evalNormals, n);
+    auto pos = gpu::readbackArrayNow<glm::vec4>(ctx_, displace_ ? *gpu_->displaced : *gpu_->evalPositions, n);
+    auto nrm = gpu::readbackArrayNow<glm::vec4>(ctx_, displace_ ? *gpu_->displacedNormals : *gpu_->evalNormals, n);
     auto info = gpu::readbackArrayNow<glm::uvec4>(ctx_, *gpu_->evalInfo, n);
     DrawnMesh out;
     out.vertices.resize(n);
@@ -188,9 +272,11 @@ uint64_t SubdivisionPass::bufferBytes() const {
     for (const gpu::Buffer* b : {&g.vertices, &g.faceStarts, &g.faceIndices, &g.stencilStarts,
                                  &g.stencilIndices, &g.stencilWeights, &g.limitStarts, &g.limitIndices,
                                  &g.limitWeights, &g.limits, &g.patches, &g.irregular, &g.tessVertices,
-                                 &g.triangles, &g.triangleLevels, &g.wireLines})
+                                 &g.triangles, &g.triangleLevels, &g.wireLines, &g.texture})
         sum += b->size();
-    for (const auto* b : {g.evalPositions.get(), g.evalNormals.get(), g.evalInfo.get()})
+    for (const auto* b : {g.evalPositions.get(), g.evalNormals.get(), g.evalInfo.get(), g.sideRanges.get(),
+                          g.sideUVs.get(), g.map.get(), g.displaced.get(), g.incidentRanges.get(),
+                          g.incident.get(), g.displacedNormals.get()})
         if (b) sum += b->size();
     return sum;
 }

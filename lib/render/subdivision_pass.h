@@ -7,6 +7,7 @@
 #include "gpu/pipeline.h"
 #include "render/frame_pass.h"
 #include "render/subdivision_draw.h"
+#include "render/texture_image.h"
 
 #include <memory>
 
@@ -19,7 +20,14 @@ public:
     enum class Eval { Vertex, Compute };
     // `keepEvaluated`: with Eval::Vertex, also evaluate every vertex into buffers (for --wire,
     // which draws lines through them, and --mesh-out).
-    SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval, bool keepEvaluated, bool levels);
+    // Displacement (paper 000, 4.5): every drawn vertex moves along its limit normal by
+    // scale * (sample - mid); needs Eval::Compute and draw data prepared with a plan.
+    struct Displacement {
+        const FloatImage* map = nullptr; // channel 0 is the height
+        float scale = 1, mid = 0;
+    };
+    SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval, bool keepEvaluated, bool levels,
+                    const Displacement* displacement = nullptr, const FloatImage* texture = nullptr);
     ~SubdivisionPass() override;
 
     const gpu::Buffer& vertexBuffer() const override;
@@ -34,7 +42,8 @@ private:
     gpu::Context& ctx_;
     SubdivisionDraw draw_;
     Eval eval_;
-    bool evaluate_, levels_;
+    bool evaluate_, levels_, displace_ = false;
+    Displacement displacement_;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
 };

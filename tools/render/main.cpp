@@ -9,6 +9,7 @@
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "render/bench.h"
+#include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
 #include "render/renderer.h"
 
@@ -45,6 +46,8 @@ std::string displayName(const std::string& path) {
 struct Input {
     Mesh mesh;
     std::optional<Tables> tables;
+    std::optional<Seams> seams;
+    uint64_t seamsHash = 0; // what SEAM must have been made from
 };
 
 Input readInput(const std::string& input, Warnings& warnings) {
@@ -58,6 +61,11 @@ Input readInput(const std::string& input, Warnings& warnings) {
         Container container = parseContainer(bytes);
         in.mesh = loadMesh(container);
         if (const Chunk* tb = container.find(kTablesChunk)) in.tables = decodeTablesChunk(*tb, &in.mesh);
+        in.seamsHash = seamsSourceHash(container);
+        if (const Chunk* sm = container.find(kSeamsChunk); sm && in.tables)
+            in.seams = decodeSeamsChunk(*sm,
+                                        static_cast<uint32_t>(in.tables->patches.size() + in.tables->irregular.size()),
+                                        in.seamsHash);
         return in;
     } catch (Error& e) {
         e.setFile(displayName(input));
@@ -86,7 +94,9 @@ int main(int argc, char** argv) {
     return cli::run("limn-render", argc, argv, [](int ac, char** av) {
         cli::Common common;
         common.output.clear(); // "not given" matters with --bench
-        std::string input = "-", shade = "lit", device, meshOut, eval = "compute";
+        std::string input = "-", shade = "lit", device, meshOut, eval = "compute", displace, texture;
+        double displaceScale = 1, displaceMid = 0;
+        bool noSeamFix = false;
         render::RenderSettings settings;
         bool wire = false, alpha = false, validate = false, syncValidation = false,
              meshAscii = false;
@@ -149,11 +159,22 @@ int main(int argc, char** argv) {
                     settings.background = {c[0], c[1], c[2]};
                 },
                 "0.2,0.2,0.2", "background colour, sRGB components 0 to 1 (as stored in the PNG)")
-            .choice("--shade", &shade, {"lit", "normal", "uv", "levels"},
+            .choice("--shade", &shade, {"lit", "normal", "uv", "levels", "texture"},
                     "lit: Lambert key light + ambient; normal: normal * 0.5 + 0.5 as colour;\n"
                     "                            uv: (u, v, 0) as colour, needs UVs; levels: patches\n"
                     "                            coloured by subdivision level (paper 000, Fig. 1),\n"
-                    "                            irregular faces blue, needs tables")
+                    "                            irregular faces blue, needs tables; texture: the\n"
+                    "                            --texture map, lit (the default with --texture)")
+            .text("--displace", "MAP", &displace,
+                  "displace the subdivision surface along its normal by a height map (any image\n"
+                  "                            OpenImageIO reads; channel 0)")
+            .real("--displace-scale", "S", &displaceScale, -1e6, 1e6,
+                  "world units per unit of map value")
+            .real("--displace-mid", "M", &displaceMid, -1e6, 1e6, "the map value meaning zero")
+            .flag("--no-seam-fix", &noSeamFix,
+                  "sample the map with each face's own UV only (shows the cracks that the\n"
+                  "                            seam fix of paper 000, 4.5 removes)")
+            .text("--texture", "MAP", &texture, "colour texture (any image OpenImageIO reads)")
             .flag("--wire", &wire, "overlay the control mesh edges, or the patch and face outlines")
             .choice("--eval", &eval, {"compute", "vertex"},
                     "subdivision surface: evaluate each drawn vertex once in a compute pass, or\n"
@@ -208,6 +229,7 @@ int main(int argc, char** argv) {
         if (shade == "normal") settings.shade = render::Shade::Normal;
         if (shade == "uv") settings.shade = render::Shade::Uv;
         if (shade == "levels") settings.shade = render::Shade::Levels;
+        if (shade == "texture") settings.shade = render::Shade::Texture;
         settings.wire = wire;
         settings.alpha = alpha;
         if (bench && isStdio(common.output) && !common.output.empty())
@@ -228,6 +250,24 @@ int main(int argc, char** argv) {
         Input in = readInput(input, warnings);
         cli::printWarnings(warnings, displayName(input));
         settings.tessCap = static_cast<uint32_t>(tess);
+        std::optional<render::FloatImage> displacementMap, textureMap;
+        if (!displace.empty()) {
+            displacementMap = render::loadImage(displace);
+            settings.displacementMap = &*displacementMap;
+            settings.displaceScale = displaceScale;
+            settings.displaceMid = displaceMid;
+            settings.seamFix = !noSeamFix;
+            if (in.tables && !in.seams && in.mesh.hasUVs()) {
+                cli::info("no SEAM chunk (limn-seams): computing the seam UVs now");
+                in.seams = computeSeams(in.mesh, *in.tables, in.seamsHash);
+            }
+            if (in.seams) settings.seams = &*in.seams;
+        }
+        if (!texture.empty()) {
+            textureMap = render::loadImage(texture);
+            settings.texture = &*textureMap;
+            if (shade == "lit") settings.shade = render::Shade::Texture;
+        }
         settings.evalInCompute = eval == "compute";
         settings.evaluateVertices = !meshOut.empty();
 
@@ -289,7 +329,7 @@ int main(int argc, char** argv) {
             ply->commit();
         }
         if (!common.depfile.empty() && writeImage)
-            writeDepfile(common.depfile, common.output, {input});
+            writeDepfile(common.depfile, common.output, {input, displace, texture});
         return 0;
     });
 }

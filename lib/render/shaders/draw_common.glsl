@@ -7,6 +7,7 @@
 #define SHADE_NORMAL 1u
 #define SHADE_UV 2u
 #define SHADE_LEVELS 3u
+#define SHADE_TEXTURE 4u
 
 // DrawPush.flags
 #define DRAW_PULL_INDICES 1u // the vertex stage reads the index buffer itself (per-triangle data)

@@ -1,0 +1,59 @@
+// limn-heightmap: generates the height maps the displacement examples and tests use: 3D noise
+// baked into a mesh's UV layout (continuous across its seams), or 2D noise in UV space.
+#include "bake/heightmap.h"
+#include "base/cli.h"
+#include "base/error.h"
+#include "base/io.h"
+#include "mesh/import.h"
+#include "render/texture_image.h"
+
+using namespace limn;
+
+int main(int argc, char** argv) {
+    return cli::run("limn-heightmap", argc, argv, [](int ac, char** av) {
+        cli::Common common;
+        std::string input = "-", kind = "surface";
+        int size = 1024, octaves = 4, seed = 1, padding = 4;
+        double frequency = 6;
+        cli::Parser parser(
+            "limn-heightmap", "[options] [INPUT|-] -o MAP.png",
+            "Writes a 16-bit grayscale PNG height map for limn-render --displace.\n"
+            "  surface: 3D noise at the surface point each texel maps to (through the mesh's UV\n"
+            "           charts), continuous across UV seams: the realistic case.\n"
+            "  uv:      2D noise in UV space, unrelated across seams: the stress case for the seam\n"
+            "           fix (the mesh is only needed for nothing; INPUT may be any mesh).",
+            common);
+        parser.positional("INPUT", &input, "mesh with UVs (any format limn reads, or .limn)")
+            .choice("--kind", &kind, {"surface", "uv"}, "which field to bake")
+            .integer("--size", "N", &size, 16, 8192, "width and height in texels")
+            .real("--frequency", "F", &frequency, 0.01, 1000, "noise cycles across the bounding box (or UV square)")
+            .integer("--octaves", "N", &octaves, 1, 12, "fBm octaves")
+            .integer("--seed", "S", &seed, 0, 1 << 30, "noise seed")
+            .integer("--padding", "P", &padding, 0, 64, "texels a surface map extends past each UV island");
+        if (!parser.parse(ac, av)) return 0;
+        cli::setVerbosity(common.quiet, common.verbose);
+        if (isStdio(common.output)) throw Error(ErrorKind::Usage, "give the map's file with -o MAP.png");
+        OutputFile out(common.output, OutputFile::Kind::Binary);
+        Warnings warnings;
+        Mesh mesh = importMeshFile(input, warnings);
+        cli::printWarnings(warnings, isStdio(input) ? "<stdin>" : input);
+        HeightmapOptions o;
+        o.kind = kind == "uv" ? HeightmapKind::Uv : HeightmapKind::Surface;
+        o.size = uint32_t(size);
+        o.frequency = frequency;
+        o.octaves = octaves;
+        o.seed = uint32_t(seed);
+        o.padding = uint32_t(padding);
+        std::vector<float> values;
+        try {
+            values = bakeHeightmap(mesh, o);
+        } catch (Error& e) {
+            e.setFile(isStdio(input) ? "<stdin>" : input);
+            throw;
+        }
+        out.write(render::encodeGray16Png(o.size, o.size, values));
+        out.commit();
+        if (!common.depfile.empty()) writeDepfile(common.depfile, common.output, {input});
+        return 0;
+    });
+}
