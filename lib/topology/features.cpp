@@ -49,6 +49,13 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
     for (const auto& c : tags.corners) s.vertex[c.vertex] = c.sharpness;
 
     const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
+    // Under "none" the tags, not the sharpening below, decide which boundary faces keep a limit.
+    if (boundary == BoundaryRule::None) {
+        s.vertexUnsharpBoundary.assign(topo.vertexCount(), 0);
+        for (uint32_t e = 0; e < topo.edgeCount(); ++e)
+            if (topo.edgeIsBoundary(e) && s.edge[e] < inf)
+                for (uint32_t v : topo.edgeVertices(e)) s.vertexUnsharpBoundary[v] = 1;
+    }
     for (uint32_t e = 0; e < topo.edgeCount(); ++e)
         if (topo.edgeIsBoundary(e) || topo.edgeIsNonManifold(e)) s.edge[e] = inf;
 
@@ -60,9 +67,13 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
                 nonManifoldEdges[v] = static_cast<uint8_t>(std::min(nonManifoldEdges[v] + 1, 255));
     for (uint32_t v = 0; v < topo.vertexCount(); ++v) {
         bool corner = topo.vertexFaceCount(v) == 1 && topo.vertexEdgeCount(v) == 2;
+        // Far leaves a vertex on an interior non-manifold crease smooth: two non-manifold edges,
+        // no boundary edge, and more faces than edges (one more per extra fin).
+        bool onNonManifoldCrease = nonManifoldEdges[v] == 2 && !topo.vertexIsBoundary(v) &&
+                                   topo.vertexFaceCount(v) > topo.vertexEdgeCount(v);
         if (corner && boundary == BoundaryRule::EdgeAndCorner)
             s.vertex[v] = inf;
-        else if (topo.vertexIsNonManifold(v) && nonManifoldEdges[v] != 2)
+        else if (topo.vertexIsNonManifold(v) && !onNonManifoldCrease)
             s.vertex[v] = inf;
     }
     return s;
@@ -70,12 +81,26 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
 
 VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v) {
     int sharpEdges = 0;
-    for (uint32_t h : topo.vertexOutgoing(v)) {
-        // Each incident edge once: outgoing half-edges cover interior edges once each; boundary
-        // edges arriving at v (no outgoing twin) are counted from prev().
-        if (sharp.edge[topo.edge(h)] > 0) ++sharpEdges;
-        uint32_t p = topo.prev(h);
-        if (topo.twin(p) == kNone && sharp.edge[topo.edge(p)] > 0) ++sharpEdges;
+    if (!topo.vertexIsNonManifold(v)) {
+        for (uint32_t h : topo.vertexOutgoing(v)) {
+            // Each incident edge once: outgoing half-edges cover interior edges once each;
+            // boundary edges arriving at v (no outgoing twin) are counted from prev().
+            if (sharp.edge[topo.edge(h)] > 0) ++sharpEdges;
+            uint32_t p = topo.prev(h);
+            if (topo.twin(p) == kNone && sharp.edge[topo.edge(p)] > 0) ++sharpEdges;
+        }
+    } else {
+        // Around a non-manifold vertex an edge can leave or arrive in any number of faces
+        // (fins, inconsistent orientation): collect the distinct edges.
+        std::vector<uint32_t> edges;
+        for (uint32_t h : topo.vertexOutgoing(v)) {
+            edges.push_back(topo.edge(h));
+            edges.push_back(topo.edge(topo.prev(h)));
+        }
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        for (uint32_t e : edges)
+            if (sharp.edge[e] > 0) ++sharpEdges;
     }
     OpenSubdiv::Sdc::Crease crease;
     auto rule = crease.DetermineVertexVertexRule(sharp.vertex[v], sharpEdges);
@@ -86,9 +111,12 @@ Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
                              const std::vector<uint8_t>& faceIsHole, BoundaryRule boundary) {
     const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
     Regularity r;
+    const bool none = boundary == BoundaryRule::None && !sharp.vertexUnsharpBoundary.empty();
+    auto unsharpBoundary = [&](uint32_t v) { return none && sharp.vertexUnsharpBoundary[v]; };
     r.vertexRegular.assign(topo.vertexCount(), 0);
     for (uint32_t v = 0; v < topo.vertexCount(); ++v) {
-        if (topo.vertexIsIsolated(v) || topo.vertexIsNonManifold(v)) continue;
+        if (topo.vertexIsIsolated(v) || topo.vertexIsNonManifold(v) || unsharpBoundary(v))
+            continue;
         uint32_t faces = topo.vertexFaceCount(v);
         bool allQuads = true, interiorEdgesSmooth = true;
         for (uint32_t h : topo.vertexOutgoing(v)) {
@@ -99,7 +127,7 @@ Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
         if (!topo.vertexIsBoundary(v)) {
             r.vertexRegular[v] = faces == 4 && sharp.vertex[v] == 0;
         } else if (faces == 2) {
-            r.vertexRegular[v] = sharp.vertex[v] == 0 && boundary != BoundaryRule::None;
+            r.vertexRegular[v] = sharp.vertex[v] == 0;
         } else if (faces == 1) {
             r.vertexRegular[v] = sharp.vertex[v] >= inf;
         }
@@ -111,8 +139,7 @@ Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
         bool regular = topo.faceSize(f) == 4;
         for (uint32_t v : topo.faceVertices(f)) {
             if (!r.vertexRegular[v]) regular = false;
-            if (boundary == BoundaryRule::None && topo.vertexIsBoundary(v) && sharp.vertex[v] < inf)
-                noLimit = true;
+            if (unsharpBoundary(v)) noLimit = true;
         }
         r.faceHasNoLimit[f] = noLimit;
         r.faceRegular[f] = regular && !noLimit;

@@ -30,12 +30,18 @@ enum class VertexRule : uint8_t { Smooth = 1, Dart = 2, Crease = 4, Corner = 8 }
 struct Sharpness {
     std::vector<float> edge;   // per topology edge
     std::vector<float> vertex; // per vertex
+    // Base level under boundary rule "none" only, else empty: 1 for a vertex with a boundary edge
+    // that no crease tag made infinitely sharp. Its faces have no limit surface. OpenSubdiv decides
+    // this from the tagged sharpness, before it sharpens every boundary edge; refined levels
+    // inherit the result through their holes instead.
+    std::vector<uint8_t> vertexUnsharpBoundary;
 };
 
 // Base-level sharpness exactly as OpenSubdiv's Far factory prepares it: crease and corner tags,
 // then boundary and non-manifold edges infinitely sharp, corner vertices (one face, two edges)
 // infinitely sharp under edge-and-corner, non-manifold vertices sharp unless they lie on a
-// non-manifold crease. Crease tags naming no edge are reported as warnings and ignored.
+// non-manifold crease; under boundary rule "none" also vertexUnsharpBoundary. Crease tags naming
+// no edge are reported as warnings and ignored.
 Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule boundary,
                         Warnings& warnings);
 
@@ -45,13 +51,16 @@ VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v);
 // around it follows the uniform B-spline rules: interior, 4 quads, no sharp incident edge and no
 // vertex sharpness; or a boundary vertex with 2 quads whose interior edge is smooth (the boundary
 // is then a B-spline with phantom points P_-1 = 2 P_0 - P_1, math.md C.4); or an infinitely sharp
-// corner with 1 quad (edge-and-corner). A face is regular when it is a quad with 4 patch-regular
-// corners: its 4x4 neighbourhood is then a B-spline patch (boundary faces with phantom points).
+// corner with 1 quad (edge-and-corner). Under boundary rule "none" a boundary vertex qualifies
+// only when crease tags made its boundary edges infinitely sharp (it then behaves as under
+// edge-only). A face is regular when it is a quad with 4 patch-regular corners: its 4x4
+// neighbourhood is then a B-spline patch (boundary faces with phantom points).
 struct Regularity {
     std::vector<uint8_t> vertexRegular;
     std::vector<uint8_t> faceRegular;
     // Faces without a limit surface: holes, and under boundary rule "none" faces that touch a
-    // boundary vertex that is not infinitely sharp (as OpenSubdiv's Bfr/Far decide).
+    // vertex with a boundary edge no crease tag made infinitely sharp (as OpenSubdiv's Far
+    // decides, see Sharpness::vertexUnsharpBoundary).
     std::vector<uint8_t> faceHasNoLimit;
 };
 
