@@ -64,27 +64,7 @@ TEST_P(InfoGolden, CountsMatchOpenSubdiv) {
     std::set<std::string> skip;
     if (auto it = kDocumentedDifferences.find(name); it != kDocumentedDifferences.end())
         skip = it->second;
-    auto check = [&](const char* key, long long expected) {
-        if (skip.count(key)) return;
-        EXPECT_EQ(test::jsonInt(r.out, key), expected) << key;
-    };
-    auto checkMap = [&](const char* key, const std::map<int, int>& expected) {
-        if (skip.count(key)) return;
-        std::map<int, long long> want(expected.begin(), expected.end());
-        EXPECT_EQ(test::jsonIntMap(r.out, key), want) << key;
-    };
-    check("vertices", ref.vertices);
-    check("faces", ref.faces);
-    checkMap("face_size_histogram", ref.faceSizes);
-    check("edges", ref.edges);
-    check("boundary_edges", ref.boundaryEdges);
-    check("nonmanifold_edges", ref.nonManifoldEdges);
-    checkMap("interior_valence_histogram", ref.interiorValence);
-    check("extraordinary_vertices", ref.extraordinary);
-    check("regular_faces", ref.regularFaces);
-    check("irregular_faces", ref.irregularFaces);
-    check("hole_faces", ref.holeFaces);
-    check("uv_seam_edges", ref.uvSeamEdges);
+    for (const auto& m : test::infoMismatches(ref, r.out, skip)) ADD_FAILURE() << m;
 
     // The same counts must come back from the CLSF chunk limn-classify stores.
     test::ScratchDir dir;

@@ -1,5 +1,7 @@
 #include "reference_mesh.h"
 
+#include "test_support.h"
+
 #include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
@@ -50,6 +52,8 @@ ReferenceObj parseReferenceObj(const std::string& text) {
         in >> keyword;
         if (keyword == "v") {
             ++obj.vertexCount;
+            auto& p = obj.positions.emplace_back();
+            in >> p[0] >> p[1] >> p[2];
         } else if (keyword == "vt") {
             double u = 0, v = 0;
             in >> u >> v;
@@ -237,6 +241,42 @@ ReferenceCounts referenceCounts(const ReferenceObj& obj) {
     }
     r.irregularFaces = r.faces - r.regularFaces - r.holeFaces;
     return r;
+}
+
+std::vector<std::string> infoMismatches(const ReferenceCounts& expected, const std::string& json,
+                                        const std::set<std::string>& skip) {
+    std::vector<std::string> out;
+    auto check = [&](const std::string& key, long long want) {
+        if (skip.count(key)) return;
+        long long got = jsonInt(json, key);
+        if (got != want)
+            out.push_back(key + ": limn-info " + std::to_string(got) + ", expected " +
+                          std::to_string(want));
+    };
+    auto checkMap = [&](const std::string& key, const std::map<int, int>& want) {
+        if (skip.count(key)) return;
+        auto text = [](const auto& m) {
+            std::string s;
+            for (const auto& [k, n] : m) s += " " + std::to_string(k) + ":" + std::to_string(n);
+            return s;
+        };
+        std::map<int, long long> got = jsonIntMap(json, key);
+        if (text(got) != text(want))
+            out.push_back(key + ": limn-info" + text(got) + ", expected" + text(want));
+    };
+    check("vertices", expected.vertices);
+    check("faces", expected.faces);
+    checkMap("face_size_histogram", expected.faceSizes);
+    check("edges", expected.edges);
+    check("boundary_edges", expected.boundaryEdges);
+    check("nonmanifold_edges", expected.nonManifoldEdges);
+    checkMap("interior_valence_histogram", expected.interiorValence);
+    check("extraordinary_vertices", expected.extraordinary);
+    check("regular_faces", expected.regularFaces);
+    check("irregular_faces", expected.irregularFaces);
+    check("hole_faces", expected.holeFaces);
+    check("uv_seam_edges", expected.uvSeamEdges);
+    return out;
 }
 
 } // namespace limn::test

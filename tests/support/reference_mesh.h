@@ -4,8 +4,10 @@
 // definitions in formats/limn.md section 5. Nothing here calls limn's libraries.
 #pragma once
 
+#include <array>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@ namespace limn::test {
 
 struct ReferenceObj {
     int vertexCount = 0;
+    std::vector<std::array<double, 3>> positions;
     std::vector<std::vector<int>> faces;   // 0-based vertex indices
     std::vector<std::vector<int>> faceUVs; // 0-based vt indices, empty when a face has none
     std::vector<std::pair<double, double>> uvs;
@@ -43,5 +46,10 @@ struct ReferenceCounts {
 // EDGE_ONLY). regularFaces counts the REGULAR patches at depth 0 of an adaptive patch table
 // (useInfSharpPatch=false, generateLegacySharpCornerPatches=false).
 ReferenceCounts referenceCounts(const ReferenceObj& obj);
+
+// Compares the counts with `limn-info --json` output; returns one line per differing field
+// (fields in `skip` are left out). Empty when everything agrees.
+std::vector<std::string> infoMismatches(const ReferenceCounts& expected, const std::string& json,
+                                        const std::set<std::string>& skip = {});
 
 } // namespace limn::test
