@@ -211,7 +211,12 @@ std::string Parser::help() const {
         else
             out << std::string(28 - left.size(), ' ');
         out << o.help;
-        if (o.set && !o.defaultText.empty()) out << " [default: " << o.defaultText << "]";
+        // Every option that takes a value shows its default (--help lists them all); one whose
+        // help text already explains its default says so itself.
+        if (o.set && !o.defaultText.empty())
+            out << " [default: " << o.defaultText << "]";
+        else if (o.set && o.help.find("[default:") == std::string::npos)
+            out << " [default: none]";
         out << "\n";
     }
     if (!notes_.empty()) out << "\n" << notes_;
