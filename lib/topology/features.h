@@ -19,6 +19,7 @@ struct SchemeOptions {
     CreaseMethod creaseMethod = CreaseMethod::Uniform;
     TriangleSubdivision triangles = TriangleSubdivision::Catmark;
     FVarRule fvar = FVarRule::All;
+    bool operator==(const SchemeOptions&) const = default;
 };
 
 // Tags win over defaults; `boundaryOverride` (from --boundary) wins over the tag.
