@@ -206,7 +206,7 @@ std::string Parser::help() const {
         left += o.longName;
         if (!o.metavar.empty()) left += " " + o.metavar;
         out << left;
-        if (left.size() >= 28)
+        if (left.size() + 2 > 28) // keep two spaces between an option and its text
             out << "\n" << std::string(28, ' ');
         else
             out << std::string(28 - left.size(), ' ');
