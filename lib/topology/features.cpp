@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <string>
-#include <unordered_map>
 
 namespace limn {
 
@@ -25,24 +24,38 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
     s.edge.assign(topo.edgeCount(), 0.0f);
     s.vertex.assign(topo.vertexCount(), 0.0f);
 
-    // Edge lookup by vertex pair, only for the tagged vertices (tags are few, meshes are large).
-    std::unordered_map<uint64_t, uint32_t> edgeOf;
-    if (!tags.creases.empty()) {
+    // Crease tags name vertex pairs. Sort the tagged pairs (tags are few, meshes are large) and
+    // let each edge look itself up; a later tag for the same edge wins, as in Far. (A hash map
+    // of every edge cost more than the rest of the classification together.)
+    auto pairKey = [](uint32_t a, uint32_t b) {
+        return (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+    };
+    std::vector<std::pair<uint64_t, uint32_t>> tagged; // (pair, tag index)
+    tagged.reserve(tags.creases.size());
+    for (uint32_t i = 0; i < tags.creases.size(); ++i)
+        tagged.push_back({pairKey(tags.creases[i].v0, tags.creases[i].v1), i});
+    std::sort(tagged.begin(), tagged.end());
+    std::vector<uint8_t> named(tagged.size(), 0); // per sorted entry: some edge has this pair
+    if (!tagged.empty()) {
         for (uint32_t e = 0; e < topo.edgeCount(); ++e) {
             auto [a, b] = topo.edgeVertices(e);
-            edgeOf[(uint64_t(std::min(a, b)) << 32) | std::max(a, b)] = e;
+            uint64_t key = pairKey(a, b);
+            auto it = std::upper_bound(tagged.begin(), tagged.end(), std::pair{key, ~0u});
+            if (it == tagged.begin() || (it - 1)->first != key) continue;
+            s.edge[e] = tags.creases[(it - 1)->second].sharpness; // the last tag of the pair
+            for (auto k = it; k != tagged.begin() && (k - 1)->first == key; --k)
+                named[k - 1 - tagged.begin()] = 1;
         }
     }
+    std::vector<uint8_t> tagNamed(tags.creases.size(), 0);
+    for (size_t k = 0; k < tagged.size(); ++k) tagNamed[tagged[k].second] = named[k];
     size_t missing = 0;
-    for (const auto& c : tags.creases) {
-        auto it = edgeOf.find((uint64_t(std::min(c.v0, c.v1)) << 32) | std::max(c.v0, c.v1));
-        if (it == edgeOf.end()) {
-            if (missing++ == 0)
-                warnings.add("crease tag (" + std::to_string(c.v0) + "," + std::to_string(c.v1) +
-                             ") names no edge of the mesh; ignored");
-            continue;
-        }
-        s.edge[it->second] = c.sharpness; // a later tag for the same edge wins, as in Far
+    for (size_t i = 0; i < tags.creases.size(); ++i) {
+        if (tagNamed[i]) continue;
+        const auto& c = tags.creases[i];
+        if (missing++ == 0)
+            warnings.add("crease tag (" + std::to_string(c.v0) + "," + std::to_string(c.v1) +
+                         ") names no edge of the mesh; ignored");
     }
     if (missing > 1)
         warnings.add(std::to_string(missing - 1) + " more crease tags name no edge; ignored");
@@ -115,8 +128,7 @@ Regularity analyzeRegularity(const Topology& topo, const Sharpness& sharp,
     auto unsharpBoundary = [&](uint32_t v) { return none && sharp.vertexUnsharpBoundary[v]; };
     r.vertexRegular.assign(topo.vertexCount(), 0);
     for (uint32_t v = 0; v < topo.vertexCount(); ++v) {
-        if (topo.vertexIsIsolated(v) || topo.vertexIsNonManifold(v) || unsharpBoundary(v))
-            continue;
+        if (topo.vertexIsIsolated(v) || topo.vertexIsNonManifold(v) || unsharpBoundary(v)) continue;
         uint32_t faces = topo.vertexFaceCount(v);
         bool allQuads = true, interiorEdgesSmooth = true;
         for (uint32_t h : topo.vertexOutgoing(v)) {

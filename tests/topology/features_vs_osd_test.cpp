@@ -104,6 +104,34 @@ void expectSameFeatures(const Mesh& mesh) {
     }
 }
 
+// The half-edge structure's own invariants, and its edge numbering: by first half-edge, i.e.
+// in order of first appearance in face order (later stages rely on it being deterministic).
+void expectConsistentHalfedges(const Mesh& mesh) {
+    Topology t(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
+    std::vector<uint32_t> uses(t.edgeCount(), 0);
+    uint32_t nextNew = 0;
+    for (uint32_t h = 0; h < t.halfedgeCount(); ++h) {
+        uint32_t e = t.edge(h);
+        ASSERT_LT(e, t.edgeCount());
+        if (uses[e]++ == 0) {
+            EXPECT_EQ(e, nextNew++) << "edges are numbered by first half-edge";
+            EXPECT_EQ(t.edgeHalfedge(e), h);
+        }
+        auto [a, b] = t.edgeVertices(e);
+        EXPECT_EQ(std::minmax(a, b), std::minmax(t.vertex(h), t.destination(h)));
+        if (uint32_t tw = t.twin(h); tw != kNone) {
+            EXPECT_EQ(t.twin(tw), h);
+            EXPECT_EQ(t.edge(tw), e);
+            EXPECT_EQ(t.vertex(tw), t.destination(h));
+        }
+    }
+    for (uint32_t e = 0; e < t.edgeCount(); ++e) {
+        EXPECT_EQ(t.edgeFaceCount(e), uses[e]);
+        bool twinned = t.twin(t.edgeHalfedge(e)) != kNone;
+        EXPECT_EQ(twinned, uses[e] == 2 && !t.edgeIsNonManifold(e));
+    }
+}
+
 class FeaturesVsOsd : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FeaturesVsOsd, BaseLevelAgrees) {
@@ -115,6 +143,7 @@ TEST_P(FeaturesVsOsd, BaseLevelAgrees) {
         GTEST_SKIP() << "refused by limn (a face uses a vertex twice; tests/golden checks that)";
     }
     expectSameFeatures(mesh);
+    expectConsistentHalfedges(mesh);
 }
 
 // Three two-quad sheets share the polyline 1-0-2 (a non-manifold crease through vertex 0), and a
