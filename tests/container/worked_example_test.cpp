@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <regex>
 
 using namespace limn;
 
@@ -54,12 +53,11 @@ std::vector<uint8_t> bytesInSpec() {
     size_t end = spec.find("```", begin);
     std::istringstream lines(spec.substr(begin, end - begin));
     std::map<size_t, uint8_t> bytes;
-    std::regex row("^([0-9a-f]{8}):(.*)$");
     for (std::string line; std::getline(lines, line);) {
-        std::smatch m;
-        if (!std::regex_match(line, m, row)) continue;
-        size_t base = std::stoul(m[1], nullptr, 16) & ~size_t(15);
-        std::string cols = m[2].str().substr(1);
+        if (line.size() < 10 || line[8] != ':' || line.find_first_not_of("0123456789abcdef") != 8)
+            continue;
+        size_t base = std::stoul(line.substr(0, 8), nullptr, 16) & ~size_t(15);
+        std::string cols = line.substr(10);
         for (size_t i = 0; i < 16 && 3 * i + 2 <= cols.size(); ++i) {
             std::string h = cols.substr(3 * i, 2);
             if (h != "  ") bytes[base + i] = static_cast<uint8_t>(std::stoi(h, nullptr, 16));
