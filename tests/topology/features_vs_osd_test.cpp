@@ -2,8 +2,8 @@
 // per vertex the boundary/non-manifold flags, valence, sharpness and rule; per edge the boundary/
 // non-manifold flags and sharpness; per face whether it has a limit surface. features.h promises
 // "base-level sharpness exactly as OpenSubdiv's Far factory prepares it"; this holds it to that.
-#include "base/error.h"
 #include "mesh/import.h"
+#include "reference_mesh.h"
 #include "test_support.h"
 #include "topology/features.h"
 #include "topology/topology.h"
@@ -56,10 +56,13 @@ std::unique_ptr<Far::TopologyRefiner> osdRefiner(const Mesh& m, BoundaryRule bou
         Factory::Create(d, Factory::Options(Sdc::SCHEME_CATMARK, o)));
 }
 
+// Every catmark shape limn accepts; those with a face that uses a vertex twice are refused
+// (tests/golden checks that).
 std::vector<std::string> catmarkShapes() {
     std::vector<std::string> out;
     for (const auto& e : std::filesystem::directory_iterator(test::modelPath("osd/catmark")))
-        out.push_back(e.path().stem().string());
+        if (test::readReferenceObj(e.path().string()).firstDegenerateFace() < 0)
+            out.push_back(e.path().stem().string());
     std::sort(out.begin(), out.end());
     return out;
 }
@@ -136,12 +139,7 @@ class FeaturesVsOsd : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FeaturesVsOsd, BaseLevelAgrees) {
     Warnings w;
-    Mesh mesh;
-    try {
-        mesh = importMeshFile(test::modelPath("osd/catmark/" + GetParam() + ".obj").string(), w);
-    } catch (const Error&) {
-        GTEST_SKIP() << "refused by limn (a face uses a vertex twice; tests/golden checks that)";
-    }
+    Mesh mesh = importMeshFile(test::modelPath("osd/catmark/" + GetParam() + ".obj").string(), w);
     expectSameFeatures(mesh);
     expectConsistentHalfedges(mesh);
 }
