@@ -1,7 +1,7 @@
 // fuzz_container: arbitrary bytes through everything a .limn reader does: framing, the mesh
 // chunks, and the classification. Anything but limn::Error(BadInput) is a bug.
-#include "base/error.h"
 #include "container/container.h"
+#include "base/error.h"
 #include "mesh/mesh_chunks.h"
 #include "topology/classification.h"
 

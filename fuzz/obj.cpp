@@ -1,7 +1,7 @@
 // fuzz_obj: arbitrary bytes through the OBJ reader (with OpenSubdiv tags), then classification of
 // whatever it accepts. Anything but limn::Error(BadInput) is a bug.
-#include "base/error.h"
 #include "mesh/obj.h"
+#include "base/error.h"
 #include "topology/classification.h"
 
 #include <cstdlib>
