@@ -23,6 +23,7 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
     std::vector<uint32_t> heDestination(H);
     for (uint32_t f = 0; f < F; ++f) {
         uint32_t begin = faceOffsets_[f], end = faceOffsets_[f + 1];
+        if (begin == end) continue;
         for (uint32_t h = begin; h + 1 < end; ++h) heDestination[h] = heVertex_[h + 1];
         heDestination[end - 1] = heVertex_[begin];
     }
