@@ -206,12 +206,17 @@ std::string Parser::help() const {
         left += o.longName;
         if (!o.metavar.empty()) left += " " + o.metavar;
         out << left;
-        if (left.size() >= 28)
+        if (left.size() + 2 > 28) // keep two spaces between an option and its text
             out << "\n" << std::string(28, ' ');
         else
             out << std::string(28 - left.size(), ' ');
         out << o.help;
-        if (o.set && !o.defaultText.empty()) out << " [default: " << o.defaultText << "]";
+        // Every option that takes a value shows its default (--help lists them all); one whose
+        // help text already explains its default says so itself.
+        if (o.set && !o.defaultText.empty())
+            out << " [default: " << o.defaultText << "]";
+        else if (o.set && o.help.find("[default:") == std::string::npos)
+            out << " [default: none]";
         out << "\n";
     }
     if (!notes_.empty()) out << "\n" << notes_;

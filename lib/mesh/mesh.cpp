@@ -2,8 +2,10 @@
 
 #include "base/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace limn {
 
@@ -26,15 +28,25 @@ void validateMesh(const Mesh& m) {
         if (face.size() < 3)
             throwBadInput("face " + std::to_string(f) + " has " + std::to_string(face.size()) +
                           " vertices; a face needs at least 3");
+        auto degenerate = [&](uint32_t v) {
+            throwBadInput("face " + std::to_string(f) + " is degenerate: it uses vertex " +
+                          std::to_string(v) + " twice");
+        };
         for (size_t i = 0; i < face.size(); ++i) {
             if (face[i] >= V)
                 throwBadInput("face " + std::to_string(f) + " refers to vertex " +
                               std::to_string(face[i]) + " but there are only " +
                               std::to_string(V));
-            for (size_t j = 0; j < i; ++j)
-                if (face[j] == face[i])
-                    throwBadInput("face " + std::to_string(f) + " is degenerate: it uses vertex " +
-                                  std::to_string(face[i]) + " twice");
+            if (face.size() <= 32)
+                for (size_t j = 0; j < i; ++j)
+                    if (face[j] == face[i]) degenerate(face[i]);
+        }
+        // A hostile 100k-gon must not cost 10^10 comparisons.
+        if (face.size() > 32) {
+            std::vector<uint32_t> sorted(face.begin(), face.end());
+            std::sort(sorted.begin(), sorted.end());
+            if (auto it = std::adjacent_find(sorted.begin(), sorted.end()); it != sorted.end())
+                degenerate(*it);
         }
     }
     if (!m.uvIndices.empty()) {

@@ -1,10 +1,12 @@
 #include "mesh/openmesh_io.h"
 
 #include "base/error.h"
+#include "mesh/openmesh_guard.h"
 #include "mesh/text_format.h"
 
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/Mesh/BaseKernel.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <map>
@@ -17,6 +19,23 @@ namespace {
 using namespace OpenMesh;
 
 // Records what OpenMesh's PLY/OFF readers parse, without building a half-edge structure.
+// OpenMesh hands PLY properties it has no slot for to a property kernel (Options::Custom). That
+// is how MeshLab's per-corner "texcoord" face lists, which writePly writes, reach limn; without a
+// kernel OpenMesh reads only a list's first number and misreads every face after it.
+class PropertyKernel : public BaseKernel {
+public:
+    size_t n_vertices() const override { return vertices_; }
+    size_t n_faces() const override { return faces_; }
+    // Keeps a slot in every property for each vertex and face read so far.
+    void grow(size_t vertices, size_t faces) {
+        if (vertices != vertices_) vprops_resize(vertices_ = vertices);
+        if (faces != faces_) fprops_resize(faces_ = faces);
+    }
+
+private:
+    size_t vertices_ = 0, faces_ = 0;
+};
+
 class RecordingImporter : public IO::BaseImporter {
 public:
     Mesh mesh;
@@ -30,6 +49,7 @@ public:
     VertexHandle add_vertex(const Vec3d& p) override {
         mesh.positions.push_back({p[0], p[1], p[2]});
         vertexUV.emplace_back(0.0, 0.0);
+        properties.grow(mesh.positions.size(), mesh.faceCount());
         return VertexHandle(static_cast<int>(mesh.positions.size() - 1));
     }
     VertexHandle add_vertex() override { return add_vertex(Vec3d(0, 0, 0)); }
@@ -43,6 +63,7 @@ public:
         }
         mesh.addFace(face);
         faceUV.emplace_back();
+        properties.grow(mesh.positions.size(), mesh.faceCount());
         return FaceHandle(static_cast<int>(mesh.faceCount() - 1));
     }
     FaceHandle add_face(HalfedgeHandle) override { return FaceHandle(-1); }
@@ -102,6 +123,24 @@ public:
     size_t n_vertices() const override { return mesh.positions.size(); }
     size_t n_faces() const override { return mesh.faceCount(); }
     size_t n_edges() const override { return edges; }
+    BaseKernel* kernel() override { return &properties; }
+
+    PropertyKernel properties;
+
+    // Per-corner UVs from a PLY face list "texcoord" (u0 v0 u1 v1 ...), of floats or doubles.
+    template <class T>
+    void takeFaceTexcoords() {
+        FPropHandleT<std::vector<T>> handle;
+        if (!properties.get_property_handle(handle, "texcoord")) return;
+        for (size_t f = 0; f < faceUV.size(); ++f) {
+            const auto& values = properties.property(handle, FaceHandle(static_cast<int>(f)));
+            faceUV[f].clear();
+            for (size_t i = 0; i + 1 < values.size(); i += 2)
+                faceUV[f].emplace_back(values[i], values[i + 1]);
+            if (values.size() % 2) faceUV[f].emplace_back(); // caught as a count mismatch
+        }
+        hasFaceUV = true;
+    }
 };
 
 // OpenMesh reports parse errors on its own error stream; limn reports them itself.
@@ -128,14 +167,29 @@ Mesh readWithOpenMesh(std::span<const uint8_t> bytes, const std::string& extensi
                       Warnings& warnings) {
     static QuietOpenMesh quiet;
     (void)quiet;
-    // Guard the counts in the header before OpenMesh reserves memory for them.
     std::string text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (extension == ".off")
+        checkOffForOpenMesh(text, warnings);
+    else
+        checkPlyForOpenMesh(text);
+    // A failed read throws, which ends OpenMesh's loops that do not stop at the end of the data
+    // (openmesh_guard.cpp).
     std::istringstream in(text, std::ios::binary);
+    in.exceptions(std::ios::failbit | std::ios::badbit);
     RecordingImporter importer;
-    IO::Options options = IO::Options::VertexTexCoord | IO::Options::FaceTexCoord;
-    if (!IO::IOManager().read(in, extension, importer, options))
-        throwBadInput("OpenMesh could not parse this " + extension.substr(1) +
-                      " file (malformed header or data)");
+    IO::Options options =
+        IO::Options::VertexTexCoord | IO::Options::FaceTexCoord | IO::Options::Custom;
+    try {
+        if (!IO::IOManager().read(in, extension, importer, options))
+            throwBadInput("OpenMesh could not parse this " + extension.substr(1) +
+                          " file (malformed header or data)");
+    } catch (const std::ios_base::failure&) {
+        throwBadInput("the " + extension.substr(1) +
+                      " data ends early or has a malformed value (counts in the header, or a "
+                      "face's vertex count, exceed the data)");
+    }
+    importer.takeFaceTexcoords<float>();
+    importer.takeFaceTexcoords<double>();
     Mesh m = std::move(importer.mesh);
     if (importer.hasFaceUV) {
         for (size_t f = 0; f < m.faceCount(); ++f) {
@@ -153,7 +207,6 @@ Mesh readWithOpenMesh(std::span<const uint8_t> bytes, const std::string& extensi
         m.uvs = importer.vertexUV;
         m.uvIndices = m.faceVertices;
     }
-    (void)warnings;
     validateMesh(m);
     return m;
 }
@@ -189,8 +242,8 @@ std::string writePly(const Mesh& m) {
 }
 
 std::string writeOff(const Mesh& m) {
-    std::string out = "OFF\n" + std::to_string(m.vertexCount()) + " " +
-                      std::to_string(m.faceCount()) + " 0\n";
+    std::string out =
+        "OFF\n" + std::to_string(m.vertexCount()) + " " + std::to_string(m.faceCount()) + " 0\n";
     for (const auto& p : m.positions) {
         appendXYZ(out, p);
         out += '\n';

@@ -2,6 +2,9 @@
 // faces it cannot add to a half-edge mesh (non-manifold input), which would silently change the
 // topology; limn plugs in an importer that records vertices, faces and texture coordinates as
 // they are read, so nothing is lost and non-manifold input reaches the topology layer intact.
+// UVs come from per-vertex s/t (or u/v) properties or a per-corner "texcoord" face list (PLY).
+// OpenMesh trusts its input, so the bytes pass limn's checks first (openmesh_guard.h): text and
+// binary PLY, and text OFF as OFF, NOFF, STOFF or STNOFF (STOFF texture coordinates ignored).
 #pragma once
 
 #include "base/warnings.h"

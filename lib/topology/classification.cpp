@@ -39,7 +39,7 @@ Classification classifyMesh(const Mesh& mesh, const Topology& topo, const Scheme
             if (topo.faceSize(topo.face(h)) != 4) flags |= kVertexNonQuad;
         }
         if (semi) flags |= kVertexSemiSharp;
-        if (!reg.vertexRegular[v]) flags |= kVertexExtraordinary;
+        if (!reg.vertexRegular[v] || sharp.vertexOnUnsharpBoundary[v]) flags |= kVertexExtraordinary;
         c.vertexFlags[v] = flags;
     }
 

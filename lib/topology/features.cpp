@@ -41,6 +41,7 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
 
     const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
     s.faceNoLimit.assign(topo.faceCount(), 0);
+    s.vertexOnUnsharpBoundary.assign(topo.vertexCount(), 0);
     for (uint32_t f : tags.holes) s.faceNoLimit[f] = 1;
     if (boundary == BoundaryRule::None) {
         // Before boundaries are sharpened: a vertex with a boundary edge that is not tagged
@@ -53,6 +54,7 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
                     (topo.twin(p) == kNone && s.edge[topo.edge(p)] < inf))
                     exclude = true;
             }
+            s.vertexOnUnsharpBoundary[v] = exclude;
             if (exclude)
                 for (uint32_t h : topo.vertexOutgoing(v)) s.faceNoLimit[topo.face(h)] = 1;
         }
@@ -68,9 +70,13 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
                 nonManifoldEdges[v] = static_cast<uint8_t>(std::min(nonManifoldEdges[v] + 1, 255));
     for (uint32_t v = 0; v < topo.vertexCount(); ++v) {
         bool corner = topo.vertexFaceCount(v) == 1 && topo.vertexEdgeCount(v) == 2;
+        // Far leaves a vertex on an interior non-manifold crease smooth: two non-manifold edges,
+        // no boundary edge, and more faces than edges (one more per extra fin).
+        bool onNonManifoldCrease = nonManifoldEdges[v] == 2 && !topo.vertexIsBoundary(v) &&
+                                   topo.vertexFaceCount(v) > topo.vertexEdgeCount(v);
         if (corner && boundary == BoundaryRule::EdgeAndCorner)
             s.vertex[v] = inf;
-        else if (topo.vertexIsNonManifold(v) && nonManifoldEdges[v] != 2)
+        else if (topo.vertexIsNonManifold(v) && !onNonManifoldCrease)
             s.vertex[v] = inf;
     }
     return s;
@@ -78,12 +84,26 @@ Sharpness baseSharpness(const Topology& topo, const Tags& tags, BoundaryRule bou
 
 VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v) {
     int sharpEdges = 0;
-    for (uint32_t h : topo.vertexOutgoing(v)) {
-        // Each incident edge once: outgoing half-edges cover interior edges once each; boundary
-        // edges arriving at v (no outgoing twin) are counted from prev().
-        if (sharp.edge[topo.edge(h)] > 0) ++sharpEdges;
-        uint32_t p = topo.prev(h);
-        if (topo.twin(p) == kNone && sharp.edge[topo.edge(p)] > 0) ++sharpEdges;
+    if (!topo.vertexIsNonManifold(v)) {
+        for (uint32_t h : topo.vertexOutgoing(v)) {
+            // Each incident edge once: outgoing half-edges cover interior edges once each;
+            // boundary edges arriving at v (no outgoing twin) are counted from prev().
+            if (sharp.edge[topo.edge(h)] > 0) ++sharpEdges;
+            uint32_t p = topo.prev(h);
+            if (topo.twin(p) == kNone && sharp.edge[topo.edge(p)] > 0) ++sharpEdges;
+        }
+    } else {
+        // Around a non-manifold vertex an edge can leave or arrive in any number of faces
+        // (fins, inconsistent orientation): collect the distinct edges.
+        std::vector<uint32_t> edges;
+        for (uint32_t h : topo.vertexOutgoing(v)) {
+            edges.push_back(topo.edge(h));
+            edges.push_back(topo.edge(topo.prev(h)));
+        }
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        for (uint32_t e : edges)
+            if (sharp.edge[e] > 0) ++sharpEdges;
     }
     OpenSubdiv::Sdc::Crease crease;
     auto rule = crease.DetermineVertexVertexRule(sharp.vertex[v], sharpEdges);

@@ -19,6 +19,7 @@ struct SchemeOptions {
     CreaseMethod creaseMethod = CreaseMethod::Uniform;
     TriangleSubdivision triangles = TriangleSubdivision::Catmark;
     FVarRule fvar = FVarRule::All;
+    bool operator==(const SchemeOptions&) const = default;
 };
 
 // Tags win over defaults; `boundaryOverride` (from --boundary) wins over the tag.
@@ -34,6 +35,9 @@ struct Sharpness {
     // vertex that has a boundary edge not tagged infinitely sharp (as OpenSubdiv's Far factory
     // makes them holes before it sharpens boundaries).
     std::vector<uint8_t> faceNoLimit;
+    // Per vertex: the vertices that rule "none" takes out that way. Their boundary is no
+    // B-spline boundary, so classification counts them extraordinary (formats/limn.md 5).
+    std::vector<uint8_t> vertexOnUnsharpBoundary;
 };
 
 // Base-level sharpness exactly as OpenSubdiv's Far factory prepares it: crease and corner tags,
@@ -50,8 +54,10 @@ VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v);
 // around it follows the uniform B-spline rules: interior, 4 quads, no sharp incident edge and no
 // vertex sharpness; or a boundary vertex with 2 quads whose interior edge is smooth (the boundary
 // is then a B-spline with phantom points P_-1 = 2 P_0 - P_1, math.md C.4); or an infinitely sharp
-// corner with 1 quad (edge-and-corner). A face is regular when it is a quad with 4 patch-regular
-// corners: its 4x4 neighbourhood is then a B-spline patch (boundary faces with phantom points).
+// corner with 1 quad (edge-and-corner). Under boundary rule "none" a boundary vertex qualifies
+// only when crease tags made its boundary edges infinitely sharp (it then behaves as under
+// edge-only). A face is regular when it is a quad with 4 patch-regular corners: its 4x4
+// neighbourhood is then a B-spline patch (boundary faces with phantom points).
 struct Regularity {
     std::vector<uint8_t> vertexRegular;
     std::vector<uint8_t> faceRegular; // never set for faces without a limit surface

@@ -63,6 +63,11 @@ struct Case {
     bool closed;
     std::string eval = "compute";
 };
+// gtest prints parameters in failure messages; without this it dumps the struct's bytes.
+void PrintTo(const Case& c, std::ostream* os) {
+    *os << c.model << " depth " << c.depth << (c.uniform ? " uniform" : " adaptive") << " eval "
+        << c.eval;
+}
 
 std::string caseName(const ::testing::TestParamInfo<Case>& info) {
     std::string s = info.param.model.substr(info.param.model.find_last_of('/') + 1);
@@ -97,7 +102,7 @@ TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
     to.depth = c.depth;
     to.uniform = c.uniform;
     Tables t = buildTables(mesh, so, to, w);
-    Tessellation tess = buildTessellation(mesh, t, 64);
+    Tessellation tess = buildTessellation(mesh, t, 64, /*splitUVSeams=*/mesh.hasUVs());
     ASSERT_EQ(drawn.vertices.size(), tess.vertices.size());
 
     glm::dvec3 lo(1e300), hi(-1e300);

@@ -24,6 +24,9 @@ struct Case {
     int depth;
     bool uniform;
 };
+void PrintTo(const Case& c, std::ostream* os) {
+    *os << c.model << " depth " << c.depth << (c.uniform ? " uniform" : " adaptive");
+}
 
 std::string caseName(const ::testing::TestParamInfo<Case>& info) {
     std::string s = info.param.model;

@@ -1,6 +1,7 @@
 #include "test_support.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
@@ -116,6 +117,41 @@ void writeFile(const std::filesystem::path& path, const std::string& contents) {
     std::ofstream out(path, std::ios::binary);
     out << contents;
     if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+static size_t jsonValueStart(const std::string& json, const std::string& key) {
+    std::string quoted = "\"" + key + "\":";
+    size_t at = json.find(quoted);
+    if (at == std::string::npos) throw std::runtime_error("JSON has no field '" + key + "'");
+    return at + quoted.size();
+}
+
+long long jsonInt(const std::string& json, const std::string& key) {
+    size_t at = jsonValueStart(json, key);
+    char* end = nullptr;
+    long long v = std::strtoll(json.c_str() + at, &end, 10);
+    if (end == json.c_str() + at)
+        throw std::runtime_error("JSON field '" + key + "' is not an integer");
+    return v;
+}
+
+std::map<int, long long> jsonIntMap(const std::string& json, const std::string& key) {
+    size_t at = jsonValueStart(json, key);
+    size_t close = json.find('}', at);
+    if (json[at] != '{' || close == std::string::npos)
+        throw std::runtime_error("JSON field '" + key + "' is not an object");
+    std::map<int, long long> out;
+    std::string body = json.substr(at + 1, close - at - 1);
+    std::istringstream in(body);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        int k = 0;
+        long long v = 0;
+        if (std::sscanf(item.c_str(), "\"%d\":%lld", &k, &v) != 2)
+            throw std::runtime_error("JSON field '" + key + "' has a bad entry: " + item);
+        out[k] = v;
+    }
+    return out;
 }
 
 } // namespace limn::test

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -42,5 +43,11 @@ private:
 std::string readFile(const std::filesystem::path& path);
 std::vector<uint8_t> readBytes(const std::filesystem::path& path);
 void writeFile(const std::filesystem::path& path, const std::string& contents);
+
+// Readers for the flat JSON objects limn's tools print (no nesting beyond one level of objects
+// of integers): the integer value of "key", or "key"'s object as a map. Throw when absent, so a
+// renamed field fails the test instead of reading as 0.
+long long jsonInt(const std::string& json, const std::string& key);
+std::map<int, long long> jsonIntMap(const std::string& json, const std::string& key);
 
 } // namespace limn::test
