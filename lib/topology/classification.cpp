@@ -27,10 +27,17 @@ Classification classifyMesh(const Mesh& mesh, const Topology& topo, const Scheme
         if (topo.vertexIsBoundary(v)) flags |= kVertexBoundary;
         if (topo.vertexIsNonManifold(v)) flags |= kVertexNonManifold;
         switch (vertexRule(topo, sharp, v)) {
-        case VertexRule::Corner: flags |= kVertexCorner; break;
-        case VertexRule::Crease: flags |= kVertexCrease; break;
-        case VertexRule::Dart: flags |= kVertexDart; break;
-        case VertexRule::Smooth: break;
+        case VertexRule::Corner:
+            flags |= kVertexCorner;
+            break;
+        case VertexRule::Crease:
+            flags |= kVertexCrease;
+            break;
+        case VertexRule::Dart:
+            flags |= kVertexDart;
+            break;
+        case VertexRule::Smooth:
+            break;
         }
         bool semi = sharp.vertex[v] > 0 && sharp.vertex[v] < kInfiniteSharpness;
         for (uint32_t h : topo.vertexOutgoing(v)) {
@@ -39,7 +46,8 @@ Classification classifyMesh(const Mesh& mesh, const Topology& topo, const Scheme
             if (topo.faceSize(topo.face(h)) != 4) flags |= kVertexNonQuad;
         }
         if (semi) flags |= kVertexSemiSharp;
-        if (!reg.vertexRegular[v] || sharp.vertexOnUnsharpBoundary[v]) flags |= kVertexExtraordinary;
+        if (!reg.vertexRegular[v] || sharp.vertexOnUnsharpBoundary[v])
+            flags |= kVertexExtraordinary;
         c.vertexFlags[v] = flags;
     }
 
@@ -109,15 +117,16 @@ Classification decodeClassificationChunk(const Chunk& chunk, const Mesh& mesh) {
                       " is newer than this limn reads (1); upgrade limn");
     ByteReader r(chunk.payload, "chunk CLSF");
     Classification c;
-    uint8_t b = r.read<uint8_t>(), m = r.read<uint8_t>(), t = r.read<uint8_t>(), f = r.read<uint8_t>();
+    uint8_t b = r.read<uint8_t>(), m = r.read<uint8_t>(), t = r.read<uint8_t>(),
+            f = r.read<uint8_t>();
     if (b > 2 || m > 1 || t > 1 || f > 5) r.fail("scheme option out of range");
     c.options = {static_cast<BoundaryRule>(b), static_cast<CreaseMethod>(m),
                  static_cast<TriangleSubdivision>(t), static_cast<FVarRule>(f)};
     uint32_t V = r.read<uint32_t>(), F = r.read<uint32_t>();
     if (V != mesh.vertexCount() || F != mesh.faceCount())
-        r.fail("classification is for " + std::to_string(V) + " vertices and " +
-               std::to_string(F) + " faces, the mesh has " + std::to_string(mesh.vertexCount()) +
-               " and " + std::to_string(mesh.faceCount()));
+        r.fail("classification is for " + std::to_string(V) + " vertices and " + std::to_string(F) +
+               " faces, the mesh has " + std::to_string(mesh.vertexCount()) + " and " +
+               std::to_string(mesh.faceCount()));
     c.edges = r.read<uint32_t>();
     c.boundaryEdges = r.read<uint32_t>();
     c.nonManifoldEdges = r.read<uint32_t>();
@@ -126,7 +135,8 @@ Classification decodeClassificationChunk(const Chunk& chunk, const Mesh& mesh) {
     c.vertexValence = r.readArray<uint32_t>(V, "vertex valences");
     c.vertexFlags = r.readArray<uint32_t>(V, "vertex flags");
     c.faceFlags = r.readArray<uint32_t>(F, "face flags");
-    if (!r.atEnd()) r.fail(std::to_string(r.remaining()) + " unexpected bytes after the last field");
+    if (!r.atEnd())
+        r.fail(std::to_string(r.remaining()) + " unexpected bytes after the last field");
     return c;
 }
 

@@ -19,22 +19,22 @@ inline constexpr FourCC kClassificationChunk{"CLSF"};
 enum VertexFlag : uint32_t {
     kVertexBoundary = 1u << 0,
     kVertexNonManifold = 1u << 1,
-    kVertexCorner = 1u << 2,   // rule corner (tagged, or sharpened boundary corner)
-    kVertexCrease = 1u << 3,   // rule crease on an interior crease or a boundary
-    kVertexDart = 1u << 4,     // exactly one sharp edge
-    kVertexSemiSharp = 1u << 5, // semi-sharp vertex or semi-sharp incident edge
+    kVertexCorner = 1u << 2,        // rule corner (tagged, or sharpened boundary corner)
+    kVertexCrease = 1u << 3,        // rule crease on an interior crease or a boundary
+    kVertexDart = 1u << 4,          // exactly one sharp edge
+    kVertexSemiSharp = 1u << 5,     // semi-sharp vertex or semi-sharp incident edge
     kVertexExtraordinary = 1u << 6, // not patch-regular (features.h)
-    kVertexUVSeam = 1u << 7,   // has more than one UV value among its corners
-    kVertexIsolated = 1u << 8, // used by no face
-    kVertexNonQuad = 1u << 9,  // touches a face that is not a quad
+    kVertexUVSeam = 1u << 7,        // has more than one UV value among its corners
+    kVertexIsolated = 1u << 8,      // used by no face
+    kVertexNonQuad = 1u << 9,       // touches a face that is not a quad
 };
 
 enum FaceFlag : uint32_t {
-    kFaceRegular = 1u << 0,  // a bicubic B-spline patch at level 0
-    kFaceHole = 1u << 1,     // tagged hole
-    kFaceNoLimit = 1u << 2,  // hole, or no limit surface under boundary rule "none"
+    kFaceRegular = 1u << 0, // a bicubic B-spline patch at level 0
+    kFaceHole = 1u << 1,    // tagged hole
+    kFaceNoLimit = 1u << 2, // hole, or no limit surface under boundary rule "none"
     kFaceNonQuad = 1u << 3,
-    kFaceBoundary = 1u << 4, // has a boundary edge
+    kFaceBoundary = 1u << 4,    // has a boundary edge
     kFaceNonManifold = 1u << 5, // has a non-manifold edge or vertex
 };
 

@@ -122,7 +122,8 @@ Regularity analyzeRegularity(const Topology& topo, const std::vector<float>& edg
         bool allQuads = true, interiorEdgesSmooth = true;
         for (uint32_t h : topo.vertexOutgoing(v)) {
             if (topo.faceSize(topo.face(h)) != 4) allQuads = false;
-            if (topo.twin(h) != kNone && edgeSharpness[topo.edge(h)] > 0) interiorEdgesSmooth = false;
+            if (topo.twin(h) != kNone && edgeSharpness[topo.edge(h)] > 0)
+                interiorEdgesSmooth = false;
         }
         if (!allQuads || !interiorEdgesSmooth) continue;
         if (!topo.vertexIsBoundary(v)) {

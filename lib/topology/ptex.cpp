@@ -53,8 +53,8 @@ uint64_t PtexMap::key(uint32_t p, uint32_t U, uint32_t V) const {
     if (V == 0) return onEdge(fv[k], fv[(k + 1) % n], U); // half of base edge (k, k+1)
     if (U == 0) return onEdge(fv[k], fv[(k + n - 1) % n], V);
     if (U == R_ && V == R_) return makeKey(kCentroid, pf.face, 0, 0);
-    if (U == R_) return makeKey(kSpoke, pf.face, k, V);              // mid(k, k+1) -> centre
-    return makeKey(kSpoke, pf.face, (k + n - 1) % n, U);             // mid(k-1, k) -> centre
+    if (U == R_) return makeKey(kSpoke, pf.face, k, V);  // mid(k, k+1) -> centre
+    return makeKey(kSpoke, pf.face, (k + n - 1) % n, U); // mid(k-1, k) -> centre
 }
 
 glm::dvec2 PtexMap::faceUV(uint32_t face, uint32_t vertex) const {
@@ -94,14 +94,20 @@ void PtexMap::charts(uint32_t p, uint32_t U, uint32_t V, std::vector<ChartUV>& o
     double t = 0;
     if (!inside) {
         if (pf.sub < 0) {
-            if (V == 0) a = fv[0], b = fv[1], t = u;
-            else if (U == R_) a = fv[1], b = fv[2], t = v;
-            else if (V == R_) a = fv[3], b = fv[2], t = u;
-            else a = fv[0], b = fv[3], t = v;
+            if (V == 0)
+                a = fv[0], b = fv[1], t = u;
+            else if (U == R_)
+                a = fv[1], b = fv[2], t = v;
+            else if (V == R_)
+                a = fv[3], b = fv[2], t = u;
+            else
+                a = fv[0], b = fv[3], t = v;
         } else {
             const uint32_t n = static_cast<uint32_t>(fv.size()), k = uint32_t(pf.sub);
-            if (V == 0) a = fv[k], b = fv[(k + 1) % n], t = u / 2;
-            else if (U == 0) a = fv[k], b = fv[(k + n - 1) % n], t = v / 2;
+            if (V == 0)
+                a = fv[k], b = fv[(k + 1) % n], t = u / 2;
+            else if (U == 0)
+                a = fv[k], b = fv[(k + n - 1) % n], t = v / 2;
         }
     }
     if (a == kNone) { // inside the base face (or on an n-gon's spokes): one chart
@@ -110,7 +116,8 @@ void PtexMap::charts(uint32_t p, uint32_t U, uint32_t V, std::vector<ChartUV>& o
     }
     if (t == 0 || t == 1) { // a base vertex: every face around it
         uint32_t vtx = t == 0 ? a : b;
-        for (uint32_t h : topo_.vertexOutgoing(vtx)) out.push_back({topo_.face(h), faceUV(topo_.face(h), vtx)});
+        for (uint32_t h : topo_.vertexOutgoing(vtx))
+            out.push_back({topo_.face(h), faceUV(topo_.face(h), vtx)});
     } else { // a base edge: its one or two faces
         uint32_t e = topo_.findEdge(a, b);
         uint32_t h = topo_.edgeHalfedge(e);
@@ -120,7 +127,8 @@ void PtexMap::charts(uint32_t p, uint32_t U, uint32_t V, std::vector<ChartUV>& o
             out.push_back({f, (1 - t) * faceUV(f, a) + t * faceUV(f, b)});
         }
     }
-    std::sort(out.begin(), out.end(), [](const ChartUV& x, const ChartUV& y) { return x.face < y.face; });
+    std::sort(out.begin(), out.end(),
+              [](const ChartUV& x, const ChartUV& y) { return x.face < y.face; });
 }
 
 } // namespace limn

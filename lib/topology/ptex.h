@@ -16,7 +16,7 @@
 namespace limn {
 
 class PtexMap {
-public:
+  public:
     // `resolution` R (a power of two <= 2^16): points are (U, V) in [0, R]^2.
     PtexMap(const Mesh& mesh, const Topology& topo, uint32_t resolution);
 
@@ -40,7 +40,7 @@ public:
     // The point's UV in the chart of the base face of `ptex` itself.
     glm::dvec2 ownUV(uint32_t ptex, double u, double v) const;
 
-private:
+  private:
     struct PtexFace {
         uint32_t face;
         int32_t sub;

@@ -14,7 +14,7 @@ namespace limn {
 inline constexpr uint32_t kNone = 0xFFFFFFFFu;
 
 class Topology {
-public:
+  public:
     // `faceOffsets` has faceCount+1 entries; corners index vertices below `vertexCount`. The caller
     // guarantees the indices are valid (validateMesh); this never throws on topology oddities, it
     // records them (non-manifold edges and vertices, inconsistent orientation).
@@ -72,7 +72,9 @@ public:
     bool edgeIsNonManifold(uint32_t e) const { return edgeNonManifold_[e] != 0; }
 
     // Vertices.
-    uint32_t vertexFaceCount(uint32_t v) const { return vertexFaceOffsets_[v + 1] - vertexFaceOffsets_[v]; }
+    uint32_t vertexFaceCount(uint32_t v) const {
+        return vertexFaceOffsets_[v + 1] - vertexFaceOffsets_[v];
+    }
     // Every half-edge leaving v, in no particular order (works for non-manifold vertices too).
     std::span<const uint32_t> vertexOutgoing(uint32_t v) const {
         return {vertexOutgoing_.data() + vertexFaceOffsets_[v], vertexFaceCount(v)};
@@ -93,7 +95,7 @@ public:
     uint32_t nonManifoldEdgeCount() const;
     uint32_t boundaryEdgeCount() const;
 
-private:
+  private:
     enum : uint8_t { kBoundary = 1, kNonManifold = 2 };
     uint32_t vertexCount_;
     bool allQuads_ = false; // every face has 4 corners, so face f's half-edges are 4f..4f+3

@@ -41,7 +41,8 @@ Drawn parsePly(const std::string& bytes) {
         if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
     }
     const char* p = bytes.data() + end + 11;
-    if (bytes.size() - (end + 11) != vertices * 36 + faces * 13) throw std::runtime_error("PLY size");
+    if (bytes.size() - (end + 11) != vertices * 36 + faces * 13)
+        throw std::runtime_error("PLY size");
     d.vertices.resize(vertices);
     for (auto& v : d.vertices) {
         std::memcpy(&v, p, 36);
@@ -72,8 +73,8 @@ void PrintTo(const Case& c, std::ostream* os) {
 std::string caseName(const ::testing::TestParamInfo<Case>& info) {
     std::string s = info.param.model.substr(info.param.model.find_last_of('/') + 1);
     s = s.substr(0, s.find('.'));
-    return s + "_d" + std::to_string(info.param.depth) + (info.param.uniform ? "_uniform" : "") + "_" +
-           info.param.eval;
+    return s + "_d" + std::to_string(info.param.depth) + (info.param.uniform ? "_uniform" : "") +
+           "_" + info.param.eval;
 }
 
 class SubdivisionRender : public ::testing::TestWithParam<Case> {};
@@ -84,8 +85,8 @@ TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
     const std::string limn = (dir / "in.limn").string(), ply = (dir / "drawn.ply").string();
     auto r = run({tool("limn-classify").string(), modelPath(c.model).string(), "-o", limn});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    std::vector<std::string> tables = {tool("limn-tables").string(), limn, "-q", "-o", limn, "--depth",
-                                       std::to_string(c.depth)};
+    std::vector<std::string> tables = {
+        tool("limn-tables").string(), limn, "-q", "-o", limn, "--depth", std::to_string(c.depth)};
     if (c.uniform) tables.push_back("--uniform");
     r = run(tables);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -123,7 +124,8 @@ TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
         // limit point is exact (not a smooth corner, see tests/subdiv SmoothCorner).
         bool exact = tv.element < P;
         if (!exact) {
-            bool corner = (tv.s == 0 || tv.s == kTessParamOne) && (tv.t == 0 || tv.t == kTessParamOne);
+            bool corner =
+                (tv.s == 0 || tv.s == kTessParamOne) && (tv.t == 0 || tv.t == kTessParamOne);
             if (!corner) continue;
             const IrregularFace& q = t.irregular[tv.element - P];
             int k = tv.s == 0 ? (tv.t == 0 ? 0 : 3) : (tv.t == 0 ? 1 : 2);
@@ -134,7 +136,9 @@ TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
         glm::dvec3 got(v.p[0], v.p[1], v.p[2]), gotN(v.n[0], v.n[1], v.n[2]);
         worstP = std::max(worstP, glm::length(got - ref) / diag);
         if (exact || tv.element < P) // irregular corners: normals are covered by tests/subdiv
-            worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(glm::normalize(gotN), refN))) * 180 / M_PI);
+            worstN =
+                std::max(worstN, std::acos(std::min(1.0, glm::dot(glm::normalize(gotN), refN))) *
+                                     180 / M_PI);
         ++compared;
     }
     EXPECT_GT(compared, drawn.vertices.size() / 4);
@@ -145,8 +149,9 @@ TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
     std::map<std::array<float, 3>, int> weld;
     std::vector<int> id(drawn.vertices.size());
     for (size_t i = 0; i < drawn.vertices.size(); ++i)
-        id[i] = weld.try_emplace({drawn.vertices[i].p[0], drawn.vertices[i].p[1], drawn.vertices[i].p[2]},
-                                 int(weld.size()))
+        id[i] = weld.try_emplace(
+                        {drawn.vertices[i].p[0], drawn.vertices[i].p[1], drawn.vertices[i].p[2]},
+                        int(weld.size()))
                     .first->second;
     std::map<std::pair<int, int>, int> edgeUse;
     for (const auto& tri : drawn.triangles)

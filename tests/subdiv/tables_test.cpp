@@ -77,8 +77,8 @@ TEST_P(Tables, RefinedVerticesMatchOpenSubdiv) {
     for (uint32_t l = 1; l <= f.tables.depth; ++l) {
         std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
         auto key = [&](glm::ivec3 c) {
-            return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) | (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) |
-                   uint64_t(uint32_t(c.z) & 0x1FFFFF);
+            return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) |
+                   (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) | uint64_t(uint32_t(c.z) & 0x1FFFFF);
         };
         for (uint32_t i = 0; i < osd[l].size(); ++i)
             grid[key(glm::ivec3(glm::floor(osd[l][i] / cell)))].push_back(i);
@@ -93,10 +93,13 @@ TEST_P(Tables, RefinedVerticesMatchOpenSubdiv) {
                     for (int dz = -1; dz <= 1; ++dz) {
                         auto it = grid.find(key(c + glm::ivec3(dx, dy, dz)));
                         if (it == grid.end()) continue;
-                        for (uint32_t i : it->second) best = std::min(best, glm::length(osd[l][i] - f.vertices[v]));
+                        for (uint32_t i : it->second)
+                            best = std::min(best, glm::length(osd[l][i] - f.vertices[v]));
                     }
-            if (best > tol) ++unmatched;
-            else worst = std::max(worst, best);
+            if (best > tol)
+                ++unmatched;
+            else
+                worst = std::max(worst, best);
         }
         EXPECT_EQ(unmatched, 0u) << "level " << l << ": " << unmatched << " of " << info.count()
                                  << " vertices match no OpenSubdiv vertex within " << tol;
@@ -111,10 +114,12 @@ TEST_P(Tables, DomainsTileEveryPtexFaceOnce) {
     Fixture f = build(GetParam());
     test::OsdLimitSurface osd(f.mesh, f.options, 2);
     const int res = 1 << (f.tables.depth + 1);
-    std::vector<std::vector<uint8_t>> cover(osd.ptexFaceCount(), std::vector<uint8_t>(res * res, 0));
+    std::vector<std::vector<uint8_t>> cover(osd.ptexFaceCount(),
+                                            std::vector<uint8_t>(res * res, 0));
     auto paint = [&](uint32_t ptex, double u0, double v0, double size) {
         ASSERT_LT(ptex, cover.size());
-        int i0 = int(std::lround(u0 * res)), j0 = int(std::lround(v0 * res)), n = int(std::lround(size * res));
+        int i0 = int(std::lround(u0 * res)), j0 = int(std::lround(v0 * res)),
+            n = int(std::lround(size * res));
         ASSERT_NEAR(u0 * res, i0, 1e-6);
         ASSERT_NEAR(v0 * res, j0, 1e-6);
         for (int j = j0; j < j0 + n; ++j)
@@ -209,7 +214,8 @@ TEST_P(Tables, LimitPointsMatchOpenSubdiv) {
             worstP = std::max(worstP, glm::length(P - limits[li].position) / f.diag);
             int bv = baseVertexAt(f.mesh, q.ptex, u, v);
             if (bv < 0 || !smooth[bv])
-                worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, limits[li].normal))) * 180 / M_PI);
+                worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, limits[li].normal))) *
+                                              180 / M_PI);
             ++compared;
         }
     EXPECT_LE(worstP, 1e-5) << compared << " corners compared";
@@ -243,7 +249,8 @@ TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
     std::vector<double> angles(15, -1);
     for (const auto& p : t.patches)
         if (p.ptex == 0 && p.u0 == 0 && p.v0 == p.size) // the patch just above the corner
-            angles[p.level] = std::acos(std::min(1.0, glm::dot(evaluatePatch(p, V, 0, 0).normal, corner)));
+            angles[p.level] =
+                std::acos(std::min(1.0, glm::dot(evaluatePatch(p, V, 0, 0).normal, corner)));
     for (int l = 6; l <= 14; ++l) {
         ASSERT_GE(angles[l], 0) << "no patch at level " << l;
         EXPECT_LT(angles[l], angles[l - 1]) << "level " << l;
