@@ -26,6 +26,9 @@ struct DrawPush {
 };
 static_assert(sizeof(DrawPush) == 128);
 inline constexpr uint32_t kDrawPullIndices = 1; // DRAW_PULL_INDICES
+// DRAW_BACK_FACE_KEY: faces seen from behind are painted flat in the sRGB8 colour whose bits
+// (0x00BBGGRR) are stored in light[3] (the push block is full at Vulkan's guaranteed 128 bytes).
+inline constexpr uint32_t kDrawBackFaceKey = 2;
 
 // Records which timed passes are compute (for FrameTimes).
 struct TimedPasses {

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -141,6 +142,13 @@ void Renderer::recordDraw() {
     push.wireColor[0] = push.wireColor[1] = push.wireColor[2] = 0.006f; // sRGB ~ 0.07
     push.shade = static_cast<uint32_t>(settings_.shade);
     push.wirePull = kWirePull;
+    if (settings_.backFaceColor) {
+        uint32_t packed = 0;
+        for (int i = 0; i < 3; ++i)
+            packed |= uint32_t(std::lround(std::clamp((*settings_.backFaceColor)[i], 0.0, 1.0) * 255.0)) << (8 * i);
+        std::memcpy(&push.light[3], &packed, 4);
+        push.flags |= kDrawBackFaceKey;
+    }
 
     std::array<float, 4> clear{};
     for (int i = 0; i < 3; ++i)

@@ -30,6 +30,7 @@
 #include <glm/vec3.hpp>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,8 @@ struct RenderSettings {
     bool seamFix = true;
     const Seams* seams = nullptr; // for the seam fix; required with a displacement map
     const FloatImage* texture = nullptr;
+    // Faces seen from behind drawn flat in this sRGB colour (--back-faces), for crack counts.
+    std::optional<glm::dvec3> backFaceColor;
 };
 
 // GPU milliseconds of one frame; NaN when the device has no timestamps.

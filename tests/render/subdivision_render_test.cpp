@@ -1,6 +1,7 @@
 // limn-render on subdivision tables, run as users run it (limn-classify | limn-tables |
 // limn-render --mesh-out): the triangles as drawn lie on OpenSubdiv's limit surface at their
 // (ptex, u, v), and welding them by exact position gives a closed surface for closed inputs.
+#include "drawn_ply.h"
 #include "mesh/import.h"
 #include "osd_oracle.h"
 #include "subdiv/tables.h"
@@ -18,44 +19,6 @@ using namespace limn;
 using namespace limn::test;
 
 namespace {
-
-struct PlyVertex {
-    float p[3], n[3];
-    int32_t ptex;
-    float uv[2];
-};
-
-struct Drawn {
-    std::vector<PlyVertex> vertices;
-    std::vector<std::array<int32_t, 3>> triangles;
-};
-
-Drawn parsePly(const std::string& bytes) {
-    Drawn d;
-    auto end = bytes.find("end_header\n");
-    if (end == std::string::npos) throw std::runtime_error("no PLY header");
-    std::istringstream header(bytes.substr(0, end));
-    size_t vertices = 0, faces = 0;
-    for (std::string line; std::getline(header, line);) {
-        if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
-        if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
-    }
-    const char* p = bytes.data() + end + 11;
-    if (bytes.size() - (end + 11) != vertices * 36 + faces * 13)
-        throw std::runtime_error("PLY size");
-    d.vertices.resize(vertices);
-    for (auto& v : d.vertices) {
-        std::memcpy(&v, p, 36);
-        p += 36;
-    }
-    for (size_t f = 0; f < faces; ++f) {
-        std::array<int32_t, 3> t;
-        std::memcpy(t.data(), p + 1, 12);
-        d.triangles.push_back(t);
-        p += 13;
-    }
-    return d;
-}
 
 struct Case {
     std::string model;
@@ -146,23 +109,10 @@ TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
     EXPECT_LE(worstN, 0.5);
 
     // Watertight: weld by exact position; every edge of a closed surface has two triangles.
-    std::map<std::array<float, 3>, int> weld;
-    std::vector<int> id(drawn.vertices.size());
-    for (size_t i = 0; i < drawn.vertices.size(); ++i)
-        id[i] = weld.try_emplace(
-                        {drawn.vertices[i].p[0], drawn.vertices[i].p[1], drawn.vertices[i].p[2]},
-                        int(weld.size()))
-                    .first->second;
-    std::map<std::pair<int, int>, int> edgeUse;
-    for (const auto& tri : drawn.triangles)
-        for (int k = 0; k < 3; ++k) {
-            int a = id[tri[k]], b = id[tri[(k + 1) % 3]];
-            ASSERT_NE(a, b) << "a triangle collapsed when welded";
-            ++edgeUse[{std::min(a, b), std::max(a, b)}];
-        }
-    size_t open = 0, over = 0;
-    for (const auto& [e, n] : edgeUse) open += n == 1, over += n > 2;
-    EXPECT_EQ(over, 0u);
+    const WeldedEdges welded = weldedEdges(drawn);
+    EXPECT_EQ(welded.collapsed, 0u) << "a triangle collapsed when welded";
+    const size_t open = welded.open;
+    EXPECT_EQ(welded.over, 0u);
     if (c.closed) {
         EXPECT_EQ(open, 0u) << "open edges after welding by exact position";
     } else {

@@ -159,6 +159,19 @@ int main(int argc, char** argv) {
                     settings.background = {c[0], c[1], c[2]};
                 },
                 "0.2,0.2,0.2", "background colour, sRGB components 0 to 1 (as stored in the PNG)")
+            .custom(
+                "--back-faces", "R,G,B",
+                [&](const std::string& v) {
+                    auto c = cli::parseNumberList("--back-faces", v, 3);
+                    for (double x : c)
+                        if (!(x >= 0 && x <= 1))
+                            usage("--back-faces: each component must be 0 to 1");
+                    settings.backFaceColor = glm::dvec3(c[0], c[1], c[2]);
+                },
+                "",
+                "paint faces seen from behind flat in this sRGB colour [default: shade both\n"
+                "                            sides]; with a key --background, cracks in a closed\n"
+                "                            surface show as key pixels (see --displace)")
             .choice("--shade", &shade, {"lit", "normal", "uv", "levels", "texture"},
                     "lit: Lambert key light + ambient; normal: normal * 0.5 + 0.5 as colour;\n"
                     "                            uv: (u, v, 0) as colour, needs UVs; levels: patches\n"

@@ -11,6 +11,7 @@
 
 // DrawPush.flags
 #define DRAW_PULL_INDICES 1u // the vertex stage reads the index buffer itself (per-triangle data)
+#define DRAW_BACK_FACE_KEY 2u // back faces flat in the sRGB8 colour packed in light.w's bits
 
 layout(push_constant) uniform DrawPush {
     mat4 viewProj;   // world -> clip, Y up, depth 0..1
@@ -28,5 +29,17 @@ layout(push_constant) uniform DrawPush {
 vec3 srgbToLinear(vec3 c) {
     return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
 }
+
+#ifdef LIMN_FRAGMENT_STAGE // gl_FrontFacing exists only there
+// --back-faces: true (and the key colour set) when this fragment belongs to a face seen from
+// behind. Faces are counter-clockwise seen from outside, so on a closed surface seen from
+// outside only cracks, holes and flipped faces show one.
+bool backFaceKey(out vec4 colour) {
+    if ((pc.flags & DRAW_BACK_FACE_KEY) == 0u || gl_FrontFacing) return false;
+    uint c = floatBitsToUint(pc.light.w);
+    colour = vec4(srgbToLinear(vec3(c & 255u, (c >> 8) & 255u, (c >> 16) & 255u) / 255.0), 1.0);
+    return true;
+}
+#endif
 
 #endif

@@ -2,6 +2,7 @@
 // (the sRGB target gamma-encodes on write); `normal` and `uv` store the value itself.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#define LIMN_FRAGMENT_STAGE
 #include "draw_common.glsl"
 
 layout(location = 0) in vec3 inWorld;
@@ -13,6 +14,7 @@ const vec3 kAlbedo = vec3(0.80);
 const float kAmbient = 0.12;
 
 void main() {
+    if (backFaceKey(outColor)) return;
     vec3 toEye = pc.eye.xyz - inWorld;
     vec3 n = inNormal;
     if (pc.shade == SHADE_NORMAL) {

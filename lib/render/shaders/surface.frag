@@ -3,6 +3,7 @@
 // more), irregular faces drawn at their limit points in blue.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#define LIMN_FRAGMENT_STAGE
 #include "draw_common.glsl"
 
 layout(location = 0) in vec3 inWorld;
@@ -48,6 +49,7 @@ vec3 levelColour(uint level) {
 }
 
 void main() {
+    if (backFaceKey(outColor)) return;
     vec3 n = normalize(inNormal);
     if (pc.shade == SHADE_NORMAL) {
         outColor = vec4(srgbToLinear(n * 0.5 + 0.5), 1.0);
