@@ -1,9 +1,11 @@
 #include "render/png.h"
 
 #include "base/error.h"
+#include "image/image_file.h"
+#include "image/png_encode.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <algorithm>
+#include <cmath>
 
 namespace limn::render {
 
@@ -12,41 +14,21 @@ std::vector<uint8_t> encodePng(const Image& image) {
         throw Error(ErrorKind::BadInput, "PNG output needs 3 or 4 channels");
     if (image.pixels.size() != size_t(image.width) * image.height * image.channels)
         throw Error(ErrorKind::BadInput, "internal: image size does not match its pixels");
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput memory(bytes);
-    OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height),
-                         static_cast<int>(image.channels), OIIO::TypeDesc::UINT8);
-    OIIO::Filesystem::IOProxy* proxy = &memory;
-    spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    spec.attribute("png:compressionLevel", 6); // fixed, so the bytes never follow a default
-    // The pixels are stored as given: OpenImageIO would otherwise treat RGBA as premultiplied
-    // and divide by alpha on the way out.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    auto out = OIIO::ImageOutput::create("png");
-    if (!out || !out->open("image.png", spec) ||
-        !out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) || !out->close())
-        throw Error(ErrorKind::BadInput,
-                    "cannot encode PNG: " + (out ? out->geterror() : OIIO::geterror()));
-    return {bytes.begin(), bytes.end()};
+    return encodePng8(image.width, image.height, image.channels, image.pixels);
 }
 
 Image decodePng(std::span<const uint8_t> bytes) {
-    OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-    OIIO::ImageSpec config;
-    OIIO::Filesystem::IOProxy* proxy = &memory;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    config.attribute("oiio:UnassociatedAlpha", 1); // the stored values, not premultiplied ones
-    auto in = OIIO::ImageInput::open("image.png", &config);
-    if (!in) throw Error(ErrorKind::BadInput, "cannot decode PNG: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
+    FloatImage f = readImageBytes(bytes, "image.png");
+    if (f.channels > 4) throw Error(ErrorKind::BadInput, "cannot decode PNG: more than 4 channels");
     Image image;
-    image.width = static_cast<uint32_t>(spec.width);
-    image.height = static_cast<uint32_t>(spec.height);
-    image.channels = static_cast<uint32_t>(spec.nchannels);
-    image.pixels.resize(size_t(image.width) * image.height * image.channels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, image.pixels.data()))
-        throw Error(ErrorKind::BadInput, "cannot decode PNG: " + in->geterror());
-    in->close();
+    image.width = f.width;
+    image.height = f.height;
+    image.channels = f.channels;
+    image.pixels.resize(f.values.size());
+    // 8-bit samples come back as k / 255 exactly; rounding restores k.
+    for (size_t i = 0; i < f.values.size(); ++i)
+        image.pixels[i] =
+            static_cast<uint8_t>(std::lround(std::clamp(f.values[i], 0.0f, 1.0f) * 255.0f));
     return image;
 }
 

@@ -1,6 +1,5 @@
-// 8-bit sRGB images and their PNG encoding through OpenImageIO. The bytes depend only on the
-// pixels: OpenImageIO writes IHDR, oFFs, IDAT and IEND, with no time stamp and no software or
-// version text (tests/render pins the chunk list), and the zlib level is fixed.
+// 8-bit sRGB images and their PNG encoding (lib/image's own encoder: IHDR, sRGB, IDAT, IEND; no
+// time stamp, software or version text, tests/render pins the chunk list).
 #pragma once
 
 #include <cstdint>
@@ -20,8 +19,9 @@ struct Image {
 };
 
 std::vector<uint8_t> encodePng(const Image& image);
-// Throws Error(BadInput) when the bytes are not a PNG OpenImageIO can read. Any bit depth is
-// converted to 8 bits; the channel count is kept.
+// Throws Error(BadInput) when the bytes are not a PNG OpenImageIO can read (through lib/image's
+// plugin; Error(Capability) when that cannot be loaded). Any bit depth is converted to 8 bits;
+// the channel count is kept.
 Image decodePng(std::span<const uint8_t> bytes);
 
 } // namespace limn::render

@@ -48,7 +48,7 @@ struct Renderer::Gpu {
 
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
                    const RenderSettings& settings)
-    : ctx_(ctx), settings_(settings) {
+    : settings_(settings) {
     if (settings.shade == Shade::Uv && !mesh.hasUVs())
         throw Error(ErrorKind::BadInput,
                     "--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade "

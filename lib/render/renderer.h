@@ -94,7 +94,6 @@ class Renderer {
     void recordCompute();
     void recordDraw();
 
-    gpu::Context& ctx_;
     RenderSettings settings_;
     std::vector<glm::vec4> controlPoints_;
     Camera camera_;

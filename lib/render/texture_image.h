@@ -1,8 +1,8 @@
-// Texture and displacement maps read through OpenImageIO (any format it reads: 8/16-bit PNG,
-// TIFF, EXR float, ...), kept as float values as stored (8/16-bit integers scaled to [0, 1],
-// floats unchanged), rows top to bottom. Image row y holds v = 1 - (y + 0.5) / height (UVs point
-// up, as in OBJ).
+// Texture and displacement maps (read by lib/image: any format OpenImageIO reads), the 16-bit
+// height-map encoding, and the bilinear lookup the displacement pass does.
 #pragma once
+
+#include "image/image_file.h"
 
 #include <cstdint>
 #include <span>
@@ -11,10 +11,7 @@
 
 namespace limn::render {
 
-struct FloatImage {
-    uint32_t width = 0, height = 0, channels = 0;
-    std::vector<float> values; // width * height * channels
-};
+using limn::FloatImage; // image/image_file.h
 
 // Throws Error(BadInput) naming the file when it cannot be read.
 FloatImage loadImage(const std::string& path);

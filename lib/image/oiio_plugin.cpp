@@ -1,0 +1,66 @@
+// The image reader behind limn_image's readImageFile/readImageBytes: OpenImageIO, in its own
+// shared object so that only processes that read images load OpenImageIO's libraries
+// (lib/image/CMakeLists.txt says why). Everything is caught here: nothing may unwind through C.
+#include "image/plugin_abi.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <string>
+
+namespace {
+
+int fail(const std::string& message, char* error, size_t errorSize) {
+    if (errorSize > 0) {
+        size_t n = std::min(message.size(), errorSize - 1);
+        std::memcpy(error, message.data(), n);
+        error[n] = '\0';
+    }
+    return 1;
+}
+
+} // namespace
+
+extern "C" __attribute__((visibility("default"))) int limn_image_abi_version(void) {
+    return kLimnImageAbiVersion;
+}
+
+extern "C" __attribute__((visibility("default"))) int
+limn_image_read(const char* path, const void* bytes, size_t size, void* context,
+                LimnImageAllocate allocate, char* error, size_t errorSize) {
+    try {
+        std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
+        if (bytes) memory = std::make_unique<OIIO::Filesystem::IOMemReader>(bytes, size);
+        // The stored values: OpenImageIO would otherwise premultiply colour by alpha.
+        OIIO::ImageSpec config;
+        config.attribute("oiio:UnassociatedAlpha", 1);
+        // OpenImageIO 2.4 reads from memory only when the proxy is passed this way.
+        OIIO::Filesystem::IOProxy* proxy = memory.get();
+        if (proxy) config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+        auto in = OIIO::ImageInput::open(path, &config);
+        if (!in) {
+            std::string why = OIIO::geterror();
+            return fail(why.empty() ? "not an image OpenImageIO can read" : why, error, errorSize);
+        }
+        const OIIO::ImageSpec& spec = in->spec();
+        if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
+            return fail("unsupported image layout (volume or empty image)", error, errorSize);
+        float* out = allocate(context, uint32_t(spec.width), uint32_t(spec.height),
+                              uint32_t(spec.nchannels));
+        if (!out)
+            return fail("image too large: " + std::to_string(spec.width) + "x" +
+                            std::to_string(spec.height) + "x" + std::to_string(spec.nchannels),
+                        error, errorSize);
+        if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out))
+            return fail(in->geterror(), error, errorSize);
+        in->close();
+        return 0;
+    } catch (const std::exception& e) {
+        return fail(e.what(), error, errorSize);
+    } catch (...) {
+        return fail("unknown error in the image reader", error, errorSize);
+    }
+}
