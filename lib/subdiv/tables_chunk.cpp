@@ -3,7 +3,10 @@
 #include "base/bytes.h"
 #include "base/error.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <unordered_set>
 
 namespace limn {
 
@@ -25,7 +28,8 @@ StencilTable readTable(ByteReader& r, const std::string& what, uint32_t rows, bo
     StencilTable t;
     uint32_t n = r.read<uint32_t>(), entries = r.read<uint32_t>(), hasWeights = r.read<uint32_t>();
     if (r.read<uint32_t>() != 0) r.fail(what + ": reserved field is not zero");
-    if (n != rows) r.fail(what + ": " + std::to_string(n) + " rows, expected " + std::to_string(rows));
+    if (n != rows)
+        r.fail(what + ": " + std::to_string(n) + " rows, expected " + std::to_string(rows));
     if (hasWeights != (weights ? 1u : 0u)) r.fail(what + ": weight flag is wrong");
     t.start = r.readArray<uint32_t>(uint64_t(rows) + 1, (what + " starts").c_str());
     t.indices = r.readArray<uint32_t>(entries, (what + " indices").c_str());
@@ -44,7 +48,8 @@ StencilTable readTable(ByteReader& r, const std::string& what, uint32_t rows, bo
             r.fail(what + ": entry " + std::to_string(i) + " has a non-finite weight");
     }
     for (uint32_t i = 0; !weights && i < rows; ++i)
-        if (t.start[i + 1] == t.start[i]) r.fail(what + ": face point " + std::to_string(i) + " is empty");
+        if (t.start[i + 1] == t.start[i])
+            r.fail(what + ": face point " + std::to_string(i) + " is empty");
     return t;
 }
 
@@ -114,11 +119,13 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     ByteReader r(chunk.payload, "chunk TBLS");
     Tables t;
     t.depth = r.read<uint32_t>();
-    if (t.depth > uint32_t(kMaxDepth)) r.fail("depth " + std::to_string(t.depth) + " is out of range");
+    if (t.depth > uint32_t(kMaxDepth))
+        r.fail("depth " + std::to_string(t.depth) + " is out of range");
     uint32_t flags = r.read<uint32_t>();
     if (flags > 1) r.fail("unknown flags");
     t.uniform = flags & 1;
-    uint8_t b = r.read<uint8_t>(), m = r.read<uint8_t>(), tri = r.read<uint8_t>(), fv = r.read<uint8_t>();
+    uint8_t b = r.read<uint8_t>(), m = r.read<uint8_t>(), tri = r.read<uint8_t>(),
+            fv = r.read<uint8_t>();
     if (b > 2 || m > 1 || tri > 1 || fv > 5) r.fail("scheme option out of range");
     t.options = {static_cast<BoundaryRule>(b), static_cast<CreaseMethod>(m),
                  static_cast<TriangleSubdivision>(tri), static_cast<FVarRule>(fv)};
@@ -126,9 +133,11 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     t.topologyHash = r.read<uint64_t>();
     if (mesh && t.topologyHash != topologyHash(*mesh, t.options))
         throwBadInput("the subdivision tables were built for a different mesh topology or tags; "
-                      "re-run limn-tables", "chunk TBLS");
+                      "re-run limn-tables",
+                      "chunk TBLS");
     t.totalVertices = r.read<uint32_t>();
-    uint32_t patches = r.read<uint32_t>(), irregular = r.read<uint32_t>(), limits = r.read<uint32_t>();
+    uint32_t patches = r.read<uint32_t>(), irregular = r.read<uint32_t>(),
+             limits = r.read<uint32_t>();
     uint64_t sum = 0;
     for (uint32_t l = 0; l <= t.depth; ++l) {
         LevelInfo L;
@@ -138,7 +147,8 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         L.vertexPoints = r.read<uint32_t>();
         L.regularPatches = r.read<uint32_t>();
         L.irregularFaces = r.read<uint32_t>();
-        if (L.first != sum) r.fail("level " + std::to_string(l) + " does not start where the previous ends");
+        if (L.first != sum)
+            r.fail("level " + std::to_string(l) + " does not start where the previous ends");
         sum += uint64_t(L.facePoints) + L.edgePoints + L.vertexPoints;
         if (sum > t.totalVertices) r.fail("level vertex counts exceed the total");
         t.levels.push_back(L);
@@ -151,20 +161,35 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         const LevelInfo &P = t.levels[l - 1], &L = t.levels[l];
         std::string lv = "level " + std::to_string(l);
         uint32_t parentEnd = P.first + P.count(), faceEnd = L.first + L.facePoints;
-        t.facePoints.push_back(readTable(r, lv + " face points", L.facePoints, false, P.first, parentEnd));
-        t.edgePoints.push_back(readTable(r, lv + " edge points", L.edgePoints, true, P.first, parentEnd,
-                                         L.first, faceEnd));
+        t.facePoints.push_back(
+            readTable(r, lv + " face points", L.facePoints, false, P.first, parentEnd));
+        t.edgePoints.push_back(readTable(r, lv + " edge points", L.edgePoints, true, P.first,
+                                         parentEnd, L.first, faceEnd));
         t.vertexPoints.push_back(readTable(r, lv + " vertex points", L.vertexPoints, true, P.first,
                                            parentEnd, L.first, faceEnd));
     }
     const uint32_t ptexCount = mesh ? ptexFaceCount(*mesh) : 0xFFFFFFFFu;
-    auto checkDomain = [&](uint32_t ptex, float u0, float v0, float size, const std::string& what) {
-        if (ptex >= ptexCount) r.fail(what + " refers to ptex face " + std::to_string(ptex) + " that does not exist");
-        if (!(size > 0) || !isDyadic(size, kMaxDepth) || !isDyadic(u0, kMaxDepth) ||
-            !isDyadic(v0, kMaxDepth) || u0 < 0 || v0 < 0 || u0 + size > 1 || v0 + size > 1)
-            r.fail(what + " has a domain outside its ptex face");
+    // Every domain is a dyadic square of the ptex face at the tables' resolution R = 2^depth:
+    // side W = 2^-k R (k <= depth), corner on the W grid. The tessellation divides by W.
+    const uint32_t R = 1u << t.depth;
+    struct Square {
+        uint32_t ptex, W, U0, V0;
     };
-    if (patches > r.remaining() / 84) r.fail("patch count " + std::to_string(patches) + " is too large");
+    std::vector<Square> squares;
+    auto checkDomain = [&](uint32_t ptex, float u0, float v0, float size, const std::string& what) {
+        if (ptex >= ptexCount)
+            r.fail(what + " refers to ptex face " + std::to_string(ptex) + " that does not exist");
+        if (!(size > 0) || !isDyadic(size, t.depth) || !isDyadic(u0, t.depth) ||
+            !isDyadic(v0, t.depth) || u0 < 0 || v0 < 0 || u0 + size > 1 || v0 + size > 1)
+            r.fail(what + " has a domain outside its ptex face or finer than the tables' depth");
+        const uint32_t W = uint32_t(double(size) * R), U0 = uint32_t(double(u0) * R),
+                       V0 = uint32_t(double(v0) * R);
+        if ((W & (W - 1)) != 0 || U0 % W != 0 || V0 % W != 0)
+            r.fail(what + " has a domain that is not a cell of its ptex face's quadtree");
+        squares.push_back({ptex, W, U0, V0});
+    };
+    if (patches > r.remaining() / 84)
+        r.fail("patch count " + std::to_string(patches) + " is too large");
     t.patches.resize(patches);
     for (uint32_t i = 0; i < patches; ++i) {
         Patch& p = t.patches[i];
@@ -177,7 +202,8 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         uint32_t packed = r.read<uint32_t>();
         p.level = static_cast<uint8_t>(packed & 0xFF);
         p.boundary = static_cast<uint8_t>((packed >> 8) & 0xFF);
-        if ((packed >> 16) != 0 || p.boundary > 15 || p.level > t.depth) r.fail(what + ": bad level or boundary mask");
+        if ((packed >> 16) != 0 || p.boundary > 15 || p.level > t.depth)
+            r.fail(what + ": bad level or boundary mask");
         const LevelInfo& L = t.levels[p.level];
         for (uint32_t cv : p.cv)
             if (cv >= t.totalVertices || (cv != 0 && (cv < L.first || cv >= L.first + L.count())))
@@ -190,13 +216,45 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         IrregularFace& q = t.irregular[i];
         for (uint32_t& c : q.corner) {
             c = r.read<uint32_t>();
-            if (c >= limits) r.fail("irregular face " + std::to_string(i) + " refers to a missing limit point");
+            if (c >= limits)
+                r.fail("irregular face " + std::to_string(i) + " refers to a missing limit point");
         }
         q.ptex = r.read<uint32_t>();
         q.u0 = r.read<float>();
         q.v0 = r.read<float>();
         q.size = r.read<float>();
         checkDomain(q.ptex, q.u0, q.v0, q.size, "irregular face " + std::to_string(i));
+    }
+    // The domains tile every ptex face exactly once, or not at all (a face without a limit
+    // surface): no square inside another, areas adding up to R^2 (paper 000, 4.1: each face is
+    // drawn by its patches and its irregular remainder).
+    if (mesh) {
+        std::sort(squares.begin(), squares.end(),
+                  [](const Square& x, const Square& y) { return x.ptex < y.ptex; });
+        std::unordered_set<uint64_t> present; // (log2 W, U0 / W, V0 / W) within one ptex face
+        auto key = [](uint32_t W, uint32_t U0, uint32_t V0) {
+            return uint64_t(std::countr_zero(W)) << 40 | uint64_t(U0 / W) << 20 | (V0 / W);
+        };
+        for (size_t first = 0, end = 0; first < squares.size(); first = end) {
+            const uint32_t ptex = squares[first].ptex;
+            present.clear();
+            uint64_t area = 0;
+            for (end = first; end < squares.size() && squares[end].ptex == ptex; ++end) {
+                const Square& q = squares[end];
+                if (!present.insert(key(q.W, q.U0, q.V0)).second)
+                    r.fail("two domains cover the same square of ptex face " +
+                           std::to_string(ptex));
+                area += uint64_t(q.W) * q.W;
+            }
+            for (size_t k = first; k < end; ++k)
+                for (uint32_t W = squares[k].W * 2; W <= R; W *= 2)
+                    if (present.count(key(W, squares[k].U0 / W * W, squares[k].V0 / W * W)))
+                        r.fail("a domain lies inside another one of ptex face " +
+                               std::to_string(ptex));
+            if (area != uint64_t(R) * R)
+                r.fail("the domains do not cover ptex face " + std::to_string(ptex) +
+                       " exactly once");
+        }
     }
     const LevelInfo& LN = t.levels[t.depth];
     uint32_t lo = LN.first, hi = LN.first + LN.count();
@@ -212,7 +270,8 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         t.limitExact.push_back(f ? 0 : 1);
         t.approximateLimitPoints += f;
     }
-    if (!r.atEnd()) r.fail(std::to_string(r.remaining()) + " unexpected bytes after the last field");
+    if (!r.atEnd())
+        r.fail(std::to_string(r.remaining()) + " unexpected bytes after the last field");
     return t;
 }
 

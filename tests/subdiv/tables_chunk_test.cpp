@@ -4,10 +4,12 @@
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "subdiv/tables_chunk.h"
+#include "tess/tessellation.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace limn;
@@ -69,7 +71,8 @@ TEST(TablesChunk, EveryTruncationIsRejected) {
 }
 
 // Random corruption never crashes the reader: it either rejects the chunk or returns tables
-// whose every index is in bounds (checked by evaluating nothing out of range under ASan).
+// whose every index is in bounds and whose domains tessellate (what limn-render does next; any
+// out-of-range access shows under ASan, which scripts/test.sh asan runs).
 TEST(TablesChunk, CorruptedBytesAreRejectedOrSafe) {
     Mesh m = load("quad/osd_catmark_xord_boundary.obj");
     Chunk c = encodeTablesChunk(build(m, 2));
@@ -83,11 +86,50 @@ TEST(TablesChunk, CorruptedBytesAreRejectedOrSafe) {
             Tables t = decodeTablesChunk(bad, &m);
             for (const auto& p : t.patches)
                 for (uint32_t cv : p.cv) ASSERT_LT(cv, t.totalVertices);
+            buildTessellation(m, t, 4);
         } catch (const Error&) {
             ++rejected;
         }
     }
     EXPECT_GT(rejected, 1500u);
+}
+
+// The tessellation divides every ptex face by its domains: they must be cells of the face's
+// quadtree at the tables' depth and tile it exactly once (found by fuzz_render_input: a domain
+// finer than the depth once reached a division by zero).
+TEST(TablesChunk, DomainsMustTileTheirPtexFaces) {
+    Mesh m = load("quad/osd_catmark_xord_boundary.obj");
+    const Tables good = build(m, 2);
+    ASSERT_GE(good.patches.size(), 2u);
+    auto expectRefused = [&](const Tables& t, const std::string& why, const std::string& what) {
+        try {
+            decodeTablesChunk(encodeTablesChunk(t), &m);
+            ADD_FAILURE() << "accepted: " << what;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos)
+                << what << ": " << e.what();
+        }
+    };
+    Tables t = good;
+    t.patches[0].size /= 8; // finer than depth 2
+    expectRefused(t, "finer than the tables' depth", "a domain of 1/32");
+    t = good;
+    auto half = std::find_if(t.patches.begin(), t.patches.end(),
+                             [](const Patch& p) { return p.size == 0.5f && p.u0 == 0; });
+    ASSERT_NE(half, t.patches.end());
+    half->u0 = 0.25f; // inside the face and on the depth-2 grid, but not a cell of size 1/2
+    expectRefused(t, "not a cell", "a domain off the grid");
+    t = good;
+    t.patches[1] = t.patches[0]; // the same square twice, another one missing
+    t.patches[1].cv[0] = good.patches[1].cv[0];
+    expectRefused(t, "same square", "a duplicated domain");
+    t = good;
+    // A gap in a face's tiling (a face with no domain at all is a face without a limit surface).
+    auto partial =
+        std::find_if(t.patches.begin(), t.patches.end(), [](const Patch& p) { return p.size < 1; });
+    ASSERT_NE(partial, t.patches.end());
+    t.patches.erase(partial);
+    expectRefused(t, "exactly once", "a missing domain");
 }
 
 TEST(TablesChunk, OutOfRangeIndexNamesTheTable) {

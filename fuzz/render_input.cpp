@@ -1,0 +1,31 @@
+// fuzz_render_input: arbitrary bytes through everything limn-render does on the CPU with a
+// container before the GPU sees it: framing, mesh, subdivision tables (TBLS), seam UVs (SEAM),
+// and the tessellation built from the tables. A mutated TBLS keeps its mesh hash, so the decoder's
+// own index checks are all that stands between it and the tessellation. Anything but
+// Error(BadInput) is a bug.
+#include "base/error.h"
+#include "container/container.h"
+#include "mesh/mesh_chunks.h"
+#include "seams/seams.h"
+#include "subdiv/tables_chunk.h"
+#include "tess/tessellation.h"
+
+#include <cstdlib>
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace limn;
+    try {
+        Container c = parseContainer({data, size});
+        Mesh mesh = loadMesh(c);
+        const Chunk* tb = c.find(kTablesChunk);
+        if (!tb) return 0;
+        Tables tables = decodeTablesChunk(*tb, &mesh);
+        if (const Chunk* sm = c.find(kSeamsChunk))
+            decodeSeamsChunk(*sm, static_cast<uint32_t>(tables.patches.size() + tables.irregular.size()),
+                             seamsSourceHash(c));
+        buildTessellation(mesh, tables, 2, mesh.hasUVs());
+    } catch (const Error& e) {
+        if (e.kind() != ErrorKind::BadInput) std::abort();
+    }
+    return 0;
+}
