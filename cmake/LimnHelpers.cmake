@@ -22,6 +22,7 @@ function(limn_gtest name)
     LIMN_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
     LIMN_BIN_DIR="${CMAKE_BINARY_DIR}/bin"
     LIMN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  # One label per executable: CMake 3.25's gtest_discover_tests flattens a list of them.
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
 endfunction()
 include(GoogleTest)

@@ -16,4 +16,6 @@ esac
 if [ ! -f "$dir/build.ninja" ]; then
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${flags[@]}" >/dev/null
 fi
-cmake --build "$dir"
+# The fuzz tree builds only the fuzz targets and what they link, not every tool and test.
+target=(); [ "$kind" = fuzz ] && target=(--target fuzzers)
+cmake --build "$dir" "${target[@]}"

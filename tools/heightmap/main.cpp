@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
             "  surface: 3D noise at the surface point each texel maps to (through the mesh's UV\n"
             "           charts), continuous across UV seams: the realistic case.\n"
             "  uv:      2D noise in UV space, unrelated across seams: the stress case for the seam\n"
-            "           fix (the mesh is only needed for nothing; INPUT may be any mesh).",
+            "           fix. INPUT is not read (and may be left out).",
             common);
         parser.positional("INPUT", &input, "mesh with UVs (any format limn reads, or .limn)")
             .choice("--kind", &kind, {"surface", "uv"}, "which field to bake")
@@ -32,11 +32,14 @@ int main(int argc, char** argv) {
             .integer("--padding", "P", &padding, 0, 64, "texels a surface map extends past each UV island");
         if (!parser.parse(ac, av)) return 0;
         cli::setVerbosity(common.quiet, common.verbose);
-        if (isStdio(common.output)) throw Error(ErrorKind::Usage, "give the map's file with -o MAP.png");
-        OutputFile out(common.output, OutputFile::Kind::Binary);
-        Warnings warnings;
-        Mesh mesh = importMeshFile(input, warnings);
-        cli::printWarnings(warnings, isStdio(input) ? "<stdin>" : input);
+        OutputFile out(common.output, OutputFile::Kind::Binary); // refused on a terminal
+        const bool needsMesh = kind != "uv";
+        Mesh mesh;
+        if (needsMesh) {
+            Warnings warnings;
+            mesh = importMeshFile(input, warnings);
+            cli::printWarnings(warnings, isStdio(input) ? "<stdin>" : input);
+        }
         HeightmapOptions o;
         o.kind = kind == "uv" ? HeightmapKind::Uv : HeightmapKind::Surface;
         o.size = uint32_t(size);
@@ -53,7 +56,9 @@ int main(int argc, char** argv) {
         }
         out.write(render::encodeGray16Png(o.size, o.size, values));
         out.commit();
-        if (!common.depfile.empty()) writeDepfile(common.depfile, common.output, {input});
+        if (!common.depfile.empty())
+            writeDepfile(common.depfile, common.output,
+                         needsMesh ? std::vector<std::string>{input} : std::vector<std::string>{});
         return 0;
     });
 }
