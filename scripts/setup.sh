@@ -10,6 +10,8 @@ packages=(
   libopenmesh-dev libosd-dev libglm-dev libopenimageio-dev libtinygltf-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-tools glslang-dev spirv-tools
+  # PNG encoding/decoding of our own (lib/image); OpenImageIO pulls it in too, named for clarity
+  zlib1g-dev
   # tests, benchmarks, fuzzers
   libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
 )
