@@ -1,6 +1,8 @@
 #include "render/renderer.h"
 
 #include "base/error.h"
+#include "blend/blend_surface.h"
+#include "render/blend_pass.h"
 #include "render/control_mesh_pass.h"
 #include "render/subdivision_pass.h"
 #include "render_shaders.h"
@@ -56,6 +58,10 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         throw Error(ErrorKind::BadInput,
                     "--shade levels colours subdivision levels, and the container has no tables "
                     "(TBLS); run limn-tables first");
+    if (settings.trim)
+        throw Error(ErrorKind::BadInput,
+                    "--trim cuts blending surfaces, and this surface is not one (no BLND); run "
+                    "limn-blend first");
     Bounds bounds;
     if (tables) {
         SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap);
@@ -69,11 +75,30 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         bounds = draw.bounds;
         pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw));
     }
+    finishSetup(mesh, bounds);
+}
+
+Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurface& surface,
+                   const RenderSettings& settings)
+    : ctx_(ctx), settings_(settings) {
+    if (settings.shade == Shade::Uv && !mesh.hasUVs())
+        throw Error(ErrorKind::BadInput,
+                    "--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade "
+                    "lit or normal");
+    BlendDraw draw = prepareBlend(mesh, surface, settings.blendGrid);
+    const Bounds bounds = draw.bounds;
+    pass_ = std::make_unique<BlendPass>(
+        ctx, std::move(draw), settings.evalInCompute ? BlendPass::Eval::Compute : BlendPass::Eval::Vertex,
+        settings.evaluateVertices || settings.wire, settings.trim);
+    finishSetup(mesh, bounds);
+}
+
+void Renderer::finishSetup(const Mesh& mesh, const Bounds& bounds) {
     controlPoints_.reserve(mesh.vertexCount());
     for (const auto& p : mesh.positions) controlPoints_.emplace_back(glm::vec3(p), 1.0f);
-    camera_ = frameCamera(settings.view, bounds, double(settings.width) / settings.height);
-    gpu_ = std::make_unique<Gpu>(ctx, controlPoints_.size() * sizeof(glm::vec4), pass_->vertexBuffer(),
-                                 settings.width, settings.height);
+    camera_ = frameCamera(settings_.view, bounds, double(settings_.width) / settings_.height);
+    gpu_ = std::make_unique<Gpu>(ctx_, controlPoints_.size() * sizeof(glm::vec4), pass_->vertexBuffer(),
+                                 settings_.width, settings_.height);
 }
 
 Renderer::~Renderer() = default;
@@ -146,8 +171,8 @@ void Renderer::renderFrame() {
     g.cmd.begin();
     // Topology and tables were uploaded once, in earlier submissions; a fence wait orders those
     // copies but does not make their writes visible to this frame's reads.
-    g.cmd.barrier(gpu::Access::TransferWrite,
-                  gpu::Access::ComputeRead | gpu::Access::VertexRead | gpu::Access::IndexRead);
+    g.cmd.barrier(gpu::Access::TransferWrite, gpu::Access::ComputeRead | gpu::Access::VertexRead |
+                                                  gpu::Access::IndexRead | gpu::Access::FragmentRead);
     recordUpload();
     recordCompute();
     recordDraw();
