@@ -66,6 +66,11 @@ vec4 blendMul(vec4 a, vec4 b) { // row-major 2x2 product
 }
 
 BlendSample evaluateBlend(BlendFace bf, BlendVertex corners[4], float u, float v, uint weights) {
+    // Blend relative to the face's first corner: Σw = 1 and Σ∇w = 0, so the origin drops out of
+    // the derivatives, and f32 no longer loses the small derivative sums against rounding errors
+    // of the size of the coordinates (the derivatives are of the face's size, the coordinates of
+    // the model's). c_00 − origin is one rounding of a face-sized difference.
+    vec3 origin = vec3(corners[0].coef[0], corners[0].coef[9], corners[0].coef[18]);
     vec3 S = vec3(0.0), Du = vec3(0.0), Dv = vec3(0.0);
     float W = 0.0, dWu = 0.0, dWv = 0.0;
     int atVertex = -1;
@@ -95,12 +100,13 @@ BlendSample evaluateBlend(BlendFace bf, BlendVertex corners[4], float u, float v
             K = blendMul(Jz, J);
             z = rp * vec2(c, s);
         }
-        // Local surface (E4): L_c = X·M_c·Y with M_c[b][a] = c_ab, X = (1, x, x²), Y = (1, y, y²).
+        // Local surface (E4), less the origin: L_c = X·M_c·Y with M_c[b][a] = c_ab (c_00 − origin_c),
+        // X = (1, x, x²), Y = (1, y, y²).
         vec3 X = vec3(1.0, z.x, z.x * z.x), Y = vec3(1.0, z.y, z.y * z.y);
         vec3 dX = vec3(0.0, 1.0, 2.0 * z.x), dY = vec3(0.0, 1.0, 2.0 * z.y);
         vec3 L, Lx, Ly;
         for (int c = 0; c < 3; ++c) {
-            mat3 M = mat3(V.coef[9 * c + 0], V.coef[9 * c + 1], V.coef[9 * c + 2],
+            mat3 M = mat3(V.coef[9 * c + 0] - origin[c], V.coef[9 * c + 1], V.coef[9 * c + 2],
                           V.coef[9 * c + 3], V.coef[9 * c + 4], V.coef[9 * c + 5],
                           V.coef[9 * c + 6], V.coef[9 * c + 7], V.coef[9 * c + 8]);
             vec3 MY = M * Y;
@@ -130,7 +136,7 @@ BlendSample evaluateBlend(BlendFace bf, BlendVertex corners[4], float u, float v
     }
     float len = length(n);
     BlendSample result;
-    result.position = S;
+    result.position = origin + S;
     result.normal = len > 0.0 ? n / len : vec3(0.0);
     return result;
 }
