@@ -8,14 +8,12 @@
 #include "blend_eval.glsl"
 #include "blend_draw.glsl"
 #include "blend_vertex_out.glsl"
+#include "blend_eval_impl.glsl"
 
 void main() {
     uint d = uint(gl_VertexIndex);
     uvec4 dv = drawVertices.v[d];
     float u = float(dv.z & 0xFFFFu) / float(drawData.grid), v = float(dv.z >> 16) / float(drawData.grid);
-    BlendFace bf = blendFaces.f[dv.y];
-    BlendVertex corners[4] = BlendVertex[4](blendVertices.v[bf.vertex[0]], blendVertices.v[bf.vertex[1]],
-                                            blendVertices.v[bf.vertex[2]], blendVertices.v[bf.vertex[3]]);
-    BlendSample s = evaluateBlend(bf, corners, u, v, drawData.weights);
+    BlendSample s = evaluateBlend(dv.y, u, v, drawData.weights);
     blendVertexOut(d, dv.w, s.position, s.normal, drawData.hasUVs != 0u);
 }

@@ -19,15 +19,14 @@ layout(push_constant) uniform Push {
     uint weights;                  // BLEND_WEIGHTS_*
 } pc;
 
+#include "blend_eval_impl.glsl"
+
 void main() {
     uint i = limnInvocationIndex(pc.limnRowInvocations);
     if (i >= pc.limnCount) return;
     uvec2 point = points.p[i];
     float u = float(point.y & 0xFFFFu) / float(pc.grid), v = float(point.y >> 16) / float(pc.grid);
-    BlendFace bf = blendFaces.f[point.x];
-    BlendVertex corners[4] = BlendVertex[4](blendVertices.v[bf.vertex[0]], blendVertices.v[bf.vertex[1]],
-                                            blendVertices.v[bf.vertex[2]], blendVertices.v[bf.vertex[3]]);
-    BlendSample s = evaluateBlend(bf, corners, u, v, pc.weights);
+    BlendSample s = evaluateBlend(point.x, u, v, pc.weights);
     positions.p[i] = vec4(s.position, 1.0);
     normals.n[i] = vec4(s.normal, 0.0);
 }
