@@ -33,16 +33,17 @@ bool trimmedAway(uint face, vec2 uv) {
 
 vec3 valenceColour(uint face, vec2 uv) {
     uint corner = uv.x < 0.5 ? (uv.y < 0.5 ? 0u : 3u) : (uv.y < 0.5 ? 1u : 2u);
-    BlendVertex V = blendVertices.v[blendFaces.f[face].vertex[corner]];
-    uint regular = V.kind == 0u ? 4u : V.kind == 1u ? 2u : 1u;
-    if (V.k == regular) return vec3(0.72, 0.72, 0.72);
+    uint vid = blendFaces.f[face].vertex[corner];
+    uint k = blendVertices.v[vid].k, kind = blendVertices.v[vid].kind;
+    uint regular = kind == 0u ? 4u : kind == 1u ? 2u : 1u;
+    if (k == regular) return vec3(0.72, 0.72, 0.72);
     const vec3 palette[7] = vec3[7](vec3(0.95, 0.55, 0.70), vec3(0.25, 0.45, 0.95),  // k <= 2, 3
                                     vec3(0.40, 0.85, 0.85), vec3(0.95, 0.85, 0.35),  // 4, 5
                                     vec3(0.45, 0.85, 0.45), vec3(0.95, 0.60, 0.30),  // 6, 7
                                     vec3(0.70, 0.50, 0.90));                         // >= 8
-    uint slot = clamp(V.k, 2u, 8u) - 2u;
+    uint slot = clamp(k, 2u, 8u) - 2u;
     vec3 c = palette[slot];
-    return V.kind == 0u ? c : 0.6 * c; // boundary and corner vertices darker
+    return kind == 0u ? c : 0.6 * c; // boundary and corner vertices darker
 }
 
 void main() {
