@@ -119,7 +119,8 @@ int main(int argc, char** argv) {
         int bench = 0, tess = 64, grid = 16;
         cli::Parser parser("limn-render", "[options] [INPUT|-] -o OUTPUT.png",
                            "Renders a .limn container (output of limn-classify, limn-tables, "
-                           "limn-seams) headlessly\n"
+                           "limn-seams, limn-blend)\n"
+                           "headlessly "
                            "on Vulkan and writes a PNG: 8-bit sRGB, the same bytes for the same "
                            "inputs and options.\n"
                            "It draws the container's blending surface (limn-blend), else its "
