@@ -9,27 +9,40 @@
 
 namespace limn::render {
 
+namespace {
+
+// Floats from lib/image to 8 bits: 8-bit samples come back as k / 255 exactly, so rounding
+// restores k; deeper samples round to the nearest 8-bit value.
+Image toEightBit(const FloatImage& f, const std::string& what) {
+    if (f.channels > 4)
+        throw Error(ErrorKind::BadInput, "cannot decode " + what + ": more than 4 channels");
+    Image image;
+    image.width = f.width;
+    image.height = f.height;
+    image.channels = f.channels;
+    image.pixels.resize(f.values.size());
+    for (size_t i = 0; i < f.values.size(); ++i)
+        image.pixels[i] =
+            static_cast<uint8_t>(std::lround(std::clamp(f.values[i], 0.0f, 1.0f) * 255.0f));
+    return image;
+}
+
+} // namespace
+
 std::vector<uint8_t> encodePng(const Image& image) {
-    if (image.channels != 3 && image.channels != 4)
-        throw Error(ErrorKind::BadInput, "PNG output needs 3 or 4 channels");
+    if (image.channels != 1 && image.channels != 3 && image.channels != 4)
+        throw Error(ErrorKind::BadInput, "PNG output needs 1, 3 or 4 channels");
     if (image.pixels.size() != size_t(image.width) * image.height * image.channels)
         throw Error(ErrorKind::BadInput, "internal: image size does not match its pixels");
     return encodePng8(image.width, image.height, image.channels, image.pixels);
 }
 
 Image decodePng(std::span<const uint8_t> bytes) {
-    FloatImage f = readImageBytes(bytes, "image.png");
-    if (f.channels > 4) throw Error(ErrorKind::BadInput, "cannot decode PNG: more than 4 channels");
-    Image image;
-    image.width = f.width;
-    image.height = f.height;
-    image.channels = f.channels;
-    image.pixels.resize(f.values.size());
-    // 8-bit samples come back as k / 255 exactly; rounding restores k.
-    for (size_t i = 0; i < f.values.size(); ++i)
-        image.pixels[i] =
-            static_cast<uint8_t>(std::lround(std::clamp(f.values[i], 0.0f, 1.0f) * 255.0f));
-    return image;
+    return toEightBit(readImageBytes(bytes, "image.png"), "PNG");
+}
+
+Image readImageFile(const std::string& path) {
+    return toEightBit(limn::readImageFile(path), "the image");
 }
 
 } // namespace limn::render

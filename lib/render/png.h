@@ -4,13 +4,14 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace limn::render {
 
 struct Image {
     uint32_t width = 0, height = 0;
-    uint32_t channels = 4;       // 3 (RGB) or 4 (RGBA)
+    uint32_t channels = 4;       // 3 (RGB) or 4 (RGBA); 1 (grey) for masks
     std::vector<uint8_t> pixels; // rows top to bottom, tightly packed
 
     const uint8_t* at(uint32_t x, uint32_t y) const {
@@ -23,5 +24,8 @@ std::vector<uint8_t> encodePng(const Image& image);
 // plugin; Error(Capability) when that cannot be loaded). Any bit depth is converted to 8 bits;
 // the channel count is kept.
 Image decodePng(std::span<const uint8_t> bytes);
+// Any image file OpenImageIO reads (PNG, TIFF, OpenEXR, ...), converted to 8 bits per channel.
+// Throws Error(BadInput) with OpenImageIO's reason.
+Image readImageFile(const std::string& path);
 
 } // namespace limn::render

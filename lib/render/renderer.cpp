@@ -1,6 +1,8 @@
 #include "render/renderer.h"
 
 #include "base/error.h"
+#include "blend/blend_surface.h"
+#include "render/blend_pass.h"
 #include "render/control_mesh_pass.h"
 #include "render/subdivision_pass.h"
 #include "render_shaders.h"
@@ -48,7 +50,7 @@ struct Renderer::Gpu {
 
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
                    const RenderSettings& settings)
-    : settings_(settings) {
+    : ctx_(ctx), settings_(settings) {
     if (settings.shade == Shade::Uv && !mesh.hasUVs())
         throw Error(ErrorKind::BadInput,
                     "--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade "
@@ -60,10 +62,16 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
     if (settings.shade == Shade::Texture && !settings.texture)
         throw Error(ErrorKind::Usage, "--shade texture needs --texture MAP");
     if ((settings.texture || settings.displacementMap) && !mesh.hasUVs())
-        throw Error(ErrorKind::BadInput, "--texture and --displace need texture coordinates; the mesh has none");
+        throw Error(ErrorKind::BadInput,
+                    "--texture and --displace need texture coordinates; the mesh has none");
     if (settings.displacementMap && !tables)
-        throw Error(ErrorKind::BadInput, "--displace displaces the subdivision surface; the container has "
-                                         "no tables (TBLS): run limn-tables first");
+        throw Error(ErrorKind::BadInput,
+                    "--displace displaces the subdivision surface; the container has "
+                    "no tables (TBLS): run limn-tables first");
+    if (settings.trim)
+        throw Error(ErrorKind::BadInput,
+                    "--trim cuts blending surfaces, and this surface is not one (no BLND); run "
+                    "limn-blend first");
     Bounds bounds;
     if (tables) {
         DisplacementPlan plan{settings.seams, settings.seamFix};
@@ -76,8 +84,8 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             glm::dvec3 pad(std::abs(settings.displaceScale) * 0.5);
             bounds.min -= pad, bounds.max += pad;
         }
-        SubdivisionPass::Displacement displacement{settings.displacementMap, float(settings.displaceScale),
-                                                   float(settings.displaceMid)};
+        SubdivisionPass::Displacement displacement{
+            settings.displacementMap, float(settings.displaceScale), float(settings.displaceMid)};
         pass_ = std::make_unique<SubdivisionPass>(
             ctx, std::move(draw),
             settings.evalInCompute ? SubdivisionPass::Eval::Compute : SubdivisionPass::Eval::Vertex,
@@ -85,16 +93,37 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             settings.displacementMap ? &displacement : nullptr, settings.texture);
     } else {
         if (settings.texture)
-            throw Error(ErrorKind::BadInput, "--texture is drawn on the subdivision surface; run limn-tables first");
+            throw Error(ErrorKind::BadInput,
+                        "--texture is drawn on the subdivision surface; run limn-tables first");
         ControlMeshDraw draw = prepareControlMesh(mesh);
         bounds = draw.bounds;
         pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw));
     }
+    finishSetup(mesh, bounds);
+}
+
+Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurface& surface,
+                   const RenderSettings& settings)
+    : ctx_(ctx), settings_(settings) {
+    if (settings.shade == Shade::Uv && !mesh.hasUVs())
+        throw Error(ErrorKind::BadInput,
+                    "--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade "
+                    "lit or normal");
+    BlendDraw draw = prepareBlend(mesh, surface, settings.blendGrid);
+    const Bounds bounds = draw.bounds;
+    pass_ = std::make_unique<BlendPass>(ctx, std::move(draw),
+                                        settings.evalInCompute ? BlendPass::Eval::Compute
+                                                               : BlendPass::Eval::Vertex,
+                                        settings.evaluateVertices || settings.wire, settings.trim);
+    finishSetup(mesh, bounds);
+}
+
+void Renderer::finishSetup(const Mesh& mesh, const Bounds& bounds) {
     controlPoints_.reserve(mesh.vertexCount());
     for (const auto& p : mesh.positions) controlPoints_.emplace_back(glm::vec3(p), 1.0f);
-    camera_ = frameCamera(settings.view, bounds, double(settings.width) / settings.height);
-    gpu_ = std::make_unique<Gpu>(ctx, controlPoints_.size() * sizeof(glm::vec4), pass_->vertexBuffer(),
-                                 settings.width, settings.height);
+    camera_ = frameCamera(settings_.view, bounds, double(settings_.width) / settings_.height);
+    gpu_ = std::make_unique<Gpu>(ctx_, controlPoints_.size() * sizeof(glm::vec4),
+                                 pass_->vertexBuffer(), settings_.width, settings_.height);
 }
 
 Renderer::~Renderer() = default;
@@ -114,7 +143,8 @@ void Renderer::recordUpload() {
 void Renderer::recordCompute() {
     auto& g = *gpu_;
     timed_.begin(g.cmd, "copy control points", true);
-    g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(controlPoints_.size()), VertexPush{0});
+    g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(controlPoints_.size()),
+                   VertexPush{0});
     g.cmd.endTimed();
     g.cmd.barrier(gpu::Access::ComputeWrite, gpu::Access::ComputeRead);
     pass_->recordCompute(g.cmd, timed_);
@@ -145,7 +175,9 @@ void Renderer::recordDraw() {
     if (settings_.backFaceColor) {
         uint32_t packed = 0;
         for (int i = 0; i < 3; ++i)
-            packed |= uint32_t(std::lround(std::clamp((*settings_.backFaceColor)[i], 0.0, 1.0) * 255.0)) << (8 * i);
+            packed |=
+                uint32_t(std::lround(std::clamp((*settings_.backFaceColor)[i], 0.0, 1.0) * 255.0))
+                << (8 * i);
         std::memcpy(&push.light[3], &packed, 4);
         push.flags |= kDrawBackFaceKey;
     }
@@ -174,8 +206,9 @@ void Renderer::renderFrame() {
     g.cmd.begin();
     // Topology and tables were uploaded once, in earlier submissions; a fence wait orders those
     // copies but does not make their writes visible to this frame's reads.
-    g.cmd.barrier(gpu::Access::TransferWrite,
-                  gpu::Access::ComputeRead | gpu::Access::VertexRead | gpu::Access::IndexRead);
+    g.cmd.barrier(gpu::Access::TransferWrite, gpu::Access::ComputeRead | gpu::Access::VertexRead |
+                                                  gpu::Access::IndexRead |
+                                                  gpu::Access::FragmentRead);
     recordUpload();
     recordCompute();
     recordDraw();
@@ -198,7 +231,9 @@ Image Renderer::image() const {
     return img;
 }
 
-DrawnMesh Renderer::drawnMesh() { return pass_->drawnMesh(); }
+DrawnMesh Renderer::drawnMesh() {
+    return pass_->drawnMesh();
+}
 
 FrameTimes Renderer::frameTimes() const {
     FrameTimes t;

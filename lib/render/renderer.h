@@ -4,8 +4,9 @@
 //   upload        staging -> controlPoints                      (transfer)
 //   compute       copy control points -> level 0 of the pass's vertex buffer
 //                 the pass's compute: for a subdivision surface, per level face, edge and
-//                 vertex points, then limit points (paper 000, 4.2, 4.4); for a control mesh,
-//                 face normals
+//                 vertex points, then limit points (paper 000, 4.2, 4.4); for a blending
+//                 surface, each grid point once (paper 001, 4.2; unless the vertex stage does
+//                 it); for a control mesh, face normals
 //   draw          the pass's draw (+ wire)
 //   readback      colour image -> host
 //
@@ -21,11 +22,12 @@
 #include "render/camera.h"
 #include "render/control_mesh.h"
 #include "render/frame_pass.h"
-#include "subdiv/tables.h"
 #include "render/ply.h"
 #include "render/png.h"
 #include "render/texture_image.h"
+#include "render/trim.h"
 #include "seams/seams.h"
+#include "subdiv/tables.h"
 
 #include <glm/vec3.hpp>
 
@@ -33,6 +35,10 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace limn::blend {
+struct BlendSurface;
+}
 
 namespace limn::render {
 
@@ -46,8 +52,10 @@ struct RenderSettings {
     glm::dvec3 background{0.2, 0.2, 0.2}; // sRGB-encoded, 0..1, as it appears in the PNG
     bool alpha = false;                   // RGBA output, background transparent
     uint32_t tessCap = 64;                // segments per patch side, at most (subdivision)
+    uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)
     bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)
-    bool evalInCompute = true;            // subdivision vertices: compute pass (else vertex stage)
+    bool evalInCompute = true;            // surface vertices: compute pass (else vertex stage)
+    std::optional<TrimMask> trim;         // blending surface only (--trim)
     // Displacement of the subdivision surface (paper 000, 4.5) and a colour texture.
     const FloatImage* displacementMap = nullptr;
     double displaceScale = 1, displaceMid = 0;
@@ -71,7 +79,12 @@ class Renderer {
     // Draws the subdivision surface of `tables` when given, else the control mesh. Throws
     // Error(BadInput) when --shade uv is asked of a mesh without UVs, --shade levels without
     // tables, or when a buffer would exceed the storage-buffer limit.
-    Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables, const RenderSettings& settings);
+    Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
+             const RenderSettings& settings);
+    // Draws the blending surface of `mesh` (paper 001), trimmed when settings.trim is set; --shade
+    // levels colours by vertex valence. Throws Error(BadInput) for --shade uv without UVs.
+    Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurface& surface,
+             const RenderSettings& settings);
     ~Renderer();
 
     // Records, submits and waits for one whole frame.
@@ -90,10 +103,12 @@ class Renderer {
     uint64_t bufferBytes() const;
 
   private:
+    void finishSetup(const Mesh& mesh, const Bounds& bounds);
     void recordUpload();
     void recordCompute();
     void recordDraw();
 
+    gpu::Context& ctx_;
     RenderSettings settings_;
     std::vector<glm::vec4> controlPoints_;
     Camera camera_;

@@ -398,7 +398,8 @@ constexpr double kMaxDifferingFraction = 0.01;
 
 struct RefCase {
     std::string name, model;
-    std::vector<std::string> tables; // limn-tables arguments; empty: render the control mesh
+    // Tools run before rendering, in order: {"limn-tables" | "limn-blend" | "limn-trim", args}.
+    std::vector<std::pair<std::string, std::vector<std::string>>> steps;
     std::vector<std::string> options;
 };
 
@@ -416,9 +417,14 @@ std::vector<RefCase> referenceCases() {
         RefCase c;
         ls >> c.name >> c.model;
         for (std::string o; ls >> o;) {
-            if (o.rfind("--tables=", 0) == 0) { // comma-separated limn-tables arguments
-                std::istringstream ts(o.substr(9));
-                for (std::string t; std::getline(ts, t, ',');) c.tables.push_back(t);
+            // Leading --tables=, --blend=, --trim=: comma-separated arguments of that tool.
+            auto eq = o.find('=');
+            if (c.options.empty() && eq != std::string::npos &&
+                (o.rfind("--tables=", 0) == 0 || o.rfind("--blend=", 0) == 0 || o.rfind("--trim=", 0) == 0)) {
+                std::vector<std::string> args;
+                std::istringstream ts(o.substr(eq + 1));
+                for (std::string t; std::getline(ts, t, ',');) args.push_back(t);
+                c.steps.emplace_back("limn-" + o.substr(2, eq - 2), args);
                 continue;
             }
             c.options.push_back(o);
@@ -434,15 +440,20 @@ TEST_P(RenderReference, MatchesWithinTolerance) {
     const RefCase& c = GetParam();
     ScratchDir dir;
     auto limn = classify(dir, modelPath(c.model).string(), c.name);
-    if (!c.tables.empty()) {
-        std::vector<std::string> args = {bin("limn-tables"), limn, "-o", limn};
-        args.insert(args.end(), c.tables.begin(), c.tables.end());
+    std::vector<std::string> trim;
+    for (const auto& [step, stepArgs] : c.steps) {
+        const bool mask = step == "limn-trim";
+        const std::string target = mask ? (dir / "mask.png").string() : limn;
+        std::vector<std::string> args = {bin(step), limn, "-q", "-o", target};
+        args.insert(args.end(), stepArgs.begin(), stepArgs.end());
         auto t = run(args);
-        ASSERT_EQ(t.exitCode, 0) << t.err;
+        ASSERT_EQ(t.exitCode, 0) << step << ": " << t.err;
+        if (mask) trim = {"--trim", target};
     }
     auto out = dir / (c.name + ".png");
     std::vector<std::string> args = {limn, "--size",    "128x96", "--sync-validation",
                                      "-o", out.string()};
+    args.insert(args.end(), trim.begin(), trim.end());
     args.insert(args.end(), c.options.begin(), c.options.end());
     auto r = render(args);
     ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -1,17 +1,20 @@
 // limn-render: renders a .limn container (or any mesh limn reads) headlessly on Vulkan and
-// writes a deterministic PNG. Without subdivision tables the control mesh is drawn, flat shaded.
+// writes a deterministic PNG: the blending surface (BLND), the subdivision surface (TBLS) or the
+// control mesh, flat shaded.
 #include "base/cli.h"
 #include "base/error.h"
 #include "base/io.h"
 #include "base/json.h"
+#include "blend/blend_chunk.h"
 #include "container/container.h"
 #include "gpu/context.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "render/bench.h"
+#include "render/blend_draw.h"
+#include "render/renderer.h"
 #include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
-#include "render/renderer.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -42,30 +45,55 @@ std::string displayName(const std::string& path) {
     return isStdio(path) ? "<stdin>" : path;
 }
 
-// The mesh, and its subdivision tables when the container has them.
+// Which surface to draw (--surface); Auto picks the first the container has of BLND, TBLS, MESH.
+enum class Surface { Auto, Blend, Subdivision, Control };
+
+// The mesh, and the one surface description that will be drawn (only that chunk is decoded, so a
+// stale TBLS does not stop a blending surface from being drawn, or the other way round).
 struct Input {
     Mesh mesh;
     std::optional<Tables> tables;
     std::optional<Seams> seams;
     uint64_t seamsHash = 0; // what SEAM must have been made from
+    std::optional<blend::BlendSurface> blend;
 };
 
-Input readInput(const std::string& input, Warnings& warnings) {
+Input readInput(const std::string& input, Surface surface, Warnings& warnings) {
     auto bytes = limn::readInput(input);
     try {
         Input in;
-        if (!looksLikeContainer(bytes)) {
+        const bool container = looksLikeContainer(bytes);
+        Container c;
+        if (container) {
+            c = parseContainer(bytes);
+            in.mesh = loadMesh(c);
+        } else {
             in.mesh = importMesh(input, bytes, warnings);
-            return in;
         }
-        Container container = parseContainer(bytes);
-        in.mesh = loadMesh(container);
-        if (const Chunk* tb = container.find(kTablesChunk)) in.tables = decodeTablesChunk(*tb, &in.mesh);
-        in.seamsHash = seamsSourceHash(container);
-        if (const Chunk* sm = container.find(kSeamsChunk); sm && in.tables)
-            in.seams = decodeSeamsChunk(*sm,
-                                        static_cast<uint32_t>(in.tables->patches.size() + in.tables->irregular.size()),
-                                        in.seamsHash);
+        const bool hasBlend = container && c.find(blend::kBlendChunk);
+        const Chunk* tables = container ? c.find(kTablesChunk) : nullptr;
+        if (surface == Surface::Auto)
+            surface = hasBlend ? Surface::Blend : tables ? Surface::Subdivision : Surface::Control;
+        if (surface == Surface::Blend) {
+            if (!hasBlend)
+                throwBadInput(
+                    "--surface blend: no blending surface (BLND chunk); run limn-blend first");
+            in.blend = blend::loadBlendSurface(c, in.mesh);
+        }
+        if (surface == Surface::Subdivision) {
+            if (!tables)
+                throwBadInput("--surface subdivision: no subdivision tables (TBLS chunk); run "
+                              "limn-tables first");
+            in.tables = decodeTablesChunk(*tables, &in.mesh);
+        }
+        if (in.tables) {
+            in.seamsHash = seamsSourceHash(c);
+            if (const Chunk* sm = c.find(kSeamsChunk))
+                in.seams = decodeSeamsChunk(
+                    *sm,
+                    static_cast<uint32_t>(in.tables->patches.size() + in.tables->irregular.size()),
+                    in.seamsHash);
+        }
         return in;
     } catch (Error& e) {
         e.setFile(displayName(input));
@@ -94,22 +122,26 @@ int main(int argc, char** argv) {
     return cli::run("limn-render", argc, argv, [](int ac, char** av) {
         cli::Common common;
         common.output.clear(); // "not given" matters with --bench
-        std::string input = "-", shade = "lit", device, meshOut, eval = "compute", displace, texture;
+        std::string input = "-", shade = "lit", device, meshOut, eval = "compute",
+                    surfaceName = "auto", trimPath, displace, texture;
         double displaceScale = 1, displaceMid = 0;
         bool noSeamFix = false;
         render::RenderSettings settings;
         bool wire = false, alpha = false, validate = false, syncValidation = false,
              meshAscii = false;
         bool viewGiven = false;
-        int bench = 0, tess = 64;
+        int bench = 0, tess = 64, grid = 16;
         cli::Parser parser("limn-render", "[options] [INPUT|-] -o OUTPUT.png",
                            "Renders a .limn container (output of limn-classify, limn-tables, "
-                           "limn-seams) headlessly\n"
+                           "limn-seams, limn-blend)\n"
+                           "headlessly "
                            "on Vulkan and writes a PNG: 8-bit sRGB, the same bytes for the same "
                            "inputs and options.\n"
-                           "A container without subdivision tables is drawn as its control mesh, "
-                           "flat shaded, with\n"
-                           "n-gons as triangle fans; faces tagged as holes are not drawn.",
+                           "It draws the container's blending surface (limn-blend), else its "
+                           "subdivision surface\n"
+                           "(limn-tables), else its control mesh, flat shaded, with n-gons as "
+                           "triangle fans (see\n"
+                           "--surface); faces tagged as holes are not drawn.",
                            common);
         parser.positional("INPUT", &input, ".limn container (or any mesh file limn-classify reads)")
             .custom(
@@ -172,15 +204,26 @@ int main(int argc, char** argv) {
                 "paint faces seen from behind flat in this sRGB colour [default: shade both\n"
                 "                            sides]; with a key --background, cracks in a closed\n"
                 "                            surface show as key pixels (see --displace)")
-            .choice("--shade", &shade, {"lit", "normal", "uv", "levels", "texture"},
-                    "lit: Lambert key light + ambient; normal: normal * 0.5 + 0.5 as colour;\n"
-                    "                            uv: (u, v, 0) as colour, needs UVs; levels: patches\n"
-                    "                            coloured by subdivision level (paper 000, Fig. 1),\n"
-                    "                            irregular faces blue, needs tables; texture: the\n"
-                    "                            --texture map, lit (the default with --texture)")
+            .choice("--surface", &surfaceName, {"auto", "blend", "subdivision", "control"},
+                    "what to draw: the blending surface (BLND), the subdivision surface (TBLS)\n"
+                    "                            or the control mesh; auto: the first the "
+                    "container has")
+            .choice(
+                "--shade", &shade, {"lit", "normal", "uv", "levels", "texture"},
+                "lit: Lambert key light + ambient; normal: normal * 0.5 + 0.5 as colour;\n"
+                "                            uv: (u, v, 0) as colour, needs UVs; levels: patches\n"
+                "                            coloured by subdivision level (paper 000, Fig. 1),\n"
+                "                            irregular faces blue, needs tables; on a blending\n"
+                "                            surface each quarter face by the valence of its "
+                "vertex;\n"
+                "                            texture: the --texture map, lit (the default with\n"
+                "                            --texture; subdivision surface)")
             .text("--displace", "MAP", &displace,
                   "displace the subdivision surface along its normal by a height map (any image\n"
-                  "                            OpenImageIO reads; channel 0)")
+                  "                            OpenImageIO reads; channel 0), sampled bilinearly "
+                  "with\n"
+                  "                            wrap-around at the mesh UVs: texel centres at half\n"
+                  "                            integers, v = 0 at the bottom row")
             .real("--displace-scale", "S", &displaceScale, -1e6, 1e6,
                   "world units per unit of map value")
             .real("--displace-mid", "M", &displaceMid, -1e6, 1e6, "the map value meaning zero")
@@ -190,10 +233,19 @@ int main(int argc, char** argv) {
             .text("--texture", "MAP", &texture, "colour texture (any image OpenImageIO reads)")
             .flag("--wire", &wire, "overlay the control mesh edges, or the patch and face outlines")
             .choice("--eval", &eval, {"compute", "vertex"},
-                    "subdivision surface: evaluate each drawn vertex once in a compute pass, or\n"
-                    "                            in the vertex stage as the draw needs it (paper 000, 4.3)")
+                    "subdivision and blending surfaces: evaluate each drawn vertex once in a\n"
+                    "                            compute pass, or in the vertex stage as the draw "
+                    "needs it\n"
+                    "                            (paper 000, 4.3; paper 001, 4.2)")
             .integer("--tess", "N", &tess, 1, 4096,
                      "segments per side of a patch at most; a level-l patch gets 2^(N-l)")
+            .integer("--grid", "K", &grid, 1, static_cast<int>(render::kMaxBlendGrid),
+                     "blending surface: each face drawn as a K x K grid of cells")
+            .text(
+                "--trim", "MAP", &trimPath,
+                "blending surface: trim atlas image (any format OpenImageIO reads, e.g. from\n"
+                "                            limn-trim): one square tile per face, in face order;\n"
+                "                            fragments where it is below 0.5 are discarded")
             .flag("--alpha", &alpha, "write RGBA with a transparent background (default RGB)")
             .text("--device", "NAME", &device,
                   "Vulkan device: case-insensitive substring of its name [default: a discrete or\n"
@@ -214,19 +266,29 @@ int main(int argc, char** argv) {
                 "Output: -o FILE.png, or -o - for standard output (refused on a terminal). With\n"
                 "--bench, standard output carries the JSON and the image is written only with\n"
                 "-o FILE.\n"
-                "--mesh-out PLY: one vertex per drawn face corner (float x y z nx ny nz, int "
-                "ptex,\n"
-                "float u v) and the fan triangles as vertex_indices. ptex is the face's Ptex "
-                "index\n"
-                "(OpenSubdiv numbering: a quad has one Ptex face, an n-gon n; a fan triangle\n"
-                "carries its face's first). u, v are 0 without UVs.\n"
+                "--mesh-out PLY: the drawn vertices (float x y z nx ny nz, int ptex, float u v) "
+                "and\n"
+                "triangles (vertex_indices). Control mesh: one vertex per face corner, ptex the "
+                "face's\n"
+                "Ptex index (OpenSubdiv numbering: a quad has one Ptex face, an n-gon n; a fan\n"
+                "triangle carries its face's first), u, v its UV (0 without UVs). Subdivision "
+                "and\n"
+                "blending surfaces: one vertex per surface point, shared by the faces that meet "
+                "there,\n"
+                "with ptex and (u, v) of the face that evaluated it (a blending surface: the face "
+                "index).\n"
+                "Trimming does not change --mesh-out.\n"
                 "--bench JSON: frames, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
                 "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
                 "record, submit, wait), triangles, vertices_evaluated, buffer_bytes, peak_rss_mb,\n"
                 "device.\n"
                 "Examples:\n"
                 "  limn-classify spot.obj | limn-render --view 45,30 --wire -o spot.png\n"
-                "  limn-render frog.limn --bench 50 --size 1920x1080\n");
+                "  limn-render frog.limn --bench 50 --size 1920x1080\n"
+                "  limn-classify spot.obj | limn-blend --quadrangulate | limn-render --grid 8 -o "
+                "s.png\n"
+                "  limn-trim spot.limn -o holes.png && limn-render spot.limn --trim holes.png -o "
+                "t.png\n");
         parser.exitCodes("Exit codes:\n"
                          "  0  success\n"
                          "  1  bad input, failed processing or Vulkan validation errors\n"
@@ -252,6 +314,12 @@ int main(int argc, char** argv) {
             (bench || (writeImage && isStdio(common.output))))
             usage("--mesh-out - and the image (or --bench JSON) cannot share standard output");
         if (common.output.empty() && !bench) common.output = "-";
+        const Surface surface = surfaceName == "blend"         ? Surface::Blend
+                                : surfaceName == "subdivision" ? Surface::Subdivision
+                                : surfaceName == "control"     ? Surface::Control
+                                                               : Surface::Auto;
+        if (!trimPath.empty() && (surface == Surface::Subdivision || surface == Surface::Control))
+            usage("--trim cuts blending surfaces; it does not go with --surface " + surfaceName);
 
         // Open outputs first: a refused terminal or an unwritable directory fails before any work.
         std::optional<OutputFile> png, ply;
@@ -260,8 +328,17 @@ int main(int argc, char** argv) {
             ply.emplace(meshOut, meshAscii ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
 
         Warnings warnings;
-        Input in = readInput(input, warnings);
+        Input in = readInput(input, surface, warnings);
         cli::printWarnings(warnings, displayName(input));
+        if (!trimPath.empty()) {
+            try {
+                settings.trim = render::trimMaskFromImage(
+                    render::readImageFile(trimPath), static_cast<uint32_t>(in.mesh.faceCount()));
+            } catch (Error& e) {
+                e.setFile(trimPath);
+                throw;
+            }
+        }
         settings.tessCap = static_cast<uint32_t>(tess);
         std::optional<render::FloatImage> displacementMap, textureMap;
         if (!displace.empty()) {
@@ -281,6 +358,11 @@ int main(int argc, char** argv) {
             settings.texture = &*textureMap;
             if (shade == "lit") settings.shade = render::Shade::Texture;
         }
+        settings.blendGrid = static_cast<uint32_t>(grid);
+        if (in.blend && (!displace.empty() || !texture.empty()))
+            usage(
+                "--displace and --texture apply to the subdivision surface, not a blending surface "
+                "(--surface subdivision draws the TBLS one)");
         settings.evalInCompute = eval == "compute";
         settings.evaluateVertices = !meshOut.empty();
 
@@ -295,7 +377,12 @@ int main(int argc, char** argv) {
             gpu::Context ctx(options);
             validation = ctx.sharedValidationLog();
             for (const auto& line : ctx.selectionReport()) cli::info(line);
-            render::Renderer renderer(ctx, in.mesh, in.tables ? &*in.tables : nullptr, settings);
+            std::optional<render::Renderer> chosen;
+            if (in.blend)
+                chosen.emplace(ctx, in.mesh, *in.blend, settings);
+            else
+                chosen.emplace(ctx, in.mesh, in.tables ? &*in.tables : nullptr, settings);
+            render::Renderer& renderer = *chosen;
             const auto& cam = renderer.camera();
             cli::info("camera eye " + std::to_string(cam.eye.x) + "," + std::to_string(cam.eye.y) +
                       "," + std::to_string(cam.eye.z) + " target " + std::to_string(cam.target.x) +
@@ -341,8 +428,12 @@ int main(int argc, char** argv) {
             ply->write(plyBytes);
             ply->commit();
         }
-        if (!common.depfile.empty() && writeImage)
-            writeDepfile(common.depfile, common.output, {input, displace, texture});
+        if (!common.depfile.empty() && writeImage) {
+            std::vector<std::string> inputs = {input};
+            for (const std::string* extra : {&trimPath, &displace, &texture})
+                if (!extra->empty()) inputs.push_back(*extra);
+            writeDepfile(common.depfile, common.output, inputs);
+        }
         return 0;
     });
 }

@@ -1,0 +1,156 @@
+#include "render/blend_pass.h"
+
+#include "base/error.h"
+#include "render_shaders.h"
+
+#include <cstring>
+
+namespace limn::render {
+
+namespace {
+
+struct EvalPush { // blend_eval.comp
+    uint32_t grid, weights;
+};
+
+template <class T>
+gpu::Buffer upload(gpu::Context& ctx, const std::string& name, const std::vector<T>& data,
+                   uint32_t usage = gpu::kStorage) {
+    std::vector<T> d = data;
+    if (d.empty()) d.resize(1); // GPU buffers cannot be empty
+    gpu::Buffer b(ctx, {name, d.size() * sizeof(T), usage});
+    gpu::uploadArrayNow<T>(ctx, b, d);
+    return b;
+}
+
+// The DrawData buffer: its header, then the trim atlas packed four texels to a word.
+std::vector<uint32_t> drawData(const BlendDraw& d, const std::optional<TrimMask>& trim) {
+    BlendDrawData h{d.grid, static_cast<uint32_t>(d.weights), 0, 0, 0, d.hasUVs ? 1u : 0u, {0, 0}};
+    std::vector<uint32_t> words(sizeof h / 4 + 1, 0);
+    if (trim) {
+        h.trimTile = trim->layout.tile;
+        h.trimTilesX = trim->layout.tilesX;
+        h.trimWidth = trim->layout.width();
+        words.resize(sizeof h / 4 + (trim->texels.size() + 3) / 4, 0);
+        for (size_t i = 0; i < trim->texels.size(); ++i)
+            words[sizeof h / 4 + i / 4] |= uint32_t(trim->texels[i]) << (8 * (i % 4));
+    }
+    std::memcpy(words.data(), &h, sizeof h);
+    return words;
+}
+
+} // namespace
+
+struct BlendPass::Gpu {
+    Gpu(gpu::Context& ctx, const BlendDraw& d, bool evaluate, const std::optional<TrimMask>& trim)
+        : controlPoints(ctx, {"control points (unused by the blend draw)",
+                              std::max<uint64_t>(d.vertices.size(), 1) * 16}),
+          vertices(upload(ctx, "blend vertices", d.vertices)),
+          faces(upload(ctx, "blend faces", d.faces)), points(upload(ctx, "blend points", d.points)),
+          drawVertices(upload(ctx, "blend grid vertices", d.drawVertices)),
+          triangles(upload(ctx, "triangle indices", d.triangles, gpu::kIndex)),
+          wireLines(upload(ctx, "wire lines", d.wireLines, gpu::kIndex)),
+          faceUVs(upload(ctx, "face uvs", d.faceUVs)),
+          data(upload(ctx, "blend draw data and trim atlas", drawData(d, trim))),
+          positions(ctx, {"evaluated positions",
+                          evaluate ? std::max<uint64_t>(d.points.size(), 1) * 16 : 16}),
+          normals(ctx, {"evaluated normals",
+                        evaluate ? std::max<uint64_t>(d.points.size(), 1) * 16 : 16}),
+          evalPass(ctx, {"evaluate blend surface", blend_eval_comp_spv, 5, sizeof(EvalPush)}),
+          drawEval(ctx, {"blend surface", blend_vert_spv, blend_frag_spv, 7, sizeof(DrawPush)}),
+          drawFetch(ctx, {"blend surface (evaluated)", blend_fetch_vert_spv, blend_frag_spv, 7,
+                          sizeof(DrawPush)}),
+          wire(ctx, {"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
+                     gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false}) {
+        evalBindings = evalPass.bind({vertices, faces, points, positions, normals});
+        // Both draws have one layout, so one fragment shader serves them.
+        drawBindings =
+            drawEval.bind({vertices, faces, drawVertices, positions, normals, data, faceUVs});
+        fetchBindings =
+            drawFetch.bind({vertices, faces, drawVertices, positions, normals, data, faceUVs});
+        wireBindings = wire.bind({positions});
+    }
+
+    gpu::Buffer controlPoints, vertices, faces, points, drawVertices, triangles, wireLines, faceUVs,
+        data, positions, normals;
+    gpu::ComputePipeline evalPass;
+    gpu::GraphicsPipeline drawEval, drawFetch, wire;
+    gpu::BindGroup evalBindings, drawBindings, fetchBindings, wireBindings;
+};
+
+BlendPass::BlendPass(gpu::Context& ctx, BlendDraw draw, Eval eval, bool keepEvaluated,
+                     const std::optional<TrimMask>& trim)
+    : ctx_(ctx), draw_(std::move(draw)), eval_(eval),
+      evaluate_(keepEvaluated || eval == Eval::Compute),
+      gpu_(std::make_unique<Gpu>(ctx, draw_, evaluate_, trim)) {}
+
+BlendPass::~BlendPass() = default;
+
+const gpu::Buffer& BlendPass::vertexBuffer() const {
+    return gpu_->controlPoints;
+}
+
+void BlendPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) {
+    auto& g = *gpu_;
+    if (evaluate_) {
+        timed.begin(cmd, "evaluate blend surface", true);
+        cmd.dispatch(g.evalPass, g.evalBindings, static_cast<uint32_t>(draw_.points.size()),
+                     EvalPush{draw_.grid, static_cast<uint32_t>(draw_.weights)});
+        cmd.endTimed();
+    }
+    cmd.barrier(gpu::Access::ComputeWrite, gpu::Access::VertexRead | gpu::Access::TransferRead);
+}
+
+void BlendPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) {
+    auto& g = *gpu_;
+    push.flags = 0;
+    const bool fetch = eval_ == Eval::Compute;
+    cmd.drawIndexed(fetch ? g.drawFetch : g.drawEval, fetch ? g.fetchBindings : g.drawBindings,
+                    g.triangles, static_cast<uint32_t>(draw_.triangles.size()), 1,
+                    gpu::CommandBuffer::asBytes(push));
+    if (wire && evaluate_)
+        cmd.drawIndexed(g.wire, g.wireBindings, g.wireLines,
+                        static_cast<uint32_t>(draw_.wireLines.size()), 1,
+                        gpu::CommandBuffer::asBytes(push));
+}
+
+DrawnMesh BlendPass::drawnMesh() {
+    if (!evaluate_)
+        throw Error(ErrorKind::BadInput, "internal: the surface was not evaluated into buffers");
+    const size_t n = draw_.points.size();
+    auto pos = gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->positions, n);
+    auto nrm = gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->normals, n);
+    DrawnMesh out;
+    out.vertices.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        DrawnVertex& v = out.vertices[i];
+        v.x = pos[i].x, v.y = pos[i].y, v.z = pos[i].z;
+        v.nx = nrm[i].x, v.ny = nrm[i].y, v.nz = nrm[i].z;
+        v.ptex = static_cast<int32_t>(draw_.points[i].face); // a quad mesh: one Ptex face per face
+        v.u = blendGridParam(draw_.points[i].ij & 0xFFFFu, draw_.grid);
+        v.v = blendGridParam(draw_.points[i].ij >> 16, draw_.grid);
+    }
+    out.triangles.reserve(draw_.triangles.size());
+    for (uint32_t t : draw_.triangles) out.triangles.push_back(draw_.drawVertices[t].point);
+    return out;
+}
+
+uint64_t BlendPass::verticesEvaluated() const {
+    // The compute pass evaluates each point once; the vertex stage each grid vertex of every
+    // drawn face at least once (shared points once per face that draws them).
+    uint64_t n = evaluate_ ? draw_.points.size() : 0;
+    if (eval_ == Eval::Vertex) n += draw_.drawVertices.size();
+    return n;
+}
+
+uint64_t BlendPass::bufferBytes() const {
+    auto& g = *gpu_;
+    uint64_t sum = 0;
+    for (const gpu::Buffer* b :
+         {&g.controlPoints, &g.vertices, &g.faces, &g.points, &g.drawVertices, &g.triangles,
+          &g.wireLines, &g.faceUVs, &g.data, &g.positions, &g.normals})
+        sum += b->size();
+    return sum;
+}
+
+} // namespace limn::render
