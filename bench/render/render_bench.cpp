@@ -1,0 +1,306 @@
+// Frame, compute and draw times of limn-render's subdivision passes, in one process and one run so
+// that the ratios are fair on a shared, noisy machine (paper 000, Figures 11-13):
+//   - adaptive (feature-adaptive tables) vs uniform (full subdivision) at depths 1-6;
+//   - the vertex-stage evaluation of the B-spline patches (--eval vertex) vs a trivial vertex
+//     shader fetching the same grid's precomputed vertices (--eval compute's draw): the lavapipe
+//     "roofline" of the draw;
+//   - texture displacement with and without the seam fix vs no displacement (paper 000, 4.5).
+// Configurations are interleaved in rounds and each figure is the median over rounds of the
+// per-round medians. One JSON object per line on stdout; a readable table on stderr.
+//
+// Usage: bench_render [--frames N] [--rounds R] [--size WxH] [--max-depth D] [--quick] MESH...
+// (defaults: 10 frames, 3 rounds, 1024x768, depth 6; --quick: 3 frames, 1 round, depth 3)
+#include "bake/heightmap.h"
+#include "base/error.h"
+#include "gpu/context.h"
+#include "mesh/import.h"
+#include "render/bench.h"
+#include "render/renderer.h"
+#include "seams/seams.h"
+#include "subdiv/tables.h"
+#include "topology/features.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+using namespace limn;
+
+namespace {
+
+struct Options {
+    int frames = 10, rounds = 3, maxDepth = 6;
+    uint32_t width = 1024, height = 768;
+    std::vector<std::string> meshes;
+};
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// One measured configuration: everything it needs lives here so rounds can revisit it.
+struct Config {
+    std::string model, mode, eval, displace; // displace: none, fix, nofix
+    int depth = 0;
+    std::shared_ptr<Tables> tables;
+    std::shared_ptr<Seams> seams;
+    std::string skipped; // why it cannot run (reported instead of numbers)
+    std::vector<double> frame, compute, draw, cpu;
+    uint64_t triangles = 0, vertices = 0, bufferBytes = 0;
+};
+
+// Uniform tables store every vertex of every level as a vec4: when the last levels alone pass the
+// storage-buffer limit, limn-render refuses them with a clear message (a GPU buffer over 128 MiB);
+// building multi-gigabyte tables only to be refused would dominate the benchmark's time. The
+// level-N vertex count of a uniform Catmull-Clark mesh is V_N = V_{N-1} + E_{N-1} + F_{N-1}, with
+// E_N = 2 E_{N-1} + S_{N-1} (S: face corners) and F_N = S_{N-1}, S_N = 4 F_N.
+uint64_t uniformVertexBytes(const Mesh& mesh, int depth) {
+    uint64_t V = mesh.vertexCount(), F = mesh.faceCount(), S = mesh.cornerCount();
+    uint64_t E = (S + 0) / 2; // closed-mesh estimate; boundaries make it slightly larger
+    uint64_t total = V;
+    for (int l = 1; l <= depth; ++l) {
+        uint64_t V2 = V + E + F, E2 = 2 * E + S, F2 = S, S2 = 4 * F2;
+        V = V2, E = E2, F = F2, S = S2;
+        total += V;
+    }
+    return total * 16;
+}
+
+void measure(render::Renderer& r, Config& c, int frames) {
+    render::BenchResult b = render::runBenchmark(r, frames, 2);
+    c.frame.push_back(b.totalMs);
+    c.compute.push_back(b.computeMs);
+    c.draw.push_back(b.drawMs);
+    c.cpu.push_back(b.cpuMs);
+    c.triangles = r.triangleCount();
+    c.vertices = r.verticesEvaluated();
+    c.bufferBytes = r.bufferBytes();
+}
+
+std::string json(const Config& c) {
+    char buf[1024];
+    if (!c.skipped.empty()) {
+        std::snprintf(
+            buf, sizeof buf,
+            "{\"bench\":\"render\",\"model\":\"%s\",\"depth\":%d,\"mode\":\"%s\",\"eval\":\"%s\","
+            "\"displace\":\"%s\",\"skipped\":\"%s\"}",
+            c.model.c_str(), c.depth, c.mode.c_str(), c.eval.c_str(), c.displace.c_str(),
+            c.skipped.c_str());
+        return buf;
+    }
+    std::snprintf(
+        buf, sizeof buf,
+        "{\"bench\":\"render\",\"model\":\"%s\",\"depth\":%d,\"mode\":\"%s\",\"eval\":\"%s\","
+        "\"displace\":\"%s\",\"frame_ms\":%.3f,\"compute_ms\":%.3f,\"draw_ms\":%.3f,"
+        "\"cpu_ms\":%.3f,\"triangles\":%llu,\"vertices_evaluated\":%llu,\"buffer_bytes\":%llu}",
+        c.model.c_str(), c.depth, c.mode.c_str(), c.eval.c_str(), c.displace.c_str(),
+        median(c.frame), median(c.compute), median(c.draw), median(c.cpu),
+        (unsigned long long)c.triangles, (unsigned long long)c.vertices,
+        (unsigned long long)c.bufferBytes);
+    return buf;
+}
+
+int usageError(const std::string& why) {
+    std::fprintf(stderr,
+                 "bench_render: %s\nusage: bench_render [--frames N] [--rounds R] [--size WxH] "
+                 "[--max-depth D] [--quick] MESH...\n",
+                 why.c_str());
+    return 2;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+        if (a == "--frames")
+            o.frames = std::atoi(next().c_str());
+        else if (a == "--rounds")
+            o.rounds = std::atoi(next().c_str());
+        else if (a == "--max-depth")
+            o.maxDepth = std::atoi(next().c_str());
+        else if (a == "--size") {
+            if (std::sscanf(next().c_str(), "%ux%u", &o.width, &o.height) != 2)
+                return usageError("bad --size");
+        } else if (a == "--quick")
+            o.frames = 3, o.rounds = 1, o.maxDepth = 3;
+        else if (a.rfind("--", 0) == 0)
+            return usageError("unknown option " + a);
+        else
+            o.meshes.push_back(a);
+    }
+    if (o.meshes.empty() || o.frames < 1 || o.rounds < 1 || o.maxDepth < 1 || o.maxDepth > 8)
+        return usageError("give at least one mesh; frames, rounds >= 1; depth 1-8");
+
+    try {
+        gpu::Context ctx;
+        std::vector<Config> configs;
+        std::map<std::string, Mesh> meshes;
+        const uint64_t limit = std::min<uint64_t>(ctx.limits().maxStorageBufferRange, 128ull << 20);
+        for (const std::string& path : o.meshes) {
+            const std::string model = std::filesystem::path(path).stem().string();
+            Warnings w;
+            Mesh& mesh = meshes[model] = importMeshFile(path, w);
+            const SchemeOptions so = resolveSchemeOptions(mesh.tags, {});
+            for (int depth = 1; depth <= o.maxDepth; ++depth)
+                for (bool uniform : {false, true}) {
+                    Config base;
+                    base.model = model;
+                    base.depth = depth;
+                    base.mode = uniform ? "uniform" : "adaptive";
+                    base.displace = "none";
+                    if (uniform && uniformVertexBytes(mesh, depth) > limit) {
+                        base.eval = "compute";
+                        char why[160];
+                        std::snprintf(why, sizeof why,
+                                      "uniform tables need about %.0f MiB of vertices, more than a "
+                                      "%.0f MiB storage buffer (limn-render refuses them)",
+                                      double(uniformVertexBytes(mesh, depth)) / 1048576.0,
+                                      double(limit) / 1048576.0);
+                        base.skipped = why;
+                        configs.push_back(base);
+                        continue;
+                    }
+                    TablesOptions to;
+                    to.depth = depth;
+                    to.uniform = uniform;
+                    base.tables = std::make_shared<Tables>(buildTables(mesh, so, to, w));
+                    for (const char* eval : {"compute", "vertex"}) {
+                        Config c = base;
+                        c.eval = eval;
+                        configs.push_back(c);
+                    }
+                    // Displacement at depths 2-4 (adaptive and uniform): the seam fix's cost.
+                    if (depth >= 2 && depth <= 4 && mesh.hasUVs()) {
+                        auto seams = std::make_shared<Seams>(computeSeams(mesh, *base.tables, 0));
+                        for (const char* d : {"fix", "nofix"}) {
+                            Config c = base;
+                            c.eval = "compute";
+                            c.displace = d;
+                            c.seams = seams;
+                            configs.push_back(c);
+                        }
+                    }
+                }
+        }
+        // The displacement map: 2D noise in UV space, 1024 x 1024 (limn-heightmap --kind uv).
+        HeightmapOptions ho;
+        ho.kind = HeightmapKind::Uv;
+        FloatImage map;
+        map.width = map.height = ho.size;
+        map.channels = 1;
+        map.values = bakeHeightmap(meshes.begin()->second, ho);
+
+        for (int round = 0; round < o.rounds; ++round)
+            for (Config& c : configs) {
+                if (!c.skipped.empty()) continue;
+                render::RenderSettings s;
+                s.width = o.width;
+                s.height = o.height;
+                s.evalInCompute = c.eval == "compute";
+                if (c.displace != "none") {
+                    s.displacementMap = &map;
+                    s.displaceScale = 0.02;
+                    s.displaceMid = 0.5;
+                    s.seamFix = c.displace == "fix";
+                    s.seams = c.seams.get();
+                }
+                try {
+                    render::Renderer r(ctx, meshes.at(c.model), c.tables.get(), s);
+                    measure(r, c, o.frames);
+                } catch (const Error& e) {
+                    c.skipped = e.what();
+                }
+            }
+
+        for (const Config& c : configs) std::printf("%s\n", json(c).c_str());
+
+        // Ratios in the same run, and the table for the notes.
+        auto find = [&](const std::string& model, int depth, const std::string& mode,
+                        const std::string& eval, const std::string& displace) -> const Config* {
+            for (const Config& c : configs)
+                if (c.model == model && c.depth == depth && c.mode == mode && c.eval == eval &&
+                    c.displace == displace && c.skipped.empty())
+                    return &c;
+            return nullptr;
+        };
+        std::fprintf(
+            stderr,
+            "| model | depth | adaptive frame / compute / draw ms | uniform frame / compute / draw "
+            "ms | frame A/U | compute A/U | vertices A / U | buffers A / U MiB | draw VS-eval / "
+            "fetch |\n|---|---|---|---|---|---|---|---|---|\n");
+        for (const auto& [model, mesh] : meshes)
+            for (int depth = 1; depth <= o.maxDepth; ++depth) {
+                const Config* a = find(model, depth, "adaptive", "compute", "none");
+                const Config* u = find(model, depth, "uniform", "compute", "none");
+                const Config* av = find(model, depth, "adaptive", "vertex", "none");
+                if (!a) continue;
+                double fa = median(a->frame), ca = median(a->compute), da = median(a->draw);
+                std::string uCols = "refused (buffer limit) | - | -";
+                std::string verts = std::to_string(a->vertices) + " / -", bufs;
+                char tmp[256];
+                std::snprintf(tmp, sizeof tmp, "%.1f / -", double(a->bufferBytes) / 1048576.0);
+                bufs = tmp;
+                if (u) {
+                    double fu = median(u->frame), cu = median(u->compute), du = median(u->draw);
+                    std::snprintf(tmp, sizeof tmp, "%.1f / %.1f / %.1f | %.2f | %.3f", fu, cu, du,
+                                  fa / fu, ca / cu);
+                    uCols = tmp;
+                    verts = std::to_string(a->vertices) + " / " + std::to_string(u->vertices);
+                    std::snprintf(tmp, sizeof tmp, "%.1f / %.1f",
+                                  double(a->bufferBytes) / 1048576.0,
+                                  double(u->bufferBytes) / 1048576.0);
+                    bufs = tmp;
+                    std::printf("{\"bench\":\"render_ratio\",\"model\":\"%s\",\"depth\":%d,\"frame_"
+                                "adaptive_over_"
+                                "uniform\":%.4f,\"compute_adaptive_over_uniform\":%.4f}\n",
+                                model.c_str(), depth, fa / fu, ca / cu);
+                }
+                double vs = av ? median(av->draw) / da : 0;
+                if (av)
+                    std::printf("{\"bench\":\"render_ratio\",\"model\":\"%s\",\"depth\":%d,\"draw_"
+                                "vertex_eval_over_"
+                                "fetch\":%.4f}\n",
+                                model.c_str(), depth, vs);
+                std::fprintf(stderr, "| %s | %d | %.1f / %.1f / %.1f | %s | %s | %s | %.2f |\n",
+                             model.c_str(), depth, fa, ca, da, uCols.c_str(), verts.c_str(),
+                             bufs.c_str(), vs);
+            }
+        std::fprintf(
+            stderr,
+            "\n| model | depth | mode | frame: none / seam fix / no fix ms | fix / none | fix / no "
+            "fix |\n|---|---|---|---|---|---|\n");
+        for (const auto& [model, mesh] : meshes)
+            for (int depth = 2; depth <= std::min(4, o.maxDepth); ++depth)
+                for (const char* mode : {"adaptive", "uniform"}) {
+                    const Config* n = find(model, depth, mode, "compute", "none");
+                    const Config* f = find(model, depth, mode, "compute", "fix");
+                    const Config* x = find(model, depth, mode, "compute", "nofix");
+                    if (!n || !f || !x) continue;
+                    double fn = median(n->frame), ff = median(f->frame), fx = median(x->frame);
+                    std::printf("{\"bench\":\"displace_ratio\",\"model\":\"%s\",\"depth\":%d,"
+                                "\"mode\":\"%s\","
+                                "\"frame_fix_over_none\":%.4f,\"frame_fix_over_nofix\":%.4f}\n",
+                                model.c_str(), depth, mode, ff / fn, ff / fx);
+                    std::fprintf(stderr, "| %s | %d | %s | %.1f / %.1f / %.1f | %.2f | %.2f |\n",
+                                 model.c_str(), depth, mode, fn, ff, fx, ff / fn, ff / fx);
+                }
+        std::fprintf(stderr, "\ndevice: %s; %d rounds x %d frames, %ux%u\n",
+                     ctx.deviceName().c_str(), o.rounds, o.frames, o.width, o.height);
+    } catch (const Error& e) {
+        std::fprintf(stderr, "bench_render: %s\n", e.what());
+        return int(e.kind());
+    }
+    return 0;
+}
