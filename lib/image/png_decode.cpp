@@ -4,6 +4,7 @@
 #include "image/png_decode.h"
 
 #include "base/error.h"
+#include "image/png_filter.h"
 
 #include <zlib.h>
 
@@ -21,11 +22,6 @@ namespace {
 
 uint32_t get32(const uint8_t* p) {
     return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | p[3];
-}
-
-uint8_t paeth(int a, int b, int c) {
-    const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-    return static_cast<uint8_t>(pa <= pb && pa <= pc ? a : pb <= pc ? b : c);
 }
 
 } // namespace
@@ -143,11 +139,7 @@ std::optional<FloatImage> decodePngCommon(std::span<const uint8_t> bytes) {
             const int a = i >= bytesPerPixel ? row[i - bytesPerPixel] : 0;
             const int b = previous[i];
             const int c = i >= bytesPerPixel ? previous[i - bytesPerPixel] : 0;
-            const int predictor = filter == 0   ? 0
-                                  : filter == 1 ? a
-                                  : filter == 2 ? b
-                                  : filter == 3 ? (a + b) / 2
-                                                : paeth(a, b, c);
+            const int predictor = png::predict(unsigned(filter), a, b, c);
             row[i] = static_cast<uint8_t>(filtered[1 + i] + predictor);
         }
         float* out = decoded.data();

@@ -5,6 +5,7 @@
 #include "image/png_encode.h"
 
 #include "base/error.h"
+#include "image/png_filter.h"
 
 #include <zlib.h>
 
@@ -28,11 +29,6 @@ void chunk(std::vector<uint8_t>& out, const char type[4], std::span<const uint8_
     uLong crc = crc32(0L, Z_NULL, 0);
     crc = crc32(crc, out.data() + start, static_cast<uInt>(out.size() - start));
     put32(out, static_cast<uint32_t>(crc));
-}
-
-uint8_t paeth(int a, int b, int c) {
-    const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-    return static_cast<uint8_t>(pa <= pb && pa <= pc ? a : pb <= pc ? b : c);
 }
 
 // `raw` holds the rows as bytes (bytesPerPixel per pixel, big-endian 16-bit samples).
@@ -60,11 +56,7 @@ std::vector<uint8_t> encode(uint32_t width, uint32_t height, uint8_t bitDepth, u
                 const int a = i >= bytesPerPixel ? row[i - bytesPerPixel] : 0;
                 const int b = up[i];
                 const int c = i >= bytesPerPixel ? up[i - bytesPerPixel] : 0;
-                const int predictor = f == 0   ? 0
-                                      : f == 1 ? a
-                                      : f == 2 ? b
-                                      : f == 3 ? (a + b) / 2
-                                               : paeth(a, b, c);
+                const int predictor = png::predict(unsigned(f), a, b, c);
                 const uint8_t r = static_cast<uint8_t>(row[i] - predictor);
                 candidate[f][i] = r;
                 cost += static_cast<uint64_t>(std::abs(static_cast<int8_t>(r)));

@@ -48,13 +48,21 @@ struct Renderer::Gpu {
     gpu::CommandBuffer cmd;
 };
 
-Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
-                   const RenderSettings& settings)
-    : ctx_(ctx), settings_(settings) {
+namespace {
+
+void checkUvShade(const Mesh& mesh, const RenderSettings& settings) {
     if (settings.shade == Shade::Uv && !mesh.hasUVs())
         throw Error(ErrorKind::BadInput,
                     "--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade "
                     "lit or normal");
+}
+
+} // namespace
+
+Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
+                   const RenderSettings& settings)
+    : ctx_(ctx), settings_(settings) {
+    checkUvShade(mesh, settings);
     if (settings.shade == Shade::Levels && !tables)
         throw Error(ErrorKind::BadInput,
                     "--shade levels colours subdivision levels, and the container has no tables "
@@ -105,10 +113,11 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurface& surface,
                    const RenderSettings& settings)
     : ctx_(ctx), settings_(settings) {
-    if (settings.shade == Shade::Uv && !mesh.hasUVs())
-        throw Error(ErrorKind::BadInput,
-                    "--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade "
-                    "lit or normal");
+    checkUvShade(mesh, settings);
+    if (settings.displacementMap || settings.texture || settings.shade == Shade::Texture)
+        throw Error(ErrorKind::Usage,
+                    "--displace and --texture apply to the subdivision surface, not "
+                    "a blending surface");
     BlendDraw draw = prepareBlend(mesh, surface, settings.blendGrid);
     const Bounds bounds = draw.bounds;
     pass_ = std::make_unique<BlendPass>(ctx, std::move(draw),

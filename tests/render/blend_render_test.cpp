@@ -5,6 +5,7 @@
 #include "blend/blend_chunk.h"
 #include "blend/blend_surface.h"
 #include "container/container.h"
+#include "drawn_ply.h"
 #include "mesh/mesh_chunks.h"
 #include "mesh/obj.h"
 #include "render/png.h"
@@ -23,43 +24,6 @@ using namespace limn;
 using namespace limn::test;
 
 namespace {
-
-struct PlyVertex {
-    float p[3], n[3];
-    int32_t ptex;
-    float uv[2];
-};
-struct Drawn {
-    std::vector<PlyVertex> vertices;
-    std::vector<std::array<int32_t, 3>> triangles;
-};
-
-Drawn parsePly(const std::string& bytes) {
-    Drawn d;
-    auto end = bytes.find("end_header\n");
-    if (end == std::string::npos) throw std::runtime_error("no PLY header");
-    std::istringstream header(bytes.substr(0, end));
-    size_t vertices = 0, faces = 0;
-    for (std::string line; std::getline(header, line);) {
-        if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
-        if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
-    }
-    const char* p = bytes.data() + end + 11;
-    if (bytes.size() - (end + 11) != vertices * 36 + faces * 13)
-        throw std::runtime_error("PLY size");
-    d.vertices.resize(vertices);
-    for (auto& v : d.vertices) {
-        std::memcpy(&v, p, 36);
-        p += 36;
-    }
-    for (size_t f = 0; f < faces; ++f) {
-        std::array<int32_t, 3> t;
-        std::memcpy(t.data(), p + 1, 12);
-        d.triangles.push_back(t);
-        p += 13;
-    }
-    return d;
-}
 
 // A shared model ("quad/spot_control_mesh.obj") or a generated one ("bipyramid:5", "fan:6").
 std::string inputObj(const ScratchDir& dir, const std::string& model) {

@@ -7,6 +7,7 @@
 // grey, others by their number of faces k, boundary ones darker.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#define LIMN_FRAGMENT_STAGE
 #include "draw_common.glsl"
 #include "blend_eval.glsl"
 #include "blend_draw.glsl"
@@ -48,6 +49,7 @@ vec3 valenceColour(uint face, vec2 uv) {
 
 void main() {
     if (trimmedAway(inFace, inFaceUV)) discard;
+    if (backFaceKey(outColor)) return;
     vec3 n = normalize(inNormal);
     if (pc.shade == SHADE_NORMAL) {
         outColor = vec4(srgbToLinear(n * 0.5 + 0.5), 1.0);
