@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
     return cli::run("limn-render", argc, argv, [](int ac, char** av) {
         cli::Common common;
         common.output.clear(); // "not given" matters with --bench
-        std::string input = "-", shade = "lit", device, meshOut, eval = "compute",
+        std::string input = "-", shade = "lit", device, meshOut, eval = "auto",
                     surfaceName = "auto", trimPath, displace, texture;
         double displaceScale = 1, displaceMid = 0;
         bool noSeamFix = false;
@@ -232,11 +232,13 @@ int main(int argc, char** argv) {
                   "                            seam fix of paper 000, 4.5 removes)")
             .text("--texture", "MAP", &texture, "colour texture (any image OpenImageIO reads)")
             .flag("--wire", &wire, "overlay the control mesh edges, or the patch and face outlines")
-            .choice("--eval", &eval, {"compute", "vertex"},
-                    "subdivision and blending surfaces: evaluate each drawn vertex once in a\n"
-                    "                            compute pass, or in the vertex stage as the draw "
-                    "needs it\n"
-                    "                            (paper 000, 4.3; paper 001, 4.2)")
+            .choice("--eval", &eval, {"auto", "compute", "vertex"},
+                    "where the surface is evaluated: vertex: in the vertex stage as the draw\n"
+                    "                            needs it (paper 000, 3.2; paper 001, 4.2); compute: each\n"
+                    "                            drawn vertex once in a compute pass, the draw fetches it;\n"
+                    "                            auto: vertex for subdivision surfaces (fastest on\n"
+                    "                            lavapipe, bench_render), compute with --displace (the\n"
+                    "                            displaced normals need it) and for blending surfaces")
             .integer("--tess", "N", &tess, 1, 4096,
                      "segments per side of a patch at most; a level-l patch gets 2^(N-l)")
             .integer("--grid", "K", &grid, 1, static_cast<int>(render::kMaxBlendGrid),
@@ -363,7 +365,8 @@ int main(int argc, char** argv) {
             usage(
                 "--displace and --texture apply to the subdivision surface, not a blending surface "
                 "(--surface subdivision draws the TBLS one)");
-        settings.evalInCompute = eval == "compute";
+        settings.evalInCompute =
+            eval == "compute" || (eval == "auto" && (in.blend || !displace.empty()));
         settings.evaluateVertices = !meshOut.empty();
 
         gpu::ContextOptions options;
