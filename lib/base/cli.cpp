@@ -2,6 +2,7 @@
 
 #include "base/error.h"
 
+#include <algorithm>
 #include <charconv>
 #include <clocale>
 #include <cmath>
@@ -188,6 +189,28 @@ const Parser::Option* Parser::find(const std::string& name) const {
     return nullptr;
 }
 
+namespace {
+
+// Option texts are reflowed into the column after the option names (28) up to 100 characters:
+// tools write them as prose, line breaks in them are only hints.
+std::string wrapped(const std::string& text) {
+    constexpr size_t kIndent = 28, kWidth = 100;
+    std::istringstream words(text);
+    std::string out, line;
+    for (std::string w; words >> w;) {
+        if (!line.empty() && kIndent + line.size() + 1 + w.size() > kWidth) {
+            out += line + "\n" + std::string(kIndent, ' ');
+            line.clear();
+        }
+        line += (line.empty() ? "" : " ") + w;
+    }
+    out += line;
+    std::replace(out.begin(), out.end(), '\x01', ' ');
+    return out;
+}
+
+} // namespace
+
 std::string Parser::help() const {
     std::ostringstream out;
     out << "Usage: " << tool_ << " " << synopsis_ << "\n\n" << summary_ << "\n";
@@ -210,14 +233,14 @@ std::string Parser::help() const {
             out << "\n" << std::string(28, ' ');
         else
             out << std::string(28 - left.size(), ' ');
-        out << o.help;
         // Every option that takes a value shows its default (--help lists them all); one whose
         // help text already explains its default says so itself.
+        std::string text = o.help;
         if (o.set && !o.defaultText.empty())
-            out << " [default: " << o.defaultText << "]";
+            text += " [default:\x01" + o.defaultText + "]"; // \x01: a space not to break at
         else if (o.set && o.help.find("[default:") == std::string::npos)
-            out << " [default: none]";
-        out << "\n";
+            text += " [default:\x01none]";
+        out << wrapped(text) << "\n";
     }
     if (!notes_.empty()) out << "\n" << notes_;
     if (!notes_.empty() && notes_.back() != '\n') out << "\n";
