@@ -24,15 +24,15 @@ using namespace OpenSubdiv;
 
 namespace {
 
-double medianMs(int runs, const std::function<void()>& f) {
-    std::vector<double> ms;
-    for (int i = 0; i < runs; ++i) {
-        auto t0 = std::chrono::steady_clock::now();
-        f();
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
+double median(std::vector<double> ms) {
     std::sort(ms.begin(), ms.end());
     return ms[ms.size() / 2];
+}
+
+double elapsedMs(const std::function<void()>& f) {
+    auto t0 = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 Far::TopologyRefiner* osdRefiner(const Mesh& m, const SchemeOptions& o) {
@@ -100,7 +100,13 @@ int main(int argc, char** argv) {
                  "table_bytes", "limn_ms", "osd_ms", "ratio", "patches");
     for (const auto& path : models) {
         Warnings w;
-        Mesh mesh = importMeshFile(path, w);
+        Mesh mesh;
+        try {
+            mesh = importMeshFile(path, w);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "tables_bench: error: %s: %s\n", path.c_str(), e.what());
+            return 1;
+        }
         SchemeOptions options = resolveSchemeOptions(mesh.tags, {});
         std::string name = path.substr(path.find_last_of('/') + 1);
         for (bool uniform : {false, true}) {
@@ -118,12 +124,12 @@ int main(int argc, char** argv) {
                 to.uniform = uniform;
                 Tables tables;
                 size_t bytes = 0;
-                double limnMs = medianMs(runs, [&] {
+                auto buildLimn = [&] {
                     Warnings ww;
                     tables = buildTables(mesh, options, to, ww);
                     bytes = encodeTablesChunk(tables).payload.size();
-                });
-                double osdMs = medianMs(runs, [&] {
+                };
+                auto buildOsd = [&] {
                     std::unique_ptr<Far::TopologyRefiner> r(osdRefiner(mesh, options));
                     if (uniform) {
                         r->RefineUniform(Far::TopologyRefiner::UniformOptions(depth));
@@ -136,7 +142,14 @@ int main(int argc, char** argv) {
                         r->RefineAdaptive(po.GetRefineAdaptiveOptions());
                         delete Far::PatchTableFactory::Create(*r, po);
                     }
-                });
+                };
+                // Interleaved, so a burst of load on the shared machine hits both alike.
+                std::vector<double> limnRuns, osdRuns;
+                for (int run = 0; run < runs; ++run) {
+                    limnRuns.push_back(elapsedMs(buildLimn));
+                    osdRuns.push_back(elapsedMs(buildOsd));
+                }
+                const double limnMs = median(limnRuns), osdMs = median(osdRuns);
                 std::string levels;
                 for (const auto& L : tables.levels)
                     levels += std::string(levels.empty() ? "" : ",") + "{\"vertices\":" + std::to_string(L.count()) +

@@ -102,6 +102,9 @@ public:
         while (bytes_.size() % alignment) bytes_.push_back(0);
     }
     size_t size() const { return bytes_.size(); }
+    // Writers of large payloads reserve their size up front: growing by doubling copies and
+    // zero-fills every byte again, and fresh pages are what a large encode spends its time on.
+    void reserve(size_t n) { bytes_.reserve(n); }
     std::vector<uint8_t>& bytes() { return bytes_; }
     std::vector<uint8_t> take() { return std::move(bytes_); }
 

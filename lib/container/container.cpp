@@ -117,6 +117,9 @@ Container parseContainer(std::span<const uint8_t> bytes) {
 
 std::vector<uint8_t> serializeContainer(const Container& container) {
     ByteWriter w;
+    size_t size = 24;
+    for (const auto& chunk : container.chunks) size += 16 + (chunk.payload.size() + 7) / 8 * 8;
+    w.reserve(size);
     w.writeArray(std::span<const uint8_t>(kContainerMagic, 8));
     w.write<uint32_t>(kContainerVersion);
     w.write<uint32_t>(0);

@@ -188,17 +188,17 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     std::vector<uint8_t> limitSectors(LN.topo.vertexCount(), 0);
     // Limit stencils over level-N local vertices, remapped to global indices after pruning.
     StencilTable localPosition, localTangent1, localTangent2;
-    std::vector<double> wPosition, wTangent1, wTangent2;
     std::vector<uint8_t> limitExactLocal;
     std::vector<uint32_t> limitLocalVertex;
     LimitMasks masks;
     std::vector<std::array<uint32_t, 4>> irregularCorners;
     std::vector<uint32_t> irregularFaceIds;
     VertexNeighborhood hood;
-    auto append = [](StencilTable& t, std::vector<double>& w, const std::vector<WeightedPoint>& list) {
+    // Masks are computed in double and stored as the float the GPU reads.
+    auto append = [](StencilTable& t, const std::vector<WeightedPoint>& list) {
         for (const auto& wp : list) {
             t.indices.push_back(wp.vertex);
-            w.push_back(wp.weight);
+            t.weights.push_back(static_cast<float>(wp.weight));
         }
         t.addRow();
     };
@@ -227,9 +227,9 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
                 limitSectors[v] = static_cast<uint8_t>(std::min<size_t>(sectors.size(), 255));
                 for (const Sector& sector : sectors) {
                     limitMasks(hood, rule, sector, LN.edgeSharpness, LN.vertexSharpness[v], masks);
-                    append(localPosition, wPosition, masks.position);
-                    append(localTangent1, wTangent1, masks.tangent1);
-                    append(localTangent2, wTangent2, masks.tangent2);
+                    append(localPosition, masks.position);
+                    append(localTangent1, masks.tangent1);
+                    append(localTangent2, masks.tangent2);
                     limitExactLocal.push_back(masks.exact ? 1 : 0);
                     limitLocalVertex.push_back(v);
                 }
@@ -351,15 +351,13 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
             if (patchSets[l][f]) t.patches.push_back(gatherPatch(levels[l], f, t.levels[l].first, remap[l]));
 
     const uint32_t baseN = t.levels[N].first;
-    auto globalize = [&](StencilTable& out, const StencilTable& local, const std::vector<double>& w) {
-        out = local;
+    auto globalize = [&](StencilTable& out, StencilTable&& local) {
+        out = std::move(local);
         for (auto& v : out.indices) v = baseN + remap[N][v];
-        out.weights.assign(w.begin(), w.end());
-        std::transform(w.begin(), w.end(), out.weights.begin(), [](double x) { return float(x); });
     };
-    globalize(t.limitPosition, localPosition, wPosition);
-    globalize(t.limitTangent1, localTangent1, wTangent1);
-    globalize(t.limitTangent2, localTangent2, wTangent2);
+    globalize(t.limitPosition, std::move(localPosition));
+    globalize(t.limitTangent1, std::move(localTangent1));
+    globalize(t.limitTangent2, std::move(localTangent2));
     for (uint32_t v : limitLocalVertex) t.limitVertex.push_back(baseN + remap[N][v]);
     t.limitExact = limitExactLocal;
     for (uint8_t e : limitExactLocal) t.approximateLimitPoints += e ? 0 : 1;

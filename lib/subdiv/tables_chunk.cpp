@@ -68,6 +68,18 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
 
 Chunk encodeTablesChunk(const Tables& t) {
     ByteWriter w;
+    // The size of the layout below, reserved so a large table is written in one pass.
+    auto tableBytes = [](const StencilTable& table, bool weights) {
+        return 16 + 4 * (table.start.size() + table.indices.size() + (weights ? table.weights.size() : 0));
+    };
+    size_t size = 40 + 24 * t.levels.size() + 84 * t.patches.size() + 32 * t.irregular.size() +
+                  4 * (t.limitVertex.size() + t.limitExact.size());
+    for (uint32_t l = 0; l < t.depth; ++l)
+        size += tableBytes(t.facePoints[l], false) + tableBytes(t.edgePoints[l], true) +
+                tableBytes(t.vertexPoints[l], true);
+    for (const auto* table : {&t.limitPosition, &t.limitTangent1, &t.limitTangent2})
+        size += tableBytes(*table, true);
+    w.reserve(size);
     w.write<uint32_t>(t.depth);
     w.write<uint32_t>(t.uniform ? 1u : 0u);
     w.write<uint8_t>(static_cast<uint8_t>(t.options.boundary));
