@@ -143,6 +143,41 @@ TEST(ReadImage, HugeDeclaredSizeIsRefusedBeforeAllocating) {
     }
 }
 
+// Formats other than PNG go through the OpenImageIO plugin (build/lib/limn/limn_image_oiio.so,
+// found next to bin/): a float EXR arrives as the exact floats written, a 16-bit TIFF as k/65535,
+// which are the displacement maps issue 5 names besides PNG.
+TEST(ReadImage, PluginReadsFloatExrAndSixteenBitTiffExactly) {
+    test::ScratchDir dir;
+    const int w = 5, h = 3;
+    std::vector<float> heights(w * h);
+    std::vector<uint16_t> levels(w * h);
+    for (int i = 0; i < w * h; ++i) {
+        heights[i] = -0.75f + 0.3125f * float(i) + 1e-3f * float(i * i); // negative, > 1, fractions
+        levels[i] = static_cast<uint16_t>((i * 4099) % 65536);
+    }
+    auto write = [&](const std::filesystem::path& path, OIIO::TypeDesc type, const void* pixels) {
+        auto out = OIIO::ImageOutput::create(path.string());
+        ASSERT_TRUE(out) << OIIO::geterror();
+        ASSERT_TRUE(out->open(path.string(), OIIO::ImageSpec(w, h, 1, type))) << out->geterror();
+        ASSERT_TRUE(out->write_image(type, pixels)) << out->geterror();
+        ASSERT_TRUE(out->close());
+    };
+    write(dir / "map.exr", OIIO::TypeDesc::FLOAT, heights.data());
+    write(dir / "map.tif", OIIO::TypeDesc::UINT16, levels.data());
+
+    FloatImage exr = readImageFile((dir / "map.exr").string());
+    ASSERT_EQ(exr.width, uint32_t(w));
+    ASSERT_EQ(exr.height, uint32_t(h));
+    ASSERT_EQ(exr.channels, 1u);
+    for (int i = 0; i < w * h; ++i) EXPECT_EQ(exr.values[i], heights[i]) << "texel " << i;
+
+    FloatImage tif = readImageFile((dir / "map.tif").string());
+    ASSERT_EQ(tif.width, uint32_t(w));
+    ASSERT_EQ(tif.channels, 1u);
+    for (int i = 0; i < w * h; ++i)
+        EXPECT_FLOAT_EQ(tif.values[i], float(levels[i]) / 65535.0f) << "texel " << i;
+}
+
 // gtest_discover_tests runs every test in its own process, so the plugin is not loaded yet.
 TEST(ReadImage, MissingPluginIsACapabilityError) {
     setenv("LIMN_IMAGE_PLUGIN", "/nonexistent/limn_image_oiio.so", 1);
