@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   # build
   cmake ninja-build g++ pkg-config
+  # Makefile.examples (scripts/examples.sh and its test); cmake only recommends it
+  make
   # libraries the users chose (see ../shared/docs/toolchain.md)
   libopenmesh-dev libosd-dev libglm-dev libopenimageio-dev libtinygltf-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
