@@ -54,7 +54,7 @@ double parseDouble(const std::string& option, const std::string& text) {
 Parser::Parser(std::string tool, std::string synopsis, std::string summary, Common& common,
                bool hasOutput, bool hasDepfile)
     : tool_(std::move(tool)), synopsis_(std::move(synopsis)), summary_(std::move(summary)),
-      exitCodes_(kDefaultExitCodes) {
+      exitCodes_(kDefaultExitCodes), common_(common) {
     if (hasOutput)
         text("-o, --output", "FILE", &common.output, "output file; - for standard output");
     if (hasDepfile)
@@ -299,6 +299,7 @@ bool Parser::parse(int argc, char** argv) {
         std::cout.flush();
         return false;
     }
+    setVerbosity(common_.quiet, common_.verbose);
     return true;
 }
 

@@ -47,8 +47,8 @@ public:
     // Replaces the default exit-code table in --help.
     Parser& exitCodes(const std::string& table);
 
-    // Returns false when --help or --version was handled (the tool then exits 0).
-    // Throws Error(Usage) for anything malformed.
+    // Returns false when --help or --version was handled (the tool then exits 0). Otherwise
+    // applies -q / -v to the diagnostics (setVerbosity). Throws Error(Usage) for anything malformed.
     bool parse(int argc, char** argv);
 
     std::string help() const;
@@ -63,6 +63,7 @@ private:
     const Option* find(const std::string& name) const;
 
     std::string tool_, synopsis_, summary_, notes_, exitCodes_;
+    Common& common_;
     std::vector<Option> options_;
     std::vector<std::pair<std::string, std::string*>> positionals_;
     std::vector<std::string> positionalHelp_;

@@ -139,6 +139,16 @@ template <class T>
 void uploadArrayNow(Context& ctx, const Buffer& dst, std::span<const T> values) {
     uploadNow(ctx, dst, {reinterpret_cast<const uint8_t*>(values.data()), values.size_bytes()});
 }
+// A new buffer holding `values`. Vulkan buffers cannot be empty: no values give one zero T.
+template <class T>
+Buffer uploadBufferNow(Context& ctx, const std::string& name, const std::vector<T>& values,
+                       uint32_t usage = kStorage) {
+    const T zero{};
+    std::span<const T> data = values.empty() ? std::span<const T>(&zero, 1) : std::span<const T>(values);
+    Buffer b(ctx, {name, data.size_bytes(), usage});
+    uploadArrayNow<T>(ctx, b, data);
+    return b;
+}
 template <class T>
 std::vector<T> readbackArrayNow(Context& ctx, const Buffer& src, size_t count) {
     auto bytes = readbackNow(ctx, src);

@@ -13,15 +13,7 @@ struct EvalPush { // blend_eval.comp
     uint32_t grid, weights;
 };
 
-template <class T>
-gpu::Buffer upload(gpu::Context& ctx, const std::string& name, const std::vector<T>& data,
-                   uint32_t usage = gpu::kStorage) {
-    std::vector<T> d = data;
-    if (d.empty()) d.resize(1); // GPU buffers cannot be empty
-    gpu::Buffer b(ctx, {name, d.size() * sizeof(T), usage});
-    gpu::uploadArrayNow<T>(ctx, b, d);
-    return b;
-}
+using gpu::uploadBufferNow;
 
 // The DrawData buffer: its header, then the trim atlas packed four texels to a word.
 std::vector<uint32_t> drawData(const BlendDraw& d, const std::optional<TrimMask>& trim) {
@@ -45,13 +37,13 @@ struct BlendPass::Gpu {
     Gpu(gpu::Context& ctx, const BlendDraw& d, bool evaluate, const std::optional<TrimMask>& trim)
         : controlPoints(ctx, {"control points (unused by the blend draw)",
                               std::max<uint64_t>(d.vertices.size(), 1) * 16}),
-          vertices(upload(ctx, "blend vertices", d.vertices)),
-          faces(upload(ctx, "blend faces", d.faces)), points(upload(ctx, "blend points", d.points)),
-          drawVertices(upload(ctx, "blend grid vertices", d.drawVertices)),
-          triangles(upload(ctx, "triangle indices", d.triangles, gpu::kIndex)),
-          wireLines(upload(ctx, "wire lines", d.wireLines, gpu::kIndex)),
-          faceUVs(upload(ctx, "face uvs", d.faceUVs)),
-          data(upload(ctx, "blend draw data and trim atlas", drawData(d, trim))),
+          vertices(uploadBufferNow(ctx, "blend vertices", d.vertices)),
+          faces(uploadBufferNow(ctx, "blend faces", d.faces)), points(uploadBufferNow(ctx, "blend points", d.points)),
+          drawVertices(uploadBufferNow(ctx, "blend grid vertices", d.drawVertices)),
+          triangles(uploadBufferNow(ctx, "triangle indices", d.triangles, gpu::kIndex)),
+          wireLines(uploadBufferNow(ctx, "wire lines", d.wireLines, gpu::kIndex)),
+          faceUVs(uploadBufferNow(ctx, "face uvs", d.faceUVs)),
+          data(uploadBufferNow(ctx, "blend draw data and trim atlas", drawData(d, trim))),
           positions(ctx, {"evaluated positions",
                           evaluate ? std::max<uint64_t>(d.points.size(), 1) * 16 : 16}),
           normals(ctx, {"evaluated normals",
@@ -115,17 +107,10 @@ void BlendPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) {
 }
 
 DrawnMesh BlendPass::drawnMesh() {
-    if (!evaluate_)
-        throw Error(ErrorKind::BadInput, "internal: the surface was not evaluated into buffers");
     const size_t n = draw_.points.size();
-    auto pos = gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->positions, n);
-    auto nrm = gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->normals, n);
-    DrawnMesh out;
-    out.vertices.resize(n);
+    DrawnMesh out = readDrawnVertices(ctx_, evaluate_ ? &gpu_->positions : nullptr, &gpu_->normals, n);
     for (size_t i = 0; i < n; ++i) {
         DrawnVertex& v = out.vertices[i];
-        v.x = pos[i].x, v.y = pos[i].y, v.z = pos[i].z;
-        v.nx = nrm[i].x, v.ny = nrm[i].y, v.nz = nrm[i].z;
         v.ptex = static_cast<int32_t>(draw_.points[i].face); // a quad mesh: one Ptex face per face
         v.u = blendGridParam(draw_.points[i].ij & 0xFFFFu, draw_.grid);
         v.v = blendGridParam(draw_.points[i].ij >> 16, draw_.grid);

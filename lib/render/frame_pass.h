@@ -3,9 +3,12 @@
 // and pipelines of one kind of surface and records its compute passes and its draw.
 #pragma once
 
+#include "base/error.h"
 #include "gpu/buffer.h"
 #include "gpu/commands.h"
 #include "render/ply.h"
+
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <string>
@@ -38,6 +41,24 @@ struct TimedPasses {
         isCompute.push_back(compute);
     }
 };
+
+// The positions and normals of `count` drawn vertices, read back from the vec4 buffers the
+// surface was evaluated into (null: it was not); the pass fills in ptex, u, v and the triangles.
+inline DrawnMesh readDrawnVertices(gpu::Context& ctx, const gpu::Buffer* positions,
+                                   const gpu::Buffer* normals, size_t count) {
+    if (!positions || !normals)
+        throw Error(ErrorKind::BadInput, "internal: the surface was not evaluated into buffers");
+    auto pos = gpu::readbackArrayNow<glm::vec4>(ctx, *positions, count);
+    auto nrm = gpu::readbackArrayNow<glm::vec4>(ctx, *normals, count);
+    DrawnMesh out;
+    out.vertices.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+        DrawnVertex& v = out.vertices[i];
+        v.x = pos[i].x, v.y = pos[i].y, v.z = pos[i].z;
+        v.nx = nrm[i].x, v.ny = nrm[i].y, v.nz = nrm[i].z;
+    }
+    return out;
+}
 
 class FramePass {
 public:

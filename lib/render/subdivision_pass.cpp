@@ -52,21 +52,7 @@ std::vector<uint32_t> textureWords(const FloatImage* img) {
     return w;
 }
 
-// GPU buffers cannot be empty: absent tables get one zero element.
-template <class T>
-std::vector<T> nonEmpty(std::vector<T> v) {
-    if (v.empty()) v.resize(1);
-    return v;
-}
-
-template <class T>
-gpu::Buffer upload(gpu::Context& ctx, const std::string& name, const std::vector<T>& data,
-                   uint32_t usage = gpu::kStorage) {
-    auto d = nonEmpty(data);
-    gpu::Buffer b(ctx, {name, d.size() * sizeof(T), usage});
-    gpu::uploadArrayNow<T>(ctx, b, d);
-    return b;
-}
+using gpu::uploadBufferNow; // absent tables get one zero element
 
 } // namespace
 
@@ -74,23 +60,23 @@ struct SubdivisionPass::Gpu {
     Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate, const Displacement* disp,
         const FloatImage* colour)
         : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
-          faceStarts(upload(ctx, "face-point starts", d.faceStarts)),
-          faceIndices(upload(ctx, "face-point indices", d.faceIndices)),
-          stencilStarts(upload(ctx, "stencil starts", d.stencilStarts)),
-          stencilIndices(upload(ctx, "stencil indices", d.stencilIndices)),
-          stencilWeights(upload(ctx, "stencil weights", d.stencilWeights)),
-          limitStarts(upload(ctx, "limit starts", d.limitStarts)),
-          limitIndices(upload(ctx, "limit indices", d.limitIndices)),
-          limitWeights(upload(ctx, "limit weights", d.limitWeights)),
+          faceStarts(uploadBufferNow(ctx, "face-point starts", d.faceStarts)),
+          faceIndices(uploadBufferNow(ctx, "face-point indices", d.faceIndices)),
+          stencilStarts(uploadBufferNow(ctx, "stencil starts", d.stencilStarts)),
+          stencilIndices(uploadBufferNow(ctx, "stencil indices", d.stencilIndices)),
+          stencilWeights(uploadBufferNow(ctx, "stencil weights", d.stencilWeights)),
+          limitStarts(uploadBufferNow(ctx, "limit starts", d.limitStarts)),
+          limitIndices(uploadBufferNow(ctx, "limit indices", d.limitIndices)),
+          limitWeights(uploadBufferNow(ctx, "limit weights", d.limitWeights)),
           limits(ctx, {"limit points", uint64_t(std::max(d.limitCount, 1u)) * 32}),
-          patches(upload(ctx, "patches", d.patches)),
-          irregular(upload(ctx, "irregular faces", d.irregular)),
-          tessVertices(upload(ctx, "tessellation vertices", d.tessVertices)),
+          patches(uploadBufferNow(ctx, "patches", d.patches)),
+          irregular(uploadBufferNow(ctx, "irregular faces", d.irregular)),
+          tessVertices(uploadBufferNow(ctx, "tessellation vertices", d.tessVertices)),
           // Indices are also read by the vertex stage for --shade levels.
-          triangles(upload(ctx, "triangle indices", d.triangles, gpu::kIndex | gpu::kStorage)),
-          triangleLevels(upload(ctx, "triangle levels", d.triangleLevels)),
-          wireLines(upload(ctx, "wire lines", d.wireLines, gpu::kIndex)),
-          texture(upload(ctx, "colour texture", textureWords(colour))),
+          triangles(uploadBufferNow(ctx, "triangle indices", d.triangles, gpu::kIndex | gpu::kStorage)),
+          triangleLevels(uploadBufferNow(ctx, "triangle levels", d.triangleLevels)),
+          wireLines(uploadBufferNow(ctx, "wire lines", d.wireLines, gpu::kIndex)),
+          texture(uploadBufferNow(ctx, "colour texture", textureWords(colour))),
           facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
           stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
           limitPass(ctx, {"limit points", subdiv_limit_comp_spv, 5, sizeof(LimitPush)}),
@@ -114,15 +100,15 @@ struct SubdivisionPass::Gpu {
             wire = std::make_unique<gpu::GraphicsPipeline>(
                 ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
                                                gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false});
-            const gpu::Buffer* drawnPositions = evalPositions.get();
-            const gpu::Buffer* drawnNormals = evalNormals.get();
+            drawnPositions = evalPositions.get();
+            drawnNormals = evalNormals.get();
             if (disp) {
-                sideRanges = std::make_unique<gpu::Buffer>(upload(ctx, "displacement sample ranges", d.sideRanges));
-                sideUVs = std::make_unique<gpu::Buffer>(upload(ctx, "displacement sample UVs", d.sideUVs));
-                map = std::make_unique<gpu::Buffer>(upload(ctx, "displacement map", mapWords(*disp->map)));
+                sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement sample ranges", d.sideRanges));
+                sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement sample UVs", d.sideUVs));
+                map = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement map", mapWords(*disp->map)));
                 displaced = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced positions", n * 16});
-                incidentRanges = std::make_unique<gpu::Buffer>(upload(ctx, "incident ranges", d.incidentRanges));
-                incident = std::make_unique<gpu::Buffer>(upload(ctx, "incident triangles", d.incidentTriangles));
+                incidentRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "incident ranges", d.incidentRanges));
+                incident = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "incident triangles", d.incidentTriangles));
                 displacedNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced normals", n * 16});
                 displacePass = std::make_unique<gpu::ComputePipeline>(
                     ctx, gpu::ComputePipelineDesc{"displace", displace_comp_spv, 6, sizeof(DisplacePush)});
@@ -152,6 +138,9 @@ struct SubdivisionPass::Gpu {
     gpu::GraphicsPipeline surface, surfaceFetch;
     gpu::BindGroup faceBindings, stencilBindings, limitBindings, surfaceBindings, fetchBindings;
     std::unique_ptr<gpu::Buffer> evalPositions, evalNormals, evalInfo;
+    // What the draw reads: the evaluated or the displaced surface (null without evaluation).
+    const gpu::Buffer* drawnPositions = nullptr;
+    const gpu::Buffer* drawnNormals = nullptr;
     std::unique_ptr<gpu::ComputePipeline> evalPass;
     std::unique_ptr<gpu::GraphicsPipeline> wire;
     gpu::BindGroup evalBindings, wireBindings;
@@ -161,7 +150,7 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
                                  bool keepEvaluated, bool levels, const Displacement* displacement,
                                  const FloatImage* texture)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
-      levels_(levels), displace_(displacement != nullptr) {
+      levels_(levels) {
     if (displacement) {
         if (eval != Eval::Compute)
             throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
@@ -206,7 +195,7 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
                      EvalPush{static_cast<uint32_t>(draw_.patches.size())});
         cmd.endTimed();
     }
-    if (displace_) {
+    if (g.displacePass) {
         const uint32_t n = static_cast<uint32_t>(draw_.tessVertices.size());
         cmd.barrier(compute, read);
         timed.begin(cmd, "displace", true);
@@ -241,17 +230,11 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wi
 }
 
 DrawnMesh SubdivisionPass::drawnMesh() {
-    if (!evaluate_) throw Error(ErrorKind::BadInput, "internal: the surface was not evaluated into buffers");
     const size_t n = draw_.tessVertices.size();
-    auto pos = gpu::readbackArrayNow<glm::vec4>(ctx_, displace_ ? *gpu_->displaced : *gpu_->evalPositions, n);
-    auto nrm = gpu::readbackArrayNow<glm::vec4>(ctx_, displace_ ? *gpu_->displacedNormals : *gpu_->evalNormals, n);
+    DrawnMesh out = readDrawnVertices(ctx_, gpu_->drawnPositions, gpu_->drawnNormals, n);
     auto info = gpu::readbackArrayNow<glm::uvec4>(ctx_, *gpu_->evalInfo, n);
-    DrawnMesh out;
-    out.vertices.resize(n);
     for (size_t i = 0; i < n; ++i) {
         DrawnVertex& v = out.vertices[i];
-        v.x = pos[i].x, v.y = pos[i].y, v.z = pos[i].z;
-        v.nx = nrm[i].x, v.ny = nrm[i].y, v.nz = nrm[i].z;
         v.ptex = static_cast<int32_t>(info[i].x);
         std::memcpy(&v.u, &info[i].y, 4);
         std::memcpy(&v.v, &info[i].z, 4);

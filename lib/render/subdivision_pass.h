@@ -42,7 +42,7 @@ private:
     gpu::Context& ctx_;
     SubdivisionDraw draw_;
     Eval eval_;
-    bool evaluate_, levels_, displace_ = false;
+    bool evaluate_, levels_;
     Displacement displacement_;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;

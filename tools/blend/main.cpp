@@ -66,7 +66,6 @@ int main(int argc, char** argv) {
                        "     --quadrangulate), a non-manifold edge or vertex\n"
                        "  2  usage error\n");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
         const std::string name = input == "-" ? "<stdin>" : input;
 
         OutputFile out(common.output, OutputFile::Kind::Binary);

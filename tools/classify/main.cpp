@@ -27,7 +27,6 @@ int main(int argc, char** argv) {
                    "Chunks of an input .limn that limn-classify does not own are kept unchanged.\n"
                    "Example:\n  limn-classify frog.obj | limn-tables --depth 4 | limn-render -o frog.png\n");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
 
         OutputFile out(common.output, OutputFile::Kind::Binary);
         auto bytes = readInput(input);

@@ -35,7 +35,6 @@ int main(int argc, char** argv) {
             .flag("--list", &list, "print the example names, one per line, and exit")
             .notes("Examples:\n" + names);
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
 
         if (list) {
             for (const auto& e : examples) std::cout << e.name << "\n";

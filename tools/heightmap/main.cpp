@@ -31,7 +31,6 @@ int main(int argc, char** argv) {
             .integer("--seed", "S", &seed, 0, 1 << 30, "noise seed")
             .integer("--padding", "P", &padding, 0, 64, "texels a surface map extends past each UV island");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
         OutputFile out(common.output, OutputFile::Kind::Binary); // refused on a terminal
         const bool needsMesh = kind != "uv";
         Mesh mesh;

@@ -100,7 +100,6 @@ int main(int argc, char** argv) {
                    "level, regular_patches drawn at it, irregular_faces: faces refined further, or\n"
                    "at the last level drawn at their limit corners).\n");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
 
         auto bytes = readInput(input);
         Warnings warnings;

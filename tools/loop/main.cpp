@@ -119,7 +119,6 @@ int main(int argc, char** argv) {
                    "  limn-loop --levels 2 cat.obj -o cat2.obj\n"
                    "  limn-loop --uniform --levels 3 --stats --measure spot.obj -o spot3.ply\n");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
         if (measure && !stats) throw Error(ErrorKind::Usage, "--measure needs --stats (see --help)");
         options.normalization = normalize == "edge" ? loop::Normalization::EdgeLength
                                                     : loop::Normalization::BoundingBox;

@@ -298,7 +298,6 @@ int main(int argc, char** argv) {
                          "  3  missing capability: no Vulkan loader or device, no device matching\n"
                          "     --device, validation layer not installed\n");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
 
         if (settings.view.eye && viewGiven) usage("--view and --eye exclude each other");
         if ((settings.view.target || settings.view.up) && !settings.view.eye)

@@ -25,7 +25,6 @@ int main(int argc, char** argv) {
             .notes("Example:\n  limn-classify spot.obj | limn-tables -d 3 | limn-seams |"
                    " limn-render --displace d.png -o spot.png\n");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
 
         OutputFile out(common.output, OutputFile::Kind::Binary);
         Container container = loadContainerFile(input);

@@ -34,7 +34,6 @@ int main(int argc, char** argv) {
                    "valence-2 vertices get approximate limit points (limn-info reports how many).\n"
                    "Example:\n  limn-classify spot.obj | limn-tables --depth 4 -o spot.limn\n");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
 
         OutputFile out(common.output, OutputFile::Kind::Binary);
         Container container = loadContainerFile(input);

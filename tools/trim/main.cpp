@@ -67,7 +67,6 @@ int main(int argc, char** argv) {
                        "  1  bad input\n"
                        "  2  usage error (including binary output to a terminal)\n");
         if (!parser.parse(ac, av)) return 0;
-        cli::setVerbosity(common.quiet, common.verbose);
         render::TrimPattern pattern;
         pattern.tile = static_cast<uint32_t>(tile);
         pattern.holeRadius = hole;
