@@ -161,12 +161,18 @@ double boxSquaredDistance(const glm::dvec3& p, const float* lo, const float* hi)
 double TriangleBvh::squaredDistance(const glm::dvec3& p) const {
     double best = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return best;
-    uint32_t stack[160]; // depth <= 63 bit splits + 32 halvings; each level leaves one entry
+    // Each entry carries its box distance, computed once when its parent pushed it.
+    struct Entry {
+        uint32_t node;
+        double distance;
+    };
+    Entry stack[160]; // depth <= 63 bit splits + 32 halvings; each level leaves one entry
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, boxSquaredDistance(p, nodes_[0].lo, nodes_[0].hi)};
     while (top > 0) {
-        const Node& node = nodes_[stack[--top]];
-        if (boxSquaredDistance(p, node.lo, node.hi) >= best) continue;
+        const Entry entry = stack[--top];
+        if (entry.distance >= best) continue;
+        const Node& node = nodes_[entry.node];
         if (node.count > 0) {
             for (uint32_t i = node.first; i < node.first + node.count; ++i)
                 best = std::min(best, pointTriangleSquaredDistance(p, tris_[i][0], tris_[i][1], tris_[i][2]));
@@ -180,8 +186,8 @@ double TriangleBvh::squaredDistance(const glm::dvec3& p) const {
             std::swap(dl, dr);
         }
         // Visit the nearer child first: push it last.
-        if (dr < best) stack[top++] = r;
-        if (dl < best) stack[top++] = l;
+        if (dr < best) stack[top++] = {r, dr};
+        if (dl < best) stack[top++] = {l, dl};
     }
     return best;
 }

@@ -4,14 +4,6 @@
 
 namespace limn::loop {
 
-uint32_t findEdge(const Topology& topo, uint32_t a, uint32_t b) {
-    for (uint32_t h : topo.vertexOutgoing(a))
-        if (topo.destination(h) == b) return topo.edge(h);
-    for (uint32_t h : topo.vertexOutgoing(b))
-        if (topo.destination(h) == a) return topo.edge(h);
-    return kNone;
-}
-
 Topology triangleTopology(uint32_t vertexCount, const std::vector<Tri>& triangles) {
     std::vector<uint32_t> offsets(triangles.size() + 1), corners(triangles.size() * 3);
     for (size_t f = 0; f <= triangles.size(); ++f) offsets[f] = static_cast<uint32_t>(3 * f);
@@ -28,7 +20,7 @@ Level::Level(const TriMesh& mesh)
     edgeSharp_.assign(E, 0);
     for (uint32_t e = 0; e < E; ++e) edgeSharp_[e] = topo_.edgeIsBoundary(e) ? 1 : 0;
     for (const VertexPair& c : mesh.creases) {
-        uint32_t e = findEdge(topo_, c[0], c[1]);
+        uint32_t e = topo_.findEdge(c[0], c[1]);
         if (e == kNone)
             throwBadInput("crease (" + std::to_string(c[0]) + "," + std::to_string(c[1]) +
                           ") names no edge of the mesh");

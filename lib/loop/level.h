@@ -34,8 +34,6 @@ private:
     std::vector<VertexPair> creaseNeighbours_;
 };
 
-// The edge joining a and b, or kNone.
-uint32_t findEdge(const Topology& topo, uint32_t a, uint32_t b);
 
 // Topology of a triangle list (corner lists in CSR form, as limn::Topology wants them).
 Topology triangleTopology(uint32_t vertexCount, const std::vector<Tri>& triangles);

@@ -83,7 +83,7 @@ TriMesh fromMesh(const Mesh& mesh, const ImportOptions& options, Warnings& warni
             throwBadInput(what + " has sharpness " + std::to_string(c.sharpness) +
                           "; only smooth (0) and infinitely sharp (>= 10) creases are supported");
         if (c.sharpness <= 0) continue;
-        uint32_t e = findEdge(topo, c.v0, c.v1);
+        uint32_t e = topo.findEdge(c.v0, c.v1);
         if (e == kNone) {
             warnings.add(what + " names no edge of the mesh; ignored");
             continue;

@@ -124,7 +124,7 @@ TEST_P(AdaptiveMesh, ConformingOrientedAndBoundaryPreserved) {
         EXPECT_NEAR(uvArea(m), uvArea(input), 1e-9 * std::abs(uvArea(input)) + 1e-12);
     }
     // Creases name edges of the result.
-    for (const VertexPair& p : m.creases) EXPECT_NE(findEdge(t1, p[0], p[1]), kNone);
+    for (const VertexPair& p : m.creases) EXPECT_NE(t1.findEdge(p[0], p[1]), kNone);
 
     // Per-level counts agree with the result.
     ASSERT_FALSE(r.levels.empty());

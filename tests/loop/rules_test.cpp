@@ -128,7 +128,7 @@ TEST(EdgeMetric, CurvedGridIsRefined) {
     // The hand-computed value for one interior edge: z = 0.05 (x² + y²) on the regular lattice.
     // Odd vertex of edge (4,4)-(5,4): z_o = 3/8 (z44 + z54) + 1/8 (z55 + z43); the limit of the
     // refined regular mesh is o/2 + Σ(6 neighbours)/12.
-    uint32_t e = findEdge(level.topology(), 4 * 9 + 4, 4 * 9 + 5);
+    uint32_t e = level.topology().findEdge(4 * 9 + 4, 4 * 9 + 5);
     ASSERT_NE(e, kNone);
     auto z = [](double x, double y) { return bowl(x, y); };
     auto oddZ = [&](double x0, double y0, double x1, double y1, double cx, double cy, double dx, double dy) {
@@ -197,8 +197,8 @@ TEST(Templates, TwoSplitDiagonalByCompactness) {
         const Topology& topo = level.topology();
         // Split x→y = (0,1) and y→z = (1,2); zx = (2,0) stays.
         std::vector<uint8_t> split(3, 0);
-        split[findEdge(topo, 0, 1)] = 1;
-        split[findEdge(topo, 1, 2)] = 1;
+        split[topo.findEdge(0, 1)] = 1;
+        split[topo.findEdge(1, 2)] = 1;
         Refinement r = refine(level, split, EvenUpdate::Split, even, odd);
         const auto& P = r.mesh.positions;
         glm::dvec3 x = P[0], z = P[2], mxy = 0.5 * (P[0] + P[1]), myz = 0.5 * (P[1] + P[2]);
@@ -206,7 +206,7 @@ TEST(Templates, TwoSplitDiagonalByCompactness) {
         double qb = std::min(compactness(x, mxy, z), compactness(mxy, myz, z));
         bool wantA = qa >= qb;
         bool hasA = false; // diagonal x – m_yz present?
-        uint32_t myzIndex = 3 + (findEdge(topo, 0, 1) < findEdge(topo, 1, 2) ? 1 : 0);
+        uint32_t myzIndex = 3 + (topo.findEdge(0, 1) < topo.findEdge(1, 2) ? 1 : 0);
         for (const Tri& t : r.mesh.triangles)
             for (int i = 0; i < 3; ++i)
                 if ((t[i] == 0 && t[(i + 1) % 3] == myzIndex) || (t[i] == myzIndex && t[(i + 1) % 3] == 0))
