@@ -11,6 +11,8 @@ function(limn_tool name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE limn_warnings ${ARG_DEPS})
+  set_property(GLOBAL APPEND PROPERTY LIMN_TOOL_TARGETS ${name})
+  install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 
 # limn_gtest(NAME SOURCES... DEPS ...): a GoogleTest executable registered with CTest.
@@ -19,7 +21,7 @@ function(limn_gtest name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE limn_warnings GTest::gtest_main limn_test_support ${ARG_DEPS})
   target_compile_definitions(${name} PRIVATE
-    LIMN_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
+    LIMN_TEST_DATA_DIR="${LIMN_TEST_DATA_DIR}"
     LIMN_BIN_DIR="${CMAKE_BINARY_DIR}/bin"
     LIMN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   # One label per executable: CMake 3.25's gtest_discover_tests flattens a list of them.

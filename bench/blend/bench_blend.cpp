@@ -153,7 +153,7 @@ void gpuVsCpuLine(const Mesh& mesh, const Topology& topo, const std::string& nam
 } // namespace
 
 int main(int argc, char** argv) {
-    std::string path = argc > 1 ? argv[1] : LIMN_SHARED_DIR "/models/quad/spot_control_mesh.obj";
+    std::string path = argc > 1 ? argv[1] : LIMN_TEST_DATA_DIR "/quad/spot_control_mesh.obj";
     int K = argc > 2 ? std::stoi(argv[2]) : 16, runs = argc > 3 ? std::stoi(argv[3]) : 7;
     Warnings warnings;
     Mesh mesh = importMeshFile(path, warnings);

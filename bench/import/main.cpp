@@ -3,7 +3,8 @@
 // (Far::TopologyRefinerFactory::Create), in one process, alternating which goes first. Prints
 // one JSON line per stage with the median and min in milliseconds; limn_total and osd_total
 // both include the run's parse.
-// Default mesh: ../shared/models/osd/derived/catmark_car_level3.obj (100,800 quads, creases).
+// Default mesh: catmark_car_level3.obj (100,800 quads, creases), which the build generates from
+// tests/data/osd/catmark/catmark_car.obj into <build>/data/.
 #include "base/error.h"
 #include "base/io.h"
 #include "base/json.h"
@@ -61,8 +62,7 @@ std::unique_ptr<Far::TopologyRefiner> osdCreate(const Mesh& m) {
 
 int main(int argc, char** argv) {
     std::string path =
-        argc > 1 ? argv[1]
-                 : std::string(LIMN_SHARED_DIR) + "/models/osd/derived/catmark_car_level3.obj";
+        argc > 1 ? argv[1] : std::string(LIMN_CAR_LEVEL3);
     int runs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 15;
     std::vector<uint8_t> bytes;
     try {

@@ -149,7 +149,7 @@ void timeLevels(const std::string& name, const TriMesh& control, int repeats) {
 } // namespace
 
 int main(int argc, char** argv) {
-    std::string models = std::string(LIMN_SHARED_DIR) + "/models/tri";
+    std::string models = std::string(LIMN_TEST_DATA_DIR) + "/tri";
     bool quick = false;
     std::vector<std::string> only;
     for (int i = 1; i < argc; ++i) {

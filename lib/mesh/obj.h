@@ -1,4 +1,4 @@
-// Wavefront OBJ with OpenSubdiv's `t` tags (../shared/models/osd/README.md): v, vt, vn (ignored),
+// Wavefront OBJ with OpenSubdiv's `t` tags (tests/data/osd/README.md): v, vt, vn (ignored),
 // f with v, v/vt, v//vn, v/vt/vn and negative (relative) indices, faces of any size; tags crease,
 // corner, hole, interpolateboundary, facevaryinginterpolateboundary, creasemethod, smoothtriangles.
 #pragma once

@@ -22,7 +22,7 @@ Mesh torus(int nu, int nv, double R, double r);
 // Regular (n+1)×(n+1) vertex grid of unit quads in x,y with z = height(x, y).
 Mesh grid(int n, double (*height)(double, double));
 
-Mesh loadModel(const std::string& relative);       // ../shared/models/<relative>
+Mesh loadModel(const std::string& relative);       // tests/data/<relative>
 Mesh loadTestData(const std::string& name);         // tests/blend/data/<name>
 Mesh quadrangulated(const Mesh& mesh);              // blend::quadrangulateLinear
 // Applies a fixed rotation and translation (a rigid motion), so "planar" is not "z = 0".

@@ -81,3 +81,15 @@ TEST_P(InfoGolden, CountsMatchOpenSubdiv) {
 INSTANTIATE_TEST_SUITE_P(SharedModels, InfoGolden, ::testing::ValuesIn(shapes()), testName);
 
 } // namespace
+
+// The 100,800-quad car the build generates (tests/data/README.md) has the counts that the model
+// collection's README gives for its copy (tests/data/osd/README.md: 101077 vertices, 100800
+// quads), and the car's 60 boundary edges split 8 ways by 3 levels.
+TEST(GeneratedData, CarLevel3HasTheCountsOfTheImportedCopy) {
+    auto r = test::run({test::tool("limn-info").string(), "--json", "-q", LIMN_CAR_LEVEL3});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(test::jsonInt(r.out, "vertices"), 101077);
+    EXPECT_EQ(test::jsonInt(r.out, "faces"), 100800);
+    EXPECT_EQ(test::jsonIntMap(r.out, "face_size_histogram").at(4), 100800);
+    EXPECT_EQ(test::jsonInt(r.out, "boundary_edges"), 60 * 8);
+}

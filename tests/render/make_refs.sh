@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 bin=$(cd "${1:-../../build/bin}" && pwd)
-models=$(cd ../../../shared/models && pwd)
+models=$(cd ../data && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 grep -v '^\s*#' ref/cases.txt | while read -r name model options; do

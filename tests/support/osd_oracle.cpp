@@ -178,4 +178,39 @@ std::vector<std::vector<glm::dvec3>> osdUniformLevels(const Mesh& mesh, const Sc
     return out;
 }
 
+Mesh osdUniformRefinedMesh(const Mesh& mesh, const SchemeOptions& options, int levels) {
+    std::unique_ptr<Far::TopologyRefiner> r(makeRefiner(mesh, options));
+    Far::TopologyRefiner::UniformOptions uo(levels);
+    uo.fullTopologyInLastLevel = true;
+    r->RefineUniform(uo);
+    const std::vector<glm::dvec3> positions = osdUniformLevels(mesh, options, levels).back();
+    const Far::TopologyLevel& last = r->GetLevel(levels);
+    Mesh out;
+    out.positions = positions;
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        Far::ConstIndexArray fv = last.GetFaceVertices(f);
+        std::vector<uint32_t> face(fv.begin(), fv.end());
+        out.addFace(face);
+        if (last.IsFaceHole(f)) out.tags.holes.push_back(static_cast<uint32_t>(f));
+    }
+    // What sharpness is left after `levels` steps, so the refined mesh has the same limit.
+    for (int e = 0; e < last.GetNumEdges(); ++e) {
+        // Far marks boundary edges infinitely sharp itself; they need no tag.
+        const float s = last.GetEdgeSharpness(e);
+        if (s <= 0 || last.IsEdgeBoundary(e)) continue;
+        Far::ConstIndexArray ev = last.GetEdgeVertices(e);
+        out.tags.creases.push_back({static_cast<uint32_t>(ev[0]), static_cast<uint32_t>(ev[1]), s});
+    }
+    for (int v = 0; v < last.GetNumVertices(); ++v)
+        // Far sharpens boundary corners itself under the edge-and-corner rule.
+        if (const float s = last.GetVertexSharpness(v);
+            s > 0 && !(last.IsVertexBoundary(v) && s >= Sdc::Crease::SHARPNESS_INFINITE &&
+                       options.boundary == BoundaryRule::EdgeAndCorner))
+            out.tags.corners.push_back({static_cast<uint32_t>(v), s});
+    out.tags.boundary = options.boundary;
+    out.tags.creaseMethod = options.creaseMethod;
+    out.tags.triangles = options.triangles;
+    return out;
+}
+
 } // namespace limn::test

@@ -36,4 +36,8 @@ private:
 std::vector<std::vector<glm::dvec3>> osdUniformLevels(const Mesh& mesh, const SchemeOptions& options,
                                                       int depth);
 
+// `levels` steps of OpenSubdiv's uniform refinement as a mesh with the same limit surface: the
+// refined faces, positions, and the crease and corner sharpness left after those steps.
+Mesh osdUniformRefinedMesh(const Mesh& mesh, const SchemeOptions& options, int levels);
+
 } // namespace limn::test

@@ -14,10 +14,8 @@
 
 namespace limn::test {
 
-std::filesystem::path sharedDir() { return LIMN_SHARED_DIR; }
-std::filesystem::path modelPath(const std::string& relative) {
-    return sharedDir() / "models" / relative;
-}
+std::filesystem::path dataDir() { return LIMN_TEST_DATA_DIR; }
+std::filesystem::path modelPath(const std::string& relative) { return dataDir() / relative; }
 std::filesystem::path binDir() { return LIMN_BIN_DIR; }
 std::filesystem::path tool(const std::string& name) { return binDir() / name; }
 

@@ -1,4 +1,4 @@
-// Helpers shared by limn's tests: paths to the shared models and built tools, running a tool as
+// Helpers shared by limn's tests: paths to the test models and built tools, running a tool as
 // a subprocess (the way users and Makefiles run it), and scratch directories.
 #pragma once
 
@@ -10,9 +10,10 @@
 
 namespace limn::test {
 
-// ../shared next to the source tree (models, docs). Tests may read it; the project never does.
-std::filesystem::path sharedDir();
-std::filesystem::path modelPath(const std::string& relative); // sharedDir()/"models"/relative
+// tests/data: the meshes and textures the tests read, carried by the repository (its README says
+// where each came from and under which licence).
+std::filesystem::path dataDir();
+std::filesystem::path modelPath(const std::string& relative); // dataDir()/relative
 // The directory the tools are built into (<build>/bin).
 std::filesystem::path binDir();
 std::filesystem::path tool(const std::string& name); // binDir()/name
