@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Configures and builds limn into a build directory. Usage: scripts/build.sh [release|asan|fuzz]
+# Configures and builds limn into a build directory, warnings as errors (the team's setting; a
+# plain cmake build leaves LIMN_WERROR off). Usage: scripts/build.sh [release|asan|fuzz] [TARGET]
 #   release  build/       optimized with debug info (default)
 #   asan     build-asan/  AddressSanitizer + UndefinedBehaviorSanitizer
 #   fuzz     build-fuzz/  clang with libFuzzer targets (and ASan)
+# TARGET builds one target only, e.g. limn_tools (the tools without tests and benchmarks).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 kind=${1:-release}
@@ -14,8 +16,10 @@ case "$kind" in
   *) echo "usage: scripts/build.sh [release|asan|fuzz]" >&2; exit 2 ;;
 esac
 if [ ! -f "$dir/build.ninja" ]; then
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${flags[@]}" >/dev/null
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLIMN_WERROR=ON "${flags[@]}" \
+    >/dev/null
 fi
 # The fuzz tree builds only the fuzz targets and what they link, not every tool and test.
 target=(); [ "$kind" = fuzz ] && target=(--target fuzzers)
+[ -n "${2:-}" ] && target=(--target "$2")
 cmake --build "$dir" "${target[@]}"

@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-scripts/build.sh release
+# Only the tools: the tests and benchmarks are scripts/test.sh's business.
+scripts/build.sh release limn_tools
 make -s -f Makefile.examples BIN=build/bin OUT=out -j "$(nproc)"
 n=$(make -s -f Makefile.examples BIN=build/bin OUT=out list | wc -l)
 echo "$n images in out/ (make -f Makefile.examples list names them)"
