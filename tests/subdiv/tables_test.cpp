@@ -11,6 +11,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -23,16 +25,20 @@ struct Case {
     std::string model;
     int depth;
     bool uniform;
+    std::optional<BoundaryRule> boundary = {}; // overrides the mesh's tag (limn-classify --boundary)
 };
 void PrintTo(const Case& c, std::ostream* os) {
     *os << c.model << " depth " << c.depth << (c.uniform ? " uniform" : " adaptive");
+    if (c.boundary) *os << " boundary rule " << int(*c.boundary);
 }
 
 std::string caseName(const ::testing::TestParamInfo<Case>& info) {
     std::string s = info.param.model;
     for (char& c : s)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return s + "_d" + std::to_string(info.param.depth) + (info.param.uniform ? "_uniform" : "");
+    static const char* rules[] = {"_bnone", "_bedge", "_bedgecorner"};
+    return s + "_d" + std::to_string(info.param.depth) + (info.param.uniform ? "_uniform" : "") +
+           (info.param.boundary ? rules[int(*info.param.boundary)] : "");
 }
 
 double diagonal(const Mesh& m) {
@@ -56,7 +62,7 @@ Fixture build(const Case& c) {
     Fixture f;
     Warnings w;
     f.mesh = importMeshFile(test::modelPath(c.model).string(), w);
-    f.options = resolveSchemeOptions(f.mesh.tags, {});
+    f.options = resolveSchemeOptions(f.mesh.tags, c.boundary);
     TablesOptions opts;
     opts.depth = c.depth;
     opts.uniform = c.uniform;
@@ -264,6 +270,10 @@ const Case kCases[] = {
     {"quad/spot_control_mesh.obj", 2, true},
     {"quad/blub_control_mesh.obj", 4, false},
     {"quad/osd_catmark_xord_boundary.obj", 3, false},
+    // Every boundary rule on boundary vertices of valence 2 to 7 (the tag says edge-and-corner).
+    {"quad/osd_catmark_xord_boundary.obj", 3, false, BoundaryRule::EdgeOnly},
+    {"quad/osd_catmark_xord_boundary.obj", 3, true, BoundaryRule::EdgeOnly},
+    {"quad/osd_catmark_xord_boundary.obj", 2, false, BoundaryRule::None},
     {"quad/osd_catmark_fvar_bound2.obj", 3, false},
     {"quad/osd_catmark_torus.obj", 2, false},
     {"quad/osd_catmark_pyramid.obj", 3, false},
