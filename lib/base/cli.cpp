@@ -1,8 +1,12 @@
 #include "base/cli.h"
 
 #include "base/error.h"
+#include "base/io.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <set>
 #include <charconv>
 #include <clocale>
 #include <cmath>
@@ -248,8 +252,45 @@ std::string Parser::help() const {
     return out.str();
 }
 
+namespace {
+
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+} // namespace
+
+// "; did you mean --wire?" for the closest long option: one that the unknown name starts with
+// or that starts with it (--wireframe, --sha), else the nearest within 3 edits; "" when none is.
+std::string Parser::suggest(const std::string& unknown) const {
+    std::string word = unknown;
+    while (!word.empty() && word[0] == '-') word.erase(0, 1);
+    std::string best;
+    size_t bestDistance = 4;
+    for (const Option& o : options_) {
+        if (o.longName.empty()) continue;
+        const std::string name = o.longName.substr(2);
+        size_t d = editDistance(word, name);
+        if (word.size() >= 3 && (word.rfind(name, 0) == 0 || name.rfind(word, 0) == 0)) d = 1;
+        if (d < bestDistance) bestDistance = d, best = o.longName;
+    }
+    return best.empty() ? "" : "; did you mean " + best + "?";
+}
+
 bool Parser::parse(int argc, char** argv) {
     size_t nextPositional = 0;
+    std::set<const Option*> seen;
     bool onlyPositionals = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
@@ -273,7 +314,11 @@ bool Parser::parse(int argc, char** argv) {
                 hasValue = true;
             }
             const Option* o = find(name);
-            if (!o) usageError("unknown option '" + name + "'");
+            if (!o) usageError("unknown option '" + name + "'" + suggest(name));
+            // An option given twice is a mistake, not "the last one wins" (-o a -o b).
+            if (o->flagOut == nullptr && !seen.insert(o).second)
+                usageError((o->longName.empty() ? o->shortName : o->longName) +
+                           " given more than once");
             if (o->flagOut) {
                 if (hasValue) usageError(name + " takes no value");
                 *o->flagOut = true;
@@ -338,8 +383,18 @@ int run(const std::string& tool, int argc, char** argv,
     std::setlocale(LC_ALL, "C");
     std::locale::global(std::locale::classic());
     setTool(tool);
+    installOutputCleanupOnSignals();
     try {
-        return body(argc, argv);
+        const int status = body(argc, argv);
+        // What went to standard output through stdio (JSON, --help, --list) must have arrived:
+        // a full disk or a closed pipe is a failed run, not exit 0.
+        std::cout.flush();
+        if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+            std::fprintf(stderr, "%s: error: <stdout>: cannot write: %s\n", tool.c_str(),
+                         std::strerror(errno ? errno : EIO));
+            return 1;
+        }
+        return status;
     } catch (const Error& e) {
         std::string where;
         if (!e.file().empty()) where += (e.file() == "-" ? "<stdin>" : e.file()) + ": ";

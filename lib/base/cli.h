@@ -61,6 +61,7 @@ private:
     };
     Option& add(const std::string& names);
     const Option* find(const std::string& name) const;
+    std::string suggest(const std::string& unknown) const;
 
     std::string tool_, synopsis_, summary_, notes_, exitCodes_;
     Common& common_;

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <fcntl.h>
 #include <stdio.h>
+#include <csignal>
+#include <filesystem>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -18,18 +20,6 @@ namespace {
     Error e(ErrorKind::BadInput, what + ": " + std::strerror(errno));
     e.setFile(isStdio(path) ? "<stdin>" : path);
     throw e;
-}
-
-void writeAll(int fd, const uint8_t* data, size_t size, const std::string& path) {
-    while (size > 0) {
-        ssize_t n = ::write(fd, data, size);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            throwIo("cannot write", path);
-        }
-        data += n;
-        size -= static_cast<size_t>(n);
-    }
 }
 
 } // namespace
@@ -83,6 +73,73 @@ std::string directoryOf(const std::string& path) {
 bool stdoutIsTerminal() { return ::isatty(STDOUT_FILENO) == 1; }
 bool stderrIsTerminal() { return ::isatty(STDERR_FILENO) == 1; }
 
+// Temporary files not yet renamed into place, so a signal handler can remove them: a run
+// stopped by SIGINT, SIGTERM, SIGHUP or SIGPIPE leaves no .limn-tmp-XXXXXX behind. Fixed-size
+// storage, because a handler may only touch async-signal-safe state.
+namespace {
+
+constexpr int kMaxTemps = 16;
+constexpr size_t kMaxTempPath = 4096;
+char g_temps[kMaxTemps][kMaxTempPath];
+volatile sig_atomic_t g_tempUsed[kMaxTemps];
+
+int registerTemp(const std::string& path) {
+    if (path.size() >= kMaxTempPath) return -1;
+    for (int i = 0; i < kMaxTemps; ++i)
+        if (!g_tempUsed[i]) {
+            std::memcpy(g_temps[i], path.c_str(), path.size() + 1);
+            g_tempUsed[i] = 1;
+            return i;
+        }
+    return -1;
+}
+void unregisterTemp(int slot) {
+    if (slot >= 0) g_tempUsed[slot] = 0;
+}
+
+extern "C" void removeTempsAndDie(int sig) {
+    for (int i = 0; i < kMaxTemps; ++i)
+        if (g_tempUsed[i]) ::unlink(g_temps[i]);
+    ::signal(sig, SIG_DFL);
+    ::raise(sig);
+}
+
+[[noreturn]] void throwOutputError(const std::string& what, const std::string& path) {
+    Error e(ErrorKind::BadInput, what + ": " + std::strerror(errno));
+    e.setFile(isStdio(path) ? "<stdout>" : path);
+    throw e;
+}
+
+// Where writing `path` really goes: through a symbolic link (or a chain of them) to its target,
+// so that overwriting a link updates the file it names instead of replacing the link.
+std::string resolveLinks(const std::string& path) {
+    std::string p = path;
+    for (int hops = 0; hops < 40; ++hops) {
+        struct stat st {};
+        if (::lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return p;
+        std::vector<char> buf(kMaxTempPath);
+        ssize_t n = ::readlink(p.c_str(), buf.data(), buf.size() - 1);
+        if (n < 0) return p;
+        std::string target(buf.data(), static_cast<size_t>(n));
+        p = (!target.empty() && target[0] == '/') ? target : directoryOf(p) + target;
+    }
+    errno = ELOOP;
+    throwOutputError("cannot resolve output", path);
+}
+
+} // namespace
+
+void installOutputCleanupOnSignals() {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+        struct sigaction current {};
+        if (::sigaction(sig, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+        struct sigaction sa {};
+        sa.sa_handler = removeTempsAndDie;
+        sigemptyset(&sa.sa_mask);
+        ::sigaction(sig, &sa, nullptr);
+    }
+}
+
 OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
     if (isStdio(path_)) {
         if (kind == Kind::Binary && stdoutIsTerminal()) {
@@ -91,17 +148,19 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
         }
         return;
     }
+    target_ = resolveLinks(path_);
     // An existing target that is not a regular file (/dev/null, a FIFO, a terminal device) is
     // written in place: renaming a temporary file over it would replace the device or pipe with
     // a plain file (as root, /dev/null itself).
     struct stat st {};
-    if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    const bool exists = ::stat(target_.c_str(), &st) == 0;
+    if (exists && !S_ISREG(st.st_mode)) {
         if (S_ISDIR(st.st_mode)) {
             Error e(ErrorKind::BadInput, "is a directory, not a file");
             e.setFile(path_);
             throw e;
         }
-        fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+        fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
         if (fd_ < 0) {
             Error e(ErrorKind::BadInput, std::string("cannot open output: ") + std::strerror(errno));
             e.setFile(path_);
@@ -115,7 +174,7 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
         }
         return;
     }
-    tempPath_ = directoryOf(path_) + ".limn-tmp-XXXXXX";
+    tempPath_ = directoryOf(target_) + ".limn-tmp-XXXXXX";
     std::vector<char> name(tempPath_.begin(), tempPath_.end());
     name.push_back('\0');
     fd_ = ::mkstemp(name.data());
@@ -125,19 +184,37 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
         throw e;
     }
     tempPath_.assign(name.data());
-    // mkstemp creates 0600; give the file the permissions a plain creat() would (0666 & ~umask).
-    mode_t mask = ::umask(0);
-    ::umask(mask);
-    ::fchmod(fd_, 0666 & ~mask);
+    tempSlot_ = registerTemp(tempPath_);
+    // An existing file keeps its permissions; a new one gets what a plain creat() would give
+    // (0666 & ~umask), where mkstemp gave 0600.
+    if (exists) {
+        ::fchmod(fd_, st.st_mode & 07777);
+    } else {
+        mode_t mask = ::umask(0);
+        ::umask(mask);
+        ::fchmod(fd_, 0666 & ~mask);
+    }
 }
 
 OutputFile::~OutputFile() {
     if (fd_ >= 0) ::close(fd_);
     if (!committed_ && !tempPath_.empty()) ::unlink(tempPath_.c_str());
+    unregisterTemp(tempSlot_);
 }
 
 void OutputFile::write(std::span<const uint8_t> bytes) {
-    writeAll(fd_ >= 0 ? fd_ : STDOUT_FILENO, bytes.data(), bytes.size(), path_);
+    const uint8_t* data = bytes.data();
+    size_t size = bytes.size();
+    const int fd = fd_ >= 0 ? fd_ : STDOUT_FILENO;
+    while (size > 0) {
+        ssize_t n = ::write(fd, data, size);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            throwOutputError("cannot write", path_);
+        }
+        data += n;
+        size -= static_cast<size_t>(n);
+    }
 }
 
 void OutputFile::write(const std::string& text) {
@@ -151,15 +228,18 @@ void OutputFile::commit() {
     }
     if (::close(fd_) != 0) {
         fd_ = -1;
-        throwIo("cannot write", path_);
+        throwOutputError("cannot write", path_);
     }
     fd_ = -1;
     if (tempPath_.empty()) { // written in place (a device or pipe)
         committed_ = true;
         return;
     }
-    if (::rename(tempPath_.c_str(), path_.c_str()) != 0) throwIo("cannot rename into place", path_);
+    if (::rename(tempPath_.c_str(), target_.c_str()) != 0)
+        throwOutputError("cannot rename into place", path_);
     committed_ = true;
+    unregisterTemp(tempSlot_);
+    tempSlot_ = -1;
 }
 
 void writeOutput(const std::string& path, std::span<const uint8_t> bytes, OutputFile::Kind kind) {
@@ -168,31 +248,96 @@ void writeOutput(const std::string& path, std::span<const uint8_t> bytes, Output
     out.commit();
 }
 
-static std::string makeEscape(const std::string& path) {
+bool sameFile(const std::string& a, const std::string& b) {
+    if (isStdio(a) || isStdio(b)) return false;
+    struct stat sa {}, sb {};
+    if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    std::error_code ec1, ec2;
+    auto ca = std::filesystem::weakly_canonical(a, ec1), cb = std::filesystem::weakly_canonical(b, ec2);
+    return !ec1 && !ec2 && ca == cb;
+}
+
+void refuseOverwritingInputs(const std::string& output, const std::vector<std::string>& inputs,
+                             bool (*inPlace)(const std::string&)) {
+    for (const auto& in : inputs)
+        if (sameFile(output, in) && !(inPlace && inPlace(in)))
+            throw Error(ErrorKind::Usage, "the output " + output +
+                                              " is an input of this run and would be destroyed; "
+                                              "write to another file");
+}
+
+// Make's escaping (GNU make 4): a backslash before space, '#', ':' and the glob
+// characters, '$' doubled. What no escaping can express is refused: ';' and '|' (recipe and
+// order-only separators), '=' (a target-specific variable), a tab or a newline, a '%' in the
+// target (a pattern rule) and a trailing backslash (a line continuation).
+std::string makeEscapedName(const std::string& path, bool isTarget) {
+    auto refuse = [&](const std::string& why) {
+        return Error(ErrorKind::Usage, "--depfile: make cannot name '" + path + "' (" + why +
+                                           "); rename it or leave out --depfile");
+    };
+    if (path.empty()) throw refuse("an empty name");
+    if (path.back() == '\\') throw refuse("it ends in a backslash");
     std::string out;
     for (char c : path) {
-        if (c == ' ' || c == '#') out += '\\';
-        if (c == '$') out += '$';
+        if (c == ';' || c == '|' || c == '=') throw refuse(std::string("it contains '") + c + "'");
+        if (c == '\t') throw refuse("it contains a tab");
+        if (c == '\n' || c == '\r') throw refuse("it contains a line break");
+        if (c == '%' && isTarget) throw refuse("a '%' in the target makes a pattern rule");
+        if (c == '$') {
+            out += "$$";
+            continue;
+        }
+        if (std::strchr(" #:*?[]", c)) out += '\\';
         out += c;
     }
     return out;
 }
 
-void writeDepfile(const std::string& depfile, const std::string& output,
-                  const std::vector<std::string>& inputs) {
+Depfile::Depfile(const std::string& path, const std::vector<std::string>& outputs,
+                 const std::vector<std::string>& inputs)
+    : path_(path) {
+    if (path_.empty()) return;
+    if (isStdio(path_))
+        throw Error(ErrorKind::Usage, "--depfile needs a file name, not standard output");
+    for (const auto& o : outputs)
+        if (sameFile(path_, o) || path_ == o)
+            throw Error(ErrorKind::Usage, "--depfile " + path_ +
+                                              " names an output of this run; give it its own name");
+    for (const auto& i : inputs)
+        if (sameFile(path_, i))
+            throw Error(ErrorKind::Usage, "--depfile " + path_ +
+                                              " names an input of this run; give it its own name");
+    // Names make cannot express are refused now, before the run does its work.
+    for (const auto& o : outputs) makeEscapedName(o, true);
+    for (const auto& i : inputs)
+        if (!isStdio(i)) makeEscapedName(i, false);
+    file_.emplace(path_, OutputFile::Kind::Text);
+}
+
+void Depfile::setRule(const std::string& output, const std::vector<std::string>& inputs) {
+    if (!file_) return;
+    for (const auto& i : inputs)
+        if (sameFile(path_, i))
+            throw Error(ErrorKind::Usage, "--depfile " + path_ +
+                                              " names an input of this run; give it its own name");
     // Appended piece by piece: GCC 12 at -O3 reports a false -Wrestrict for `string + ":"`
     // (GCC bug 105651) here.
-    std::string rule = makeEscape(isStdio(output) ? "-" : output);
+    std::string rule = makeEscapedName(isStdio(output) ? "-" : output, true);
     rule.push_back(':');
     for (const auto& in : inputs) {
         if (isStdio(in)) continue;
         rule.push_back(' ');
-        rule.append(makeEscape(in));
+        rule.append(makeEscapedName(in, false));
     }
     rule.push_back('\n');
-    OutputFile out(depfile, OutputFile::Kind::Text);
-    out.write(rule);
-    out.commit();
+    rule_ = std::move(rule);
+}
+
+void Depfile::commit() {
+    if (!file_) return;
+    file_->write(rule_);
+    file_->commit();
 }
 
 } // namespace limn

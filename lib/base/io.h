@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,10 +27,12 @@ bool stdoutIsTerminal();
 bool stderrIsTerminal();
 
 // Writes to `path` atomically: bytes go to a temporary file in the same directory, which commit()
-// renames over `path`. If the object is destroyed without commit() (an error was thrown), the
-// temporary file is removed and `path` is left untouched. For "-" the bytes go to stdout on commit;
-// binary output to a terminal is refused up front. An existing path that is not a regular file
-// (/dev/null, a FIFO) is written in place, never replaced.
+// renames over `path`. If the object is destroyed without commit() (an error was thrown), or the
+// process is stopped by a signal that installOutputCleanupOnSignals() handles, the temporary file
+// is removed and `path` is left untouched. For "-" the bytes go to stdout; binary output to a
+// terminal is refused up front. An existing path that is not a regular file (/dev/null, a FIFO)
+// is written in place, never replaced. Overwriting keeps an existing file's permissions, and a
+// symbolic link is written through (its target is replaced, the link stays).
 class OutputFile {
 public:
     enum class Kind { Binary, Text };
@@ -45,17 +48,48 @@ public:
 
 private:
     std::string path_;
+    std::string target_; // path_ with symbolic links resolved
     std::string tempPath_;
     int fd_ = -1;
+    int tempSlot_ = -1; // in the signal handler's list of temporary files
     bool committed_ = false;
 };
+
+// Removes every OutputFile's temporary file on SIGINT, SIGTERM, SIGHUP and SIGPIPE, then dies of
+// the same signal (cli::run installs it for every tool). Signals set to be ignored stay ignored.
+void installOutputCleanupOnSignals();
 
 // Convenience: writes the whole buffer atomically.
 void writeOutput(const std::string& path, std::span<const uint8_t> bytes, OutputFile::Kind kind);
 
-// A Make rule "OUTPUT: INPUT..." with Make's escaping of spaces, '#' and '$', written atomically
-// (like a compiler's -MD). Inputs that are stdin are left out.
-void writeDepfile(const std::string& depfile, const std::string& output,
-                  const std::vector<std::string>& inputs);
+// Refuses (Error(Usage)) an output that names one of the inputs: the run would destroy what it
+// reads. `inPlace` (optional) says which inputs this tool may rewrite in place (a .limn container
+// updated by a tool that writes containers).
+void refuseOverwritingInputs(const std::string& output, const std::vector<std::string>& inputs,
+                             bool (*inPlace)(const std::string&) = nullptr);
+
+// Whether two paths name the same file (same inode when both exist; else the same canonical
+// path). Standard input/output is never the same file as anything.
+bool sameFile(const std::string& a, const std::string& b);
+
+// A name as GNU make reads it in a rule; throws Error(Usage) for names make cannot express
+// (';', '|', '=', tabs, line breaks, a trailing backslash, '%' in a target).
+std::string makeEscapedName(const std::string& path, bool isTarget);
+
+// The --depfile of a run: a Make rule "OUTPUT: INPUT..." (like a compiler's -MD). Opened with the
+// outputs, so an unwritable depfile fails before any work; a depfile that names an output or an
+// input is a usage error. setRule() before committing the outputs (it may refuse a name), commit()
+// after them, so a failed run leaves neither. Inputs that are stdin are left out. Empty path: none.
+class Depfile {
+public:
+    Depfile(const std::string& path, const std::vector<std::string>& outputs,
+            const std::vector<std::string>& inputs);
+    void setRule(const std::string& output, const std::vector<std::string>& inputs);
+    void commit();
+
+private:
+    std::string path_, rule_;
+    std::optional<OutputFile> file_;
+};
 
 } // namespace limn

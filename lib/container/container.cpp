@@ -1,5 +1,9 @@
 #include "container/container.h"
 
+#include "base/io.h"
+
+#include <cstdio>
+
 #include "base/bytes.h"
 #include "base/error.h"
 
@@ -51,6 +55,16 @@ void Container::remove(FourCC type) {
 
 bool looksLikeContainer(std::span<const uint8_t> bytes) {
     return bytes.size() >= 4 && std::memcmp(bytes.data(), kContainerMagic, 4) == 0;
+}
+
+bool isContainerFile(const std::string& path) {
+    if (isStdio(path)) return false;
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return false;
+    uint8_t head[16] = {};
+    const size_t n = std::fread(head, 1, sizeof head, f);
+    std::fclose(f);
+    return looksLikeContainer({head, n});
 }
 
 static bool isTypeChar(uint8_t c) {

@@ -53,6 +53,8 @@ public:
 
 // True when the bytes start with the container magic (for format sniffing on stdin).
 bool looksLikeContainer(std::span<const uint8_t> bytes);
+// True when the file exists and starts with the container magic (false for stdin).
+bool isContainerFile(const std::string& path);
 
 // Parses and validates the framing (formats/limn.md, "Validity"). Throws Error(BadInput).
 Container parseContainer(std::span<const uint8_t> bytes);

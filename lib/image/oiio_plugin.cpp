@@ -7,9 +7,12 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
+
+#include <unistd.h>
 
 namespace {
 
@@ -22,6 +25,42 @@ int fail(const std::string& message, char* error, size_t errorSize) {
     return 1;
 }
 
+// libpng (under OpenImageIO) prints its errors on stderr itself ("libpng error: Invalid IHDR
+// data") before OpenImageIO reports the same text. While a read runs, stderr goes to a temporary
+// file; on failure that text is dropped (the error message carries it), after a successful read
+// it is passed on unchanged.
+class StderrCapture {
+public:
+    StderrCapture() {
+        std::fflush(stderr);
+        file_ = std::tmpfile();
+        saved_ = file_ ? ::dup(STDERR_FILENO) : -1;
+        if (saved_ >= 0) ::dup2(::fileno(file_), STDERR_FILENO);
+    }
+    ~StderrCapture() { finish(false); }
+    void finish(bool passOn) {
+        if (saved_ < 0) return;
+        std::fflush(stderr);
+        ::dup2(saved_, STDERR_FILENO);
+        ::close(saved_);
+        saved_ = -1;
+        if (passOn) {
+            std::rewind(file_);
+            char buf[4096];
+            size_t n;
+            while ((n = std::fread(buf, 1, sizeof buf, file_)) > 0) std::fwrite(buf, 1, n, stderr);
+        }
+        std::fclose(file_);
+        file_ = nullptr;
+    }
+    StderrCapture(const StderrCapture&) = delete;
+    StderrCapture& operator=(const StderrCapture&) = delete;
+
+private:
+    std::FILE* file_ = nullptr;
+    int saved_ = -1;
+};
+
 } // namespace
 
 extern "C" __attribute__((visibility("default"))) int limn_image_abi_version(void) {
@@ -31,6 +70,7 @@ extern "C" __attribute__((visibility("default"))) int limn_image_abi_version(voi
 extern "C" __attribute__((visibility("default"))) int
 limn_image_read(const char* path, const void* bytes, size_t size, void* context,
                 LimnImageAllocate allocate, char* error, size_t errorSize) {
+    StderrCapture capture;
     try {
         std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
         if (bytes) memory = std::make_unique<OIIO::Filesystem::IOMemReader>(bytes, size);
@@ -57,6 +97,7 @@ limn_image_read(const char* path, const void* bytes, size_t size, void* context,
         if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out))
             return fail(in->geterror(), error, errorSize);
         in->close();
+        capture.finish(true);
         return 0;
     } catch (const std::exception& e) {
         return fail(e.what(), error, errorSize);

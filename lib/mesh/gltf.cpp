@@ -217,10 +217,24 @@ struct Welder {
 
 } // namespace
 
+namespace {
+
+// tinygltf's own file reader, noting each file it read (the depfile lists them).
+bool readAndRecord(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void* user) {
+    if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+    if (user) static_cast<std::vector<std::string>*>(user)->push_back(path);
+    return true;
+}
+
+} // namespace
+
 Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
-              Warnings& warnings) {
+              Warnings& warnings, std::vector<std::string>* filesRead) {
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(skipImage, nullptr);
+    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readAndRecord,
+                           &tinygltf::WriteWholeFile, filesRead});
     tinygltf::Model model;
     std::string err, warn;
     bool ok;

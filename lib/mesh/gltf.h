@@ -8,12 +8,15 @@
 
 #include <span>
 #include <string>
+#include <vector>
 
 namespace limn {
 
 // `baseDir` resolves external buffers (empty for stdin: then only embedded buffers work).
 // UVs are converted to limn's convention (v up, as in OBJ): v_limn = 1 - v_gltf.
+// `filesRead` (optional) gets every external file the asset pulled in (buffers, images), for
+// depfiles.
 Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
-              Warnings& warnings);
+              Warnings& warnings, std::vector<std::string>* filesRead = nullptr);
 
 } // namespace limn

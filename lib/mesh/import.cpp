@@ -9,6 +9,7 @@
 #include "mesh/openmesh_io.h"
 
 #include <cstring>
+#include <filesystem>
 
 namespace limn {
 
@@ -54,7 +55,8 @@ const char* formatName(MeshFormat f) {
     return "unknown";
 }
 
-Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings) {
+Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
+                std::vector<std::string>* filesRead) {
     MeshFormat format = isStdio(path) ? formatFromContent(bytes) : formatFromExtension(extensionOf(path));
     if (format == MeshFormat::Unknown) {
         Error e(ErrorKind::BadInput, "unknown mesh format '" + extensionOf(path) +
@@ -65,8 +67,8 @@ Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warning
     try {
         switch (format) {
         case MeshFormat::Obj: return readObj(bytes, warnings);
-        case MeshFormat::Gltf: return readGltf(bytes, false, directoryOf(path), warnings);
-        case MeshFormat::Glb: return readGltf(bytes, true, directoryOf(path), warnings);
+        case MeshFormat::Gltf: return readGltf(bytes, false, directoryOf(path), warnings, filesRead);
+        case MeshFormat::Glb: return readGltf(bytes, true, directoryOf(path), warnings, filesRead);
         case MeshFormat::Ply: return readWithOpenMesh(bytes, ".ply", warnings);
         case MeshFormat::Off: return readWithOpenMesh(bytes, ".off", warnings);
         case MeshFormat::Container: return loadMesh(parseContainer(bytes));
@@ -79,12 +81,28 @@ Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warning
     return {};
 }
 
-Mesh importMeshFile(const std::string& path, Warnings& warnings) {
+Mesh importMeshFile(const std::string& path, Warnings& warnings,
+                    std::vector<std::string>* filesRead) {
     auto bytes = readInput(path);
-    return importMesh(path, bytes, warnings);
+    return importMesh(path, bytes, warnings, filesRead);
+}
+
+void checkExportPath(const std::string& path) {
+    const std::string ext = extensionOf(path);
+    if (isStdio(path) || ext == ".obj" || ext == ".ply" || ext == ".off") return;
+    // A device or pipe (/dev/null, a FIFO) gets OBJ, like standard output.
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+        !std::filesystem::is_directory(status))
+        return;
+    throw Error(ErrorKind::Usage, "cannot write '" + path + "': the output format is chosen by " +
+                                      "the extension, one of .obj, .ply, .off (standard output " +
+                                      "gets OBJ)");
 }
 
 std::string exportMesh(const Mesh& mesh, const std::string& path) {
+    checkExportPath(path);
     std::string ext = extensionOf(path);
     if (ext == ".ply") return writePly(mesh);
     if (ext == ".off") return writeOff(mesh);

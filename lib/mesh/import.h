@@ -20,12 +20,19 @@ const char* formatName(MeshFormat format);
 // Reads a mesh from `bytes`; `path` gives the extension and the base directory for external
 // glTF buffers ("-" for stdin: sniffed). A .limn container yields its MESH chunks. Errors carry
 // the file name.
-Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings);
+// `filesRead` (optional) gets the files besides `path` that the mesh pulled in (a .gltf's
+// buffers and images), for depfiles.
+Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
+                std::vector<std::string>* filesRead = nullptr);
 
 // Reads the file (or stdin) and imports it.
-Mesh importMeshFile(const std::string& path, Warnings& warnings);
+Mesh importMeshFile(const std::string& path, Warnings& warnings,
+                    std::vector<std::string>* filesRead = nullptr);
 
-// Writes OBJ, PLY or OFF by the output's extension (stdout and unknown extensions: OBJ).
+// Writes OBJ, PLY or OFF by the output's extension (stdout: OBJ; anything else is refused).
 std::string exportMesh(const Mesh& mesh, const std::string& path);
+// Throws Error(Usage) unless `path` is standard output, a device or pipe, or ends in .obj,
+// .ply or .off.
+void checkExportPath(const std::string& path);
 
 } // namespace limn

@@ -68,7 +68,9 @@ int main(int argc, char** argv) {
         if (!parser.parse(ac, av)) return 0;
         const std::string name = input == "-" ? "<stdin>" : input;
 
+        refuseOverwritingInputs(common.output, {input}, isContainerFile);
         OutputFile out(common.output, OutputFile::Kind::Binary);
+        Depfile depfile(common.depfile, {common.output}, {input});
         auto bytes = readInput(input);
         Container container;
         try {
@@ -125,8 +127,9 @@ int main(int argc, char** argv) {
             throw;
         }
         out.write(serializeContainer(container));
+        depfile.setRule(common.output, {input});
         out.commit();
-        if (!common.depfile.empty()) writeDepfile(common.depfile, common.output, {input});
+        depfile.commit();
         return 0;
     });
 }

@@ -28,11 +28,14 @@ int main(int argc, char** argv) {
                    "Example:\n  limn-classify frog.obj | limn-tables --depth 4 | limn-render -o frog.png\n");
         if (!parser.parse(ac, av)) return 0;
 
+        refuseOverwritingInputs(common.output, {input}, isContainerFile);
         OutputFile out(common.output, OutputFile::Kind::Binary);
+        Depfile depfile(common.depfile, {common.output}, {input});
         auto bytes = readInput(input);
         Warnings warnings;
         Container container;
         Mesh mesh;
+        std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
         if (looksLikeContainer(bytes)) {
             try {
                 container = parseContainer(bytes);
@@ -42,7 +45,7 @@ int main(int argc, char** argv) {
                 throw;
             }
         } else {
-            mesh = importMesh(input, bytes, warnings);
+            mesh = importMesh(input, bytes, warnings, &inputs);
         }
         std::optional<BoundaryRule> override;
         if (boundary == "none") override = BoundaryRule::None;
@@ -62,8 +65,9 @@ int main(int argc, char** argv) {
         storeMesh(container, mesh);
         container.set(encodeClassificationChunk(c));
         out.write(serializeContainer(container));
+        depfile.setRule(common.output, inputs);
         out.commit();
-        if (!common.depfile.empty()) writeDepfile(common.depfile, common.output, {input});
+        depfile.commit();
         return 0;
     });
 }

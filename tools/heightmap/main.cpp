@@ -31,12 +31,16 @@ int main(int argc, char** argv) {
             .integer("--seed", "S", &seed, 0, 1 << 30, "noise seed")
             .integer("--padding", "P", &padding, 0, 64, "texels a surface map extends past each UV island");
         if (!parser.parse(ac, av)) return 0;
-        OutputFile out(common.output, OutputFile::Kind::Binary); // refused on a terminal
         const bool needsMesh = kind != "uv";
+        std::vector<std::string> inputs =
+            needsMesh ? std::vector<std::string>{input} : std::vector<std::string>{};
+        refuseOverwritingInputs(common.output, inputs);
+        OutputFile out(common.output, OutputFile::Kind::Binary); // refused on a terminal
+        Depfile depfile(common.depfile, {common.output}, inputs);
         Mesh mesh;
         if (needsMesh) {
             Warnings warnings;
-            mesh = importMeshFile(input, warnings);
+            mesh = importMeshFile(input, warnings, &inputs);
             cli::printWarnings(warnings, isStdio(input) ? "<stdin>" : input);
         }
         HeightmapOptions o;
@@ -54,10 +58,9 @@ int main(int argc, char** argv) {
             throw;
         }
         out.write(render::encodeGray16Png(o.size, o.size, values));
+        depfile.setRule(common.output, inputs);
         out.commit();
-        if (!common.depfile.empty())
-            writeDepfile(common.depfile, common.output,
-                         needsMesh ? std::vector<std::string>{input} : std::vector<std::string>{});
+        depfile.commit();
         return 0;
     });
 }

@@ -134,10 +134,14 @@ int main(int argc, char** argv) {
         if (boundary == "edge") importOptions.boundary = BoundaryRule::EdgeOnly;
         if (boundary == "edge-corner") importOptions.boundary = BoundaryRule::EdgeAndCorner;
 
+        checkExportPath(common.output);
+        refuseOverwritingInputs(common.output, {input});
         OutputFile out(common.output, OutputFile::Kind::Text);
+        Depfile depfile(common.depfile, {common.output}, {input});
         const std::string inputName = isStdio(input) ? "<stdin>" : input;
         Warnings warnings;
-        Mesh mesh = importMeshFile(input, warnings);
+        std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
+        Mesh mesh = importMeshFile(input, warnings, &inputs);
         loop::TriMesh control;
         try {
             control = loop::fromMesh(mesh, importOptions, warnings);
@@ -163,8 +167,9 @@ int main(int argc, char** argv) {
         }
 
         out.write(exportMesh(loop::toMesh(result.mesh, mesh.tags), common.output));
+        depfile.setRule(common.output, inputs);
         out.commit();
-        if (!common.depfile.empty()) writeDepfile(common.depfile, common.output, {input});
+        depfile.commit();
         if (stats) writeStats(control, result, measure ? &measurement : nullptr);
         return 0;
     });

@@ -56,6 +56,7 @@ struct Input {
     std::optional<Seams> seams;
     uint64_t seamsHash = 0; // what SEAM must have been made from
     std::optional<blend::BlendSurface> blend;
+    std::vector<std::string> filesRead; // a .gltf's buffers and images
 };
 
 Input readInput(const std::string& input, Surface surface, Warnings& warnings) {
@@ -68,7 +69,7 @@ Input readInput(const std::string& input, Surface surface, Warnings& warnings) {
             c = parseContainer(bytes);
             in.mesh = loadMesh(c);
         } else {
-            in.mesh = importMesh(input, bytes, warnings);
+            in.mesh = importMesh(input, bytes, warnings, &in.filesRead);
         }
         const bool hasBlend = container && c.find(blend::kBlendChunk);
         const Chunk* tables = container ? c.find(kTablesChunk) : nullptr;
@@ -323,10 +324,19 @@ int main(int argc, char** argv) {
             usage("--trim cuts blending surfaces; it does not go with --surface " + surfaceName);
 
         // Open outputs first: a refused terminal or an unwritable directory fails before any work.
+        std::vector<std::string> inputs = {input};
+        for (const std::string* extra : {&trimPath, &displace, &texture})
+            if (!extra->empty()) inputs.push_back(*extra);
+        if (writeImage) refuseOverwritingInputs(common.output, inputs);
+        if (!meshOut.empty()) refuseOverwritingInputs(meshOut, inputs);
         std::optional<OutputFile> png, ply;
         if (writeImage) png.emplace(common.output, OutputFile::Kind::Binary);
         if (!meshOut.empty())
             ply.emplace(meshOut, meshAscii ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
+        std::vector<std::string> outputs;
+        if (writeImage) outputs.push_back(common.output);
+        if (!meshOut.empty()) outputs.push_back(meshOut);
+        Depfile depfile(writeImage ? common.depfile : std::string(), outputs, inputs);
 
         Warnings warnings;
         Input in = readInput(input, surface, warnings);
@@ -422,6 +432,8 @@ int main(int argc, char** argv) {
         }
         if (validation) checkValidation(*validation);
 
+        inputs.insert(inputs.end(), in.filesRead.begin(), in.filesRead.end());
+        if (writeImage) depfile.setRule(common.output, inputs);
         if (png) {
             png->write(pngBytes);
             png->commit();
@@ -430,12 +442,7 @@ int main(int argc, char** argv) {
             ply->write(plyBytes);
             ply->commit();
         }
-        if (!common.depfile.empty() && writeImage) {
-            std::vector<std::string> inputs = {input};
-            for (const std::string* extra : {&trimPath, &displace, &texture})
-                if (!extra->empty()) inputs.push_back(*extra);
-            writeDepfile(common.depfile, common.output, inputs);
-        }
+        depfile.commit();
         return 0;
     });
 }

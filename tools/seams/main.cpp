@@ -26,7 +26,9 @@ int main(int argc, char** argv) {
                    " limn-render --displace d.png -o spot.png\n");
         if (!parser.parse(ac, av)) return 0;
 
+        refuseOverwritingInputs(common.output, {input}, isContainerFile);
         OutputFile out(common.output, OutputFile::Kind::Binary);
+        Depfile depfile(common.depfile, {common.output}, {input});
         Container container = loadContainerFile(input);
         try {
             Mesh mesh = loadMesh(container);
@@ -42,8 +44,9 @@ int main(int argc, char** argv) {
             throw;
         }
         out.write(serializeContainer(container));
+        depfile.setRule(common.output, {input});
         out.commit();
-        if (!common.depfile.empty()) writeDepfile(common.depfile, common.output, {input});
+        depfile.commit();
         return 0;
     });
 }

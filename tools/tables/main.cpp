@@ -35,7 +35,9 @@ int main(int argc, char** argv) {
                    "Example:\n  limn-classify spot.obj | limn-tables --depth 4 -o spot.limn\n");
         if (!parser.parse(ac, av)) return 0;
 
+        refuseOverwritingInputs(common.output, {input}, isContainerFile);
         OutputFile out(common.output, OutputFile::Kind::Binary);
+        Depfile depfile(common.depfile, {common.output}, {input});
         Container container = loadContainerFile(input);
         const std::string name = isStdio(input) ? "<stdin>" : input;
         Tables tables;
@@ -65,8 +67,9 @@ int main(int argc, char** argv) {
                       "valence-2 vertices at the last level)");
         container.set(encodeTablesChunk(tables));
         out.write(serializeContainer(container));
+        depfile.setRule(common.output, {input});
         out.commit();
-        if (!common.depfile.empty()) writeDepfile(common.depfile, common.output, {input});
+        depfile.commit();
         return 0;
     });
 }

@@ -73,13 +73,16 @@ int main(int argc, char** argv) {
         pattern.every = static_cast<uint32_t>(every);
         if (!removed.empty()) pattern.removed = faceList(removed);
 
+        refuseOverwritingInputs(common.output, {input});
         OutputFile out(common.output, OutputFile::Kind::Binary);
+        Depfile depfile(common.depfile, {common.output}, {input});
         auto bytes = readInput(input);
         size_t faces = 0;
+        std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
         try {
             Warnings warnings;
             Mesh mesh = looksLikeContainer(bytes) ? loadMesh(parseContainer(bytes))
-                                                  : importMesh(input, bytes, warnings);
+                                                  : importMesh(input, bytes, warnings, &inputs);
             cli::printWarnings(warnings, input == "-" ? "<stdin>" : input);
             faces = mesh.faceCount();
             for (uint32_t f : pattern.removed)
@@ -100,8 +103,9 @@ int main(int argc, char** argv) {
                   std::to_string(tile));
         render::Image atlas = render::makeTrimAtlas(static_cast<uint32_t>(faces), pattern);
         out.write(render::encodePng(atlas));
+        depfile.setRule(common.output, inputs);
         out.commit();
-        if (!common.depfile.empty()) writeDepfile(common.depfile, common.output, {input});
+        depfile.commit();
         return 0;
     });
 }
