@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <stdlib.h>
+#include <unistd.h>
+
 #include <set>
 #include <sstream>
 
@@ -172,6 +176,14 @@ TEST(Cli, DepfileIsAMakeRule) {
 
 TEST(Cli, BinaryOutputIsRefusedOnATerminal) {
     if (!std::filesystem::exists("/usr/bin/script")) GTEST_SKIP() << "no script(1) for a pty";
+    // A chroot without /dev/pts (a debootstrapped test machine) has no pseudo-terminals at all.
+    const int pty = ::posix_openpt(O_RDWR | O_NOCTTY);
+    const char* slave = pty >= 0 && ::grantpt(pty) == 0 && ::unlockpt(pty) == 0 ? ::ptsname(pty)
+                                                                                 : nullptr;
+    const int slaveFd = slave ? ::open(slave, O_RDWR | O_NOCTTY) : -1;
+    if (slaveFd >= 0) ::close(slaveFd);
+    if (pty >= 0) ::close(pty);
+    if (slaveFd < 0) GTEST_SKIP() << "no pseudo-terminal can be opened (is /dev/pts mounted?)";
     test::ScratchDir dir;
     test::writeFile(dir / "t.obj", kTriangleObj);
     // script(1) runs the tool with a pseudo-terminal as stdout; -e passes its exit code on.
