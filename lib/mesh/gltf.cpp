@@ -9,6 +9,7 @@
 #include <tiny_gltf.h>
 
 #include <cstring>
+#include <cmath>
 #include <map>
 
 namespace limn {
@@ -153,7 +154,12 @@ struct Welder {
         for (size_t i = 0; i < positions.count(); ++i) {
             glm::dvec4 p(positions.component(i, 0), positions.component(i, 1),
                          positions.component(i, 2), 1.0);
-            welded[i] = weldPosition(glm::dvec3(transform * p));
+            const glm::dvec3 q(transform * p);
+            // A NaN would also break the welding map's ordering; refuse it like Inf.
+            if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+                throwBadInput(what + " POSITION " + std::to_string(i) +
+                              " is not finite (NaN or Inf), after the node transforms");
+            welded[i] = weldPosition(q);
         }
         std::vector<uint32_t> uvs;
         auto tc = prim.attributes.find("TEXCOORD_0");
@@ -162,8 +168,12 @@ struct Welder {
             if (texcoords.components() != 2 || texcoords.count() != positions.count())
                 throwBadInput(what + " TEXCOORD_0 does not match POSITION");
             uvs.resize(texcoords.count());
-            for (size_t i = 0; i < texcoords.count(); ++i)
-                uvs[i] = weldUV({texcoords.component(i, 0), 1.0 - texcoords.component(i, 1)});
+            for (size_t i = 0; i < texcoords.count(); ++i) {
+                const double u = texcoords.component(i, 0), v = texcoords.component(i, 1);
+                if (!std::isfinite(u) || !std::isfinite(v))
+                    throwBadInput(what + " TEXCOORD_0 " + std::to_string(i) + " is not finite");
+                uvs[i] = weldUV({u, 1.0 - v});
+            }
             anyUV = true;
         } else {
             anyWithoutUV = true;

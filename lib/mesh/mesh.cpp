@@ -2,12 +2,29 @@
 
 #include "base/error.h"
 
+#include <glm/common.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 namespace limn {
+
+namespace {
+
+// What float arithmetic on the GPU carries with room for squared lengths (3.4e38 and 1.2e-38).
+constexpr double kMaxCoordinate = 1e18;
+constexpr double kMinExtent = 1e-18;
+
+std::string shortNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
+} // namespace
 
 void validateMesh(const Mesh& m) {
     const size_t V = m.vertexCount();
@@ -20,7 +37,24 @@ void validateMesh(const Mesh& m) {
         const auto& p = m.positions[v];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throwBadInput("vertex " + std::to_string(v) + " has a non-finite position (NaN or Inf)");
+        // The GPU computes in float and squares lengths (normals, projections): beyond 1e18 a
+        // square overflows float's 3.4e38.
+        if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
+            throwBadInput("vertex " + std::to_string(v) + " lies " +
+                          shortNumber(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})) +
+                          " from the origin, beyond the 1e18 that the GPU's float arithmetic "
+                          "carries; scale the mesh down");
     }
+    // A mesh whose extent float cannot resolve (1e-300) would render as a point or not at all.
+    glm::dvec3 lo = m.positions[0], hi = m.positions[0];
+    for (const auto& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const double magnitude = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z),
+                                       std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
+    if (extent < kMinExtent || (magnitude > 0 && extent < magnitude * 1e-6))
+        throwBadInput("the mesh spans " + shortNumber(extent) + " (at " + shortNumber(magnitude) +
+                      " from the origin); the GPU's float "
+                      "arithmetic cannot resolve it: scale it up or move it to the origin");
     for (size_t f = 0; f < m.faceCount(); ++f) {
         if (m.faceOffsets[f + 1] < m.faceOffsets[f])
             throwBadInput("face offsets are not increasing at face " + std::to_string(f));

@@ -85,7 +85,8 @@ struct Mesh {
 
 // Checks every invariant a consumer relies on and throws Error(BadInput) naming the first
 // offending face, corner, vertex or tag: at least one face, faces of >= 3 distinct vertices,
-// indices in range, finite positions and UVs, UV indices per corner, tag indices in range,
+// indices in range, finite positions and UVs that the GPU's float can carry (|x| <= 1e18, an
+// extent float resolves), UV indices per corner, tag indices in range,
 // sharpness finite and >= 0. Non-manifold topology is the topology layer's business.
 void validateMesh(const Mesh& mesh);
 

@@ -148,11 +148,20 @@ int main(int argc, char** argv) {
             .custom(
                 "--size", "WxH",
                 [&](const std::string& v) {
-                    unsigned w = 0, h = 0;
-                    char x = 0, extra = 0;
-                    if (std::sscanf(v.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
-                        w < 1 || h < 1 || w > 16384 || h > 16384)
+                    // Digits only, no wrap-around: 4294967297x1 is refused, not read as 1x1.
+                    auto side = [&](const std::string& text) {
+                        unsigned long long n = 0;
+                        const bool digits = !text.empty() && text.size() <= 6 &&
+                                            text.find_first_not_of("0123456789") == std::string::npos;
+                        if (digits) n = std::stoull(text);
+                        if (!digits || n < 1 || n > 16384)
+                            usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
+                        return static_cast<unsigned>(n);
+                    };
+                    const size_t x = v.find('x');
+                    if (x == std::string::npos)
                         usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
+                    const unsigned w = side(v.substr(0, x)), h = side(v.substr(x + 1));
                     settings.width = w;
                     settings.height = h;
                 },
@@ -303,6 +312,8 @@ int main(int argc, char** argv) {
         if (settings.view.eye && viewGiven) usage("--view and --eye exclude each other");
         if ((settings.view.target || settings.view.up) && !settings.view.eye)
             usage("--target and --up describe an explicit camera; give --eye too");
+        if (settings.view.eye && settings.view.target && *settings.view.eye == *settings.view.target)
+            usage("--eye and --target are the same point, so the camera has no direction");
         if (shade == "normal") settings.shade = render::Shade::Normal;
         if (shade == "uv") settings.shade = render::Shade::Uv;
         if (shade == "levels") settings.shade = render::Shade::Levels;
