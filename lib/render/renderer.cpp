@@ -85,8 +85,26 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         DisplacementPlan plan{settings.seams, settings.seamFix};
         if (settings.displacementMap && !settings.seams)
             throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
+        viewAdaptive_ = settings.edgePixels > 0 && !settings.displacementMap && !settings.wire;
         SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap,
-                                                  settings.displacementMap ? &plan : nullptr);
+                                                  settings.displacementMap ? &plan : nullptr, viewAdaptive_);
+        AdaptiveOptions adaptive;
+        adaptive.edgePixels = static_cast<float>(settings.edgePixels);
+        adaptive.tess = settings.tessCap;
+        adaptive.cull = settings.cull;
+        {
+            // Per-frame buffers: every element at its smallest (whole-surface --mesh-out), plus
+            // a budget for the view: about 2 triangles per P x P pixels seen, with room for back
+            // faces, off-screen parts and rounding (x32), at least 2^20.
+            uint64_t minimum = 0;
+            for (const auto& e : draw.pieces.elements)
+                for (int k = 0; k < 4; ++k) minimum += e.sideCount[k];
+            const double p = std::max(settings.edgePixels, 0.25);
+            const uint64_t view = std::max<uint64_t>(
+                uint64_t(32.0 * settings.width * settings.height / (p * p)), uint64_t(1) << 20);
+            adaptive.maxVertices = minimum + draw.pieces.elements.size() + view;
+            adaptive.maxTriangles = minimum + 2 * view;
+        }
         bounds = draw.bounds;
         if (settings.displacementMap) { // leave room for the displaced surface in the framing
             glm::dvec3 pad(std::abs(settings.displaceScale) * 0.5);
@@ -98,7 +116,8 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             ctx, std::move(draw),
             settings.evalInCompute ? SubdivisionPass::Eval::Compute : SubdivisionPass::Eval::Vertex,
             settings.evaluateVertices || settings.wire, settings.shade == Shade::Levels,
-            settings.displacementMap ? &displacement : nullptr, settings.texture);
+            settings.displacementMap ? &displacement : nullptr, settings.texture,
+            viewAdaptive_ ? &adaptive : nullptr);
     } else {
         if (settings.texture)
             throw Error(ErrorKind::BadInput,
@@ -151,6 +170,8 @@ void Renderer::recordUpload() {
 
 void Renderer::recordCompute() {
     auto& g = *gpu_;
+    const glm::mat4 vp(camera_.viewProjection(double(settings_.width) / settings_.height));
+    pass_->setView(vp, settings_.width, settings_.height);
     timed_.begin(g.cmd, "copy control points", true);
     g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(controlPoints_.size()),
                    VertexPush{0});

@@ -8,6 +8,8 @@
 #include <glm/common.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <cstdio>
 #include <set>
 
 namespace limn::render {
@@ -61,8 +63,41 @@ void sideUVsOf(const ElementSeams& es, const Seams& seams, const TessVertex& tv,
 
 } // namespace
 
+namespace {
+
+// Refuses, before any work, a fixed tessellation whose buffers would not fit 128 MiB: the
+// segments per side of each element as buildTessellation will choose them.
+void checkFixedSize(const Tables& t, uint32_t tessCap) {
+    const uint32_t N = t.depth, cap = std::bit_floor(std::max(tessCap, 1u));
+    uint64_t triangles = 0, points = 0;
+    auto add = [&](float size, uint32_t level) {
+        const uint64_t W = uint64_t(double(size) * (1u << N));
+        const uint64_t S = std::min<uint64_t>(std::min<uint64_t>(1ull << (N - level), cap), std::max<uint64_t>(W, 1));
+        triangles += 2 * S * S;
+        points += S * S;
+    };
+    for (const Patch& p : t.patches) add(p.size, p.level);
+    for (const IrregularFace& q : t.irregular) add(q.size, N);
+    const uint64_t limit = uint64_t(128) << 20;
+    const uint64_t indexBytes = triangles * 12, vertexBytes = points * 16;
+    if (indexBytes <= limit && vertexBytes <= limit) return;
+    char msg[512];
+    std::snprintf(msg, sizeof msg,
+                  "the fixed tessellation (--edge-pixels 0) would draw about %llu triangles: GPU buffer "
+                  "'%s' would need about %.1f MiB, over WebGPU's 128 MiB storage-buffer limit; use the "
+                  "view-adaptive tessellation (--edge-pixels P > 0, the default), a lower --tess, or "
+                  "tables of lower depth (limn-tables --depth)",
+                  static_cast<unsigned long long>(triangles),
+                  indexBytes > limit ? "triangle indices" : "tessellation vertices",
+                  double(std::max(indexBytes, vertexBytes)) / (1 << 20));
+    throw Error(ErrorKind::BadInput, msg);
+}
+
+} // namespace
+
 SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t tessCap,
-                                   const DisplacementPlan* displacement) {
+                                   const DisplacementPlan* displacement, bool adaptive) {
+    if (!adaptive) checkFixedSize(t, tessCap);
     SubdivisionDraw d;
     d.baseVertices = t.levels[0].count();
     d.totalVertices = t.totalVertices;
@@ -102,6 +137,16 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
     }
 
     d.hasUVs = mesh.hasUVs();
+    glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
+    for (const auto& q : mesh.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    d.bounds = {lo, hi};
+    if (adaptive) {
+        if (displacement)
+            throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation without displacement only");
+        d.adaptive = true;
+        d.pieces = buildEdgePieces(mesh, t);
+        return d;
+    }
     Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs);
     d.stitchedEdges = tess.stitchedEdges;
     d.tessVertices.reserve(tess.vertices.size());
@@ -154,9 +199,6 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
             d.wireLines.push_back(b);
         }
     }
-    glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
-    for (const auto& q : mesh.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
-    d.bounds = {lo, hi};
     return d;
 }
 

@@ -131,6 +131,7 @@ int main(int argc, char** argv) {
              meshAscii = false;
         bool viewGiven = false;
         int bench = 0, tess = 64, grid = 16;
+        double edgePixels = 4, benchOrbit = 0;
         cli::Parser parser("limn-render", "[options] [INPUT|-] -o OUTPUT.png",
                            "Renders a .limn container (output of limn-classify, limn-tables, "
                            "limn-seams, limn-blend)\n"
@@ -240,7 +241,17 @@ int main(int argc, char** argv) {
                     "                            lavapipe, bench_render), compute with --displace (the\n"
                     "                            displaced normals need it) and for blending surfaces")
             .integer("--tess", "N", &tess, 1, 4096,
-                     "segments per side of a patch at most; a level-l patch gets 2^(N-l)")
+                     "most segments per patch edge, at any level. View-adaptive: each edge piece\n"
+                     "                            gets what its pixels need, 1 to N; --edge-pixels 0: a\n"
+                     "                            level-l patch side gets min(2^(depth-l), N) (N rounded\n"
+                     "                            down to a power of two)")
+            .real("--edge-pixels", "P", &edgePixels, 0, 4096,
+                  "view-adaptive tessellation (issue 11): each patch edge is cut into segments of\n"
+                  "                            about P pixels on screen, decided per frame on the GPU\n"
+                  "                            (compute passes; patches outside the view are not\n"
+                  "                            drawn); 0: the fixed grids of 2^(depth-l) segments per\n"
+                  "                            level-l patch side (paper 000, 4.3). --displace and\n"
+                  "                            --wire use the fixed grids")
             .integer("--grid", "K", &grid, 1, static_cast<int>(render::kMaxBlendGrid),
                      "blending surface: each face drawn as a K x K grid of cells")
             .text(
@@ -264,6 +275,8 @@ int main(int argc, char** argv) {
             .integer("--bench", "FRAMES", &bench, 0, 100000,
                      "render FRAMES frames after 3 warm-up frames and print one JSON object of\n"
                      "                            medians to standard output; 0 renders once")
+            .real("--bench-orbit", "DEG", &benchOrbit, -360, 360,
+                  "with --bench: turn the camera DEG degrees about its target before every frame")
             .notes(
                 "Output: -o FILE.png, or -o - for standard output (refused on a terminal). With\n"
                 "--bench, standard output carries the JSON and the image is written only with\n"
@@ -341,6 +354,7 @@ int main(int argc, char** argv) {
             }
         }
         settings.tessCap = static_cast<uint32_t>(tess);
+        settings.edgePixels = edgePixels;
         std::optional<render::FloatImage> displacementMap, textureMap;
         if (!displace.empty()) {
             displacementMap = render::loadImage(displace);
@@ -391,7 +405,7 @@ int main(int argc, char** argv) {
                       "," + std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
 
             if (bench) {
-                render::BenchResult b = render::runBenchmark(renderer, bench);
+                render::BenchResult b = render::runBenchmark(renderer, bench, 3, benchOrbit);
                 JsonWriter j;
                 j.beginObject().field("frames", b.frames);
                 j.key("gpu_ms").beginObject();
