@@ -13,6 +13,7 @@ namespace {
 
 struct CullPush { // adaptive_cull.comp
     float viewProj[16];
+    float eye[4];
     uint32_t patchCount, enabled;
 };
 struct RatePush { // adaptive_rates.comp
@@ -138,6 +139,8 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd) {
     const auto write = gpu::Access::ComputeWrite, read = gpu::Access::ComputeRead;
     CullPush cp{};
     copyMatrix(view_.viewProj, cp.viewProj);
+    for (int i = 0; i < 3; ++i) cp.eye[i] = view_.eye[i];
+    cp.eye[3] = view_.facing;
     cp.patchCount = patchCount_;
     cp.enabled = options_.cull ? 1u : 0u;
     cmd.dispatch(*cullPass_, cullBind_, elementCount_, cp);

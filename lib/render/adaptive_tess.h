@@ -39,12 +39,15 @@ static_assert(sizeof(GpuAdaptiveElement) == 80);
 struct AdaptiveView {
     glm::mat4 viewProj{1.0f};
     uint32_t width = 1, height = 1;
+    glm::vec3 eye{0.0f};
+    float facing = 0; // cull patches facing away: +1 / -1 (normals' orientation), 0 never
 };
 
 struct AdaptiveOptions {
     float edgePixels = 4;   // target projected segment length
     uint32_t tess = 64;     // most segments per edge piece and per element interior
     bool cull = true;       // skip drawing elements outside the frustum
+    bool backFaceCull = true; // ... and those facing away (closed surfaces seen from outside)
     float texelsPerUV = 0;  // displacement map size: its texels bound the rates too (0: none)
     // Budget of the per-frame buffers; the capacity is the smaller of this and what the largest
     // rates could ever need.

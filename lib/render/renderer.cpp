@@ -92,6 +92,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         adaptive.edgePixels = static_cast<float>(settings.edgePixels);
         adaptive.tess = settings.tessCap;
         adaptive.cull = settings.cull;
+        adaptive.backFaceCull = settings.cull && !settings.backFaceColor;
         {
             // Per-frame buffers: every element at its smallest (whole-surface --mesh-out), plus
             // a budget for the view: about 2 triangles per P x P pixels seen, with room for back
@@ -171,7 +172,7 @@ void Renderer::recordUpload() {
 void Renderer::recordCompute() {
     auto& g = *gpu_;
     const glm::mat4 vp(camera_.viewProjection(double(settings_.width) / settings_.height));
-    pass_->setView(vp, settings_.width, settings_.height);
+    pass_->setView(vp, camera_.eye, settings_.width, settings_.height);
     timed_.begin(g.cmd, "copy control points", true);
     g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(controlPoints_.size()),
                    VertexPush{0});

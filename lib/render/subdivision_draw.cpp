@@ -145,6 +145,23 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
             throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation without displacement only");
         d.adaptive = true;
         d.pieces = buildEdgePieces(mesh, t);
+        d.closed = !d.pieces.pieces.empty();
+        for (const EdgePiece& p : d.pieces.pieces) d.closed = d.closed && p.users[1] != kNoElement;
+        // Signed volume of the control mesh (faces fanned from their first corner, about the box
+        // centre): which way Du x Dv points, outward (+1) or inward (-1).
+        const glm::dvec3 c = 0.5 * (lo + hi);
+        double volume = 0, scale = 0;
+        for (size_t f = 0; f + 1 < mesh.faceOffsets.size(); ++f) {
+            const uint32_t first = mesh.faceOffsets[f], n = mesh.faceOffsets[f + 1] - first;
+            const glm::dvec3 a = mesh.positions[mesh.faceVertices[first]] - c;
+            for (uint32_t k = 1; k + 1 < n; ++k) {
+                const glm::dvec3 b = mesh.positions[mesh.faceVertices[first + k]] - c;
+                const glm::dvec3 e = mesh.positions[mesh.faceVertices[first + k + 1]] - c;
+                volume += glm::dot(a, glm::cross(b, e)) / 6;
+                scale += std::abs(glm::dot(a, glm::cross(b, e))) / 6;
+            }
+        }
+        d.orientation = volume > 1e-6 * scale ? 1.0f : volume < -1e-6 * scale ? -1.0f : 0.0f;
         return d;
     }
     Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs);

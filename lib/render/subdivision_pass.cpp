@@ -3,6 +3,8 @@
 #include "base/error.h"
 #include "render_shaders.h"
 
+#include <glm/vector_relational.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -172,9 +174,20 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
         throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data "
                                          "prepared for it, and no displacement");
     gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive);
+    if (adaptive && adaptive->backFaceCull && draw_.closed) orientation_ = draw_.orientation;
 }
 
 SubdivisionPass::~SubdivisionPass() = default;
+
+void SubdivisionPass::setView(const glm::mat4& viewProj, const glm::dvec3& eye, uint32_t width,
+                              uint32_t height) {
+    view_ = {viewProj, width, height, glm::vec3(eye), 0.0f};
+    // Back faces hide behind front faces only on a closed surface seen from outside it: outside
+    // the control points' box, which holds the limit surface (convex hull property).
+    const Bounds& b = draw_.bounds;
+    const bool outside = glm::any(glm::lessThan(eye, b.min)) || glm::any(glm::greaterThan(eye, b.max));
+    if (outside) view_.facing = orientation_;
+}
 
 const gpu::Buffer& SubdivisionPass::vertexBuffer() const { return gpu_->vertices; }
 

@@ -38,9 +38,7 @@ public:
     void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) override;
     void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) override;
     DrawnMesh drawnMesh() override;
-    void setView(const glm::mat4& viewProj, uint32_t width, uint32_t height) override {
-        view_ = {viewProj, width, height};
-    }
+    void setView(const glm::mat4& viewProj, const glm::dvec3& eye, uint32_t width, uint32_t height) override;
     // Drawn triangles of the last frame (view-adaptive: read back from the GPU, after culling).
     uint64_t triangleCount() const override;
     // The last frame's view-adaptive totals (null for the fixed tessellation).
@@ -55,6 +53,7 @@ private:
     bool evaluate_, levels_;
     Displacement displacement_;
     AdaptiveView view_;
+    float orientation_ = 0; // sign of the control mesh's volume where back faces may be culled
     mutable AdaptiveTotals totals_;
     mutable bool totalsRead_ = false;
     struct Gpu;

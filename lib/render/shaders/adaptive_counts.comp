@@ -1,5 +1,5 @@
 // View-adaptive tessellation, pass 3 of 5 (issue 11): per element, its interior rate m (the
-// largest of its sides' segment counts, 1 when culled, at most tess) and how many vertices and
+// largest of its sides' projected sizes, see adaptive_rates.comp; 1 when culled, at most tess) and how many vertices and
 // triangles it will emit (adaptive_emit.comp): B boundary points (every side's segments) plus a
 // centre (m <= 2) or the (m-1)^2 interior grid points; B fan triangles, or 2(m-2)^2 grid
 // triangles plus B + 4(m-2) in the four zipper strips.
@@ -26,10 +26,14 @@ void main() {
     AdaptiveElement el = elements.e[e];
     uint B = 0u, most = 1u;
     for (int k = 0; k < 4; ++k) {
-        uint side = 0u;
-        for (uint p = 0u; p < el.sideCount[k]; ++p) side += rates.r[sidePieces.v[el.sideFirst[k] + p].x];
+        uint side = 0u, size = 0u;
+        for (uint p = 0u; p < el.sideCount[k]; ++p) {
+            uint r = rates.r[sidePieces.v[el.sideFirst[k] + p].x];
+            side += r & 0xFFFFu;
+            size += r >> 16;
+        }
         B += side;
-        most = max(most, side);
+        most = max(most, size);
     }
     bool culled = cull.c[e] != 0u;
     uint m = culled ? 1u : clamp(most, 1u, max(pc.tess, 1u));

@@ -97,7 +97,7 @@ void main() {
         sideStart[k] = B;
         for (uint p = 0u; p < el.sideCount[k]; ++p) {
             uvec4 sp = sidePieces.v[el.sideFirst[k] + p];
-            uint r = rates.r[sp.x];
+            uint r = rates.r[sp.x] & 0xFFFFu;
             uvec4 piece = pieces.v[2u * sp.x];
             uvec4 point = pieces.v[pc.pointBase + sp.y];
             float from = float(sp.w & 0xFFFFu), to = float(sp.w >> 16);
