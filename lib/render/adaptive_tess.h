@@ -78,6 +78,7 @@ class AdaptiveTess {
     void record(gpu::CommandBuffer& cmd);
 
     const gpu::Buffer& tessVertices() const { return *tessVertices_; }
+    const gpu::Buffer& elementsBuffer() const { return *elements_; }
     const gpu::Buffer& triangles() const { return *triangles_; }
     const gpu::Buffer& triangleLevels() const { return *triangleLevels_; }
     const gpu::Buffer& totalsBuffer() const { return *totals_; }

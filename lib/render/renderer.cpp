@@ -85,14 +85,18 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         DisplacementPlan plan{settings.seams, settings.seamFix};
         if (settings.displacementMap && !settings.seams)
             throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
-        viewAdaptive_ = settings.edgePixels > 0 && !settings.displacementMap && !settings.wire;
+        viewAdaptive_ = settings.edgePixels > 0 && !settings.wire;
         SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap,
                                                   settings.displacementMap ? &plan : nullptr, viewAdaptive_);
         AdaptiveOptions adaptive;
         adaptive.edgePixels = static_cast<float>(settings.edgePixels);
         adaptive.tess = settings.tessCap;
-        adaptive.cull = settings.cull;
-        adaptive.backFaceCull = settings.cull && !settings.backFaceColor;
+        // Displacement moves the surface off its control points' hull: no culling then (it
+        // would have to widen every test by the largest displacement).
+        adaptive.cull = settings.cull && !settings.displacementMap;
+        adaptive.backFaceCull = adaptive.cull && !settings.backFaceColor;
+        if (settings.displacementMap) // at least a segment per texel, up to one per 2 pixels
+            adaptive.texelsPerUV = float(std::max(settings.displacementMap->width, settings.displacementMap->height));
         {
             // Per-frame buffers: every element at its smallest (whole-surface --mesh-out), plus
             // a budget for the view: about 2 triangles per P x P pixels seen, with room for back

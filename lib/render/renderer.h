@@ -54,8 +54,7 @@ struct RenderSettings {
     uint32_t tessCap = 64;                // segments per patch side / edge piece, at most (subdivision)
     // View-adaptive tessellation (issue 11): target pixels per segment; 0 keeps the fixed grids
     // of 2^(N-l) segments per level-l patch side. (limn-render's default is 4; the library's 0
-    // keeps callers that compare with fixed references unchanged.) Displacement and --wire use
-    // the fixed grids.
+    // keeps callers that compare with fixed references unchanged.) --wire uses the fixed grids.
     double edgePixels = 0;
     bool cull = true;                     // view-adaptive: skip elements outside the frustum
     uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)

@@ -141,8 +141,11 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
     for (const auto& q : mesh.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
     d.bounds = {lo, hi};
     if (adaptive) {
-        if (displacement)
-            throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation without displacement only");
+        if (displacement) {
+            if (!d.hasUVs) throw Error(ErrorKind::BadInput, "displacement needs texture coordinates; the mesh has none");
+            d.seams = displacement->seams;
+            d.seamFix = displacement->seamFix;
+        }
         d.adaptive = true;
         d.pieces = buildEdgePieces(mesh, t);
         d.closed = !d.pieces.pieces.empty();

@@ -76,6 +76,8 @@ struct SubdivisionDraw {
     // View-adaptive (issue 11): no fixed tessellation above, the edge pieces instead.
     bool adaptive = false;
     EdgePieces pieces;
+    const Seams* seams = nullptr; // view-adaptive displacement: the seam records (not owned)
+    bool seamFix = true;
     bool closed = false;    // every edge piece has two sides (no boundary, no holes)
     float orientation = 0;  // sign of the control mesh's signed volume (0: too flat to tell)
     Bounds bounds; // of the control points

@@ -25,6 +25,14 @@ struct EvalPush { // surface_eval.comp
 struct DisplacePush { // displace.comp
     float scale, mid;
 };
+struct AdaptiveDisplacePush { // adaptive_displace.comp
+    float scale, mid;
+    uint32_t seamFix;
+};
+struct AdaptiveNormalsPush { // adaptive_displaced_normals.comp
+    uint32_t patchCount;
+    float scale, mid;
+};
 
 // The displacement map for displace.comp: width, height, then channel 0 of each texel.
 std::vector<uint32_t> mapWords(const FloatImage& img) {
@@ -112,7 +120,28 @@ struct SubdivisionPass::Gpu {
                                                gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false});
             drawnPositions = evalPositions.get();
             drawnNormals = evalNormals.get();
-            if (disp) {
+            if (disp && adaptive) {
+                // View-adaptive (issue 11): samples from the owner's seam record, normals by
+                // differences of the displaced surface (adaptive_displace*.comp).
+                if (!d.seams) throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
+                sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam elements", d.seams->elements));
+                sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam UVs", d.seams->uvs));
+                map = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement map", mapWords(*disp->map)));
+                displaced = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced positions", n * 16});
+                displacedNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced normals", n * 16});
+                displacePass = std::make_unique<gpu::ComputePipeline>(
+                    ctx, gpu::ComputePipelineDesc{"displace (adaptive)", adaptive_displace_comp_spv, 7,
+                                                  sizeof(AdaptiveDisplacePush)});
+                normalsPass = std::make_unique<gpu::ComputePipeline>(
+                    ctx, gpu::ComputePipelineDesc{"displaced normals (adaptive)", adaptive_displaced_normals_comp_spv,
+                                                  8, sizeof(AdaptiveNormalsPush)});
+                displaceBindings = displacePass->bind({*evalPositions, *evalNormals, tv, *sideUVs, *sideRanges,
+                                                       *map, *displaced});
+                normalsBindings = normalsPass->bind({vertices, patches, irregular, limits, tv,
+                                                     adaptive->elementsBuffer(), *map, *displacedNormals});
+                drawnPositions = displaced.get();
+                drawnNormals = displacedNormals.get();
+            } else if (disp) {
                 sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement sample ranges", d.sideRanges));
                 sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement sample UVs", d.sideUVs));
                 map = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement map", mapWords(*disp->map)));
@@ -166,13 +195,13 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
         if (eval != Eval::Compute)
             throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
                                           "come from a compute pass over the displaced vertices)");
-        if (draw_.sideRanges.size() != draw_.tessVertices.size())
+        if (!adaptive && draw_.sideRanges.size() != draw_.tessVertices.size())
             throw Error(ErrorKind::BadInput, "internal: draw data prepared without a displacement plan");
         displacement_ = *displacement;
     }
-    if (adaptive && (displacement || !draw_.adaptive))
+    if (adaptive && !draw_.adaptive)
         throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data "
-                                         "prepared for it, and no displacement");
+                                         "prepared for it");
     gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive);
     if (adaptive && adaptive->backFaceCull && draw_.closed) orientation_ = draw_.orientation;
 }
@@ -234,7 +263,24 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
                          EvalPush{static_cast<uint32_t>(draw_.patches.size())});
         cmd.endTimed();
     }
-    if (g.displacePass) {
+    if (g.displacePass && g.adaptive) {
+        const auto& args = g.adaptive->totalsBuffer();
+        const uint32_t cap = g.adaptive->vertexCapacity();
+        cmd.barrier(compute, read);
+        timed.begin(cmd, "displace", true);
+        cmd.dispatchIndirect(*g.displacePass, g.displaceBindings, args, AdaptiveTess::kDispatchArgs, cap,
+                             AdaptiveTess::kRowGroups,
+                             AdaptiveDisplacePush{displacement_.scale, displacement_.mid,
+                                                  draw_.seamFix ? 1u : 0u});
+        cmd.endTimed();
+        cmd.barrier(compute, read);
+        timed.begin(cmd, "displaced normals", true);
+        cmd.dispatchIndirect(*g.normalsPass, g.normalsBindings, args, AdaptiveTess::kDispatchArgs, cap,
+                             AdaptiveTess::kRowGroups,
+                             AdaptiveNormalsPush{static_cast<uint32_t>(draw_.patches.size()), displacement_.scale,
+                                                 displacement_.mid});
+        cmd.endTimed();
+    } else if (g.displacePass) {
         const uint32_t n = static_cast<uint32_t>(draw_.tessVertices.size());
         cmd.barrier(compute, read);
         timed.begin(cmd, "displace", true);

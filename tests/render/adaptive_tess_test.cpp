@@ -280,8 +280,9 @@ TEST_P(AdaptiveRender, OnTheLimitSurfaceWatertightAndSizedByTheView) {
     const double p50 = lengths[lengths.size() / 2], p99 = lengths[lengths.size() * 99 / 100];
     EXPECT_LE(p99, 2.5 * P) << "median " << p50 << ", max " << lengths.back();
     EXPECT_LE(lengths.back(), 8 * P) << "median " << p50 << ", p99 " << p99;
-    // Rates vary: a ptex face that is one element (a level-0 patch) has, strictly inside, one
-    // centre point (interior rate <= 2) or the (m-1)^2 points of an interior rate m.
+    // Rates vary: a ptex face that is one element (a level-0 patch) has, strictly inside, no
+    // point (two triangles) or one centre point (interior rate <= 2), or the (m-1)^2 points of
+    // an interior rate m.
     std::map<int, size_t> interior;
     for (const PlyVertex& v : drawn.vertices)
         if (v.uv[0] > 0 && v.uv[0] < 1 && v.uv[1] > 0 && v.uv[1] < 1) ++interior[v.ptex];
@@ -294,7 +295,7 @@ TEST_P(AdaptiveRender, OnTheLimitSurfaceWatertightAndSizedByTheView) {
     const int mostRate = int(std::lround(std::sqrt(double(most)))) + 1;
     if (c.spansRates) {
         EXPECT_GE(mostRate, 32) << "no level-0 patch with 32 segments: not a close-up";
-        EXPECT_EQ(least, 1u) << "no level-0 patch at the smallest rate";
+        EXPECT_LE(least, 1u) << "no level-0 patch at the smallest rate";
     }
     std::printf("%s d%d: %zu vertices, %zu triangles, edge px median %.2f p99 %.2f max %.2f, most "
                 "interior rate of a level-0 patch %d, worst %.2e diag %.3f deg\n",
@@ -314,6 +315,74 @@ const Case kCases[] = {
 };
 
 INSTANTIATE_TEST_SUITE_P(Shared, AdaptiveRender, ::testing::ValuesIn(kCases), caseName);
+
+// Displacement (paper 000, 4.5) on the view-adaptive tessellation, close up: every drawn vertex
+// of a regular patch moved from OpenSubdiv's limit point along OpenSubdiv's limit normal (the
+// offset's component across the normal within 1e-5 of the diagonal, its length within the map's
+// range); welded closed with the seam fix, and open without it (the UV-noise map differs across
+// UV seams, so each side's own samples crack the surface: the check can fail).
+TEST(AdaptiveDisplacement, AlongTheNormalClosedWithSeamFixOpenWithout) {
+    ScratchDir dir;
+    const std::string obj = modelPath("quad/spot_control_mesh.obj").string();
+    const std::string limn = prepare(obj, 3, dir), map = (dir / "h.png").string();
+    auto r = run({tool("limn-seams").string(), limn, "-o", limn});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = run({tool("limn-heightmap").string(), limn, "--kind", "uv", "-o", map});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    Warnings w;
+    Mesh mesh = importMeshFile(obj, w);
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const auto& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const double diag = glm::length(hi - lo), scale = 0.03 * diag;
+    const glm::dvec3 target = mesh.positions[0];
+    const glm::dvec3 eye = target + glm::normalize(target - 0.5 * (lo + hi)) * (0.4 * diag);
+    SchemeOptions so = resolveSchemeOptions(mesh.tags, {});
+    TablesOptions to;
+    to.depth = 3;
+    Tables t = buildTables(mesh, so, to, w);
+    std::map<uint32_t, std::vector<std::array<double, 3>>> patches; // ptex -> u0, v0, size
+    std::map<uint32_t, int> irregular;
+    for (const Patch& p : t.patches) patches[p.ptex].push_back({p.u0, p.v0, p.size});
+    for (const IrregularFace& q : t.irregular) ++irregular[q.ptex];
+    OsdLimitSurface osd(mesh, so, 5);
+    for (bool fix : {true, false}) {
+        SCOPED_TRACE(fix ? "seam fix" : "no seam fix");
+        const std::string ply = (dir / "d.ply").string();
+        std::vector<std::string> args = {tool("limn-render").string(), limn, "--size", "320x240", "--validate",
+                                         "--eye", triple(eye), "--target", triple(target), "--displace", map,
+                                         "--displace-scale", std::to_string(scale), "--displace-mid", "0.5",
+                                         "--mesh-out", ply, "-o", (dir / "d.png").string()};
+        if (!fix) args.push_back("--no-seam-fix");
+        r = run(args);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const Drawn drawn = parsePly(readFile(ply));
+        double across = 0, longest = 0;
+        size_t compared = 0;
+        for (const PlyVertex& v : drawn.vertices) {
+            if (irregular.count(uint32_t(v.ptex))) continue; // only ptex faces of regular patches
+            glm::dvec3 ref, refN;
+            ASSERT_TRUE(osd.evaluate(v.ptex, v.uv[0], v.uv[1], ref, refN));
+            const glm::dvec3 d = glm::dvec3(v.p[0], v.p[1], v.p[2]) - ref;
+            across = std::max(across, glm::length(d - glm::dot(d, refN) * refN) / diag);
+            longest = std::max(longest, glm::length(d));
+            ++compared;
+        }
+        EXPECT_GT(compared, drawn.vertices.size() / 10);
+        EXPECT_LE(across, 1e-5) << "displaced off the limit normal";
+        EXPECT_LE(longest, 0.5 * scale * 1.0001) << "more than scale * |sample - mid|";
+        EXPECT_GT(longest, 0.05 * scale) << "not displaced";
+        const WeldedEdges welded = weldedEdges(drawn);
+        EXPECT_EQ(welded.over, 0u);
+        if (fix) {
+            EXPECT_EQ(welded.open, 0u) << "open edges with the seam fix";
+        } else {
+            EXPECT_GT(welded.open, 0u) << "no cracks without the seam fix: the test shows nothing";
+        }
+        std::printf("%s: %zu vertices, %zu triangles, open edges %zu, across %.2e diag, longest %.3f of scale\n",
+                    fix ? "fix" : "nofix", drawn.vertices.size(), drawn.triangles.size(), welded.open, across,
+                    longest / scale);
+    }
+}
 
 // Default view-adaptive images against the fixed grids of today (--edge-pixels 0): at most 0.5%
 // of the pixels covered in either differ by more than 8/255 in a channel; and the same bytes

@@ -250,8 +250,10 @@ int main(int argc, char** argv) {
                   "                            about P pixels on screen, decided per frame on the GPU\n"
                   "                            (compute passes; patches outside the view are not\n"
                   "                            drawn); 0: the fixed grids of 2^(depth-l) segments per\n"
-                  "                            level-l patch side (paper 000, 4.3). --displace and\n"
-                  "                            --wire use the fixed grids")
+                  "                            level-l patch side (paper 000, 4.3). With --displace\n"
+                  "                            an edge also gets a segment per map texel along it (up\n"
+                  "                            to one per 2 pixels) and nothing is culled; --wire uses\n"
+                  "                            the fixed grids")
             .integer("--grid", "K", &grid, 1, static_cast<int>(render::kMaxBlendGrid),
                      "blending surface: each face drawn as a K x K grid of cells")
             .text(

@@ -2,7 +2,8 @@
 // largest of its sides' projected sizes, see adaptive_rates.comp; 1 when culled, at most tess) and how many vertices and
 // triangles it will emit (adaptive_emit.comp): B boundary points (every side's segments) plus a
 // centre (m <= 2) or the (m-1)^2 interior grid points; B fan triangles, or 2(m-2)^2 grid
-// triangles plus B + 4(m-2) in the four zipper strips.
+// triangles plus B + 4(m-2) in the four zipper strips. An element with one segment per side and
+// m <= 2 (B = 4: the common case of a small deep patch) is two triangles and no centre.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "limn_compute.glsl"
@@ -37,7 +38,7 @@ void main() {
     }
     bool culled = cull.c[e] != 0u;
     uint m = culled ? 1u : clamp(most, 1u, max(pc.tess, 1u));
-    uint V = B + (m <= 2u ? 1u : (m - 1u) * (m - 1u));
-    uint T = m <= 2u ? B : 2u * (m - 2u) * (m - 2u) + B + 4u * (m - 2u);
+    uint V = B + (m <= 2u ? (B == 4u ? 0u : 1u) : (m - 1u) * (m - 1u));
+    uint T = m <= 2u ? (B == 4u ? 2u : B) : 2u * (m - 2u) * (m - 2u) + B + 4u * (m - 2u);
     info.v[e] = uvec4(m | (culled ? ADAPTIVE_CULLED : 0u), V, T, 0u);
 }

@@ -9,7 +9,8 @@
 // write the same (element, s, t) for each shared point, and the evaluation turns those into the
 // same bits: watertight to the bit without sharing indices across elements. A coarse side next
 // to two finer patches has two pieces, so level transitions meet point to point (no T-junction).
-// Interior (rate m): a centre point fanned to the boundary when m <= 2; otherwise the (m-1)^2
+// Interior (rate m): two triangles when m <= 2 and the boundary is the four corners; a centre
+// point fanned to the boundary when m <= 2; otherwise the (m-1)^2
 // grid points (i/m, j/m), the (m-2)^2 grid cells, and per side a zipper strip joining the side's
 // boundary points to the grid's outer ring, merged in parameter order (deterministic).
 #version 450
@@ -112,6 +113,11 @@ void main() {
         sideTotal[k] = B - sideStart[k];
     }
 
+    if (m <= 2u && B == 4u) { // the four corners only: two triangles
+        tri(0u, 1u, 2u);
+        tri(0u, 2u, 3u);
+        return;
+    }
     if (m <= 2u) {
         vertex(B, e, 16384u | (16384u << 16), uvAt(0.5, 0.5));
         for (uint i = 0u; i < B; ++i) tri(B, i, (i + 1u) % B);

@@ -3,7 +3,7 @@
 // two ends and middle (evaluated with the draw's own code, surface_eval_impl.glsl), projected to
 // pixels; so the two patches of an edge can never disagree (OpenSubdiv PR #435). The rate is
 // ceil(length / edgePixels), at least the displacement map's texels along the piece (at most
-// one segment per pixel), clamped to 1..tess and to the piece's parameter span. A piece whose
+// one segment per 2 pixels), clamped to 1..tess and to the piece's parameter span. A piece whose
 // every user element is culled gets 1, so does one whose samples are all beyond one clip plane
 // (off screen: only its look is at stake, never the watertightness, which holds at any rates);
 // one that crosses the eye plane gets tess. Written as rate | size << 16, where size is the
@@ -71,7 +71,7 @@ void main() {
             r = cap, size = cap;
         } else {
             float want = ceil(len / pc.edgePixels);
-            if (pc.texels > 0.0) want = max(want, min(ceil(uintBitsToFloat(p1.z) * pc.texels), ceil(len)));
+            if (pc.texels > 0.0) want = max(want, min(ceil(uintBitsToFloat(p1.z) * pc.texels), ceil(0.5 * len)));
             size = uint(clamp(want, 1.0, float(cap)));
             r = allOut != 0u ? 1u : size;
         }
