@@ -93,10 +93,41 @@ void checkFixedSize(const Tables& t, uint32_t tessCap) {
     throw Error(ErrorKind::BadInput, msg);
 }
 
+// Refuses, before anything is built, tables whose own GPU buffers (vertices of every level,
+// the concatenated stencil and limit tables) would pass 128 MiB, whatever the tessellation.
+void checkTableSize(const Tables& t) {
+    const uint64_t limit = uint64_t(128) << 20;
+    struct Sized {
+        const char* name;
+        uint64_t bytes;
+    };
+    uint64_t face = 0, stencil = 0, limitIdx = 0;
+    for (const auto& s : t.facePoints) face += s.indices.size();
+    for (const auto* v : {&t.edgePoints, &t.vertexPoints})
+        for (const auto& s : *v) stencil += s.indices.size();
+    for (const auto* s : {&t.limitPosition, &t.limitTangent1, &t.limitTangent2}) limitIdx += s->indices.size();
+    const Sized sized[] = {{"table vertices", uint64_t(t.totalVertices) * 16},
+                           {"face-point indices", face * 4},
+                           {"stencil indices", stencil * 4},
+                           {"limit indices", limitIdx * 4},
+                           {"patches", uint64_t(t.patches.size()) * 96}};
+    for (const Sized& z : sized)
+        if (z.bytes > limit) {
+            char msg[400];
+            std::snprintf(msg, sizeof msg,
+                          "GPU buffer '%s' would need %.1f MiB, over WebGPU's 128 MiB storage-buffer "
+                          "limit, whatever the tessellation; use feature-adaptive tables (limn-tables "
+                          "without --uniform) or a lower --depth",
+                          z.name, double(z.bytes) / (1 << 20));
+            throw Error(ErrorKind::BadInput, msg);
+        }
+}
+
 } // namespace
 
 SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t tessCap,
                                    const DisplacementPlan* displacement, bool adaptive) {
+    checkTableSize(t);
     if (!adaptive) checkFixedSize(t, tessCap);
     SubdivisionDraw d;
     d.baseVertices = t.levels[0].count();

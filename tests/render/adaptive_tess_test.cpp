@@ -384,6 +384,40 @@ TEST(AdaptiveDisplacement, AlongTheNormalClosedWithSeamFixOpenWithout) {
     }
 }
 
+// --tess that is not a power of two used to crash the fixed grids ("vector::_M_range_insert");
+// both modes now render and stay welded closed.
+TEST(AdaptiveCli, TessNotAPowerOfTwoInBothModes) {
+    ScratchDir dir;
+    const std::string limn = prepare(modelPath("quad/spot_control_mesh.obj").string(), 3, dir);
+    for (const char* tess : {"3", "5", "6", "7", "12"})
+        for (const char* ep : {"4", "0"}) {
+            SCOPED_TRACE(std::string("--tess ") + tess + " --edge-pixels " + ep);
+            const std::string ply = (dir / "t.ply").string();
+            auto r = run({tool("limn-render").string(), limn, "--size", "64x48", "--tess", tess,
+                          "--edge-pixels", ep, "--mesh-out", ply, "-o", (dir / "t.png").string()});
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            const WeldedEdges welded = weldedEdges(parsePly(readFile(ply)));
+            EXPECT_EQ(welded.open, 0u);
+            EXPECT_EQ(welded.over, 0u);
+        }
+}
+
+// catmark_car at depth 6: its fixed grids (64 segments per side of its level-0 patches: about
+// 12.9 M triangles, 147.7 MiB of indices)
+// are refused before any work with what to do; the view-adaptive default renders it.
+TEST(AdaptiveCli, CarAtDepthSixFixedRefusedAdaptiveRenders) {
+    ScratchDir dir;
+    const std::string limn = prepare(modelPath("osd/catmark/catmark_car.obj").string(), 6, dir);
+    auto r = run({tool("limn-render").string(), limn, "--size", "64x48", "--edge-pixels", "0", "-o",
+                  (dir / "fixed.png").string()});
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("128 MiB"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--edge-pixels"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "fixed.png"));
+    r = run({tool("limn-render").string(), limn, "--size", "64x48", "--validate", "-o", (dir / "va.png").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
 // Default view-adaptive images against the fixed grids of today (--edge-pixels 0): at most 0.5%
 // of the pixels covered in either differ by more than 8/255 in a channel; and the same bytes
 // when rendered twice.
