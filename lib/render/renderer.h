@@ -106,6 +106,9 @@ class Renderer {
     void setCamera(const Camera& camera) { camera_ = camera; }
     // Whether the subdivision surface is tessellated view-adaptively.
     bool viewAdaptive() const { return viewAdaptive_; }
+    // After a frame: why the view-adaptive tessellation did not fit its buffers (parts of the
+    // surface were left out), or empty.
+    std::string tessellationWarning() const;
     uint64_t triangleCount() const { return pass_->triangleCount(); }
     // Vertices computed per frame: table vertices, limit points, drawn surface vertices.
     uint64_t verticesEvaluated() const { return pass_->verticesEvaluated(); }

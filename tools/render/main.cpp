@@ -428,6 +428,8 @@ int main(int argc, char** argv) {
             } else {
                 renderer.renderFrame();
             }
+            if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
+                cli::warn(displayName(input) + ": " + w);
             for (const auto& p : renderer.frameTimes().passes) {
                 char ms[32];
                 std::snprintf(ms, sizeof ms, "%.3f", p.ms);
