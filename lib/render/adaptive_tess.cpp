@@ -135,7 +135,7 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
 
 AdaptiveTess::~AdaptiveTess() = default;
 
-void AdaptiveTess::record(gpu::CommandBuffer& cmd) {
+void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     const auto write = gpu::Access::ComputeWrite, read = gpu::Access::ComputeRead;
     CullPush cp{};
     copyMatrix(view_.viewProj, cp.viewProj);
@@ -143,7 +143,9 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd) {
     cp.eye[3] = view_.facing;
     cp.patchCount = patchCount_;
     cp.enabled = options_.cull ? 1u : 0u;
+    timed.begin(cmd, "adaptive cull", true);
     cmd.dispatch(*cullPass_, cullBind_, elementCount_, cp);
+    cmd.endTimed();
     cmd.barrier(write, read);
     RatePush rp{};
     copyMatrix(view_.viewProj, rp.viewProj);
@@ -153,16 +155,24 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd) {
     rp.tess = options_.tess;
     rp.patchCount = patchCount_;
     rp.texels = options_.texelsPerUV;
+    timed.begin(cmd, "adaptive rates", true);
     cmd.dispatch(*ratePass_, rateBind_, pieceCount_, rp);
+    cmd.endTimed();
     cmd.barrier(write, read);
+    timed.begin(cmd, "adaptive counts", true);
     cmd.dispatch(*countPass_, countBind_, elementCount_, CountPush{options_.tess});
+    cmd.endTimed();
     cmd.barrier(write, read);
     // The previous frame's draw read the totals as indirect arguments.
     cmd.barrier(gpu::Access::IndirectRead | gpu::Access::VertexRead | gpu::Access::IndexRead, write);
+    timed.begin(cmd, "adaptive scan", true);
     cmd.dispatch(*scanPass_, scanBind_, 1,
                  ScanPush{elementCount_, capV_, capT_, kRowGroups, kEvalGroupSize});
+    cmd.endTimed();
     cmd.barrier(write, read);
+    timed.begin(cmd, "adaptive emit", true);
     cmd.dispatch(*emitPass_, emitBind_, elementCount_, EmitPush{pointBase_, capT_});
+    cmd.endTimed();
     cmd.barrier(write, read | gpu::Access::VertexRead | gpu::Access::IndexRead | gpu::Access::IndirectRead);
 }
 

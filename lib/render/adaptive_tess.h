@@ -20,6 +20,7 @@
 #include "gpu/commands.h"
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
+#include "render/frame_pass.h"
 #include "tess/edge_pieces.h"
 
 #include <glm/mat4x4.hpp>
@@ -74,8 +75,9 @@ class AdaptiveTess {
     ~AdaptiveTess();
 
     void setView(const AdaptiveView& view) { view_ = view; }
-    // The five passes; ends with the barrier that the evaluation pass and the draw need.
-    void record(gpu::CommandBuffer& cmd);
+    // The five passes, each timed; ends with the barrier that the evaluation pass and the draw
+    // need.
+    void record(gpu::CommandBuffer& cmd, TimedPasses& timed);
 
     const gpu::Buffer& tessVertices() const { return *tessVertices_; }
     const gpu::Buffer& elementsBuffer() const { return *elements_; }

@@ -246,9 +246,7 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
     if (g.adaptive) {
         cmd.barrier(compute, read);
         g.adaptive->setView(view_);
-        timed.begin(cmd, "adaptive tessellation", true);
-        g.adaptive->record(cmd);
-        cmd.endTimed();
+        g.adaptive->record(cmd, timed);
     }
     if (evaluate_) {
         cmd.barrier(compute, read);
