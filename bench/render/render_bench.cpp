@@ -10,6 +10,15 @@
 //
 // Usage: bench_render [--frames N] [--rounds R] [--size WxH] [--max-depth D] [--quick] MESH...
 // (defaults: 10 frames, 3 rounds, 1024x768, depth 6; --quick: 3 frames, 1 round, depth 3)
+//
+// bench_render --view-adaptive [--frames N] [--rounds R] [--orbit DEG] SPOT.obj [CAR.obj]:
+// view-adaptive tessellation (issue 11, --edge-pixels 4) against the fixed grids
+// (--edge-pixels 0): SPOT at 1024x768, depths 3 and 6, adaptive and uniform tables at 5 and 6;
+// CAR at depth 6; the paper's demo sphere (generated: 16 segments x 16 rings, triangle fans at
+// the poles, radius 5) at 1280x720 from (0,12,22), depth 6. Per configuration: covered pixels,
+// drawn triangles (after culling, from the GPU) and triangles per covered pixel, vertices
+// evaluated, buffer bytes, compute/draw/frame GPU ms, cpu_ms of a still camera and with the
+// camera orbiting DEG degrees per frame (default 2).
 #include "bake/heightmap.h"
 #include "base/error.h"
 #include "gpu/context.h"
@@ -18,9 +27,13 @@
 #include "render/renderer.h"
 #include "seams/seams.h"
 #include "subdiv/tables.h"
+#include "render/png.h"
 #include "topology/features.h"
 
+#include <glm/vec3.hpp>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -109,6 +122,153 @@ std::string json(const Config& c) {
     return buf;
 }
 
+// The paper's demo layout: a UV sphere of 16 segments x 16 rings (242 vertices), triangle fans
+// at the poles, radius 5 at the origin.
+Mesh paperSphere() {
+    Mesh m;
+    const int S = 16, R = 16;
+    const double r = 5;
+    m.positions.push_back({0, r, 0});
+    for (int i = 1; i < R; ++i)
+        for (int j = 0; j < S; ++j) {
+            const double th = M_PI * i / R, ph = 2 * M_PI * j / S;
+            m.positions.push_back({r * std::sin(th) * std::cos(ph), r * std::cos(th), -r * std::sin(th) * std::sin(ph)});
+        }
+    m.positions.push_back({0, -r, 0});
+    auto idx = [&](int i, int j) { return uint32_t(1 + (i - 1) * S + (j % S)); };
+    auto face = [&](std::initializer_list<uint32_t> v) {
+        m.faceVertices.insert(m.faceVertices.end(), v);
+        m.faceOffsets.push_back(uint32_t(m.faceVertices.size()));
+    };
+    for (int j = 0; j < S; ++j) face({0, idx(1, j), idx(1, j + 1)});
+    for (int i = 1; i + 1 < R; ++i)
+        for (int j = 0; j < S; ++j) face({idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)});
+    const uint32_t last = uint32_t(m.positions.size() - 1);
+    for (int j = 0; j < S; ++j) face({idx(R - 1, j), last, idx(R - 1, j + 1)});
+    return m;
+}
+
+struct ViewConfig {
+    std::string model, tables; // tables: adaptive or uniform
+    int depth = 6;
+    double edgePixels = 4;
+    uint32_t width = 1024, height = 768;
+    std::optional<glm::dvec3> eye;
+    const Mesh* mesh = nullptr;
+    std::shared_ptr<Tables> built;
+    std::string skipped;
+    std::vector<double> frame, compute, draw, cpu, cpuOrbit;
+    uint64_t triangles = 0, vertices = 0, bufferBytes = 0, covered = 0;
+};
+
+int runViewAdaptive(const Options& o, double orbitDeg) {
+    gpu::Context ctx;
+    std::map<std::string, Mesh> meshes;
+    Warnings w;
+    meshes["sphere"] = paperSphere();
+    std::string spot, car;
+    for (const std::string& path : o.meshes) {
+        const std::string model = std::filesystem::path(path).stem().string();
+        meshes[model] = importMeshFile(path, w);
+        (spot.empty() ? spot : car) = model;
+    }
+    std::vector<ViewConfig> configs;
+    auto add = [&](const std::string& model, const std::string& tables, int depth, double ep,
+                   uint32_t W, uint32_t H, std::optional<glm::dvec3> eye = std::nullopt) {
+        ViewConfig c;
+        c.model = model, c.tables = tables, c.depth = depth, c.edgePixels = ep, c.width = W, c.height = H;
+        c.eye = eye;
+        configs.push_back(c);
+    };
+    for (double ep : {4.0, 0.0}) {
+        if (!spot.empty()) {
+            for (int d : {3, 5, 6}) add(spot, "adaptive", d, ep, 1024, 768);
+            for (int d : {5, 6}) add(spot, "uniform", d, ep, 1024, 768);
+        }
+        if (!car.empty()) add(car, "adaptive", 6, ep, 1024, 768);
+        add("sphere", "adaptive", 6, ep, 1280, 720, glm::dvec3(0, 12, 22));
+    }
+    std::map<std::string, std::shared_ptr<Tables>> tableCache;
+    for (ViewConfig& c : configs) {
+        c.mesh = &meshes.at(c.model);
+        const std::string key = c.model + c.tables + std::to_string(c.depth);
+        auto& t = tableCache[key];
+        if (!t) {
+            TablesOptions to;
+            to.depth = c.depth;
+            to.uniform = c.tables == "uniform";
+            try {
+                t = std::make_shared<Tables>(buildTables(*c.mesh, resolveSchemeOptions(c.mesh->tags, {}), to, w));
+            } catch (const Error& e) {
+                c.skipped = e.what();
+            }
+        }
+        c.built = t;
+    }
+    for (int round = 0; round < o.rounds; ++round)
+        for (ViewConfig& c : configs) {
+            if (!c.skipped.empty() || !c.built) continue;
+            render::RenderSettings s;
+            s.width = c.width, s.height = c.height;
+            s.edgePixels = c.edgePixels;
+            s.evalInCompute = false; // limn-render's default without displacement
+            if (c.eye) s.view.eye = c.eye, s.view.target = glm::dvec3(0.0);
+            try {
+                render::Renderer r(ctx, *c.mesh, c.built.get(), s);
+                render::BenchResult still = render::runBenchmark(r, o.frames, 2);
+                c.triangles = r.triangleCount();
+                c.vertices = r.verticesEvaluated();
+                c.bufferBytes = r.bufferBytes();
+                render::Image img = r.image();
+                uint64_t covered = 0;
+                for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
+                    const uint8_t* p = &img.pixels[i * img.channels];
+                    covered += !(p[0] == 51 && p[1] == 51 && p[2] == 51); // --background 0.2
+                }
+                c.covered = covered;
+                c.frame.push_back(still.totalMs);
+                c.compute.push_back(still.computeMs);
+                c.draw.push_back(still.drawMs);
+                c.cpu.push_back(still.cpuMs);
+                render::BenchResult moving = render::runBenchmark(r, o.frames, 0, orbitDeg);
+                c.cpuOrbit.push_back(moving.cpuMs);
+            } catch (const Error& e) {
+                c.skipped = e.what();
+            }
+        }
+    std::fprintf(stderr, "| model | size | tables | depth | edge px | covered px | triangles | tri/px | "
+                         "vertices eval. | buffers MiB | compute / draw / frame ms | cpu ms still / orbit |\n"
+                         "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const ViewConfig& c : configs) {
+        if (!c.skipped.empty()) {
+            std::printf("{\"bench\":\"view_adaptive\",\"model\":\"%s\",\"tables\":\"%s\",\"depth\":%d,"
+                        "\"edge_pixels\":%g,\"skipped\":\"%s\"}\n",
+                        c.model.c_str(), c.tables.c_str(), c.depth, c.edgePixels, c.skipped.c_str());
+            std::fprintf(stderr, "| %s | %ux%u | %s | %d | %g | refused: %s |\n", c.model.c_str(), c.width,
+                         c.height, c.tables.c_str(), c.depth, c.edgePixels, c.skipped.c_str());
+            continue;
+        }
+        const double perPixel = c.covered ? double(c.triangles) / double(c.covered) : 0;
+        std::printf("{\"bench\":\"view_adaptive\",\"model\":\"%s\",\"width\":%u,\"height\":%u,"
+                    "\"tables\":\"%s\",\"depth\":%d,\"edge_pixels\":%g,\"covered_pixels\":%llu,"
+                    "\"triangles\":%llu,\"triangles_per_covered_pixel\":%.4f,\"vertices_evaluated\":%llu,"
+                    "\"buffer_bytes\":%llu,\"compute_ms\":%.3f,\"draw_ms\":%.3f,\"frame_ms\":%.3f,"
+                    "\"cpu_ms\":%.3f,\"cpu_ms_orbit\":%.3f,\"orbit_deg\":%g}\n",
+                    c.model.c_str(), c.width, c.height, c.tables.c_str(), c.depth, c.edgePixels,
+                    (unsigned long long)c.covered, (unsigned long long)c.triangles, perPixel,
+                    (unsigned long long)c.vertices, (unsigned long long)c.bufferBytes, median(c.compute),
+                    median(c.draw), median(c.frame), median(c.cpu), median(c.cpuOrbit), orbitDeg);
+        std::fprintf(stderr, "| %s | %ux%u | %s | %d | %g | %llu | %llu | %.3f | %llu | %.1f | %.1f / %.1f / %.1f | %.1f / %.1f |\n",
+                     c.model.c_str(), c.width, c.height, c.tables.c_str(), c.depth, c.edgePixels,
+                     (unsigned long long)c.covered, (unsigned long long)c.triangles, perPixel,
+                     (unsigned long long)c.vertices, double(c.bufferBytes) / 1048576.0, median(c.compute),
+                     median(c.draw), median(c.frame), median(c.cpu), median(c.cpuOrbit));
+    }
+    std::fprintf(stderr, "\ndevice: %s; %d rounds x %d frames; orbit %g deg/frame\n", ctx.deviceName().c_str(),
+                 o.rounds, o.frames, orbitDeg);
+    return 0;
+}
+
 int usageError(const std::string& why) {
     std::fprintf(stderr,
                  "bench_render: %s\nusage: bench_render [--frames N] [--rounds R] [--size WxH] "
@@ -121,10 +281,16 @@ int usageError(const std::string& why) {
 
 int main(int argc, char** argv) {
     Options o;
+    bool viewAdaptive = false;
+    double orbitDeg = 2;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        if (a == "--frames")
+        if (a == "--view-adaptive")
+            viewAdaptive = true;
+        else if (a == "--orbit")
+            orbitDeg = std::atof(next().c_str());
+        else if (a == "--frames")
             o.frames = std::atoi(next().c_str());
         else if (a == "--rounds")
             o.rounds = std::atoi(next().c_str());
@@ -142,6 +308,14 @@ int main(int argc, char** argv) {
     }
     if (o.meshes.empty() || o.frames < 1 || o.rounds < 1 || o.maxDepth < 1 || o.maxDepth > 8)
         return usageError("give at least one mesh; frames, rounds >= 1; depth 1-8");
+    if (viewAdaptive) {
+        try {
+            return runViewAdaptive(o, orbitDeg);
+        } catch (const Error& e) {
+            std::fprintf(stderr, "bench_render: %s\n", e.what());
+            return int(e.kind());
+        }
+    }
 
     try {
         gpu::Context ctx;

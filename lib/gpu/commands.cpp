@@ -238,6 +238,20 @@ void CommandBuffer::dispatch(const ComputePipeline& pipeline, const BindGroup& b
     ctx_->vk().vkCmdDispatch(cmd_, static_cast<uint32_t>(x), static_cast<uint32_t>(y), 1);
 }
 
+void CommandBuffer::dispatchIndirect(const ComputePipeline& pipeline, const BindGroup& bindings,
+                                     const Buffer& args, uint64_t offset, uint32_t maxCount,
+                                     uint32_t rowGroups, std::span<const uint8_t> push) {
+    requireRecording("dispatchIndirect");
+    if (inRendering_) throw Error(ErrorKind::BadInput, "internal: dispatch inside rendering");
+    if (!(args.usage() & kIndirect) || offset % 4 != 0 || offset + 12 > args.size())
+        throw Error(ErrorKind::BadInput, "internal: '" + args.name() + "' holds no dispatch arguments at " +
+                                             std::to_string(offset));
+    uint32_t header[4] = {maxCount, rowGroups * pipeline.workgroupSize(), 0, 0};
+    bindAndPush(pipeline, VK_PIPELINE_BIND_POINT_COMPUTE, bindings,
+                {reinterpret_cast<const uint8_t*>(header), sizeof header}, push);
+    ctx_->vk().vkCmdDispatchIndirect(cmd_, args.handle(), offset);
+}
+
 void CommandBuffer::beginRendering(const RenderTarget& target, std::array<float, 4> clearColor) {
     requireRecording("beginRendering");
     const auto& vk = ctx_->vk();
@@ -313,6 +327,30 @@ void CommandBuffer::drawIndexed(const GraphicsPipeline& pipeline, const BindGrou
     bindAndPush(pipeline, VK_PIPELINE_BIND_POINT_GRAPHICS, bindings, {}, push);
     ctx_->vk().vkCmdBindIndexBuffer(cmd_, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
     ctx_->vk().vkCmdDrawIndexed(cmd_, indexCount, instanceCount, 0, 0, 0);
+}
+
+void CommandBuffer::drawIndirect(const GraphicsPipeline& pipeline, const BindGroup& bindings,
+                                 const Buffer& args, uint64_t offset, std::span<const uint8_t> push) {
+    requireRecording("drawIndirect");
+    if (!inRendering_) throw Error(ErrorKind::BadInput, "internal: draw outside rendering");
+    if (!(args.usage() & kIndirect) || offset % 4 != 0 || offset + 16 > args.size())
+        throw Error(ErrorKind::BadInput, "internal: '" + args.name() + "' holds no draw arguments");
+    bindAndPush(pipeline, VK_PIPELINE_BIND_POINT_GRAPHICS, bindings, {}, push);
+    ctx_->vk().vkCmdDrawIndirect(cmd_, args.handle(), offset, 1, 16);
+}
+
+void CommandBuffer::drawIndexedIndirect(const GraphicsPipeline& pipeline, const BindGroup& bindings,
+                                        const Buffer& indices, const Buffer& args, uint64_t offset,
+                                        std::span<const uint8_t> push) {
+    requireRecording("drawIndexedIndirect");
+    if (!inRendering_) throw Error(ErrorKind::BadInput, "internal: draw outside rendering");
+    if (!(indices.usage() & kIndex))
+        throw Error(ErrorKind::BadInput, "internal: '" + indices.name() + "' is not an index buffer");
+    if (!(args.usage() & kIndirect) || offset % 4 != 0 || offset + 20 > args.size())
+        throw Error(ErrorKind::BadInput, "internal: '" + args.name() + "' holds no draw arguments");
+    bindAndPush(pipeline, VK_PIPELINE_BIND_POINT_GRAPHICS, bindings, {}, push);
+    ctx_->vk().vkCmdBindIndexBuffer(cmd_, indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    ctx_->vk().vkCmdDrawIndexedIndirect(cmd_, args.handle(), offset, 1, 20);
 }
 
 void CommandBuffer::copyToReadback(const RenderTarget& target) {

@@ -87,6 +87,20 @@ class CommandBuffer {
         dispatch(pipeline, bindings, count, asBytes(push));
     }
 
+    // Runs `pipeline` over the workgroups (x, y, z) that a pass wrote into `args` at `offset`
+    // (WebGPU's dispatchWorkgroupsIndirect). The header's count is `maxCount` (the shader's bound
+    // against its buffers) and its row width `rowGroups` * workgroup size: the pass that writes
+    // the arguments lays large counts out as rows of `rowGroups` groups.
+    void dispatchIndirect(const ComputePipeline& pipeline, const BindGroup& bindings,
+                          const Buffer& args, uint64_t offset, uint32_t maxCount, uint32_t rowGroups,
+                          std::span<const uint8_t> push = {});
+    template <class Push>
+    void dispatchIndirect(const ComputePipeline& pipeline, const BindGroup& bindings,
+                          const Buffer& args, uint64_t offset, uint32_t maxCount, uint32_t rowGroups,
+                          const Push& push) {
+        dispatchIndirect(pipeline, bindings, args, offset, maxCount, rowGroups, asBytes(push));
+    }
+
     // Dynamic rendering into `target`, cleared to `clearColor` (linear RGBA; the sRGB target
     // encodes it) and depth 1. The viewport is Y-up (negative height), like WebGPU and OpenGL.
     void beginRendering(const RenderTarget& target, std::array<float, 4> clearColor);
@@ -96,6 +110,14 @@ class CommandBuffer {
     void drawIndexed(const GraphicsPipeline& pipeline, const BindGroup& bindings,
                      const Buffer& indices, uint32_t indexCount, uint32_t instanceCount = 1,
                      std::span<const uint8_t> push = {});
+    // Draws whose counts a compute pass wrote into `args` at `offset`: VkDrawIndirectCommand /
+    // VkDrawIndexedIndirectCommand layouts (WebGPU's drawIndirect / drawIndexedIndirect; one
+    // draw each, no multi-draw).
+    void drawIndirect(const GraphicsPipeline& pipeline, const BindGroup& bindings, const Buffer& args,
+                      uint64_t offset, std::span<const uint8_t> push = {});
+    void drawIndexedIndirect(const GraphicsPipeline& pipeline, const BindGroup& bindings,
+                             const Buffer& indices, const Buffer& args, uint64_t offset,
+                             std::span<const uint8_t> push = {});
     // Copies the colour image into the target's readback buffer (after endRendering).
     void copyToReadback(const RenderTarget& target);
 

@@ -90,12 +90,15 @@ namespace limn::gpu {
     X(vkCmdBindDescriptorSets)                                                                     \
     X(vkCmdPushConstants)                                                                          \
     X(vkCmdDispatch)                                                                               \
+    X(vkCmdDispatchIndirect)                                                                       \
     X(vkCmdCopyBuffer)                                                                             \
     X(vkCmdFillBuffer)                                                                             \
     X(vkCmdCopyImageToBuffer)                                                                      \
     X(vkCmdBindIndexBuffer)                                                                        \
     X(vkCmdDraw)                                                                                   \
     X(vkCmdDrawIndexed)                                                                            \
+    X(vkCmdDrawIndirect)                                                                           \
+    X(vkCmdDrawIndexedIndirect)                                                                    \
     X(vkCmdSetViewport)                                                                            \
     X(vkCmdSetScissor)
 

@@ -1,5 +1,8 @@
 #include "render/bench.h"
 
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <map>
@@ -17,14 +20,23 @@ double median(std::vector<double> v) {
 
 } // namespace
 
-BenchResult runBenchmark(Renderer& renderer, int frames, int warmup) {
+BenchResult runBenchmark(Renderer& renderer, int frames, int warmup, double orbitDeg) {
     using Clock = std::chrono::steady_clock;
+    auto orbit = [&] {
+        if (orbitDeg == 0) return;
+        Camera cam = renderer.camera();
+        const glm::dvec3 axis = glm::normalize(cam.up);
+        const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), glm::radians(orbitDeg), axis);
+        cam.eye = cam.target + glm::dvec3(turn * glm::dvec4(cam.eye - cam.target, 0.0));
+        renderer.setCamera(cam);
+    };
     for (int i = 0; i < warmup; ++i) renderer.renderFrame();
     std::vector<double> cpu, compute, draw, total;
     std::map<std::string, std::vector<double>> passes;
     std::vector<std::string> order;
     for (int i = 0; i < frames; ++i) {
         auto start = Clock::now();
+        orbit();
         renderer.renderFrame();
         cpu.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
         FrameTimes t = renderer.frameTimes();

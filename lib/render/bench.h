@@ -18,7 +18,9 @@ struct BenchResult {
     std::vector<std::pair<std::string, double>> passes; // GPU median per pass, in frame order
 };
 
-// Renders `warmup` frames (shader compilation, caches), then `frames` measured ones.
-BenchResult runBenchmark(Renderer& renderer, int frames, int warmup = 3);
+// Renders `warmup` frames (shader compilation, caches), then `frames` measured ones. With
+// `orbitDeg`, the camera turns that many degrees about its target (around its up vector) before
+// every frame, the way an interactive viewer would move it: only GPU passes re-run.
+BenchResult runBenchmark(Renderer& renderer, int frames, int warmup = 3, double orbitDeg = 0);
 
 } // namespace limn::render

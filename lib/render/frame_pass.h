@@ -8,6 +8,7 @@
 #include "gpu/commands.h"
 #include "render/ply.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
 #include <cstdint>
@@ -65,6 +66,9 @@ public:
     virtual ~FramePass() = default;
     // Where the control points (level 0) are copied each frame, as vec4.
     virtual const gpu::Buffer& vertexBuffer() const = 0;
+    // This frame's camera, before recordCompute (passes that adapt to the view use it).
+    virtual void setView(const glm::mat4& /*viewProj*/, const glm::dvec3& /*eye*/, uint32_t /*width*/,
+                         uint32_t /*height*/) {}
     // After the control points are in place; ends with the barrier the draw needs.
     virtual void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) = 0;
     // Inside beginRendering/endRendering.

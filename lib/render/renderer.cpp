@@ -85,8 +85,31 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         DisplacementPlan plan{settings.seams, settings.seamFix};
         if (settings.displacementMap && !settings.seams)
             throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
+        viewAdaptive_ = settings.edgePixels > 0 && !settings.wire;
         SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap,
-                                                  settings.displacementMap ? &plan : nullptr);
+                                                  settings.displacementMap ? &plan : nullptr, viewAdaptive_);
+        AdaptiveOptions adaptive;
+        adaptive.edgePixels = static_cast<float>(settings.edgePixels);
+        adaptive.tess = settings.tessCap;
+        // Displacement moves the surface off its control points' hull: no culling then (it
+        // would have to widen every test by the largest displacement).
+        adaptive.cull = settings.cull && !settings.displacementMap;
+        adaptive.backFaceCull = adaptive.cull && !settings.backFaceColor;
+        if (settings.displacementMap) // at least a segment per texel, up to one per 2 pixels
+            adaptive.texelsPerUV = float(std::max(settings.displacementMap->width, settings.displacementMap->height));
+        {
+            // Per-frame buffers: every element at its smallest (whole-surface --mesh-out), plus
+            // a budget for the view: about 2 triangles per P x P pixels seen, with room for back
+            // faces, off-screen parts and rounding (x32), at least 2^20.
+            uint64_t minimum = 0;
+            for (const auto& e : draw.pieces.elements)
+                for (int k = 0; k < 4; ++k) minimum += e.sideCount[k];
+            const double p = std::max(settings.edgePixels, 0.25);
+            const uint64_t view = std::max<uint64_t>(
+                uint64_t(32.0 * settings.width * settings.height / (p * p)), uint64_t(1) << 20);
+            adaptive.maxVertices = minimum + draw.pieces.elements.size() + view;
+            adaptive.maxTriangles = minimum + 2 * view;
+        }
         bounds = draw.bounds;
         if (settings.displacementMap) { // leave room for the displaced surface in the framing
             glm::dvec3 pad(std::abs(settings.displaceScale) * 0.5);
@@ -98,7 +121,8 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             ctx, std::move(draw),
             settings.evalInCompute ? SubdivisionPass::Eval::Compute : SubdivisionPass::Eval::Vertex,
             settings.evaluateVertices || settings.wire, settings.shade == Shade::Levels,
-            settings.displacementMap ? &displacement : nullptr, settings.texture);
+            settings.displacementMap ? &displacement : nullptr, settings.texture,
+            viewAdaptive_ ? &adaptive : nullptr);
     } else {
         if (settings.texture)
             throw Error(ErrorKind::BadInput,
@@ -151,6 +175,8 @@ void Renderer::recordUpload() {
 
 void Renderer::recordCompute() {
     auto& g = *gpu_;
+    const glm::mat4 vp(camera_.viewProjection(double(settings_.width) / settings_.height));
+    pass_->setView(vp, camera_.eye, settings_.width, settings_.height);
     timed_.begin(g.cmd, "copy control points", true);
     g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(controlPoints_.size()),
                    VertexPush{0});
@@ -238,6 +264,16 @@ Image Renderer::image() const {
     for (size_t i = 0, n = size_t(img.width) * img.height; i < n; ++i)
         std::memcpy(&img.pixels[3 * i], &rgba[4 * i], 3);
     return img;
+}
+
+std::string Renderer::tessellationWarning() const {
+    const auto* sp = dynamic_cast<const SubdivisionPass*>(pass_.get());
+    const AdaptiveTotals* t = sp ? sp->lastTotals() : nullptr;
+    if (!t || !t->overflow) return {};
+    return "the view-adaptive tessellation of this view needs " + std::to_string(t->vertices) + " vertices and " +
+           std::to_string(uint64_t(t->visibleTriangles) + t->culledTriangles) +
+           " triangles, more than its buffers hold; parts of the surface were left out (raise "
+           "--edge-pixels or lower --tess)";
 }
 
 DrawnMesh Renderer::drawnMesh() {

@@ -51,7 +51,12 @@ struct RenderSettings {
     bool wire = false;
     glm::dvec3 background{0.2, 0.2, 0.2}; // sRGB-encoded, 0..1, as it appears in the PNG
     bool alpha = false;                   // RGBA output, background transparent
-    uint32_t tessCap = 64;                // segments per patch side, at most (subdivision)
+    uint32_t tessCap = 64;                // segments per patch side / edge piece, at most (subdivision)
+    // View-adaptive tessellation (issue 11): target pixels per segment; 0 keeps the fixed grids
+    // of 2^(N-l) segments per level-l patch side. (limn-render's default is 4; the library's 0
+    // keeps callers that compare with fixed references unchanged.) --wire uses the fixed grids.
+    double edgePixels = 0;
+    bool cull = true;                     // view-adaptive: skip elements outside the frustum
     uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)
     bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)
     bool evalInCompute = true;            // surface vertices: compute pass (else vertex stage)
@@ -97,6 +102,13 @@ class Renderer {
     FrameTimes frameTimes() const;
 
     const Camera& camera() const { return camera_; }
+    // Moves the camera (the next frame re-runs only GPU passes; --bench-orbit).
+    void setCamera(const Camera& camera) { camera_ = camera; }
+    // Whether the subdivision surface is tessellated view-adaptively.
+    bool viewAdaptive() const { return viewAdaptive_; }
+    // After a frame: why the view-adaptive tessellation did not fit its buffers (parts of the
+    // surface were left out), or empty.
+    std::string tessellationWarning() const;
     uint64_t triangleCount() const { return pass_->triangleCount(); }
     // Vertices computed per frame: table vertices, limit points, drawn surface vertices.
     uint64_t verticesEvaluated() const { return pass_->verticesEvaluated(); }
@@ -116,6 +128,7 @@ class Renderer {
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
     TimedPasses timed_;
+    bool viewAdaptive_ = false;
 };
 
 } // namespace limn::render

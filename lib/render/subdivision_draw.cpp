@@ -8,6 +8,8 @@
 #include <glm/common.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <cstdio>
 #include <set>
 
 namespace limn::render {
@@ -61,8 +63,72 @@ void sideUVsOf(const ElementSeams& es, const Seams& seams, const TessVertex& tv,
 
 } // namespace
 
+namespace {
+
+// Refuses, before any work, a fixed tessellation whose buffers would not fit 128 MiB: the
+// segments per side of each element as buildTessellation will choose them.
+void checkFixedSize(const Tables& t, uint32_t tessCap) {
+    const uint32_t N = t.depth, cap = std::bit_floor(std::max(tessCap, 1u));
+    uint64_t triangles = 0, points = 0;
+    auto add = [&](float size, uint32_t level) {
+        const uint64_t W = uint64_t(double(size) * (1u << N));
+        const uint64_t S = std::min<uint64_t>(std::min<uint64_t>(1ull << (N - level), cap), std::max<uint64_t>(W, 1));
+        triangles += 2 * S * S;
+        points += S * S;
+    };
+    for (const Patch& p : t.patches) add(p.size, p.level);
+    for (const IrregularFace& q : t.irregular) add(q.size, N);
+    const uint64_t limit = uint64_t(128) << 20;
+    const uint64_t indexBytes = triangles * 12, vertexBytes = points * 16;
+    if (indexBytes <= limit && vertexBytes <= limit) return;
+    char msg[512];
+    std::snprintf(msg, sizeof msg,
+                  "the fixed tessellation (--edge-pixels 0) would draw about %llu triangles: GPU buffer "
+                  "'%s' would need about %.1f MiB, over WebGPU's 128 MiB storage-buffer limit; use the "
+                  "view-adaptive tessellation (--edge-pixels P > 0, the default), a lower --tess, or "
+                  "tables of lower depth (limn-tables --depth)",
+                  static_cast<unsigned long long>(triangles),
+                  indexBytes > limit ? "triangle indices" : "tessellation vertices",
+                  double(std::max(indexBytes, vertexBytes)) / (1 << 20));
+    throw Error(ErrorKind::BadInput, msg);
+}
+
+// Refuses, before anything is built, tables whose own GPU buffers (vertices of every level,
+// the concatenated stencil and limit tables) would pass 128 MiB, whatever the tessellation.
+void checkTableSize(const Tables& t) {
+    const uint64_t limit = uint64_t(128) << 20;
+    struct Sized {
+        const char* name;
+        uint64_t bytes;
+    };
+    uint64_t face = 0, stencil = 0, limitIdx = 0;
+    for (const auto& s : t.facePoints) face += s.indices.size();
+    for (const auto* v : {&t.edgePoints, &t.vertexPoints})
+        for (const auto& s : *v) stencil += s.indices.size();
+    for (const auto* s : {&t.limitPosition, &t.limitTangent1, &t.limitTangent2}) limitIdx += s->indices.size();
+    const Sized sized[] = {{"table vertices", uint64_t(t.totalVertices) * 16},
+                           {"face-point indices", face * 4},
+                           {"stencil indices", stencil * 4},
+                           {"limit indices", limitIdx * 4},
+                           {"patches", uint64_t(t.patches.size()) * 96}};
+    for (const Sized& z : sized)
+        if (z.bytes > limit) {
+            char msg[400];
+            std::snprintf(msg, sizeof msg,
+                          "GPU buffer '%s' would need %.1f MiB, over WebGPU's 128 MiB storage-buffer "
+                          "limit, whatever the tessellation; use feature-adaptive tables (limn-tables "
+                          "without --uniform) or a lower --depth",
+                          z.name, double(z.bytes) / (1 << 20));
+            throw Error(ErrorKind::BadInput, msg);
+        }
+}
+
+} // namespace
+
 SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t tessCap,
-                                   const DisplacementPlan* displacement) {
+                                   const DisplacementPlan* displacement, bool adaptive) {
+    checkTableSize(t);
+    if (!adaptive) checkFixedSize(t, tessCap);
     SubdivisionDraw d;
     d.baseVertices = t.levels[0].count();
     d.totalVertices = t.totalVertices;
@@ -102,6 +168,36 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
     }
 
     d.hasUVs = mesh.hasUVs();
+    glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
+    for (const auto& q : mesh.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    d.bounds = {lo, hi};
+    if (adaptive) {
+        if (displacement) {
+            if (!d.hasUVs) throw Error(ErrorKind::BadInput, "displacement needs texture coordinates; the mesh has none");
+            d.seams = displacement->seams;
+            d.seamFix = displacement->seamFix;
+        }
+        d.adaptive = true;
+        d.pieces = buildEdgePieces(mesh, t);
+        d.closed = !d.pieces.pieces.empty();
+        for (const EdgePiece& p : d.pieces.pieces) d.closed = d.closed && p.users[1] != kNoElement;
+        // Signed volume of the control mesh (faces fanned from their first corner, about the box
+        // centre): which way Du x Dv points, outward (+1) or inward (-1).
+        const glm::dvec3 c = 0.5 * (lo + hi);
+        double volume = 0, scale = 0;
+        for (size_t f = 0; f + 1 < mesh.faceOffsets.size(); ++f) {
+            const uint32_t first = mesh.faceOffsets[f], n = mesh.faceOffsets[f + 1] - first;
+            const glm::dvec3 a = mesh.positions[mesh.faceVertices[first]] - c;
+            for (uint32_t k = 1; k + 1 < n; ++k) {
+                const glm::dvec3 b = mesh.positions[mesh.faceVertices[first + k]] - c;
+                const glm::dvec3 e = mesh.positions[mesh.faceVertices[first + k + 1]] - c;
+                volume += glm::dot(a, glm::cross(b, e)) / 6;
+                scale += std::abs(glm::dot(a, glm::cross(b, e))) / 6;
+            }
+        }
+        d.orientation = volume > 1e-6 * scale ? 1.0f : volume < -1e-6 * scale ? -1.0f : 0.0f;
+        return d;
+    }
     Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs);
     d.stitchedEdges = tess.stitchedEdges;
     d.tessVertices.reserve(tess.vertices.size());
@@ -154,9 +250,6 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
             d.wireLines.push_back(b);
         }
     }
-    glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
-    for (const auto& q : mesh.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
-    d.bounds = {lo, hi};
     return d;
 }
 

@@ -9,6 +9,7 @@
 #include "render/camera.h"
 #include "seams/seams.h"
 #include "subdiv/tables.h"
+#include "tess/edge_pieces.h"
 
 #include <glm/vec2.hpp>
 
@@ -72,6 +73,13 @@ struct SubdivisionDraw {
     std::vector<uint32_t> incidentTriangles;
     uint32_t stitchedEdges = 0;
     bool hasUVs = false;
+    // View-adaptive (issue 11): no fixed tessellation above, the edge pieces instead.
+    bool adaptive = false;
+    EdgePieces pieces;
+    const Seams* seams = nullptr; // view-adaptive displacement: the seam records (not owned)
+    bool seamFix = true;
+    bool closed = false;    // every edge piece has two sides (no boundary, no holes)
+    float orientation = 0;  // sign of the control mesh's signed volume (0: too flat to tell)
     Bounds bounds; // of the control points
 };
 
@@ -80,10 +88,13 @@ struct DisplacementPlan {
     bool seamFix = true;          // average every face's sample (false: each side its own)
 };
 
-// `tessCap` caps the segments per side of any patch (--tess). Vertices on UV seams are split per
+// `tessCap` caps the segments per side of any patch (--tess; rounded down to a power of two).
+// Before building it, the fixed tessellation's size is estimated, and one whose index or vertex
+// buffer would pass 128 MiB is refused with the estimate and what to do. With `adaptive`, no
+// fixed tessellation is built: the edge pieces of the view-adaptive one instead. Vertices on UV seams are split per
 // side when the mesh has UVs (texture lookups stay in their chart; positions are shared). With a
 // displacement plan, also the sample UVs and the normal neighbourhoods of every vertex.
 SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& tables, uint32_t tessCap,
-                                   const DisplacementPlan* displacement = nullptr);
+                                   const DisplacementPlan* displacement = nullptr, bool adaptive = false);
 
 } // namespace limn::render

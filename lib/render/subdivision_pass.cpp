@@ -3,6 +3,8 @@
 #include "base/error.h"
 #include "render_shaders.h"
 
+#include <glm/vector_relational.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -21,6 +23,14 @@ struct EvalPush { // surface_eval.comp
     uint32_t patchCount;
 };
 struct DisplacePush { // displace.comp
+    float scale, mid;
+};
+struct AdaptiveDisplacePush { // adaptive_displace.comp
+    float scale, mid;
+    uint32_t seamFix;
+};
+struct AdaptiveNormalsPush { // adaptive_displaced_normals.comp
+    uint32_t patchCount;
     float scale, mid;
 };
 
@@ -58,7 +68,7 @@ using gpu::uploadBufferNow; // absent tables get one zero element
 
 struct SubdivisionPass::Gpu {
     Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate, const Displacement* disp,
-        const FloatImage* colour)
+        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions)
         : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
           faceStarts(uploadBufferNow(ctx, "face-point starts", d.faceStarts)),
           faceIndices(uploadBufferNow(ctx, "face-point indices", d.faceIndices)),
@@ -83,26 +93,55 @@ struct SubdivisionPass::Gpu {
           surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 8, sizeof(DrawPush)}),
           surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surface_frag_spv, 8,
                              sizeof(DrawPush)}) {
+        // View-adaptive: the tessellation is written by compute passes each frame (issue 11).
+        if (adaptiveOptions)
+            adaptive = std::make_unique<AdaptiveTess>(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()),
+                                                      vertices, patches, irregular, limits, *adaptiveOptions);
+        const gpu::Buffer& tv = adaptive ? adaptive->tessVertices() : tessVertices;
+        const gpu::Buffer& tris = adaptive ? adaptive->triangles() : triangles;
+        const gpu::Buffer& levels = adaptive ? adaptive->triangleLevels() : triangleLevels;
         faceBindings = facePass.bind({vertices, faceStarts, faceIndices});
         stencilBindings = stencilPass.bind({vertices, stencilStarts, stencilIndices, stencilWeights});
         limitBindings = limitPass.bind({vertices, limitStarts, limitIndices, limitWeights, limits});
         surfaceBindings = surface.bind(
-            {vertices, patches, irregular, limits, tessVertices, triangles, triangleLevels, texture});
+            {vertices, patches, irregular, limits, tv, tris, levels, texture});
         if (evaluate) {
-            const uint64_t n = std::max<uint64_t>(d.tessVertices.size(), 1);
+            const uint64_t n = adaptive ? adaptive->vertexCapacity()
+                                        : std::max<uint64_t>(d.tessVertices.size(), 1);
             evalPositions = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated positions", n * 16});
             evalNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated normals", n * 16});
             evalInfo = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated ptex", n * 16});
             evalPass = std::make_unique<gpu::ComputePipeline>(
                 ctx, gpu::ComputePipelineDesc{"evaluate surface", surface_eval_comp_spv, 8, sizeof(EvalPush)});
-            evalBindings = evalPass->bind({vertices, patches, irregular, limits, tessVertices,
+            evalBindings = evalPass->bind({vertices, patches, irregular, limits, tv,
                                            *evalPositions, *evalNormals, *evalInfo});
             wire = std::make_unique<gpu::GraphicsPipeline>(
                 ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
                                                gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false});
             drawnPositions = evalPositions.get();
             drawnNormals = evalNormals.get();
-            if (disp) {
+            if (disp && adaptive) {
+                // View-adaptive (issue 11): samples from the owner's seam record, normals by
+                // differences of the displaced surface (adaptive_displace*.comp).
+                if (!d.seams) throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
+                sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam elements", d.seams->elements));
+                sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam UVs", d.seams->uvs));
+                map = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement map", mapWords(*disp->map)));
+                displaced = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced positions", n * 16});
+                displacedNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced normals", n * 16});
+                displacePass = std::make_unique<gpu::ComputePipeline>(
+                    ctx, gpu::ComputePipelineDesc{"displace (adaptive)", adaptive_displace_comp_spv, 7,
+                                                  sizeof(AdaptiveDisplacePush)});
+                normalsPass = std::make_unique<gpu::ComputePipeline>(
+                    ctx, gpu::ComputePipelineDesc{"displaced normals (adaptive)", adaptive_displaced_normals_comp_spv,
+                                                  8, sizeof(AdaptiveNormalsPush)});
+                displaceBindings = displacePass->bind({*evalPositions, *evalNormals, tv, *sideUVs, *sideRanges,
+                                                       *map, *displaced});
+                normalsBindings = normalsPass->bind({vertices, patches, irregular, limits, tv,
+                                                     adaptive->elementsBuffer(), *map, *displacedNormals});
+                drawnPositions = displaced.get();
+                drawnNormals = displacedNormals.get();
+            } else if (disp) {
                 sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement sample ranges", d.sideRanges));
                 sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement sample UVs", d.sideUVs));
                 map = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement map", mapWords(*disp->map)));
@@ -122,8 +161,8 @@ struct SubdivisionPass::Gpu {
                 drawnNormals = displacedNormals.get();
             }
             wireBindings = wire->bind({*drawnPositions});
-            fetchBindings = surfaceFetch.bind({*drawnPositions, *drawnNormals, tessVertices, triangles,
-                                               triangleLevels, triangles, triangles, texture});
+            fetchBindings = surfaceFetch.bind({*drawnPositions, *drawnNormals, tv, tris, levels, tris,
+                                               tris, texture});
         }
     }
 
@@ -144,30 +183,46 @@ struct SubdivisionPass::Gpu {
     std::unique_ptr<gpu::ComputePipeline> evalPass;
     std::unique_ptr<gpu::GraphicsPipeline> wire;
     gpu::BindGroup evalBindings, wireBindings;
+    std::unique_ptr<AdaptiveTess> adaptive;
 };
 
 SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
                                  bool keepEvaluated, bool levels, const Displacement* displacement,
-                                 const FloatImage* texture)
+                                 const FloatImage* texture, const AdaptiveOptions* adaptive)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
       levels_(levels) {
     if (displacement) {
         if (eval != Eval::Compute)
             throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
                                           "come from a compute pass over the displaced vertices)");
-        if (draw_.sideRanges.size() != draw_.tessVertices.size())
+        if (!adaptive && draw_.sideRanges.size() != draw_.tessVertices.size())
             throw Error(ErrorKind::BadInput, "internal: draw data prepared without a displacement plan");
         displacement_ = *displacement;
     }
-    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture);
+    if (adaptive && !draw_.adaptive)
+        throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data "
+                                         "prepared for it");
+    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive);
+    if (adaptive && adaptive->backFaceCull && draw_.closed) orientation_ = draw_.orientation;
 }
 
 SubdivisionPass::~SubdivisionPass() = default;
+
+void SubdivisionPass::setView(const glm::mat4& viewProj, const glm::dvec3& eye, uint32_t width,
+                              uint32_t height) {
+    view_ = {viewProj, width, height, glm::vec3(eye), 0.0f};
+    // Back faces hide behind front faces only on a closed surface seen from outside it: outside
+    // the control points' box, which holds the limit surface (convex hull property).
+    const Bounds& b = draw_.bounds;
+    const bool outside = glm::any(glm::lessThan(eye, b.min)) || glm::any(glm::greaterThan(eye, b.max));
+    if (outside) view_.facing = orientation_;
+}
 
 const gpu::Buffer& SubdivisionPass::vertexBuffer() const { return gpu_->vertices; }
 
 void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     auto& g = *gpu_;
+    totalsRead_ = false;
     const auto compute = gpu::Access::ComputeWrite, read = gpu::Access::ComputeRead;
     for (const LevelPasses& p : draw_.levels) {
         // Face points first: the edge and vertex points of the same level read them.
@@ -188,14 +243,42 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
     timed.begin(cmd, "limit points", true);
     cmd.dispatch(g.limitPass, g.limitBindings, draw_.limitCount, LimitPush{draw_.limitCount});
     cmd.endTimed();
+    if (g.adaptive) {
+        cmd.barrier(compute, read);
+        g.adaptive->setView(view_);
+        g.adaptive->record(cmd, timed);
+    }
     if (evaluate_) {
         cmd.barrier(compute, read);
         timed.begin(cmd, "evaluate surface", true);
-        cmd.dispatch(*g.evalPass, g.evalBindings, static_cast<uint32_t>(draw_.tessVertices.size()),
-                     EvalPush{static_cast<uint32_t>(draw_.patches.size())});
+        if (g.adaptive)
+            cmd.dispatchIndirect(*g.evalPass, g.evalBindings, g.adaptive->totalsBuffer(),
+                                 AdaptiveTess::kDispatchArgs, g.adaptive->vertexCapacity(),
+                                 AdaptiveTess::kRowGroups,
+                                 EvalPush{static_cast<uint32_t>(draw_.patches.size())});
+        else
+            cmd.dispatch(*g.evalPass, g.evalBindings, static_cast<uint32_t>(draw_.tessVertices.size()),
+                         EvalPush{static_cast<uint32_t>(draw_.patches.size())});
         cmd.endTimed();
     }
-    if (g.displacePass) {
+    if (g.displacePass && g.adaptive) {
+        const auto& args = g.adaptive->totalsBuffer();
+        const uint32_t cap = g.adaptive->vertexCapacity();
+        cmd.barrier(compute, read);
+        timed.begin(cmd, "displace", true);
+        cmd.dispatchIndirect(*g.displacePass, g.displaceBindings, args, AdaptiveTess::kDispatchArgs, cap,
+                             AdaptiveTess::kRowGroups,
+                             AdaptiveDisplacePush{displacement_.scale, displacement_.mid,
+                                                  draw_.seamFix ? 1u : 0u});
+        cmd.endTimed();
+        cmd.barrier(compute, read);
+        timed.begin(cmd, "displaced normals", true);
+        cmd.dispatchIndirect(*g.normalsPass, g.normalsBindings, args, AdaptiveTess::kDispatchArgs, cap,
+                             AdaptiveTess::kRowGroups,
+                             AdaptiveNormalsPush{static_cast<uint32_t>(draw_.patches.size()), displacement_.scale,
+                                                 displacement_.mid});
+        cmd.endTimed();
+    } else if (g.displacePass) {
         const uint32_t n = static_cast<uint32_t>(draw_.tessVertices.size());
         cmd.barrier(compute, read);
         timed.begin(cmd, "displace", true);
@@ -215,6 +298,18 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wi
     push.patchCount = static_cast<uint32_t>(draw_.patches.size());
     const auto& pipeline = eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
     const auto& bindings = eval_ == Eval::Compute ? g.fetchBindings : g.surfaceBindings;
+    if (g.adaptive) {
+        if (levels_) {
+            push.flags |= kDrawPullIndices;
+            cmd.drawIndirect(pipeline, bindings, g.adaptive->totalsBuffer(), AdaptiveTess::kDrawArgs,
+                             gpu::CommandBuffer::asBytes(push));
+        } else {
+            push.flags &= ~kDrawPullIndices;
+            cmd.drawIndexedIndirect(pipeline, bindings, g.adaptive->triangles(), g.adaptive->totalsBuffer(),
+                                    AdaptiveTess::kIndexedDrawArgs, gpu::CommandBuffer::asBytes(push));
+        }
+        return; // --wire draws the fixed tessellation's outlines (the tool picks fixed mode)
+    }
     if (levels_) {
         push.flags |= kDrawPullIndices;
         cmd.draw(pipeline, bindings, static_cast<uint32_t>(draw_.triangles.size()), 1,
@@ -230,7 +325,20 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wi
 }
 
 DrawnMesh SubdivisionPass::drawnMesh() {
-    const size_t n = draw_.tessVertices.size();
+    size_t n = draw_.tessVertices.size();
+    AdaptiveTotals totals;
+    if (gpu_->adaptive) {
+        totals = gpu_->adaptive->readTotals(ctx_);
+        if (totals.overflow)
+            throw Error(ErrorKind::BadInput,
+                        "the view-adaptive tessellation of this view needs " + std::to_string(totals.vertices) +
+                            " vertices and " + std::to_string(totals.visibleTriangles + totals.culledTriangles) +
+                            " triangles, more than its buffers hold (" +
+                            std::to_string(gpu_->adaptive->vertexCapacity()) + ", " +
+                            std::to_string(gpu_->adaptive->triangleCapacity()) +
+                            "); raise --edge-pixels or lower --tess");
+        n = totals.writtenVertices;
+    }
     DrawnMesh out = readDrawnVertices(ctx_, gpu_->drawnPositions, gpu_->drawnNormals, n);
     auto info = gpu::readbackArrayNow<glm::uvec4>(ctx_, *gpu_->evalInfo, n);
     for (size_t i = 0; i < n; ++i) {
@@ -239,14 +347,38 @@ DrawnMesh SubdivisionPass::drawnMesh() {
         std::memcpy(&v.u, &info[i].y, 4);
         std::memcpy(&v.v, &info[i].z, 4);
     }
-    out.triangles = draw_.triangles;
+    if (gpu_->adaptive) {
+        auto tris = gpu::readbackArrayNow<uint32_t>(ctx_, gpu_->adaptive->triangles(),
+                                                    size_t(totals.writtenTriangles) * 3);
+        out.triangles = std::move(tris);
+    } else {
+        out.triangles = draw_.triangles;
+    }
     return out;
+}
+
+const AdaptiveTotals* SubdivisionPass::lastTotals() const {
+    if (!gpu_->adaptive) return nullptr;
+    if (!totalsRead_) {
+        totals_ = gpu_->adaptive->readTotals(ctx_);
+        totalsRead_ = true;
+    }
+    return &totals_;
+}
+
+uint64_t SubdivisionPass::triangleCount() const {
+    if (const AdaptiveTotals* t = lastTotals()) return t->visibleTriangles; // drawn, after culling
+    return draw_.triangles.size() / 3;
 }
 
 uint64_t SubdivisionPass::verticesEvaluated() const {
     // Table vertices computed by the passes, limit points, and tessellation vertices evaluated
     // by the vertex stage (at least once each; the draw may evaluate a shared one more often).
-    return draw_.totalVertices - draw_.baseVertices + draw_.limitCount + draw_.tessVertices.size();
+    // View-adaptive: also the three points per edge piece that decide its rate.
+    const uint64_t tables = draw_.totalVertices - draw_.baseVertices + draw_.limitCount;
+    if (const AdaptiveTotals* t = lastTotals())
+        return tables + 3ull * gpu_->adaptive->pieceCount() + t->writtenVertices;
+    return tables + draw_.tessVertices.size();
 }
 
 uint64_t SubdivisionPass::bufferBytes() const {
@@ -261,6 +393,7 @@ uint64_t SubdivisionPass::bufferBytes() const {
                           g.sideUVs.get(), g.map.get(), g.displaced.get(), g.incidentRanges.get(),
                           g.incident.get(), g.displacedNormals.get()})
         if (b) sum += b->size();
+    if (g.adaptive) sum += g.adaptive->bufferBytes();
     return sum;
 }
 

@@ -5,6 +5,7 @@
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
+#include "render/adaptive_tess.h"
 #include "render/frame_pass.h"
 #include "render/subdivision_draw.h"
 #include "render/texture_image.h"
@@ -18,6 +19,8 @@ public:
     // Where the tessellation vertices are evaluated: in the vertex stage as the draw needs them
     // (paper 000, 4.3), or once each by a compute pass that the draw then reads.
     enum class Eval { Vertex, Compute };
+    // `adaptive`: view-adaptive tessellation (issue 11, adaptive_tess.h) instead of the fixed
+    // grids of the draw data (which must then be prepared with adaptive = true).
     // `keepEvaluated`: with Eval::Vertex, also evaluate every vertex into buffers (for --wire,
     // which draws lines through them, and --mesh-out).
     // Displacement (paper 000, 4.5): every drawn vertex moves along its limit normal by
@@ -27,14 +30,19 @@ public:
         float scale = 1, mid = 0;
     };
     SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval, bool keepEvaluated, bool levels,
-                    const Displacement* displacement = nullptr, const FloatImage* texture = nullptr);
+                    const Displacement* displacement = nullptr, const FloatImage* texture = nullptr,
+                    const AdaptiveOptions* adaptive = nullptr);
     ~SubdivisionPass() override;
 
     const gpu::Buffer& vertexBuffer() const override;
     void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) override;
     void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) override;
     DrawnMesh drawnMesh() override;
-    uint64_t triangleCount() const override { return draw_.triangles.size() / 3; }
+    void setView(const glm::mat4& viewProj, const glm::dvec3& eye, uint32_t width, uint32_t height) override;
+    // Drawn triangles of the last frame (view-adaptive: read back from the GPU, after culling).
+    uint64_t triangleCount() const override;
+    // The last frame's view-adaptive totals (null for the fixed tessellation).
+    const AdaptiveTotals* lastTotals() const;
     uint64_t verticesEvaluated() const override;
     uint64_t bufferBytes() const override;
 
@@ -44,6 +52,10 @@ private:
     Eval eval_;
     bool evaluate_, levels_;
     Displacement displacement_;
+    AdaptiveView view_;
+    float orientation_ = 0; // sign of the control mesh's volume where back faces may be culled
+    mutable AdaptiveTotals totals_;
+    mutable bool totalsRead_ = false;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
 };

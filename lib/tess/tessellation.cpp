@@ -5,6 +5,7 @@
 #include "topology/topology.h"
 
 #include <algorithm>
+#include <bit>
 #include <map>
 #include <unordered_map>
 
@@ -36,6 +37,11 @@ PtexPoint ptexOf(const Tables& t, const TessVertex& v) {
 
 Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap, bool splitUVSeams) {
     if (cap < 1) throw Error(ErrorKind::Usage, "the tessellation cap must be at least 1");
+    // The fixed grids of neighbours must meet vertex to vertex, so every element's segment count
+    // divides its neighbours': a cap that is not a power of two (--tess 3, 12) is rounded down to
+    // one (a grid of 3 on a side of width 64 left points off the 1/R lattice, and the stitching
+    // walked off an empty list).
+    cap = std::bit_floor(cap);
     if (splitUVSeams && !mesh.hasUVs())
         throw Error(ErrorKind::BadInput, "the mesh has no texture coordinates to split seams by");
     const bool withUV = mesh.hasUVs();

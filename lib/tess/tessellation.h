@@ -41,7 +41,8 @@ struct Tessellation {
     uint32_t stitchedEdges = 0;     // element edges that needed stitching
 };
 
-// `cap` limits the segments per side of any element (>= 1). With `splitUVSeams` (the mesh must
+// `cap` limits the segments per side of any element (>= 1; rounded down to a power of two so
+// that neighbouring grids nest). With `splitUVSeams` (the mesh must
 // have UVs), a point whose faces give it different UVs gets one vertex per distinct UV, so
 // textures and displacement can be looked up per side; all copies share the first's geometry.
 Tessellation buildTessellation(const Mesh& mesh, const Tables& tables, uint32_t cap,

@@ -95,7 +95,7 @@ inline Drawn drawn(const std::string& limn, const std::vector<std::string>& extr
     std::vector<std::string> argv = {
         bin("limn-render"),          limn,         "--size",     "8x8", "--tess",
         std::to_string(tess),        "--validate", "--mesh-out", ply,   "-o",
-        (dir / "drawn.png").string()};
+        (dir / "drawn.png").string(), "--edge-pixels", "0"}; // the fixed grids (as --displace)
     argv.insert(argv.end(), extra.begin(), extra.end());
     auto r = run(argv);
     if (r.exitCode != 0) throw std::runtime_error("limn-render: " + r.err);

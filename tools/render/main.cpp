@@ -132,6 +132,7 @@ int main(int argc, char** argv) {
              meshAscii = false;
         bool viewGiven = false;
         int bench = 0, tess = 64, grid = 16;
+        double edgePixels = 4, benchOrbit = 0;
         cli::Parser parser("limn-render", "[options] [INPUT|-] -o OUTPUT.png",
                            "Renders a .limn container (output of limn-classify, limn-tables, "
                            "limn-seams, limn-blend)\n"
@@ -250,7 +251,19 @@ int main(int argc, char** argv) {
                     "                            lavapipe, bench_render), compute with --displace (the\n"
                     "                            displaced normals need it) and for blending surfaces")
             .integer("--tess", "N", &tess, 1, 4096,
-                     "segments per side of a patch at most; a level-l patch gets 2^(N-l)")
+                     "most segments per patch edge, at any level. View-adaptive: each edge piece\n"
+                     "                            gets what its pixels need, 1 to N; --edge-pixels 0: a\n"
+                     "                            level-l patch side gets min(2^(depth-l), N) (N rounded\n"
+                     "                            down to a power of two)")
+            .real("--edge-pixels", "P", &edgePixels, 0, 4096,
+                  "view-adaptive tessellation (issue 11): each patch edge is cut into segments of\n"
+                  "                            about P pixels on screen, decided per frame on the GPU\n"
+                  "                            (compute passes; patches outside the view are not\n"
+                  "                            drawn); 0: the fixed grids of 2^(depth-l) segments per\n"
+                  "                            level-l patch side (paper 000, 4.3). With --displace\n"
+                  "                            an edge also gets a segment per map texel along it (up\n"
+                  "                            to one per 2 pixels) and nothing is culled; --wire uses\n"
+                  "                            the fixed grids")
             .integer("--grid", "K", &grid, 1, static_cast<int>(render::kMaxBlendGrid),
                      "blending surface: each face drawn as a K x K grid of cells")
             .text(
@@ -274,6 +287,8 @@ int main(int argc, char** argv) {
             .integer("--bench", "FRAMES", &bench, 0, 100000,
                      "render FRAMES frames after 3 warm-up frames and print one JSON object of\n"
                      "                            medians to standard output; 0 renders once")
+            .real("--bench-orbit", "DEG", &benchOrbit, -360, 360,
+                  "with --bench: turn the camera DEG degrees about its target before every frame")
             .notes(
                 "Output: -o FILE.png, or -o - for standard output (refused on a terminal). With\n"
                 "--bench, standard output carries the JSON and the image is written only with\n"
@@ -289,6 +304,11 @@ int main(int argc, char** argv) {
                 "there,\n"
                 "with ptex and (u, v) of the face that evaluated it (a blending surface: the face "
                 "index).\n"
+                "View-adaptive (--edge-pixels > 0): each patch writes its own copy of the points on "
+                "its\n"
+                "sides, with the same bits as its neighbour's (weld by exact position), and the "
+                "whole\n"
+                "surface is written, patches outside the view at their smallest rate.\n"
                 "Trimming does not change --mesh-out.\n"
                 "--bench JSON: frames, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
                 "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
@@ -362,6 +382,7 @@ int main(int argc, char** argv) {
             }
         }
         settings.tessCap = static_cast<uint32_t>(tess);
+        settings.edgePixels = edgePixels;
         std::optional<render::FloatImage> displacementMap, textureMap;
         if (!displace.empty()) {
             displacementMap = render::loadImage(displace);
@@ -412,7 +433,7 @@ int main(int argc, char** argv) {
                       "," + std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
 
             if (bench) {
-                render::BenchResult b = render::runBenchmark(renderer, bench);
+                render::BenchResult b = render::runBenchmark(renderer, bench, 3, benchOrbit);
                 JsonWriter j;
                 j.beginObject().field("frames", b.frames);
                 j.key("gpu_ms").beginObject();
@@ -433,6 +454,8 @@ int main(int argc, char** argv) {
             } else {
                 renderer.renderFrame();
             }
+            if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
+                cli::warn(displayName(input) + ": " + w);
             for (const auto& p : renderer.frameTimes().passes) {
                 char ms[32];
                 std::snprintf(ms, sizeof ms, "%.3f", p.ms);

@@ -4,12 +4,14 @@
 //   buffer Irregulars    { IrregularFace f[]; } irregulars;
 //   buffer Limits        { vec4 v[]; }          limits;       // position, normal pairs
 //   buffer TessVertices  { uvec2 v[]; }         tessVertices; // element, s | t << 16
-// and a uint `patchCount`.
+// and a uint `patchCount`. A shader that evaluates elements directly (adaptive_rates.comp)
+// defines LIMN_NO_TESS_VERTICES and calls evaluateElement.
 #ifndef LIMN_SURFACE_EVAL_IMPL_GLSL
 #define LIMN_SURFACE_EVAL_IMPL_GLSL
 
-SurfaceSample evaluateTessVertex(uint vi, uint patchCount) {
-    uvec2 tv = tessVertices.v[vi].xy;
+// `element` (a patch index, or patchCount + an irregular face), at `st` = s | t << 16 in 1/32768.
+SurfaceSample evaluateElement(uint element, uint st, uint patchCount) {
+    uvec2 tv = uvec2(element, st);
     float s = float(tv.y & 0xFFFFu) / 32768.0, t = float(tv.y >> 16) / 32768.0;
     SurfaceSample r;
     if (tv.x < patchCount) {
@@ -56,5 +58,12 @@ SurfaceSample evaluateTessVertex(uint vi, uint patchCount) {
     }
     return r;
 }
+
+#ifndef LIMN_NO_TESS_VERTICES
+SurfaceSample evaluateTessVertex(uint vi, uint patchCount) {
+    uvec2 tv = tessVertices.v[vi].xy;
+    return evaluateElement(tv.x, tv.y, patchCount);
+}
+#endif
 
 #endif

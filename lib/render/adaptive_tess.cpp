@@ -1,0 +1,200 @@
+#include "render/adaptive_tess.h"
+
+#include "base/error.h"
+#include "render_shaders.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace limn::render {
+
+namespace {
+
+struct CullPush { // adaptive_cull.comp
+    float viewProj[16];
+    float eye[4];
+    uint32_t patchCount, enabled;
+};
+struct RatePush { // adaptive_rates.comp
+    float viewProj[16];
+    float halfViewport[2];
+    float edgePixels;
+    uint32_t tess, patchCount;
+    float texels;
+};
+struct CountPush { // adaptive_counts.comp
+    uint32_t tess;
+};
+struct ScanPush { // adaptive_scan.comp
+    uint32_t elementCount, vertexCapacity, triangleCapacity, rowGroups, evalGroupSize;
+};
+struct EmitPush { // adaptive_emit.comp
+    uint32_t pointBase, triangleCapacity;
+};
+
+constexpr uint32_t kTotalsWords = 20;
+constexpr uint32_t kEvalGroupSize = 64; // surface_eval.comp's local_size_x
+
+void copyMatrix(const glm::mat4& m, float out[16]) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) out[c * 4 + r] = m[c][r];
+}
+
+} // namespace
+
+AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t patchCount,
+                           const gpu::Buffer& vertices, const gpu::Buffer& patches,
+                           const gpu::Buffer& irregular, const gpu::Buffer& limits,
+                           const AdaptiveOptions& options)
+    : options_(options), elementCount_(static_cast<uint32_t>(ep.elements.size())),
+      pieceCount_(static_cast<uint32_t>(ep.pieces.size())), patchCount_(patchCount) {
+    if (options.tess < 1) throw Error(ErrorKind::Usage, "--tess must be at least 1");
+    std::vector<GpuAdaptiveElement> elements;
+    elements.reserve(ep.elements.size());
+    // Capacity: what the finest rates could need, within the budget.
+    uint64_t maxV = 0, maxT = 0;
+    const uint64_t tess = options.tess;
+    for (const AdaptiveElement& e : ep.elements) {
+        GpuAdaptiveElement g{};
+        uint64_t B = 0;
+        for (int k = 0; k < 4; ++k) {
+            g.sideFirst[k] = e.sideFirst[k], g.sideCount[k] = e.sideCount[k];
+            for (uint32_t p = 0; p < e.sideCount[k]; ++p)
+                B += std::max<uint64_t>(1, std::min<uint64_t>(tess, ep.pieces[ep.sidePieces[e.sideFirst[k] + p].piece].span));
+            g.uv[2 * k] = e.cornerUV[k].x, g.uv[2 * k + 1] = e.cornerUV[k].y;
+        }
+        g.level = e.level;
+        elements.push_back(g);
+        const uint64_t m = tess;
+        maxV += B + (m <= 2 ? 1 : (m - 1) * (m - 1));
+        maxT += m <= 2 ? B : 2 * (m - 2) * (m - 2) + B + 4 * (m - 2);
+    }
+    const uint64_t limitV = gpu::kMaxStorageBufferBytes / 16, limitT = gpu::kMaxStorageBufferBytes / 12;
+    uint64_t budgetV = options.maxVertices ? options.maxVertices : limitV;
+    uint64_t budgetT = options.maxTriangles ? options.maxTriangles : limitT;
+    capV_ = static_cast<uint32_t>(std::max<uint64_t>(1, std::min({maxV, budgetV, limitV})));
+    capT_ = static_cast<uint32_t>(std::max<uint64_t>(1, std::min({maxT, budgetT, limitT})));
+
+    std::vector<glm::uvec4> sides, pieces;
+    sides.reserve(ep.sidePieces.size());
+    for (const SidePiece& s : ep.sidePieces)
+        sides.push_back({s.piece, s.startPoint, s.reversed, s.from | s.to << 16});
+    pieces.reserve(2 * ep.pieces.size() + ep.points.size());
+    for (const EdgePiece& p : ep.pieces) {
+        uint32_t uvBits;
+        std::memcpy(&uvBits, &p.uvLength, 4);
+        pieces.push_back({p.owner, p.ownerStart, p.ownerEnd, p.span});
+        pieces.push_back({p.users[0], p.users[1], uvBits, 0});
+    }
+    pointBase_ = static_cast<uint32_t>(pieces.size());
+    for (const EdgePoint& q : ep.points) pieces.push_back({q.owner, q.st, 0, 0});
+
+    using gpu::uploadBufferNow;
+    auto make = [&](const char* name, uint64_t bytes, uint32_t usage = gpu::kStorage) {
+        return std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{name, std::max<uint64_t>(bytes, 16), usage});
+    };
+    elements_ = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "adaptive elements", elements));
+    sidePieces_ = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "adaptive side pieces", sides));
+    pieces_ = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "adaptive edge pieces", pieces));
+    cull_ = make("adaptive cull flags", uint64_t(elementCount_) * 4);
+    rates_ = make("adaptive edge rates", uint64_t(pieceCount_) * 4);
+    info_ = make("adaptive element offsets", uint64_t(elementCount_) * 16);
+    totals_ = make("adaptive totals", kTotalsWords * 4, gpu::kStorage | gpu::kIndirect);
+    tessVertices_ = make("adaptive tessellation vertices", uint64_t(capV_) * 16);
+    triangles_ = make("adaptive triangle indices", uint64_t(capT_) * 12, gpu::kStorage | gpu::kIndex);
+    triangleLevels_ = make("adaptive triangle levels", uint64_t(capT_) * 4);
+    // Stale slots past a frame's count stay valid records (element 0) for the evaluation pass,
+    // whose last workgroup may read a few of them.
+    {
+        gpu::CommandBuffer cmd(ctx);
+        cmd.begin();
+        cmd.fill(*tessVertices_, 0);
+        cmd.fill(*triangles_, 0);
+        cmd.fill(*totals_, 0);
+        cmd.submitAndWait();
+    }
+
+    cullPass_ = std::make_unique<gpu::ComputePipeline>(
+        ctx, gpu::ComputePipelineDesc{"adaptive cull", adaptive_cull_comp_spv, 5, sizeof(CullPush)});
+    ratePass_ = std::make_unique<gpu::ComputePipeline>(
+        ctx, gpu::ComputePipelineDesc{"adaptive rates", adaptive_rates_comp_spv, 7, sizeof(RatePush)});
+    countPass_ = std::make_unique<gpu::ComputePipeline>(
+        ctx, gpu::ComputePipelineDesc{"adaptive counts", adaptive_counts_comp_spv, 5, sizeof(CountPush)});
+    scanPass_ = std::make_unique<gpu::ComputePipeline>(
+        ctx, gpu::ComputePipelineDesc{"adaptive scan", adaptive_scan_comp_spv, 2, sizeof(ScanPush)});
+    emitPass_ = std::make_unique<gpu::ComputePipeline>(
+        ctx, gpu::ComputePipelineDesc{"adaptive emit", adaptive_emit_comp_spv, 8, sizeof(EmitPush)});
+    cullBind_ = cullPass_->bind({vertices, patches, irregular, limits, *cull_});
+    rateBind_ = ratePass_->bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_});
+    countBind_ = countPass_->bind({*elements_, *sidePieces_, *rates_, *cull_, *info_});
+    scanBind_ = scanPass_->bind({*info_, *totals_});
+    emitBind_ = emitPass_->bind({*elements_, *sidePieces_, *pieces_, *rates_, *info_, *tessVertices_,
+                                 *triangles_, *triangleLevels_});
+}
+
+AdaptiveTess::~AdaptiveTess() = default;
+
+void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
+    const auto write = gpu::Access::ComputeWrite, read = gpu::Access::ComputeRead;
+    CullPush cp{};
+    copyMatrix(view_.viewProj, cp.viewProj);
+    for (int i = 0; i < 3; ++i) cp.eye[i] = view_.eye[i];
+    cp.eye[3] = view_.facing;
+    cp.patchCount = patchCount_;
+    cp.enabled = options_.cull ? 1u : 0u;
+    timed.begin(cmd, "adaptive cull", true);
+    cmd.dispatch(*cullPass_, cullBind_, elementCount_, cp);
+    cmd.endTimed();
+    cmd.barrier(write, read);
+    RatePush rp{};
+    copyMatrix(view_.viewProj, rp.viewProj);
+    rp.halfViewport[0] = 0.5f * float(view_.width);
+    rp.halfViewport[1] = 0.5f * float(view_.height);
+    rp.edgePixels = options_.edgePixels;
+    rp.tess = options_.tess;
+    rp.patchCount = patchCount_;
+    rp.texels = options_.texelsPerUV;
+    timed.begin(cmd, "adaptive rates", true);
+    cmd.dispatch(*ratePass_, rateBind_, pieceCount_, rp);
+    cmd.endTimed();
+    cmd.barrier(write, read);
+    timed.begin(cmd, "adaptive counts", true);
+    cmd.dispatch(*countPass_, countBind_, elementCount_, CountPush{options_.tess});
+    cmd.endTimed();
+    cmd.barrier(write, read);
+    // The previous frame's draw read the totals as indirect arguments.
+    cmd.barrier(gpu::Access::IndirectRead | gpu::Access::VertexRead | gpu::Access::IndexRead, write);
+    timed.begin(cmd, "adaptive scan", true);
+    cmd.dispatch(*scanPass_, scanBind_, 1,
+                 ScanPush{elementCount_, capV_, capT_, kRowGroups, kEvalGroupSize});
+    cmd.endTimed();
+    cmd.barrier(write, read);
+    timed.begin(cmd, "adaptive emit", true);
+    cmd.dispatch(*emitPass_, emitBind_, elementCount_, EmitPush{pointBase_, capT_});
+    cmd.endTimed();
+    cmd.barrier(write, read | gpu::Access::VertexRead | gpu::Access::IndexRead | gpu::Access::IndirectRead);
+}
+
+AdaptiveTotals AdaptiveTess::readTotals(gpu::Context& ctx) const {
+    auto t = gpu::readbackArrayNow<uint32_t>(ctx, *totals_, kTotalsWords);
+    AdaptiveTotals r;
+    r.vertices = t[12];
+    r.visibleTriangles = t[13];
+    r.culledTriangles = t[14];
+    r.overflow = t[15] != 0;
+    r.writtenTriangles = t[16];
+    r.writtenVertices = t[17];
+    return r;
+}
+
+uint64_t AdaptiveTess::bufferBytes() const {
+    uint64_t sum = 0;
+    for (const auto* b : {elements_.get(), sidePieces_.get(), pieces_.get(), cull_.get(), rates_.get(),
+                          info_.get(), totals_.get(), tessVertices_.get(), triangles_.get(),
+                          triangleLevels_.get()})
+        sum += b->size();
+    return sum;
+}
+
+} // namespace limn::render

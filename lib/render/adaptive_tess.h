@@ -1,0 +1,106 @@
+// View-adaptive tessellation on the GPU (issue 11): instead of a fixed grid of 2^(N-l) segments
+// per side of a level-l patch (paper 000, 4.3), every frame five compute passes decide from the
+// camera how finely each edge piece (lib/tess/edge_pieces.h) is cut, and write the tessellation
+// that the draw then reads through one drawIndexedIndirect:
+//
+//   adaptive_cull.comp    per element: outside the frustum? (convex hull of its control points)
+//   adaptive_rates.comp   per edge piece: segments = its projected pixels / --edge-pixels,
+//                         clamped to 1..--tess (from the piece owner's surface only)
+//   adaptive_counts.comp  per element: interior rate, vertex and triangle counts
+//   adaptive_scan.comp    one workgroup: deterministic prefix sums -> offsets, indirect args
+//   adaptive_emit.comp    per element: its (element, s, t) vertices and its triangles
+//
+// Everything stays inside WebGPU: compute + vertex/fragment, storage buffers <= 128 MiB (the
+// per-frame buffers are sized to a budget below that and the host is told when a frame did not
+// fit), workgroups <= 256, no float64, one indirect draw. Topology is uploaded once; a moving
+// camera re-runs only these passes.
+#pragma once
+
+#include "gpu/buffer.h"
+#include "gpu/commands.h"
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "render/frame_pass.h"
+#include "tess/edge_pieces.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <memory>
+
+namespace limn::render {
+
+struct GpuAdaptiveElement { // mirrors AdaptiveElement in shaders/adaptive_tess.glsl
+    uint32_t sideFirst[4], sideCount[4];
+    float uv[8];
+    uint32_t level, pad[3];
+};
+static_assert(sizeof(GpuAdaptiveElement) == 80);
+
+struct AdaptiveView {
+    glm::mat4 viewProj{1.0f};
+    uint32_t width = 1, height = 1;
+    glm::vec3 eye{0.0f};
+    float facing = 0; // cull patches facing away: +1 / -1 (normals' orientation), 0 never
+};
+
+struct AdaptiveOptions {
+    float edgePixels = 4;   // target projected segment length
+    uint32_t tess = 64;     // most segments per edge piece and per element interior
+    bool cull = true;       // skip drawing elements outside the frustum
+    bool backFaceCull = true; // ... and those facing away (closed surfaces seen from outside)
+    float texelsPerUV = 0;  // displacement map size: its texels bound the rates too (0: none)
+    // Budget of the per-frame buffers; the capacity is the smaller of this and what the largest
+    // rates could ever need.
+    uint64_t maxVertices = 0, maxTriangles = 0; // 0: as many as 128 MiB buffers hold
+};
+
+// What the scan wrote for the last frame (read back from the GPU).
+struct AdaptiveTotals {
+    uint32_t vertices = 0;          // emitted (and evaluated)
+    uint32_t visibleTriangles = 0;  // drawn
+    uint32_t culledTriangles = 0;   // emitted for --mesh-out only
+    bool overflow = false;          // the frame needed more than the buffers hold
+    uint32_t writtenTriangles = 0;  // visible + culled, within capacity
+    uint32_t writtenVertices = 0;
+};
+
+class AdaptiveTess {
+  public:
+    // The surface buffers are those of SubdivisionPass (table vertices, patches, irregular
+    // faces, limit points); they must outlive this.
+    AdaptiveTess(gpu::Context& ctx, const EdgePieces& pieces, uint32_t patchCount,
+                 const gpu::Buffer& vertices, const gpu::Buffer& patches, const gpu::Buffer& irregular,
+                 const gpu::Buffer& limits, const AdaptiveOptions& options);
+    ~AdaptiveTess();
+
+    void setView(const AdaptiveView& view) { view_ = view; }
+    // The five passes, each timed; ends with the barrier that the evaluation pass and the draw
+    // need.
+    void record(gpu::CommandBuffer& cmd, TimedPasses& timed);
+
+    const gpu::Buffer& tessVertices() const { return *tessVertices_; }
+    const gpu::Buffer& elementsBuffer() const { return *elements_; }
+    const gpu::Buffer& triangles() const { return *triangles_; }
+    const gpu::Buffer& triangleLevels() const { return *triangleLevels_; }
+    const gpu::Buffer& totalsBuffer() const { return *totals_; }
+    // Offsets into totalsBuffer(): indexed draw, non-indexed draw, evaluation dispatch.
+    static constexpr uint64_t kIndexedDrawArgs = 0, kDrawArgs = 20, kDispatchArgs = 36;
+    static constexpr uint32_t kRowGroups = 65535;
+    uint32_t vertexCapacity() const { return capV_; }
+    uint32_t triangleCapacity() const { return capT_; }
+    AdaptiveTotals readTotals(gpu::Context& ctx) const;
+    uint64_t bufferBytes() const;
+    uint32_t pieceCount() const { return pieceCount_; }
+
+  private:
+    AdaptiveOptions options_;
+    AdaptiveView view_;
+    uint32_t elementCount_, pieceCount_, pointBase_, patchCount_, capV_ = 0, capT_ = 0;
+    std::unique_ptr<gpu::Buffer> elements_, sidePieces_, pieces_, cull_, rates_, info_, totals_,
+        tessVertices_, triangles_, triangleLevels_;
+    std::unique_ptr<gpu::ComputePipeline> cullPass_, ratePass_, countPass_, scanPass_, emitPass_;
+    gpu::BindGroup cullBind_, rateBind_, countBind_, scanBind_, emitBind_;
+};
+
+} // namespace limn::render

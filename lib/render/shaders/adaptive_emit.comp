@@ -1,0 +1,163 @@
+// View-adaptive tessellation, pass 5 of 5 (issue 11): each element writes its vertices and
+// triangles at the offsets of adaptive_scan.comp. The draw (and the evaluation pass) then read
+// them like the fixed tessellation of lib/tess: a vertex is (element, s, t, own-chart UV).
+//
+// Boundary: counter-clockwise, per side, per edge piece: the piece's start point (one owner per
+// point: its owner's element and corner parameters), then the piece's interior points at the
+// piece's rate, named by the *piece owner's* element and parameters (computed from the owner's
+// two end parameters and the point's index in the owner's direction). Both sides of a piece so
+// write the same (element, s, t) for each shared point, and the evaluation turns those into the
+// same bits: watertight to the bit without sharing indices across elements. A coarse side next
+// to two finer patches has two pieces, so level transitions meet point to point (no T-junction).
+// Interior (rate m): two triangles when m <= 2 and the boundary is the four corners; a centre
+// point fanned to the boundary when m <= 2; otherwise the (m-1)^2
+// grid points (i/m, j/m), the (m-2)^2 grid cells, and per side a zipper strip joining the side's
+// boundary points to the grid's outer ring, merged in parameter order (deterministic).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "limn_compute.glsl"
+#include "adaptive_tess.glsl"
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Elements { AdaptiveElement e[]; } elements;
+layout(std430, binding = 1) readonly buffer SidePieces { uvec4 v[]; } sidePieces;
+layout(std430, binding = 2) readonly buffer Pieces { uvec4 v[]; } pieces; // pieces, then points
+layout(std430, binding = 3) readonly buffer Rates { uint r[]; } rates;
+layout(std430, binding = 4) readonly buffer Info { uvec4 v[]; } info;
+layout(std430, binding = 5) writeonly buffer TessVertices { uvec4 v[]; } tessVertices;
+layout(std430, binding = 6) writeonly buffer Triangles { uint i[]; } triangles;
+layout(std430, binding = 7) writeonly buffer TriangleLevels { uint l[]; } triangleLevels;
+
+layout(push_constant) uniform Push {
+    LIMN_DISPATCH_HEADER
+    layout(offset = 16) uint pointBase; // first point record in `pieces`
+    uint triangleCapacity;
+} pc;
+
+AdaptiveElement el;
+uint vBase, tNext, level;
+
+vec2 uvAt(float s, float t) {
+    return mix(mix(el.uv[0], el.uv[1], s), mix(el.uv[3], el.uv[2], s), t);
+}
+
+// This element's (s, t) at parameter x (1/32768) along side k.
+vec2 sideParam(uint k, float x) {
+    float p = x / 32768.0;
+    if (k == 0u) return vec2(p, 0.0);
+    if (k == 1u) return vec2(1.0, p);
+    if (k == 2u) return vec2(1.0 - p, 1.0);
+    return vec2(0.0, 1.0 - p);
+}
+
+void vertex(uint local, uint element, uint st, vec2 uv) {
+    tessVertices.v[vBase + local] = uvec4(element, st, floatBitsToUint(uv.x), floatBitsToUint(uv.y));
+}
+
+void tri(uint a, uint b, uint c) {
+    triangles.i[3u * tNext] = vBase + a;
+    triangles.i[3u * tNext + 1u] = vBase + b;
+    triangles.i[3u * tNext + 2u] = vBase + c;
+    triangleLevels.l[tNext] = level;
+    ++tNext;
+}
+
+// Point j of r along a piece from st a to st b (integers, so every side computes the same).
+uint lerpST(uint a, uint b, uint j, uint r) {
+    int sa = int(a & 0xFFFFu), sb = int(b & 0xFFFFu), ta = int(a >> 16), tb = int(b >> 16);
+    int s = sa + ((sb - sa) * int(j)) / int(r), t = ta + ((tb - ta) * int(j)) / int(r);
+    return uint(s) | (uint(t) << 16);
+}
+
+void main() {
+    uint e = limnInvocationIndex(pc.limnRowInvocations);
+    if (e >= pc.limnCount) return;
+    uvec4 inf = info.v[e];
+    uint m = inf.x & ~ADAPTIVE_CULLED;
+    uint T = inf.w & 0x7FFFFFFFu;
+    vBase = inf.y;
+    tNext = inf.z;
+    if ((inf.w >> 31) == 0u) {
+        // Over capacity (the host warns): the part of its triangle range that exists is
+        // degenerate, so the draw reads nothing stale.
+        for (uint i = 0u; i < T && tNext + i < pc.triangleCapacity; ++i) {
+            triangles.i[3u * (tNext + i)] = 0u;
+            triangles.i[3u * (tNext + i) + 1u] = 0u;
+            triangles.i[3u * (tNext + i) + 2u] = 0u;
+            triangleLevels.l[tNext + i] = 0u;
+        }
+        return;
+    }
+    el = elements.e[e];
+    level = el.level;
+
+    // The boundary loop.
+    uint sideStart[4], sideTotal[4];
+    uint B = 0u;
+    for (uint k = 0u; k < 4u; ++k) {
+        sideStart[k] = B;
+        for (uint p = 0u; p < el.sideCount[k]; ++p) {
+            uvec4 sp = sidePieces.v[el.sideFirst[k] + p];
+            uint r = rates.r[sp.x] & 0xFFFFu;
+            uvec4 piece = pieces.v[2u * sp.x];
+            uvec4 point = pieces.v[pc.pointBase + sp.y];
+            float from = float(sp.w & 0xFFFFu), to = float(sp.w >> 16);
+            vec2 st = sideParam(k, from);
+            vertex(B++, point.x, point.y, uvAt(st.x, st.y));
+            for (uint i = 1u; i < r; ++i) {
+                uint j = sp.z != 0u ? r - i : i;
+                st = sideParam(k, from + (to - from) * float(i) / float(r));
+                vertex(B++, piece.x, lerpST(piece.y, piece.z, j, r), uvAt(st.x, st.y));
+            }
+        }
+        sideTotal[k] = B - sideStart[k];
+    }
+
+    if (m <= 2u && B == 4u) { // the four corners only: two triangles
+        tri(0u, 1u, 2u);
+        tri(0u, 2u, 3u);
+        return;
+    }
+    if (m <= 2u) {
+        vertex(B, e, 16384u | (16384u << 16), uvAt(0.5, 0.5));
+        for (uint i = 0u; i < B; ++i) tri(B, i, (i + 1u) % B);
+        return;
+    }
+    // Interior grid points (i, j), 1 <= i, j <= m-1, at B + (j-1)(m-1) + (i-1).
+    for (uint j = 1u; j < m; ++j)
+        for (uint i = 1u; i < m; ++i) {
+            uint s = (i * 32768u) / m, t = (j * 32768u) / m;
+            vertex(B + (j - 1u) * (m - 1u) + (i - 1u), e, s | (t << 16), uvAt(float(i) / float(m), float(j) / float(m)));
+        }
+    for (uint j = 1u; j + 1u < m; ++j)
+        for (uint i = 1u; i + 1u < m; ++i) {
+            uint a = B + (j - 1u) * (m - 1u) + (i - 1u);
+            tri(a, a + 1u, a + m);
+            tri(a, a + m, a + m - 1u);
+        }
+    // Zipper strips: side k's boundary points against the grid's outer ring on that side.
+    for (uint k = 0u; k < 4u; ++k) {
+        uint na = sideTotal[k], nb = m - 2u, ia = 0u, jb = 0u;
+        while (ia < na || jb < nb) {
+            uint a0 = (sideStart[k] + ia) % B;
+            uint g0, g1; // ring points jb and jb + 1 on side k
+            for (uint q = 0u; q < 2u; ++q) {
+                uint x = jb + q, gi, gj;
+                if (k == 0u) gi = 1u + x, gj = 1u;
+                else if (k == 1u) gi = m - 1u, gj = 1u + x;
+                else if (k == 2u) gi = m - 1u - x, gj = m - 1u;
+                else gi = 1u, gj = m - 1u - x;
+                uint g = B + (gj - 1u) * (m - 1u) + (gi - 1u);
+                if (q == 0u) g0 = g; else g1 = g;
+            }
+            bool advanceA = jb == nb || (ia < na && (2u * ia + 1u) * nb <= (2u * jb + 1u) * na);
+            if (advanceA) {
+                tri(a0, (sideStart[k] + ia + 1u) % B, g0);
+                ++ia;
+            } else {
+                tri(a0, g1, g0);
+                ++jb;
+            }
+        }
+    }
+}

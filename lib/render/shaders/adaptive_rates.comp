@@ -1,0 +1,80 @@
+// View-adaptive tessellation, pass 2 of 5 (issue 11): per edge piece, its segments this frame.
+// Decided once per piece from data both sides share: the piece owner's surface at the piece's
+// two ends and middle (evaluated with the draw's own code, surface_eval_impl.glsl), projected to
+// pixels; so the two patches of an edge can never disagree (OpenSubdiv PR #435). The rate is
+// ceil(length / edgePixels), at least the displacement map's texels along the piece (at most
+// one segment per 2 pixels), clamped to 1..tess and to the piece's parameter span. A piece whose
+// every user element is culled gets 1, so does one whose samples are all beyond one clip plane
+// (off screen: only its look is at stake, never the watertightness, which holds at any rates);
+// one that crosses the eye plane gets tess. Written as rate | size << 16, where size is the
+// rate its projected length alone asks for: adaptive_counts.comp sizes an element's interior
+// from its sides' sizes, so a large element whose sides are off screen stays fine inside.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "limn_compute.glsl"
+#include "surface_eval.glsl"
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Vertices { vec4 p[]; } vertices;
+layout(std430, binding = 1) readonly buffer Patches { Patch p[]; } patches;
+layout(std430, binding = 2) readonly buffer Irregulars { IrregularFace f[]; } irregulars;
+layout(std430, binding = 3) readonly buffer Limits { vec4 v[]; } limits;
+layout(std430, binding = 4) readonly buffer Pieces { uvec4 v[]; } pieces;
+layout(std430, binding = 5) readonly buffer Cull { uint c[]; } cull;
+layout(std430, binding = 6) writeonly buffer Rates { uint r[]; } rates;
+
+layout(push_constant) uniform Push {
+    LIMN_DISPATCH_HEADER
+    layout(offset = 16) mat4 viewProj;
+    vec2 halfViewport;  // pixels per unit of NDC
+    float edgePixels;   // target segment length
+    uint tess;          // most segments per piece
+    uint patchCount;
+    float texels;       // displacement map texels per unit of UV (0: none)
+} pc;
+
+#define LIMN_NO_TESS_VERTICES
+#include "surface_eval_impl.glsl"
+
+uint midST(uint a, uint b) {
+    return (((a & 0xFFFFu) + (b & 0xFFFFu)) / 2u) | ((((a >> 16) + (b >> 16)) / 2u) << 16);
+}
+
+void main() {
+    uint i = limnInvocationIndex(pc.limnRowInvocations);
+    if (i >= pc.limnCount) return;
+    uvec4 p0 = pieces.v[2u * i], p1 = pieces.v[2u * i + 1u];
+    bool visible = cull.c[p1.x] == 0u || (p1.y != 0xFFFFFFFFu && cull.c[p1.y] == 0u);
+    uint cap = max(min(pc.tess, p0.w), 1u);
+    uint r = 1u, size = 1u;
+    if (visible) {
+        uint st[3] = uint[3](p0.y, midST(p0.y, p0.z), p0.z);
+        vec2 px[3];
+        uint behind = 0u, allOut = 63u;
+        for (int k = 0; k < 3; ++k) {
+            vec4 c = pc.viewProj * vec4(evaluateElement(p0.x, st[k], pc.patchCount).position, 1.0);
+            uint o = 0u;
+            if (c.x < -c.w) o |= 1u;
+            if (c.x > c.w) o |= 2u;
+            if (c.y < -c.w) o |= 4u;
+            if (c.y > c.w) o |= 8u;
+            if (c.z < 0.0) o |= 16u;
+            if (c.z > c.w) o |= 32u;
+            allOut &= o;
+            if (!(c.w > 1e-6)) ++behind;
+            px[k] = c.w > 1e-6 ? c.xy / c.w * pc.halfViewport : vec2(0.0);
+        }
+        float len = distance(px[0], px[1]) + distance(px[1], px[2]);
+        if (behind == 3u) {
+            r = 1u, size = 1u;
+        } else if (behind != 0u || !(len < 1e9)) {
+            r = cap, size = cap;
+        } else {
+            float want = ceil(len / pc.edgePixels);
+            if (pc.texels > 0.0) want = max(want, min(ceil(uintBitsToFloat(p1.z) * pc.texels), ceil(0.5 * len)));
+            size = uint(clamp(want, 1.0, float(cap)));
+            r = allOut != 0u ? 1u : size;
+        }
+    }
+    rates.r[i] = r | (size << 16);
+}

@@ -1,0 +1,75 @@
+// View-adaptive tessellation, pass 4 of 5 (issue 11): one workgroup of 256 turns every element's
+// vertex and triangle counts into offsets (an exclusive prefix sum: each invocation sums a
+// contiguous chunk, a Hillis-Steele scan of the chunk sums in shared memory, then each chunk is
+// walked again). Integer sums in a fixed order: the same offsets every run, no atomics. Visible
+// elements' triangles come first (the draw draws those), culled ones after them (only --mesh-out
+// reads them). Writes the indirect draw and dispatch arguments and the totals.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "limn_compute.glsl"
+#include "adaptive_tess.glsl"
+layout(local_size_x = 256) in;
+
+layout(std430, binding = 0) buffer Info { uvec4 v[]; } info;  // in: m | culled, V, T; out: offsets
+layout(std430, binding = 1) writeonly buffer Totals { uint t[]; } totals;
+
+layout(push_constant) uniform Push {
+    LIMN_DISPATCH_HEADER
+    layout(offset = 16) uint elementCount;
+    uint vertexCapacity;
+    uint triangleCapacity;
+    uint rowGroups;     // dispatch rows for the evaluation pass (65535 groups)
+    uint evalGroupSize; // its workgroup size
+} pc;
+
+shared uint sumV[256], sumTv[256], sumTc[256];
+
+void main() {
+    uint lid = gl_LocalInvocationID.x;
+    uint n = pc.elementCount;
+    uint chunk = (n + 255u) / 256u;
+    uint begin = min(lid * chunk, n), end = min(begin + chunk, n);
+    uint v = 0u, tv = 0u, tc = 0u;
+    for (uint e = begin; e < end; ++e) {
+        uvec4 x = info.v[e];
+        v += x.y;
+        if ((x.x & ADAPTIVE_CULLED) != 0u) tc += x.z; else tv += x.z;
+    }
+    sumV[lid] = v, sumTv[lid] = tv, sumTc[lid] = tc;
+    barrier();
+    for (uint d = 1u; d < 256u; d <<= 1u) {
+        uint a = 0u, b = 0u, c = 0u;
+        if (lid >= d) a = sumV[lid - d], b = sumTv[lid - d], c = sumTc[lid - d];
+        barrier();
+        sumV[lid] += a, sumTv[lid] += b, sumTc[lid] += c;
+        barrier();
+    }
+    uint totalV = sumV[255], totalTv = sumTv[255], totalTc = sumTc[255];
+    uint ov = sumV[lid] - v, otv = sumTv[lid] - tv, otc = totalTv + sumTc[lid] - tc;
+    for (uint e = begin; e < end; ++e) {
+        uvec4 x = info.v[e];
+        bool culled = (x.x & ADAPTIVE_CULLED) != 0u;
+        uint to = culled ? otc : otv;
+        uint fits = ((ov <= pc.vertexCapacity && x.y <= pc.vertexCapacity - ov) && (to <= pc.triangleCapacity && x.z <= pc.triangleCapacity - to)) ? 1u : 0u;
+        info.v[e] = uvec4(x.x, ov, to, x.z | (fits << 31));
+        ov += x.y;
+        if (culled) otc += x.z; else otv += x.z;
+    }
+    if (lid == 0u) {
+        uint drawn = min(totalTv, pc.triangleCapacity);
+        uint evaluated = min(totalV, pc.vertexCapacity);
+        uint groups = (evaluated + pc.evalGroupSize - 1u) / pc.evalGroupSize;
+        // drawIndexedIndirect: indexCount, instanceCount, firstIndex, vertexOffset, firstInstance
+        totals.t[0] = 3u * drawn, totals.t[1] = 1u, totals.t[2] = 0u, totals.t[3] = 0u, totals.t[4] = 0u;
+        // drawIndirect (--shade levels pulls its indices): vertexCount, instanceCount, first, first
+        totals.t[5] = 3u * drawn, totals.t[6] = 1u, totals.t[7] = 0u, totals.t[8] = 0u;
+        // dispatchIndirect of the evaluation pass
+        totals.t[9] = min(groups, pc.rowGroups);
+        totals.t[10] = groups == 0u ? 0u : (groups + pc.rowGroups - 1u) / pc.rowGroups;
+        totals.t[11] = 1u;
+        totals.t[12] = totalV, totals.t[13] = totalTv, totals.t[14] = totalTc;
+        totals.t[15] = (totalV > pc.vertexCapacity || totalTv + totalTc > pc.triangleCapacity) ? 1u : 0u;
+        totals.t[16] = min(totalTv + totalTc, pc.triangleCapacity);
+        totals.t[17] = evaluated;
+    }
+}
