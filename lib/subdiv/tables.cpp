@@ -119,6 +119,21 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     const uint32_t N = static_cast<uint32_t>(opts.depth);
     Topology baseTopo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
     requireManifold(baseTopo);
+    // A stencil row holds up to 2 k + 1 entries for a face of k sides or a vertex of k edges, and
+    // the TBLS format caps rows at 65,536 entries (formats/limn.md): refuse before the work what
+    // limn-info and limn-render would refuse after it.
+    for (uint32_t f = 0; f < baseTopo.faceCount(); ++f)
+        if (baseTopo.faceSize(f) > kMaxStencilValence)
+            throwBadInput("face " + std::to_string(f) + " has " +
+                          std::to_string(baseTopo.faceSize(f)) + " sides; subdivision tables " +
+                          "support up to " + std::to_string(kMaxStencilValence) +
+                          " (split the face first)");
+    for (uint32_t v = 0; v < baseTopo.vertexCount(); ++v)
+        if (baseTopo.vertexOutgoing(v).size() > kMaxStencilValence)
+            throwBadInput("vertex " + std::to_string(v) + " is shared by " +
+                          std::to_string(baseTopo.vertexOutgoing(v).size()) + " faces; " +
+                          "subdivision tables support up to " +
+                          std::to_string(kMaxStencilValence));
     if (N == 0)
         for (uint32_t f = 0; f < baseTopo.faceCount(); ++f)
             if (baseTopo.faceSize(f) != 4)

@@ -61,6 +61,9 @@ struct IrregularFace {
     float u0, v0, size;
 };
 
+// The largest face size or vertex valence whose stencil rows (2 k + 1 entries) fit the TBLS
+// format's limit of 65,536 entries per row.
+inline constexpr uint32_t kMaxStencilValence = 32767;
 // Ptex coordinates stay exact in float down to 2^-16; deeper levels would not tile exactly.
 inline constexpr int kMaxDepth = 16;
 // A level with more vertices than this is refused (about 10 GB of tables).

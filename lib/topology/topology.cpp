@@ -33,17 +33,33 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
         for (uint32_t h = 0; h < H; ++h)
             bucket[fill[std::min(heVertex_[h], heVertex_[next(h)])]++] = h;
     }
+    // Within a bucket, half-edges with the same larger vertex form one edge: chain them in
+    // bucket (= half-edge) order through a slot per larger vertex, reset after each bucket. One
+    // pass over each bucket, so a vertex shared by many edges (an n-gon's centre after one
+    // level) costs linear time, not its bucket size per edge.
+    std::vector<uint32_t> nextInEdge(H, kNone), lastInEdge(H), slot(vertexCount_, kNone);
+    for (uint32_t v = 0; v < vertexCount_; ++v) {
+        for (uint32_t i = bucketStart[v]; i < bucketStart[v + 1]; ++i) {
+            const uint32_t h = bucket[i];
+            uint32_t& first = slot[other[h]];
+            if (first == kNone) {
+                first = h;
+                lastInEdge[h] = h;
+            } else {
+                nextInEdge[lastInEdge[first]] = h;
+                lastInEdge[first] = h;
+            }
+        }
+        for (uint32_t i = bucketStart[v]; i < bucketStart[v + 1]; ++i) slot[other[bucket[i]]] = kNone;
+    }
     heEdge_.assign(H, kNone);
     heTwin_.assign(H, kNone);
     uint32_t group[64];
     for (uint32_t h0 = 0; h0 < H; ++h0) {
-        if (heEdge_[h0] != kNone) continue;
+        if (heEdge_[h0] != kNone) continue; // h0 is the first half-edge of a new edge
         const uint32_t e = static_cast<uint32_t>(edgeVertices_.size());
-        const uint32_t lo = std::min(heVertex_[h0], heVertex_[next(h0)]);
         uint32_t n = 0, count = 0;
-        for (uint32_t i = bucketStart[lo]; i < bucketStart[lo + 1]; ++i) {
-            uint32_t h = bucket[i];
-            if (other[h] != other[h0]) continue;
+        for (uint32_t h = h0; h != kNone; h = nextInEdge[h]) {
             heEdge_[h] = e;
             if (n < 64) group[n++] = h;
             ++count;
