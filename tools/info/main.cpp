@@ -7,8 +7,13 @@
 #include "container/container.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
+#include "blend/blend_chunk.h"
+#include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include <cstdio>
 #include <optional>
@@ -135,8 +140,31 @@ int main(int argc, char** argv) {
             }
             tableBytes = tb->payload.size();
         }
+        // Every chunk summarised is validated as limn-render reads it, and a SEAM made from
+        // other tables or UVs is reported stale (limn-render would refuse it).
+        bool seamsStale = false;
+        try {
+            if (const Chunk* sm = container.find(kSeamsChunk)) {
+                const uint32_t elements =
+                    tables ? static_cast<uint32_t>(tables->patches.size() + tables->irregular.size())
+                           : kNone;
+                const Seams seams = decodeSeamsChunk(*sm, elements, 0);
+                seamsStale = !tables || seams.sourceHash != seamsSourceHash(container);
+            }
+            if (container.find(blend::kBlendChunk)) (void)blend::loadBlendSurface(container, mesh);
+        } catch (Error& e) {
+            e.setFile(input);
+            throw;
+        }
+        if (seamsStale)
+            cli::warn((input == "-" ? std::string("<stdin>") : input) +
+                      ": the SEAM chunk was made from other tables or UVs (stale); re-run limn-seams");
         cli::printWarnings(warnings, input == "-" ? "<stdin>" : input);
         Summary s = summarize(mesh, c);
+        // The bounding box, in the mesh's units: --displace-scale is in the same units.
+        glm::dvec3 lo(mesh.positions.empty() ? glm::dvec3(0) : mesh.positions[0]), hi = lo;
+        for (const auto& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        const double diagonal = glm::length(hi - lo);
 
         if (json) {
             JsonWriter j;
@@ -154,6 +182,10 @@ int main(int argc, char** argv) {
                 .field("uvs", s.uvs)
                 .field("uv_seam_edges", c.uvSeamEdges)
                 .field("boundary_rule", boundaryName(c.options.boundary));
+            j.key("bounds").beginObject();
+            j.key("min").beginArray().value(lo.x).value(lo.y).value(lo.z).endArray();
+            j.key("max").beginArray().value(hi.x).value(hi.y).value(hi.z).endArray();
+            j.field("diagonal", diagonal).endObject();
             if (tables) {
                 j.field("depth", tables->depth)
                     .field("uniform", tables->uniform)
@@ -176,6 +208,7 @@ int main(int argc, char** argv) {
             for (const auto& ch : container.chunks) {
                 j.beginObject();
                 j.field("type", ch.type.str()).field("version", ch.version).field("bytes", ch.payload.size());
+                if (ch.type == kSeamsChunk) j.field("stale", seamsStale);
                 j.endObject();
             }
             j.endArray();
@@ -194,6 +227,8 @@ int main(int argc, char** argv) {
             std::printf("  holes / no limit       %zu\n", s.holeFaces);
             std::printf("  UVs                    %zu\n", s.uvs);
             std::printf("  boundary rule          %s\n", boundaryName(c.options.boundary));
+            std::printf("  bounds                 %.6g %.6g %.6g .. %.6g %.6g %.6g (diagonal %.6g)\n",
+                        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, diagonal);
             if (tables) {
                 std::printf("  tables                 depth %u %s, %zu bytes, %u vertices, %zu patches, "
                             "%zu limit points (%u approximate)\n",

@@ -16,8 +16,13 @@
 #include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <optional>
 #include <sys/resource.h>
@@ -58,6 +63,20 @@ struct Input {
     std::optional<blend::BlendSurface> blend;
     std::vector<std::string> filesRead; // a .gltf's buffers and images
 };
+
+// An image given to an option; errors say which option and what to do.
+render::FloatImage loadMap(const std::string& option, const std::string& path) {
+    try {
+        return render::loadImage(path);
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        const bool missing = what.find("cannot open") != std::string::npos;
+        Error out(e.kind(), option + ": " + what +
+                                (missing ? "; give " + option + " an existing image file" : ""));
+        out.setFile(path);
+        throw out;
+    }
+}
 
 Input readInput(const std::string& input, Surface surface, Warnings& warnings) {
     auto bytes = limn::readInput(input);
@@ -126,6 +145,7 @@ int main(int argc, char** argv) {
         std::string input = "-", shade = "lit", device, meshOut, eval = "auto",
                     surfaceName = "auto", trimPath, displace, texture;
         double displaceScale = 1, displaceMid = 0;
+        bool displaceScalePercent = false; // --displace-scale 2%: of the bounding-box diagonal
         bool noSeamFix = false;
         render::RenderSettings settings;
         bool wire = false, alpha = false, validate = false, syncValidation = false,
@@ -235,8 +255,20 @@ int main(int argc, char** argv) {
                   "with\n"
                   "                            wrap-around at the mesh UVs: texel centres at half\n"
                   "                            integers, v = 0 at the bottom row")
-            .real("--displace-scale", "S", &displaceScale, -1e6, 1e6,
-                  "world units per unit of map value")
+            .custom(
+                "--displace-scale", "S|P%",
+                [&](const std::string& v) {
+                    displaceScalePercent = !v.empty() && v.back() == '%';
+                    const std::string number = displaceScalePercent ? v.substr(0, v.size() - 1) : v;
+                    char* end = nullptr;
+                    displaceScale = std::strtod(number.c_str(), &end);
+                    if (number.empty() || *end != '\0' || !std::isfinite(displaceScale) ||
+                        std::abs(displaceScale) > 1e6)
+                        usage("--displace-scale: '" + v + "' is not a number (or a percentage "
+                              "like 2%) within -1e6 to 1e6");
+                },
+                "1", "world units per unit of map value, or P% of the control mesh's bounding-box "
+                     "diagonal (limn-info prints it)")
             .real("--displace-mid", "M", &displaceMid, -1e6, 1e6, "the map value meaning zero")
             .flag("--no-seam-fix", &noSeamFix,
                   "sample the map with each face's own UV only (shows the cracks that the\n"
@@ -353,6 +385,9 @@ int main(int argc, char** argv) {
                                                                : Surface::Auto;
         if (!trimPath.empty() && (surface == Surface::Subdivision || surface == Surface::Control))
             usage("--trim cuts blending surfaces; it does not go with --surface " + surfaceName);
+        if (surface == Surface::Control && (!texture.empty() || !displace.empty() || shade == "levels"))
+            usage("--texture, --displace and --shade levels draw the subdivision surface, and "
+                  "--surface control draws the control mesh; leave out --surface control");
 
         // Open outputs first: a refused terminal or an unwritable directory fails before any work.
         std::vector<std::string> inputs = {input};
@@ -372,6 +407,14 @@ int main(int argc, char** argv) {
         Warnings warnings;
         Input in = readInput(input, surface, warnings);
         cli::printWarnings(warnings, displayName(input));
+        // No silent fallbacks: a classified container without tables draws its control mesh,
+        // which is rarely what was meant; a --grid without a blending surface does nothing.
+        if (surface == Surface::Auto && !in.tables && !in.blend && isContainerFile(input))
+            cli::warn(displayName(input) + ": no subdivision tables (TBLS) or blending surface "
+                      "(BLND): drawing the control mesh; run limn-tables for the smooth surface");
+        if (!in.blend && grid != 16)
+            cli::warn("--grid sets the blending surface's cells; " + displayName(input) +
+                      " draws no blending surface, so it does nothing");
         if (!trimPath.empty()) {
             try {
                 settings.trim = render::trimMaskFromImage(
@@ -385,9 +428,16 @@ int main(int argc, char** argv) {
         settings.edgePixels = edgePixels;
         std::optional<render::FloatImage> displacementMap, textureMap;
         if (!displace.empty()) {
-            displacementMap = render::loadImage(displace);
+            displacementMap = loadMap("--displace", displace);
             settings.displacementMap = &*displacementMap;
             settings.displaceScale = displaceScale;
+            if (displaceScalePercent) {
+                glm::dvec3 lo = in.mesh.positions[0], hi = lo;
+                for (const auto& p : in.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+                settings.displaceScale = displaceScale / 100 * glm::length(hi - lo);
+                cli::info("--displace-scale " + std::to_string(displaceScale) + "% = " +
+                          std::to_string(settings.displaceScale) + " world units");
+            }
             settings.displaceMid = displaceMid;
             settings.seamFix = !noSeamFix;
             if (in.tables && !in.seams && in.mesh.hasUVs()) {
@@ -397,7 +447,7 @@ int main(int argc, char** argv) {
             if (in.seams) settings.seams = &*in.seams;
         }
         if (!texture.empty()) {
-            textureMap = render::loadImage(texture);
+            textureMap = loadMap("--texture", texture);
             settings.texture = &*textureMap;
             if (shade == "lit") settings.shade = render::Shade::Texture;
         }

@@ -66,6 +66,12 @@ int main(int argc, char** argv) {
                       " limit points are approximate (undecayed semi-sharp features, darts or "
                       "valence-2 vertices at the last level)");
         container.set(encodeTablesChunk(tables));
+        // Seams belong to the tables they were made from: new tables make them stale.
+        if (container.find(FourCC{"SEAM"})) {
+            container.remove(FourCC{"SEAM"});
+            cli::warn(name + ": dropped the SEAM chunk made for the old tables; run limn-seams "
+                             "again (or let limn-render --displace compute the seams)");
+        }
         out.write(serializeContainer(container));
         depfile.setRule(common.output, {input});
         out.commit();
