@@ -238,7 +238,9 @@ DrawnMesh SubdivisionPass::drawnMesh() {
         v.ptex = static_cast<int32_t>(info[i].x);
         std::memcpy(&v.u, &info[i].y, 4);
         std::memcpy(&v.v, &info[i].z, 4);
+        if (draw_.hasUVs) v.s = draw_.tessVertices[i].u, v.t = draw_.tessVertices[i].v;
     }
+    out.hasTexCoords = draw_.hasUVs; // the tessellation split its vertices at UV seams
     out.triangles = draw_.triangles;
     return out;
 }
