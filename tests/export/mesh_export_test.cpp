@@ -410,20 +410,91 @@ TEST(MeshExport, SpotRoundTripsInEveryFormatWithItsTextureUVs) {
     expectValid({e.glbPath, e.gltfPath});
 }
 
+// Edges used by one face only, from the input's own faces (vertex ids).
+size_t boundaryEdges(const std::vector<std::vector<int>>& faces) {
+    std::map<std::pair<int, int>, int> uses;
+    for (const auto& f : faces)
+        for (size_t i = 0; i < f.size(); ++i) {
+            int a = f[i], b = f[(i + 1) % f.size()];
+            ++uses[{std::min(a, b), std::max(a, b)}];
+        }
+    size_t n = 0;
+    for (const auto& [e, u] : uses) n += u == 1;
+    return n;
+}
+
+std::vector<std::vector<int>> objFaces(const std::string& path) {
+    std::vector<std::vector<int>> faces;
+    for (const auto& f : readObjUVs(readFile(path)).faces) {
+        faces.emplace_back();
+        for (auto [v, vt] : f) faces.back().push_back(v);
+    }
+    return faces;
+}
+
+// A glTF model's triangles, its split vertices welded by position (as limn-classify does).
+std::vector<std::vector<int>> gltfFaces(const std::string& path) {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                             const unsigned char*, int, void*) { return true; },
+                          nullptr);
+    tinygltf::Model m;
+    std::string err, warn;
+    EXPECT_TRUE(loader.LoadASCIIFromFile(&m, &err, &warn, path)) << err;
+    std::vector<std::vector<int>> faces;
+    for (const auto& mesh : m.meshes)
+        for (const auto& prim : mesh.primitives) {
+            auto pos = floats<3>(m, prim.attributes.at("POSITION"), TINYGLTF_TYPE_VEC3);
+            std::map<std::array<uint32_t, 3>, int> weld;
+            std::vector<int> id;
+            for (const auto& p : pos)
+                id.push_back(weld.try_emplace({std::bit_cast<uint32_t>(p[0]), std::bit_cast<uint32_t>(p[1]),
+                                               std::bit_cast<uint32_t>(p[2])},
+                                              int(weld.size()))
+                                 .first->second);
+            const auto& a = m.accessors.at(size_t(prim.indices));
+            const auto& v = m.bufferViews.at(size_t(a.bufferView));
+            const unsigned char* d = m.buffers.at(size_t(v.buffer)).data.data() + v.byteOffset + a.byteOffset;
+            for (size_t t = 0; t + 2 < a.count; t += 3) {
+                faces.emplace_back();
+                for (size_t k = 0; k < 3; ++k) {
+                    uint32_t i = 0;
+                    if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+                        uint16_t s16;
+                        std::memcpy(&s16, d + 2 * (t + k), 2);
+                        i = s16;
+                    } else {
+                        EXPECT_EQ(a.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+                        std::memcpy(&i, d + 4 * (t + k), 4);
+                    }
+                    faces.back().push_back(id.at(i));
+                }
+            }
+        }
+    return faces;
+}
+
 TEST(MeshExport, CarAndAvocadoRoundTripAndValidate) {
     ScratchDir dir;
     std::vector<std::string> files;
     for (auto [model, name] : {std::pair{"osd/catmark/catmark_car.obj", "car"},
                                std::pair{"gltf/Avocado/Avocado.gltf", "avocado"}}) {
         SCOPED_TRACE(name);
-        auto limn = prepare(dir, modelPath(model).string(), 1, name);
+        const std::string path = modelPath(model).string();
+        auto limn = prepare(dir, path, 1, name);
         Exported e = exportAll(dir, limn, name);
         ASSERT_FALSE(e.ply.triangles.empty());
         expectAllEqual(e);
-        // Welding tells the same story in every format.
+        // Both are open: welded by position, the drawn surface's open edges are the input's
+        // boundary edges, each drawn as 2^depth segments (the tessellation's grid along a base
+        // edge), in every format; nothing else is open (no crack) and no edge is overused.
+        const size_t boundary = boundaryEdges(std::string(name) == "car" ? objFaces(path) : gltfFaces(path));
+        EXPECT_GT(boundary, 0u);
         auto w = weldedEdges(e.ply), wg = weldedEdges(drawnFromGltf(e.glb));
-        EXPECT_EQ(w.open, wg.open);
-        EXPECT_EQ(w.over, wg.over);
+        EXPECT_EQ(w.open, 2 * boundary);
+        EXPECT_EQ(wg.open, 2 * boundary);
+        EXPECT_EQ(w.over, 0u);
+        EXPECT_EQ(wg.over, 0u);
         files.push_back(e.glbPath);
         files.push_back(e.gltfPath);
     }
