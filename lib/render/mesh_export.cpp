@@ -133,10 +133,9 @@ std::vector<uint8_t> encodeGltf(const DrawnMesh& mesh, bool binary) {
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "limn-render";
-    model.scenes.emplace_back();
-    model.defaultScene = 0;
     const size_t n = mesh.vertices.size();
-    if (n > 0 && !mesh.triangles.empty()) { // glTF accessors hold at least one element
+    // glTF accessors hold at least one element: nothing drawn is an asset with no scene.
+    if (n > 0 && !mesh.triangles.empty()) {
         model.buffers.emplace_back();
         auto& data = model.buffers[0].data;
         data.reserve(n * (mesh.hasTexCoords ? 32 : 24) + mesh.triangles.size() * 4);
@@ -188,7 +187,9 @@ std::vector<uint8_t> encodeGltf(const DrawnMesh& mesh, bool binary) {
         tinygltf::Node node;
         node.mesh = 0;
         model.nodes.push_back(node);
+        model.scenes.emplace_back();
         model.scenes[0].nodes.push_back(0);
+        model.defaultScene = 0;
     }
     std::ostringstream stream(std::ios::binary);
     tinygltf::TinyGLTF writer;

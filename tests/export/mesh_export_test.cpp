@@ -3,6 +3,7 @@
 // tinygltf's reader; the three must carry the same floats bit for bit. Expected UVs come from the
 // OBJ text of the model, and the glTF is checked by the Khronos glTF-Validator.
 #include "drawn_ply.h"
+#include "render/mesh_export.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -408,6 +409,21 @@ TEST(MeshExport, SpotRoundTripsInEveryFormatWithItsTextureUVs) {
     EXPECT_GT(seamVertices, 10u); // spot's UV seams were split
 
     expectValid({e.glbPath, e.gltfPath});
+
+    // ASCII PLY carries the same s, t.
+    const std::string ascii = (dir / "spot_ascii.ply").string();
+    auto r = renderMesh(limn, ascii, {"--mesh-ascii"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string text = readFile(ascii);
+    EXPECT_NE(text.find("property float v\nproperty float s\nproperty float t\n"), std::string::npos);
+    std::istringstream values(text.substr(text.find("end_header\n") + 11));
+    size_t differ = 0;
+    for (const auto& v : e.ply.vertices) {
+        std::string f[11];
+        for (auto& x : f) values >> x;
+        differ += !same(parseFloat(f[9]), v.st[0]) || !same(parseFloat(f[10]), v.st[1]);
+    }
+    EXPECT_EQ(differ, 0u);
 }
 
 // Edges used by one face only, from the input's own faces (vertex ids).
@@ -531,6 +547,39 @@ TEST(MeshExport, ControlMeshAndBlendingSurface) {
     EXPECT_TRUE(b.obj.vt.empty());
     expectAllEqual(b);
     expectValid({b.glbPath, c.glbPath});
+}
+
+TEST(MeshExport, FormatsByExtensionAndEdgeCases) {
+    using limn::render::MeshFormat;
+    using limn::render::meshFormatFromPath;
+    EXPECT_EQ(meshFormatFromPath("a.ply"), MeshFormat::Ply);
+    EXPECT_EQ(meshFormatFromPath("-"), MeshFormat::Ply);
+    EXPECT_EQ(meshFormatFromPath("dir/A.OBJ"), MeshFormat::Obj);
+    EXPECT_EQ(meshFormatFromPath("x.y.gltf"), MeshFormat::Gltf);
+    EXPECT_EQ(meshFormatFromPath("x.Glb"), MeshFormat::Glb);
+    for (const char* bad : {"x", "x.stl", "dir.glb/x", "x.glb.tmp", ".", "x."})
+        EXPECT_FALSE(meshFormatFromPath(bad).has_value()) << bad;
+
+    // Nothing drawn: a glTF asset without scenes (accessors cannot be empty).
+    limn::render::DrawnMesh empty;
+    auto glb = limn::render::encodeGltf(empty, true);
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model m;
+    std::string err, warn;
+    EXPECT_TRUE(loader.LoadBinaryFromMemory(&m, &err, &warn, glb.data(), unsigned(glb.size()))) << err;
+    EXPECT_TRUE(m.meshes.empty());
+    EXPECT_TRUE(m.scenes.empty());
+    EXPECT_EQ(m.asset.version, "2.0");
+    ScratchDir dir;
+    const std::string emptyGlb = (dir / "empty.glb").string();
+    writeFile(emptyGlb, std::string(glb.begin(), glb.end()));
+    expectValid({emptyGlb});
+    // A triangle naming a vertex that is not there is refused, not written.
+    limn::render::DrawnMesh bad;
+    bad.vertices.resize(2);
+    bad.triangles = {0, 1, 2};
+    EXPECT_THROW(limn::render::encodeObj(bad), std::exception);
+    EXPECT_THROW(limn::render::encodeGltf(bad, false), std::exception);
 }
 
 TEST(MeshExport, SameBytesTwice) {
