@@ -549,6 +549,21 @@ TEST(MeshExport, ControlMeshAndBlendingSurface) {
     expectValid({b.glbPath, c.glbPath});
 }
 
+TEST(MeshExport, WithoutUVsThereAreNoTextureCoordinates) {
+    ScratchDir dir;
+    auto limn = prepare(dir, modelPath("osd/catmark/catmark_pole8.obj").string(), 2, "pole");
+    Exported e = exportAll(dir, limn, "pole");
+    ASSERT_FALSE(e.ply.triangles.empty());
+    EXPECT_FALSE(e.ply.hasST);
+    EXPECT_TRUE(e.glb.uvs.empty());
+    EXPECT_TRUE(e.gltf.uvs.empty());
+    EXPECT_TRUE(e.obj.vt.empty());
+    expectAllEqual(e);
+    // No split without UVs: one vertex per position.
+    EXPECT_EQ(e.ply.vertices.size(), e.obj.v.size());
+    expectValid({e.glbPath, e.gltfPath});
+}
+
 TEST(MeshExport, FormatsByExtensionAndEdgeCases) {
     using limn::render::MeshFormat;
     using limn::render::meshFormatFromPath;
