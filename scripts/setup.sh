@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages limn builds and tests with. Idempotent: prints nothing and
-# touches nothing when every package is already installed. Uses sudo when not root.
+# Installs the Debian 12 packages limn builds and tests with; with --tests also node, npm and the
+# test-only npm packages of tests/tools (the glTF validator), which scripts/test.sh needs and the
+# examples do not. Idempotent: prints nothing and touches nothing when everything is installed.
+# Uses sudo when not root. Usage: scripts/setup.sh [--tests]
 set -euo pipefail
 
 packages=(
@@ -17,13 +19,38 @@ packages=(
   # tests, benchmarks, fuzzers
   libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
 )
+# node and npm run the Khronos glTF-Validator (npm package, below) that checks the glTF
+# limn-render --mesh-out writes. Debian's nodejs and npm unless the commands are already there
+# (NodeSource's nodejs bundles npm and conflicts with Debian's npm package).
+tests=false
+[ "${1:-}" = --tests ] && tests=true
+if $tests; then
+  command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
+fi
+
+# Test-only npm packages, pinned by tests/tools/package-lock.json, into tests/tools/node_modules
+# (ignored by git). Idempotent: skipped when the lock installed last (a copy in node_modules)
+# matches the committed one.
+npm_tools() {
+  $tests || return 0
+  local dir
+  dir="$(cd "$(dirname "$0")/.." && pwd)/tests/tools"
+  if ! cmp -s "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"; then
+    echo "setup: npm ci in tests/tools (gltf-validator)" >&2
+    (cd "$dir" && npm ci --no-audit --no-fund --silent >/dev/null)
+    cp "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"
+  fi
+}
 
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
   [ "$status" = installed ] || missing+=("$p")
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -eq 0 ]; then
+  npm_tools
+  exit 0
+fi
 
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then
@@ -34,3 +61,4 @@ echo "setup: installing ${missing[*]}" >&2
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq >/dev/null
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+npm_tools

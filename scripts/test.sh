@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 kind=${1:-release}
-scripts/setup.sh
+scripts/setup.sh --tests
 scripts/build.sh "$kind"
 dir=build; [ "$kind" = asan ] && dir=build-asan
 # Leak checking is off under ASan: Mesa's LLVM JIT keeps allocations alive until exit.

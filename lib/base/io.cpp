@@ -316,6 +316,11 @@ Depfile::Depfile(const std::string& path, const std::vector<std::string>& output
 }
 
 void Depfile::setRule(const std::string& output, const std::vector<std::string>& inputs) {
+    setRule(std::vector<std::string>{output}, inputs);
+}
+
+void Depfile::setRule(const std::vector<std::string>& outputs,
+                      const std::vector<std::string>& inputs) {
     if (!file_) return;
     for (const auto& i : inputs)
         if (sameFile(path_, i))
@@ -323,7 +328,11 @@ void Depfile::setRule(const std::string& output, const std::vector<std::string>&
                                               " names an input of this run; give it its own name");
     // Appended piece by piece: GCC 12 at -O3 reports a false -Wrestrict for `string + ":"`
     // (GCC bug 105651) here.
-    std::string rule = makeEscapedName(isStdio(output) ? "-" : output, true);
+    std::string rule;
+    for (const auto& output : outputs) {
+        if (!rule.empty()) rule.push_back(' ');
+        rule.append(makeEscapedName(isStdio(output) ? "-" : output, true));
+    }
     rule.push_back(':');
     for (const auto& in : inputs) {
         if (isStdio(in)) continue;

@@ -85,6 +85,8 @@ public:
     Depfile(const std::string& path, const std::vector<std::string>& outputs,
             const std::vector<std::string>& inputs);
     void setRule(const std::string& output, const std::vector<std::string>& inputs);
+    // Several targets made by the one run ("image.png mesh.glb: inputs").
+    void setRule(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
     void commit();
 
 private:

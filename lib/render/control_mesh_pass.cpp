@@ -87,8 +87,10 @@ DrawnMesh ControlMeshPass::drawnMesh() {
         v.ptex = static_cast<int32_t>(c.ptex);
         v.u = draw_.uvs[c.uv].x;
         v.v = draw_.uvs[c.uv].y;
+        if (draw_.hasUVs) v.s = v.u, v.t = v.v; // one vertex per face corner: split at every seam
         out.vertices.push_back(v);
     }
+    out.hasTexCoords = draw_.hasUVs;
     out.triangles = draw_.triangles;
     return out;
 }

@@ -31,6 +31,7 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
     for (const char* p : {"x", "y", "z", "nx", "ny", "nz"})
         header += std::string("property float ") + p + "\n";
     header += "property int ptex\nproperty float u\nproperty float v\n";
+    if (mesh.hasTexCoords) header += "property float s\nproperty float t\n";
     header += "element face " + std::to_string(triangles) + "\n";
     header += "property list uchar int vertex_indices\nend_header\n";
 
@@ -46,6 +47,12 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
             appendFloat(body, v.u);
             body += ' ';
             appendFloat(body, v.v);
+            if (mesh.hasTexCoords) {
+                body += ' ';
+                appendFloat(body, v.s);
+                body += ' ';
+                appendFloat(body, v.t);
+            }
             body += '\n';
         }
         for (size_t t = 0; t < triangles; ++t)
@@ -55,12 +62,16 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
         out.insert(out.end(), body.begin(), body.end());
         return out;
     }
-    out.reserve(out.size() + mesh.vertices.size() * 36 + triangles * 13);
+    out.reserve(out.size() + mesh.vertices.size() * (mesh.hasTexCoords ? 44 : 36) + triangles * 13);
     for (const auto& v : mesh.vertices) {
         for (float f : {v.x, v.y, v.z, v.nx, v.ny, v.nz}) appendRaw(out, f);
         appendRaw(out, v.ptex);
         appendRaw(out, v.u);
         appendRaw(out, v.v);
+        if (mesh.hasTexCoords) {
+            appendRaw(out, v.s);
+            appendRaw(out, v.t);
+        }
     }
     for (size_t t = 0; t < triangles; ++t) {
         out.push_back(3);

@@ -346,8 +346,19 @@ DrawnMesh SubdivisionPass::drawnMesh() {
         v.ptex = static_cast<int32_t>(info[i].x);
         std::memcpy(&v.u, &info[i].y, 4);
         std::memcpy(&v.v, &info[i].z, 4);
+        if (draw_.hasUVs && !gpu_->adaptive)
+            v.s = draw_.tessVertices[i].u, v.t = draw_.tessVertices[i].v;
     }
+    out.hasTexCoords = draw_.hasUVs; // the tessellation split its vertices at UV seams
     if (gpu_->adaptive) {
+        // The vertices the view-adaptive passes emitted this frame: (element, s|t, own-chart UV).
+        if (draw_.hasUVs) {
+            auto emitted = gpu::readbackArrayNow<glm::uvec4>(ctx_, gpu_->adaptive->tessVertices(), n);
+            for (size_t i = 0; i < n; ++i) {
+                std::memcpy(&out.vertices[i].s, &emitted[i].z, 4);
+                std::memcpy(&out.vertices[i].t, &emitted[i].w, 4);
+            }
+        }
         auto tris = gpu::readbackArrayNow<uint32_t>(ctx_, gpu_->adaptive->triangles(),
                                                     size_t(totals.writtenTriangles) * 3);
         out.triangles = std::move(tris);

@@ -1,6 +1,6 @@
 // Reads the binary PLY that `limn-render --mesh-out` writes (render/ply.cpp; layout in its
-// --help): per vertex float x y z nx ny nz, int ptex, float u v; per face a uchar 3 and three
-// int indices. Written here from the documented layout, not with limn's encoder.
+// --help): per vertex float x y z nx ny nz, int ptex, float u v, and float s t when the header
+// declares them (meshes with UVs); per face a uchar 3 and three int indices. Written here from the documented layout, not with limn's encoder.
 #pragma once
 
 #include <algorithm>
@@ -19,11 +19,13 @@ struct PlyVertex {
     float p[3], n[3];
     int32_t ptex;
     float uv[2];
+    float st[2] = {0, 0}; // the texture UV, when the PLY has s, t
 };
 
 struct Drawn {
     std::vector<PlyVertex> vertices;
     std::vector<std::array<int32_t, 3>> triangles;
+    bool hasST = false;
 };
 
 inline Drawn parsePly(const std::string& bytes) {
@@ -35,14 +37,20 @@ inline Drawn parsePly(const std::string& bytes) {
     for (std::string line; std::getline(header, line);) {
         if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
         if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
+        if (line == "property float t") d.hasST = true; // after "property float s"
     }
+    const size_t stride = d.hasST ? 44 : 36;
     const char* p = bytes.data() + end + 11;
-    if (bytes.size() - (end + 11) != vertices * 36 + faces * 13)
+    if (bytes.size() - (end + 11) != vertices * stride + faces * 13)
         throw std::runtime_error("PLY size");
     d.vertices.resize(vertices);
     for (auto& v : d.vertices) {
-        std::memcpy(&v, p, 36);
-        p += 36;
+        std::memcpy(v.p, p, 12);
+        std::memcpy(v.n, p + 12, 12);
+        std::memcpy(&v.ptex, p + 24, 4);
+        std::memcpy(v.uv, p + 28, 8);
+        if (d.hasST) std::memcpy(v.st, p + 36, 8);
+        p += stride;
     }
     for (size_t f = 0; f < faces; ++f) {
         std::array<int32_t, 3> t;

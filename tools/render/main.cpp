@@ -12,6 +12,7 @@
 #include "mesh/mesh_chunks.h"
 #include "render/bench.h"
 #include "render/blend_draw.h"
+#include "render/mesh_export.h"
 #include "render/renderer.h"
 #include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
@@ -153,7 +154,7 @@ int main(int argc, char** argv) {
         bool viewGiven = false;
         int bench = 0, tess = 64, grid = 16;
         double edgePixels = 4, benchOrbit = 0;
-        cli::Parser parser("limn-render", "[options] [INPUT|-] -o OUTPUT.png",
+        cli::Parser parser("limn-render", "[options] [INPUT|-] [-o OUTPUT.png] [--mesh-out FILE]",
                            "Renders a .limn container (output of limn-classify, limn-tables, "
                            "limn-seams, limn-blend)\n"
                            "headlessly "
@@ -312,10 +313,13 @@ int main(int argc, char** argv) {
                   "enable the Vulkan validation layer; any validation error fails the run")
             .flag("--sync-validation", &syncValidation,
                   "as --validate, plus synchronization validation")
-            .text("--mesh-out", "FILE.ply", &meshOut,
-                  "also write the triangles as drawn (positions, face normals, ptex, uv) as PLY")
+            .text("--mesh-out", "FILE", &meshOut,
+                  "write the triangles as drawn (positions, normals, texture UVs) to FILE, as\n"
+                  "                            PLY, OBJ or glTF 2.0 by its extension: .ply, .obj,\n"
+                  "                            .gltf, .glb (-: PLY on standard output); without -o\n"
+                  "                            no image is written (see below)")
             .flag("--mesh-ascii", &meshAscii,
-                  "write --mesh-out as ASCII PLY (default binary little-endian)")
+                  "write a .ply --mesh-out as ASCII PLY (default binary little-endian)")
             .integer("--bench", "FRAMES", &bench, 0, 100000,
                      "render FRAMES frames after 3 warm-up frames and print one JSON object of\n"
                      "                            medians to standard output; 0 renders once")
@@ -324,24 +328,32 @@ int main(int argc, char** argv) {
             .notes(
                 "Output: -o FILE.png, or -o - for standard output (refused on a terminal). With\n"
                 "--bench, standard output carries the JSON and the image is written only with\n"
-                "-o FILE.\n"
-                "--mesh-out PLY: the drawn vertices (float x y z nx ny nz, int ptex, float u v) "
-                "and\n"
-                "triangles (vertex_indices). Control mesh: one vertex per face corner, ptex the "
-                "face's\n"
-                "Ptex index (OpenSubdiv numbering: a quad has one Ptex face, an n-gon n; a fan\n"
-                "triangle carries its face's first), u, v its UV (0 without UVs). Subdivision "
-                "and\n"
-                "blending surfaces: one vertex per surface point, shared by the faces that meet "
-                "there,\n"
-                "with ptex and (u, v) of the face that evaluated it (a blending surface: the face "
-                "index).\n"
-                "View-adaptive (--edge-pixels > 0): each patch writes its own copy of the points on "
-                "its\n"
-                "sides, with the same bits as its neighbour's (weld by exact position), and the "
-                "whole\n"
-                "surface is written, patches outside the view at their smallest rate.\n"
-                "Trimming does not change --mesh-out.\n"
+                "-o FILE; with --mesh-out, only with -o FILE or -o -.\n"
+                "--mesh-out: the triangles as drawn, every file written atomically, the same bytes\n"
+                "for the same inputs; positions, normals and texture UVs are the same floats in\n"
+                "every format. Normals: per vertex (the unit limit or surface normal) for\n"
+                "subdivision and blending surfaces, per face (flat) for the control mesh. The\n"
+                "texture UV is the mesh's face-varying UV in the chart of the face that drew the\n"
+                "vertex; vertices are split where it differs (UV seams; the copies' positions are\n"
+                "bit-identical). Meshes without UVs, and blending surfaces (whose vertices are\n"
+                "shared across faces), get none: no s t, vt or TEXCOORD_0.\n"
+                "  .ply: per vertex float x y z nx ny nz, int ptex, float u v, then float s t (the\n"
+                "  texture UV, v = 0 at the image's bottom) when there are UVs; triangles as list\n"
+                "  uchar int vertex_indices. Control mesh: one vertex per face corner, ptex the\n"
+                "  face's Ptex index (OpenSubdiv numbering: a quad has one Ptex face, an n-gon n;\n"
+                "  a fan triangle carries its face's first), u, v its UV (0 without UVs).\n"
+                "  Subdivision surfaces: one vertex per surface point (one per chart at UV seams),\n"
+                "  blending surfaces: one per surface point, shared by the faces that meet there;\n"
+                "  ptex and (u, v) of the face that evaluated it (a blending surface: the face\n"
+                "  index, (u, v) on its grid).\n"
+                "  .obj: v, vt (v = 0 at the bottom), vn, each distinct value once, and triangles\n"
+                "  f v/vt/vn (f v//vn without UVs); seam copies share their v.\n"
+                "  .gltf / .glb: glTF 2.0, one indexed triangle mesh with POSITION, NORMAL and\n"
+                "  TEXCOORD_0 (glTF's top-left origin: v flipped, 1 - t); .gltf embeds its buffer\n"
+                "  as a base64 data: URI (one file), .glb as its binary chunk.\n"
+                "View-adaptive (--edge-pixels > 0): each patch writes its own copy of the points on\n"
+                "its sides, with the same bits as its neighbour's (weld by exact position), and the\n"
+                "whole surface is written, patches outside the view at their smallest rate.\n"                "Trimming does not change --mesh-out.\n"
                 "--bench JSON: frames, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
                 "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
                 "record, submit, wait), triangles, vertices_evaluated, buffer_bytes, peak_rss_mb,\n"
@@ -349,6 +361,7 @@ int main(int argc, char** argv) {
                 "Examples:\n"
                 "  limn-classify spot.obj | limn-render --view 45,30 --wire -o spot.png\n"
                 "  limn-render frog.limn --bench 50 --size 1920x1080\n"
+                "  limn-render frog.limn --mesh-out frog.glb      (the drawn mesh only, no image)\n"
                 "  limn-classify spot.obj | limn-blend --quadrangulate | limn-render --grid 8 -o "
                 "s.png\n"
                 "  limn-trim spot.limn -o holes.png && limn-render spot.limn --trim holes.png -o "
@@ -374,11 +387,24 @@ int main(int argc, char** argv) {
         settings.alpha = alpha;
         if (bench && isStdio(common.output) && !common.output.empty())
             usage("--bench prints JSON on standard output; write the image with -o FILE");
-        const bool writeImage = !bench || !common.output.empty();
+        std::optional<render::MeshFormat> meshFormat;
+        if (!meshOut.empty()) {
+            meshFormat = render::meshFormatFromPath(meshOut);
+            if (!meshFormat)
+                throw Error(ErrorKind::Usage,
+                            std::string("--mesh-out: unknown extension; limn-render writes ") +
+                                render::kMeshFormats,
+                            meshOut);
+            if (meshAscii && *meshFormat != render::MeshFormat::Ply)
+                usage("--mesh-ascii applies to a .ply --mesh-out, not " + meshOut);
+        }
+        // The image goes to standard output by default, unless --bench or --mesh-out is the
+        // output asked for.
+        const bool writeImage = !common.output.empty() || (!bench && meshOut.empty());
         if (isStdio(meshOut) && !meshOut.empty() &&
             (bench || (writeImage && isStdio(common.output))))
             usage("--mesh-out - and the image (or --bench JSON) cannot share standard output");
-        if (common.output.empty() && !bench) common.output = "-";
+        if (common.output.empty() && writeImage) common.output = "-";
         const Surface surface = surfaceName == "blend"         ? Surface::Blend
                                 : surfaceName == "subdivision" ? Surface::Subdivision
                                 : surfaceName == "control"     ? Surface::Control
@@ -398,11 +424,14 @@ int main(int argc, char** argv) {
         std::optional<OutputFile> png, ply;
         if (writeImage) png.emplace(common.output, OutputFile::Kind::Binary);
         if (!meshOut.empty())
-            ply.emplace(meshOut, meshAscii ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
+            ply.emplace(meshOut, meshAscii || *meshFormat == render::MeshFormat::Obj ||
+                                         *meshFormat == render::MeshFormat::Gltf
+                                     ? OutputFile::Kind::Text
+                                     : OutputFile::Kind::Binary);
         std::vector<std::string> outputs;
         if (writeImage) outputs.push_back(common.output);
         if (!meshOut.empty()) outputs.push_back(meshOut);
-        Depfile depfile(writeImage ? common.depfile : std::string(), outputs, inputs);
+        Depfile depfile(writeImage || ply ? common.depfile : std::string(), outputs, inputs);
 
         Warnings warnings;
         Input in = readInput(input, surface, warnings);
@@ -512,12 +541,17 @@ int main(int argc, char** argv) {
                 cli::info("GPU " + p.name + ": " + ms + " ms");
             }
             if (writeImage) pngBytes = render::encodePng(renderer.image());
-            if (ply) plyBytes = render::encodePly(renderer.drawnMesh(), meshAscii);
+            if (ply) {
+                if (in.blend && in.mesh.hasUVs())
+                    cli::info("--mesh-out: a blending surface shares its vertices across faces; "
+                              "no texture UVs written");
+                plyBytes = render::encodeMesh(renderer.drawnMesh(), *meshFormat, meshAscii);
+            }
         }
         if (validation) checkValidation(*validation);
 
         inputs.insert(inputs.end(), in.filesRead.begin(), in.filesRead.end());
-        if (writeImage) depfile.setRule(common.output, inputs);
+        depfile.setRule(outputs, inputs); // the image and/or the mesh
         if (png) {
             png->write(pngBytes);
             png->commit();
