@@ -4,6 +4,7 @@
 #include "base/io.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <set>
@@ -14,6 +15,7 @@
 #include <iostream>
 #include <new>
 #include <sstream>
+#include <unistd.h>
 
 #ifndef LIMN_VERSION
 #define LIMN_VERSION "0.1.0"
@@ -346,6 +348,37 @@ bool Parser::parse(int argc, char** argv) {
     }
     setVerbosity(common_.quiet, common_.verbose);
     return true;
+}
+
+uint64_t defaultMemoryBudget() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), size = ::sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || size <= 0) return uint64_t(8) << 30;
+    return uint64_t(pages) * uint64_t(size) / 2;
+}
+
+uint64_t parseByteSize(const std::string& option, const std::string& value) {
+    std::string number = value;
+    double unit = 1;
+    if (!number.empty()) {
+        const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(number.back())));
+        const std::string units = "KMGT";
+        if (auto k = units.find(c); k != std::string::npos) {
+            unit = std::pow(1024.0, double(k + 1));
+            number.pop_back();
+        }
+    }
+    const double v = parseDouble(option, number);
+    if (!(v > 0) || v * unit > 1e18)
+        usageError(option + ": '" + value + "' is not a size like 512M or 8G");
+    return static_cast<uint64_t>(v * unit);
+}
+
+std::string formatBytes(uint64_t bytes) {
+    char buf[32];
+    const double b = double(bytes);
+    if (b >= double(1ull << 30)) std::snprintf(buf, sizeof buf, "%.1f GiB", b / double(1ull << 30));
+    else std::snprintf(buf, sizeof buf, "%.0f MiB", b / double(1ull << 20));
+    return buf;
 }
 
 std::vector<double> parseNumberList(const std::string& option, const std::string& value,

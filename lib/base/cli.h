@@ -6,6 +6,7 @@
 
 #include "base/warnings.h"
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -70,6 +71,13 @@ private:
     std::vector<std::string> positionalHelp_;
     bool showHelp_ = false, showVersion_ = false;
 };
+
+// Half of the machine's physical memory: the default --max-memory of the tools whose output can
+// grow exponentially with an option (limn-tables --depth, limn-loop --levels).
+uint64_t defaultMemoryBudget();
+// "512M", "8G", "1.5G", "100000" (bytes); K/M/G/T are powers of 1024. Throws Error(Usage).
+uint64_t parseByteSize(const std::string& option, const std::string& value);
+std::string formatBytes(uint64_t bytes); // "1.5 GiB"
 
 // Parse helpers for option values; each throws Error(Usage) naming the option.
 std::vector<double> parseNumberList(const std::string& option, const std::string& value,

@@ -1,5 +1,6 @@
 #include "subdiv/tables.h"
 
+#include "base/cli.h"
 #include "base/error.h"
 #include "container/container.h"
 #include "subdiv/level.h"
@@ -111,12 +112,47 @@ uint64_t topologyHash(const Mesh& mesh, const SchemeOptions& options) {
     return hashBytes({reinterpret_cast<const uint8_t*>(&vcount), 4}, h);
 }
 
+uint64_t uniformTableVertices(const Mesh& mesh, int depth) {
+    const uint64_t corners = mesh.cornerCount();
+    // Edges: each interior edge is shared by two corners; count the distinct ones exactly.
+    std::vector<std::pair<uint32_t, uint32_t>> edges;
+    edges.reserve(corners);
+    for (size_t f = 0; f < mesh.faceCount(); ++f) {
+        auto face = mesh.face(f);
+        for (size_t k = 0; k < face.size(); ++k) {
+            uint32_t a = face[k], b = face[(k + 1) % face.size()];
+            edges.emplace_back(std::min(a, b), std::max(a, b));
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    double E = double(std::unique(edges.begin(), edges.end()) - edges.begin());
+    double V = double(mesh.vertexCount()), F = double(mesh.faceCount()), total = V;
+    for (int l = 1; l <= depth; ++l) {
+        const double faceCorners = l == 1 ? double(corners) : 4 * F;
+        const double nextV = V + E + F, nextE = 2 * E + faceCorners, nextF = faceCorners;
+        V = nextV, E = nextE, F = nextF;
+        total += V;
+        if (total > 1e18) return uint64_t(1e18);
+    }
+    return static_cast<uint64_t>(total);
+}
+
 Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesOptions& opts,
                    Warnings& warnings) {
     if (opts.depth < 0 || opts.depth > kMaxDepth)
         throw Error(ErrorKind::Usage, "depth " + std::to_string(opts.depth) + " is outside 0.." +
                                           std::to_string(kMaxDepth));
     const uint32_t N = static_cast<uint32_t>(opts.depth);
+    if (opts.uniform && opts.maxMemoryBytes) {
+        const uint64_t need = uniformTableVertices(mesh, opts.depth) * kTableBytesPerVertex;
+        if (need > opts.maxMemoryBytes)
+            throwBadInput("uniform tables of depth " + std::to_string(N) + " need about " +
+                          cli::formatBytes(need) + " of memory (" +
+                          std::to_string(uniformTableVertices(mesh, opts.depth)) +
+                          " vertices), more than --max-memory " +
+                          cli::formatBytes(opts.maxMemoryBytes) +
+                          "; use a lower --depth, adaptive tables, or raise --max-memory");
+    }
     Topology baseTopo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
     requireManifold(baseTopo);
     // A stencil row holds up to 2 k + 1 entries for a face of k sides or a vertex of k edges, and
@@ -183,6 +219,20 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         // Guard memory before refining: every selected face makes about 4 children per level.
         uint64_t selected = std::count(S.begin(), S.end(), 1);
         uint64_t estimate = selected * 4 * 2;
+        if (opts.maxMemoryBytes) {
+            // What is built, plus this level's estimate for it and every level still to come
+            // (adaptive refinement does not grow faster than that once it is local).
+            uint64_t built = 0;
+            for (const auto& lv : levels) built += lv.topo.vertexCount();
+            const uint64_t need = (built + estimate * (N - l)) * kTableBytesPerVertex;
+            if (need > opts.maxMemoryBytes)
+                throwBadInput("depth " + std::to_string(N) + " needs about " + cli::formatBytes(need) +
+                              " of memory (level " + std::to_string(l + 1) + " alone about " +
+                              std::to_string(estimate) + " vertices), more than --max-memory " +
+                              cli::formatBytes(opts.maxMemoryBytes) + "; use a lower --depth" +
+                              (opts.uniform ? " or adaptive tables" : "") +
+                              ", or raise --max-memory");
+        }
         if (estimate > kMaxLevelVertices)
             throwBadInput("level " + std::to_string(l + 1) + " would need about " +
                           std::to_string(estimate) + " vertices (more than " +

@@ -72,7 +72,17 @@ inline constexpr uint64_t kMaxLevelVertices = 1ull << 28;
 struct TablesOptions {
     int depth = 3;
     bool uniform = false;
+    // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
+    // more memory than this, estimated from the counts before each level is refined; 0: no limit.
+    uint64_t maxMemoryBytes = 0;
 };
+
+// Peak memory of building tables, per table vertex (measured: limn-tables --uniform on a
+// 1,280-triangle sphere peaks at 710 bytes per vertex at depths 5-7).
+inline constexpr uint64_t kTableBytesPerVertex = 768;
+// The vertices of `depth` levels of uniform refinement, all levels together (V + E + F per level;
+// after the first, every face is a quad): the upper bound of adaptive tables too.
+uint64_t uniformTableVertices(const Mesh& mesh, int depth);
 
 struct Tables {
     uint32_t depth = 0;

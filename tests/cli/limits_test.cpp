@@ -114,3 +114,47 @@ TEST(Limits, GltfNanPositionsAreRefused) {
 }
 
 } // namespace
+
+namespace {
+
+// Sizes are estimated from the counts before the work (the uniform estimate is exact: V + E + F
+// per level) and refused above --max-memory, with the estimate and what to do.
+TEST(Limits, ExplodingRefinementIsRefusedFromTheCounts) {
+    test::ScratchDir dir;
+    const std::string sphere = (dir / "sphere.limn").string(), out = (dir / "t.limn").string();
+    ASSERT_EQ(test::run({bin("limn-classify"), test::modelPath("tri/sphere.obj").string(), "-o",
+                         sphere})
+                  .exitCode,
+              0);
+    auto r = test::run({bin("limn-tables"), "--depth", "16", "--uniform", sphere, "-o", out});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("of memory"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    // 1,280 triangles, depth 3 uniform: 642 + 1920 + 1280 = 3842 at level 1, and so on; the
+    // estimate names the exact count (independently: V_l+1 = V + E + F, E_l+1 = 2E + 4F').
+    r = test::run({bin("limn-tables"), "--depth", "3", "--uniform", sphere, "-o", out,
+                   "--max-memory", "1M"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    // V0 = 642, E0 = 1920, F0 = 1280 (3840 corners): V1 = 3842, E1 = 7680, F1 = 3840;
+    // V2 = 15362, E2 = 30720, F2 = 15360; V3 = 61442. Sum: 81288.
+    EXPECT_NE(r.err.find("(81288 vertices)"), std::string::npos) << r.err;
+    r = test::run({bin("limn-tables"), "--depth", "3", "--uniform", sphere, "-o", out});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    r = test::run({bin("limn-info"), "--json", out});
+    EXPECT_NE(r.out.find("\"table_vertices\":81288"), std::string::npos) << r.out;
+    // Adaptive tables are estimated level by level.
+    r = test::run({bin("limn-tables"), "--depth", "12", sphere, "-o", out, "--max-memory", "1M"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    r = test::run({bin("limn-loop"), "--levels", "8", "--uniform",
+                   test::modelPath("tri/sphere.obj").string(), "-o", (dir / "l.obj").string()});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "l.obj"));
+    for (const char* bad : {"0", "-5G", "lots", "5X"}) {
+        r = test::run({bin("limn-tables"), sphere, "-o", out, "--max-memory", bad});
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
+    }
+}
+
+} // namespace

@@ -17,6 +17,9 @@ using namespace limn;
 
 namespace {
 
+constexpr double kLoopBytesPerTriangle = 128; // peak memory per triangle of all levels
+
+
 double parseEpsilon(const std::string& text) {
     double value = 0;
     auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -73,6 +76,7 @@ int main(int argc, char** argv) {
         loop::AdaptiveOptions options;
         bool triangulate = false, stats = false, measure = false;
         int measureLevel = 0, measureSamples = 200000;
+        uint64_t maxMemory = cli::defaultMemoryBudget();
         cli::Parser parser(
             "limn-loop", "[options] [INPUT|-] [-o OUTPUT|-]",
             "Adaptive Loop subdivision (Jeong & Kim): at each level every edge whose new vertex\n"
@@ -80,6 +84,11 @@ int main(int argc, char** argv) {
             "retriangulated by their number of split edges, so the mesh stays conforming.",
             common);
         parser.positional("INPUT", &input, "triangle mesh: .obj, .gltf, .glb, .ply, .off or .limn")
+            .custom("--max-memory", "SIZE",
+                    [&](const std::string& v) { maxMemory = cli::parseByteSize("--max-memory", v); },
+                    cli::formatBytes(maxMemory) + ", half of this machine's memory",
+                    "refuse runs estimated to need more (512M, 8G, ...), from the triangle count before "
+                    "any refinement: the uniform levels bound adaptive ones too")
             .integer("--levels", "L", &options.levels, 0, 8, "subdivision levels")
             .custom("--epsilon", "E", [&](const std::string& v) { epsilon = parseEpsilon(v); },
                     "2e-05 with bbox, 0.0025 with edge",
@@ -150,6 +159,24 @@ int main(int argc, char** argv) {
             throw;
         }
         cli::printWarnings(warnings, inputName);
+        // Every level keeps the one before (the hierarchy), and uniform refinement quadruples the
+        // triangles: all levels together hold F (4^(L+1) - 1) / 3. Measured peak: about 110 bytes
+        // per triangle of the last level (a 1,280-triangle sphere, 5 uniform levels).
+        {
+            const double F = double(control.triangleCount());
+            const double triangles = F * (std::pow(4.0, options.levels + 1) - 1) / 3;
+            const double need = triangles * kLoopBytesPerTriangle;
+            if (need > double(maxMemory))
+                throw Error(ErrorKind::BadInput,
+                            std::to_string(options.levels) + " levels need about " +
+                                cli::formatBytes(uint64_t(std::min(need, 1e18))) +
+                                " of memory (" + std::to_string(uint64_t(std::min(triangles, 1e18))) +
+                                " triangles at most), more than --max-memory " +
+                                cli::formatBytes(maxMemory) +
+                                "; use fewer --levels or raise --max-memory",
+                            "")
+                    .setFile(inputName);
+        }
 
         loop::AdaptiveResult result = loop::subdivide(control, options);
         for (const auto& l : result.levels)

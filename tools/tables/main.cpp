@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
         std::string input = "-";
         int depth = 3;
         bool uniform = false;
+        uint64_t maxMemory = cli::defaultMemoryBudget();
         cli::Parser parser(
             "limn-tables", "[options] [INPUT|-] [-o OUTPUT|-]",
             "Builds the per-level subdivision tables of a classified .limn container: face,\n"
@@ -29,6 +30,11 @@ int main(int argc, char** argv) {
             .integer("-d, --depth", "N", &depth, 0, kMaxDepth, "subdivision levels")
             .flag("--uniform", &uniform,
                   "subdivide every face to level N (the paper's full-subdivision baseline)")
+            .custom("--max-memory", "SIZE",
+                    [&](const std::string& v) { maxMemory = cli::parseByteSize("--max-memory", v); },
+                    cli::formatBytes(maxMemory) + ", half of this machine's memory",
+                    "refuse tables whose building is estimated to need more (512M, 8G, ...); the "
+                    "estimate comes from the counts, before each level is refined")
             .notes("Non-quad faces are split at the first level, so --depth 0 needs an all-quad\n"
                    "mesh. Semi-sharp creases that have not decayed by the last level, darts and\n"
                    "valence-2 vertices get approximate limit points (limn-info reports how many).\n"
@@ -51,6 +57,7 @@ int main(int argc, char** argv) {
             TablesOptions opts;
             opts.depth = depth;
             opts.uniform = uniform;
+            opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
         } catch (Error& e) {
             e.setFile(name);
