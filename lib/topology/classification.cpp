@@ -2,6 +2,9 @@
 
 #include "base/bytes.h"
 #include "base/error.h"
+#include "base/io.h"
+#include "mesh/import.h"
+#include "mesh/mesh_chunks.h"
 
 namespace limn {
 
@@ -138,6 +141,33 @@ Classification decodeClassificationChunk(const Chunk& chunk, const Mesh& mesh) {
     if (!r.atEnd())
         r.fail(std::to_string(r.remaining()) + " unexpected bytes after the last field");
     return c;
+}
+
+Container loadOrClassify(const std::string& path, Warnings& warnings,
+                         std::vector<std::string>* filesRead) {
+    const auto bytes = readInput(path);
+    if (looksLikeContainer(bytes)) {
+        try {
+            return parseContainer(bytes);
+        } catch (Error& e) {
+            e.setFile(isStdio(path) ? "<stdin>" : path);
+            throw;
+        }
+    }
+    Mesh mesh = importMesh(path, bytes, warnings, filesRead);
+    try {
+        const SchemeOptions options = resolveSchemeOptions(mesh.tags, {});
+        Topology topo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets,
+                      mesh.faceVertices);
+        Classification c = classifyMesh(mesh, topo, options, warnings);
+        Container container;
+        storeMesh(container, mesh);
+        container.set(encodeClassificationChunk(c));
+        return container;
+    } catch (Error& e) {
+        e.setFile(isStdio(path) ? "<stdin>" : path);
+        throw;
+    }
 }
 
 } // namespace limn

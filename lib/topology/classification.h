@@ -51,6 +51,12 @@ Classification classifyMesh(const Mesh& mesh, const Topology& topo, const Scheme
                             Warnings& warnings);
 
 Chunk encodeClassificationChunk(const Classification& c);
+
+// A container from any input: a .limn as it is, or a mesh file (OBJ, glTF, PLY, OFF) imported and
+// classified with the defaults, as limn-classify would make it, so that limn-tables, limn-seams
+// and limn-blend take a mesh directly. `filesRead` gets a .gltf's buffers and images.
+Container loadOrClassify(const std::string& path, Warnings& warnings,
+                         std::vector<std::string>* filesRead = nullptr);
 // Decodes CLSF and checks its sizes against the mesh it describes.
 Classification decodeClassificationChunk(const Chunk& chunk, const Mesh& mesh);
 

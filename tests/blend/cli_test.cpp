@@ -59,9 +59,13 @@ TEST(BlendCli, UsageErrorsExit2) {
 }
 
 TEST(BlendCli, BadInputExits1) {
+    // A mesh is classified with the defaults first; a triangle is no quad mesh.
     auto r = test::run({blendTool(), "-"}, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.err.find("limn-blend: error: <stdin>: not a .limn container"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("limn-blend: error: <stdin>: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--quadrangulate"), std::string::npos) << r.err;
+    r = test::run({blendTool(), "-"}, "not a mesh at all");
+    EXPECT_EQ(r.exitCode, 1);
     r = test::run({blendTool(), "/nonexistent/x.limn"});
     EXPECT_EQ(r.exitCode, 1);
     // A truncated container.

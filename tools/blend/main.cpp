@@ -71,12 +71,11 @@ int main(int argc, char** argv) {
         refuseOverwritingInputs(common.output, {input}, isContainerFile);
         OutputFile out(common.output, OutputFile::Kind::Binary);
         Depfile depfile(common.depfile, {common.output}, {input});
-        auto bytes = readInput(input);
-        Container container;
+        Warnings importWarnings;
+        std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
+        Container container = loadOrClassify(input, importWarnings, &inputs);
+        cli::printWarnings(importWarnings, isStdio(input) ? "<stdin>" : input);
         try {
-            if (!looksLikeContainer(bytes))
-                throwBadInput("not a .limn container; run limn-classify on the mesh first");
-            container = parseContainer(bytes);
             Mesh mesh = loadMesh(container);
             std::optional<Classification> clsf;
             if (const Chunk* c = container.find(kClassificationChunk))
@@ -127,7 +126,7 @@ int main(int argc, char** argv) {
             throw;
         }
         out.write(serializeContainer(container));
-        depfile.setRule(common.output, {input});
+        depfile.setRule(common.output, inputs);
         out.commit();
         depfile.commit();
         return 0;

@@ -3,6 +3,7 @@
 #include "base/cli.h"
 #include "base/error.h"
 #include "base/io.h"
+#include "topology/classification.h"
 #include "container/container.h"
 #include "mesh/mesh_chunks.h"
 #include "seams/seams.h"
@@ -29,7 +30,9 @@ int main(int argc, char** argv) {
         refuseOverwritingInputs(common.output, {input}, isContainerFile);
         OutputFile out(common.output, OutputFile::Kind::Binary);
         Depfile depfile(common.depfile, {common.output}, {input});
-        Container container = loadContainerFile(input);
+        Warnings warnings;
+        Container container = loadOrClassify(input, warnings);
+        cli::printWarnings(warnings, isStdio(input) ? "<stdin>" : input);
         try {
             Mesh mesh = loadMesh(container);
             const Chunk* tb = container.find(kTablesChunk);

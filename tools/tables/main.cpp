@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
             "corners. Tables depend on topology only: re-run when faces or tags change, not when\n"
             "positions move.",
             common);
-        parser.positional("INPUT", &input, "container made by limn-classify")
+        parser.positional("INPUT", &input,
+                          "container made by limn-classify, or a mesh (classified with the defaults)")
             .integer("-d, --depth", "N", &depth, 0, kMaxDepth, "subdivision levels")
             .flag("--uniform", &uniform,
                   "subdivide every face to level N (the paper's full-subdivision baseline)")
@@ -44,10 +45,11 @@ int main(int argc, char** argv) {
         refuseOverwritingInputs(common.output, {input}, isContainerFile);
         OutputFile out(common.output, OutputFile::Kind::Binary);
         Depfile depfile(common.depfile, {common.output}, {input});
-        Container container = loadContainerFile(input);
         const std::string name = isStdio(input) ? "<stdin>" : input;
         Tables tables;
         Warnings warnings;
+        std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
+        Container container = loadOrClassify(input, warnings, &inputs);
         try {
             Mesh mesh = loadMesh(container);
             const Chunk* clsf = container.find(kClassificationChunk);
@@ -80,7 +82,7 @@ int main(int argc, char** argv) {
                              "again (or let limn-render --displace compute the seams)");
         }
         out.write(serializeContainer(container));
-        depfile.setRule(common.output, {input});
+        depfile.setRule(common.output, inputs);
         out.commit();
         depfile.commit();
         return 0;
