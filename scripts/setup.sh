@@ -37,8 +37,13 @@ npm_tools() {
   dir="$(cd "$(dirname "$0")/.." && pwd)/tests/tools"
   if ! cmp -s "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"; then
     echo "setup: npm ci in tests/tools (gltf-validator)" >&2
-    (cd "$dir" && npm ci --no-audit --no-fund --silent >/dev/null)
-    cp "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"
+    # Not fatal: without the registry everything else still builds and runs, and the glTF
+    # validation test fails saying the validator is missing.
+    if (cd "$dir" && npm ci --no-audit --no-fund --silent >/dev/null); then
+      cp "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"
+    else
+      echo "setup: warning: npm ci failed; the glTF-Validator test will fail until it succeeds" >&2
+    fi
   fi
 }
 
