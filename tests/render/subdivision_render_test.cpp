@@ -48,33 +48,6 @@ std::string caseName(const ::testing::TestParamInfo<Case>& info) {
            (info.param.boundary ? std::string("_b") + std::to_string(int(*info.param.boundary)) : "");
 }
 
-// Base vertices that are smooth corners: one face, the edge-only rule, no corner sharpness.
-std::vector<uint8_t> smoothCornerVertices(const Mesh& m, const SchemeOptions& o) {
-    std::vector<int> faces(m.vertexCount(), 0);
-    for (uint32_t v : m.faceVertices) ++faces[v];
-    std::vector<uint8_t> out(m.vertexCount(), 0);
-    if (o.boundary != BoundaryRule::EdgeOnly) return out;
-    for (size_t v = 0; v < m.vertexCount(); ++v) out[v] = faces[v] == 1;
-    for (const auto& c : m.tags.corners)
-        if (c.sharpness > 0) out[c.vertex] = 0;
-    return out;
-}
-
-// The base vertex at a ptex-face corner (u, v in {0, 1}), or -1 when (u, v) is no base vertex.
-int baseVertexAtCorner(const Mesh& m, uint32_t ptex, double u, double v) {
-    uint32_t id = 0;
-    for (size_t f = 0; f < m.faceCount(); ++f) {
-        const uint32_t n = m.faceSize(f), count = n == 4 ? 1 : n;
-        if (ptex < id + count) {
-            if ((u != 0 && u != 1) || (v != 0 && v != 1)) return -1;
-            if (n == 4) return int(m.face(f)[u == 0 ? (v == 0 ? 0 : 3) : (v == 0 ? 1 : 2)]);
-            return (u == 0 && v == 0) ? int(m.face(f)[ptex - id]) : -1;
-        }
-        id += count;
-    }
-    return -1;
-}
-
 class SubdivisionRender : public ::testing::TestWithParam<Case> {};
 
 TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
@@ -111,7 +84,7 @@ TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
     for (const auto& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
     const double diag = glm::length(hi - lo);
     OsdLimitSurface osd(mesh, so, 10);
-    const std::vector<uint8_t> smooth = smoothCornerVertices(mesh, so);
+    const std::vector<uint8_t> smooth = smoothCorners(mesh, so);
     double worstP = 0, worstN = 0;
     size_t compared = 0, flipped = 0;
     std::string firstFlip;
@@ -154,7 +127,7 @@ TEST_P(SubdivisionRender, DrawnSurfaceIsTheLimitSurfaceAndWatertight) {
             const IrregularFace& q = t.irregular[tv.element - P];
             int k = tv.s == 0 ? (tv.t == 0 ? 0 : 3) : (tv.t == 0 ? 1 : 2);
             if (!t.limitExact[q.corner[k]]) continue;
-            const int bv = baseVertexAtCorner(mesh, pp.ptex, pp.u, pp.v);
+            const int bv = baseVertexAt(mesh, pp.ptex, pp.u, pp.v);
             if (bv >= 0 && smooth[bv]) continue;
         }
         worstP = std::max(worstP, glm::length(got - ref) / diag);

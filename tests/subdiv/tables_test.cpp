@@ -161,37 +161,6 @@ TEST_P(Tables, RegularPatchesMatchOpenSubdivLimit) {
     EXPECT_LE(worstN, 0.5);
 }
 
-// Base vertices that are smooth corners: one face, two boundary edges, no vertex sharpness, under
-// edge-only (counted independently of limn, from the mesh and its tags).
-std::vector<uint8_t> smoothCorners(const Mesh& m, const SchemeOptions& o) {
-    std::vector<int> faces(m.vertexCount(), 0);
-    for (uint32_t v : m.faceVertices) ++faces[v];
-    std::vector<uint8_t> out(m.vertexCount(), 0);
-    if (o.boundary != BoundaryRule::EdgeOnly) return out;
-    for (size_t v = 0; v < m.vertexCount(); ++v) out[v] = faces[v] == 1;
-    for (const auto& c : m.tags.corners)
-        if (c.sharpness > 0) out[c.vertex] = 0;
-    return out;
-}
-
-// The base vertex at a ptex-face corner (u, v in {0,1}), or -1 inside a base face.
-int baseVertexAt(const Mesh& m, uint32_t ptex, double u, double v) {
-    uint32_t id = 0;
-    for (size_t f = 0; f < m.faceCount(); ++f) {
-        uint32_t n = m.faceSize(f), count = n == 4 ? 1 : n;
-        if (ptex < id + count) {
-            if (n == 4) {
-                if ((u != 0 && u != 1) || (v != 0 && v != 1)) return -1;
-                int corner = u == 0 ? (v == 0 ? 0 : 3) : (v == 0 ? 1 : 2);
-                return int(m.face(f)[corner]);
-            }
-            return (u == 0 && v == 0) ? int(m.face(f)[ptex - id]) : -1;
-        }
-        id += count;
-    }
-    return -1;
-}
-
 // Limit positions and normals at the corners of the irregular faces equal OpenSubdiv's limit
 // surface there, except where limn's tables report the masks as approximate. At smooth corners
 // the normal is checked by SmoothCornerNormal below instead: OpenSubdiv's end-cap patches fix it
@@ -199,7 +168,7 @@ int baseVertexAt(const Mesh& m, uint32_t ptex, double u, double v) {
 TEST_P(Tables, LimitPointsMatchOpenSubdiv) {
     Fixture f = build(GetParam());
     test::OsdLimitSurface osd(f.mesh, f.options, 10);
-    auto smooth = smoothCorners(f.mesh, f.options);
+    auto smooth = test::smoothCorners(f.mesh, f.options);
     auto limits = evaluateLimitPoints(f.tables, f.vertices);
     static const double cu[4] = {0, 1, 1, 0}, cv[4] = {0, 0, 1, 1};
     double worstP = 0, worstN = 0;
@@ -218,7 +187,7 @@ TEST_P(Tables, LimitPointsMatchOpenSubdiv) {
             ASSERT_TRUE(osd.evaluate(int(q.ptex), u, v, u + du, v + dv, P, N));
             ASSERT_TRUE(osd.evaluate(int(q.ptex), u + du, v + dv, Pin, N));
             worstP = std::max(worstP, glm::length(P - limits[li].position) / f.diag);
-            int bv = baseVertexAt(f.mesh, q.ptex, u, v);
+            int bv = test::baseVertexAt(f.mesh, q.ptex, u, v);
             if (bv < 0 || !smooth[bv])
                 worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, limits[li].normal))) *
                                               180 / M_PI);
@@ -242,8 +211,8 @@ TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
     auto V = evaluateVertices(t, m.positions);
     auto L = evaluateLimitPoints(t, V);
     // The corner (0,0) of ptex 0 is base vertex 0, a smooth corner.
-    ASSERT_EQ(baseVertexAt(m, 0, 0, 0), 0);
-    ASSERT_TRUE(smoothCorners(m, o)[0]);
+    ASSERT_EQ(test::baseVertexAt(m, 0, 0, 0), 0);
+    ASSERT_TRUE(test::smoothCorners(m, o)[0]);
     glm::dvec3 corner(0);
     for (const auto& q : t.irregular)
         if (q.ptex == 0 && q.u0 == 0 && q.v0 == 0) corner = L[q.corner[0]].normal;

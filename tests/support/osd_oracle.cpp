@@ -178,6 +178,34 @@ std::vector<std::vector<glm::dvec3>> osdUniformLevels(const Mesh& mesh, const Sc
     return out;
 }
 
+std::vector<uint8_t> smoothCorners(const Mesh& m, const SchemeOptions& o) {
+    std::vector<int> faces(m.vertexCount(), 0);
+    for (uint32_t v : m.faceVertices) ++faces[v];
+    std::vector<uint8_t> out(m.vertexCount(), 0);
+    if (o.boundary != BoundaryRule::EdgeOnly) return out;
+    for (size_t v = 0; v < m.vertexCount(); ++v) out[v] = faces[v] == 1;
+    for (const auto& c : m.tags.corners)
+        if (c.sharpness > 0) out[c.vertex] = 0;
+    return out;
+}
+
+int baseVertexAt(const Mesh& m, uint32_t ptex, double u, double v) {
+    uint32_t id = 0;
+    for (size_t f = 0; f < m.faceCount(); ++f) {
+        uint32_t n = m.faceSize(f), count = n == 4 ? 1 : n;
+        if (ptex < id + count) {
+            if (n == 4) {
+                if ((u != 0 && u != 1) || (v != 0 && v != 1)) return -1;
+                int corner = u == 0 ? (v == 0 ? 0 : 3) : (v == 0 ? 1 : 2);
+                return int(m.face(f)[corner]);
+            }
+            return (u == 0 && v == 0) ? int(m.face(f)[ptex - id]) : -1;
+        }
+        id += count;
+    }
+    return -1;
+}
+
 Mesh osdUniformRefinedMesh(const Mesh& mesh, const SchemeOptions& options, int levels) {
     std::unique_ptr<Far::TopologyRefiner> r(makeRefiner(mesh, options));
     Far::TopologyRefiner::UniformOptions uo(levels);

@@ -36,6 +36,13 @@ private:
 std::vector<std::vector<glm::dvec3>> osdUniformLevels(const Mesh& mesh, const SchemeOptions& options,
                                                       int depth);
 
+// Base vertices that are smooth corners: one face, two boundary edges, no vertex sharpness, under
+// edge-only (counted independently of limn, from the mesh and its tags). Their limit normals
+// converge too slowly for OpenSubdiv's patches to reach (tests/subdiv SmoothCorner).
+std::vector<uint8_t> smoothCorners(const Mesh& m, const SchemeOptions& o);
+// The base vertex at a ptex-face corner (u, v in {0,1}), or -1 when (u, v) is no base vertex.
+int baseVertexAt(const Mesh& m, uint32_t ptex, double u, double v);
+
 // `levels` steps of OpenSubdiv's uniform refinement as a mesh with the same limit surface: the
 // refined faces, positions, and the crease and corner sharpness left after those steps.
 Mesh osdUniformRefinedMesh(const Mesh& mesh, const SchemeOptions& options, int levels);
