@@ -3,6 +3,7 @@
 #include "base/error.h"
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +27,16 @@ std::string shortNumber(double v) {
 
 } // namespace
 
+MeshBox boundingBox(const Mesh& mesh) {
+    MeshBox box;
+    if (mesh.positions.empty()) return box;
+    box.lo = box.hi = mesh.positions[0];
+    for (const auto& p : mesh.positions) box.lo = glm::min(box.lo, p), box.hi = glm::max(box.hi, p);
+    return box;
+}
+
+double MeshBox::diagonal() const { return glm::length(hi - lo); }
+
 void validateMesh(const Mesh& m) {
     const size_t V = m.vertexCount();
     if (m.faceOffsets.empty() || m.faceOffsets.front() != 0 ||
@@ -46,8 +57,7 @@ void validateMesh(const Mesh& m) {
                           "carries; scale the mesh down");
     }
     // A mesh whose extent float cannot resolve (1e-300) would render as a point or not at all.
-    glm::dvec3 lo = m.positions[0], hi = m.positions[0];
-    for (const auto& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const auto [lo, hi] = boundingBox(m);
     const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     const double magnitude = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z),
                                        std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});

@@ -83,6 +83,13 @@ struct Mesh {
     bool operator==(const Mesh&) const = default;
 };
 
+// The axis-aligned box of the positions (both corners 0 for a mesh without vertices).
+struct MeshBox {
+    glm::dvec3 lo{0.0}, hi{0.0};
+    double diagonal() const;
+};
+MeshBox boundingBox(const Mesh& mesh);
+
 // Checks every invariant a consumer relies on and throws Error(BadInput) naming the first
 // offending face, corner, vertex or tag: at least one face, faces of >= 3 distinct vertices,
 // indices in range, finite positions and UVs that the GPU's float can carry (|x| <= 1e18, an

@@ -1,6 +1,7 @@
 #include "render/mesh_export.h"
 
 #include "base/error.h"
+#include "mesh/text_format.h"
 
 #include <tiny_gltf.h>
 
@@ -26,13 +27,6 @@ void checkIndices(const DrawnMesh& mesh) {
                                                  std::to_string(mesh.vertices.size()));
 }
 
-void appendFloat(std::string& out, float f) {
-    char buf[32];
-    auto [p, ec] = std::to_chars(buf, buf + sizeof buf, f);
-    (void)ec;
-    out.append(buf, p);
-}
-
 // Numbers each distinct bit pattern of N floats once, in order of first use (1-based, as OBJ).
 template <size_t N>
 class Distinct {
@@ -45,7 +39,7 @@ public:
             lines += tag;
             for (float f : value) {
                 lines += ' ';
-                appendFloat(lines, f);
+                appendShortest(lines, f);
             }
             lines += '\n';
         }

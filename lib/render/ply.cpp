@@ -1,18 +1,13 @@
 #include "render/ply.h"
 
+#include "mesh/text_format.h"
+
 #include <charconv>
 #include <cstring>
 
 namespace limn::render {
 
 namespace {
-
-void appendFloat(std::string& out, float f) {
-    char buf[32];
-    auto [p, ec] = std::to_chars(buf, buf + sizeof buf, f);
-    (void)ec;
-    out.append(buf, p);
-}
 
 template <class T>
 void appendRaw(std::vector<uint8_t>& out, const T& value) {
@@ -40,18 +35,18 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
         std::string body;
         for (const auto& v : mesh.vertices) {
             for (float f : {v.x, v.y, v.z, v.nx, v.ny, v.nz}) {
-                appendFloat(body, f);
+                appendShortest(body, f);
                 body += ' ';
             }
             body += std::to_string(v.ptex) + ' ';
-            appendFloat(body, v.u);
+            appendShortest(body, v.u);
             body += ' ';
-            appendFloat(body, v.v);
+            appendShortest(body, v.v);
             if (mesh.hasTexCoords) {
                 body += ' ';
-                appendFloat(body, v.s);
+                appendShortest(body, v.s);
                 body += ' ';
-                appendFloat(body, v.t);
+                appendShortest(body, v.t);
             }
             body += '\n';
         }

@@ -10,8 +10,15 @@ C++ initializers: samples (face, u, v) with the prototype's position and unit no
 import math, os, sys
 import numpy as np
 
+# A by-hand generator, never run by the build or the tests (they read the checked-in .inc): it
+# needs the team's prototype, by default ../shared/docs/checks beside the repository, or
+# LIMN_BLEND_PROTOTYPE_DIR.
 here = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(here, "..", "..", "..", "shared", "docs", "checks"))
+prototype_dir = os.environ.get("LIMN_BLEND_PROTOTYPE_DIR",
+                               os.path.join(here, "..", "..", "..", "shared", "docs", "checks"))
+if not os.path.isfile(os.path.join(prototype_dir, "blend.py")):
+    sys.exit("prototype_reference.py: no blend.py in %s; set LIMN_BLEND_PROTOTYPE_DIR" % prototype_dir)
+sys.path.insert(0, prototype_dir)
 from blend import QuadMesh, BlendSurface, make_h  # noqa: E402
 
 

@@ -38,14 +38,6 @@ std::string bin(const std::string& tool) {
 
 const std::string kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
-std::vector<std::string> filesIn(const std::filesystem::path& dir) {
-    std::vector<std::string> out;
-    for (const auto& e : std::filesystem::directory_iterator(dir))
-        out.push_back(e.path().filename().string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
 TEST(Cli, HelpListsEveryOptionWithDefaultAndTheExitCodes) {
     for (const auto& t : kTools) {
         SCOPED_TRACE(t.name);
@@ -143,16 +135,16 @@ TEST(Cli, AFailureLeavesNoOutputAndKeepsAnOldOne) {
     test::writeFile(bad, kTriangleObj + "f 1 2 9\n");
     auto failed = test::run({bin("limn-classify"), bad, "-o", out, "--depfile", dep});
     EXPECT_EQ(failed.exitCode, 1);
-    EXPECT_EQ(filesIn(dir.path()), (std::vector<std::string>{"bad.obj", "good.obj"}));
+    EXPECT_EQ(test::filesIn(dir.path()), (std::vector<std::string>{"bad.obj", "good.obj"}));
     auto missing = test::run({bin("limn-classify"), (dir / "nothing.obj").string(), "-o", out});
     EXPECT_EQ(missing.exitCode, 1);
-    EXPECT_EQ(filesIn(dir.path()), (std::vector<std::string>{"bad.obj", "good.obj"}));
+    EXPECT_EQ(test::filesIn(dir.path()), (std::vector<std::string>{"bad.obj", "good.obj"}));
 
     ASSERT_EQ(test::run({bin("limn-classify"), good, "-o", out}).exitCode, 0);
     std::string before = test::readFile(out);
     EXPECT_EQ(test::run({bin("limn-classify"), bad, "-o", out}).exitCode, 1);
     EXPECT_EQ(test::readFile(out), before); // not truncated, not replaced
-    EXPECT_EQ(filesIn(dir.path()), (std::vector<std::string>{"bad.obj", "good.obj", "out.limn"}));
+    EXPECT_EQ(test::filesIn(dir.path()), (std::vector<std::string>{"bad.obj", "good.obj", "out.limn"}));
 
     // An output directory that cannot be written: error, exit 1, nothing created.
     auto unwritable =

@@ -29,16 +29,8 @@ const std::string kQuadObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0
                              "v 0 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n"
                              "f 4 1 5 8\n";
 
-std::vector<std::string> filesIn(const std::filesystem::path& dir) {
-    std::vector<std::string> out;
-    for (const auto& e : std::filesystem::directory_iterator(dir))
-        out.push_back(e.path().filename().string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
 bool anyTemporary(const std::filesystem::path& dir) {
-    for (const auto& name : filesIn(dir))
+    for (const auto& name : test::filesIn(dir))
         if (name.find("limn-tmp") != std::string::npos) return true;
     return false;
 }
@@ -124,7 +116,7 @@ TEST(SideFiles, NamesMakeCannotReadAreRefusedBeforeAnyWork) {
                             "--depfile", (dir / "out.d").string()});
         EXPECT_EQ(r.exitCode, 2) << name << ": " << r.err;
         EXPECT_NE(r.err.find("make cannot name"), std::string::npos) << r.err;
-        EXPECT_EQ(filesIn(dir.path()), std::vector<std::string>{name}) << "left files behind";
+        EXPECT_EQ(test::filesIn(dir.path()), std::vector<std::string>{name}) << "left files behind";
     }
     // '%' in the target would make a pattern rule.
     test::ScratchDir dir;
@@ -132,7 +124,7 @@ TEST(SideFiles, NamesMakeCannotReadAreRefusedBeforeAnyWork) {
     auto r = test::run({bin("limn-classify"), (dir / "in.obj").string(), "-o",
                         (dir / "out%.limn").string(), "--depfile", (dir / "out.d").string()});
     EXPECT_EQ(r.exitCode, 2) << r.err;
-    EXPECT_EQ(filesIn(dir.path()), std::vector<std::string>{"in.obj"});
+    EXPECT_EQ(test::filesIn(dir.path()), std::vector<std::string>{"in.obj"});
 }
 
 TEST(SideFiles, GltfDepfileListsItsBuffers) {
@@ -303,7 +295,7 @@ TEST(SideFiles, OutputFormatAndRepeatedOptions) {
                    (dir / "b.obj").string()});
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("more than once"), std::string::npos) << r.err;
-    EXPECT_EQ(filesIn(dir.path()), std::vector<std::string>{"t.obj"});
+    EXPECT_EQ(test::filesIn(dir.path()), std::vector<std::string>{"t.obj"});
 }
 
 TEST(SideFiles, UnknownOptionsSuggestTheNearest) {

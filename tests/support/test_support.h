@@ -42,6 +42,8 @@ private:
 };
 
 std::string readFile(const std::filesystem::path& path);
+// The names of the entries of `dir`, sorted.
+std::vector<std::string> filesIn(const std::filesystem::path& dir);
 std::vector<uint8_t> readBytes(const std::filesystem::path& path);
 void writeFile(const std::filesystem::path& path, const std::string& contents);
 

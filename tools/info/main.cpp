@@ -12,9 +12,6 @@
 #include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
 
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
-
 #include <cstdio>
 #include <optional>
 #include <iostream>
@@ -162,9 +159,9 @@ int main(int argc, char** argv) {
         cli::printWarnings(warnings, input == "-" ? "<stdin>" : input);
         Summary s = summarize(mesh, c);
         // The bounding box, in the mesh's units: --displace-scale is in the same units.
-        glm::dvec3 lo(mesh.positions.empty() ? glm::dvec3(0) : mesh.positions[0]), hi = lo;
-        for (const auto& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-        const double diagonal = glm::length(hi - lo);
+        const MeshBox box = boundingBox(mesh);
+        const glm::dvec3 lo = box.lo, hi = box.hi;
+        const double diagonal = box.diagonal();
 
         if (json) {
             JsonWriter j;

@@ -17,9 +17,6 @@
 #include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
 
-#include <glm/common.hpp>
-#include <glm/geometric.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -461,9 +458,7 @@ int main(int argc, char** argv) {
             settings.displacementMap = &*displacementMap;
             settings.displaceScale = displaceScale;
             if (displaceScalePercent) {
-                glm::dvec3 lo = in.mesh.positions[0], hi = lo;
-                for (const auto& p : in.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-                settings.displaceScale = displaceScale / 100 * glm::length(hi - lo);
+                settings.displaceScale = displaceScale / 100 * boundingBox(in.mesh).diagonal();
                 cli::info("--displace-scale " + std::to_string(displaceScale) + "% = " +
                           std::to_string(settings.displaceScale) + " world units");
             }
