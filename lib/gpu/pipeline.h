@@ -108,6 +108,9 @@ class ComputePipeline : public Pipeline {
 
 enum class Primitive { Triangles, Lines };
 enum class DepthTest { Less, LessOrEqual, Always };
+// Which triangles the rasterizer drops, by their winding on screen (counter-clockwise is front);
+// WebGPU's GPUCullMode has the same three.
+enum class Cull { None, Back, Front };
 
 struct GraphicsPipelineDesc {
     std::string name;
@@ -117,10 +120,12 @@ struct GraphicsPipelineDesc {
     Primitive primitive = Primitive::Triangles;
     DepthTest depthTest = DepthTest::Less;
     bool depthWrite = true;
+    Cull cull = Cull::None;
 };
 
-// Draws into a RenderTarget (RGBA8 sRGB + D32 depth) with dynamic rendering. No culling: control
-// meshes may be open or inconsistently oriented, and the shading is two-sided.
+// Draws into a RenderTarget (RGBA8 sRGB + D32 depth) with dynamic rendering. No culling by
+// default: control meshes may be open or inconsistently oriented, and the shading is two-sided;
+// a closed surface seen from outside may cull its back faces (desc.cull).
 class GraphicsPipeline : public Pipeline {
   public:
     GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);

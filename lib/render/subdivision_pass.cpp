@@ -184,6 +184,9 @@ struct SubdivisionPass::Gpu {
     std::unique_ptr<gpu::GraphicsPipeline> wire;
     gpu::BindGroup evalBindings, wireBindings;
     std::unique_ptr<AdaptiveTess> adaptive;
+    // The draw with back faces culled by the rasterizer (view-adaptive, closed surface seen from
+    // outside; null otherwise).
+    std::unique_ptr<gpu::GraphicsPipeline> culledDraw;
 };
 
 SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
@@ -204,6 +207,22 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
                                          "prepared for it");
     gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive);
     if (adaptive && adaptive->backFaceCull && draw_.closed) orientation_ = draw_.orientation;
+    if (orientation_ != 0) {
+        // On a closed, consistently oriented surface seen from outside, the first face along any
+        // ray from the eye is a front face, so back faces never show and the rasterizer may drop
+        // them (same image, bytes included; on lavapipe triangle setup is most of a view-adaptive
+        // draw). Which winding is "back" follows the control mesh's orientation: with positive
+        // volume the faces wind counter-clockwise seen from outside, as the pipeline's front
+        // faces do (the projection flips Y for Vulkan's framebuffer and the winding with it).
+        const bool fetch = eval_ == Eval::Compute;
+        gpu_->culledDraw = std::make_unique<gpu::GraphicsPipeline>(
+            ctx, gpu::GraphicsPipelineDesc{"surface (back faces culled)",
+                                           fetch ? std::span<const uint32_t>(surface_fetch_vert_spv)
+                                                 : std::span<const uint32_t>(surface_vert_spv),
+                                           surface_frag_spv, 8, sizeof(DrawPush),
+                                           gpu::Primitive::Triangles, gpu::DepthTest::Less, true,
+                                           orientation_ > 0 ? gpu::Cull::Back : gpu::Cull::Front});
+    }
 }
 
 SubdivisionPass::~SubdivisionPass() = default;
@@ -296,8 +315,10 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
 void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) {
     auto& g = *gpu_;
     push.patchCount = static_cast<uint32_t>(draw_.patches.size());
-    const auto& pipeline = eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
     const auto& bindings = eval_ == Eval::Compute ? g.fetchBindings : g.surfaceBindings;
+    // --back-faces shows back faces on purpose (crack counts): never culled then.
+    const bool cullBackFaces = g.culledDraw && view_.facing != 0 && !(push.flags & kDrawBackFaceKey);
+    const auto& pipeline = cullBackFaces ? *g.culledDraw : eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
     if (g.adaptive) {
         if (levels_) {
             push.flags |= kDrawPullIndices;
