@@ -94,9 +94,12 @@ struct SubdivisionPass::Gpu {
           surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surface_frag_spv, 8,
                              sizeof(DrawPush)}) {
         // View-adaptive: the tessellation is written by compute passes each frame (issue 11).
-        if (adaptiveOptions)
+        if (adaptiveOptions) {
+            AdaptiveOptions options = *adaptiveOptions;
+            options.evaluated = evaluate;
             adaptive = std::make_unique<AdaptiveTess>(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()),
-                                                      vertices, patches, irregular, limits, *adaptiveOptions);
+                                                      vertices, patches, irregular, limits, options);
+        }
         const gpu::Buffer& tv = adaptive ? adaptive->tessVertices() : tessVertices;
         const gpu::Buffer& tris = adaptive ? adaptive->triangles() : triangles;
         const gpu::Buffer& levels = adaptive ? adaptive->triangleLevels() : triangleLevels;
