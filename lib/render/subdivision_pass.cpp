@@ -189,7 +189,7 @@ struct SubdivisionPass::Gpu {
     std::unique_ptr<AdaptiveTess> adaptive;
     // The draw with back faces culled by the rasterizer (view-adaptive, closed surface seen from
     // outside; null otherwise).
-    std::unique_ptr<gpu::GraphicsPipeline> culledDraw;
+    std::unique_ptr<gpu::GraphicsPipeline> culledDraw[2]; // [0] drops back faces, [1] front faces
 };
 
 SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
@@ -209,23 +209,34 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
         throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data "
                                          "prepared for it");
     gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive);
-    if (adaptive && adaptive->backFaceCull && draw_.closed) orientation_ = draw_.orientation;
-    if (orientation_ != 0) {
-        // On a closed, consistently oriented surface seen from outside, the first face along any
-        // ray from the eye is a front face, so back faces never show and the rasterizer may drop
-        // them (same image, bytes included; on lavapipe triangle setup is most of a view-adaptive
-        // draw). Which winding is "back" follows the control mesh's orientation: with positive
-        // volume the faces wind counter-clockwise seen from outside, as the pipeline's front
-        // faces do (the projection flips Y for Vulkan's framebuffer and the winding with it).
+    mayCullBackFaces_ = adaptive && adaptive->backFaceCull && draw_.closed;
+    if (mayCullBackFaces_) orientation_ = draw_.orientation;
+}
+
+// On a closed, consistently oriented surface seen from outside, the first face along any ray from
+// the eye is a front face, so back faces never show and the rasterizer may drop them (the same
+// image, bytes included; on lavapipe triangle setup is most of a view-adaptive draw). Which
+// winding is "back" follows the orientation: with positive volume the faces wind
+// counter-clockwise seen from outside, as the pipeline's front faces do (the projection flips Y
+// for Vulkan's framebuffer and the winding with it). Made on first use: an animated surface may
+// turn inside out and need the other one.
+const gpu::GraphicsPipeline& SubdivisionPass::culledPipeline(float facing) {
+    auto& slot = gpu_->culledDraw[facing > 0 ? 0 : 1];
+    if (!slot) {
         const bool fetch = eval_ == Eval::Compute;
-        gpu_->culledDraw = std::make_unique<gpu::GraphicsPipeline>(
-            ctx, gpu::GraphicsPipelineDesc{"surface (back faces culled)",
-                                           fetch ? std::span<const uint32_t>(surface_fetch_vert_spv)
-                                                 : std::span<const uint32_t>(surface_vert_spv),
-                                           surface_frag_spv, 8, sizeof(DrawPush),
-                                           gpu::Primitive::Triangles, gpu::DepthTest::Less, true,
-                                           orientation_ > 0 ? gpu::Cull::Back : gpu::Cull::Front});
+        slot = std::make_unique<gpu::GraphicsPipeline>(
+            ctx_, gpu::GraphicsPipelineDesc{"surface (back faces culled)",
+                                            fetch ? std::span<const uint32_t>(surface_fetch_vert_spv)
+                                                  : std::span<const uint32_t>(surface_vert_spv),
+                                            surface_frag_spv, 8, sizeof(DrawPush), gpu::Primitive::Triangles,
+                                            gpu::DepthTest::Less, true, facing > 0 ? gpu::Cull::Back : gpu::Cull::Front});
     }
+    return *slot;
+}
+
+void SubdivisionPass::setControlPoints(const Bounds& bounds, float orientation) {
+    draw_.bounds = bounds;
+    if (mayCullBackFaces_) orientation_ = orientation;
 }
 
 SubdivisionPass::~SubdivisionPass() = default;
@@ -320,8 +331,8 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wi
     push.patchCount = static_cast<uint32_t>(draw_.patches.size());
     const auto& bindings = eval_ == Eval::Compute ? g.fetchBindings : g.surfaceBindings;
     // --back-faces shows back faces on purpose (crack counts): never culled then.
-    const bool cullBackFaces = g.culledDraw && view_.facing != 0 && !(push.flags & kDrawBackFaceKey);
-    const auto& pipeline = cullBackFaces ? *g.culledDraw : eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
+    const bool cull = mayCullBackFaces_ && view_.facing != 0 && !(push.flags & kDrawBackFaceKey);
+    const auto& pipeline = cull ? culledPipeline(view_.facing) : eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
     if (g.adaptive) {
         if (levels_) {
             push.flags |= kDrawPullIndices;
