@@ -115,6 +115,25 @@ Mesh makeTorus(int ring, int tube) {
     return m;
 }
 
+Mesh makeTwistingTorus(int ring, int tube, int k, int n) {
+    Mesh m = makeTorus(ring, tube);
+    const double major = 1.0, a = 0.45, b = 0.2;
+    const double spin = kPi * k / n; // a half turn over the loop
+    for (int j = 0; j < tube; ++j)
+        for (int i = 0; i < ring; ++i) {
+            const double theta = 2 * kPi * i / ring, phi = 2 * kPi * j / tube;
+            // The ellipse in the tube's (radial, up) plane, turned by theta (one full turn along
+            // the ring, so the seam at theta = 0 meets itself) plus the frame's spin.
+            const double turn = theta + spin, x = a * std::cos(phi), y = b * std::sin(phi);
+            const double radial = x * std::cos(turn) - y * std::sin(turn);
+            const double up = x * std::sin(turn) + y * std::cos(turn);
+            const double r = major + radial;
+            m.positions[size_t(j) * ring + i] =
+                round6(glm::dvec3{r * std::cos(theta), r * std::sin(theta), up});
+        }
+    return m;
+}
+
 Mesh makePentagonTower() {
     Mesh m;
     // Vertices: floor ring 0..4, eaves ring 5..9, apex 10.
@@ -205,6 +224,14 @@ std::vector<Example> builtinExamples() {
                    makeCreasedCube()});
     out.push_back({"grid_with_hole", "open grid with a hole: two boundary loops, edge-and-corner",
                    makeGridWithHole(8)});
+    return out;
+}
+
+std::vector<ExampleSequence> builtinSequences() {
+    std::vector<ExampleSequence> out;
+    ExampleSequence twist{"twist", "a torus with an elliptic tube twisting as it spins: 24 frames, one topology", {}};
+    for (int k = 0; k < 24; ++k) twist.frames.push_back(makeTwistingTorus(24, 12, k, 24));
+    out.push_back(std::move(twist));
     return out;
 }
 

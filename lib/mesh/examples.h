@@ -29,6 +29,13 @@ Mesh makeCreasedCube();
 // boundary loops, under the edge-and-corner rule.
 Mesh makeGridWithHole(int n);
 
+// Frame k of n of a torus (ring x tube quads, makeTorus's topology and UVs) whose tube is an
+// ellipse (semi-axes 0.45 and 0.2) turned once around along the ring and spun about the tube's
+// centre line as k goes from 0 to n: frame n would be frame 0's surface (the ellipse is symmetric
+// under the half turn, which moves each tube loop's vertices half way round), so the sequence
+// loops. Every frame has the same faces; only positions change.
+Mesh makeTwistingTorus(int ring, int tube, int k, int n);
+
 struct Example {
     std::string name; // file stem: <name>.obj
     std::string description;
@@ -37,5 +44,13 @@ struct Example {
 
 // Every built-in example, in a fixed order.
 std::vector<Example> builtinExamples();
+
+// Built-in animations: frame meshes of one topology, for limn-render --frames.
+struct ExampleSequence {
+    std::string name; // files <name>_0000.obj, <name>_0001.obj, ...
+    std::string description;
+    std::vector<Mesh> frames;
+};
+std::vector<ExampleSequence> builtinSequences();
 
 } // namespace limn

@@ -2,6 +2,10 @@
 // forms from the construction, the reference OBJ reader and OpenSubdiv), plus byte determinism.
 #include "reference_mesh.h"
 #include "test_support.h"
+#include "mesh/examples.h"
+#include "mesh/import.h"
+
+#include <glm/geometric.hpp>
 
 #include <gtest/gtest.h>
 
@@ -93,10 +97,47 @@ TEST_F(ExamplesDir, ListNamesEveryFileWritten) {
     std::set<std::string> listed, written;
     std::istringstream in(r.out);
     for (std::string name; std::getline(in, name);) listed.insert(name + ".obj");
+    // --list-sequences names the animations, each a folder of frames.
+    r = test::run({test::tool("limn-examples").string(), "--list-sequences"});
+    ASSERT_EQ(r.exitCode, 0);
+    std::istringstream seq(r.out);
+    for (std::string name; std::getline(seq, name);) listed.insert(name + "/");
     for (const auto& e : std::filesystem::directory_iterator(*dir_ / "a"))
-        written.insert(e.path().filename().string());
+        written.insert(e.path().filename().string() + (e.is_directory() ? "/" : ""));
     EXPECT_EQ(listed, written);
-    EXPECT_EQ(listed.size(), kExamples.size());
+    EXPECT_EQ(listed.size(), kExamples.size() + 1);
+}
+
+// The animation: frames of one topology (same faces and UVs, only positions move), numbered from
+// 0 and looping (frame 24 would be frame 0's surface: the tube's ellipse turns half a turn).
+TEST_F(ExamplesDir, TwistFramesShareTheirTopologyAndMove) {
+    std::vector<Mesh> frames;
+    for (int k = 0;; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "twist_%04d.obj", k);
+        const auto p = *dir_ / "a" / "twist" / name;
+        if (!std::filesystem::exists(p)) break;
+        Warnings w;
+        frames.push_back(importMeshFile(p.string(), w));
+    }
+    ASSERT_EQ(frames.size(), 24u);
+    for (size_t k = 1; k < frames.size(); ++k) {
+        EXPECT_EQ(frames[k].faceOffsets, frames[0].faceOffsets);
+        EXPECT_EQ(frames[k].faceVertices, frames[0].faceVertices);
+        EXPECT_EQ(frames[k].uvIndices, frames[0].uvIndices);
+        EXPECT_EQ(frames[k].uvs, frames[0].uvs);
+        EXPECT_NE(frames[k].positions, frames[k - 1].positions) << k;
+    }
+    // Looping: frame 24 of 24 (not written) is frame 0 with every tube loop's vertices moved half
+    // way round (vertex (i, j) at (i, j + 6); index j * 24 + i), the same surface, up to the
+    // 6-decimal rounding.
+    const Mesh wrap = makeTwistingTorus(24, 12, 24, 24);
+    ASSERT_EQ(wrap.positions.size(), frames[0].positions.size());
+    double worst = 0;
+    for (size_t j = 0; j < 12; ++j)
+        for (size_t i = 0; i < 24; ++i)
+            worst = std::max(worst, glm::length(wrap.positions[j * 24 + i] - frames[0].positions[((j + 6) % 12) * 24 + i]));
+    EXPECT_LT(worst, 2e-6);
 }
 
 TEST_F(ExamplesDir, SameBytesEveryRun) {
