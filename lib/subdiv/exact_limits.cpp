@@ -1,0 +1,355 @@
+#include "subdiv/exact_limits.h"
+
+#include <opensubdiv/sdc/crease.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace limn {
+
+namespace {
+
+using OpenSubdiv::Sdc::Crease;
+
+bool semiSharp(float s) { return s > 0 && s < Crease::SHARPNESS_INFINITE; }
+
+// A semi-sharp feature at the vertex has not decayed: the rules change at a later level, so no
+// mask of this level is the limit (opensubdiv.md, "Exact vertex limits").
+bool undecayed(const Level& L, const VertexNeighborhood& hood) {
+    if (semiSharp(L.vertexSharpness[hood.vertex])) return true;
+    for (uint32_t e : hood.edges)
+        if (semiSharp(L.edgeSharpness[e])) return true;
+    return false;
+}
+
+// Stable rules whose closed-form masks are not eigenvectors of the local subdivision matrix.
+bool needsEigen(const VertexNeighborhood& hood, VertexRule rule) {
+    if (rule == VertexRule::Dart) return true;
+    if (hood.boundary) return false;
+    if (rule == VertexRule::Smooth) return hood.faces.size() == 2;
+    if (rule == VertexRule::Corner) { // a corner whose ring no two sharp edges cut: a cone
+        return false;
+    }
+    return false;
+}
+
+// The sector of ring face `ringPos` among `sectors`.
+uint8_t sectorOf(const std::vector<Sector>& sectors, uint32_t ringPos, uint32_t ringFaces) {
+    for (uint32_t i = 0; i < sectors.size(); ++i)
+        if ((ringPos + ringFaces - sectors[i].firstFace) % ringFaces < sectors[i].faceCount)
+            return static_cast<uint8_t>(std::min<uint32_t>(i, 255));
+    return 0;
+}
+
+using Sparse = std::map<uint32_t, double>;
+
+// One extra level around the vertices that need it, and where its vertices came from.
+struct Extra {
+    Level level;
+    LevelStencils stencils;
+    std::vector<uint32_t> faceChild, edgeChild, vertexChild; // parent element -> child vertex
+};
+
+// A combination of level-l vertices rewritten over level l-1 vertices through level l's
+// stencils (face points are averages of their face's vertices).
+void expandOnce(const Level& C, const LevelStencils& st, const Sparse& in, Sparse& out) {
+    out.clear();
+    auto facePoint = [&](uint32_t row, double w) {
+        const uint32_t b = st.faceStart[row], e = st.faceStart[row + 1];
+        const double k = w / double(e - b);
+        for (uint32_t i = b; i < e; ++i) out[st.faceVertices[i]] += k;
+    };
+    auto rows = [&](uint32_t row, double w, const std::vector<uint32_t>& start,
+                    const std::vector<StencilEntry>& entries) {
+        for (uint32_t i = start[row]; i < start[row + 1]; ++i) {
+            const StencilEntry& s = entries[i];
+            if (s.fromFacePoint)
+                facePoint(s.index, w * s.weight);
+            else
+                out[s.index] += w * s.weight;
+        }
+    };
+    const uint32_t fp = C.facePointCount, ep = C.edgePointCount;
+    for (const auto& [v, w] : in) {
+        if (v < fp)
+            facePoint(v, w);
+        else if (v < fp + ep)
+            rows(v - fp, w, st.edgeStart, st.edgeEntries);
+        else
+            rows(v - fp - ep, w, st.vertexStart, st.vertexEntries);
+    }
+}
+
+// `list` at level N + levels, rewritten over level-N vertices.
+std::vector<WeightedPoint> compose(const std::vector<Extra>& extra, size_t levels,
+                                   const std::vector<WeightedPoint>& list) {
+    Sparse a, b;
+    for (const auto& wp : list) a[wp.vertex] += wp.weight;
+    for (size_t j = levels; j-- > 0;) {
+        expandOnce(extra[j].level, extra[j].stencils, a, b);
+        std::swap(a, b);
+    }
+    double largest = 0;
+    for (const auto& [v, w] : a) largest = std::max(largest, std::abs(w));
+    std::vector<WeightedPoint> out;
+    // Cancellation leaves weights of order 1e-17 where the exact weight is 0: drop them.
+    for (const auto& [v, w] : a)
+        if (std::abs(w) > 1e-13 * largest) out.push_back({v, w});
+    return out;
+}
+
+// The exact masks of a vertex whose rule is stable (no semi-sharpness) but not covered by the
+// closed forms, from its local subdivision matrix S: one-ring at level l+1 (`C`) as a linear
+// function of the one-ring at level l (`L`). `init` (the closed-form masks) starts the
+// iterations; the result replaces it. Returns false where the one-ring is degenerate (a vertex
+// repeated in it) or an iteration does not converge; `init` is then left as it was.
+bool eigenMasks(const Level& L, const Extra& next, const VertexNeighborhood& hood, LimitMasks& m) {
+    std::vector<uint32_t> list = {hood.vertex}, childList;
+    list.insert(list.end(), hood.ringVertex.begin(), hood.ringVertex.end());
+    list.insert(list.end(), hood.diagonal.begin(), hood.diagonal.end());
+    const size_t n = list.size();
+    std::map<uint32_t, size_t> column;
+    for (size_t i = 0; i < n; ++i)
+        if (list[i] == kNone || !column.emplace(list[i], i).second) return false;
+    // The child one-ring in the same order: the vertex's child, the children of its edges and
+    // the points of its faces (refineLevel numbers child rings that way round).
+    childList.push_back(next.vertexChild[hood.vertex]);
+    for (uint32_t e : hood.edges) childList.push_back(next.edgeChild[e]);
+    for (uint32_t f : hood.faces) childList.push_back(next.faceChild[f]);
+    std::vector<double> S(n * n, 0.0);
+    Sparse row, out;
+    for (size_t r = 0; r < n; ++r) {
+        if (childList[r] == kNone) return false;
+        row = {{childList[r], 1.0}};
+        expandOnce(next.level, next.stencils, row, out);
+        for (const auto& [v, w] : out) {
+            auto it = column.find(v);
+            if (it == column.end()) return false;
+            S[r * n + it->second] += w;
+        }
+    }
+    (void)L;
+    auto toLocal = [&](const std::vector<WeightedPoint>& wp, std::vector<double>& x) {
+        x.assign(n, 0.0);
+        for (const auto& p : wp) {
+            auto it = column.find(p.vertex);
+            if (it == column.end()) return false;
+            x[it->second] += p.weight;
+        }
+        return true;
+    };
+    auto times = [&](const std::vector<double>& x) { // x S
+        std::vector<double> y(n, 0.0);
+        for (size_t r = 0; r < n; ++r)
+            if (x[r] != 0)
+                for (size_t c = 0; c < n; ++c) y[c] += x[r] * S[r * n + c];
+        return y;
+    };
+    auto fromLocal = [&](const std::vector<double>& x, std::vector<WeightedPoint>& wp) {
+        double largest = 0;
+        for (double w : x) largest = std::max(largest, std::abs(w));
+        wp.clear();
+        for (size_t i = 0; i < n; ++i)
+            if (std::abs(x[i]) > 1e-13 * largest) wp.push_back({list[i], x[i]});
+    };
+    std::vector<double> l, t1, t2;
+    if (!toLocal(m.position, l) || !toLocal(m.tangent1, t1) || !toLocal(m.tangent2, t2)) return false;
+    // Position: l S^k converges to the left eigenvector of eigenvalue 1 with sum 1 (S 1 = 1,
+    // the subdominant eigenvalues are below 1), at the rate of the subdominant eigenvalue.
+    bool converged = false;
+    for (int it = 0; it < 5000 && !converged; ++it) {
+        std::vector<double> y = times(l);
+        double d = 0;
+        for (size_t i = 0; i < n; ++i) d = std::max(d, std::abs(y[i] - l[i]));
+        l = std::move(y);
+        converged = d < 1e-16;
+    }
+    if (!converged) return false;
+    // Tangents: subspace iteration on zero-sum masks (S's other left eigenvectors), deflated
+    // against l each step so rounding cannot bring eigenvalue 1 back, and orthonormalized by
+    // Gram-Schmidt. Gram-Schmidt is triangular with a positive diagonal, so the pair keeps the
+    // orientation the closed-form masks gave it (tangent1 x tangent2 outward).
+    auto deflate = [&](std::vector<double>& t) {
+        double s = 0;
+        for (double x : t) s += x;
+        for (size_t i = 0; i < n; ++i) t[i] -= s * l[i];
+    };
+    auto normalize = [&](std::vector<double>& t) {
+        double s = 0;
+        for (double x : t) s += x * x;
+        s = std::sqrt(s);
+        if (!(s > 0)) return false;
+        for (double& x : t) x /= s;
+        return true;
+    };
+    auto orthonormalize = [&]() {
+        deflate(t1);
+        deflate(t2);
+        if (!normalize(t1)) return false;
+        double d = 0;
+        for (size_t i = 0; i < n; ++i) d += t1[i] * t2[i];
+        for (size_t i = 0; i < n; ++i) t2[i] -= d * t1[i];
+        return normalize(t2);
+    };
+    if (!orthonormalize()) return false;
+    if (hood.faces.size() == 2 && !hood.boundary) {
+        // Valence 2: S has the eigenvalues 1/4, 1/4 and -1/4 (equal modulus, so no iteration
+        // separates them). For the smooth rule, e_0 - e_1 and d_0 - d_1 span the eigenvalue
+        // 1/4 (the modes odd under swapping the two faces); their cross product is the sum of
+        // the two faces' normals at v. The -1/4 mode (even) generally leaves that plane, so the
+        // surface has no tangent plane there: the normal stays flagged approximate.
+        std::vector<double> a(n, 0.0), b(n, 0.0);
+        a[1] = 1, a[2] = -1, b[3] = 1, b[4] = -1;
+        std::vector<double> sa = times(a), sb = times(b);
+        double r = 0;
+        for (size_t i = 0; i < n; ++i)
+            r = std::max({r, std::abs(sa[i] - a[i] / 4), std::abs(sb[i] - b[i] / 4)});
+        if (r > 1e-12) return false; // not the smooth valence-2 matrix (a dart)
+        t1 = a, t2 = b;
+        fromLocal(l, m.position);
+        fromLocal(t1, m.tangent1);
+        fromLocal(t2, m.tangent2);
+        m.exact = false;
+        return true;
+    }
+    converged = false;
+    for (int it = 0; it < 5000 && !converged; ++it) {
+        std::vector<double> p1 = t1, p2 = t2;
+        t1 = times(t1);
+        t2 = times(t2);
+        if (!orthonormalize()) return false;
+        double d = 0;
+        for (size_t i = 0; i < n; ++i)
+            d = std::max({d, std::abs(t1[i] - p1[i]), std::abs(t2[i] - p2[i])});
+        converged = d < 1e-14;
+    }
+    if (!converged) return false;
+    fromLocal(l, m.position);
+    fromLocal(t1, m.tangent1);
+    fromLocal(t2, m.tangent2);
+    m.exact = true;
+    return true;
+}
+
+} // namespace
+
+std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<uint32_t>& vertices,
+                                            const SchemeOptions& options,
+                                            const std::vector<uint32_t>& ptexBase) {
+    std::vector<VertexLimits> out(vertices.size());
+    VertexNeighborhood hood;
+    LimitMasks masks;
+    // Vertices whose masks need levels beyond N: their vertex and the descendant of each of
+    // their level-N faces at the current level.
+    struct Track {
+        size_t index;
+        uint32_t vertex;
+        std::vector<uint32_t> faces;
+        int eigenLevel = -1; // the extra level whose one-ring S maps from (waits for the next)
+    };
+    std::vector<Track> pending;
+    // Fills out[i] from the masks of `L` (extra level `j`, 0 for level N itself) at vertex w.
+    auto finish = [&](Track& tr, const Level& L, size_t j, const std::vector<Extra>& extra,
+                      const Extra* next) {
+        VertexLimits& vl = out[tr.index];
+        gatherNeighborhood(L.topo, tr.vertex, hood);
+        const auto rule = static_cast<VertexRule>(L.vertexRule[tr.vertex]);
+        const auto sectors = vertexSectors(hood, rule, L.edgeSharpness);
+        vl.sectors.clear();
+        for (const Sector& sector : sectors) {
+            limitMasks(hood, rule, sector, L.edgeSharpness, L.vertexSharpness[tr.vertex], masks);
+            if (next && !eigenMasks(L, *next, hood, masks)) masks.exact = false;
+            if (j) {
+                masks.position = compose(extra, j, masks.position);
+                masks.tangent1 = compose(extra, j, masks.tangent1);
+                masks.tangent2 = compose(extra, j, masks.tangent2);
+            }
+            vl.sectors.push_back(masks);
+        }
+        const uint32_t k = static_cast<uint32_t>(hood.faces.size());
+        vl.ringSector.clear();
+        for (uint32_t f : tr.faces) {
+            uint32_t pos = uint32_t(std::find(hood.faces.begin(), hood.faces.end(), f) - hood.faces.begin());
+            vl.ringSector.push_back(sectors.size() > 1 ? sectorOf(sectors, pos, k) : 0);
+        }
+    };
+    const std::vector<Extra> none;
+    for (size_t i = 0; i < vertices.size(); ++i) {
+        const uint32_t v = vertices[i];
+        gatherNeighborhood(LN.topo, v, hood);
+        out[i].ringFaces = hood.faces;
+        const auto rule = static_cast<VertexRule>(LN.vertexRule[v]);
+        Track tr{i, v, hood.faces};
+        if (undecayed(LN, hood) || needsEigen(hood, rule))
+            pending.push_back(std::move(tr));
+        else
+            finish(tr, LN, 0, none, nullptr);
+    }
+
+    std::vector<Extra> extra;
+    while (!pending.empty()) {
+        const size_t j = extra.size();
+        const Level& L = j ? extra[j - 1].level : LN;
+        // Decide at level N + j: still semi-sharp (refine), stable with closed-form masks
+        // (finish), or stable but needing S (refine once more, finish at the next level).
+        std::vector<Track> refine;
+        for (Track& tr : pending) {
+            if (tr.eigenLevel >= 0) {
+                // S maps the one-ring of level N + eigenLevel to that of this level.
+                const size_t e = size_t(tr.eigenLevel);
+                const Level& at = e ? extra[e - 1].level : LN;
+                finish(tr, at, e, extra, &extra[e]);
+                continue;
+            }
+            gatherNeighborhood(L.topo, tr.vertex, hood);
+            const auto rule = static_cast<VertexRule>(L.vertexRule[tr.vertex]);
+            if (undecayed(L, hood)) {
+                refine.push_back(std::move(tr));
+            } else if (needsEigen(hood, rule)) {
+                tr.eigenLevel = int(j);
+                refine.push_back(std::move(tr));
+            } else {
+                finish(tr, L, j, extra, nullptr);
+            }
+        }
+        pending.clear();
+        if (refine.empty()) break;
+        // Isolate as tables.h does: the vertices' faces and the one-ring of those, so the
+        // children of their faces have complete neighbourhoods at the next level.
+        std::vector<uint8_t> marked(L.topo.faceCount(), 0);
+        for (const Track& tr : refine)
+            for (uint32_t h : L.topo.vertexOutgoing(tr.vertex)) marked[L.topo.face(h)] = 1;
+        Extra x;
+        x.level = refineLevel(L, oneRing(L.topo, marked), options, ptexBase, x.stencils);
+        const Level& C = x.level;
+        x.faceChild.assign(L.topo.faceCount(), kNone);
+        x.edgeChild.assign(L.topo.edgeCount(), kNone);
+        x.vertexChild.assign(L.topo.vertexCount(), kNone);
+        for (uint32_t c = 0; c < C.topo.vertexCount(); ++c) {
+            const uint32_t p = C.vertexParent[c];
+            switch (C.vertexOrigin[c]) {
+            case VertexOrigin::Face: x.faceChild[p] = c; break;
+            case VertexOrigin::Edge: x.edgeChild[p] = c; break;
+            case VertexOrigin::Vertex: x.vertexChild[p] = c; break;
+            case VertexOrigin::Base: break;
+            }
+        }
+        for (Track& tr : refine) {
+            if (tr.eigenLevel >= 0) continue; // stays at its level; S reads this one
+            const uint32_t w = x.vertexChild[tr.vertex];
+            for (uint32_t& f : tr.faces)
+                for (uint32_t h : C.topo.vertexOutgoing(w))
+                    if (C.faceParent[C.topo.face(h)] == f) {
+                        f = C.topo.face(h);
+                        break;
+                    }
+            tr.vertex = w;
+        }
+        extra.push_back(std::move(x));
+        pending = std::move(refine);
+    }
+    return out;
+}
+
+} // namespace limn
