@@ -7,7 +7,9 @@
 // taken as the render test takes them (a hundred-thousandth of the element inside), and smooth
 // corners' normals are left out (OpenSubdiv's end caps freeze them, tests/subdiv SmoothCorner).
 // Prints one JSON object per mesh on stdout and a table on stderr.
-// Usage: bench_accuracy [--depth N] [--uniform] [--osd-isolation L] MESH...
+// Usage: bench_accuracy [--depth N] [--uniform] [--osd-isolation L] [--reference-isolation R]
+//        [-v: list the approximate limit points] MESH...
+#include "base/error.h"
 #include "mesh/import.h"
 #include "osd_oracle.h"
 #include "subdiv/evaluate.h"
@@ -47,13 +49,19 @@ struct Worst {
 int main(int argc, char** argv) {
     int depth = 3;
     bool uniform = false;
-    int osdIso = -1; // the isolation compared with isolation 10 (default: depth)
+    int osdIso = -1; // the isolation compared with the reference (default: depth)
+    int refIso = 10; // the reference's isolation (OpenSubdiv's maximum)
+    bool verbose = false;
     std::vector<std::string> meshes;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--depth") && i + 1 < argc)
             depth = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--osd-isolation") && i + 1 < argc)
             osdIso = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--reference-isolation") && i + 1 < argc)
+            refIso = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "-v"))
+            verbose = true;
         else if (!std::strcmp(argv[i], "--uniform"))
             uniform = true;
         else
@@ -64,13 +72,30 @@ int main(int argc, char** argv) {
                  "osdL dP", "osdL dN");
     for (const std::string& path : meshes) {
         Warnings w;
-        Mesh mesh = importMeshFile(path, w);
-        SchemeOptions so = resolveSchemeOptions(mesh.tags, {});
+        Mesh mesh;
+        SchemeOptions so;
         TablesOptions to;
         to.depth = depth;
         to.uniform = uniform;
-        Tables t = buildTables(mesh, so, to, w);
+        Tables t;
+        try {
+            mesh = importMeshFile(path, w);
+            so = resolveSchemeOptions(mesh.tags, {});
+            t = buildTables(mesh, so, to, w);
+        } catch (const Error& e) { // non-manifold and degenerate shapes: limn refuses them
+            std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());
+            continue;
+        }
         const size_t bytes = encodeTablesChunk(t).payload.size();
+        if (verbose) {
+            std::vector<int> used(t.limitExact.size(), 0);
+            for (const auto& q : t.irregular)
+                for (uint32_t c : q.corner) ++used[c];
+            for (size_t i = 0; i < used.size(); ++i)
+                if (!t.limitExact[i])
+                    std::fprintf(stderr, "  approximate limit point %zu (level-%u vertex %u): %d corners\n",
+                                 i, t.depth, t.limitVertex[i] - t.levels[t.depth].first, used[i]);
+        }
         auto V = evaluateVertices(t, mesh.positions);
         auto L = evaluateLimitPoints(t, V);
         Tessellation tess = buildTessellation(mesh, t, 64);
@@ -78,7 +103,7 @@ int main(int argc, char** argv) {
         glm::dvec3 lo(1e300), hi(-1e300);
         for (const auto& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
         const double diag = glm::length(hi - lo);
-        test::OsdLimitSurface ref(mesh, so, 10), same(mesh, so, osdIso >= 0 ? osdIso : std::max(depth, 1));
+        test::OsdLimitSurface ref(mesh, so, refIso), same(mesh, so, osdIso >= 0 ? osdIso : std::max(depth, 1));
         auto smooth = test::smoothCorners(mesh, so);
         const uint32_t P = uint32_t(t.patches.size());
         Worst dP, dN, oP, oN;
@@ -100,11 +125,20 @@ int main(int argc, char** argv) {
             ref.evaluate(int(pp.ptex), iu, iv, inside, rn);
             same.evaluate(int(pp.ptex), pp.u, pp.v, iu, iv, sp, sn);
             same.evaluate(int(pp.ptex), iu, iv, inside, sn);
-            char where[160];
-            std::snprintf(where, sizeof where, "ptex %u (%.6g, %.6g) %s", pp.ptex, pp.u, pp.v,
-                          tv.element < P ? "patch" : "irregular corner");
             const int bv = test::baseVertexAt(mesh, pp.ptex, pp.u, pp.v);
+            char where[160];
+            std::snprintf(where, sizeof where, "ptex %u (%.6g, %.6g) %s%s", pp.ptex, pp.u, pp.v,
+                          tv.element < P ? "patch" : "irregular corner",
+                          bv >= 0 ? (" at base vertex " + std::to_string(bv)).c_str() : "");
             const bool smoothCorner = bv >= 0 && smooth[bv];
+            if (tv.element >= P && (tv.s == 0 || tv.s == kTessParamOne) &&
+                (tv.t == 0 || tv.t == kTessParamOne)) {
+                const IrregularFace& q = t.irregular[tv.element - P];
+                const int k = tv.s == 0 ? (tv.t == 0 ? 0 : 3) : (tv.t == 0 ? 1 : 2);
+                if (!t.limitExact[q.corner[k]] && verbose)
+                    std::fprintf(stderr, "  approximate limit point %u at %s: %.3g degrees\n",
+                                 q.corner[k], where, angleDeg(drawn[i].normal, rn));
+            }
             dP.update(glm::length(drawn[i].position - rp) / diag, where);
             oP.update(glm::length(sp - rp) / diag, where);
             const double a = angleDeg(drawn[i].normal, rn);

@@ -23,25 +23,6 @@ bool undecayed(const Level& L, const VertexNeighborhood& hood) {
     return false;
 }
 
-// Stable rules whose closed-form masks are not eigenvectors of the local subdivision matrix.
-bool needsEigen(const VertexNeighborhood& hood, VertexRule rule) {
-    if (rule == VertexRule::Dart) return true;
-    if (hood.boundary) return false;
-    if (rule == VertexRule::Smooth) return hood.faces.size() == 2;
-    if (rule == VertexRule::Corner) { // a corner whose ring no two sharp edges cut: a cone
-        return false;
-    }
-    return false;
-}
-
-// The sector of ring face `ringPos` among `sectors`.
-uint8_t sectorOf(const std::vector<Sector>& sectors, uint32_t ringPos, uint32_t ringFaces) {
-    for (uint32_t i = 0; i < sectors.size(); ++i)
-        if ((ringPos + ringFaces - sectors[i].firstFace) % ringFaces < sectors[i].faceCount)
-            return static_cast<uint8_t>(std::min<uint32_t>(i, 255));
-    return 0;
-}
-
 using Sparse = std::map<uint32_t, double>;
 
 // One extra level around the vertices that need it, and where its vertices came from.
@@ -99,38 +80,52 @@ std::vector<WeightedPoint> compose(const std::vector<Extra>& extra, size_t level
     return out;
 }
 
-// The exact masks of a vertex whose rule is stable (no semi-sharpness) but not covered by the
-// closed forms, from its local subdivision matrix S: one-ring at level l+1 (`C`) as a linear
-// function of the one-ring at level l (`L`). `init` (the closed-form masks) starts the
-// iterations; the result replaces it. Returns false where the one-ring is degenerate (a vertex
-// repeated in it) or an iteration does not converge; `init` is then left as it was.
-bool eigenMasks(const Level& L, const Extra& next, const VertexNeighborhood& hood, LimitMasks& m) {
-    std::vector<uint32_t> list = {hood.vertex}, childList;
-    list.insert(list.end(), hood.ringVertex.begin(), hood.ringVertex.end());
-    list.insert(list.end(), hood.diagonal.begin(), hood.diagonal.end());
-    const size_t n = list.size();
+// The local subdivision matrix S of a vertex whose rule is stable (no semi-sharpness): its
+// one-ring at level l+1 as a linear function of its one-ring at level l (v, the far ends of its
+// edges, the diagonals of its faces), from the stencils of the level after it. Limit masks are
+// left eigenvectors of S (Halstead et al. 1993, section 4).
+struct LocalMatrix {
+    std::vector<uint32_t> list;
     std::map<uint32_t, size_t> column;
-    for (size_t i = 0; i < n; ++i)
-        if (list[i] == kNone || !column.emplace(list[i], i).second) return false;
-    // The child one-ring in the same order: the vertex's child, the children of its edges and
-    // the points of its faces (refineLevel numbers child rings that way round).
-    childList.push_back(next.vertexChild[hood.vertex]);
-    for (uint32_t e : hood.edges) childList.push_back(next.edgeChild[e]);
-    for (uint32_t f : hood.faces) childList.push_back(next.faceChild[f]);
-    std::vector<double> S(n * n, 0.0);
-    Sparse row, out;
-    for (size_t r = 0; r < n; ++r) {
-        if (childList[r] == kNone) return false;
-        row = {{childList[r], 1.0}};
-        expandOnce(next.level, next.stencils, row, out);
-        for (const auto& [v, w] : out) {
-            auto it = column.find(v);
-            if (it == column.end()) return false;
-            S[r * n + it->second] += w;
+    std::vector<double> S;
+    size_t n = 0;
+
+    // False where the one-ring is degenerate (a vertex repeated in it) or not closed.
+    bool build(const Extra& next, const VertexNeighborhood& hood) {
+        list = {hood.vertex};
+        list.insert(list.end(), hood.ringVertex.begin(), hood.ringVertex.end());
+        list.insert(list.end(), hood.diagonal.begin(), hood.diagonal.end());
+        n = list.size();
+        column.clear();
+        for (size_t i = 0; i < n; ++i)
+            if (list[i] == kNone || !column.emplace(list[i], i).second) return false;
+        // The child one-ring in the same order: the vertex's child, the children of its edges
+        // and the points of its faces.
+        std::vector<uint32_t> childList = {next.vertexChild[hood.vertex]};
+        for (uint32_t e : hood.edges) childList.push_back(next.edgeChild[e]);
+        for (uint32_t f : hood.faces) childList.push_back(next.faceChild[f]);
+        S.assign(n * n, 0.0);
+        Sparse row, out;
+        for (size_t r = 0; r < n; ++r) {
+            if (childList[r] == kNone) return false;
+            row = {{childList[r], 1.0}};
+            expandOnce(next.level, next.stencils, row, out);
+            for (const auto& [v, w] : out) {
+                auto it = column.find(v);
+                if (it == column.end()) return false;
+                S[r * n + it->second] += w;
+            }
         }
+        return true;
     }
-    (void)L;
-    auto toLocal = [&](const std::vector<WeightedPoint>& wp, std::vector<double>& x) {
+    std::vector<double> times(const std::vector<double>& x) const { // x S
+        std::vector<double> y(n, 0.0);
+        for (size_t r = 0; r < n; ++r)
+            if (x[r] != 0)
+                for (size_t c = 0; c < n; ++c) y[c] += x[r] * S[r * n + c];
+        return y;
+    }
+    bool toLocal(const std::vector<WeightedPoint>& wp, std::vector<double>& x) const {
         x.assign(n, 0.0);
         for (const auto& p : wp) {
             auto it = column.find(p.vertex);
@@ -138,103 +133,156 @@ bool eigenMasks(const Level& L, const Extra& next, const VertexNeighborhood& hoo
             x[it->second] += p.weight;
         }
         return true;
-    };
-    auto times = [&](const std::vector<double>& x) { // x S
-        std::vector<double> y(n, 0.0);
-        for (size_t r = 0; r < n; ++r)
-            if (x[r] != 0)
-                for (size_t c = 0; c < n; ++c) y[c] += x[r] * S[r * n + c];
-        return y;
-    };
-    auto fromLocal = [&](const std::vector<double>& x, std::vector<WeightedPoint>& wp) {
+    }
+    void fromLocal(const std::vector<double>& x, std::vector<WeightedPoint>& wp) const {
         double largest = 0;
         for (double w : x) largest = std::max(largest, std::abs(w));
         wp.clear();
         for (size_t i = 0; i < n; ++i)
             if (std::abs(x[i]) > 1e-13 * largest) wp.push_back({list[i], x[i]});
-    };
-    std::vector<double> l, t1, t2;
-    if (!toLocal(m.position, l) || !toLocal(m.tangent1, t1) || !toLocal(m.tangent2, t2)) return false;
-    // Position: l S^k converges to the left eigenvector of eigenvalue 1 with sum 1 (S 1 = 1,
-    // the subdominant eigenvalues are below 1), at the rate of the subdominant eigenvalue.
-    bool converged = false;
-    for (int it = 0; it < 5000 && !converged; ++it) {
-        std::vector<double> y = times(l);
-        double d = 0;
-        for (size_t i = 0; i < n; ++i) d = std::max(d, std::abs(y[i] - l[i]));
-        l = std::move(y);
-        converged = d < 1e-16;
     }
-    if (!converged) return false;
-    // Tangents: subspace iteration on zero-sum masks (S's other left eigenvectors), deflated
-    // against l each step so rounding cannot bring eigenvalue 1 back, and orthonormalized by
-    // Gram-Schmidt. Gram-Schmidt is triangular with a positive diagonal, so the pair keeps the
-    // orientation the closed-form masks gave it (tangent1 x tangent2 outward).
-    auto deflate = [&](std::vector<double>& t) {
+    // Position: l S^k converges to the left eigenvector of eigenvalue 1 with sum 1 (S 1 = 1,
+    // every other eigenvalue is below 1 in modulus), at the rate of the subdominant one.
+    bool limitPosition(std::vector<double>& l) const {
+        for (int it = 0; it < 5000; ++it) {
+            std::vector<double> y = times(l);
+            double d = 0;
+            for (size_t i = 0; i < n; ++i) d = std::max(d, std::abs(y[i] - l[i]));
+            l = std::move(y);
+            if (d < 1e-16) return true;
+        }
+        return false;
+    }
+    // Zero-sum masks (differences of points) lose their eigenvalue-1 part exactly; rounding
+    // brings it back and S amplifies it, so it is taken out against the limit mask l each step.
+    void deflate(std::vector<double>& t, const std::vector<double>& l) const {
         double s = 0;
         for (double x : t) s += x;
         for (size_t i = 0; i < n; ++i) t[i] -= s * l[i];
-    };
-    auto normalize = [&](std::vector<double>& t) {
-        double s = 0;
-        for (double x : t) s += x * x;
-        s = std::sqrt(s);
-        if (!(s > 0)) return false;
-        for (double& x : t) x /= s;
-        return true;
-    };
+    }
+};
+
+bool normalize(std::vector<double>& t) {
+    double s = 0;
+    for (double x : t) s += x * x;
+    s = std::sqrt(s);
+    if (!(s > 0)) return false;
+    for (double& x : t) x /= s;
+    return true;
+}
+
+double maxChange(const std::vector<double>& a, const std::vector<double>& b) {
+    double d = 0;
+    for (size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+    return d;
+}
+
+// Darts and valence-2 vertices: one tangent plane, the left invariant subspace of the two
+// largest eigenvalues below 1, found by subspace iteration from the closed-form tangents. The
+// Gram-Schmidt step is triangular with a positive diagonal, so the pair keeps the orientation
+// the closed-form masks gave it (tangent1 x tangent2 outward). `m` is replaced on success.
+bool tangentPlaneMasks(const LocalMatrix& M, const VertexNeighborhood& hood, LimitMasks& m) {
+    std::vector<double> l, t1, t2;
+    if (!M.toLocal(m.position, l) || !M.toLocal(m.tangent1, t1) || !M.toLocal(m.tangent2, t2))
+        return false;
+    if (!M.limitPosition(l)) return false;
     auto orthonormalize = [&]() {
-        deflate(t1);
-        deflate(t2);
+        M.deflate(t1, l);
+        M.deflate(t2, l);
         if (!normalize(t1)) return false;
         double d = 0;
-        for (size_t i = 0; i < n; ++i) d += t1[i] * t2[i];
-        for (size_t i = 0; i < n; ++i) t2[i] -= d * t1[i];
+        for (size_t i = 0; i < M.n; ++i) d += t1[i] * t2[i];
+        for (size_t i = 0; i < M.n; ++i) t2[i] -= d * t1[i];
         return normalize(t2);
     };
     if (!orthonormalize()) return false;
+    bool exact = true;
     if (hood.faces.size() == 2 && !hood.boundary) {
         // Valence 2: S has the eigenvalues 1/4, 1/4 and -1/4 (equal modulus, so no iteration
         // separates them). For the smooth rule, e_0 - e_1 and d_0 - d_1 span the eigenvalue
         // 1/4 (the modes odd under swapping the two faces); their cross product is the sum of
         // the two faces' normals at v. The -1/4 mode (even) generally leaves that plane, so the
-        // surface has no tangent plane there: the normal stays flagged approximate.
-        std::vector<double> a(n, 0.0), b(n, 0.0);
+        // surface has no tangent plane there and the point stays flagged approximate.
+        std::vector<double> a(M.n, 0.0), b(M.n, 0.0);
         a[1] = 1, a[2] = -1, b[3] = 1, b[4] = -1;
-        std::vector<double> sa = times(a), sb = times(b);
+        std::vector<double> sa = M.times(a), sb = M.times(b);
         double r = 0;
-        for (size_t i = 0; i < n; ++i)
+        for (size_t i = 0; i < M.n; ++i)
             r = std::max({r, std::abs(sa[i] - a[i] / 4), std::abs(sb[i] - b[i] / 4)});
         if (r > 1e-12) return false; // not the smooth valence-2 matrix (a dart)
         t1 = a, t2 = b;
-        fromLocal(l, m.position);
-        fromLocal(t1, m.tangent1);
-        fromLocal(t2, m.tangent2);
-        m.exact = false;
-        return true;
+        exact = false;
+    } else {
+        bool converged = false;
+        for (int it = 0; it < 5000 && !converged; ++it) {
+            std::vector<double> p1 = t1, p2 = t2;
+            t1 = M.times(t1);
+            t2 = M.times(t2);
+            if (!orthonormalize()) return false;
+            converged = std::max(maxChange(t1, p1), maxChange(t2, p2)) < 1e-14;
+        }
+        if (!converged) return false;
     }
-    converged = false;
+    M.fromLocal(l, m.position);
+    M.fromLocal(t1, m.tangent1);
+    M.fromLocal(t2, m.tangent2);
+    m.exact = exact;
+    return true;
+}
+
+// Corners whose sector has more than one face, and cone points (a corner on a ring no sharp
+// edge cuts): the fixed vertex makes a mode of the faces' interior grow faster than the sharp
+// edges' directions (on a cone the rotation-invariant mode, eigenvalue 0.6545 against 1/2 for
+// any valence), so the surface has no tangent plane at v and its normal depends on the face
+// and the direction it is approached from. Each face gets its own limit point with the
+// normal approached along the face's diagonal (where the drawn corner's neighbours are): the
+// limit of the face's normal (d_i - v) x (e_{i+1} - e_i) under subdivision, each factor
+// iterated by S to the dominant mode it contains. Position: v (the corner mask, exact).
+bool faceNormalMasks(const LocalMatrix& M, const VertexNeighborhood& hood, uint32_t face,
+                     LimitMasks& m) {
+    std::vector<double> l, t1(M.n, 0.0), t2(M.n, 0.0);
+    if (!M.toLocal(m.position, l) || !M.limitPosition(l)) return false;
+    const size_t E = hood.edges.size();
+    t1[1 + E + face] = 1, t1[0] = -1;                // d_i - v
+    t2[1 + (face + 1) % E] = 1, t2[1 + face] = -1;   // e_{i+1} - e_i
+    bool converged = false;
     for (int it = 0; it < 5000 && !converged; ++it) {
         std::vector<double> p1 = t1, p2 = t2;
-        t1 = times(t1);
-        t2 = times(t2);
-        if (!orthonormalize()) return false;
-        double d = 0;
-        for (size_t i = 0; i < n; ++i)
-            d = std::max({d, std::abs(t1[i] - p1[i]), std::abs(t2[i] - p2[i])});
-        converged = d < 1e-14;
+        for (auto* t : {&t1, &t2}) {
+            *t = M.times(*t);
+            M.deflate(*t, l);
+            if (!normalize(*t)) return false;
+        }
+        converged = std::max(maxChange(t1, p1), maxChange(t2, p2)) < 1e-13;
     }
     if (!converged) return false;
-    fromLocal(l, m.position);
-    fromLocal(t1, m.tangent1);
-    fromLocal(t2, m.tangent2);
+    M.fromLocal(l, m.position);
+    M.fromLocal(t1, m.tangent1);
+    M.fromLocal(t2, m.tangent2);
     m.exact = true;
     return true;
+}
+
+// Corner sectors that faceNormalMasks handles (the rest have exact closed forms).
+bool splitPerFace(VertexRule rule, const Sector& sector) {
+    return rule == VertexRule::Corner && (sector.closed || sector.faceCount > 1);
+}
+
+// Stable rules whose closed-form masks are not eigenvectors of the local subdivision matrix:
+// darts, valence-2 vertices, and corners with a sector of more than one face or none (cones).
+bool needsEigen(const VertexNeighborhood& hood, VertexRule rule, const std::vector<float>& edgeSharpness) {
+    if (rule == VertexRule::Dart) return true;
+    if (rule == VertexRule::Smooth) return !hood.boundary && hood.faces.size() == 2;
+    if (rule == VertexRule::Corner)
+        for (const Sector& s : vertexSectors(hood, rule, edgeSharpness))
+            if (splitPerFace(rule, s)) return true;
+    return false;
 }
 
 } // namespace
 
 std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<uint32_t>& vertices,
+                                            const std::vector<uint8_t>& drawn,
                                             const SchemeOptions& options,
                                             const std::vector<uint32_t>& ptexBase) {
     std::vector<VertexLimits> out(vertices.size());
@@ -250,28 +298,55 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
     };
     std::vector<Track> pending;
     // Fills out[i] from the masks of `L` (extra level `j`, 0 for level N itself) at vertex w.
+    LocalMatrix M;
     auto finish = [&](Track& tr, const Level& L, size_t j, const std::vector<Extra>& extra,
                       const Extra* next) {
         VertexLimits& vl = out[tr.index];
         gatherNeighborhood(L.topo, tr.vertex, hood);
         const auto rule = static_cast<VertexRule>(L.vertexRule[tr.vertex]);
         const auto sectors = vertexSectors(hood, rule, L.edgeSharpness);
+        const bool local = next && M.build(*next, hood);
+        const uint32_t k = static_cast<uint32_t>(hood.faces.size());
+        // Limit point of each ring face (its sector's, or its own where split per face).
+        std::vector<uint8_t> pointOf(k, 0);
         vl.sectors.clear();
-        for (const Sector& sector : sectors) {
-            limitMasks(hood, rule, sector, L.edgeSharpness, L.vertexSharpness[tr.vertex], masks);
-            if (next && !eigenMasks(L, *next, hood, masks)) masks.exact = false;
+        auto add = [&]() {
             if (j) {
                 masks.position = compose(extra, j, masks.position);
                 masks.tangent1 = compose(extra, j, masks.tangent1);
                 masks.tangent2 = compose(extra, j, masks.tangent2);
             }
             vl.sectors.push_back(masks);
+            return static_cast<uint8_t>(std::min<size_t>(vl.sectors.size() - 1, 255));
+        };
+        for (uint32_t si = 0; si < sectors.size(); ++si) {
+            const Sector& sector = sectors[si];
+            limitMasks(hood, rule, sector, L.edgeSharpness, L.vertexSharpness[tr.vertex], masks);
+            if (next && splitPerFace(rule, sector)) {
+                const LimitMasks closedForm = masks;
+                for (uint32_t i = 0; i < sector.faceCount; ++i) {
+                    const uint32_t f = (sector.firstFace + i) % k;
+                    // Only faces drawn through their corners need their own point.
+                    const auto at = std::find(tr.faces.begin(), tr.faces.end(), hood.faces[f]);
+                    if (at == tr.faces.end() || !drawn[vl.ringFaces[size_t(at - tr.faces.begin())]])
+                        continue;
+                    masks = closedForm;
+                    if (!local || !faceNormalMasks(M, hood, f, masks)) masks.exact = false;
+                    pointOf[f] = add();
+                }
+                continue;
+            }
+            // Darts and valence 2 (a corner's other sectors have exact closed forms).
+            if (next && rule != VertexRule::Corner && needsEigen(hood, rule, L.edgeSharpness) &&
+                (!local || !tangentPlaneMasks(M, hood, masks)))
+                masks.exact = false;
+            const uint8_t p = add();
+            for (uint32_t i = 0; i < sector.faceCount; ++i) pointOf[(sector.firstFace + i) % k] = p;
         }
-        const uint32_t k = static_cast<uint32_t>(hood.faces.size());
         vl.ringSector.clear();
         for (uint32_t f : tr.faces) {
             uint32_t pos = uint32_t(std::find(hood.faces.begin(), hood.faces.end(), f) - hood.faces.begin());
-            vl.ringSector.push_back(sectors.size() > 1 ? sectorOf(sectors, pos, k) : 0);
+            vl.ringSector.push_back(pointOf[pos]);
         }
     };
     const std::vector<Extra> none;
@@ -281,7 +356,7 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
         out[i].ringFaces = hood.faces;
         const auto rule = static_cast<VertexRule>(LN.vertexRule[v]);
         Track tr{i, v, hood.faces};
-        if (undecayed(LN, hood) || needsEigen(hood, rule))
+        if (undecayed(LN, hood) || needsEigen(hood, rule, LN.edgeSharpness))
             pending.push_back(std::move(tr));
         else
             finish(tr, LN, 0, none, nullptr);
@@ -306,7 +381,7 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
             const auto rule = static_cast<VertexRule>(L.vertexRule[tr.vertex]);
             if (undecayed(L, hood)) {
                 refine.push_back(std::move(tr));
-            } else if (needsEigen(hood, rule)) {
+            } else if (needsEigen(hood, rule, L.edgeSharpness)) {
                 tr.eigenLevel = int(j);
                 refine.push_back(std::move(tr));
             } else {

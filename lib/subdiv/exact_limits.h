@@ -37,9 +37,11 @@ struct VertexLimits {
     std::vector<uint8_t> ringSector;  // the sector of each of those faces
 };
 
-// Limit points of the given level-N vertices (all faces around them quads). `ptexBase` as for
-// refineLevel. Deterministic: the same inputs give the same weights.
+// Limit points of the given level-N vertices (all faces around them quads). `drawn` marks the
+// level-N faces drawn through their corners' limit points (where a vertex has one point per face,
+// only those get one). `ptexBase` as for refineLevel. Deterministic.
 std::vector<VertexLimits> exactVertexLimits(const Level& levelN, const std::vector<uint32_t>& vertices,
+                                            const std::vector<uint8_t>& drawn,
                                             const SchemeOptions& options,
                                             const std::vector<uint32_t>& ptexBase);
 

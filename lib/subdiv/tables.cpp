@@ -256,7 +256,7 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
                 cornerVertices.push_back(v);
             }
     const std::vector<VertexLimits> vertexLimits =
-        exactVertexLimits(LN, cornerVertices, options, ptexBase);
+        exactVertexLimits(LN, cornerVertices, TN, options, ptexBase);
     // Limit stencils over level-N local vertices, remapped to global indices after pruning.
     StencilTable localPosition, localTangent1, localTangent2;
     std::vector<uint8_t> limitExactLocal;
