@@ -25,6 +25,9 @@ bool undecayed(const Level& L, const VertexNeighborhood& hood) {
 
 using Sparse = std::map<uint32_t, double>;
 
+// Levels past N a semi-sharp vertex may be refined (sharpness is below 10 when finite).
+constexpr size_t kMaxExtraLevels = 12;
+
 // One extra level around the vertices that need it, and where its vertices came from.
 struct Extra {
     Level level;
@@ -379,7 +382,11 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
             }
             gatherNeighborhood(L.topo, tr.vertex, hood);
             const auto rule = static_cast<VertexRule>(L.vertexRule[tr.vertex]);
-            if (undecayed(L, hood)) {
+            if (undecayed(L, hood) && j >= kMaxExtraLevels) {
+                // Sharpness below 10 decays within 10 levels under either creasing method; this
+                // only guards the loop. The masks then stay flagged approximate.
+                finish(tr, L, j, extra, nullptr);
+            } else if (undecayed(L, hood)) {
                 refine.push_back(std::move(tr));
             } else if (needsEigen(hood, rule, L.edgeSharpness)) {
                 tr.eigenLevel = int(j);
