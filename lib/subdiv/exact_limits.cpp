@@ -397,13 +397,19 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
         }
         pending.clear();
         if (refine.empty()) break;
-        // Isolate as tables.h does: the vertices' faces and the one-ring of those, so the
-        // children of their faces have complete neighbourhoods at the next level.
+        // The vertices' faces: their children are the next level's one-ring of the vertex, and
+        // everything its stencils read. Chaikin creasing also reads the sharpness of the edges
+        // around the ring's far ends, so there the one-ring of those faces is refined too, as
+        // tables.h isolates (their children then have complete neighbourhoods); uniform
+        // creasing decrements each edge on its own (Sdc::Crease), and refining less is faster.
         std::vector<uint8_t> marked(L.topo.faceCount(), 0);
         for (const Track& tr : refine)
             for (uint32_t h : L.topo.vertexOutgoing(tr.vertex)) marked[L.topo.face(h)] = 1;
         Extra x;
-        x.level = refineLevel(L, oneRing(L.topo, marked), options, ptexBase, x.stencils);
+        x.level = refineLevel(L,
+                              options.creaseMethod == CreaseMethod::Uniform ? marked
+                                                                            : oneRing(L.topo, marked),
+                              options, ptexBase, x.stencils);
         const Level& C = x.level;
         x.faceChild.assign(L.topo.faceCount(), kNone);
         x.edgeChild.assign(L.topo.edgeCount(), kNone);
