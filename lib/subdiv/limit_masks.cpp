@@ -73,7 +73,7 @@ void limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sector& s
         add(m.position, ends[1], 1.0 / 6.0);
     } else {
         // (E6): (n^2 v + 4 sum e_j + sum f_j) / (n (n + 5)), e_j the ring, f_j the diagonals.
-        // Darts use it too; their exact limit differs slightly (a documented approximation).
+        // Darts use it too; their exact limit differs slightly (exact_limits.h replaces it).
         double d = double(n) * (n + 5);
         add(m.position, v, double(n) * n / d);
         for (uint32_t i = 0; i < n; ++i) {
