@@ -36,6 +36,17 @@ float childEdgeSharpness(const Level& L, const Crease& crease, uint32_t e, uint3
 
 } // namespace
 
+std::vector<uint8_t> oneRing(const Topology& T, const std::vector<uint8_t>& marked) {
+    std::vector<uint8_t> vertexMarked(T.vertexCount(), 0), out(T.faceCount(), 0);
+    for (uint32_t f = 0; f < T.faceCount(); ++f)
+        if (marked[f])
+            for (uint32_t v : T.faceVertices(f)) vertexMarked[v] = 1;
+    for (uint32_t v = 0; v < T.vertexCount(); ++v)
+        if (vertexMarked[v])
+            for (uint32_t h : T.vertexOutgoing(v)) out[T.face(h)] = 1;
+    return out;
+}
+
 void assignVertexRules(Level& L) {
     Crease crease;
     L.vertexRule.assign(L.topo.vertexCount(), static_cast<uint8_t>(VertexRule::Smooth));

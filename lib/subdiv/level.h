@@ -68,6 +68,10 @@ Level refineLevel(const Level& parent, const std::vector<uint8_t>& selected,
                   const SchemeOptions& options, const std::vector<uint32_t>& ptexBase,
                   LevelStencils& stencils);
 
+// Faces sharing a vertex with a marked face: what must be refined with the marked faces so that
+// their children have complete neighbourhoods (the isolation of tables.h).
+std::vector<uint8_t> oneRing(const Topology& topo, const std::vector<uint8_t>& marked);
+
 // The rule of every vertex from its sharpness and its incident edges' (Sdc::Crease).
 void assignVertexRules(Level& level);
 

@@ -73,7 +73,7 @@ void limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sector& s
         add(m.position, ends[1], 1.0 / 6.0);
     } else {
         // (E6): (n^2 v + 4 sum e_j + sum f_j) / (n (n + 5)), e_j the ring, f_j the diagonals.
-        // Darts use it too; their exact limit differs slightly (a documented approximation).
+        // Darts use it too; their exact limit differs slightly (exact_limits.h replaces it).
         double d = double(n) * (n + 5);
         add(m.position, v, double(n) * n / d);
         for (uint32_t i = 0; i < n; ++i) {
@@ -113,10 +113,14 @@ void limitMasks(const VertexNeighborhood& hood, VertexRule rule, const Sector& s
     auto e = [&](uint32_t i) { return ringVertex(f0 + i); };  // e_0 .. e_k
     auto f = [&](uint32_t i) { return diagonal(f0 + i); };    // f_0 .. f_{k-1}
     if (rule == VertexRule::Corner && k > 1) {
-        // The sector's two sharp edges are curves that end at the fixed corner, so the tangent
-        // plane is spanned by their directions (OpenSubdiv's corner tangent masks). Tables are
-        // built from topology alone, so a corner whose two edges happen to be collinear (on a
-        // straight boundary) gets a degenerate normal here; the renderer falls back to the face.
+        // The sector's two sharp edges are curves that end at the fixed corner, in the
+        // directions of these edges (OpenSubdiv's corner tangent masks). With more than one
+        // face between them a mode of the sector's interior outgrows those directions, so the
+        // surface has no tangent plane at v: exact_limits.h gives each face its own normal.
+        // Tables are built from topology alone, so a corner whose two edges happen to be
+        // collinear (on a straight boundary) gets a degenerate normal here; the renderer falls
+        // back to the face.
+        m.exact = false;
         add(m.tangent1, e(0), 1);
         add(m.tangent1, v, -1);
         add(m.tangent2, e(k), 1);

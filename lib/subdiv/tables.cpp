@@ -3,6 +3,7 @@
 #include "base/cli.h"
 #include "base/error.h"
 #include "container/container.h"
+#include "subdiv/exact_limits.h"
 #include "subdiv/level.h"
 #include "subdiv/limit_masks.h"
 
@@ -71,18 +72,6 @@ void requireManifold(const Topology& T) {
             throwBadInput("vertex " + std::to_string(v) +
                           " is non-manifold (separate fans of faces meet there); subdivision "
                           "tables need a manifold mesh");
-}
-
-// Faces sharing a vertex with a marked face.
-std::vector<uint8_t> oneRing(const Topology& T, const std::vector<uint8_t>& marked) {
-    std::vector<uint8_t> vertexMarked(T.vertexCount(), 0), out(T.faceCount(), 0);
-    for (uint32_t f = 0; f < T.faceCount(); ++f)
-        if (marked[f])
-            for (uint32_t v : T.faceVertices(f)) vertexMarked[v] = 1;
-    for (uint32_t v = 0; v < T.vertexCount(); ++v)
-        if (vertexMarked[v])
-            for (uint32_t h : T.vertexOutgoing(v)) out[T.face(h)] = 1;
-    return out;
 }
 
 } // namespace
@@ -246,19 +235,32 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         stencils.push_back(std::move(st));
     }
 
-    // Limit points of the corners of T_N, one per (vertex, sector) (paper 000, 4.4). A vertex's
-    // neighbourhood and sectors are gathered once; its sectors' limit points are consecutive.
+    // Limit points of the corners of T_N, one per (vertex, sector) (paper 000, 4.4), numbered in
+    // the order the corners are first met; a vertex's sectors' limit points are consecutive.
+    // Their masks are exact (exact_limits.h): undecayed semi-sharp vertices are refined locally
+    // beyond level N and their stencils composed back onto level-N vertices, darts and valence-2
+    // vertices get the eigenvectors of their local subdivision matrix.
     const Level& LN = levels[N];
-    std::vector<uint32_t> limitBase(LN.topo.vertexCount(), kNone);
-    std::vector<uint8_t> limitSectors(LN.topo.vertexCount(), 0);
+    const auto& TN = irregularSets[N];
+    auto cornerVertex = [&](uint32_t f, int k) {
+        return LN.topo.vertex(LN.topo.faceHalfedge(f) + (LN.frames[f].rotation + k) % 4);
+    };
+    std::vector<uint32_t> cornerIndex(LN.topo.vertexCount(), kNone);
+    std::vector<uint32_t> cornerVertices; // in first-met order
+    for (uint32_t f = 0; f < TN.size(); ++f)
+        if (TN[f])
+            for (int k = 0; k < 4; ++k) {
+                const uint32_t v = cornerVertex(f, k);
+                if (cornerIndex[v] != kNone) continue;
+                cornerIndex[v] = static_cast<uint32_t>(cornerVertices.size());
+                cornerVertices.push_back(v);
+            }
+    const std::vector<VertexLimits> vertexLimits =
+        exactVertexLimits(LN, cornerVertices, TN, options, ptexBase);
     // Limit stencils over level-N local vertices, remapped to global indices after pruning.
     StencilTable localPosition, localTangent1, localTangent2;
     std::vector<uint8_t> limitExactLocal;
-    std::vector<uint32_t> limitLocalVertex;
-    LimitMasks masks;
-    std::vector<std::array<uint32_t, 4>> irregularCorners;
-    std::vector<uint32_t> irregularFaceIds;
-    VertexNeighborhood hood;
+    std::vector<uint32_t> limitLocalVertex, limitBase;
     // Masks are computed in double and stored as the float the GPU reads.
     auto append = [](StencilTable& t, const std::vector<WeightedPoint>& list) {
         for (const auto& wp : list) {
@@ -267,44 +269,27 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         }
         t.addRow();
     };
-    // The sector of face f among the sectors around the vertex of `hood`.
-    auto sectorOf = [&](const std::vector<Sector>& sectors, uint32_t f) -> uint32_t {
-        const uint32_t n = static_cast<uint32_t>(hood.faces.size());
-        uint32_t ringPos = static_cast<uint32_t>(std::find(hood.faces.begin(), hood.faces.end(), f) -
-                                                 hood.faces.begin());
-        for (uint32_t i = 0; i < sectors.size(); ++i)
-            if ((ringPos + n - sectors[i].firstFace) % n < sectors[i].faceCount) return i;
-        return 0;
-    };
-    const auto& TN = irregularSets[N];
+    for (size_t i = 0; i < cornerVertices.size(); ++i) {
+        limitBase.push_back(static_cast<uint32_t>(limitLocalVertex.size()));
+        for (const LimitMasks& m : vertexLimits[i].sectors) {
+            append(localPosition, m.position);
+            append(localTangent1, m.tangent1);
+            append(localTangent2, m.tangent2);
+            limitExactLocal.push_back(m.exact ? 1 : 0);
+            limitLocalVertex.push_back(cornerVertices[i]);
+        }
+    }
+    std::vector<std::array<uint32_t, 4>> irregularCorners;
+    std::vector<uint32_t> irregularFaceIds;
     for (uint32_t f = 0; f < TN.size(); ++f) {
         if (!TN[f]) continue;
-        const FaceFrame& fr = LN.frames[f];
         std::array<uint32_t, 4> corners{};
         for (int k = 0; k < 4; ++k) {
-            uint32_t h = LN.topo.faceHalfedge(f) + (fr.rotation + k) % 4;
-            uint32_t v = LN.topo.vertex(h);
-            auto rule = static_cast<VertexRule>(LN.vertexRule[v]);
-            if (limitBase[v] == kNone) {
-                gatherNeighborhood(LN.topo, v, hood);
-                auto sectors = vertexSectors(hood, rule, LN.edgeSharpness);
-                limitBase[v] = static_cast<uint32_t>(limitLocalVertex.size());
-                limitSectors[v] = static_cast<uint8_t>(std::min<size_t>(sectors.size(), 255));
-                for (const Sector& sector : sectors) {
-                    limitMasks(hood, rule, sector, LN.edgeSharpness, LN.vertexSharpness[v], masks);
-                    append(localPosition, masks.position);
-                    append(localTangent1, masks.tangent1);
-                    append(localTangent2, masks.tangent2);
-                    limitExactLocal.push_back(masks.exact ? 1 : 0);
-                    limitLocalVertex.push_back(v);
-                }
-                corners[k] = limitBase[v] + (sectors.size() > 1 ? sectorOf(sectors, f) : 0);
-            } else if (limitSectors[v] <= 1) {
-                corners[k] = limitBase[v];
-            } else {
-                gatherNeighborhood(LN.topo, v, hood);
-                corners[k] = limitBase[v] + sectorOf(vertexSectors(hood, rule, LN.edgeSharpness), f);
-            }
+            const uint32_t i = cornerIndex[cornerVertex(f, k)];
+            const VertexLimits& vl = vertexLimits[i];
+            const size_t pos = size_t(std::find(vl.ringFaces.begin(), vl.ringFaces.end(), f) -
+                                      vl.ringFaces.begin());
+            corners[k] = limitBase[i] + vl.ringSector[pos];
         }
         irregularCorners.push_back(corners);
         irregularFaceIds.push_back(f);

@@ -183,6 +183,15 @@ const Case kCases[] = {
     {"osd/catmark/catmark_tent_creases1.obj", 3, false, false},
     {"osd/catmark/catmark_fvar_bound4.obj", 3, false, false},
     {"osd/catmark/catmark_fvar_bound2.obj", 3, false, false, "compute", BoundaryRule::EdgeOnly},
+    // Issue 14: corners whose limit points were approximate at depth 3 (semi-sharp creases of
+    // sharpness 6 on the car and the rook, Chaikin-free cube creases, cone points, corner
+    // sectors), now compared like every other drawn vertex.
+    {"osd/catmark/catmark_car.obj", 3, false, false},
+    {"osd/catmark/catmark_rook.obj", 3, false, false},
+    {"osd/catmark/catmark_helmet.obj", 3, false, false},
+    {"osd/catmark/catmark_pyramid_creases2.obj", 3, false, true},
+    {"osd/catmark/catmark_gregory_test7.obj", 3, false, false},
+    {"osd/catmark/catmark_inf_crease0.obj", 3, false, false},
 };
 
 INSTANTIATE_TEST_SUITE_P(Shared, SubdivisionRender, ::testing::ValuesIn(kCases), caseName);

@@ -1,6 +1,7 @@
 // limn's subdivision tables against OpenSubdiv (the oracle): refined vertex positions, tiling of
 // the ptex domains, regular patches and limit points on real meshes with extraordinary vertices,
 // boundaries, creases, holes and non-quad faces.
+#include "base/error.h"
 #include "mesh/import.h"
 #include "osd_oracle.h"
 #include "subdiv/evaluate.h"
@@ -161,10 +162,12 @@ TEST_P(Tables, RegularPatchesMatchOpenSubdivLimit) {
     EXPECT_LE(worstN, 0.5);
 }
 
-// Limit positions and normals at the corners of the irregular faces equal OpenSubdiv's limit
-// surface there, except where limn's tables report the masks as approximate. At smooth corners
-// the normal is checked by SmoothCornerNormal below instead: OpenSubdiv's end-cap patches fix it
-// at the value of their isolation level, while the exact surface keeps turning toward limn's.
+// Limit positions at the corners of the irregular faces equal OpenSubdiv's limit surface there,
+// and so do the normals, except where limn's tables report the point as approximate (valence-2
+// vertices and corner sectors whose normals converge like 1/level: the surface has no tangent
+// plane there, exact_limits.h). At smooth corners the normal is checked by SmoothCornerNormal
+// below instead: OpenSubdiv's end-cap patches fix it at the value of their isolation level,
+// while the exact surface keeps turning toward limn's.
 TEST_P(Tables, LimitPointsMatchOpenSubdiv) {
     Fixture f = build(GetParam());
     test::OsdLimitSurface osd(f.mesh, f.options, 10);
@@ -176,7 +179,6 @@ TEST_P(Tables, LimitPointsMatchOpenSubdiv) {
     for (const auto& q : f.tables.irregular)
         for (int k = 0; k < 4; ++k) {
             uint32_t li = q.corner[k];
-            if (!f.tables.limitExact[li]) continue;
             double u = q.u0 + cu[k] * q.size, v = q.v0 + cv[k] * q.size;
             // Pick OpenSubdiv's patch that has this corner and lies inside this face (the side
             // of a crease matters; near extraordinary vertices its patches are much smaller).
@@ -188,7 +190,7 @@ TEST_P(Tables, LimitPointsMatchOpenSubdiv) {
             ASSERT_TRUE(osd.evaluate(int(q.ptex), u + du, v + dv, Pin, N));
             worstP = std::max(worstP, glm::length(P - limits[li].position) / f.diag);
             int bv = test::baseVertexAt(f.mesh, q.ptex, u, v);
-            if (bv < 0 || !smooth[bv])
+            if ((bv < 0 || !smooth[bv]) && f.tables.limitExact[li])
                 worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, limits[li].normal))) *
                                               180 / M_PI);
             ++compared;
@@ -233,6 +235,61 @@ TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
     EXPECT_LT(angles[14], osdAngle) << "the exact surface turns past OpenSubdiv's corner normal";
 }
 
+// Interior vertices with two faces and fewer than two infinitely sharp edges, counted from the
+// mesh's faces and tags alone (an edge shared by two faces is interior): the valence-2 vertices
+// whose limit surface has no tangent plane (two sharp edges make a crease, which has one).
+size_t interiorValence2(const Mesh& m) {
+    std::map<std::pair<uint32_t, uint32_t>, int> edgeFaces;
+    std::vector<int> faces(m.vertexCount(), 0), sharp(m.vertexCount(), 0);
+    for (size_t f = 0; f < m.faceCount(); ++f) {
+        auto face = m.face(f);
+        for (size_t k = 0; k < face.size(); ++k) {
+            uint32_t a = face[k], b = face[(k + 1) % face.size()];
+            ++edgeFaces[{std::min(a, b), std::max(a, b)}];
+            ++faces[a];
+        }
+    }
+    std::vector<uint8_t> onBoundary(m.vertexCount(), 0);
+    for (const auto& [e, n] : edgeFaces)
+        if (n != 2) onBoundary[e.first] = onBoundary[e.second] = 1;
+    for (const auto& c : m.tags.creases)
+        if (c.sharpness >= 10) ++sharp[c.v0], ++sharp[c.v1];
+    size_t count = 0;
+    for (size_t v = 0; v < m.vertexCount(); ++v)
+        count += faces[v] == 2 && !onBoundary[v] && sharp[v] < 2;
+    return count;
+}
+
+// Issue 14: at depth 3 every limit point of every OpenSubdiv catmark shape limn accepts is exact
+// (undecayed semi-sharp features isolated deeper, darts, cones and corners from the eigenvectors
+// of their local subdivision matrix), except the ones whose surface has no tangent plane:
+// valence-2 vertices (one each) and, in the two inf_crease shapes, two faces of a corner sector
+// whose subdivision matrix has a Jordan block (normals converge like 1/level, as at smooth
+// corners; OpenSubdiv's own normals there change by degrees between isolation 9 and 10).
+TEST(ExactLimits, NoApproximateLimitPointsOnCatmarkShapes) {
+    size_t shapes = 0;
+    for (const std::string& name : test::filesIn(test::modelPath("osd/catmark"))) {
+        if (name.size() < 4 || name.substr(name.size() - 4) != ".obj") continue;
+        const std::string path = test::modelPath("osd/catmark/" + name).string();
+        Warnings w;
+        Mesh m;
+        limn::Tables t;
+        try {
+            m = importMeshFile(path, w);
+            TablesOptions opts;
+            opts.depth = 3;
+            t = buildTables(m, resolveSchemeOptions(m.tags, {}), opts, w);
+        } catch (const Error&) {
+            continue; // non-manifold or degenerate: limn refuses it (tested elsewhere)
+        }
+        ++shapes;
+        size_t expected = interiorValence2(m);
+        if (name == "catmark_inf_crease0.obj" || name == "catmark_inf_crease1.obj") expected = 2;
+        EXPECT_EQ(t.approximateLimitPoints, expected) << name;
+    }
+    EXPECT_GE(shapes, 75u);
+}
+
 const Case kCases[] = {
     {"quad/spot_control_mesh.obj", 1, false},
     {"quad/spot_control_mesh.obj", 3, false},
@@ -260,6 +317,26 @@ const Case kCases[] = {
     {"osd/catmark/catmark_gregory_test3.obj", 3, false},
     {"osd/catmark/catmark_tent_creases1.obj", 3, false},
     {"osd/catmark/catmark_helmet.obj", 2, false},
+    // Issue 14: limit points that were approximate at depth 3 (undecayed semi-sharp creases of
+    // sharpness up to 6, uniform and Chaikin; darts; cone points; valence 2), now exact.
+    {"osd/catmark/catmark_helmet.obj", 3, false},
+    {"osd/catmark/catmark_car.obj", 3, false},
+    {"osd/catmark/catmark_pawn.obj", 3, false},
+    {"osd/catmark/catmark_rook.obj", 3, false},
+    {"osd/catmark/catmark_cube_creases1.obj", 3, false},
+    {"osd/catmark/catmark_cube_creases1.obj", 2, true},
+    {"osd/catmark/catmark_chaikin0.obj", 3, false},
+    {"osd/catmark/catmark_single_crease.obj", 3, false},
+    {"osd/catmark/catmark_torus_creases1.obj", 3, false},
+    {"osd/catmark/catmark_pyramid_creases2.obj", 3, false},
+    {"osd/catmark/catmark_gregory_test7.obj", 3, false},
+    {"osd/catmark/catmark_dart_edgeonly.obj", 3, false},
+    {"osd/catmark/catmark_dart_edgecorner.obj", 3, false},
+    {"osd/catmark/catmark_inf_crease0.obj", 3, false},
+    {"osd/catmark/catmark_cube_corner4.obj", 3, false},
+    {"osd/catmark/catmark_cubes_infsharp.obj", 3, false},
+    {"osd/catmark/catmark_val2_interior.obj", 3, false},
+    {"osd/catmark/catmark_gregory_test8.obj", 3, false},
 };
 
 INSTANTIATE_TEST_SUITE_P(Shared, Tables, ::testing::ValuesIn(kCases), caseName);

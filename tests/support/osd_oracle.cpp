@@ -9,6 +9,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <map>
+#include <set>
 #include <stdexcept>
 
 namespace limn::test {
@@ -179,13 +181,41 @@ std::vector<std::vector<glm::dvec3>> osdUniformLevels(const Mesh& mesh, const Sc
 }
 
 std::vector<uint8_t> smoothCorners(const Mesh& m, const SchemeOptions& o) {
-    std::vector<int> faces(m.vertexCount(), 0);
-    for (uint32_t v : m.faceVertices) ++faces[v];
-    std::vector<uint8_t> out(m.vertexCount(), 0);
-    if (o.boundary != BoundaryRule::EdgeOnly) return out;
-    for (size_t v = 0; v < m.vertexCount(); ++v) out[v] = faces[v] == 1;
+    // Edges with their face counts, and which are infinitely sharp (boundaries, tags >= 10).
+    std::map<std::pair<uint32_t, uint32_t>, int> faces;
+    auto key = [](uint32_t a, uint32_t b) { return std::make_pair(std::min(a, b), std::max(a, b)); };
+    for (size_t f = 0; f < m.faceCount(); ++f) {
+        auto face = m.face(f);
+        for (size_t k = 0; k < face.size(); ++k) ++faces[key(face[k], face[(k + 1) % face.size()])];
+    }
+    std::set<std::pair<uint32_t, uint32_t>> sharp;
+    for (const auto& [e, n] : faces)
+        if (n == 1) sharp.insert(e);
+    for (const auto& c : m.tags.creases)
+        if (c.sharpness >= Sdc::Crease::SHARPNESS_INFINITE) sharp.insert(key(c.v0, c.v1));
+    std::vector<int> sharpEdges(m.vertexCount(), 0), faceCount(m.vertexCount(), 0);
+    for (const auto& e : sharp) ++sharpEdges[e.first], ++sharpEdges[e.second];
+    std::vector<uint8_t> cornerTag(m.vertexCount(), 0);
     for (const auto& c : m.tags.corners)
-        if (c.sharpness > 0) out[c.vertex] = 0;
+        if (c.sharpness >= Sdc::Crease::SHARPNESS_INFINITE) cornerTag[c.vertex] = 1;
+    std::vector<uint8_t> out(m.vertexCount(), 0);
+    for (size_t f = 0; f < m.faceCount(); ++f) {
+        auto face = m.face(f);
+        const size_t n = face.size();
+        for (size_t k = 0; k < n; ++k) {
+            const uint32_t v = face[k];
+            ++faceCount[v];
+            // Both of the face's edges at v sharp: a sector of one face.
+            if (sharp.count(key(v, face[(k + 1) % n])) && sharp.count(key(face[(k + n - 1) % n], v)))
+                out[v] = 1;
+        }
+    }
+    for (size_t v = 0; v < m.vertexCount(); ++v) {
+        // The crease rule needs exactly two sharp edges and no corner; edge-and-corner makes a
+        // boundary vertex of one face a corner.
+        const bool boundaryCorner = o.boundary != BoundaryRule::EdgeOnly && faceCount[v] == 1;
+        if (sharpEdges[v] != 2 || cornerTag[v] || boundaryCorner) out[v] = 0;
+    }
     return out;
 }
 

@@ -36,9 +36,12 @@ private:
 std::vector<std::vector<glm::dvec3>> osdUniformLevels(const Mesh& mesh, const SchemeOptions& options,
                                                       int depth);
 
-// Base vertices that are smooth corners: one face, two boundary edges, no vertex sharpness, under
-// edge-only (counted independently of limn, from the mesh and its tags). Their limit normals
-// converge too slowly for OpenSubdiv's patches to reach (tests/subdiv SmoothCorner).
+// Base vertices that are smooth corners: the crease rule (exactly two infinitely sharp edges,
+// boundaries or tags, and no infinitely sharp corner) with a sector of one face, i.e. a face
+// whose two edges at the vertex are both sharp: a boundary vertex of one face under edge-only,
+// or an interior crease turning at the vertex (counted independently of limn, from the mesh and
+// its tags). The subdivision matrix has a Jordan block there, so limit normals converge like
+// 1/level, too slowly for OpenSubdiv's patches to reach (tests/subdiv SmoothCorner).
 std::vector<uint8_t> smoothCorners(const Mesh& m, const SchemeOptions& o);
 // The base vertex at a ptex-face corner (u, v in {0,1}), or -1 when (u, v) is no base vertex.
 int baseVertexAt(const Mesh& m, uint32_t ptex, double u, double v);

@@ -37,8 +37,17 @@ int main(int argc, char** argv) {
                     "refuse tables whose building is estimated to need more (512M, 8G, ...); the "
                     "estimate comes from the counts, before each level is refined")
             .notes("Non-quad faces are split at the first level, so --depth 0 needs an all-quad\n"
-                   "mesh. Semi-sharp creases that have not decayed by the last level, darts and\n"
-                   "valence-2 vertices get approximate limit points (limn-info reports how many).\n"
+                   "mesh. --depth N is the number of levels stored and drawn: patches of every\n"
+                   "level up to N, the faces left irregular at level N drawn through the limit\n"
+                   "points of their corners. A semi-sharp crease or corner of sharpness s that has\n"
+                   "not decayed by level N (s > N) is refined further around its vertices while\n"
+                   "the tables are built, until it has (level ceil(s) with uniform creasing), and\n"
+                   "its limit points are composed back onto level-N vertices: what is drawn stays\n"
+                   "N levels deep and the stored levels are the same, only the limit stencils are\n"
+                   "exact. Darts, cone points and corners use the eigenvectors of\n"
+                   "their local subdivision matrix. Valence-2 vertices and corner sectors whose\n"
+                   "normals converge like 1/level have no tangent plane: their limit points keep\n"
+                   "the exact position and are counted approximate (limn-info reports how many).\n"
                    "Example:\n  limn-classify spot.obj | limn-tables --depth 4 -o spot.limn\n");
         if (!parser.parse(ac, av)) return 0;
 
@@ -72,8 +81,8 @@ int main(int argc, char** argv) {
                   std::to_string(tables.irregular.size()) + " irregular faces");
         if (tables.approximateLimitPoints)
             cli::warn(name + ": " + std::to_string(tables.approximateLimitPoints) +
-                      " limit points are approximate (undecayed semi-sharp features, darts or "
-                      "valence-2 vertices at the last level)");
+                      " limit points have an approximate normal (valence-2 vertices or corner "
+                      "sectors, where the surface has no tangent plane)");
         container.set(encodeTablesChunk(tables));
         // Seams belong to the tables they were made from: new tables make them stale.
         if (container.find(FourCC{"SEAM"})) {

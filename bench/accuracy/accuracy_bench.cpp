@@ -1,0 +1,171 @@
+// How far the surface limn draws is from OpenSubdiv's limit surface (issue 14): per mesh, the
+// tables' size and approximate limit points, and at every vertex of the fixed tessellation (the
+// CPU reference of what limn-render draws, tess/tessellation.h) the position error (of the
+// bounding-box diagonal) and normal angle against OpenSubdiv's adaptive patches at isolation 10
+// with Gregory end caps (tests/support/osd_oracle.h); next to it, how far OpenSubdiv's own
+// patches at isolation `depth` are from its isolation-10 surface at the same points. Normals are
+// taken as the render test takes them (a hundred-thousandth of the element inside), and smooth
+// corners' normals are left out (OpenSubdiv's end caps freeze them, tests/subdiv SmoothCorner).
+// Prints one JSON object per mesh on stdout and a table on stderr.
+// Usage: bench_accuracy [--depth N] [--uniform] [--osd-isolation L] [--reference-isolation R]
+//        [-v: list the approximate limit points] MESH...
+#include "base/error.h"
+#include "mesh/import.h"
+#include "osd_oracle.h"
+#include "subdiv/evaluate.h"
+#include "subdiv/tables.h"
+#include "subdiv/tables_chunk.h"
+#include "tess/tessellation.h"
+#include "topology/features.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace limn;
+
+namespace {
+
+double angleDeg(glm::dvec3 a, glm::dvec3 b) {
+    return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) * 180 /
+           M_PI;
+}
+
+struct Worst {
+    double value = 0;
+    std::string where;
+    void update(double v, const std::string& w) {
+        if (v > value) value = v, where = w;
+    }
+};
+
+} // namespace
+
+int main(int argc, char** argv) {
+    int depth = 3;
+    bool uniform = false;
+    int osdIso = -1; // the isolation compared with the reference (default: depth)
+    int refIso = 10; // the reference's isolation (OpenSubdiv's maximum)
+    bool verbose = false;
+    std::vector<std::string> meshes;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--depth") && i + 1 < argc)
+            depth = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--osd-isolation") && i + 1 < argc)
+            osdIso = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--reference-isolation") && i + 1 < argc)
+            refIso = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "-v"))
+            verbose = true;
+        else if (!std::strcmp(argv[i], "--uniform"))
+            uniform = true;
+        else
+            meshes.push_back(argv[i]);
+    }
+    std::fprintf(stderr, "%-28s %6s %7s %9s %8s %9s %9s %9s %8s %9s %8s\n", "mesh", "approx",
+                 "limits", "bytes", "elements", "drawn", "limn dP", "limn dN", "flipped",
+                 "osdL dP", "osdL dN");
+    for (const std::string& path : meshes) {
+        Warnings w;
+        Mesh mesh;
+        SchemeOptions so;
+        TablesOptions to;
+        to.depth = depth;
+        to.uniform = uniform;
+        Tables t;
+        try {
+            mesh = importMeshFile(path, w);
+            so = resolveSchemeOptions(mesh.tags, {});
+            t = buildTables(mesh, so, to, w);
+        } catch (const Error& e) { // non-manifold and degenerate shapes: limn refuses them
+            std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());
+            continue;
+        }
+        const size_t bytes = encodeTablesChunk(t).payload.size();
+        if (verbose) {
+            std::vector<int> used(t.limitExact.size(), 0);
+            for (const auto& q : t.irregular)
+                for (uint32_t c : q.corner) ++used[c];
+            for (size_t i = 0; i < used.size(); ++i)
+                if (!t.limitExact[i])
+                    std::fprintf(stderr, "  approximate limit point %zu (level-%u vertex %u): %d corners\n",
+                                 i, t.depth, t.limitVertex[i] - t.levels[t.depth].first, used[i]);
+        }
+        auto V = evaluateVertices(t, mesh.positions);
+        auto L = evaluateLimitPoints(t, V);
+        Tessellation tess = buildTessellation(mesh, t, 64);
+        auto drawn = evaluateTessellation(t, tess, V, L);
+        glm::dvec3 lo(1e300), hi(-1e300);
+        for (const auto& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        const double diag = glm::length(hi - lo);
+        test::OsdLimitSurface ref(mesh, so, refIso), same(mesh, so, osdIso >= 0 ? osdIso : std::max(depth, 1));
+        auto smooth = test::smoothCorners(mesh, so);
+        const uint32_t P = uint32_t(t.patches.size());
+        Worst dP, dN, oP, oN;
+        size_t flipped = 0, compared = 0;
+        for (size_t i = 0; i < tess.vertices.size(); ++i) {
+            const TessVertex& tv = tess.vertices[i];
+            PtexPoint pp = ptexOf(t, tv);
+            double u0, v0, size;
+            if (tv.element < P)
+                u0 = t.patches[tv.element].u0, v0 = t.patches[tv.element].v0,
+                size = t.patches[tv.element].size;
+            else
+                u0 = t.irregular[tv.element - P].u0, v0 = t.irregular[tv.element - P].v0,
+                size = t.irregular[tv.element - P].size;
+            const double iu = pp.u + (u0 + size / 2 - pp.u) * 1e-5;
+            const double iv = pp.v + (v0 + size / 2 - pp.v) * 1e-5;
+            glm::dvec3 rp, rn, inside, sp, sn;
+            if (!ref.evaluate(int(pp.ptex), pp.u, pp.v, iu, iv, rp, rn)) continue;
+            ref.evaluate(int(pp.ptex), iu, iv, inside, rn);
+            same.evaluate(int(pp.ptex), pp.u, pp.v, iu, iv, sp, sn);
+            same.evaluate(int(pp.ptex), iu, iv, inside, sn);
+            const int bv = test::baseVertexAt(mesh, pp.ptex, pp.u, pp.v);
+            char where[160];
+            std::snprintf(where, sizeof where, "ptex %u (%.6g, %.6g) %s%s", pp.ptex, pp.u, pp.v,
+                          tv.element < P ? "patch" : "irregular corner",
+                          bv >= 0 ? (" at base vertex " + std::to_string(bv)).c_str() : "");
+            const bool smoothCorner = bv >= 0 && smooth[bv];
+            if (tv.element >= P && (tv.s == 0 || tv.s == kTessParamOne) &&
+                (tv.t == 0 || tv.t == kTessParamOne)) {
+                const IrregularFace& q = t.irregular[tv.element - P];
+                const int k = tv.s == 0 ? (tv.t == 0 ? 0 : 3) : (tv.t == 0 ? 1 : 2);
+                if (!t.limitExact[q.corner[k]] && verbose)
+                    std::fprintf(stderr, "  approximate limit point %u at %s: %.3g degrees\n",
+                                 q.corner[k], where, angleDeg(drawn[i].normal, rn));
+            }
+            dP.update(glm::length(drawn[i].position - rp) / diag, where);
+            oP.update(glm::length(sp - rp) / diag, where);
+            const double a = angleDeg(drawn[i].normal, rn);
+            if (a > 90) ++flipped;
+            if (!smoothCorner) {
+                dN.update(a, where);
+                oN.update(angleDeg(sn, rn), where);
+            }
+            ++compared;
+        }
+        std::printf("{\"mesh\":\"%s\",\"depth\":%d,\"uniform\":%s,\"approximate_limit_points\":%u,"
+                    "\"limit_points\":%zu,\"table_bytes\":%zu,\"table_vertices\":%u,\"patches\":%zu,"
+                    "\"irregular_faces\":%zu,\"drawn_vertices\":%zu,\"max_position_error\":%.3e,"
+                    "\"max_normal_degrees\":%.4g,\"flipped_normals\":%zu,"
+                    "\"osd_same_isolation_position_error\":%.3e,"
+                    "\"osd_same_isolation_normal_degrees\":%.4g,\"worst_position_at\":\"%s\","
+                    "\"worst_normal_at\":\"%s\"}\n",
+                    path.substr(path.find_last_of('/') + 1).c_str(), depth, uniform ? "true" : "false",
+                    t.approximateLimitPoints, t.limitPosition.rows(), bytes, t.totalVertices,
+                    t.patches.size(), t.irregular.size(), compared, dP.value, dN.value, flipped,
+                    oP.value, oN.value, dP.where.c_str(), dN.where.c_str());
+        std::fflush(stdout);
+        std::string name = path.substr(path.find_last_of('/') + 1);
+        std::fprintf(stderr, "%-28s %6u %7zu %9zu %8zu %9zu %9.2e %9.3g %8zu %9.2e %8.3g\n",
+                     name.substr(0, name.find('.')).c_str(), t.approximateLimitPoints,
+                     t.limitPosition.rows(), bytes, t.patches.size() + t.irregular.size(), compared,
+                     dP.value, dN.value, flipped, oP.value, oN.value);
+    }
+    return 0;
+}
