@@ -28,7 +28,7 @@ const std::vector<Tool> kTools = {
       "--version", "--boundary"}},
     {"limn-info", {"-q", "--quiet", "-v", "--verbose", "-h", "--help", "--version", "--json"}},
     {"limn-examples",
-     {"-o", "--output", "--only", "--list", "-q", "--quiet", "-v", "--verbose", "-h", "--help",
+     {"-o", "--output", "--only", "--list", "--list-sequences", "-q", "--quiet", "-v", "--verbose", "-h", "--help",
       "--version"}},
 };
 
