@@ -20,14 +20,17 @@ namespace {
 } // namespace
 
 bool hasFrameNumber(const std::string& text) {
-    for (size_t i = 0; i < text.size(); ++i)
-        if (text[i] == '%') {
-            if (i + 1 < text.size() && text[i + 1] == '%') {
-                ++i;
-                continue;
-            }
-            return true;
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (text[i] != '%') continue;
+        if (i + 1 < text.size() && text[i + 1] == '%') {
+            ++i;
+            continue;
         }
+        const size_t j = i + 1;
+        if (j < text.size() && text[j] == 'd') return true;
+        if (j + 2 < text.size() && text[j] == '0' && text[j + 1] >= '1' && text[j + 1] <= '9' && text[j + 2] == 'd')
+            return true;
+    }
     return false;
 }
 

@@ -19,7 +19,8 @@ struct FramePattern {
     int width = 0;              // zero-padded to at least this many digits (0: no padding)
 };
 
-// Whether `text` holds a frame number conversion (a % not written as %%).
+// Whether `text` holds a frame number conversion, %d or %0Nd (not written as %%d). A path
+// without one is used literally, so a single image may still be called "100%.png".
 bool hasFrameNumber(const std::string& text);
 // Throws Error(Usage) naming `option` unless `text` has exactly one conversion.
 FramePattern parseFramePattern(const std::string& option, const std::string& text);

@@ -42,7 +42,10 @@ TEST(FramePattern, PaddedPlainAndLiteralPercent) {
     EXPECT_EQ(framePath(parseFramePattern("-o", "f%d.png"), 0), "f0.png");
     EXPECT_EQ(framePath(parseFramePattern("-o", "100%%_%02d.png"), 3), "100%_03.png");
     EXPECT_TRUE(hasFrameNumber("a_%04d.png"));
-    EXPECT_FALSE(hasFrameNumber("100%%.png"));
+    EXPECT_TRUE(hasFrameNumber("a_%d.png"));
+    EXPECT_FALSE(hasFrameNumber("100%%d.png"));
+    EXPECT_FALSE(hasFrameNumber("100%.png"));
+    EXPECT_FALSE(hasFrameNumber("a_%4d.png"));
     EXPECT_FALSE(hasFrameNumber("plain.png"));
 }
 

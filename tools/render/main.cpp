@@ -14,6 +14,7 @@
 #include "render/blend_draw.h"
 #include "render/mesh_export.h"
 #include "render/renderer.h"
+#include "render/sequence.h"
 #include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
 
@@ -21,9 +22,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sys/resource.h>
+#include <unistd.h>
+
+#include <chrono>
 
 using namespace limn;
 
@@ -134,6 +139,133 @@ void checkValidation(const gpu::ValidationLog& log) {
     cli::info("validation: 0 errors, " + std::to_string(log.warnings()) + " warnings");
 }
 
+
+// One frame of a sequence: the positions of its mesh (--frames), or none (the input's own).
+struct SequenceFrame {
+    uint64_t number = 0;
+    std::string path;                 // the mesh file it came from (--frames)
+    std::vector<glm::dvec3> positions; // empty: keep the current control points
+};
+
+// Reads every --frames mesh and checks it has the input's topology (the tables are reused, so
+// the faces must be the same, vertex for vertex).
+std::vector<SequenceFrame> readFrameMeshes(const std::vector<render::FrameFile>& files, const Mesh& mesh,
+                                           std::vector<std::string>& filesRead) {
+    std::vector<SequenceFrame> frames;
+    // Positions are held for all frames (one framing for the whole sequence): refuse what would
+    // not fit comfortably before reading them.
+    const uint64_t bytes = uint64_t(files.size()) * mesh.vertexCount() * sizeof(glm::dvec3);
+    if (bytes > cli::defaultMemoryBudget())
+        throwBadInput("--frames: " + std::to_string(files.size()) + " frames of " +
+                      std::to_string(mesh.vertexCount()) + " vertices need " + cli::formatBytes(bytes) +
+                      " of positions, more than half the machine's memory; render the sequence in parts");
+    for (const auto& f : files) {
+        Warnings warnings;
+        Mesh m;
+        try {
+            auto fileBytes = limn::readInput(f.path);
+            if (looksLikeContainer(fileBytes)) {
+                m = loadMesh(parseContainer(fileBytes));
+            } else {
+                std::vector<std::string> extra;
+                m = importMesh(f.path, fileBytes, warnings, &extra);
+                filesRead.insert(filesRead.end(), extra.begin(), extra.end());
+            }
+            if (m.faceOffsets != mesh.faceOffsets || m.faceVertices != mesh.faceVertices ||
+                m.vertexCount() != mesh.vertexCount())
+                throwBadInput("its faces differ from the input's (" + std::to_string(m.vertexCount()) +
+                              " vertices, " + std::to_string(m.faceCount()) + " faces; the input has " +
+                              std::to_string(mesh.vertexCount()) + " and " + std::to_string(mesh.faceCount()) +
+                              "): --frames reuses the input's tables, so every frame needs its topology");
+        } catch (Error& e) {
+            e.setFile(f.path);
+            throw;
+        }
+        cli::printWarnings(warnings, f.path);
+        filesRead.push_back(f.path);
+        frames.push_back({f.number, f.path, std::move(m.positions)});
+    }
+    return frames;
+}
+
+// "frame 3/36, 12 s left" on stderr, rewritten in place; only on a terminal (a log stays clean).
+class Progress {
+  public:
+    Progress(size_t total, bool quiet) : total_(total), show_(!quiet && total > 1 && ::isatty(STDERR_FILENO) == 1) {}
+    void done(size_t count) {
+        if (!show_) return;
+        const double elapsed = seconds();
+        const double left = elapsed / double(count) * double(total_ - count);
+        std::fprintf(stderr, "\rlimn-render: frame %zu/%zu, %.0f s left   ", count, total_, left);
+        if (count == total_) std::fprintf(stderr, "\n");
+        std::fflush(stderr);
+    }
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+
+  private:
+    size_t total_;
+    bool show_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+void removeFrames(const std::vector<std::string>& paths) {
+    for (const std::string& p : paths) std::filesystem::remove(p);
+}
+
+// Renders and writes every frame of a sequence with one renderer: the tables, buffers and
+// pipelines stay; per frame only the camera (views) or the control points (frames) change.
+// Frame files are committed one by one as they are done (`written` lists them, so the caller
+// can remove them if a later step fails); an error here removes them itself.
+void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
+                    const std::vector<render::ViewSpec>& views,
+                    const std::vector<SequenceFrame>& frames, const std::vector<uint64_t>& numbers,
+                    const cli::Common& common, const std::string& meshOut,
+                    const std::optional<render::MeshFormat>& meshFormat, bool meshAscii,
+                    const gpu::ValidationLog* validation, std::vector<std::string>& written,
+                    const std::string& inputName) {
+    const auto imagePattern = render::parseFramePattern("-o", common.output);
+    std::optional<render::FramePattern> meshPattern;
+    if (!meshOut.empty()) meshPattern = render::parseFramePattern("--mesh-out", meshOut);
+    // One framing for the whole animation: the box of every frame's control points.
+    if (!frames.empty()) {
+        for (const SequenceFrame& f : frames) renderer.extendFraming(f.positions);
+        renderer.setCamera(renderer.cameraFor(view));
+    }
+    Progress progress(numbers.size(), common.quiet);
+    try {
+        for (size_t k = 0; k < numbers.size(); ++k) {
+            if (!views.empty()) renderer.setCamera(renderer.cameraFor(views[k]));
+            if (!frames.empty()) renderer.setControlPoints(frames[k].positions);
+            renderer.renderFrame();
+            if (validation && validation->errors()) checkValidation(*validation); // throws
+            if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
+                cli::warn(inputName + ": frame " + std::to_string(numbers[k]) + ": " + w);
+            const std::string image = render::framePath(imagePattern, numbers[k]);
+            writeOutput(image, render::encodePng(renderer.image()), OutputFile::Kind::Binary);
+            written.push_back(image);
+            if (meshPattern) {
+                const std::string mesh = render::framePath(*meshPattern, numbers[k]);
+                const bool text = meshAscii || *meshFormat == render::MeshFormat::Obj ||
+                                  *meshFormat == render::MeshFormat::Gltf;
+                writeOutput(mesh, render::encodeMesh(renderer.drawnMesh(), *meshFormat, meshAscii),
+                            text ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
+                written.push_back(mesh);
+            }
+            progress.done(k + 1);
+        }
+    } catch (...) {
+        removeFrames(written);
+        written.clear();
+        throw;
+    }
+    char line[128];
+    std::snprintf(line, sizeof line, "%zu frames in %.2f s (%.1f ms each, encoding and writing included)",
+                  numbers.size(), progress.seconds(), 1000 * progress.seconds() / double(numbers.size()));
+    cli::info(line);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -150,6 +282,8 @@ int main(int argc, char** argv) {
              meshAscii = false;
         bool viewGiven = false;
         int bench = 0, tess = 64, grid = 16;
+        uint32_t turntable = 0;
+        std::string camerasPath, framesPattern;
         double edgePixels = 4, benchOrbit = 0;
         cli::Parser parser("limn-render", "[options] [INPUT|-] [-o OUTPUT.png] [--mesh-out FILE]",
                            "Renders a .limn container (output of limn-classify, limn-tables, "
@@ -317,6 +451,26 @@ int main(int argc, char** argv) {
                   "                            no image is written (see below)")
             .flag("--mesh-ascii", &meshAscii,
                   "write a .ply --mesh-out as ASCII PLY (default binary little-endian)")
+            .custom(
+                "--turntable", "N",
+                [&](const std::string& v) {
+                    const bool digits = !v.empty() && v.size() <= 6 && v.find_first_not_of("0123456789") == std::string::npos;
+                    const unsigned long n = digits ? std::stoul(v) : 0;
+                    if (n < 1 || n > render::kMaxFrames)
+                        usage("--turntable: '" + v + "' is not a number of views from 1 to " +
+                              std::to_string(render::kMaxFrames));
+                    turntable = static_cast<uint32_t>(n);
+                },
+                "",
+                "render N views around the up axis, from --view's azimuth in steps of 360/N\n"
+                "                            degrees, all framed alike, into -o NAME_%04d.png (frames 0..N-1)")
+            .text("--cameras", "FILE", &camerasPath,
+                  "render one view per line of FILE: eye, target and up (9 numbers) and an\n"
+                  "                            optional vertical field of view; '#' comments; into -o NAME_%04d.png")
+            .text("--frames", "PATTERN", &framesPattern,
+                  "render the meshes PATTERN names (walk_%04d.obj: every existing number) with\n"
+                  "                            INPUT's topology and tables, uploading only their positions;\n"
+                  "                            frame k of the input goes to -o NAME_%04d.png with the same k")
             .integer("--bench", "FRAMES", &bench, 0, 100000,
                      "render FRAMES frames after 3 warm-up frames and print one JSON object of\n"
                      "                            medians to standard output; 0 renders once")
@@ -351,6 +505,14 @@ int main(int argc, char** argv) {
                 "View-adaptive (--edge-pixels > 0): each patch writes its own copy of the points on\n"
                 "its sides, with the same bits as its neighbour's (weld by exact position), and the\n"
                 "whole surface is written, patches outside the view at their smallest rate.\n"                "Trimming does not change --mesh-out.\n"
+                "Sequences (--turntable, --cameras, --frames): one run renders every frame with\n"
+                "the same tables and GPU buffers, only the camera or the control points change\n"
+                "between frames; -o (and --mesh-out) must hold a frame number, %d or %04d (%% is a\n"
+                "literal %), and each frame is the same bytes as a single render with its camera\n"
+                "and mesh. Frames are written as they are done, each atomically; an error removes\n"
+                "the frames this run wrote. All frames are framed alike: for --frames the box of\n"
+                "every frame's control points. Progress (frame i/N, time left) goes to stderr\n"
+                "when it is a terminal.\n"
                 "--bench JSON: frames, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
                 "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
                 "record, submit, wait), triangles, vertices_evaluated, buffer_bytes, peak_rss_mb,\n"
@@ -362,7 +524,9 @@ int main(int argc, char** argv) {
                 "  limn-classify spot.obj | limn-blend --quadrangulate | limn-render --grid 8 -o "
                 "s.png\n"
                 "  limn-trim spot.limn -o holes.png && limn-render spot.limn --trim holes.png -o "
-                "t.png\n");
+                "t.png\n"
+                "  limn-render spot.limn --turntable 36 -o spin_%02d.png\n"
+                "  limn-render twist.limn --frames twist/twist_%04d.obj -o twist_%04d.png\n");
         parser.exitCodes("Exit codes:\n"
                          "  0  success\n"
                          "  1  bad input, failed processing or Vulkan validation errors\n"
@@ -376,6 +540,25 @@ int main(int argc, char** argv) {
             usage("--target and --up describe an explicit camera; give --eye too");
         if (settings.view.eye && settings.view.target && *settings.view.eye == *settings.view.target)
             usage("--eye and --target are the same point, so the camera has no direction");
+        const int sequenceOptions = (turntable > 0) + !camerasPath.empty() + !framesPattern.empty();
+        const bool sequence = sequenceOptions > 0;
+        if (sequenceOptions > 1) usage("--turntable, --cameras and --frames exclude each other");
+        if (turntable && settings.view.eye)
+            usage("--turntable turns the --view camera around the up axis; leave out --eye");
+        if (!camerasPath.empty() && (settings.view.eye || viewGiven))
+            usage("--cameras gives every frame's camera; leave out --view and --eye");
+        if (sequence && bench) usage("--bench measures one frame; leave out --turntable, --cameras and --frames");
+        if (sequence) {
+            if (common.output.empty() || isStdio(common.output))
+                usage("a sequence writes one image per frame: give -o NAME_%04d.png");
+            render::parseFramePattern("-o", common.output); // exactly one frame number
+            if (!meshOut.empty()) render::parseFramePattern("--mesh-out", meshOut);
+        } else {
+            for (const std::string* path : {&common.output, &meshOut})
+                if (render::hasFrameNumber(*path))
+                    usage("'" + *path + "' numbers frames, but there is one image; give --turntable, "
+                          "--cameras or --frames (or write %% for a literal %)");
+        }
         if (shade == "normal") settings.shade = render::Shade::Normal;
         if (shade == "uv") settings.shade = render::Shade::Uv;
         if (shade == "levels") settings.shade = render::Shade::Levels;
@@ -412,27 +595,73 @@ int main(int argc, char** argv) {
             usage("--texture, --displace and --shade levels draw the subdivision surface, and "
                   "--surface control draws the control mesh; leave out --surface control");
 
+        // A sequence's frames: their numbers (which name the outputs), and their views or meshes.
+        std::vector<render::ViewSpec> views;
+        std::vector<render::FrameFile> frameFiles;
+        std::vector<uint64_t> frameNumbers;
+        if (turntable) views = render::turntableViews(settings.view, turntable);
+        if (!camerasPath.empty()) {
+            if (isStdio(camerasPath) && isStdio(input))
+                usage("--cameras - and the input cannot both be standard input");
+            auto bytes = limn::readInput(camerasPath);
+            try {
+                views = render::parseCameraFile(std::string(bytes.begin(), bytes.end()), settings.view.fovDeg);
+            } catch (Error& e) {
+                e.setFile(displayName(camerasPath));
+                throw;
+            }
+        }
+        if (!framesPattern.empty())
+            frameFiles = render::findFrameFiles(render::parseFramePattern("--frames", framesPattern));
+        for (size_t k = 0; k < views.size(); ++k) frameNumbers.push_back(k);
+        for (const auto& f : frameFiles) frameNumbers.push_back(f.number);
+        const auto meshKind = [&] {
+            return meshAscii || *meshFormat == render::MeshFormat::Obj || *meshFormat == render::MeshFormat::Gltf
+                       ? OutputFile::Kind::Text
+                       : OutputFile::Kind::Binary;
+        };
+
         // Open outputs first: a refused terminal or an unwritable directory fails before any work.
         std::vector<std::string> inputs = {input};
-        for (const std::string* extra : {&trimPath, &displace, &texture})
+        for (const std::string* extra : {&trimPath, &displace, &texture, &camerasPath})
             if (!extra->empty()) inputs.push_back(*extra);
-        if (writeImage) refuseOverwritingInputs(common.output, inputs);
-        if (!meshOut.empty()) refuseOverwritingInputs(meshOut, inputs);
+        for (const auto& f : frameFiles) inputs.push_back(f.path);
         std::optional<OutputFile> png, ply;
-        if (writeImage) png.emplace(common.output, OutputFile::Kind::Binary);
-        if (!meshOut.empty())
-            ply.emplace(meshOut, meshAscii || *meshFormat == render::MeshFormat::Obj ||
-                                         *meshFormat == render::MeshFormat::Gltf
-                                     ? OutputFile::Kind::Text
-                                     : OutputFile::Kind::Binary);
         std::vector<std::string> outputs;
-        if (writeImage) outputs.push_back(common.output);
-        if (!meshOut.empty()) outputs.push_back(meshOut);
-        Depfile depfile(writeImage || ply ? common.depfile : std::string(), outputs, inputs);
+        if (sequence) {
+            const auto imagePattern = render::parseFramePattern("-o", common.output);
+            for (uint64_t n : frameNumbers) {
+                outputs.push_back(render::framePath(imagePattern, n));
+                if (!meshOut.empty())
+                    outputs.push_back(render::framePath(render::parseFramePattern("--mesh-out", meshOut), n));
+            }
+            for (const std::string& o : outputs) refuseOverwritingInputs(o, inputs);
+            for (const std::string& o : {outputs.front(), outputs.back()}) {
+                const std::filesystem::path folder = std::filesystem::path(o).parent_path();
+                if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+                    Error e(ErrorKind::BadInput, "cannot write the frames: no folder " + folder.string());
+                    e.setFile(o);
+                    throw e;
+                }
+            }
+        } else {
+            if (writeImage) refuseOverwritingInputs(common.output, inputs);
+            if (!meshOut.empty()) refuseOverwritingInputs(meshOut, inputs);
+            if (writeImage) png.emplace(common.output, OutputFile::Kind::Binary);
+            if (!meshOut.empty()) ply.emplace(meshOut, meshKind());
+            if (writeImage) outputs.push_back(common.output);
+            if (!meshOut.empty()) outputs.push_back(meshOut);
+        }
+        Depfile depfile(writeImage || ply || sequence ? common.depfile : std::string(), outputs, inputs);
 
         Warnings warnings;
         Input in = readInput(input, surface, warnings);
         cli::printWarnings(warnings, displayName(input));
+        if (in.blend && !frameFiles.empty())
+            usage("--frames: a blending surface is built from its control points on the CPU (charts, "
+                  "local surfaces); render the frames' subdivision surface (--surface subdivision) or "
+                  "run limn-blend per frame");
+        const std::vector<SequenceFrame> frames = readFrameMeshes(frameFiles, in.mesh, in.filesRead);
         // No silent fallbacks: a classified container without tables draws its control mesh,
         // which is rarely what was meant; a --grid without a blending surface does nothing.
         if (surface == Surface::Auto && !in.tables && !in.blend && isContainerFile(input))
@@ -491,6 +720,7 @@ int main(int argc, char** argv) {
                                             : gpu::Validation::Off;
         std::shared_ptr<gpu::ValidationLog> validation;
         std::vector<uint8_t> pngBytes, plyBytes;
+        std::vector<std::string> written; // a sequence's frames, as they are committed
         {
             gpu::Context ctx(options);
             validation = ctx.sharedValidationLog();
@@ -506,7 +736,10 @@ int main(int argc, char** argv) {
                       "," + std::to_string(cam.eye.z) + " target " + std::to_string(cam.target.x) +
                       "," + std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
 
-            if (bench) {
+            if (sequence) {
+                renderSequence(renderer, settings.view, views, frames, frameNumbers, common, meshOut, meshFormat,
+                               meshAscii, validation.get(), written, displayName(input));
+            } else if (bench) {
                 render::BenchResult b = render::runBenchmark(renderer, bench, 3, benchOrbit);
                 JsonWriter j;
                 j.beginObject().field("frames", b.frames);
@@ -528,7 +761,7 @@ int main(int argc, char** argv) {
             } else {
                 renderer.renderFrame();
             }
-            if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
+            if (std::string w = renderer.tessellationWarning(); !sequence && !w.empty() && !common.quiet)
                 cli::warn(displayName(input) + ": " + w);
             for (const auto& p : renderer.frameTimes().passes) {
                 char ms[32];
@@ -543,7 +776,14 @@ int main(int argc, char** argv) {
                 plyBytes = render::encodeMesh(renderer.drawnMesh(), *meshFormat, meshAscii);
             }
         }
-        if (validation) checkValidation(*validation);
+        if (validation) {
+            try {
+                checkValidation(*validation);
+            } catch (...) {
+                removeFrames(written);
+                throw;
+            }
+        }
 
         inputs.insert(inputs.end(), in.filesRead.begin(), in.filesRead.end());
         depfile.setRule(outputs, inputs); // the image and/or the mesh
