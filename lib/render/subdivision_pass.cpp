@@ -68,7 +68,8 @@ using gpu::uploadBufferNow; // absent tables get one zero element
 
 struct SubdivisionPass::Gpu {
     Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate, const Displacement* disp,
-        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions)
+        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions,
+        gpu::TargetFormat target)
         : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
           faceStarts(uploadBufferNow(ctx, "face-point starts", d.faceStarts)),
           faceIndices(uploadBufferNow(ctx, "face-point indices", d.faceIndices)),
@@ -90,9 +91,10 @@ struct SubdivisionPass::Gpu {
           facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
           stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
           limitPass(ctx, {"limit points", subdiv_limit_comp_spv, 5, sizeof(LimitPush)}),
-          surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 8, sizeof(DrawPush)}),
+          surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 8, sizeof(DrawPush)}, target),
           surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surface_frag_spv, 8,
-                             sizeof(DrawPush)}) {
+                             sizeof(DrawPush)},
+                       target) {
         // View-adaptive: the tessellation is written by compute passes each frame (issue 11).
         if (adaptiveOptions)
             adaptive = std::make_unique<AdaptiveTess>(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()),
@@ -117,7 +119,8 @@ struct SubdivisionPass::Gpu {
                                            *evalPositions, *evalNormals, *evalInfo});
             wire = std::make_unique<gpu::GraphicsPipeline>(
                 ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
-                                               gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false});
+                                               gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
+                target);
             drawnPositions = evalPositions.get();
             drawnNormals = evalNormals.get();
             if (disp && adaptive) {
@@ -188,7 +191,8 @@ struct SubdivisionPass::Gpu {
 
 SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
                                  bool keepEvaluated, bool levels, const Displacement* displacement,
-                                 const FloatImage* texture, const AdaptiveOptions* adaptive)
+                                 const FloatImage* texture, const AdaptiveOptions* adaptive,
+                                 gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
       levels_(levels) {
     if (displacement) {
@@ -202,7 +206,7 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
     if (adaptive && !draw_.adaptive)
         throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data "
                                          "prepared for it");
-    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive);
+    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target);
     if (adaptive && adaptive->backFaceCull && draw_.closed) orientation_ = draw_.orientation;
 }
 

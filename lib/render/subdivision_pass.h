@@ -31,7 +31,7 @@ public:
     };
     SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval, bool keepEvaluated, bool levels,
                     const Displacement* displacement = nullptr, const FloatImage* texture = nullptr,
-                    const AdaptiveOptions* adaptive = nullptr);
+                    const AdaptiveOptions* adaptive = nullptr, gpu::TargetFormat target = {});
     ~SubdivisionPass() override;
 
     const gpu::Buffer& vertexBuffer() const override;
