@@ -120,7 +120,9 @@ limn_image_write_exr(uint32_t width, uint32_t height, uint32_t channels, const c
             if (spec.channelnames.back() == "Z") spec.z_channel = int(c);
         }
         spec.attribute("compression", "zip");
-        // The same bytes for the same pixels: no writer or date metadata.
+        // The same bytes for the same pixels: OpenImageIO's OpenEXR writer stamps the time
+        // (capDate) and its version (Software) unless told otherwise.
+        spec.attribute("DateTime", "");
         spec.attribute("Software", "");
         std::vector<unsigned char> bytes;
         OIIO::Filesystem::IOVecOutput memory(bytes);
