@@ -380,8 +380,9 @@ TEST_F(Output, UnsupportedExtensionsAreUsageErrorsAndWriteNothing) {
     r = render({cube, "--size", "16x16", "--samples", "2", "-o", out("x.png")});
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("1 or 4"), std::string::npos) << r.err;
-    // Upper-case extensions are the same formats.
+    // Upper-case extensions are the same formats; a device is a stream, like standard output.
     renderOk({cube, "--size", "16x16", "-o", out("upper.PNG")});
+    renderOk({cube, "--size", "16x16", "-o", "/dev/null"});
     // Nothing else was left behind: no output, no temporary file.
     auto files = filesIn(dir.path());
     std::sort(files.begin(), files.end());
@@ -427,6 +428,15 @@ TEST_F(Output, ImageMemoryIsCheckedBeforeDrawing) {
     EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out("m.png")));
     renderOk({cube, "--size", "1024x768", "--samples", "1", "--max-memory", "16M", "-o", out("m.png")});
+}
+
+TEST(OutputHelp, DocumentsSamplingFormatsAndDepth) {
+    auto r = render({"--help"});
+    EXPECT_EQ(r.exitCode, 0);
+    for (const char* needle : {"--samples 1|4", "[default: 4]", "--supersample K", "[default: 1]",
+                               "--bit-depth 8|16", "--max-memory SIZE", ".exr", "box filter",
+                               "linear light", "Z is the camera-space depth", "+Inf"})
+        EXPECT_NE(r.out.find(needle), std::string::npos) << needle;
 }
 
 TEST_F(Output, BenchReportsSamples) {

@@ -26,6 +26,7 @@
 #include <iostream>
 #include <optional>
 #include <sys/resource.h>
+#include <sys/stat.h>
 
 using namespace limn;
 
@@ -369,7 +370,8 @@ int main(int argc, char** argv) {
                   "with --bench: turn the camera DEG degrees about its target before every frame")
             .notes(
                 "Output: -o FILE.png, -o FILE.exr, or -o - for standard output (PNG, refused on a\n"
-                "terminal); any other extension is a usage error and nothing is written. With\n"
+                "terminal; a device or FIFO such as /dev/null also gets PNG); any other extension\n"
+                "is a usage error and nothing is written. With\n"
                 "--bench, standard output carries the JSON and the image is written only with\n"
                 "-o FILE; with --mesh-out, only with -o FILE or -o -.\n"
                 "--mesh-out: the triangles as drawn, every file written atomically, the same bytes\n"
@@ -405,7 +407,7 @@ int main(int argc, char** argv) {
                 "distance from the eye along the view direction, in world units, not\n"
                 "anti-aliased (with --samples 4 the pixel's first sample, with --supersample the\n"
                 "nearest of the block's), +Inf where nothing was drawn.\n"
-                "--bench JSON: frames, samples, supersample, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
+                "--bench JSON: frames, samples, supersample, size, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
                 "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
                 "record, submit, wait), triangles, vertices_evaluated, buffer_bytes, peak_rss_mb,\n"
                 "device.\n"
@@ -463,7 +465,12 @@ int main(int argc, char** argv) {
         // The image format comes from the name, before any work; never silently another one.
         render::ImageFormat imageFormat = render::ImageFormat::Png;
         if (writeImage) {
-            auto f = render::imageFormatFromPath(common.output);
+            // A device or pipe (-o /dev/null, a FIFO) is a stream like standard output: PNG.
+            struct stat st {};
+            const bool stream = !isStdio(common.output) && ::stat(common.output.c_str(), &st) == 0 &&
+                                (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode));
+            auto f = stream ? std::optional(render::ImageFormat::Png)
+                            : render::imageFormatFromPath(common.output);
             if (!f)
                 throw Error(ErrorKind::Usage,
                             std::string("unknown image extension; limn-render writes ") +
