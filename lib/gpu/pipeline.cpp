@@ -242,7 +242,9 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
         VkPipelineRasterizationStateCreateInfo raster{
             VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
         raster.polygonMode = VK_POLYGON_MODE_FILL;
-        raster.cullMode = VK_CULL_MODE_NONE;
+        raster.cullMode = desc.cull == Cull::Back    ? VK_CULL_MODE_BACK_BIT
+                          : desc.cull == Cull::Front ? VK_CULL_MODE_FRONT_BIT
+                                                     : VK_CULL_MODE_NONE;
         raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
         raster.lineWidth = 1.0f; // the only width WebGPU has
         VkPipelineMultisampleStateCreateInfo multisample{

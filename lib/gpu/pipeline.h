@@ -109,6 +109,9 @@ class ComputePipeline : public Pipeline {
 
 enum class Primitive { Triangles, Lines };
 enum class DepthTest { Less, LessOrEqual, Always };
+// Which triangles the rasterizer drops, by their winding on screen (counter-clockwise is front);
+// WebGPU's GPUCullMode has the same three.
+enum class Cull { None, Back, Front };
 
 struct GraphicsPipelineDesc {
     std::string name;
@@ -118,11 +121,13 @@ struct GraphicsPipelineDesc {
     Primitive primitive = Primitive::Triangles;
     DepthTest depthTest = DepthTest::Less;
     bool depthWrite = true;
+    Cull cull = Cull::None;
 };
 
 // Draws into a RenderTarget of `target`'s format (RGBA8 sRGB or RGBA16F, 1 or 4 samples, D32
-// depth) with dynamic rendering. No culling: control meshes may be open or inconsistently
-// oriented, and the shading is two-sided.
+// depth) with dynamic rendering. No culling by default: control meshes may be open or
+// inconsistently oriented, and the shading is two-sided; a closed surface seen from outside may
+// cull its back faces (desc.cull).
 class GraphicsPipeline : public Pipeline {
   public:
     GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc, TargetFormat target = {});

@@ -105,12 +105,13 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     triangles_ = make("adaptive triangle indices", uint64_t(capT_) * 12, gpu::kStorage | gpu::kIndex);
     triangleLevels_ = make("adaptive triangle levels", uint64_t(capT_) * 4);
     // Stale slots past a frame's count stay valid records (element 0) for the evaluation pass,
-    // whose last workgroup may read a few of them.
+    // which runs over the whole capacity. Triangles past the count are never read (the draw's
+    // count comes from the scan), so they are not cleared: on lavapipe a clear writes, and
+    // page-faults in, every byte of buffers sized for the closest view.
     {
         gpu::CommandBuffer cmd(ctx);
         cmd.begin();
-        cmd.fill(*tessVertices_, 0);
-        cmd.fill(*triangles_, 0);
+        if (options.evaluated) cmd.fill(*tessVertices_, 0);
         cmd.fill(*totals_, 0);
         cmd.submitAndWait();
     }

@@ -53,6 +53,10 @@ struct AdaptiveOptions {
     // Budget of the per-frame buffers; the capacity is the smaller of this and what the largest
     // rates could ever need.
     uint64_t maxVertices = 0, maxTriangles = 0; // 0: as many as 128 MiB buffers hold
+    // Whether a compute pass evaluates the tessellation vertices (surface_eval.comp over the
+    // whole capacity, so unwritten slots must hold valid records); otherwise only what the
+    // frame wrote is ever read, and the buffers are left as allocated.
+    bool evaluated = false;
 };
 
 // What the scan wrote for the last frame (read back from the GPU).

@@ -6,6 +6,7 @@
 #include "base/error.h"
 #include "gpu/buffer.h"
 #include "gpu/commands.h"
+#include "render/camera.h"
 #include "render/ply.h"
 
 #include <glm/mat4x4.hpp>
@@ -69,6 +70,9 @@ public:
     // This frame's camera, before recordCompute (passes that adapt to the view use it).
     virtual void setView(const glm::mat4& /*viewProj*/, const glm::dvec3& /*eye*/, uint32_t /*width*/,
                          uint32_t /*height*/) {}
+    // New control points (an animated mesh, same topology): their box and, for a surface that
+    // culls back faces, which way it faces now. Passes that keep neither ignore it.
+    virtual void setControlPoints(const Bounds& /*bounds*/, float /*orientation*/) {}
     // After the control points are in place; ends with the barrier the draw needs.
     virtual void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) = 0;
     // Inside beginRendering/endRendering.

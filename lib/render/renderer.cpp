@@ -158,8 +158,8 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         }
         bounds = draw.bounds;
         if (settings.displacementMap) { // leave room for the displaced surface in the framing
-            glm::dvec3 pad(std::abs(settings.displaceScale) * 0.5);
-            bounds.min -= pad, bounds.max += pad;
+            framingPad_ = glm::dvec3(std::abs(settings.displaceScale) * 0.5);
+            bounds.min -= framingPad_, bounds.max += framingPad_;
         }
         SubdivisionPass::Displacement displacement{
             settings.displacementMap, float(settings.displaceScale), float(settings.displaceMid)};
@@ -191,6 +191,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurfac
                     "a blending surface");
     BlendDraw draw = prepareBlend(mesh, surface, settings.blendGrid);
     const Bounds bounds = draw.bounds;
+    blend_ = true;
     pass_ = std::make_unique<BlendPass>(ctx, std::move(draw),
                                         settings.evalInCompute ? BlendPass::Eval::Compute
                                                                : BlendPass::Eval::Vertex,
@@ -202,13 +203,43 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurfac
 void Renderer::finishSetup(const Mesh& mesh, const Bounds& bounds) {
     controlPoints_.reserve(mesh.vertexCount());
     for (const auto& p : mesh.positions) controlPoints_.emplace_back(glm::vec3(p), 1.0f);
-    camera_ = frameCamera(settings_.view, bounds, double(settings_.width) / settings_.height);
+    framing_ = bounds;
+    faces_.faceOffsets = mesh.faceOffsets;
+    faces_.faceVertices = mesh.faceVertices;
+    camera_ = cameraFor(settings_.view);
     gpu_ = std::make_unique<Gpu>(ctx_, controlPoints_.size() * sizeof(glm::vec4),
                                  pass_->vertexBuffer(), drawWidth_, drawHeight_, targetFormat_,
                                  settings_.depth);
 }
 
 Renderer::~Renderer() = default;
+
+Camera Renderer::cameraFor(const ViewSpec& view) const {
+    return frameCamera(view, framing_, double(settings_.width) / settings_.height);
+}
+
+void Renderer::extendFraming(const std::vector<glm::dvec3>& positions) {
+    for (const glm::dvec3& p : positions) {
+        framing_.min = glm::min(framing_.min, p - framingPad_);
+        framing_.max = glm::max(framing_.max, p + framingPad_);
+    }
+}
+
+void Renderer::setControlPoints(const std::vector<glm::dvec3>& positions) {
+    if (blend_)
+        throw Error(ErrorKind::Usage, "a blending surface is built from its control points on the CPU "
+                                      "(charts, local surfaces); new positions need limn-blend again");
+    if (positions.size() != controlPoints_.size())
+        throwBadInput("the frame has " + std::to_string(positions.size()) + " vertices, the tables " +
+                      std::to_string(controlPoints_.size()));
+    Bounds box{positions.empty() ? glm::dvec3(0.0) : positions[0], positions.empty() ? glm::dvec3(0.0) : positions[0]};
+    for (size_t i = 0; i < positions.size(); ++i) {
+        controlPoints_[i] = glm::vec4(glm::vec3(positions[i]), 1.0f);
+        box.min = glm::min(box.min, positions[i]);
+        box.max = glm::max(box.max, positions[i]);
+    }
+    pass_->setControlPoints(box, surfaceOrientation(faces_, positions));
+}
 
 uint64_t Renderer::bufferBytes() const {
     return pass_->bufferBytes() + gpu_->staging.size() + gpu_->controlPoints.size();

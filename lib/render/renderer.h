@@ -125,6 +125,16 @@ class Renderer {
     const Camera& camera() const { return camera_; }
     // Moves the camera (the next frame re-runs only GPU passes; --bench-orbit).
     void setCamera(const Camera& camera) { camera_ = camera; }
+    // The camera a view gets with this surface's framing (the box of the control points, grown by
+    // extendFraming and padded for displacement): what the constructor set for settings.view.
+    Camera cameraFor(const ViewSpec& view) const;
+    // Grows the framing box by these positions (a sequence frames all its frames alike).
+    void extendFraming(const std::vector<glm::dvec3>& positions);
+    // New control points, one per control mesh vertex (an animated mesh, same topology): the next
+    // frame uploads them and re-runs only the GPU passes, with the same tables and buffers.
+    // Throws Error(BadInput) for a wrong count, Error(Usage) for a blending surface (its charts
+    // and local surfaces are built from the positions on the CPU).
+    void setControlPoints(const std::vector<glm::dvec3>& positions);
     // Whether the subdivision surface is tessellated view-adaptively.
     bool viewAdaptive() const { return viewAdaptive_; }
     // After a frame: why the view-adaptive tessellation did not fit its buffers (parts of the
@@ -147,6 +157,10 @@ class Renderer {
     RenderSettings settings_;
     std::vector<glm::vec4> controlPoints_;
     Camera camera_;
+    Bounds framing_;       // what cameraFor frames
+    glm::dvec3 framingPad_{0.0}; // added around every box (displacement)
+    bool blend_ = false;
+    Mesh faces_;           // the control mesh's faces (no positions): orientation of new points
     std::unique_ptr<FramePass> pass_;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;

@@ -181,21 +181,7 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         d.pieces = buildEdgePieces(mesh, t);
         d.closed = !d.pieces.pieces.empty();
         for (const EdgePiece& p : d.pieces.pieces) d.closed = d.closed && p.users[1] != kNoElement;
-        // Signed volume of the control mesh (faces fanned from their first corner, about the box
-        // centre): which way Du x Dv points, outward (+1) or inward (-1).
-        const glm::dvec3 c = 0.5 * (lo + hi);
-        double volume = 0, scale = 0;
-        for (size_t f = 0; f + 1 < mesh.faceOffsets.size(); ++f) {
-            const uint32_t first = mesh.faceOffsets[f], n = mesh.faceOffsets[f + 1] - first;
-            const glm::dvec3 a = mesh.positions[mesh.faceVertices[first]] - c;
-            for (uint32_t k = 1; k + 1 < n; ++k) {
-                const glm::dvec3 b = mesh.positions[mesh.faceVertices[first + k]] - c;
-                const glm::dvec3 e = mesh.positions[mesh.faceVertices[first + k + 1]] - c;
-                volume += glm::dot(a, glm::cross(b, e)) / 6;
-                scale += std::abs(glm::dot(a, glm::cross(b, e))) / 6;
-            }
-        }
-        d.orientation = volume > 1e-6 * scale ? 1.0f : volume < -1e-6 * scale ? -1.0f : 0.0f;
+        d.orientation = surfaceOrientation(mesh, mesh.positions);
         return d;
     }
     Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs);
@@ -251,6 +237,25 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         }
     }
     return d;
+}
+
+float surfaceOrientation(const Mesh& mesh, const std::vector<glm::dvec3>& positions) {
+    if (positions.empty()) return 0;
+    glm::dvec3 lo(positions[0]), hi(positions[0]);
+    for (const auto& q : positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    const glm::dvec3 c = 0.5 * (lo + hi);
+    double volume = 0, scale = 0;
+    for (size_t f = 0; f + 1 < mesh.faceOffsets.size(); ++f) {
+        const uint32_t first = mesh.faceOffsets[f], n = mesh.faceOffsets[f + 1] - first;
+        const glm::dvec3 a = positions[mesh.faceVertices[first]] - c;
+        for (uint32_t k = 1; k + 1 < n; ++k) {
+            const glm::dvec3 b = positions[mesh.faceVertices[first + k]] - c;
+            const glm::dvec3 e = positions[mesh.faceVertices[first + k + 1]] - c;
+            volume += glm::dot(a, glm::cross(b, e)) / 6;
+            scale += std::abs(glm::dot(a, glm::cross(b, e))) / 6;
+        }
+    }
+    return volume > 1e-6 * scale ? 1.0f : volume < -1e-6 * scale ? -1.0f : 0.0f;
 }
 
 } // namespace limn::render

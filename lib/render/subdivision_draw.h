@@ -97,4 +97,8 @@ struct DisplacementPlan {
 SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& tables, uint32_t tessCap,
                                    const DisplacementPlan* displacement = nullptr, bool adaptive = false);
 
+// The sign of the mesh's signed volume with these positions (faces fanned from their first
+// corner, about the box centre): +1 when Du x Dv points outward, -1 inward, 0 too flat to tell.
+float surfaceOrientation(const Mesh& mesh, const std::vector<glm::dvec3>& positions);
+
 } // namespace limn::render

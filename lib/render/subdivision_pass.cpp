@@ -96,9 +96,12 @@ struct SubdivisionPass::Gpu {
                              sizeof(DrawPush)},
                        target) {
         // View-adaptive: the tessellation is written by compute passes each frame (issue 11).
-        if (adaptiveOptions)
+        if (adaptiveOptions) {
+            AdaptiveOptions options = *adaptiveOptions;
+            options.evaluated = evaluate;
             adaptive = std::make_unique<AdaptiveTess>(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()),
-                                                      vertices, patches, irregular, limits, *adaptiveOptions);
+                                                      vertices, patches, irregular, limits, options);
+        }
         const gpu::Buffer& tv = adaptive ? adaptive->tessVertices() : tessVertices;
         const gpu::Buffer& tris = adaptive ? adaptive->triangles() : triangles;
         const gpu::Buffer& levels = adaptive ? adaptive->triangleLevels() : triangleLevels;
@@ -187,6 +190,9 @@ struct SubdivisionPass::Gpu {
     std::unique_ptr<gpu::GraphicsPipeline> wire;
     gpu::BindGroup evalBindings, wireBindings;
     std::unique_ptr<AdaptiveTess> adaptive;
+    // The draw with back faces culled by the rasterizer (view-adaptive, closed surface seen from
+    // outside; null otherwise).
+    std::unique_ptr<gpu::GraphicsPipeline> culledDraw[2]; // [0] drops back faces, [1] front faces
 };
 
 SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
@@ -194,7 +200,7 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
                                  const FloatImage* texture, const AdaptiveOptions* adaptive,
                                  gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
-      levels_(levels) {
+      levels_(levels), target_(target) {
     if (displacement) {
         if (eval != Eval::Compute)
             throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
@@ -207,7 +213,35 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
         throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data "
                                          "prepared for it");
     gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target);
-    if (adaptive && adaptive->backFaceCull && draw_.closed) orientation_ = draw_.orientation;
+    mayCullBackFaces_ = adaptive && adaptive->backFaceCull && draw_.closed;
+    if (mayCullBackFaces_) orientation_ = draw_.orientation;
+}
+
+// On a closed, consistently oriented surface seen from outside, the first face along any ray from
+// the eye is a front face, so back faces never show and the rasterizer may drop them (the same
+// image, bytes included; on lavapipe triangle setup is most of a view-adaptive draw). Which
+// winding is "back" follows the orientation: with positive volume the faces wind
+// counter-clockwise seen from outside, as the pipeline's front faces do (the projection flips Y
+// for Vulkan's framebuffer and the winding with it). Made on first use: an animated surface may
+// turn inside out and need the other one.
+const gpu::GraphicsPipeline& SubdivisionPass::culledPipeline(float facing) {
+    auto& slot = gpu_->culledDraw[facing > 0 ? 0 : 1];
+    if (!slot) {
+        const bool fetch = eval_ == Eval::Compute;
+        slot = std::make_unique<gpu::GraphicsPipeline>(
+            ctx_, gpu::GraphicsPipelineDesc{"surface (back faces culled)",
+                                            fetch ? std::span<const uint32_t>(surface_fetch_vert_spv)
+                                                  : std::span<const uint32_t>(surface_vert_spv),
+                                            surface_frag_spv, 8, sizeof(DrawPush), gpu::Primitive::Triangles,
+                                            gpu::DepthTest::Less, true, facing > 0 ? gpu::Cull::Back : gpu::Cull::Front},
+            target_);
+    }
+    return *slot;
+}
+
+void SubdivisionPass::setControlPoints(const Bounds& bounds, float orientation) {
+    draw_.bounds = bounds;
+    if (mayCullBackFaces_) orientation_ = orientation;
 }
 
 SubdivisionPass::~SubdivisionPass() = default;
@@ -300,8 +334,10 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
 void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) {
     auto& g = *gpu_;
     push.patchCount = static_cast<uint32_t>(draw_.patches.size());
-    const auto& pipeline = eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
     const auto& bindings = eval_ == Eval::Compute ? g.fetchBindings : g.surfaceBindings;
+    // --back-faces shows back faces on purpose (crack counts): never culled then.
+    const bool cull = mayCullBackFaces_ && view_.facing != 0 && !(push.flags & kDrawBackFaceKey);
+    const auto& pipeline = cull ? culledPipeline(view_.facing) : eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
     if (g.adaptive) {
         if (levels_) {
             push.flags |= kDrawPullIndices;

@@ -39,6 +39,7 @@ public:
     void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) override;
     DrawnMesh drawnMesh() override;
     void setView(const glm::mat4& viewProj, const glm::dvec3& eye, uint32_t width, uint32_t height) override;
+    void setControlPoints(const Bounds& bounds, float orientation) override;
     // Drawn triangles of the last frame (view-adaptive: read back from the GPU, after culling).
     uint64_t triangleCount() const override;
     // The last frame's view-adaptive totals (null for the fixed tessellation).
@@ -47,6 +48,8 @@ public:
     uint64_t bufferBytes() const override;
 
 private:
+    const gpu::GraphicsPipeline& culledPipeline(float facing);
+
     gpu::Context& ctx_;
     SubdivisionDraw draw_;
     Eval eval_;
@@ -54,6 +57,8 @@ private:
     Displacement displacement_;
     AdaptiveView view_;
     float orientation_ = 0; // sign of the control mesh's volume where back faces may be culled
+    bool mayCullBackFaces_ = false; // closed, and culling asked for
+    gpu::TargetFormat target_; // what every draw pipeline, the lazily made culled ones too, targets
     mutable AdaptiveTotals totals_;
     mutable bool totalsRead_ = false;
     struct Gpu;

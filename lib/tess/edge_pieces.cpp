@@ -1,13 +1,12 @@
 #include "tess/edge_pieces.h"
 
 #include "base/error.h"
+#include "base/flat_map.h"
 #include "tess/tessellation.h"
 #include "topology/ptex.h"
 #include "topology/topology.h"
 
 #include <glm/geometric.hpp>
-
-#include <unordered_map>
 
 namespace limn {
 
@@ -52,6 +51,13 @@ EdgePieces buildEdgePieces(const Mesh& mesh, const Tables& t) {
 
     std::vector<Domain> domains;
     EdgePieces out;
+    // About one point and two pieces per element, four sides of one piece or more each.
+    const size_t elements = t.patches.size() + t.irregular.size();
+    domains.reserve(elements);
+    out.elements.reserve(elements);
+    out.points.reserve(elements + elements / 8);
+    out.pieces.reserve(2 * elements + elements / 4);
+    out.sidePieces.reserve(4 * elements + elements / 2);
     auto add = [&](uint32_t ptex, float u0, float v0, float size, uint32_t level) {
         Domain d{ptex, uint32_t(double(u0) * R), uint32_t(double(v0) * R), uint32_t(double(size) * R)};
         if (d.W == 0 || (d.W & (d.W - 1)) != 0 || d.W > R)
@@ -71,21 +77,19 @@ EdgePieces buildEdgePieces(const Mesh& mesh, const Tables& t) {
     for (const IrregularFace& q : t.irregular) add(q.ptex, q.u0, q.v0, q.size, 255);
 
     // Points: every element corner, owned by the first element (in order) that has it.
-    std::unordered_map<uint64_t, uint32_t> pointOf;
-    pointOf.reserve(domains.size() * 2);
+    FlatKeyMap pointOf(domains.size() * 2);
     for (uint32_t ei = 0; ei < domains.size(); ++ei)
         for (int k = 0; k < 4; ++k) {
             uint32_t U, V;
             sidePoint(domains[ei], k, 0, U, V);
-            auto [it, inserted] = pointOf.try_emplace(keys.key(domains[ei].ptex, U, V),
-                                                      static_cast<uint32_t>(out.points.size()));
+            const bool inserted = pointOf.tryEmplace(keys.key(domains[ei].ptex, U, V),
+                                                     static_cast<uint32_t>(out.points.size())).second;
             if (inserted) out.points.push_back({ei, sideST(domains[ei], k, 0)});
         }
 
     // Pieces: each side cut at every point on it; a piece is named by its midpoint (on the
     // lattice of 1/(2R), so even a piece one lattice step long has one).
-    std::unordered_map<uint64_t, uint32_t> pieceOf;
-    pieceOf.reserve(domains.size() * 2);
+    FlatKeyMap pieceOf(domains.size() * 2);
     for (uint32_t ei = 0; ei < domains.size(); ++ei) {
         const Domain& d = domains[ei];
         AdaptiveElement& e = out.elements[ei];
@@ -95,18 +99,18 @@ EdgePieces buildEdgePieces(const Mesh& mesh, const Tables& t) {
             {
                 uint32_t U, V;
                 sidePoint(d, k, 0, U, V);
-                aPoint = pointOf.at(keys.key(d.ptex, U, V));
+                aPoint = pointOf.find(keys.key(d.ptex, U, V)); // every corner is a point
             }
             for (uint32_t x = 1; x <= d.W; ++x) {
                 uint32_t U, V;
                 sidePoint(d, k, x, U, V);
-                auto p = pointOf.find(keys.key(d.ptex, U, V));
-                if (p == pointOf.end()) continue; // not a corner of any element
-                const uint32_t b = x, bPoint = p->second;
+                const uint32_t bPoint = pointOf.find(keys.key(d.ptex, U, V));
+                if (bPoint == FlatKeyMap::kAbsent) continue; // not a corner of any element
+                const uint32_t b = x;
                 uint32_t Ua, Va;
                 sidePoint(d, k, a, Ua, Va);
                 const uint64_t mid = halfKeys.key(d.ptex, Ua + U, Va + V);
-                auto [it, inserted] = pieceOf.try_emplace(mid, static_cast<uint32_t>(out.pieces.size()));
+                const auto [piece, inserted] = pieceOf.tryEmplace(mid, static_cast<uint32_t>(out.pieces.size()));
                 if (inserted) {
                     EdgePiece pc{};
                     pc.owner = ei;
@@ -120,12 +124,12 @@ EdgePieces buildEdgePieces(const Mesh& mesh, const Tables& t) {
                                                         keys.ownUV(d.ptex, double(U) / R, double(V) / R)));
                     out.pieces.push_back(pc);
                 } else {
-                    EdgePiece& pc = out.pieces[it->second];
+                    EdgePiece& pc = out.pieces[piece];
                     if (pc.users[1] == kNoElement && pc.users[0] != ei) pc.users[1] = ei;
                 }
-                const EdgePiece& pc = out.pieces[it->second];
+                const EdgePiece& pc = out.pieces[piece];
                 SidePiece sp{};
-                sp.piece = it->second;
+                sp.piece = piece;
                 sp.startPoint = aPoint;
                 sp.reversed = pc.owner == ei && inserted ? 0u : (pc.startPoint == aPoint ? 0u : 1u);
                 sp.from = a * (kTessParamOne / d.W);

@@ -281,18 +281,24 @@ TEST_P(AdaptiveRender, OnTheLimitSurfaceWatertightAndSizedByTheView) {
     EXPECT_LE(p99, 2.5 * P) << "median " << p50 << ", max " << lengths.back();
     EXPECT_LE(lengths.back(), 8 * P) << "median " << p50 << ", p99 " << p99;
     // Rates vary: a ptex face that is one element (a level-0 patch) has, strictly inside, no
-    // point (two triangles) or one centre point (interior rate <= 2), or the (m-1)^2 points of
-    // an interior rate m.
-    std::map<int, size_t> interior;
+    // point (two triangles), one centre point (interior rates <= 2), or the (mu-1)(mv-1) points
+    // of a grid with interior rates mu along u and mv along v, at mu - 1 distinct u and mv - 1
+    // distinct v.
+    std::map<int, std::pair<std::set<float>, std::set<float>>> interior;
     for (const PlyVertex& v : drawn.vertices)
-        if (v.uv[0] > 0 && v.uv[0] < 1 && v.uv[1] > 0 && v.uv[1] < 1) ++interior[v.ptex];
+        if (v.uv[0] > 0 && v.uv[0] < 1 && v.uv[1] > 0 && v.uv[1] < 1) {
+            interior[v.ptex].first.insert(v.uv[0]);
+            interior[v.ptex].second.insert(v.uv[1]);
+        }
     size_t most = 0, least = SIZE_MAX;
     for (const auto& [ptex, doms] : domains)
         if (doms.size() == 1 && doms[0].size == 1) {
-            most = std::max(most, interior[int(ptex)]);
-            least = std::min(least, interior[int(ptex)]);
+            const auto& in = interior[int(ptex)];
+            const size_t rate = in.first.empty() ? 1 : 1 + std::max(in.first.size(), in.second.size());
+            most = std::max(most, rate);
+            least = std::min(least, in.first.size());
         }
-    const int mostRate = int(std::lround(std::sqrt(double(most)))) + 1;
+    const int mostRate = int(most);
     if (c.spansRates) {
         EXPECT_GE(mostRate, 32) << "no level-0 patch with 32 segments: not a close-up";
         EXPECT_LE(least, 1u) << "no level-0 patch at the smallest rate";
@@ -481,3 +487,92 @@ std::string imageName(const ::testing::TestParamInfo<ImageCase>& param) {
 INSTANTIATE_TEST_SUITE_P(Shared, AdaptiveImage, ::testing::ValuesIn(kImages), imageName);
 
 } // namespace
+
+// Back faces dropped by the rasterizer (a closed surface seen from outside, view-adaptive) change
+// no pixel: the same image, byte for byte, as with --back-faces, which draws every back face in a
+// key colour (and so turns the culling off). Faces wound the other way round (negative volume)
+// take the other cull mode; seen from outside they are all back faces, so --back-faces would key
+// everything: their image is instead compared with the mesh as wound, which a wrong choice
+// (showing the inside, and holes where whole patches facing away are skipped) would not match.
+std::string writeReversed(const std::filesystem::path& from, const std::filesystem::path& to) {
+    std::ifstream in(from);
+    std::ofstream out(to);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("f ", 0) == 0) {
+            std::istringstream words(line.substr(2));
+            std::vector<std::string> corners;
+            for (std::string w; words >> w;) corners.push_back(w);
+            std::reverse(corners.begin(), corners.end());
+            line = "f";
+            for (const std::string& c : corners) line += " " + c;
+        }
+        out << line << "\n";
+    }
+    return to.string();
+}
+
+struct CullCase {
+    std::string name, model;
+    int depth;
+    bool reversed;
+    std::vector<std::string> view;
+};
+
+class AdaptiveBackFaces : public ::testing::TestWithParam<CullCase> {};
+
+TEST_P(AdaptiveBackFaces, CullingThemChangesNoPixel) {
+    const CullCase& c = GetParam();
+    ScratchDir dir;
+    std::string obj = c.model == "sphere" ? writeSphere(dir / "sphere.obj") : modelPath(c.model).string();
+    const std::string limn = prepare(obj, c.depth, dir);
+    ScratchDir reversedDir;
+    const std::string reversed =
+        c.reversed ? prepare(writeReversed(obj, reversedDir / "reversed.obj"), c.depth, reversedDir) : "";
+    auto render = [&](const std::string& name, std::vector<std::string> extra, const std::string& in = "") {
+        std::vector<std::string> args = {tool("limn-render").string(), in.empty() ? limn : in, "--size", "320x240",
+                                         "--validate", "-o", (dir / name).string()};
+        args.insert(args.end(), c.view.begin(), c.view.end());
+        args.insert(args.end(), extra.begin(), extra.end());
+        auto r = run(args);
+        if (r.exitCode != 0) throw std::runtime_error(r.err);
+        return readBytes(dir / name);
+    };
+    const auto culled = render("culled.png", {});
+    const auto keyed = render("keyed.png", {"--back-faces", "1,0,0"});
+    EXPECT_EQ(culled, keyed);
+    if (c.reversed) {
+        // The same surface, its triangles wound the other way and split a little differently.
+        const auto a = render::decodePng(render("reversed.png", {}, reversed)), b = render::decodePng(culled);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        size_t covered = 0, differ = 0;
+        for (size_t i = 0; i < size_t(a.width) * a.height; ++i) {
+            const uint8_t *p = &a.pixels[i * a.channels], *q = &b.pixels[i * b.channels];
+            if (std::equal(p, p + 3, a.pixels.data()) && std::equal(q, q + 3, a.pixels.data())) continue;
+            ++covered;
+            int d = 0;
+            for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(int(p[k]) - int(q[k])));
+            differ += d > 8;
+        }
+        EXPECT_GT(covered, 2000u);
+        EXPECT_LE(double(differ), 0.005 * double(covered)) << differ << " of " << covered;
+    }
+    // And the image is not empty or all key colour: it has the surface's grey shades.
+    const auto img = render::decodePng(culled);
+    size_t grey = 0;
+    for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
+        const uint8_t* p = &img.pixels[i * img.channels];
+        grey += p[0] == p[1] && p[1] == p[2] && p[0] != 51;
+    }
+    EXPECT_GT(grey, size_t(img.width) * img.height / 20);
+}
+
+const CullCase kCullCases[] = {
+    {"sphere_d6", "sphere", 6, false, {"--eye", "0,12,22", "--target", "0,0,0"}},
+    {"spot_d3", "quad/spot_control_mesh.obj", 3, false, {}},
+    {"spot_and_reversed_d3", "quad/spot_control_mesh.obj", 3, true, {"--view", "200,-30"}},
+    {"car_d2", "osd/catmark/catmark_car.obj", 2, false, {"--view", "120,35"}},
+};
+
+INSTANTIATE_TEST_SUITE_P(Shared, AdaptiveBackFaces, ::testing::ValuesIn(kCullCases),
+                         [](const ::testing::TestParamInfo<CullCase>& p) { return p.param.name; });

@@ -9,10 +9,11 @@
 // write the same (element, s, t) for each shared point, and the evaluation turns those into the
 // same bits: watertight to the bit without sharing indices across elements. A coarse side next
 // to two finer patches has two pieces, so level transitions meet point to point (no T-junction).
-// Interior (rate m): two triangles when m <= 2 and the boundary is the four corners; a centre
-// point fanned to the boundary when m <= 2; otherwise the (m-1)^2
-// grid points (i/m, j/m), the (m-2)^2 grid cells, and per side a zipper strip joining the side's
-// boundary points to the grid's outer ring, merged in parameter order (deterministic).
+// Interior (rates mu along s, mv along t, each >= 2): two triangles when both are 2 and the
+// boundary is the four corners; otherwise the (mu-1)(mv-1) grid points (i/mu, j/mv) (one centre
+// point when both are 2), the (mu-2)(mv-2) grid cells, and per side a zipper strip joining the
+// side's boundary points to the grid's outer ring on that side, merged in parameter order
+// (deterministic).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "limn_compute.glsl"
@@ -73,7 +74,8 @@ void main() {
     uint e = limnInvocationIndex(pc.limnRowInvocations);
     if (e >= pc.limnCount) return;
     uvec4 inf = info.v[e];
-    uint m = inf.x & ~ADAPTIVE_CULLED;
+    uvec2 rates2 = adaptiveRates(inf.x);
+    uint mu = rates2.x, mv = rates2.y;
     uint T = inf.w & 0x7FFFFFFFu;
     vBase = inf.y;
     tNext = inf.z;
@@ -113,41 +115,38 @@ void main() {
         sideTotal[k] = B - sideStart[k];
     }
 
-    if (m <= 2u && B == 4u) { // the four corners only: two triangles
+    if (mu == 2u && mv == 2u && B == 4u) { // the four corners only: two triangles
         tri(0u, 1u, 2u);
         tri(0u, 2u, 3u);
         return;
     }
-    if (m <= 2u) {
-        vertex(B, e, 16384u | (16384u << 16), uvAt(0.5, 0.5));
-        for (uint i = 0u; i < B; ++i) tri(B, i, (i + 1u) % B);
-        return;
-    }
-    // Interior grid points (i, j), 1 <= i, j <= m-1, at B + (j-1)(m-1) + (i-1).
-    for (uint j = 1u; j < m; ++j)
-        for (uint i = 1u; i < m; ++i) {
-            uint s = (i * 32768u) / m, t = (j * 32768u) / m;
-            vertex(B + (j - 1u) * (m - 1u) + (i - 1u), e, s | (t << 16), uvAt(float(i) / float(m), float(j) / float(m)));
+    // Interior grid points (i, j), 1 <= i <= mu-1, 1 <= j <= mv-1, at B + (j-1)(mu-1) + (i-1).
+    for (uint j = 1u; j < mv; ++j)
+        for (uint i = 1u; i < mu; ++i) {
+            uint s = (i * 32768u) / mu, t = (j * 32768u) / mv;
+            vertex(B + (j - 1u) * (mu - 1u) + (i - 1u), e, s | (t << 16),
+                   uvAt(float(i) / float(mu), float(j) / float(mv)));
         }
-    for (uint j = 1u; j + 1u < m; ++j)
-        for (uint i = 1u; i + 1u < m; ++i) {
-            uint a = B + (j - 1u) * (m - 1u) + (i - 1u);
-            tri(a, a + 1u, a + m);
-            tri(a, a + m, a + m - 1u);
+    for (uint j = 1u; j + 1u < mv; ++j)
+        for (uint i = 1u; i + 1u < mu; ++i) {
+            uint a = B + (j - 1u) * (mu - 1u) + (i - 1u);
+            tri(a, a + 1u, a + mu);
+            tri(a, a + mu, a + mu - 1u);
         }
-    // Zipper strips: side k's boundary points against the grid's outer ring on that side.
+    // Zipper strips: side k's boundary points against the grid's outer ring on that side (sides
+    // 0 and 2 run along s, mu - 2 ring steps; sides 1 and 3 along t, mv - 2).
     for (uint k = 0u; k < 4u; ++k) {
-        uint na = sideTotal[k], nb = m - 2u, ia = 0u, jb = 0u;
+        uint na = sideTotal[k], nb = (k & 1u) == 0u ? mu - 2u : mv - 2u, ia = 0u, jb = 0u;
         while (ia < na || jb < nb) {
             uint a0 = (sideStart[k] + ia) % B;
             uint g0, g1; // ring points jb and jb + 1 on side k
             for (uint q = 0u; q < 2u; ++q) {
                 uint x = jb + q, gi, gj;
                 if (k == 0u) gi = 1u + x, gj = 1u;
-                else if (k == 1u) gi = m - 1u, gj = 1u + x;
-                else if (k == 2u) gi = m - 1u - x, gj = m - 1u;
-                else gi = 1u, gj = m - 1u - x;
-                uint g = B + (gj - 1u) * (m - 1u) + (gi - 1u);
+                else if (k == 1u) gi = mu - 1u, gj = 1u + x;
+                else if (k == 2u) gi = mu - 1u - x, gj = mv - 1u;
+                else gi = 1u, gj = mv - 1u - x;
+                uint g = B + (gj - 1u) * (mu - 1u) + (gi - 1u);
                 if (q == 0u) g0 = g; else g1 = g;
             }
             bool advanceA = jb == nb || (ia < na && (2u * ia + 1u) * nb <= (2u * jb + 1u) * na);

@@ -21,4 +21,9 @@ struct AdaptiveElement {
 
 #define ADAPTIVE_CULLED 0x80000000u
 
+// An element's interior rates (adaptive_counts.comp) in the info record's first word: mu along s
+// in bits 0-14, mv along t in bits 15-29 (--tess is at most 4096), ADAPTIVE_CULLED in bit 31.
+uint adaptivePackRates(uint mu, uint mv) { return mu | (mv << 15); }
+uvec2 adaptiveRates(uint packed) { return uvec2(packed & 0x7FFFu, (packed >> 15) & 0x7FFFu); }
+
 #endif

@@ -1,0 +1,51 @@
+// Sequences in one run (issue 12): frame-numbered paths (-o shot_%04d.png, --frames
+// walk_%04d.obj), the views of a turntable (--turntable N) and of a camera file (--cameras FILE).
+// The renderer draws them one after another with the same tables and buffers; only the camera or
+// the control points change between frames (paper 000: animation re-runs only the GPU passes).
+#pragma once
+
+#include "render/camera.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace limn::render {
+
+// A path with one printf-style frame number in it: %d, or %0Nd (N = 1..9) for zero-padded
+// numbers; %% is a literal %. Nothing else may follow a %.
+struct FramePattern {
+    std::string prefix, suffix; // around the number, %% already turned into %
+    int width = 0;              // zero-padded to at least this many digits (0: no padding)
+};
+
+// Whether `text` holds a frame number conversion (a % not written as %%).
+bool hasFrameNumber(const std::string& text);
+// Throws Error(Usage) naming `option` unless `text` has exactly one conversion.
+FramePattern parseFramePattern(const std::string& option, const std::string& text);
+std::string framePath(const FramePattern& pattern, uint64_t frame);
+
+// The existing files a pattern names, by increasing frame number: those in the pattern's folder
+// whose name is exactly framePath(pattern, n) for some n (so walk_%04d.obj takes walk_0007.obj,
+// not walk_7.obj or walk_00007.obj). Throws Error(BadInput) when there is none, or more than
+// kMaxFrames.
+struct FrameFile {
+    uint64_t number;
+    std::string path;
+};
+inline constexpr size_t kMaxFrames = 100000;
+std::vector<FrameFile> findFrameFiles(const FramePattern& pattern);
+
+// n views around the up axis: base's azimuth + 360 k / n degrees, k = 0 .. n-1, base's elevation
+// and field of view. Framing fits the bounding sphere, which every azimuth sees the same size,
+// so the object does not change size from frame to frame.
+std::vector<ViewSpec> turntableViews(const ViewSpec& base, uint32_t n);
+
+// A camera file: one view per line, "EX EY EZ  TX TY TZ  UX UY UZ [FOV]" (eye, target, up, and
+// the vertical field of view in degrees, default `defaultFovDeg`), numbers separated by spaces,
+// tabs or commas; '#' starts a comment, blank lines are skipped. Throws Error(BadInput) naming
+// the line for anything else: a wrong count, a non-finite number, eye = target, a zero or
+// parallel up vector, a field of view outside 1..170, no view at all, more than kMaxFrames.
+std::vector<ViewSpec> parseCameraFile(const std::string& text, double defaultFovDeg);
+
+} // namespace limn::render
