@@ -256,30 +256,57 @@ void CommandBuffer::beginRendering(const RenderTarget& target, std::array<float,
     requireRecording("beginRendering");
     const auto& vk = ctx_->vk();
     // UNDEFINED discards last frame's contents; the source stages order this frame's writes after
-    // the previous copy-out and depth use (write-after-read across submissions).
+    // the previous copy-out and depth use (write-after-read across submissions). Resolves write
+    // in the colour-attachment-output stage, depth resolves included.
+    const StageAccess colourWrite{
+        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT};
     imageBarrier(vk, cmd_, target.colorImage(), VK_IMAGE_ASPECT_COLOR_BIT,
                  VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                 {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0},
-                 {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT});
+                 {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0}, colourWrite);
+    if (target.colorResolveImage())
+        imageBarrier(vk, cmd_, target.colorResolveImage(), VK_IMAGE_ASPECT_COLOR_BIT,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0}, colourWrite);
     const VkPipelineStageFlags2 depthStages =
         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
     imageBarrier(vk, cmd_, target.depthImage(), VK_IMAGE_ASPECT_DEPTH_BIT,
                  VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                 {depthStages, 0},
-                 {depthStages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT});
+                 {depthStages | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0},
+                 {depthStages | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT});
+    if (target.depthResolveImage())
+        imageBarrier(vk, cmd_, target.depthResolveImage(), VK_IMAGE_ASPECT_DEPTH_BIT,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                     {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0},
+                     {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | depthStages,
+                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT});
+    const bool msaa = target.format().samples > 1;
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     color.imageView = target.colorView();
     color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    // The samples are needed only until they are resolved (WebGPU: storeOp "discard").
+    color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+    if (msaa) {
+        color.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+        color.resolveImageView = target.colorResolveView();
+        color.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    }
     for (int i = 0; i < 4; ++i) color.clearValue.color.float32[i] = clearColor[i];
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = target.depthView();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.storeOp = target.readsDepth() && !msaa ? VK_ATTACHMENT_STORE_OP_STORE
+                                                 : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    if (target.depthResolveImage()) {
+        depth.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;
+        depth.resolveImageView = target.depthResolveView();
+        depth.resolveImageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    }
     depth.clearValue.depthStencil = {1.0f, 0};
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {target.width(), target.height()}};
@@ -357,17 +384,34 @@ void CommandBuffer::copyToReadback(const RenderTarget& target) {
     requireRecording("copyToReadback");
     const auto& vk = ctx_->vk();
     imageBarrier(
-        vk, cmd_, target.colorImage(), VK_IMAGE_ASPECT_COLOR_BIT,
+        vk, cmd_, target.colorReadImage(), VK_IMAGE_ASPECT_COLOR_BIT,
         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
         {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
         {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
     VkBufferImageCopy region{};
-    region.bufferRowLength = target.rowPitch() / 4; // in texels
+    region.bufferRowLength = target.rowPitch() / RenderTarget::bytesPerPixel(target.format().color);
     region.bufferImageHeight = target.height();
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {target.width(), target.height(), 1};
-    vk.vkCmdCopyImageToBuffer(cmd_, target.colorImage(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+    vk.vkCmdCopyImageToBuffer(cmd_, target.colorReadImage(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                               target.readback().handle(), 1, &region);
+    if (const Buffer* depth = target.depthReadback()) {
+        // Written by the depth tests (1 sample) or by the resolve (colour-output stage).
+        imageBarrier(vk, cmd_, target.depthReadImage(), VK_IMAGE_ASPECT_DEPTH_BIT,
+                     VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     {VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
+                          VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
+                     {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
+        VkBufferImageCopy d{};
+        d.bufferRowLength = target.depthRowPitch() / 4;
+        d.bufferImageHeight = target.height();
+        d.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+        d.imageExtent = {target.width(), target.height(), 1};
+        vk.vkCmdCopyImageToBuffer(cmd_, target.depthReadImage(),
+                                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, depth->handle(), 1, &d);
+    }
     barrier(Access::TransferWrite, Access::HostRead);
 }
 

@@ -154,9 +154,15 @@ Context::Context(const ContextOptions& options) {
         limits_.minStorageBufferOffsetAlignment = l.minStorageBufferOffsetAlignment;
         limits_.nonCoherentAtomSize = l.nonCoherentAtomSize;
         limits_.maxImageDimension2D = l.maxImageDimension2D;
+        limits_.colorSampleCounts = l.framebufferColorSampleCounts;
+        limits_.depthSampleCounts = l.framebufferDepthSampleCounts;
         limits_.timestamps = l.timestampComputeAndGraphics && validBits > 0;
         limits_.timestampPeriodNs = l.timestampPeriod;
         vk_.vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+        for (uint32_t i = 0; i < memory_.memoryHeapCount; ++i)
+            if (memory_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+                limits_.deviceLocalHeapBytes =
+                    std::max<uint64_t>(limits_.deviceLocalHeapBytes, memory_.memoryHeaps[i].size);
         createDevice(physical_, p.apiVersion >= VK_API_VERSION_1_3);
     } catch (...) {
         release(); // a constructor that throws gets no destructor call

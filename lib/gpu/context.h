@@ -33,6 +33,10 @@ struct DeviceLimits {
     uint64_t minStorageBufferOffsetAlignment = 1;
     uint64_t nonCoherentAtomSize = 1;
     uint32_t maxImageDimension2D = 0;
+    // Sample counts (VkSampleCountFlags) colour and depth attachments support (MSAA).
+    uint32_t colorSampleCounts = 1, depthSampleCounts = 1;
+    // The largest device-local memory heap, in bytes (what a render target must fit into).
+    uint64_t deviceLocalHeapBytes = 0;
     bool timestamps = false; // timestamps on the graphics+compute queue
     double timestampPeriodNs = 0;
 };

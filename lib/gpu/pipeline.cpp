@@ -214,7 +214,8 @@ ComputePipeline::ComputePipeline(Context& ctx, const ComputePipelineDesc& desc)
 
 // GraphicsPipeline -----------------------------------------------------------------------------
 
-GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc)
+GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc,
+                                   TargetFormat target)
     : Pipeline(ctx, desc.name, desc.storageBuffers, desc.pushConstantBytes, 0,
                VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT) {
     VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
@@ -248,7 +249,7 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
         raster.lineWidth = 1.0f; // the only width WebGPU has
         VkPipelineMultisampleStateCreateInfo multisample{
             VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+        multisample.rasterizationSamples = static_cast<VkSampleCountFlagBits>(target.samples);
         VkPipelineDepthStencilStateCreateInfo depth{
             VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
         depth.depthTestEnable = VK_TRUE;
@@ -269,7 +270,7 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
             VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
         dynamic.dynamicStateCount = 2;
         dynamic.pDynamicStates = dynamicStates;
-        VkFormat colorFormat = RenderTarget::kColorFormat;
+        VkFormat colorFormat = target.color;
         VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
         rendering.colorAttachmentCount = 1;
         rendering.pColorAttachmentFormats = &colorFormat;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "gpu/buffer.h"
+#include "gpu/render_target.h"
 #include "gpu/vulkan.h"
 
 #include <cstdint>
@@ -123,12 +124,13 @@ struct GraphicsPipelineDesc {
     Cull cull = Cull::None;
 };
 
-// Draws into a RenderTarget (RGBA8 sRGB + D32 depth) with dynamic rendering. No culling by
-// default: control meshes may be open or inconsistently oriented, and the shading is two-sided;
-// a closed surface seen from outside may cull its back faces (desc.cull).
+// Draws into a RenderTarget of `target`'s format (RGBA8 sRGB or RGBA16F, 1 or 4 samples, D32
+// depth) with dynamic rendering. No culling by default: control meshes may be open or
+// inconsistently oriented, and the shading is two-sided; a closed surface seen from outside may
+// cull its back faces (desc.cull).
 class GraphicsPipeline : public Pipeline {
   public:
-    GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc);
+    GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc, TargetFormat target = {});
 };
 
 // The LocalSize a SPIR-V compute module declares, {0,0,0} if none. Throws on a malformed module.

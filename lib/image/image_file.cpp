@@ -19,6 +19,7 @@ namespace {
 
 struct Plugin {
     LimnImageRead read = nullptr;
+    LimnImageWriteExr writeExr = nullptr;
     std::string error; // why it could not be loaded
 };
 
@@ -45,8 +46,10 @@ const Plugin& plugin() {
         auto version =
             reinterpret_cast<LimnImageAbiVersion>(dlsym(handle, "limn_image_abi_version"));
         p.read = reinterpret_cast<LimnImageRead>(dlsym(handle, "limn_image_read"));
-        if (!version || !p.read || version() != kLimnImageAbiVersion) {
+        p.writeExr = reinterpret_cast<LimnImageWriteExr>(dlsym(handle, "limn_image_write_exr"));
+        if (!version || !p.read || !p.writeExr || version() != kLimnImageAbiVersion) {
             p.read = nullptr;
+            p.writeExr = nullptr;
             p.error = "the image reader " + path + " is not one this build of limn can use";
         }
     });
@@ -85,7 +88,34 @@ bool isPng(std::span<const uint8_t> bytes) {
     return bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1A\n", 8) == 0;
 }
 
+uint8_t* allocateBytes(void* context, size_t size) {
+    auto& bytes = *static_cast<std::vector<uint8_t>*>(context);
+    bytes.resize(size);
+    return bytes.data();
+}
+
 } // namespace
+
+void requireImageWriter() {
+    const Plugin& p = plugin();
+    if (!p.writeExr) throw Error(ErrorKind::Capability, p.error + " (needed to write OpenEXR)");
+}
+
+std::vector<uint8_t> encodeExr(uint32_t width, uint32_t height,
+                               const std::vector<std::string>& channelNames,
+                               std::span<const float> values) {
+    requireImageWriter();
+    if (channelNames.empty() || values.size() != size_t(width) * height * channelNames.size())
+        throw Error(ErrorKind::BadInput, "internal: EXR channels do not match the pixels");
+    std::vector<const char*> names;
+    for (const auto& n : channelNames) names.push_back(n.c_str());
+    std::vector<uint8_t> bytes;
+    char error[512] = {};
+    if (plugin().writeExr(width, height, static_cast<uint32_t>(names.size()), names.data(),
+                          values.data(), &bytes, allocateBytes, error, sizeof error) != 0)
+        throw Error(ErrorKind::BadInput, std::string("cannot encode OpenEXR: ") + error);
+    return bytes;
+}
 
 FloatImage readImageFile(const std::string& path) {
     // PNGs limn decodes itself skip the plugin; everything else is OpenImageIO's.

@@ -1,5 +1,5 @@
-// The image reader behind limn_image's readImageFile/readImageBytes: OpenImageIO, in its own
-// shared object so that only processes that read images load OpenImageIO's libraries
+// The image reader behind limn_image's readImageFile/readImageBytes and the EXR writer behind
+// writeExr: OpenImageIO, in its own shared object so that only processes that read images load OpenImageIO's libraries
 // (lib/image/CMakeLists.txt says why). Everything is caught here: nothing may unwind through C.
 #include "image/plugin_abi.h"
 
@@ -11,6 +11,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -103,5 +104,42 @@ limn_image_read(const char* path, const void* bytes, size_t size, void* context,
         return fail(e.what(), error, errorSize);
     } catch (...) {
         return fail("unknown error in the image reader", error, errorSize);
+    }
+}
+
+extern "C" __attribute__((visibility("default"))) int
+limn_image_write_exr(uint32_t width, uint32_t height, uint32_t channels, const char* const* names,
+                     const float* pixels, void* context, LimnImageAllocateBytes allocate,
+                     char* error, size_t errorSize) {
+    try {
+        OIIO::ImageSpec spec(int(width), int(height), int(channels), OIIO::TypeDesc::FLOAT);
+        spec.channelnames.clear();
+        for (uint32_t c = 0; c < channels; ++c) {
+            spec.channelnames.emplace_back(names[c]);
+            if (spec.channelnames.back() == "A") spec.alpha_channel = int(c);
+            if (spec.channelnames.back() == "Z") spec.z_channel = int(c);
+        }
+        spec.attribute("compression", "zip");
+        // The same bytes for the same pixels: OpenImageIO's OpenEXR writer stamps the time
+        // (capDate) and its version (Software) unless told otherwise.
+        spec.attribute("DateTime", "");
+        spec.attribute("Software", "");
+        std::vector<unsigned char> bytes;
+        OIIO::Filesystem::IOVecOutput memory(bytes);
+        auto out = OIIO::ImageOutput::create("image.exr");
+        if (!out) return fail("OpenImageIO has no OpenEXR writer: " + OIIO::geterror(), error, errorSize);
+        if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
+            return fail("OpenImageIO's OpenEXR writer cannot write to memory", error, errorSize);
+        if (!out->open("image.exr", spec) ||
+            !out->write_image(OIIO::TypeDesc::FLOAT, pixels) || !out->close())
+            return fail(out->geterror(), error, errorSize);
+        uint8_t* dst = allocate(context, bytes.size());
+        if (!dst) return fail("no memory for the encoded image", error, errorSize);
+        std::memcpy(dst, bytes.data(), bytes.size());
+        return 0;
+    } catch (const std::exception& e) {
+        return fail(e.what(), error, errorSize);
+    } catch (...) {
+        return fail("unknown error in the image writer", error, errorSize);
     }
 }

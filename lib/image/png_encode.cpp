@@ -99,15 +99,33 @@ std::vector<uint8_t> encodePng8(uint32_t width, uint32_t height, uint32_t channe
     return encode(width, height, 8, colourTypes[channels], channels, samples, true);
 }
 
+namespace {
+
+std::vector<uint8_t> bigEndian(std::span<const uint16_t> samples) {
+    std::vector<uint8_t> bytes;
+    bytes.reserve(samples.size() * 2);
+    for (uint16_t s : samples) {
+        bytes.push_back(static_cast<uint8_t>(s >> 8));
+        bytes.push_back(static_cast<uint8_t>(s & 0xFF));
+    }
+    return bytes;
+}
+
+} // namespace
+
+std::vector<uint8_t> encodePng16(uint32_t width, uint32_t height, uint32_t channels,
+                                 std::span<const uint16_t> samples) {
+    static const uint8_t colourTypes[5] = {0, 0, 4, 2, 6}; // by channel count
+    if (channels < 1 || channels > 4)
+        throw Error(ErrorKind::BadInput, "PNG output needs 1 to 4 channels");
+    // The filters work on bytes, with the pixel's byte count as the left neighbour's distance
+    // (PNG spec 9.2), so 16-bit samples need nothing special.
+    return encode(width, height, 16, colourTypes[channels], 2 * channels, bigEndian(samples), true);
+}
+
 std::vector<uint8_t> encodePngGray16(uint32_t width, uint32_t height,
                                      std::span<const uint16_t> samples) {
-    std::vector<uint8_t> bigEndian;
-    bigEndian.reserve(samples.size() * 2);
-    for (uint16_t s : samples) {
-        bigEndian.push_back(static_cast<uint8_t>(s >> 8));
-        bigEndian.push_back(static_cast<uint8_t>(s & 0xFF));
-    }
-    return encode(width, height, 16, 0, 2, bigEndian, false);
+    return encode(width, height, 16, 0, 2, bigEndian(samples), false);
 }
 
 } // namespace limn

@@ -14,6 +14,10 @@ namespace limn {
 // sRGB-encoded.
 std::vector<uint8_t> encodePng8(uint32_t width, uint32_t height, uint32_t channels,
                                 std::span<const uint8_t> samples);
+// 16-bit samples, `channels` 1 to 4 as above, sRGB-encoded like encodePng8's (the sRGB chunk
+// applies to any bit depth), written big-endian as PNG requires.
+std::vector<uint8_t> encodePng16(uint32_t width, uint32_t height, uint32_t channels,
+                                 std::span<const uint16_t> samples);
 // 16-bit grey samples (height maps), rows top to bottom. No colour-space chunk: the values are
 // data, not colours.
 std::vector<uint8_t> encodePngGray16(uint32_t width, uint32_t height,

@@ -34,7 +34,8 @@ std::vector<uint32_t> drawData(const BlendDraw& d, const std::optional<TrimMask>
 } // namespace
 
 struct BlendPass::Gpu {
-    Gpu(gpu::Context& ctx, const BlendDraw& d, bool evaluate, const std::optional<TrimMask>& trim)
+    Gpu(gpu::Context& ctx, const BlendDraw& d, bool evaluate, const std::optional<TrimMask>& trim,
+        gpu::TargetFormat target)
         : controlPoints(ctx, {"control points (unused by the blend draw)",
                               std::max<uint64_t>(d.vertices.size(), 1) * 16}),
           vertices(uploadBufferNow(ctx, "blend vertices", d.vertices)),
@@ -49,11 +50,13 @@ struct BlendPass::Gpu {
           normals(ctx, {"evaluated normals",
                         evaluate ? std::max<uint64_t>(d.points.size(), 1) * 16 : 16}),
           evalPass(ctx, {"evaluate blend surface", blend_eval_comp_spv, 5, sizeof(EvalPush)}),
-          drawEval(ctx, {"blend surface", blend_vert_spv, blend_frag_spv, 7, sizeof(DrawPush)}),
+          drawEval(ctx, {"blend surface", blend_vert_spv, blend_frag_spv, 7, sizeof(DrawPush)}, target),
           drawFetch(ctx, {"blend surface (evaluated)", blend_fetch_vert_spv, blend_frag_spv, 7,
-                          sizeof(DrawPush)}),
+                          sizeof(DrawPush)},
+                    target),
           wire(ctx, {"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
-                     gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false}) {
+                     gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
+               target) {
         evalBindings = evalPass.bind({vertices, faces, points, positions, normals});
         // Both draws have one layout, so one fragment shader serves them.
         drawBindings =
@@ -71,10 +74,10 @@ struct BlendPass::Gpu {
 };
 
 BlendPass::BlendPass(gpu::Context& ctx, BlendDraw draw, Eval eval, bool keepEvaluated,
-                     const std::optional<TrimMask>& trim)
+                     const std::optional<TrimMask>& trim, gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval),
       evaluate_(keepEvaluated || eval == Eval::Compute),
-      gpu_(std::make_unique<Gpu>(ctx, draw_, evaluate_, trim)) {}
+      gpu_(std::make_unique<Gpu>(ctx, draw_, evaluate_, trim, target)) {}
 
 BlendPass::~BlendPass() = default;
 

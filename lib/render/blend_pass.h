@@ -31,7 +31,7 @@ class BlendPass : public FramePass {
     // `keepEvaluated`: with Eval::Vertex, also evaluate every point into buffers (--wire draws
     // lines through them, --mesh-out reads them). `trim`: the atlas for the mesh's faces.
     BlendPass(gpu::Context& ctx, BlendDraw draw, Eval eval, bool keepEvaluated,
-              const std::optional<TrimMask>& trim);
+              const std::optional<TrimMask>& trim, gpu::TargetFormat target = {});
     ~BlendPass() override;
 
     // The control points are copied here every frame like for every surface; the blending

@@ -18,7 +18,7 @@ uint64_t bytes(const std::vector<T>& v) {
 } // namespace
 
 struct ControlMeshPass::Gpu {
-    Gpu(gpu::Context& ctx, const ControlMeshDraw& d)
+    Gpu(gpu::Context& ctx, const ControlMeshDraw& d, gpu::TargetFormat target)
         : vertices(ctx, {"vertices", bytes(d.controlPoints)}),
           faceOffsets(ctx, {"face offsets", bytes(d.faceOffsets)}),
           faceVertices(ctx, {"face vertices", bytes(d.faceVertices)}),
@@ -27,9 +27,10 @@ struct ControlMeshPass::Gpu {
           triangles(ctx, {"triangle indices", bytes(d.triangles), gpu::kIndex}),
           edges(ctx, {"edge indices", bytes(d.edges), gpu::kIndex}),
           faceNormalsPass(ctx, {"face normals", face_normals_comp_spv, 4, sizeof(VertexPush)}),
-          meshPipeline(ctx, {"mesh", mesh_vert_spv, mesh_frag_spv, 4, sizeof(DrawPush)}),
+          meshPipeline(ctx, {"mesh", mesh_vert_spv, mesh_frag_spv, 4, sizeof(DrawPush)}, target),
           wirePipeline(ctx, {"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
-                             gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false}) {
+                             gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
+                       target) {
         normalBindings = faceNormalsPass.bind({vertices, faceOffsets, faceVertices, faceNormals});
         meshBindings = meshPipeline.bind({vertices, faceNormals, corners, uvs});
         wireBindings = wirePipeline.bind({vertices});
@@ -48,8 +49,8 @@ struct ControlMeshPass::Gpu {
     gpu::BindGroup normalBindings, meshBindings, wireBindings;
 };
 
-ControlMeshPass::ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw)
-    : ctx_(ctx), draw_(std::move(draw)), gpu_(std::make_unique<Gpu>(ctx, draw_)) {}
+ControlMeshPass::ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, gpu::TargetFormat target)
+    : ctx_(ctx), draw_(std::move(draw)), gpu_(std::make_unique<Gpu>(ctx, draw_, target)) {}
 
 ControlMeshPass::~ControlMeshPass() = default;
 

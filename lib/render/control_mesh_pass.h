@@ -12,7 +12,7 @@ namespace limn::render {
 
 class ControlMeshPass : public FramePass {
 public:
-    ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw);
+    ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, gpu::TargetFormat target = {});
     ~ControlMeshPass() override;
 
     const gpu::Buffer& vertexBuffer() const override;

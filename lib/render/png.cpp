@@ -3,6 +3,7 @@
 #include "base/error.h"
 #include "image/image_file.h"
 #include "image/png_encode.h"
+#include "render/output_image.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,6 +36,14 @@ std::vector<uint8_t> encodePng(const Image& image) {
     if (image.pixels.size() != size_t(image.width) * image.height * image.channels)
         throw Error(ErrorKind::BadInput, "internal: image size does not match its pixels");
     return encodePng8(image.width, image.height, image.channels, image.pixels);
+}
+
+std::vector<uint8_t> encodePng(const Image16& image) {
+    if (image.channels != 1 && image.channels != 3 && image.channels != 4)
+        throw Error(ErrorKind::BadInput, "PNG output needs 1, 3 or 4 channels");
+    if (image.samples.size() != size_t(image.width) * image.height * image.channels)
+        throw Error(ErrorKind::BadInput, "internal: image size does not match its pixels");
+    return encodePng16(image.width, image.height, image.channels, image.samples);
 }
 
 Image decodePng(std::span<const uint8_t> bytes) {

@@ -20,6 +20,8 @@ struct Image {
 };
 
 std::vector<uint8_t> encodePng(const Image& image);
+struct Image16;
+std::vector<uint8_t> encodePng(const Image16& image); // 16 bits per sample, sRGB-encoded
 // Throws Error(BadInput) when the bytes are not a PNG OpenImageIO can read (through lib/image's
 // plugin; Error(Capability) when that cannot be loaded). Any bit depth is converted to 8 bits;
 // the channel count is kept.

@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include "base/cli.h"
 #include "base/error.h"
 #include "blend/blend_surface.h"
 #include "render/blend_pass.h"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace limn::render {
 
@@ -22,10 +24,6 @@ struct VertexPush {
     uint32_t firstVertex;
 };
 
-double srgbToLinear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
 constexpr float kWirePull = 2e-3f; // fraction of the distance to the eye
 
 } // namespace
@@ -34,11 +32,11 @@ constexpr float kWirePull = 2e-3f; // fraction of the distance to the eye
 // the pass's vertex buffer, the render target and the command buffer.
 struct Renderer::Gpu {
     Gpu(gpu::Context& ctx, uint64_t controlBytes, const gpu::Buffer& vertices, uint32_t width,
-        uint32_t height)
+        uint32_t height, gpu::TargetFormat format, bool depth)
         : staging(ctx, {"control point staging", controlBytes, 0, gpu::MemoryKind::Upload}),
           controlPoints(ctx, {"control points", controlBytes}),
           copyPoints(ctx, {"copy control points", copy_points_comp_spv, 2, sizeof(VertexPush)}),
-          target(ctx, width, height), cmd(ctx) {
+          target(ctx, width, height, format, depth), cmd(ctx) {
         copyBindings = copyPoints.bind({controlPoints, {vertices, 0, controlBytes}});
     }
     gpu::Buffer staging, controlPoints;
@@ -59,9 +57,57 @@ void checkUvShade(const Mesh& mesh, const RenderSettings& settings) {
 
 } // namespace
 
+void Renderer::checkImageSize(const gpu::Context& ctx) {
+    const RenderSettings& s = settings_;
+    if (s.samples != 1 && s.samples != 4)
+        throw Error(ErrorKind::Usage, "--samples must be 1 or 4 (the counts WebGPU offers), not " +
+                                          std::to_string(s.samples));
+    if (s.supersample < 1 || s.supersample > 4)
+        throw Error(ErrorKind::Usage, "--supersample must be 1 to 4");
+    const uint64_t w = uint64_t(s.width) * s.supersample, h = uint64_t(s.height) * s.supersample;
+    const uint32_t max = ctx.limits().maxImageDimension2D;
+    if (w > max || h > max)
+        throw Error(ErrorKind::Usage,
+                    "--size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                        (s.supersample > 1 ? " with --supersample " + std::to_string(s.supersample) +
+                                                 " draws " + std::to_string(w) + "x" + std::to_string(h)
+                                           : std::string()) +
+                        ", beyond this device's largest image (" + std::to_string(max) +
+                        " pixels a side); lower --size or --supersample");
+    drawWidth_ = uint32_t(w);
+    drawHeight_ = uint32_t(h);
+    const bool floatTarget = s.floatOutput || s.supersample > 1 || (s.alpha && s.samples > 1);
+    targetFormat_.color = floatTarget ? gpu::RenderTarget::kLinearFormat : gpu::RenderTarget::kColorFormat;
+    targetFormat_.samples = s.samples;
+    if (!(ctx.limits().colorSampleCounts & s.samples) || !(ctx.limits().depthSampleCounts & s.samples))
+        throw Error(ErrorKind::Capability, "the device " + ctx.deviceName() + " cannot draw with " +
+                                               std::to_string(s.samples) +
+                                               " samples per pixel; use --samples 1");
+    // The target on the device, then on the host: the padded readback copy, the float image
+    // (16 bytes a pixel, 4 more with depth) and, supersampled, the filtered one.
+    const uint64_t pixels = w * h;
+    imageBytes_ = gpu::RenderTarget::estimateBytes(drawWidth_, drawHeight_, targetFormat_, s.depth) +
+                  (floatTarget ? pixels * (16 + (s.depth ? 4 : 0)) : 0) +
+                  uint64_t(s.width) * s.height * (s.supersample > 1 ? 20 : 0);
+    uint64_t budget = s.maxImageBytes;
+    if (!budget) {
+        budget = cli::defaultMemoryBudget();
+        if (ctx.limits().deviceLocalHeapBytes)
+            budget = std::min(budget, ctx.limits().deviceLocalHeapBytes);
+    }
+    if (imageBytes_ > budget)
+        throw Error(ErrorKind::BadInput,
+                    "a " + std::to_string(drawWidth_) + "x" + std::to_string(drawHeight_) + " image with " +
+                        std::to_string(s.samples) + " sample" + (s.samples > 1 ? "s" : "") +
+                        " per pixel needs about " + cli::formatBytes(imageBytes_) + ", more than the " +
+                        cli::formatBytes(budget) +
+                        " allowed (--max-memory); lower --size, --samples or --supersample");
+}
+
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
                    const RenderSettings& settings)
     : ctx_(ctx), settings_(settings) {
+    checkImageSize(ctx);
     checkUvShade(mesh, settings);
     if (settings.shade == Shade::Levels && !tables)
         throw Error(ErrorKind::BadInput,
@@ -106,7 +152,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
                 for (int k = 0; k < 4; ++k) minimum += e.sideCount[k];
             const double p = std::max(settings.edgePixels, 0.25);
             const uint64_t view = std::max<uint64_t>(
-                uint64_t(32.0 * settings.width * settings.height / (p * p)), uint64_t(1) << 20);
+                uint64_t(32.0 * drawWidth_ * drawHeight_ / (p * p)), uint64_t(1) << 20);
             adaptive.maxVertices = minimum + draw.pieces.elements.size() + view;
             adaptive.maxTriangles = minimum + 2 * view;
         }
@@ -122,14 +168,14 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             settings.evalInCompute ? SubdivisionPass::Eval::Compute : SubdivisionPass::Eval::Vertex,
             settings.evaluateVertices || settings.wire, settings.shade == Shade::Levels,
             settings.displacementMap ? &displacement : nullptr, settings.texture,
-            viewAdaptive_ ? &adaptive : nullptr);
+            viewAdaptive_ ? &adaptive : nullptr, targetFormat_);
     } else {
         if (settings.texture)
             throw Error(ErrorKind::BadInput,
                         "--texture is drawn on the subdivision surface; run limn-tables first");
         ControlMeshDraw draw = prepareControlMesh(mesh);
         bounds = draw.bounds;
-        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw));
+        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw), targetFormat_);
     }
     finishSetup(mesh, bounds);
 }
@@ -137,6 +183,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurface& surface,
                    const RenderSettings& settings)
     : ctx_(ctx), settings_(settings) {
+    checkImageSize(ctx);
     checkUvShade(mesh, settings);
     if (settings.displacementMap || settings.texture || settings.shade == Shade::Texture)
         throw Error(ErrorKind::Usage,
@@ -148,7 +195,8 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurfac
     pass_ = std::make_unique<BlendPass>(ctx, std::move(draw),
                                         settings.evalInCompute ? BlendPass::Eval::Compute
                                                                : BlendPass::Eval::Vertex,
-                                        settings.evaluateVertices || settings.wire, settings.trim);
+                                        settings.evaluateVertices || settings.wire, settings.trim,
+                                        targetFormat_);
     finishSetup(mesh, bounds);
 }
 
@@ -160,7 +208,8 @@ void Renderer::finishSetup(const Mesh& mesh, const Bounds& bounds) {
     faces_.faceVertices = mesh.faceVertices;
     camera_ = cameraFor(settings_.view);
     gpu_ = std::make_unique<Gpu>(ctx_, controlPoints_.size() * sizeof(glm::vec4),
-                                 pass_->vertexBuffer(), settings_.width, settings_.height);
+                                 pass_->vertexBuffer(), drawWidth_, drawHeight_, targetFormat_,
+                                 settings_.depth);
 }
 
 Renderer::~Renderer() = default;
@@ -207,7 +256,8 @@ void Renderer::recordUpload() {
 void Renderer::recordCompute() {
     auto& g = *gpu_;
     const glm::mat4 vp(camera_.viewProjection(double(settings_.width) / settings_.height));
-    pass_->setView(vp, camera_.eye, settings_.width, settings_.height);
+    // The view-adaptive tessellation sizes its segments in drawn (supersampled) pixels.
+    pass_->setView(vp, camera_.eye, drawWidth_, drawHeight_);
     timed_.begin(g.cmd, "copy control points", true);
     g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(controlPoints_.size()),
                    VertexPush{0});
@@ -252,6 +302,9 @@ void Renderer::recordDraw() {
     for (int i = 0; i < 3; ++i)
         clear[i] = static_cast<float>(srgbToLinear(settings_.background[i]));
     clear[3] = settings_.alpha ? 0.0f : 1.0f;
+    // The float target averages premultiplied colour (MSAA resolve, box filter): a transparent
+    // background is black there, and image() puts the background colour back.
+    if (settings_.alpha && targetFormat_.color == gpu::RenderTarget::kLinearFormat) clear = {};
 
     timed_.begin(g.cmd, "draw", false);
     g.cmd.beginRendering(g.target, clear);
@@ -281,7 +334,51 @@ void Renderer::renderFrame() {
     g.cmd.submitAndWait();
 }
 
+LinearImage Renderer::drawnLinear() const {
+    const auto& t = gpu_->target;
+    LinearImage out;
+    out.width = t.width();
+    out.height = t.height();
+    const size_t n = size_t(out.width) * out.height;
+    out.rgba.resize(n * 4);
+    const auto bytes = t.pixels();
+    if (t.format().color == gpu::RenderTarget::kLinearFormat) {
+        for (size_t i = 0; i < n * 4; ++i) {
+            uint16_t h;
+            std::memcpy(&h, &bytes[2 * i], 2);
+            out.rgba[i] = halfToFloat(h);
+        }
+    } else { // 8-bit sRGB (alpha 0 or 1 here: no MSAA with --alpha on this target)
+        for (size_t i = 0; i < n; ++i) {
+            const float a = bytes[4 * i + 3] / 255.0f;
+            for (int c = 0; c < 3; ++c)
+                out.rgba[4 * i + c] = float(srgbToLinear(bytes[4 * i + c] / 255.0)) * a;
+            out.rgba[4 * i + 3] = a;
+        }
+    }
+    if (t.readsDepth()) {
+        // perspectiveRH_ZO maps the distance z along the view direction to
+        // d = f (z - n) / (z (f - n)), so z = f n / (f - d (f - n)); the cleared 1 is +Inf.
+        const double nearP = camera_.nearPlane, farP = camera_.farPlane;
+        auto d = t.depth();
+        out.depth.resize(n);
+        for (size_t i = 0; i < n; ++i)
+            out.depth[i] = d[i] >= 1.0f ? std::numeric_limits<float>::infinity()
+                                        : float(farP * nearP / (farP - double(d[i]) * (farP - nearP)));
+    }
+    return out;
+}
+
+LinearImage Renderer::linearImage() const {
+    return boxFilter(drawnLinear(), settings_.supersample);
+}
+
 Image Renderer::image() const {
+    if (targetFormat_.color == gpu::RenderTarget::kLinearFormat) {
+        std::vector<float> background(3);
+        for (int i = 0; i < 3; ++i) background[i] = float(srgbToLinear(settings_.background[i]));
+        return toSrgb8(linearImage(), settings_.alpha, background);
+    }
     Image img;
     img.width = settings_.width;
     img.height = settings_.height;

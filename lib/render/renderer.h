@@ -22,6 +22,7 @@
 #include "render/camera.h"
 #include "render/control_mesh.h"
 #include "render/frame_pass.h"
+#include "render/output_image.h"
 #include "render/ply.h"
 #include "render/png.h"
 #include "render/texture_image.h"
@@ -69,6 +70,21 @@ struct RenderSettings {
     const FloatImage* texture = nullptr;
     // Faces seen from behind drawn flat in this sRGB colour (--back-faces), for crack counts.
     std::optional<glm::dvec3> backFaceColor;
+    // Anti-aliasing (issue 12). `samples`: MSAA samples per pixel, 1 or 4 (WebGPU's counts),
+    // resolved on the GPU; limn-render's default is 4, the library's 1 keeps callers that count
+    // exact pixels unchanged. `supersample` K (1..4): draws K*width x K*height and box-filters
+    // each K x K block in linear light on the CPU (render/output_image.h).
+    uint32_t samples = 1;
+    uint32_t supersample = 1;
+    // Whether linearImage() is wanted (16-bit PNG, EXR): the frame is drawn into an RGBA16F
+    // target in linear light. Supersampling and --alpha with MSAA use that target too (they
+    // average in linear light, with premultiplied alpha); otherwise an 8-bit PNG comes straight
+    // from an RGBA8 sRGB target.
+    bool floatOutput = false;
+    bool depth = false; // keep the depth for LinearImage::depth (EXR Z)
+    // The most bytes the render target and its CPU-side copies may take (0: the smaller of half
+    // the machine's memory and the largest device-local heap); more is refused before any work.
+    uint64_t maxImageBytes = 0;
 };
 
 // GPU milliseconds of one frame; NaN when the device has no timestamps.
@@ -95,8 +111,13 @@ class Renderer {
     // Records, submits and waits for one whole frame.
     void renderFrame();
 
-    // The last frame's image (RGB, or RGBA with settings.alpha).
+    // The last frame's image (RGB, or RGBA with settings.alpha), 8-bit sRGB.
     Image image() const;
+    // The last frame's image in linear light, premultiplied, with depth when settings.depth
+    // (after the supersample filter; any target).
+    LinearImage linearImage() const;
+    // What the target takes (RenderTarget::estimateBytes plus the CPU-side float copies).
+    uint64_t imageBytes() const { return imageBytes_; }
     // The last frame's triangles, read back from the GPU buffers the draw used.
     DrawnMesh drawnMesh();
     FrameTimes frameTimes() const;
@@ -125,7 +146,9 @@ class Renderer {
     uint64_t bufferBytes() const;
 
   private:
+    void checkImageSize(const gpu::Context& ctx);
     void finishSetup(const Mesh& mesh, const Bounds& bounds);
+    LinearImage drawnLinear() const; // before the supersample filter
     void recordUpload();
     void recordCompute();
     void recordDraw();
@@ -143,6 +166,10 @@ class Renderer {
     std::unique_ptr<Gpu> gpu_;
     TimedPasses timed_;
     bool viewAdaptive_ = false;
+    // The drawn size (width, height times the supersample factor) and the target's format.
+    uint32_t drawWidth_ = 0, drawHeight_ = 0;
+    gpu::TargetFormat targetFormat_;
+    uint64_t imageBytes_ = 0;
 };
 
 } // namespace limn::render

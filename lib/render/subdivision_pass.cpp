@@ -68,7 +68,8 @@ using gpu::uploadBufferNow; // absent tables get one zero element
 
 struct SubdivisionPass::Gpu {
     Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate, const Displacement* disp,
-        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions)
+        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions,
+        gpu::TargetFormat target)
         : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
           faceStarts(uploadBufferNow(ctx, "face-point starts", d.faceStarts)),
           faceIndices(uploadBufferNow(ctx, "face-point indices", d.faceIndices)),
@@ -90,9 +91,10 @@ struct SubdivisionPass::Gpu {
           facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
           stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
           limitPass(ctx, {"limit points", subdiv_limit_comp_spv, 5, sizeof(LimitPush)}),
-          surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 8, sizeof(DrawPush)}),
+          surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 8, sizeof(DrawPush)}, target),
           surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surface_frag_spv, 8,
-                             sizeof(DrawPush)}) {
+                             sizeof(DrawPush)},
+                       target) {
         // View-adaptive: the tessellation is written by compute passes each frame (issue 11).
         if (adaptiveOptions) {
             AdaptiveOptions options = *adaptiveOptions;
@@ -120,7 +122,8 @@ struct SubdivisionPass::Gpu {
                                            *evalPositions, *evalNormals, *evalInfo});
             wire = std::make_unique<gpu::GraphicsPipeline>(
                 ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
-                                               gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false});
+                                               gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
+                target);
             drawnPositions = evalPositions.get();
             drawnNormals = evalNormals.get();
             if (disp && adaptive) {
@@ -194,9 +197,10 @@ struct SubdivisionPass::Gpu {
 
 SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
                                  bool keepEvaluated, bool levels, const Displacement* displacement,
-                                 const FloatImage* texture, const AdaptiveOptions* adaptive)
+                                 const FloatImage* texture, const AdaptiveOptions* adaptive,
+                                 gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
-      levels_(levels) {
+      levels_(levels), target_(target) {
     if (displacement) {
         if (eval != Eval::Compute)
             throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
@@ -208,7 +212,7 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
     if (adaptive && !draw_.adaptive)
         throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data "
                                          "prepared for it");
-    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive);
+    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target);
     mayCullBackFaces_ = adaptive && adaptive->backFaceCull && draw_.closed;
     if (mayCullBackFaces_) orientation_ = draw_.orientation;
 }
@@ -229,7 +233,8 @@ const gpu::GraphicsPipeline& SubdivisionPass::culledPipeline(float facing) {
                                             fetch ? std::span<const uint32_t>(surface_fetch_vert_spv)
                                                   : std::span<const uint32_t>(surface_vert_spv),
                                             surface_frag_spv, 8, sizeof(DrawPush), gpu::Primitive::Triangles,
-                                            gpu::DepthTest::Less, true, facing > 0 ? gpu::Cull::Back : gpu::Cull::Front});
+                                            gpu::DepthTest::Less, true, facing > 0 ? gpu::Cull::Back : gpu::Cull::Front},
+            target_);
     }
     return *slot;
 }

@@ -31,7 +31,7 @@ public:
     };
     SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval, bool keepEvaluated, bool levels,
                     const Displacement* displacement = nullptr, const FloatImage* texture = nullptr,
-                    const AdaptiveOptions* adaptive = nullptr);
+                    const AdaptiveOptions* adaptive = nullptr, gpu::TargetFormat target = {});
     ~SubdivisionPass() override;
 
     const gpu::Buffer& vertexBuffer() const override;
@@ -58,6 +58,7 @@ private:
     AdaptiveView view_;
     float orientation_ = 0; // sign of the control mesh's volume where back faces may be culled
     bool mayCullBackFaces_ = false; // closed, and culling asked for
+    gpu::TargetFormat target_; // what every draw pipeline, the lazily made culled ones too, targets
     mutable AdaptiveTotals totals_;
     mutable bool totalsRead_ = false;
     struct Gpu;

@@ -214,4 +214,35 @@ TEST_F(Gpu, RenderTargetReadbackHonoursRowPitch) {
     EXPECT_THROW(RenderTarget(*ctx, 0, 10), Error);
 }
 
+// A 4-sample RGBA16F target with depth kept: the clear is resolved into the single-sample images
+// (colour averaged, depth sample 0), copied out through 8-byte and 4-byte padded rows.
+TEST_F(Gpu, MultisampledFloatTargetResolvesColourAndDepth) {
+    const TargetFormat format{RenderTarget::kLinearFormat, 4};
+    RenderTarget target(*ctx, 37, 5, format, true);
+    EXPECT_EQ(target.rowPitch(), 512u);  // 37 * 8 = 296 -> 512
+    EXPECT_EQ(target.depthRowPitch(), 256u);
+    EXPECT_NE(target.colorResolveImage(), VK_NULL_HANDLE);
+    EXPECT_NE(target.depthResolveImage(), VK_NULL_HANDLE);
+    // Samples x (colour 8 + depth 4), the two resolves, both readbacks.
+    EXPECT_EQ(RenderTarget::estimateBytes(37, 5, format, true),
+              37u * 5 * (4 * 12 + 8 + 4) + 512u * 5 + 256u * 5);
+    CommandBuffer cmd(*ctx);
+    cmd.begin();
+    cmd.beginRendering(target, {0.25f, 0.5f, 2.0f, 0.0f}); // float: 2 is kept, not clamped
+    cmd.endRendering();
+    cmd.copyToReadback(target);
+    cmd.submitAndWait();
+    auto px = target.pixels();
+    ASSERT_EQ(px.size(), 37u * 5 * 8);
+    // binary16 bits of 0.25, 0.5, 2, 0.
+    const uint16_t expected[4] = {0x3400, 0x3800, 0x4000, 0x0000};
+    for (size_t i = 0; i < px.size(); i += 2)
+        ASSERT_EQ(uint16_t(px[i] | (px[i + 1] << 8)), expected[(i / 2) % 4]) << i;
+    auto depth = target.depth();
+    ASSERT_EQ(depth.size(), 37u * 5);
+    for (float d : depth) ASSERT_EQ(d, 1.0f);
+    // WebGPU has 1 and 4 samples only.
+    EXPECT_THROW(RenderTarget(*ctx, 8, 8, TargetFormat{RenderTarget::kColorFormat, 2}), Error);
+}
+
 } // namespace

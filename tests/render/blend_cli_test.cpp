@@ -62,7 +62,10 @@ Mesh bentGrid() {
 }
 const std::vector<std::string> kTopView = {"--eye",  "2,2,9",  "--target",     "2,2,0",
                                            "--fov",  "40",     "--background", "1,0,1",
-                                           "--size", "160x160"};
+                                           "--size", "160x160",
+                                           // One sample per pixel: the exact-pixel checks rely
+                                           // on the rasterizer's top-left rule, not on coverage.
+                                           "--samples", "1"};
 constexpr std::array<int, 3> kMagenta = {255, 0, 255};
 
 // ----------------------------------------------------------------------------------------------

@@ -8,11 +8,13 @@
 #include "blend/blend_chunk.h"
 #include "container/container.h"
 #include "gpu/context.h"
+#include "image/image_file.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "render/bench.h"
 #include "render/blend_draw.h"
 #include "render/mesh_export.h"
+#include "render/output_image.h"
 #include "render/renderer.h"
 #include "render/sequence.h"
 #include "seams/seams.h"
@@ -26,6 +28,7 @@
 #include <iostream>
 #include <optional>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -210,6 +213,28 @@ class Progress {
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+// The last frame's image in the format its name asked for: 8- or 16-bit PNG, or EXR (linear
+// RGBA and camera-space Z).
+std::vector<uint8_t> encodeImage(const render::Renderer& renderer, render::ImageFormat format, int bitDepth,
+                                 const render::RenderSettings& settings) {
+    if (format == render::ImageFormat::Exr) {
+        const render::LinearImage li = renderer.linearImage();
+        const size_t n = size_t(li.width) * li.height;
+        std::vector<float> values(n * 5);
+        for (size_t i = 0; i < n; ++i) {
+            std::copy_n(&li.rgba[4 * i], 4, &values[5 * i]);
+            values[5 * i + 4] = li.depth[i];
+        }
+        return encodeExr(li.width, li.height, {"R", "G", "B", "A", "Z"}, values);
+    }
+    if (bitDepth == 16) {
+        std::vector<float> background(3);
+        for (int i = 0; i < 3; ++i) background[i] = float(render::srgbToLinear(settings.background[i]));
+        return render::encodePng(render::toSrgb16(renderer.linearImage(), settings.alpha, background));
+    }
+    return render::encodePng(renderer.image());
+}
+
 void removeFrames(const std::vector<std::string>& paths) {
     for (const std::string& p : paths) std::filesystem::remove(p);
 }
@@ -224,7 +249,8 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
                     const cli::Common& common, const std::string& meshOut,
                     const std::optional<render::MeshFormat>& meshFormat, bool meshAscii,
                     const gpu::ValidationLog* validation, std::vector<std::string>& written,
-                    const std::string& inputName) {
+                    const std::string& inputName, render::ImageFormat format, int bitDepth,
+                    const render::RenderSettings& settings) {
     const auto imagePattern = render::parseFramePattern("-o", common.output);
     std::optional<render::FramePattern> meshPattern;
     if (!meshOut.empty()) meshPattern = render::parseFramePattern("--mesh-out", meshOut);
@@ -243,7 +269,7 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
                 cli::warn(inputName + ": frame " + std::to_string(numbers[k]) + ": " + w);
             const std::string image = render::framePath(imagePattern, numbers[k]);
-            writeOutput(image, render::encodePng(renderer.image()), OutputFile::Kind::Binary);
+            writeOutput(image, encodeImage(renderer, format, bitDepth, settings), OutputFile::Kind::Binary);
             written.push_back(image);
             if (meshPattern) {
                 const std::string mesh = render::framePath(*meshPattern, numbers[k]);
@@ -284,13 +310,17 @@ int main(int argc, char** argv) {
         int bench = 0, tess = 64, grid = 16;
         uint32_t turntable = 0;
         std::string camerasPath, framesPattern;
+        int samples = 4, supersample = 1, bitDepth = 8;
+        bool bitDepthGiven = false;
+        uint64_t maxMemory = 0;
         double edgePixels = 4, benchOrbit = 0;
-        cli::Parser parser("limn-render", "[options] [INPUT|-] [-o OUTPUT.png] [--mesh-out FILE]",
+        cli::Parser parser("limn-render", "[options] [INPUT|-] [-o OUTPUT.png|.exr] [--mesh-out FILE]",
                            "Renders a .limn container (output of limn-classify, limn-tables, "
                            "limn-seams, limn-blend)\n"
                            "headlessly "
-                           "on Vulkan and writes a PNG: 8-bit sRGB, the same bytes for the same "
-                           "inputs and options.\n"
+                           "on Vulkan and writes a PNG (8- or 16-bit sRGB) or an OpenEXR (linear "
+                           "float RGBA + Z),\nanti-aliased (4x MSAA by default), the same bytes "
+                           "for the same inputs and options.\n"
                            "It draws the container's blending surface (limn-blend), else its "
                            "subdivision surface\n"
                            "(limn-tables), else its control mesh, flat shaded, with n-gons as "
@@ -436,6 +466,45 @@ int main(int argc, char** argv) {
                 "                            limn-trim): one square tile per face, in face order;\n"
                 "                            fragments where it is below 0.5 are discarded")
             .flag("--alpha", &alpha, "write RGBA with a transparent background (default RGB)")
+            .custom(
+                "--samples", "1|4",
+                [&](const std::string& v) {
+                    if (v != "1" && v != "4")
+                        usage("--samples: '" + v + "' is not 1 or 4 (the MSAA counts WebGPU offers)");
+                    samples = v == "1" ? 1 : 4;
+                },
+                "4",
+                "samples per pixel (Vulkan multisampling, resolved on the GPU: colour averaged\n"
+                "                            in linear light, alpha too; wire lines included); 1:\n"
+                "                            one sample at each pixel centre, no anti-aliasing, so\n"
+                "                            every pixel is exactly a surface or the background\n"
+                "                            (pixel-exact tests, crack counts with --back-faces)")
+            .integer("--supersample", "K", &supersample, 1, 4,
+                     "reference-quality stills: draw K*W x K*H (each with --samples), then average\n"
+                     "                            each K x K block on the CPU (a box filter, weights\n"
+                     "                            1/K^2, in linear light with premultiplied alpha)\n"
+                     "                            before encoding; K*W and K*H must fit the device's\n"
+                     "                            largest image (usage error otherwise). Segments of\n"
+                     "                            --edge-pixels and wire lines are in drawn pixels")
+            .custom(
+                "--bit-depth", "8|16",
+                [&](const std::string& v) {
+                    if (v != "8" && v != "16") usage("--bit-depth: '" + v + "' is not 8 or 16");
+                    bitDepth = v == "8" ? 8 : 16;
+                    bitDepthGiven = true;
+                },
+                "8",
+                "PNG samples: 8 (from an RGBA8 sRGB target) or 16 (from an RGBA16F linear\n"
+                "                            target, sRGB-encoded on the CPU: about 11 significant\n"
+                "                            bits of linear light, not 16); not with .exr")
+            .custom(
+                "--max-memory", "SIZE",
+                [&](const std::string& v) { maxMemory = cli::parseByteSize("--max-memory", v); },
+                "",
+                "most bytes the image may take (render target with its samples and resolves,\n"
+                "                            readback, CPU float copies), e.g. 512M, 2G; more is\n"
+                "                            refused before drawing [default: the smaller of half\n"
+                "                            the machine's memory and the device's memory]")
             .text("--device", "NAME", &device,
                   "Vulkan device: case-insensitive substring of its name [default: a discrete or\n"
                   "                            integrated GPU if present, else the CPU device "
@@ -477,7 +546,9 @@ int main(int argc, char** argv) {
             .real("--bench-orbit", "DEG", &benchOrbit, -360, 360,
                   "with --bench: turn the camera DEG degrees about its target before every frame")
             .notes(
-                "Output: -o FILE.png, or -o - for standard output (refused on a terminal). With\n"
+                "Output: -o FILE.png, -o FILE.exr, or -o - for standard output (PNG, refused on a\n"
+                "terminal; a device or FIFO such as /dev/null also gets PNG); any other extension\n"
+                "is a usage error and nothing is written. With\n"
                 "--bench, standard output carries the JSON and the image is written only with\n"
                 "-o FILE; with --mesh-out, only with -o FILE or -o -.\n"
                 "--mesh-out: the triangles as drawn, every file written atomically, the same bytes\n"
@@ -513,13 +584,22 @@ int main(int argc, char** argv) {
                 "the frames this run wrote. All frames are framed alike: for --frames the box of\n"
                 "every frame's control points. Progress (frame i/N, time left) goes to stderr\n"
                 "when it is a terminal.\n"
-                "--bench JSON: frames, gpu_ms {compute, draw, total} (GPU timestamps; total\n"
-                "includes upload and readback), passes {name: ms}, cpu_ms (host time per frame:\n"
-                "record, submit, wait), triangles, vertices_evaluated, buffer_bytes, peak_rss_mb,\n"
-                "device.\n"
+                "PNG: 8-bit (or --bit-depth 16) sRGB with an sRGB chunk; RGB, or RGBA with straight\n"
+                "alpha (--alpha). EXR (through the OpenImageIO plugin; exit 3 without it): 32-bit\n"
+                "float channels R, G, B, A, Z, ZIP compressed. R, G, B are linear light,\n"
+                "premultiplied by A (with --alpha the background is 0, 0, 0, 0; without, it is\n"
+                "the --background colour decoded to linear, A = 1).\n"
+                "Z is the camera-space depth: the distance from the eye along the view direction,\n"
+                "in world units, not anti-aliased (with --samples 4 the pixel's first sample,\n"
+                "with --supersample the nearest of the block's), +Inf where nothing was drawn.\n"
+                "--bench JSON: frames, samples, supersample, size, gpu_ms {compute, draw, total}\n"
+                "(GPU timestamps; total includes upload and readback), passes {name: ms}, cpu_ms\n"
+                "(host time per frame: record, submit, wait), triangles, vertices_evaluated,\n"
+                "buffer_bytes, peak_rss_mb, device.\n"
                 "Examples:\n"
                 "  limn-classify spot.obj | limn-render --view 45,30 --wire -o spot.png\n"
                 "  limn-render frog.limn --bench 50 --size 1920x1080\n"
+                "  limn-render frog.limn --supersample 2 -o still.exr   (linear RGBA + Z)\n"
                 "  limn-render frog.limn --mesh-out frog.glb      (the drawn mesh only, no image)\n"
                 "  limn-classify spot.obj | limn-blend --quadrangulate | limn-render --grid 8 -o "
                 "s.png\n"
@@ -532,7 +612,8 @@ int main(int argc, char** argv) {
                          "  1  bad input, failed processing or Vulkan validation errors\n"
                          "  2  usage error (including binary output to a terminal)\n"
                          "  3  missing capability: no Vulkan loader or device, no device matching\n"
-                         "     --device, validation layer not installed\n");
+                         "     --device, validation layer not installed, OpenImageIO plugin\n"
+                         "     missing for -o FILE.exr, device without --samples 4\n");
         if (!parser.parse(ac, av)) return 0;
 
         if (settings.view.eye && viewGiven) usage("--view and --eye exclude each other");
@@ -565,6 +646,9 @@ int main(int argc, char** argv) {
         if (shade == "texture") settings.shade = render::Shade::Texture;
         settings.wire = wire;
         settings.alpha = alpha;
+        settings.samples = static_cast<uint32_t>(samples);
+        settings.supersample = static_cast<uint32_t>(supersample);
+        settings.maxImageBytes = maxMemory;
         if (bench && isStdio(common.output) && !common.output.empty())
             usage("--bench prints JSON on standard output; write the image with -o FILE");
         std::optional<render::MeshFormat> meshFormat;
@@ -585,6 +669,29 @@ int main(int argc, char** argv) {
             (bench || (writeImage && isStdio(common.output))))
             usage("--mesh-out - and the image (or --bench JSON) cannot share standard output");
         if (common.output.empty() && writeImage) common.output = "-";
+        // The image format comes from the name, before any work; never silently another one.
+        render::ImageFormat imageFormat = render::ImageFormat::Png;
+        if (writeImage) {
+            // A device or pipe (-o /dev/null, a FIFO) is a stream like standard output: PNG.
+            struct stat st {};
+            const bool stream = !isStdio(common.output) && ::stat(common.output.c_str(), &st) == 0 &&
+                                (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode));
+            auto f = stream ? std::optional(render::ImageFormat::Png)
+                            : render::imageFormatFromPath(common.output);
+            if (!f)
+                throw Error(ErrorKind::Usage,
+                            std::string("unknown image extension; limn-render writes ") +
+                                render::kImageFormats + " (or - for PNG on standard output)",
+                            common.output);
+            imageFormat = *f;
+        }
+        if (bitDepthGiven && (!writeImage || imageFormat == render::ImageFormat::Exr))
+            usage(writeImage ? "--bit-depth sets PNG samples; an .exr is always 32-bit float"
+                             : "--bit-depth applies to the image, and none is written");
+        settings.floatOutput = writeImage && (imageFormat == render::ImageFormat::Exr || bitDepth == 16);
+        settings.depth = writeImage && imageFormat == render::ImageFormat::Exr;
+        // Without the OpenImageIO plugin no .exr can be written: fail before any file exists.
+        if (settings.depth) requireImageWriter();
         const Surface surface = surfaceName == "blend"         ? Surface::Blend
                                 : surfaceName == "subdivision" ? Surface::Subdivision
                                 : surfaceName == "control"     ? Surface::Control
@@ -738,11 +845,14 @@ int main(int argc, char** argv) {
 
             if (sequence) {
                 renderSequence(renderer, settings.view, views, frames, frameNumbers, common, meshOut, meshFormat,
-                               meshAscii, validation.get(), written, displayName(input));
+                               meshAscii, validation.get(), written, displayName(input), imageFormat,
+                               bitDepth, settings);
             } else if (bench) {
                 render::BenchResult b = render::runBenchmark(renderer, bench, 3, benchOrbit);
                 JsonWriter j;
                 j.beginObject().field("frames", b.frames);
+                j.field("samples", settings.samples).field("supersample", settings.supersample);
+                j.field("size", std::to_string(settings.width) + "x" + std::to_string(settings.height));
                 j.key("gpu_ms").beginObject();
                 j.field("compute", b.computeMs).field("draw", b.drawMs).field("total", b.totalMs);
                 j.endObject();
@@ -768,7 +878,7 @@ int main(int argc, char** argv) {
                 std::snprintf(ms, sizeof ms, "%.3f", p.ms);
                 cli::info("GPU " + p.name + ": " + ms + " ms");
             }
-            if (writeImage) pngBytes = render::encodePng(renderer.image());
+            if (writeImage) pngBytes = encodeImage(renderer, imageFormat, bitDepth, settings);
             if (ply) {
                 if (in.blend && in.mesh.hasUVs())
                     cli::info("--mesh-out: a blending surface shares its vertices across faces; "
