@@ -1,0 +1,188 @@
+// Sequences in one run (issue 12): limn-render --turntable, --cameras and --frames as users run
+// them. Every frame must be the same bytes as a single render with that frame's camera and mesh
+// (the renderer keeps its tables and buffers; only the camera or the control points change), and
+// bad sequences fail before writing, or leave nothing behind.
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+using namespace limn::test;
+
+namespace {
+
+std::string bin(const std::string& name) { return tool(name).string(); }
+
+// The built-in twisting torus, its frames in dir/twist/, and tables of depth 2 made from frame 0.
+struct Twist {
+    ScratchDir dir;
+    std::string limn;
+    Twist() {
+        auto r = run({bin("limn-examples"), "-o", dir.path().string(), "--only", "twist"});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        limn = (dir / "twist.limn").string();
+        r = run({bin("limn-tables"), (dir / "twist" / "twist_0000.obj").string(), "--depth", "2", "-q", "-o", limn});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+    }
+    std::string frame(int k) const {
+        char name[32];
+        std::snprintf(name, sizeof name, "twist_%04d.obj", k);
+        return (dir / "twist" / name).string();
+    }
+};
+
+std::vector<std::string> files(const std::filesystem::path& dir) {
+    std::vector<std::string> out;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) out.push_back(e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+const std::vector<std::string> kSmall = {"--size", "96x72", "--validate"};
+
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+} // namespace
+
+TEST(Turntable, EveryFrameIsTheSingleRenderOfItsView) {
+    Twist t;
+    ScratchDir out;
+    auto r = run(with({bin("limn-render"), t.limn, "--turntable", "4", "--view", "10,25", "-o",
+                       (out / "spin_%02d.png").string()}, kSmall));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(files(out.path()), (std::vector<std::string>{"spin_00.png", "spin_01.png", "spin_02.png", "spin_03.png"}));
+    const char* azimuths[] = {"10", "100", "190", "280"};
+    for (int k = 0; k < 4; ++k) {
+        const auto single = out / ("single_" + std::to_string(k) + ".png");
+        r = run(with({bin("limn-render"), t.limn, "--view", std::string(azimuths[k]) + ",25", "-o", single.string()},
+                     kSmall));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        char name[32];
+        std::snprintf(name, sizeof name, "spin_%02d.png", k);
+        EXPECT_EQ(readBytes(single), readBytes(out / name)) << "frame " << k;
+    }
+    // The views differ (the object turns), and the same command gives the same bytes.
+    EXPECT_NE(readBytes(out / "spin_00.png"), readBytes(out / "spin_01.png"));
+    ScratchDir again;
+    r = run(with({bin("limn-render"), t.limn, "--turntable", "4", "--view", "10,25", "-o",
+                  (again / "spin_%02d.png").string()}, kSmall));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const auto& name : files(again.path())) EXPECT_EQ(readBytes(again / name), readBytes(out / name)) << name;
+}
+
+TEST(Frames, EveryFrameIsTheSingleRenderOfItsMeshWithTheSameTables) {
+    Twist t;
+    ScratchDir out;
+    const std::vector<std::string> camera = {"--eye", "2,3,4", "--target", "0,0,0"};
+    for (const char* edgePixels : {"4", "0"}) {
+        const std::string tag = std::string("ep") + edgePixels + "_";
+        auto r = run(with(with({bin("limn-render"), t.limn, "--frames", (t.dir / "twist" / "twist_%04d.obj").string(),
+                                "--edge-pixels", edgePixels, "-o", (out / (tag + "%04d.png")).string(),
+                                "--depfile", (out / (tag + "frames.d")).string()},
+                               kSmall),
+                          camera));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        // Frames 0, 7 and 23 against a single render of that frame's mesh through the whole
+        // pipeline (its own classification and tables: the same, since they are topology only).
+        for (int k : {0, 7, 23}) {
+            const std::string limn = (out / ("single" + std::to_string(k) + ".limn")).string();
+            r = run({bin("limn-tables"), t.frame(k), "--depth", "2", "-q", "-o", limn});
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            const auto single = out / (tag + "single" + std::to_string(k) + ".png");
+            r = run(with(with({bin("limn-render"), limn, "--edge-pixels", edgePixels, "-o", single.string()}, kSmall),
+                         camera));
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            char name[32];
+            std::snprintf(name, sizeof name, "%04d.png", k);
+            EXPECT_EQ(readBytes(single), readBytes(out / (tag + name))) << "frame " << k << ", --edge-pixels " << edgePixels;
+        }
+        // The depfile names every frame and every frame mesh.
+        const std::string dep = readFile(out / (tag + "frames.d"));
+        EXPECT_NE(dep.find(tag + "0023.png"), std::string::npos) << dep;
+        EXPECT_NE(dep.find("twist_0023.obj"), std::string::npos) << dep;
+    }
+}
+
+TEST(Frames, DefaultFramingHoldsEveryFrame) {
+    Twist t;
+    ScratchDir out;
+    auto r = run(with({bin("limn-render"), t.limn, "--frames", (t.dir / "twist" / "twist_%04d.obj").string(), "-o",
+                       (out / "f%d.png").string(), "--background", "0,0,0"},
+                      kSmall));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(files(out.path()).size(), 24u);
+}
+
+TEST(Cameras, EveryLineIsTheSingleRenderOfThatCamera) {
+    Twist t;
+    ScratchDir out;
+    const auto cams = out / "cams.txt";
+    std::ofstream(cams) << "# eye target up fov\n0 0 4  0 0 0  0 1 0\n3,1,2, 0,0.2,0, 0,0,1, 50\n";
+    auto r = run(with({bin("limn-render"), t.limn, "--cameras", cams.string(), "-o", (out / "cam_%d.png").string()},
+                      kSmall));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::vector<std::string>> singles = {
+        {"--eye", "0,0,4", "--target", "0,0,0", "--up", "0,1,0"},
+        {"--eye", "3,1,2", "--target", "0,0.2,0", "--up", "0,0,1", "--fov", "50"}};
+    for (size_t k = 0; k < singles.size(); ++k) {
+        const auto single = out / ("single" + std::to_string(k) + ".png");
+        r = run(with(with({bin("limn-render"), t.limn, "-o", single.string()}, kSmall), singles[k]));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_EQ(readBytes(single), readBytes(out / ("cam_" + std::to_string(k) + ".png"))) << k;
+    }
+}
+
+TEST(SequenceErrors, RefusedBeforeAnyFileIsWritten) {
+    Twist t;
+    ScratchDir out;
+    const std::string o = (out / "x_%04d.png").string(), frames = (t.dir / "twist" / "twist_%04d.obj").string();
+    const auto cams = out / "bad.txt";
+    std::ofstream(cams) << "0 0 4 0 0 0 0 1 0\n0 0 4 0 0 0 0 1\n";
+    const struct {
+        std::vector<std::string> args;
+        int exit;
+        const char* words;
+    } cases[] = {
+        {{"--turntable", "4", "-o", (out / "plain.png").string()}, 2, "needs one frame number"},
+        {{"--turntable", "4", "-o", "-"}, 2, "one image per frame"},
+        {{"--turntable", "0", "-o", o}, 2, "--turntable"},
+        {{"--turntable", "4x", "-o", o}, 2, "--turntable"},
+        {{"-o", o}, 2, "numbers frames"},
+        {{"--turntable", "4", "--frames", frames, "-o", o}, 2, "exclude each other"},
+        {{"--turntable", "4", "--eye", "1,2,3", "-o", o}, 2, "leave out --eye"},
+        {{"--cameras", cams.string(), "--view", "10,10", "-o", o}, 2, "leave out --view"},
+        {{"--turntable", "4", "--bench", "3", "-o", o}, 2, "--bench"},
+        {{"--turntable", "4", "-o", (out / "x_%04d.jpg").string()}, 2, "unknown image extension"},
+        {{"--turntable", "4", "-o", (out / "no" / "x_%d.png").string()}, 1, "no folder"},
+        {{"--cameras", cams.string(), "-o", o}, 1, "line 2"},
+        {{"--frames", (t.dir / "none_%04d.obj").string(), "-o", o}, 1, "no file matches"},
+    };
+    for (const auto& c : cases) {
+        auto r = run(with(with({bin("limn-render"), t.limn}, c.args), kSmall));
+        EXPECT_EQ(r.exitCode, c.exit) << r.err;
+        EXPECT_NE(r.err.find(c.words), std::string::npos) << r.err;
+        EXPECT_EQ(files(out.path()), (std::vector<std::string>{"bad.txt"})) << r.err;
+    }
+}
+
+TEST(SequenceErrors, AFrameWithOtherFacesFailsAndLeavesNoFrames) {
+    Twist t;
+    ScratchDir out;
+    // Frame 5 replaced by a cube: other faces, so the input's tables do not apply.
+    auto r = run({bin("limn-examples"), "-o", out.path().string(), "--only", "cube"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::filesystem::copy_file(out / "cube.obj", t.frame(5), std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::remove(out / "cube.obj");
+    r = run(with({bin("limn-render"), t.limn, "--frames", (t.dir / "twist" / "twist_%04d.obj").string(), "-o",
+                  (out / "f_%04d.png").string()},
+                 kSmall));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("twist_0005.obj"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("faces differ"), std::string::npos) << r.err;
+    EXPECT_TRUE(files(out.path()).empty());
+}
