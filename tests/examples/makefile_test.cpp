@@ -35,11 +35,28 @@ std::vector<std::string> expectedImages(const std::string& name) {
     return images;
 }
 
+// The animation stage: every frame of the twist animation, and 8 turntable views of the torus.
+std::set<std::string> animationPaths(const fs::path& out, bool torus) {
+    std::set<std::string> paths;
+    char name[64];
+    for (int k = 0; k < 24; ++k) {
+        std::snprintf(name, sizeof name, "twist/twist_%04d.png", k);
+        paths.insert((out / name).string());
+    }
+    for (int k = 0; torus && k < 8; ++k) {
+        std::snprintf(name, sizeof name, "torus.turntable/%02d.png", k);
+        paths.insert((out / name).string());
+    }
+    return paths;
+}
+
 std::set<std::string> expectedPaths(const fs::path& out, const std::vector<std::string>& names) {
     std::set<std::string> paths;
     for (const auto& name : names)
         for (const auto& image : expectedImages(name))
             paths.insert((out / (name + "." + image + ".png")).string());
+    const auto animation = animationPaths(out, std::find(names.begin(), names.end(), "torus") != names.end());
+    paths.insert(animation.begin(), animation.end());
     return paths;
 }
 
@@ -220,3 +237,23 @@ TEST(MakefileExamples, MissingToolsSayWhatToDo) {
 }
 
 } // namespace
+
+// The animation stage renders every frame in one limn-render run and the turntable in another,
+// and is incremental like the rest: a changed frame mesh re-renders the frames, not the turntable.
+TEST(MakefileExamples, AnimationFramesInOneRunAndIncremental) {
+    test::ScratchDir dir;
+    const auto out = dir / "out";
+    const std::vector<std::string> subset = {"STAGES=animation", "EXAMPLES=torus"};
+    auto first = make(out, {subset[0], subset[1], "-j2"});
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    for (const auto& p : animationPaths(out, true)) EXPECT_EQ(pngSize(p), (std::pair<uint32_t, uint32_t>{64, 48})) << p;
+    EXPECT_EQ(make(out, {subset[0], subset[1], "-q"}).exitCode, 0) << "up to date";
+    const Times before = writeTimes(out);
+    touchAfterEverything(out, out / "meshes" / "twist" / "twist_0005.obj");
+    auto second = make(out, {subset[0], subset[1], "-j2"});
+    ASSERT_EQ(second.exitCode, 0) << second.err;
+    const auto changed = rewritten(out, before);
+    EXPECT_TRUE(changed.count("twist/twist_0000.png")) << "the frames are one run";
+    EXPECT_TRUE(changed.count("twist/twist_0023.png"));
+    EXPECT_FALSE(changed.count("torus.turntable/00.png"));
+}
