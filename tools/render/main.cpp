@@ -213,12 +213,27 @@ class Progress {
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-// The last frame's image in the format its name asked for: 8- or 16-bit PNG, or EXR (linear
-// RGBA and camera-space Z).
-std::vector<uint8_t> encodeImage(const render::Renderer& renderer, render::ImageFormat format, int bitDepth,
+// The last frame's pixels as read back: what the image's format encodes.
+struct FramePixels {
+    render::Image image;        // 8-bit PNG
+    render::LinearImage linear; // 16-bit PNG, EXR
+};
+
+FramePixels framePixels(const render::Renderer& renderer, render::ImageFormat format, int bitDepth) {
+    FramePixels p;
+    if (format == render::ImageFormat::Exr || bitDepth == 16)
+        p.linear = renderer.linearImage();
+    else
+        p.image = renderer.image();
+    return p;
+}
+
+// The image in the format its name asked for: 8- or 16-bit PNG, or EXR (linear RGBA and
+// camera-space Z).
+std::vector<uint8_t> encodeImage(const FramePixels& p, render::ImageFormat format, int bitDepth,
                                  const render::RenderSettings& settings) {
     if (format == render::ImageFormat::Exr) {
-        const render::LinearImage li = renderer.linearImage();
+        const render::LinearImage& li = p.linear;
         const size_t n = size_t(li.width) * li.height;
         std::vector<float> values(n * 5);
         for (size_t i = 0; i < n; ++i) {
@@ -230,9 +245,9 @@ std::vector<uint8_t> encodeImage(const render::Renderer& renderer, render::Image
     if (bitDepth == 16) {
         std::vector<float> background(3);
         for (int i = 0; i < 3; ++i) background[i] = float(render::srgbToLinear(settings.background[i]));
-        return render::encodePng(render::toSrgb16(renderer.linearImage(), settings.alpha, background));
+        return render::encodePng(render::toSrgb16(p.linear, settings.alpha, background));
     }
-    return render::encodePng(renderer.image());
+    return render::encodePng(p.image);
 }
 
 void removeFrames(const std::vector<std::string>& paths) {
@@ -269,7 +284,8 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
                 cli::warn(inputName + ": frame " + std::to_string(numbers[k]) + ": " + w);
             const std::string image = render::framePath(imagePattern, numbers[k]);
-            writeOutput(image, encodeImage(renderer, format, bitDepth, settings), OutputFile::Kind::Binary);
+            writeOutput(image, encodeImage(framePixels(renderer, format, bitDepth), format, bitDepth, settings),
+                        OutputFile::Kind::Binary);
             written.push_back(image);
             if (meshPattern) {
                 const std::string mesh = render::framePath(*meshPattern, numbers[k]);
@@ -878,7 +894,8 @@ int main(int argc, char** argv) {
                 std::snprintf(ms, sizeof ms, "%.3f", p.ms);
                 cli::info("GPU " + p.name + ": " + ms + " ms");
             }
-            if (writeImage) pngBytes = encodeImage(renderer, imageFormat, bitDepth, settings);
+            if (writeImage)
+                pngBytes = encodeImage(framePixels(renderer, imageFormat, bitDepth), imageFormat, bitDepth, settings);
             if (ply) {
                 if (in.blend && in.mesh.hasUVs())
                     cli::info("--mesh-out: a blending surface shares its vertices across faces; "
