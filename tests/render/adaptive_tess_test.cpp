@@ -434,6 +434,22 @@ struct ImageCase {
     std::vector<std::string> view;
 };
 
+// Pixels covered in either image (not the background colour of a's corner pixel, background in
+// every view here), and of those, how many differ by more than 8/255 in a channel.
+std::pair<size_t, size_t> coveredAndDiffering(const render::Image& a, const render::Image& b) {
+    const uint8_t* bg = a.pixels.data();
+    size_t covered = 0, differ = 0;
+    for (size_t i = 0; i < size_t(a.width) * a.height; ++i) {
+        const uint8_t *p = &a.pixels[i * a.channels], *q = &b.pixels[i * b.channels];
+        if (std::equal(p, p + 3, bg) && std::equal(q, q + 3, bg)) continue;
+        ++covered;
+        int d = 0;
+        for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(int(p[k]) - int(q[k])));
+        differ += d > 8;
+    }
+    return {covered, differ};
+}
+
 class AdaptiveImage : public ::testing::TestWithParam<ImageCase> {};
 
 TEST_P(AdaptiveImage, CloseToTheFixedGridsAndDeterministic) {
@@ -457,17 +473,7 @@ TEST_P(AdaptiveImage, CloseToTheFixedGridsAndDeterministic) {
     const auto a = render("adaptive.png", {}), b = render("fixed.png", fixed);
     ASSERT_EQ(a.width, b.width);
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
-    const size_t ch = a.channels;
-    const uint8_t* bg = a.pixels.data(); // the corner is background in every view here
-    size_t covered = 0, differ = 0;
-    for (size_t i = 0; i < size_t(a.width) * a.height; ++i) {
-        const uint8_t *p = &a.pixels[i * ch], *q = &b.pixels[i * ch];
-        if (std::equal(p, p + 3, bg) && std::equal(q, q + 3, bg)) continue;
-        ++covered;
-        int d = 0;
-        for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(int(p[k]) - int(q[k])));
-        differ += d > 8;
-    }
+    const auto [covered, differ] = coveredAndDiffering(a, b);
     ASSERT_GT(covered, 10000u);
     EXPECT_LE(double(differ), 0.005 * double(covered)) << differ << " of " << covered;
     std::printf("%s d%d: %zu of %zu covered pixels differ by > 8/255\n", c.model.c_str(), c.depth, differ, covered);
@@ -549,15 +555,7 @@ TEST_P(AdaptiveBackFaces, CullingThemChangesNoPixel) {
         // The same surface, its triangles wound the other way and split a little differently.
         const auto a = render::decodePng(render("reversed.png", {}, reversed)), b = render::decodePng(culled);
         ASSERT_EQ(a.pixels.size(), b.pixels.size());
-        size_t covered = 0, differ = 0;
-        for (size_t i = 0; i < size_t(a.width) * a.height; ++i) {
-            const uint8_t *p = &a.pixels[i * a.channels], *q = &b.pixels[i * b.channels];
-            if (std::equal(p, p + 3, a.pixels.data()) && std::equal(q, q + 3, a.pixels.data())) continue;
-            ++covered;
-            int d = 0;
-            for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(int(p[k]) - int(q[k])));
-            differ += d > 8;
-        }
+        const auto [covered, differ] = coveredAndDiffering(a, b);
         EXPECT_GT(covered, 2000u);
         EXPECT_LE(double(differ), 0.005 * double(covered)) << differ << " of " << covered;
     }

@@ -251,6 +251,12 @@ std::vector<uint8_t> encodeImage(const FramePixels& p, render::ImageFormat forma
     return render::encodePng(p.image);
 }
 
+// A --mesh-out file: the text formats (ASCII PLY, OBJ, .gltf) may go to a terminal, the rest not.
+OutputFile::Kind meshFileKind(render::MeshFormat format, bool ascii) {
+    return ascii || format == render::MeshFormat::Obj || format == render::MeshFormat::Gltf ? OutputFile::Kind::Text
+                                                                                             : OutputFile::Kind::Binary;
+}
+
 void removeFrames(const std::vector<std::string>& paths) {
     for (const std::string& p : paths) std::filesystem::remove(p);
 }
@@ -299,10 +305,8 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             if (k > 0) progress.done(k);
             if (meshPattern) {
                 const std::string mesh = render::framePath(*meshPattern, numbers[k]);
-                const bool text = meshAscii || *meshFormat == render::MeshFormat::Obj ||
-                                  *meshFormat == render::MeshFormat::Gltf;
                 writeOutput(mesh, render::encodeMesh(renderer.drawnMesh(), *meshFormat, meshAscii),
-                            text ? OutputFile::Kind::Text : OutputFile::Kind::Binary);
+                            meshFileKind(*meshFormat, meshAscii));
                 written.push_back(mesh);
             }
             const std::string image = render::framePath(imagePattern, numbers[k]);
@@ -761,11 +765,6 @@ int main(int argc, char** argv) {
             frameFiles = render::findFrameFiles(render::parseFramePattern("--frames", framesPattern));
         for (size_t k = 0; k < views.size(); ++k) frameNumbers.push_back(k);
         for (const auto& f : frameFiles) frameNumbers.push_back(f.number);
-        const auto meshKind = [&] {
-            return meshAscii || *meshFormat == render::MeshFormat::Obj || *meshFormat == render::MeshFormat::Gltf
-                       ? OutputFile::Kind::Text
-                       : OutputFile::Kind::Binary;
-        };
 
         // Open outputs first: a refused terminal or an unwritable directory fails before any work.
         std::vector<std::string> inputs = {input};
@@ -794,7 +793,7 @@ int main(int argc, char** argv) {
             if (writeImage) refuseOverwritingInputs(common.output, inputs);
             if (!meshOut.empty()) refuseOverwritingInputs(meshOut, inputs);
             if (writeImage) png.emplace(common.output, OutputFile::Kind::Binary);
-            if (!meshOut.empty()) ply.emplace(meshOut, meshKind());
+            if (!meshOut.empty()) ply.emplace(meshOut, meshFileKind(*meshFormat, meshAscii));
             if (writeImage) outputs.push_back(common.output);
             if (!meshOut.empty()) outputs.push_back(meshOut);
         }
