@@ -108,6 +108,25 @@ TEST(Frames, EveryFrameIsTheSingleRenderOfItsMeshWithTheSameTables) {
     }
 }
 
+// The GPU surface (tables, tessellation buffers, pipelines) is set up once for the whole run;
+// each frame only brings its control points (limn-render -v says when it does either).
+TEST(Frames, SetUpOnceNewControlPointsPerFrame) {
+    Twist t;
+    ScratchDir out;
+    auto r = run(with({bin("limn-render"), t.limn, "-v", "--frames", (t.dir / "twist" / "twist_%04d.obj").string(),
+                       "-o", (out / "f%d.png").string()},
+                      kSmall));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto count = [&](const std::string& words) {
+        size_t n = 0;
+        for (size_t at = r.err.find(words); at != std::string::npos; at = r.err.find(words, at + 1)) ++n;
+        return n;
+    };
+    EXPECT_EQ(count("set up the GPU surface"), 1u) << r.err;
+    EXPECT_EQ(count("new control points from"), 24u) << r.err;
+    EXPECT_EQ(count("twist_0013.obj"), 1u) << r.err;
+}
+
 TEST(Frames, DefaultFramingHoldsEveryFrame) {
     Twist t;
     ScratchDir out;

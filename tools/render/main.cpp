@@ -295,7 +295,10 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
     try {
         for (size_t k = 0; k < numbers.size(); ++k) {
             if (!views.empty()) renderer.setCamera(renderer.cameraFor(views[k]));
-            if (!frames.empty()) renderer.setControlPoints(frames[k].positions);
+            if (!frames.empty()) {
+                renderer.setControlPoints(frames[k].positions);
+                cli::info("frame " + std::to_string(numbers[k]) + ": new control points from " + frames[k].path);
+            }
             renderer.renderFrame();
             if (validation && validation->errors()) checkValidation(*validation); // throws
             if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
@@ -876,6 +879,9 @@ int main(int argc, char** argv) {
             else
                 chosen.emplace(ctx, in.mesh, in.tables ? &*in.tables : nullptr, settings);
             render::Renderer& renderer = *chosen;
+            // Once per run, also for a sequence: its frames reuse these buffers and pipelines.
+            cli::info("set up the GPU surface: " + cli::formatBytes(renderer.bufferBytes()) +
+                      " of buffers (tables, tessellation, frame)");
             const auto& cam = renderer.camera();
             cli::info("camera eye " + std::to_string(cam.eye.x) + "," + std::to_string(cam.eye.y) +
                       "," + std::to_string(cam.eye.z) + " target " + std::to_string(cam.target.x) +
