@@ -45,7 +45,11 @@ int main(int argc, char** argv) {
                 throw;
             }
         } else {
-            mesh = importMesh(input, bytes, warnings, &inputs);
+            // A glTF's base colour (factor, texture bytes) travels in MATL, so that a pipeline
+            // from the container draws what the asset shows.
+            std::optional<MeshMaterial> material;
+            mesh = importMesh(input, bytes, warnings, &inputs, &material);
+            if (material) container.set(encodeMaterialChunk(*material));
         }
         std::optional<BoundaryRule> override;
         if (boundary == "none") override = BoundaryRule::None;
