@@ -80,7 +80,34 @@ Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect) {
         // Never inside the object (a single point, or a hull seen edge-on, would put it there).
         const double distance =
             std::max({(hiX - loX) / (2 * k), (hiY - loY) / (2 * k), zMax + r * 0.05});
-        cam.target = center + right * ((hiX + loX) * 0.5) + up * ((hiY + loY) * 0.5);
+        // Sideways: the fit's offset is exact where the object is tight; the other way it leaves
+        // slack, and the offset that centres the image there is found from the two extreme
+        // points' projections (y_a - t) / d_a = -(y_b - t) / d_b, re-picking them until they stay.
+        auto centre = [&](const glm::dvec3& axis, double t) {
+            for (int iteration = 0; iteration < 8; ++iteration) {
+                double hi = -inf, lo = inf;
+                glm::dvec2 a{0.0, 1.0}, b{0.0, 1.0}; // (y, depth) of the extremes
+                auto visit = [&](const glm::dvec3& p) {
+                    const glm::dvec3 d = p - center;
+                    const double y = glm::dot(d, axis), depth = distance - glm::dot(d, dir);
+                    const double projected = (y - t) / depth;
+                    if (projected > hi) hi = projected, a = {y, depth};
+                    if (projected < lo) lo = projected, b = {y, depth};
+                };
+                if (!bounds.hull.empty())
+                    for (const auto& p : bounds.hull) visit(p);
+                else
+                    for (int i = 0; i < 8; ++i)
+                        visit({i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                               i & 4 ? bounds.max.z : bounds.min.z});
+                const double next = (a.x * b.y + b.x * a.y) / (a.y + b.y);
+                if (next == t || !(a.y > 0 && b.y > 0)) break;
+                t = next;
+            }
+            return t;
+        };
+        const double s = centre(right, (hiX + loX) * 0.5), t = centre(up, (hiY + loY) * 0.5);
+        cam.target = center + right * s + up * t;
         cam.eye = cam.target + dir * distance;
         // Near and far enclose the hull and the bounding sphere (the hull may be samples of the
         // surface, the sphere holds its control points).
