@@ -61,7 +61,7 @@ vec3 baseColour() {
 //     and the eye), which shows curvature on a white model where diffuse light alone is flat.
 // Two-sided: the side facing the camera is lit (control meshes and trimmed surfaces may be open).
 // A zero normal (a degenerate face) gets the ambient mid-tone and no direct light.
-const vec3 kSky = vec3(0.30, 0.31, 0.34), kGround = vec3(0.10, 0.09, 0.08);
+const vec3 kSky = vec3(0.32), kGround = vec3(0.09); // neutral: a grey model stays grey
 const float kKey = 0.75, kFill = 0.18, kSpecular = 0.06, kShininess = 40.0;
 
 vec3 lightRig(vec3 albedo, vec3 n, vec3 world) {
