@@ -6,6 +6,7 @@
 #include "render/png.h"
 #include "test_support.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -354,7 +355,9 @@ std::string writePlane(const ScratchDir& dir, const std::string& name, Storage s
     if (textured) {
         j << R"("textures":[{"source":0}],"images":[)";
         if (storage == Storage::External) j << R"({"uri":")" << name << R"(.png"})";
-        if (storage == Storage::Glb) j << R"({"bufferView":3,"mimeType":"image/png"})";
+        const bool jpeg = texture.size() > 2 && texture[0] == 0xFF && texture[1] == 0xD8;
+        if (storage == Storage::Glb)
+            j << R"({"bufferView":3,"mimeType":")" << (jpeg ? "image/jpeg" : "image/png") << R"("})";
         if (storage == Storage::DataUri) j << R"({"uri":"data:image/png;base64,)" << base64(texture) << R"("})";
         j << "],";
     }
@@ -540,4 +543,25 @@ TEST(GltfMaterial, BoxTexturedShowsItsTexture) {
         }
     ASSERT_GT(covered, 2000u);
     EXPECT_GT(coloured, covered / 20);
+}
+
+// A JPEG texture in a GLB (decoded by the OpenImageIO plugin from memory; the JPEG is written
+// here by OpenImageIO): the quadrants keep their colours through the lossy coding.
+TEST(GltfMaterial, JpegTextureInAGlb) {
+    ScratchDir dir;
+    const render::Image png = render::decodePng(quadrantTexture());
+    const std::string path = (dir / "q.jpg").string();
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path, OIIO::ImageSpec(int(png.width), int(png.height), 3, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, png.pixels.data()));
+    ASSERT_TRUE(out->close());
+    const std::vector<uint8_t> jpeg = readBytes(path);
+    ASSERT_EQ(jpeg[0], 0xFF);
+    const std::string limn = prepare(dir, writePlane(dir, "j", Storage::Glb, jpeg), "j", 2);
+    const render::Image img = renderPlane(dir, limn);
+    for (int q = 0; q < 4; ++q) {
+        const auto [x, y] = kQuadrantPixel[q];
+        EXPECT_EQ(bright(img.at(x, y)), expectedBright(q)) << q;
+    }
 }
