@@ -398,8 +398,8 @@ int main(int argc, char** argv) {
                 "                            towards the right (90), elevation above the horizon\n"
                 "                            (-90 to 90); front is +Z with --up-axis y, -Y with z,\n"
                 "                            right +X. The default looks from front-left-above.\n"
-                "                            The camera frames the bounding sphere: it spans 85%\n"
-                "                            of the image's smaller side, from every direction")
+                "                            The object is centred and spans 85% of the image's\n"
+                "                            smaller side (its larger extent)")
             .choice("--up-axis", &upAxis, {"y", "z"},
                     "the asset's up axis, for --view and the sky light: y (glTF's, by its spec,\n"
                     "                            and most OBJ/PLY/OFF files', which are exported\n"
@@ -417,7 +417,8 @@ int main(int argc, char** argv) {
             .custom(
                 "--up", "X,Y,Z",
                 [&](const std::string& v) { settings.view.up = vec3Option("--up", v); }, "",
-                "up direction of the explicit camera [default: 0,1,0]")
+                "up direction of the explicit camera [default: the --up-axis, 0,1,0 or\n"
+                "                            0,0,1]")
             .real("--fov", "DEG", &settings.view.fovDeg, 1, 170, "vertical field of view")
             .custom(
                 "--light", "AZ,EL",
