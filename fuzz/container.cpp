@@ -11,6 +11,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace limn;
     try {
         Container c = parseContainer({data, size});
+        loadMaterial(c); // MATL is optional and independent of the mesh
         Mesh m = loadMesh(c);
         if (const Chunk* clsf = c.find(kClassificationChunk)) decodeClassificationChunk(*clsf, m);
         // A mesh that loads must also classify (what limn-classify and limn-info do next).

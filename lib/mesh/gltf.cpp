@@ -16,10 +16,32 @@ namespace limn {
 
 namespace {
 
-// Images are not needed for geometry; skipping them avoids decoding megabytes of PNG.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
+// Images are not decoded here (lib/image is a layer below this one, and a texture that is never
+// drawn should cost nothing): each image's file bytes are kept as they are, by image index, for
+// the material's base colour texture.
+using ImageBytes = std::map<int, std::vector<uint8_t>>;
+bool keepImageBytes(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* user) {
+    if (user && bytes && size > 0)
+        (*static_cast<ImageBytes*>(user))[index].assign(bytes, bytes + size);
     return true;
+}
+
+// A file name whose extension names the image's format for the image reader: by the bytes'
+// signature (PNG, JPEG), else the URI's extension, else the MIME type.
+std::string imageFormatName(const std::vector<uint8_t>& bytes, const tinygltf::Image& image) {
+    static const uint8_t png[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (bytes.size() >= 8 && std::memcmp(bytes.data(), png, 8) == 0) return "texture.png";
+    if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF)
+        return "texture.jpg";
+    if (image.uri.rfind("data:", 0) != 0) {
+        const size_t dot = image.uri.find_last_of('.');
+        if (dot != std::string::npos && image.uri.find('/', dot) == std::string::npos)
+            return "texture" + image.uri.substr(dot);
+    }
+    if (image.mimeType == "image/jpeg") return "texture.jpg";
+    if (image.mimeType == "image/png") return "texture.png";
+    return "texture";
 }
 
 // A bounds-checked view of one accessor's elements.
@@ -126,6 +148,8 @@ struct Welder {
     std::map<std::array<double, 2>, uint32_t> uvIndex;
     bool anyUV = false, anyWithoutUV = false;
     size_t degenerate = 0, skippedPrimitives = 0;
+    int material = -1;           // the first triangle primitive's material
+    bool otherMaterials = false; // a later primitive has another one
 
     uint32_t weldPosition(const glm::dvec3& p) {
         auto [it, inserted] = positionIndex.try_emplace({p.x, p.y, p.z},
@@ -148,6 +172,10 @@ struct Welder {
         }
         auto pos = prim.attributes.find("POSITION");
         if (pos == prim.attributes.end()) throwBadInput(what + " has no POSITION attribute");
+        if (prim.material >= 0) {
+            if (material < 0) material = prim.material;
+            else if (prim.material != material) otherMaterials = true;
+        }
         AccessorView positions(model, pos->second, what + " POSITION");
         if (positions.components() != 3) throwBadInput(what + " POSITION is not a 3-vector");
         std::vector<uint32_t> welded(positions.count());
@@ -239,10 +267,55 @@ bool readAndRecord(std::vector<unsigned char>* out, std::string* err, const std:
 
 } // namespace
 
+namespace {
+
+// The base colour of material `index` (glTF 2.0, 3.9.2: pbrMetallicRoughness.baseColorFactor
+// and baseColorTexture).
+MeshMaterial baseColor(const tinygltf::Model& model, int index, ImageBytes& images,
+                       Warnings& warnings) {
+    if (index >= static_cast<int>(model.materials.size()))
+        throwBadInput("glTF: a primitive refers to material " + std::to_string(index) +
+                      ", which does not exist");
+    const auto& pbr = model.materials[index].pbrMetallicRoughness;
+    MeshMaterial m;
+    if (pbr.baseColorFactor.size() == 4) {
+        for (int c = 0; c < 4; ++c) {
+            const double v = pbr.baseColorFactor[c];
+            if (!(v >= 0 && v <= 1))
+                throwBadInput("glTF: material " + std::to_string(index) +
+                              " baseColorFactor component " + std::to_string(c) +
+                              " is not within 0 to 1");
+            m.baseColorFactor[c] = v;
+        }
+    }
+    const auto& ref = pbr.baseColorTexture;
+    if (ref.index < 0) return m;
+    if (ref.index >= static_cast<int>(model.textures.size()))
+        throwBadInput("glTF: material " + std::to_string(index) + " refers to texture " +
+                      std::to_string(ref.index) + ", which does not exist");
+    const int source = model.textures[ref.index].source;
+    if (source < 0 || source >= static_cast<int>(model.images.size()))
+        throwBadInput("glTF: texture " + std::to_string(ref.index) + " has no image");
+    if (ref.texCoord != 0) {
+        warnings.add("the base colour texture uses TEXCOORD_" + std::to_string(ref.texCoord) +
+                     ", limn keeps only TEXCOORD_0; texture dropped");
+        return m;
+    }
+    auto it = images.find(source);
+    if (it == images.end() || it->second.empty())
+        throwBadInput("glTF: image " + std::to_string(source) + " of the base colour texture is empty");
+    m.textureFormat = imageFormatName(it->second, model.images[source]);
+    m.textureBytes = std::move(it->second);
+    return m;
+}
+
+} // namespace
+
 Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
-              Warnings& warnings, std::vector<std::string>* filesRead) {
+              Warnings& warnings, std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material) {
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skipImage, nullptr);
+    ImageBytes images;
+    loader.SetImageLoader(keepImageBytes, material ? &images : nullptr);
     loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readAndRecord,
                            &tinygltf::WriteWholeFile, filesRead});
     tinygltf::Model model;
@@ -289,6 +362,12 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
         w.mesh.uvIndices.clear();
     }
     validateMesh(w.mesh);
+    if (material && w.material >= 0) {
+        *material = baseColor(model, w.material, images, warnings);
+        if (w.otherMaterials)
+            warnings.add("the primitives use more than one material; limn draws the first one's "
+                         "base colour on the whole mesh");
+    }
     return std::move(w.mesh);
 }
 

@@ -4,8 +4,10 @@
 #pragma once
 
 #include "base/warnings.h"
+#include "mesh/material.h"
 #include "mesh/mesh.h"
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,7 +18,12 @@ namespace limn {
 // UVs are converted to limn's convention (v up, as in OBJ): v_limn = 1 - v_gltf.
 // `filesRead` (optional) gets every external file the asset pulled in (buffers, images), for
 // depfiles.
+// `material` (optional) gets the base colour (factor, texture bytes) of the material of the first
+// triangle primitive that has one; it is left unchanged when no primitive has a material. Other
+// materials are dropped with a warning (limn draws one material per mesh), and so is a texture
+// that uses another UV set than TEXCOORD_0.
 Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
-              Warnings& warnings, std::vector<std::string>* filesRead = nullptr);
+              Warnings& warnings, std::vector<std::string>* filesRead = nullptr,
+              std::optional<MeshMaterial>* material = nullptr);
 
 } // namespace limn

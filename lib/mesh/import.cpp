@@ -56,7 +56,7 @@ const char* formatName(MeshFormat f) {
 }
 
 Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
-                std::vector<std::string>* filesRead) {
+                std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material) {
     MeshFormat format = isStdio(path) ? formatFromContent(bytes) : formatFromExtension(extensionOf(path));
     if (format == MeshFormat::Unknown) {
         Error e(ErrorKind::BadInput, "unknown mesh format '" + extensionOf(path) +
@@ -67,11 +67,18 @@ Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warning
     try {
         switch (format) {
         case MeshFormat::Obj: return readObj(bytes, warnings);
-        case MeshFormat::Gltf: return readGltf(bytes, false, directoryOf(path), warnings, filesRead);
-        case MeshFormat::Glb: return readGltf(bytes, true, directoryOf(path), warnings, filesRead);
+        case MeshFormat::Gltf:
+            return readGltf(bytes, false, directoryOf(path), warnings, filesRead, material);
+        case MeshFormat::Glb:
+            return readGltf(bytes, true, directoryOf(path), warnings, filesRead, material);
         case MeshFormat::Ply: return readWithOpenMesh(bytes, ".ply", warnings);
         case MeshFormat::Off: return readWithOpenMesh(bytes, ".off", warnings);
-        case MeshFormat::Container: return loadMesh(parseContainer(bytes));
+        case MeshFormat::Container: {
+            const Container c = parseContainer(bytes);
+            if (material)
+                if (auto m = loadMaterial(c)) *material = std::move(m);
+            return loadMesh(c);
+        }
         case MeshFormat::Unknown: break;
         }
     } catch (Error& e) {

@@ -2,8 +2,10 @@
 #pragma once
 
 #include "base/warnings.h"
+#include "mesh/material.h"
 #include "mesh/mesh.h"
 
+#include <optional>
 #include <span>
 #include <string>
 
@@ -21,9 +23,10 @@ const char* formatName(MeshFormat format);
 // glTF buffers ("-" for stdin: sniffed). A .limn container yields its MESH chunks. Errors carry
 // the file name.
 // `filesRead` (optional) gets the files besides `path` that the mesh pulled in (a .gltf's
-// buffers and images), for depfiles.
+// buffers and images), for depfiles. `material` (optional) gets a glTF's base colour (see
+// readGltf) and a container's MATL chunk; other formats leave it unchanged.
 Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
-                std::vector<std::string>* filesRead = nullptr);
+                std::vector<std::string>* filesRead = nullptr, std::optional<MeshMaterial>* material = nullptr);
 
 // Reads the file (or stdin) and imports it.
 Mesh importMeshFile(const std::string& path, Warnings& warnings,

@@ -3,6 +3,8 @@
 #include "base/bytes.h"
 #include "base/error.h"
 
+#include <cctype>
+
 namespace limn {
 
 namespace {
@@ -83,6 +85,50 @@ Chunk encodeTagsChunk(const Tags& t) {
     }
     w.writeArray(t.holes);
     return {kTagsChunk, 1, w.take()};
+}
+
+constexpr uint32_t kMaxTextureFormatName = 255;
+
+Chunk encodeMaterialChunk(const MeshMaterial& m) {
+    ByteWriter w;
+    for (int c = 0; c < 4; ++c) w.write<float>(static_cast<float>(m.baseColorFactor[c]));
+    const std::string format = m.hasTexture() ? m.textureFormat : std::string();
+    w.write<uint32_t>(static_cast<uint32_t>(format.size()));
+    w.write<uint32_t>(0);
+    w.write<uint64_t>(m.textureBytes.size());
+    w.writeArray(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(format.data()), format.size()));
+    w.writeArray(m.textureBytes);
+    return {kMaterialChunk, 1, w.take()};
+}
+
+std::optional<MeshMaterial> loadMaterial(const Container& container) {
+    const Chunk* chunk = container.find(kMaterialChunk);
+    if (!chunk) return std::nullopt;
+    requireVersion(*chunk, 1);
+    ByteReader r(chunk->payload, "chunk MATL");
+    MeshMaterial m;
+    for (int c = 0; c < 4; ++c) {
+        const float v = r.read<float>();
+        if (!(v >= 0.0f && v <= 1.0f))
+            r.fail("base colour factor component " + std::to_string(c) + " is not within 0 to 1");
+        m.baseColorFactor[c] = v;
+    }
+    const uint32_t formatLength = r.read<uint32_t>();
+    if (r.read<uint32_t>() != 0) r.fail("reserved field is not 0");
+    const uint64_t textureLength = r.read<uint64_t>();
+    if (formatLength > kMaxTextureFormatName)
+        r.fail("texture format name of " + std::to_string(formatLength) + " bytes (at most " +
+               std::to_string(kMaxTextureFormatName) + ")");
+    if ((formatLength == 0) != (textureLength == 0))
+        r.fail("a texture needs a format name, and a format name a texture");
+    auto name = r.readBytes(formatLength, "texture format name");
+    for (uint8_t ch : name)
+        if (!(std::isalnum(ch) || ch == '.' || ch == '_' || ch == '-'))
+            r.fail("texture format name holds a character other than A-Z a-z 0-9 . _ -");
+    m.textureFormat.assign(name.begin(), name.end());
+    m.textureBytes = r.readArray<uint8_t>(textureLength, "texture bytes");
+    requireConsumed(r);
+    return m;
 }
 
 void storeMesh(Container& container, const Mesh& mesh) {

@@ -145,9 +145,7 @@ BlendDraw prepareBlend(const Mesh& mesh, const blend::BlendSurface& s, uint32_t 
         d.faceUVs.emplace_back(0.0f, 0.0f);
     }
     if (!mesh.positions.empty()) {
-        glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
-        for (const auto& q : mesh.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
-        d.bounds = {lo, hi};
+        d.bounds = boundsOf(mesh.positions);
     }
     return d;
 }

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace limn::render {
 
@@ -23,10 +25,16 @@ glm::dvec3 safeUp(glm::dvec3 forward, glm::dvec3 up) {
     return axis;
 }
 
+// A direction given in the Y-up frame (right +X, up +Y, front +Z) in world coordinates: the
+// inverse of the Z-up to Y-up turn (x, y, z) -> (x, z, -y).
+glm::dvec3 fromYUp(glm::dvec3 d, bool zUp) {
+    return zUp ? glm::dvec3(d.x, -d.z, d.y) : d;
+}
+
 } // namespace
 
 double Bounds::radius() const {
-    double r = glm::length(max - min) * 0.5;
+    double r = sphereRadius > 0 ? sphereRadius : glm::length(max - min) * 0.5;
     return r > 0 && std::isfinite(r) ? r : 1.0;
 }
 
@@ -42,45 +50,102 @@ Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect) {
     Camera cam;
     const glm::dvec3 center = bounds.center();
     const double r = bounds.radius();
+    const glm::dvec3 worldUp = fromYUp(glm::dvec3(0, 1, 0), spec.zUp);
     cam.fovYRad = radians(spec.fovDeg);
     if (!spec.eye) {
         const double az = radians(spec.azimuthDeg), el = radians(spec.elevationDeg);
-        const glm::dvec3 dir(std::cos(el) * std::sin(az), std::sin(el),
-                             std::cos(el) * std::cos(az));
-        cam.target = center;
-        cam.up = safeUp(-dir, glm::dvec3(0, 1, 0));
+        const glm::dvec3 dir = fromYUp(glm::dvec3(std::cos(el) * std::sin(az), std::sin(el),
+                                                  std::cos(el) * std::cos(az)),
+                                       spec.zUp);
+        cam.up = safeUp(-dir, worldUp);
         const glm::dvec3 right = glm::normalize(glm::cross(-dir, cam.up));
         const glm::dvec3 up = glm::cross(right, -dir);
-        // The nearest distance along `dir` at which every box corner is inside both fields of
-        // view: a corner at (x, y) across and z towards the camera needs D >= z + |x| / tan(halfX)
-        // and D >= z + |y| / tan(halfY). Tighter than fitting the bounding sphere for flat or long
-        // boxes.
-        const double tanY = std::tan(cam.fovYRad * 0.5), tanX = tanY * aspect;
-        double distance = 0, zMax = -r, zMin = r;
-        for (int i = 0; i < 8; ++i) {
-            glm::dvec3 corner(i & 1 ? bounds.max.x : bounds.min.x,
-                              i & 2 ? bounds.max.y : bounds.min.y,
-                              i & 4 ? bounds.max.z : bounds.min.z);
-            glm::dvec3 d = corner - center;
-            double x = glm::dot(d, right), y = glm::dot(d, up), z = glm::dot(d, dir);
-            distance = std::max({distance, z + std::abs(x) / tanX, z + std::abs(y) / tanY});
-            zMax = std::max(zMax, z);
-            zMin = std::min(zMin, z);
-        }
-        distance = std::max(distance * 1.05, zMax + r * 0.05); // 5% margin; never inside the box
-        cam.eye = center + dir * distance;
-        cam.nearPlane = std::max((distance - zMax) * 0.98, distance * 1e-4);
-        cam.farPlane = (distance - zMin) * 1.02;
+        const double tanY = std::tan(cam.fovYRad * 0.5);
+        const double k = std::min(tanY, tanY * aspect) * kFrameFill;
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        double hiX = -inf, loX = inf, hiY = -inf, loY = inf, zMax = -inf, zMin = inf;
+        auto add = [&](const glm::dvec3& p) {
+            const glm::dvec3 d = p - center;
+            const double x = glm::dot(d, right), y = glm::dot(d, up), z = glm::dot(d, dir);
+            hiX = std::max(hiX, x + k * z), loX = std::min(loX, x - k * z);
+            hiY = std::max(hiY, y + k * z), loY = std::min(loY, y - k * z);
+            zMax = std::max(zMax, z), zMin = std::min(zMin, z);
+        };
+        if (!bounds.hull.empty())
+            for (const auto& p : bounds.hull) add(p);
+        else
+            for (int i = 0; i < 8; ++i)
+                add({i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                     i & 4 ? bounds.max.z : bounds.min.z});
+        // Never inside the object (a single point, or a hull seen edge-on, would put it there).
+        const double distance =
+            std::max({(hiX - loX) / (2 * k), (hiY - loY) / (2 * k), zMax + r * 0.05});
+        // Sideways: the fit's offset is exact where the object is tight; the other way it leaves
+        // slack, and the offset that centres the image there is found from the two extreme
+        // points' projections (y_a - t) / d_a = -(y_b - t) / d_b, re-picking them until they stay.
+        auto centre = [&](const glm::dvec3& axis, double t) {
+            for (int iteration = 0; iteration < 8; ++iteration) {
+                double hi = -inf, lo = inf;
+                glm::dvec2 a{0.0, 1.0}, b{0.0, 1.0}; // (y, depth) of the extremes
+                auto visit = [&](const glm::dvec3& p) {
+                    const glm::dvec3 d = p - center;
+                    const double y = glm::dot(d, axis), depth = distance - glm::dot(d, dir);
+                    const double projected = (y - t) / depth;
+                    if (projected > hi) hi = projected, a = {y, depth};
+                    if (projected < lo) lo = projected, b = {y, depth};
+                };
+                if (!bounds.hull.empty())
+                    for (const auto& p : bounds.hull) visit(p);
+                else
+                    for (int i = 0; i < 8; ++i)
+                        visit({i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                               i & 4 ? bounds.max.z : bounds.min.z});
+                const double next = (a.x * b.y + b.x * a.y) / (a.y + b.y);
+                if (next == t || !(a.y > 0 && b.y > 0)) break;
+                t = next;
+            }
+            return t;
+        };
+        const double s = centre(right, (hiX + loX) * 0.5), t = centre(up, (hiY + loY) * 0.5);
+        cam.target = center + right * s + up * t;
+        cam.eye = cam.target + dir * distance;
+        // Near and far enclose the hull and the bounding sphere (the hull may be samples of the
+        // surface, the sphere holds its control points).
+        cam.nearPlane = std::max(std::min(distance - zMax, distance - r) * 0.98, distance * 1e-4);
+        cam.farPlane = std::max(distance - zMin, distance + r) * 1.02;
         return cam;
     }
     cam.eye = *spec.eye;
     cam.target = spec.target.value_or(center);
     if (glm::length(cam.target - cam.eye) == 0) cam.target = cam.eye + glm::dvec3(0, 0, -1);
-    cam.up = safeUp(cam.target - cam.eye, spec.up.value_or(glm::dvec3(0, 1, 0)));
+    cam.up = safeUp(cam.target - cam.eye, spec.up.value_or(worldUp));
     const double toCenter = glm::length(center - cam.eye);
     cam.farPlane = toCenter + r * 1.02;
     cam.nearPlane = std::max(toCenter - r * 1.02, cam.farPlane * 1e-4);
     return cam;
 }
+
+template <class Points>
+Bounds boundsOf(const Points& points) {
+    Bounds b;
+    bool first = true;
+    for (const auto& p : points) {
+        const glm::dvec3 q(p);
+        b.min = first ? q : glm::min(b.min, q);
+        b.max = first ? q : glm::max(b.max, q);
+        first = false;
+    }
+    const glm::dvec3 c = b.center();
+    double r2 = 0;
+    for (const auto& p : points) {
+        const glm::dvec3 d = glm::dvec3(p) - c;
+        r2 = std::max(r2, glm::dot(d, d));
+    }
+    b.sphereRadius = std::sqrt(r2);
+    for (const auto& p : points) b.hull.emplace_back(p);
+    return b;
+}
+
+template Bounds boundsOf(const std::vector<glm::dvec3>&);
 
 } // namespace limn::render

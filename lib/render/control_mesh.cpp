@@ -68,14 +68,10 @@ ControlMeshDraw prepareControlMesh(const Mesh& mesh) {
     }
 
     const bool any = d.drawnFaces > 0;
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()),
-        hi(-std::numeric_limits<double>::infinity());
-    for (size_t v = 0; v < mesh.vertexCount(); ++v) {
-        if (any && !used[v]) continue;
-        lo = glm::min(lo, mesh.positions[v]);
-        hi = glm::max(hi, mesh.positions[v]);
-    }
-    if (lo.x <= hi.x) d.bounds = {lo, hi};
+    std::vector<glm::dvec3> drawn;
+    for (size_t v = 0; v < mesh.vertexCount(); ++v)
+        if (!any || used[v]) drawn.push_back(mesh.positions[v]);
+    if (!drawn.empty()) d.bounds = boundsOf(drawn);
     return d;
 }
 

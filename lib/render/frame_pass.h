@@ -34,6 +34,9 @@ inline constexpr uint32_t kDrawPullIndices = 1; // DRAW_PULL_INDICES
 // DRAW_BACK_FACE_KEY: faces seen from behind are painted flat in the sRGB8 colour whose bits
 // (0x00BBGGRR) are stored in light[3] (the push block is full at Vulkan's guaranteed 128 bytes).
 inline constexpr uint32_t kDrawBackFaceKey = 2;
+// The lit shading's base colour, sRGB8 bits 0x00BBGGRR, is stored in eye[3] (lightRig in
+// shaders/draw_common.glsl); DRAW_Z_UP: the world's up, for the sky/ground light, is +Z (else +Y).
+inline constexpr uint32_t kDrawZUp = 4;
 
 // Records which timed passes are compute (for FrameTimes).
 struct TimedPasses {

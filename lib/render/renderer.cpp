@@ -6,6 +6,7 @@
 #include "render/blend_pass.h"
 #include "render/control_mesh_pass.h"
 #include "render/subdivision_pass.h"
+#include "subdiv/evaluate.h"
 #include "render_shaders.h"
 
 #include <glm/geometric.hpp>
@@ -25,6 +26,30 @@ struct VertexPush {
 };
 
 constexpr float kWirePull = 2e-3f; // fraction of the distance to the eye
+constexpr double kPi = 3.14159265358979323846;
+
+// An sRGB colour, 0..1 per component, as the bits 0x00BBGGRR (what the shaders unpack).
+uint32_t packSrgb8(const glm::dvec3& c) {
+    uint32_t packed = 0;
+    for (int i = 0; i < 3; ++i)
+        packed |= uint32_t(std::lround(std::clamp(c[i], 0.0, 1.0) * 255.0)) << (8 * i);
+    return packed;
+}
+
+// Points on the subdivision surface, for framing: each patch at its corners, edge midpoints and
+// centre, and every limit point (the corners of the faces drawn at their limit). The control
+// points' hull is looser (on spot at depth 3 the surface fills 10% less of it): a frame fitted
+// to it would not be filled. Evaluated on the CPU (subdiv/evaluate.h) once per renderer.
+std::vector<glm::dvec3> surfaceSamples(const Mesh& mesh, const Tables& tables) {
+    const std::vector<glm::dvec3> vertices = evaluateVertices(tables, mesh.positions);
+    std::vector<glm::dvec3> points;
+    points.reserve(tables.patches.size() * 9 + tables.limitPosition.rows());
+    for (const Patch& p : tables.patches)
+        for (double s : {0.0, 0.5, 1.0})
+            for (double t : {0.0, 0.5, 1.0}) points.push_back(evaluatePatch(p, vertices, s, t).position);
+    for (const LimitPoint& l : evaluateLimitPoints(tables, vertices)) points.push_back(l.position);
+    return points;
+}
 
 } // namespace
 
@@ -157,9 +182,12 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             adaptive.maxTriangles = minimum + 2 * view;
         }
         bounds = draw.bounds;
+        bounds.hull = surfaceSamples(mesh, *tables);
         if (settings.displacementMap) { // leave room for the displaced surface in the framing
             framingPad_ = glm::dvec3(std::abs(settings.displaceScale) * 0.5);
             bounds.min -= framingPad_, bounds.max += framingPad_;
+            if (bounds.sphereRadius > 0) bounds.sphereRadius += framingPad_.x;
+            bounds.hull.clear(); // the displaced surface leaves the hull: frame the padded box
         }
         SubdivisionPass::Displacement displacement{
             settings.displacementMap, float(settings.displaceScale), float(settings.displaceMid)};
@@ -223,6 +251,10 @@ void Renderer::extendFraming(const std::vector<glm::dvec3>& positions) {
         framing_.min = glm::min(framing_.min, p - framingPad_);
         framing_.max = glm::max(framing_.max, p + framingPad_);
     }
+    // The fit takes the frames' control points too (looser than surface samples, but never
+    // cutting a frame off); the sphere about the grown box's centre is no longer known.
+    if (!framing_.hull.empty()) framing_.hull.insert(framing_.hull.end(), positions.begin(), positions.end());
+    framing_.sphereRadius = 0;
 }
 
 void Renderer::setControlPoints(const std::vector<glm::dvec3>& positions) {
@@ -278,22 +310,30 @@ void Renderer::recordDraw() {
     const glm::dvec3 right(view[0][0], view[1][0], view[2][0]);
     const glm::dvec3 up(view[0][1], view[1][1], view[2][1]);
     const glm::dvec3 forward(-view[0][2], -view[1][2], -view[2][2]);
-    // Key light from over the viewer's left shoulder: a headlight, tilted so that faces turned
-    // towards the camera are not all equally bright.
-    const glm::dvec3 light = glm::normalize(-forward + 0.45 * up - 0.3 * right);
+    // The key light (--light), fixed to the camera: azimuth from the direction towards the
+    // camera towards its right, elevation towards its up.
+    const double az = settings_.lightAzimuthDeg * kPi / 180, el = settings_.lightElevationDeg * kPi / 180;
+    // --shade levels keeps its old light (over the viewer's left shoulder, levelsLight in
+    // draw_common.glsl) so that level pictures stay comparable.
+    const glm::dvec3 light =
+        settings_.shade == Shade::Levels
+            ? glm::normalize(-forward + 0.45 * up - 0.3 * right)
+            : glm::normalize(std::cos(el) * std::cos(az) * -forward +
+                             std::cos(el) * std::sin(az) * right + std::sin(el) * up);
     for (int i = 0; i < 3; ++i) {
         push.eye[i] = static_cast<float>(camera_.eye[i]);
         push.light[i] = static_cast<float>(light[i]);
     }
+    const glm::dvec3 base = settings_.baseColor.value_or(
+        glm::dvec3(settings_.texture ? 1.0 : kDefaultBaseColor));
+    const uint32_t baseBits = packSrgb8(base);
+    std::memcpy(&push.eye[3], &baseBits, 4);
+    if (settings_.view.zUp) push.flags |= kDrawZUp;
     push.wireColor[0] = push.wireColor[1] = push.wireColor[2] = 0.006f; // sRGB ~ 0.07
     push.shade = static_cast<uint32_t>(settings_.shade);
     push.wirePull = kWirePull;
     if (settings_.backFaceColor) {
-        uint32_t packed = 0;
-        for (int i = 0; i < 3; ++i)
-            packed |=
-                uint32_t(std::lround(std::clamp((*settings_.backFaceColor)[i], 0.0, 1.0) * 255.0))
-                << (8 * i);
+        const uint32_t packed = packSrgb8(*settings_.backFaceColor);
         std::memcpy(&push.light[3], &packed, 4);
         push.flags |= kDrawBackFaceKey;
     }

@@ -45,6 +45,12 @@ namespace limn::render {
 
 enum class Shade : uint32_t { Lit = 0, Normal = 1, Uv = 2, Levels = 3, Texture = 4 }; // SHADE_*
 
+// From the camera's upper left: it lights the faces turned up and to the left, shades the ones
+// turned right and down, and from 40 degrees off the view axis puts the terminator well inside
+// the silhouette, which is what shows the form.
+inline constexpr double kDefaultLightAzimuth = -40, kDefaultLightElevation = 35;
+inline constexpr double kDefaultBaseColor = 0.8; // light grey, sRGB (linear 0.60)
+
 struct RenderSettings {
     uint32_t width = 1024, height = 768;
     ViewSpec view;
@@ -68,6 +74,12 @@ struct RenderSettings {
     bool seamFix = true;
     const Seams* seams = nullptr; // for the seam fix; required with a displacement map
     const FloatImage* texture = nullptr;
+    // The lit shading (shaders/draw_common.glsl, lightRig): the key light's direction in degrees
+    // relative to the camera (--light AZ,EL: azimuth from the view direction towards the
+    // camera's right, elevation towards its up; 0,0 is a headlight), and the base colour, sRGB
+    // 0..1, that multiplies the texture (--color; unset: kDefaultBaseColor, white with a texture).
+    double lightAzimuthDeg = kDefaultLightAzimuth, lightElevationDeg = kDefaultLightElevation;
+    std::optional<glm::dvec3> baseColor;
     // Faces seen from behind drawn flat in this sRGB colour (--back-faces), for crack counts.
     std::optional<glm::dvec3> backFaceColor;
     // Anti-aliasing (issue 12). `samples`: MSAA samples per pixel, 1 or 4 (WebGPU's counts),

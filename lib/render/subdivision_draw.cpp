@@ -168,9 +168,7 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
     }
 
     d.hasUVs = mesh.hasUVs();
-    glm::dvec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
-    for (const auto& q : mesh.positions) lo = glm::min(lo, q), hi = glm::max(hi, q);
-    d.bounds = {lo, hi};
+    d.bounds = boundsOf(mesh.positions); // the limit surface lies in the control points' hull
     if (adaptive) {
         if (displacement) {
             if (!d.hasUVs) throw Error(ErrorKind::BadInput, "displacement needs texture coordinates; the mesh has none");

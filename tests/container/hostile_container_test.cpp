@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -441,3 +442,65 @@ TEST(HostileContainer, UnknownChunksPassThroughLimnClassify) {
 }
 
 } // namespace
+
+// MATL (formats/limn.md, 5): what is written reads back; every malformed field is refused with
+// the chunk named; a newer version is refused; no MATL reads as none.
+TEST(HostileContainer, MaterialChunk) {
+    MeshMaterial m;
+    m.baseColorFactor = {0.25, 0.5, 1.0, 0.75};
+    m.textureBytes = {1, 2, 3, 4, 5};
+    m.textureFormat = "texture.png";
+    Container c;
+    c.set(encodeMaterialChunk(m));
+    auto back = loadMaterial(parseContainer(serializeContainer(c)));
+    ASSERT_TRUE(back);
+    EXPECT_EQ(*back, m);
+    EXPECT_EQ(c.chunks[0].payload.size(), 32u + 11u + 5u);
+    EXPECT_FALSE(loadMaterial(Container{}));
+    MeshMaterial plain; // a factor without a texture
+    Container p;
+    p.set(encodeMaterialChunk(plain));
+    ASSERT_TRUE(loadMaterial(p));
+    EXPECT_EQ(*loadMaterial(p), plain);
+
+    auto payload = [](std::array<float, 4> factor, uint32_t n, uint32_t reserved, uint64_t T,
+                      std::string name, std::vector<uint8_t> bytes) {
+        ByteWriter w;
+        for (float f : factor) w.write(f);
+        w.write(n);
+        w.write(reserved);
+        w.write(T);
+        w.writeArray(std::vector<uint8_t>(name.begin(), name.end()));
+        w.writeArray(bytes);
+        return w.take();
+    };
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<std::vector<uint8_t>> bad = {
+        payload({nan, 1, 1, 1}, 0, 0, 0, "", {}),
+        payload({1, 1.5f, 1, 1}, 0, 0, 0, "", {}),
+        payload({1, 1, 1, -0.1f}, 0, 0, 0, "", {}),
+        payload({1, 1, 1, 1}, 0, 1, 0, "", {}),                      // reserved
+        payload({1, 1, 1, 1}, 5, 0, 0, "a.png", {}),                 // name without texture
+        payload({1, 1, 1, 1}, 0, 0, 3, "", {1, 2, 3}),               // texture without name
+        payload({1, 1, 1, 1}, 5, 0, 3, "a/png", {1, 2, 3}),          // character
+        payload({1, 1, 1, 1}, 300, 0, 1, std::string(300, 'a'), {1}), // too long a name
+        payload({1, 1, 1, 1}, 5, 0, 4, "a.png", {1, 2, 3}),          // truncated texture
+        payload({1, 1, 1, 1}, 5, 0, uint64_t(1) << 62, "a.png", {1}), // huge count
+        payload({1, 1, 1, 1}, 5, 0, 1, "a.png", {1, 2}),             // trailing byte
+        std::vector<uint8_t>(31, 0),                                 // short header
+    };
+    for (size_t i = 0; i < bad.size(); ++i) {
+        Container b;
+        b.set({kMaterialChunk, 1, bad[i]});
+        try {
+            loadMaterial(b);
+            ADD_FAILURE() << "case " << i << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::BadInput) << i;
+            EXPECT_NE(e.where().find("MATL"), std::string::npos) << i << ": " << e.what();
+        }
+    }
+    Container newer;
+    newer.set({kMaterialChunk, 2, c.chunks[0].payload});
+    EXPECT_THROW(loadMaterial(newer), Error);
+}

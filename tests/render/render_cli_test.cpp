@@ -365,7 +365,7 @@ TEST(RenderCli, HelpListsDefaultsAndExitCodes) {
     auto r = render({"--help"});
     EXPECT_EQ(r.exitCode, 0);
     for (const char* needle :
-         {"--size WxH", "[default: 1024x768]", "[default: 30,20]", "--mesh-out", "--bench FRAMES",
+         {"--size WxH", "[default: 1024x768]", "[default: -30,20]", "--light AZ,EL", "[default: -40,35]", "--color R,G,B", "--up-axis", "--mesh-out", "--bench FRAMES",
           "--device NAME", "Exit codes", "3  missing capability"})
         EXPECT_NE(r.out.find(needle), std::string::npos) << needle;
 }

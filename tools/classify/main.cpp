@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
                     "boundary rule [default: the mesh's interpolateboundary tag, else edge]")
             .notes("The format is chosen by the extension, or by content on standard input.\n"
                    "Chunks of an input .limn that limn-classify does not own are kept unchanged.\n"
+                   "A glTF's base colour (factor and texture image bytes) is kept in a MATL chunk\n"
+                   "(formats/limn.md), which limn-render draws.\n"
                    "Example:\n  limn-classify frog.obj | limn-tables --depth 4 | limn-render -o frog.png\n");
         if (!parser.parse(ac, av)) return 0;
 
@@ -35,6 +37,7 @@ int main(int argc, char** argv) {
         Warnings warnings;
         Container container;
         Mesh mesh;
+        std::optional<MeshMaterial> material;
         std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
         if (looksLikeContainer(bytes)) {
             try {
@@ -45,7 +48,9 @@ int main(int argc, char** argv) {
                 throw;
             }
         } else {
-            mesh = importMesh(input, bytes, warnings, &inputs);
+            // A glTF's base colour (factor, texture bytes) travels in MATL, so that a pipeline
+            // from the container draws what the asset shows.
+            mesh = importMesh(input, bytes, warnings, &inputs, &material);
         }
         std::optional<BoundaryRule> override;
         if (boundary == "none") override = BoundaryRule::None;
@@ -63,6 +68,7 @@ int main(int argc, char** argv) {
                   std::to_string(mesh.faceCount()) + " faces");
 
         storeMesh(container, mesh);
+        if (material) container.set(encodeMaterialChunk(*material));
         container.set(encodeClassificationChunk(c));
         out.write(serializeContainer(container));
         depfile.setRule(common.output, inputs);

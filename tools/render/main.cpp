@@ -69,6 +69,7 @@ struct Input {
     uint64_t seamsHash = 0; // what SEAM must have been made from
     std::optional<blend::BlendSurface> blend;
     std::vector<std::string> filesRead; // a .gltf's buffers and images
+    std::optional<MeshMaterial> material; // a glTF's base colour, or the container's MATL
 };
 
 // An image given to an option; errors say which option and what to do.
@@ -94,8 +95,9 @@ Input readInput(const std::string& input, Surface surface, Warnings& warnings) {
         if (container) {
             c = parseContainer(bytes);
             in.mesh = loadMesh(c);
+            in.material = loadMaterial(c);
         } else {
-            in.mesh = importMesh(input, bytes, warnings, &in.filesRead);
+            in.mesh = importMesh(input, bytes, warnings, &in.filesRead, &in.material);
         }
         const bool hasBlend = container && c.find(blend::kBlendChunk);
         const Chunk* tables = container ? c.find(kTablesChunk) : nullptr;
@@ -338,6 +340,22 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
     cli::info(line);
 }
 
+double linearToSrgb(double c) {
+    return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+// The material's base colour texture, decoded; nullopt (with a warning) when it cannot be: the
+// geometry is still worth drawing, in the base colour factor.
+std::optional<render::FloatImage> materialTexture(const MeshMaterial& m, const std::string& input) {
+    try {
+        return readImageBytes(m.textureBytes, m.textureFormat);
+    } catch (const Error& e) {
+        cli::warn(displayName(input) + ": the base colour texture cannot be read (" + e.what() +
+                  "); drawing the base colour factor instead");
+        return std::nullopt;
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -352,7 +370,8 @@ int main(int argc, char** argv) {
         render::RenderSettings settings;
         bool wire = false, alpha = false, validate = false, syncValidation = false,
              meshAscii = false;
-        bool viewGiven = false;
+        bool viewGiven = false, colorGiven = false;
+        std::string upAxis = "y";
         int bench = 0, tess = 64, grid = 16;
         uint32_t turntable = 0;
         std::string camerasPath, framesPattern;
@@ -404,9 +423,19 @@ int main(int argc, char** argv) {
                     settings.view.elevationDeg = n[1];
                     viewGiven = true;
                 },
-                "30,20",
-                "camera direction in degrees: azimuth around +Y from +Z towards +X, elevation\n"
-                "                            (-90 to 90); the camera frames the bounding box")
+                "-30,20",
+                "camera direction in degrees: azimuth around the up axis from the front (0)\n"
+                "                            towards the right (90), elevation above the horizon\n"
+                "                            (-90 to 90); front is +Z with --up-axis y, -Y with z,\n"
+                "                            right +X. The default looks from front-left-above.\n"
+                "                            The object is centred and spans 85% of the image's\n"
+                "                            smaller side (its larger extent)")
+            .choice("--up-axis", &upAxis, {"y", "z"},
+                    "the asset's up axis, for --view and the sky light: y (glTF's, by its spec,\n"
+                    "                            and most OBJ/PLY/OFF files', which are exported\n"
+                    "                            Y-up by Blender, Maya and most tools) or z (CAD,\n"
+                    "                            Blender's own, the catmark car); a Z-up asset is\n"
+                    "                            seen as if turned Y-up by (x, y, z) -> (x, z, -y)")
             .custom(
                 "--eye", "X,Y,Z",
                 [&](const std::string& v) { settings.view.eye = vec3Option("--eye", v); }, "",
@@ -418,8 +447,35 @@ int main(int argc, char** argv) {
             .custom(
                 "--up", "X,Y,Z",
                 [&](const std::string& v) { settings.view.up = vec3Option("--up", v); }, "",
-                "up direction of the explicit camera [default: 0,1,0]")
+                "up direction of the explicit camera [default: the --up-axis, 0,1,0 or\n"
+                "                            0,0,1]")
             .real("--fov", "DEG", &settings.view.fovDeg, 1, 170, "vertical field of view")
+            .custom(
+                "--light", "AZ,EL",
+                [&](const std::string& v) {
+                    auto n = cli::parseNumberList("--light", v, 2);
+                    if (!(n[0] >= -360 && n[0] <= 360) || !(n[1] >= -90 && n[1] <= 90))
+                        usage("--light: azimuth must be -360 to 360 and elevation -90 to 90");
+                    settings.lightAzimuthDeg = n[0];
+                    settings.lightElevationDeg = n[1];
+                },
+                "-40,35",
+                "key light direction in degrees relative to the camera: azimuth from the view\n"
+                "                            axis towards the camera's right, elevation towards its\n"
+                "                            up (0,0: a headlight); the default is upper left")
+            .custom(
+                "--color", "R,G,B",
+                [&](const std::string& v) {
+                    auto c = cli::parseNumberList("--color", v, 3);
+                    for (double x : c)
+                        if (!(x >= 0 && x <= 1)) usage("--color: each component must be 0 to 1");
+                    settings.baseColor = glm::dvec3(c[0], c[1], c[2]);
+                    colorGiven = true;
+                },
+                "0.8,0.8,0.8",
+                "base colour of lit shading, sRGB components 0 to 1; it multiplies the texture\n"
+                "                            [default: a glTF's baseColorFactor, else light grey,\n"
+                "                            or white with a texture]")
             .custom(
                 "--background", "R,G,B",
                 [&](const std::string& v) {
@@ -449,7 +505,8 @@ int main(int argc, char** argv) {
                     "container has")
             .choice(
                 "--shade", &shade, {"lit", "normal", "uv", "levels", "texture"},
-                "lit: Lambert key light + ambient; normal: normal * 0.5 + 0.5 as colour;\n"
+                "lit: studio light (sky/ground, key, fill, highlight); normal: normal * 0.5 +\n"
+                "                            0.5 as colour;\n"
                 "                            uv: (u, v, 0) as colour, needs UVs; levels: patches\n"
                 "                            coloured by subdivision level (paper 000, Fig. 1),\n"
                 "                            irregular faces blue, needs tables; on a blending\n"
@@ -481,7 +538,9 @@ int main(int argc, char** argv) {
             .flag("--no-seam-fix", &noSeamFix,
                   "sample the map with each face's own UV only (shows the cracks that the\n"
                   "                            seam fix of paper 000, 4.5 removes)")
-            .text("--texture", "MAP", &texture, "colour texture (any image OpenImageIO reads)")
+            .text("--texture", "MAP", &texture,
+                  "colour texture (any image OpenImageIO reads) [default: a glTF's (or a MATL\n"
+                  "                            chunk's) base colour texture]")
             .flag("--wire", &wire, "overlay the control mesh edges, or the patch and face outlines")
             .choice("--eval", &eval, {"auto", "compute", "vertex"},
                     "where the surface is evaluated: vertex: in the vertex stage as the draw\n"
@@ -695,6 +754,7 @@ int main(int argc, char** argv) {
         settings.samples = static_cast<uint32_t>(samples);
         settings.supersample = static_cast<uint32_t>(supersample);
         settings.maxImageBytes = maxMemory;
+        settings.view.zUp = upAxis == "z";
         if (bench && isStdio(common.output) && !common.output.empty())
             usage("--bench prints JSON on standard output; write the image with -o FILE");
         std::optional<render::MeshFormat> meshFormat;
@@ -851,6 +911,24 @@ int main(int argc, char** argv) {
             textureMap = loadMap("--texture", texture);
             settings.texture = &*textureMap;
             if (shade == "lit") settings.shade = render::Shade::Texture;
+        }
+        if (in.material) { // a glTF's base colour (limn-classify keeps it in MATL)
+            const glm::dvec4& f = in.material->baseColorFactor;
+            if (!colorGiven)
+                settings.baseColor =
+                    glm::dvec3(linearToSrgb(f.r), linearToSrgb(f.g), linearToSrgb(f.b));
+            // Textures are drawn on the subdivision surface only (as --texture is).
+            const bool drawsTexture = in.tables && !in.blend && in.mesh.hasUVs() &&
+                                      (shade == "lit" || shade == "texture");
+            if (texture.empty() && in.material->hasTexture()) {
+                if (!drawsTexture)
+                    cli::info("the base colour texture is drawn on the subdivision surface with "
+                              "--shade lit or texture only; not drawn");
+                else if ((textureMap = materialTexture(*in.material, input))) {
+                    settings.texture = &*textureMap;
+                    settings.shade = render::Shade::Texture;
+                }
+            }
         }
         settings.blendGrid = static_cast<uint32_t>(grid);
         if (in.blend && (!displace.empty() || !texture.empty()))

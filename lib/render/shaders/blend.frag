@@ -19,8 +19,6 @@ layout(location = 3) in vec2 inFaceUV;
 layout(location = 4) flat in uint inFace;
 layout(location = 0) out vec4 outColor;
 
-const float kAmbient = 0.12;
-
 bool trimmedAway(uint face, vec2 uv) {
     uint R = drawData.trimTile;
     if (R == 0u) return false;
@@ -59,9 +57,9 @@ void main() {
         outColor = vec4(srgbToLinear(vec3(clamp(inUV, 0.0, 1.0), 0.0)), 1.0);
         return;
     }
-    vec3 albedo = pc.shade == SHADE_LEVELS ? srgbToLinear(valenceColour(inFace, inFaceUV)) : vec3(0.80);
-    vec3 toEye = pc.eye.xyz - inWorld;
-    if (dot(n, toEye) < 0.0) n = -n; // two-sided: trimmed surfaces show their back
-    float diffuse = max(dot(n, pc.light.xyz), 0.0);
-    outColor = vec4(albedo * (kAmbient + (1.0 - kAmbient) * diffuse), 1.0);
+    if (pc.shade == SHADE_LEVELS) {
+        outColor = vec4(levelsLight(srgbToLinear(valenceColour(inFace, inFaceUV)), n, inWorld), 1.0);
+        return;
+    }
+    outColor = vec4(lightRig(baseColour(), n, inWorld), 1.0); // two-sided: trimmed surfaces show their back
 }

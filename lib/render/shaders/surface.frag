@@ -37,8 +37,6 @@ vec3 sampleTexture(vec2 uv) {
     return mix(top, bottom, fy);
 }
 
-const float kAmbient = 0.12;
-
 vec3 levelColour(uint level) {
     if (level == 255u) return vec3(0.25, 0.45, 0.95); // irregular faces
     const vec3 palette[8] = vec3[8](vec3(0.72, 0.72, 0.72), vec3(0.95, 0.55, 0.70),
@@ -59,11 +57,10 @@ void main() {
         outColor = vec4(srgbToLinear(vec3(clamp(inUV, 0.0, 1.0), 0.0)), 1.0);
         return;
     }
-    vec3 albedo = pc.shade == SHADE_LEVELS    ? srgbToLinear(levelColour(inLevel))
-                  : pc.shade == SHADE_TEXTURE ? sampleTexture(inUV)
-                                              : vec3(0.80);
-    vec3 toEye = pc.eye.xyz - inWorld;
-    if (dot(n, toEye) < 0.0) n = -n; // two-sided, like the control mesh
-    float diffuse = max(dot(n, pc.light.xyz), 0.0);
-    outColor = vec4(albedo * (kAmbient + (1.0 - kAmbient) * diffuse), 1.0);
+    if (pc.shade == SHADE_LEVELS) {
+        outColor = vec4(levelsLight(srgbToLinear(levelColour(inLevel)), n, inWorld), 1.0);
+        return;
+    }
+    vec3 albedo = pc.shade == SHADE_TEXTURE ? sampleTexture(inUV) * baseColour() : baseColour();
+    outColor = vec4(lightRig(albedo, n, inWorld), 1.0);
 }

@@ -1,0 +1,567 @@
+// limn-render's look (issue 12): framing measured in the image, --up-axis against a mesh turned
+// by hand, the lit rig's options, and glTF base colour materials (factor and texture, from an
+// external file, a GLB buffer view and a data: URI, and through limn-classify's MATL chunk). The
+// glTF assets are written here with a texture whose colours the checks know; every render runs
+// with --validate, so exit code 0 also means no validation errors.
+#include "render/png.h"
+#include "test_support.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+using namespace limn;
+using namespace limn::test;
+
+namespace {
+
+std::string bin(const std::string& name) {
+    return tool(name).string();
+}
+
+RunResult limnRender(std::vector<std::string> args, const std::string& input = {}) {
+    args.insert(args.begin(), bin("limn-render"));
+    args.push_back("--validate");
+    return run(args, input);
+}
+
+render::Image readPng(const std::filesystem::path& path) {
+    return render::decodePng(readBytes(path));
+}
+
+// limn-classify MODEL [| limn-tables -d DEPTH] into DIR/NAME.limn.
+std::string prepare(const ScratchDir& dir, const std::string& model, const std::string& name,
+                    int depth) {
+    const std::string out = (dir / (name + ".limn")).string();
+    auto r = run({bin("limn-classify"), model, "-q", "-o", out});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    if (depth >= 0) {
+        r = run({bin("limn-tables"), out, "-q", "-d", std::to_string(depth), "-o", out});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+    }
+    return out;
+}
+
+// The object's extent in the image: the box of the pixels that are not the key background.
+struct Silhouette {
+    uint32_t x0 = ~0u, y0 = ~0u, x1 = 0, y1 = 0;
+    size_t pixels = 0;
+    uint32_t width() const { return pixels ? x1 - x0 + 1 : 0; }
+    uint32_t height() const { return pixels ? y1 - y0 + 1 : 0; }
+};
+
+constexpr const char* kKey = "1,0,1"; // magenta: no lit grey surface is near it
+Silhouette silhouette(const render::Image& img) {
+    Silhouette s;
+    for (uint32_t y = 0; y < img.height; ++y)
+        for (uint32_t x = 0; x < img.width; ++x) {
+            const uint8_t* p = img.at(x, y);
+            if (p[0] == 255 && p[1] == 0 && p[2] == 255) continue;
+            ++s.pixels;
+            s.x0 = std::min(s.x0, x), s.x1 = std::max(s.x1, x);
+            s.y0 = std::min(s.y0, y), s.y1 = std::max(s.y1, y);
+        }
+    return s;
+}
+
+// The larger silhouette extent over the frame's smaller side.
+double fill(const render::Image& img, const Silhouette& s) {
+    return double(std::max(s.width(), s.height())) / double(std::min(img.width, img.height));
+}
+
+// Pixels whose channels differ by more than `tolerance` anywhere, as a fraction of all pixels.
+double differing(const render::Image& a, const render::Image& b, int tolerance) {
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    if (a.pixels.size() != b.pixels.size()) return 1.0;
+    size_t n = 0;
+    for (size_t i = 0; i < size_t(a.width) * a.height; ++i)
+        for (uint32_t c = 0; c < a.channels; ++c)
+            if (std::abs(int(a.pixels[i * a.channels + c]) - int(b.pixels[i * b.channels + c])) >
+                tolerance) {
+                ++n;
+                break;
+            }
+    return double(n) / (double(a.width) * a.height);
+}
+
+} // namespace
+
+// ---- framing ------------------------------------------------------------------------------
+
+// The object's larger extent spans 80-90% of the frame's smaller side (the camera fits 85%),
+// whatever the model, the view and the frame's orientation, and the image is centred.
+TEST(Framing, FillsAboutEightyFivePercentOfTheSmallerSide) {
+    ScratchDir dir;
+    const std::string spot = prepare(dir, modelPath("quad/spot_control_mesh.obj").string(), "spot", 2);
+    const std::string cube = prepare(dir, modelPath("quad/osd_catmark_cube.obj").string(), "cube", 3);
+    const std::string car = prepare(dir, modelPath("osd/catmark/catmark_car.obj").string(), "car", -1);
+    const std::string torus = prepare(dir, modelPath("quad/osd_catmark_torus.obj").string(), "torus", -1);
+    struct Case {
+        std::string input;
+        std::vector<std::string> options;
+    };
+    const std::vector<Case> cases = {
+        {spot, {}},
+        {spot, {"--view", "150,20"}},
+        {spot, {"--view", "90,0", "--size", "120x160"}},
+        {cube, {"--view", "0,0"}},
+        {cube, {"--view", "35,30", "--size", "200x100"}},
+        {car, {"--up-axis", "z"}},
+        {car, {"--up-axis", "z", "--view", "90,10"}},
+        {torus, {"--view", "10,70"}}, // the control mesh
+    };
+    for (const Case& c : cases) {
+        std::vector<std::string> args = {c.input, "--background", kKey, "-o", (dir / "f.png").string()};
+        if (std::find(c.options.begin(), c.options.end(), "--size") == c.options.end())
+            args.insert(args.end(), {"--size", "160x120"});
+        args.insert(args.end(), c.options.begin(), c.options.end());
+        auto r = limnRender(args);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const render::Image img = readPng(dir / "f.png");
+        const Silhouette s = silhouette(img);
+        std::string what = c.input;
+        for (const auto& o : c.options) what += " " + o;
+        EXPECT_GE(fill(img, s), 0.80) << what;
+        EXPECT_LE(fill(img, s), 0.90) << what;
+        // Centred: the margins left and right (and above and below) differ by a few pixels.
+        const double side = std::min(img.width, img.height);
+        EXPECT_LE(std::abs(double(s.x0) - double(img.width - 1 - s.x1)), 0.04 * side) << what;
+        EXPECT_LE(std::abs(double(s.y0) - double(img.height - 1 - s.y1)), 0.04 * side) << what;
+    }
+}
+
+// A round object is framed alike from every azimuth: same fill within 2% of the side.
+TEST(Framing, SameAcrossAzimuthsForARoundModel) {
+    ScratchDir dir;
+    auto r = run({bin("limn-examples"), "--only", "quad_sphere", "-o", dir.path().string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string sphere = prepare(dir, (dir / "quad_sphere.obj").string(), "sphere", 3);
+    double lo = 1, hi = 0;
+    for (const char* view : {"0,20", "45,20", "90,20", "135,20", "200,20", "290,-10"}) {
+        r = limnRender({sphere, "--view", view, "--size", "160x120", "--background", kKey, "-o",
+                    (dir / "s.png").string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const render::Image img = readPng(dir / "s.png");
+        const double f = fill(img, silhouette(img));
+        lo = std::min(lo, f), hi = std::max(hi, f);
+        EXPECT_GE(f, 0.80) << view;
+        EXPECT_LE(f, 0.90) << view;
+    }
+    EXPECT_LE(hi - lo, 0.02);
+}
+
+// ---- up axis ------------------------------------------------------------------------------
+
+namespace {
+
+// The OBJ with every vertex turned from Z up to Y up: (x, y, z) -> (x, z, -y), done on the text
+// (reordering and negating decimal strings is exact).
+std::string turnedToYUp(const std::string& obj) {
+    std::istringstream in(obj);
+    std::ostringstream out;
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("v ", 0) == 0) {
+            std::istringstream v(line.substr(2));
+            std::string x, y, z;
+            v >> x >> y >> z;
+            const std::string minusY = y[0] == '-' ? y.substr(1) : "-" + y;
+            out << "v " << x << " " << z << " " << minusY << "\n";
+        } else {
+            out << line << "\n";
+        }
+    }
+    return out.str();
+}
+
+} // namespace
+
+// The Z-up car seen with --up-axis z is the car turned to Y up seen with --up-axis y: the same
+// view, framing and sky light. Not bit-identical (the turned coordinates are summed in another
+// order in the projection), so: at most 0.5% of the pixels off by more than 8.
+TEST(UpAxis, ZUpCarMatchesTheCarTurnedToYUp) {
+    ScratchDir dir;
+    const std::string obj = readFile(modelPath("osd/catmark/catmark_car.obj"));
+    writeFile(dir / "car_y.obj", turnedToYUp(obj));
+    const std::string carZ = prepare(dir, modelPath("osd/catmark/catmark_car.obj").string(), "car_z", 1);
+    const std::string carY = prepare(dir, (dir / "car_y.obj").string(), "car_y", 1);
+    for (const char* view : {"-30,20", "120,35"}) {
+        auto r = limnRender({carZ, "--up-axis", "z", "--view", view, "--size", "160x120", "-o",
+                         (dir / "z.png").string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        r = limnRender({carY, "--up-axis", "y", "--view", view, "--size", "160x120", "-o",
+                    (dir / "y.png").string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        r = limnRender({carZ, "--up-axis", "y", "--view", view, "--size", "160x120", "-o",
+                    (dir / "wrong.png").string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const auto z = readPng(dir / "z.png"), y = readPng(dir / "y.png");
+        EXPECT_LE(differing(z, y, 8), 0.005) << view;
+        // And the axis matters: the Z-up car taken as Y-up is another picture.
+        EXPECT_GT(differing(z, readPng(dir / "wrong.png"), 8), 0.05) << view;
+    }
+}
+
+// ---- the lit rig's options ------------------------------------------------------------------
+
+TEST(LitRig, OptionErrorsAreUsageErrors) {
+    ScratchDir dir;
+    const std::string cube = prepare(dir, modelPath("quad/osd_catmark_cube.obj").string(), "c", -1);
+    for (std::vector<std::string> bad : {std::vector<std::string>{"--light", "30"},
+                                         {"--light", "a,b"},
+                                         {"--light", "30,91"},
+                                         {"--light", "400,10"},
+                                         {"--light", "30,10,5"},
+                                         {"--color", "0.5,0.5"},
+                                         {"--color", "1,2,0"},
+                                         {"--color", "-0.1,0,0"},
+                                         {"--color", "nan,0,0"},
+                                         {"--up-axis", "x"}}) {
+        bad.insert(bad.begin(), cube);
+        bad.insert(bad.end(), {"-o", (dir / "x.png").string()});
+        auto r = limnRender(bad);
+        EXPECT_EQ(r.exitCode, 2) << bad[1] << " " << bad[2] << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+    }
+}
+
+// Same bytes twice; --light moves the shading, --color tints it.
+TEST(LitRig, DeterministicAndControlledByTheOptions) {
+    ScratchDir dir;
+    const std::string spot = prepare(dir, modelPath("quad/spot_control_mesh.obj").string(), "spot", 2);
+    auto png = [&](const std::string& name, std::vector<std::string> options) {
+        options.insert(options.begin(), spot);
+        options.insert(options.end(), {"--size", "128x96", "-o", (dir / name).string()});
+        auto r = limnRender(options);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return readBytes(dir / name);
+    };
+    const auto a = png("a.png", {"--light", "30,10", "--color", "0.9,0.5,0.2"});
+    const auto b = png("b.png", {"--light", "30,10", "--color", "0.9,0.5,0.2"});
+    EXPECT_EQ(a, b);
+    const auto plain = png("p.png", {});
+    const auto lit = png("l.png", {"--light", "60,-20"});
+    EXPECT_NE(plain, lit);
+    // --color 0.9,0.5,0.2: every covered pixel reddish (R > G > B); the default is grey.
+    const render::Image tinted = render::decodePng(a), grey = render::decodePng(plain);
+    const uint8_t* bg = grey.at(0, 0);
+    size_t covered = 0, ordered = 0, neutral = 0;
+    for (uint32_t y = 0; y < grey.height; ++y)
+        for (uint32_t x = 0; x < grey.width; ++x) {
+            const uint8_t* g = grey.at(x, y);
+            if (std::memcmp(g, bg, 3) == 0) continue;
+            ++covered;
+            const uint8_t* t = tinted.at(x, y);
+            ordered += t[0] > t[1] && t[1] > t[2];
+            neutral += std::abs(g[0] - g[1]) <= 3 && std::abs(g[1] - g[2]) <= 6;
+        }
+    ASSERT_GT(covered, 1000u);
+    EXPECT_GE(ordered, covered * 95 / 100);
+    EXPECT_GE(neutral, covered * 95 / 100);
+}
+
+// ---- glTF materials -------------------------------------------------------------------------
+
+namespace {
+
+// Quadrants of the test texture as seen in the image (top-left, top-right, bottom-left,
+// bottom-right), sRGB.
+constexpr uint8_t kQuadrant[4][3] = {{200, 40, 40}, {40, 200, 40}, {40, 40, 200}, {200, 200, 40}};
+
+std::vector<uint8_t> quadrantTexture() {
+    render::Image t;
+    t.width = t.height = 64;
+    t.channels = 3;
+    t.pixels.resize(64 * 64 * 3);
+    for (uint32_t y = 0; y < 64; ++y)
+        for (uint32_t x = 0; x < 64; ++x)
+            std::memcpy(&t.pixels[(y * 64 + x) * 3], kQuadrant[(y >= 32) * 2 + (x >= 32)], 3);
+    return render::encodePng(t);
+}
+
+std::vector<uint8_t> solidTexture(uint8_t r, uint8_t g, uint8_t b) {
+    render::Image t;
+    t.width = t.height = 4;
+    t.channels = 3;
+    for (int i = 0; i < 16; ++i) t.pixels.insert(t.pixels.end(), {r, g, b});
+    return render::encodePng(t);
+}
+
+std::string base64(const std::vector<uint8_t>& bytes) {
+    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        uint32_t n = uint32_t(bytes[i]) << 16;
+        if (i + 1 < bytes.size()) n |= uint32_t(bytes[i + 1]) << 8;
+        if (i + 2 < bytes.size()) n |= bytes[i + 2];
+        out += digits[(n >> 18) & 63];
+        out += digits[(n >> 12) & 63];
+        out += i + 1 < bytes.size() ? digits[(n >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? digits[n & 63] : '=';
+    }
+    return out;
+}
+
+template <class T>
+void append(std::vector<uint8_t>& out, const T& value) {
+    const auto* p = reinterpret_cast<const uint8_t*>(&value);
+    out.insert(out.end(), p, p + sizeof(T));
+}
+
+enum class Storage { External, Glb, DataUri };
+
+// A 4 x 4 grid of squares in the XY plane (x, y in 0..4), facing +Z, as 32 triangles, with
+// TEXCOORD_0 = (x / 4, 1 - y / 4) (glTF's UVs start at the image's top left, so the plane shows
+// the texture upright), and a material with `factor` and, when `texture` is not empty, that
+// image as baseColorTexture. Writes DIR/NAME.gltf (+ NAME.bin, NAME.png) or DIR/NAME.glb; returns
+// its path.
+std::string writePlane(const ScratchDir& dir, const std::string& name, Storage storage,
+                       const std::vector<uint8_t>& texture, const std::string& factor = "") {
+    std::vector<uint8_t> buffer;
+    for (int j = 0; j <= 4; ++j)
+        for (int i = 0; i <= 4; ++i) {
+            append(buffer, float(i));
+            append(buffer, float(j));
+            append(buffer, 0.0f);
+        }
+    for (int j = 0; j <= 4; ++j)
+        for (int i = 0; i <= 4; ++i) {
+            append(buffer, float(i) / 4);
+            append(buffer, 1.0f - float(j) / 4);
+        }
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const uint16_t a = uint16_t(j * 5 + i), b = uint16_t(a + 1), c = uint16_t(a + 6),
+                           d = uint16_t(a + 5);
+            for (uint16_t v : {a, b, c, a, c, d}) append(buffer, v);
+        }
+    const size_t geometry = buffer.size(); // 300 + 200 + 192 = 692, a multiple of 4
+    const bool textured = !texture.empty();
+    if (textured && storage == Storage::Glb) buffer.insert(buffer.end(), texture.begin(), texture.end());
+    while (buffer.size() % 4) buffer.push_back(0);
+
+    std::ostringstream j;
+    j << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2,"material":0}]}],)"
+      << R"("materials":[{"pbrMetallicRoughness":{)";
+    if (!factor.empty()) j << R"("baseColorFactor":[)" << factor << "]" << (textured ? "," : "");
+    if (textured) j << R"("baseColorTexture":{"index":0})";
+    j << "}}],";
+    if (textured) {
+        j << R"("textures":[{"source":0}],"images":[)";
+        if (storage == Storage::External) j << R"({"uri":")" << name << R"(.png"})";
+        const bool jpeg = texture.size() > 2 && texture[0] == 0xFF && texture[1] == 0xD8;
+        if (storage == Storage::Glb)
+            j << R"({"bufferView":3,"mimeType":")" << (jpeg ? "image/jpeg" : "image/png") << R"("})";
+        if (storage == Storage::DataUri) j << R"({"uri":"data:image/png;base64,)" << base64(texture) << R"("})";
+        j << "],";
+    }
+    j << R"("accessors":[{"bufferView":0,"componentType":5126,"count":25,"type":"VEC3","min":[0,0,0],"max":[4,4,0]},)"
+      << R"({"bufferView":1,"componentType":5126,"count":25,"type":"VEC2"},)"
+      << R"({"bufferView":2,"componentType":5123,"count":96,"type":"SCALAR"}],)"
+      << R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":300},)"
+      << R"({"buffer":0,"byteOffset":300,"byteLength":200},{"buffer":0,"byteOffset":500,"byteLength":192})";
+    if (textured && storage == Storage::Glb)
+        j << R"(,{"buffer":0,"byteOffset":)" << geometry << R"(,"byteLength":)" << texture.size() << "}";
+    j << R"(],"buffers":[{"byteLength":)" << buffer.size();
+    if (storage == Storage::External) j << R"(,"uri":")" << name << R"(.bin")";
+    if (storage == Storage::DataUri)
+        j << R"(,"uri":"data:application/octet-stream;base64,)" << base64(buffer) << R"(")";
+    j << "}]}";
+    std::string json = j.str();
+
+    if (storage == Storage::Glb) {
+        while (json.size() % 4) json += ' ';
+        std::vector<uint8_t> glb;
+        append(glb, uint32_t(0x46546C67)); // "glTF"
+        append(glb, uint32_t(2));
+        append(glb, uint32_t(12 + 8 + json.size() + 8 + buffer.size()));
+        append(glb, uint32_t(json.size()));
+        append(glb, uint32_t(0x4E4F534A)); // "JSON"
+        glb.insert(glb.end(), json.begin(), json.end());
+        append(glb, uint32_t(buffer.size()));
+        append(glb, uint32_t(0x004E4942)); // "BIN\0"
+        glb.insert(glb.end(), buffer.begin(), buffer.end());
+        const std::string path = (dir / (name + ".glb")).string();
+        writeFile(path, std::string(glb.begin(), glb.end()));
+        return path;
+    }
+    if (storage == Storage::External) {
+        writeFile(dir / (name + ".bin"), std::string(buffer.begin(), buffer.end()));
+        if (textured) writeFile(dir / (name + ".png"), std::string(texture.begin(), texture.end()));
+    }
+    const std::string path = (dir / (name + ".gltf")).string();
+    writeFile(path, json);
+    return path;
+}
+
+// The plane seen face-on (it fills 85% of the square image, centred): the centre pixel of each
+// quadrant lies well inside the texture's quadrant of the same place.
+const std::pair<uint32_t, uint32_t> kQuadrantPixel[4] = {{48, 48}, {112, 48}, {48, 112}, {112, 112}};
+
+render::Image renderPlane(const ScratchDir& dir, const std::string& input,
+                          std::vector<std::string> options = {}, std::string* err = nullptr) {
+    options.insert(options.begin(), input);
+    options.insert(options.end(), {"--view", "0,0", "--size", "160x160", "-o", (dir / "plane.png").string()});
+    auto r = limnRender(options);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    if (err) *err = r.err;
+    return readPng(dir / "plane.png");
+}
+
+// Which channels are bright (more than twice the dimmest channel, the light scales all alike).
+std::string bright(const uint8_t* p) {
+    const int lo = std::max(1, int(std::min({p[0], p[1], p[2]})));
+    std::string s;
+    for (int c = 0; c < 3; ++c)
+        if (p[c] > 2 * lo) s += "RGB"[c];
+    return s;
+}
+
+std::string expectedBright(int quadrant) {
+    return bright(kQuadrant[quadrant]);
+}
+
+} // namespace
+
+// The texture of the material is drawn, from each of the three places glTF keeps images, and
+// through the container (limn-classify's MATL chunk passes limn-tables): each quadrant of the
+// plane shows its quadrant's colour, and all four ways give the same bytes as --texture.
+TEST(GltfMaterial, BaseColorTextureFromFileGlbAndDataUri) {
+    ScratchDir dir;
+    const auto tex = quadrantTexture();
+    writeFile(dir / "tex.png", std::string(tex.begin(), tex.end()));
+    std::vector<std::vector<uint8_t>> images;
+    for (Storage storage : {Storage::External, Storage::Glb, Storage::DataUri}) {
+        const std::string name = storage == Storage::External ? "ext" : storage == Storage::Glb ? "glb" : "data";
+        const std::string gltf = writePlane(dir, name, storage, tex);
+        const std::string limn = prepare(dir, gltf, name, 2);
+        const render::Image img = renderPlane(dir, limn);
+        for (int q = 0; q < 4; ++q) {
+            const auto [x, y] = kQuadrantPixel[q];
+            EXPECT_EQ(bright(img.at(x, y)), expectedBright(q)) << name << " quadrant " << q;
+        }
+        images.push_back(img.pixels);
+        // The pipeline as a user runs it: limn-classify | limn-tables | limn-render.
+        auto c = run({bin("limn-classify"), gltf, "-q"});
+        ASSERT_EQ(c.exitCode, 0) << c.err;
+        auto t = run({bin("limn-tables"), "-q", "-d", "2"}, c.out);
+        ASSERT_EQ(t.exitCode, 0) << t.err;
+        auto r = limnRender({"--view", "0,0", "--size", "160x160"}, t.out);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_EQ(readPng(dir / "plane.png").pixels, render::decodePng(std::vector<uint8_t>(r.out.begin(), r.out.end())).pixels);
+    }
+    EXPECT_EQ(images[0], images[1]);
+    EXPECT_EQ(images[0], images[2]);
+    // The same as giving the image with --texture (a white factor multiplies nothing).
+    const std::string ext = (dir / "ext.limn").string();
+    const render::Image given = renderPlane(dir, ext, {"--texture", (dir / "tex.png").string()});
+    EXPECT_EQ(given.pixels, images[0]);
+}
+
+// The depfile of a render straight from a .gltf names its external buffer and image.
+TEST(GltfMaterial, DepfileNamesTheExternalTexture) {
+    ScratchDir dir;
+    const std::string gltf = writePlane(dir, "ext", Storage::External, quadrantTexture());
+    auto r = limnRender({gltf, "-q", "--size", "32x32", "-o", (dir / "o.png").string(), "--depfile",
+                     (dir / "o.d").string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string dep = readFile(dir / "o.d");
+    EXPECT_NE(dep.find("ext.png"), std::string::npos) << dep;
+    EXPECT_NE(dep.find("ext.bin"), std::string::npos) << dep;
+}
+
+// --texture replaces the material's texture; --color replaces its factor (and multiplies the
+// texture): red light on the texture's green quadrant is dark.
+TEST(GltfMaterial, TextureAndColorOptionsOverride) {
+    ScratchDir dir;
+    const std::string limn = prepare(dir, writePlane(dir, "p", Storage::Glb, quadrantTexture()), "p", 2);
+    const auto blue = solidTexture(30, 30, 220);
+    writeFile(dir / "blue.png", std::string(blue.begin(), blue.end()));
+    const render::Image over = renderPlane(dir, limn, {"--texture", (dir / "blue.png").string()});
+    for (const auto& [x, y] : kQuadrantPixel) EXPECT_EQ(bright(over.at(x, y)), "B");
+    const render::Image red = renderPlane(dir, limn, {"--color", "1,0,0"});
+    for (int q = 0; q < 4; ++q) {
+        const auto [x, y] = kQuadrantPixel[q];
+        const uint8_t* p = red.at(x, y);
+        EXPECT_LE(int(p[1]), 25) << q; // no green or blue light but the white highlight
+        EXPECT_LE(int(p[2]), 25) << q;
+        if (q == 1 || q == 2) EXPECT_LT(int(p[0]), 110) << q; // red 40 of 255 in the texture
+        else EXPECT_GT(int(p[0]), 150) << q;
+    }
+}
+
+// baseColorFactor alone tints the model (lit shading of the control mesh and of the surface);
+// --color wins over it.
+TEST(GltfMaterial, BaseColorFactorTintsAndColorOverrides) {
+    ScratchDir dir;
+    const std::string gltf = writePlane(dir, "f", Storage::Glb, {}, "0.8,0.2,0.05,1");
+    for (const std::string& input : {gltf, prepare(dir, gltf, "f", 2), prepare(dir, gltf, "g", -1)}) {
+        const render::Image img = renderPlane(dir, input);
+        for (const auto& [x, y] : kQuadrantPixel) {
+            const uint8_t* p = img.at(x, y);
+            EXPECT_GT(int(p[0]), int(p[1]) + 40) << input;
+            EXPECT_GT(int(p[1]), int(p[2])) << input;
+        }
+        const render::Image blue = renderPlane(dir, input, {"--color", "0.1,0.1,0.9"});
+        for (const auto& [x, y] : kQuadrantPixel) EXPECT_EQ(bright(blue.at(x, y)), "B") << input;
+    }
+}
+
+// A texture that cannot be decoded: a warning, and the factor alone is drawn.
+TEST(GltfMaterial, CorruptTextureWarnsAndDrawsTheFactor) {
+    ScratchDir dir;
+    std::vector<uint8_t> broken = quadrantTexture();
+    broken.resize(broken.size() / 2); // a PNG cut in half
+    const std::string limn = prepare(dir, writePlane(dir, "b", Storage::Glb, broken, "0.02,0.9,0.02,1"), "b", 2);
+    std::string err;
+    const render::Image img = renderPlane(dir, limn, {}, &err);
+    EXPECT_NE(err.find("base colour texture cannot be read"), std::string::npos) << err;
+    for (const auto& [x, y] : kQuadrantPixel) EXPECT_EQ(bright(img.at(x, y)), "G");
+}
+
+// Khronos' BoxTextured (GLB, embedded PNG) through the pipeline: the logo's colours show, not the
+// grey of the untextured model.
+TEST(GltfMaterial, BoxTexturedShowsItsTexture) {
+    ScratchDir dir;
+    const std::string limn = prepare(dir, modelPath("gltf/BoxTextured/BoxTextured.glb").string(), "box", 2);
+    auto r = limnRender({limn, "--size", "128x128", "--background", kKey, "-o", (dir / "box.png").string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const render::Image img = readPng(dir / "box.png");
+    size_t covered = 0, coloured = 0;
+    for (uint32_t y = 0; y < img.height; ++y)
+        for (uint32_t x = 0; x < img.width; ++x) {
+            const uint8_t* p = img.at(x, y);
+            if (p[0] == 255 && p[1] == 0 && p[2] == 255) continue;
+            ++covered;
+            coloured += std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) > 40;
+        }
+    ASSERT_GT(covered, 2000u);
+    EXPECT_GT(coloured, covered / 20);
+}
+
+// A JPEG texture in a GLB (decoded by the OpenImageIO plugin from memory; the JPEG is written
+// here by OpenImageIO): the quadrants keep their colours through the lossy coding.
+TEST(GltfMaterial, JpegTextureInAGlb) {
+    ScratchDir dir;
+    const render::Image png = render::decodePng(quadrantTexture());
+    const std::string path = (dir / "q.jpg").string();
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path, OIIO::ImageSpec(int(png.width), int(png.height), 3, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, png.pixels.data()));
+    ASSERT_TRUE(out->close());
+    const std::vector<uint8_t> jpeg = readBytes(path);
+    ASSERT_EQ(jpeg[0], 0xFF);
+    const std::string limn = prepare(dir, writePlane(dir, "j", Storage::Glb, jpeg), "j", 2);
+    const render::Image img = renderPlane(dir, limn);
+    for (int q = 0; q < 4; ++q) {
+        const auto [x, y] = kQuadrantPixel[q];
+        EXPECT_EQ(bright(img.at(x, y)), expectedBright(q)) << q;
+    }
+}
