@@ -142,7 +142,10 @@ TEST(Displacement, NoCrackPixelsInSixteenViews) {
     const std::string obj = modelPath("quad/spot_control_mesh.obj").string();
     const std::string limn = prepare(obj, 3, false, dir, "spot");
     const std::string map = heightmap(limn, "uv", dir); // the stress case: unrelated across seams
-    const std::string scale = std::to_string(0.04 * diagonalOf(obj));
+    // 3% of the diagonal: at 4% the noise folds the surface over itself in places, and a fold
+    // shows a back face without any gap (found when the framing grew to 85% of the frame: one
+    // pixel at view 0,-20 whose welded --mesh-out is closed). A crack test must not count folds.
+    const std::string scale = std::to_string(0.03 * diagonalOf(obj));
     size_t withFix = 0, withoutFix = 0;
     for (int view = 0; view < 16; ++view) {
         const std::string az = std::to_string(view * 22.5), el = view % 2 ? "35" : "-20";
