@@ -89,14 +89,19 @@ std::vector<uint8_t> encode(uint32_t width, uint32_t height, uint8_t bitDepth, u
     return out;
 }
 
+// PNG colour type by channel count (PNG spec 11.2.2): grey, grey + alpha, RGB, RGBA.
+uint8_t colourType(uint32_t channels) {
+    static const uint8_t types[5] = {0, 0, 4, 2, 6};
+    if (channels < 1 || channels > 4)
+        throw Error(ErrorKind::BadInput, "PNG output needs 1 to 4 channels");
+    return types[channels];
+}
+
 } // namespace
 
 std::vector<uint8_t> encodePng8(uint32_t width, uint32_t height, uint32_t channels,
                                 std::span<const uint8_t> samples) {
-    static const uint8_t colourTypes[5] = {0, 0, 4, 2, 6}; // by channel count
-    if (channels < 1 || channels > 4)
-        throw Error(ErrorKind::BadInput, "PNG output needs 1 to 4 channels");
-    return encode(width, height, 8, colourTypes[channels], channels, samples, true);
+    return encode(width, height, 8, colourType(channels), channels, samples, true);
 }
 
 namespace {
@@ -115,12 +120,9 @@ std::vector<uint8_t> bigEndian(std::span<const uint16_t> samples) {
 
 std::vector<uint8_t> encodePng16(uint32_t width, uint32_t height, uint32_t channels,
                                  std::span<const uint16_t> samples) {
-    static const uint8_t colourTypes[5] = {0, 0, 4, 2, 6}; // by channel count
-    if (channels < 1 || channels > 4)
-        throw Error(ErrorKind::BadInput, "PNG output needs 1 to 4 channels");
     // The filters work on bytes, with the pixel's byte count as the left neighbour's distance
     // (PNG spec 9.2), so 16-bit samples need nothing special.
-    return encode(width, height, 16, colourTypes[channels], 2 * channels, bigEndian(samples), true);
+    return encode(width, height, 16, colourType(channels), 2 * channels, bigEndian(samples), true);
 }
 
 std::vector<uint8_t> encodePngGray16(uint32_t width, uint32_t height,

@@ -64,6 +64,13 @@ Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect) {
         const double k = std::min(tanY, tanY * aspect) * kFrameFill;
         constexpr double inf = std::numeric_limits<double>::infinity();
         double hiX = -inf, loX = inf, hiY = -inf, loY = inf, zMax = -inf, zMin = inf;
+        // What is fitted: the hull's points, or the box's eight corners.
+        std::vector<glm::dvec3> corners;
+        if (bounds.hull.empty())
+            for (int i = 0; i < 8; ++i)
+                corners.push_back({i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
+                                   i & 4 ? bounds.max.z : bounds.min.z});
+        const std::vector<glm::dvec3>& points = bounds.hull.empty() ? corners : bounds.hull;
         auto add = [&](const glm::dvec3& p) {
             const glm::dvec3 d = p - center;
             const double x = glm::dot(d, right), y = glm::dot(d, up), z = glm::dot(d, dir);
@@ -71,12 +78,7 @@ Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect) {
             hiY = std::max(hiY, y + k * z), loY = std::min(loY, y - k * z);
             zMax = std::max(zMax, z), zMin = std::min(zMin, z);
         };
-        if (!bounds.hull.empty())
-            for (const auto& p : bounds.hull) add(p);
-        else
-            for (int i = 0; i < 8; ++i)
-                add({i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
-                     i & 4 ? bounds.max.z : bounds.min.z});
+        for (const auto& p : points) add(p);
         // Never inside the object (a single point, or a hull seen edge-on, would put it there).
         const double distance =
             std::max({(hiX - loX) / (2 * k), (hiY - loY) / (2 * k), zMax + r * 0.05});
@@ -94,12 +96,7 @@ Camera frameCamera(const ViewSpec& spec, const Bounds& bounds, double aspect) {
                     if (projected > hi) hi = projected, a = {y, depth};
                     if (projected < lo) lo = projected, b = {y, depth};
                 };
-                if (!bounds.hull.empty())
-                    for (const auto& p : bounds.hull) visit(p);
-                else
-                    for (int i = 0; i < 8; ++i)
-                        visit({i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
-                               i & 4 ? bounds.max.z : bounds.min.z});
+                for (const auto& p : points) visit(p);
                 const double next = (a.x * b.y + b.x * a.y) / (a.y + b.y);
                 if (next == t || !(a.y > 0 && b.y > 0)) break;
                 t = next;

@@ -95,6 +95,19 @@ void encodePixel(const LinearImage& image, size_t i, bool alpha, const std::vect
     out[3] = a;
 }
 
+// Every pixel encoded (encodePixel) and scaled to integer samples 0 .. maxValue.
+template <typename Sample>
+void encodeSamples(const LinearImage& image, bool alpha, const std::vector<float>& background,
+                   double maxValue, uint32_t channels, std::vector<Sample>& out) {
+    const size_t n = size_t(image.width) * image.height;
+    out.resize(n * channels);
+    for (size_t i = 0; i < n; ++i) {
+        double v[4];
+        encodePixel(image, i, alpha, background, v);
+        for (uint32_t c = 0; c < channels; ++c) out[i * channels + c] = static_cast<Sample>(std::lround(v[c] * maxValue));
+    }
+}
+
 } // namespace
 
 Image toSrgb8(const LinearImage& image, bool alpha, const std::vector<float>& background) {
@@ -102,14 +115,7 @@ Image toSrgb8(const LinearImage& image, bool alpha, const std::vector<float>& ba
     out.width = image.width;
     out.height = image.height;
     out.channels = alpha ? 4 : 3;
-    const size_t n = size_t(image.width) * image.height;
-    out.pixels.resize(n * out.channels);
-    for (size_t i = 0; i < n; ++i) {
-        double v[4];
-        encodePixel(image, i, alpha, background, v);
-        for (uint32_t c = 0; c < out.channels; ++c)
-            out.pixels[i * out.channels + c] = static_cast<uint8_t>(std::lround(v[c] * 255.0));
-    }
+    encodeSamples(image, alpha, background, 255.0, out.channels, out.pixels);
     return out;
 }
 
@@ -118,14 +124,7 @@ Image16 toSrgb16(const LinearImage& image, bool alpha, const std::vector<float>&
     out.width = image.width;
     out.height = image.height;
     out.channels = alpha ? 4 : 3;
-    const size_t n = size_t(image.width) * image.height;
-    out.samples.resize(n * out.channels);
-    for (size_t i = 0; i < n; ++i) {
-        double v[4];
-        encodePixel(image, i, alpha, background, v);
-        for (uint32_t c = 0; c < out.channels; ++c)
-            out.samples[i * out.channels + c] = static_cast<uint16_t>(std::lround(v[c] * 65535.0));
-    }
+    encodeSamples(image, alpha, background, 65535.0, out.channels, out.samples);
     return out;
 }
 

@@ -47,6 +47,14 @@ glm::dvec3 vec3Option(const std::string& option, const std::string& value) {
     throw Error(ErrorKind::Usage, message);
 }
 
+// R,G,B with each component 0 to 1 (--color, --background, --back-faces).
+glm::dvec3 colourOption(const std::string& option, const std::string& value) {
+    auto c = cli::parseNumberList(option, value, 3);
+    for (double x : c)
+        if (!(x >= 0 && x <= 1)) usage(option + ": each component must be 0 to 1");
+    return {c[0], c[1], c[2]};
+}
+
 double peakRssMb() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
@@ -270,14 +278,12 @@ void removeFrames(const std::vector<std::string>& paths) {
 void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
                     const std::vector<render::ViewSpec>& views,
                     const std::vector<SequenceFrame>& frames, const std::vector<uint64_t>& numbers,
-                    const cli::Common& common, const std::string& meshOut,
+                    const cli::Common& common, const render::FramePattern& imagePattern,
+                    const std::optional<render::FramePattern>& meshPattern,
                     const std::optional<render::MeshFormat>& meshFormat, bool meshAscii,
                     const gpu::ValidationLog* validation, std::vector<std::string>& written,
                     const std::string& inputName, render::ImageFormat format, int bitDepth,
                     const render::RenderSettings& settings) {
-    const auto imagePattern = render::parseFramePattern("-o", common.output);
-    std::optional<render::FramePattern> meshPattern;
-    if (!meshOut.empty()) meshPattern = render::parseFramePattern("--mesh-out", meshOut);
     // One framing for the whole animation: the box of every frame's control points.
     if (!frames.empty()) {
         for (const SequenceFrame& f : frames) renderer.extendFraming(f.positions);
@@ -466,10 +472,7 @@ int main(int argc, char** argv) {
             .custom(
                 "--color", "R,G,B",
                 [&](const std::string& v) {
-                    auto c = cli::parseNumberList("--color", v, 3);
-                    for (double x : c)
-                        if (!(x >= 0 && x <= 1)) usage("--color: each component must be 0 to 1");
-                    settings.baseColor = glm::dvec3(c[0], c[1], c[2]);
+                    settings.baseColor = colourOption("--color", v);
                     colorGiven = true;
                 },
                 "0.8,0.8,0.8",
@@ -479,21 +482,13 @@ int main(int argc, char** argv) {
             .custom(
                 "--background", "R,G,B",
                 [&](const std::string& v) {
-                    auto c = cli::parseNumberList("--background", v, 3);
-                    for (double x : c)
-                        if (!(x >= 0 && x <= 1))
-                            usage("--background: each component must be 0 to 1");
-                    settings.background = {c[0], c[1], c[2]};
+                    settings.background = colourOption("--background", v);
                 },
                 "0.2,0.2,0.2", "background colour, sRGB components 0 to 1 (as stored in the PNG)")
             .custom(
                 "--back-faces", "R,G,B",
                 [&](const std::string& v) {
-                    auto c = cli::parseNumberList("--back-faces", v, 3);
-                    for (double x : c)
-                        if (!(x >= 0 && x <= 1))
-                            usage("--back-faces: each component must be 0 to 1");
-                    settings.backFaceColor = glm::dvec3(c[0], c[1], c[2]);
+                    settings.backFaceColor = colourOption("--back-faces", v);
                 },
                 "",
                 "paint faces seen from behind flat in this sRGB colour [default: shade both\n"
@@ -734,11 +729,13 @@ int main(int argc, char** argv) {
         if (!camerasPath.empty() && (settings.view.eye || viewGiven))
             usage("--cameras gives every frame's camera; leave out --view and --eye");
         if (sequence && bench) usage("--bench measures one frame; leave out --turntable, --cameras and --frames");
+        // A sequence's output names: -o and --mesh-out with their frame number.
+        std::optional<render::FramePattern> imagePattern, meshPattern;
         if (sequence) {
             if (common.output.empty() || isStdio(common.output))
                 usage("a sequence writes one image per frame: give -o NAME_%04d.png");
-            render::parseFramePattern("-o", common.output); // exactly one frame number
-            if (!meshOut.empty()) render::parseFramePattern("--mesh-out", meshOut);
+            imagePattern = render::parseFramePattern("-o", common.output); // exactly one frame number
+            if (!meshOut.empty()) meshPattern = render::parseFramePattern("--mesh-out", meshOut);
         } else {
             for (const std::string* path : {&common.output, &meshOut})
                 if (render::hasFrameNumber(*path))
@@ -837,11 +834,9 @@ int main(int argc, char** argv) {
         std::optional<OutputFile> png, ply;
         std::vector<std::string> outputs;
         if (sequence) {
-            const auto imagePattern = render::parseFramePattern("-o", common.output);
             for (uint64_t n : frameNumbers) {
-                outputs.push_back(render::framePath(imagePattern, n));
-                if (!meshOut.empty())
-                    outputs.push_back(render::framePath(render::parseFramePattern("--mesh-out", meshOut), n));
+                outputs.push_back(render::framePath(*imagePattern, n));
+                if (meshPattern) outputs.push_back(render::framePath(*meshPattern, n));
             }
             for (const std::string& o : outputs) refuseOverwritingInputs(o, inputs);
             for (const std::string& o : {outputs.front(), outputs.back()}) {
@@ -966,7 +961,8 @@ int main(int argc, char** argv) {
                       "," + std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
 
             if (sequence) {
-                renderSequence(renderer, settings.view, views, frames, frameNumbers, common, meshOut, meshFormat,
+                renderSequence(renderer, settings.view, views, frames, frameNumbers, common, *imagePattern,
+                               meshPattern, meshFormat,
                                meshAscii, validation.get(), written, displayName(input), imageFormat,
                                bitDepth, settings);
             } else if (bench) {
