@@ -33,7 +33,7 @@ struct EmitPush { // adaptive_emit.comp
     uint32_t pointBase, triangleCapacity;
 };
 
-constexpr uint32_t kTotalsWords = 20;
+constexpr uint32_t kTotalsWords = 22;
 constexpr uint32_t kEvalGroupSize = 64; // surface_eval.comp's local_size_x
 
 void copyMatrix(const glm::mat4& m, float out[16]) {

@@ -88,8 +88,9 @@ class AdaptiveTess {
     const gpu::Buffer& triangles() const { return *triangles_; }
     const gpu::Buffer& triangleLevels() const { return *triangleLevels_; }
     const gpu::Buffer& totalsBuffer() const { return *totals_; }
-    // Offsets into totalsBuffer(): indexed draw, non-indexed draw, evaluation dispatch.
-    static constexpr uint64_t kIndexedDrawArgs = 0, kDrawArgs = 20, kDispatchArgs = 36;
+    // Offsets into totalsBuffer(): indexed draw, non-indexed draw, evaluation dispatch, the
+    // non-indexed draw of the triangles' edges (--wire).
+    static constexpr uint64_t kIndexedDrawArgs = 0, kDrawArgs = 20, kDispatchArgs = 36, kWireDrawArgs = 72;
     static constexpr uint32_t kRowGroups = 65535;
     uint32_t vertexCapacity() const { return capV_; }
     uint32_t triangleCapacity() const { return capT_; }

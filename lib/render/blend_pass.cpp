@@ -96,14 +96,14 @@ void BlendPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     cmd.barrier(gpu::Access::ComputeWrite, gpu::Access::VertexRead | gpu::Access::TransferRead);
 }
 
-void BlendPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) {
+void BlendPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) {
     auto& g = *gpu_;
     push.flags = 0;
     const bool fetch = eval_ == Eval::Compute;
     cmd.drawIndexed(fetch ? g.drawFetch : g.drawEval, fetch ? g.fetchBindings : g.drawBindings,
                     g.triangles, static_cast<uint32_t>(draw_.triangles.size()), 1,
                     gpu::CommandBuffer::asBytes(push));
-    if (wire && evaluate_)
+    if (wire != Wire::None && evaluate_)
         cmd.drawIndexed(g.wire, g.wireBindings, g.wireLines,
                         static_cast<uint32_t>(draw_.wireLines.size()), 1,
                         gpu::CommandBuffer::asBytes(push));

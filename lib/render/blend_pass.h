@@ -38,7 +38,7 @@ class BlendPass : public FramePass {
     // surface does not read them (its local surfaces were fitted by limn-blend, math.md A.9).
     const gpu::Buffer& vertexBuffer() const override;
     void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) override;
-    void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) override;
+    void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) override;
     // The surface points (ptex = face, (u, v) its owner's parameters) and the triangles of every
     // drawn face through them.
     DrawnMesh drawnMesh() override;

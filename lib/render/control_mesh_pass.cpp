@@ -65,11 +65,11 @@ void ControlMeshPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
     cmd.barrier(gpu::Access::ComputeWrite, gpu::Access::VertexRead | gpu::Access::TransferRead);
 }
 
-void ControlMeshPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) {
+void ControlMeshPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) {
     auto& g = *gpu_;
     cmd.drawIndexed(g.meshPipeline, g.meshBindings, g.triangles,
                     static_cast<uint32_t>(draw_.triangles.size()), 1, gpu::CommandBuffer::asBytes(push));
-    if (wire)
+    if (wire != Wire::None)
         cmd.drawIndexed(g.wirePipeline, g.wireBindings, g.edges,
                         static_cast<uint32_t>(draw_.edges.size()), 1, gpu::CommandBuffer::asBytes(push));
 }

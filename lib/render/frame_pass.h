@@ -18,6 +18,11 @@
 
 namespace limn::render {
 
+// What --wire overlays: nothing, the outlines of what is drawn (control mesh edges, patch and face
+// outlines, blending-surface faces), or the edges of every triangle drawn (subdivision surfaces:
+// shows the rates view-adaptive tessellation chose; --wire-triangles).
+enum class Wire : uint8_t { None, Outlines, Triangles };
+
 // Mirrors DrawPush in shaders/draw_common.glsl (std430 push-constant layout).
 struct DrawPush {
     float viewProj[16];
@@ -79,7 +84,7 @@ public:
     // After the control points are in place; ends with the barrier the draw needs.
     virtual void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) = 0;
     // Inside beginRendering/endRendering.
-    virtual void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) = 0;
+    virtual void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) = 0;
     // The triangles as drawn, read back after a frame.
     virtual DrawnMesh drawnMesh() = 0;
     virtual uint64_t triangleCount() const = 0;

@@ -156,7 +156,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         DisplacementPlan plan{settings.seams, settings.seamFix};
         if (settings.displacementMap && !settings.seams)
             throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
-        viewAdaptive_ = settings.edgePixels > 0 && !settings.wire;
+        viewAdaptive_ = settings.edgePixels > 0 && settings.wire != Wire::Outlines;
         SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap,
                                                   settings.displacementMap ? &plan : nullptr, viewAdaptive_);
         AdaptiveOptions adaptive;
@@ -194,13 +194,17 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         pass_ = std::make_unique<SubdivisionPass>(
             ctx, std::move(draw),
             settings.evalInCompute ? SubdivisionPass::Eval::Compute : SubdivisionPass::Eval::Vertex,
-            settings.evaluateVertices || settings.wire, settings.shade == Shade::Levels,
+            settings.evaluateVertices || settings.wire != Wire::None, settings.shade == Shade::Levels,
             settings.displacementMap ? &displacement : nullptr, settings.texture,
             viewAdaptive_ ? &adaptive : nullptr, targetFormat_);
     } else {
         if (settings.texture)
             throw Error(ErrorKind::BadInput,
                         "--texture is drawn on the subdivision surface; run limn-tables first");
+        if (settings.wire == Wire::Triangles)
+            throw Error(ErrorKind::Usage,
+                        "--wire-triangles draws the edges of a subdivision surface's triangles; this "
+                        "file has no tables (run limn-tables first), or use --wire for the mesh edges");
         ControlMeshDraw draw = prepareControlMesh(mesh);
         bounds = draw.bounds;
         pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw), targetFormat_);
@@ -217,13 +221,17 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurfac
         throw Error(ErrorKind::Usage,
                     "--displace and --texture apply to the subdivision surface, not "
                     "a blending surface");
+    if (settings.wire == Wire::Triangles)
+        throw Error(ErrorKind::Usage,
+                    "--wire-triangles draws the edges of a subdivision surface's triangles, not a "
+                    "blending surface's; use --wire for its face outlines");
     BlendDraw draw = prepareBlend(mesh, surface, settings.blendGrid);
     const Bounds bounds = draw.bounds;
     blend_ = true;
     pass_ = std::make_unique<BlendPass>(ctx, std::move(draw),
                                         settings.evalInCompute ? BlendPass::Eval::Compute
                                                                : BlendPass::Eval::Vertex,
-                                        settings.evaluateVertices || settings.wire, settings.trim,
+                                        settings.evaluateVertices || settings.wire != Wire::None, settings.trim,
                                         targetFormat_);
     finishSetup(mesh, bounds);
 }

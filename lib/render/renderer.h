@@ -55,13 +55,13 @@ struct RenderSettings {
     uint32_t width = 1024, height = 768;
     ViewSpec view;
     Shade shade = Shade::Lit;
-    bool wire = false;
+    Wire wire = Wire::None;               // --wire / --wire-triangles (subdivision surfaces)
     glm::dvec3 background{0.2, 0.2, 0.2}; // sRGB-encoded, 0..1, as it appears in the PNG
     bool alpha = false;                   // RGBA output, background transparent
     uint32_t tessCap = 64;                // segments per patch side / edge piece, at most (subdivision)
     // View-adaptive tessellation (issue 11): target pixels per segment; 0 keeps the fixed grids
     // of 2^(N-l) segments per level-l patch side. (limn-render's default is 4; the library's 0
-    // keeps callers that compare with fixed references unchanged.) --wire uses the fixed grids.
+    // keeps callers that compare with fixed references unchanged.) Wire::Outlines uses the fixed grids.
     double edgePixels = 0;
     bool cull = true;                     // view-adaptive: skip elements outside the frustum
     uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)

@@ -124,6 +124,11 @@ struct SubdivisionPass::Gpu {
                 ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
                                                gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
                 target);
+            wireTriangles = std::make_unique<gpu::GraphicsPipeline>(
+                ctx, gpu::GraphicsPipelineDesc{"wire (triangles)", wire_triangles_vert_spv, wire_frag_spv, 2,
+                                               sizeof(DrawPush), gpu::Primitive::Lines,
+                                               gpu::DepthTest::LessOrEqual, false},
+                target);
             drawnPositions = evalPositions.get();
             drawnNormals = evalNormals.get();
             if (disp && adaptive) {
@@ -167,6 +172,7 @@ struct SubdivisionPass::Gpu {
                 drawnNormals = displacedNormals.get();
             }
             wireBindings = wire->bind({*drawnPositions});
+            wireTriangleBindings = wireTriangles->bind({*drawnPositions, tris});
             fetchBindings = surfaceFetch.bind({*drawnPositions, *drawnNormals, tv, tris, levels, tris,
                                                tris, texture});
         }
@@ -187,8 +193,8 @@ struct SubdivisionPass::Gpu {
     const gpu::Buffer* drawnPositions = nullptr;
     const gpu::Buffer* drawnNormals = nullptr;
     std::unique_ptr<gpu::ComputePipeline> evalPass;
-    std::unique_ptr<gpu::GraphicsPipeline> wire;
-    gpu::BindGroup evalBindings, wireBindings;
+    std::unique_ptr<gpu::GraphicsPipeline> wire, wireTriangles;
+    gpu::BindGroup evalBindings, wireBindings, wireTriangleBindings;
     std::unique_ptr<AdaptiveTess> adaptive;
     // The draw with back faces culled by the rasterizer (view-adaptive, closed surface seen from
     // outside; null otherwise).
@@ -331,7 +337,7 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
     cmd.barrier(compute, gpu::Access::VertexRead | gpu::Access::TransferRead);
 }
 
-void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) {
+void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) {
     auto& g = *gpu_;
     push.patchCount = static_cast<uint32_t>(draw_.patches.size());
     const auto& bindings = eval_ == Eval::Compute ? g.fetchBindings : g.surfaceBindings;
@@ -348,7 +354,11 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wi
             cmd.drawIndexedIndirect(pipeline, bindings, g.adaptive->triangles(), g.adaptive->totalsBuffer(),
                                     AdaptiveTess::kIndexedDrawArgs, gpu::CommandBuffer::asBytes(push));
         }
-        return; // --wire draws the fixed tessellation's outlines (the tool picks fixed mode)
+        // Outlines exist for the fixed grids only (the renderer picks them for Wire::Outlines).
+        if (wire == Wire::Triangles && g.wireTriangles)
+            cmd.drawIndirect(*g.wireTriangles, g.wireTriangleBindings, g.adaptive->totalsBuffer(),
+                             AdaptiveTess::kWireDrawArgs, gpu::CommandBuffer::asBytes(push));
+        return;
     }
     if (levels_) {
         push.flags |= kDrawPullIndices;
@@ -359,9 +369,12 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wi
         cmd.drawIndexed(pipeline, bindings, g.triangles, static_cast<uint32_t>(draw_.triangles.size()),
                         1, gpu::CommandBuffer::asBytes(push));
     }
-    if (wire && g.wire)
+    if (wire == Wire::Outlines && g.wire)
         cmd.drawIndexed(*g.wire, g.wireBindings, g.wireLines, static_cast<uint32_t>(draw_.wireLines.size()),
                         1, gpu::CommandBuffer::asBytes(push));
+    if (wire == Wire::Triangles && g.wireTriangles)
+        cmd.draw(*g.wireTriangles, g.wireTriangleBindings, static_cast<uint32_t>(2 * draw_.triangles.size()), 1,
+                 gpu::CommandBuffer::asBytes(push));
 }
 
 DrawnMesh SubdivisionPass::drawnMesh() {

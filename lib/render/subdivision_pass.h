@@ -36,7 +36,7 @@ public:
 
     const gpu::Buffer& vertexBuffer() const override;
     void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) override;
-    void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, bool wire) override;
+    void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) override;
     DrawnMesh drawnMesh() override;
     void setView(const glm::mat4& viewProj, const glm::dvec3& eye, uint32_t width, uint32_t height) override;
     void setControlPoints(const Bounds& bounds, float orientation) override;

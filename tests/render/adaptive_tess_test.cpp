@@ -424,6 +424,53 @@ TEST(AdaptiveCli, CarAtDepthSixFixedRefusedAdaptiveRenders) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
+// --wire-triangles draws the edges of the triangles drawn: with view-adaptive tessellation its
+// line pixels follow the rates the view chose (a close-up of spot's flank: a quarter of the
+// segment length gives over twice the line pixels, lines being 1 px wide and merging where
+// dense), with the fixed grids it draws their triangles. Normal shading: no surface pixel has
+// the wire's grey (18, 18, 18: an encoded normal is never (-0.86, -0.86, -0.86)). One sample per
+// pixel, so a line pixel is exactly the wire colour.
+TEST(AdaptiveCli, WireTrianglesFollowTheRates) {
+    ScratchDir dir;
+    const std::string limn = prepare(modelPath("quad/spot_control_mesh.obj").string(), 3, dir);
+    auto wirePixels = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args = {tool("limn-render").string(), limn, "--validate", "--samples", "1",
+                                         "--shade", "normal", "--size", "320x240", "--eye", "0.2,0.4,-1.3",
+                                         "--target", "0,0.2,-0.3", "-o", (dir / name).string()};
+        args.insert(args.end(), extra.begin(), extra.end());
+        auto r = run(args);
+        if (r.exitCode != 0) throw std::runtime_error(r.err);
+        const auto img = render::decodePng(readBytes(dir / name));
+        size_t n = 0;
+        for (size_t i = 0; i + 2 < img.pixels.size(); i += img.channels)
+            n += img.pixels[i] == 18 && img.pixels[i + 1] == 18 && img.pixels[i + 2] == 18;
+        return n;
+    };
+    const size_t none = wirePixels("none.png", {});
+    const size_t fine = wirePixels("p8.png", {"--wire-triangles", "--edge-pixels", "8"});
+    const size_t coarse = wirePixels("p32.png", {"--wire-triangles", "--edge-pixels", "32"});
+    const size_t fixed = wirePixels("fixed.png", {"--wire-triangles", "--edge-pixels", "0"});
+    std::printf("wire pixels: none %zu, P=8 %zu, P=32 %zu, fixed %zu\n", none, fine, coarse, fixed);
+    EXPECT_EQ(none, 0u);
+    EXPECT_GT(coarse, 3000u);
+    EXPECT_GT(double(fine), 1.8 * double(coarse));
+    EXPECT_GT(fixed, 3000u);
+    EXPECT_EQ(readBytes(dir / "p8.png"), (wirePixels("again.png", {"--wire-triangles", "--edge-pixels", "8"}),
+                                          readBytes(dir / "again.png")));
+
+    auto r = run({tool("limn-render").string(), limn, "--wire", "--wire-triangles", "-o", (dir / "x.png").string()});
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("choose one"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+    const std::string control = (dir / "control.limn").string();
+    r = run({tool("limn-classify").string(), modelPath("quad/spot_control_mesh.obj").string(), "-o", control});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = run({tool("limn-render").string(), control, "--wire-triangles", "-o", (dir / "x.png").string()});
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("limn-tables"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
 // Default view-adaptive images against the fixed grids of today (--edge-pixels 0): at most 0.5%
 // of the pixels covered in either differ by more than 8/255 in a channel; and the same bytes
 // when rendered twice.

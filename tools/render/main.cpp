@@ -374,7 +374,7 @@ int main(int argc, char** argv) {
         bool displaceScalePercent = false; // --displace-scale 2%: of the bounding-box diagonal
         bool noSeamFix = false;
         render::RenderSettings settings;
-        bool wire = false, alpha = false, validate = false, syncValidation = false,
+        bool wire = false, wireTriangles = false, alpha = false, validate = false, syncValidation = false,
              meshAscii = false;
         bool viewGiven = false, colorGiven = false;
         std::string upAxis = "y";
@@ -536,7 +536,12 @@ int main(int argc, char** argv) {
             .text("--texture", "MAP", &texture,
                   "colour texture (any image OpenImageIO reads) [default: a glTF's (or a MATL\n"
                   "                            chunk's) base colour texture]")
-            .flag("--wire", &wire, "overlay the control mesh edges, or the patch and face outlines")
+            .flag("--wire", &wire,
+                  "overlay the control mesh edges, the patch and face outlines (drawn on the\n"
+                  "                            fixed grids), or a blending surface's face outlines")
+            .flag("--wire-triangles", &wireTriangles,
+                  "overlay the edges of every triangle drawn (subdivision surfaces): with\n"
+                  "                            view-adaptive tessellation, the rates this view chose")
             .choice("--eval", &eval, {"auto", "compute", "vertex"},
                     "where the surface is evaluated: vertex: in the vertex stage as the draw\n"
                     "                            needs it (paper 000, 3.2; paper 001, 4.2); compute: each\n"
@@ -557,7 +562,7 @@ int main(int argc, char** argv) {
                   "                            level-l patch side (paper 000, 4.3). With --displace\n"
                   "                            an edge also gets a segment per map texel along it (up\n"
                   "                            to one per 2 pixels) and nothing is culled; --wire uses\n"
-                  "                            the fixed grids")
+                  "                            the fixed grids (--wire-triangles shows these rates)")
             .integer("--grid", "K", &grid, 1, static_cast<int>(render::kMaxBlendGrid),
                      "blending surface: each face drawn as a K x K grid of cells")
             .text(
@@ -746,7 +751,9 @@ int main(int argc, char** argv) {
         if (shade == "uv") settings.shade = render::Shade::Uv;
         if (shade == "levels") settings.shade = render::Shade::Levels;
         if (shade == "texture") settings.shade = render::Shade::Texture;
-        settings.wire = wire;
+        if (wire && wireTriangles)
+            throw Error(ErrorKind::Usage, "--wire and --wire-triangles draw different overlays; choose one");
+        settings.wire = wire ? render::Wire::Outlines : wireTriangles ? render::Wire::Triangles : render::Wire::None;
         settings.alpha = alpha;
         settings.samples = static_cast<uint32_t>(samples);
         settings.supersample = static_cast<uint32_t>(supersample);

@@ -71,5 +71,7 @@ void main() {
         totals.t[15] = (totalV > pc.vertexCapacity || totalTv + totalTc > pc.triangleCapacity) ? 1u : 0u;
         totals.t[16] = min(totalTv + totalTc, pc.triangleCapacity);
         totals.t[17] = evaluated;
+        // drawIndirect of --wire (wire_triangles.vert): two line vertices per triangle edge
+        totals.t[18] = 6u * drawn, totals.t[19] = 1u, totals.t[20] = 0u, totals.t[21] = 0u;
     }
 }
