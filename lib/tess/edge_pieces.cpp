@@ -101,13 +101,29 @@ EdgePieces buildEdgePieces(const Mesh& mesh, const Tables& t) {
                 sidePoint(d, k, 0, U, V);
                 aPoint = pointOf.find(keys.key(d.ptex, U, V)); // every corner is a point
             }
-            for (uint32_t x = 1; x <= d.W; ++x) {
-                uint32_t U, V;
-                sidePoint(d, k, x, U, V);
-                const uint32_t bPoint = pointOf.find(keys.key(d.ptex, U, V));
-                if (bPoint == FlatKeyMap::kAbsent) continue; // not a corner of any element
-                const uint32_t b = x;
-                uint32_t Ua, Va;
+            // The side's points, in order. The elements along it tile it in aligned dyadic
+            // intervals (a quadtree in each ptex chart, and charts meet at whole or half edges),
+            // so a stretch [x0, x1] of it holds a point inside only if its midpoint is one:
+            // bisect from the whole side instead of looking up every lattice step (W of them:
+            // 64 per side of a level-0 patch at depth 6).
+            uint32_t stack[2 * 17], top = 0; // pending stretch ends, at most log2(W) + 1 deep
+            uint32_t x0 = 0, x1 = d.W;
+            for (;;) {
+                uint32_t bPoint = FlatKeyMap::kAbsent;
+                if (x1 - x0 >= 2) {
+                    const uint32_t m = (x0 + x1) / 2;
+                    uint32_t U, V;
+                    sidePoint(d, k, m, U, V);
+                    if (pointOf.find(keys.key(d.ptex, U, V)) != FlatKeyMap::kAbsent) {
+                        stack[top++] = x1; // the right half after the left one
+                        x1 = m;
+                        continue;
+                    }
+                }
+                const uint32_t b = x1;
+                uint32_t U, V, Ua, Va;
+                sidePoint(d, k, b, U, V);
+                bPoint = pointOf.find(keys.key(d.ptex, U, V)); // ends are points: corners or midpoints found
                 sidePoint(d, k, a, Ua, Va);
                 const uint64_t mid = halfKeys.key(d.ptex, Ua + U, Va + V);
                 const auto [piece, inserted] = pieceOf.tryEmplace(mid, static_cast<uint32_t>(out.pieces.size()));
@@ -136,6 +152,8 @@ EdgePieces buildEdgePieces(const Mesh& mesh, const Tables& t) {
                 sp.to = b * (kTessParamOne / d.W);
                 out.sidePieces.push_back(sp);
                 a = b, aPoint = bPoint;
+                if (top == 0) break;
+                x0 = x1, x1 = stack[--top];
             }
             e.sideCount[k] = static_cast<uint32_t>(out.sidePieces.size()) - e.sideFirst[k];
         }
