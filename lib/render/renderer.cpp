@@ -44,9 +44,8 @@ std::vector<glm::dvec3> surfaceSamples(const Mesh& mesh, const Tables& tables) {
     const std::vector<glm::dvec3> vertices = evaluateVertices(tables, mesh.positions);
     std::vector<glm::dvec3> points;
     points.reserve(tables.patches.size() * 9 + tables.limitPosition.rows());
-    for (const Patch& p : tables.patches)
-        for (double s : {0.0, 0.5, 1.0})
-            for (double t : {0.0, 0.5, 1.0}) points.push_back(evaluatePatch(p, vertices, s, t).position);
+    const double params[3] = {0.0, 0.5, 1.0};
+    for (const Patch& p : tables.patches) patchPositions(p, vertices, params, points);
     for (const LimitPoint& l : evaluateLimitPoints(tables, vertices)) points.push_back(l.position);
     return points;
 }

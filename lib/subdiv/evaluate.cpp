@@ -47,8 +47,10 @@ void bsplineBasis(double t, double b[4], double d[4]) {
     d[3] = t2 / 2;
 }
 
-SurfacePoint evaluatePatch(const Patch& p, std::span<const glm::dvec3> V, double s, double t) {
-    glm::dvec3 P[4][4]; // P[i][j], i along u
+namespace {
+
+// The patch's 16 control points P[i][j] (i along u), phantoms put in (math.md C.4).
+void gatherControlPoints(const Patch& p, std::span<const glm::dvec3> V, glm::dvec3 P[4][4]) {
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) P[i][j] = V[p.cv[4 * j + i]];
     // Phantom columns first, then phantom rows over all columns (overwriting the corners), so a
@@ -61,6 +63,13 @@ SurfacePoint evaluatePatch(const Patch& p, std::span<const glm::dvec3> V, double
         if (p.boundary & kBoundaryV0) P[i][0] = 2.0 * P[i][1] - P[i][2];
         if (p.boundary & kBoundaryV1) P[i][3] = 2.0 * P[i][2] - P[i][1];
     }
+}
+
+} // namespace
+
+SurfacePoint evaluatePatch(const Patch& p, std::span<const glm::dvec3> V, double s, double t) {
+    glm::dvec3 P[4][4];
+    gatherControlPoints(p, V, P);
     double bu[4], du[4], bv[4], dv[4];
     bsplineBasis(s, bu, du);
     bsplineBasis(t, bv, dv);
@@ -75,6 +84,23 @@ SurfacePoint evaluatePatch(const Patch& p, std::span<const glm::dvec3> V, double
     r.dv /= double(p.size);
     r.normal = glm::normalize(glm::cross(r.du, r.dv));
     return r;
+}
+
+void patchPositions(const Patch& p, std::span<const glm::dvec3> V, std::span<const double> params,
+                    std::vector<glm::dvec3>& out) {
+    glm::dvec3 P[4][4];
+    gatherControlPoints(p, V, P);
+    double bu[4], du[4], bv[4], dv[4];
+    for (double s : params) {
+        bsplineBasis(s, bu, du);
+        for (double t : params) {
+            bsplineBasis(t, bv, dv);
+            glm::dvec3 position(0.0); // summed in evaluatePatch's order: the same bits
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i) position += bu[i] * bv[j] * P[i][j];
+            out.push_back(position);
+        }
+    }
 }
 
 std::vector<LimitPoint> evaluateLimitPoints(const Tables& t, std::span<const glm::dvec3> V) {

@@ -24,6 +24,11 @@ struct SurfacePoint {
 SurfacePoint evaluatePatch(const Patch& patch, std::span<const glm::dvec3> vertices, double s,
                            double t);
 
+// Positions only, at every (s, t) of params x params (s outer), appended to out: the same bits
+// as evaluatePatch(...).position, with the control points gathered once (framing samples).
+void patchPositions(const Patch& patch, std::span<const glm::dvec3> vertices, std::span<const double> params,
+                    std::vector<glm::dvec3>& out);
+
 struct LimitPoint {
     glm::dvec3 position, tangent1, tangent2, normal;
 };
