@@ -158,6 +158,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         viewAdaptive_ = settings.edgePixels > 0 && settings.wire != Wire::Outlines;
         SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap,
                                                   settings.displacementMap ? &plan : nullptr, viewAdaptive_);
+        draw.limitChunkBytes = settings.limitChunkBytes;
         AdaptiveOptions adaptive;
         adaptive.edgePixels = static_cast<float>(settings.edgePixels);
         adaptive.tess = settings.tessCap;

@@ -67,6 +67,9 @@ struct RenderSettings {
     uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)
     bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)
     bool evalInCompute = true;            // surface vertices: compute pass (else vertex stage)
+    // Limit tables are uploaded in chunks with at most this many bytes of indices each (WebGPU's
+    // binding limit; tests lower it to run the chunked path on small meshes).
+    uint64_t limitChunkBytes = uint64_t(128) << 20;
     std::optional<TrimMask> trim;         // blending surface only (--trim)
     // Displacement of the subdivision surface (paper 000, 4.5) and a colour texture.
     const FloatImage* displacementMap = nullptr;

@@ -101,15 +101,14 @@ void checkTableSize(const Tables& t) {
         const char* name;
         uint64_t bytes;
     };
-    uint64_t face = 0, stencil = 0, limitIdx = 0;
+    uint64_t face = 0, stencil = 0;
     for (const auto& s : t.facePoints) face += s.indices.size();
     for (const auto* v : {&t.edgePoints, &t.vertexPoints})
         for (const auto& s : *v) stencil += s.indices.size();
-    for (const auto* s : {&t.limitPosition, &t.limitTangent1, &t.limitTangent2}) limitIdx += s->indices.size();
     const Sized sized[] = {{"table vertices", uint64_t(t.totalVertices) * 16},
                            {"face-point indices", face * 4},
                            {"stencil indices", stencil * 4},
-                           {"limit indices", limitIdx * 4},
+                           {"limit points", uint64_t(t.limitPosition.rows()) * 32},
                            {"patches", uint64_t(t.patches.size()) * 96}};
     for (const Sized& z : sized)
         if (z.bytes > limit) {
@@ -124,6 +123,34 @@ void checkTableSize(const Tables& t) {
 }
 
 } // namespace
+
+std::vector<LimitChunk> limitChunks(const SubdivisionDraw& d, uint64_t maxBytes) {
+    const uint32_t rows = d.limitCount, stride = rows + 1;
+    const uint64_t budget = std::max<uint64_t>(maxBytes / 4, 1);
+    auto rowEntries = [&](uint32_t r) {
+        uint64_t n = 0;
+        for (uint32_t k = 0; k < 3; ++k) n += d.limitStarts[k * stride + r + 1] - d.limitStarts[k * stride + r];
+        return n;
+    };
+    std::vector<LimitChunk> out;
+    for (uint32_t r0 = 0; r0 < rows;) {
+        uint32_t r1 = r0;
+        uint64_t entries = 0;
+        while (r1 < rows && (r1 == r0 || entries + rowEntries(r1) <= budget)) entries += rowEntries(r1++);
+        LimitChunk c;
+        c.firstRow = r0, c.rows = r1 - r0;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t b = d.limitStarts[k * stride + r0], e = d.limitStarts[k * stride + r1];
+            const uint32_t base = static_cast<uint32_t>(c.indices.size());
+            for (uint32_t r = r0; r <= r1; ++r) c.starts.push_back(base + d.limitStarts[k * stride + r] - b);
+            c.indices.insert(c.indices.end(), d.limitIndices.begin() + b, d.limitIndices.begin() + e);
+            c.weights.insert(c.weights.end(), d.limitWeights.begin() + b, d.limitWeights.begin() + e);
+        }
+        out.push_back(std::move(c));
+        r0 = r1;
+    }
+    return out;
+}
 
 SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t tessCap,
                                    const DisplacementPlan* displacement, bool adaptive) {

@@ -56,8 +56,11 @@ struct SubdivisionDraw {
     std::vector<uint32_t> stencilStarts, stencilIndices; // edge- and vertex-point rows
     std::vector<float> stencilWeights;
     std::vector<LevelPasses> levels;
-    // Limit points: three tables (position, tangent 1, tangent 2) of limitCount rows each.
+    // Limit points: three tables (position, tangent 1, tangent 2) of limitCount rows each. The
+    // pass uploads them in chunks of consecutive rows under this many bytes of indices (uniform
+    // tables of catmark_car at depth 5 need 154 MiB: over WebGPU's binding limit in one piece).
     uint32_t limitCount = 0;
+    uint64_t limitChunkBytes = uint64_t(128) << 20;
     std::vector<uint32_t> limitStarts, limitIndices;
     std::vector<float> limitWeights;
     std::vector<GpuPatch> patches;
@@ -96,6 +99,16 @@ struct DisplacementPlan {
 // displacement plan, also the sample UVs and the normal neighbourhoods of every vertex.
 SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& tables, uint32_t tessCap,
                                    const DisplacementPlan* displacement = nullptr, bool adaptive = false);
+
+// The limit tables cut into chunks of consecutive rows [firstRow, firstRow + rows), each with its
+// three tables of `rows` rows back to back (starts rebased to the chunk) and at most
+// `maxBytes` / 4 indices (one row more if a single row is larger). Chunks in row order.
+struct LimitChunk {
+    uint32_t firstRow = 0, rows = 0;
+    std::vector<uint32_t> starts, indices;
+    std::vector<float> weights;
+};
+std::vector<LimitChunk> limitChunks(const SubdivisionDraw& draw, uint64_t maxBytes);
 
 // The sign of the mesh's signed volume with these positions (faces fanned from their first
 // corner, about the box centre): +1 when Du x Dv points outward, -1 inward, 0 too flat to tell.

@@ -17,7 +17,7 @@ struct LevelPush { // subdiv_face_points.comp, subdiv_stencils.comp
     uint32_t firstOut, firstRow;
 };
 struct LimitPush { // subdiv_limit.comp
-    uint32_t rowsPerTable;
+    uint32_t rowsPerTable, firstRow;
 };
 struct EvalPush { // surface_eval.comp
     uint32_t patchCount;
@@ -76,9 +76,6 @@ struct SubdivisionPass::Gpu {
           stencilStarts(uploadBufferNow(ctx, "stencil starts", d.stencilStarts)),
           stencilIndices(uploadBufferNow(ctx, "stencil indices", d.stencilIndices)),
           stencilWeights(uploadBufferNow(ctx, "stencil weights", d.stencilWeights)),
-          limitStarts(uploadBufferNow(ctx, "limit starts", d.limitStarts)),
-          limitIndices(uploadBufferNow(ctx, "limit indices", d.limitIndices)),
-          limitWeights(uploadBufferNow(ctx, "limit weights", d.limitWeights)),
           limits(ctx, {"limit points", uint64_t(std::max(d.limitCount, 1u)) * 32}),
           patches(uploadBufferNow(ctx, "patches", d.patches)),
           irregular(uploadBufferNow(ctx, "irregular faces", d.irregular)),
@@ -107,7 +104,13 @@ struct SubdivisionPass::Gpu {
         const gpu::Buffer& levels = adaptive ? adaptive->triangleLevels() : triangleLevels;
         faceBindings = facePass.bind({vertices, faceStarts, faceIndices});
         stencilBindings = stencilPass.bind({vertices, stencilStarts, stencilIndices, stencilWeights});
-        limitBindings = limitPass.bind({vertices, limitStarts, limitIndices, limitWeights, limits});
+        for (LimitChunk& c : render::limitChunks(d, d.limitChunkBytes)) {
+            LimitChunkBuffers b{uploadBufferNow(ctx, "limit starts", c.starts),
+                                uploadBufferNow(ctx, "limit indices", c.indices),
+                                uploadBufferNow(ctx, "limit weights", c.weights), {}, c.firstRow, c.rows};
+            b.bindings = limitPass.bind({vertices, b.starts, b.indices, b.weights, limits});
+            limitChunks.push_back(std::move(b));
+        }
         surfaceBindings = surface.bind(
             {vertices, patches, irregular, limits, tv, tris, levels, texture});
         if (evaluate) {
@@ -179,7 +182,7 @@ struct SubdivisionPass::Gpu {
     }
 
     gpu::Buffer vertices, faceStarts, faceIndices, stencilStarts, stencilIndices, stencilWeights,
-        limitStarts, limitIndices, limitWeights, limits, patches, irregular, tessVertices, triangles,
+        limits, patches, irregular, tessVertices, triangles,
         triangleLevels, wireLines, texture;
     std::unique_ptr<gpu::Buffer> sideRanges, sideUVs, map, displaced, incidentRanges, incident,
         displacedNormals;
@@ -187,7 +190,13 @@ struct SubdivisionPass::Gpu {
     gpu::BindGroup displaceBindings, normalsBindings;
     gpu::ComputePipeline facePass, stencilPass, limitPass;
     gpu::GraphicsPipeline surface, surfaceFetch;
-    gpu::BindGroup faceBindings, stencilBindings, limitBindings, surfaceBindings, fetchBindings;
+    gpu::BindGroup faceBindings, stencilBindings, surfaceBindings, fetchBindings;
+    struct LimitChunkBuffers { // the limit tables, cut under the binding limit (limitChunks)
+        gpu::Buffer starts, indices, weights;
+        gpu::BindGroup bindings;
+        uint32_t firstRow, rows;
+    };
+    std::vector<LimitChunkBuffers> limitChunks;
     std::unique_ptr<gpu::Buffer> evalPositions, evalNormals, evalInfo;
     // What the draw reads: the evaluated or the displaced surface (null without evaluation).
     const gpu::Buffer* drawnPositions = nullptr;
@@ -285,7 +294,8 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
         cmd.barrier(compute, read);
     }
     timed.begin(cmd, "limit points", true);
-    cmd.dispatch(g.limitPass, g.limitBindings, draw_.limitCount, LimitPush{draw_.limitCount});
+    for (const auto& c : g.limitChunks)
+        cmd.dispatch(g.limitPass, c.bindings, c.rows, LimitPush{c.rows, c.firstRow});
     cmd.endTimed();
     if (g.adaptive) {
         cmd.barrier(compute, read);
@@ -449,14 +459,14 @@ uint64_t SubdivisionPass::bufferBytes() const {
     auto& g = *gpu_;
     uint64_t sum = 0;
     for (const gpu::Buffer* b : {&g.vertices, &g.faceStarts, &g.faceIndices, &g.stencilStarts,
-                                 &g.stencilIndices, &g.stencilWeights, &g.limitStarts, &g.limitIndices,
-                                 &g.limitWeights, &g.limits, &g.patches, &g.irregular, &g.tessVertices,
+                                 &g.stencilIndices, &g.stencilWeights, &g.limits, &g.patches, &g.irregular, &g.tessVertices,
                                  &g.triangles, &g.triangleLevels, &g.wireLines, &g.texture})
         sum += b->size();
     for (const auto* b : {g.evalPositions.get(), g.evalNormals.get(), g.evalInfo.get(), g.sideRanges.get(),
                           g.sideUVs.get(), g.map.get(), g.displaced.get(), g.incidentRanges.get(),
                           g.incident.get(), g.displacedNormals.get()})
         if (b) sum += b->size();
+    for (const auto& c : g.limitChunks) sum += c.starts.size() + c.indices.size() + c.weights.size();
     if (g.adaptive) sum += g.adaptive->bufferBytes();
     return sum;
 }

@@ -15,6 +15,7 @@ layout(std430, binding = 4) writeonly buffer Limits { vec4 v[]; } limits; // pos
 layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
     layout(offset = 16) uint rowsPerTable; // rows of each table; starts holds 3 tables back to back
+    uint firstRow;     // the chunk's first limit point (tables over 128 MiB come in chunks)
 } pc;
 
 vec3 gather(uint row) {
@@ -32,6 +33,7 @@ void main() {
     vec3 t1 = gather(stride + r), t2 = gather(2 * stride + r);
     vec3 n = cross(t1, t2);
     float len = length(n);
-    limits.v[2 * r] = vec4(position, 1.0);
-    limits.v[2 * r + 1] = vec4(len > 0.0 ? n / len : vec3(0.0), len > 0.0 ? 1.0 : 0.0);
+    uint o = pc.firstRow + r;
+    limits.v[2 * o] = vec4(position, 1.0);
+    limits.v[2 * o + 1] = vec4(len > 0.0 ? n / len : vec3(0.0), len > 0.0 ? 1.0 : 0.0);
 }
