@@ -37,8 +37,8 @@ struct LevelInfo {
     uint32_t irregularFaces = 0;  // |T_l|: faces refined further (or, at level N, drawn at limit)
 };
 
-// Boundary mask bits of a regular patch: the patch edge lies on the mesh boundary and the row
-// beyond it is a phantom row P_-1 = 2 P_0 - P_1 (math.md C.4).
+// Boundary mask bits of a regular patch: the patch edge lies on the mesh boundary or on an
+// infinitely sharp crease, and the row beyond it is a phantom row P_-1 = 2 P_0 - P_1 (math.md C.4).
 enum PatchBoundary : uint8_t { kBoundaryV0 = 1, kBoundaryU1 = 2, kBoundaryV1 = 4, kBoundaryU0 = 8 };
 
 // A bicubic B-spline patch (paper 000, eq. 1). cv[4*j + i] is P_{i,j}: i runs along ptex u,
@@ -72,6 +72,9 @@ inline constexpr uint64_t kMaxLevelVertices = 1ull << 28;
 struct TablesOptions {
     int depth = 3;
     bool uniform = false;
+    // Regular faces along infinitely sharp creases and corners are B-spline patches with
+    // boundary bits (OpenSubdiv's useInfSharpPatch) instead of being isolated to depth N.
+    bool infSharpPatches = true;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;
