@@ -30,7 +30,7 @@ bool isPhantom(uint8_t boundary, int i) {
 }
 
 Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase,
-                  const std::vector<uint32_t>& remap) {
+                  const std::vector<uint32_t>& remap, uint32_t creaseEdge) {
     const Topology& T = L.topo;
     const FaceFrame& fr = L.frames[f];
     Patch p{};
@@ -42,6 +42,10 @@ Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase,
         // creases have those: the surface on this side ignores the points across it).
         if (T.twin(e0) == kNone || L.edgeSharpness[T.edge(e0)] >= kInfiniteSharpness)
             p.boundary |= static_cast<uint8_t>(1u << k);
+        if (T.edge(e0) == creaseEdge) {
+            p.crease = static_cast<uint8_t>(1u << k);
+            p.sharpness = L.edgeSharpness[creaseEdge];
+        }
         uint32_t a = kNone, d = kNone, b = kNone;
         uint32_t e1 = T.rotateCCW(e0);
         if (e1 != kNone) {
@@ -190,14 +194,18 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     std::vector<LevelStencils> stencils(1);
     std::vector<std::vector<uint8_t>> irregularSets; // T_l
     std::vector<std::vector<uint8_t>> patchSets;     // D_l \ T_l with a limit surface
+    std::vector<std::vector<uint32_t>> creaseEdges;  // per face: a single-crease patch's edge
     for (uint32_t l = 0;; ++l) {
         Level& L = levels[l];
         const uint32_t F = L.topo.faceCount();
         std::vector<uint8_t> regular(F, 0);
         if (!opts.uniform) {
-            regular = analyzeRegularity(L.topo, L.edgeSharpness, L.vertexSharpness, L.noLimit,
-                                        opts.infSharpPatches)
-                          .faceRegular;
+            Regularity r = analyzeRegularity(L.topo, L.edgeSharpness, L.vertexSharpness, L.noLimit,
+                                             opts.infSharpPatches, opts.singleCreasePatches);
+            regular = std::move(r.faceRegular);
+            creaseEdges.push_back(std::move(r.faceCreaseEdge));
+        } else {
+            creaseEdges.emplace_back(F, kNone);
         }
         std::vector<uint8_t> T(F, 0), P(F, 0);
         for (uint32_t f = 0; f < F; ++f) {
@@ -217,6 +225,7 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
                 stencils.emplace_back();
                 irregularSets.emplace_back();
                 patchSets.emplace_back();
+                creaseEdges.emplace_back();
             }
             break;
         }
@@ -322,7 +331,7 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
         for (uint32_t f = 0; f < patchSets[l].size(); ++f) {
             if (!patchSets[l][f]) continue;
-            const Patch p = gatherPatch(levels[l], f, 0, identity);
+            const Patch p = gatherPatch(levels[l], f, 0, identity, kNone);
             for (int i = 0; i < 16; ++i)
                 if (!isPhantom(p.boundary, i)) needed[l][p.cv[i]] = 1;
         }
@@ -415,7 +424,9 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
 
     for (uint32_t l = 0; l <= N; ++l)
         for (uint32_t f = 0; f < patchSets[l].size(); ++f)
-            if (patchSets[l][f]) t.patches.push_back(gatherPatch(levels[l], f, t.levels[l].first, remap[l]));
+            if (patchSets[l][f])
+                t.patches.push_back(
+                    gatherPatch(levels[l], f, t.levels[l].first, remap[l], creaseEdges[l][f]));
 
     const uint32_t baseN = t.levels[N].first;
     auto globalize = [&](StencilTable& out, StencilTable&& local) {

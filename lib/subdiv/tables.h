@@ -45,12 +45,19 @@ enum PatchBoundary : uint8_t { kBoundaryV0 = 1, kBoundaryU1 = 2, kBoundaryV1 = 4
 // j along ptex v; the patch covers the face whose corners are P11, P21, P22, P12, which is
 // [u0, u0+size] x [v0, v0+size] of ptex face `ptex`. Missing points (beyond a boundary) hold
 // index 0 and are replaced by phantoms as `boundary` says.
+//
+// A single-crease patch (Nießner, Loop and Greiner 2012) has a semi-sharp crease of sharpness
+// `sharpness` (> 0) along the one patch edge whose bit (as in PatchBoundary) `crease` holds, and
+// continuing straight on beyond the patch: the basis across the crease is that of a cubic
+// B-spline curve with a semi-sharp vertex (creaseBasis in evaluate.h). crease = 0: none.
 struct Patch {
     uint32_t cv[16];
     uint32_t ptex;
     float u0, v0, size;
     uint8_t level;
     uint8_t boundary;
+    uint8_t crease = 0;
+    float sharpness = 0;
 };
 
 // A face left irregular at level N, drawn at the limit positions of its corners. corner[i] is a
@@ -75,6 +82,9 @@ struct TablesOptions {
     // Regular faces along infinitely sharp creases and corners are B-spline patches with
     // boundary bits (OpenSubdiv's useInfSharpPatch) instead of being isolated to depth N.
     bool infSharpPatches = true;
+    // Faces along a straight semi-sharp crease are single-crease patches (OpenSubdiv's
+    // useSingleCreasePatch) instead of being isolated until the crease has decayed.
+    bool singleCreasePatches = true;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;

@@ -62,14 +62,19 @@ VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v);
 // (a corner whose every edge is inf-sharp) is regular too. A face is regular when it is a quad
 // with 4 patch-regular corners: its 4x4 neighbourhood is then a B-spline patch (with phantom
 // points beyond its boundary and inf-sharp edges).
+// With `singleCreasePatches` (OpenSubdiv's useSingleCreasePatch) an interior quad with a
+// semi-sharp crease of one sharpness along one of its edges, continuing straight through both
+// ends, and two smooth regular corners is regular too: a single-crease patch, faceCreaseEdge
+// names its crease edge (kNone for every other face).
 struct Regularity {
     std::vector<uint8_t> vertexRegular;
     std::vector<uint8_t> faceRegular; // never set for faces without a limit surface
+    std::vector<uint32_t> faceCreaseEdge;
 };
 
 Regularity analyzeRegularity(const Topology& topo, const std::vector<float>& edgeSharpness,
                              const std::vector<float>& vertexSharpness,
                              const std::vector<uint8_t>& faceNoLimit,
-                             bool infSharpPatches = true);
+                             bool infSharpPatches = true, bool singleCreasePatches = true);
 
 } // namespace limn

@@ -251,9 +251,10 @@ ReferenceCounts referenceCounts(const ReferenceObj& obj) {
     }
 
     // Regular faces: OpenSubdiv's own verdict, the REGULAR patches it keeps at depth 0 (with
-    // infinitely sharp patches, as limn's default tables).
+    // infinitely sharp and single-crease patches, as limn's default tables).
     Far::PatchTableFactory::Options po(2);
     po.useInfSharpPatch = true;
+    po.useSingleCreasePatch = true;
     po.generateLegacySharpCornerPatches = false;
     po.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
     refiner->RefineAdaptive(po.GetRefineAdaptiveOptions());

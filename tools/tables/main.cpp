@@ -32,9 +32,11 @@ int main(int argc, char** argv) {
             .flag("--uniform", &uniform,
                   "subdivide every face to level N (the paper's full-subdivision baseline)")
             .flag("--no-crease-patches", &noCreasePatches,
-                  "isolate infinitely sharp creases and corners to level N like extraordinary\n"
-                  "vertices, instead of drawing the regular faces along them as boundary and\n"
-                  "corner patches (OpenSubdiv's useInfSharpPatch off) [default: patches]")
+                  "isolate creases and sharp corners to level N like extraordinary vertices, "
+                  "instead of drawing the regular faces along infinitely sharp ones as boundary "
+                  "and corner patches and along straight semi-sharp ones as single-crease "
+                  "patches (OpenSubdiv's useInfSharpPatch and useSingleCreasePatch off) "
+                  "[default: patches]")
             .custom("--max-memory", "SIZE",
                     [&](const std::string& v) { maxMemory = cli::parseByteSize("--max-memory", v); },
                     cli::formatBytes(maxMemory) + ", half of this machine's memory",
@@ -76,7 +78,7 @@ int main(int argc, char** argv) {
             TablesOptions opts;
             opts.depth = depth;
             opts.uniform = uniform;
-            opts.infSharpPatches = !noCreasePatches;
+            opts.infSharpPatches = opts.singleCreasePatches = !noCreasePatches;
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
         } catch (Error& e) {
