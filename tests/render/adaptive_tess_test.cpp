@@ -317,6 +317,8 @@ const Case kCases[] = {
     {"quad/blub_control_mesh.obj", 4, true, {1, 0.4, 0.6}, 0.9},
     {"osd/catmark/catmark_nonquads.obj", 2, false, {0.3, 1, 0.4}, 0.5},
     {"osd/catmark/catmark_hole_test2.obj", 3, false, {0.4, 1, 0.6}, 0.7},
+    {"osd/catmark/catmark_single_crease.obj", 3, false, {0.3, 1, 0.5}, 0.7},
+    {"osd/catmark/catmark_torus_creases0.obj", 3, true, {0.5, 1, 0.2}, 0.8},
     {"quad/osd_catmark_xord_boundary.obj", 5, false, {0.1, 1, 0.3}, 0.6},
     {"osd/catmark/catmark_cubes_semisharp.obj", 3, true, {0.6, 0.5, 1}, 0.7},
     {"sphere", 6, true, {0, 0.5, 1}, 0.5, true},
