@@ -183,7 +183,8 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         std::copy(std::begin(p.cv), std::end(p.cv), g.cv);
         g.ptex = p.ptex;
         g.u0 = p.u0, g.v0 = p.v0, g.size = p.size;
-        g.levelBoundary = uint32_t(p.level) | uint32_t(p.boundary) << 8;
+        g.levelBoundary = uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16;
+        g.sharpness = p.sharpness;
         d.patches.push_back(g);
     }
     for (const IrregularFace& q : t.irregular) {

@@ -22,8 +22,9 @@ struct GpuPatch { // mirrors Patch in surface_eval.glsl
     uint32_t cv[16];
     uint32_t ptex;
     float u0, v0, size;
-    uint32_t levelBoundary; // level | boundary << 8
-    uint32_t pad[3];
+    uint32_t levelBoundary; // level | boundary << 8 | crease << 16
+    float sharpness;        // of a single-crease patch's crease
+    uint32_t pad[2];
 };
 static_assert(sizeof(GpuPatch) == 96);
 

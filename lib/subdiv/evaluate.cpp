@@ -2,6 +2,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
+#include <cstring>
+
 namespace limn {
 
 namespace {
@@ -47,6 +50,45 @@ void bsplineBasis(double t, double b[4], double d[4]) {
     d[3] = t2 / 2;
 }
 
+void creaseBasis(double t, double sharpness, double b[4], double d[4]) {
+    // M: the current 4 control points as combinations of Q0..Q3. Each step halves the segment
+    // [Q1', Q2'] by the curve rules: edge points are midpoints, the vertex point of the crease
+    // vertex blends its sharp rule (itself) and its smooth rule (Q0 + 6 Q1 + Q2) / 8 by
+    // w = min(s, 1) (uniform creasing, Sdc), the others are smooth. Once the segment no longer
+    // starts at the crease vertex (t >= 1/2), or s has decayed to 0, it is a uniform B-spline.
+    double M[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+    double s = sharpness, scale = 1;
+    auto step = [&](bool left) {
+        const double w = std::min(s, 1.0);
+        const double crease[4] = {(1 - w) / 8, w + (1 - w) * 6 / 8, (1 - w) / 8, 0};
+        const double e01[4] = {0.5, 0.5, 0, 0}, e12[4] = {0, 0.5, 0.5, 0}, e23[4] = {0, 0, 0.5, 0.5};
+        const double v2[4] = {0, 1.0 / 8, 6.0 / 8, 1.0 / 8};
+        const double* rows[4] = {e01, crease, e12, v2};
+        const double* right[4] = {crease, e12, v2, e23};
+        double N[4][4];
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) {
+                N[r][c] = 0;
+                for (int k = 0; k < 4; ++k) N[r][c] += (left ? rows : right)[r][k] * M[k][c];
+            }
+        std::memcpy(M, N, sizeof M);
+        s -= 1;
+        scale *= 2;
+        t = left ? 2 * t : 2 * t - 1;
+    };
+    while (s > 0 && t < 0.5) step(true);
+    if (s > 0) step(false);
+    double bt[4], dt[4];
+    bsplineBasis(t, bt, dt);
+    for (int c = 0; c < 4; ++c) {
+        b[c] = d[c] = 0;
+        for (int k = 0; k < 4; ++k) {
+            b[c] += bt[k] * M[k][c];
+            d[c] += scale * dt[k] * M[k][c];
+        }
+    }
+}
+
 namespace {
 
 // The patch's 16 control points P[i][j] (i along u), phantoms put in (math.md C.4).
@@ -67,12 +109,33 @@ void gatherControlPoints(const Patch& p, std::span<const glm::dvec3> V, glm::dve
 
 } // namespace
 
+namespace {
+
+// The basis along one patch direction at x: the uniform B-spline, or for a single-crease patch
+// across its crease the crease basis, mirrored when the crease is at the far end (the curve's
+// points reversed, its derivative negated). `lowBit`/`highBit`: the patch edges at x = 0 / 1.
+void directionBasis(const Patch& p, double x, uint8_t lowBit, uint8_t highBit, double b[4], double d[4]) {
+    if (!(p.crease & (lowBit | highBit))) {
+        bsplineBasis(x, b, d);
+        return;
+    }
+    const bool atEnd = p.crease & highBit;
+    double cb[4], cd[4];
+    creaseBasis(atEnd ? 1 - x : x, double(p.sharpness), cb, cd);
+    for (int k = 0; k < 4; ++k) {
+        b[k] = atEnd ? cb[3 - k] : cb[k];
+        d[k] = atEnd ? -cd[3 - k] : cd[k];
+    }
+}
+
+} // namespace
+
 SurfacePoint evaluatePatch(const Patch& p, std::span<const glm::dvec3> V, double s, double t) {
     glm::dvec3 P[4][4];
     gatherControlPoints(p, V, P);
     double bu[4], du[4], bv[4], dv[4];
-    bsplineBasis(s, bu, du);
-    bsplineBasis(t, bv, dv);
+    directionBasis(p, s, kBoundaryU0, kBoundaryU1, bu, du);
+    directionBasis(p, t, kBoundaryV0, kBoundaryV1, bv, dv);
     SurfacePoint r{glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
@@ -92,9 +155,9 @@ void patchPositions(const Patch& p, std::span<const glm::dvec3> V, std::span<con
     gatherControlPoints(p, V, P);
     double bu[4], du[4], bv[4], dv[4];
     for (double s : params) {
-        bsplineBasis(s, bu, du);
+        directionBasis(p, s, kBoundaryU0, kBoundaryU1, bu, du);
         for (double t : params) {
-            bsplineBasis(t, bv, dv);
+            directionBasis(p, t, kBoundaryV0, kBoundaryV1, bv, dv);
             glm::dvec3 position(0.0); // summed in evaluatePatch's order: the same bits
             for (int j = 0; j < 4; ++j)
                 for (int i = 0; i < 4; ++i) position += bu[i] * bv[j] * P[i][j];

@@ -38,4 +38,11 @@ std::vector<LimitPoint> evaluateLimitPoints(const Tables& tables, std::span<cons
 // Uniform cubic B-spline basis and its derivative at t in [0,1] (paper 000, section 3.2).
 void bsplineBasis(double t, double b[4], double d[4]);
 
+// The basis of a single-crease patch across its crease (Nießner, Loop and Greiner 2012): the
+// limit of a cubic B-spline curve Q0..Q3 whose vertex Q1 is semi-sharp with `sharpness`, on the
+// segment from Q1 (t = 0) to Q2 (t = 1), found by halving the segment toward Q1 until the
+// sharpness has decayed (at most ceil(sharpness) steps). Along the crease the patch is a plain
+// B-spline, so the patch is this basis times the B-spline one.
+void creaseBasis(double t, double sharpness, double b[4], double d[4]);
+
 } // namespace limn

@@ -22,8 +22,15 @@ namespace {
 constexpr int kCornerCV[4] = {5, 6, 10, 9};
 constexpr int kOuterCV[4][3] = {{4, 0, 1}, {2, 3, 7}, {11, 15, 14}, {13, 12, 8}};
 
+// Whether cv[i] of a patch with boundary mask `boundary` lies beyond a boundary (a phantom).
+bool isPhantom(uint8_t boundary, int i) {
+    const int u = i % 4, v = i / 4;
+    return ((boundary & kBoundaryU0) && u == 0) || ((boundary & kBoundaryU1) && u == 3) ||
+           ((boundary & kBoundaryV0) && v == 0) || ((boundary & kBoundaryV1) && v == 3);
+}
+
 Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase,
-                  const std::vector<uint32_t>& remap) {
+                  const std::vector<uint32_t>& remap, uint32_t creaseEdge) {
     const Topology& T = L.topo;
     const FaceFrame& fr = L.frames[f];
     Patch p{};
@@ -31,7 +38,14 @@ Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase,
     for (int k = 0; k < 4; ++k) {
         uint32_t e0 = T.faceHalfedge(f) + (fr.rotation + k) % 4;
         p.cv[kCornerCV[k]] = global(T.vertex(e0));
-        if (T.twin(e0) == kNone) p.boundary |= static_cast<uint8_t>(1u << k);
+        // A boundary edge, or an infinitely sharp one (only regular patches along inf-sharp
+        // creases have those: the surface on this side ignores the points across it).
+        if (T.twin(e0) == kNone || L.edgeSharpness[T.edge(e0)] >= kInfiniteSharpness)
+            p.boundary |= static_cast<uint8_t>(1u << k);
+        if (T.edge(e0) == creaseEdge) {
+            p.crease = static_cast<uint8_t>(1u << k);
+            p.sharpness = L.edgeSharpness[creaseEdge];
+        }
         uint32_t a = kNone, d = kNone, b = kNone;
         uint32_t e1 = T.rotateCCW(e0);
         if (e1 != kNone) {
@@ -50,6 +64,9 @@ Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase,
         for (int i = 0; i < 3; ++i)
             p.cv[kOuterCV[k][i]] = outer[i] == kNone ? 0 : global(outer[i]);
     }
+    // Points replaced by phantoms are read with weight zero: store 0 as for a mesh boundary.
+    for (int i = 0; i < 16; ++i)
+        if (isPhantom(p.boundary, i)) p.cv[i] = 0;
     p.ptex = fr.ptex;
     p.u0 = static_cast<float>(fr.u0);
     p.v0 = static_cast<float>(fr.v0);
@@ -177,12 +194,18 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     std::vector<LevelStencils> stencils(1);
     std::vector<std::vector<uint8_t>> irregularSets; // T_l
     std::vector<std::vector<uint8_t>> patchSets;     // D_l \ T_l with a limit surface
+    std::vector<std::vector<uint32_t>> creaseEdges;  // per face: a single-crease patch's edge
     for (uint32_t l = 0;; ++l) {
         Level& L = levels[l];
         const uint32_t F = L.topo.faceCount();
         std::vector<uint8_t> regular(F, 0);
         if (!opts.uniform) {
-            regular = analyzeRegularity(L.topo, L.edgeSharpness, L.vertexSharpness, L.noLimit).faceRegular;
+            Regularity r = analyzeRegularity(L.topo, L.edgeSharpness, L.vertexSharpness, L.noLimit,
+                                             opts.infSharpPatches, opts.singleCreasePatches);
+            regular = std::move(r.faceRegular);
+            creaseEdges.push_back(std::move(r.faceCreaseEdge));
+        } else {
+            creaseEdges.emplace_back(F, kNone);
         }
         std::vector<uint8_t> T(F, 0), P(F, 0);
         for (uint32_t f = 0; f < F; ++f) {
@@ -202,6 +225,7 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
                 stencils.emplace_back();
                 irregularSets.emplace_back();
                 patchSets.emplace_back();
+                creaseEdges.emplace_back();
             }
             break;
         }
@@ -300,16 +324,18 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     std::vector<std::vector<uint8_t>> needed(N + 1);
     for (uint32_t l = 0; l <= N; ++l) needed[l].assign(levels[l].topo.vertexCount(), 0);
     std::fill(needed[0].begin(), needed[0].end(), 1); // the control points are uploaded anyway
-    auto markPatch = [&](uint32_t l, uint32_t f) {
-        const Topology& T = levels[l].topo;
-        // The 16 points are the vertices of the faces around the patch's corners.
-        for (uint32_t v : T.faceVertices(f))
-            for (uint32_t h : T.vertexOutgoing(v))
-                for (uint32_t w : T.faceVertices(T.face(h))) needed[l][w] = 1;
-    };
-    for (uint32_t l = 0; l <= N; ++l)
-        for (uint32_t f = 0; f < patchSets[l].size(); ++f)
-            if (patchSets[l][f]) markPatch(l, f);
+    // A patch reads its 16 points less the phantoms (across an inf-sharp crease those are real
+    // vertices that it does not read).
+    for (uint32_t l = 0; l <= N; ++l) {
+        std::vector<uint32_t> identity(levels[l].topo.vertexCount());
+        for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
+        for (uint32_t f = 0; f < patchSets[l].size(); ++f) {
+            if (!patchSets[l][f]) continue;
+            const Patch p = gatherPatch(levels[l], f, 0, identity, kNone);
+            for (int i = 0; i < 16; ++i)
+                if (!isPhantom(p.boundary, i)) needed[l][p.cv[i]] = 1;
+        }
+    }
     for (const auto* table : {&localPosition, &localTangent1, &localTangent2})
         for (uint32_t v : table->indices) needed[N][v] = 1;
     for (uint32_t l = N; l >= 1; --l) {
@@ -398,7 +424,9 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
 
     for (uint32_t l = 0; l <= N; ++l)
         for (uint32_t f = 0; f < patchSets[l].size(); ++f)
-            if (patchSets[l][f]) t.patches.push_back(gatherPatch(levels[l], f, t.levels[l].first, remap[l]));
+            if (patchSets[l][f])
+                t.patches.push_back(
+                    gatherPatch(levels[l], f, t.levels[l].first, remap[l], creaseEdges[l][f]));
 
     const uint32_t baseN = t.levels[N].first;
     auto globalize = [&](StencilTable& out, StencilTable&& local) {

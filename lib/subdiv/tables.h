@@ -37,20 +37,27 @@ struct LevelInfo {
     uint32_t irregularFaces = 0;  // |T_l|: faces refined further (or, at level N, drawn at limit)
 };
 
-// Boundary mask bits of a regular patch: the patch edge lies on the mesh boundary and the row
-// beyond it is a phantom row P_-1 = 2 P_0 - P_1 (math.md C.4).
+// Boundary mask bits of a regular patch: the patch edge lies on the mesh boundary or on an
+// infinitely sharp crease, and the row beyond it is a phantom row P_-1 = 2 P_0 - P_1 (math.md C.4).
 enum PatchBoundary : uint8_t { kBoundaryV0 = 1, kBoundaryU1 = 2, kBoundaryV1 = 4, kBoundaryU0 = 8 };
 
 // A bicubic B-spline patch (paper 000, eq. 1). cv[4*j + i] is P_{i,j}: i runs along ptex u,
 // j along ptex v; the patch covers the face whose corners are P11, P21, P22, P12, which is
 // [u0, u0+size] x [v0, v0+size] of ptex face `ptex`. Missing points (beyond a boundary) hold
 // index 0 and are replaced by phantoms as `boundary` says.
+//
+// A single-crease patch (Nießner, Loop and Greiner 2012) has a semi-sharp crease of sharpness
+// `sharpness` (> 0) along the one patch edge whose bit (as in PatchBoundary) `crease` holds, and
+// continuing straight on beyond the patch: the basis across the crease is that of a cubic
+// B-spline curve with a semi-sharp vertex (creaseBasis in evaluate.h). crease = 0: none.
 struct Patch {
     uint32_t cv[16];
     uint32_t ptex;
     float u0, v0, size;
     uint8_t level;
     uint8_t boundary;
+    uint8_t crease = 0;
+    float sharpness = 0;
 };
 
 // A face left irregular at level N, drawn at the limit positions of its corners. corner[i] is a
@@ -72,6 +79,12 @@ inline constexpr uint64_t kMaxLevelVertices = 1ull << 28;
 struct TablesOptions {
     int depth = 3;
     bool uniform = false;
+    // Regular faces along infinitely sharp creases and corners are B-spline patches with
+    // boundary bits (OpenSubdiv's useInfSharpPatch) instead of being isolated to depth N.
+    bool infSharpPatches = true;
+    // Faces along a straight semi-sharp crease are single-crease patches (OpenSubdiv's
+    // useSingleCreasePatch) instead of being isolated until the crease has decayed.
+    bool singleCreasePatches = true;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;

@@ -72,7 +72,7 @@ Chunk encodeTablesChunk(const Tables& t) {
     auto tableBytes = [](const StencilTable& table, bool weights) {
         return 16 + 4 * (table.start.size() + table.indices.size() + (weights ? table.weights.size() : 0));
     };
-    size_t size = 40 + 24 * t.levels.size() + 84 * t.patches.size() + 32 * t.irregular.size() +
+    size_t size = 40 + 24 * t.levels.size() + 88 * t.patches.size() + 32 * t.irregular.size() +
                   4 * (t.limitVertex.size() + t.limitExact.size());
     for (uint32_t l = 0; l < t.depth; ++l)
         size += tableBytes(t.facePoints[l], false) + tableBytes(t.edgePoints[l], true) +
@@ -107,7 +107,8 @@ Chunk encodeTablesChunk(const Tables& t) {
         w.write<float>(p.u0);
         w.write<float>(p.v0);
         w.write<float>(p.size);
-        w.write<uint32_t>(uint32_t(p.level) | uint32_t(p.boundary) << 8);
+        w.write<uint32_t>(uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16);
+        w.write<float>(p.sharpness);
     }
     for (const auto& q : t.irregular) {
         w.writeArray(std::span<const uint32_t>(q.corner, 4));
@@ -121,13 +122,17 @@ Chunk encodeTablesChunk(const Tables& t) {
     writeTable(w, t.limitTangent2, true);
     w.writeArray(t.limitVertex);
     for (uint8_t e : t.limitExact) w.write<uint32_t>(e ? 0u : 1u); // bit 0: approximate
-    return {kTablesChunk, 1, w.take()};
+    return {kTablesChunk, kTablesChunkVersion, w.take()};
 }
 
 Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
-    if (chunk.version > 1)
-        throwBadInput("chunk TBLS version " + std::to_string(chunk.version) +
-                      " is newer than this limn reads (1); upgrade limn");
+    // Version 1 has no single-crease patches: its patch records end before the sharpness.
+    if (chunk.version > kTablesChunkVersion || chunk.version == 0)
+        throwBadInput("chunk TBLS version " + std::to_string(chunk.version) + " is " +
+                      (chunk.version ? "newer than" : "not one") + " this limn reads (1 or " +
+                      std::to_string(kTablesChunkVersion) + ")" +
+                      (chunk.version ? "; upgrade limn" : ""));
+    const uint32_t patchBytes = chunk.version >= 2 ? 88 : 84;
     ByteReader r(chunk.payload, "chunk TBLS");
     Tables t;
     t.depth = r.read<uint32_t>();
@@ -200,7 +205,7 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
             r.fail(what + " has a domain that is not a cell of its ptex face's quadtree");
         squares.push_back({ptex, W, U0, V0});
     };
-    if (patches > r.remaining() / 84)
+    if (patches > r.remaining() / patchBytes)
         r.fail("patch count " + std::to_string(patches) + " is too large");
     t.patches.resize(patches);
     for (uint32_t i = 0; i < patches; ++i) {
@@ -214,8 +219,16 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         uint32_t packed = r.read<uint32_t>();
         p.level = static_cast<uint8_t>(packed & 0xFF);
         p.boundary = static_cast<uint8_t>((packed >> 8) & 0xFF);
-        if ((packed >> 16) != 0 || p.boundary > 15 || p.level > t.depth)
+        p.crease = static_cast<uint8_t>((packed >> 16) & 0xFF);
+        if ((packed >> 24) != 0 || p.boundary > 15 || p.level > t.depth)
             r.fail(what + ": bad level or boundary mask");
+        if (chunk.version >= 2) p.sharpness = r.read<float>();
+        // A single-crease patch: one crease edge, a finite sharpness > 0, no boundary.
+        const bool oneBit = p.crease != 0 && (p.crease & (p.crease - 1)) == 0 && p.crease <= 8;
+        if (p.crease ? !(oneBit && p.boundary == 0 && p.sharpness > 0 &&
+                         p.sharpness < kInfiniteSharpness)
+                     : p.sharpness != 0)
+            r.fail(what + ": bad crease edge or sharpness");
         const LevelInfo& L = t.levels[p.level];
         for (uint32_t cv : p.cv)
             if (cv >= t.totalVertices || (cv != 0 && (cv < L.first || cv >= L.first + L.count())))

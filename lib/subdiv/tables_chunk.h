@@ -8,6 +8,9 @@
 namespace limn {
 
 inline constexpr FourCC kTablesChunk{"TBLS"};
+// Version 2 adds single-crease patches (a crease edge and a sharpness per patch); version 1 is
+// still read (its patches have none).
+inline constexpr uint32_t kTablesChunkVersion = 2;
 
 Chunk encodeTablesChunk(const Tables& tables);
 

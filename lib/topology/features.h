@@ -56,15 +56,25 @@ VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v);
 // is then a B-spline with phantom points P_-1 = 2 P_0 - P_1, math.md C.4); or an infinitely sharp
 // corner with 1 quad (edge-and-corner). Under boundary rule "none" a boundary vertex qualifies
 // only when crease tags made its boundary edges infinitely sharp (it then behaves as under
-// edge-only). A face is regular when it is a quad with 4 patch-regular corners: its 4x4
-// neighbourhood is then a B-spline patch (boundary faces with phantom points).
+// edge-only). With `infSharpPatches` (OpenSubdiv's useInfSharpPatch), infinitely sharp creases
+// act as boundaries: a vertex whose inf-sharp edges split it into regular boundary sectors (a
+// straight crease through a 4-valent vertex, a boundary vertex of 2 faces) or into single faces
+// (a corner whose every edge is inf-sharp) is regular too. A face is regular when it is a quad
+// with 4 patch-regular corners: its 4x4 neighbourhood is then a B-spline patch (with phantom
+// points beyond its boundary and inf-sharp edges).
+// With `singleCreasePatches` (OpenSubdiv's useSingleCreasePatch) an interior quad with a
+// semi-sharp crease of one sharpness along one of its edges, continuing straight through both
+// ends, and two smooth regular corners is regular too: a single-crease patch, faceCreaseEdge
+// names its crease edge (kNone for every other face).
 struct Regularity {
     std::vector<uint8_t> vertexRegular;
     std::vector<uint8_t> faceRegular; // never set for faces without a limit surface
+    std::vector<uint32_t> faceCreaseEdge;
 };
 
 Regularity analyzeRegularity(const Topology& topo, const std::vector<float>& edgeSharpness,
                              const std::vector<float>& vertexSharpness,
-                             const std::vector<uint8_t>& faceNoLimit);
+                             const std::vector<uint8_t>& faceNoLimit,
+                             bool infSharpPatches = true, bool singleCreasePatches = true);
 
 } // namespace limn

@@ -188,7 +188,9 @@ TEST_P(AdaptiveRender, OnTheLimitSurfaceWatertightAndSizedByTheView) {
     std::map<uint32_t, std::vector<Dom>> domains;
     for (const Patch& p : t.patches) domains[p.ptex].push_back({p.u0, p.v0, p.size, true});
     for (const IrregularFace& q : t.irregular) domains[q.ptex].push_back({q.u0, q.v0, q.size, false});
-    OsdLimitSurface osd(mesh, so, std::max(c.depth + 2, 4));
+    // Isolation 10: OpenSubdiv's patches are the limit surface only where its isolation has
+    // outlasted the sharpness of semi-sharp creases (catmark_hole_test2: 7.5).
+    OsdLimitSurface osd(mesh, so, 10);
     double worstP = 0, worstN = 0;
     size_t compared = 0;
     for (const PlyVertex& v : drawn.vertices) {
@@ -315,6 +317,8 @@ const Case kCases[] = {
     {"quad/blub_control_mesh.obj", 4, true, {1, 0.4, 0.6}, 0.9},
     {"osd/catmark/catmark_nonquads.obj", 2, false, {0.3, 1, 0.4}, 0.5},
     {"osd/catmark/catmark_hole_test2.obj", 3, false, {0.4, 1, 0.6}, 0.7},
+    {"osd/catmark/catmark_single_crease.obj", 3, false, {0.3, 1, 0.5}, 0.7},
+    {"osd/catmark/catmark_torus_creases0.obj", 3, true, {0.5, 1, 0.2}, 0.8},
     {"quad/osd_catmark_xord_boundary.obj", 5, false, {0.1, 1, 0.3}, 0.6},
     {"osd/catmark/catmark_cubes_semisharp.obj", 3, true, {0.6, 0.5, 1}, 0.7},
     {"sphere", 6, true, {0, 0.5, 1}, 0.5, true},
@@ -477,8 +481,9 @@ TEST(AdaptiveCli, WireTrianglesFollowTheRates) {
 struct ImageCase {
     std::string model;
     int depth;
-    std::vector<std::string> fixedExtra; // catmark_car's depth 6 needs --tess 32 in fixed mode
+    std::vector<std::string> fixedExtra; // options for the fixed-grid render
     std::vector<std::string> view;
+    double allowed = 0.005; // fraction of covered pixels that may differ
 };
 
 // Pixels covered in either image (not the background colour of a's corner pixel, background in
@@ -523,7 +528,7 @@ TEST_P(AdaptiveImage, CloseToTheFixedGridsAndDeterministic) {
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     const auto [covered, differ] = coveredAndDiffering(a, b);
     ASSERT_GT(covered, 10000u);
-    EXPECT_LE(double(differ), 0.005 * double(covered)) << differ << " of " << covered;
+    EXPECT_LE(double(differ), c.allowed * double(covered)) << differ << " of " << covered;
     std::printf("%s d%d: %zu of %zu covered pixels differ by > 8/255\n", c.model.c_str(), c.depth, differ, covered);
     const auto again = render("again.png", {});
     EXPECT_EQ(readBytes(dir / "adaptive.png"), readBytes(dir / "again.png"));
@@ -531,7 +536,14 @@ TEST_P(AdaptiveImage, CloseToTheFixedGridsAndDeterministic) {
 
 const ImageCase kImages[] = {
     {"quad/spot_control_mesh.obj", 6, {}, {}},
-    {"osd/catmark/catmark_car.obj", 6, {"--tess", "32"}, {}},
+    // Depth 5: the fixed grids of depth 6 need --tess 32, which would cap the single-crease
+    // patches along the car's semi-sharp creases (levels 0-1) below the depth's own density;
+    // at depth 5 every patch gets its full 2^(5-l) segments, 32 for level 0 as before. Its 314
+    // creases of sharpness 6 are single-crease patches now, whose surface bends within 2^-6 of
+    // the crease: the two tessellations triangulate that bend differently and their shading
+    // differs along the crease lines (1.4% of the pixels; 0.25% before, when the creases were
+    // isolated to level 5 and both drew the same level-5 quads there).
+    {"osd/catmark/catmark_car.obj", 5, {}, {}, 0.015},
     {"sphere", 6, {}, {"--size", "1280x720", "--eye", "0,12,22", "--target", "0,0,0"}},
 };
 

@@ -163,6 +163,11 @@ const Case kCases[] = {
     {"osd/catmark/catmark_nonquads.obj", 2, false, false},
     {"osd/catmark/catmark_hole_test2.obj", 3, false, false},
     {"osd/catmark/catmark_pyramid_creases1.obj", 2, true, true},
+    // Crease patches: inf-sharp boundary and corner patches, single-crease patches (issue 14).
+    {"osd/catmark/catmark_cube_creases2.obj", 4, false, true},
+    {"osd/catmark/catmark_single_crease.obj", 3, false, false},
+    {"osd/catmark/catmark_torus_creases0.obj", 3, false, true, "vertex"},
+    {"osd/catmark/catmark_cube_creases1.obj", 3, false, true},
     // Boundary vertices of valence 2 to 7 under each boundary rule, adaptive and uniform, and the
     // boundary, corner and crease-end configurations of the catmark shapes (signed normals).
     {"quad/osd_catmark_xord_boundary.obj", 3, false, false, "compute", BoundaryRule::EdgeOnly},

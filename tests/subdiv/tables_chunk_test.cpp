@@ -42,6 +42,56 @@ TEST(TablesChunk, RoundTripIsLossless) {
 
 // Tables are built from topology alone: moving every vertex changes no byte (paper 000: only the
 // GPU passes re-run when an animated mesh moves).
+// Version 2 added a sharpness to every patch record; a version-1 chunk (the same bytes without
+// it) still reads, as tables without single-crease patches; other versions are refused by name.
+TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
+    Mesh m = load("osd/catmark/catmark_single_crease.obj");
+    Warnings w;
+    TablesOptions o;
+    o.depth = 3;
+    o.singleCreasePatches = false;
+    Tables t = buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
+    Chunk v2 = encodeTablesChunk(t);
+    ASSERT_EQ(v2.version, 2u);
+    // The patch records follow the header, the levels and the level stencil tables.
+    auto tableBytes = [](const StencilTable& table, bool weights) {
+        return 16 + 4 * (table.start.size() + table.indices.size() + (weights ? table.weights.size() : 0));
+    };
+    size_t at = 40 + 24 * t.levels.size();
+    for (uint32_t l = 0; l < t.depth; ++l)
+        at += tableBytes(t.facePoints[l], false) + tableBytes(t.edgePoints[l], true) +
+              tableBytes(t.vertexPoints[l], true);
+    Chunk v1{v2.type, 1, {}};
+    v1.payload.assign(v2.payload.begin(), v2.payload.begin() + at);
+    for (size_t i = 0; i < t.patches.size(); ++i, at += 88)
+        v1.payload.insert(v1.payload.end(), v2.payload.begin() + at, v2.payload.begin() + at + 84);
+    v1.payload.insert(v1.payload.end(), v2.payload.begin() + at, v2.payload.end());
+    EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(v1, &m)).payload, v2.payload);
+
+    o.singleCreasePatches = true;
+    Tables crease = buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
+    size_t single = 0;
+    for (const Patch& p : crease.patches) single += p.crease != 0;
+    EXPECT_GT(single, 0u);
+    Tables back = decodeTablesChunk(encodeTablesChunk(crease), &m);
+    for (size_t i = 0; i < back.patches.size(); ++i) {
+        EXPECT_EQ(back.patches[i].crease, crease.patches[i].crease);
+        EXPECT_EQ(back.patches[i].sharpness, crease.patches[i].sharpness);
+    }
+    for (uint32_t version : {0u, 3u}) {
+        Chunk bad = v2;
+        bad.version = version;
+        try {
+            decodeTablesChunk(bad, &m);
+            ADD_FAILURE() << "version " << version << " was read";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("chunk TBLS version " + std::to_string(version)),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 TEST(TablesChunk, MovingVerticesChangesNoByte) {
     Mesh m = load("quad/spot_control_mesh.obj");
     Chunk before = encodeTablesChunk(build(m, 4));

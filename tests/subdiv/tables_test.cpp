@@ -146,7 +146,7 @@ TEST_P(Tables, DomainsTileEveryPtexFaceOnce) {
 // 1e-5 of the bounding-box diagonal in position, 0.5 degrees in normal.
 TEST_P(Tables, RegularPatchesMatchOpenSubdivLimit) {
     Fixture f = build(GetParam());
-    test::OsdLimitSurface osd(f.mesh, f.options, std::max(GetParam().depth, 2) + 2);
+    test::OsdLimitSurface osd(f.mesh, f.options, 10);
     const double samples[3][2] = {{0.25, 0.5}, {0.75, 0.125}, {0.5, 0.875}};
     double worstP = 0, worstN = 0;
     for (const auto& p : f.tables.patches)
@@ -233,6 +233,29 @@ TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
         EXPECT_LT(angles[l], angles[l - 1]) << "level " << l;
     }
     EXPECT_LT(angles[14], osdAngle) << "the exact surface turns past OpenSubdiv's corner normal";
+}
+
+// Issue 14: regular faces along infinitely sharp creases are boundary patches, so a creased
+// model no longer pays the deep levels along its creases. catmark_cube_creases2 at depth 5:
+// OpenSubdiv with useInfSharpPatch draws 96 patches (1,764 without); limn's elements (patches
+// plus irregular faces) were 1,764 before, as many as OpenSubdiv's, and are with the option off.
+TEST(InfSharpPatches, CreasesAreNotIsolatedToTheLastLevel) {
+    Warnings w;
+    Mesh m = importMeshFile(test::modelPath("osd/catmark/catmark_cube_creases2.obj").string(), w);
+    SchemeOptions o = resolveSchemeOptions(m.tags, {});
+    TablesOptions opts;
+    opts.depth = 5;
+    opts.infSharpPatches = false;
+    auto off = buildTables(m, o, opts, w);
+    opts.infSharpPatches = true;
+    auto on = buildTables(m, o, opts, w);
+    EXPECT_EQ(off.patches.size() + off.irregular.size(), 1764u);
+    EXPECT_LE(on.patches.size() + on.irregular.size(), 96u);
+    // Some patches have a boundary bit on an edge that is no mesh boundary (the mesh is closed).
+    size_t creasePatches = 0;
+    for (const auto& p : on.patches) creasePatches += p.boundary != 0;
+    EXPECT_GT(creasePatches, 0u);
+    for (const auto& p : off.patches) EXPECT_EQ(p.boundary, 0);
 }
 
 // Interior vertices with two faces and fewer than two infinitely sharp edges, counted from the
@@ -337,6 +360,10 @@ const Case kCases[] = {
     {"osd/catmark/catmark_cubes_infsharp.obj", 3, false},
     {"osd/catmark/catmark_val2_interior.obj", 3, false},
     {"osd/catmark/catmark_gregory_test8.obj", 3, false},
+    // Infinitely sharp crease and corner patches (OpenSubdiv's useInfSharpPatch).
+    {"osd/catmark/catmark_cube_creases2.obj", 5, false},
+    {"osd/catmark/catmark_cube_corner4.obj", 4, false},
+    {"osd/catmark/catmark_fvar_project0.obj", 3, false},
 };
 
 INSTANTIATE_TEST_SUITE_P(Shared, Tables, ::testing::ValuesIn(kCases), caseName);

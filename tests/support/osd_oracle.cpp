@@ -4,6 +4,7 @@
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/ptexIndices.h>
+#include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
@@ -269,6 +270,44 @@ Mesh osdUniformRefinedMesh(const Mesh& mesh, const SchemeOptions& options, int l
     out.tags.creaseMethod = options.creaseMethod;
     out.tags.triangles = options.triangles;
     return out;
+}
+
+OsdPatchCounts osdPatchCounts(const Mesh& mesh, const SchemeOptions& options, int isolation,
+                              bool infSharpPatches, bool singleCreasePatches) {
+    std::unique_ptr<Far::TopologyRefiner> refiner(makeRefiner(mesh, options));
+    Far::PatchTableFactory::Options po(isolation);
+    po.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+    po.useInfSharpPatch = infSharpPatches;
+    po.useSingleCreasePatch = singleCreasePatches;
+    po.generateLegacySharpCornerPatches = false;
+    refiner->RefineAdaptive(po.GetRefineAdaptiveOptions());
+    std::unique_ptr<Far::PatchTable> table(Far::PatchTableFactory::Create(*refiner, po));
+    OsdPatchCounts c;
+    for (int a = 0; a < table->GetNumPatchArrays(); ++a) {
+        const auto type = table->GetPatchArrayDescriptor(a).GetType();
+        for (int i = 0; i < table->GetNumPatches(a); ++i) {
+            if (type == Far::PatchDescriptor::REGULAR) {
+                ++c.regular;
+                if (table->GetPatchParam(a, i).GetBoundary() != 0) ++c.boundary;
+                if (singleCreasePatches && table->GetSingleCreasePatchSharpnessValue(a, i) > 0)
+                    ++c.singleCrease;
+            } else if (type == Far::PatchDescriptor::GREGORY_BASIS) {
+                ++c.gregory;
+            } else {
+                ++c.other;
+            }
+        }
+    }
+    c.bytes = 4 * size_t(table->GetNumControlVerticesTotal()) + 8 * size_t(table->GetNumPatchesTotal());
+    if (singleCreasePatches) c.bytes += 8 * size_t(table->GetNumPatchesTotal());
+    Far::StencilTableFactory::Options so;
+    so.generateIntermediateLevels = true;
+    so.generateOffsets = true;
+    std::unique_ptr<const Far::StencilTable> st(Far::StencilTableFactory::Create(*refiner, so));
+    const Far::StencilTable* local = table->GetLocalPointStencilTable();
+    for (const Far::StencilTable* t : {st.get(), local})
+        if (t) c.bytes += 8 * size_t(t->GetNumStencils()) + 8 * t->GetControlIndices().size();
+    return c;
 }
 
 } // namespace limn::test

@@ -50,4 +50,17 @@ int baseVertexAt(const Mesh& m, uint32_t ptex, double u, double v);
 // refined faces, positions, and the crease and corner sharpness left after those steps.
 Mesh osdUniformRefinedMesh(const Mesh& mesh, const SchemeOptions& options, int levels);
 
+// What OpenSubdiv's adaptive patch table holds for a mesh (Gregory end caps, legacy sharp
+// corners off), for the benches' side-by-side counts: patches by kind and the bytes a GPU draw
+// would upload: patch control-vertex indices (4 each), patch params (8 each), single-crease
+// sharpness (index and value, 8 per patch when present), and the stencils computing every
+// refined and local point from the control points (8 per stencil, 8 per entry).
+struct OsdPatchCounts {
+    size_t regular = 0, singleCrease = 0, boundary = 0, gregory = 0, other = 0;
+    size_t total() const { return regular + gregory + other; }
+    size_t bytes = 0;
+};
+OsdPatchCounts osdPatchCounts(const Mesh& mesh, const SchemeOptions& options, int isolation,
+                              bool infSharpPatches, bool singleCreasePatches);
+
 } // namespace limn::test

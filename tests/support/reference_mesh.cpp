@@ -198,9 +198,33 @@ ReferenceCounts referenceCounts(const ReferenceObj& obj) {
                                     [&](int f) { return L.GetFaceVertices(f).size() == 4; });
         auto rule = L.GetVertexRule(v);
         bool regular = false;
+        // Infinitely sharp edges that cut the vertex into regular boundary sectors or single
+        // faces (Far's "inf-sharp regular" vertex tag, topologyRefinerFactory.cpp): computed
+        // here from Far's base level, independently of limn's topology.
+        auto edges = L.GetVertexEdges(v);
+        int infEdges = 0;
+        bool semiSharp = L.IsVertexSemiSharp(v);
+        bool interiorInf = false;
+        for (int e : edges) {
+            if (L.IsEdgeInfSharp(e)) ++infEdges, interiorInf |= !L.IsEdgeBoundary(e);
+            if (L.IsEdgeSemiSharp(e)) semiSharp = true;
+        }
         if (L.IsVertexNonManifold(v) || !allQuads || unsharpBoundary[v])
             regular = false;
-        else if (!L.IsVertexBoundary(v))
+        else if ((interiorInf || L.IsVertexInfSharp(v)) && faces.size() > 1) {
+            auto infRule = Sdc::Crease().DetermineVertexVertexRule(
+                L.IsVertexInfSharp(v) ? Sdc::Crease::SHARPNESS_INFINITE : 0.0f, infEdges);
+            if (semiSharp || infEdges == 0)
+                regular = false;
+            else if (infRule == Sdc::Crease::RULE_CREASE)
+                regular = L.IsVertexBoundary(v)
+                              ? faces.size() == 2
+                              : edges.size() == 4 && L.IsEdgeInfSharp(edges[0]) ==
+                                                         L.IsEdgeInfSharp(edges[2]);
+            else if (infRule == Sdc::Crease::RULE_CORNER)
+                regular = infEdges == int(edges.size()) &&
+                          (edges.size() > 2 || L.IsVertexInfSharp(v));
+        } else if (!L.IsVertexBoundary(v))
             regular = faces.size() == 4 && rule == Sdc::Crease::RULE_SMOOTH;
         else if (faces.size() == 2) // crease rule: its two sharp edges are the boundary edges
             regular = rule == Sdc::Crease::RULE_CREASE;
@@ -226,9 +250,11 @@ ReferenceCounts referenceCounts(const ReferenceObj& obj) {
         }
     }
 
-    // Regular faces: OpenSubdiv's own verdict, the REGULAR patches it keeps at depth 0.
+    // Regular faces: OpenSubdiv's own verdict, the REGULAR patches it keeps at depth 0 (with
+    // infinitely sharp and single-crease patches, as limn's default tables).
     Far::PatchTableFactory::Options po(2);
-    po.useInfSharpPatch = false;
+    po.useInfSharpPatch = true;
+    po.useSingleCreasePatch = true;
     po.generateLegacySharpCornerPatches = false;
     po.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
     refiner->RefineAdaptive(po.GetRefineAdaptiveOptions());

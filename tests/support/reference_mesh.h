@@ -44,7 +44,7 @@ struct ReferenceCounts {
 
 // Everything from OpenSubdiv's base level, with the boundary rule from the mesh's tag (else
 // EDGE_ONLY). regularFaces counts the REGULAR patches at depth 0 of an adaptive patch table
-// (useInfSharpPatch=false, generateLegacySharpCornerPatches=false).
+// (useInfSharpPatch and useSingleCreasePatch on, generateLegacySharpCornerPatches off).
 ReferenceCounts referenceCounts(const ReferenceObj& obj);
 
 // Compares the counts with `limn-info --json` output; returns one line per differing field

@@ -154,6 +154,12 @@ const Case kCases[] = {
     {"quad/osd_catmark_xord_boundary.obj", 3, false, 64, false},
     {"osd/catmark/catmark_hole_test2.obj", 3, false, 2, false},
     {"osd/catmark/catmark_nonquads.obj", 2, false, 64, false},
+    // Infinitely sharp creases and corners drawn as boundary and corner patches.
+    {"osd/catmark/catmark_cube_creases2.obj", 5, false, 64, true},
+    {"osd/catmark/catmark_cubes_infsharp.obj", 3, false, 2, true},
+    {"osd/catmark/catmark_cube_corner4.obj", 3, false, 64, true},
+    {"osd/catmark/catmark_inf_crease0.obj", 3, false, 64, false},
+    {"osd/catmark/catmark_inf_crease1.obj", 3, false, 2, false},
 };
 
 INSTANTIATE_TEST_SUITE_P(Shared, Tess, ::testing::ValuesIn(kCases), caseName);

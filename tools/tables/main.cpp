@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
         cli::Common common;
         std::string input = "-";
         int depth = 3;
-        bool uniform = false;
+        bool uniform = false, noCreasePatches = false;
         uint64_t maxMemory = cli::defaultMemoryBudget();
         cli::Parser parser(
             "limn-tables", "[options] [INPUT|-] [-o OUTPUT|-]",
@@ -31,6 +31,12 @@ int main(int argc, char** argv) {
             .integer("-d, --depth", "N", &depth, 0, kMaxDepth, "subdivision levels")
             .flag("--uniform", &uniform,
                   "subdivide every face to level N (the paper's full-subdivision baseline)")
+            .flag("--no-crease-patches", &noCreasePatches,
+                  "isolate creases and sharp corners to level N like extraordinary vertices, "
+                  "instead of drawing the regular faces along infinitely sharp ones as boundary "
+                  "and corner patches and along straight semi-sharp ones as single-crease "
+                  "patches (OpenSubdiv's useInfSharpPatch and useSingleCreasePatch off) "
+                  "[default: patches]")
             .custom("--max-memory", "SIZE",
                     [&](const std::string& v) { maxMemory = cli::parseByteSize("--max-memory", v); },
                     cli::formatBytes(maxMemory) + ", half of this machine's memory",
@@ -48,6 +54,10 @@ int main(int argc, char** argv) {
                    "their local subdivision matrix. Valence-2 vertices and corner sectors whose\n"
                    "normals converge like 1/level have no tangent plane: their limit points keep\n"
                    "the exact position and are counted approximate (limn-info reports how many).\n"
+                   "Infinitely sharp creases act as boundaries: a regular face along one (each\n"
+                   "crease vertex a straight crease through 4 edges, or a corner whose every edge\n"
+                   "is sharp) is a B-spline patch with phantom points beyond the crease, exact\n"
+                   "from the level where it appears; limn-classify's regular flags say the same.\n"
                    "Example:\n  limn-classify spot.obj | limn-tables --depth 4 -o spot.limn\n");
         if (!parser.parse(ac, av)) return 0;
 
@@ -68,6 +78,7 @@ int main(int argc, char** argv) {
             TablesOptions opts;
             opts.depth = depth;
             opts.uniform = uniform;
+            opts.infSharpPatches = opts.singleCreasePatches = !noCreasePatches;
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
         } catch (Error& e) {

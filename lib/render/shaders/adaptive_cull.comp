@@ -63,7 +63,9 @@ void main() {
         all = 0u;
     } else if (e < pc.patchCount) {
         Patch pt = patches.p[e];
-        if (((pt.levelBoundary >> 8) & 0xFu) != 0u) {
+        // Boundary and single-crease patches are never culled (their basis is not the plain
+        // B-spline one whose hull and derivative cone the tests below use).
+        if (((pt.levelBoundary >> 8) & 0xF0Fu) != 0u) {
             all = 0u;
         } else {
             vec3 P[16];

@@ -85,6 +85,19 @@ void main() {
             vec2 off = px[1] - 0.5 * (px[0] + px[2]);
             float d = cl > 1e-6 ? abs(chord.x * off.y - chord.y * off.x) / cl : length(off);
             float want = max(ceil(len / pc.edgePixels), ceil(sqrt(d / (kChordPerEdgePixel * pc.edgePixels))));
+            // A side of a single-crease patch (either user): its surface bends within
+            // 2^-ceil(s) of the crease, which evenly spaced samples only resolve at 2^ceil(s)
+            // segments (the density that isolating to level ceil(s) had); asked for once the side
+            // is a target segment long on screen. Sides along the crease get it too (the side
+            // does not say which way it runs in the other user's parameters): conservative.
+            if (len >= pc.edgePixels)
+                for (int k = 0; k < 2; ++k) {
+                    uint e = k == 0 ? p1.x : p1.y;
+                    if (e == 0xFFFFFFFFu || e >= pc.patchCount) continue;
+                    Patch pt = patches.p[e];
+                    if (((pt.levelBoundary >> 16) & 0xFu) != 0u)
+                        want = max(want, exp2(ceil(pt.sharpness)));
+                }
             if (pc.texels > 0.0) want = max(want, min(ceil(uintBitsToFloat(p1.z) * pc.texels), ceil(0.5 * len)));
             size = uint(clamp(want, 1.0, float(cap)));
             r = allOut != 0u ? 1u : size;

@@ -24,6 +24,11 @@ SurfaceSample evaluateElement(uint element, uint st, uint patchCount) {
         foldPhantom(du, (mask & BOUNDARY_U0) != 0u, (mask & BOUNDARY_U1) != 0u);
         foldPhantom(bv, (mask & BOUNDARY_V0) != 0u, (mask & BOUNDARY_V1) != 0u);
         foldPhantom(dv, (mask & BOUNDARY_V0) != 0u, (mask & BOUNDARY_V1) != 0u);
+        uint crease = (pt.levelBoundary >> 16) & 0xFu; // a single-crease patch: never a boundary
+        if ((crease & (BOUNDARY_V0 | BOUNDARY_V1)) != 0u)
+            creaseBasisAcross(t, (crease & BOUNDARY_V1) != 0u, pt.sharpness, bv, dv);
+        if ((crease & (BOUNDARY_U0 | BOUNDARY_U1)) != 0u)
+            creaseBasisAcross(s, (crease & BOUNDARY_U1) != 0u, pt.sharpness, bu, du);
         vec3 P = vec3(0.0), Du = vec3(0.0), Dv = vec3(0.0);
         for (int j = 0; j < 4; ++j) {
             vec3 row = vec3(0.0), rowDu = vec3(0.0), rowDv = vec3(0.0);
