@@ -1,6 +1,8 @@
 #include "render/subdivision_draw.h"
 
 #include "base/error.h"
+#include "subdiv/fvar_surface.h"
+#include "tess/chart_uvs.h"
 #include "tess/tessellation.h"
 #include "topology/ptex.h"
 #include "topology/topology.h"
@@ -9,6 +11,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <memory>
 #include <cstdio>
 #include <set>
 
@@ -182,7 +186,16 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         d.orientation = surfaceOrientation(mesh, mesh.positions);
         return d;
     }
-    Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs);
+    // Smooth face-varying UVs (issue 14) for every rule but "all", whose linear charts stay
+    // exactly as before.
+    std::unique_ptr<FaceVaryingSurface> fvar;
+    std::unique_ptr<ChartUVs> chartUVs;
+    if (d.hasUVs && t.options.fvar != FVarRule::All) {
+        Warnings ignored; // the tables of the geometry already reported the mesh's warnings
+        fvar = std::make_unique<FaceVaryingSurface>(mesh, t.options, t.depth, ignored);
+        chartUVs = std::make_unique<ChartUVs>(mesh, *fvar, 1u << t.depth);
+    }
+    Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs, chartUVs.get());
     d.stitchedEdges = tess.stitchedEdges;
     d.tessVertices.reserve(tess.vertices.size());
     for (size_t i = 0; i < tess.vertices.size(); ++i) {
@@ -195,7 +208,15 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         if (!d.hasUVs) throw Error(ErrorKind::BadInput, "displacement needs texture coordinates; the mesh has none");
         std::vector<glm::vec2> sides;
         for (size_t i = 0; i < tess.vertices.size(); ++i) {
-            if (displacement->seamFix) {
+            if (displacement->seamFix && chartUVs) {
+                // The point's smooth UV in every face around it, in increasing face order.
+                const PtexPoint p = ptexOf(t, tess.vertices[i]);
+                const double R = double(1u << t.depth), U = p.u * R, V = p.v * R;
+                if (U == std::floor(U) && V == std::floor(V))
+                    chartUVs->sides(p.ptex, uint32_t(U), uint32_t(V), sides);
+                else
+                    sides.assign(1, tess.uvs[i]); // an element's centre: inside one face
+            } else if (displacement->seamFix) {
                 const TessVertex& v = tess.vertices[i];
                 sideUVsOf(displacement->seams->elements[v.element], *displacement->seams, v, sides);
             } else {
