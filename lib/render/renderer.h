@@ -152,6 +152,10 @@ class Renderer {
     // After a frame: why the view-adaptive tessellation did not fit its buffers (parts of the
     // surface were left out), or empty.
     std::string tessellationWarning() const;
+    // Non-empty when the mesh's face-varying rule asks for smooth UVs and they are used (texture,
+    // displacement, --shade uv, --mesh-out), but the view-adaptive tessellation draws them
+    // linearly (smooth UVs are evaluated in the fixed grids only, --edge-pixels 0).
+    std::string uvWarning() const { return uvWarning_; }
     uint64_t triangleCount() const { return pass_->triangleCount(); }
     // Vertices computed per frame: table vertices, limit points, drawn surface vertices.
     uint64_t verticesEvaluated() const { return pass_->verticesEvaluated(); }
@@ -178,6 +182,7 @@ class Renderer {
     std::unique_ptr<Gpu> gpu_;
     TimedPasses timed_;
     bool viewAdaptive_ = false;
+    std::string uvWarning_;
     // The drawn size (width, height times the supersample factor) and the target's format.
     uint32_t drawWidth_ = 0, drawHeight_ = 0;
     gpu::TargetFormat targetFormat_;

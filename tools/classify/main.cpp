@@ -25,10 +25,13 @@ int main(int argc, char** argv) {
                     "boundary rule [default: the mesh's interpolateboundary tag, else edge]")
             .choice("--fvar", &fvar,
                     {"none", "corners-only", "corners-plus1", "corners-plus2", "boundaries", "all"},
-                    "face-varying (UV) interpolation, OpenSubdiv's FVarLinearInterpolation: smooth\n"
-                    "UVs everywhere (none) ... linear everywhere (all); stored as the mesh's tag\n"
-                    "[default: the mesh's facevaryinginterpolateboundary tag, else all]")
+                    "UV smoothing rule [default: the mesh's fvar tag, else all]")
             .notes("The format is chosen by the extension, or by content on standard input.\n"
+                   "--fvar is OpenSubdiv's face-varying linear interpolation, stored as the mesh's\n"
+                   "tag (OBJ: t facevaryinginterpolateboundary): none smooths UVs everywhere;\n"
+                   "corners-only, corners-plus1, corners-plus2 keep UV corners, also junctions of\n"
+                   "3+ UV regions, also darts and concave corners sharp; boundaries keeps every UV\n"
+                   "boundary linear; all interpolates UVs linearly (the default, as OpenSubdiv's).\n"
                    "Chunks of an input .limn that limn-classify does not own are kept unchanged.\n"
                    "A glTF's base colour (factor and texture image bytes) is kept in a MATL chunk\n"
                    "(formats/limn.md), which limn-render draws.\n"
