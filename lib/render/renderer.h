@@ -152,9 +152,9 @@ class Renderer {
     // After a frame: why the view-adaptive tessellation did not fit its buffers (parts of the
     // surface were left out), or empty.
     std::string tessellationWarning() const;
-    // Non-empty when the mesh's face-varying rule asks for smooth UVs and they are used (texture,
-    // displacement, --shade uv, --mesh-out), but the view-adaptive tessellation draws them
-    // linearly (smooth UVs are evaluated in the fixed grids only, --edge-pixels 0).
+    // Non-empty when the mesh's face-varying rule asks for smooth UVs and the view-adaptive
+    // tessellation displaces: its seam fix samples the linear UVs (the fixed grids, --edge-pixels
+    // 0, sample the smooth ones; texture lookups are smooth in both).
     std::string uvWarning() const { return uvWarning_; }
     uint64_t triangleCount() const { return pass_->triangleCount(); }
     // Vertices computed per frame: table vertices, limit points, drawn surface vertices.

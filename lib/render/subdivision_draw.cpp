@@ -14,6 +14,7 @@
 #include <cmath>
 #include <memory>
 #include <cstdio>
+#include <cstring>
 #include <set>
 
 namespace limn::render {
@@ -180,6 +181,20 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
             d.seamFix = displacement->seamFix;
         }
         d.adaptive = true;
+        if (d.hasUVs && t.options.fvar != FVarRule::All) {
+            Warnings ignored; // the geometry's tables already reported the mesh's warnings
+            const FaceVaryingSurface::Gpu g = FaceVaryingSurface(mesh, t.options, t.depth, ignored).gpu();
+            d.fvarNodes = g.nodes;
+            d.fvarRecords = g.records;
+            d.fvarCell = std::ldexp(1.0f, -21); // 1/32 of the finest cell at depth 16, above float's step at 1
+            auto domain = [](uint32_t ptex, float u0, float v0, float size) {
+                float bits;
+                std::memcpy(&bits, &ptex, 4);
+                return glm::vec4(bits, u0, v0, size);
+            };
+            for (const Patch& p : t.patches) d.elementDomains.push_back(domain(p.ptex, p.u0, p.v0, p.size));
+            for (const IrregularFace& q : t.irregular) d.elementDomains.push_back(domain(q.ptex, q.u0, q.v0, q.size));
+        }
         d.pieces = buildEdgePieces(mesh, t);
         d.closed = !d.pieces.pieces.empty();
         for (const EdgePiece& p : d.pieces.pieces) d.closed = d.closed && p.users[1] != kNoElement;

@@ -99,6 +99,10 @@ struct SubdivisionPass::Gpu {
         if (adaptiveOptions) {
             AdaptiveOptions options = *adaptiveOptions;
             options.evaluated = evaluate;
+            options.elementDomains = d.elementDomains;
+            options.fvarNodes = d.fvarNodes;
+            options.fvarRecords = d.fvarRecords;
+            options.fvarCell = d.fvarCell;
             adaptive = std::make_unique<AdaptiveTess>(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()),
                                                       vertices, patches, irregular, limits, options);
         }

@@ -140,7 +140,8 @@ Mesh faceVaryingMesh(const Mesh& mesh, const SchemeOptions& o) {
         for (const auto& [value, s] : values) {
             const bool corner = allSharp || disjoint(value) || s.infSharpEdges > 0 ||
                                 (s.size == 1 && fvarCornersAreSharp);
-            const float extra = corner ? kInfiniteSharpness : dependent[valueIndex];
+            // (dependent[] has entries for the two values of a two-value vertex only)
+            const float extra = corner ? kInfiniteSharpness : n == 2 ? dependent[valueIndex] : 0.0f;
             ++valueIndex;
             if (extra <= vs) continue;
             for (uint32_t k = 0; k < spans.size(); ++k)
@@ -172,6 +173,7 @@ uint32_t sizeExponent(float size) { return static_cast<uint32_t>(std::lround(-st
 FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o, uint32_t depth, Warnings& warnings)
     : depth_(depth) {
     Mesh uv = faceVaryingMesh(mesh, o);
+    for (size_t f = 0; f < mesh.faceCount(); ++f) ptexCount_ += mesh.faceSize(f) == 4 ? 1 : mesh.faceSize(f);
     SchemeOptions uo;
     uo.boundary = BoundaryRule::EdgeOnly;
     uo.creaseMethod = o.creaseMethod;
@@ -190,6 +192,59 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     for (uint32_t i = 0; i < P; ++i) add(i, tables_.patches[i].ptex, tables_.patches[i].u0, tables_.patches[i].v0, tables_.patches[i].size);
     for (uint32_t i = 0; i < tables_.irregular.size(); ++i)
         add(P + i, tables_.irregular[i].ptex, tables_.irregular[i].u0, tables_.irregular[i].v0, tables_.irregular[i].size);
+}
+
+FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
+    Gpu g;
+    g.nodes.assign(ptexCount_, 0xFFFFFFFFu);
+    const uint32_t P = static_cast<uint32_t>(tables_.patches.size());
+    auto insert = [&](uint32_t e, uint32_t ptex, float u0, float v0, float size) {
+        const uint32_t k = sizeExponent(size);
+        const uint32_t i = uint32_t(std::lround(u0 * std::ldexp(1.0, int(k))));
+        const uint32_t j = uint32_t(std::lround(v0 * std::ldexp(1.0, int(k))));
+        uint32_t node = ptex;
+        for (uint32_t level = 0; level < k; ++level) { // descend, splitting leaves-to-be
+            if (g.nodes[node] == 0xFFFFFFFFu) {
+                g.nodes[node] = static_cast<uint32_t>(g.nodes.size());
+                g.nodes.insert(g.nodes.end(), 4, 0xFFFFFFFFu);
+            }
+            const uint32_t shift = k - 1 - level;
+            node = g.nodes[node] + ((i >> shift) & 1u) + 2 * ((j >> shift) & 1u);
+        }
+        g.nodes[node] = 0x80000000u | e;
+    };
+    for (uint32_t e = 0; e < P; ++e) {
+        const Patch& p = tables_.patches[e];
+        insert(e, p.ptex, p.u0, p.v0, p.size);
+        glm::dvec3 C[4][4];
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) C[i][j] = vertices_[p.cv[4 * j + i]];
+        // The phantoms of evaluatePatch (math.md C.4): columns first, then rows.
+        for (int j = 0; j < 4; ++j) {
+            if (p.boundary & kBoundaryU0) C[0][j] = 2.0 * C[1][j] - C[2][j];
+            if (p.boundary & kBoundaryU1) C[3][j] = 2.0 * C[2][j] - C[1][j];
+        }
+        for (int i = 0; i < 4; ++i) {
+            if (p.boundary & kBoundaryV0) C[i][0] = 2.0 * C[i][1] - C[i][2];
+            if (p.boundary & kBoundaryV1) C[i][3] = 2.0 * C[i][2] - C[i][1];
+        }
+        g.records.push_back({p.u0, p.v0, p.size, 0.0f});
+        for (int c = 0; c < 16; c += 2) {
+            const glm::dvec3 a = C[c % 4][c / 4], b = C[(c + 1) % 4][(c + 1) / 4];
+            g.records.push_back(glm::vec4(a.x, a.y, b.x, b.y));
+        }
+    }
+    for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
+        const IrregularFace& f = tables_.irregular[q];
+        insert(P + q, f.ptex, f.u0, f.v0, f.size);
+        g.records.push_back({f.u0, f.v0, f.size, 1.0f});
+        const glm::dvec3 c[4] = {limits_[f.corner[0]].position, limits_[f.corner[1]].position,
+                                 limits_[f.corner[2]].position, limits_[f.corner[3]].position};
+        g.records.push_back(glm::vec4(c[0].x, c[0].y, c[1].x, c[1].y));
+        g.records.push_back(glm::vec4(c[2].x, c[2].y, c[3].x, c[3].y));
+        g.records.insert(g.records.end(), 6, glm::vec4(0.0f));
+    }
+    return g;
 }
 
 glm::dvec2 FaceVaryingSurface::uvAt(uint32_t ptex, double u, double v, double tu, double tv) const {

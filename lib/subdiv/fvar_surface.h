@@ -20,6 +20,7 @@
 #include "topology/features.h"
 
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <unordered_map>
@@ -42,6 +43,18 @@ class FaceVaryingSurface {
 
     const Tables& tables() const { return tables_; }
 
+    // The surface as the GPU reads it (shaders/fvar_eval.glsl): `nodes` is a quadtree per ptex
+    // face, nodes[p] the root of ptex face p; a node is a leaf 0x80000000 | element, 0xFFFFFFFF
+    // (no element: a hole), or the index of its four children (i, j) = (0,0), (1,0), (0,1), (1,1).
+    // `records` holds 9 per element: (u0, v0, size, 0 for a patch / 1 for an irregular face), then
+    // the patch's 16 UV control points P_ij at 4j + i, phantoms applied, as 8 (P, P) pairs, or
+    // the irregular face's 4 corner limit UVs in the first two.
+    struct Gpu {
+        std::vector<uint32_t> nodes;
+        std::vector<glm::vec4> records;
+    };
+    Gpu gpu() const;
+
   private:
     Tables tables_;
     std::vector<glm::dvec3> vertices_;
@@ -49,6 +62,7 @@ class FaceVaryingSurface {
     // (ptex, size exponent, cell i, cell j) -> element (patch index, or patches + irregular face).
     std::unordered_map<uint64_t, uint32_t> cells_;
     uint32_t depth_;
+    uint32_t ptexCount_ = 0;
 };
 
 } // namespace limn

@@ -5,6 +5,9 @@
 // s, t are the smooth UVs: they differ from the linear ones of mode "all" where the rule smooths
 // (and equal them on one-face islands whose corners the rule keeps sharp).
 #include "displacement_support.h"
+#include "mesh/import.h"
+#include "subdiv/fvar_surface.h"
+#include "subdiv/tables.h"
 
 #include <map>
 
@@ -90,5 +93,41 @@ std::string caseName(const ::testing::TestParamInfo<FVarCase>& p) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, FVarDisplaced, ::testing::ValuesIn(kCases), caseName);
+
+// The view-adaptive tessellation evaluates the smooth UVs on the GPU (shaders/fvar_eval.glsl) at
+// the (ptex, u, v) of each vertex it emits: equal to the CPU's FaceVaryingSurface (in double)
+// to 1e-5 at every emitted vertex inside a ptex face (where the vertex's chart is that face's),
+// in every smoothing rule, on spot seen close up (rates well above the fixed grids').
+TEST(FVarAdaptive, GpuUVsMatchTheCpuSurface) {
+    ScratchDir dir;
+    const std::string obj = modelPath("quad/spot_control_mesh.obj").string();
+    Warnings w;
+    const Mesh mesh = importMeshFile(obj, w);
+    for (int m = 0; m < 5; ++m) {
+        SCOPED_TRACE(std::string("--fvar ") + kModes[m]);
+        const int depth = 3;
+        const std::string limn = prepareFVar(obj, kModes[m], depth, dir);
+        const std::string ply = (dir / "adaptive.ply").string();
+        runOk({bin("limn-render"), limn, "--size", "320x240", "--view", "30,20", "--validate", "--mesh-out", ply,
+               "-o", (dir / "adaptive.png").string()});
+        const Drawn d = parsePly(readFile(ply));
+        ASSERT_TRUE(d.hasST);
+        SchemeOptions o = resolveSchemeOptions(mesh.tags, {});
+        o.fvar = static_cast<FVarRule>(m);
+        FaceVaryingSurface surface(mesh, o, depth, w);
+        double worst = 0;
+        size_t inside = 0;
+        for (const auto& v : d.vertices) {
+            if (!(v.uv[0] > 0 && v.uv[0] < 1 && v.uv[1] > 0 && v.uv[1] < 1)) continue;
+            const glm::dvec2 ref = surface.uvAt(uint32_t(v.ptex), v.uv[0], v.uv[1], 0.5, 0.5);
+            worst = std::max(worst, glm::length(ref - glm::dvec2(v.st[0], v.st[1])));
+            ++inside;
+        }
+        std::printf("fvar adaptive %s: %zu vertices inside ptex faces, max |GPU - CPU| UV %.3g\n", kModes[m],
+                    inside, worst);
+        EXPECT_GT(inside, 1000u);
+        EXPECT_LE(worst, 1e-5);
+    }
+}
 
 } // namespace

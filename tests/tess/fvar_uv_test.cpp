@@ -105,4 +105,20 @@ std::vector<Case> cases() {
 
 INSTANTIATE_TEST_SUITE_P(Shapes, FVarUV, ::testing::ValuesIn(cases()), caseName);
 
+// Under "none" only OpenSubdiv's disjoint values are sharpened: a UV index used by two spans of
+// faces around a vertex (spot has 8 such, where its UV islands touch at a point), none else.
+// Pins the sharpening too (an out-of-bounds read once added corners of garbage sharpness that
+// changed from run to run).
+TEST(FVarMesh, SpotUnderNoneSharpensOnlyItsDisjointValues) {
+    Warnings w;
+    Mesh mesh = importMeshFile(test::modelPath("quad/spot_control_mesh.obj").string(), w);
+    SchemeOptions o = resolveSchemeOptions(mesh.tags, {});
+    o.fvar = FVarRule::LinearNone;
+    const Mesh uv = faceVaryingMesh(mesh, o);
+    EXPECT_EQ(uv.faceVertices.size(), mesh.faceVertices.size());
+    ASSERT_EQ(uv.tags.corners.size(), 8u);
+    for (const auto& c : uv.tags.corners) EXPECT_EQ(c.sharpness, kInfiniteSharpness);
+    EXPECT_GT(uv.positions.size(), mesh.uvs.size()); // the disjoint values are split per span
+}
+
 } // namespace
