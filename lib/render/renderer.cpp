@@ -157,10 +157,6 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         if (settings.displacementMap && !settings.seams)
             throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
         viewAdaptive_ = settings.edgePixels > 0 && !settings.wire;
-        if (viewAdaptive_ && settings.displacementMap && mesh.hasUVs() && tables->options.fvar != FVarRule::All)
-            uvWarning_ = "the view-adaptive tessellation samples the displacement at linear UVs (face-varying "
-                         "rule \"all\"), not at the smooth ones of the mesh's rule (" +
-                         std::to_string(int(tables->options.fvar)) + "); use --edge-pixels 0 for those";
         SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap,
                                                   settings.displacementMap ? &plan : nullptr, viewAdaptive_);
         AdaptiveOptions adaptive;

@@ -152,10 +152,6 @@ class Renderer {
     // After a frame: why the view-adaptive tessellation did not fit its buffers (parts of the
     // surface were left out), or empty.
     std::string tessellationWarning() const;
-    // Non-empty when the mesh's face-varying rule asks for smooth UVs and the view-adaptive
-    // tessellation displaces: its seam fix samples the linear UVs (the fixed grids, --edge-pixels
-    // 0, sample the smooth ones; texture lookups are smooth in both).
-    std::string uvWarning() const { return uvWarning_; }
     uint64_t triangleCount() const { return pass_->triangleCount(); }
     // Vertices computed per frame: table vertices, limit points, drawn surface vertices.
     uint64_t verticesEvaluated() const { return pass_->verticesEvaluated(); }
@@ -182,7 +178,6 @@ class Renderer {
     std::unique_ptr<Gpu> gpu_;
     TimedPasses timed_;
     bool viewAdaptive_ = false;
-    std::string uvWarning_;
     // The drawn size (width, height times the supersample factor) and the target's format.
     uint32_t drawWidth_ = 0, drawHeight_ = 0;
     gpu::TargetFormat targetFormat_;

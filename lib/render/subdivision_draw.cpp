@@ -70,6 +70,39 @@ void sideUVsOf(const ElementSeams& es, const Seams& seams, const TessVertex& tv,
 
 namespace {
 
+// The seam records of seams.h (same layout and order: corners' distinct UVs and edges' distinct
+// end-UV pairs per face, in increasing face order) with the smooth UVs of `charts`; `own` the
+// corners in the element's own chart. Without `full`, only `own`.
+Seams smoothSeamRecords(const Tables& t, ChartUVs& charts, bool full) {
+    Seams s;
+    const uint32_t R = 1u << t.depth;
+    std::vector<glm::vec2> list;
+    std::vector<std::pair<glm::vec2, glm::vec2>> pairs;
+    auto add = [&](uint32_t ptex, float u0, float v0, float size) {
+        ElementSeams es{};
+        const uint32_t U0 = uint32_t(double(u0) * R), V0 = uint32_t(double(v0) * R), W = uint32_t(double(size) * R);
+        const uint32_t cu[4] = {U0, U0 + W, U0 + W, U0}, cv[4] = {V0, V0, V0 + W, V0 + W};
+        for (int k = 0; k < 4; ++k) {
+            es.own[k] = charts.own(ptex, cu[k], cv[k], U0 + 0.5 * W, V0 + 0.5 * W);
+            if (!full) continue;
+            charts.sides(ptex, cu[k], cv[k], list);
+            es.cornerFirst[k] = static_cast<uint32_t>(s.uvs.size());
+            es.cornerCount[k] = static_cast<uint32_t>(list.size());
+            s.uvs.insert(s.uvs.end(), list.begin(), list.end());
+        }
+        for (int k = 0; full && k < 4; ++k) {
+            charts.edgeSides(ptex, cu[k], cv[k], cu[(k + 1) % 4], cv[(k + 1) % 4], pairs);
+            es.edgeFirst[k] = static_cast<uint32_t>(s.uvs.size());
+            es.edgeSides[k] = static_cast<uint32_t>(pairs.size());
+            for (const auto& [a, b] : pairs) s.uvs.push_back(a), s.uvs.push_back(b);
+        }
+        s.elements.push_back(es);
+    };
+    for (const Patch& p : t.patches) add(p.ptex, p.u0, p.v0, p.size);
+    for (const IrregularFace& q : t.irregular) add(q.ptex, q.u0, q.v0, q.size);
+    return s;
+}
+
 // Refuses, before any work, a fixed tessellation whose buffers would not fit 128 MiB: the
 // segments per side of each element as buildTessellation will choose them.
 void checkFixedSize(const Tables& t, uint32_t tessCap) {
@@ -196,6 +229,17 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
             for (const IrregularFace& q : t.irregular) d.elementDomains.push_back(domain(q.ptex, q.u0, q.v0, q.size));
         }
         d.pieces = buildEdgePieces(mesh, t);
+        if (!d.elementDomains.empty()) {
+            // The elements' corner UVs (the displaced normals' bilinear estimate) and, with
+            // displacement, the seam records, from the smooth UVs (issue 14).
+            Warnings ignored;
+            const FaceVaryingSurface surface(mesh, t.options, t.depth, ignored);
+            ChartUVs charts(mesh, surface, 1u << t.depth);
+            d.smoothSeams = smoothSeamRecords(t, charts, displacement != nullptr);
+            for (size_t e = 0; e < d.pieces.elements.size(); ++e)
+                for (int k = 0; k < 4; ++k) d.pieces.elements[e].cornerUV[k] = d.smoothSeams.elements[e].own[k];
+            if (!displacement) d.smoothSeams = Seams{};
+        }
         d.closed = !d.pieces.pieces.empty();
         for (const EdgePiece& p : d.pieces.pieces) d.closed = d.closed && p.users[1] != kNoElement;
         d.orientation = surfaceOrientation(mesh, mesh.positions);

@@ -78,6 +78,9 @@ struct SubdivisionDraw {
     bool adaptive = false;
     EdgePieces pieces;
     const Seams* seams = nullptr; // view-adaptive displacement: the seam records (not owned)
+    // View-adaptive displacement with smooth UVs (issue 14): the seam records of seams.h built
+    // from the smooth UVs (used instead of *seams when it has elements).
+    Seams smoothSeams;
     // View-adaptive smooth UVs (issue 14): as AdaptiveOptions (empty under rule "all").
     std::vector<glm::vec4> elementDomains, fvarRecords;
     std::vector<uint32_t> fvarNodes;

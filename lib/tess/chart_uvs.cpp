@@ -93,3 +93,23 @@ void ChartUVs::sides(uint32_t ptex, uint32_t U, uint32_t V, std::vector<glm::vec
 }
 
 } // namespace limn
+
+namespace limn {
+
+void ChartUVs::edgeSides(uint32_t ptex, uint32_t Ua, uint32_t Va, uint32_t Ub, uint32_t Vb,
+                         std::vector<std::pair<glm::vec2, glm::vec2>>& out) {
+    out.clear();
+    locate(ptex, Ua + Ub, Va + Vb, located_); // the midpoint, in Q units: the faces along the edge
+    locate(ptex, 2 * Ua, 2 * Va, ends_[0]);
+    locate(ptex, 2 * Ub, 2 * Vb, ends_[1]);
+    for (const Located& side : located_) {
+        glm::vec2 uv[2];
+        for (int end = 0; end < 2; ++end)
+            for (const Located& l : ends_[end])
+                if (l.face == side.face) uv[end] = ownQ(l.ptex, l.U, l.V, 0.5 * Q_, 0.5 * Q_);
+        const std::pair<glm::vec2, glm::vec2> pair{uv[0], uv[1]};
+        if (std::find(out.begin(), out.end(), pair) == out.end()) out.push_back(pair);
+    }
+}
+
+} // namespace limn

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace limn {
@@ -31,6 +32,12 @@ class ChartUVs {
     // The distinct UVs of the point in every base face that contains it, in increasing face
     // order (paper 000, Figures 8 and 9: the displacement samples the seam fix averages).
     void sides(uint32_t ptex, uint32_t U, uint32_t V, std::vector<glm::vec2>& out);
+    // For the element edge from (Ua, Va) to (Ub, Vb) of ptex face `ptex`: per base face along it
+    // (one inside a face or on the mesh boundary, two across a base edge; increasing face
+    // order), the UVs of its two ends in that face's chart, distinct pairs only (the seam
+    // record of seams.h, with smooth UVs).
+    void edgeSides(uint32_t ptex, uint32_t Ua, uint32_t Va, uint32_t Ub, uint32_t Vb,
+                   std::vector<std::pair<glm::vec2, glm::vec2>>& out);
 
   private:
     struct Located {
@@ -51,7 +58,7 @@ class ChartUVs {
     uint32_t R_, Q_;
     std::vector<uint32_t> firstPtex_;
     std::unordered_map<uint64_t, std::unordered_map<uint32_t, glm::vec2>> memo_; // point -> face -> UV
-    std::vector<Located> located_;
+    std::vector<Located> located_, ends_[2];
 };
 
 } // namespace limn

@@ -1,6 +1,6 @@
 // Smooth face-varying UVs through the tools (issue 14): limn-classify --fvar MODE | limn-tables |
 // limn-seams | limn-render --displace --mesh-out. In every mode the displaced closed meshes stay
-// welded-closed with the seam fix (its samples are the smooth UVs of every face around a point,
+// welded-closed with the seam fix, in the fixed grids and the view-adaptive tessellation (its samples are the smooth UVs of every face around a point,
 // in increasing face order, so every copy of a point displaces by the same bits), and the PLY's
 // s, t are the smooth UVs: they differ from the linear ones of mode "all" where the rule smooths
 // (and equal them on one-face islands whose corners the rule keeps sharp).
@@ -61,6 +61,16 @@ TEST_P(FVarDisplaced, WeldedClosedInEveryMode) {
         EXPECT_EQ(w.open, 0u) << "open edges with the seam fix";
         EXPECT_EQ(w.over, 0u);
         EXPECT_EQ(w.collapsed, 0u);
+        // The view-adaptive tessellation: the seam records of the smooth UVs (corners exact,
+        // edges interpolated per side), interiors at the emitted smooth UV; welded closed too.
+        const std::string ply = (dir / "adaptive.ply").string();
+        runOk({bin("limn-render"), limn, "--size", "64x48", "--validate", "--mesh-out", ply, "-o",
+               (dir / "adaptive.png").string(), "--displace", map, "--displace-scale", std::to_string(scale),
+               "--displace-mid", "0.5"});
+        WeldedEdges a = weldedEdges(parsePly(readFile(ply)));
+        EXPECT_EQ(a.open, 0u) << "view-adaptive: open edges with the seam fix";
+        EXPECT_EQ(a.over, 0u);
+        EXPECT_EQ(a.collapsed, 0u);
         auto uvs = uvByPoint(d);
         if (m == 5) {
             linear = uvs;

@@ -952,8 +952,6 @@ int main(int argc, char** argv) {
             else
                 chosen.emplace(ctx, in.mesh, in.tables ? &*in.tables : nullptr, settings);
             render::Renderer& renderer = *chosen;
-            if (std::string w = renderer.uvWarning(); !w.empty() && !common.quiet)
-                cli::warn(displayName(input) + ": " + w);
             // Once per run, also for a sequence: its frames reuse these buffers and pipelines.
             cli::info("set up the GPU surface: " + cli::formatBytes(renderer.bufferBytes()) +
                       " of buffers (tables, tessellation, frame)");
