@@ -214,11 +214,16 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
             d.seamFix = displacement->seamFix;
         }
         d.adaptive = true;
+        d.pieces = buildEdgePieces(mesh, t);
         if (d.hasUVs && t.options.fvar != FVarRule::All) {
+            // Smooth UVs (issue 14): the face-varying surface for the emit pass, per element its
+            // ptex domain, its corners' smooth UVs (the displaced normals' bilinear estimate) and,
+            // with displacement, the seam records of the smooth UVs.
             Warnings ignored; // the geometry's tables already reported the mesh's warnings
-            const FaceVaryingSurface::Gpu g = FaceVaryingSurface(mesh, t.options, t.depth, ignored).gpu();
-            d.fvarNodes = g.nodes;
-            d.fvarRecords = g.records;
+            const FaceVaryingSurface surface(mesh, t.options, t.depth, ignored);
+            FaceVaryingSurface::Gpu g = surface.gpu();
+            d.fvarNodes = std::move(g.nodes);
+            d.fvarRecords = std::move(g.records);
             d.fvarCell = std::ldexp(1.0f, -21); // 1/32 of the finest cell at depth 16, above float's step at 1
             auto domain = [](uint32_t ptex, float u0, float v0, float size) {
                 float bits;
@@ -227,13 +232,6 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
             };
             for (const Patch& p : t.patches) d.elementDomains.push_back(domain(p.ptex, p.u0, p.v0, p.size));
             for (const IrregularFace& q : t.irregular) d.elementDomains.push_back(domain(q.ptex, q.u0, q.v0, q.size));
-        }
-        d.pieces = buildEdgePieces(mesh, t);
-        if (!d.elementDomains.empty()) {
-            // The elements' corner UVs (the displaced normals' bilinear estimate) and, with
-            // displacement, the seam records, from the smooth UVs (issue 14).
-            Warnings ignored;
-            const FaceVaryingSurface surface(mesh, t.options, t.depth, ignored);
             ChartUVs charts(mesh, surface, 1u << t.depth);
             d.smoothSeams = smoothSeamRecords(t, charts, displacement != nullptr);
             for (size_t e = 0; e < d.pieces.elements.size(); ++e)
