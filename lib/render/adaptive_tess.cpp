@@ -30,7 +30,9 @@ struct ScanPush { // adaptive_scan.comp
     uint32_t elementCount, vertexCapacity, triangleCapacity, rowGroups, evalGroupSize;
 };
 struct EmitPush { // adaptive_emit.comp
-    uint32_t pointBase, triangleCapacity;
+    uint32_t pointBase, triangleCapacity, smoothUV;
+    float fvarCell;
+    uint32_t domainBase, nodeBase, recordBase;
 };
 
 constexpr uint32_t kTotalsWords = 22;
@@ -89,6 +91,23 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     }
     pointBase_ = static_cast<uint32_t>(pieces.size());
     for (const EdgePoint& q : ep.points) pieces.push_back({q.owner, q.st, 0, 0});
+    if (!options.fvarNodes.empty()) { // smooth UVs: domains, quadtree, records (EmitPush)
+        auto bits = [](const glm::vec4& v) {
+            glm::uvec4 u;
+            std::memcpy(&u, &v, 16);
+            return u;
+        };
+        domainBase_ = static_cast<uint32_t>(pieces.size());
+        for (const glm::vec4& d : options.elementDomains) pieces.push_back(bits(d));
+        nodeBase_ = static_cast<uint32_t>(pieces.size());
+        for (size_t i = 0; i < options.fvarNodes.size(); i += 4) {
+            glm::uvec4 q(0xFFFFFFFFu);
+            for (size_t k = 0; k < 4 && i + k < options.fvarNodes.size(); ++k) q[int(k)] = options.fvarNodes[i + k];
+            pieces.push_back(q);
+        }
+        recordBase_ = static_cast<uint32_t>(pieces.size());
+        for (const glm::vec4& r : options.fvarRecords) pieces.push_back(bits(r));
+    }
 
     using gpu::uploadBufferNow;
     auto make = [&](const char* name, uint64_t bytes, uint32_t usage = gpu::kStorage) {
@@ -172,7 +191,9 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     cmd.endTimed();
     cmd.barrier(write, read);
     timed.begin(cmd, "adaptive emit", true);
-    cmd.dispatch(*emitPass_, emitBind_, elementCount_, EmitPush{pointBase_, capT_});
+    cmd.dispatch(*emitPass_, emitBind_, elementCount_,
+                 EmitPush{pointBase_, capT_, options_.fvarNodes.empty() ? 0u : 1u, options_.fvarCell, domainBase_,
+                          nodeBase_, recordBase_});
     cmd.endTimed();
     cmd.barrier(write, read | gpu::Access::VertexRead | gpu::Access::IndexRead | gpu::Access::IndirectRead);
 }

@@ -16,6 +16,8 @@
 // camera re-runs only these passes.
 #pragma once
 
+#include <glm/vec4.hpp>
+
 #include "gpu/buffer.h"
 #include "gpu/commands.h"
 #include "gpu/context.h"
@@ -57,6 +59,13 @@ struct AdaptiveOptions {
     // whole capacity, so unwritten slots must hold valid records); otherwise only what the
     // frame wrote is ever read, and the buffers are left as allocated.
     bool evaluated = false;
+    // Smooth face-varying UVs (issue 14; FaceVaryingSurface::gpu, shaders/fvar_eval.glsl): per
+    // element (patches, then irregular faces) its ptex face (uint bits) and (u0, v0, size), the
+    // quadtree and records, and fvar_eval.glsl's nudge (2^-21). Empty: bilinear corner UVs.
+    // The emit pass reads them from the edge-piece buffer, after the points.
+    std::vector<glm::vec4> elementDomains, fvarRecords;
+    std::vector<uint32_t> fvarNodes;
+    float fvarCell = 0;
 };
 
 // What the scan wrote for the last frame (read back from the GPU).
@@ -102,6 +111,7 @@ class AdaptiveTess {
     AdaptiveOptions options_;
     AdaptiveView view_;
     uint32_t elementCount_, pieceCount_, pointBase_, patchCount_, capV_ = 0, capT_ = 0;
+    uint32_t domainBase_ = 0, nodeBase_ = 0, recordBase_ = 0; // smooth UVs, in pieces_
     std::unique_ptr<gpu::Buffer> elements_, sidePieces_, pieces_, cull_, rates_, info_, totals_,
         tessVertices_, triangles_, triangleLevels_;
     std::unique_ptr<gpu::ComputePipeline> cullPass_, ratePass_, countPass_, scanPass_, emitPass_;

@@ -1,6 +1,8 @@
 #include "render/subdivision_draw.h"
 
 #include "base/error.h"
+#include "subdiv/fvar_surface.h"
+#include "tess/chart_uvs.h"
 #include "tess/tessellation.h"
 #include "topology/ptex.h"
 #include "topology/topology.h"
@@ -9,7 +11,10 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <memory>
 #include <cstdio>
+#include <cstring>
 #include <set>
 
 namespace limn::render {
@@ -64,6 +69,39 @@ void sideUVsOf(const ElementSeams& es, const Seams& seams, const TessVertex& tv,
 } // namespace
 
 namespace {
+
+// The seam records of seams.h (same layout and order: corners' distinct UVs and edges' distinct
+// end-UV pairs per face, in increasing face order) with the smooth UVs of `charts`; `own` the
+// corners in the element's own chart. Without `full`, only `own`.
+Seams smoothSeamRecords(const Tables& t, ChartUVs& charts, bool full) {
+    Seams s;
+    const uint32_t R = 1u << t.depth;
+    std::vector<glm::vec2> list;
+    std::vector<std::pair<glm::vec2, glm::vec2>> pairs;
+    auto add = [&](uint32_t ptex, float u0, float v0, float size) {
+        ElementSeams es{};
+        const uint32_t U0 = uint32_t(double(u0) * R), V0 = uint32_t(double(v0) * R), W = uint32_t(double(size) * R);
+        const uint32_t cu[4] = {U0, U0 + W, U0 + W, U0}, cv[4] = {V0, V0, V0 + W, V0 + W};
+        for (int k = 0; k < 4; ++k) {
+            es.own[k] = charts.own(ptex, cu[k], cv[k], U0 + 0.5 * W, V0 + 0.5 * W);
+            if (!full) continue;
+            charts.sides(ptex, cu[k], cv[k], list);
+            es.cornerFirst[k] = static_cast<uint32_t>(s.uvs.size());
+            es.cornerCount[k] = static_cast<uint32_t>(list.size());
+            s.uvs.insert(s.uvs.end(), list.begin(), list.end());
+        }
+        for (int k = 0; full && k < 4; ++k) {
+            charts.edgeSides(ptex, cu[k], cv[k], cu[(k + 1) % 4], cv[(k + 1) % 4], pairs);
+            es.edgeFirst[k] = static_cast<uint32_t>(s.uvs.size());
+            es.edgeSides[k] = static_cast<uint32_t>(pairs.size());
+            for (const auto& [a, b] : pairs) s.uvs.push_back(a), s.uvs.push_back(b);
+        }
+        s.elements.push_back(es);
+    };
+    for (const Patch& p : t.patches) add(p.ptex, p.u0, p.v0, p.size);
+    for (const IrregularFace& q : t.irregular) add(q.ptex, q.u0, q.v0, q.size);
+    return s;
+}
 
 // Refuses, before any work, a fixed tessellation whose buffers would not fit 128 MiB: the
 // segments per side of each element as buildTessellation will choose them.
@@ -205,12 +243,44 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         }
         d.adaptive = true;
         d.pieces = buildEdgePieces(mesh, t);
+        if (d.hasUVs && t.options.fvar != FVarRule::All) {
+            // Smooth UVs (issue 14): the face-varying surface for the emit pass, per element its
+            // ptex domain, its corners' smooth UVs (the displaced normals' bilinear estimate) and,
+            // with displacement, the seam records of the smooth UVs.
+            Warnings ignored; // the geometry's tables already reported the mesh's warnings
+            const FaceVaryingSurface surface(mesh, t.options, t.depth, ignored);
+            FaceVaryingSurface::Gpu g = surface.gpu();
+            d.fvarNodes = std::move(g.nodes);
+            d.fvarRecords = std::move(g.records);
+            d.fvarCell = std::ldexp(1.0f, -21); // 1/32 of the finest cell at depth 16, above float's step at 1
+            auto domain = [](uint32_t ptex, float u0, float v0, float size) {
+                float bits;
+                std::memcpy(&bits, &ptex, 4);
+                return glm::vec4(bits, u0, v0, size);
+            };
+            for (const Patch& p : t.patches) d.elementDomains.push_back(domain(p.ptex, p.u0, p.v0, p.size));
+            for (const IrregularFace& q : t.irregular) d.elementDomains.push_back(domain(q.ptex, q.u0, q.v0, q.size));
+            ChartUVs charts(mesh, surface, 1u << t.depth);
+            d.smoothSeams = smoothSeamRecords(t, charts, displacement != nullptr);
+            for (size_t e = 0; e < d.pieces.elements.size(); ++e)
+                for (int k = 0; k < 4; ++k) d.pieces.elements[e].cornerUV[k] = d.smoothSeams.elements[e].own[k];
+            if (!displacement) d.smoothSeams = Seams{};
+        }
         d.closed = !d.pieces.pieces.empty();
         for (const EdgePiece& p : d.pieces.pieces) d.closed = d.closed && p.users[1] != kNoElement;
         d.orientation = surfaceOrientation(mesh, mesh.positions);
         return d;
     }
-    Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs);
+    // Smooth face-varying UVs (issue 14) for every rule but "all", whose linear charts stay
+    // exactly as before.
+    std::unique_ptr<FaceVaryingSurface> fvar;
+    std::unique_ptr<ChartUVs> chartUVs;
+    if (d.hasUVs && t.options.fvar != FVarRule::All) {
+        Warnings ignored; // the tables of the geometry already reported the mesh's warnings
+        fvar = std::make_unique<FaceVaryingSurface>(mesh, t.options, t.depth, ignored);
+        chartUVs = std::make_unique<ChartUVs>(mesh, *fvar, 1u << t.depth);
+    }
+    Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs, chartUVs.get());
     d.stitchedEdges = tess.stitchedEdges;
     d.tessVertices.reserve(tess.vertices.size());
     for (size_t i = 0; i < tess.vertices.size(); ++i) {
@@ -223,7 +293,15 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         if (!d.hasUVs) throw Error(ErrorKind::BadInput, "displacement needs texture coordinates; the mesh has none");
         std::vector<glm::vec2> sides;
         for (size_t i = 0; i < tess.vertices.size(); ++i) {
-            if (displacement->seamFix) {
+            if (displacement->seamFix && chartUVs) {
+                // The point's smooth UV in every face around it, in increasing face order.
+                const PtexPoint p = ptexOf(t, tess.vertices[i]);
+                const double R = double(1u << t.depth), U = p.u * R, V = p.v * R;
+                if (U == std::floor(U) && V == std::floor(V))
+                    chartUVs->sides(p.ptex, uint32_t(U), uint32_t(V), sides);
+                else
+                    sides.assign(1, tess.uvs[i]); // an element's centre: inside one face
+            } else if (displacement->seamFix) {
                 const TessVertex& v = tess.vertices[i];
                 sideUVsOf(displacement->seams->elements[v.element], *displacement->seams, v, sides);
             } else {

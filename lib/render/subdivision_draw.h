@@ -12,6 +12,7 @@
 #include "tess/edge_pieces.h"
 
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <vector>
@@ -81,6 +82,13 @@ struct SubdivisionDraw {
     bool adaptive = false;
     EdgePieces pieces;
     const Seams* seams = nullptr; // view-adaptive displacement: the seam records (not owned)
+    // View-adaptive displacement with smooth UVs (issue 14): the seam records of seams.h built
+    // from the smooth UVs (used instead of *seams when it has elements).
+    Seams smoothSeams;
+    // View-adaptive smooth UVs (issue 14): as AdaptiveOptions (empty under rule "all").
+    std::vector<glm::vec4> elementDomains, fvarRecords;
+    std::vector<uint32_t> fvarNodes;
+    float fvarCell = 0;
     bool seamFix = true;
     bool closed = false;    // every edge piece has two sides (no boundary, no holes)
     float orientation = 0;  // sign of the control mesh's signed volume (0: too flat to tell)

@@ -27,7 +27,7 @@ struct DisplacePush { // displace.comp
 };
 struct AdaptiveDisplacePush { // adaptive_displace.comp
     float scale, mid;
-    uint32_t seamFix;
+    uint32_t seamFix, smoothUV;
 };
 struct AdaptiveNormalsPush { // adaptive_displaced_normals.comp
     uint32_t patchCount;
@@ -96,6 +96,10 @@ struct SubdivisionPass::Gpu {
         if (adaptiveOptions) {
             AdaptiveOptions options = *adaptiveOptions;
             options.evaluated = evaluate;
+            options.elementDomains = d.elementDomains;
+            options.fvarNodes = d.fvarNodes;
+            options.fvarRecords = d.fvarRecords;
+            options.fvarCell = d.fvarCell;
             adaptive = std::make_unique<AdaptiveTess>(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()),
                                                       vertices, patches, irregular, limits, options);
         }
@@ -138,8 +142,10 @@ struct SubdivisionPass::Gpu {
                 // View-adaptive (issue 11): samples from the owner's seam record, normals by
                 // differences of the displaced surface (adaptive_displace*.comp).
                 if (!d.seams) throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
-                sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam elements", d.seams->elements));
-                sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam UVs", d.seams->uvs));
+                // Smooth UVs (issue 14): the records of the smooth UVs instead of SEAM's linear ones.
+                const Seams& seams = d.smoothSeams.elements.empty() ? *d.seams : d.smoothSeams;
+                sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam elements", seams.elements));
+                sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam UVs", seams.uvs));
                 map = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement map", mapWords(*disp->map)));
                 displaced = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced positions", n * 16});
                 displacedNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced normals", n * 16});
@@ -323,7 +329,8 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
         cmd.dispatchIndirect(*g.displacePass, g.displaceBindings, args, AdaptiveTess::kDispatchArgs, cap,
                              AdaptiveTess::kRowGroups,
                              AdaptiveDisplacePush{displacement_.scale, displacement_.mid,
-                                                  draw_.seamFix ? 1u : 0u});
+                                                  draw_.seamFix ? 1u : 0u,
+                                                  draw_.smoothSeams.elements.empty() ? 0u : 1u});
         cmd.endTimed();
         cmd.barrier(compute, read);
         timed.begin(cmd, "displaced normals", true);

@@ -5,7 +5,8 @@
 // averages the displacement sampled with each of their UVs; an edge point averages the two
 // sides' samples at interpolated UVs; both in increasing face order, so every element sharing
 // the point computes the same bits. UVs of refined levels follow the linear face-varying rule
-// (bilinear in each face's chart; the only rule limn implements).
+// (bilinear in each face's chart, rule "all"); for the smoothing rules the fixed grids take
+// their samples from tess/chart_uvs.h instead, in the same order.
 #pragma once
 
 #include "container/container.h"

@@ -1,6 +1,7 @@
 #include "tess/tessellation.h"
 
 #include "base/error.h"
+#include "tess/chart_uvs.h"
 #include "topology/ptex.h"
 #include "topology/topology.h"
 
@@ -35,7 +36,8 @@ PtexPoint ptexOf(const Tables& t, const TessVertex& v) {
     return {ptex, u0 + double(v.s) / kTessParamOne * size, v0 + double(v.t) / kTessParamOne * size};
 }
 
-Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap, bool splitUVSeams) {
+Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap, bool splitUVSeams,
+                               ChartUVs* smooth) {
     if (cap < 1) throw Error(ErrorKind::Usage, "the tessellation cap must be at least 1");
     // The fixed grids of neighbours must meet vertex to vertex, so every element's segment count
     // divides its neighbours': a cap that is not a power of two (--tess 3, 12) is rounded down to
@@ -69,6 +71,7 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap, 
     owner.reserve(elements.size() * 8);
     std::vector<PtexMap::ChartUV> charts;
     auto uvOf = [&](const Element& e, uint32_t U, uint32_t V) {
+        if (smooth) return smooth->own(e.ptex, U, V, e.U0 + 0.5 * e.W, e.V0 + 0.5 * e.W);
         return glm::vec2(keys.ownUV(e.ptex, double(U) / R, double(V) / R));
     };
     auto seamPoint = [&](const Element& e, uint32_t U, uint32_t V, uint64_t k) {
@@ -91,7 +94,10 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap, 
             it = owner.emplace(k, static_cast<uint32_t>(out.vertices.size())).first;
             out.vertices.push_back({ei, uint16_t((U - e.U0) * unit), uint16_t((V - e.V0) * unit)});
             out.geometry.push_back(it->second);
-            if (withUV) out.uvs.push_back(uvOf(e, U, V));
+            if (withUV) {
+                out.uvs.push_back(uvOf(e, U, V));
+                out.uvSources.push_back(out.vertices.back());
+            }
         }
         if (!splitUVSeams || !seamPoint(e, U, V, k)) return it->second;
         glm::vec2 uv = uvOf(e, U, V);
@@ -102,6 +108,8 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap, 
             out.vertices.push_back(out.vertices[first]);
             out.geometry.push_back(first);
             out.uvs.push_back(uv);
+            const uint32_t unit = kTessParamOne / e.W;
+            out.uvSources.push_back({ei, uint16_t((U - e.U0) * unit), uint16_t((V - e.V0) * unit)});
         }
         return c->second;
     };
@@ -202,9 +210,12 @@ Tessellation buildTessellation(const Mesh& mesh, const Tables& t, uint32_t cap, 
                     uint32_t centre = static_cast<uint32_t>(out.vertices.size());
                     out.vertices.push_back({ei, uint16_t(kTessParamOne / 2), uint16_t(kTessParamOne / 2)});
                     out.geometry.push_back(centre);
-                    if (withUV)
-                        out.uvs.push_back(glm::vec2(keys.ownUV(e.ptex, (e.U0 + 0.5 * e.W) / R,
-                                                               (e.V0 + 0.5 * e.W) / R)));
+                    const double cu = (e.U0 + 0.5 * e.W) / R, cv = (e.V0 + 0.5 * e.W) / R;
+                    if (withUV) {
+                        out.uvs.push_back(smooth ? smooth->interior(e.ptex, cu, cv)
+                                                 : glm::vec2(keys.ownUV(e.ptex, cu, cv)));
+                        out.uvSources.push_back(out.vertices.back());
+                    }
                     for (size_t r = 0; r < ring.size(); ++r) tri(centre, ring[r], ring[(r + 1) % ring.size()]);
                     continue;
                 }

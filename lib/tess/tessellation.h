@@ -33,6 +33,9 @@ struct Tessellation {
     // vertex whose position it shares (itself for the first; UV-seam copies name the first).
     // Copies keep the first one's (element, s, t), so they evaluate to the same bits.
     std::vector<glm::vec2> uvs;
+    // With UVs: per vertex, the element point the UV was evaluated at (the vertex's own, or for
+    // a copy the element and point in the chart it was made for).
+    std::vector<TessVertex> uvSources;
     std::vector<uint32_t> geometry;
     std::vector<uint32_t> indices; // triangles, counter-clockwise in (u, v)
     std::vector<uint32_t> segments; // per element: segments per side of its own grid
@@ -45,8 +48,11 @@ struct Tessellation {
 // that neighbouring grids nest). With `splitUVSeams` (the mesh must
 // have UVs), a point whose faces give it different UVs gets one vertex per distinct UV, so
 // textures and displacement can be looked up per side; all copies share the first's geometry.
+// UVs are the linear charts (face-varying rule "all"), or with `smooth` the smooth face-varying
+// surface's (issue 14; at the same depth as `tables`).
+class ChartUVs;
 Tessellation buildTessellation(const Mesh& mesh, const Tables& tables, uint32_t cap,
-                               bool splitUVSeams = false);
+                               bool splitUVSeams = false, ChartUVs* smooth = nullptr);
 
 // The ptex face and (u, v) of a tessellation vertex.
 struct PtexPoint {

@@ -13,7 +13,7 @@ using namespace limn;
 int main(int argc, char** argv) {
     return cli::run("limn-classify", argc, argv, [](int ac, char** av) {
         cli::Common common;
-        std::string input = "-", boundary;
+        std::string input = "-", boundary, fvar;
         cli::Parser parser(
             "limn-classify", "[options] [INPUT|-] [-o OUTPUT|-]",
             "Reads a polygon mesh and writes a .limn container holding the mesh, its UVs and\n"
@@ -23,7 +23,15 @@ int main(int argc, char** argv) {
         parser.positional("INPUT", &input, "mesh: .obj, .gltf, .glb, .ply, .off or .limn")
             .choice("--boundary", &boundary, {"none", "edge", "edge-corner"},
                     "boundary rule [default: the mesh's interpolateboundary tag, else edge]")
+            .choice("--fvar", &fvar,
+                    {"none", "corners-only", "corners-plus1", "corners-plus2", "boundaries", "all"},
+                    "UV smoothing rule [default: the mesh's fvar tag, else all]")
             .notes("The format is chosen by the extension, or by content on standard input.\n"
+                   "--fvar is OpenSubdiv's face-varying linear interpolation, stored as the mesh's\n"
+                   "tag (OBJ: t facevaryinginterpolateboundary): none smooths UVs everywhere;\n"
+                   "corners-only, corners-plus1, corners-plus2 keep UV corners, also junctions of\n"
+                   "3+ UV regions, also darts and concave corners sharp; boundaries keeps every UV\n"
+                   "boundary linear; all interpolates UVs linearly (the default, as OpenSubdiv's).\n"
                    "Chunks of an input .limn that limn-classify does not own are kept unchanged.\n"
                    "A glTF's base colour (factor and texture image bytes) is kept in a MATL chunk\n"
                    "(formats/limn.md), which limn-render draws.\n"
@@ -51,6 +59,12 @@ int main(int argc, char** argv) {
             // A glTF's base colour (factor, texture bytes) travels in MATL, so that a pipeline
             // from the container draws what the asset shows.
             mesh = importMesh(input, bytes, warnings, &inputs, &material);
+        }
+        if (!fvar.empty()) {
+            static const char* const names[] = {"none", "corners-only", "corners-plus1",
+                                                "corners-plus2", "boundaries", "all"};
+            for (int i = 0; i < 6; ++i)
+                if (fvar == names[i]) mesh.tags.fvar = static_cast<FVarRule>(i); // as Sdc numbers them
         }
         std::optional<BoundaryRule> override;
         if (boundary == "none") override = BoundaryRule::None;

@@ -5,6 +5,9 @@
 // along the edge; interior: its own face), so the copies of a shared point that neighbouring
 // elements emit use the same inputs in the same order and stay bit-identical. Without it each
 // copy samples its own element's chart (and cracks open at UV seams, as in the paper's Fig. 4).
+// With smooth UVs (issue 14) the records hold the smooth UVs of the corners (edges interpolate
+// them linearly per side, as the paper's auxiliary UVs do) and interior points sample the smooth
+// UV the emit pass evaluated.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "limn_compute.glsl"
@@ -27,6 +30,7 @@ layout(push_constant) uniform Push {
     layout(offset = 16) float scale;
     float mid;
     uint seamFix;
+    uint smoothUV; // issue 14: records of smooth UVs; inside an element its emitted (smooth) UV
 } pc;
 
 #include "adaptive_sample.glsl"
@@ -56,6 +60,8 @@ void main() {
                 sum += sampleMap(a + x * (b - a));
             }
             count = float(es.edgeSides[e]);
+        } else if (pc.smoothUV != 0u) {
+            sum = sampleMap(uintBitsToFloat(tv.zw)); // an interior point has one copy, in its owner's chart
         } else {
             vec2 uv = (1.0 - s) * (1.0 - t) * es.own[0] + s * (1.0 - t) * es.own[1] + s * t * es.own[2] +
                       (1.0 - s) * t * es.own[3];

@@ -33,12 +33,31 @@ layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
     layout(offset = 16) uint pointBase; // first point record in `pieces`
     uint triangleCapacity;
+    // Smooth UVs (issue 14): with smoothUV = 1, `pieces` also holds, from domainBase, per element
+    // (ptex, u0, v0, size) (floats as bits), from nodeBase the quadtree (4 words a record), from
+    // recordBase the records of fvar_eval.glsl (WebGPU allows 8 storage buffers a pass: this
+    // pass has them all). fvarCell: fvar_eval.glsl's nudge.
+    uint smoothUV;
+    float fvarCell;
+    uint domainBase, nodeBase, recordBase;
 } pc;
 
-AdaptiveElement el;
-uint vBase, tNext, level;
+uint fvarNode(uint i) { return pieces.v[pc.nodeBase + i / 4u][i % 4u]; }
+vec4 fvarRecord(uint i) { return uintBitsToFloat(pieces.v[pc.recordBase + i]); }
+#include "fvar_eval.glsl"
 
+AdaptiveElement el;
+uint elIndex, vBase, tNext, level;
+
+// The emitting element's own-chart UV at its (s, t): smooth (the face-varying surface at the
+// point, from inside this element) or bilinear in its corners' UVs (rule "all").
 vec2 uvAt(float s, float t) {
+    if (pc.smoothUV != 0u) {
+        uvec4 q = pieces.v[pc.domainBase + elIndex];
+        vec3 d = uintBitsToFloat(q.yzw);
+        vec2 at = d.xy + vec2(s, t) * d.z, centre = d.xy + vec2(0.5 * d.z);
+        return fvarUV(q.x, at, centre, pc.fvarCell);
+    }
     return mix(mix(el.uv[0], el.uv[1], s), mix(el.uv[3], el.uv[2], s), t);
 }
 
@@ -91,6 +110,7 @@ void main() {
         return;
     }
     el = elements.e[e];
+    elIndex = e;
     level = el.level;
 
     // The boundary loop.

@@ -1,0 +1,278 @@
+#include "subdiv/fvar_surface.h"
+
+#include "base/error.h"
+#include "topology/topology.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+namespace limn {
+
+namespace {
+
+// One span of faces around a base vertex that share face-varying continuous edges: a vertex of
+// the UV mesh (OpenSubdiv's ValueSpan, fvarLevel.cpp).
+struct Span {
+    uint32_t value = 0;       // the UV index of its faces' corners
+    uint32_t size = 0;        // faces
+    uint32_t infSharpEdges = 0, semiSharpEdges = 0; // interior edges of the span
+    float maxSemiSharpness = 0;
+};
+
+} // namespace
+
+Mesh faceVaryingMesh(const Mesh& mesh, const SchemeOptions& o) {
+    if (!mesh.hasUVs()) throw Error(ErrorKind::BadInput, "the mesh has no texture coordinates to smooth");
+    const uint32_t nv = static_cast<uint32_t>(mesh.vertexCount());
+    Topology topo(nv, mesh.faceOffsets, mesh.faceVertices);
+    Warnings quiet;
+    const Sharpness sharp = baseSharpness(topo, mesh.tags, o.boundary, quiet);
+    const FVarRule mode = o.fvar;
+    const bool plus = mode == FVarRule::CornersPlus1 || mode == FVarRule::CornersPlus2;
+    const bool linearBoundaries = mode == FVarRule::Boundaries; // (All never gets here)
+    const bool fvarCornersAreSharp = mode != FVarRule::LinearNone;
+    const bool makeSmoothCornersSharp = o.boundary != BoundaryRule::EdgeAndCorner && fvarCornersAreSharp;
+    const bool sharpenBothIfOneCorner = mode == FVarRule::CornersPlus2;
+    const bool sharpenDarts = sharpenBothIfOneCorner || linearBoundaries;
+
+    Mesh uv;
+    uv.faceOffsets = mesh.faceOffsets;
+    uv.faceVertices.assign(mesh.cornerCount(), kNone); // per corner: its UV-mesh vertex
+    uv.tags.holes = mesh.tags.holes;
+    uv.tags.boundary = BoundaryRule::EdgeOnly; // corners are sharpened explicitly below
+    uv.tags.creaseMethod = o.creaseMethod;
+    uv.tags.triangles = o.triangles;
+    for (uint32_t f = 0; f < sharp.faceNoLimit.size(); ++f)
+        if (sharp.faceNoLimit[f] && !std::count(uv.tags.holes.begin(), uv.tags.holes.end(), f))
+            uv.tags.holes.push_back(f);
+
+    const auto& U = mesh.uvIndices;
+    // An edge between the faces of outgoing half-edges h (before) and g (after, = twin(prev(h)))
+    // is face-varying continuous when both its ends have the same UV in both faces.
+    auto continuous = [&](uint32_t h, uint32_t g) {
+        return U[h] == U[g] && U[topo.prev(h)] == U[topo.next(g)];
+    };
+    std::vector<uint32_t> ring;
+    std::vector<Span> spans;
+    std::vector<uint32_t> spanOf; // per ring position
+    for (uint32_t v = 0; v < nv; ++v) {
+        if (topo.vertexIsIsolated(v)) continue;
+        if (topo.vertexIsNonManifold(v))
+            throw Error(ErrorKind::BadInput, "vertex " + std::to_string(v) +
+                                                 " is non-manifold; smooth face-varying UVs need a manifold mesh");
+        topo.vertexRing(v, ring);
+        const uint32_t m = static_cast<uint32_t>(ring.size());
+        const bool boundary = topo.vertexIsBoundary(v);
+        // Split the fan into spans at discontinuous edges (between ring[i] and ring[i+1]).
+        std::vector<uint8_t> cont(m, 0);
+        bool mismatched = false;
+        for (uint32_t i = 0; i < m; ++i) {
+            if (boundary && i + 1 == m) break;
+            cont[i] = continuous(ring[i], ring[(i + 1) % m]);
+            mismatched |= !cont[i];
+        }
+        // Geometric boundaries count as face-varying boundaries where the mode treats them so.
+        if (boundary && !mismatched)
+            mismatched = linearBoundaries || (m == 1 && makeSmoothCornersSharp);
+        // Spans: start after a discontinuity (or at the boundary / at 0 when all continuous).
+        uint32_t start = 0;
+        if (!boundary)
+            for (uint32_t i = 0; i < m; ++i)
+                if (!cont[(i + m - 1) % m]) {
+                    start = i;
+                    break;
+                }
+        spans.clear();
+        spanOf.assign(m, 0);
+        for (uint32_t k = 0; k < m; ++k) {
+            uint32_t i = (start + k) % m;
+            if (k == 0 || !cont[(i + m - 1) % m]) spans.push_back({U[ring[i]]});
+            Span& s = spans.back();
+            ++s.size;
+            spanOf[i] = static_cast<uint32_t>(spans.size() - 1);
+            if (k + 1 < m && cont[i]) { // the interior edge to the next face of this span
+                float e = sharp.edge[topo.edge(topo.prev(ring[i]))];
+                if (e >= kInfiniteSharpness) ++s.infSharpEdges;
+                else if (e > 0) ++s.semiSharpEdges, s.maxSemiSharpness = std::max(s.maxSemiSharpness, e);
+            }
+        }
+        const uint32_t firstVertex = static_cast<uint32_t>(uv.positions.size());
+        for (uint32_t i = 0; i < m; ++i) uv.faceVertices[ring[i]] = firstVertex + spanOf[i];
+        for (const Span& s : spans) uv.positions.push_back(glm::dvec3(mesh.uvs[s.value], 0.0));
+        const float vs = sharp.vertex[v];
+        if (vs > 0)
+            for (uint32_t k = 0; k < spans.size(); ++k) uv.tags.corners.push_back({firstVertex + k, vs});
+        if (!mismatched) continue;
+
+        // OpenSubdiv's sharpening of the values of a mismatched vertex (fvarLevel.cpp): per value
+        // (spans with the same UV index together), corner or smooth boundary.
+        std::map<uint32_t, Span> values;
+        std::map<uint32_t, uint32_t> spanCount;
+        for (const Span& s : spans) {
+            Span& x = values[s.value];
+            x.value = s.value;
+            x.size += s.size;
+            x.infSharpEdges += s.infSharpEdges;
+            x.semiSharpEdges += s.semiSharpEdges;
+            x.maxSemiSharpness = std::max(x.maxSemiSharpness, s.maxSemiSharpness);
+            ++spanCount[s.value];
+        }
+        const size_t n = values.size();
+        bool allSharp = linearBoundaries || vs >= kInfiniteSharpness || (plus && n > 2) ||
+                        (sharpenDarts && n == 1 && !boundary);
+        // A "disjoint" value: one UV index in several spans (a bowtie in UV space), or an
+        // interior dart value cut by more than one discontinuous edge. OpenSubdiv sharpens it.
+        auto disjoint = [&](uint32_t value) { return spanCount[value] > 1; };
+        float dependent[2] = {0, 0};
+        if (!allSharp && plus && n == 2) {
+            const Span& a = values.begin()->second;
+            const Span& b = std::next(values.begin())->second;
+            allSharp = a.infSharpEdges || b.infSharpEdges || disjoint(a.value) || disjoint(b.value);
+            if (sharpenBothIfOneCorner) allSharp |= a.size == 1 || b.size == 1;
+            // Dependent sharpness: a value without semi-sharp edges follows the other's decay.
+            // Approximated by a vertex sharpness equal to the other's sharpest edge.
+            if ((a.semiSharpEdges > 0) != (b.semiSharpEdges > 0))
+                dependent[a.semiSharpEdges ? 1 : 0] = std::max(a.maxSemiSharpness, b.maxSemiSharpness);
+        }
+        uint32_t valueIndex = 0;
+        for (const auto& [value, s] : values) {
+            const bool corner = allSharp || disjoint(value) || s.infSharpEdges > 0 ||
+                                (s.size == 1 && fvarCornersAreSharp);
+            // (dependent[] has entries for the two values of a two-value vertex only)
+            const float extra = corner ? kInfiniteSharpness : n == 2 ? dependent[valueIndex] : 0.0f;
+            ++valueIndex;
+            if (extra <= vs) continue;
+            for (uint32_t k = 0; k < spans.size(); ++k)
+                if (spans[k].value == value) uv.tags.corners.push_back({firstVertex + k, extra});
+        }
+    }
+    // Creases on face-varying continuous edges (on discontinuous ones the UV mesh has two
+    // boundary edges, infinitely sharp anyway). A later tag for the same UV vertex wins, so the
+    // corner tags above are ordered vertex by vertex with the sharpened ones last.
+    for (const auto& c : mesh.tags.creases) {
+        uint32_t e = topo.findEdge(c.v0, c.v1);
+        if (e == kNone) continue;
+        uint32_t h = topo.edgeHalfedge(e);
+        uv.tags.creases.push_back({uv.faceVertices[h], uv.faceVertices[topo.next(h)], c.sharpness});
+    }
+    return uv;
+}
+
+namespace {
+
+uint64_t cellKey(uint32_t ptex, uint32_t k, uint32_t i, uint32_t j) {
+    return uint64_t(ptex) << 37 | uint64_t(k) << 32 | uint64_t(i) << 16 | j;
+}
+
+uint32_t sizeExponent(float size) { return static_cast<uint32_t>(std::lround(-std::log2(double(size)))); }
+
+} // namespace
+
+FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o, uint32_t depth, Warnings& warnings)
+    : depth_(depth) {
+    Mesh uv = faceVaryingMesh(mesh, o);
+    for (size_t f = 0; f < mesh.faceCount(); ++f) ptexCount_ += mesh.faceSize(f) == 4 ? 1 : mesh.faceSize(f);
+    SchemeOptions uo;
+    uo.boundary = BoundaryRule::EdgeOnly;
+    uo.creaseMethod = o.creaseMethod;
+    uo.triangles = o.triangles;
+    TablesOptions to;
+    to.depth = static_cast<int>(depth);
+    tables_ = buildTables(uv, uo, to, warnings);
+    vertices_ = evaluateVertices(tables_, uv.positions);
+    limits_ = evaluateLimitPoints(tables_, vertices_);
+    const uint32_t P = static_cast<uint32_t>(tables_.patches.size());
+    auto add = [&](uint32_t e, uint32_t ptex, float u0, float v0, float size) {
+        const uint32_t k = sizeExponent(size);
+        const double scale = std::ldexp(1.0, int(k));
+        cells_[cellKey(ptex, k, uint32_t(std::lround(u0 * scale)), uint32_t(std::lround(v0 * scale)))] = e;
+    };
+    for (uint32_t i = 0; i < P; ++i) add(i, tables_.patches[i].ptex, tables_.patches[i].u0, tables_.patches[i].v0, tables_.patches[i].size);
+    for (uint32_t i = 0; i < tables_.irregular.size(); ++i)
+        add(P + i, tables_.irregular[i].ptex, tables_.irregular[i].u0, tables_.irregular[i].v0, tables_.irregular[i].size);
+}
+
+FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
+    Gpu g;
+    g.nodes.assign(ptexCount_, 0xFFFFFFFFu);
+    const uint32_t P = static_cast<uint32_t>(tables_.patches.size());
+    auto insert = [&](uint32_t e, uint32_t ptex, float u0, float v0, float size) {
+        const uint32_t k = sizeExponent(size);
+        const uint32_t i = uint32_t(std::lround(u0 * std::ldexp(1.0, int(k))));
+        const uint32_t j = uint32_t(std::lround(v0 * std::ldexp(1.0, int(k))));
+        uint32_t node = ptex;
+        for (uint32_t level = 0; level < k; ++level) { // descend, splitting leaves-to-be
+            if (g.nodes[node] == 0xFFFFFFFFu) {
+                g.nodes[node] = static_cast<uint32_t>(g.nodes.size());
+                g.nodes.insert(g.nodes.end(), 4, 0xFFFFFFFFu);
+            }
+            const uint32_t shift = k - 1 - level;
+            node = g.nodes[node] + ((i >> shift) & 1u) + 2 * ((j >> shift) & 1u);
+        }
+        g.nodes[node] = 0x80000000u | e;
+    };
+    for (uint32_t e = 0; e < P; ++e) {
+        const Patch& p = tables_.patches[e];
+        insert(e, p.ptex, p.u0, p.v0, p.size);
+        glm::dvec3 C[4][4];
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) C[i][j] = vertices_[p.cv[4 * j + i]];
+        // The phantoms of evaluatePatch (math.md C.4): columns first, then rows.
+        for (int j = 0; j < 4; ++j) {
+            if (p.boundary & kBoundaryU0) C[0][j] = 2.0 * C[1][j] - C[2][j];
+            if (p.boundary & kBoundaryU1) C[3][j] = 2.0 * C[2][j] - C[1][j];
+        }
+        for (int i = 0; i < 4; ++i) {
+            if (p.boundary & kBoundaryV0) C[i][0] = 2.0 * C[i][1] - C[i][2];
+            if (p.boundary & kBoundaryV1) C[i][3] = 2.0 * C[i][2] - C[i][1];
+        }
+        g.records.push_back({p.u0, p.v0, p.size, 0.0f});
+        for (int c = 0; c < 16; c += 2) {
+            const glm::dvec3 a = C[c % 4][c / 4], b = C[(c + 1) % 4][(c + 1) / 4];
+            g.records.push_back(glm::vec4(a.x, a.y, b.x, b.y));
+        }
+    }
+    for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
+        const IrregularFace& f = tables_.irregular[q];
+        insert(P + q, f.ptex, f.u0, f.v0, f.size);
+        g.records.push_back({f.u0, f.v0, f.size, 1.0f});
+        const glm::dvec3 c[4] = {limits_[f.corner[0]].position, limits_[f.corner[1]].position,
+                                 limits_[f.corner[2]].position, limits_[f.corner[3]].position};
+        g.records.push_back(glm::vec4(c[0].x, c[0].y, c[1].x, c[1].y));
+        g.records.push_back(glm::vec4(c[2].x, c[2].y, c[3].x, c[3].y));
+        g.records.insert(g.records.end(), 6, glm::vec4(0.0f));
+    }
+    return g;
+}
+
+glm::dvec2 FaceVaryingSurface::uvAt(uint32_t ptex, double u, double v, double tu, double tv) const {
+    // A probe just inside the element asked about, so exactly one cell of each size contains it.
+    const double pu = std::clamp(u + 1e-6 * (tu - u), 0.0, 1.0), pv = std::clamp(v + 1e-6 * (tv - v), 0.0, 1.0);
+    const uint32_t P = static_cast<uint32_t>(tables_.patches.size());
+    for (uint32_t k = 0; k <= depth_ + 1; ++k) {
+        const double scale = std::ldexp(1.0, int(k));
+        const uint32_t last = (1u << k) - 1;
+        const uint32_t i = std::min(uint32_t(pu * scale), last), j = std::min(uint32_t(pv * scale), last);
+        auto it = cells_.find(cellKey(ptex, k, i, j));
+        if (it == cells_.end()) continue;
+        const uint32_t e = it->second;
+        if (e < P) {
+            const Patch& p = tables_.patches[e];
+            SurfacePoint s = evaluatePatch(p, vertices_, (u - p.u0) / p.size, (v - p.v0) / p.size);
+            return {s.position.x, s.position.y};
+        }
+        const IrregularFace& q = tables_.irregular[e - P];
+        const double s = (u - q.u0) / q.size, t = (v - q.v0) / q.size;
+        const double w[4] = {(1 - s) * (1 - t), s * (1 - t), s * t, (1 - s) * t};
+        glm::dvec3 x(0.0);
+        for (int c = 0; c < 4; ++c)
+            if (w[c] != 0) x += w[c] * limits_[q.corner[c]].position;
+        return {x.x, x.y};
+    }
+    throw Error(ErrorKind::BadInput, "no face-varying element contains ptex face " + std::to_string(ptex) +
+                                         " at (" + std::to_string(u) + ", " + std::to_string(v) + ")");
+}
+
+} // namespace limn

@@ -1,0 +1,68 @@
+// Smooth face-varying UVs (issue 14): the UV channel refined with its own value topology, as
+// OpenSubdiv does for Sdc::Options::FVarLinearInterpolation modes other than FVAR_LINEAR_ALL.
+//
+// The channel is treated as a mesh of its own (faceVaryingMesh): one vertex per UV value and
+// span of faces around a base vertex, the same faces with UV corners, so UV seams are its
+// boundaries; the base mesh's creases, corners and holes carried over; and the UV boundary
+// values sharpened into corners exactly where OpenSubdiv's Vtr::FVarLevel sharpens them for the
+// mode (completeTopologyFromFaceValues, v3_6_0). limn's own feature-adaptive tables of that mesh
+// then give its limit surface: a B-spline where it is regular, limit points at the corners of
+// its level-N irregular faces. The mesh has the same faces in the same order as the base mesh,
+// so the ptex parameterization is shared and the UV at (ptex, u, v) is the UV surface's point
+// there. Drawn vertices lie on the level-N lattice, i.e. on patches or on the corners of level-N
+// faces, where this is the exact limit (as exact as limn's limit masks).
+#pragma once
+
+#include "base/warnings.h"
+#include "mesh/mesh.h"
+#include "subdiv/evaluate.h"
+#include "subdiv/tables.h"
+#include "topology/features.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace limn {
+
+// The UV channel of `mesh` as a mesh whose vertices are UV values (positions (u, v, 0)), for a
+// mode other than All. Throws Error(BadInput) without UVs or for non-manifold meshes.
+Mesh faceVaryingMesh(const Mesh& mesh, const SchemeOptions& options);
+
+class FaceVaryingSurface {
+  public:
+    // `depth`: that of the geometry's tables, so their lattice of drawn points is this one's.
+    FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& options, uint32_t depth, Warnings& warnings);
+
+    // The UV at (u, v) of ptex face `ptex`, from the element that contains the point just inside
+    // toward (towardU, towardV) (any element containing it gives the same limit; this picks one).
+    glm::dvec2 uvAt(uint32_t ptex, double u, double v, double towardU, double towardV) const;
+
+    const Tables& tables() const { return tables_; }
+
+    // The surface as the GPU reads it (shaders/fvar_eval.glsl): `nodes` is a quadtree per ptex
+    // face, nodes[p] the root of ptex face p; a node is a leaf 0x80000000 | element, 0xFFFFFFFF
+    // (no element: a hole), or the index of its four children (i, j) = (0,0), (1,0), (0,1), (1,1).
+    // `records` holds 9 per element: (u0, v0, size, 0 for a patch / 1 for an irregular face), then
+    // the patch's 16 UV control points P_ij at 4j + i, phantoms applied, as 8 (P, P) pairs, or
+    // the irregular face's 4 corner limit UVs in the first two.
+    struct Gpu {
+        std::vector<uint32_t> nodes;
+        std::vector<glm::vec4> records;
+    };
+    Gpu gpu() const;
+
+  private:
+    Tables tables_;
+    std::vector<glm::dvec3> vertices_;
+    std::vector<LimitPoint> limits_;
+    // (ptex, size exponent, cell i, cell j) -> element (patch index, or patches + irregular face).
+    std::unordered_map<uint64_t, uint32_t> cells_;
+    uint32_t depth_;
+    uint32_t ptexCount_ = 0;
+};
+
+} // namespace limn

@@ -1,0 +1,149 @@
+// Smooth face-varying UVs through the tools (issue 14): limn-classify --fvar MODE | limn-tables |
+// limn-seams | limn-render --displace --mesh-out. In every mode the displaced closed meshes stay
+// welded-closed with the seam fix, in the fixed grids and the view-adaptive tessellation (its samples are the smooth UVs of every face around a point,
+// in increasing face order, so every copy of a point displaces by the same bits), and the PLY's
+// s, t are the smooth UVs: they differ from the linear ones of mode "all" where the rule smooths
+// (and equal them on one-face islands whose corners the rule keeps sharp).
+#include "displacement_support.h"
+#include "mesh/import.h"
+#include "subdiv/fvar_surface.h"
+#include "subdiv/tables.h"
+
+#include <map>
+
+using namespace limn;
+using namespace limn::test;
+using namespace limn::test::displacement;
+
+namespace {
+
+const char* const kModes[] = {"none", "corners-only", "corners-plus1", "corners-plus2", "boundaries", "all"};
+
+std::string prepareFVar(const std::string& obj, const std::string& mode, int depth, const ScratchDir& dir) {
+    const std::string limn = (dir / "fvar.limn").string();
+    runOk({bin("limn-classify"), "-q", obj, "--fvar", mode, "-o", limn});
+    runOk({bin("limn-tables"), "-q", limn, "-o", limn, "--depth", std::to_string(depth)});
+    runOk({bin("limn-seams"), "-q", limn, "-o", limn});
+    return limn;
+}
+
+// The drawn texture coordinates by (ptex, u, v) of each vertex (its first copy's).
+std::map<std::array<float, 3>, std::array<float, 2>> uvByPoint(const Drawn& d) {
+    std::map<std::array<float, 3>, std::array<float, 2>> out;
+    for (const auto& v : d.vertices) out.try_emplace({float(v.ptex), v.uv[0], v.uv[1]}, std::array<float, 2>{v.st[0], v.st[1]});
+    return out;
+}
+
+struct FVarCase {
+    Model model;
+    int depth;
+};
+
+class FVarDisplaced : public ::testing::TestWithParam<FVarCase> {};
+
+TEST_P(FVarDisplaced, WeldedClosedInEveryMode) {
+    const FVarCase& c = GetParam();
+    ScratchDir dir;
+    const std::string obj = modelFile(c.model, dir);
+    const double scale = 0.05 * diagonalOf(obj);
+    std::string map;
+    std::map<std::array<float, 3>, std::array<float, 2>> linear;
+    size_t smoothed = 0;
+    for (int m = 5; m >= 0; --m) { // "all" first: the linear UVs to compare with
+        SCOPED_TRACE(std::string("--fvar ") + kModes[m]);
+        const std::string limn = prepareFVar(obj, kModes[m], c.depth, dir);
+        if (map.empty()) map = heightmap(limn, "uv", dir); // unrelated across seams: the stress case
+        const Drawn d = drawn(limn, {"--displace", map, "--displace-scale", std::to_string(scale),
+                                     "--displace-mid", "0.5"},
+                              dir);
+        ASSERT_TRUE(d.hasST);
+        WeldedEdges w = weldedEdges(d);
+        EXPECT_EQ(w.open, 0u) << "open edges with the seam fix";
+        EXPECT_EQ(w.over, 0u);
+        EXPECT_EQ(w.collapsed, 0u);
+        // The view-adaptive tessellation: the seam records of the smooth UVs (corners exact,
+        // edges interpolated per side), interiors at the emitted smooth UV; welded closed too.
+        const std::string ply = (dir / "adaptive.ply").string();
+        runOk({bin("limn-render"), limn, "--size", "64x48", "--validate", "--mesh-out", ply, "-o",
+               (dir / "adaptive.png").string(), "--displace", map, "--displace-scale", std::to_string(scale),
+               "--displace-mid", "0.5"});
+        WeldedEdges a = weldedEdges(parsePly(readFile(ply)));
+        EXPECT_EQ(a.open, 0u) << "view-adaptive: open edges with the seam fix";
+        EXPECT_EQ(a.over, 0u);
+        EXPECT_EQ(a.collapsed, 0u);
+        if (m == 0) { // the check can fail: each side's own samples open the UV seams
+            runOk({bin("limn-render"), limn, "--size", "64x48", "--mesh-out", ply, "-o",
+                   (dir / "adaptive.png").string(), "--displace", map, "--displace-scale",
+                   std::to_string(scale), "--displace-mid", "0.5", "--no-seam-fix"});
+            EXPECT_GT(weldedEdges(parsePly(readFile(ply))).open, 0u) << "--no-seam-fix should crack";
+        }
+        auto uvs = uvByPoint(d);
+        if (m == 5) {
+            linear = uvs;
+            continue;
+        }
+        size_t differ = 0;
+        for (const auto& [k, st] : uvs) {
+            auto it = linear.find(k);
+            ASSERT_NE(it, linear.end());
+            differ += std::abs(it->second[0] - st[0]) + std::abs(it->second[1] - st[1]) > 1e-4f;
+        }
+        // An island of one quad whose corners the mode keeps sharp is its bilinear chart.
+        if (c.model.name == "islands" && m != 0)
+            EXPECT_EQ(differ, 0u) << "a one-face island with sharp corners is bilinear";
+        else
+            EXPECT_GT(differ, 0u) << "the smooth UVs should differ from the linear ones somewhere";
+        smoothed += differ;
+    }
+    RecordProperty("smoothed_vertices", int(smoothed));
+}
+
+const FVarCase kCases[] = {
+    {{"spot", "quad/spot_control_mesh.obj"}, 1}, {{"spot", "quad/spot_control_mesh.obj"}, 2},
+    {{"spot", "quad/spot_control_mesh.obj"}, 3}, {{"spot", "quad/spot_control_mesh.obj"}, 4},
+    {{"blub", "quad/blub_control_mesh.obj"}, 2}, {{"islands", ""}, 2},
+};
+
+std::string caseName(const ::testing::TestParamInfo<FVarCase>& p) {
+    return p.param.model.name + "_d" + std::to_string(p.param.depth);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, FVarDisplaced, ::testing::ValuesIn(kCases), caseName);
+
+// The view-adaptive tessellation evaluates the smooth UVs on the GPU (shaders/fvar_eval.glsl) at
+// the (ptex, u, v) of each vertex it emits: equal to the CPU's FaceVaryingSurface (in double)
+// to 1e-5 at every emitted vertex inside a ptex face (where the vertex's chart is that face's),
+// in every smoothing rule, on spot seen close up (rates well above the fixed grids').
+TEST(FVarAdaptive, GpuUVsMatchTheCpuSurface) {
+    ScratchDir dir;
+    const std::string obj = modelPath("quad/spot_control_mesh.obj").string();
+    Warnings w;
+    const Mesh mesh = importMeshFile(obj, w);
+    for (int m = 0; m < 5; ++m) {
+        SCOPED_TRACE(std::string("--fvar ") + kModes[m]);
+        const int depth = 3;
+        const std::string limn = prepareFVar(obj, kModes[m], depth, dir);
+        const std::string ply = (dir / "adaptive.ply").string();
+        runOk({bin("limn-render"), limn, "--size", "320x240", "--view", "30,20", "--validate", "--mesh-out", ply,
+               "-o", (dir / "adaptive.png").string()});
+        const Drawn d = parsePly(readFile(ply));
+        ASSERT_TRUE(d.hasST);
+        SchemeOptions o = resolveSchemeOptions(mesh.tags, {});
+        o.fvar = static_cast<FVarRule>(m);
+        FaceVaryingSurface surface(mesh, o, depth, w);
+        double worst = 0;
+        size_t inside = 0;
+        for (const auto& v : d.vertices) {
+            if (!(v.uv[0] > 0 && v.uv[0] < 1 && v.uv[1] > 0 && v.uv[1] < 1)) continue;
+            const glm::dvec2 ref = surface.uvAt(uint32_t(v.ptex), v.uv[0], v.uv[1], 0.5, 0.5);
+            worst = std::max(worst, glm::length(ref - glm::dvec2(v.st[0], v.st[1])));
+            ++inside;
+        }
+        std::printf("fvar adaptive %s: %zu vertices inside ptex faces, max |GPU - CPU| UV %.3g\n", kModes[m],
+                    inside, worst);
+        EXPECT_GT(inside, 1000u);
+        EXPECT_LE(worst, 1e-5);
+    }
+}
+
+} // namespace
