@@ -135,8 +135,18 @@ TEST(FVarAdaptive, GpuUVsMatchTheCpuSurface) {
         size_t inside = 0;
         for (const auto& v : d.vertices) {
             if (!(v.uv[0] > 0 && v.uv[0] < 1 && v.uv[1] > 0 && v.uv[1] < 1)) continue;
-            const glm::dvec2 ref = surface.uvAt(uint32_t(v.ptex), v.uv[0], v.uv[1], 0.5, 0.5);
-            worst = std::max(worst, glm::length(ref - glm::dvec2(v.st[0], v.st[1])));
+            // A vertex on an edge between UV elements takes the UV of the element it was drawn
+            // for (fvar_eval.glsl probes toward that element's inside); where an irregular UV
+            // face (bilinear in its corner limits) meets a patch the two sides differ by up to
+            // about 1e-3 on spot. The PLY does not say which element drew the vertex: the
+            // reference is the nearest of the elements around the point (probes toward each
+            // corner of the ptex face), each evaluated exactly on the CPU.
+            double best = 1e9;
+            for (const auto& [tu, tv] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}}) {
+                const glm::dvec2 ref = surface.uvAt(uint32_t(v.ptex), v.uv[0], v.uv[1], tu, tv);
+                best = std::min(best, glm::length(ref - glm::dvec2(v.st[0], v.st[1])));
+            }
+            worst = std::max(worst, best);
             ++inside;
         }
         std::printf("fvar adaptive %s: %zu vertices inside ptex faces, max |GPU - CPU| UV %.3g\n", kModes[m],
