@@ -540,13 +540,14 @@ const ImageCase kImages[] = {
     // patches along the car's semi-sharp creases (levels 0-1) below the depth's own density;
     // at depth 5 every patch gets its full 2^(5-l) segments, 32 for level 0 as before. Its 314
     // creases of sharpness 6 are single-crease patches now, whose surface bends within 2^-6 of
-    // the crease. The view-adaptive rates resolve that bend (2^ceil(s) even segments) only on
-    // sides at least --edge-pixels long; on shorter ones the first segment spans the bend and
-    // the shading differs along the crease lines in a line about a pixel wide: 2,966 of 150,632
-    // covered pixels (2.0%) at 4 samples; 0.25% before crease patches, when both drew the
-    // same level-5 quads there. Against a reference at --edge-pixels 1, the fixed grids are
-    // the closer of the two (0.4% against 1.6% at depth 6): a known limit of the view-adaptive
-    // crease patches, whose cure is segments graded towards the crease (README).
+    // the crease. The view-adaptive rates cut a piece across the crease into segments of about
+    // a pixel (at most 2^ceil(s)); the bend lies inside the first one, so the shading along
+    // the crease lines differs in a line about a pixel wide: 1.7% of the covered pixels at
+    // 4 samples (0.25% before crease patches, when both drew the same level-5 quads there).
+    // Against a reference with 16 segments a pixel across creases, the fixed grids are the
+    // closer of the two (0.4% against 1.8% at depth 6); a quarter pixel would give 0.9% for
+    // three times the triangles. A known limit, whose cure is segments graded towards the
+    // crease (README).
     {"osd/catmark/catmark_car.obj", 5, {}, {}, 0.025},
     {"sphere", 6, {}, {"--size", "1280x720", "--eye", "0,12,22", "--target", "0,0,0"}},
 };
