@@ -6,7 +6,7 @@ namespace limn {
 
 ChartUVs::ChartUVs(const Mesh& mesh, const FaceVaryingSurface& surface, uint32_t resolution)
     : mesh_(mesh), topo_(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices),
-      keys_(mesh, topo_, 2 * resolution), surface_(surface), R_(resolution), Q_(2 * resolution) {
+      keys_(mesh, topo_, 2 * resolution), surface_(surface), Q_(2 * resolution) {
     uint32_t p = 0;
     for (uint32_t f = 0; f < mesh.faceCount(); ++f) {
         firstPtex_.push_back(p);

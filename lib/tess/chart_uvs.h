@@ -55,7 +55,7 @@ class ChartUVs {
     Topology topo_;
     PtexMap keys_;
     const FaceVaryingSurface& surface_;
-    uint32_t R_, Q_;
+    uint32_t Q_; // the lattice of keys_: twice the resolution
     std::vector<uint32_t> firstPtex_;
     std::unordered_map<uint64_t, std::unordered_map<uint32_t, glm::vec2>> memo_; // point -> face -> UV
     std::vector<Located> located_, ends_[2];
