@@ -67,6 +67,7 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
             g.uv[2 * k] = e.cornerUV[k].x, g.uv[2 * k + 1] = e.cornerUV[k].y;
         }
         g.level = e.level;
+        g.crease = elements.size() < options.elementCrease.size() ? options.elementCrease[elements.size()] : 0;
         elements.push_back(g);
         const uint64_t m = tess;
         maxV += B + (m <= 2 ? 1 : (m - 1) * (m - 1));

@@ -35,7 +35,9 @@ namespace limn::render {
 struct GpuAdaptiveElement { // mirrors AdaptiveElement in shaders/adaptive_tess.glsl
     uint32_t sideFirst[4], sideCount[4];
     float uv[8];
-    uint32_t level, pad[3];
+    uint32_t level;
+    uint32_t crease; // a single-crease patch's crease side (TBLS's crease bit: 1 t=0, 2 s=1, 4 t=1, 8 s=0), else 0
+    uint32_t pad[2];
 };
 static_assert(sizeof(GpuAdaptiveElement) == 80);
 
@@ -66,6 +68,10 @@ struct AdaptiveOptions {
     std::vector<glm::vec4> elementDomains, fvarRecords;
     std::vector<uint32_t> fvarNodes;
     float fvarCell = 0;
+    // Per element (patches, then irregular faces): a single-crease patch's crease side (the
+    // crease bit of GpuPatch::levelBoundary), 0 otherwise; the emit pass grades the segments
+    // across a crease towards it. Missing entries are 0.
+    std::vector<uint8_t> elementCrease;
 };
 
 // What the scan wrote for the last frame (read back from the GPU).

@@ -100,6 +100,8 @@ struct SubdivisionPass::Gpu {
             options.fvarNodes = d.fvarNodes;
             options.fvarRecords = d.fvarRecords;
             options.fvarCell = d.fvarCell;
+            options.elementCrease.reserve(d.patches.size());
+            for (const GpuPatch& p : d.patches) options.elementCrease.push_back(uint8_t((p.levelBoundary >> 16) & 0xFu));
             adaptive = std::make_unique<AdaptiveTess>(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()),
                                                       vertices, patches, irregular, limits, options);
         }

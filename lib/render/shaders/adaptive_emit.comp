@@ -13,7 +13,8 @@
 // boundary is the four corners; otherwise the (mu-1)(mv-1) grid points (i/mu, j/mv) (one centre
 // point when both are 2), the (mu-2)(mv-2) grid cells, and per side a zipper strip joining the
 // side's boundary points to the grid's outer ring on that side, merged in parameter order
-// (deterministic).
+// (deterministic). Across the crease of a single-crease patch the points are graded towards the
+// crease (gradedOffset in adaptive_tess.glsl), on its sides (pieces it owns) and in its grid.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "limn_compute.glsl"
@@ -89,6 +90,31 @@ uint lerpST(uint a, uint b, uint j, uint r) {
     return uint(s) | (uint(t) << 16);
 }
 
+// Point j of r along a piece whose owner is a single-crease patch and which runs across its
+// crease: graded towards the crease end (gradedOffset), from the owner's record alone, so both
+// users write the same (element, st). `along` is the point's fraction of the piece in the
+// owner's direction. Other pieces: lerpST, along = -1 (the caller keeps its even fractions).
+uint pieceST(uvec4 piece, uint j, uint r, out float along) {
+    along = -1.0;
+    uint c = elements.e[piece.x].crease, a = piece.y, b = piece.z;
+    bool runsS = (a & 0xFFFFu) != (b & 0xFFFFu);
+    if (c == 0u || runsS != creaseAcrossS(c)) return lerpST(a, b, j, r);
+    uint sh = runsS ? 0u : 16u;
+    uint ca = (a >> sh) & 0xFFFFu, cb = (b >> sh) & 0xFFFFu;
+    uint D = max(ca, cb) - min(ca, cb);
+    bool fromA = creaseAtZero(c) ? ca < cb : ca > cb; // the piece starts at its crease end
+    uint off = fromA ? gradedOffset(D, j, r) : D - gradedOffset(D, r - j, r);
+    uint x = cb > ca ? ca + off : ca - off;
+    along = float(off) / float(D);
+    return (a & ~(0xFFFFu << sh)) | (x << sh);
+}
+
+// Interior grid coordinate i of m along one direction, graded towards a crease at 0 or at 1.
+uint gridCoord(uint i, uint m, bool graded, bool atZero) {
+    if (!graded) return (i * 32768u) / m;
+    return atZero ? gradedOffset(32768u, i, m) : 32768u - gradedOffset(32768u, m - i, m);
+}
+
 void main() {
     uint e = limnInvocationIndex(pc.limnRowInvocations);
     if (e >= pc.limnCount) return;
@@ -128,8 +154,11 @@ void main() {
             vertex(B++, point.x, point.y, uvAt(st.x, st.y));
             for (uint i = 1u; i < r; ++i) {
                 uint j = sp.z != 0u ? r - i : i;
-                st = sideParam(k, from + (to - from) * float(i) / float(r));
-                vertex(B++, piece.x, lerpST(piece.y, piece.z, j, r), uvAt(st.x, st.y));
+                float along;
+                uint ownerST = pieceST(piece, j, r, along);
+                float f = along < 0.0 ? float(i) / float(r) : (sp.z != 0u ? 1.0 - along : along);
+                st = sideParam(k, from + (to - from) * f);
+                vertex(B++, piece.x, ownerST, uvAt(st.x, st.y));
             }
         }
         sideTotal[k] = B - sideStart[k];
@@ -141,11 +170,15 @@ void main() {
         return;
     }
     // Interior grid points (i, j), 1 <= i <= mu-1, 1 <= j <= mv-1, at B + (j-1)(mu-1) + (i-1).
+    // Across a single-crease patch's crease the grid is graded towards it, like its sides.
+    bool gradeS = el.crease != 0u && creaseAcrossS(el.crease), gradeT = el.crease != 0u && !gradeS;
+    bool atZero = creaseAtZero(el.crease);
     for (uint j = 1u; j < mv; ++j)
         for (uint i = 1u; i < mu; ++i) {
-            uint s = (i * 32768u) / mu, t = (j * 32768u) / mv;
-            vertex(B + (j - 1u) * (mu - 1u) + (i - 1u), e, s | (t << 16),
-                   uvAt(float(i) / float(mu), float(j) / float(mv)));
+            uint s = gridCoord(i, mu, gradeS, atZero), t = gridCoord(j, mv, gradeT, atZero);
+            vec2 f = vec2(gradeS ? float(s) / 32768.0 : float(i) / float(mu),
+                          gradeT ? float(t) / 32768.0 : float(j) / float(mv));
+            vertex(B + (j - 1u) * (mu - 1u) + (i - 1u), e, s | (t << 16), uvAt(f.x, f.y));
         }
     for (uint j = 1u; j + 1u < mv; ++j)
         for (uint i = 1u; i + 1u < mu; ++i) {

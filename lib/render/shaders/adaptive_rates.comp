@@ -37,7 +37,11 @@ layout(push_constant) uniform Push {
 // depth 6 it drew 1.4-3.6% more triangles and halved the 4-sample silhouette pixels that differ
 // from the fixed grids'); coarser targets loosen it with them.
 const float kChordPerEdgePixel = 0.025;
-// Across a semi-sharp crease, segments of about this many pixels (at most 2^ceil(sharpness)).
+// Across a semi-sharp crease: a piece the crease patch owns is graded towards the crease
+// (adaptive_emit.comp), its first segment about len / r^2, kept below kCreaseFirstPixels (at
+// most 2^ceil(sharpness) segments, and enough for its last one, about 2 len / r, to keep the
+// target); a piece another element owns is even, segments of about kCreasePixels.
+const float kCreaseFirstPixels = 0.25;
 const float kCreasePixels = 1.0;
 
 #define LIMN_NO_TESS_VERTICES
@@ -88,13 +92,16 @@ void main() {
             float d = cl > 1e-6 ? abs(chord.x * off.y - chord.y * off.x) / cl : length(off);
             float want = max(ceil(len / pc.edgePixels), ceil(sqrt(d / (kChordPerEdgePixel * pc.edgePixels))));
             // A piece across the crease of a single-crease patch: the surface bends within
-            // 2^-ceil(s) of the crease (in base-face units at any level), which evenly spaced
-            // points resolve at 2^ceil(s) segments; asked for up to one segment per pixel
-            // (kCreasePixels), where the bend decides a pixel's shade. Which way the piece runs
+            // 2^-ceil(s) of the crease (in the patch's own units at any level, s decayed with the
+            // level). Owned by the crease patch, the piece is graded towards the crease: its
+            // first segment stays within kCreaseFirstPixels (sqrt(len / that) segments), where
+            // the bend decides a pixel's shade, at most 2^ceil(s) and at least twice the length
+            // rule (the graded last segment is about twice an even one). Owned by another element
+            // it is even, up to one segment per pixel (kCreasePixels). Which way the piece runs
             // is read from its owner's parameters; a piece owned by another element counts as
             // across when its other user is a crease patch (conservative). Pieces along the
             // crease get nothing extra: at 2^ceil(s) both ways (an earlier rule) catmark_car at
-            // depth 6 drew 2.9 M triangles instead of about 0.5 M for the same image.
+            // depth 6 drew 2.9 M triangles instead of about 0.3 M for the same image.
             for (int k = 0; k < 2; ++k) {
                 uint e = k == 0 ? p1.x : p1.y;
                 if (e == 0xFFFFFFFFu || e >= pc.patchCount) continue;
@@ -109,7 +116,12 @@ void main() {
                     bool creaseAlongS = (crease & 5u) != 0u; // on a t = 0 or t = 1 side
                     if (alongS == creaseAlongS) break;   // along the crease
                 }
-                want = max(want, min(exp2(ceil(pt.sharpness)), ceil(len / kCreasePixels)));
+                float most = exp2(ceil(pt.sharpness));
+                if (k == 0) // graded (adaptive_emit.comp's pieceST)
+                    want = max(want, max(ceil(2.0 * len / pc.edgePixels),
+                                         min(most, ceil(sqrt(len / kCreaseFirstPixels)))));
+                else
+                    want = max(want, min(most, ceil(len / kCreasePixels)));
                 break;
             }
             if (pc.texels > 0.0) want = max(want, min(ceil(uintBitsToFloat(p1.z) * pc.texels), ceil(0.5 * len)));

@@ -9,7 +9,8 @@ struct AdaptiveElement {
     uvec4 sideCount;
     vec2 uv[4];       // own chart's UV at the corners (0,0), (1,0), (1,1), (0,1)
     uint level;       // patch level, 255 for an irregular face
-    uint pad0, pad1, pad2;
+    uint crease;      // a single-crease patch's crease side (1 t=0, 2 s=1, 4 t=1, 8 s=0), else 0
+    uint pad1, pad2;
 };
 
 // Side piece: x = piece, y = point where it starts (this side's direction), z = 1 when the side
@@ -25,5 +26,16 @@ struct AdaptiveElement {
 // in bits 0-14, mv along t in bits 15-29 (--tess is at most 4096), ADAPTIVE_CULLED in bit 31.
 uint adaptivePackRates(uint mu, uint mv) { return mu | (mv << 15); }
 uvec2 adaptiveRates(uint packed) { return uvec2(packed & 0x7FFFu, (packed >> 15) & 0x7FFFu); }
+
+// Segments graded towards a single-crease patch's crease, whose surface bends within 2^-s of it
+// (adaptive_rates.comp asks for them, adaptive_emit.comp places them): the offset of step k of n
+// from the crease end of an integer span of D >= n units, k + floor(floor((D - n) k / n) k / n).
+// At least one unit a step (no two points meet), quadratic in k (the first step is about D / n^2,
+// the last about 2 D / n), exact at both ends, in integers so both users of a piece agree.
+uint gradedOffset(uint D, uint k, uint n) { return k + (((D - n) * k / n) * k) / n; }
+
+// Whether an element of crease side c runs its segments along s (false: along t) across it.
+bool creaseAcrossS(uint c) { return (c & 10u) != 0u; } // the crease on an s = 1 or s = 0 side
+bool creaseAtZero(uint c) { return (c & 9u) != 0u; }   // on a t = 0 or s = 0 side
 
 #endif
