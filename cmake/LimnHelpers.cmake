@@ -26,5 +26,8 @@ function(limn_gtest name)
     LIMN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   # One label per executable: CMake 3.25's gtest_discover_tests flattens a list of them.
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+  if(NOT ARG_LABELS MATCHES "^(render|heavy)$")
+    set_property(GLOBAL APPEND PROPERTY LIMN_SANITIZED_TESTS ${name}) # limn_sanitizer_suite
+  endif()
 endfunction()
 include(GoogleTest)
