@@ -10,7 +10,10 @@ cd "$(dirname "$0")/.."
 kind=${1:-release}
 case "$kind" in
   release) dir=build; flags=() ;;
-  asan)    dir=build-asan; flags=(-DLIMN_SANITIZE=ON) ;;
+  # -O1 -g1 under the sanitizers: half the compile time of -O2 -g (exact_limits.cpp 21.8 s ->
+  # 9.8 s with ASan), line numbers still in the reports.
+  asan)    dir=build-asan; flags=(-DLIMN_SANITIZE=ON "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
+                                  "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG") ;;
   fuzz)    dir=build-fuzz; flags=(-DLIMN_FUZZ=ON -DLIMN_SANITIZE=ON
                                   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++) ;;
   *) echo "usage: scripts/build.sh [release|asan|fuzz]" >&2; exit 2 ;;
