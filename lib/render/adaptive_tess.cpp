@@ -25,7 +25,11 @@ struct RatePush { // adaptive_rates.comp
 };
 struct CountPush { // adaptive_counts.comp
     uint32_t tess;
+    uint32_t vertexLoops; // loop iterations the emit pass spends per vertex beyond its own
 };
+// Smooth UVs: fvar_eval.glsl's quadtree walk, one iteration a level (tables hold at most 10)
+// plus the step into the record, per emitted vertex.
+constexpr uint32_t kFvarLoopsPerVertex = 12;
 struct ScanPush { // adaptive_scan.comp
     uint32_t elementCount, vertexCapacity, triangleCapacity, rowGroups, evalGroupSize;
 };
@@ -35,7 +39,7 @@ struct EmitPush { // adaptive_emit.comp
     uint32_t domainBase, nodeBase, recordBase;
 };
 
-constexpr uint32_t kTotalsWords = 22;
+constexpr uint32_t kTotalsWords = 23;
 constexpr uint32_t kEvalGroupSize = 64; // surface_eval.comp's local_size_x
 
 void copyMatrix(const glm::mat4& m, float out[16]) {
@@ -181,7 +185,7 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     cmd.endTimed();
     cmd.barrier(write, read);
     timed.begin(cmd, "adaptive counts", true);
-    cmd.dispatch(*countPass_, countBind_, elementCount_, CountPush{options_.tess});
+    cmd.dispatch(*countPass_, countBind_, elementCount_, CountPush{options_.tess, options_.fvarNodes.empty() ? 0u : kFvarLoopsPerVertex});
     cmd.endTimed();
     cmd.barrier(write, read);
     // The previous frame's draw read the totals as indirect arguments.
@@ -208,7 +212,19 @@ AdaptiveTotals AdaptiveTess::readTotals(gpu::Context& ctx) const {
     r.overflow = t[15] != 0;
     r.writtenTriangles = t[16];
     r.writtenVertices = t[17];
+    r.overBudget = t[22] != 0;
     return r;
+}
+
+std::string AdaptiveTotals::need() const {
+    constexpr uint64_t kSaturated = 0x7FFFFFFF; // adaptive_scan.comp
+    auto count = [&](uint64_t n) {
+        return n >= kSaturated ? "over " + std::to_string(kSaturated - 1) : std::to_string(n);
+    };
+    if (overBudget)
+        return "more segments on some patch's sides than one GPU invocation may emit (lavapipe ends a shader's "
+               "loops after 65,535 iterations)";
+    return count(vertices) + " vertices and " + count(uint64_t(visibleTriangles) + culledTriangles) + " triangles";
 }
 
 uint64_t AdaptiveTess::bufferBytes() const {

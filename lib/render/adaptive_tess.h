@@ -29,6 +29,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 namespace limn::render {
 
@@ -82,6 +83,10 @@ struct AdaptiveTotals {
     bool overflow = false;          // the frame needed more than the buffers hold
     uint32_t writtenTriangles = 0;  // visible + culled, within capacity
     uint32_t writtenVertices = 0;
+    bool overBudget = false;        // an element over adaptive_counts.comp's loop budget
+    // "N vertices and M triangles" for messages; the GPU's sums saturate at 2^31 - 1
+    // (adaptive_scan.comp), which reads "over 2147483646".
+    std::string need() const;
 };
 
 class AdaptiveTess {

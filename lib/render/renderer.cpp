@@ -446,10 +446,9 @@ std::string Renderer::tessellationWarning() const {
     const auto* sp = dynamic_cast<const SubdivisionPass*>(pass_.get());
     const AdaptiveTotals* t = sp ? sp->lastTotals() : nullptr;
     if (!t || !t->overflow) return {};
-    return "the view-adaptive tessellation of this view needs " + std::to_string(t->vertices) + " vertices and " +
-           std::to_string(uint64_t(t->visibleTriangles) + t->culledTriangles) +
-           " triangles, more than its buffers hold; parts of the surface were left out (raise "
-           "--edge-pixels or lower --tess)";
+    return "the view-adaptive tessellation of this view needs " + t->need() +
+           (t->overBudget ? "" : ", more than its buffers hold") +
+           "; parts of the surface were left out (raise --edge-pixels or lower --tess)";
 }
 
 DrawnMesh Renderer::drawnMesh() {

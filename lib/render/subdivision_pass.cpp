@@ -403,9 +403,8 @@ DrawnMesh SubdivisionPass::drawnMesh() {
         totals = gpu_->adaptive->readTotals(ctx_);
         if (totals.overflow)
             throw Error(ErrorKind::BadInput,
-                        "the view-adaptive tessellation of this view needs " + std::to_string(totals.vertices) +
-                            " vertices and " + std::to_string(totals.visibleTriangles + totals.culledTriangles) +
-                            " triangles, more than its buffers hold (" +
+                        "the view-adaptive tessellation of this view needs " + totals.need() +
+                            (totals.overBudget ? std::string(" (buffers: ") : ", more than its buffers hold (") +
                             std::to_string(gpu_->adaptive->vertexCapacity()) + ", " +
                             std::to_string(gpu_->adaptive->triangleCapacity()) +
                             "); raise --edge-pixels or lower --tess");

@@ -84,9 +84,10 @@ std::string modelFile(const Case& c, const ScratchDir& dir) {
     return c.model == "sphere" ? writeSphere(dir / "sphere.obj") : modelPath(c.model).string();
 }
 
-std::string prepare(const std::string& obj, int depth, const ScratchDir& dir) {
+std::string prepare(const std::string& obj, int depth, const ScratchDir& dir, std::vector<std::string> classify = {}) {
     const std::string limn = (dir / "in.limn").string();
-    auto r = run({tool("limn-classify").string(), obj, "-o", limn});
+    classify.insert(classify.begin(), {tool("limn-classify").string(), obj, "-o", limn});
+    auto r = run(classify);
     if (r.exitCode != 0) throw std::runtime_error(r.err);
     r = run({tool("limn-tables").string(), limn, "-q", "-o", limn, "--depth", std::to_string(depth)});
     if (r.exitCode != 0) throw std::runtime_error(r.err);
@@ -410,6 +411,36 @@ TEST(AdaptiveCli, TessNotAPowerOfTwoInBothModes) {
             EXPECT_EQ(welded.open, 0u);
             EXPECT_EQ(welded.over, 0u);
         }
+}
+
+// Rates far above the default in a close view (--tess 1024, half-pixel segments): every element
+// writes all its triangles (lavapipe ends a shader invocation's loops after 65,535 iterations in
+// all, which once left most of a big element unwritten: holes, and --mesh-out triangles of one
+// repeated vertex), so the surface is welded closed with no triangle collapsed; or, where one
+// element's sides alone need more, the render says so (exit 0 with a warning for the image,
+// exit 1 for --mesh-out). cube_creases1 has single-crease patches (graded segments).
+TEST(AdaptiveCli, HighRatesWriteEveryTriangle) {
+    ScratchDir dir;
+    const std::string limn = prepare(modelPath("osd/catmark/catmark_cube_creases1.obj").string(), 3, dir);
+    const std::string ply = (dir / "t.ply").string();
+    auto r = run({tool("limn-render").string(), limn, "--size", "400x300", "--view", "30,40", "--tess", "1024",
+                  "--edge-pixels", "0.25", "--mesh-out", ply});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Drawn d = parsePly(readFile(ply));
+    EXPECT_GT(d.triangles.size(), 1000000u) << "not a high-rate view";
+    const WeldedEdges welded = weldedEdges(d);
+    EXPECT_EQ(welded.collapsed, 0u);
+    EXPECT_EQ(welded.open, 0u);
+    EXPECT_EQ(welded.over, 0u);
+    // The same view with smooth UVs spends more loop iterations per vertex (fvar_eval.glsl).
+    const std::string spot = prepare(modelPath("quad/spot_control_mesh.obj").string(), 4, dir, {"--fvar", "none"});
+    r = run({tool("limn-render").string(), spot, "--size", "400x300", "--eye", "0.3,0.4,0.9", "--target", "0,0.2,0",
+             "--tess", "128", "--edge-pixels", "0.25", "--shade", "uv", "--mesh-out", ply});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const WeldedEdges smooth = weldedEdges(parsePly(readFile(ply)));
+    EXPECT_EQ(smooth.collapsed, 0u);
+    EXPECT_EQ(smooth.open, 0u);
+    EXPECT_EQ(smooth.over, 0u);
 }
 
 // catmark_car at depth 6: its fixed grids (64 segments per side of its level-0 patches: about

@@ -18,12 +18,27 @@ layout(std430, binding = 0) readonly buffer Elements { AdaptiveElement e[]; } el
 layout(std430, binding = 1) readonly buffer SidePieces { uvec4 v[]; } sidePieces;
 layout(std430, binding = 2) readonly buffer Rates { uint r[]; } rates;
 layout(std430, binding = 3) readonly buffer Cull { uint c[]; } cull;
-layout(std430, binding = 4) writeonly buffer Info { uvec4 v[]; } info; // m | culled, V, T, 0
+layout(std430, binding = 4) writeonly buffer Info { uvec4 v[]; } info; // m | culled, V, T, over budget
 
 layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
     layout(offset = 16) uint tess;
+    uint vertexLoops; // the emit pass's loop iterations per vertex beyond its own (smooth UVs)
 } pc;
+
+// lavapipe (llvmpipe) ends every loop of a shader invocation once all its loops together have
+// run 65535 iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS, shared by every loop of a
+// shader); an element whose emit (adaptive_emit.comp: one invocation) ran past that wrote only
+// part of its triangles, leaving holes in close views at --tess 256 and more. So an element's
+// interior rates are lowered until its estimated loop count fits kEmitLoopBudget (with room for
+// the SIMD lanes running in step); one whose boundary alone does not fit is flagged in info.w,
+// and the scan reports the frame as an overflow (the host warns: raise --edge-pixels or lower
+// --tess). Other GPUs have no such limit; the cap keeps one invocation's work bounded there too.
+const uint kEmitLoopBudget = 24576u;
+uint emitLoops(uint B, uint mu, uint mv) {
+    uint grid = (mu - 1u) * (mv - 1u), cells = (mu - 2u) * (mv - 2u);
+    return B * (2u + pc.vertexLoops) + grid * (1u + pc.vertexLoops) + cells + 2u * mu + 3u * mv + 16u;
+}
 
 void main() {
     uint e = limnInvocationIndex(pc.limnRowInvocations);
@@ -44,8 +59,13 @@ void main() {
     uint cap = max(pc.tess, 1u);
     uint mu = culled ? 2u : clamp(most[0], 2u, max(cap, 2u));
     uint mv = culled ? 2u : clamp(most[1], 2u, max(cap, 2u));
+    for (uint k = 0u; k < 64u && emitLoops(B, mu, mv) > kEmitLoopBudget && (mu > 2u || mv > 2u); ++k) {
+        if (mu >= mv) mu = max(2u, mu - max(1u, mu / 4u));
+        else mv = max(2u, mv - max(1u, mv / 4u));
+    }
+    uint overBudget = emitLoops(B, mu, mv) > kEmitLoopBudget ? 1u : 0u;
     bool twoTriangles = B == 4u && mu == 2u && mv == 2u;
     uint V = B + (twoTriangles ? 0u : (mu - 1u) * (mv - 1u));
     uint T = twoTriangles ? 2u : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
-    info.v[e] = uvec4(adaptivePackRates(mu, mv) | (culled ? ADAPTIVE_CULLED : 0u), V, T, 0u);
+    info.v[e] = uvec4(adaptivePackRates(mu, mv) | (culled ? ADAPTIVE_CULLED : 0u), V, T, overBudget);
 }

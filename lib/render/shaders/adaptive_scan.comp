@@ -23,37 +23,51 @@ layout(push_constant) uniform Push {
 } pc;
 
 shared uint sumV[256], sumTv[256], sumTc[256];
+shared uint overBudget; // an element over adaptive_counts.comp's loop budget: an overflow
+
+// Sums saturate at 2^31 - 1, above any capacity (128 MiB buffers), so that a view asking for
+// more than 32 bits of vertices or triangles (at --tess 4096, a few hundred elements at full
+// rate) is reported as an overflow instead of wrapping around into small, overlapping offsets.
+// Every element's own counts are below 2^26 (adaptive_counts.comp: rates of at most 4096).
+const uint kSaturated = 0x7FFFFFFFu;
+uint satAdd(uint a, uint b) { return a >= kSaturated - min(b, kSaturated) ? kSaturated : a + b; }
 
 void main() {
     uint lid = gl_LocalInvocationID.x;
     uint n = pc.elementCount;
     uint chunk = (n + 255u) / 256u;
     uint begin = min(lid * chunk, n), end = min(begin + chunk, n);
-    uint v = 0u, tv = 0u, tc = 0u;
+    uint v = 0u, tv = 0u, tc = 0u, over = 0u;
+    if (lid == 0u) overBudget = 0u;
+    barrier();
     for (uint e = begin; e < end; ++e) {
         uvec4 x = info.v[e];
-        v += x.y;
-        if ((x.x & ADAPTIVE_CULLED) != 0u) tc += x.z; else tv += x.z;
+        over |= x.w;
+        v = satAdd(v, x.y);
+        if ((x.x & ADAPTIVE_CULLED) != 0u) tc = satAdd(tc, x.z); else tv = satAdd(tv, x.z);
     }
     sumV[lid] = v, sumTv[lid] = tv, sumTc[lid] = tc;
+    if (over != 0u) atomicOr(overBudget, 1u);
     barrier();
     for (uint d = 1u; d < 256u; d <<= 1u) {
         uint a = 0u, b = 0u, c = 0u;
         if (lid >= d) a = sumV[lid - d], b = sumTv[lid - d], c = sumTc[lid - d];
         barrier();
-        sumV[lid] += a, sumTv[lid] += b, sumTc[lid] += c;
+        sumV[lid] = satAdd(sumV[lid], a), sumTv[lid] = satAdd(sumTv[lid], b), sumTc[lid] = satAdd(sumTc[lid], c);
         barrier();
     }
     uint totalV = sumV[255], totalTv = sumTv[255], totalTc = sumTc[255];
-    uint ov = sumV[lid] - v, otv = sumTv[lid] - tv, otc = totalTv + sumTc[lid] - tc;
+    // Exclusive offsets from the previous chunk's inclusive sums (no subtraction: saturated).
+    uint ov = lid == 0u ? 0u : sumV[lid - 1u], otv = lid == 0u ? 0u : sumTv[lid - 1u];
+    uint otc = satAdd(totalTv, lid == 0u ? 0u : sumTc[lid - 1u]);
     for (uint e = begin; e < end; ++e) {
         uvec4 x = info.v[e];
         bool culled = (x.x & ADAPTIVE_CULLED) != 0u;
         uint to = culled ? otc : otv;
-        uint fits = ((ov <= pc.vertexCapacity && x.y <= pc.vertexCapacity - ov) && (to <= pc.triangleCapacity && x.z <= pc.triangleCapacity - to)) ? 1u : 0u;
+        uint fits = (x.w == 0u && (ov <= pc.vertexCapacity && x.y <= pc.vertexCapacity - ov) && (to <= pc.triangleCapacity && x.z <= pc.triangleCapacity - to)) ? 1u : 0u;
         info.v[e] = uvec4(x.x, ov, to, x.z | (fits << 31));
-        ov += x.y;
-        if (culled) otc += x.z; else otv += x.z;
+        ov = satAdd(ov, x.y);
+        if (culled) otc = satAdd(otc, x.z); else otv = satAdd(otv, x.z);
     }
     if (lid == 0u) {
         uint drawn = min(totalTv, pc.triangleCapacity);
@@ -68,10 +82,11 @@ void main() {
         totals.t[10] = groups == 0u ? 0u : (groups + pc.rowGroups - 1u) / pc.rowGroups;
         totals.t[11] = 1u;
         totals.t[12] = totalV, totals.t[13] = totalTv, totals.t[14] = totalTc;
-        totals.t[15] = (totalV > pc.vertexCapacity || totalTv + totalTc > pc.triangleCapacity) ? 1u : 0u;
-        totals.t[16] = min(totalTv + totalTc, pc.triangleCapacity);
+        totals.t[15] = (overBudget != 0u || totalV > pc.vertexCapacity || satAdd(totalTv, totalTc) > pc.triangleCapacity) ? 1u : 0u;
+        totals.t[16] = min(satAdd(totalTv, totalTc), pc.triangleCapacity);
         totals.t[17] = evaluated;
         // drawIndirect of --wire (wire_triangles.vert): two line vertices per triangle edge
         totals.t[18] = 6u * drawn, totals.t[19] = 1u, totals.t[20] = 0u, totals.t[21] = 0u;
+        totals.t[22] = overBudget;
     }
 }
