@@ -1,10 +1,10 @@
 #include "osd_fvar_oracle.h"
 
+#include "osd_descriptor.h"
+
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <stdexcept>
 #include <vector>
@@ -24,20 +24,6 @@ struct Value {
     }
 };
 
-Sdc::Options sdcOptions(const SchemeOptions& o) {
-    Sdc::Options s;
-    s.SetVtxBoundaryInterpolation(o.boundary == BoundaryRule::None ? Sdc::Options::VTX_BOUNDARY_NONE
-                                  : o.boundary == BoundaryRule::EdgeOnly
-                                      ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    s.SetFVarLinearInterpolation(static_cast<Sdc::Options::FVarLinearInterpolation>(o.fvar));
-    s.SetCreasingMethod(o.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
-                                                                : Sdc::Options::CREASE_UNIFORM);
-    s.SetTriangleSubdivision(o.triangles == TriangleSubdivision::Smooth ? Sdc::Options::TRI_SUB_SMOOTH
-                                                                        : Sdc::Options::TRI_SUB_CATMARK);
-    return s;
-}
-
 } // namespace
 
 struct OsdFaceVarying::Impl {
@@ -49,40 +35,7 @@ struct OsdFaceVarying::Impl {
 
 OsdFaceVarying::OsdFaceVarying(const Mesh& m, const SchemeOptions& options, int isolation)
     : impl_(std::make_unique<Impl>()) {
-    std::vector<int> sizes, verts(m.faceVertices.begin(), m.faceVertices.end()), creaseVerts, cornerVerts,
-        holes(m.tags.holes.begin(), m.tags.holes.end()), uvIndices(m.uvIndices.begin(), m.uvIndices.end());
-    std::vector<float> creaseWeights, cornerWeights;
-    for (size_t f = 0; f < m.faceCount(); ++f) sizes.push_back(static_cast<int>(m.faceSize(f)));
-    for (const auto& c : m.tags.creases) {
-        creaseVerts.push_back(static_cast<int>(c.v0));
-        creaseVerts.push_back(static_cast<int>(c.v1));
-        creaseWeights.push_back(c.sharpness);
-    }
-    for (const auto& c : m.tags.corners) {
-        cornerVerts.push_back(static_cast<int>(c.vertex));
-        cornerWeights.push_back(c.sharpness);
-    }
-    Far::TopologyDescriptor::FVarChannel channel;
-    channel.numValues = static_cast<int>(m.uvs.size());
-    channel.valueIndices = uvIndices.data();
-    Far::TopologyDescriptor desc;
-    desc.numVertices = static_cast<int>(m.vertexCount());
-    desc.numFaces = static_cast<int>(m.faceCount());
-    desc.numVertsPerFace = sizes.data();
-    desc.vertIndicesPerFace = verts.data();
-    desc.numCreases = static_cast<int>(creaseWeights.size());
-    desc.creaseVertexIndexPairs = creaseVerts.data();
-    desc.creaseWeights = creaseWeights.data();
-    desc.numCorners = static_cast<int>(cornerWeights.size());
-    desc.cornerVertexIndices = cornerVerts.data();
-    desc.cornerWeights = cornerWeights.data();
-    desc.numHoles = static_cast<int>(holes.size());
-    desc.holeIndices = holes.data();
-    desc.numFVarChannels = 1;
-    desc.fvarChannels = &channel;
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    impl_->refiner.reset(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdcOptions(options))));
-    if (!impl_->refiner) throw std::runtime_error("OpenSubdiv refused the mesh");
+    impl_->refiner.reset(makeOsdRefiner(m, options, /*withUVs=*/true));
 
     Far::PatchTableFactory::Options po(isolation);
     po.SetPatchPrecision<double>();

@@ -1,12 +1,12 @@
 #include "osd_oracle.h"
 
+#include "osd_descriptor.h"
+
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/ptexIndices.h>
 #include <opensubdiv/far/stencilTableFactory.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <glm/geometric.hpp>
 
@@ -30,58 +30,8 @@ struct Point {
     }
 };
 
-Sdc::Options sdcOptions(const SchemeOptions& o) {
-    Sdc::Options s;
-    s.SetVtxBoundaryInterpolation(o.boundary == BoundaryRule::None ? Sdc::Options::VTX_BOUNDARY_NONE
-                                  : o.boundary == BoundaryRule::EdgeOnly
-                                      ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    s.SetCreasingMethod(o.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
-                                                                : Sdc::Options::CREASE_UNIFORM);
-    s.SetTriangleSubdivision(o.triangles == TriangleSubdivision::Smooth
-                                 ? Sdc::Options::TRI_SUB_SMOOTH
-                                 : Sdc::Options::TRI_SUB_CATMARK);
-    return s;
-}
-
-struct Descriptor {
-    std::vector<int> sizes, verts, creaseVerts, cornerVerts, holes;
-    std::vector<float> creaseWeights, cornerWeights;
-    Far::TopologyDescriptor desc;
-    explicit Descriptor(const Mesh& m) {
-        for (size_t f = 0; f < m.faceCount(); ++f) sizes.push_back(static_cast<int>(m.faceSize(f)));
-        verts.assign(m.faceVertices.begin(), m.faceVertices.end());
-        for (const auto& c : m.tags.creases) {
-            creaseVerts.push_back(static_cast<int>(c.v0));
-            creaseVerts.push_back(static_cast<int>(c.v1));
-            creaseWeights.push_back(c.sharpness);
-        }
-        for (const auto& c : m.tags.corners) {
-            cornerVerts.push_back(static_cast<int>(c.vertex));
-            cornerWeights.push_back(c.sharpness);
-        }
-        holes.assign(m.tags.holes.begin(), m.tags.holes.end());
-        desc.numVertices = static_cast<int>(m.vertexCount());
-        desc.numFaces = static_cast<int>(m.faceCount());
-        desc.numVertsPerFace = sizes.data();
-        desc.vertIndicesPerFace = verts.data();
-        desc.numCreases = static_cast<int>(creaseWeights.size());
-        desc.creaseVertexIndexPairs = creaseVerts.data();
-        desc.creaseWeights = creaseWeights.data();
-        desc.numCorners = static_cast<int>(cornerWeights.size());
-        desc.cornerVertexIndices = cornerVerts.data();
-        desc.cornerWeights = cornerWeights.data();
-        desc.numHoles = static_cast<int>(holes.size());
-        desc.holeIndices = holes.data();
-    }
-};
-
 Far::TopologyRefiner* makeRefiner(const Mesh& mesh, const SchemeOptions& options) {
-    Descriptor d(mesh);
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    auto* r = Factory::Create(d.desc, Factory::Options(Sdc::SCHEME_CATMARK, sdcOptions(options)));
-    if (!r) throw std::runtime_error("OpenSubdiv refused the mesh");
-    return r;
+    return makeOsdRefiner(mesh, options);
 }
 
 } // namespace
