@@ -7,6 +7,21 @@
 
 namespace limn {
 
+void gatherControlPoints(const Patch& p, std::span<const glm::dvec3> V, glm::dvec3 P[4][4]) {
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) P[i][j] = V[p.cv[4 * j + i]];
+    // Phantom columns first, then phantom rows over all columns (overwriting the corners), so a
+    // corner phantom is 4 P11 - 2 P21 - 2 P12 + P22.
+    for (int j = 0; j < 4; ++j) {
+        if (p.boundary & kBoundaryU0) P[0][j] = 2.0 * P[1][j] - P[2][j];
+        if (p.boundary & kBoundaryU1) P[3][j] = 2.0 * P[2][j] - P[1][j];
+    }
+    for (int i = 0; i < 4; ++i) {
+        if (p.boundary & kBoundaryV0) P[i][0] = 2.0 * P[i][1] - P[i][2];
+        if (p.boundary & kBoundaryV1) P[i][3] = 2.0 * P[i][2] - P[i][1];
+    }
+}
+
 namespace {
 
 glm::dvec3 apply(const StencilTable& table, size_t row, std::span<const glm::dvec3> V) {
@@ -91,21 +106,6 @@ void creaseBasis(double t, double sharpness, double b[4], double d[4]) {
 
 namespace {
 
-// The patch's 16 control points P[i][j] (i along u), phantoms put in (math.md C.4).
-void gatherControlPoints(const Patch& p, std::span<const glm::dvec3> V, glm::dvec3 P[4][4]) {
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) P[i][j] = V[p.cv[4 * j + i]];
-    // Phantom columns first, then phantom rows over all columns (overwriting the corners), so a
-    // corner phantom is 4 P11 - 2 P21 - 2 P12 + P22.
-    for (int j = 0; j < 4; ++j) {
-        if (p.boundary & kBoundaryU0) P[0][j] = 2.0 * P[1][j] - P[2][j];
-        if (p.boundary & kBoundaryU1) P[3][j] = 2.0 * P[2][j] - P[1][j];
-    }
-    for (int i = 0; i < 4; ++i) {
-        if (p.boundary & kBoundaryV0) P[i][0] = 2.0 * P[i][1] - P[i][2];
-        if (p.boundary & kBoundaryV1) P[i][3] = 2.0 * P[i][2] - P[i][1];
-    }
-}
 
 } // namespace
 

@@ -26,6 +26,10 @@ SurfacePoint evaluatePatch(const Patch& patch, std::span<const glm::dvec3> verti
 
 // Positions only, at every (s, t) of params x params (s outer), appended to out: the same bits
 // as evaluatePatch(...).position, with the control points gathered once (framing samples).
+// A regular patch's 16 control points P[i][j] (i along u) from the table vertices, phantoms
+// put in for its boundary bits (math.md C.4): columns first, then rows over all columns.
+void gatherControlPoints(const Patch& patch, std::span<const glm::dvec3> vertices, glm::dvec3 P[4][4]);
+
 void patchPositions(const Patch& patch, std::span<const glm::dvec3> vertices, std::span<const double> params,
                     std::vector<glm::dvec3>& out);
 

@@ -1,5 +1,7 @@
 #include "subdiv/fvar_surface.h"
 
+#include "subdiv/evaluate.h"
+
 #include "base/error.h"
 #include "topology/topology.h"
 
@@ -217,17 +219,7 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
         const Patch& p = tables_.patches[e];
         insert(e, p.ptex, p.u0, p.v0, p.size);
         glm::dvec3 C[4][4];
-        for (int j = 0; j < 4; ++j)
-            for (int i = 0; i < 4; ++i) C[i][j] = vertices_[p.cv[4 * j + i]];
-        // The phantoms of evaluatePatch (math.md C.4): columns first, then rows.
-        for (int j = 0; j < 4; ++j) {
-            if (p.boundary & kBoundaryU0) C[0][j] = 2.0 * C[1][j] - C[2][j];
-            if (p.boundary & kBoundaryU1) C[3][j] = 2.0 * C[2][j] - C[1][j];
-        }
-        for (int i = 0; i < 4; ++i) {
-            if (p.boundary & kBoundaryV0) C[i][0] = 2.0 * C[i][1] - C[i][2];
-            if (p.boundary & kBoundaryV1) C[i][3] = 2.0 * C[i][2] - C[i][1];
-        }
+        gatherControlPoints(p, vertices_, C); // with evaluatePatch's phantoms
         g.records.push_back({p.u0, p.v0, p.size, 0.0f});
         for (int c = 0; c < 16; c += 2) {
             const glm::dvec3 a = C[c % 4][c / 4], b = C[(c + 1) % 4][(c + 1) / 4];
