@@ -156,6 +156,7 @@ Context::Context(const ContextOptions& options) {
         limits_.maxImageDimension2D = l.maxImageDimension2D;
         limits_.colorSampleCounts = l.framebufferColorSampleCounts;
         limits_.depthSampleCounts = l.framebufferDepthSampleCounts;
+        limits_.standardSampleLocations = l.standardSampleLocations == VK_TRUE;
         limits_.timestamps = l.timestampComputeAndGraphics && validBits > 0;
         limits_.timestampPeriodNs = l.timestampPeriod;
         vk_.vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);

@@ -35,6 +35,9 @@ struct DeviceLimits {
     uint32_t maxImageDimension2D = 0;
     // Sample counts (VkSampleCountFlags) colour and depth attachments support (MSAA).
     uint32_t colorSampleCounts = 1, depthSampleCounts = 1;
+    // Whether multisampling puts its samples at Vulkan's standard locations (WebGPU's 4-sample
+    // pattern is the same one): the view-adaptive cull drops elements that cover none of them.
+    bool standardSampleLocations = false;
     // The largest device-local memory heap, in bytes (what a render target must fit into).
     uint64_t deviceLocalHeapBytes = 0;
     bool timestamps = false; // timestamps on the graphics+compute queue

@@ -3,6 +3,8 @@
 #include "base/error.h"
 #include "render_shaders.h"
 
+#include <glm/common.hpp>
+
 #include <algorithm>
 #include <cstring>
 #include <vector>
@@ -14,7 +16,9 @@ namespace {
 struct CullPush { // adaptive_cull.comp
     float viewProj[16];
     float eye[4];
-    uint32_t patchCount, enabled;
+    uint32_t patchCount, enabled; // enabled: bit 0 cull, bits 8-15 the sample positions' count
+    float viewport[2];
+    uint32_t samples[2]; // 4 sample positions, x | y << 8 in 1/256 pixel, 16 bits each
 };
 struct RatePush { // adaptive_rates.comp
     float viewProj[16];
@@ -168,6 +172,13 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     cp.eye[3] = view_.facing;
     cp.patchCount = patchCount_;
     cp.enabled = options_.cull ? 1u : 0u;
+    cp.viewport[0] = float(view_.width), cp.viewport[1] = float(view_.height);
+    const uint32_t samples = uint32_t(std::min<size_t>(options_.samplePositions.size(), 4));
+    cp.enabled |= samples << 8;
+    for (uint32_t k = 0; k < samples; ++k) {
+        const glm::vec2 p = glm::clamp(options_.samplePositions[k] * 256.0f, 0.0f, 255.0f);
+        cp.samples[k / 2] |= (uint32_t(p.x) | uint32_t(p.y) << 8) << (16 * (k % 2));
+    }
     timed.begin(cmd, "adaptive cull", true);
     cmd.dispatch(*cullPass_, cullBind_, elementCount_, cp);
     cmd.endTimed();

@@ -3,10 +3,12 @@
 // camera how finely each edge piece (lib/tess/edge_pieces.h) is cut, and write the tessellation
 // that the draw then reads through one drawIndexedIndirect:
 //
-//   adaptive_cull.comp    per element: outside the frustum? (convex hull of its control points)
+//   adaptive_cull.comp    per element: outside the frustum, facing away, or between the
+//                         image's samples? (hull of its Bezier points; it draws nothing then)
 //   adaptive_rates.comp   per edge piece: segments = its projected pixels / --edge-pixels,
 //                         clamped to 1..--tess (from the piece owner's surface only)
-//   adaptive_counts.comp  per element: interior rate, vertex and triangle counts
+//   adaptive_counts.comp  per element: interior rates (or flat: its boundary only), vertex and
+//                         triangle counts
 //   adaptive_scan.comp    one workgroup: deterministic prefix sums -> offsets, indirect args
 //   adaptive_emit.comp    per element: its (element, s, t) vertices and its triangles
 //
@@ -16,6 +18,7 @@
 // camera re-runs only these passes.
 #pragma once
 
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "gpu/buffer.h"
@@ -54,6 +57,11 @@ struct AdaptiveOptions {
     uint32_t tess = 64;     // most segments per edge piece and per element interior
     bool cull = true;       // skip drawing elements outside the frustum
     bool backFaceCull = true; // ... and those facing away (closed surfaces seen from outside)
+    // ... and those whose projected hull holds none of the image's sample positions, which
+    // rasterize to nothing: the positions within a pixel of the drawn image (1 sample: the
+    // centre; 4: Vulkan's standard pattern, which is WebGPU's). Empty: off (--wire-triangles,
+    // whose lines light pixels that no triangle covers).
+    std::vector<glm::vec2> samplePositions;
     float texelsPerUV = 0;  // displacement map size: its texels bound the rates too (0: none)
     // Budget of the per-frame buffers; the capacity is the smaller of this and what the largest
     // rates could ever need.

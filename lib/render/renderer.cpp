@@ -166,6 +166,15 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         // would have to widen every test by the largest displacement).
         adaptive.cull = settings.cull && !settings.displacementMap;
         adaptive.backFaceCull = adaptive.cull && !settings.backFaceColor;
+        if (adaptive.cull && settings.sampleCull && settings.wire == Wire::None) {
+            // Positions within a pixel counted from the image's bottom left (the cull measures
+            // NDC upwards; gpu::CommandBuffer draws with a y-flipped viewport): Vulkan's standard
+            // 4-sample pattern (x, y), counted from the top left, is at (x, 1 - y) here.
+            if (settings.samples == 1)
+                adaptive.samplePositions = {{0.5f, 0.5f}};
+            else if (settings.samples == 4 && ctx.limits().standardSampleLocations)
+                adaptive.samplePositions = {{0.375f, 0.875f}, {0.875f, 0.625f}, {0.125f, 0.375f}, {0.625f, 0.125f}};
+        }
         if (settings.displacementMap) // at least a segment per texel, up to one per 2 pixels
             adaptive.texelsPerUV = float(std::max(settings.displacementMap->width, settings.displacementMap->height));
         {

@@ -64,6 +64,8 @@ struct RenderSettings {
     // keeps callers that compare with fixed references unchanged.) Wire::Outlines uses the fixed grids.
     double edgePixels = 0;
     bool cull = true;                     // view-adaptive: skip elements outside the frustum
+    // ... and those between the image's sample positions (they draw nothing; not with wires)
+    bool sampleCull = true;
     uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)
     bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)
     bool evalInCompute = true;            // surface vertices: compute pass (else vertex stage)

@@ -1,16 +1,29 @@
-// View-adaptive tessellation, pass 1 of 5 (issue 11): per element, whether it lies wholly
-// outside the view frustum. Conservative: a regular patch lies in the convex hull of its 16
-// B-spline control points (paper 000, eq. 1), an irregular face (bilinear) in that of its four
-// limit points; the element is culled only when all of them are outside one clip plane. Patches
-// on a mesh boundary (whose phantom points are not among the control points) are never culled.
+// View-adaptive tessellation, pass 1 of 5 (issue 11): per element, whether its triangles can
+// be left out of the draw. Three conservative tests, each of which leaves out only what could
+// not have drawn a sample; a culled element is still emitted at its smallest rate for --mesh-out.
+//
+// Outside the view frustum: a regular patch lies in the convex hull of its 16 Bezier control
+// points (converted from its B-spline ones, paper 000, eq. 1), an irregular face (bilinear) in
+// that of its four limit points; the element is culled when all of them are outside one clip
+// plane. Patches on a mesh boundary (whose phantom points are not among the control points) and
+// single-crease patches are never culled.
 //
 // Facing away (only for a closed surface seen from outside its control points' bounding box, so
-// that every back face is hidden behind a front face; the host decides, backFaces != 0, with the
-// sign of the surface's orientation): the normal Du x Dv of a bicubic B-spline patch is a convex
+// that every back face is hidden behind a front face; the host decides, eye.w != 0, with the
+// sign of the surface's orientation): the normal Du x Dv of a bicubic Bezier patch is a convex
 // combination of the 144 cross products of its 12 u- and 12 v-differences of control points
-// (the derivative of a B-spline is a B-spline of the differences), and the point is in the hull
-// of the 16 control points; so if (P_k - eye) . (dU_a x dV_b) > 0 for every k, a, b, no point of
-// the patch faces the eye. An irregular face (bilinear) the same with its 2 + 2 edge vectors.
+// (the derivative of a Bezier patch is a Bezier patch of the differences), and the point is in
+// the hull of the 16 control points; so if (P_k - eye) . (dU_a x dV_b) > 0 for every k, a, b, no
+// point of the patch faces the eye. An irregular face (bilinear) the same with its 2 + 2 edge
+// vectors.
+//
+// Between samples (the host gives the sample positions; not with --wire-triangles): the
+// projection of a point in the hull lies in the hull of the projected points (all in front of
+// the eye), so if their pixel-space bounding box holds no sample position the element's
+// triangles cover no sample and draw nothing (the box widened by 1/16 pixel: the rasterizer
+// snaps to 1/256 and the two evaluations round differently). Deep isolation around
+// extraordinary vertices makes many such sub-pixel elements (issue 11: the paper's sphere at
+// depth 6 has 2,240 elements for about 6,200 covered pixels), each at least two triangles.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "limn_compute.glsl"
@@ -28,8 +41,52 @@ layout(push_constant) uniform Push {
     layout(offset = 16) mat4 viewProj;
     vec4 eye;       // xyz; w: 0 no facing test, +1 / -1 the orientation of the surface's normals
     uint patchCount;
-    uint enabled;   // 0: cull nothing
+    uint enabled;   // bit 0: cull at all; bits 8-15: how many sample positions (0: no test)
+    vec2 viewport;  // drawn image size in pixels
+    uvec2 samples;  // the sample positions within a pixel, 1/256 pixel units, x | y << 8 in 16 bits each
 } pc;
+
+vec2 samplePosition(uint s) {
+    uint b = (s < 2u ? pc.samples.x : pc.samples.y) >> (16u * (s & 1u));
+    return vec2(float(b & 0xFFu), float((b >> 8) & 0xFFu)) / 256.0;
+}
+
+// The patch's bicubic Bezier control points in place of its B-spline ones (the same surface;
+// uniform cubic B-spline to Bezier along i, then along j): their hull hugs the patch, where the
+// B-spline hull reaches about a patch width beyond it on every side, so every test below is
+// tighter (the derivative argument holds for the Bezier differences the same way).
+void bezierPoints(inout vec3 P[16]) {
+    for (int pass = 0; pass < 2; ++pass)
+        for (int r = 0; r < 4; ++r) {
+            int s0 = pass == 0 ? 4 * r : r, st = pass == 0 ? 1 : 4;
+            vec3 a = P[s0], b = P[s0 + st], c = P[s0 + 2 * st], d = P[s0 + 3 * st];
+            P[s0] = (a + 4.0 * b + c) / 6.0;
+            P[s0 + st] = (2.0 * b + c) / 3.0;
+            P[s0 + 2 * st] = (b + 2.0 * c) / 3.0;
+            P[s0 + 3 * st] = (b + 4.0 * c + d) / 6.0;
+        }
+}
+
+// Whether the pixel-space box of the projected points holds none of the sample positions
+// (pixel + offset, for each of the pattern's offsets).
+bool betweenSamples(vec3 P[16], uint np) {
+    uint sampleCount = min((pc.enabled >> 8) & 0xFFu, 4u);
+    if (sampleCount == 0u) return false;
+    vec2 lo = vec2(1e30), hi = vec2(-1e30);
+    for (uint k = 0u; k < np; ++k) {
+        vec4 c = pc.viewProj * vec4(P[k], 1.0);
+        if (!(c.w > 1e-6)) return false;
+        vec2 px = (c.xy / c.w * 0.5 + 0.5) * pc.viewport;
+        lo = min(lo, px), hi = max(hi, px);
+    }
+    if (!(hi.x - lo.x < 1e6 && hi.y - lo.y < 1e6)) return false; // huge or not finite
+    const float slack = 1.0 / 16.0;
+    for (uint s = 0u; s < sampleCount; ++s) {
+        vec2 first = ceil(lo - slack - samplePosition(s)), last = floor(hi + slack - samplePosition(s));
+        if (first.x <= last.x && first.y <= last.y) return false;
+    }
+    return true;
+}
 
 // Whether sign * (P_k - eye) . (U_a x V_b) > 0 for all given points and vectors.
 bool facesAway(vec3 P[16], uint np, vec3 U[12], uint nu, vec3 V[12], uint nv) {
@@ -59,7 +116,7 @@ void main() {
     uint e = limnInvocationIndex(pc.limnRowInvocations);
     if (e >= pc.limnCount) return;
     uint all = 63u;
-    if (pc.enabled == 0u) {
+    if ((pc.enabled & 1u) == 0u) {
         all = 0u;
     } else if (e < pc.patchCount) {
         Patch pt = patches.p[e];
@@ -69,10 +126,9 @@ void main() {
             all = 0u;
         } else {
             vec3 P[16];
-            for (int k = 0; k < 16; ++k) {
-                P[k] = vertices.p[pt.cv[k]].xyz;
-                all &= outside(P[k]);
-            }
+            for (int k = 0; k < 16; ++k) P[k] = vertices.p[pt.cv[k]].xyz;
+            bezierPoints(P);
+            for (int k = 0; k < 16; ++k) all &= outside(P[k]);
             if (all == 0u && pc.eye.w != 0.0) {
                 vec3 U[12], V[12];
                 for (int j = 0; j < 4; ++j)
@@ -82,6 +138,7 @@ void main() {
                     }
                 if (facesAway(P, 16u, U, 12u, V, 12u)) all = 64u;
             }
+            if (all == 0u && betweenSamples(P, 16u)) all = 128u;
         }
     } else {
         IrregularFace q = irregulars.f[e - pc.patchCount];
@@ -95,6 +152,7 @@ void main() {
             V[0] = P[3] - P[0], V[1] = P[2] - P[1];
             if (facesAway(P, 4u, U, 2u, V, 2u)) all = 64u;
         }
+        if (all == 0u && betweenSamples(P, 4u)) all = 128u;
     }
     cull.c[e] = all != 0u ? 1u : 0u;
 }

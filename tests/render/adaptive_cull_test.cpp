@@ -1,0 +1,101 @@
+// The view-adaptive cull (adaptive_cull.comp, issue 11) leaves out elements outside the frustum,
+// facing away, or whose projected Bezier hull holds none of the image's sample positions. All
+// three are meant to drop only what draws no sample: the image with the cull is the image
+// without it, byte for byte, in views where most of the surface is sub-pixel (deep isolation
+// seen from far away), where part of it is off screen (a close-up), and the default framing.
+// With 1 sample the whole cull is compared with none; with 4 the sample test alone (without any
+// cull the back faces are drawn, and a silhouette sample may see one that the rasterizer's
+// back-face cull drops). And the cull must do something: in the far views it leaves out at
+// least 10% of the triangles, and some in the close-ups.
+#include "gpu/context.h"
+#include "mesh/import.h"
+#include "render/renderer.h"
+#include "subdiv/tables.h"
+#include "test_support.h"
+#include "topology/features.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace limn;
+using namespace limn::test;
+
+namespace {
+
+struct Built {
+    Mesh mesh;
+    Tables tables;
+};
+
+Built build(const std::string& model, int depth) {
+    Warnings w;
+    Built b;
+    b.mesh = importMeshFile(modelPath(model).string(), w);
+    TablesOptions o;
+    o.depth = depth;
+    b.tables = buildTables(b.mesh, resolveSchemeOptions(b.mesh.tags, {}), o, w);
+    return b;
+}
+
+struct CullView {
+    const char* name;
+    double azimuth, elevation, distance; // distance: bounding radii from the box centre (0: framed)
+    bool far, offScreen;                 // mostly sub-pixel; partly off screen
+};
+
+const CullView kViews[] = {
+    {"framed", 30, 20, 0, false, false},
+    {"far", 200, 10, 40, true, false},
+    {"close_up", 60, 35, 1.2, false, true},
+};
+
+TEST(AdaptiveCull, LeavesOutOnlyWhatDrawsNothing) {
+    gpu::Context ctx;
+    for (const auto& [model, depth] : {std::pair<const char*, int>{"quad/spot_control_mesh.obj", 6},
+                                       {"osd/catmark/catmark_car.obj", 4},
+                                       {"osd/catmark/catmark_gregory_test7.obj", 5}}) {
+        const Built b = build(model, depth);
+        for (const CullView& v : kViews)
+            for (uint32_t samples : {1u, 4u}) {
+                SCOPED_TRACE(std::string(model) + " " + v.name + " samples " + std::to_string(samples));
+                auto draw = [&](bool cull, bool sampleCull) {
+                    render::RenderSettings s;
+                    s.width = 240, s.height = 180;
+                    s.samples = samples;
+                    s.edgePixels = 4;
+                    s.cull = cull;
+                    s.sampleCull = sampleCull;
+                    s.view.azimuthDeg = v.azimuth, s.view.elevationDeg = v.elevation;
+                    if (v.distance > 0) {
+                        glm::dvec3 lo(1e300), hi(-1e300);
+                        for (const glm::dvec3& p : b.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+                        const glm::dvec3 c = 0.5 * (lo + hi);
+                        const double R = 0.5 * glm::length(hi - lo), az = glm::radians(v.azimuth),
+                                     el = glm::radians(v.elevation);
+                        s.view.target = c;
+                        s.view.eye = c + v.distance * R *
+                                             glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+                    }
+                    render::Renderer r(ctx, b.mesh, &b.tables, s);
+                    r.renderFrame();
+                    return std::make_pair(r.triangleCount(), r.image().pixels);
+                };
+                const auto with = draw(true, true), without = draw(samples == 4, false);
+                EXPECT_EQ(with.second, without.second) << "the cull changed pixels";
+                if (samples == 4 && !ctx.limits().standardSampleLocations) continue; // no sample test
+                if (v.far) {
+                    EXPECT_LT(double(with.first), 0.9 * double(without.first))
+                        << with.first << " triangles drawn with the cull, " << without.first << " without";
+                } else if (v.offScreen && samples == 1) {
+                    EXPECT_LT(with.first, without.first);
+                }
+            }
+    }
+}
+
+} // namespace
