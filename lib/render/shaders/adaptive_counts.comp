@@ -4,8 +4,14 @@
 // vertices and triangles it will emit (adaptive_emit.comp): B boundary points (every side's
 // segments) plus the (mu-1)(mv-1) interior grid points; 2(mu-2)(mv-2) grid triangles plus
 // B + 2(mu-2) + 2(mv-2) in the four zipper strips (mu = mv = 2: one centre point fanned to the
-// boundary). An element with one segment per side and both rates <= 2 (B = 4: the common case
-// of a small deep patch) is two triangles and no centre. Separate rates per direction matter on
+// boundary). A flat element, small enough that one segment across it meets the target both ways,
+// is only its boundary polygon: B - 2 triangles fanned from a side's middle point, no interior
+// point (packed as rates mu = mv = 1; adaptive_emit.comp). Flat: one segment per side and both
+// rates <= 2 (B = 4, a small deep patch: two triangles), or every side one or two pieces of one
+// segment each within the target and, each way, one of the two sides a single piece (so the
+// element spans at most about one target length: a transition patch beside finer ones, which
+// drew a centre point and B triangles before; on the paper's sphere at depth 6, 40% of the
+// drawn elements). Separate rates per direction matter on
 // patches seen at a grazing angle and on long thin ones (a sphere's polar rings): one square
 // rate would cut the short direction as finely as the long one.
 #version 450
@@ -45,15 +51,19 @@ void main() {
     if (e >= pc.limnCount) return;
     AdaptiveElement el = elements.e[e];
     uint B = 0u, most[2] = uint[2](1u, 1u); // along s (sides 0, 2), along t (sides 1, 3)
+    bool unitPieces = true, singleSide[2] = bool[2](false, false);
     for (int k = 0; k < 4; ++k) {
         uint side = 0u, size = 0u;
         for (uint p = 0u; p < el.sideCount[k]; ++p) {
             uint r = rates.r[sidePieces.v[el.sideFirst[k] + p].x];
             side += r & 0xFFFFu;
             size += r >> 16;
+            unitPieces = unitPieces && r == (1u | (1u << 16));
         }
         B += side;
         most[k & 1] = max(most[k & 1], size);
+        singleSide[k & 1] = singleSide[k & 1] || el.sideCount[k] == 1u;
+        unitPieces = unitPieces && el.sideCount[k] <= 2u;
     }
     bool culled = cull.c[e] != 0u;
     uint cap = max(pc.tess, 1u);
@@ -64,8 +74,10 @@ void main() {
         else mv = max(2u, mv - max(1u, mv / 4u));
     }
     uint overBudget = emitLoops(B, mu, mv) > kEmitLoopBudget ? 1u : 0u;
-    bool twoTriangles = B == 4u && mu == 2u && mv == 2u;
-    uint V = B + (twoTriangles ? 0u : (mu - 1u) * (mv - 1u));
-    uint T = twoTriangles ? 2u : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
+    bool flatElement = (B == 4u && mu == 2u && mv == 2u) ||
+                (!culled && unitPieces && singleSide[0] && singleSide[1]);
+    if (flatElement) mu = 1u, mv = 1u;
+    uint V = B + (flatElement ? 0u : (mu - 1u) * (mv - 1u));
+    uint T = flatElement ? B - 2u : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
     info.v[e] = uvec4(adaptivePackRates(mu, mv) | (culled ? ADAPTIVE_CULLED : 0u), V, T, overBudget);
 }

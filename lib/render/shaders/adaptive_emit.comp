@@ -164,9 +164,15 @@ void main() {
         sideTotal[k] = B - sideStart[k];
     }
 
-    if (mu == 2u && mv == 2u && B == 4u) { // the four corners only: two triangles
-        tri(0u, 1u, 2u);
-        tri(0u, 2u, 3u);
+    if (mu == 1u) { // flat (adaptive_counts.comp): its boundary polygon, B - 2 triangles
+        // A fan from the first point that is not a corner (from corner 0 when there is none):
+        // that point lies on one side's middle, every other point on another side or that
+        // side's far end, so no fan triangle has its three points on one side (a sliver that
+        // folds over the others where the surface bends).
+        uint apex = 0u;
+        for (uint k = 4u; k > 0u; --k)
+            if (sideTotal[k - 1u] > 1u) apex = sideStart[k - 1u] + 1u;
+        for (uint i = 1u; i + 1u < B; ++i) tri(apex, (apex + i) % B, (apex + i + 1u) % B);
         return;
     }
     // Interior grid points (i, j), 1 <= i <= mu-1, 1 <= j <= mv-1, at B + (j-1)(mu-1) + (i-1).
