@@ -15,7 +15,9 @@
 // view-adaptive tessellation (issue 11, --edge-pixels 4) against the fixed grids
 // (--edge-pixels 0): SPOT at 1024x768, depths 3 and 6, adaptive and uniform tables at 5 and 6;
 // CAR at depth 6; the paper's demo sphere (generated: 16 segments x 16 rings, triangle fans at
-// the poles, radius 5) at 1280x720 from (0,12,22), depth 6. Per configuration: covered pixels,
+// the poles, radius 1 as in issue 11, and radius 5) at 1280x720 from (0,12,22), depth 6.
+// --only MODEL (repeatable: spot's or the car's file stem, sphere, sphere_r5) keeps those
+// models' rows. Per configuration: covered pixels,
 // drawn triangles (after culling, from the GPU) and triangles per covered pixel, vertices
 // evaluated, buffer bytes, compute/draw/frame GPU ms, cpu_ms of a still camera and with the
 // camera orbiting DEG degrees per frame (default 2).
@@ -41,6 +43,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -123,11 +126,12 @@ std::string json(const Config& c) {
 }
 
 // The paper's demo layout: a UV sphere of 16 segments x 16 rings (242 vertices), triangle fans
-// at the poles, radius 5 at the origin.
-Mesh paperSphere() {
+// at the poles, at the origin. Radius 1 is issue 11's sphere: from (0,12,22) at 1280x720 (35
+// degree field of view) it covers about 6,300 pixels. Radius 5 fills 25 times as many pixels,
+// where lavapipe's fragment shading sets a floor under any tessellation's frame.
+Mesh paperSphere(double r) {
     Mesh m;
     const int S = 16, R = 16;
-    const double r = 5;
     m.positions.push_back({0, r, 0});
     for (int i = 1; i < R; ++i)
         for (int j = 0; j < S; ++j) {
@@ -161,11 +165,12 @@ struct ViewConfig {
     uint64_t triangles = 0, vertices = 0, bufferBytes = 0, covered = 0;
 };
 
-int runViewAdaptive(const Options& o, double orbitDeg) {
+int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::string>& only) {
     gpu::Context ctx;
     std::map<std::string, Mesh> meshes;
     Warnings w;
-    meshes["sphere"] = paperSphere();
+    meshes["sphere"] = paperSphere(1);
+    meshes["sphere_r5"] = paperSphere(5);
     std::string spot, car;
     for (const std::string& path : o.meshes) {
         const std::string model = std::filesystem::path(path).stem().string();
@@ -175,6 +180,7 @@ int runViewAdaptive(const Options& o, double orbitDeg) {
     std::vector<ViewConfig> configs;
     auto add = [&](const std::string& model, const std::string& tables, int depth, double ep,
                    uint32_t W, uint32_t H, std::optional<glm::dvec3> eye = std::nullopt) {
+        if (!only.empty() && !only.count(model)) return;
         ViewConfig c;
         c.model = model, c.tables = tables, c.depth = depth, c.edgePixels = ep, c.width = W, c.height = H;
         c.eye = eye;
@@ -193,7 +199,8 @@ int runViewAdaptive(const Options& o, double orbitDeg) {
             if (ep > 0)
                 for (const char* tables : {"adaptive", "uniform"}) add(car, tables, 5, ep, 1024, 768);
         }
-        add("sphere", "adaptive", 6, ep, 1280, 720, glm::dvec3(0, 12, 22));
+        for (const char* sphere : {"sphere", "sphere_r5"})
+            add(sphere, "adaptive", 6, ep, 1280, 720, glm::dvec3(0, 12, 22));
     }
     std::map<std::string, std::shared_ptr<Tables>> tableCache;
     for (ViewConfig& c : configs) {
@@ -302,11 +309,14 @@ int main(int argc, char** argv) {
     Options o;
     bool viewAdaptive = false;
     double orbitDeg = 2;
+    std::set<std::string> only;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
         if (a == "--view-adaptive")
             viewAdaptive = true;
+        else if (a == "--only")
+            only.insert(next());
         else if (a == "--orbit")
             orbitDeg = std::atof(next().c_str());
         else if (a == "--frames")
@@ -329,7 +339,7 @@ int main(int argc, char** argv) {
         return usageError("give at least one mesh; frames, rounds >= 1; depth 1-8");
     if (viewAdaptive) {
         try {
-            return runViewAdaptive(o, orbitDeg);
+            return runViewAdaptive(o, orbitDeg, only);
         } catch (const Error& e) {
             std::fprintf(stderr, "bench_render: %s\n", e.what());
             return int(e.kind());
