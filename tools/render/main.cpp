@@ -557,8 +557,9 @@ int main(int argc, char** argv) {
             .real("--edge-pixels", "P", &edgePixels, 0, 4096,
                   "view-adaptive tessellation (issue 11): each patch edge is cut into segments of\n"
                   "                            about P pixels on screen, decided per frame on the GPU\n"
-                  "                            (compute passes; patches outside the view are not\n"
-                  "                            drawn); 0: the fixed grids of 2^(depth-l) segments per\n"
+                  "                            (compute passes; patches outside the view, between\n"
+                  "                            the samples or facing away are not drawn, which changes\n"
+                  "                            no pixel); 0: the fixed grids of 2^(depth-l) segments per\n"
                   "                            level-l patch side (paper 000, 4.3). With --displace\n"
                   "                            an edge also gets a segment per map texel along it (up\n"
                   "                            to one per 2 pixels) and nothing is culled; --wire uses\n"
