@@ -8,11 +8,9 @@
 // back-face cull drops). And the cull must do something: in the far views it leaves out at
 // least 10% of the triangles, and some in the close-ups.
 #include "gpu/context.h"
-#include "mesh/import.h"
 #include "render/renderer.h"
-#include "subdiv/tables.h"
+#include "model_tables.h"
 #include "test_support.h"
-#include "topology/features.h"
 
 #include <gtest/gtest.h>
 
@@ -26,21 +24,6 @@ using namespace limn;
 using namespace limn::test;
 
 namespace {
-
-struct Built {
-    Mesh mesh;
-    Tables tables;
-};
-
-Built build(const std::string& model, int depth) {
-    Warnings w;
-    Built b;
-    b.mesh = importMeshFile(modelPath(model).string(), w);
-    TablesOptions o;
-    o.depth = depth;
-    b.tables = buildTables(b.mesh, resolveSchemeOptions(b.mesh.tags, {}), o, w);
-    return b;
-}
 
 struct CullView {
     const char* name;
@@ -59,7 +42,7 @@ TEST(AdaptiveCull, LeavesOutOnlyWhatDrawsNothing) {
     for (const auto& [model, depth] : {std::pair<const char*, int>{"quad/spot_control_mesh.obj", 6},
                                        {"osd/catmark/catmark_car.obj", 4},
                                        {"osd/catmark/catmark_gregory_test7.obj", 5}}) {
-        const Built b = build(model, depth);
+        const ModelTables b = buildModelTables(model, depth);
         for (const CullView& v : kViews)
             for (uint32_t samples : {1u, 4u}) {
                 SCOPED_TRACE(std::string(model) + " " + v.name + " samples " + std::to_string(samples));

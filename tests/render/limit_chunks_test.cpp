@@ -4,12 +4,10 @@
 // into many small chunks draws the same vertices, bit for bit, as one with a single chunk, on
 // meshes with extraordinary vertices, boundaries, creases and n-gons, adaptive and uniform.
 #include "gpu/context.h"
-#include "mesh/import.h"
 #include "render/renderer.h"
 #include "render/subdivision_draw.h"
-#include "subdiv/tables.h"
+#include "model_tables.h"
 #include "test_support.h"
-#include "topology/features.h"
 
 #include <gtest/gtest.h>
 
@@ -20,29 +18,13 @@ using namespace limn::test;
 
 namespace {
 
-struct Built {
-    Mesh mesh;
-    Tables tables;
-};
-
-Built build(const std::string& model, int depth, bool uniform) {
-    Warnings w;
-    Built b;
-    b.mesh = importMeshFile(modelPath(model).string(), w);
-    TablesOptions o;
-    o.depth = depth;
-    o.uniform = uniform;
-    b.tables = buildTables(b.mesh, resolveSchemeOptions(b.mesh.tags, {}), o, w);
-    return b;
-}
-
 const char* const kModels[] = {"osd/catmark/catmark_car.obj", "osd/catmark/catmark_gregory_test7.obj",
                                "osd/catmark/catmark_fvar_bound1.obj", "osd/catmark/catmark_cube_creases2.obj"};
 
 TEST(LimitChunks, RowsAreTheUncutTablesRows) {
     for (const char* model : kModels) {
         SCOPED_TRACE(model);
-        const Built b = build(model, 3, false);
+        const ModelTables b = buildModelTables(model, 3, false);
         const render::SubdivisionDraw d = render::prepareSubdivision(b.mesh, b.tables, 64, nullptr, true);
         ASSERT_GT(d.limitCount, 10u);
         const uint32_t stride = d.limitCount + 1;
@@ -84,7 +66,7 @@ TEST(LimitChunks, ChunkedRenderDrawsTheSameVertices) {
     for (bool uniform : {false, true})
         for (const char* model : kModels) {
             SCOPED_TRACE(std::string(model) + (uniform ? " uniform" : " adaptive"));
-            const Built b = build(model, uniform ? 2 : 3, uniform);
+            const ModelTables b = buildModelTables(model, uniform ? 2 : 3, uniform);
             auto drawn = [&](uint64_t chunkBytes) {
                 render::RenderSettings s;
                 s.width = 160, s.height = 120;
