@@ -177,14 +177,25 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
     tempPath_ = directoryOf(target_) + ".limn-tmp-XXXXXX";
     std::vector<char> name(tempPath_.begin(), tempPath_.end());
     name.push_back('\0');
+    // The cleanup signals wait while the file is created and registered: one that came between
+    // the two would leave the file behind (SideFiles.SignalsLeaveNoTemporaryFile hit that window
+    // under AddressSanitizer). A signal held here is delivered at the unblock, to the handler,
+    // which then knows the file.
+    sigset_t cleanup, previous;
+    sigemptyset(&cleanup);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaddset(&cleanup, sig);
+    ::pthread_sigmask(SIG_BLOCK, &cleanup, &previous);
     fd_ = ::mkstemp(name.data());
+    const int createErrno = errno;
+    if (fd_ >= 0) tempSlot_ = registerTemp(name.data());
+    ::pthread_sigmask(SIG_SETMASK, &previous, nullptr);
     if (fd_ < 0) {
+        errno = createErrno;
         Error e(ErrorKind::BadInput, std::string("cannot create output: ") + std::strerror(errno));
         e.setFile(path_);
         throw e;
     }
     tempPath_.assign(name.data());
-    tempSlot_ = registerTemp(tempPath_);
     // An existing file keeps its permissions; a new one gets what a plain creat() would give
     // (0666 & ~umask), where mkstemp gave 0600.
     if (exists) {
