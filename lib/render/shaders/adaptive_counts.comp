@@ -51,19 +51,19 @@ void main() {
     if (e >= pc.limnCount) return;
     AdaptiveElement el = elements.e[e];
     uint B = 0u, most[2] = uint[2](1u, 1u); // along s (sides 0, 2), along t (sides 1, 3)
-    bool unitPieces = true, singleSide[2] = bool[2](false, false);
+    bool flatSides = true, singleSide[2] = bool[2](false, false);
     for (int k = 0; k < 4; ++k) {
         uint side = 0u, size = 0u;
         for (uint p = 0u; p < el.sideCount[k]; ++p) {
             uint r = rates.r[sidePieces.v[el.sideFirst[k] + p].x];
             side += r & 0xFFFFu;
             size += r >> 16;
-            unitPieces = unitPieces && r == (1u | (1u << 16));
+            flatSides = flatSides && r == (1u | (1u << 16));
         }
         B += side;
         most[k & 1] = max(most[k & 1], size);
         singleSide[k & 1] = singleSide[k & 1] || el.sideCount[k] == 1u;
-        unitPieces = unitPieces && el.sideCount[k] <= 2u;
+        flatSides = flatSides && el.sideCount[k] <= 2u;
     }
     bool culled = cull.c[e] != 0u;
     uint cap = max(pc.tess, 1u);
@@ -75,7 +75,7 @@ void main() {
     }
     uint overBudget = emitLoops(B, mu, mv) > kEmitLoopBudget ? 1u : 0u;
     bool flatElement = (B == 4u && mu == 2u && mv == 2u) ||
-                (!culled && unitPieces && singleSide[0] && singleSide[1]);
+                (!culled && flatSides && singleSide[0] && singleSide[1]);
     if (flatElement) mu = 1u, mv = 1u;
     uint V = B + (flatElement ? 0u : (mu - 1u) * (mv - 1u));
     uint T = flatElement ? B - 2u : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
