@@ -1,6 +1,6 @@
 // View-adaptive tessellation, pass 2 of 5 (issue 11): per edge piece, its segments this frame.
 // Decided once per piece from data both sides share: the piece owner's surface at the piece's
-// two ends and middle (evaluated with the draw's own code, surface_eval_impl.glsl), projected to
+// two ends and middle (the draw's own sums, surface_eval_impl.glsl's elementPositions3), projected to
 // pixels; so the two patches of an edge can never disagree (OpenSubdiv PR #435). The rate is
 // ceil(length / edgePixels), at least the displacement map's texels along the piece (at most
 // one segment per 2 pixels), clamped to 1..tess and to the piece's parameter span. A piece whose
@@ -62,8 +62,10 @@ void main() {
         uint st[3] = uint[3](p0.y, midST(p0.y, p0.z), p0.z);
         vec2 px[3];
         uint behind = 0u, allOut = 63u;
+        vec3 P[3];
+        elementPositions3(p0.x, st, pc.patchCount, P);
         for (int k = 0; k < 3; ++k) {
-            vec4 c = pc.viewProj * vec4(evaluateElement(p0.x, st[k], pc.patchCount).position, 1.0);
+            vec4 c = pc.viewProj * vec4(P[k], 1.0);
             uint o = 0u;
             if (c.x < -c.w) o |= 1u;
             if (c.x > c.w) o |= 2u;
