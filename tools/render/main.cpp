@@ -26,6 +26,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <future>
+#include <memory>
 #include <iostream>
 #include <optional>
 #include <sys/resource.h>
@@ -865,6 +866,16 @@ int main(int argc, char** argv) {
         }
         Depfile depfile(writeImage || ply || sequence ? common.depfile : std::string(), outputs, inputs);
 
+        gpu::ContextOptions options;
+        options.device = device;
+        options.validation = syncValidation ? gpu::Validation::Synchronization
+                             : validate     ? gpu::Validation::On
+                                            : gpu::Validation::Off;
+        // The device starts up (Vulkan instance, lavapipe's threads and LLVM) while the input is
+        // read and checked: on two cores the two overlap. A bad input still reports first; the
+        // future's destructor then waits for the unused context and releases it.
+        std::future<std::unique_ptr<gpu::Context>> pendingContext =
+            std::async(std::launch::async, [options] { return std::make_unique<gpu::Context>(options); });
         Warnings warnings;
         Input in = readInput(input, surface, warnings);
         cli::printWarnings(warnings, displayName(input));
@@ -942,16 +953,12 @@ int main(int argc, char** argv) {
             eval == "compute" || (eval == "auto" && (in.blend || !displace.empty()));
         settings.evaluateVertices = !meshOut.empty();
 
-        gpu::ContextOptions options;
-        options.device = device;
-        options.validation = syncValidation ? gpu::Validation::Synchronization
-                             : validate     ? gpu::Validation::On
-                                            : gpu::Validation::Off;
         std::shared_ptr<gpu::ValidationLog> validation;
         std::vector<uint8_t> pngBytes, plyBytes;
         std::vector<std::string> written; // a sequence's frames, as they are committed
         {
-            gpu::Context ctx(options);
+            const std::unique_ptr<gpu::Context> context = pendingContext.get();
+            gpu::Context& ctx = *context;
             validation = ctx.sharedValidationLog();
             for (const auto& line : ctx.selectionReport()) cli::info(line);
             std::optional<render::Renderer> chosen;
