@@ -30,17 +30,18 @@ struct RatePush { // adaptive_rates.comp
 struct CountPush { // adaptive_counts.comp
     uint32_t tess;
     uint32_t vertexLoops; // loop iterations the emit pass spends per vertex beyond its own
+    uint32_t sharePoints;
 };
 // Smooth UVs: fvar_eval.glsl's quadtree walk, one iteration a level (tables hold at most 10)
 // plus the step into the record, per emitted vertex.
 constexpr uint32_t kFvarLoopsPerVertex = 12;
 struct ScanPush { // adaptive_scan.comp
-    uint32_t elementCount, vertexCapacity, triangleCapacity, rowGroups, evalGroupSize;
+    uint32_t elementCount, vertexCapacity, triangleCapacity, rowGroups, evalGroupSize, vertexBase;
 };
 struct EmitPush { // adaptive_emit.comp
     uint32_t pointBase, triangleCapacity, smoothUV;
     float fvarCell;
-    uint32_t domainBase, nodeBase, recordBase;
+    uint32_t domainBase, nodeBase, recordBase, sharePoints;
 };
 
 constexpr uint32_t kTotalsWords = 23;
@@ -52,6 +53,13 @@ void copyMatrix(const glm::mat4& m, float out[16]) {
 }
 
 } // namespace
+
+AdaptivePipelines::AdaptivePipelines(gpu::Context& ctx)
+    : cull(ctx, {"adaptive cull", adaptive_cull_comp_spv, 5, sizeof(CullPush)}),
+      rates(ctx, {"adaptive rates", adaptive_rates_comp_spv, 7, sizeof(RatePush)}),
+      counts(ctx, {"adaptive counts", adaptive_counts_comp_spv, 5, sizeof(CountPush)}),
+      scan(ctx, {"adaptive scan", adaptive_scan_comp_spv, 2, sizeof(ScanPush)}),
+      emit(ctx, {"adaptive emit", adaptive_emit_comp_spv, 8, sizeof(EmitPush)}) {}
 
 AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t patchCount,
                            const gpu::Buffer& vertices, const gpu::Buffer& patches,
@@ -82,7 +90,15 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
         maxT += m <= 2 ? B : 2 * (m - 2) * (m - 2) + B + 4 * (m - 2);
     }
     const uint64_t limitV = gpu::kMaxStorageBufferBytes / 16, limitT = gpu::kMaxStorageBufferBytes / 12;
-    uint64_t budgetV = options.maxVertices ? options.maxVertices : limitV;
+    // Shared points: the first slots are the points', so that flat elements (most of a fine
+    // mesh's, seen from afar) draw their corners from one vertex each instead of four copies
+    // (the vertex stage evaluates each slot once per batch of triangles); only where nothing
+    // reads a vertex's own-chart UV (which differs across a UV seam) or the whole surface.
+    if (options.sharePoints && !options.evaluated && ep.points.size() < limitV / 2) {
+        sharedPoints_ = static_cast<uint32_t>(ep.points.size());
+        maxV += sharedPoints_;
+    }
+    uint64_t budgetV = (options.maxVertices ? options.maxVertices : limitV) + sharedPoints_;
     uint64_t budgetT = options.maxTriangles ? options.maxTriangles : limitT;
     capV_ = static_cast<uint32_t>(std::max<uint64_t>(1, std::min({maxV, budgetV, limitV})));
     capT_ = static_cast<uint32_t>(std::max<uint64_t>(1, std::min({maxT, budgetT, limitT})));
@@ -144,21 +160,13 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
         cmd.submitAndWait();
     }
 
-    cullPass_ = std::make_unique<gpu::ComputePipeline>(
-        ctx, gpu::ComputePipelineDesc{"adaptive cull", adaptive_cull_comp_spv, 5, sizeof(CullPush)});
-    ratePass_ = std::make_unique<gpu::ComputePipeline>(
-        ctx, gpu::ComputePipelineDesc{"adaptive rates", adaptive_rates_comp_spv, 7, sizeof(RatePush)});
-    countPass_ = std::make_unique<gpu::ComputePipeline>(
-        ctx, gpu::ComputePipelineDesc{"adaptive counts", adaptive_counts_comp_spv, 5, sizeof(CountPush)});
-    scanPass_ = std::make_unique<gpu::ComputePipeline>(
-        ctx, gpu::ComputePipelineDesc{"adaptive scan", adaptive_scan_comp_spv, 2, sizeof(ScanPush)});
-    emitPass_ = std::make_unique<gpu::ComputePipeline>(
-        ctx, gpu::ComputePipelineDesc{"adaptive emit", adaptive_emit_comp_spv, 8, sizeof(EmitPush)});
-    cullBind_ = cullPass_->bind({vertices, patches, irregular, limits, *cull_});
-    rateBind_ = ratePass_->bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_});
-    countBind_ = countPass_->bind({*elements_, *sidePieces_, *rates_, *cull_, *info_});
-    scanBind_ = scanPass_->bind({*info_, *totals_});
-    emitBind_ = emitPass_->bind({*elements_, *sidePieces_, *pieces_, *rates_, *info_, *tessVertices_,
+    passes_ = options.pipelines ? options.pipelines : std::make_shared<AdaptivePipelines>(ctx);
+    options_.pipelines.reset();
+    cullBind_ = passes_->cull.bind({vertices, patches, irregular, limits, *cull_});
+    rateBind_ = passes_->rates.bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_});
+    countBind_ = passes_->counts.bind({*elements_, *sidePieces_, *rates_, *cull_, *info_});
+    scanBind_ = passes_->scan.bind({*info_, *totals_});
+    emitBind_ = passes_->emit.bind({*elements_, *sidePieces_, *pieces_, *rates_, *info_, *tessVertices_,
                                  *triangles_, *triangleLevels_});
 }
 
@@ -180,7 +188,7 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
         cp.samples[k / 2] |= (uint32_t(p.x) | uint32_t(p.y) << 8) << (16 * (k % 2));
     }
     timed.begin(cmd, "adaptive cull", true);
-    cmd.dispatch(*cullPass_, cullBind_, elementCount_, cp);
+    cmd.dispatch(passes_->cull, cullBind_, elementCount_, cp);
     cmd.endTimed();
     cmd.barrier(write, read);
     RatePush rp{};
@@ -192,24 +200,24 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     rp.patchCount = patchCount_;
     rp.texels = options_.texelsPerUV;
     timed.begin(cmd, "adaptive rates", true);
-    cmd.dispatch(*ratePass_, rateBind_, pieceCount_, rp);
+    cmd.dispatch(passes_->rates, rateBind_, pieceCount_, rp);
     cmd.endTimed();
     cmd.barrier(write, read);
     timed.begin(cmd, "adaptive counts", true);
-    cmd.dispatch(*countPass_, countBind_, elementCount_, CountPush{options_.tess, options_.fvarNodes.empty() ? 0u : kFvarLoopsPerVertex});
+    cmd.dispatch(passes_->counts, countBind_, elementCount_, CountPush{options_.tess, options_.fvarNodes.empty() ? 0u : kFvarLoopsPerVertex, sharedPoints_ ? 1u : 0u});
     cmd.endTimed();
     cmd.barrier(write, read);
     // The previous frame's draw read the totals as indirect arguments.
     cmd.barrier(gpu::Access::IndirectRead | gpu::Access::VertexRead | gpu::Access::IndexRead, write);
     timed.begin(cmd, "adaptive scan", true);
-    cmd.dispatch(*scanPass_, scanBind_, 1,
-                 ScanPush{elementCount_, capV_, capT_, kRowGroups, kEvalGroupSize});
+    cmd.dispatch(passes_->scan, scanBind_, 1,
+                 ScanPush{elementCount_, capV_, capT_, kRowGroups, kEvalGroupSize, sharedPoints_});
     cmd.endTimed();
     cmd.barrier(write, read);
     timed.begin(cmd, "adaptive emit", true);
-    cmd.dispatch(*emitPass_, emitBind_, elementCount_,
+    cmd.dispatch(passes_->emit, emitBind_, elementCount_,
                  EmitPush{pointBase_, capT_, options_.fvarNodes.empty() ? 0u : 1u, options_.fvarCell, domainBase_,
-                          nodeBase_, recordBase_});
+                          nodeBase_, recordBase_, sharedPoints_ ? 1u : 0u});
     cmd.endTimed();
     cmd.barrier(write, read | gpu::Access::VertexRead | gpu::Access::IndexRead | gpu::Access::IndirectRead);
 }

@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace limn::render {
 
@@ -50,6 +51,14 @@ struct AdaptiveView {
     uint32_t width = 1, height = 1;
     glm::vec3 eye{0.0f};
     float facing = 0; // cull patches facing away: +1 / -1 (normals' orientation), 0 never
+};
+
+// The five passes' pipelines. They need no buffers, so the renderer builds them on a second
+// thread while the CPU prepares the edge pieces: lavapipe compiles a shader when its pipeline is
+// created, and these five took about 120 ms of catmark_car_level3's set-up on one core.
+struct AdaptivePipelines {
+    explicit AdaptivePipelines(gpu::Context& ctx);
+    gpu::ComputePipeline cull, rates, counts, scan, emit;
 };
 
 struct AdaptiveOptions {
@@ -81,6 +90,11 @@ struct AdaptiveOptions {
     // crease bit of GpuPatch::levelBoundary), 0 otherwise; the emit pass grades the segments
     // across a crease towards it. Missing entries are 0.
     std::vector<uint8_t> elementCrease;
+    // Whether vertices may be shared between elements at points (corners and piece ends): the
+    // draw reads no own-chart UV (no --texture, no --shade uv). Off when `evaluated`.
+    bool sharePoints = false;
+    // Built ahead (see AdaptivePipelines); null: AdaptiveTess builds them itself.
+    std::shared_ptr<AdaptivePipelines> pipelines;
 };
 
 // What the scan wrote for the last frame (read back from the GPU).
@@ -130,10 +144,11 @@ class AdaptiveTess {
     AdaptiveOptions options_;
     AdaptiveView view_;
     uint32_t elementCount_, pieceCount_, pointBase_, patchCount_, capV_ = 0, capT_ = 0;
+    uint32_t sharedPoints_ = 0; // points with shared vertex slots (the first ones), or 0
     uint32_t domainBase_ = 0, nodeBase_ = 0, recordBase_ = 0; // smooth UVs, in pieces_
     std::unique_ptr<gpu::Buffer> elements_, sidePieces_, pieces_, cull_, rates_, info_, totals_,
         tessVertices_, triangles_, triangleLevels_;
-    std::unique_ptr<gpu::ComputePipeline> cullPass_, ratePass_, countPass_, scanPass_, emitPass_;
+    std::shared_ptr<AdaptivePipelines> passes_;
     gpu::BindGroup cullBind_, rateBind_, countBind_, scanBind_, emitBind_;
 };
 

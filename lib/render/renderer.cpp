@@ -15,7 +15,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <future>
 #include <limits>
+#include <memory>
 
 namespace limn::render {
 
@@ -156,6 +158,16 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         if (settings.displacementMap && !settings.seams)
             throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
         viewAdaptive_ = settings.edgePixels > 0 && settings.wire != Wire::Outlines;
+        // Two jobs that need only the inputs run beside the edge pieces' preparation, on a
+        // second core where there is one: the view-adaptive passes' pipelines (compiled by
+        // lavapipe as they are created) and the framing samples. Their exceptions surface at
+        // get(); a throw before that waits for them in the futures' destructors.
+        std::future<std::shared_ptr<AdaptivePipelines>> pipelines;
+        if (viewAdaptive_)
+            pipelines = std::async(std::launch::async, [&ctx] { return std::make_shared<AdaptivePipelines>(ctx); });
+        std::future<std::vector<glm::dvec3>> hull;
+        if (!settings.displacementMap) // the displaced surface leaves the hull: framed by its box
+            hull = std::async(std::launch::async, [&mesh, tables] { return surfaceSamples(mesh, *tables); });
         SubdivisionDraw draw = prepareSubdivision(mesh, *tables, settings.tessCap,
                                                   settings.displacementMap ? &plan : nullptr, viewAdaptive_);
         draw.limitChunkBytes = settings.limitChunkBytes;
@@ -175,6 +187,8 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             else if (settings.samples == 4 && ctx.limits().standardSampleLocations)
                 adaptive.samplePositions = {{0.375f, 0.875f}, {0.875f, 0.625f}, {0.125f, 0.375f}, {0.625f, 0.125f}};
         }
+        adaptive.sharePoints =
+            settings.sharePoints && settings.shade != Shade::Uv && settings.shade != Shade::Texture;
         if (settings.displacementMap) // at least a segment per texel, up to one per 2 pixels
             adaptive.texelsPerUV = float(std::max(settings.displacementMap->width, settings.displacementMap->height));
         {
@@ -191,13 +205,13 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             adaptive.maxTriangles = minimum + 2 * view;
         }
         bounds = draw.bounds;
-        bounds.hull = surfaceSamples(mesh, *tables);
+        if (hull.valid()) bounds.hull = hull.get();
         if (settings.displacementMap) { // leave room for the displaced surface in the framing
             framingPad_ = glm::dvec3(std::abs(settings.displaceScale) * 0.5);
             bounds.min -= framingPad_, bounds.max += framingPad_;
             if (bounds.sphereRadius > 0) bounds.sphereRadius += framingPad_.x;
-            bounds.hull.clear(); // the displaced surface leaves the hull: frame the padded box
         }
+        if (pipelines.valid()) adaptive.pipelines = pipelines.get();
         SubdivisionPass::Displacement displacement{
             settings.displacementMap, float(settings.displaceScale), float(settings.displaceMid)};
         pass_ = std::make_unique<SubdivisionPass>(

@@ -66,6 +66,9 @@ struct RenderSettings {
     bool cull = true;                     // view-adaptive: skip elements outside the frustum
     // ... and those between the image's sample positions (they draw nothing; not with wires)
     bool sampleCull = true;
+    // ... and flat elements draw their corners from one shared vertex per point (the same
+    // image; only where no own-chart UV is drawn, see AdaptiveOptions::sharePoints)
+    bool sharePoints = true;
     uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)
     bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)
     bool evalInCompute = true;            // surface vertices: compute pass (else vertex stage)

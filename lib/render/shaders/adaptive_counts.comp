@@ -30,6 +30,7 @@ layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
     layout(offset = 16) uint tess;
     uint vertexLoops; // the emit pass's loop iterations per vertex beyond its own (smooth UVs)
+    uint sharePoints; // adaptive_emit.comp's shared points: flat elements own no vertices, culled ones nothing
 } pc;
 
 // lavapipe (llvmpipe) ends every loop of a shader invocation once all its loops together have
@@ -79,5 +80,9 @@ void main() {
     if (flatElement) mu = 1u, mv = 1u;
     uint V = B + (flatElement ? 0u : (mu - 1u) * (mv - 1u));
     uint T = flatElement ? B - 2u : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
+    if (pc.sharePoints != 0u) {
+        if (flatElement) V = 0u;    // its boundary is points only, drawn from their shared slots
+        if (culled) V = 0u, T = 0u; // drawn by nobody, and nothing reads the whole surface
+    }
     info.v[e] = uvec4(adaptivePackRates(mu, mv) | (culled ? ADAPTIVE_CULLED : 0u), V, T, overBudget);
 }

@@ -41,6 +41,10 @@ layout(push_constant) uniform Push {
     uint smoothUV;
     float fvarCell;
     uint domainBase, nodeBase, recordBase;
+    // Shared points (AdaptiveOptions::sharePoints): vertex slot i < the number of points is point
+    // i, written by its owner; flat elements draw their boundary (points only) from those slots,
+    // culled ones emit nothing but the points they own.
+    uint sharePoints;
 } pc;
 
 uint fvarNode(uint i) { return pieces.v[pc.nodeBase + i / 4u][i % 4u]; }
@@ -75,13 +79,15 @@ void vertex(uint local, uint element, uint st, vec2 uv) {
     tessVertices.v[vBase + local] = uvec4(element, st, floatBitsToUint(uv.x), floatBitsToUint(uv.y));
 }
 
-void tri(uint a, uint b, uint c) {
-    triangles.i[3u * tNext] = vBase + a;
-    triangles.i[3u * tNext + 1u] = vBase + b;
-    triangles.i[3u * tNext + 2u] = vBase + c;
+// A triangle of vertex slots (absolute), and of this element's own vertices (local).
+void triSlots(uint a, uint b, uint c) {
+    triangles.i[3u * tNext] = a;
+    triangles.i[3u * tNext + 1u] = b;
+    triangles.i[3u * tNext + 2u] = c;
     triangleLevels.l[tNext] = level;
     ++tNext;
 }
+void tri(uint a, uint b, uint c) { triSlots(vBase + a, vBase + b, vBase + c); }
 
 // Point j of r along a piece from st a to st b (integers, so every side computes the same).
 uint lerpST(uint a, uint b, uint j, uint r) {
@@ -124,6 +130,23 @@ void main() {
     uint T = inf.w & 0x7FFFFFFFu;
     vBase = inf.y;
     tNext = inf.z;
+    bool share = pc.sharePoints != 0u;
+    if (share) {
+        // The points this element owns, into their slots (before the capacity test: the slots
+        // are always there, and other elements draw them).
+        el = elements.e[e];
+        elIndex = e;
+        for (uint k = 0u; k < 4u; ++k)
+            for (uint p = 0u; p < el.sideCount[k]; ++p) {
+                uvec4 sp = sidePieces.v[el.sideFirst[k] + p];
+                uvec4 point = pieces.v[pc.pointBase + sp.y];
+                if (point.x != e) continue;
+                vec2 st = sideParam(k, float(sp.w & 0xFFFFu));
+                vec2 uv = uvAt(st.x, st.y);
+                tessVertices.v[sp.y] = uvec4(point.x, point.y, floatBitsToUint(uv.x), floatBitsToUint(uv.y));
+            }
+        if ((inf.x & ADAPTIVE_CULLED) != 0u) return;
+    }
     if ((inf.w >> 31) == 0u) {
         // Over capacity (the host warns): the part of its triangle range that exists is
         // degenerate, so the draw reads nothing stale.
@@ -139,13 +162,21 @@ void main() {
     elIndex = e;
     level = el.level;
 
-    // The boundary loop.
+    // The boundary loop. A flat element with shared points keeps its points' slots (at most 8:
+    // two pieces of one segment a side).
+    bool sharedFlat = share && mu == 1u;
+    uint slots[8];
     uint sideStart[4], sideTotal[4];
     uint B = 0u;
     for (uint k = 0u; k < 4u; ++k) {
         sideStart[k] = B;
         for (uint p = 0u; p < el.sideCount[k]; ++p) {
             uvec4 sp = sidePieces.v[el.sideFirst[k] + p];
+            if (sharedFlat) {
+                slots[min(B, 7u)] = sp.y;
+                ++B;
+                continue;
+            }
             uint r = rates.r[sp.x] & 0xFFFFu;
             uvec4 piece = pieces.v[2u * sp.x];
             uvec4 point = pieces.v[pc.pointBase + sp.y];
@@ -172,7 +203,11 @@ void main() {
         uint apex = 0u;
         for (uint k = 4u; k > 0u; --k)
             if (sideTotal[k - 1u] > 1u) apex = sideStart[k - 1u] + 1u;
-        for (uint i = 1u; i + 1u < B; ++i) tri(apex, (apex + i) % B, (apex + i + 1u) % B);
+        for (uint i = 1u; i + 1u < B; ++i) {
+            uint a = apex, b = (apex + i) % B, c = (apex + i + 1u) % B;
+            if (sharedFlat) triSlots(slots[a], slots[b], slots[c]);
+            else tri(a, b, c);
+        }
         return;
     }
     // Interior grid points (i, j), 1 <= i <= mu-1, 1 <= j <= mv-1, at B + (j-1)(mu-1) + (i-1).

@@ -20,6 +20,7 @@ layout(push_constant) uniform Push {
     uint triangleCapacity;
     uint rowGroups;     // dispatch rows for the evaluation pass (65535 groups)
     uint evalGroupSize; // its workgroup size
+    uint vertexBase;    // the first element vertex: the shared points' slots come first
 } pc;
 
 shared uint sumV[256], sumTv[256], sumTc[256];
@@ -56,9 +57,9 @@ void main() {
         sumV[lid] = satAdd(sumV[lid], a), sumTv[lid] = satAdd(sumTv[lid], b), sumTc[lid] = satAdd(sumTc[lid], c);
         barrier();
     }
-    uint totalV = sumV[255], totalTv = sumTv[255], totalTc = sumTc[255];
+    uint totalV = satAdd(pc.vertexBase, sumV[255]), totalTv = sumTv[255], totalTc = sumTc[255];
     // Exclusive offsets from the previous chunk's inclusive sums (no subtraction: saturated).
-    uint ov = lid == 0u ? 0u : sumV[lid - 1u], otv = lid == 0u ? 0u : sumTv[lid - 1u];
+    uint ov = satAdd(pc.vertexBase, lid == 0u ? 0u : sumV[lid - 1u]), otv = lid == 0u ? 0u : sumTv[lid - 1u];
     uint otc = satAdd(totalTv, lid == 0u ? 0u : sumTc[lid - 1u]);
     for (uint e = begin; e < end; ++e) {
         uvec4 x = info.v[e];

@@ -1,0 +1,102 @@
+// Shared points (AdaptiveOptions::sharePoints, adaptive_emit.comp): where the draw reads no
+// own-chart UV, flat elements draw their corners from one vertex slot per point, written by the
+// point's owner, instead of a copy each. The slot holds the owner's (element, s, t), which every
+// element's own copy held before, so the vertex stage computes the same bits: the image must be
+// the same bytes with and without sharing, with 1 and 4 samples, for --shade levels too (its
+// per-triangle level stays the emitting element's), in far (mostly flat, sub-pixel elements),
+// framed and close-up views, on meshes with boundaries, creases, extraordinary vertices and
+// non-quads; validation layer on, no error. Sharing must also do something: fewer vertices in the far views. With --shade uv
+// (a vertex's UV differs across a seam) nothing is shared.
+#include "gpu/context.h"
+#include "render/renderer.h"
+#include "model_tables.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace limn;
+using namespace limn::test;
+
+namespace {
+
+struct View {
+    const char* name;
+    double azimuth, elevation, distance; // bounding radii from the box centre (0: framed)
+};
+
+const View kViews[] = {{"framed", 30, 20, 0}, {"far", 200, 10, 25}, {"close_up", 60, 35, 1.2}};
+
+struct Drawn {
+    uint64_t triangles, vertices;
+    std::vector<uint8_t> pixels;
+};
+
+Drawn draw(gpu::Context& ctx, const ModelTables& b, const View& v, uint32_t samples, render::Shade shade,
+           bool share) {
+    render::RenderSettings s;
+    s.width = 240, s.height = 180;
+    s.samples = samples;
+    s.edgePixels = 4;
+    s.shade = shade;
+    s.sharePoints = share;
+    s.evalInCompute = false; // limn-render's default: vertex-stage evaluation (a compute pass shares nothing)
+    s.view.azimuthDeg = v.azimuth, s.view.elevationDeg = v.elevation;
+    if (v.distance > 0) {
+        glm::dvec3 lo(1e300), hi(-1e300);
+        for (const glm::dvec3& p : b.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        const glm::dvec3 c = 0.5 * (lo + hi);
+        const double R = 0.5 * glm::length(hi - lo), az = glm::radians(v.azimuth), el = glm::radians(v.elevation);
+        s.view.target = c;
+        s.view.eye = c + v.distance * R * glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+    }
+    render::Renderer r(ctx, b.mesh, &b.tables, s);
+    r.renderFrame();
+    return {r.triangleCount(), r.verticesEvaluated(), r.image().pixels};
+}
+
+TEST(AdaptiveSharedPoints, SameImageFewerVertices) {
+    gpu::ContextOptions options;
+    options.validation = gpu::Validation::On;
+    gpu::Context ctx(options);
+    for (const auto& [model, depth] : {std::pair<const char*, int>{"quad/spot_control_mesh.obj", 5},
+                                       {"osd/catmark/catmark_car.obj", 3},
+                                       {"osd/catmark/catmark_gregory_test7.obj", 4},
+                                       {"osd/catmark/catmark_cube_creases2.obj", 4},
+                                       {"osd/catmark/catmark_bishop.obj", 4}}) {
+        const ModelTables b = buildModelTables(model, depth);
+        for (const View& v : kViews)
+            for (uint32_t samples : {1u, 4u})
+                for (render::Shade shade : {render::Shade::Lit, render::Shade::Levels}) {
+                    if (shade == render::Shade::Levels && samples == 4) continue;
+                    SCOPED_TRACE(std::string(model) + " " + v.name + " samples " + std::to_string(samples) +
+                                 (shade == render::Shade::Levels ? " levels" : " lit"));
+                    const Drawn shared = draw(ctx, b, v, samples, shade, true);
+                    const Drawn own = draw(ctx, b, v, samples, shade, false);
+                    EXPECT_EQ(shared.pixels, own.pixels) << "sharing the points changed pixels";
+                    EXPECT_EQ(shared.triangles, own.triangles);
+                    if (std::string(v.name) == "far") {
+                        EXPECT_LT(double(shared.vertices), 0.9 * double(own.vertices))
+                            << shared.vertices << " vertices with shared points, " << own.vertices << " without";
+                    }
+                }
+    }
+    ASSERT_NE(ctx.validationLog(), nullptr);
+    EXPECT_EQ(ctx.validationLog()->errors(), 0u);
+}
+
+TEST(AdaptiveSharedPoints, NotWhereUVsAreDrawn) {
+    gpu::Context ctx;
+    const ModelTables b = buildModelTables("quad/spot_control_mesh.obj", 4);
+    const Drawn shared = draw(ctx, b, kViews[1], 1, render::Shade::Uv, true);
+    const Drawn own = draw(ctx, b, kViews[1], 1, render::Shade::Uv, false);
+    EXPECT_EQ(shared.vertices, own.vertices);
+    EXPECT_EQ(shared.pixels, own.pixels);
+}
+
+} // namespace
