@@ -210,6 +210,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             framingPad_ = glm::dvec3(std::abs(settings.displaceScale) * 0.5);
             bounds.min -= framingPad_, bounds.max += framingPad_;
             if (bounds.sphereRadius > 0) bounds.sphereRadius += framingPad_.x;
+            bounds.hull.clear(); // boundsOf's control points: frame the padded box instead
         }
         if (pipelines.valid()) adaptive.pipelines = pipelines.get();
         SubdivisionPass::Displacement displacement{
