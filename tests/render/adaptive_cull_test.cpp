@@ -14,10 +14,7 @@
 
 #include <gtest/gtest.h>
 
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
-#include <cmath>
 #include <string>
 
 using namespace limn;
@@ -53,17 +50,7 @@ TEST(AdaptiveCull, LeavesOutOnlyWhatDrawsNothing) {
                     s.edgePixels = 4;
                     s.cull = cull;
                     s.sampleCull = sampleCull;
-                    s.view.azimuthDeg = v.azimuth, s.view.elevationDeg = v.elevation;
-                    if (v.distance > 0) {
-                        glm::dvec3 lo(1e300), hi(-1e300);
-                        for (const glm::dvec3& p : b.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-                        const glm::dvec3 c = 0.5 * (lo + hi);
-                        const double R = 0.5 * glm::length(hi - lo), az = glm::radians(v.azimuth),
-                                     el = glm::radians(v.elevation);
-                        s.view.target = c;
-                        s.view.eye = c + v.distance * R *
-                                             glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
-                    }
+                    orbitView(s.view, b.mesh, v.azimuth, v.elevation, v.distance);
                     render::Renderer r(ctx, b.mesh, &b.tables, s);
                     r.renderFrame();
                     return std::make_pair(r.triangleCount(), r.image().pixels);
