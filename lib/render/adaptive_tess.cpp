@@ -31,6 +31,9 @@ struct CountPush { // adaptive_counts.comp
     uint32_t tess;
     uint32_t vertexLoops; // loop iterations the emit pass spends per vertex beyond its own
     uint32_t sharePoints;
+    uint32_t sampleCount; // the flat elements' sample test, with CullPush's positions
+    uint32_t samples[2];
+    uint32_t partialFans; // not when the whole surface is read (AdaptiveOptions::evaluated)
 };
 // Smooth UVs: fvar_eval.glsl's quadtree walk, one iteration a level (tables hold at most 10)
 // plus the step into the record, per emitted vertex.
@@ -56,8 +59,8 @@ void copyMatrix(const glm::mat4& m, float out[16]) {
 
 AdaptivePipelines::AdaptivePipelines(gpu::Context& ctx)
     : cull(ctx, {"adaptive cull", adaptive_cull_comp_spv, 5, sizeof(CullPush)}),
-      rates(ctx, {"adaptive rates", adaptive_rates_comp_spv, 7, sizeof(RatePush)}),
-      counts(ctx, {"adaptive counts", adaptive_counts_comp_spv, 5, sizeof(CountPush)}),
+      rates(ctx, {"adaptive rates", adaptive_rates_comp_spv, 8, sizeof(RatePush)}),
+      counts(ctx, {"adaptive counts", adaptive_counts_comp_spv, 6, sizeof(CountPush)}),
       scan(ctx, {"adaptive scan", adaptive_scan_comp_spv, 2, sizeof(ScanPush)}),
       emit(ctx, {"adaptive emit", adaptive_emit_comp_spv, 8, sizeof(EmitPush)}) {}
 
@@ -143,6 +146,7 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     pieces_ = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "adaptive edge pieces", pieces));
     cull_ = make("adaptive cull flags", uint64_t(elementCount_) * 4);
     rates_ = make("adaptive edge rates", uint64_t(pieceCount_) * 4);
+    pieceEnds_ = make("adaptive piece ends", uint64_t(pieceCount_) * 16);
     info_ = make("adaptive element offsets", uint64_t(elementCount_) * 16);
     totals_ = make("adaptive totals", kTotalsWords * 4, gpu::kStorage | gpu::kIndirect);
     tessVertices_ = make("adaptive tessellation vertices", uint64_t(capV_) * 16);
@@ -163,8 +167,8 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     passes_ = options.pipelines ? options.pipelines : std::make_shared<AdaptivePipelines>(ctx);
     options_.pipelines.reset();
     cullBind_ = passes_->cull.bind({vertices, patches, irregular, limits, *cull_});
-    rateBind_ = passes_->rates.bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_});
-    countBind_ = passes_->counts.bind({*elements_, *sidePieces_, *rates_, *cull_, *info_});
+    rateBind_ = passes_->rates.bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_, *pieceEnds_});
+    countBind_ = passes_->counts.bind({*elements_, *sidePieces_, *rates_, *cull_, *info_, *pieceEnds_});
     scanBind_ = passes_->scan.bind({*info_, *totals_});
     emitBind_ = passes_->emit.bind({*elements_, *sidePieces_, *pieces_, *rates_, *info_, *tessVertices_,
                                  *triangles_, *triangleLevels_});
@@ -203,8 +207,10 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     cmd.dispatch(passes_->rates, rateBind_, pieceCount_, rp);
     cmd.endTimed();
     cmd.barrier(write, read);
+    CountPush np{options_.tess, options_.fvarNodes.empty() ? 0u : kFvarLoopsPerVertex, sharedPoints_ ? 1u : 0u,
+                 samples, {cp.samples[0], cp.samples[1]}, options_.evaluated ? 0u : 1u};
     timed.begin(cmd, "adaptive counts", true);
-    cmd.dispatch(passes_->counts, countBind_, elementCount_, CountPush{options_.tess, options_.fvarNodes.empty() ? 0u : kFvarLoopsPerVertex, sharedPoints_ ? 1u : 0u});
+    cmd.dispatch(passes_->counts, countBind_, elementCount_, np);
     cmd.endTimed();
     cmd.barrier(write, read);
     // The previous frame's draw read the totals as indirect arguments.
@@ -248,7 +254,7 @@ std::string AdaptiveTotals::need() const {
 
 uint64_t AdaptiveTess::bufferBytes() const {
     uint64_t sum = 0;
-    for (const auto* b : {elements_.get(), sidePieces_.get(), pieces_.get(), cull_.get(), rates_.get(),
+    for (const auto* b : {elements_.get(), sidePieces_.get(), pieces_.get(), cull_.get(), rates_.get(), pieceEnds_.get(),
                           info_.get(), totals_.get(), tessVertices_.get(), triangles_.get(),
                           triangleLevels_.get()})
         sum += b->size();

@@ -7,8 +7,8 @@
 //                         image's samples? (hull of its Bezier points; it draws nothing then)
 //   adaptive_rates.comp   per edge piece: segments = its projected pixels / --edge-pixels,
 //                         clamped to 1..--tess (from the piece owner's surface only)
-//   adaptive_counts.comp  per element: interior rates (or flat: its boundary only), vertex and
-//                         triangle counts
+//   adaptive_counts.comp  per element: interior rates (or flat: its boundary only, less the
+//                         fan triangles that hold no sample), vertex and triangle counts
 //   adaptive_scan.comp    one workgroup: deterministic prefix sums -> offsets, indirect args
 //   adaptive_emit.comp    per element: its (element, s, t) vertices and its triangles
 //
@@ -146,7 +146,7 @@ class AdaptiveTess {
     uint32_t elementCount_, pieceCount_, pointBase_, patchCount_, capV_ = 0, capT_ = 0;
     uint32_t sharedPoints_ = 0; // points with shared vertex slots (the first ones), or 0
     uint32_t domainBase_ = 0, nodeBase_ = 0, recordBase_ = 0; // smooth UVs, in pieces_
-    std::unique_ptr<gpu::Buffer> elements_, sidePieces_, pieces_, cull_, rates_, info_, totals_,
+    std::unique_ptr<gpu::Buffer> elements_, sidePieces_, pieces_, cull_, rates_, pieceEnds_, info_, totals_,
         tessVertices_, triangles_, triangleLevels_;
     std::shared_ptr<AdaptivePipelines> passes_;
     gpu::BindGroup cullBind_, rateBind_, countBind_, scanBind_, emitBind_;

@@ -13,6 +13,7 @@
 // never from limn's tessellation.
 #include "drawn_ply.h"
 #include "mesh/import.h"
+#include "model_tables.h"
 #include "osd_oracle.h"
 #include "render/png.h"
 #include "subdiv/tables.h"
@@ -54,29 +55,20 @@ std::string caseName(const ::testing::TestParamInfo<Case>& info) {
     return s + "_d" + std::to_string(info.param.depth);
 }
 
-// 16 segments x 16 rings, radius 5, triangle fans at the poles: 242 vertices (issue 11).
+// The paper's demo sphere (model_tables.h's paperSphere) of radius 5, as an OBJ file.
 std::string writeSphere(const std::filesystem::path& path) {
+    const Mesh m = paperSphere(5);
     std::ofstream o(path);
-    const int S = 16, R = 16;
-    const double r = 5;
-    o << "v 0 " << r << " 0\n";
-    for (int i = 1; i < R; ++i)
-        for (int j = 0; j < S; ++j) {
-            const double th = M_PI * i / R, ph = 2 * M_PI * j / S;
-            char line[128];
-            std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", r * std::sin(th) * std::cos(ph),
-                          r * std::cos(th), -r * std::sin(th) * std::sin(ph));
-            o << line;
-        }
-    o << "v 0 " << -r << " 0\n";
-    auto idx = [&](int i, int j) { return 2 + (i - 1) * S + (j % S); }; // 1-based
-    for (int j = 0; j < S; ++j) o << "f 1 " << idx(1, j) << " " << idx(1, j + 1) << "\n";
-    for (int i = 1; i + 1 < R; ++i)
-        for (int j = 0; j < S; ++j)
-            o << "f " << idx(i, j) << " " << idx(i + 1, j) << " " << idx(i + 1, j + 1) << " "
-              << idx(i, j + 1) << "\n";
-    const int last = 2 + (R - 1) * S;
-    for (int j = 0; j < S; ++j) o << "f " << idx(R - 1, j) << " " << last << " " << idx(R - 1, j + 1) << "\n";
+    char line[128];
+    for (const glm::dvec3& p : m.positions) {
+        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+        o << line;
+    }
+    for (size_t f = 0; f < m.faceCount(); ++f) {
+        o << "f";
+        for (uint32_t v : m.face(f)) o << " " << v + 1;
+        o << "\n";
+    }
     return path.string();
 }
 

@@ -14,6 +14,16 @@
 // drawn elements). Separate rates per direction matter on
 // patches seen at a grazing angle and on long thin ones (a sphere's polar rings): one square
 // rate would cut the short direction as finely as the long one.
+//
+// A flat element's triangles are exactly what is drawn of it, with corners that
+// adaptive_rates.comp projected (its pieces' ends): where the host gives the image's sample
+// positions (as for adaptive_cull.comp's between-samples test), a fan triangle that holds none
+// of them (widened by 1/16 pixel for the two evaluations' rounding and the rasterizer's snapping)
+// is left out, and an element none of whose triangles holds one is culled. The cull's test
+// takes a patch's whole hull box; this one the drawn triangles, which drops most sub-pixel
+// elements that the box keeps, and single triangles of slightly larger ones (on the paper's
+// sphere at depth 6, most drawn elements are around its 34 extraordinary vertices, isolated to
+// a fraction of a pixel).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "limn_compute.glsl"
@@ -25,13 +35,79 @@ layout(std430, binding = 1) readonly buffer SidePieces { uvec4 v[]; } sidePieces
 layout(std430, binding = 2) readonly buffer Rates { uint r[]; } rates;
 layout(std430, binding = 3) readonly buffer Cull { uint c[]; } cull;
 layout(std430, binding = 4) writeonly buffer Info { uvec4 v[]; } info; // m | culled, V, T, over budget
+layout(std430, binding = 5) readonly buffer PieceEnds { vec4 v[]; } pieceEnds; // pixels (adaptive_rates.comp)
 
 layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
     layout(offset = 16) uint tess;
     uint vertexLoops; // the emit pass's loop iterations per vertex beyond its own (smooth UVs)
     uint sharePoints; // adaptive_emit.comp's shared points: flat elements own no vertices, culled ones nothing
+    uint sampleCount; // the sample positions of the image (0: no test), as adaptive_cull.comp's
+    uvec2 samples;
+    // Whether a flat element may leave out some of its fan triangles; not where the whole
+    // surface is read (--mesh-out), which gets every triangle of an element that draws some.
+    uint partialFans;
 } pc;
+
+vec2 samplePosition(uint s) {
+    uint b = (s < 2u ? pc.samples.x : pc.samples.y) >> (16u * (s & 1u));
+    return vec2(float(b & 0xFFu), float((b >> 8) & 0xFFu)) / 256.0;
+}
+
+// Whether triangle (a, b, c) in pixels, widened by `slack` pixels, may hold a sample position:
+// a pixel's corner plus one of the pattern's offsets. Large triangles are kept untested.
+bool holdsSample(vec2 a, vec2 b, vec2 c) {
+    const float slack = 1.0 / 16.0;
+    vec2 lo = min(a, min(b, c)) - slack, hi = max(a, max(b, c)) + slack;
+    if (!(hi.x - lo.x < 4.0 && hi.y - lo.y < 4.0)) return true; // large, or not finite
+    // Edge functions, positive inside for either winding; each widened by slack times the
+    // edge's length, so a sample within `slack` of the triangle counts.
+    float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    float w = area < 0.0 ? -1.0 : 1.0;
+    vec2 v[3] = vec2[3](a, b, c);
+    for (uint s = 0u; s < pc.sampleCount; ++s) {
+        vec2 off = samplePosition(s);
+        vec2 first = ceil(lo - off), last = floor(hi - off);
+        for (float y = first.y; y <= last.y; ++y)
+            for (float x = first.x; x <= last.x; ++x) {
+                vec2 p = vec2(x, y) + off;
+                bool inside = true;
+                for (int k = 0; k < 3; ++k) {
+                    vec2 p0 = v[k], p1 = v[(k + 1) % 3];
+                    vec2 d = p1 - p0;
+                    float f = w * (d.x * (p.y - p0.y) - d.y * (p.x - p0.x));
+                    inside = inside && f >= -slack * length(d);
+                }
+                if (inside) return true;
+            }
+    }
+    return false;
+}
+
+// Which of a flat element's B - 2 fan triangles (adaptiveFanApex) hold a sample, from its
+// boundary points' pixels (at most 8: two pieces of one segment a side); all of them where a
+// point has no pixels.
+uint drawnFan(AdaptiveElement el, uint B) {
+    uint all = (1u << (B - 2u)) - 1u;
+    if (pc.sampleCount == 0u) return all;
+    vec2 px[8];
+    uint sideStart[4], sideTotal[4], n = 0u;
+    for (uint k = 0u; k < 4u; ++k) {
+        sideStart[k] = n;
+        for (uint p = 0u; p < el.sideCount[k] && n < 8u; ++p) {
+            uvec4 sp = sidePieces.v[el.sideFirst[k] + p];
+            vec4 ends = pieceEnds.v[sp.x];
+            px[n++] = sp.z != 0u ? ends.zw : ends.xy; // where this side's piece starts
+        }
+        sideTotal[k] = n - sideStart[k];
+    }
+    for (uint i = 0u; i < n; ++i)
+        if (!(abs(px[i].x) < 1e6 && abs(px[i].y) < 1e6)) return all;
+    uint apex = adaptiveFanApex(sideStart, sideTotal), fan = 0u;
+    for (uint i = 0u; i + 2u < B; ++i)
+        if (holdsSample(px[apex], px[(apex + i + 1u) % B], px[(apex + i + 2u) % B])) fan |= 1u << i;
+    return fan;
+}
 
 // lavapipe (llvmpipe) ends every loop of a shader invocation once all its loops together have
 // run 65535 iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS, shared by every loop of a
@@ -77,12 +153,19 @@ void main() {
     uint overBudget = emitLoops(B, mu, mv) > kEmitLoopBudget ? 1u : 0u;
     bool flatElement = (B == 4u && mu == 2u && mv == 2u) ||
                 (!culled && flatSides && singleSide[0] && singleSide[1]);
-    if (flatElement) mu = 1u, mv = 1u;
+    uint fan = 0u;
+    if (flatElement && !culled) {
+        fan = drawnFan(el, B);
+        if (fan == 0u) culled = true, mu = 2u, mv = 2u, flatElement = B == 4u; // nothing drawn
+        else if (pc.partialFans == 0u) fan = (1u << (B - 2u)) - 1u;
+    }
+    if (flatElement && culled) fan = (1u << (B - 2u)) - 1u; // emitted whole for --mesh-out
     uint V = B + (flatElement ? 0u : (mu - 1u) * (mv - 1u));
-    uint T = flatElement ? B - 2u : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
+    uint T = flatElement ? uint(bitCount(fan)) : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
     if (pc.sharePoints != 0u) {
         if (flatElement) V = 0u;    // its boundary is points only, drawn from their shared slots
         if (culled) V = 0u, T = 0u; // drawn by nobody, and nothing reads the whole surface
     }
-    info.v[e] = uvec4(adaptivePackRates(mu, mv) | (culled ? ADAPTIVE_CULLED : 0u), V, T, overBudget);
+    uint packed = flatElement ? adaptivePackFlat(fan) : adaptivePackRates(mu, mv);
+    info.v[e] = uvec4(packed | (culled ? ADAPTIVE_CULLED : 0u), V, T, overBudget);
 }

@@ -195,15 +195,10 @@ void main() {
         sideTotal[k] = B - sideStart[k];
     }
 
-    if (mu == 1u) { // flat (adaptive_counts.comp): its boundary polygon, B - 2 triangles
-        // A fan from the first point that is not a corner (from corner 0 when there is none):
-        // that point lies on one side's middle, every other point on another side or that
-        // side's far end, so no fan triangle has its three points on one side (a sliver that
-        // folds over the others where the surface bends).
-        uint apex = 0u;
-        for (uint k = 4u; k > 0u; --k)
-            if (sideTotal[k - 1u] > 1u) apex = sideStart[k - 1u] + 1u;
+    if (mu == 1u) { // flat (adaptive_counts.comp): its boundary polygon, the fan's drawn triangles
+        uint apex = adaptiveFanApex(sideStart, sideTotal), fan = mv;
         for (uint i = 1u; i + 1u < B; ++i) {
+            if (((fan >> (i - 1u)) & 1u) == 0u) continue; // covers no sample
             uint a = apex, b = (apex + i) % B, c = (apex + i + 1u) % B;
             if (sharedFlat) triSlots(slots[a], slots[b], slots[c]);
             else tri(a, b, c);

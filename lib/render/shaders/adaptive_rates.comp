@@ -9,10 +9,14 @@
 // one that crosses the eye plane gets tess. Written as rate | size << 16, where size is the
 // rate its projected length alone asks for: adaptive_counts.comp sizes an element's interior
 // from its sides' sizes, so a large element whose sides are off screen stays fine inside.
+// Also written: the piece's two ends in pixels (from the image's bottom left, as the cull's
+// sample positions), which adaptive_counts.comp tests a flat element's triangles with; far
+// beyond any image (ADAPTIVE_NO_ENDS) where the piece was not evaluated or an end is behind the eye.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "limn_compute.glsl"
 #include "surface_eval.glsl"
+#include "adaptive_tess.glsl"
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Vertices { vec4 p[]; } vertices;
@@ -22,6 +26,7 @@ layout(std430, binding = 3) readonly buffer Limits { vec4 v[]; } limits;
 layout(std430, binding = 4) readonly buffer Pieces { uvec4 v[]; } pieces;
 layout(std430, binding = 5) readonly buffer Cull { uint c[]; } cull;
 layout(std430, binding = 6) writeonly buffer Rates { uint r[]; } rates;
+layout(std430, binding = 7) writeonly buffer PieceEnds { vec4 v[]; } pieceEnds; // start xy, end xy
 
 layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
@@ -58,6 +63,7 @@ void main() {
     bool visible = cull.c[p1.x] == 0u || (p1.y != 0xFFFFFFFFu && cull.c[p1.y] == 0u);
     uint cap = max(min(pc.tess, p0.w), 1u);
     uint r = 1u, size = 1u;
+    vec4 ends = vec4(ADAPTIVE_NO_ENDS);
     if (visible) {
         uint st[3] = uint[3](p0.y, midST(p0.y, p0.z), p0.z);
         vec2 px[3];
@@ -78,6 +84,7 @@ void main() {
             px[k] = c.w > 1e-6 ? c.xy / c.w * pc.halfViewport : vec2(0.0);
         }
         float len = distance(px[0], px[1]) + distance(px[1], px[2]);
+        if (behind == 0u) ends = vec4(px[0], px[2]) + pc.halfViewport.xyxy;
         if (behind == 3u) {
             r = 1u, size = 1u;
         } else if (behind != 0u || !(len < 1e9)) {
@@ -132,4 +139,5 @@ void main() {
         }
     }
     rates.r[i] = r | (size << 16);
+    pieceEnds.v[i] = ends;
 }

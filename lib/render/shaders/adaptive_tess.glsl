@@ -24,8 +24,27 @@ struct AdaptiveElement {
 
 // An element's interior rates (adaptive_counts.comp) in the info record's first word: mu along s
 // in bits 0-14, mv along t in bits 15-29 (--tess is at most 4096), ADAPTIVE_CULLED in bit 31.
+// A flat element (its boundary polygon, fanned) has mu = 1, and in mv's place which of its at
+// most 6 fan triangles are drawn (bit i: triangle i; the others cover no sample of the image).
 uint adaptivePackRates(uint mu, uint mv) { return mu | (mv << 15); }
 uvec2 adaptiveRates(uint packed) { return uvec2(packed & 0x7FFFu, (packed >> 15) & 0x7FFFu); }
+uint adaptivePackFlat(uint fanMask) { return adaptivePackRates(1u, fanMask); }
+
+// A flat element's fan (adaptive_emit.comp draws it, adaptive_counts.comp tests it against the
+// samples): triangle i of the B - 2 is (apex, apex + i + 1, apex + i + 2) mod B over its boundary
+// points, the apex the first point that is not a corner, on the first side with more than one
+// point (corner 0 when there is none). That point lies on one side's middle, every other point
+// on another side or that side's far end, so no fan triangle has its three points on one side (a
+// sliver that folds over the others where the surface bends).
+uint adaptiveFanApex(uint sideStart[4], uint sideTotal[4]) {
+    uint apex = 0u;
+    for (uint k = 4u; k > 0u; --k)
+        if (sideTotal[k - 1u] > 1u) apex = sideStart[k - 1u] + 1u;
+    return apex;
+}
+
+// adaptive_rates.comp's piece ends where it has none (not evaluated, or behind the eye).
+const float ADAPTIVE_NO_ENDS = 3.0e38;
 
 // Segments graded towards a single-crease patch's crease, whose surface bends within 2^-s of it
 // (adaptive_rates.comp asks for them, adaptive_emit.comp places them): the offset of step k of n
