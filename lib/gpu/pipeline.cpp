@@ -98,6 +98,11 @@ Pipeline::~Pipeline() {
     release();
 }
 
+VkPipeline Pipeline::handle() const {
+    if (!pipeline_ && compile_) pipeline_ = compile_();
+    return pipeline_;
+}
+
 void Pipeline::release() {
     const auto& vk = ctx_->vk();
     if (pipeline_) vk.vkDestroyPipeline(ctx_->device(), pipeline_, nullptr);
@@ -218,8 +223,16 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
                                    TargetFormat target)
     : Pipeline(ctx, desc.name, desc.storageBuffers, desc.pushConstantBytes, 0,
                VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT) {
+    for (auto [spirv, stage] : {std::pair{desc.vertexSpirv, "vertex"}, std::pair{desc.fragmentSpirv, "fragment"}})
+        if (spirv.size() < 5 || spirv[0] != 0x07230203u)
+            fail(name_, std::string("the ") + stage + " shader is not a SPIR-V module");
+    compile_ = [this, desc, target] { return create(desc, target); };
+}
+
+VkPipeline GraphicsPipeline::create(const GraphicsPipelineDesc& desc, TargetFormat target) const {
     VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
-    const auto& vk = ctx.vk();
+    const auto& vk = ctx_->vk();
+    VkPipeline pipeline = VK_NULL_HANDLE;
     try {
         vs = createModule(desc.vertexSpirv, "vertex");
         fs = createModule(desc.fragmentSpirv, "fragment");
@@ -289,17 +302,17 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& des
         info.pColorBlendState = &blend;
         info.pDynamicState = &dynamic;
         info.layout = layout_;
-        VkResult r = vk.vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr,
-                                                  &pipeline_);
+        VkResult r = vk.vkCreateGraphicsPipelines(ctx_->device(), VK_NULL_HANDLE, 1, &info, nullptr,
+                                                  &pipeline);
         check(r, "creating graphics pipeline '" + name_ + "'");
     } catch (...) {
-        if (vs) vk.vkDestroyShaderModule(ctx.device(), vs, nullptr);
-        if (fs) vk.vkDestroyShaderModule(ctx.device(), fs, nullptr);
-        release();
+        if (vs) vk.vkDestroyShaderModule(ctx_->device(), vs, nullptr);
+        if (fs) vk.vkDestroyShaderModule(ctx_->device(), fs, nullptr);
         throw;
     }
-    vk.vkDestroyShaderModule(ctx.device(), vs, nullptr);
-    vk.vkDestroyShaderModule(ctx.device(), fs, nullptr);
+    vk.vkDestroyShaderModule(ctx_->device(), vs, nullptr);
+    vk.vkDestroyShaderModule(ctx_->device(), fs, nullptr);
+    return pipeline;
 }
 
 } // namespace limn::gpu

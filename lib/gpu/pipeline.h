@@ -13,6 +13,7 @@
 #include "gpu/vulkan.h"
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -70,7 +71,11 @@ class Pipeline {
     BindGroup bind(std::span<const BufferBinding> buffers) const;
 
     const std::string& name() const { return name_; }
-    VkPipeline handle() const { return pipeline_; }
+    // The compiled pipeline. A graphics pipeline is compiled here on first use: lavapipe compiles
+    // its shaders when the pipeline is created (30-45 ms for the surface draw), and a renderer
+    // holds variants that a run may never draw with (the draw without culling beside the one
+    // that culls back faces, the draw of evaluated vertices, the wires).
+    VkPipeline handle() const;
     VkPipelineLayout layout() const { return layout_; }
     uint32_t storageBuffers() const { return storageBuffers_; }
     uint32_t pushConstantBytes() const { return pushBytes_; } // the pipeline's own, header excluded
@@ -88,7 +93,8 @@ class Pipeline {
     VkShaderStageFlags stages_;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    mutable VkPipeline pipeline_ = VK_NULL_HANDLE;
+    std::function<VkPipeline()> compile_; // a pipeline compiled on first use: creates it
 };
 
 struct ComputePipelineDesc {
@@ -130,7 +136,11 @@ struct GraphicsPipelineDesc {
 // cull its back faces (desc.cull).
 class GraphicsPipeline : public Pipeline {
   public:
+    // Checks the layout now; compiles on first use (handle()), where a compile error throws.
     GraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc, TargetFormat target = {});
+
+  private:
+    VkPipeline create(const GraphicsPipelineDesc& desc, TargetFormat target) const;
 };
 
 // The LocalSize a SPIR-V compute module declares, {0,0,0} if none. Throws on a malformed module.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <future>
 #include <vector>
 
 namespace limn::render {
@@ -57,12 +58,19 @@ void copyMatrix(const glm::mat4& m, float out[16]) {
 
 } // namespace
 
-AdaptivePipelines::AdaptivePipelines(gpu::Context& ctx)
-    : cull(ctx, {"adaptive cull", adaptive_cull_comp_spv, 5, sizeof(CullPush)}),
-      rates(ctx, {"adaptive rates", adaptive_rates_comp_spv, 8, sizeof(RatePush)}),
-      counts(ctx, {"adaptive counts", adaptive_counts_comp_spv, 6, sizeof(CountPush)}),
-      scan(ctx, {"adaptive scan", adaptive_scan_comp_spv, 2, sizeof(ScanPush)}),
-      emit(ctx, {"adaptive emit", adaptive_emit_comp_spv, 8, sizeof(EmitPush)}) {}
+AdaptivePipelines::AdaptivePipelines(gpu::Context& ctx) {
+    auto make = [&ctx](const gpu::ComputePipelineDesc& d) { return std::make_unique<gpu::ComputePipeline>(ctx, d); };
+    // Vulkan creates pipelines of one device from any thread. A throw on this thread waits for
+    // the other in the future's destructor.
+    std::future<void> second = std::async(std::launch::async, [&] {
+        cull = make({"adaptive cull", adaptive_cull_comp_spv, 5, sizeof(CullPush)});
+        counts = make({"adaptive counts", adaptive_counts_comp_spv, 6, sizeof(CountPush)});
+        scan = make({"adaptive scan", adaptive_scan_comp_spv, 2, sizeof(ScanPush)});
+    });
+    rates = make({"adaptive rates", adaptive_rates_comp_spv, 8, sizeof(RatePush)});
+    emit = make({"adaptive emit", adaptive_emit_comp_spv, 8, sizeof(EmitPush)});
+    second.get();
+}
 
 AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t patchCount,
                            const gpu::Buffer& vertices, const gpu::Buffer& patches,
@@ -166,11 +174,11 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
 
     passes_ = options.pipelines ? options.pipelines : std::make_shared<AdaptivePipelines>(ctx);
     options_.pipelines.reset();
-    cullBind_ = passes_->cull.bind({vertices, patches, irregular, limits, *cull_});
-    rateBind_ = passes_->rates.bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_, *pieceEnds_});
-    countBind_ = passes_->counts.bind({*elements_, *sidePieces_, *rates_, *cull_, *info_, *pieceEnds_});
-    scanBind_ = passes_->scan.bind({*info_, *totals_});
-    emitBind_ = passes_->emit.bind({*elements_, *sidePieces_, *pieces_, *rates_, *info_, *tessVertices_,
+    cullBind_ = passes_->cull->bind({vertices, patches, irregular, limits, *cull_});
+    rateBind_ = passes_->rates->bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_, *pieceEnds_});
+    countBind_ = passes_->counts->bind({*elements_, *sidePieces_, *rates_, *cull_, *info_, *pieceEnds_});
+    scanBind_ = passes_->scan->bind({*info_, *totals_});
+    emitBind_ = passes_->emit->bind({*elements_, *sidePieces_, *pieces_, *rates_, *info_, *tessVertices_,
                                  *triangles_, *triangleLevels_});
 }
 
@@ -192,7 +200,7 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
         cp.samples[k / 2] |= (uint32_t(p.x) | uint32_t(p.y) << 8) << (16 * (k % 2));
     }
     timed.begin(cmd, "adaptive cull", true);
-    cmd.dispatch(passes_->cull, cullBind_, elementCount_, cp);
+    cmd.dispatch(*passes_->cull, cullBind_, elementCount_, cp);
     cmd.endTimed();
     cmd.barrier(write, read);
     RatePush rp{};
@@ -204,24 +212,24 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     rp.patchCount = patchCount_;
     rp.texels = options_.texelsPerUV;
     timed.begin(cmd, "adaptive rates", true);
-    cmd.dispatch(passes_->rates, rateBind_, pieceCount_, rp);
+    cmd.dispatch(*passes_->rates, rateBind_, pieceCount_, rp);
     cmd.endTimed();
     cmd.barrier(write, read);
     CountPush np{options_.tess, options_.fvarNodes.empty() ? 0u : kFvarLoopsPerVertex, sharedPoints_ ? 1u : 0u,
                  samples, {cp.samples[0], cp.samples[1]}, options_.evaluated ? 0u : 1u};
     timed.begin(cmd, "adaptive counts", true);
-    cmd.dispatch(passes_->counts, countBind_, elementCount_, np);
+    cmd.dispatch(*passes_->counts, countBind_, elementCount_, np);
     cmd.endTimed();
     cmd.barrier(write, read);
     // The previous frame's draw read the totals as indirect arguments.
     cmd.barrier(gpu::Access::IndirectRead | gpu::Access::VertexRead | gpu::Access::IndexRead, write);
     timed.begin(cmd, "adaptive scan", true);
-    cmd.dispatch(passes_->scan, scanBind_, 1,
+    cmd.dispatch(*passes_->scan, scanBind_, 1,
                  ScanPush{elementCount_, capV_, capT_, kRowGroups, kEvalGroupSize, sharedPoints_});
     cmd.endTimed();
     cmd.barrier(write, read);
     timed.begin(cmd, "adaptive emit", true);
-    cmd.dispatch(passes_->emit, emitBind_, elementCount_,
+    cmd.dispatch(*passes_->emit, emitBind_, elementCount_,
                  EmitPush{pointBase_, capT_, options_.fvarNodes.empty() ? 0u : 1u, options_.fvarCell, domainBase_,
                           nodeBase_, recordBase_, sharedPoints_ ? 1u : 0u});
     cmd.endTimed();

@@ -237,7 +237,16 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
                                          "prepared for it");
     gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target);
     mayCullBackFaces_ = adaptive && adaptive->backFaceCull && draw_.closed;
-    if (mayCullBackFaces_) orientation_ = draw_.orientation;
+    if (mayCullBackFaces_) {
+        orientation_ = draw_.orientation;
+        // Seen from outside the control points' box (setView), the draw culls the faces that
+        // face away by this orientation: lavapipe's compile of it (about 45 ms) overlaps the rest
+        // of the set-up. The pipeline object is made here; the other thread only compiles it.
+        if (orientation_ != 0) {
+            const gpu::GraphicsPipeline& p = culledPipeline(orientation_);
+            culledCompile_ = std::async(std::launch::async, [&p] { (void)p.handle(); });
+        }
+    }
 }
 
 // On a closed, consistently oriented surface seen from outside, the first face along any ray from
@@ -248,6 +257,7 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
 // for Vulkan's framebuffer and the winding with it). Made on first use: an animated surface may
 // turn inside out and need the other one.
 const gpu::GraphicsPipeline& SubdivisionPass::culledPipeline(float facing) {
+    if (culledCompile_.valid()) culledCompile_.get(); // compiled (or its error thrown) before use
     auto& slot = gpu_->culledDraw[facing > 0 ? 0 : 1];
     if (!slot) {
         const bool fetch = eval_ == Eval::Compute;

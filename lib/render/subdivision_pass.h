@@ -10,6 +10,7 @@
 #include "render/subdivision_draw.h"
 #include "render/texture_image.h"
 
+#include <future>
 #include <memory>
 
 namespace limn::render {
@@ -63,6 +64,10 @@ private:
     mutable bool totalsRead_ = false;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
+    // The culled draw the usual view needs, compiled on another thread during the set-up and
+    // the first frame's compute recording (culledPipeline waits for it). Declared after gpu_,
+    // so it is joined before the pipeline it compiles goes.
+    std::future<void> culledCompile_;
 };
 
 } // namespace limn::render
