@@ -11,13 +11,14 @@
 // Usage: bench_render [--frames N] [--rounds R] [--size WxH] [--max-depth D] [--quick] MESH...
 // (defaults: 10 frames, 3 rounds, 1024x768, depth 6; --quick: 3 frames, 1 round, depth 3)
 //
-// bench_render --view-adaptive [--frames N] [--rounds R] [--orbit DEG] SPOT.obj [CAR.obj]:
+// bench_render --view-adaptive [--frames N] [--rounds R] [--orbit DEG] [--samples 1|4] SPOT.obj [CAR.obj]:
 // view-adaptive tessellation (issue 11, --edge-pixels 4) against the fixed grids
 // (--edge-pixels 0): SPOT at 1024x768, depths 3 and 6, adaptive and uniform tables at 5 and 6;
 // CAR at depth 6; the paper's demo sphere (generated: 16 segments x 16 rings, triangle fans at
 // the poles, radius 1 as in issue 11, and radius 5) at 1280x720 from (0,12,22), depth 6.
 // --only MODEL (repeatable: spot's or the car's file stem, sphere, sphere_r5) keeps those
-// models' rows. Per configuration: covered pixels,
+// models' rows. --samples: per pixel, 4 (limn-render's default, and this benchmark's) or 1.
+// Per configuration: covered pixels,
 // drawn triangles (after culling, from the GPU) and triangles per covered pixel, vertices
 // evaluated, buffer bytes, compute/draw/frame GPU ms, cpu_ms of a still camera and with the
 // camera orbiting DEG degrees per frame (default 2).
@@ -28,6 +29,7 @@
 #include "render/bench.h"
 #include "render/renderer.h"
 #include "seams/seams.h"
+#include "paper_sphere.h" // tests/support
 #include "subdiv/tables.h"
 #include "render/png.h"
 #include "topology/features.h"
@@ -54,6 +56,7 @@ namespace {
 struct Options {
     int frames = 10, rounds = 3, maxDepth = 6;
     uint32_t width = 1024, height = 768;
+    uint32_t samples = 4; // --view-adaptive: limn-render's default
     std::vector<std::string> meshes;
 };
 
@@ -125,33 +128,6 @@ std::string json(const Config& c) {
     return buf;
 }
 
-// The paper's demo layout: a UV sphere of 16 segments x 16 rings (242 vertices), triangle fans
-// at the poles, at the origin. Radius 1 is issue 11's sphere: from (0,12,22) at 1280x720 (35
-// degree field of view) it covers about 6,300 pixels. Radius 5 fills 25 times as many pixels,
-// where lavapipe's fragment shading sets a floor under any tessellation's frame.
-Mesh paperSphere(double r) {
-    Mesh m;
-    const int S = 16, R = 16;
-    m.positions.push_back({0, r, 0});
-    for (int i = 1; i < R; ++i)
-        for (int j = 0; j < S; ++j) {
-            const double th = M_PI * i / R, ph = 2 * M_PI * j / S;
-            m.positions.push_back({r * std::sin(th) * std::cos(ph), r * std::cos(th), -r * std::sin(th) * std::sin(ph)});
-        }
-    m.positions.push_back({0, -r, 0});
-    auto idx = [&](int i, int j) { return uint32_t(1 + (i - 1) * S + (j % S)); };
-    auto face = [&](std::initializer_list<uint32_t> v) {
-        m.faceVertices.insert(m.faceVertices.end(), v);
-        m.faceOffsets.push_back(uint32_t(m.faceVertices.size()));
-    };
-    for (int j = 0; j < S; ++j) face({0, idx(1, j), idx(1, j + 1)});
-    for (int i = 1; i + 1 < R; ++i)
-        for (int j = 0; j < S; ++j) face({idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)});
-    const uint32_t last = uint32_t(m.positions.size() - 1);
-    for (int j = 0; j < S; ++j) face({idx(R - 1, j), last, idx(R - 1, j + 1)});
-    return m;
-}
-
 struct ViewConfig {
     std::string model, tables; // tables: adaptive or uniform
     int depth = 6;
@@ -169,8 +145,8 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
     gpu::Context ctx;
     std::map<std::string, Mesh> meshes;
     Warnings w;
-    meshes["sphere"] = paperSphere(1);
-    meshes["sphere_r5"] = paperSphere(5);
+    meshes["sphere"] = test::paperSphere(1);
+    meshes["sphere_r5"] = test::paperSphere(5);
     std::string spot, car;
     for (const std::string& path : o.meshes) {
         const std::string model = std::filesystem::path(path).stem().string();
@@ -226,6 +202,7 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
             s.width = c.width, s.height = c.height;
             s.edgePixels = c.edgePixels;
             s.evalInCompute = false; // limn-render's default without displacement
+            s.samples = o.samples;
             if (c.eye) s.view.eye = c.eye, s.view.target = glm::dvec3(0.0);
             try {
                 render::Renderer r(ctx, *c.mesh, c.built.get(), s);
@@ -290,8 +267,8 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
                 std::fprintf(stderr, "%s depth %d: adaptive / uniform frame %.3f\n", a.model.c_str(), a.depth,
                              median(a.frame) / median(u.frame));
             }
-    std::fprintf(stderr, "\ndevice: %s; %d rounds x %d frames; orbit %g deg/frame\n", ctx.deviceName().c_str(),
-                 o.rounds, o.frames, orbitDeg);
+    std::fprintf(stderr, "\ndevice: %s; %d rounds x %d frames; %u sample(s) a pixel; orbit %g deg/frame\n",
+                 ctx.deviceName().c_str(), o.rounds, o.frames, o.samples, orbitDeg);
     return 0;
 }
 
@@ -317,7 +294,10 @@ int main(int argc, char** argv) {
             viewAdaptive = true;
         else if (a == "--only")
             only.insert(next());
-        else if (a == "--orbit")
+        else if (a == "--samples") {
+            o.samples = static_cast<uint32_t>(std::atoi(next().c_str()));
+            if (o.samples != 1 && o.samples != 4) return usageError("--samples is 1 or 4");
+        } else if (a == "--orbit")
             orbitDeg = std::atof(next().c_str());
         else if (a == "--frames")
             o.frames = std::atoi(next().c_str());

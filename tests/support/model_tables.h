@@ -3,6 +3,7 @@
 #pragma once
 
 #include "mesh/import.h"
+#include "paper_sphere.h"
 #include "subdiv/tables.h"
 #include "test_support.h"
 #include "topology/features.h"
@@ -14,9 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <initializer_list>
-#include <span>
 #include <string>
 
 namespace limn::test {
@@ -41,28 +39,6 @@ inline ModelTables buildMeshTables(Mesh mesh, int depth, bool uniform = false) {
 inline ModelTables buildModelTables(const std::string& model, int depth, bool uniform = false) {
     Warnings w;
     return buildMeshTables(importMeshFile(modelPath(model).string(), w), depth, uniform);
-}
-
-// The paper's demo layout (issue 11): a UV sphere of 16 segments x 16 rings (242 vertices) of
-// radius r at the origin, triangle fans at the poles, faces outward.
-inline Mesh paperSphere(double r) {
-    Mesh m;
-    const int S = 16, R = 16;
-    m.positions.push_back({0, r, 0});
-    for (int i = 1; i < R; ++i)
-        for (int j = 0; j < S; ++j) {
-            const double th = M_PI * i / R, ph = 2 * M_PI * j / S;
-            m.positions.push_back({r * std::sin(th) * std::cos(ph), r * std::cos(th), -r * std::sin(th) * std::sin(ph)});
-        }
-    m.positions.push_back({0, -r, 0});
-    auto idx = [&](int i, int j) { return uint32_t(1 + (i - 1) * S + (j % S)); };
-    auto face = [&](std::initializer_list<uint32_t> v) { m.addFace(std::span<const uint32_t>(v.begin(), v.size())); };
-    for (int j = 0; j < S; ++j) face({0, idx(1, j), idx(1, j + 1)});
-    for (int i = 1; i + 1 < R; ++i)
-        for (int j = 0; j < S; ++j) face({idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)});
-    const uint32_t last = uint32_t(m.positions.size() - 1);
-    for (int j = 0; j < S; ++j) face({idx(R - 1, j), last, idx(R - 1, j + 1)});
-    return m;
 }
 
 // A view from azimuth/elevation (degrees) at `distance` bounding radii from the control points'
