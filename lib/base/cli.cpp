@@ -12,6 +12,7 @@
 #include <clocale>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <new>
 #include <sstream>
@@ -411,8 +412,48 @@ void printWarnings(const Warnings& warnings, const std::string& file) {
     for (const auto& w : warnings.messages) warn((file.empty() ? "" : file + ": ") + w);
 }
 
+namespace {
+
+// Large allocations on transparent huge pages: glibc's malloc does so with the tunable
+// glibc.malloc.hugetlb=1, which it reads once, at process start; so a tool starts itself again,
+// once, with the tunable added to GLIBC_TUNABLES. On the 2-core virtual machines this project
+// is built and tested on, a page fault costs microseconds, and the tools touch hundreds of MB of
+// fresh memory (the GPU buffers are host memory on lavapipe): limn-tables on the 100,800-face car
+// took 0.34x as long with the tunable, limn-render of it 0.67x, a 6-face cube the same, for about
+// 2-4% more peak memory. Not again where GLIBC_TUNABLES already names the tunable (the restarted
+// process; or a user's own setting, hugetlb=0 included), not under the sanitizers (their malloc
+// is not glibc's), and nothing happens when /proc/self/exe cannot be read or the exec fails.
+void preferHugePages(char** argv) {
+#if defined(__SANITIZE_ADDRESS__)
+    (void)argv;
+    return;
+#else
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+    (void)argv;
+    return;
+#endif
+#endif
+    const char* current = std::getenv("GLIBC_TUNABLES");
+    if (current && std::strstr(current, "glibc.malloc.hugetlb")) return;
+    char exe[4096];
+    const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n <= 0) return;
+    exe[n] = '\0';
+    const std::string before = current ? current : "";
+    const std::string value = (before.empty() ? "" : before + ":") + "glibc.malloc.hugetlb=1";
+    if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
+    execv(exe, argv);
+    if (current) setenv("GLIBC_TUNABLES", before.c_str(), 1); // the exec failed: carry on as we are
+    else unsetenv("GLIBC_TUNABLES");
+#endif
+}
+
+} // namespace
+
 int run(const std::string& tool, int argc, char** argv,
         const std::function<int(int, char**)>& body) {
+    preferHugePages(argv);
     std::setlocale(LC_ALL, "C");
     std::locale::global(std::locale::classic());
     setTool(tool);

@@ -92,6 +92,8 @@ void printWarnings(const Warnings& warnings, const std::string& file);
 
 // Runs a tool body: sets the C locale, catches limn::Error and other exceptions, prints them in
 // the standard format and returns the exit code. `body` returns the exit code on success (0).
+// A tool's main only: first it starts the process again, once, with glibc's huge-page tunable
+// set (cli.cpp, preferHugePages), so it must come before any thread or output.
 int run(const std::string& tool, int argc, char** argv,
         const std::function<int(int, char**)>& body);
 
