@@ -423,17 +423,15 @@ namespace {
 // 2-4% more peak memory. Not again where GLIBC_TUNABLES already names the tunable (the restarted
 // process; or a user's own setting, hugetlb=0 included), not under the sanitizers (their malloc
 // is not glibc's), and nothing happens when /proc/self/exe cannot be read or the exec fails.
-void preferHugePages(char** argv) {
 #if defined(__SANITIZE_ADDRESS__)
-    (void)argv;
-    return;
-#else
-#if defined(__has_feature)
+#define LIMN_SANITIZED_MALLOC 1 // gcc's -fsanitize=address (and clang's)
+#elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
-    (void)argv;
-    return;
+#define LIMN_SANITIZED_MALLOC 1
 #endif
 #endif
+void preferHugePages([[maybe_unused]] char** argv) {
+#ifndef LIMN_SANITIZED_MALLOC
     const char* current = std::getenv("GLIBC_TUNABLES");
     if (current && std::strstr(current, "glibc.malloc.hugetlb")) return;
     char exe[4096];

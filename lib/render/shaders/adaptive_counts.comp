@@ -49,10 +49,7 @@ layout(push_constant) uniform Push {
     uint partialFans;
 } pc;
 
-vec2 samplePosition(uint s) {
-    uint b = (s < 2u ? pc.samples.x : pc.samples.y) >> (16u * (s & 1u));
-    return vec2(float(b & 0xFFu), float((b >> 8) & 0xFFu)) / 256.0;
-}
+vec2 samplePosition(uint s) { return adaptiveSamplePosition(pc.samples, s); }
 
 // Whether triangle (a, b, c) in pixels, widened by `slack` pixels, may hold a sample position:
 // a pixel's corner plus one of the pattern's offsets. Large triangles are kept untested.
@@ -88,7 +85,7 @@ bool holdsSample(vec2 a, vec2 b, vec2 c) {
 // boundary points' pixels (at most 8: two pieces of one segment a side); all of them where a
 // point has no pixels.
 uint drawnFan(AdaptiveElement el, uint B) {
-    uint all = (1u << (B - 2u)) - 1u;
+    uint all = adaptiveWholeFan(B);
     if (pc.sampleCount == 0u) return all;
     vec2 px[8];
     uint sideStart[4], sideTotal[4], n = 0u;
@@ -157,9 +154,9 @@ void main() {
     if (flatElement && !culled) {
         fan = drawnFan(el, B);
         if (fan == 0u) culled = true, mu = 2u, mv = 2u, flatElement = B == 4u; // nothing drawn
-        else if (pc.partialFans == 0u) fan = (1u << (B - 2u)) - 1u;
+        else if (pc.partialFans == 0u) fan = adaptiveWholeFan(B);
     }
-    if (flatElement && culled) fan = (1u << (B - 2u)) - 1u; // emitted whole for --mesh-out
+    if (flatElement && culled) fan = adaptiveWholeFan(B); // emitted whole for --mesh-out
     uint V = B + (flatElement ? 0u : (mu - 1u) * (mv - 1u));
     uint T = flatElement ? uint(bitCount(fan)) : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
     if (pc.sharePoints != 0u) {

@@ -28,6 +28,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "limn_compute.glsl"
 #include "surface_eval.glsl"
+#include "adaptive_tess.glsl"
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Vertices { vec4 p[]; } vertices;
@@ -46,10 +47,7 @@ layout(push_constant) uniform Push {
     uvec2 samples;  // the sample positions within a pixel, 1/256 pixel units, x | y << 8 in 16 bits each
 } pc;
 
-vec2 samplePosition(uint s) {
-    uint b = (s < 2u ? pc.samples.x : pc.samples.y) >> (16u * (s & 1u));
-    return vec2(float(b & 0xFFu), float((b >> 8) & 0xFFu)) / 256.0;
-}
+vec2 samplePosition(uint s) { return adaptiveSamplePosition(pc.samples, s); }
 
 // The patch's bicubic Bezier control points in place of its B-spline ones (the same surface;
 // uniform cubic B-spline to Bezier along i, then along j): their hull hugs the patch, where the

@@ -43,6 +43,16 @@ uint adaptiveFanApex(uint sideStart[4], uint sideTotal[4]) {
     return apex;
 }
 
+// Sample position s within a pixel (1/256 pixel units, x | y << 8 in 16 bits each, two a word),
+// as the host packs the image's pattern for adaptive_cull.comp and adaptive_counts.comp.
+vec2 adaptiveSamplePosition(uvec2 packed, uint s) {
+    uint b = (s < 2u ? packed.x : packed.y) >> (16u * (s & 1u));
+    return vec2(float(b & 0xFFu), float((b >> 8) & 0xFFu)) / 256.0;
+}
+
+// All B - 2 triangles of a flat element's fan.
+uint adaptiveWholeFan(uint B) { return (1u << (B - 2u)) - 1u; }
+
 // adaptive_rates.comp's piece ends where it has none (not evaluated, or behind the eye).
 const float ADAPTIVE_NO_ENDS = 3.0e38;
 
