@@ -157,6 +157,9 @@ Context::Context(const ContextOptions& options) {
         limits_.colorSampleCounts = l.framebufferColorSampleCounts;
         limits_.depthSampleCounts = l.framebufferDepthSampleCounts;
         limits_.standardSampleLocations = l.standardSampleLocations == VK_TRUE;
+        VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        vk_.vkGetPhysicalDeviceFeatures2(physical_, &supported);
+        limits_.sampleRateShading = supported.features.sampleRateShading == VK_TRUE;
         limits_.timestamps = l.timestampComputeAndGraphics && validBits > 0;
         limits_.timestampPeriodNs = l.timestampPeriod;
         vk_.vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
@@ -260,6 +263,7 @@ void Context::createDevice(VkPhysicalDevice physical, bool core13) {
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES, &dynamicRendering};
     sync2.synchronization2 = VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &sync2};
+    features.features.sampleRateShading = limits_.sampleRateShading ? VK_TRUE : VK_FALSE;
 
     std::vector<const char*> extensions;
     if (!core13) {

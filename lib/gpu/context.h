@@ -38,6 +38,10 @@ struct DeviceLimits {
     // Whether multisampling puts its samples at Vulkan's standard locations (WebGPU's 4-sample
     // pattern is the same one): the view-adaptive cull drops elements that cover none of them.
     bool standardSampleLocations = false;
+    // Whether fragment shaders may shade each sample on its own (sampleRateShading, enabled when
+    // there): the smooth-shaded surfaces then shade every sample they cover, so 4x multisampling
+    // also anti-aliases their highlights (WebGPU: @interpolate(perspective, sample)).
+    bool sampleRateShading = false;
     // The largest device-local memory heap, in bytes (what a render target must fit into).
     uint64_t deviceLocalHeapBytes = 0;
     bool timestamps = false; // timestamps on the graphics+compute queue

@@ -23,6 +23,9 @@ class Context;
 struct TargetFormat {
     VkFormat color = VK_FORMAT_R8G8B8A8_SRGB;
     uint32_t samples = 1; // 1 or 4
+    // Each covered sample shaded on its own (the surfaces' *_per_sample.frag variants; needs
+    // DeviceLimits::sampleRateShading); only meaningful with more than one sample.
+    bool sampleShading = false;
 };
 
 class RenderTarget {

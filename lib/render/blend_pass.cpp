@@ -9,6 +9,13 @@ namespace limn::render {
 
 namespace {
 
+// The blending surface's fragment stage: each covered sample shaded (and trimmed) on its own with
+// --sample-shading (blend_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN).
+std::span<const uint32_t> blendFragment(const gpu::TargetFormat& target) {
+    return target.sampleShading ? std::span<const uint32_t>(blend_per_sample_frag_spv)
+                                : std::span<const uint32_t>(blend_frag_spv);
+}
+
 struct EvalPush { // blend_eval.comp
     uint32_t grid, weights;
 };
@@ -50,8 +57,8 @@ struct BlendPass::Gpu {
           normals(ctx, {"evaluated normals",
                         evaluate ? std::max<uint64_t>(d.points.size(), 1) * 16 : 16}),
           evalPass(ctx, {"evaluate blend surface", blend_eval_comp_spv, 5, sizeof(EvalPush)}),
-          drawEval(ctx, {"blend surface", blend_vert_spv, blend_frag_spv, 7, sizeof(DrawPush)}, target),
-          drawFetch(ctx, {"blend surface (evaluated)", blend_fetch_vert_spv, blend_frag_spv, 7,
+          drawEval(ctx, {"blend surface", blend_vert_spv, blendFragment(target), 7, sizeof(DrawPush)}, target),
+          drawFetch(ctx, {"blend surface (evaluated)", blend_fetch_vert_spv, blendFragment(target), 7,
                           sizeof(DrawPush)},
                     target),
           wire(ctx, {"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),

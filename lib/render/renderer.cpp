@@ -105,6 +105,11 @@ void Renderer::checkImageSize(const gpu::Context& ctx) {
     const bool floatTarget = s.floatOutput || s.supersample > 1 || (s.alpha && s.samples > 1);
     targetFormat_.color = floatTarget ? gpu::RenderTarget::kLinearFormat : gpu::RenderTarget::kColorFormat;
     targetFormat_.samples = s.samples;
+    targetFormat_.sampleShading = s.sampleShading && s.samples > 1;
+    if (targetFormat_.sampleShading && !ctx.limits().sampleRateShading)
+        throw Error(ErrorKind::Capability, "the device " + ctx.deviceName() +
+                                               " cannot shade each sample on its own (no sampleRateShading); "
+                                               "leave out --sample-shading");
     if (!(ctx.limits().colorSampleCounts & s.samples) || !(ctx.limits().depthSampleCounts & s.samples))
         throw Error(ErrorKind::Capability, "the device " + ctx.deviceName() + " cannot draw with " +
                                                std::to_string(s.samples) +

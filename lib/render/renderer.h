@@ -96,6 +96,11 @@ struct RenderSettings {
     // each K x K block in linear light on the CPU (render/output_image.h).
     uint32_t samples = 1;
     uint32_t supersample = 1;
+    // `sampleShading` (--sample-shading): the smooth surfaces shade each of the samples on its
+    // own instead of once per pixel and triangle, so highlights where the surface bends within a
+    // pixel (semi-sharp creases) and trim edges are anti-aliased too; about 1.2-1.6x the render
+    // on lavapipe (docs/benchmarks.md). No effect with one sample.
+    bool sampleShading = false;
     // Whether linearImage() is wanted (16-bit PNG, EXR): the frame is drawn into an RGBA16F
     // target in linear light. Supersampling and --alpha with MSAA use that target too (they
     // average in linear light, with premultiplied alpha); otherwise an 8-bit PNG comes straight

@@ -13,6 +13,13 @@ namespace limn::render {
 
 namespace {
 
+// The surface's fragment stage: each covered sample shaded on its own with --sample-shading
+// (surface_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN).
+std::span<const uint32_t> surfaceFragment(const gpu::TargetFormat& target) {
+    return target.sampleShading ? std::span<const uint32_t>(surface_per_sample_frag_spv)
+                                : std::span<const uint32_t>(surface_frag_spv);
+}
+
 struct LevelPush { // subdiv_face_points.comp, subdiv_stencils.comp
     uint32_t firstOut, firstRow;
 };
@@ -88,8 +95,8 @@ struct SubdivisionPass::Gpu {
           facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
           stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
           limitPass(ctx, {"limit points", subdiv_limit_comp_spv, 5, sizeof(LimitPush)}),
-          surface(ctx, {"surface", surface_vert_spv, surface_frag_spv, 8, sizeof(DrawPush)}, target),
-          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surface_frag_spv, 8,
+          surface(ctx, {"surface", surface_vert_spv, surfaceFragment(target), 8, sizeof(DrawPush)}, target),
+          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surfaceFragment(target), 8,
                              sizeof(DrawPush)},
                        target) {
         // View-adaptive: the tessellation is written by compute passes each frame (issue 11).
@@ -265,7 +272,7 @@ const gpu::GraphicsPipeline& SubdivisionPass::culledPipeline(float facing) {
             ctx_, gpu::GraphicsPipelineDesc{"surface (back faces culled)",
                                             fetch ? std::span<const uint32_t>(surface_fetch_vert_spv)
                                                   : std::span<const uint32_t>(surface_vert_spv),
-                                            surface_frag_spv, 8, sizeof(DrawPush), gpu::Primitive::Triangles,
+                                            surfaceFragment(target_), 8, sizeof(DrawPush), gpu::Primitive::Triangles,
                                             gpu::DepthTest::Less, true, facing > 0 ? gpu::Cull::Back : gpu::Cull::Front},
             target_);
     }

@@ -287,6 +287,43 @@ TEST(BlendRenderCli, BenchReportsTheEvaluationPassAndDepfileNamesTheTrimMap) {
     EXPECT_EQ(readFile(dep), out + ": " + limn + " " + mask + "\n");
 }
 
+// --sample-shading trims each sample on its own, so a hole's rim is anti-aliased like a
+// silhouette; without it a pixel is kept or discarded whole (one fragment per pixel and triangle),
+// and only the grid's outline blends with the background. Counted: pixels that are neither the
+// magenta background nor the grey surface (lit neutral grey: channels within 12 levels).
+TEST(BlendTrim, SampleShadingAntiAliasesTheTrimEdge) {
+    ScratchDir dir;
+    auto limn = blendContainer(dir, "grid", writeMesh(dir, "grid", bentGrid()));
+    const auto mask = (dir / "holes.png").string();
+    auto r = run({bin("limn-trim"), limn, "--tile", "64", "--hole", "0.3", "-o", mask});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto mixed = [&](const std::vector<std::string>& extra, const std::string& name) {
+        std::vector<std::string> args = {limn, "--grid", "6", "--trim", mask, "--eye", "2,2,9",
+                                         "--target", "2,2,0", "--fov", "40", "--background", "1,0,1",
+                                         "--size", "160x160", "-o", (dir / name).string()};
+        args.insert(args.end(), extra.begin(), extra.end());
+        auto res = render(args);
+        EXPECT_EQ(res.exitCode, 0) << res.err;
+        const auto img = readPng(dir / name);
+        size_t n = 0, holes = 0;
+        for (uint32_t y = 0; y < img.height; ++y)
+            for (uint32_t x = 0; x < img.width; ++x) {
+                const uint8_t* p = img.at(x, y);
+                if (isBackground(img, x, y, kMagenta)) {
+                    ++holes;
+                    continue;
+                }
+                n += std::abs(int(p[0]) - int(p[1])) > 12 || std::abs(int(p[2]) - int(p[1])) > 12;
+            }
+        EXPECT_GT(holes, 160u * 160u / 2) << name; // the background and 16 holes show
+        return n;
+    };
+    const size_t perPixel = mixed({}, "pixel.png"), perSample = mixed({"--sample-shading"}, "sample.png");
+    // 16 holes of about 7 pixels' radius: some 700 pixels of rim.
+    EXPECT_GT(perSample, perPixel + 300) << perPixel << " " << perSample;
+    EXPECT_EQ(mixed({"--samples", "1"}, "one.png"), 0u);
+}
+
 TEST(TrimCli, WritesTheAtlasForTheContainersFaces) {
     ScratchDir dir;
     auto limn = blendContainer(dir, "spot", modelPath("quad/spot_control_mesh.obj").string(),

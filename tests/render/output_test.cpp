@@ -169,7 +169,8 @@ class Output : public ::testing::Test {
 TEST_F(Output, SameCommandSameBytesForEverySamplingAndFormat) {
     const std::vector<std::vector<std::string>> variants = {
         {"--samples", "1"}, {"--samples", "4"}, {"--supersample", "2"},
-        {"--supersample", "2", "--samples", "1"}, {"--bit-depth", "16"}, {"--alpha"}};
+        {"--supersample", "2", "--samples", "1"}, {"--bit-depth", "16"}, {"--alpha"},
+        {"--sample-shading"}};
     for (const auto& v : variants) {
         std::string first;
         for (int k = 0; k < 2; ++k) {
@@ -432,11 +433,35 @@ TEST_F(Output, ImageMemoryIsCheckedBeforeDrawing) {
     renderOk({cube, "--size", "1024x768", "--samples", "1", "--max-memory", "16M", "-o", out("m.png")});
 }
 
+// --sample-shading: nothing changes with one sample (the pixel centre is the sample), the
+// shading of a curved surface does with four (each sample is shaded where it lies, not all four at
+// the pixel centre), and the bench JSON says which it was. (Its point, highlights on surfaces that
+// bend within a pixel, is checked on catmark_car in adaptive_tess_test.cpp.)
+TEST_F(Output, SampleShadingShadesEachSample) {
+    renderOk({spot, "--size", "128x96", "--samples", "1", "--validate", "-o", out("one.png")});
+    renderOk({spot, "--size", "128x96", "--samples", "1", "--sample-shading", "--validate", "-o", out("one_ss.png")});
+    EXPECT_TRUE(readFile(out("one.png")) == readFile(out("one_ss.png")));
+    renderOk({spot, "--size", "128x96", "--validate", "-o", out("four.png")});
+    renderOk({spot, "--size", "128x96", "--sample-shading", "--validate", "-o", out("four_ss.png")});
+    const auto a = readPng(out("four.png")), b = readPng(out("four_ss.png"));
+    ASSERT_EQ(a.values.size(), b.values.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < a.values.size(); ++i) differ += a.values[i] != b.values[i];
+    EXPECT_GT(differ, 100u);
+    for (bool on : {false, true}) {
+        std::vector<std::string> args = {cube, "--size", "32x32", "--bench", "2"};
+        if (on) args.push_back("--sample-shading");
+        auto r = render(args);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.out.find(on ? "\"sample_shading\":true" : "\"sample_shading\":false"), std::string::npos) << r.out;
+    }
+}
+
 TEST(OutputHelp, DocumentsSamplingFormatsAndDepth) {
     auto r = render({"--help"});
     EXPECT_EQ(r.exitCode, 0);
     for (const char* needle : {"--samples 1|4", "[default: 4]", "--supersample K", "[default: 1]",
-                               "--bit-depth 8|16", "--max-memory SIZE", ".exr", "box filter",
+                               "--bit-depth 8|16", "--max-memory SIZE", ".exr", "box filter", "--sample-shading",
                                "linear light", "Z is the camera-space depth", "+Inf"})
         EXPECT_NE(r.out.find(needle), std::string::npos) << needle;
 }
