@@ -1,5 +1,5 @@
 // The cost of anti-aliasing (issue 12): limn-render's frame with --samples 1, --samples 4 (the
-// default) and --supersample 2, in one process and one run, configurations interleaved in rounds
+// default), --samples 4 --sample-shading and --supersample 2, in one process and one run, configurations interleaved in rounds
 // (the machine is shared and noisy: only ratios measured together mean something). Each figure
 // is the median over rounds of per-round medians of GPU timestamps (frame = every timed pass,
 // readback included; draw = the draw pass, where MSAA and its resolve happen) and of host time
@@ -36,6 +36,7 @@ double median(std::vector<double> v) {
 struct Config {
     const char* name;
     uint32_t samples, supersample;
+    bool sampleShading;
     std::vector<double> frame, draw, cpu;
 };
 
@@ -67,9 +68,10 @@ int main(int argc, char** argv) {
         TablesOptions to;
         to.depth = depth;
         const Tables tables = buildTables(mesh, resolveSchemeOptions(mesh.tags, {}), to, w);
-        std::vector<Config> configs = {{"samples 1", 1, 1, {}, {}, {}},
-                                       {"samples 4", 4, 1, {}, {}, {}},
-                                       {"supersample 2 (samples 4)", 4, 2, {}, {}, {}}};
+        std::vector<Config> configs = {{"samples 1", 1, 1, false, {}, {}, {}},
+                                       {"samples 4", 4, 1, false, {}, {}, {}},
+                                       {"samples 4, sample shading", 4, 1, true, {}, {}, {}},
+                                       {"supersample 2 (samples 4)", 4, 2, false, {}, {}, {}}};
         uint64_t triangles = 0;
         for (int round = 0; round < rounds; ++round)
             for (Config& c : configs) {
@@ -79,6 +81,7 @@ int main(int argc, char** argv) {
                 s.evalInCompute = false;
                 s.samples = c.samples;
                 s.supersample = c.supersample;
+                s.sampleShading = c.sampleShading;
                 render::Renderer r(ctx, mesh, &tables, s);
                 render::BenchResult b = render::runBenchmark(r, frames, 2);
                 c.frame.push_back(b.totalMs);
@@ -88,19 +91,21 @@ int main(int argc, char** argv) {
             }
         std::fprintf(stderr, "| configuration | frame ms | draw ms | cpu ms |\n|---|---|---|---|\n");
         for (const Config& c : configs) {
-            std::printf("{\"bench\":\"antialiasing\",\"config\":\"%s\",\"samples\":%u,\"supersample\":%u,"
-                        "\"width\":%u,\"height\":%u,\"depth\":%d,\"frame_ms\":%.3f,\"draw_ms\":%.3f,"
-                        "\"cpu_ms\":%.3f}\n",
-                        c.name, c.samples, c.supersample, width, height, depth, median(c.frame),
-                        median(c.draw), median(c.cpu));
+            std::printf("{\"bench\":\"antialiasing\",\"config\":\"%s\",\"samples\":%u,"
+                        "\"sample_shading\":%s,\"supersample\":%u,\"width\":%u,\"height\":%u,"
+                        "\"depth\":%d,\"frame_ms\":%.3f,\"draw_ms\":%.3f,\"cpu_ms\":%.3f}\n",
+                        c.name, c.samples, c.sampleShading ? "true" : "false", c.supersample, width,
+                        height, depth, median(c.frame), median(c.draw), median(c.cpu));
             std::fprintf(stderr, "| %s | %.2f | %.2f | %.2f |\n", c.name, median(c.frame),
                          median(c.draw), median(c.cpu));
         }
         const double f1 = median(configs[0].frame), d1 = median(configs[0].draw), c1 = median(configs[0].cpu);
         std::printf("{\"bench\":\"antialiasing_ratio\",\"frame_4_over_1\":%.3f,\"draw_4_over_1\":%.3f,"
-                    "\"cpu_4_over_1\":%.3f,\"frame_ss2_over_1\":%.3f,\"triangles\":%llu,\"device\":\"%s\"}\n",
+                    "\"cpu_4_over_1\":%.3f,\"frame_shading_over_4\":%.3f,\"draw_shading_over_4\":%.3f,"
+                    "\"frame_ss2_over_1\":%.3f,\"triangles\":%llu,\"device\":\"%s\"}\n",
                     median(configs[1].frame) / f1, median(configs[1].draw) / d1,
-                    median(configs[1].cpu) / c1, median(configs[2].frame) / f1,
+                    median(configs[1].cpu) / c1, median(configs[2].frame) / median(configs[1].frame),
+                    median(configs[2].draw) / median(configs[1].draw), median(configs[3].frame) / f1,
                     (unsigned long long)triangles, ctx.deviceName().c_str());
         std::fprintf(stderr, "\n%s, depth %d, %ux%u, %d rounds x %d frames; device %s\n", path.c_str(),
                      depth, width, height, rounds, frames, ctx.deviceName().c_str());
