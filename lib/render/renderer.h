@@ -98,8 +98,8 @@ struct RenderSettings {
     uint32_t supersample = 1;
     // `sampleShading` (--sample-shading): the smooth surfaces shade each of the samples on its
     // own instead of once per pixel and triangle, so highlights where the surface bends within a
-    // pixel (semi-sharp creases) and trim edges are anti-aliased too; about 1.2-1.6x the render
-    // on lavapipe (docs/benchmarks.md). No effect with one sample.
+    // pixel (semi-sharp creases) and trim edges are anti-aliased too; on lavapipe about 2.2-2.7x
+    // the frame (bench_aa, docs/benchmarks.md). No effect with one sample.
     bool sampleShading = false;
     // Whether linearImage() is wanted (16-bit PNG, EXR): the frame is drawn into an RGBA16F
     // target in linear light. Supersampling and --alpha with MSAA use that target too (they

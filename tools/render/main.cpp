@@ -591,7 +591,8 @@ int main(int argc, char** argv) {
                   "shade each of the --samples on its own (not once per pixel and triangle):\n"
                   "                            highlights where the surface bends within a pixel (semi-\n"
                   "                            sharp creases) and trim edges are anti-aliased too;\n"
-                  "                            about 1.2-1.6x the render time on lavapipe")
+                  "                            on lavapipe about 2.2-2.7x the frame (1.2-1.6x a whole\n"
+                  "                            render of a still)")
             .integer("--supersample", "K", &supersample, 1, 4,
                      "reference-quality stills: draw K*W x K*H (each with --samples), then average\n"
                      "                            each K x K block on the CPU (a box filter, weights\n"
