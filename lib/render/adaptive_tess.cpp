@@ -48,7 +48,7 @@ struct EmitPush { // adaptive_emit.comp
     uint32_t domainBase, nodeBase, recordBase, sharePoints;
 };
 
-constexpr uint32_t kTotalsWords = 23;
+constexpr uint32_t kTotalsWords = 24;
 constexpr uint32_t kEvalGroupSize = 64; // surface_eval.comp's local_size_x
 
 void copyMatrix(const glm::mat4& m, float out[16]) {
@@ -114,11 +114,8 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     capV_ = static_cast<uint32_t>(std::max<uint64_t>(1, std::min({maxV, budgetV, limitV})));
     capT_ = static_cast<uint32_t>(std::max<uint64_t>(1, std::min({maxT, budgetT, limitT})));
 
-    std::vector<glm::uvec4> sides, pieces;
-    sides.reserve(ep.sidePieces.size());
-    for (const SidePiece& s : ep.sidePieces)
-        sides.push_back({s.piece, s.startPoint, s.reversed, s.from | s.to << 16});
-    pieces.reserve(2 * ep.pieces.size() + ep.points.size());
+    std::vector<glm::uvec4> pieces;
+    pieces.reserve(2 * ep.pieces.size() + ep.points.size() + ep.sidePieces.size());
     for (const EdgePiece& p : ep.pieces) {
         uint32_t uvBits;
         std::memcpy(&uvBits, &p.uvLength, 4);
@@ -144,13 +141,19 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
         recordBase_ = static_cast<uint32_t>(pieces.size());
         for (const glm::vec4& r : options.fvarRecords) pieces.push_back(bits(r));
     }
+    // The side pieces last, the elements' sideFirst made indices into this buffer: the counts
+    // and emit passes read them from it, which leaves the emit pass (at WebGPU's 8 storage
+    // buffers) a binding for the totals, where it reports an element it could not finish.
+    const auto sideBase = static_cast<uint32_t>(pieces.size());
+    for (const SidePiece& s : ep.sidePieces) pieces.push_back({s.piece, s.startPoint, s.reversed, s.from | s.to << 16});
+    for (GpuAdaptiveElement& g : elements)
+        for (uint32_t& first : g.sideFirst) first += sideBase;
 
     using gpu::uploadBufferNow;
     auto make = [&](const char* name, uint64_t bytes, uint32_t usage = gpu::kStorage) {
         return std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{name, std::max<uint64_t>(bytes, 16), usage});
     };
     elements_ = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "adaptive elements", elements));
-    sidePieces_ = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "adaptive side pieces", sides));
     pieces_ = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "adaptive edge pieces", pieces));
     cull_ = make("adaptive cull flags", uint64_t(elementCount_) * 4);
     rates_ = make("adaptive edge rates", uint64_t(pieceCount_) * 4);
@@ -176,9 +179,9 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     options_.pipelines.reset();
     cullBind_ = passes_->cull->bind({vertices, patches, irregular, limits, *cull_});
     rateBind_ = passes_->rates->bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_, *pieceEnds_});
-    countBind_ = passes_->counts->bind({*elements_, *sidePieces_, *rates_, *cull_, *info_, *pieceEnds_});
+    countBind_ = passes_->counts->bind({*elements_, *pieces_, *rates_, *cull_, *info_, *pieceEnds_});
     scanBind_ = passes_->scan->bind({*info_, *totals_});
-    emitBind_ = passes_->emit->bind({*elements_, *sidePieces_, *pieces_, *rates_, *info_, *tessVertices_,
+    emitBind_ = passes_->emit->bind({*elements_, *totals_, *pieces_, *rates_, *info_, *tessVertices_,
                                  *triangles_, *triangleLevels_});
 }
 
@@ -241,11 +244,14 @@ AdaptiveTotals AdaptiveTess::readTotals(gpu::Context& ctx) const {
     AdaptiveTotals r;
     r.vertices = t[12];
     r.visibleTriangles = t[13];
+    r.drawnTriangles = t[0] / 3; // adaptive_scan.comp: the indexed draw's index count
     r.culledTriangles = t[14];
     r.overflow = t[15] != 0;
     r.writtenTriangles = t[16];
     r.writtenVertices = t[17];
     r.overBudget = t[22] != 0;
+    r.cutShort = t[23] != 0;
+    r.overflow = r.overflow || r.cutShort;
     return r;
 }
 
@@ -254,7 +260,7 @@ std::string AdaptiveTotals::need() const {
     auto count = [&](uint64_t n) {
         return n >= kSaturated ? "over " + std::to_string(kSaturated - 1) : std::to_string(n);
     };
-    if (overBudget)
+    if (overBudget || cutShort)
         return "more segments on some patch's sides than one GPU invocation may emit (lavapipe ends a shader's "
                "loops after 65,535 iterations)";
     return count(vertices) + " vertices and " + count(uint64_t(visibleTriangles) + culledTriangles) + " triangles";
@@ -262,7 +268,7 @@ std::string AdaptiveTotals::need() const {
 
 uint64_t AdaptiveTess::bufferBytes() const {
     uint64_t sum = 0;
-    for (const auto* b : {elements_.get(), sidePieces_.get(), pieces_.get(), cull_.get(), rates_.get(), pieceEnds_.get(),
+    for (const auto* b : {elements_.get(), pieces_.get(), cull_.get(), rates_.get(), pieceEnds_.get(),
                           info_.get(), totals_.get(), tessVertices_.get(), triangles_.get(),
                           triangleLevels_.get()})
         sum += b->size();

@@ -38,7 +38,7 @@
 namespace limn::render {
 
 struct GpuAdaptiveElement { // mirrors AdaptiveElement in shaders/adaptive_tess.glsl
-    uint32_t sideFirst[4], sideCount[4];
+    uint32_t sideFirst[4], sideCount[4]; // into the edge-pieces buffer (after its pieces and points)
     float uv[8];
     uint32_t level;
     uint32_t crease; // a single-crease patch's crease side (TBLS's crease bit: 1 t=0, 2 s=1, 4 t=1, 8 s=0), else 0
@@ -102,12 +102,16 @@ struct AdaptiveOptions {
 // What the scan wrote for the last frame (read back from the GPU).
 struct AdaptiveTotals {
     uint32_t vertices = 0;          // emitted (and evaluated)
-    uint32_t visibleTriangles = 0;  // drawn
+    uint32_t visibleTriangles = 0;  // facing the view and in it (needed; more than drawn on overflow)
+    uint32_t drawnTriangles = 0;    // what the indirect draw draws: visible, within capacity
     uint32_t culledTriangles = 0;   // emitted for --mesh-out only
     bool overflow = false;          // the frame needed more than the buffers hold
     uint32_t writtenTriangles = 0;  // visible + culled, within capacity
     uint32_t writtenVertices = 0;
     bool overBudget = false;        // an element over adaptive_counts.comp's loop budget
+    // An element's emit stopped before its last triangle (adaptive_emit.comp checks; lavapipe
+    // ends a shader's loops after 65,535 iterations, which the budget estimates).
+    bool cutShort = false;
     // "N vertices and M triangles" for messages; the GPU's sums saturate at 2^31 - 1
     // (adaptive_scan.comp), which reads "over 2147483646".
     std::string need() const;
@@ -148,7 +152,7 @@ class AdaptiveTess {
     uint32_t elementCount_, pieceCount_, pointBase_, patchCount_, capV_ = 0, capT_ = 0;
     uint32_t sharedPoints_ = 0; // points with shared vertex slots (the first ones), or 0
     uint32_t domainBase_ = 0, nodeBase_ = 0, recordBase_ = 0; // smooth UVs, in pieces_
-    std::unique_ptr<gpu::Buffer> elements_, sidePieces_, pieces_, cull_, rates_, pieceEnds_, info_, totals_,
+    std::unique_ptr<gpu::Buffer> elements_, pieces_, cull_, rates_, pieceEnds_, info_, totals_,
         tessVertices_, triangles_, triangleLevels_;
     std::shared_ptr<AdaptivePipelines> passes_;
     gpu::BindGroup cullBind_, rateBind_, countBind_, scanBind_, emitBind_;

@@ -420,11 +420,13 @@ DrawnMesh SubdivisionPass::drawnMesh() {
         totals = gpu_->adaptive->readTotals(ctx_);
         if (totals.overflow)
             throw Error(ErrorKind::BadInput,
-                        "the view-adaptive tessellation of this view needs " + totals.need() +
-                            (totals.overBudget ? std::string(" (buffers: ") : ", more than its buffers hold (") +
-                            std::to_string(gpu_->adaptive->vertexCapacity()) + ", " +
-                            std::to_string(gpu_->adaptive->triangleCapacity()) +
-                            "); raise --edge-pixels or lower --tess");
+                        "--mesh-out: the view-adaptive tessellation of this view needs " + totals.need() +
+                            (totals.overBudget || totals.cutShort
+                                 ? std::string()
+                                 : ", more than its buffers hold (" +
+                                       std::to_string(gpu_->adaptive->vertexCapacity()) + " vertices, " +
+                                       std::to_string(gpu_->adaptive->triangleCapacity()) + " triangles)") +
+                            "; nothing written: raise --edge-pixels or lower --tess");
         n = totals.writtenVertices;
     }
     DrawnMesh out = readDrawnVertices(ctx_, gpu_->drawnPositions, gpu_->drawnNormals, n);
@@ -466,7 +468,7 @@ const AdaptiveTotals* SubdivisionPass::lastTotals() const {
 }
 
 uint64_t SubdivisionPass::triangleCount() const {
-    if (const AdaptiveTotals* t = lastTotals()) return t->visibleTriangles; // drawn, after culling
+    if (const AdaptiveTotals* t = lastTotals()) return t->drawnTriangles; // after culling and any overflow
     return draw_.triangles.size() / 3;
 }
 

@@ -434,6 +434,47 @@ TEST(AdaptiveCli, HighRatesWriteEveryTriangle) {
     EXPECT_EQ(smooth.over, 0u);
 }
 
+// The same promise where the elements are few and large: a flat 3x3 grid at depth 1 seen from
+// above with every side at --tess segments (--edge-pixels 0.001). Up to --tess 1536 every
+// element is written whole; past that, on lavapipe, its loop limit ends an element's emit early
+// (the emit pass's budget in adaptive_counts.comp is an estimate; at 2048 and 4096 it once left
+// 15-50% of the triangles unwritten, as (0, 0, 0), with exit 0). Whatever the device, each
+// render is whole (no collapsed triangle) or refused with what to do and nothing written.
+TEST(AdaptiveCli, LargeElementsAtHighRatesAreWholeOrRefused) {
+    ScratchDir dir;
+    std::string obj;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) obj += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x) {
+            const int a = y * 4 + x + 1;
+            obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 5) + " " +
+                   std::to_string(a + 4) + "\n";
+        }
+    writeFile(dir / "grid.obj", obj);
+    const std::string limn = prepare((dir / "grid.obj").string(), 1, dir);
+    const std::string ply = (dir / "g.ply").string();
+    for (const char* tess : {"1536", "2048", "4096"}) {
+        SCOPED_TRACE(tess);
+        auto r = run({tool("limn-render").string(), limn, "--eye", "1.5,1.5,3", "--target", "1.5,1.5,0", "--size",
+                      "320x240", "--edge-pixels", "0.001", "--tess", tess, "--mesh-out", ply});
+        if (r.exitCode == 0) {
+            const Drawn d = parsePly(readFile(ply));
+            EXPECT_GT(d.triangles.size(), 100000u) << "not a high-rate view";
+            EXPECT_EQ(weldedEdges(d).collapsed, 0u) << "triangles left unwritten";
+            std::filesystem::remove(ply);
+        } else {
+            EXPECT_EQ(r.exitCode, 1) << r.err;
+            EXPECT_NE(r.err.find("lower --tess"), std::string::npos) << r.err;
+            EXPECT_EQ(r.err.find("warning"), std::string::npos) << "the error alone, not a warning too: " << r.err;
+            EXPECT_FALSE(std::filesystem::exists(ply));
+        }
+        if (std::string(tess) == "1536") {
+            EXPECT_EQ(r.exitCode, 0) << r.err;
+        }
+    }
+}
+
 // catmark_car at depth 6: its fixed grids (64 segments per side of its level-0 patches: about
 // 12.9 M triangles, 147.7 MiB of indices)
 // are refused before any work with what to do; the view-adaptive default renders it.

@@ -310,7 +310,8 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             }
             renderer.renderFrame();
             if (validation && validation->errors()) checkValidation(*validation); // throws
-            if (std::string w = renderer.tessellationWarning(); !w.empty() && !common.quiet)
+            // With --mesh-out, drawnMesh() refuses such a frame instead (an error, not both).
+            if (std::string w = renderer.tessellationWarning(); !meshPattern && !w.empty() && !common.quiet)
                 cli::warn(inputName + ": frame " + std::to_string(numbers[k]) + ": " + w);
             FramePixels pixels = framePixels(renderer, format, bitDepth);
             finishPending();
@@ -1013,7 +1014,8 @@ int main(int argc, char** argv) {
             } else {
                 renderer.renderFrame();
             }
-            if (std::string w = renderer.tessellationWarning(); !sequence && !w.empty() && !common.quiet)
+            // With --mesh-out, drawnMesh() refuses such a frame instead (an error, not both).
+            if (std::string w = renderer.tessellationWarning(); !sequence && !ply && !w.empty() && !common.quiet)
                 cli::warn(displayName(input) + ": " + w);
             for (const auto& p : renderer.frameTimes().passes) {
                 char ms[32];

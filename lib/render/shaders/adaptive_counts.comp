@@ -31,7 +31,7 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Elements { AdaptiveElement e[]; } elements;
-layout(std430, binding = 1) readonly buffer SidePieces { uvec4 v[]; } sidePieces;
+layout(std430, binding = 1) readonly buffer Pieces { uvec4 v[]; } pieces; // side pieces at el.sideFirst
 layout(std430, binding = 2) readonly buffer Rates { uint r[]; } rates;
 layout(std430, binding = 3) readonly buffer Cull { uint c[]; } cull;
 layout(std430, binding = 4) writeonly buffer Info { uvec4 v[]; } info; // m | culled, V, T, over budget
@@ -92,7 +92,7 @@ uint drawnFan(AdaptiveElement el, uint B) {
     for (uint k = 0u; k < 4u; ++k) {
         sideStart[k] = n;
         for (uint p = 0u; p < el.sideCount[k] && n < 8u; ++p) {
-            uvec4 sp = sidePieces.v[el.sideFirst[k] + p];
+            uvec4 sp = pieces.v[el.sideFirst[k] + p];
             vec4 ends = pieceEnds.v[sp.x];
             px[n++] = sp.z != 0u ? ends.zw : ends.xy; // where this side's piece starts
         }
@@ -129,7 +129,7 @@ void main() {
     for (int k = 0; k < 4; ++k) {
         uint side = 0u, size = 0u;
         for (uint p = 0u; p < el.sideCount[k]; ++p) {
-            uint r = rates.r[sidePieces.v[el.sideFirst[k] + p].x];
+            uint r = rates.r[pieces.v[el.sideFirst[k] + p].x];
             side += r & 0xFFFFu;
             size += r >> 16;
             flatSides = flatSides && r == (1u | (1u << 16));

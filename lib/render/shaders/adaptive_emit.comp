@@ -22,7 +22,7 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Elements { AdaptiveElement e[]; } elements;
-layout(std430, binding = 1) readonly buffer SidePieces { uvec4 v[]; } sidePieces;
+layout(std430, binding = 1) buffer Totals { uint t[]; } totals; // [23]: an element cut short
 layout(std430, binding = 2) readonly buffer Pieces { uvec4 v[]; } pieces; // pieces, then points
 layout(std430, binding = 3) readonly buffer Rates { uint r[]; } rates;
 layout(std430, binding = 4) readonly buffer Info { uvec4 v[]; } info;
@@ -121,9 +121,19 @@ uint gridCoord(uint i, uint m, bool graded, bool atZero) {
     return atZero ? gradedOffset(32768u, i, m) : 32768u - gradedOffset(32768u, m - i, m);
 }
 
-void main() {
-    uint e = limnInvocationIndex(pc.limnRowInvocations);
-    if (e >= pc.limnCount) return;
+// Ring point x along side k of the interior grid (the zipper strips' other side), as a local
+// vertex. Not a loop over the two a zipper step needs: every loop iteration counts against
+// lavapipe's limit (adaptive_counts.comp's budget).
+uint ringPoint(uint k, uint x, uint mu, uint mv, uint B) {
+    uint gi, gj;
+    if (k == 0u) gi = 1u + x, gj = 1u;
+    else if (k == 1u) gi = mu - 1u, gj = 1u + x;
+    else if (k == 2u) gi = mu - 1u - x, gj = mv - 1u;
+    else gi = 1u, gj = mv - 1u - x;
+    return B + (gj - 1u) * (mu - 1u) + (gi - 1u);
+}
+
+void emitElement(uint e) {
     uvec4 inf = info.v[e];
     uvec2 rates2 = adaptiveRates(inf.x);
     uint mu = rates2.x, mv = rates2.y;
@@ -138,7 +148,7 @@ void main() {
         elIndex = e;
         for (uint k = 0u; k < 4u; ++k)
             for (uint p = 0u; p < el.sideCount[k]; ++p) {
-                uvec4 sp = sidePieces.v[el.sideFirst[k] + p];
+                uvec4 sp = pieces.v[el.sideFirst[k] + p];
                 uvec4 point = pieces.v[pc.pointBase + sp.y];
                 if (point.x != e) continue;
                 vec2 st = sideParam(k, float(sp.w & 0xFFFFu));
@@ -171,7 +181,7 @@ void main() {
     for (uint k = 0u; k < 4u; ++k) {
         sideStart[k] = B;
         for (uint p = 0u; p < el.sideCount[k]; ++p) {
-            uvec4 sp = sidePieces.v[el.sideFirst[k] + p];
+            uvec4 sp = pieces.v[el.sideFirst[k] + p];
             if (sharedFlat) {
                 slots[min(B, 7u)] = sp.y;
                 ++B;
@@ -228,16 +238,7 @@ void main() {
         uint na = sideTotal[k], nb = (k & 1u) == 0u ? mu - 2u : mv - 2u, ia = 0u, jb = 0u;
         while (ia < na || jb < nb) {
             uint a0 = (sideStart[k] + ia) % B;
-            uint g0, g1; // ring points jb and jb + 1 on side k
-            for (uint q = 0u; q < 2u; ++q) {
-                uint x = jb + q, gi, gj;
-                if (k == 0u) gi = 1u + x, gj = 1u;
-                else if (k == 1u) gi = mu - 1u, gj = 1u + x;
-                else if (k == 2u) gi = mu - 1u - x, gj = mv - 1u;
-                else gi = 1u, gj = mv - 1u - x;
-                uint g = B + (gj - 1u) * (mu - 1u) + (gi - 1u);
-                if (q == 0u) g0 = g; else g1 = g;
-            }
+            uint g0 = ringPoint(k, jb, mu, mv, B), g1 = ringPoint(k, jb + 1u, mu, mv, B);
             bool advanceA = jb == nb || (ia < na && (2u * ia + 1u) * nb <= (2u * jb + 1u) * na);
             if (advanceA) {
                 tri(a0, (sideStart[k] + ia + 1u) % B, g0);
@@ -248,4 +249,17 @@ void main() {
             }
         }
     }
+}
+
+void main() {
+    uint e = limnInvocationIndex(pc.limnRowInvocations);
+    if (e >= pc.limnCount) return;
+    emitElement(e);
+    // An element that fits has written all its T triangles, unless lavapipe's loop limit ended
+    // its loops early (adaptive_counts.comp's budget estimates them, and the estimate has been
+    // short: close views at --tess 2048 left unwritten, (0, 0, 0) triangles in --mesh-out with
+    // no warning). Then the frame is reported like an overflow: the host warns, --mesh-out
+    // refuses.
+    uvec4 inf = info.v[e];
+    if ((inf.w >> 31) != 0u && tNext != inf.z + (inf.w & 0x7FFFFFFFu)) atomicOr(totals.t[23], 1u);
 }

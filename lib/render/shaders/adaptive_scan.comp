@@ -89,5 +89,6 @@ void main() {
         // drawIndirect of --wire (wire_triangles.vert): two line vertices per triangle edge
         totals.t[18] = 6u * drawn, totals.t[19] = 1u, totals.t[20] = 0u, totals.t[21] = 0u;
         totals.t[22] = overBudget;
+        totals.t[23] = 0u; // set by adaptive_emit.comp where an element's emit stops short
     }
 }

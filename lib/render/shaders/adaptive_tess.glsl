@@ -5,7 +5,7 @@
 #define LIMN_ADAPTIVE_TESS_GLSL
 
 struct AdaptiveElement {
-    uvec4 sideFirst;  // into sidePieces, per side (counter-clockwise: t=0, s=1, t=1, s=0)
+    uvec4 sideFirst;  // side pieces in the Pieces buffer, per side (counter-clockwise: t=0, s=1, t=1, s=0)
     uvec4 sideCount;
     vec2 uv[4];       // own chart's UV at the corners (0,0), (1,0), (1,1), (0,1)
     uint level;       // patch level, 255 for an irregular face
