@@ -102,9 +102,16 @@ void validateMesh(const Mesh& m) {
                 throwBadInput("corner " + std::to_string(c) + " refers to UV " +
                               std::to_string(m.uvIndices[c]) + " but there are only " +
                               std::to_string(m.uvs.size()));
-        for (size_t i = 0; i < m.uvs.size(); ++i)
+        for (size_t i = 0; i < m.uvs.size(); ++i) {
             if (!std::isfinite(m.uvs[i].x) || !std::isfinite(m.uvs[i].y))
                 throwBadInput("UV " + std::to_string(i) + " is not finite (NaN or Inf)");
+            // Same limit as positions: a UV of 1e39 is finite here but infinite in the GPU's float,
+            // and the displaced surface would be NaN.
+            const double far = std::max(std::abs(double(m.uvs[i].x)), std::abs(double(m.uvs[i].y)));
+            if (far > kMaxCoordinate)
+                throwBadInput("UV " + std::to_string(i) + " is " + shortNumber(far) +
+                              " from the origin, beyond the 1e18 that the GPU's float arithmetic carries");
+        }
     }
     auto checkSharpness = [](float s, const std::string& what) {
         if (!std::isfinite(s) || s < 0)

@@ -9,6 +9,7 @@
 #include <array>
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -194,6 +195,18 @@ std::vector<uint8_t> encodeGltf(const DrawnMesh& mesh, bool binary) {
 }
 
 std::vector<uint8_t> encodeMesh(const DrawnMesh& mesh, MeshFormat format, bool plyAscii) {
+    // Input within every reader's range can still overflow the GPU's float on the way (huge but
+    // finite weights, displacement scales); a NaN in a mesh file is a lie (glTF's min/max would
+    // be null), so the file is refused instead.
+    for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+        const DrawnVertex& v = mesh.vertices[i];
+        for (float x : {v.x, v.y, v.z, v.nx, v.ny, v.nz, v.u, v.v, v.s, v.t})
+            if (!std::isfinite(x))
+                throw Error(ErrorKind::BadInput,
+                            "drawn vertex " + std::to_string(i) +
+                                " is not finite (NaN or Inf): the input's numbers overflow the GPU's "
+                                "float arithmetic; no mesh written");
+    }
     switch (format) {
     case MeshFormat::Ply: return encodePly(mesh, plyAscii);
     case MeshFormat::Obj: return encodeObj(mesh);

@@ -6,11 +6,14 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <unordered_set>
 
 namespace limn {
 
 namespace {
+
+constexpr float kMaxStencilWeight = 1e6f;
 
 void writeTable(ByteWriter& w, const StencilTable& t, bool weights) {
     w.write<uint32_t>(static_cast<uint32_t>(t.rows()));
@@ -44,8 +47,14 @@ StencilTable readTable(ByteReader& r, const std::string& what, uint32_t rows, bo
         if (!((x >= lo0 && x < hi0) || (x >= lo1 && x < hi1)))
             r.fail(what + ": entry " + std::to_string(i) + " reads vertex " + std::to_string(x) +
                    " outside the levels it may read");
-        if (weights && !std::isfinite(t.weights[i]))
-            r.fail(what + ": entry " + std::to_string(i) + " has a non-finite weight");
+        // Catmull-Clark's masks (refinement and limit, any valence) have weights of order 1; a
+        // finite 3e38 can only come from a damaged file, and the GPU's float sums would be NaN.
+        if (weights && !(std::abs(t.weights[i]) <= kMaxStencilWeight)) {
+            char w[32];
+            std::snprintf(w, sizeof w, "%.3g", double(t.weights[i]));
+            r.fail(what + ": entry " + std::to_string(i) + " has weight " + w +
+                   "; a stencil weight must be finite and within +-1e6");
+        }
     }
     for (uint32_t i = 0; !weights && i < rows; ++i)
         if (t.start[i + 1] == t.start[i])

@@ -213,6 +213,7 @@ std::vector<Case> cases() {
     uv("uv_index_out_of_range", uvPayload(1, 0, 3, {0, 0}, {0, 5, 0}), "corner 1 refers to UV 5");
     uv("uv_nan", uvPayload(1, 0, 3, {kNaN, 0}, {0, 0, 0}), "UV 0 is not finite");
     uv("uv_inf", uvPayload(1, 0, 3, {0, kInf}, {0, 0, 0}), "UV 0 is not finite");
+    uv("uv_beyond_float", uvPayload(1, 0, 3, {1e39, 0}, {0, 0, 0}), "UV 0 is 1e+39 from the origin");
     uv("uv_corner_count", uvPayload(1, 0, 4, {0, 0}, {0, 0, 0, 0}), "UV corner count 4 differs");
     uv("uv_reserved", uvPayload(1, 7, 3, {0, 0}, {0, 0, 0}), "reserved field is not zero");
     uv("uv_count_huge", uvPayload(0x80000000u, 0, 3, {0, 0}, {0, 0, 0}),

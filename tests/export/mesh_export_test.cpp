@@ -2,6 +2,7 @@
 // is read with drawn_ply.h (from its documented layout), the OBJ with a parser here, the glTF with
 // tinygltf's reader; the three must carry the same floats bit for bit. Expected UVs come from the
 // OBJ text of the model, and the glTF is checked by the Khronos glTF-Validator.
+#include "base/error.h"
 #include "drawn_ply.h"
 #include "render/mesh_export.h"
 #include "test_support.h"
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <set>
 
 using namespace limn::test;
@@ -617,6 +619,27 @@ TEST(MeshExport, FormatsByExtensionAndEdgeCases) {
     bad.triangles = {0, 1, 2};
     EXPECT_THROW(limn::render::encodeObj(bad), std::exception);
     EXPECT_THROW(limn::render::encodeGltf(bad, false), std::exception);
+    // A vertex the GPU's float overflowed (NaN or Inf) is refused in every format: a glTF's
+    // POSITION min/max would be null, a PLY or OBJ would carry "nan".
+    limn::render::DrawnMesh overflowed;
+    overflowed.vertices.resize(3);
+    overflowed.vertices[1].y = std::numeric_limits<float>::quiet_NaN();
+    overflowed.vertices[2].x = 1;
+    overflowed.triangles = {0, 1, 2};
+    for (auto format : {MeshFormat::Ply, MeshFormat::Obj, MeshFormat::Gltf, MeshFormat::Glb})
+        for (bool ascii : {false, true}) {
+            try {
+                limn::render::encodeMesh(overflowed, format, ascii);
+                ADD_FAILURE() << "a NaN vertex was encoded, format " << int(format);
+            } catch (const limn::Error& e) {
+                EXPECT_NE(std::string(e.what()).find("drawn vertex 1 is not finite"), std::string::npos) << e.what();
+            }
+        }
+    overflowed.vertices[1].y = 0;
+    overflowed.vertices[2].nz = -std::numeric_limits<float>::infinity();
+    EXPECT_THROW(limn::render::encodeMesh(overflowed, MeshFormat::Glb, false), limn::Error);
+    overflowed.vertices[2].nz = 1;
+    EXPECT_NO_THROW(limn::render::encodeMesh(overflowed, MeshFormat::Glb, false));
 }
 
 TEST(MeshExport, SameBytesTwice) {

@@ -37,6 +37,8 @@ const std::vector<Case> kCases = {
     {"degenerate_face", kTriangle + "f 1 2 2\n", "face 0 is degenerate: it uses vertex 1 twice"},
     {"uv_index_past_the_end", kTriangle + "vt 0 0\nf 1/1 2/2 3/1\n",
      "corner 1 refers to UV 1 but there are only 1"},
+    {"uv_beyond_float", kTriangle + "vt 1e39 0\nf 1/1 2/1 3/1\n",
+     "UV 0 is 1e+39 from the origin, beyond the 1e18"},
     {"uv_index_zero", kTriangle + "vt 0 0\nf 1/1 2/0 3/1\n",
      "texture coordinate index 0 is invalid"},
     {"uv_on_some_corners", kTriangle + "vt 0 0\nf 1/1 2 3/1\n",

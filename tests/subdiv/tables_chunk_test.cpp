@@ -196,6 +196,32 @@ TEST(TablesChunk, OutOfRangeIndexNamesTheTable) {
     }
 }
 
+// A finite but huge weight (3e38) read back from a damaged file would make the GPU's float sums
+// NaN; the reader refuses it, naming the table. Real tables, with extraordinary vertices,
+// boundaries, corners and creases, stay well inside the bound.
+TEST(TablesChunk, HugeWeightIsRefused) {
+    Mesh m = load("quad/osd_catmark_pyramid.obj");
+    for (int which = 0; which < 3; ++which) {
+        Tables t = build(m, 2);
+        StencilTable& table = which == 0 ? t.edgePoints[0] : which == 1 ? t.vertexPoints[1] : t.limitTangent1;
+        ASSERT_FALSE(table.weights.empty());
+        table.weights.back() = which == 2 ? -3e38f : 3e38f;
+        try {
+            decodeTablesChunk(encodeTablesChunk(t), &m);
+            ADD_FAILURE() << "accepted weight 3e38 in table " << which;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("must be finite and within +-1e6"), std::string::npos) << e.what();
+        }
+    }
+    for (const char* model : {"quad/osd_catmark_pyramid.obj", "osd/catmark/catmark_car.obj",
+                              "osd/catmark/catmark_chaikin2.obj", "osd/catmark/catmark_pole360.obj",
+                              "osd/catmark/catmark_edgecorner.obj", "osd/catmark/catmark_val2_interior.obj"}) {
+        SCOPED_TRACE(model);
+        Mesh mm = load(model);
+        EXPECT_NO_THROW(decodeTablesChunk(encodeTablesChunk(build(mm, 3)), &mm));
+    }
+}
+
 TEST(Tables, DepthZeroNeedsQuads) {
     EXPECT_NO_THROW(build(load("quad/osd_catmark_torus.obj"), 0));
     EXPECT_THROW(build(load("quad/spot_control_mesh.obj"), 0), Error);
