@@ -43,7 +43,10 @@ uint32_t sideST(const Domain& d, int k, uint32_t x) {
 EdgePieces buildEdgePieces(const Mesh& mesh, const Tables& t) {
     const uint32_t N = t.depth;
     if (N + 1 > 16)
-        throw Error(ErrorKind::BadInput, "view-adaptive tessellation supports tables up to depth 15");
+        throw Error(ErrorKind::BadInput, "view-adaptive tessellation supports tables up to depth 15, these have depth " +
+                                             std::to_string(N) +
+                                             ": rebuild them with limn-tables --depth 15 or less, or draw the fixed "
+                                             "grids with --edge-pixels 0");
     const uint32_t R = 1u << N;
     Topology topo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
     PtexMap keys(mesh, topo, R), halfKeys(mesh, topo, 2 * R); // halves: piece midpoints

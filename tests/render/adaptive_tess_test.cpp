@@ -475,6 +475,22 @@ TEST(AdaptiveCli, LargeElementsAtHighRatesAreWholeOrRefused) {
     }
 }
 
+// limn-tables accepts --depth 16; the view-adaptive pieces pack depth 15 at most (edge_pieces.cpp),
+// so the default mode refuses such tables saying what to do, and the fixed grids render them.
+TEST(AdaptiveCli, DepthSixteenTablesRefusedWithWhatToDo) {
+    ScratchDir dir;
+    const std::string limn = prepare(modelPath("quad/osd_catmark_cube.obj").string(), 16, dir);
+    const std::string png = (dir / "c.png").string();
+    auto r = run({tool("limn-render").string(), limn, "--size", "64x48", "-o", png});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("these have depth 16"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--depth 15 or less"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--edge-pixels 0"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(png));
+    r = run({tool("limn-render").string(), limn, "--size", "64x48", "--edge-pixels", "0", "-o", png});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
 // catmark_car at depth 6: its fixed grids (64 segments per side of its level-0 patches: about
 // 12.9 M triangles, 147.7 MiB of indices)
 // are refused before any work with what to do; the view-adaptive default renders it.

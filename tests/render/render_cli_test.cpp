@@ -361,6 +361,32 @@ TEST(RenderCli, UsageErrorsAreExitCode2) {
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// An explicit camera is checked like a --cameras line (sequence_test.cpp): no zero or parallel
+// up, no coordinate the GPU's float cannot carry; --bench-orbit means nothing without --bench.
+TEST(RenderCli, CameraAndBenchOptionsAreCheckedWithTheReason) {
+    ScratchDir dir;
+    auto limn = classify(dir, modelPath("quad/osd_catmark_cube.obj").string(), "cube");
+    std::string out = (dir / "x.png").string();
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"--eye", "0,0,5", "--up", "0,0,0"}, "--up: the up vector is zero"},
+        {{"--eye", "0,0,5", "--target", "0,0,0", "--up", "0,0,-2"}, "--up is parallel to the view direction"},
+        {{"--eye", "0,0,5", "--target", "-1e300,0,0"}, "--target: each coordinate must be within +-1e18"},
+        {{"--eye", "1e19,0,5"}, "--eye: each coordinate must be within +-1e18"},
+        {{"--bench-orbit", "10"}, "give --bench FRAMES too"},
+    };
+    for (const auto& [bad, message] : cases) {
+        std::vector<std::string> args = {limn, "--size", "32x32", "-o", out};
+        args.insert(args.end(), bad.begin(), bad.end());
+        auto r = render(args);
+        EXPECT_EQ(r.exitCode, 2) << bad[0] << ": " << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out));
+    // A non-parallel up renders.
+    auto r = render({limn, "--size", "32x32", "-o", out, "--eye", "0,0,5", "--target", "0,0,0", "--up", "1,0,0"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
 TEST(RenderCli, HelpListsDefaultsAndExitCodes) {
     auto r = render({"--help"});
     EXPECT_EQ(r.exitCode, 0);

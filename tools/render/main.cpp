@@ -20,6 +20,8 @@
 #include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,6 +43,9 @@ namespace {
 
 glm::dvec3 vec3Option(const std::string& option, const std::string& value) {
     auto v = cli::parseNumberList(option, value, 3);
+    // Meshes are refused beyond 1e18 (mesh.cpp) for the GPU's float; a camera there sees nothing.
+    for (double x : v)
+        if (!(std::abs(x) <= 1e18)) throw Error(ErrorKind::Usage, option + ": each coordinate must be within +-1e18");
     return {v[0], v[1], v[2]};
 }
 
@@ -736,6 +741,12 @@ int main(int argc, char** argv) {
             usage("--target and --up describe an explicit camera; give --eye too");
         if (settings.view.eye && settings.view.target && *settings.view.eye == *settings.view.target)
             usage("--eye and --target are the same point, so the camera has no direction");
+        // The same checks as a --cameras line (sequence.cpp), so both ways of placing a camera agree.
+        if (settings.view.up && glm::length(*settings.view.up) == 0) usage("--up: the up vector is zero");
+        if (settings.view.up && settings.view.eye && settings.view.target &&
+            glm::length(glm::cross(glm::normalize(*settings.view.target - *settings.view.eye),
+                                   glm::normalize(*settings.view.up))) < 1e-9)
+            usage("--up is parallel to the view direction (--eye to --target), so the image has no up");
         const int sequenceOptions = (turntable > 0) + !camerasPath.empty() + !framesPattern.empty();
         const bool sequence = sequenceOptions > 0;
         if (sequenceOptions > 1) usage("--turntable, --cameras and --frames exclude each other");
@@ -743,6 +754,7 @@ int main(int argc, char** argv) {
             usage("--turntable turns the --view camera around the up axis; leave out --eye");
         if (!camerasPath.empty() && (settings.view.eye || viewGiven))
             usage("--cameras gives every frame's camera; leave out --view and --eye");
+        if (benchOrbit != 0 && !bench) usage("--bench-orbit turns the camera between --bench frames; give --bench FRAMES too");
         if (sequence && bench) usage("--bench measures one frame; leave out --turntable, --cameras and --frames");
         // A sequence's output names: -o and --mesh-out with their frame number.
         std::optional<render::FramePattern> imagePattern, meshPattern;
