@@ -378,7 +378,9 @@ std::string formatBytes(uint64_t bytes) {
     char buf[32];
     const double b = double(bytes);
     if (b >= double(1ull << 30)) std::snprintf(buf, sizeof buf, "%.1f GiB", b / double(1ull << 30));
-    else std::snprintf(buf, sizeof buf, "%.0f MiB", b / double(1ull << 20));
+    else if (b >= double(1ull << 20)) std::snprintf(buf, sizeof buf, "%.0f MiB", b / double(1ull << 20));
+    else if (b >= 1024) std::snprintf(buf, sizeof buf, "%.0f KiB", b / 1024); // --max-memory 1K is not "0 MiB"
+    else std::snprintf(buf, sizeof buf, "%.0f bytes", b);
     return buf;
 }
 

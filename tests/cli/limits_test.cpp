@@ -139,6 +139,11 @@ TEST(Limits, ExplodingRefinementIsRefusedFromTheCounts) {
     // V0 = 642, E0 = 1920, F0 = 1280 (3840 corners): V1 = 3842, E1 = 7680, F1 = 3840;
     // V2 = 15362, E2 = 30720, F2 = 15360; V3 = 61442. Sum: 81288.
     EXPECT_NE(r.err.find("(81288 vertices)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--max-memory 1 MiB"), std::string::npos) << r.err;
+    // Below a MiB the limit is named in KiB, not as "0 MiB".
+    r = test::run({bin("limn-tables"), "--depth", "3", "--uniform", sphere, "-o", out, "--max-memory", "1K"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("--max-memory 1 KiB"), std::string::npos) << r.err;
     r = test::run({bin("limn-tables"), "--depth", "3", "--uniform", sphere, "-o", out});
     EXPECT_EQ(r.exitCode, 0) << r.err;
     r = test::run({bin("limn-info"), "--json", out});
