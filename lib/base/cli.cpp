@@ -331,9 +331,17 @@ bool Parser::parse(int argc, char** argv) {
                 if (i + 1 >= argc) usageError(name + " needs a value (" + o->metavar + ")");
                 value = argv[++i];
             }
+            // "" is never a value (an unset make variable): as a path it would mean standard
+            // input or output, or no depfile, without a word.
+            if (value.empty()) usageError(name + ": the value is empty; give " + o->metavar);
             o->set(value);
             continue;
         }
+        if (arg.empty())
+            usageError(nextPositional < positionals_.size()
+                           ? "an empty argument where " + positionals_[nextPositional].first +
+                                 " goes (use - for standard input)"
+                           : std::string("an empty argument"));
         if (nextPositional >= positionals_.size()) usageError("unexpected argument '" + arg + "'");
         *positionals_[nextPositional++].second = arg;
     }

@@ -16,6 +16,8 @@ namespace limn {
 
 namespace {
 
+constexpr size_t kMaxInputBytes = size_t(4) << 30;
+
 [[noreturn]] void throwIo(const std::string& what, const std::string& path) {
     Error e(ErrorKind::BadInput, what + ": " + std::strerror(errno));
     e.setFile(isStdio(path) ? "<stdin>" : path);
@@ -35,6 +37,12 @@ std::vector<uint8_t> readInput(const std::string& path) {
         throw e;
     }
     std::vector<uint8_t> data;
+    if (S_ISREG(st.st_mode) && uint64_t(st.st_size) > kMaxInputBytes) {
+        if (fd != STDIN_FILENO) ::close(fd);
+        Error e(ErrorKind::BadInput, "larger than 4 GiB, more than limn reads as one input");
+        e.setFile(isStdio(path) ? "<stdin>" : path);
+        throw e;
+    }
     if (S_ISREG(st.st_mode) && st.st_size > 0) data.reserve(static_cast<size_t>(st.st_size));
     uint8_t buffer[1 << 16];
     for (;;) {
@@ -47,6 +55,15 @@ std::vector<uint8_t> readInput(const std::string& path) {
             throwIo("cannot read", path);
         }
         if (n == 0) break;
+        // Inputs are read whole; an endless one (/dev/zero, a runaway pipe) would take all the
+        // memory and end in "out of memory" without a name. The largest input limn writes (the
+        // car's uniform tables at depth 6) is 2 GB.
+        if (data.size() + size_t(n) > kMaxInputBytes) {
+            if (fd != STDIN_FILENO) ::close(fd);
+            Error e(ErrorKind::BadInput, "larger than 4 GiB, more than limn reads as one input");
+            e.setFile(isStdio(path) ? "<stdin>" : path);
+            throw e;
+        }
         data.insert(data.end(), buffer, buffer + n);
     }
     if (fd != STDIN_FILENO) ::close(fd);
@@ -232,17 +249,17 @@ void OutputFile::write(const std::string& text) {
     write(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
 }
 
-void OutputFile::commit() {
-    if (fd_ < 0) {
-        committed_ = true;
-        return;
-    }
-    if (::close(fd_) != 0) {
-        fd_ = -1;
-        throwOutputError("cannot write", path_);
-    }
+void OutputFile::finishWriting() {
+    if (fd_ < 0) return;
+    const int fd = fd_;
     fd_ = -1;
-    if (tempPath_.empty()) { // written in place (a device or pipe)
+    if (::close(fd) != 0) throwOutputError("cannot write", path_);
+}
+
+void OutputFile::commit() {
+    if (committed_) return;
+    finishWriting();
+    if (tempPath_.empty()) { // standard output, or written in place (a device or pipe)
         committed_ = true;
         return;
     }
@@ -259,14 +276,28 @@ void writeOutput(const std::string& path, std::span<const uint8_t> bytes, Output
     out.commit();
 }
 
+void requireOutputExtension(const std::string& path, const std::string& extension, const std::string& format) {
+    if (isStdio(path) || extensionOf(path) == extension) return;
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) return;
+    Error e(ErrorKind::Usage, "unknown extension; this tool writes " + format + " (" + extension +
+                                  ", or - for standard output)");
+    e.setFile(path);
+    throw e;
+}
+
 bool sameFile(const std::string& a, const std::string& b) {
     if (isStdio(a) || isStdio(b)) return false;
     struct stat sa {}, sb {};
     if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0)
         return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    // Not both there yet: compare the names. Made absolute first: weakly_canonical leaves a
+    // relative name whose first part does not exist relative, so "b.limn" and "./b.limn" differed
+    // and a depfile could be written over the output.
     std::error_code ec1, ec2;
-    auto ca = std::filesystem::weakly_canonical(a, ec1), cb = std::filesystem::weakly_canonical(b, ec2);
-    return !ec1 && !ec2 && ca == cb;
+    auto ca = std::filesystem::weakly_canonical(std::filesystem::absolute(a, ec1), ec1),
+         cb = std::filesystem::weakly_canonical(std::filesystem::absolute(b, ec2), ec2);
+    return !ec1 && !ec2 && ca.lexically_normal() == cb.lexically_normal();
 }
 
 void refuseOverwritingInputs(const std::string& output, const std::vector<std::string>& inputs,
@@ -354,9 +385,16 @@ void Depfile::setRule(const std::vector<std::string>& outputs,
     rule_ = std::move(rule);
 }
 
+void Depfile::prepare() {
+    if (!file_ || prepared_) return;
+    file_->write(rule_);
+    file_->finishWriting();
+    prepared_ = true;
+}
+
 void Depfile::commit() {
     if (!file_) return;
-    file_->write(rule_);
+    prepare();
     file_->commit();
 }
 

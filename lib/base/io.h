@@ -43,6 +43,9 @@ public:
 
     void write(std::span<const uint8_t> bytes);
     void write(const std::string& text);
+    // Closes the file, so that a write error the kernel reports late (a full disk) is thrown now;
+    // commit() then only renames it into place. Called by commit() when not called before.
+    void finishWriting();
     void commit();
     const std::string& path() const { return path_; }
 
@@ -68,6 +71,11 @@ void writeOutput(const std::string& path, std::span<const uint8_t> bytes, Output
 void refuseOverwritingInputs(const std::string& output, const std::vector<std::string>& inputs,
                              bool (*inPlace)(const std::string&) = nullptr);
 
+// Tools that write one format (limn-heightmap, limn-trim: PNG) refuse another extension, as
+// limn-render does, instead of writing PNG bytes into "map.jpg": Error(Usage) unless `path` ends
+// in `extension` (case-insensitive), is "-", or is an existing device or FIFO.
+void requireOutputExtension(const std::string& path, const std::string& extension, const std::string& format);
+
 // Whether two paths name the same file (same inode when both exist; else the same canonical
 // path). Standard input/output is never the same file as anything.
 bool sameFile(const std::string& a, const std::string& b);
@@ -87,11 +95,16 @@ public:
     void setRule(const std::string& output, const std::vector<std::string>& inputs);
     // Several targets made by the one run ("image.png mesh.glb: inputs").
     void setRule(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
+    // Writes the rule and closes the file without renaming it into place: tools call it before
+    // committing their outputs, so that a depfile that cannot be written (a full disk, /dev/full)
+    // fails the run while none of its outputs is in place yet. commit() renames it.
+    void prepare();
     void commit();
 
 private:
     std::string path_, rule_;
     std::optional<OutputFile> file_;
+    bool prepared_ = false;
 };
 
 } // namespace limn

@@ -111,6 +111,22 @@ TEST(Cli, UsageErrorsExitWith2) {
     auto extra = test::run({bin("limn-info"), "a.limn", "b.limn"});
     EXPECT_EQ(extra.exitCode, 2);
     EXPECT_NE(extra.err.find("unexpected argument 'b.limn'"), std::string::npos) << extra.err;
+    // An empty value (an unset make variable) is an error, not standard input or output or no
+    // depfile: in every form, for every tool that takes -o.
+    for (const char* tool : {"limn-classify", "limn-tables", "limn-seams", "limn-render", "limn-loop", "limn-heightmap",
+                             "limn-trim", "limn-blend"}) {
+        SCOPED_TRACE(tool);
+        for (std::vector<std::string> args : {std::vector<std::string>{"-o", ""}, {"--output="}, {"--depfile", ""}, {""}}) {
+            args.insert(args.begin(), bin(tool));
+            auto r = test::run(args, "");
+            EXPECT_EQ(r.exitCode, 2) << args[1] << ": " << r.err;
+            EXPECT_NE(r.err.find("empty"), std::string::npos) << r.err;
+            EXPECT_EQ(r.out, "");
+        }
+    }
+    auto info = test::run({bin("limn-info"), ""}, "");
+    EXPECT_EQ(info.exitCode, 2) << info.err;
+    EXPECT_NE(info.err.find("an empty argument where"), std::string::npos) << info.err;
 }
 
 TEST(Cli, MissingInputExitsWith1NamingTheFile) {
@@ -125,6 +141,15 @@ TEST(Cli, MissingInputExitsWith1NamingTheFile) {
     auto directory = test::run({bin("limn-info"), dir.path().string()});
     EXPECT_EQ(directory.exitCode, 1);
     EXPECT_NE(directory.err.find("is a directory"), std::string::npos) << directory.err;
+    // Inputs are read whole: one over 4 GiB is refused by its size (a sparse file here, so the
+    // test writes nothing), not read until memory runs out.
+    const std::string huge = (dir / "huge.obj").string();
+    test::writeFile(huge, "");
+    std::filesystem::resize_file(huge, uint64_t(5) << 30);
+    auto big = test::run({bin("limn-classify"), huge, "-o", (dir / "h.limn").string()});
+    EXPECT_EQ(big.exitCode, 1);
+    EXPECT_EQ(big.err, "limn-classify: error: " + huge + ": larger than 4 GiB, more than limn reads as one input\n");
+    EXPECT_FALSE(std::filesystem::exists(dir / "h.limn"));
 }
 
 TEST(Cli, AFailureLeavesNoOutputAndKeepsAnOldOne) {

@@ -53,6 +53,22 @@ TEST(SideFiles, AnUnwritableDepfileLeavesNoOutput) {
     EXPECT_NE(r.err.find("nodir/t.d"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << "the output was written although the run failed";
     EXPECT_FALSE(anyTemporary(dir.path()));
+    // A depfile whose write fails late (/dev/full: ENOSPC on write, not on open), once for a
+    // tool with one output and once for a sequence, whose frames are written as they are done.
+    if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+    r = test::run({bin("limn-tables"), cube, "-o", out, "--depfile", "/dev/full"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "the output was written although its depfile failed";
+    r = test::run({bin("limn-render"), cube, "--size", "32x24", "--turntable", "2", "-o",
+                   (dir / "tt_%d.png").string(), "--depfile", "/dev/full"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "tt_0.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "tt_1.png"));
+    r = test::run({bin("limn-render"), cube, "--size", "32x24", "-o", (dir / "one.png").string(), "--depfile",
+                   "/dev/full"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "one.png"));
+    EXPECT_FALSE(anyTemporary(dir.path()));
 }
 
 TEST(SideFiles, ADepfileNamingAnOutputOrAnInputIsAUsageError) {
@@ -69,6 +85,17 @@ TEST(SideFiles, ADepfileNamingAnOutputOrAnInputIsAUsageError) {
     r = test::run({bin("limn-tables"), cube, "-o", out, "--depfile",
                    (dir.path() / "." / "cube.limn").string()});
     EXPECT_EQ(r.exitCode, 2) << r.err;
+    // Relative names of a file not there yet: "x.limn" and "./x.limn" are the same output (the
+    // depfile was once written over the output, exit 0).
+    for (const auto& [o, d] : {std::pair<std::string, std::string>{"./x.limn", "x.limn"}, {"x.limn", "./x.limn"},
+                               {"sub/../x.limn", "x.limn"}}) {
+        std::filesystem::create_directories(dir / "sub");
+        r = test::run({"/bin/sh", "-c",
+                       "cd '" + dir.path().string() + "' && '" + bin("limn-tables") + "' cube.limn -o " + o +
+                           " --depfile " + d});
+        EXPECT_EQ(r.exitCode, 2) << o << " " << d << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out)) << o << " " << d;
+    }
     // limn-render: the image and the mesh output are both outputs.
     const std::string ply = (dir / "m.ply").string();
     r = test::run({bin("limn-render"), cube, "-o", (dir / "i.png").string(), "--mesh-out", ply,
@@ -296,6 +323,15 @@ TEST(SideFiles, OutputFormatAndRepeatedOptions) {
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("more than once"), std::string::npos) << r.err;
     EXPECT_EQ(test::filesIn(dir.path()), std::vector<std::string>{"t.obj"});
+    // limn-heightmap writes PNG only: another extension is refused, not PNG bytes in "map.jpg".
+    for (const char* name : {"map.jpg", "map.exr", "map"}) {
+        r = test::run({bin("limn-heightmap"), "--kind", "uv", "--size", "16", "-o", (dir / name).string()});
+        EXPECT_EQ(r.exitCode, 2) << name << ": " << r.err;
+        EXPECT_NE(r.err.find("this tool writes PNG (.png, or - for standard output)"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / name));
+    }
+    r = test::run({bin("limn-heightmap"), "--kind", "uv", "--size", "16", "-o", (dir / "map.PNG").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
 TEST(SideFiles, UnknownOptionsSuggestTheNearest) {

@@ -127,6 +127,7 @@ int main(int argc, char** argv) {
         }
         out.write(serializeContainer(container));
         depfile.setRule(common.output, inputs);
+        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
         out.commit();
         depfile.commit();
         return 0;

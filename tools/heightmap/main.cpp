@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> inputs =
             needsMesh ? std::vector<std::string>{input} : std::vector<std::string>{};
         refuseOverwritingInputs(common.output, inputs);
+        requireOutputExtension(common.output, ".png", "PNG");
         OutputFile out(common.output, OutputFile::Kind::Binary); // refused on a terminal
         Depfile depfile(common.depfile, {common.output}, inputs);
         Mesh mesh;
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
         }
         out.write(render::encodeGray16Png(o.size, o.size, values));
         depfile.setRule(common.output, inputs);
+        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
         out.commit();
         depfile.commit();
         return 0;

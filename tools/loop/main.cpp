@@ -195,6 +195,7 @@ int main(int argc, char** argv) {
 
         out.write(exportMesh(loop::toMesh(result.mesh, mesh.tags), common.output));
         depfile.setRule(common.output, inputs);
+        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
         out.commit();
         depfile.commit();
         if (stats) writeStats(control, result, measure ? &measurement : nullptr);

@@ -1054,15 +1054,25 @@ int main(int argc, char** argv) {
 
         inputs.insert(inputs.end(), in.filesRead.begin(), in.filesRead.end());
         depfile.setRule(outputs, inputs); // the image and/or the mesh
-        if (png) {
-            png->write(pngBytes);
-            png->commit();
+        try {
+            // A depfile that cannot be written fails the run before the outputs land; a sequence's
+            // frames, already written, are removed.
+            depfile.prepare();
+            if (png) {
+                png->write(pngBytes);
+                png->finishWriting();
+            }
+            if (ply) {
+                ply->write(plyBytes);
+                ply->finishWriting();
+            }
+            if (png) png->commit();
+            if (ply) ply->commit();
+            depfile.commit();
+        } catch (...) {
+            removeFrames(written);
+            throw;
         }
-        if (ply) {
-            ply->write(plyBytes);
-            ply->commit();
-        }
-        depfile.commit();
         return 0;
     });
 }

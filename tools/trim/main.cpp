@@ -74,6 +74,7 @@ int main(int argc, char** argv) {
         if (!removed.empty()) pattern.removed = faceList(removed);
 
         refuseOverwritingInputs(common.output, {input});
+        requireOutputExtension(common.output, ".png", "PNG");
         OutputFile out(common.output, OutputFile::Kind::Binary);
         Depfile depfile(common.depfile, {common.output}, {input});
         auto bytes = readInput(input);
@@ -104,6 +105,7 @@ int main(int argc, char** argv) {
         render::Image atlas = render::makeTrimAtlas(static_cast<uint32_t>(faces), pattern);
         out.write(render::encodePng(atlas));
         depfile.setRule(common.output, inputs);
+        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
         out.commit();
         depfile.commit();
         return 0;
