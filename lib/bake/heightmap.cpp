@@ -2,6 +2,7 @@
 
 #include "base/error.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -87,6 +88,9 @@ double fbm3(double x, double y, double z, int octaves, uint32_t seed) {
     return fbm(x, y, z, octaves, seed, 0);
 }
 
+// The unit UV tiles per axis one sub-quad is baked into (wrap-around, above).
+constexpr double kMaxTiles = 4;
+
 std::vector<float> bakeHeightmap(const Mesh& mesh, const HeightmapOptions& o) {
     const uint32_t N = o.size;
     std::vector<float> out(size_t(N) * N, 0.5f);
@@ -120,19 +124,35 @@ std::vector<float> bakeHeightmap(const Mesh& mesh, const HeightmapOptions& o) {
                                0.5 * (mesh.positions[fv[kp]] + mesh.positions[fv[k]])};
             glm::dvec2 U[4] = {mesh.uvs[fu[k]], 0.5 * (mesh.uvs[fu[k]] + mesh.uvs[fu[kn]]), uc,
                                0.5 * (mesh.uvs[fu[kp]] + mesh.uvs[fu[k]])};
-            glm::dvec2 lo2 = glm::min(glm::min(U[0], U[1]), glm::min(U[2], U[3]));
-            glm::dvec2 hi2 = glm::max(glm::max(U[0], U[1]), glm::max(U[2], U[3]));
-            int x0 = std::max(0, int(std::floor(lo2.x * N - 0.5))), x1 = std::min(int(N) - 1, int(std::ceil(hi2.x * N - 0.5)));
-            int y0 = std::max(0, int(std::floor((1 - hi2.y) * N - 0.5))), y1 = std::min(int(N) - 1, int(std::ceil((1 - lo2.y) * N - 0.5)));
-            for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x) {
-                    glm::dvec2 p((x + 0.5) / N, 1 - (y + 0.5) / N);
-                    double s, t;
-                    if (!inverseBilinear(p, U[0], U[1], U[2], U[3], s, t)) continue;
-                    glm::dvec3 q = (1 - s) * (1 - t) * P[0] + s * (1 - t) * P[1] + s * t * P[2] + (1 - s) * t * P[3];
-                    q = (q - lo) * scale;
-                    out[size_t(y) * N + x] = float(fbm(q.x, q.y, q.z, o.octaves, o.seed, 0));
-                    covered[size_t(y) * N + x] = 1;
+            const glm::dvec2 lo2 = glm::min(glm::min(U[0], U[1]), glm::min(U[2], U[3]));
+            const glm::dvec2 hi2 = glm::max(glm::max(U[0], U[1]), glm::max(U[2], U[3]));
+            // The renderer samples the map with wrap-around: UVs in [1, 2] (a UDIM tile) read the
+            // same texels as [0, 1], so each unit tile the sub-quad overlaps is baked shifted
+            // into the map (at most kMaxTiles per axis: a face over more repeats itself).
+            const glm::dvec2 firstTile = glm::floor(lo2);
+            const glm::dvec2 tiles = glm::min(glm::floor(hi2) - firstTile + 1.0, glm::dvec2(kMaxTiles));
+            for (int ty = 0; ty < int(tiles.y); ++ty)
+                for (int tx = 0; tx < int(tiles.x); ++tx) {
+                    const glm::dvec2 shift = firstTile + glm::dvec2(tx, ty);
+                    const glm::dvec2 a = lo2 - shift, b = hi2 - shift;
+                    const glm::dvec2 S[4] = {U[0] - shift, U[1] - shift, U[2] - shift, U[3] - shift};
+                    // Texel ranges clamped as doubles first: |UV| N past 2^31 overflowed int.
+                    auto texel = [N](double v) { return int(std::clamp(v, -1.0, double(N))); };
+                    const int x0 = std::max(0, texel(std::floor(a.x * N - 0.5)));
+                    const int x1 = std::min(int(N) - 1, texel(std::ceil(b.x * N - 0.5)));
+                    const int y0 = std::max(0, texel(std::floor((1 - b.y) * N - 0.5)));
+                    const int y1 = std::min(int(N) - 1, texel(std::ceil((1 - a.y) * N - 0.5)));
+                    for (int y = y0; y <= y1; ++y)
+                        for (int x = x0; x <= x1; ++x) {
+                            glm::dvec2 p((x + 0.5) / N, 1 - (y + 0.5) / N);
+                            double s, t;
+                            if (!inverseBilinear(p, S[0], S[1], S[2], S[3], s, t)) continue;
+                            glm::dvec3 q =
+                                (1 - s) * (1 - t) * P[0] + s * (1 - t) * P[1] + s * t * P[2] + (1 - s) * t * P[3];
+                            q = (q - lo) * scale;
+                            out[size_t(y) * N + x] = float(fbm(q.x, q.y, q.z, o.octaves, o.seed, 0));
+                            covered[size_t(y) * N + x] = 1;
+                        }
                 }
         }
     }

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 using namespace limn;
 
 namespace {
@@ -85,6 +87,67 @@ TEST(Messages, NewTablesDropTheOldSeams) {
     EXPECT_NE(r.err.find("dropped the SEAM chunk"), std::string::npos) << r.err;
     const Container c = parseContainer(test::readBytes(again));
     EXPECT_EQ(c.find(FourCC{"SEAM"}), nullptr);
+}
+
+// Classifying a container again with other scheme options: its tables and seams would draw the
+// old surface (they once stayed, without a word); they are dropped, saying what to run. With
+// the same options they stay, byte for byte.
+TEST(Messages, ClassifyingAgainWithOtherOptionsDropsTheTables) {
+    Files f;
+    const std::string seams = (f.dir / "s.limn").string(), same = (f.dir / "same.limn").string(),
+                      other = (f.dir / "other.limn").string();
+    ASSERT_EQ(test::run({bin("limn-seams"), f.d2, "-o", seams}).exitCode, 0);
+    auto r = test::run({bin("limn-classify"), seams, "-o", same});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(test::readBytes(same), test::readBytes(seams));
+    for (std::vector<std::string> option : {std::vector<std::string>{"--fvar", "none"}, {"--boundary", "none"}}) {
+        SCOPED_TRACE(option[0]);
+        std::vector<std::string> args = {bin("limn-classify"), seams, "-o", other};
+        args.insert(args.end(), option.begin(), option.end());
+        r = test::run(args);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.err.find("its tables and seams were made for other scheme options or tags; dropped: run "
+                             "limn-tables and limn-seams again"),
+                  std::string::npos)
+            << r.err;
+        const Container c = parseContainer(test::readBytes(other));
+        EXPECT_EQ(c.find(FourCC{"TBLS"}), nullptr);
+        EXPECT_EQ(c.find(FourCC{"SEAM"}), nullptr);
+        EXPECT_NE(c.find(FourCC{"CLSF"}), nullptr);
+    }
+}
+
+// limn-render samples a map with wrap-around, so UVs moved by whole tiles (a UDIM layout) must
+// bake the same map: they once baked nothing (every texel the flat 0.5) without a word. UVs
+// far outside float's integers (+-2e8 times the size overflowed int) bake without undefined
+// behaviour (UBSan checks it in the sanitizer run).
+TEST(Messages, HeightmapWrapsUVsLikeTheRenderer) {
+    test::ScratchDir dir;
+    std::string shifted;
+    for (size_t at = 0, end; at < kCubeObj.size(); at = end + 1) {
+        end = kCubeObj.find('\n', at);
+        std::string line = kCubeObj.substr(at, end - at);
+        if (line.rfind("vt ", 0) == 0) {
+            double u = 0, v = 0;
+            std::sscanf(line.c_str(), "vt %lf %lf", &u, &v);
+            line = "vt " + std::to_string(u + 1) + " " + std::to_string(v - 3);
+        }
+        shifted += line + "\n";
+    }
+    test::writeFile(dir / "cube.obj", kCubeObj);
+    test::writeFile(dir / "udim.obj", shifted);
+    for (const char* name : {"cube", "udim"}) {
+        auto r = test::run({bin("limn-heightmap"), "--size", "32", (dir / (std::string(name) + ".obj")).string(),
+                            "-o", (dir / (std::string(name) + ".png")).string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    EXPECT_EQ(test::readBytes(dir / "udim.png"), test::readBytes(dir / "cube.png"));
+    test::writeFile(dir / "far.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt -2e8 -2e8\nvt 2e8 -2e8\n"
+                                     "vt 2e8 2e8\nvt -2e8 2e8\nf 1/1 2/2 3/3 4/4\n");
+    auto r = test::run({bin("limn-heightmap"), "--size", "16", "--padding", "0", (dir / "far.obj").string(), "-o",
+                        (dir / "far.png").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
 TEST(Messages, InfoValidatesAndFlagsStaleChunks) {

@@ -6,6 +6,8 @@
 #include "container/container.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
+#include "seams/seams.h"
+#include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
 
 using namespace limn;
@@ -81,11 +83,33 @@ int main(int argc, char** argv) {
         cli::info("classified " + std::to_string(mesh.vertexCount()) + " vertices, " +
                   std::to_string(mesh.faceCount()) + " faces");
 
+        // The tables follow the topology, tags and scheme options, the seams the tables: a
+        // container classified again with another --boundary or --fvar (or other tags) would
+        // otherwise keep tables that draw the old surface, without a word. Tables that cannot be
+        // decoded are kept as they are, for the tools that read them to refuse.
+        if (const Chunk* tb = container.find(kTablesChunk)) {
+            bool stale = false;
+            try {
+                const Tables old = decodeTablesChunk(*tb, nullptr);
+                stale = !(old.options == options) || old.topologyHash != topologyHash(mesh, options);
+            } catch (const Error&) {
+            }
+            if (stale) {
+                const bool hadSeams = container.has(kSeamsChunk);
+                container.remove(kTablesChunk);
+                container.remove(kSeamsChunk);
+                cli::warn((input == "-" ? std::string("<stdin>") : input) + ": its tables" +
+                          (hadSeams ? " and seams were" : " were") +
+                          " made for other scheme options or tags; dropped: run limn-tables" +
+                          (hadSeams ? " and limn-seams" : "") + " again");
+            }
+        }
         storeMesh(container, mesh);
         if (material) container.set(encodeMaterialChunk(*material));
         container.set(encodeClassificationChunk(c));
         out.write(serializeContainer(container));
         depfile.setRule(common.output, inputs);
+        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
         out.commit();
         depfile.commit();
         return 0;
