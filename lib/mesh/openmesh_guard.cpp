@@ -71,6 +71,10 @@ struct PlyHeader {
     std::vector<PlyElement> elements;
 };
 
+// OpenMesh's reader takes time quadratic in the properties of an element (100,000 property
+// lines: over a minute); real files have a few elements of a few dozen properties.
+constexpr size_t kMaxPlyElements = 64, kMaxPlyProperties = 256;
+
 PlyHeader parsePlyHeader(std::string_view text) {
     // The header ends at the first line that is exactly "end_header".
     std::string_view rest = text;
@@ -95,6 +99,7 @@ PlyHeader parsePlyHeader(std::string_view text) {
                                                    "element", "property", "end_header"};
     PlyHeader h;
     h.data = rest;
+    std::set<std::string> elementNames;
     std::string_view header = text.substr(0, end);
     for (int number = 1; !header.empty(); ++number) {
         std::vector<std::string> w = words(nextLine(header));
@@ -118,12 +123,17 @@ PlyHeader parsePlyHeader(std::string_view text) {
             if (ec != std::errc() || p != w[2].data() + w[2].size() || e.count > 0xFFFFFFFFull)
                 bad("expected 'element NAME COUNT'");
             e.name = w[1];
-            for (const auto& other : h.elements)
-                if (other.name == e.name) bad("element '" + e.name + "' appears twice");
+            if (!elementNames.insert(e.name).second) bad("element '" + e.name + "' appears twice");
+            if (h.elements.size() == kMaxPlyElements)
+                bad("more than " + std::to_string(kMaxPlyElements) + " elements");
             h.elements.push_back(e);
         } else if (w[0] == "property") {
             if (h.elements.empty()) bad("a property before any element");
             PlyElement& e = h.elements.back();
+            if (e.properties.size() == kMaxPlyProperties)
+                bad("element '" + e.name + "' has more than " + std::to_string(kMaxPlyProperties) + " properties");
+            if (w.size() == 5 && w[1] == "list" && scalars.count(w[2]) && !listCounts.count(w[2]))
+                bad("a list count of type '" + w[2] + "': limn reads uchar, uint8, uint16 or int counts");
             bool list =
                 w.size() == 5 && w[1] == "list" && listCounts.count(w[2]) && scalars.count(w[3]);
             bool scalar = w.size() == 3 && scalars.count(w[1]);

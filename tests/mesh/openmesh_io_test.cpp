@@ -91,6 +91,20 @@ TEST(OpenMeshIO, RefusesHostilePly) {
                               "property float z\nend_header\n0 0 0\n",
                   ".ply", "promises 2000000000 elements");
     expectRefused(kPlyStart + "element vertex 4\nend_header\n", ".ply", "no properties");
+    // Headers OpenMesh reads in quadratic time (100,000 property lines: over a minute) are
+    // refused at once; so are list counts it does not read, by name.
+    {
+        std::string many = kPlyStart + "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+        for (int i = 0; i < 100000; ++i) many += "property float p" + std::to_string(i) + "\n";
+        expectRefused(many + "end_header\n", ".ply", "element 'vertex' has more than 256 properties");
+        std::string elements = kPlyStart;
+        for (int i = 0; i < 100000; ++i) elements += "element e" + std::to_string(i) + " 0\n";
+        expectRefused(elements + "end_header\n", ".ply", "more than 64 elements");
+    }
+    expectRefused(kPlyStart + "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                              "element face 1\nproperty list ushort int vertex_indices\nend_header\n"
+                              "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                  ".ply", "a list count of type 'ushort': limn reads uchar, uint8, uint16 or int counts");
     expectRefused(kPlyStart + "element vertex 1\nproperty quaternion q\nend_header\n1\n", ".ply",
                   "with PLY types");
     expectRefused(kPlyStart + "element vertex -1\nproperty float x\nend_header\n", ".ply",
