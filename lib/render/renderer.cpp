@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <future>
 #include <limits>
@@ -211,6 +212,21 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         }
         bounds = draw.bounds;
         if (hull.valid()) bounds.hull = hull.get();
+        if (settings.displacementMap) {
+            // An EXR may hold any finite value: 3e38 times --displace-scale 10 is Inf on the GPU,
+            // and the image came out blank with exit 0. The same 1e18 as positions (mesh.cpp).
+            double far = 0;
+            for (float v : settings.displacementMap->values)
+                far = std::max(far, std::abs((double(v) - settings.displaceMid) * settings.displaceScale));
+            if (far > 1e18)
+                throw Error(ErrorKind::BadInput,
+                            "--displace: the map's values times --displace-scale move the surface by up to " +
+                                [far] {
+                                    char b[32];
+                                    std::snprintf(b, sizeof b, "%.3g", far);
+                                    return std::string(b);
+                                }() + ", beyond the 1e18 that the GPU's float arithmetic carries");
+        }
         if (settings.displacementMap) { // leave room for the displaced surface in the framing
             framingPad_ = glm::dvec3(std::abs(settings.displaceScale) * 0.5);
             bounds.min -= framingPad_, bounds.max += framingPad_;

@@ -159,6 +159,31 @@ TEST(Displacement, BadMapsAreErrorsWithoutOutput) {
     auto r = run({bin("limn-render"), limn, "--displace", map, "--eval", "vertex", "-o", out});
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
+    // An EXR's finite but huge value times the scale overflows the GPU's float: the image came
+    // out blank with exit 0 (--mesh-out was refused). Refused before rendering, both ways.
+    const std::string huge = (dir / "huge.exr").string();
+    {
+        std::vector<float> values(16, 0.5f);
+        values[5] = 3e38f;
+        auto o = OIIO::ImageOutput::create(huge);
+        ASSERT_TRUE(o);
+        ASSERT_TRUE(o->open(huge, OIIO::ImageSpec(4, 4, 1, OIIO::TypeDesc::FLOAT)));
+        ASSERT_TRUE(o->write_image(OIIO::TypeDesc::FLOAT, values.data()));
+        ASSERT_TRUE(o->close());
+    }
+    for (const std::string extra : {"", "--mesh-out"}) {
+        std::vector<std::string> args = {bin("limn-render"), limn, "--size", "64x48", "--displace", huge,
+                                         "--displace-scale", "10", "-o", out};
+        if (!extra.empty()) args.insert(args.end(), {extra, (dir / "m.ply").string()});
+        r = run(args);
+        EXPECT_EQ(r.exitCode, 1) << r.err;
+        EXPECT_NE(r.err.find("beyond the 1e18"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out));
+        EXPECT_FALSE(std::filesystem::exists(dir / "m.ply"));
+    }
+    // A large but carried displacement renders.
+    r = run({bin("limn-render"), limn, "--size", "64x48", "--displace", huge, "--displace-scale", "1e-30", "-o", out});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
 } // namespace
