@@ -1,6 +1,7 @@
 #include "mesh/gltf.h"
 
 #include "base/error.h"
+#include "base/io.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -8,6 +9,7 @@
 #include <glm/mat4x4.hpp>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cstring>
 #include <cmath>
 #include <map>
@@ -257,10 +259,21 @@ struct Welder {
 
 namespace {
 
-// tinygltf's own file reader, noting each file it read (the depfile lists them).
+// Reads a file the asset names (buffers, images) for tinygltf, noting each (the depfile lists them).
 bool readAndRecord(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                    void* user) {
-    if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+    // limn's reader, not tinygltf's: a directory named as a buffer gave "out of memory" with no
+    // name; this one names the file and refuses directories and endless inputs.
+    if (isStdio(path)) { // readInput's name for standard input
+        if (err) *err += "a buffer or image has an empty name or '-'\n";
+        return false;
+    }
+    try {
+        *out = readInput(path);
+    } catch (const Error& e) {
+        if (err) *err += path + ": " + e.what() + "\n";
+        return false;
+    }
     if (user) static_cast<std::vector<std::string>*>(user)->push_back(path);
     return true;
 }
@@ -309,10 +322,45 @@ MeshMaterial baseColor(const tinygltf::Model& model, int index, ImageBytes& imag
     return m;
 }
 
+// tinygltf's JSON parser recurses once per nesting level: a 40 KB file of 15,000 nested '['
+// overflows the stack (SIGSEGV). Real glTF nests about ten levels (extras included); anything
+// past kMaxJsonDepth is refused before the parser sees it. Strings are skipped, escapes included.
+constexpr int kMaxJsonDepth = 256;
+
+void refuseDeepJson(std::span<const uint8_t> json) {
+    int depth = 0;
+    bool inString = false;
+    for (size_t i = 0; i < json.size(); ++i) {
+        const uint8_t c = json[i];
+        if (inString) {
+            if (c == '\\') ++i;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                throwBadInput("glTF: the JSON nests deeper than " + std::to_string(kMaxJsonDepth) +
+                              " levels (at byte " + std::to_string(i) + ")");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+// The JSON of a .glb: its first chunk (header: magic, version, length; chunk: length, type).
+// A header too short or a length past the end is left to tinygltf, which names the fault.
+std::span<const uint8_t> glbJson(std::span<const uint8_t> bytes) {
+    if (bytes.size() < 20) return {};
+    uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return bytes.subspan(20, std::min<size_t>(length, bytes.size() - 20));
+}
+
 } // namespace
 
 Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
               Warnings& warnings, std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material) {
+    refuseDeepJson(binary ? glbJson(bytes) : bytes);
     tinygltf::TinyGLTF loader;
     ImageBytes images;
     loader.SetImageLoader(keepImageBytes, material ? &images : nullptr);
