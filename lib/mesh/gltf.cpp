@@ -168,7 +168,8 @@ struct Welder {
     void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                       const glm::dmat4& transform, const std::string& what) {
         int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-        if (mode != TINYGLTF_MODE_TRIANGLES) {
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             ++skippedPrimitives;
             return;
         }
@@ -222,6 +223,18 @@ struct Welder {
         } else {
             corners.resize(positions.count());
             for (size_t i = 0; i < corners.size(); ++i) corners[i] = static_cast<uint32_t>(i);
+        }
+        // Strips and fans as the triangles glTF 2.0 (3.7.2.1) defines: strip triangle i is
+        // {v_i, v_i+(1+i%2), v_i+(2-i%2)}, fan triangle i is {v_i+1, v_i+2, v_0}.
+        if (mode != TINYGLTF_MODE_TRIANGLES) {
+            std::vector<uint32_t> list;
+            for (size_t i = 0; i + 2 < corners.size(); ++i) {
+                if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+                    list.insert(list.end(), {corners[i], corners[i + 1 + i % 2], corners[i + 2 - i % 2]});
+                else
+                    list.insert(list.end(), {corners[i + 1], corners[i + 2], corners[0]});
+            }
+            corners = std::move(list);
         }
         if (corners.size() % 3) throwBadInput(what + " index count is not a multiple of 3");
         for (size_t t = 0; t < corners.size(); t += 3) {
@@ -396,9 +409,11 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
             if (!isChild[i]) roots.push_back(static_cast<int>(i));
     }
     for (int root : roots) w.addNode(model, root, glm::dmat4(1.0), 0);
-    if (w.skippedPrimitives)
-        warnings.add(std::to_string(w.skippedPrimitives) +
-                     " non-triangle primitives (points, lines, strips, fans) skipped");
+    if (w.skippedPrimitives) {
+        const std::string skipped = std::to_string(w.skippedPrimitives) + " point or line primitives";
+        if (w.mesh.faceCount() == 0) throwBadInput("glTF: no triangles to subdivide, only " + skipped);
+        warnings.add(skipped + " skipped");
+    }
     if (w.degenerate)
         warnings.add(std::to_string(w.degenerate) +
                      " degenerate triangles (two corners at the same position) dropped");

@@ -1,5 +1,6 @@
 // glTF 2.0 (.gltf with external or data: buffers, .glb) through tinygltf: every triangle
-// primitive of every mesh instanced by the scene, node transforms applied, vertices welded by
+// primitive (triangles, strips, fans; points and lines are skipped with a warning) of every mesh
+// instanced by the scene, node transforms applied, vertices welded by
 // exact position (glTF splits them at UV seams), TEXCOORD_0 kept as face-varying UVs.
 #pragma once
 

@@ -78,6 +78,43 @@ TEST(HostileGltf, DeepNestingIsRefusedNotACrash) {
     EXPECT_EQ(readText(triangleGltf(text)).faceCount(), 1u);
 }
 
+// Four points (0,0,0), (1,0,0), (0,1,0), (1,1,0), drawn with primitive `mode`, no indices.
+std::string fourPoints(int mode) {
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":)" +
+           std::to_string(mode) +
+           R"(}]}],"buffers":[{"byteLength":48,"uri":"data:application/octet-stream;base64,)"
+           R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAACAPwAAgD8AAAAA"}],)"
+           R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48}],)"
+           R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3",)"
+           R"("min":[0,0,0],"max":[1,1,0]}]})";
+}
+
+std::vector<std::vector<uint32_t>> faces(const Mesh& m) {
+    std::vector<std::vector<uint32_t>> out;
+    for (size_t f = 0; f < m.faceCount(); ++f) out.emplace_back(m.face(f).begin(), m.face(f).end());
+    return out;
+}
+
+// Triangle strips and fans are read as the triangles glTF 2.0 (3.7.2.1) defines, with their
+// winding (they once failed with "the mesh has no vertices"); a file of only points or lines
+// says so.
+TEST(GltfPrimitives, StripsAndFansAreTriangles) {
+    using F = std::vector<std::vector<uint32_t>>;
+    EXPECT_EQ(faces(readText(fourPoints(5))), (F{{0, 1, 2}, {1, 3, 2}})); // strip
+    EXPECT_EQ(faces(readText(fourPoints(6))), (F{{1, 2, 0}, {2, 3, 0}})); // fan
+    for (int mode : {0, 1, 3}) { // points, lines, line strip
+        try {
+            readText(fourPoints(mode));
+            ADD_FAILURE() << "accepted mode " << mode;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("no triangles to subdivide, only 1 point or line primitives"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 // A buffer whose URI names a directory said "out of memory" (tinygltf's reader); limn's reader
 // names the file and what it is.
 TEST(HostileGltf, ABufferThatIsADirectoryIsNamed) {
