@@ -377,7 +377,7 @@ uint64_t parseByteSize(const std::string& option, const std::string& value) {
         }
     }
     const double v = parseDouble(option, number);
-    if (!(v > 0) || v * unit > 1e18)
+    if (!(v * unit >= 1) || v * unit > 1e18) // 0.5 (bytes) would be a limit of 0
         usageError(option + ": '" + value + "' is not a size like 512M or 8G");
     return static_cast<uint64_t>(v * unit);
 }

@@ -156,7 +156,7 @@ TEST(Limits, ExplodingRefinementIsRefusedFromTheCounts) {
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "l.obj"));
-    for (const char* bad : {"0", "-5G", "lots", "5X"}) {
+    for (const char* bad : {"0", "-5G", "lots", "5X", "0.5"}) {
         r = test::run({bin("limn-tables"), sphere, "-o", out, "--max-memory", bad});
         EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
     }
