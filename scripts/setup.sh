@@ -39,11 +39,16 @@ npm_tools() {
     echo "setup: npm ci in tests/tools (gltf-validator)" >&2
     # Not fatal: without the registry everything else still builds and runs, and the glTF
     # validation test fails saying the validator is missing.
-    if (cd "$dir" && npm ci --no-audit --no-fund --silent >/dev/null); then
+    # npm's own reason is kept for the warning (a proxy's certificate, no route to the registry).
+    local log
+    log=$(mktemp)
+    if (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null 2>"$log"); then
       cp "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"
     else
-      echo "setup: warning: npm ci failed; the glTF-Validator test will fail until it succeeds" >&2
+      echo "setup: warning: npm ci failed; the glTF-Validator test will fail until it succeeds:" >&2
+      grep -m 2 -E "code |reason" "$log" | sed "s/^/  /" >&2 || true
     fi
+    rm -f "$log"
   fi
 }
 
