@@ -16,6 +16,7 @@
 #include <iostream>
 #include <new>
 #include <sstream>
+#include <fcntl.h>
 #include <unistd.h>
 
 #ifndef LIMN_VERSION
@@ -459,8 +460,29 @@ void preferHugePages([[maybe_unused]] char** argv) {
 
 } // namespace
 
+namespace {
+
+// A standard stream the caller closed (`2>&-`, `>&-`) leaves its descriptor free, and the first
+// file the tool opens takes it: warnings, -v lines or --bench's JSON then landed inside the
+// output image or container, with exit 0. Each closed slot is filled first: standard input and
+// error with /dev/null, standard output with /dev/full, so that what a tool writes there fails
+// the run (exit 1) instead of going anywhere.
+void fillClosedStandardStreams() {
+    for (int fd = 0; fd <= 2; ++fd) {
+        if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+        const int opened = ::open(fd == 1 ? "/dev/full" : "/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+        if (opened >= 0 && opened != fd) {
+            ::dup2(opened, fd);
+            ::close(opened);
+        }
+    }
+}
+
+} // namespace
+
 int run(const std::string& tool, int argc, char** argv,
         const std::function<int(int, char**)>& body) {
+    fillClosedStandardStreams();
     preferHugePages(argv);
     std::setlocale(LC_ALL, "C");
     std::locale::global(std::locale::classic());

@@ -289,6 +289,28 @@ TEST(SideFiles, AFailedWriteToStandardOutputIsAFailure) {
     }
 }
 
+// A closed standard stream's descriptor would be taken by the output file: -v lines and warnings
+// landed inside the PNG or container (exit 0). Closed stderr: the outputs are what they should
+// be; closed stdout: what goes there fails the run.
+TEST(SideFiles, AClosedStandardStreamNeverWritesIntoAnOutput) {
+    test::ScratchDir dir;
+    const std::string cube = cubeContainer(dir), png = (dir / "v.png").string(), limn = (dir / "c.limn").string();
+    auto r = test::run({"/bin/sh", "-c", bin("limn-render") + " " + cube + " --size 32x24 -v -o " + png + " 2>&-"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(test::readFile(png).substr(0, 4), "\x89PNG");
+    r = test::run({"/bin/sh", "-c",
+                   bin("limn-classify") + " -v " + (dir / "cube.obj").string() + " -o " + limn + " 2>&-"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(test::run({bin("limn-info"), limn}).exitCode, 0) << "the container is not one";
+    std::filesystem::remove(png);
+    r = test::run({"/bin/sh", "-c", bin("limn-render") + " " + cube + " --size 32x24 --bench 1 -o " + png + " >&-"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("<stdout>"), std::string::npos) << r.err;
+    if (std::filesystem::exists(png)) {
+        EXPECT_EQ(test::readFile(png).substr(0, 4), "\x89PNG");
+    }
+}
+
 TEST(SideFiles, LibpngSpeaksThroughLimnsError) {
     // A PNG limn's own decoder leaves to OpenImageIO (interlaced) with too little image data.
     test::ScratchDir dir;
