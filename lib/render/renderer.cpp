@@ -487,13 +487,13 @@ Image Renderer::image() const {
     return img;
 }
 
-std::string Renderer::tessellationWarning() const {
+std::string Renderer::tessellationShortfall() const {
     const auto* sp = dynamic_cast<const SubdivisionPass*>(pass_.get());
     const AdaptiveTotals* t = sp ? sp->lastTotals() : nullptr;
     if (!t || !t->overflow) return {};
     return "the view-adaptive tessellation of this view needs " + t->need() +
-           (t->overBudget ? "" : ", more than its buffers hold") +
-           "; parts of the surface were left out (raise --edge-pixels or lower --tess)";
+           (t->overBudget || t->cutShort ? "" : ", more than its buffers hold") +
+           "; nothing written: raise --edge-pixels or lower --tess";
 }
 
 DrawnMesh Renderer::drawnMesh() {

@@ -408,8 +408,7 @@ TEST(AdaptiveCli, TessNotAPowerOfTwoInBothModes) {
 // writes all its triangles (lavapipe ends a shader invocation's loops after 65,535 iterations in
 // all, which once left most of a big element unwritten: holes, and --mesh-out triangles of one
 // repeated vertex), so the surface is welded closed with no triangle collapsed; or, where one
-// element's sides alone need more, the render says so (exit 0 with a warning for the image,
-// exit 1 for --mesh-out). cube_creases1 has single-crease patches (graded segments).
+// element's sides alone need more, the render is refused (exit 1, nothing written). cube_creases1 has single-crease patches (graded segments).
 TEST(AdaptiveCli, HighRatesWriteEveryTriangle) {
     ScratchDir dir;
     const std::string limn = prepare(modelPath("osd/catmark/catmark_cube_creases1.obj").string(), 3, dir);
@@ -473,6 +472,32 @@ TEST(AdaptiveCli, LargeElementsAtHighRatesAreWholeOrRefused) {
             EXPECT_EQ(r.exitCode, 0) << r.err;
         }
     }
+}
+
+// A view whose tessellation needs more than the per-frame buffers hold (a sub-pixel
+// --edge-pixels) once wrote an image with holes and exit 0, with only a warning: it is refused
+// like --mesh-out, and a sequence removes the frames it wrote.
+TEST(AdaptiveCli, AViewOverItsBuffersWritesNothing) {
+    ScratchDir dir;
+    const std::string limn = prepare(modelPath("quad/spot_control_mesh.obj").string(), 3, dir);
+    const std::string png = (dir / "s.png").string();
+    auto r = run({tool("limn-render").string(), limn, "--size", "64x48", "--view", "150,20", "--edge-pixels", "0.001",
+                  "-q", "-o", png});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("more than its buffers hold"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nothing written: raise --edge-pixels or lower --tess"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(png));
+    r = run({tool("limn-render").string(), limn, "--size", "64x48", "--edge-pixels", "0.001", "--turntable", "2",
+             "-o", (dir / "t_%d.png").string()});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "t_0.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "t_1.png"));
+    r = run({tool("limn-render").string(), limn, "--size", "64x48", "--view", "150,20", "--edge-pixels", "0.001",
+             "--bench", "1"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_EQ(r.out, "") << "no benchmark JSON for a frame with parts left out";
+    r = run({tool("limn-render").string(), limn, "--size", "64x48", "--view", "150,20", "-o", png});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
 // limn-tables accepts --depth 16; the view-adaptive pieces pack depth 15 at most (edge_pieces.cpp),

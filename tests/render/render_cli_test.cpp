@@ -373,6 +373,7 @@ TEST(RenderCli, CameraAndBenchOptionsAreCheckedWithTheReason) {
         {{"--eye", "0,0,5", "--target", "-1e300,0,0"}, "--target: each coordinate must be within +-1e18"},
         {{"--eye", "1e19,0,5"}, "--eye: each coordinate must be within +-1e18"},
         {{"--bench-orbit", "10"}, "give --bench FRAMES too"},
+        {{"--view", "1e308,0"}, "--view: azimuth must be -360 to 360"},
     };
     for (const auto& [bad, message] : cases) {
         std::vector<std::string> args = {limn, "--size", "32x32", "-o", out};

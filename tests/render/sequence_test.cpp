@@ -123,6 +123,8 @@ TEST(CameraFile, BadLinesNamed) {
         {"1 1 1 1 1 1 0 1 0\n", "same point"},
         {"0 0 5 0 0 0 0 0 0\n", "up vector is zero"},
         {"0 5 0 0 0 0 0 1 0\n", "parallel"},
+        {"0 0 1e39 0 0 0 0 1 0\n", "beyond the 1e18"},
+        {"0 0 5 0 0 0 1e300 1e300 0\n", "beyond the 1e18"},
         {"0 0 5 0 0 0 0 1 0 0.5\n", "field of view"},
         {"0 0 5 0 0 0 0 1 0 171\n", "field of view"},
         {"# only comments\n\n", "no camera"},

@@ -315,9 +315,9 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             }
             renderer.renderFrame();
             if (validation && validation->errors()) checkValidation(*validation); // throws
-            // With --mesh-out, drawnMesh() refuses such a frame instead (an error, not both).
-            if (std::string w = renderer.tessellationWarning(); !meshPattern && !w.empty() && !common.quiet)
-                cli::warn(inputName + ": frame " + std::to_string(numbers[k]) + ": " + w);
+            // A frame with parts of the surface left out is an error, not an image with holes.
+            if (std::string w = renderer.tessellationShortfall(); !w.empty())
+                throw Error(ErrorKind::BadInput, inputName + ": frame " + std::to_string(numbers[k]) + ": " + w);
             FramePixels pixels = framePixels(renderer, format, bitDepth);
             finishPending();
             if (k > 0) progress.done(k);
@@ -433,15 +433,18 @@ int main(int argc, char** argv) {
                 [&](const std::string& v) {
                     auto n = cli::parseNumberList("--view", v, 2);
                     if (n[1] < -90 || n[1] > 90) usage("--view: elevation must be -90 to 90");
+                    // As --light: 1e308 degrees made a NaN camera and a blank image with exit 0.
+                    if (n[0] < -360 || n[0] > 360) usage("--view: azimuth must be -360 to 360");
                     settings.view.azimuthDeg = n[0];
                     settings.view.elevationDeg = n[1];
                     viewGiven = true;
                 },
                 "-30,20",
                 "camera direction in degrees: azimuth around the up axis from the front (0)\n"
-                "                            towards the right (90), elevation above the horizon\n"
-                "                            (-90 to 90); front is +Z with --up-axis y, -Y with z,\n"
-                "                            right +X. The default looks from front-left-above.\n"
+                "                            towards the right (90; -360 to 360), elevation above\n"
+                "                            the horizon (-90 to 90); front is +Z with --up-axis y,\n"
+                "                            -Y with z, right +X. The default looks from\n"
+                "                            front-left-above.\n"
                 "                            The object is centred and spans 85% of the image's\n"
                 "                            smaller side (its larger extent)")
             .choice("--up-axis", &upAxis, {"y", "z"},
@@ -1003,6 +1006,8 @@ int main(int argc, char** argv) {
                                bitDepth, settings);
             } else if (bench) {
                 render::BenchResult b = render::runBenchmark(renderer, bench, 3, benchOrbit);
+                if (std::string w = renderer.tessellationShortfall(); !w.empty())
+                    throw Error(ErrorKind::BadInput, displayName(input) + ": " + w);
                 JsonWriter j;
                 j.beginObject().field("frames", b.frames);
                 j.field("samples", settings.samples).field("sample_shading", settings.sampleShading);
@@ -1026,9 +1031,9 @@ int main(int argc, char** argv) {
             } else {
                 renderer.renderFrame();
             }
-            // With --mesh-out, drawnMesh() refuses such a frame instead (an error, not both).
-            if (std::string w = renderer.tessellationWarning(); !sequence && !ply && !w.empty() && !common.quiet)
-                cli::warn(displayName(input) + ": " + w);
+            // A frame with parts of the surface left out is an error, not an image with holes.
+            if (std::string w = renderer.tessellationShortfall(); !sequence && !w.empty())
+                throw Error(ErrorKind::BadInput, displayName(input) + ": " + w);
             for (const auto& p : renderer.frameTimes().passes) {
                 char ms[32];
                 std::snprintf(ms, sizeof ms, "%.3f", p.ms);
