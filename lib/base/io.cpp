@@ -9,8 +9,10 @@
 #include <stdio.h>
 #include <csignal>
 #include <filesystem>
+#include <memory>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <unordered_map>
 
 namespace limn {
 
@@ -114,9 +116,19 @@ void unregisterTemp(int slot) {
     if (slot >= 0) g_tempUsed[slot] = 0;
 }
 
+// prepareRemovalOnSignal's paths: one buffer of NUL-terminated names, built before g_landedCount
+// says how many the handler may read; a flag per name, set once it is in place.
+std::vector<char> g_landedNames;
+std::vector<size_t> g_landedOffsets;
+std::unique_ptr<volatile sig_atomic_t[]> g_landedFlags;
+std::unordered_map<std::string, size_t> g_landedIndex;
+volatile sig_atomic_t g_landedCount = 0;
+
 extern "C" void removeTempsAndDie(int sig) {
     for (int i = 0; i < kMaxTemps; ++i)
         if (g_tempUsed[i]) ::unlink(g_temps[i]);
+    for (sig_atomic_t i = 0; i < g_landedCount; ++i)
+        if (g_landedFlags[i]) ::unlink(&g_landedNames[g_landedOffsets[i]]);
     ::signal(sig, SIG_DFL);
     ::raise(sig);
 }
@@ -145,6 +157,27 @@ std::string resolveLinks(const std::string& path) {
 }
 
 } // namespace
+
+void prepareRemovalOnSignal(const std::vector<std::string>& paths) {
+    clearRemovalOnSignal();
+    g_landedIndex.clear();
+    g_landedNames.clear();
+    g_landedOffsets.clear();
+    for (const auto& p : paths) {
+        if (isStdio(p) || !g_landedIndex.emplace(p, g_landedOffsets.size()).second) continue;
+        g_landedOffsets.push_back(g_landedNames.size());
+        g_landedNames.insert(g_landedNames.end(), p.begin(), p.end());
+        g_landedNames.push_back('\0');
+    }
+    g_landedFlags.reset(new volatile sig_atomic_t[g_landedOffsets.size()]());
+    g_landedCount = static_cast<sig_atomic_t>(g_landedOffsets.size());
+}
+
+void markLandedForRemovalOnSignal(const std::string& path) {
+    if (auto it = g_landedIndex.find(path); it != g_landedIndex.end() && g_landedCount > 0) g_landedFlags[it->second] = 1;
+}
+
+void clearRemovalOnSignal() { g_landedCount = 0; }
 
 void installOutputCleanupOnSignals() {
     for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {

@@ -62,6 +62,14 @@ private:
 // the same signal (cli::run installs it for every tool). Signals set to be ignored stay ignored.
 void installOutputCleanupOnSignals();
 
+// Files already in place that the cleanup signals remove too: a sequence's frames, so that an
+// interrupted run leaves all of its outputs or none (README, Conventions). `prepare` takes every
+// path the run may write, before the first is written (the handler may only read what is ready);
+// `landed` marks one as written; `clear` forgets them all (the run has finished or cleaned up).
+void prepareRemovalOnSignal(const std::vector<std::string>& paths);
+void markLandedForRemovalOnSignal(const std::string& path);
+void clearRemovalOnSignal();
+
 // Convenience: writes the whole buffer atomically.
 void writeOutput(const std::string& path, std::span<const uint8_t> bytes, OutputFile::Kind kind);
 

@@ -168,8 +168,10 @@ TEST(SideFiles, GltfDepfileListsItsBuffers) {
 
 // Starts `argv` with stdout/stderr to /dev/null (or stderr to a closed pipe), waits until a
 // temporary output file exists in `dir`, sends `sig`, and returns the wait status.
+// Signals the tool once a temporary file shows in `dir` (or, with `landed`, once that file is
+// there), or, with `closedStderr`, lets its next write to stderr raise SIGPIPE.
 int runAndSignal(const std::vector<std::string>& argv, const std::filesystem::path& dir, int sig,
-                 bool closedStderr = false) {
+                 bool closedStderr = false, const std::filesystem::path& landed = {}) {
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
@@ -191,7 +193,7 @@ int runAndSignal(const std::vector<std::string>& argv, const std::filesystem::pa
         ::close(pipeFds[0]); // the reader goes away: the tool's next write to stderr is SIGPIPE
         ::close(pipeFds[1]);
     } else {
-        for (int i = 0; i < 200 && !anyTemporary(dir); ++i)
+        for (int i = 0; i < 500 && (landed.empty() ? !anyTemporary(dir) : !std::filesystem::exists(landed)); ++i)
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
         ::kill(pid, sig);
     }
@@ -225,6 +227,21 @@ TEST(SideFiles, SignalsLeaveNoTemporaryFile) {
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGPIPE) << "status " << status;
     EXPECT_FALSE(anyTemporary(dir.path()));
     EXPECT_FALSE(std::filesystem::exists(dir / "s.png"));
+}
+
+// An interrupted sequence removes the frames it had written, as a failed one does (they once
+// stayed: 51 of a 2,000-frame turntable after SIGTERM).
+TEST(SideFiles, SignalsRemoveASequencesFrames) {
+    test::ScratchDir dir;
+    const std::string cube = cubeContainer(dir);
+    for (int sig : {SIGINT, SIGTERM}) {
+        const int status = runAndSignal({bin("limn-render"), cube, "--size", "32x24", "--turntable", "2000", "-o",
+                                         (dir / "f_%04d.png").string(), "--mesh-out", (dir / "f_%04d.ply").string()},
+                                        dir.path(), sig, false, dir / "f_0002.png");
+        EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "signal " << sig << ": status " << status;
+        EXPECT_EQ(test::filesIn(dir.path()), (std::vector<std::string>{"cube.limn", "cube.obj"}))
+            << "signal " << sig << " left frames or temporary files";
+    }
 }
 
 TEST(SideFiles, OverwritingKeepsTheModeAndWritesThroughALink) {

@@ -274,6 +274,7 @@ OutputFile::Kind meshFileKind(render::MeshFormat format, bool ascii) {
 }
 
 void removeFrames(const std::vector<std::string>& paths) {
+    clearRemovalOnSignal();
     for (const std::string& p : paths) std::filesystem::remove(p);
 }
 
@@ -302,6 +303,13 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
     // frame is in flight; its bytes depend only on its own pixels. Output files are only ever
     // made by one thread at a time (the signal handler's list of temporary files is not shared
     // safely): the main thread waits for the frame in flight before writing a --mesh-out.
+    // A signal (Ctrl-C, SIGTERM) removes the frames already in place, as an error does.
+    std::vector<std::string> paths;
+    for (uint64_t n : numbers) {
+        paths.push_back(render::framePath(imagePattern, n));
+        if (meshPattern) paths.push_back(render::framePath(*meshPattern, n));
+    }
+    prepareRemovalOnSignal(paths);
     std::future<std::string> pending;
     auto finishPending = [&] {
         if (pending.valid()) written.push_back(pending.get());
@@ -325,11 +333,13 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
                 const std::string mesh = render::framePath(*meshPattern, numbers[k]);
                 writeOutput(mesh, render::encodeMesh(renderer.drawnMesh(), *meshFormat, meshAscii),
                             meshFileKind(*meshFormat, meshAscii));
+                markLandedForRemovalOnSignal(mesh);
                 written.push_back(mesh);
             }
             const std::string image = render::framePath(imagePattern, numbers[k]);
             pending = std::async(std::launch::async, [image, format, bitDepth, &settings, p = std::move(pixels)] {
                 writeOutput(image, encodeImage(p, format, bitDepth, settings), OutputFile::Kind::Binary);
+                markLandedForRemovalOnSignal(image);
                 return image;
             });
         }
@@ -1074,6 +1084,7 @@ int main(int argc, char** argv) {
             if (png) png->commit();
             if (ply) ply->commit();
             depfile.commit();
+            clearRemovalOnSignal(); // the run is complete: its frames stay
         } catch (...) {
             removeFrames(written);
             throw;
