@@ -198,7 +198,13 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
         }
         return;
     }
-    target_ = resolveLinks(path_);
+    // A link to a device or pipe (/dev/stdout -> /proc/self/fd/1 -> "pipe:[N]") is written
+    // through the link itself: resolving it by hand gave a name that is no file.
+    struct stat direct {};
+    if (::stat(path_.c_str(), &direct) == 0 && !S_ISREG(direct.st_mode) && !S_ISDIR(direct.st_mode))
+        target_ = path_;
+    else
+        target_ = resolveLinks(path_);
     // An existing target that is not a regular file (/dev/null, a FIFO, a terminal device) is
     // written in place: renaming a temporary file over it would replace the device or pipe with
     // a plain file (as root, /dev/null itself).

@@ -397,6 +397,16 @@ TEST(RenderCli, HelpListsDefaultsAndExitCodes) {
         EXPECT_NE(r.out.find(needle), std::string::npos) << needle;
 }
 
+// /dev/stdout is a link to a link to the pipe (/proc/self/fd/1 -> "pipe:[N]"): written through,
+// as the help promises for a device or FIFO (it failed: "cannot create output").
+TEST(RenderCli, DevStdoutIsStandardOutput) {
+    ScratchDir dir;
+    auto limn = classify(dir, modelPath("quad/osd_catmark_cube.obj").string(), "cube");
+    auto r = render({limn, "--size", "32x24", "-o", "/dev/stdout"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.substr(0, 4), "\x89PNG");
+}
+
 TEST(RenderCli, DepfileAndBench) {
     ScratchDir dir;
     auto limn = classify(dir, modelPath("quad/osd_catmark_cube.obj").string(), "cube");
