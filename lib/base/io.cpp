@@ -3,7 +3,9 @@
 #include "base/error.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <fcntl.h>
 #include <stdio.h>
@@ -230,30 +232,39 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
         }
         return;
     }
-    tempPath_ = directoryOf(target_) + ".limn-tmp-XXXXXX";
-    std::vector<char> name(tempPath_.begin(), tempPath_.end());
-    name.push_back('\0');
-    // The cleanup signals wait while the file is created and registered: one that came between
-    // the two would leave the file behind (SideFiles.SignalsLeaveNoTemporaryFile hit that window
-    // under AddressSanitizer). A signal held here is delivered at the unblock, to the handler,
-    // which then knows the file.
-    sigset_t cleanup, previous;
-    sigemptyset(&cleanup);
-    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaddset(&cleanup, sig);
-    ::pthread_sigmask(SIG_BLOCK, &cleanup, &previous);
-    fd_ = ::mkstemp(name.data());
-    const int createErrno = errno;
-    if (fd_ >= 0) tempSlot_ = registerTemp(name.data());
-    ::pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+    // The temporary file's name is registered for the signal handler before the file exists
+    // (O_EXCL makes it ours or fails): a signal at any moment finds the name, and unlinking a
+    // name not created yet does nothing. (Blocking the signals while mkstemp ran protected only
+    // the creating thread: a signal taken by another thread, lavapipe's or the frame writer's,
+    // left the file behind; SideFiles.SignalsRemoveASequencesFrames hit it.)
+    static std::atomic<uint64_t> counter{0};
+    const std::string directory = directoryOf(target_);
+    int createErrno = EEXIST;
+    for (int attempt = 0; attempt < 100 && fd_ < 0 && createErrno == EEXIST; ++attempt) {
+        uint64_t x = (uint64_t(::getpid()) << 32) ^
+                     uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()) ^
+                     (counter.fetch_add(1) + 1) * 0x9E3779B97F4A7C15ull;
+        std::string name = directory + ".limn-tmp-";
+        for (int i = 0; i < 6; ++i, x /= 62)
+            name += "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"[x % 62];
+        tempSlot_ = registerTemp(name);
+        fd_ = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+        createErrno = errno;
+        if (fd_ >= 0) {
+            tempPath_ = name;
+        } else {
+            unregisterTemp(tempSlot_);
+            tempSlot_ = -1;
+        }
+    }
     if (fd_ < 0) {
         errno = createErrno;
         Error e(ErrorKind::BadInput, std::string("cannot create output: ") + std::strerror(errno));
         e.setFile(path_);
         throw e;
     }
-    tempPath_.assign(name.data());
     // An existing file keeps its permissions; a new one gets what a plain creat() would give
-    // (0666 & ~umask), where mkstemp gave 0600.
+    // (0666 & ~umask), where it was created 0600.
     if (exists) {
         ::fchmod(fd_, st.st_mode & 07777);
     } else {
