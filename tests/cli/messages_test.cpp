@@ -72,6 +72,17 @@ TEST(Messages, NoSilentFallbacks) {
                    (f.dir / "o.png").string()});
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("--grid"), std::string::npos) << r.err;
+    for (std::vector<std::string> options : {std::vector<std::string>{"--displace-scale", "0.1"},
+                                             {"--displace-mid", "0.5"}, {"--no-seam-fix"}}) {
+        std::vector<std::string> args = {bin("limn-render"), f.d2, "--size", "32x24", "-o", (f.dir / "o.png").string()};
+        args.insert(args.end(), options.begin(), options.end());
+        r = test::run(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.err.find("without --displace they do nothing"), std::string::npos) << options[0] << ": " << r.err;
+    }
+    r = test::run({bin("limn-render"), f.d2, "--size", "32x24", "--mesh-ascii", "-o", (f.dir / "o.png").string()});
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("--mesh-ascii applies to a .ply --mesh-out"), std::string::npos) << r.err;
     // A mesh file is drawn as the control mesh on purpose: no warning.
     r = test::run({bin("limn-render"), f.obj, "--size", "32x24", "-o", (f.dir / "o.png").string()});
     EXPECT_EQ(r.exitCode, 0) << r.err;

@@ -105,6 +105,7 @@ TEST(Frames, EveryFrameIsTheSingleRenderOfItsMeshWithTheSameTables) {
         const std::string dep = readFile(out / (tag + "frames.d"));
         EXPECT_NE(dep.find(tag + "0023.png"), std::string::npos) << dep;
         EXPECT_NE(dep.find("twist_0023.obj"), std::string::npos) << dep;
+        EXPECT_EQ(dep.find("twist_0023.obj"), dep.rfind("twist_0023.obj")) << "named twice: " << dep;
     }
 }
 

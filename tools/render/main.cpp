@@ -202,7 +202,7 @@ std::vector<SequenceFrame> readFrameMeshes(const std::vector<render::FrameFile>&
             throw;
         }
         cli::printWarnings(warnings, f.path);
-        filesRead.push_back(f.path);
+        // f.path itself is already among the run's inputs (the depfile listed it twice).
         frames.push_back({f.number, f.path, std::move(m.positions)});
     }
     return frames;
@@ -808,6 +808,7 @@ int main(int argc, char** argv) {
             if (meshAscii && *meshFormat != render::MeshFormat::Ply)
                 usage("--mesh-ascii applies to a .ply --mesh-out, not " + meshOut);
         }
+        if (meshAscii && meshOut.empty()) usage("--mesh-ascii applies to a .ply --mesh-out; give --mesh-out FILE.ply");
         // The image goes to standard output by default, unless --bench or --mesh-out is the
         // output asked for.
         const bool writeImage = !common.output.empty() || (!bench && meshOut.empty());
@@ -926,6 +927,9 @@ int main(int argc, char** argv) {
         if (!in.blend && grid != 16)
             cli::warn("--grid sets the blending surface's cells; " + displayName(input) +
                       " draws no blending surface, so it does nothing");
+        if (displace.empty() && (displaceScale != 1 || displaceScalePercent || displaceMid != 0 || noSeamFix))
+            cli::warn("--displace-scale, --displace-mid and --no-seam-fix shape the --displace map; "
+                      "without --displace they do nothing");
         if (!trimPath.empty()) {
             try {
                 settings.trim = render::trimMaskFromImage(
