@@ -383,6 +383,12 @@ uint64_t parseByteSize(const std::string& option, const std::string& value) {
     return static_cast<uint64_t>(v * unit);
 }
 
+std::string shortNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
 std::string formatBytes(uint64_t bytes) {
     char buf[32];
     const double b = double(bytes);

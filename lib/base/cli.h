@@ -78,6 +78,7 @@ uint64_t defaultMemoryBudget();
 // "512M", "8G", "1.5G", "100000" (bytes); K/M/G/T are powers of 1024. Throws Error(Usage).
 uint64_t parseByteSize(const std::string& option, const std::string& value);
 std::string formatBytes(uint64_t bytes); // "1.5 GiB"
+std::string shortNumber(double v);       // three significant digits for messages: "1e+39", "0.25"
 
 // Parse helpers for option values; each throws Error(Usage) naming the option.
 std::vector<double> parseNumberList(const std::string& option, const std::string& value,

@@ -41,12 +41,16 @@ std::vector<uint8_t> readInput(const std::string& path) {
         throw e;
     }
     std::vector<uint8_t> data;
-    if (S_ISREG(st.st_mode) && uint64_t(st.st_size) > kMaxInputBytes) {
+    // Inputs are read whole; an endless one (/dev/zero, a runaway pipe) would take all the
+    // memory and end in "out of memory" without a name. The largest input limn writes (the
+    // car's uniform tables at depth 6) is 2 GB.
+    auto tooLarge = [&] {
         if (fd != STDIN_FILENO) ::close(fd);
         Error e(ErrorKind::BadInput, "larger than 4 GiB, more than limn reads as one input");
         e.setFile(isStdio(path) ? "<stdin>" : path);
-        throw e;
-    }
+        return e;
+    };
+    if (S_ISREG(st.st_mode) && uint64_t(st.st_size) > kMaxInputBytes) throw tooLarge();
     if (S_ISREG(st.st_mode) && st.st_size > 0) data.reserve(static_cast<size_t>(st.st_size));
     uint8_t buffer[1 << 16];
     for (;;) {
@@ -59,15 +63,7 @@ std::vector<uint8_t> readInput(const std::string& path) {
             throwIo("cannot read", path);
         }
         if (n == 0) break;
-        // Inputs are read whole; an endless one (/dev/zero, a runaway pipe) would take all the
-        // memory and end in "out of memory" without a name. The largest input limn writes (the
-        // car's uniform tables at depth 6) is 2 GB.
-        if (data.size() + size_t(n) > kMaxInputBytes) {
-            if (fd != STDIN_FILENO) ::close(fd);
-            Error e(ErrorKind::BadInput, "larger than 4 GiB, more than limn reads as one input");
-            e.setFile(isStdio(path) ? "<stdin>" : path);
-            throw e;
-        }
+        if (data.size() + size_t(n) > kMaxInputBytes) throw tooLarge();
         data.insert(data.end(), buffer, buffer + n);
     }
     if (fd != STDIN_FILENO) ::close(fd);
@@ -326,10 +322,13 @@ void writeOutput(const std::string& path, std::span<const uint8_t> bytes, Output
     out.commit();
 }
 
-void requireOutputExtension(const std::string& path, const std::string& extension, const std::string& format) {
-    if (isStdio(path) || extensionOf(path) == extension) return;
+bool isStreamPath(const std::string& path) {
     struct stat st {};
-    if (::stat(path.c_str(), &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) return;
+    return !isStdio(path) && ::stat(path.c_str(), &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode));
+}
+
+void requireOutputExtension(const std::string& path, const std::string& extension, const std::string& format) {
+    if (isStdio(path) || extensionOf(path) == extension || isStreamPath(path)) return;
     Error e(ErrorKind::Usage, "unknown extension; this tool writes " + format + " (" + extension +
                                   ", or - for standard output)");
     e.setFile(path);

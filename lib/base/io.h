@@ -79,6 +79,10 @@ void writeOutput(const std::string& path, std::span<const uint8_t> bytes, Output
 void refuseOverwritingInputs(const std::string& output, const std::vector<std::string>& inputs,
                              bool (*inPlace)(const std::string&) = nullptr);
 
+// Whether `path` names an existing device or FIFO (/dev/null, a named pipe): written in place,
+// like standard output, whatever its name.
+bool isStreamPath(const std::string& path);
+
 // Tools that write one format (limn-heightmap, limn-trim: PNG) refuse another extension, as
 // limn-render does, instead of writing PNG bytes into "map.jpg": Error(Usage) unless `path` ends
 // in `extension` (case-insensitive), is "-", or is an existing device or FIFO.

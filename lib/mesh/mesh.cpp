@@ -1,5 +1,6 @@
 #include "mesh/mesh.h"
 
+#include "base/cli.h"
 #include "base/error.h"
 
 #include <glm/common.hpp>
@@ -7,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -18,12 +18,6 @@ namespace {
 // What float arithmetic on the GPU carries with room for squared lengths (3.4e38 and 1.2e-38).
 constexpr double kMaxCoordinate = 1e18;
 constexpr double kMinExtent = 1e-18;
-
-std::string shortNumber(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    return buf;
-}
 
 } // namespace
 
@@ -52,7 +46,7 @@ void validateMesh(const Mesh& m) {
         // square overflows float's 3.4e38.
         if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
             throwBadInput("vertex " + std::to_string(v) + " lies " +
-                          shortNumber(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})) +
+                          cli::shortNumber(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})) +
                           " from the origin, beyond the 1e18 that the GPU's float arithmetic "
                           "carries; scale the mesh down");
     }
@@ -62,7 +56,7 @@ void validateMesh(const Mesh& m) {
     const double magnitude = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z),
                                        std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
     if (extent < kMinExtent || (magnitude > 0 && extent < magnitude * 1e-6))
-        throwBadInput("the mesh spans " + shortNumber(extent) + " (at " + shortNumber(magnitude) +
+        throwBadInput("the mesh spans " + cli::shortNumber(extent) + " (at " + cli::shortNumber(magnitude) +
                       " from the origin); the GPU's float "
                       "arithmetic cannot resolve it: scale it up or move it to the origin");
     for (size_t f = 0; f < m.faceCount(); ++f) {
@@ -109,7 +103,7 @@ void validateMesh(const Mesh& m) {
             // and the displaced surface would be NaN.
             const double far = std::max(std::abs(double(m.uvs[i].x)), std::abs(double(m.uvs[i].y)));
             if (far > kMaxCoordinate)
-                throwBadInput("UV " + std::to_string(i) + " is " + shortNumber(far) +
+                throwBadInput("UV " + std::to_string(i) + " is " + cli::shortNumber(far) +
                               " from the origin, beyond the 1e18 that the GPU's float arithmetic carries");
         }
     }

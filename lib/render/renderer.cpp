@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <future>
 #include <limits>
@@ -221,11 +220,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             if (far > 1e18)
                 throw Error(ErrorKind::BadInput,
                             "--displace: the map's values times --displace-scale move the surface by up to " +
-                                [far] {
-                                    char b[32];
-                                    std::snprintf(b, sizeof b, "%.3g", far);
-                                    return std::string(b);
-                                }() + ", beyond the 1e18 that the GPU's float arithmetic carries");
+                                cli::shortNumber(far) + ", beyond the 1e18 that the GPU's float arithmetic carries");
         }
         if (settings.displacementMap) { // leave room for the displaced surface in the framing
             framingPad_ = glm::dvec3(std::abs(settings.displaceScale) * 0.5);
@@ -487,13 +482,10 @@ Image Renderer::image() const {
     return img;
 }
 
-std::string Renderer::tessellationShortfall() const {
+void Renderer::refuseTessellationShortfall(const std::string& where) const {
     const auto* sp = dynamic_cast<const SubdivisionPass*>(pass_.get());
-    const AdaptiveTotals* t = sp ? sp->lastTotals() : nullptr;
-    if (!t || !t->overflow) return {};
-    return "the view-adaptive tessellation of this view needs " + t->need() +
-           (t->overBudget || t->cutShort ? "" : ", more than its buffers hold") +
-           "; nothing written: raise --edge-pixels or lower --tess";
+    if (std::string shortfall = sp ? sp->tessellationShortfall() : std::string(); !shortfall.empty())
+        throw Error(ErrorKind::BadInput, where + ": " + shortfall);
 }
 
 DrawnMesh Renderer::drawnMesh() {

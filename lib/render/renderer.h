@@ -162,10 +162,10 @@ class Renderer {
     void setControlPoints(const std::vector<glm::dvec3>& positions);
     // Whether the subdivision surface is tessellated view-adaptively.
     bool viewAdaptive() const { return viewAdaptive_; }
-    // After a frame: why the view-adaptive tessellation did not fit its buffers or a patch's
-    // loops were cut short (parts of the surface were left out), or empty. limn-render refuses
-    // such a frame: an image with holes is not written.
-    std::string tessellationShortfall() const;
+    // After a frame: throws Error(BadInput), prefixed with `where`, when the view-adaptive
+    // tessellation did not fit its buffers or a patch's loops were cut short (parts of the
+    // surface were left out): an image with holes is not written.
+    void refuseTessellationShortfall(const std::string& where) const;
     uint64_t triangleCount() const { return pass_->triangleCount(); }
     // Vertices computed per frame: table vertices, limit points, drawn surface vertices.
     uint64_t verticesEvaluated() const { return pass_->verticesEvaluated(); }

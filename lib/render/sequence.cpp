@@ -1,5 +1,6 @@
 #include "render/sequence.h"
 
+#include "base/cli.h"
 #include "base/error.h"
 
 #include <glm/geometric.hpp>
@@ -7,7 +8,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 namespace limn::render {
@@ -158,11 +158,8 @@ std::vector<ViewSpec> parseCameraFile(const std::string& text, double defaultFov
                           where);
         // The --eye/--target limit (limn-render's vec3Option): float carries a camera no further.
         for (size_t i = 0; i < 9; ++i)
-            if (std::abs(v[i]) > 1e18) {
-                char number[32];
-                std::snprintf(number, sizeof number, "%g", v[i]);
-                throwBadInput(std::string(number) + " is beyond the 1e18 a camera may lie from the origin", where);
-            }
+            if (std::abs(v[i]) > 1e18)
+                throwBadInput(cli::shortNumber(v[i]) + " is beyond the 1e18 a camera may lie from the origin", where);
         ViewSpec s;
         s.eye = glm::dvec3(v[0], v[1], v[2]);
         s.target = glm::dvec3(v[3], v[4], v[5]);

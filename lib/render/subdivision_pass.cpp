@@ -413,20 +413,24 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wi
                  gpu::CommandBuffer::asBytes(push));
 }
 
+std::string SubdivisionPass::tessellationShortfall() const {
+    const AdaptiveTotals* t = lastTotals();
+    if (!t || !t->overflow) return {};
+    return "the view-adaptive tessellation of this view needs " + t->need() +
+           (t->overBudget || t->cutShort
+                ? std::string()
+                : ", more than its buffers hold (" + std::to_string(gpu_->adaptive->vertexCapacity()) +
+                      " vertices, " + std::to_string(gpu_->adaptive->triangleCapacity()) + " triangles)") +
+           "; nothing written: raise --edge-pixels or lower --tess";
+}
+
 DrawnMesh SubdivisionPass::drawnMesh() {
     size_t n = draw_.tessVertices.size();
     AdaptiveTotals totals;
     if (gpu_->adaptive) {
-        totals = gpu_->adaptive->readTotals(ctx_);
-        if (totals.overflow)
-            throw Error(ErrorKind::BadInput,
-                        "--mesh-out: the view-adaptive tessellation of this view needs " + totals.need() +
-                            (totals.overBudget || totals.cutShort
-                                 ? std::string()
-                                 : ", more than its buffers hold (" +
-                                       std::to_string(gpu_->adaptive->vertexCapacity()) + " vertices, " +
-                                       std::to_string(gpu_->adaptive->triangleCapacity()) + " triangles)") +
-                            "; nothing written: raise --edge-pixels or lower --tess");
+        if (std::string shortfall = tessellationShortfall(); !shortfall.empty())
+            throw Error(ErrorKind::BadInput, "--mesh-out: " + shortfall);
+        totals = *lastTotals();
         n = totals.writtenVertices;
     }
     DrawnMesh out = readDrawnVertices(ctx_, gpu_->drawnPositions, gpu_->drawnNormals, n);

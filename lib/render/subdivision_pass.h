@@ -45,6 +45,9 @@ public:
     uint64_t triangleCount() const override;
     // The last frame's view-adaptive totals (null for the fixed tessellation).
     const AdaptiveTotals* lastTotals() const;
+    // Why the last frame's view-adaptive tessellation left parts of the surface out (its buffers
+    // overflowed, or a patch's loops were cut short), with what to do; empty when it did not.
+    std::string tessellationShortfall() const;
     uint64_t verticesEvaluated() const override;
     uint64_t bufferBytes() const override;
 

@@ -1,12 +1,12 @@
 #include "subdiv/tables_chunk.h"
 
 #include "base/bytes.h"
+#include "base/cli.h"
 #include "base/error.h"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdio>
 #include <unordered_set>
 
 namespace limn {
@@ -49,12 +49,9 @@ StencilTable readTable(ByteReader& r, const std::string& what, uint32_t rows, bo
                    " outside the levels it may read");
         // Catmull-Clark's masks (refinement and limit, any valence) have weights of order 1; a
         // finite 3e38 can only come from a damaged file, and the GPU's float sums would be NaN.
-        if (weights && !(std::abs(t.weights[i]) <= kMaxStencilWeight)) {
-            char w[32];
-            std::snprintf(w, sizeof w, "%.3g", double(t.weights[i]));
-            r.fail(what + ": entry " + std::to_string(i) + " has weight " + w +
+        if (weights && !(std::abs(t.weights[i]) <= kMaxStencilWeight))
+            r.fail(what + ": entry " + std::to_string(i) + " has weight " + cli::shortNumber(t.weights[i]) +
                    "; a stencil weight must be finite and within +-1e6");
-        }
     }
     for (uint32_t i = 0; !weights && i < rows; ++i)
         if (t.start[i + 1] == t.start[i])

@@ -32,7 +32,6 @@
 #include <iostream>
 #include <optional>
 #include <sys/resource.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -323,9 +322,7 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             }
             renderer.renderFrame();
             if (validation && validation->errors()) checkValidation(*validation); // throws
-            // A frame with parts of the surface left out is an error, not an image with holes.
-            if (std::string w = renderer.tessellationShortfall(); !w.empty())
-                throw Error(ErrorKind::BadInput, inputName + ": frame " + std::to_string(numbers[k]) + ": " + w);
+            renderer.refuseTessellationShortfall(inputName + ": frame " + std::to_string(numbers[k]));
             FramePixels pixels = framePixels(renderer, format, bitDepth);
             finishPending();
             if (k > 0) progress.done(k);
@@ -820,10 +817,7 @@ int main(int argc, char** argv) {
         render::ImageFormat imageFormat = render::ImageFormat::Png;
         if (writeImage) {
             // A device or pipe (-o /dev/null, a FIFO) is a stream like standard output: PNG.
-            struct stat st {};
-            const bool stream = !isStdio(common.output) && ::stat(common.output.c_str(), &st) == 0 &&
-                                (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode));
-            auto f = stream ? std::optional(render::ImageFormat::Png)
+            auto f = isStreamPath(common.output) ? std::optional(render::ImageFormat::Png)
                             : render::imageFormatFromPath(common.output);
             if (!f)
                 throw Error(ErrorKind::Usage,
@@ -1020,8 +1014,7 @@ int main(int argc, char** argv) {
                                bitDepth, settings);
             } else if (bench) {
                 render::BenchResult b = render::runBenchmark(renderer, bench, 3, benchOrbit);
-                if (std::string w = renderer.tessellationShortfall(); !w.empty())
-                    throw Error(ErrorKind::BadInput, displayName(input) + ": " + w);
+                renderer.refuseTessellationShortfall(displayName(input)); // before any JSON
                 JsonWriter j;
                 j.beginObject().field("frames", b.frames);
                 j.field("samples", settings.samples).field("sample_shading", settings.sampleShading);
@@ -1045,9 +1038,7 @@ int main(int argc, char** argv) {
             } else {
                 renderer.renderFrame();
             }
-            // A frame with parts of the surface left out is an error, not an image with holes.
-            if (std::string w = renderer.tessellationShortfall(); !sequence && !w.empty())
-                throw Error(ErrorKind::BadInput, displayName(input) + ": " + w);
+            if (!sequence) renderer.refuseTessellationShortfall(displayName(input));
             for (const auto& p : renderer.frameTimes().passes) {
                 char ms[32];
                 std::snprintf(ms, sizeof ms, "%.3f", p.ms);
