@@ -13,6 +13,8 @@ namespace limn {
 
 // "-" means standard input / standard output everywhere.
 inline bool isStdio(const std::string& path) { return path.empty() || path == "-"; }
+// An input's name in messages: "<stdin>" for standard input.
+inline std::string displayName(const std::string& path) { return isStdio(path) ? "<stdin>" : path; }
 
 // Reads a whole file (or stdin for "-"). Throws Error(BadInput) naming the file.
 std::vector<uint8_t> readInput(const std::string& path);

@@ -1,0 +1,33 @@
+// Which sequence a limn-render run renders (--turntable N, --cameras FILE, --frames PATTERN: one
+// at most) and the numbers of its frames, which name its output files. Checked before any work;
+// every refusal is an Error(Usage) with the message the tool prints.
+#pragma once
+
+#include "render/camera.h"
+#include "render/sequence.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace limn::render {
+
+struct SequenceRequest {
+    uint32_t turntable = 0; // --turntable N (0: none)
+    bool cameras = false;   // --cameras FILE
+    bool frames = false;    // --frames PATTERN
+    bool eye = false;       // --eye (an explicit camera)
+    bool view = false;      // --view
+    bool bench = false;     // --bench
+};
+
+// Whether the run is a sequence. Throws Error(Usage) when more than one kind is asked for, for
+// --turntable with --eye (it turns the --view camera), --cameras with --view or --eye (the file
+// gives every camera), and a sequence with --bench (which measures one frame).
+bool planSequence(const SequenceRequest& request);
+
+// The frame numbers: 0 .. n-1 for n views (a turntable or a camera file), else the numbers of
+// the --frames files, in their order.
+std::vector<uint64_t> sequenceFrameNumbers(const std::vector<ViewSpec>& views,
+                                           const std::vector<FrameFile>& frameFiles);
+
+} // namespace limn::render

@@ -1,0 +1,219 @@
+// limn-render's input: the container or mesh file with the one surface it draws, a sequence's
+// frame meshes (--frames), the maps (--trim, --displace, --texture) and a glTF's material, and
+// what they set in the renderer's settings.
+#include "job.h"
+
+#include "base/error.h"
+#include "base/io.h"
+#include "blend/blend_chunk.h"
+#include "container/container.h"
+#include "image/image_file.h"
+#include "mesh/import.h"
+#include "mesh/mesh_chunks.h"
+#include "render/output_image.h"
+#include "subdiv/tables_chunk.h"
+
+namespace limn::render_tool {
+
+namespace {
+
+[[noreturn]] void usage(const std::string& message) {
+    throw Error(ErrorKind::Usage, message);
+}
+
+// An image given to an option; errors say which option and what to do.
+render::FloatImage loadMap(const std::string& option, const std::string& path) {
+    try {
+        return render::loadImage(path);
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        const bool missing = what.find("cannot open") != std::string::npos;
+        Error out(e.kind(), option + ": " + what +
+                                (missing ? "; give " + option + " an existing image file" : ""));
+        out.setFile(path);
+        throw out;
+    }
+}
+
+void readSurface(const std::string& input, Surface surface, Warnings& warnings, RenderInput& in) {
+    auto bytes = limn::readInput(input);
+    try {
+        const bool container = looksLikeContainer(bytes);
+        Container c;
+        if (container) {
+            c = parseContainer(bytes);
+            in.mesh = loadMesh(c);
+            in.material = loadMaterial(c);
+        } else {
+            in.mesh = importMesh(input, bytes, warnings, &in.filesRead, &in.material);
+        }
+        const bool hasBlend = container && c.find(blend::kBlendChunk);
+        const Chunk* tables = container ? c.find(kTablesChunk) : nullptr;
+        if (surface == Surface::Auto)
+            surface = hasBlend ? Surface::Blend : tables ? Surface::Subdivision : Surface::Control;
+        if (surface == Surface::Blend) {
+            if (!hasBlend)
+                throwBadInput(
+                    "--surface blend: no blending surface (BLND chunk); run limn-blend first");
+            in.blend = blend::loadBlendSurface(c, in.mesh);
+        }
+        if (surface == Surface::Subdivision) {
+            if (!tables)
+                throwBadInput("--surface subdivision: no subdivision tables (TBLS chunk); run "
+                              "limn-tables first");
+            in.tables = decodeTablesChunk(*tables, &in.mesh);
+        }
+        if (in.tables) {
+            in.seamsHash = seamsSourceHash(c);
+            if (const Chunk* sm = c.find(kSeamsChunk))
+                in.seams = decodeSeamsChunk(
+                    *sm,
+                    static_cast<uint32_t>(in.tables->patches.size() + in.tables->irregular.size()),
+                    in.seamsHash);
+        }
+    } catch (Error& e) {
+        e.setFile(displayName(input));
+        throw;
+    }
+}
+
+// Reads every --frames mesh and checks it has the input's topology (the tables are reused, so
+// the faces must be the same, vertex for vertex).
+std::vector<SequenceFrame> readFrameMeshes(const std::vector<render::FrameFile>& files, const Mesh& mesh,
+                                           std::vector<std::string>& filesRead) {
+    std::vector<SequenceFrame> frames;
+    // Positions are held for all frames (one framing for the whole sequence): refuse what would
+    // not fit comfortably before reading them.
+    const uint64_t bytes = uint64_t(files.size()) * mesh.vertexCount() * sizeof(glm::dvec3);
+    if (bytes > cli::defaultMemoryBudget())
+        throwBadInput("--frames: " + std::to_string(files.size()) + " frames of " +
+                      std::to_string(mesh.vertexCount()) + " vertices need " + cli::formatBytes(bytes) +
+                      " of positions, more than half the machine's memory; render the sequence in parts");
+    for (const auto& f : files) {
+        Warnings warnings;
+        Mesh m;
+        try {
+            auto fileBytes = limn::readInput(f.path);
+            if (looksLikeContainer(fileBytes)) {
+                m = loadMesh(parseContainer(fileBytes));
+            } else {
+                std::vector<std::string> extra;
+                m = importMesh(f.path, fileBytes, warnings, &extra);
+                filesRead.insert(filesRead.end(), extra.begin(), extra.end());
+            }
+            if (m.faceOffsets != mesh.faceOffsets || m.faceVertices != mesh.faceVertices ||
+                m.vertexCount() != mesh.vertexCount())
+                throwBadInput("its faces differ from the input's (" + std::to_string(m.vertexCount()) +
+                              " vertices, " + std::to_string(m.faceCount()) + " faces; the input has " +
+                              std::to_string(mesh.vertexCount()) + " and " + std::to_string(mesh.faceCount()) +
+                              "): --frames reuses the input's tables, so every frame needs its topology");
+        } catch (Error& e) {
+            e.setFile(f.path);
+            throw;
+        }
+        cli::printWarnings(warnings, f.path);
+        // f.path itself is already among the run's inputs (the depfile listed it twice).
+        frames.push_back({f.number, f.path, std::move(m.positions)});
+    }
+    return frames;
+}
+
+// The material's base colour texture, decoded; nullopt (with a warning) when it cannot be: the
+// geometry is still worth drawing, in the base colour factor.
+std::optional<render::FloatImage> materialTexture(const MeshMaterial& m, const std::string& input) {
+    try {
+        return readImageBytes(m.textureBytes, m.textureFormat);
+    } catch (const Error& e) {
+        cli::warn(displayName(input) + ": the base colour texture cannot be read (" + e.what() +
+                  "); drawing the base colour factor instead");
+        return std::nullopt;
+    }
+}
+
+} // namespace
+
+void readRenderInput(RenderJob& job, RenderInput& in) {
+    render::RenderSettings& settings = job.settings;
+    const std::string &input = job.input, &displace = job.displace, &texture = job.texture,
+                      &shade = job.shade;
+    Warnings warnings;
+    readSurface(input, job.surface, warnings, in);
+    cli::printWarnings(warnings, displayName(input));
+    if (in.blend && !job.frameFiles.empty())
+        usage("--frames: a blending surface is built from its control points on the CPU (charts, "
+              "local surfaces); render the frames' subdivision surface (--surface subdivision) or "
+              "run limn-blend per frame");
+    in.frames = readFrameMeshes(job.frameFiles, in.mesh, in.filesRead);
+    // No silent fallbacks: a classified container without tables draws its control mesh,
+    // which is rarely what was meant; a --grid without a blending surface does nothing.
+    if (job.surface == Surface::Auto && !in.tables && !in.blend && isContainerFile(input))
+        cli::warn(displayName(input) + ": no subdivision tables (TBLS) or blending surface "
+                  "(BLND): drawing the control mesh; run limn-tables for the smooth surface");
+    if (!in.blend && job.grid != 16)
+        cli::warn("--grid sets the blending surface's cells; " + displayName(input) +
+                  " draws no blending surface, so it does nothing");
+    if (job.displace.empty() && (job.displaceScale != 1 || job.displaceScalePercent || job.displaceMid != 0 || job.noSeamFix))
+        cli::warn("--displace-scale, --displace-mid and --no-seam-fix shape the --displace map; "
+                  "without --displace they do nothing");
+    if (!job.trimPath.empty()) {
+        try {
+            settings.trim = render::trimMaskFromImage(
+                render::readImageFile(job.trimPath), static_cast<uint32_t>(in.mesh.faceCount()));
+        } catch (Error& e) {
+            e.setFile(job.trimPath);
+            throw;
+        }
+    }
+    settings.tessCap = static_cast<uint32_t>(job.tess);
+    settings.edgePixels = job.edgePixels;
+    if (!displace.empty()) {
+        in.displacementMap = loadMap("--displace", displace);
+        settings.displacementMap = &*in.displacementMap;
+        settings.displaceScale = job.displaceScale;
+        if (job.displaceScalePercent) {
+            settings.displaceScale = job.displaceScale / 100 * boundingBox(in.mesh).diagonal();
+            cli::info("--displace-scale " + std::to_string(job.displaceScale) + "% = " +
+                      std::to_string(settings.displaceScale) + " world units");
+        }
+        settings.displaceMid = job.displaceMid;
+        settings.seamFix = !job.noSeamFix;
+        if (in.tables && !in.seams && in.mesh.hasUVs()) {
+            cli::info("no SEAM chunk (limn-seams): computing the seam UVs now");
+            in.seams = computeSeams(in.mesh, *in.tables, in.seamsHash);
+        }
+        if (in.seams) settings.seams = &*in.seams;
+    }
+    if (!texture.empty()) {
+        in.textureMap = loadMap("--texture", texture);
+        settings.texture = &*in.textureMap;
+        if (shade == "lit") settings.shade = render::Shade::Texture;
+    }
+    if (in.material) { // a glTF's base colour (limn-classify keeps it in MATL)
+        const glm::dvec4& f = in.material->baseColorFactor;
+        if (!job.colorGiven)
+            settings.baseColor =
+                glm::dvec3(render::linearToSrgb(f.r), render::linearToSrgb(f.g), render::linearToSrgb(f.b));
+        // Textures are drawn on the subdivision surface only (as --texture is).
+        const bool drawsTexture = in.tables && !in.blend && in.mesh.hasUVs() &&
+                                  (shade == "lit" || shade == "texture");
+        if (texture.empty() && in.material->hasTexture()) {
+            if (!drawsTexture)
+                cli::info("the base colour texture is drawn on the subdivision surface with "
+                          "--shade lit or texture only; not drawn");
+            else if ((in.textureMap = materialTexture(*in.material, input))) {
+                settings.texture = &*in.textureMap;
+                settings.shade = render::Shade::Texture;
+            }
+        }
+    }
+    settings.blendGrid = static_cast<uint32_t>(job.grid);
+    if (in.blend && (!displace.empty() || !texture.empty()))
+        usage(
+            "--displace and --texture apply to the subdivision surface, not a blending surface "
+            "(--surface subdivision draws the TBLS one)");
+    settings.evalInCompute =
+        job.eval == "compute" || (job.eval == "auto" && (in.blend || !displace.empty()));
+    settings.evaluateVertices = !job.meshOut.empty();
+}
+
+} // namespace limn::render_tool
