@@ -31,7 +31,7 @@
 #include "seams/seams.h"
 #include "paper_sphere.h" // tests/support
 #include "subdiv/tables.h"
-#include "render/png.h"
+#include "image/srgb_image.h"
 #include "topology/features.h"
 
 #include <glm/vec3.hpp>

@@ -9,7 +9,7 @@
 #include "gpu/pipeline.h"
 #include "render/blend_draw.h"
 #include "render/frame_pass.h"
-#include "render/trim.h"
+#include "blend/trim.h"
 
 #include <memory>
 #include <optional>

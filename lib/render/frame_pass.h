@@ -7,7 +7,7 @@
 #include "gpu/buffer.h"
 #include "gpu/commands.h"
 #include "render/camera.h"
-#include "render/ply.h"
+#include "export/ply.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>

@@ -6,8 +6,8 @@
 #pragma once
 
 #include "base/io.h"
-#include "render/mesh_export.h"
-#include "render/output_image.h"
+#include "export/mesh_export.h"
+#include "image/output_image.h"
 #include "render/sequence.h"
 
 #include <cstdint>

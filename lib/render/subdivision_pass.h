@@ -8,7 +8,7 @@
 #include "render/adaptive_tess.h"
 #include "render/frame_pass.h"
 #include "render/subdivision_draw.h"
-#include "render/texture_image.h"
+#include "image/texture_image.h"
 
 #include <future>
 #include <memory>

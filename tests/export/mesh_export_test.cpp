@@ -4,7 +4,7 @@
 // OBJ text of the model, and the glTF is checked by the Khronos glTF-Validator.
 #include "base/error.h"
 #include "drawn_ply.h"
-#include "render/mesh_export.h"
+#include "export/mesh_export.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

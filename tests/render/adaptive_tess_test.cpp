@@ -15,7 +15,7 @@
 #include "mesh/import.h"
 #include "model_tables.h"
 #include "osd_oracle.h"
-#include "render/png.h"
+#include "image/srgb_image.h"
 #include "subdiv/tables.h"
 #include "test_support.h"
 

@@ -2,8 +2,8 @@
 // (paper 001, 4.3) checked pixel by pixel, determinism, the two evaluation paths, errors, and
 // limn-trim. Every render runs with --sync-validation, so exit code 0 means no validation error.
 #include "mesh/obj.h"
-#include "render/png.h"
-#include "render/trim.h"
+#include "image/srgb_image.h"
+#include "blend/trim.h"
 #include "test_meshes.h"
 #include "test_support.h"
 

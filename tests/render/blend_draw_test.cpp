@@ -5,7 +5,7 @@
 #include "base/error.h"
 #include "blend/blend_surface.h"
 #include "render/blend_draw.h"
-#include "render/trim.h"
+#include "blend/trim.h"
 #include "test_meshes.h"
 
 #include <glm/geometric.hpp>

@@ -8,7 +8,7 @@
 #include "drawn_ply.h"
 #include "mesh/mesh_chunks.h"
 #include "mesh/obj.h"
-#include "render/png.h"
+#include "image/srgb_image.h"
 #include "test_meshes.h"
 #include "test_support.h"
 #include "topology/topology.h"

@@ -1,6 +1,6 @@
 // PNG and PLY encodings: deterministic bytes, no metadata that varies, exact layouts.
-#include "render/ply.h"
-#include "render/png.h"
+#include "export/ply.h"
+#include "image/srgb_image.h"
 
 #include <gtest/gtest.h>
 

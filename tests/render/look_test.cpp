@@ -3,7 +3,7 @@
 // external file, a GLB buffer view and a data: URI, and through limn-classify's MATL chunk). The
 // glTF assets are written here with a texture whose colours the checks know; every render runs
 // with --validate, so exit code 0 also means no validation errors.
-#include "render/png.h"
+#include "image/srgb_image.h"
 #include "test_support.h"
 
 #include <OpenImageIO/imageio.h>

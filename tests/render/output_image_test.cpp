@@ -1,7 +1,7 @@
 // The CPU half of the float output path (render/output_image.h): binary16 decoding, the box
 // filter, sRGB encoding with straight alpha, the format chosen by extension. Expected values are
 // worked out by hand from the definitions (IEEE 754 binary16, IEC 61966-2-1).
-#include "render/output_image.h"
+#include "image/output_image.h"
 
 #include "base/error.h"
 

@@ -1,6 +1,6 @@
 // limn-render as users run it (a subprocess, on lavapipe). Most runs use --sync-validation,
 // which makes any validation error fail the run: exit code 0 means the layer reported none.
-#include "render/png.h"
+#include "image/srgb_image.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

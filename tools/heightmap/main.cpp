@@ -5,7 +5,7 @@
 #include "base/error.h"
 #include "base/io.h"
 #include "mesh/import.h"
-#include "render/texture_image.h"
+#include "image/texture_image.h"
 
 using namespace limn;
 

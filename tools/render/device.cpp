@@ -5,7 +5,7 @@
 #include "base/error.h"
 #include "base/json.h"
 #include "render/bench.h"
-#include "render/mesh_export.h"
+#include "export/mesh_export.h"
 
 #include <algorithm>
 #include <cstdio>

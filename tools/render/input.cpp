@@ -10,7 +10,7 @@
 #include "image/image_file.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
-#include "render/output_image.h"
+#include "image/output_image.h"
 #include "subdiv/tables_chunk.h"
 
 namespace limn::render_tool {

@@ -4,8 +4,8 @@
 
 #include "base/error.h"
 #include "image/image_file.h"
-#include "render/output_image.h"
-#include "render/png.h"
+#include "image/output_image.h"
+#include "image/srgb_image.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -3,7 +3,7 @@
 #include "job.h"
 
 #include "base/io.h"
-#include "render/mesh_export.h"
+#include "export/mesh_export.h"
 
 #include <chrono>
 #include <cstdio>

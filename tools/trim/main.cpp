@@ -8,8 +8,8 @@
 #include "container/container.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
-#include "render/png.h"
-#include "render/trim.h"
+#include "image/srgb_image.h"
+#include "blend/trim.h"
 
 #include <sstream>
 

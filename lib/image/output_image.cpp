@@ -1,4 +1,4 @@
-#include "render/output_image.h"
+#include "image/output_image.h"
 
 #include "base/error.h"
 

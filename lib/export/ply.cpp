@@ -1,4 +1,4 @@
-#include "render/ply.h"
+#include "export/ply.h"
 
 #include "mesh/text_format.h"
 

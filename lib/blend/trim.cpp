@@ -1,4 +1,4 @@
-#include "render/trim.h"
+#include "blend/trim.h"
 
 #include "base/error.h"
 

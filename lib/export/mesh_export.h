@@ -17,7 +17,7 @@
 //   asset.generator is "limn-render" (no version: the bytes must not change with it).
 #pragma once
 
-#include "render/ply.h"
+#include "export/ply.h"
 
 #include <cstdint>
 #include <optional>

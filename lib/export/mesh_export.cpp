@@ -1,4 +1,4 @@
-#include "render/mesh_export.h"
+#include "export/mesh_export.h"
 
 #include "base/error.h"
 #include "mesh/text_format.h"

@@ -1,9 +1,9 @@
-#include "render/png.h"
+#include "image/srgb_image.h"
 
 #include "base/error.h"
 #include "image/image_file.h"
 #include "image/png_encode.h"
-#include "render/output_image.h"
+#include "image/output_image.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/texture_image.h"
+#include "image/texture_image.h"
 
 #include "base/error.h"
 

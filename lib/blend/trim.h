@@ -7,7 +7,7 @@
 // discards it elsewhere; trimming never changes positions or normals.
 #pragma once
 
-#include "render/png.h"
+#include "image/srgb_image.h"
 
 #include <cstdint>
 #include <vector>

@@ -6,7 +6,7 @@
 // straight alpha for PNG, linear premultiplied float for EXR.
 #pragma once
 
-#include "render/png.h"
+#include "image/srgb_image.h"
 
 #include <cstdint>
 #include <optional>
