@@ -5,7 +5,7 @@
 
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
-#include "render/adaptive_tess.h"
+#include "render/adaptive/adaptive_tess.h"
 #include "render/frame_pass.h"
 #include "render/subdivision_draw.h"
 #include "image/texture_image.h"

@@ -1,4 +1,4 @@
-#include "render/adaptive_tess.h"
+#include "render/adaptive/adaptive_tess.h"
 
 #include "base/error.h"
 #include "render_shaders.h"
