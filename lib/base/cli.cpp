@@ -507,7 +507,7 @@ int run(const std::string& tool, int argc, char** argv,
         return status;
     } catch (const Error& e) {
         std::string where;
-        if (!e.file().empty()) where += (e.file() == "-" ? "<stdin>" : e.file()) + ": ";
+        if (!e.file().empty()) where += displayName(e.file()) + ": ";
         if (!e.where().empty()) where += e.where() + ": ";
         std::fprintf(stderr, "%s: error: %s%s\n", tool.c_str(), where.c_str(), e.what());
         return static_cast<int>(e.kind());

@@ -24,7 +24,7 @@ constexpr size_t kMaxInputBytes = size_t(4) << 30;
 
 [[noreturn]] void throwIo(const std::string& what, const std::string& path) {
     Error e(ErrorKind::BadInput, what + ": " + std::strerror(errno));
-    e.setFile(isStdio(path) ? "<stdin>" : path);
+    e.setFile(displayName(path));
     throw e;
 }
 
@@ -47,7 +47,7 @@ std::vector<uint8_t> readInput(const std::string& path) {
     auto tooLarge = [&] {
         if (fd != STDIN_FILENO) ::close(fd);
         Error e(ErrorKind::BadInput, "larger than 4 GiB, more than limn reads as one input");
-        e.setFile(isStdio(path) ? "<stdin>" : path);
+        e.setFile(displayName(path));
         return e;
     };
     if (S_ISREG(st.st_mode) && uint64_t(st.st_size) > kMaxInputBytes) throw tooLarge();

@@ -50,7 +50,7 @@ Image decodePng(std::span<const uint8_t> bytes) {
     return toEightBit(readImageBytes(bytes, "image.png"), "PNG");
 }
 
-Image readImageFile(const std::string& path) {
+Image readImageFile8(const std::string& path) {
     return toEightBit(limn::readImageFile(path), "the image");
 }
 

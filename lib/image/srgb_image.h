@@ -28,6 +28,6 @@ std::vector<uint8_t> encodePng(const Image16& image); // 16 bits per sample, sRG
 Image decodePng(std::span<const uint8_t> bytes);
 // Any image file OpenImageIO reads (PNG, TIFF, OpenEXR, ...), converted to 8 bits per channel.
 // Throws Error(BadInput) with OpenImageIO's reason.
-Image readImageFile(const std::string& path);
+Image readImageFile8(const std::string& path);
 
 } // namespace limn::render

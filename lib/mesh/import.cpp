@@ -88,6 +88,12 @@ Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warning
     return {};
 }
 
+Mesh loadOrImportMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
+                      std::vector<std::string>* filesRead) {
+    if (looksLikeContainer(bytes)) return loadMesh(parseContainer(bytes));
+    return importMesh(path, bytes, warnings, filesRead);
+}
+
 Mesh importMeshFile(const std::string& path, Warnings& warnings,
                     std::vector<std::string>* filesRead) {
     auto bytes = readInput(path);

@@ -28,6 +28,11 @@ const char* formatName(MeshFormat format);
 Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
                 std::vector<std::string>* filesRead = nullptr, std::optional<MeshMaterial>* material = nullptr);
 
+// The mesh of a .limn container (its MESH chunks; filesRead untouched) or of any mesh file
+// importMesh reads: what every tool that takes "a container or a mesh" reads.
+Mesh loadOrImportMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
+                      std::vector<std::string>* filesRead = nullptr);
+
 // Reads the file (or stdin) and imports it.
 Mesh importMeshFile(const std::string& path, Warnings& warnings,
                     std::vector<std::string>* filesRead = nullptr);

@@ -150,7 +150,7 @@ Container loadOrClassify(const std::string& path, Warnings& warnings,
         try {
             return parseContainer(bytes);
         } catch (Error& e) {
-            e.setFile(isStdio(path) ? "<stdin>" : path);
+            e.setFile(displayName(path));
             throw;
         }
     }
@@ -165,7 +165,7 @@ Container loadOrClassify(const std::string& path, Warnings& warnings,
         container.set(encodeClassificationChunk(c));
         return container;
     } catch (Error& e) {
-        e.setFile(isStdio(path) ? "<stdin>" : path);
+        e.setFile(displayName(path));
         throw;
     }
 }

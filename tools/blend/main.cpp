@@ -8,6 +8,7 @@
 #include "blend/blend_surface.h"
 #include "blend/quadrangulate.h"
 #include "container/container.h"
+#include "container/container_output.h"
 #include "mesh/mesh_chunks.h"
 #include "topology/classification.h"
 
@@ -66,15 +67,13 @@ int main(int argc, char** argv) {
                        "     --quadrangulate), a non-manifold edge or vertex\n"
                        "  2  usage error\n");
         if (!parser.parse(ac, av)) return 0;
-        const std::string name = input == "-" ? "<stdin>" : input;
+        const std::string name = displayName(input);
 
-        refuseOverwritingInputs(common.output, {input}, isContainerFile);
-        OutputFile out(common.output, OutputFile::Kind::Binary);
-        Depfile depfile(common.depfile, {common.output}, {input});
+        ContainerOutput out(common.output, common.depfile, input);
         Warnings importWarnings;
         std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
         Container container = loadOrClassify(input, importWarnings, &inputs);
-        cli::printWarnings(importWarnings, isStdio(input) ? "<stdin>" : input);
+        cli::printWarnings(importWarnings, displayName(input));
         try {
             Mesh mesh = loadMesh(container);
             std::optional<Classification> clsf;
@@ -125,11 +124,7 @@ int main(int argc, char** argv) {
             e.setFile(input);
             throw;
         }
-        out.write(serializeContainer(container));
-        depfile.setRule(common.output, inputs);
-        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
-        out.commit();
-        depfile.commit();
+        out.commit(container, inputs);
         return 0;
     });
 }

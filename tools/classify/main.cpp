@@ -4,6 +4,7 @@
 #include "base/error.h"
 #include "base/io.h"
 #include "container/container.h"
+#include "container/container_output.h"
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "seams/seams.h"
@@ -40,9 +41,7 @@ int main(int argc, char** argv) {
                    "Example:\n  limn-classify frog.obj | limn-tables --depth 4 | limn-render -o frog.png\n");
         if (!parser.parse(ac, av)) return 0;
 
-        refuseOverwritingInputs(common.output, {input}, isContainerFile);
-        OutputFile out(common.output, OutputFile::Kind::Binary);
-        Depfile depfile(common.depfile, {common.output}, {input});
+        ContainerOutput out(common.output, common.depfile, input);
         auto bytes = readInput(input);
         Warnings warnings;
         Container container;
@@ -75,9 +74,9 @@ int main(int argc, char** argv) {
         SchemeOptions options = resolveSchemeOptions(mesh.tags, override);
         Topology topo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
         Classification c = classifyMesh(mesh, topo, options, warnings);
-        cli::printWarnings(warnings, input == "-" ? "<stdin>" : input);
+        cli::printWarnings(warnings, displayName(input));
         if (c.nonManifoldEdges)
-            cli::warn((input == "-" ? std::string("<stdin>") : input) + ": " +
+            cli::warn(displayName(input) + ": " +
                       std::to_string(c.nonManifoldEdges) +
                       " non-manifold edges; later stages refuse non-manifold meshes");
         cli::info("classified " + std::to_string(mesh.vertexCount()) + " vertices, " +
@@ -98,7 +97,7 @@ int main(int argc, char** argv) {
                 const bool hadSeams = container.has(kSeamsChunk);
                 container.remove(kTablesChunk);
                 container.remove(kSeamsChunk);
-                cli::warn((input == "-" ? std::string("<stdin>") : input) + ": its tables" +
+                cli::warn(displayName(input) + ": its tables" +
                           (hadSeams ? " and seams were" : " were") +
                           " made for other scheme options or tags; dropped: run limn-tables" +
                           (hadSeams ? " and limn-seams" : "") + " again");
@@ -107,11 +106,7 @@ int main(int argc, char** argv) {
         storeMesh(container, mesh);
         if (material) container.set(encodeMaterialChunk(*material));
         container.set(encodeClassificationChunk(c));
-        out.write(serializeContainer(container));
-        depfile.setRule(common.output, inputs);
-        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
-        out.commit();
-        depfile.commit();
+        out.commit(container, inputs);
         return 0;
     });
 }

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
         if (needsMesh) {
             Warnings warnings;
             mesh = importMeshFile(input, warnings, &inputs);
-            cli::printWarnings(warnings, isStdio(input) ? "<stdin>" : input);
+            cli::printWarnings(warnings, displayName(input));
         }
         HeightmapOptions o;
         o.kind = kind == "uv" ? HeightmapKind::Uv : HeightmapKind::Surface;
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
         try {
             values = bakeHeightmap(mesh, o);
         } catch (Error& e) {
-            e.setFile(isStdio(input) ? "<stdin>" : input);
+            e.setFile(displayName(input));
             throw;
         }
         out.write(render::encodeGray16Png(o.size, o.size, values));

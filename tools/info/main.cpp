@@ -154,9 +154,9 @@ int main(int argc, char** argv) {
             throw;
         }
         if (seamsStale)
-            cli::warn((input == "-" ? std::string("<stdin>") : input) +
+            cli::warn(displayName(input) +
                       ": the SEAM chunk was made from other tables or UVs (stale); re-run limn-seams");
-        cli::printWarnings(warnings, input == "-" ? "<stdin>" : input);
+        cli::printWarnings(warnings, displayName(input));
         Summary s = summarize(mesh, c);
         // The bounding box, in the mesh's units: --displace-scale is in the same units.
         const MeshBox box = boundingBox(mesh);
@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
             j.endObject();
             std::cout << j.str() << "\n";
         } else {
-            std::printf("%s\n", input == "-" ? "<stdin>" : input.c_str());
+            std::printf("%s\n", displayName(input).c_str());
             std::printf("  vertices               %zu\n", s.vertices);
             std::printf("  faces                  %zu (sizes %s)\n", s.faces, histogramText(s.faceSizes).c_str());
             std::printf("  edges                  %u (%u boundary, %u non-manifold, %u UV seam)\n",

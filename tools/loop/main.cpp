@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
         refuseOverwritingInputs(common.output, {input});
         OutputFile out(common.output, OutputFile::Kind::Text);
         Depfile depfile(common.depfile, {common.output}, {input});
-        const std::string inputName = isStdio(input) ? "<stdin>" : input;
+        const std::string inputName = displayName(input);
         Warnings warnings;
         std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
         Mesh mesh = importMeshFile(input, warnings, &inputs);

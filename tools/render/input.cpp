@@ -93,14 +93,7 @@ std::vector<SequenceFrame> readFrameMeshes(const std::vector<render::FrameFile>&
         Warnings warnings;
         Mesh m;
         try {
-            auto fileBytes = limn::readInput(f.path);
-            if (looksLikeContainer(fileBytes)) {
-                m = loadMesh(parseContainer(fileBytes));
-            } else {
-                std::vector<std::string> extra;
-                m = importMesh(f.path, fileBytes, warnings, &extra);
-                filesRead.insert(filesRead.end(), extra.begin(), extra.end());
-            }
+            m = loadOrImportMesh(f.path, limn::readInput(f.path), warnings, &filesRead);
             if (m.faceOffsets != mesh.faceOffsets || m.faceVertices != mesh.faceVertices ||
                 m.vertexCount() != mesh.vertexCount())
                 throwBadInput("its faces differ from the input's (" + std::to_string(m.vertexCount()) +
@@ -158,7 +151,7 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
     if (!job.trimPath.empty()) {
         try {
             settings.trim = render::trimMaskFromImage(
-                render::readImageFile(job.trimPath), static_cast<uint32_t>(in.mesh.faceCount()));
+                render::readImageFile8(job.trimPath), static_cast<uint32_t>(in.mesh.faceCount()));
         } catch (Error& e) {
             e.setFile(job.trimPath);
             throw;

@@ -5,6 +5,7 @@
 #include "base/io.h"
 #include "topology/classification.h"
 #include "container/container.h"
+#include "container/container_output.h"
 #include "mesh/mesh_chunks.h"
 #include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
@@ -27,12 +28,10 @@ int main(int argc, char** argv) {
                    " limn-render --displace d.png -o spot.png\n");
         if (!parser.parse(ac, av)) return 0;
 
-        refuseOverwritingInputs(common.output, {input}, isContainerFile);
-        OutputFile out(common.output, OutputFile::Kind::Binary);
-        Depfile depfile(common.depfile, {common.output}, {input});
+        ContainerOutput out(common.output, common.depfile, input);
         Warnings warnings;
         Container container = loadOrClassify(input, warnings);
-        cli::printWarnings(warnings, isStdio(input) ? "<stdin>" : input);
+        cli::printWarnings(warnings, displayName(input));
         try {
             Mesh mesh = loadMesh(container);
             const Chunk* tb = container.find(kTablesChunk);
@@ -43,14 +42,10 @@ int main(int argc, char** argv) {
                       std::to_string(seams.uvs.size()) + " auxiliary UVs");
             container.set(encodeSeamsChunk(seams));
         } catch (Error& e) {
-            e.setFile(isStdio(input) ? "<stdin>" : input);
+            e.setFile(displayName(input));
             throw;
         }
-        out.write(serializeContainer(container));
-        depfile.setRule(common.output, {input});
-        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
-        out.commit();
-        depfile.commit();
+        out.commit(container, {input});
         return 0;
     });
 }

@@ -4,6 +4,7 @@
 #include "base/error.h"
 #include "base/io.h"
 #include "container/container.h"
+#include "container/container_output.h"
 #include "mesh/mesh_chunks.h"
 #include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
@@ -61,10 +62,8 @@ int main(int argc, char** argv) {
                    "Example:\n  limn-classify spot.obj | limn-tables --depth 4 -o spot.limn\n");
         if (!parser.parse(ac, av)) return 0;
 
-        refuseOverwritingInputs(common.output, {input}, isContainerFile);
-        OutputFile out(common.output, OutputFile::Kind::Binary);
-        Depfile depfile(common.depfile, {common.output}, {input});
-        const std::string name = isStdio(input) ? "<stdin>" : input;
+        ContainerOutput out(common.output, common.depfile, input);
+        const std::string name = displayName(input);
         Tables tables;
         Warnings warnings;
         std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
@@ -101,11 +100,7 @@ int main(int argc, char** argv) {
             cli::warn(name + ": dropped the SEAM chunk made for the old tables; run limn-seams "
                              "again (or let limn-render --displace compute the seams)");
         }
-        out.write(serializeContainer(container));
-        depfile.setRule(common.output, inputs);
-        depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
-        out.commit();
-        depfile.commit();
+        out.commit(container, inputs);
         return 0;
     });
 }

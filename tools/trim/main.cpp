@@ -82,9 +82,8 @@ int main(int argc, char** argv) {
         std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
         try {
             Warnings warnings;
-            Mesh mesh = looksLikeContainer(bytes) ? loadMesh(parseContainer(bytes))
-                                                  : importMesh(input, bytes, warnings, &inputs);
-            cli::printWarnings(warnings, input == "-" ? "<stdin>" : input);
+            Mesh mesh = loadOrImportMesh(input, bytes, warnings, &inputs);
+            cli::printWarnings(warnings, displayName(input));
             faces = mesh.faceCount();
             for (uint32_t f : pattern.removed)
                 if (f >= faces)
@@ -92,7 +91,7 @@ int main(int argc, char** argv) {
                                   " does not exist (the mesh has " + std::to_string(faces) +
                                   " faces)");
         } catch (Error& e) {
-            e.setFile(input == "-" ? "<stdin>" : input);
+            e.setFile(displayName(input));
             throw;
         }
         render::TrimLayout l = render::trimAtlasLayout(static_cast<uint32_t>(faces), pattern.tile);
