@@ -1,4 +1,4 @@
-// How far the surface limn draws is from OpenSubdiv's limit surface (issue 14): per mesh, the
+// How far the surface limn draws is from OpenSubdiv's limit surface: per mesh, the
 // tables' size and approximate limit points, and at every vertex of the fixed tessellation (the
 // CPU reference of what limn-render draws, tess/tessellation.h) the position error (of the
 // bounding-box diagonal) and normal angle against OpenSubdiv's adaptive patches at isolation 10

@@ -1,5 +1,5 @@
-// ngon_bench [RUNS]: how the cost of one n-gon grows with n (issue 15: it was quadratic, 21 s for
-// limn-tables -d 1 on a 70,000-gon). Builds a regular n-gon in memory for n = 1,250 .. 32,000
+// ngon_bench [RUNS]: how the cost of one n-gon grows with n (it was quadratic:
+// docs/benchmarks.md). Builds a regular n-gon in memory for n = 1,250 .. 32,000
 // (the largest face the tables accept is 32,767 sides) and times topology + classification and
 // the depth-1 tables, as limn-classify | limn-tables -d 1 do. Prints one JSON line per n (median
 // of RUNS, default 5) and, on stderr, the time per side, which stays flat when the cost is linear.

@@ -1,4 +1,4 @@
-// The cost of anti-aliasing (issue 12): limn-render's frame with --samples 1, --samples 4 (the
+// The cost of anti-aliasing: limn-render's frame with --samples 1, --samples 4 (the
 // default), --samples 4 --sample-shading and --supersample 2, in one process and one run, configurations interleaved in rounds
 // (the machine is shared and noisy: only ratios measured together mean something). Each figure
 // is the median over rounds of per-round medians of GPU timestamps (frame = every timed pass,

@@ -12,10 +12,10 @@
 // (defaults: 10 frames, 3 rounds, 1024x768, depth 6; --quick: 3 frames, 1 round, depth 3)
 //
 // bench_render --view-adaptive [--frames N] [--rounds R] [--orbit DEG] [--samples 1|4] SPOT.obj [CAR.obj]:
-// view-adaptive tessellation (issue 11, --edge-pixels 4) against the fixed grids
+// view-adaptive tessellation (--edge-pixels 4) against the fixed grids
 // (--edge-pixels 0): SPOT at 1024x768, depths 3 and 6, adaptive and uniform tables at 5 and 6;
 // CAR at depth 6; the paper's demo sphere (generated: 16 segments x 16 rings, triangle fans at
-// the poles, radius 1 as in issue 11, and radius 5) at 1280x720 from (0,12,22), depth 6.
+// the poles, radius 1 as in the paper's demo, and radius 5) at 1280x720 from (0,12,22), depth 6.
 // --only MODEL (repeatable: spot's or the car's file stem, sphere, sphere_r5) keeps those
 // models' rows. --samples: per pixel, 4 (limn-render's default, and this benchmark's) or 1.
 // Per configuration: covered pixels,
@@ -255,8 +255,8 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
                      (unsigned long long)c.vertices, double(c.bufferBytes) / 1048576.0, median(c.compute),
                      median(c.draw), median(c.frame), median(c.cpu), median(c.cpuOrbit));
     }
-    // Adaptive over uniform tables, both view-adaptive at the default edge pixels (issue 11's
-    // target: at most 0.3 at depths 5 and 6).
+    // Adaptive over uniform tables, both view-adaptive at the default edge pixels (view-adaptive
+    // tessellation's target: at most 0.3 at depths 5 and 6).
     for (const ViewConfig& a : configs)
         for (const ViewConfig& u : configs)
             if (a.tables == "adaptive" && u.tables == "uniform" && a.model == u.model && a.depth == u.depth &&

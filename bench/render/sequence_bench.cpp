@@ -1,4 +1,4 @@
-// Sequences in one run against separate commands (issue 12), wall time of whole limn-render
+// Sequences in one run against separate commands, wall time of whole limn-render
 // processes, interleaved in rounds, medians:
 //   turntable   one `--turntable 36` run vs 36 runs with `--view AZ,EL` (spot, depth 4, 640x480)
 //   frames      one `--frames` run over 100 frames of the twisting torus vs the same command over

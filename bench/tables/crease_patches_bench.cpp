@@ -1,4 +1,4 @@
-// Crease patches (issue 14, part 3): per mesh and depth, limn's elements (patches, single-crease
+// Crease patches: per mesh and depth, limn's elements (patches, single-crease
 // patches among them, irregular faces) and table bytes with crease patches off and on, next to
 // OpenSubdiv's patch table with useInfSharpPatch / useSingleCreasePatch off and on (same
 // isolation, Gregory end caps; bytes as osd_oracle.h counts them). One JSON object per line on

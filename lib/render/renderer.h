@@ -59,7 +59,7 @@ struct RenderSettings {
     glm::dvec3 background{0.2, 0.2, 0.2}; // sRGB-encoded, 0..1, as it appears in the PNG
     bool alpha = false;                   // RGBA output, background transparent
     uint32_t tessCap = 64;                // segments per patch side / edge piece, at most (subdivision)
-    // View-adaptive tessellation (issue 11): target pixels per segment; 0 keeps the fixed grids
+    // View-adaptive tessellation: target pixels per segment; 0 keeps the fixed grids
     // of 2^(N-l) segments per level-l patch side. (limn-render's default is 4; the library's 0
     // keeps callers that compare with fixed references unchanged.) Wire::Outlines uses the fixed grids.
     double edgePixels = 0;
@@ -90,7 +90,7 @@ struct RenderSettings {
     std::optional<glm::dvec3> baseColor;
     // Faces seen from behind drawn flat in this sRGB colour (--back-faces), for crack counts.
     std::optional<glm::dvec3> backFaceColor;
-    // Anti-aliasing (issue 12). `samples`: MSAA samples per pixel, 1 or 4 (WebGPU's counts),
+    // Anti-aliasing. `samples`: MSAA samples per pixel, 1 or 4 (WebGPU's counts),
     // resolved on the GPU; limn-render's default is 4, the library's 1 keeps callers that count
     // exact pixels unchanged. `supersample` K (1..4): draws K*width x K*height and box-filters
     // each K x K block in linear light on the CPU (render/output_image.h).

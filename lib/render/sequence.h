@@ -1,4 +1,4 @@
-// Sequences in one run (issue 12): frame-numbered paths (-o shot_%04d.png, --frames
+// Sequences in one run: frame-numbered paths (-o shot_%04d.png, --frames
 // walk_%04d.obj), the views of a turntable (--turntable N) and of a camera file (--cameras FILE).
 // The renderer draws them one after another with the same tables and buffers; only the camera or
 // the control points change between frames (paper 000: animation re-runs only the GPU passes).

@@ -244,7 +244,7 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         d.adaptive = true;
         d.pieces = buildEdgePieces(mesh, t);
         if (d.hasUVs && t.options.fvar != FVarRule::All) {
-            // Smooth UVs (issue 14): the face-varying surface for the emit pass, per element its
+            // Smooth UVs: the face-varying surface for the emit pass, per element its
             // ptex domain, its corners' smooth UVs (the displaced normals' bilinear estimate) and,
             // with displacement, the seam records of the smooth UVs.
             Warnings ignored; // the geometry's tables already reported the mesh's warnings
@@ -271,7 +271,7 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         d.orientation = surfaceOrientation(mesh, mesh.positions);
         return d;
     }
-    // Smooth face-varying UVs (issue 14) for every rule but "all", whose linear charts stay
+    // Smooth face-varying UVs for every rule but "all", whose linear charts stay
     // exactly as before.
     std::unique_ptr<FaceVaryingSurface> fvar;
     std::unique_ptr<ChartUVs> chartUVs;

@@ -78,14 +78,14 @@ struct SubdivisionDraw {
     std::vector<uint32_t> incidentTriangles;
     uint32_t stitchedEdges = 0;
     bool hasUVs = false;
-    // View-adaptive (issue 11): no fixed tessellation above, the edge pieces instead.
+    // View-adaptive: no fixed tessellation above, the edge pieces instead.
     bool adaptive = false;
     EdgePieces pieces;
     const Seams* seams = nullptr; // view-adaptive displacement: the seam records (not owned)
-    // View-adaptive displacement with smooth UVs (issue 14): the seam records of seams.h built
+    // View-adaptive displacement with smooth UVs: the seam records of seams.h built
     // from the smooth UVs (used instead of *seams when it has elements).
     Seams smoothSeams;
-    // View-adaptive smooth UVs (issue 14): as AdaptiveOptions (empty under rule "all").
+    // View-adaptive smooth UVs: as AdaptiveOptions (empty under rule "all").
     std::vector<glm::vec4> elementDomains, fvarRecords;
     std::vector<uint32_t> fvarNodes;
     float fvarCell = 0;

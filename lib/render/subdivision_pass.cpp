@@ -99,7 +99,7 @@ struct SubdivisionPass::Gpu {
           surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surfaceFragment(target), 8,
                              sizeof(DrawPush)},
                        target) {
-        // View-adaptive: the tessellation is written by compute passes each frame (issue 11).
+        // View-adaptive: the tessellation is written by compute passes each frame.
         if (adaptiveOptions) {
             AdaptiveOptions options = *adaptiveOptions;
             options.evaluated = evaluate;
@@ -148,10 +148,10 @@ struct SubdivisionPass::Gpu {
             drawnPositions = evalPositions.get();
             drawnNormals = evalNormals.get();
             if (disp && adaptive) {
-                // View-adaptive (issue 11): samples from the owner's seam record, normals by
+                // View-adaptive: samples from the owner's seam record, normals by
                 // differences of the displaced surface (adaptive_displace*.comp).
                 if (!d.seams) throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
-                // Smooth UVs (issue 14): the records of the smooth UVs instead of SEAM's linear ones.
+                // Smooth UVs: the records of the smooth UVs instead of SEAM's linear ones.
                 const Seams& seams = d.smoothSeams.elements.empty() ? *d.seams : d.smoothSeams;
                 sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam elements", seams.elements));
                 sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam UVs", seams.uvs));

@@ -20,7 +20,7 @@ public:
     // Where the tessellation vertices are evaluated: in the vertex stage as the draw needs them
     // (paper 000, 4.3), or once each by a compute pass that the draw then reads.
     enum class Eval { Vertex, Compute };
-    // `adaptive`: view-adaptive tessellation (issue 11, adaptive_tess.h) instead of the fixed
+    // `adaptive`: view-adaptive tessellation (adaptive_tess.h) instead of the fixed
     // grids of the draw data (which must then be prepared with adaptive = true).
     // `keepEvaluated`: with Eval::Vertex, also evaluate every vertex into buffers (for --wire,
     // which draws lines through them, and --mesh-out).

@@ -1,4 +1,4 @@
-// Exact limit points for the corners of the faces left irregular at the last level (issue 14).
+// Exact limit points for the corners of the faces left irregular at the last level.
 //
 // The closed-form masks of limit_masks.h are exact only where the vertex's rule holds for every
 // further level and is one the formulas cover. These are not:

@@ -1,4 +1,4 @@
-// Smooth face-varying UVs (issue 14): the UV channel refined with its own value topology, as
+// Smooth face-varying UVs: the UV channel refined with its own value topology, as
 // OpenSubdiv does for Sdc::Options::FVarLinearInterpolation modes other than FVAR_LINEAR_ALL.
 //
 // The channel is treated as a mesh of its own (faceVaryingMesh): one vertex per UV value and

@@ -1,4 +1,4 @@
-// The smooth UVs of drawn points (issue 14): a surface point's UV in the chart of each base face
+// The smooth UVs of drawn points: a surface point's UV in the chart of each base face
 // that contains it, from the face-varying surface, computed once per (point, face) and kept, so
 // every element that draws the point in a face gets the same bits (the tessellation splits a
 // vertex only where two faces give different UVs, and the seam fix averages the same samples,

@@ -1,4 +1,4 @@
-// The topology of view-adaptive tessellation (issue 11), built once on the CPU from the tables
+// The topology of view-adaptive tessellation, built once on the CPU from the tables
 // alone (positions are never read, so animation and camera motion re-run only GPU passes).
 //
 // Every element (a regular patch of paper 000, 4.3, or an irregular level-N face) has four sides,

@@ -49,7 +49,7 @@ struct Tessellation {
 // have UVs), a point whose faces give it different UVs gets one vertex per distinct UV, so
 // textures and displacement can be looked up per side; all copies share the first's geometry.
 // UVs are the linear charts (face-varying rule "all"), or with `smooth` the smooth face-varying
-// surface's (issue 14; at the same depth as `tables`).
+// surface's (at the same depth as `tables`).
 class ChartUVs;
 Tessellation buildTessellation(const Mesh& mesh, const Tables& tables, uint32_t cap,
                                bool splitUVSeams = false, ChartUVs* smooth = nullptr);

@@ -1,4 +1,4 @@
-// Limits checked before the work, not after (issue 15, section 3), by running the tools: faces
+// Limits checked before the work, not after, by running the tools: faces
 // and vertices too large for the TBLS row limit are refused before any table is written; numbers
 // the GPU's float cannot carry are refused with a message; wrapped integers and a camera without
 // a direction are usage errors; glTF NaN positions are refused like Inf.

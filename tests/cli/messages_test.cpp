@@ -1,4 +1,4 @@
-// Messages that say what to do, and no silent fallbacks (issue 15, section 4): errors about an
+// Messages that say what to do, and no silent fallbacks: errors about an
 // option's file name the option; a container without tables and a --grid without a blending
 // surface warn; new tables drop the seams made for the old ones; limn-info validates and flags
 // stale chunks and prints the bounding box that --displace-scale P% refers to.

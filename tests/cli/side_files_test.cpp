@@ -1,4 +1,4 @@
-// Side files and outputs that never lie (issue 15, section 2), checked by running the tools:
+// Side files and outputs that never lie, checked by running the tools:
 // a run leaves all of its outputs or none (depfile included); a depfile never names an output or
 // an input, and names what make can read or is refused; signals leave no temporary file; an
 // overwritten output keeps its mode and its symbolic link; an output never destroys an input; a

@@ -1,4 +1,4 @@
-// limn-render --mesh-out FILE.{ply,obj,gltf,glb} (issue 15) as users run it, on lavapipe. The PLY
+// limn-render --mesh-out FILE.{ply,obj,gltf,glb} as users run it, on lavapipe. The PLY
 // is read with drawn_ply.h (from its documented layout), the OBJ with a parser here, the glTF with
 // tinygltf's reader; the three must carry the same floats bit for bit. Expected UVs come from the
 // OBJ text of the model, and the glTF is checked by the Khronos glTF-Validator.

@@ -145,7 +145,7 @@ TEST(ReadImage, HugeDeclaredSizeIsRefusedBeforeAllocating) {
 
 // Formats other than PNG go through the OpenImageIO plugin (build/lib/limn/limn_image_oiio.so,
 // found next to bin/): a float EXR arrives as the exact floats written, a 16-bit TIFF as k/65535,
-// which are the displacement maps issue 5 names besides PNG.
+// the displacement maps users have besides PNG.
 TEST(ReadImage, PluginReadsFloatExrAndSixteenBitTiffExactly) {
     test::ScratchDir dir;
     const int w = 5, h = 3;

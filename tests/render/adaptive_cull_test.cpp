@@ -1,4 +1,4 @@
-// The view-adaptive cull (adaptive_cull.comp, issue 11) leaves out elements outside the frustum,
+// The view-adaptive cull (adaptive_cull.comp) leaves out elements outside the frustum,
 // facing away, or whose projected Bezier hull holds none of the image's sample positions, and
 // the flat elements' fan triangles that hold none (adaptive_counts.comp). All
 // three are meant to drop only what draws no sample: the image with the cull is the image

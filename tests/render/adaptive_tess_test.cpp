@@ -1,4 +1,4 @@
-// View-adaptive tessellation (issue 11), run as users run it (limn-classify | limn-tables |
+// View-adaptive tessellation, run as users run it (limn-classify | limn-tables |
 // limn-render --mesh-out, default --edge-pixels 4) in close-up views where the edge rates run
 // from 1 to 32 and more:
 // - every drawn vertex lies on OpenSubdiv's limit surface at its (ptex, u, v), normals compared

@@ -1,4 +1,4 @@
-// The seam fix closes every crack (paper 000, 4.5; issue 5): with it the drawn triangles, welded
+// The seam fix closes every crack (paper 000, 4.5): with it the drawn triangles, welded
 // by exact position, close up for closed inputs at depths 1-4, adaptive and uniform, with a map
 // continuous across seams and one that is not; without it they open (so the check can fail).
 // And as a viewer sees it: key-coloured background and back faces inside the silhouette over 16

@@ -1,4 +1,4 @@
-// Smooth face-varying UVs through the tools (issue 14): limn-classify --fvar MODE | limn-tables |
+// Smooth face-varying UVs through the tools: limn-classify --fvar MODE | limn-tables |
 // limn-seams | limn-render --displace --mesh-out. In every mode the displaced closed meshes stay
 // welded-closed with the seam fix, in the fixed grids and the view-adaptive tessellation (its samples are the smooth UVs of every face around a point,
 // in increasing face order, so every copy of a point displaces by the same bits), and the PLY's

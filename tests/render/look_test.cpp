@@ -1,4 +1,4 @@
-// limn-render's look (issue 12): framing measured in the image, --up-axis against a mesh turned
+// limn-render's look: framing measured in the image, --up-axis against a mesh turned
 // by hand, the lit rig's options, and glTF base colour materials (factor and texture, from an
 // external file, a GLB buffer view and a data: URI, and through limn-classify's MATL chunk). The
 // glTF assets are written here with a texture whose colours the checks know; every render runs

@@ -1,5 +1,5 @@
 // limn-render's anti-aliasing (--samples, --supersample) and output formats (8/16-bit PNG, EXR)
-// as users run it (issue 12). Expected values come from the test's own computations: face
+// as users run it. Expected values come from the test's own computations: face
 // colours and depths of an axis-aligned cube from its geometry and the camera, the supersample
 // filter redone here in linear light from a render at twice the size, EXR read back with
 // OpenImageIO directly (not through limn's plugin).

@@ -1,4 +1,4 @@
-// Sequences in one run (issue 12): limn-render --turntable, --cameras and --frames as users run
+// Sequences in one run: limn-render --turntable, --cameras and --frames as users run
 // them. Every frame must be the same bytes as a single render with that frame's camera and mesh
 // (the renderer keeps its tables and buffers; only the camera or the control points change), and
 // bad sequences fail before writing, or leave nothing behind.

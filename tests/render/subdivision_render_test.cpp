@@ -163,7 +163,7 @@ const Case kCases[] = {
     {"osd/catmark/catmark_nonquads.obj", 2, false, false},
     {"osd/catmark/catmark_hole_test2.obj", 3, false, false},
     {"osd/catmark/catmark_pyramid_creases1.obj", 2, true, true},
-    // Crease patches: inf-sharp boundary and corner patches, single-crease patches (issue 14).
+    // Crease patches: inf-sharp boundary and corner patches, single-crease patches.
     {"osd/catmark/catmark_cube_creases2.obj", 4, false, true},
     {"osd/catmark/catmark_single_crease.obj", 3, false, false},
     {"osd/catmark/catmark_torus_creases0.obj", 3, false, true, "vertex"},

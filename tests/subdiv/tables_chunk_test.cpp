@@ -246,7 +246,7 @@ TEST(Tables, AdaptiveTablesGrowLinearlyWithDepth) {
     EXPECT_LT(b6, 3 * b4);
 }
 
-// A mesh file is classified with the defaults first (issue 15), exactly as limn-classify | limn-tables.
+// A mesh file is classified with the defaults first, exactly as limn-classify | limn-tables.
 TEST(TablesTool, TakesAMeshOrAClassifiedContainer) {
     test::ScratchDir dir;
     auto r = test::run({test::tool("limn-tables").string(), "--depth", "2",

@@ -1,4 +1,4 @@
-// OpenSubdiv's face-varying evaluation as the reference for smooth UVs (issue 14): an adaptive
+// OpenSubdiv's face-varying evaluation as the reference for smooth UVs: an adaptive
 // patch table with face-varying patches for the mesh's one UV channel (not the legacy linear
 // ones), the channel considered in the isolation, Gregory end caps and infinitely sharp
 // patches; the UV at (ptex, u, v) is EvaluateBasisFaceVarying over the patch's refined and local

@@ -1,6 +1,6 @@
-// The paper's demo sphere (issue 11), generated for the tests and bench_render: a UV sphere of 16
+// The paper's demo sphere (paper 000's figures), generated for the tests and bench_render: a UV sphere of 16
 // segments x 16 rings (242 vertices) of radius r at the origin, triangle fans at the valence-16
-// poles, faces outward. Radius 1 is issue 11's: from (0,12,22) at 1280x720 (35 degree field of
+// poles, faces outward. Radius 1 is the view-adaptive benchmark's: from (0,12,22) at 1280x720 (35 degree field of
 // view) it covers about 6,300 pixels.
 #pragma once
 

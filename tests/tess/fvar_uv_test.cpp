@@ -1,4 +1,4 @@
-// Smooth face-varying UVs (issue 14) against OpenSubdiv's face-varying patches: the UV limn
+// Smooth face-varying UVs against OpenSubdiv's face-varying patches: the UV limn
 // draws at every tessellation vertex (each seam copy in its own chart) equals OpenSubdiv's
 // EvaluateBasisFaceVarying at the same (ptex, u, v) to 1e-5, for every face-varying rule, at
 // depths 1-4, on OpenSubdiv's fvar_bound/fvar_project shapes, spot and blub. The rule "all"

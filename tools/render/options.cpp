@@ -226,7 +226,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                  "                            level-l patch side gets min(2^(depth-l), N) (N rounded\n"
                  "                            down to a power of two)")
         .real("--edge-pixels", "P", &edgePixels, 0, 4096,
-              "view-adaptive tessellation (issue 11): each patch edge is cut into segments of\n"
+              "view-adaptive tessellation: each patch edge is cut into segments of\n"
               "                            about P pixels on screen, decided per frame on the GPU\n"
               "                            (compute passes; patches outside the view, between\n"
               "                            the samples or facing away are not drawn, which changes\n"

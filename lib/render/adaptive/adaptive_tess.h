@@ -1,4 +1,4 @@
-// View-adaptive tessellation on the GPU (issue 11): instead of a fixed grid of 2^(N-l) segments
+// View-adaptive tessellation on the GPU: instead of a fixed grid of 2^(N-l) segments
 // per side of a level-l patch (paper 000, 4.3), every frame five compute passes decide from the
 // camera how finely each edge piece (lib/tess/edge_pieces.h) is cut, and write the tessellation
 // that the draw then reads through one drawIndexedIndirect:
