@@ -1,7 +1,7 @@
 // Texture displacement (paper 000, 3.4 and 4.5) as users run it: the offset is
 // S (sample - M) along the normal, recomputed here from the map (decoded with OpenImageIO, not
 // limn's reader), images and meshes are the same bytes twice, bad maps are clean errors.
-// The watertight and crack-pixel checks are in displacement_cracks_test.cpp.
+// The watertight and crack-pixel checks are in displacement_cracks_cli_test.cpp.
 #include "displacement_support.h"
 
 #include <OpenImageIO/imageio.h>
