@@ -281,9 +281,12 @@ void removeFrames(const std::vector<std::string>& paths) {
 // pipelines stay; per frame only the camera (views) or the control points (frames) change.
 // Frame files are committed one by one as they are done (`written` lists them, so the caller
 // can remove them if a later step fails); an error here removes them itself.
+// `part` lists the positions in the sequence that this run renders (--shard, --frame-range); the
+// framing still takes every frame, so a part's frames are those of the whole sequence.
 void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
                     const std::vector<render::ViewSpec>& views,
                     const std::vector<SequenceFrame>& frames, const std::vector<uint64_t>& numbers,
+                    const std::vector<size_t>& part,
                     const cli::Common& common, const render::FramePattern& imagePattern,
                     const std::optional<render::FramePattern>& meshPattern,
                     const std::optional<render::MeshFormat>& meshFormat, bool meshAscii,
@@ -295,7 +298,7 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
         for (const SequenceFrame& f : frames) renderer.extendFraming(f.positions);
         renderer.setCamera(renderer.cameraFor(view));
     }
-    Progress progress(numbers.size(), common.quiet);
+    Progress progress(part.size(), common.quiet);
     // Frame k is encoded and written on a second thread while frame k + 1 is drawn (a 36-view
     // turntable of spot at 640x480 on lavapipe: 0.83x the wall time of encoding in turn, farm-bench
     // median of 6 interleaved pairs). At most one
@@ -304,9 +307,9 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
     // safely): the main thread waits for the frame in flight before writing a --mesh-out.
     // A signal (Ctrl-C, SIGTERM) removes the frames already in place, as an error does.
     std::vector<std::string> paths;
-    for (uint64_t n : numbers) {
-        paths.push_back(render::framePath(imagePattern, n));
-        if (meshPattern) paths.push_back(render::framePath(*meshPattern, n));
+    for (size_t k : part) {
+        paths.push_back(render::framePath(imagePattern, numbers[k]));
+        if (meshPattern) paths.push_back(render::framePath(*meshPattern, numbers[k]));
     }
     prepareRemovalOnSignal(paths);
     std::future<std::string> pending;
@@ -314,7 +317,8 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
         if (pending.valid()) written.push_back(pending.get());
     };
     try {
-        for (size_t k = 0; k < numbers.size(); ++k) {
+        for (size_t i = 0; i < part.size(); ++i) {
+            const size_t k = part[i];
             if (!views.empty()) renderer.setCamera(renderer.cameraFor(views[k]));
             if (!frames.empty()) {
                 renderer.setControlPoints(frames[k].positions);
@@ -325,7 +329,7 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             renderer.refuseTessellationShortfall(inputName + ": frame " + std::to_string(numbers[k]));
             FramePixels pixels = framePixels(renderer, format, bitDepth);
             finishPending();
-            if (k > 0) progress.done(k);
+            if (i > 0) progress.done(i);
             if (meshPattern) {
                 const std::string mesh = render::framePath(*meshPattern, numbers[k]);
                 writeOutput(mesh, render::encodeMesh(renderer.drawnMesh(), *meshFormat, meshAscii),
@@ -341,7 +345,7 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
             });
         }
         finishPending();
-        progress.done(numbers.size());
+        progress.done(part.size());
     } catch (...) {
         // A frame still being written either lands (and is then removed) or fails on its own.
         if (pending.valid()) {
@@ -356,7 +360,7 @@ void renderSequence(render::Renderer& renderer, const render::ViewSpec& view,
     }
     char line[128];
     std::snprintf(line, sizeof line, "%zu frames in %.2f s (%.1f ms each, encoding and writing included)",
-                  numbers.size(), progress.seconds(), 1000 * progress.seconds() / double(numbers.size()));
+                  part.size(), progress.seconds(), 1000 * progress.seconds() / double(part.size()));
     cli::info(line);
 }
 
@@ -395,6 +399,8 @@ int main(int argc, char** argv) {
         int bench = 0, tess = 64, grid = 16;
         uint32_t turntable = 0;
         std::string camerasPath, framesPattern;
+        std::optional<render::Shard> shard;
+        std::optional<render::FrameRange> frameRange;
         int samples = 4, supersample = 1, bitDepth = 8;
         bool sampleShading = false;
         bool bitDepthGiven = false;
@@ -670,6 +676,19 @@ int main(int argc, char** argv) {
                   "render the meshes PATTERN names (walk_%04d.obj: every existing number) with\n"
                   "                            INPUT's topology and tables, uploading only their positions;\n"
                   "                            frame k of the input goes to -o NAME_%04d.png with the same k")
+            .custom(
+                "--shard", "I/N",
+                [&](const std::string& v) { shard = render::parseShard("--shard", v); }, "",
+                "render only part I of N (0 <= I < N) of the sequence, a contiguous block of\n"
+                "                            its frames, framed and lit as the whole sequence: the N\n"
+                "                            parts write the one-process frames (a Slurm array task:\n"
+                "                            $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)")
+            .custom(
+                "--frame-range", "A-B",
+                [&](const std::string& v) { frameRange = render::parseFrameRange("--frame-range", v); }, "",
+                "render only the sequence's frames numbered A to B (both included), framed as\n"
+                "                            the whole sequence (re-render a few frames; with\n"
+                "                            --shard, the range is split)")
             .integer("--bench", "FRAMES", &bench, 0, 100000,
                      "render FRAMES frames after 3 warm-up frames and print one JSON object of\n"
                      "                            medians to standard output; 0 renders once")
@@ -713,7 +732,9 @@ int main(int argc, char** argv) {
                 "and mesh. Frames are written as they are done, each atomically; an error removes\n"
                 "the frames this run wrote. All frames are framed alike: for --frames the box of\n"
                 "every frame's control points. Progress (frame i/N, time left) goes to stderr\n"
-                "when it is a terminal.\n"
+                "when it is a terminal. --shard and --frame-range render part of a sequence as\n"
+                "the whole run would (one sequence over several processes or machines: README,\n"
+                "Rendering on a cluster); an error removes only that part's frames.\n"
                 "PNG: 8-bit (or --bit-depth 16) sRGB with an sRGB chunk; RGB, or RGBA with straight\n"
                 "alpha (--alpha). EXR (through the OpenImageIO plugin; exit 3 without it): 32-bit\n"
                 "float channels R, G, B, A, Z, ZIP compressed. R, G, B are linear light,\n"
@@ -736,6 +757,7 @@ int main(int argc, char** argv) {
                 "  limn-trim spot.limn -o holes.png && limn-render spot.limn --trim holes.png -o "
                 "t.png\n"
                 "  limn-render spot.limn --turntable 36 -o spin_%02d.png\n"
+                "  limn-render spot.limn --turntable 36 --shard 1/4 -o spin_%02d.png   (frames 9-17)\n"
                 "  limn-render twist.limn --frames twist/twist_%04d.obj -o twist_%04d.png\n");
         parser.exitCodes("Exit codes:\n"
                          "  0  success\n"
@@ -766,6 +788,9 @@ int main(int argc, char** argv) {
             usage("--cameras gives every frame's camera; leave out --view and --eye");
         if (benchOrbit != 0 && !bench) usage("--bench-orbit turns the camera between --bench frames; give --bench FRAMES too");
         if (sequence && bench) usage("--bench measures one frame; leave out --turntable, --cameras and --frames");
+        if ((shard || frameRange) && !sequence)
+            usage(std::string(shard ? "--shard" : "--frame-range") +
+                  " renders part of a sequence; give --turntable, --cameras or --frames");
         // A sequence's output names: -o and --mesh-out with their frame number.
         std::optional<render::FramePattern> imagePattern, meshPattern;
         if (sequence) {
@@ -863,6 +888,10 @@ int main(int argc, char** argv) {
             frameFiles = render::findFrameFiles(render::parseFramePattern("--frames", framesPattern));
         for (size_t k = 0; k < views.size(); ++k) frameNumbers.push_back(k);
         for (const auto& f : frameFiles) frameNumbers.push_back(f.number);
+        // The frames this run renders and writes (all of them without --shard or --frame-range).
+        std::vector<size_t> part;
+        if (sequence) part = render::framesOfPart(frameNumbers, frameRange.value_or(render::FrameRange{}),
+                                                  shard.value_or(render::Shard{}));
 
         // Open outputs first: a refused terminal or an unwritable directory fails before any work.
         std::vector<std::string> inputs = {input};
@@ -872,9 +901,9 @@ int main(int argc, char** argv) {
         std::optional<OutputFile> png, ply;
         std::vector<std::string> outputs;
         if (sequence) {
-            for (uint64_t n : frameNumbers) {
-                outputs.push_back(render::framePath(*imagePattern, n));
-                if (meshPattern) outputs.push_back(render::framePath(*meshPattern, n));
+            for (size_t k : part) {
+                outputs.push_back(render::framePath(*imagePattern, frameNumbers[k]));
+                if (meshPattern) outputs.push_back(render::framePath(*meshPattern, frameNumbers[k]));
             }
             for (const std::string& o : outputs) refuseOverwritingInputs(o, inputs);
             for (const std::string& o : {outputs.front(), outputs.back()}) {
@@ -1008,7 +1037,7 @@ int main(int argc, char** argv) {
                       "," + std::to_string(cam.target.y) + "," + std::to_string(cam.target.z));
 
             if (sequence) {
-                renderSequence(renderer, settings.view, views, frames, frameNumbers, common, *imagePattern,
+                renderSequence(renderer, settings.view, views, frames, frameNumbers, part, common, *imagePattern,
                                meshPattern, meshFormat,
                                meshAscii, validation.get(), written, displayName(input), imageFormat,
                                bitDepth, settings);
