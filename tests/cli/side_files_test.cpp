@@ -244,6 +244,23 @@ TEST(SideFiles, SignalsRemoveASequencesFrames) {
     }
 }
 
+// A part of a sequence (--shard) that is interrupted removes its own frames only: the frames
+// other parts wrote into the same folder stay (a cancelled Slurm array task).
+TEST(SideFiles, ASignalledPartRemovesOnlyItsOwnFrames) {
+    test::ScratchDir dir;
+    const std::string cube = cubeContainer(dir);
+    const std::vector<std::string> others = {"f_0000.png", "f_0001.png", "f_0999.png"};
+    for (const auto& name : others) test::writeFile(dir / name, "another part's frame");
+    const int status = runAndSignal({bin("limn-render"), cube, "--size", "32x24", "--turntable", "2000", "--shard",
+                                     "1/2", "-o", (dir / "f_%04d.png").string()},
+                                    dir.path(), SIGTERM, false, dir / "f_1002.png");
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "status " << status;
+    std::vector<std::string> expected = {"cube.limn", "cube.obj"};
+    expected.insert(expected.end(), others.begin(), others.end());
+    EXPECT_EQ(test::filesIn(dir.path()), expected);
+    for (const auto& name : others) EXPECT_EQ(test::readFile(dir / name), "another part's frame");
+}
+
 TEST(SideFiles, OverwritingKeepsTheModeAndWritesThroughALink) {
     test::ScratchDir dir;
     const std::string cube = cubeContainer(dir);
