@@ -242,7 +242,7 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
         if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
         std::string name;
         for (const char* c = host; *c && name.size() < 32; ++c)
-            name += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '_';
+            name += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' || *c == '.' ? *c : '_';
         return (name.empty() ? std::string("host") : name) + "-" + std::to_string(::getpid()) + "-";
     }();
     static std::atomic<uint64_t> counter{0};
