@@ -14,7 +14,7 @@
 
 local_cluster_missing() {
   local c
-  for c in munged slurmctld slurmd sbatch squeue scancel sinfo; do
+  for c in munged slurmctld slurmd sbatch squeue scancel scontrol sinfo; do
     command -v $c >/dev/null || { echo "$c is not installed (scripts/setup.sh --tests installs slurm-wlm and munge)"; return; }
   done
   [ "$(id -u)" -eq 0 ] || echo "slurmd needs root to start jobs as their user"

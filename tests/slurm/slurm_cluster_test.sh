@@ -73,7 +73,7 @@ echo "slurm test: two 4-task arrays wrote the one-process frames ($((SECONDS - s
 long=(spot.limn --turntable 240 --view 20,15 --size 48x36 -q)
 "$LIMN_RENDER" "${long[@]}" -o one/long_%04d.png
 mkdir cancel
-"$src/scripts/slurm-render.sh" -n 4 "${long[@]}" -o cancel/long_%04d.png >/dev/null 2>&1 &
+"$src/scripts/slurm-render.sh" -n 4 "${long[@]}" -o cancel/long_%04d.png >cancel.log 2>&1 &
 script=$!
 # Part 1 of 4 is frames 60 to 119: cancel it once it has written three of them.
 for _ in $(seq 600); do [ -f cancel/long_0062.png ] && break; sleep 0.05; done
@@ -85,7 +85,9 @@ state=$(squeue -h -j "${job}_1" -o %T)
 scancel "${job}_1"
 status=0
 wait $script || status=$?
-[ $status -ne 0 ] || fail "slurm-render.sh succeeded although task 1 was cancelled"
+[ $status -eq 1 ] || fail "slurm-render.sh exited with $status although task 1 was cancelled: $(cat cancel.log)"
+grep -q "part 1: CANCELLED" cancel.log || fail "slurm-render.sh does not name the cancelled part: $(cat cancel.log)"
+grep -q -- "--tasks 1\$" cancel.log || fail "slurm-render.sh does not say how to render part 1 again: $(cat cancel.log)"
 for ((k = 60; k < 120; k++)); do
   f=$(printf 'cancel/long_%04d.png' $k)
   [ ! -e "$f" ] || fail "the cancelled task left $f"
