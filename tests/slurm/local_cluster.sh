@@ -115,6 +115,6 @@ local_cluster_stop() {
     sleep 0.2
   done
   for p in $pids; do kill -9 "$p" 2>/dev/null || true; done
-  wait 2>/dev/null || true
+  for p in $pids; do wait "$p" 2>/dev/null || true; done # the daemons started here, not the caller's other children
   rm -rf "$S"
 }
