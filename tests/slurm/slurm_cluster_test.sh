@@ -75,13 +75,23 @@ long=(spot.limn --turntable 240 --view 20,15 --size 48x36 -q)
 mkdir cancel
 "$src/scripts/slurm-render.sh" -n 4 "${long[@]}" -o cancel/long_%04d.png >cancel.log 2>&1 &
 script=$!
-# Part 1 of 4 is frames 60 to 119: cancel it once it has written three of them.
-for _ in $(seq 600); do [ -f cancel/long_0062.png ] && break; sleep 0.05; done
-[ -f cancel/long_0062.png ] || fail "task 1 did not write frame 62"
-job=$(squeue -h -o %F | head -n 1)
-[ -n "$job" ] || fail "no job to cancel"
-state=$(squeue -h -j "${job}_1" -o %T)
-[ "$state" = RUNNING ] || fail "task 1 is $state, not running, when it is cancelled"
+# Part 1 of 4 is frames 60 to 119: it is cancelled once it has written its first. It is held
+# there (SIGSTOP to its limn-render, the batch step, which slurm-render.sh execs) so that it is
+# still mid-run however fast the machine renders; scancel sends SIGCONT before SIGTERM.
+job= pid=
+for _ in $(seq 600); do
+  job=$(squeue -h -o %F | head -n 1)
+  if [ -n "$job" ] && [ "$(squeue -h -j "${job}_1" -o %T 2>/dev/null)" = RUNNING ]; then
+    pid=$(scontrol listpids "$(squeue -h -j "${job}_1" -o %A)" 2>/dev/null | awk '$3 == "batch" { print $1 }')
+    [ -n "$pid" ] && break
+  fi
+  sleep 0.05
+done
+[ -n "$pid" ] || fail "task 1 did not start"
+for _ in $(seq 3000); do [ -f cancel/long_0060.png ] && break; sleep 0.01; done
+kill -STOP "$pid"
+[ -f cancel/long_0060.png ] || fail "task 1 did not write frame 60"
+[ ! -e cancel/long_0119.png ] || fail "task 1 had finished before it could be held"
 scancel "${job}_1"
 status=0
 wait $script || status=$?
