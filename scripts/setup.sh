@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages limn builds and tests with; with --tests also node, npm and the
-# test-only npm packages of tests/tools (the glTF validator), which scripts/test.sh needs and the
-# examples do not. Idempotent: prints nothing and touches nothing when everything is installed.
+# test-only npm packages of tests/tools (the glTF validator), and Slurm and munge (the cluster
+# test), which scripts/test.sh needs and the examples do not. Idempotent: prints nothing and
+# touches nothing when everything is installed.
 # Uses sudo when not root. Usage: scripts/setup.sh [--tests]
 set -euo pipefail
 
@@ -26,6 +27,10 @@ tests=false
 [ "${1:-}" = --tests ] && tests=true
 if $tests; then
   command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
+  # The Slurm test (tests/slurm) starts a one-node cluster of its own: the daemons and the client
+  # commands, and munge for their authentication. The test runs them from a private folder; the
+  # packages' own services are not used.
+  packages+=(slurm-wlm munge)
 fi
 
 # Test-only npm packages, pinned by tests/tools/package-lock.json, into tests/tools/node_modules

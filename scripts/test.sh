@@ -15,5 +15,5 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # release build only; under the sanitizers their executables are not built (CMakeLists.txt,
 # limn_sanitizer_suite; CTest lists them as *_NOT_BUILT) and their CPU code runs through the
 # tools in the CLI tests.
-exclude=(); [ "$kind" = asan ] && exclude=(-LE '^(heavy|render)$' -E '_NOT_BUILT$')
+exclude=(); [ "$kind" = asan ] && exclude=(-LE '^(heavy|render|slurm)$' -E '_NOT_BUILT$')
 ctest --test-dir "$dir" --output-on-failure -j "$(nproc)" "${exclude[@]}"

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -91,7 +92,7 @@ bool stdoutIsTerminal() { return ::isatty(STDOUT_FILENO) == 1; }
 bool stderrIsTerminal() { return ::isatty(STDERR_FILENO) == 1; }
 
 // Temporary files not yet renamed into place, so a signal handler can remove them: a run
-// stopped by SIGINT, SIGTERM, SIGHUP or SIGPIPE leaves no .limn-tmp-XXXXXX behind. Fixed-size
+// stopped by SIGINT, SIGTERM, SIGHUP or SIGPIPE leaves no .limn-tmp-HOST-PID-XXXXXX behind. Fixed-size
 // storage, because a handler may only touch async-signal-safe state.
 namespace {
 
@@ -233,6 +234,17 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
     // name not created yet does nothing. (Blocking the signals while mkstemp ran protected only
     // the creating thread: a signal taken by another thread, lavapipe's or the frame writer's,
     // left the file behind; SideFiles.SignalsRemoveASequencesFrames hit it.)
+    // The name carries the host and the process: many instances writing into one shared folder
+    // (a Slurm array on NFS, make -j) never pick the same name, and a leftover says who left it.
+    // The random part still decides between threads and retries; O_EXCL decides the rest.
+    static const std::string owner = [] {
+        char host[256] = {};
+        if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
+        std::string name;
+        for (const char* c = host; *c && name.size() < 32; ++c)
+            name += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' || *c == '.' ? *c : '_';
+        return (name.empty() ? std::string("host") : name) + "-" + std::to_string(::getpid()) + "-";
+    }();
     static std::atomic<uint64_t> counter{0};
     const std::string directory = directoryOf(target_);
     int createErrno = EEXIST;
@@ -240,7 +252,7 @@ OutputFile::OutputFile(std::string path, Kind kind) : path_(std::move(path)) {
         uint64_t x = (uint64_t(::getpid()) << 32) ^
                      uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()) ^
                      (counter.fetch_add(1) + 1) * 0x9E3779B97F4A7C15ull;
-        std::string name = directory + ".limn-tmp-";
+        std::string name = directory + ".limn-tmp-" + owner;
         for (int i = 0; i < 6; ++i, x /= 62)
             name += "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"[x % 62];
         tempSlot_ = registerTemp(name);

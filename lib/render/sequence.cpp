@@ -18,6 +18,13 @@ namespace {
     throw Error(ErrorKind::Usage, option + ": " + message);
 }
 
+// Decimal digits only: no sign, space or exponent, at most 18 digits (no wrap-around).
+bool decimal(const std::string& text, uint64_t& value) {
+    if (text.empty() || text.size() > 18 || text.find_first_not_of("0123456789") != std::string::npos) return false;
+    std::from_chars(text.data(), text.data() + text.size(), value);
+    return true;
+}
+
 } // namespace
 
 bool hasFrameNumber(const std::string& text) {
@@ -176,6 +183,42 @@ std::vector<ViewSpec> parseCameraFile(const std::string& text, double defaultFov
     }
     if (views.empty()) throwBadInput("no camera in the file (one per line: eye, target, up, [fov])");
     return views;
+}
+
+Shard parseShard(const std::string& option, const std::string& text) {
+    const size_t slash = text.find('/');
+    uint64_t index = 0, count = 0;
+    if (slash == std::string::npos || !decimal(text.substr(0, slash), index) ||
+        !decimal(text.substr(slash + 1), count) || count < 1 || count > kMaxFrames || index >= count)
+        usage(option, "'" + text + "' is not I/N, part I of N counted from 0 (0 <= I < N <= " +
+                          std::to_string(kMaxFrames) + "), e.g. 0/4 to 3/4");
+    return {uint32_t(index), uint32_t(count)};
+}
+
+FrameRange parseFrameRange(const std::string& option, const std::string& text) {
+    const size_t dash = text.find('-');
+    FrameRange r;
+    if (dash == std::string::npos || !decimal(text.substr(0, dash), r.first) ||
+        !decimal(text.substr(dash + 1), r.last) || r.first > r.last)
+        usage(option, "'" + text + "' is not A-B, the frame numbers A to B with A <= B, e.g. 0-11");
+    return r;
+}
+
+std::vector<size_t> framesOfPart(const std::vector<uint64_t>& numbers, const FrameRange& range, const Shard& shard) {
+    std::vector<size_t> inRange;
+    for (size_t k = 0; k < numbers.size(); ++k)
+        if (numbers[k] >= range.first && numbers[k] <= range.last) inRange.push_back(k);
+    if (inRange.empty())
+        usage("--frame-range", "no frame of the sequence is numbered " + std::to_string(range.first) + " to " +
+                                   std::to_string(range.last) + " (its frames are " + std::to_string(numbers.front()) +
+                                   " to " + std::to_string(numbers.back()) + ")");
+    const uint64_t n = inRange.size();
+    if (shard.count > n)
+        usage("--shard", std::to_string(shard.index) + "/" + std::to_string(shard.count) + ": " + std::to_string(n) +
+                             " frames make at most " + std::to_string(n) + " parts, and part " +
+                             std::to_string(shard.index) + " would have none; give N <= " + std::to_string(n));
+    const size_t begin = size_t(n * shard.index / shard.count), end = size_t(n * (shard.index + 1) / shard.count);
+    return {inRange.begin() + ptrdiff_t(begin), inRange.begin() + ptrdiff_t(end)};
 }
 
 } // namespace limn::render

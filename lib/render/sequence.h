@@ -49,4 +49,33 @@ std::vector<ViewSpec> turntableViews(const ViewSpec& base, uint32_t n);
 // parallel up vector, a field of view outside 1..170, no view at all, more than kMaxFrames.
 std::vector<ViewSpec> parseCameraFile(const std::string& text, double defaultFovDeg);
 
+// Part of a sequence, for running one sequence as several processes (a Slurm job array, make -j,
+// GNU parallel): every part frames, lights and views its frames exactly as the whole sequence
+// does, so the parts' frames together are the one-process result, byte for byte.
+//
+// --shard I/N: part I of N, counted from 0 (Slurm: $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT
+// of --array=0-(N-1)). Part I takes a contiguous block of the sequence's frames, positions
+// floor(I*n/N) to floor((I+1)*n/N) - 1 of n: the parts differ by at most one frame, and a
+// frame's neighbours (similar cost, the same files) stay together.
+struct Shard {
+    uint32_t index = 0, count = 1;
+};
+// Throws Error(Usage) naming `option` unless `text` is I/N in decimal digits with 0 <= I < N <=
+// kMaxFrames (so 0/0, 5/4, -1/2, 1/2/3, " 1/2" and x/4 are refused).
+Shard parseShard(const std::string& option, const std::string& text);
+
+// --frame-range A-B: the frames numbered A to B, both included (frame numbers as in the output
+// names: a turntable's view k is frame k, a --frames file keeps its number).
+struct FrameRange {
+    uint64_t first = 0, last = UINT64_MAX;
+};
+// Throws Error(Usage) naming `option` unless `text` is A-B in decimal digits with A <= B.
+FrameRange parseFrameRange(const std::string& option, const std::string& text);
+
+// The positions in `numbers` (a sequence's frame numbers, in order) that a run renders: those
+// within `range`, then of those the shard's block. Throws Error(Usage) when that leaves no frame
+// (more parts than frames, or a range that names none): a part with nothing to do is a mistake
+// in the split, and it would have nothing to name in a depfile.
+std::vector<size_t> framesOfPart(const std::vector<uint64_t>& numbers, const FrameRange& range, const Shard& shard);
+
 } // namespace limn::render

@@ -21,6 +21,8 @@ bool planSequence(const SequenceRequest& request) {
     if (request.cameras && (request.eye || request.view))
         usage("--cameras gives every frame's camera; leave out --view and --eye");
     if (sequence && request.bench) usage("--bench measures one frame; leave out --turntable, --cameras and --frames");
+    if (request.part && !sequence)
+        usage("--shard and --frame-range render part of a sequence; give --turntable, --cameras or --frames");
     return sequence;
 }
 

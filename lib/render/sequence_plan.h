@@ -18,11 +18,13 @@ struct SequenceRequest {
     bool eye = false;       // --eye (an explicit camera)
     bool view = false;      // --view
     bool bench = false;     // --bench
+    bool part = false;      // --shard or --frame-range
 };
 
 // Whether the run is a sequence. Throws Error(Usage) when more than one kind is asked for, for
 // --turntable with --eye (it turns the --view camera), --cameras with --view or --eye (the file
-// gives every camera), and a sequence with --bench (which measures one frame).
+// gives every camera), a sequence with --bench (which measures one frame), and --shard or
+// --frame-range without a sequence.
 bool planSequence(const SequenceRequest& request);
 
 // The frame numbers: 0 .. n-1 for n views (a turntable or a camera file), else the numbers of

@@ -244,6 +244,60 @@ TEST(SideFiles, SignalsRemoveASequencesFrames) {
     }
 }
 
+// Many instances writing into one shared folder (a Slurm array on NFS, make -j) never pick the
+// same temporary name: it carries the host and the process, as hostname and the pid give them.
+TEST(SideFiles, TemporaryNamesCarryTheHostAndTheProcess) {
+    test::ScratchDir dir;
+    const std::string sphere = (dir / "sphere.limn").string();
+    auto r = test::run({bin("limn-classify"), test::modelPath("tri/sphere.obj").string(), "-o", sphere});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+    // As SignalsLeaveNoTemporaryFile: a run of seconds, its temporary output there all along.
+    std::vector<std::string> argv = {bin("limn-tables"), "--depth", "6", "--uniform", sphere, "--max-memory",
+                                     "100000G", "-o", (dir / "big.limn").string()};
+    std::vector<char*> args;
+    for (auto& a : argv) args.push_back(a.data());
+    args.push_back(nullptr);
+    pid_t pid = -1;
+    ASSERT_EQ(posix_spawn(&pid, args[0], &fa, nullptr, args.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    std::string temporary;
+    for (int i = 0; i < 500 && temporary.empty(); ++i) {
+        for (const auto& name : test::filesIn(dir.path()))
+            if (name.find("limn-tmp") != std::string::npos) temporary = name;
+        if (temporary.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    char host[256] = {};
+    ASSERT_EQ(::gethostname(host, sizeof host - 1), 0);
+    const std::string expected = ".limn-tmp-" + std::string(host).substr(0, 32) + "-" + std::to_string(pid) + "-";
+    EXPECT_EQ(temporary.rfind(expected, 0), 0u) << temporary << " does not start with " << expected;
+    EXPECT_EQ(temporary.size(), expected.size() + 6) << temporary;
+    EXPECT_FALSE(anyTemporary(dir.path()));
+}
+
+// A part of a sequence (--shard) that is interrupted removes its own frames only: the frames
+// other parts wrote into the same folder stay (a cancelled Slurm array task).
+TEST(SideFiles, ASignalledPartRemovesOnlyItsOwnFrames) {
+    test::ScratchDir dir;
+    const std::string cube = cubeContainer(dir);
+    const std::vector<std::string> others = {"f_0000.png", "f_0001.png", "f_0999.png"};
+    for (const auto& name : others) test::writeFile(dir / name, "another part's frame");
+    const int status = runAndSignal({bin("limn-render"), cube, "--size", "32x24", "--turntable", "2000", "--shard",
+                                     "1/2", "-o", (dir / "f_%04d.png").string()},
+                                    dir.path(), SIGTERM, false, dir / "f_1002.png");
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "status " << status;
+    std::vector<std::string> expected = {"cube.limn", "cube.obj"};
+    expected.insert(expected.end(), others.begin(), others.end());
+    EXPECT_EQ(test::filesIn(dir.path()), expected);
+    for (const auto& name : others) EXPECT_EQ(test::readFile(dir / name), "another part's frame");
+}
+
 TEST(SideFiles, OverwritingKeepsTheModeAndWritesThroughALink) {
     test::ScratchDir dir;
     const std::string cube = cubeContainer(dir);

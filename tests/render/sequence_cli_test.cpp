@@ -206,3 +206,97 @@ TEST(SequenceErrors, AFrameWithOtherFacesFailsAndLeavesNoFrames) {
     EXPECT_NE(r.err.find("faces differ"), std::string::npos) << r.err;
     EXPECT_TRUE(files(out.path()).empty());
 }
+
+// --shard I/N and --frame-range: each part frames and views its frames as the whole sequence
+// does, so the parts together write the one-process frames, byte for byte; a part's depfile
+// names only the frames it wrote.
+TEST(Shards, PartsWriteTheWholeRunsFramesAndTheirDepfilesNameThem) {
+    Twist t;
+    ScratchDir whole, parts;
+    const std::string frames = (t.dir / "twist" / "twist_%04d.obj").string();
+    struct Sequence {
+        std::vector<std::string> args;
+        int count;
+    };
+    // The default camera: --frames' framing is the box of every frame's control points, which a
+    // part must take from the frames it does not render too.
+    for (const Sequence& s : {Sequence{{"--turntable", "5", "--view", "10,25"}, 5}, Sequence{{"--frames", frames}, 24}}) {
+        const std::string tag = s.args[0].substr(2) + "_";
+        auto r = run(with(with({bin("limn-render"), t.limn, "-o", (whole / (tag + "%04d.png")).string()}, s.args),
+                          kSmall));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        for (int i = 0; i < 3; ++i) {
+            const std::string shard = std::to_string(i) + "/3", dep = (parts / (tag + std::to_string(i) + ".d")).string();
+            r = run(with(with({bin("limn-render"), t.limn, "--shard", shard, "-o", (parts / (tag + "%04d.png")).string(),
+                               "--depfile", dep},
+                              s.args),
+                         kSmall));
+            ASSERT_EQ(r.exitCode, 0) << shard << ": " << r.err;
+            // Part i of 3 owns frames floor(i n / 3) .. floor((i + 1) n / 3) - 1.
+            const std::string rule = readFile(dep);
+            for (int k = 0; k < s.count; ++k) {
+                char name[32];
+                std::snprintf(name, sizeof name, "%04d.png", k);
+                const bool mine = k >= i * s.count / 3 && k < (i + 1) * s.count / 3;
+                EXPECT_EQ(rule.find(tag + name) != std::string::npos, mine) << shard << " frame " << k << ": " << rule;
+            }
+            if (s.args[0] == "--frames") {
+                EXPECT_NE(rule.find("twist_0023.obj"), std::string::npos) << rule;
+            }
+        }
+        for (int k = 0; k < s.count; ++k) {
+            char name[32];
+            std::snprintf(name, sizeof name, "%04d.png", k);
+            ASSERT_TRUE(std::filesystem::exists(parts / (tag + name))) << tag << name;
+            EXPECT_EQ(readBytes(parts / (tag + name)), readBytes(whole / (tag + name))) << tag << name;
+        }
+    }
+    // --frame-range re-renders a few frames as the whole run did.
+    ScratchDir range;
+    auto r = run(with({bin("limn-render"), t.limn, "--frames", frames, "--frame-range", "7-9", "-o",
+                       (range / "%04d.png").string()},
+                      kSmall));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(files(range.path()), (std::vector<std::string>{"0007.png", "0008.png", "0009.png"}));
+    for (const char* name : {"0007.png", "0008.png", "0009.png"})
+        EXPECT_EQ(readBytes(range / name), readBytes(whole / (std::string("frames_") + name))) << name;
+    // What the checks above rely on: a sequence of only the first frames is framed differently,
+    // so a part framed by its own frames would not have matched.
+    ScratchDir first;
+    std::filesystem::create_directory(first / "in");
+    for (int k = 0; k < 4; ++k)
+        std::filesystem::copy_file(t.frame(k), first / "in" / std::filesystem::path(t.frame(k)).filename());
+    r = run(with({bin("limn-render"), t.limn, "--frames", (first / "in" / "twist_%04d.obj").string(), "-o",
+                  (first / "%04d.png").string()},
+                 kSmall));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(readBytes(first / "0000.png"), readBytes(whole / "frames_0000.png"));
+}
+
+// Bad shards are usage errors before any work: the input (missing here) is not even read.
+TEST(Shards, BadShardsAreUsageErrorsBeforeAnyWork) {
+    Twist t;
+    ScratchDir out;
+    const std::string o = (out / "x_%04d.png").string(), missing = (out / "missing.limn").string();
+    for (const char* bad : {"0/0", "5/4", "-1/2", "one/2", "1/two", "1/2/3", "1.5/2", ""}) {
+        auto r = run(with({bin("limn-render"), missing, "--turntable", "4", "--shard", bad, "-o", o}, kSmall));
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
+        EXPECT_NE(r.err.find("--shard"), std::string::npos) << r.err;
+    }
+    const struct {
+        std::vector<std::string> args;
+        const char* words;
+    } cases[] = {
+        {{"--shard", "0/2", "-o", (out / "x.png").string()}, "part of a sequence"},
+        {{"--frame-range", "0-2", "-o", (out / "x.png").string()}, "part of a sequence"},
+        {{"--turntable", "4", "--shard", "4/8", "-o", o}, "at most 4 parts"},
+        {{"--turntable", "4", "--frame-range", "4-9", "-o", o}, "no frame of the sequence"},
+        {{"--turntable", "4", "--frame-range", "3-1", "-o", o}, "--frame-range"},
+    };
+    for (const auto& c : cases) {
+        auto r = run(with(with({bin("limn-render"), t.limn}, c.args), kSmall));
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find(c.words), std::string::npos) << r.err;
+    }
+    EXPECT_TRUE(files(out.path()).empty());
+}

@@ -137,3 +137,69 @@ TEST(CameraFile, BadLinesNamed) {
     EXPECT_NE(messageOf([&] { parseCameraFile("0 0 5 0 0 0 0 1 0\n\n0 0 5 0 0 0 0 1\n", 35); }).find("line 3"),
               std::string::npos);
 }
+
+// --shard and --frame-range: a part of a sequence as the same frames the whole run renders.
+TEST(Shard, BadShardsAreUsageErrors) {
+    for (const char* bad : {"0/0", "5/4", "4/4", "-1/2", "1/-2", "+1/2", "a/4", "1/b", "1", "1/", "/4", "1/2/3",
+                            " 1/2", "1/2 ", "1.0/2", "0x1/2", "", "0/100001", "99999999999999999999/2"}) {
+        EXPECT_EQ(kindOf([&] { parseShard("--shard", bad); }), ErrorKind::Usage) << bad;
+        EXPECT_NE(messageOf([&] { parseShard("--shard", bad); }).find("--shard:"), std::string::npos) << bad;
+    }
+    const Shard s = parseShard("--shard", "3/4");
+    EXPECT_EQ(s.index, 3u);
+    EXPECT_EQ(s.count, 4u);
+    EXPECT_EQ(parseShard("--shard", "0/1").count, 1u);
+    EXPECT_EQ(parseShard("--shard", "007/100000").index, 7u);
+}
+
+TEST(Shard, BadRangesAreUsageErrors) {
+    for (const char* bad : {"5-4", "-1-2", "1", "1-", "-3", "a-b", "1-2-3", "1 - 2", "1.5-2", ""})
+        EXPECT_EQ(kindOf([&] { parseFrameRange("--frame-range", bad); }), ErrorKind::Usage) << bad;
+    const FrameRange r = parseFrameRange("--frame-range", "12-12");
+    EXPECT_EQ(r.first, 12u);
+    EXPECT_EQ(r.last, 12u);
+}
+
+// Every split of every length: the parts are contiguous, in order, disjoint, cover the frames,
+// and differ in size by at most one frame.
+TEST(Shard, PartsPartitionTheFrames) {
+    for (uint64_t n = 1; n <= 40; ++n) {
+        std::vector<uint64_t> numbers;
+        for (uint64_t k = 0; k < n; ++k) numbers.push_back(100 + 3 * k); // --frames: any numbers
+        for (uint32_t parts = 1; parts <= n; ++parts) {
+            std::vector<size_t> all;
+            size_t smallest = n, largest = 0;
+            for (uint32_t i = 0; i < parts; ++i) {
+                const auto part = framesOfPart(numbers, FrameRange{}, Shard{i, parts});
+                ASSERT_FALSE(part.empty()) << i << "/" << parts << " of " << n;
+                for (size_t j = 1; j < part.size(); ++j) EXPECT_EQ(part[j], part[j - 1] + 1);
+                all.insert(all.end(), part.begin(), part.end());
+                smallest = std::min(smallest, part.size());
+                largest = std::max(largest, part.size());
+            }
+            ASSERT_EQ(all.size(), n) << parts << " parts of " << n;
+            for (size_t k = 0; k < n; ++k) EXPECT_EQ(all[k], k) << parts << " parts of " << n;
+            EXPECT_LE(largest - smallest, 1u) << parts << " parts of " << n;
+        }
+    }
+    // 10 frames in 4 parts: 2, 3, 2, 3 (floor(10 i / 4)).
+    const std::vector<uint64_t> ten = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+    EXPECT_EQ(framesOfPart(ten, {}, {0, 4}), (std::vector<size_t>{0, 1}));
+    EXPECT_EQ(framesOfPart(ten, {}, {1, 4}), (std::vector<size_t>{2, 3, 4}));
+    EXPECT_EQ(framesOfPart(ten, {}, {3, 4}), (std::vector<size_t>{7, 8, 9}));
+}
+
+TEST(Shard, RangeSelectsByFrameNumberThenShardsSplitIt) {
+    const std::vector<uint64_t> numbers = {3, 5, 8, 13, 21, 34}; // a --frames sequence's file numbers
+    EXPECT_EQ(framesOfPart(numbers, {5, 21}, {}), (std::vector<size_t>{1, 2, 3, 4}));
+    EXPECT_EQ(framesOfPart(numbers, {6, 8}, {}), (std::vector<size_t>{2}));
+    EXPECT_EQ(framesOfPart(numbers, {0, 1000}, {}), (std::vector<size_t>{0, 1, 2, 3, 4, 5}));
+    EXPECT_EQ(framesOfPart(numbers, {5, 21}, {1, 2}), (std::vector<size_t>{3, 4}));
+    // Nothing to render is a usage error naming the option: a range between numbers, more parts
+    // than frames.
+    EXPECT_EQ(kindOf([&] { framesOfPart(numbers, {9, 12}, {}); }), ErrorKind::Usage);
+    EXPECT_NE(messageOf([&] { framesOfPart(numbers, {9, 12}, {}); }).find("--frame-range"), std::string::npos);
+    EXPECT_EQ(kindOf([&] { framesOfPart(numbers, {}, {6, 7}); }), ErrorKind::Usage);
+    EXPECT_NE(messageOf([&] { framesOfPart(numbers, {}, {6, 7}); }).find("--shard"), std::string::npos);
+    EXPECT_EQ(kindOf([&] { framesOfPart(numbers, {5, 8}, {0, 3}); }), ErrorKind::Usage);
+}

@@ -42,7 +42,9 @@ const char* const kRenderNotes =
     "and mesh. Frames are written as they are done, each atomically; an error removes\n"
     "the frames this run wrote. All frames are framed alike: for --frames the box of\n"
     "every frame's control points. Progress (frame i/N, time left) goes to stderr\n"
-    "when it is a terminal.\n"
+    "when it is a terminal. --shard and --frame-range render part of a sequence as\n"
+    "the whole run would (one sequence over several processes or machines: README,\n"
+    "Rendering on a cluster); an error removes only that part's frames.\n"
     "PNG: 8-bit (or --bit-depth 16) sRGB with an sRGB chunk; RGB, or RGBA with straight\n"
     "alpha (--alpha). EXR (through the OpenImageIO plugin; exit 3 without it): 32-bit\n"
     "float channels R, G, B, A, Z, ZIP compressed. R, G, B are linear light,\n"
@@ -65,6 +67,7 @@ const char* const kRenderNotes =
     "  limn-trim spot.limn -o holes.png && limn-render spot.limn --trim holes.png -o "
     "t.png\n"
     "  limn-render spot.limn --turntable 36 -o spin_%02d.png\n"
+    "  limn-render spot.limn --turntable 36 --shard 1/4 -o spin_%02d.png   (frames 9-17)\n"
     "  limn-render twist.limn --frames twist/twist_%04d.obj -o twist_%04d.png\n";
 
 const char* const kRenderExitCodes =

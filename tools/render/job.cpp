@@ -68,6 +68,10 @@ void readSequence(RenderJob& job) {
     if (!job.framesPattern.empty())
         job.frameFiles = render::findFrameFiles(render::parseFramePattern("--frames", job.framesPattern));
     job.frameNumbers = render::sequenceFrameNumbers(job.views, job.frameFiles);
+    if (!job.sequence) return;
+    job.part = render::framesOfPart(job.frameNumbers, job.frameRange.value_or(render::FrameRange{}),
+                                    job.shard.value_or(render::Shard{}));
+    for (size_t k : job.part) job.partNumbers.push_back(job.frameNumbers[k]);
 }
 
 } // namespace
@@ -81,7 +85,8 @@ void planJob(RenderJob& job) {
                                          .frames = !job.framesPattern.empty(),
                                          .eye = bool(job.settings.view.eye),
                                          .view = job.viewGiven,
-                                         .bench = job.bench > 0});
+                                         .bench = job.bench > 0,
+                                         .part = job.shard || job.frameRange});
     job.outputs = render::planOutputs({.image = job.common.output,
                                        .mesh = job.meshOut,
                                        .meshAscii = job.meshAscii,

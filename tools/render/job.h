@@ -44,6 +44,8 @@ struct RenderJob {
     int bench = 0, tess = 64, grid = 16;
     uint32_t turntable = 0;
     std::string camerasPath, framesPattern;
+    std::optional<render::Shard> shard;           // --shard I/N
+    std::optional<render::FrameRange> frameRange; // --frame-range A-B
     int samples = 4, supersample = 1, bitDepth = 8;
     bool sampleShading = false;
     bool bitDepthGiven = false;
@@ -60,6 +62,11 @@ struct RenderJob {
     std::vector<render::ViewSpec> views;
     std::vector<render::FrameFile> frameFiles;
     std::vector<uint64_t> frameNumbers;
+    // The positions in the sequence this run renders and writes (--shard, --frame-range; all of
+    // them without), and their frame numbers. The framing still takes every frame, so a part's
+    // frames are those of the whole sequence.
+    std::vector<size_t> part;
+    std::vector<uint64_t> partNumbers;
     // Every file the run reads, for the depfile and so that no output overwrites one.
     std::vector<std::string> inputs;
 };

@@ -323,6 +323,18 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
               "render the meshes PATTERN names (walk_%04d.obj: every existing number) with\n"
               "                            INPUT's topology and tables, uploading only their positions;\n"
               "                            frame k of the input goes to -o NAME_%04d.png with the same k")
+        .custom(
+            "--shard", "I/N", [&](const std::string& v) { job.shard = render::parseShard("--shard", v); }, "",
+            "render only part I of N (0 <= I < N) of the sequence, a contiguous block of\n"
+            "                            its frames, framed and lit as the whole sequence: the N\n"
+            "                            parts write the one-process frames (a Slurm array task:\n"
+            "                            $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)")
+        .custom(
+            "--frame-range", "A-B",
+            [&](const std::string& v) { job.frameRange = render::parseFrameRange("--frame-range", v); }, "",
+            "render only the sequence's frames numbered A to B (both included), framed as\n"
+            "                            the whole sequence (re-render a few frames; with\n"
+            "                            --shard, the range is split)")
         .integer("--bench", "FRAMES", &bench, 0, 100000,
                  "render FRAMES frames after 3 warm-up frames and print one JSON object of\n"
                  "                            medians to standard output; 0 renders once")

@@ -16,7 +16,7 @@ void openOutputs(const RenderJob& job, OutputFiles& files) {
     const render::OutputPlan& plan = job.outputs;
     const std::vector<std::string>& inputs = job.inputs;
     if (job.sequence) {
-        files.paths = plan.framePaths(job.frameNumbers);
+        files.paths = plan.framePaths(job.partNumbers);
         for (const std::string& o : files.paths) refuseOverwritingInputs(o, inputs);
         for (const std::string& o : {files.paths.front(), files.paths.back()}) {
             const std::filesystem::path folder = std::filesystem::path(o).parent_path();

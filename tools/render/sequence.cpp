@@ -52,20 +52,22 @@ void renderSequence(render::Renderer& renderer, const RenderJob& job, const Rend
         for (const SequenceFrame& f : frames) renderer.extendFraming(f.positions);
         renderer.setCamera(renderer.cameraFor(job.settings.view));
     }
-    Progress progress(numbers.size(), job.common.quiet);
+    const std::vector<size_t>& part = job.part; // the frames this run writes (--shard, --frame-range)
+    Progress progress(part.size(), job.common.quiet);
     // Frame k is encoded and written on a second thread while frame k + 1 is drawn (about 0.83x
     // the wall time of encoding in turn: docs/benchmarks.md). At most one
     // frame is in flight; its bytes depend only on its own pixels. Output files are only ever
     // made by one thread at a time (the signal handler's list of temporary files is not shared
     // safely): the main thread waits for the frame in flight before writing a --mesh-out.
     // A signal (Ctrl-C, SIGTERM) removes the frames already in place, as an error does.
-    prepareRemovalOnSignal(plan.framePaths(numbers));
+    prepareRemovalOnSignal(plan.framePaths(job.partNumbers));
     std::future<std::string> pending;
     auto finishPending = [&] {
         if (pending.valid()) written.push_back(pending.get());
     };
     try {
-        for (size_t k = 0; k < numbers.size(); ++k) {
+        for (size_t i = 0; i < part.size(); ++i) {
+            const size_t k = part[i];
             if (!views.empty()) renderer.setCamera(renderer.cameraFor(views[k]));
             if (!frames.empty()) {
                 renderer.setControlPoints(frames[k].positions);
@@ -76,7 +78,7 @@ void renderSequence(render::Renderer& renderer, const RenderJob& job, const Rend
             renderer.refuseTessellationShortfall(displayName(job.input) + ": frame " + std::to_string(numbers[k]));
             FramePixels pixels = framePixels(renderer, job);
             finishPending();
-            if (k > 0) progress.done(k);
+            if (i > 0) progress.done(i);
             if (plan.meshPattern) {
                 const std::string mesh = render::framePath(*plan.meshPattern, numbers[k]);
                 writeOutput(mesh, render::encodeMesh(renderer.drawnMesh(), *plan.meshFormat, plan.meshAscii),
@@ -92,7 +94,7 @@ void renderSequence(render::Renderer& renderer, const RenderJob& job, const Rend
             });
         }
         finishPending();
-        progress.done(numbers.size());
+        progress.done(part.size());
     } catch (...) {
         // A frame still being written either lands (and is then removed) or fails on its own.
         if (pending.valid()) {
@@ -107,7 +109,7 @@ void renderSequence(render::Renderer& renderer, const RenderJob& job, const Rend
     }
     char line[128];
     std::snprintf(line, sizeof line, "%zu frames in %.2f s (%.1f ms each, encoding and writing included)",
-                  numbers.size(), progress.seconds(), 1000 * progress.seconds() / double(numbers.size()));
+                  part.size(), progress.seconds(), 1000 * progress.seconds() / double(part.size()));
     cli::info(line);
 }
 
