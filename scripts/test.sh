@@ -17,3 +17,9 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # tools in the CLI tests.
 exclude=(); [ "$kind" = asan ] && exclude=(-LE '^(heavy|render)$' -E '_NOT_BUILT$')
 ctest --test-dir "$dir" --output-on-failure -j "$(nproc)" "${exclude[@]}"
+
+# The WebGPU runtime (web/): node --test, on Dawn over the private Mesa 25 of setup.sh --tests,
+# in the release run only (its image tests compare with build/'s limn-render).
+if [ "$kind" = release ]; then
+  LIMN_BUILD_DIR="$PWD/build" node --test web/test/
+fi
