@@ -738,8 +738,6 @@ fn main_1() {
 fn main(@builtin(vertex_index) gl_VertexIndex: u32) -> VertexOutput {
     gl_VertexIndex_1 = i32(gl_VertexIndex);
     main_1();
-    let _e11 = unnamed.gl_Position.y;
-    unnamed.gl_Position.y = -(_e11);
     let _e13 = outWorld;
     let _e14 = outNormal;
     let _e15 = outFaceUV;

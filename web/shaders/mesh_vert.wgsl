@@ -84,8 +84,6 @@ fn main_1() {
 fn main(@builtin(vertex_index) gl_VertexIndex: u32) -> VertexOutput {
     gl_VertexIndex_1 = i32(gl_VertexIndex);
     main_1();
-    let _e9 = unnamed.gl_Position.y;
-    unnamed.gl_Position.y = -(_e9);
     let _e11 = outWorld;
     let _e12 = outNormal;
     let _e13 = outUV;

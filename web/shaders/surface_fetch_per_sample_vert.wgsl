@@ -104,8 +104,6 @@ fn main_1() {
 fn main(@builtin(vertex_index) gl_VertexIndex: u32) -> VertexOutput {
     gl_VertexIndex_1 = i32(gl_VertexIndex);
     main_1();
-    let _e10 = unnamed.gl_Position.y;
-    unnamed.gl_Position.y = -(_e10);
     let _e12 = outWorld;
     let _e13 = outNormal;
     let _e14 = outUV;

@@ -66,8 +66,6 @@ fn main_1() {
 fn main(@builtin(vertex_index) gl_VertexIndex: u32) -> @builtin(position) vec4<f32> {
     gl_VertexIndex_1 = i32(gl_VertexIndex);
     main_1();
-    let _e6 = unnamed.gl_Position.y;
-    unnamed.gl_Position.y = -(_e6);
     let _e8 = unnamed.gl_Position;
     return _e8;
 }

@@ -7,6 +7,9 @@
 //
 // (vulkan1.2 output uses OpCopyLogical, which naga does not parse.) naga's WGSL needs four
 // mechanical fixes, each made from facts read out of the SPIR-V, never guessed from names:
+//   0. naga's SPIR-V reader negates gl_Position.y (it assumes Vulkan's y-down clip space); limn's
+//      clip space is already WebGPU's, y up (lib/gpu flips the Vulkan viewport instead), so the
+//      negation in each vertex entry point is taken out again;
 //   1. storage buffers declared `readonly` come out `read_write`, which WebGPU refuses in the vertex
 //      and fragment stages: a buffer whose SPIR-V block is NonWritable becomes `var<storage, read>`;
 //   2. push constants become `var<immediate>` (Dawn allows 64 bytes; limn pushes up to 128): they
@@ -114,7 +117,14 @@ export function spirvFacts(words) {
 
 // --- the mechanical fixes ----------------------------------------------------------------------
 export function fixWgsl(wgsl, facts, name) {
-  let out = wgsl.replace(/@group\((\d+)\) @binding\((\d+)\)\s*\nvar<storage, read_write>/g, (m, g, b) =>
+  let flips = 0;
+  let out = wgsl.replace(/\n\s*let (_e\d+) = (\w+)\.gl_Position\.y;\n\s*\2\.gl_Position\.y = -\(\1\);/g, () => {
+    flips++;
+    return '';
+  });
+  const vertex = /@vertex/.test(wgsl) && /@builtin\(position\)/.test(wgsl);
+  if (flips !== (vertex ? 1 : 0)) throw new Error(`${name}: ${flips} y flips of gl_Position in naga's WGSL, expected ${vertex ? 1 : 0}`);
+  out = out.replace(/@group\((\d+)\) @binding\((\d+)\)\s*\nvar<storage, read_write>/g, (m, g, b) =>
     facts.readonly.has(`${g},${b}`) ? m.replace('read_write', 'read') : m);
   let pushes = 0;
   out = out.replace(/var<immediate> /g, () => {

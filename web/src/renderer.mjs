@@ -1,0 +1,332 @@
+// limn-render's frame on WebGPU, pass for pass (lib/render/renderer.cpp, subdivision_pass.cpp,
+// subdivision_draw.cpp), with the same WGSL that gen-shaders.mjs makes from limn's GLSL:
+//   per level l = 1..N: face points, then edge points and vertex points (paper 000, 3.3 and 4.2);
+//   limit points (4.4); then the draw of the fixed watertight tessellation, whose vertices the
+//   vertex stage evaluates from their patch's 16 control points (the bicubic B-spline, eq. 1) or
+//   their irregular face's limit points (4.3), into a 4x multisampled sRGB target.
+// The control points go straight into the level-0 range of the vertex buffer (queue.writeBuffer:
+// what limn-render's staging copy and copy_points.comp do on Vulkan).
+import { ShaderCache } from './shaders.mjs';
+import { buildTessellation } from './tessellation.mjs';
+import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
+import { LimnError } from './container.mjs';
+
+const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
+const MAX_GROUPS = 65535;
+const STORAGE = 0x80, COPY_DST = 0x08, COPY_SRC = 0x04, INDEX = 0x10, UNIFORM = 0x40, MAP_READ = 0x01;
+const RENDER_ATTACHMENT = 0x10, TEX_COPY_SRC = 0x01;
+
+export const SHADES = { lit: 0, normal: 1, uv: 2, levels: 3, texture: 4 };
+const DEFAULT_BASE = 0.8;
+
+const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4));
+function packSrgb8(c) {
+  let packed = 0;
+  for (let i = 0; i < 3; i++) packed |= Math.round(Math.min(Math.max(c[i], 0), 1) * 255) << (8 * i);
+  return packed >>> 0;
+}
+
+// Concatenates stencil tables as subdivision_draw.cpp's appendRows: starts rebased, one row more
+// per table; returns the first row of each table.
+function appendRows(tables, withWeights) {
+  let rows = 0, entries = 0;
+  for (const t of tables) { rows += t.rows + 1; entries += t.index.length; }
+  const starts = new Uint32Array(Math.max(rows, 1)), index = new Uint32Array(Math.max(entries, 1));
+  const weight = withWeights ? new Float32Array(Math.max(entries, 1)) : null;
+  const firstRows = [];
+  let r = 0, e = 0;
+  for (const t of tables) {
+    firstRows.push(r);
+    for (let i = 0; i <= t.rows; i++) starts[r++] = e + t.start[i];
+    index.set(t.index, e);
+    if (withWeights) weight.set(t.weight, e);
+    e += t.index.length;
+  }
+  return { starts, index, weight, firstRows };
+}
+
+/**
+ * A renderer for one loaded surface (chunks.mjs's loadLimn). settings: {width, height, samples
+ * (1|4), shade, edgePixels (0: fixed grids), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
+ * eye, target, up}, color, background, sampleShading}.
+ */
+export class Renderer {
+  static async create(device, surface, settings) {
+    const r = new Renderer(device, surface, settings);
+    await r.init();
+    return r;
+  }
+
+  constructor(device, surface, settings) {
+    this.device = device;
+    this.surface = surface;
+    this.s = { width: 800, height: 600, samples: 4, shade: 'lit', edgePixels: 0, tess: 64, view: {}, background: [0.2, 0.2, 0.2], ...settings };
+    const s = this.s;
+    if (s.samples !== 1 && s.samples !== 4) throw new LimnError(`--samples must be 1 or 4 (the counts WebGPU offers), not ${s.samples}`, 'usage');
+    if (!(s.shade in SHADES)) throw new LimnError(`--shade ${s.shade}: one of ${Object.keys(SHADES).join(', ')}`, 'usage');
+    if (s.shade === 'uv' && !surface.uvs) throw new LimnError('--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade lit or normal', 'input');
+    if (s.edgePixels > 0) throw new LimnError('the view-adaptive tessellation (--edge-pixels > 0) is not supported here yet; use --edge-pixels 0', 'capability');
+    if (s.shade === 'texture' || s.displace) throw new LimnError('--texture and --displace are not supported here yet', 'capability');
+    if (surface.uvs && s.shade === 'uv' && surface.tables.options.fvar !== 5) {
+      throw new LimnError('smooth face-varying UVs (TAGS fvar other than "all") are not supported here yet', 'capability');
+    }
+    this.timings = { js: 0 };
+  }
+
+  buffer(label, data, usage = STORAGE) {
+    const size = Math.max(Math.ceil(data.byteLength / 4) * 4, 16);
+    const b = this.device.createBuffer({ label, size, usage: usage | COPY_DST, mappedAtCreation: true });
+    new Uint8Array(b.getMappedRange()).set(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+    b.unmap();
+    return b;
+  }
+
+  empty(label, size, usage = STORAGE) {
+    return this.device.createBuffer({ label, size: Math.max(size, 16), usage: usage | COPY_DST | COPY_SRC });
+  }
+
+  async init() {
+    const { device, surface, s } = this;
+    const { mesh, tables } = surface;
+    const shaders = new ShaderCache(device);
+    const compute = async (name) => device.createComputePipelineAsync({ label: name, layout: 'auto', compute: { module: await shaders.module(name) } });
+
+    // Tables: every level's face-point rows, edge- and vertex-point rows, the limit stencils.
+    const face = appendRows(tables.facePoints, false);
+    const stencil = appendRows(tables.edgePoints.flatMap((e, l) => [e, tables.vertexPoints[l]]), true);
+    const limit = appendRows([tables.limitPosition, tables.limitTangent1, tables.limitTangent2], true);
+    if (limit.index.byteLength > 128 << 20) throw new LimnError('limit tables over 128 MiB (they come in chunks in limn-render) are not supported here', 'capability');
+    this.levels = [];
+    for (let l = 1; l <= tables.depth; l++) {
+      const L = tables.levels[l];
+      this.levels.push({
+        level: l,
+        face: { firstOut: L.first, firstRow: face.firstRows[l - 1], count: L.facePoints },
+        edge: { firstOut: L.first + L.facePoints, firstRow: stencil.firstRows[2 * (l - 1)], count: L.edgePoints },
+        vertex: { firstOut: L.first + L.facePoints + L.edgePoints, firstRow: stencil.firstRows[2 * (l - 1) + 1], count: L.vertexPoints },
+      });
+    }
+    const tess = buildTessellation({ ...mesh, uvs: surface.uvs }, tables, s.tess, !!surface.uvs);
+    this.tess = tess;
+    const b = this.buffers = {
+      vertices: this.empty('table vertices', tables.totalVertices * 16),
+      faceStarts: this.buffer('face-point starts', face.starts),
+      faceIndices: this.buffer('face-point indices', face.index),
+      stencilStarts: this.buffer('stencil starts', stencil.starts),
+      stencilIndices: this.buffer('stencil indices', stencil.index),
+      stencilWeights: this.buffer('stencil weights', stencil.weight),
+      limitStarts: this.buffer('limit starts', limit.starts),
+      limitIndices: this.buffer('limit indices', limit.index),
+      limitWeights: this.buffer('limit weights', limit.weight),
+      limits: this.empty('limit points', Math.max(tables.limitCount, 1) * 32),
+      patches: this.buffer('patches', tables.patches),
+      irregular: this.buffer('irregular faces', tables.irregular),
+      tessVertices: this.buffer('tessellation vertices', tess.vertices),
+      triangles: this.buffer('triangle indices', tess.indices, STORAGE | INDEX),
+      triangleLevels: this.buffer('triangle levels', tess.triangleLevels),
+      texture: this.buffer('colour texture', new Uint32Array([1, 1, 0xffffffff])),
+      push: this.empty('push constants', PUSH_SLOT * (4 + 3 * tables.depth), UNIFORM),
+    };
+    this.controlPoints = new Float32Array(mesh.vertexCount * 4);
+    for (let i = 0; i < mesh.vertexCount; i++) {
+      this.controlPoints.set([mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2], 1], 4 * i);
+    }
+    const [facePass, stencilPass, limitPass] = await Promise.all(['subdiv_face_points.comp', 'subdiv_stencils.comp', 'subdiv_limit.comp'].map(compute));
+    const perSample = s.sampleShading && s.samples > 1;
+    const vs = await shaders.module(perSample ? 'surface_per_sample.vert' : 'surface.vert');
+    const fs = await shaders.module(perSample ? 'surface_per_sample.frag' : 'surface.frag');
+    this.drawPipeline = await device.createRenderPipelineAsync({
+      label: 'surface', layout: 'auto',
+      vertex: { module: vs },
+      fragment: { module: fs, targets: [{ format: 'rgba8unorm-srgb' }] },
+      primitive: { topology: 'triangle-list', cullMode: 'none', frontFace: 'ccw' },
+      depthStencil: { format: 'depth32float', depthWriteEnabled: true, depthCompare: 'less' },
+      multisample: { count: s.samples },
+    });
+    const group = (pipeline, index, buffers) => device.createBindGroup({
+      layout: pipeline.getBindGroupLayout(index),
+      entries: buffers.map((buf, binding) => (buf ? { binding, resource: buf.buffer ? buf : { buffer: buf } } : null)).filter(Boolean),
+    });
+    // Each pass gets its own 256-byte slot of push constants (written once per frame).
+    let slot = 0;
+    const pushGroup = (pipeline) => {
+      const offset = PUSH_SLOT * slot++;
+      return { offset, group: device.createBindGroup({ layout: pipeline.getBindGroupLayout(3), entries: [{ binding: 0, resource: { buffer: b.push, offset, size: PUSH_SLOT } }] }) };
+    };
+    const faceGroup = group(facePass, 0, [b.vertices, b.faceStarts, b.faceIndices]);
+    const stencilGroup = group(stencilPass, 0, [b.vertices, b.stencilStarts, b.stencilIndices, b.stencilWeights]);
+    this.passes = [];
+    this.pushData = new Uint32Array((PUSH_SLOT / 4) * (4 + 3 * tables.depth));
+    const dispatch = (pipeline, bindGroup, count, fields, label) => {
+      if (count === 0) return;
+      const groups = Math.ceil(count / 64);
+      const y = Math.ceil(groups / MAX_GROUPS), x = Math.ceil(groups / y);
+      const p = pushGroup(pipeline);
+      this.pushData.set([count, x * 64, 0, 0, ...fields], p.offset / 4);
+      this.passes.push({ pipeline, bindGroup, push: p.group, x, y, label });
+    };
+    for (const L of this.levels) {
+      dispatch(facePass, faceGroup, L.face.count, [L.face.firstOut, L.face.firstRow], `face points L${L.level}`);
+      dispatch(stencilPass, stencilGroup, L.edge.count, [L.edge.firstOut, L.edge.firstRow], `edge points L${L.level}`);
+      dispatch(stencilPass, stencilGroup, L.vertex.count, [L.vertex.firstOut, L.vertex.firstRow], `vertex points L${L.level}`);
+    }
+    dispatch(limitPass, group(limitPass, 0, [b.vertices, b.limitStarts, b.limitIndices, b.limitWeights, b.limits]), tables.limitCount,
+      [tables.limitCount, 0], 'limit points');
+    const drawPush = pushGroup(this.drawPipeline);
+    this.drawPushOffset = drawPush.offset;
+    this.drawGroups = [group(this.drawPipeline, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture]), drawPush.group];
+
+    // Framing: the control points' box and sphere (boundsOf), the hull samples when auto-framed.
+    const points = [];
+    for (let i = 0; i < mesh.vertexCount; i++) points.push([mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]]);
+    this.bounds = boundsOf(points);
+    this.bounds.hull = s.view.eye ? [] : await this.surfaceSamples();
+    this.setView(s.view);
+
+    const w = s.width, h = s.height;
+    this.color = device.createTexture({ size: [w, h], format: 'rgba8unorm-srgb', usage: RENDER_ATTACHMENT | TEX_COPY_SRC, sampleCount: 1 });
+    if (s.samples > 1) this.msaa = device.createTexture({ size: [w, h], format: 'rgba8unorm-srgb', usage: RENDER_ATTACHMENT, sampleCount: s.samples });
+    this.depth = device.createTexture({ size: [w, h], format: 'depth32float', usage: RENDER_ATTACHMENT, sampleCount: s.samples });
+    this.rowBytes = Math.ceil((w * 4) / 256) * 256;
+    this.readback = device.createBuffer({ size: this.rowBytes * h, usage: MAP_READ | COPY_DST });
+  }
+
+  // limn-render's framing hull (renderer.cpp surfaceSamples): each patch at (s, t) in {0, 1/2, 1}^2
+  // and every limit point, here evaluated by the same passes on the GPU and read back.
+  async surfaceSamples() {
+    const { device, surface } = this;
+    const { tables } = surface;
+    const P = tables.patchCount;
+    const st = [0, 16384, 32768];
+    const tv = new Uint32Array(P * 9 * 4);
+    let n = 0;
+    // patchPositions' order: v outer, u inner.
+    for (let p = 0; p < P; p++) for (const t of st) for (const u of st) { tv.set([p, u | (t << 16), 0, 0], 4 * n++); }
+    const shaders = new ShaderCache(device);
+    const evalPass = await device.createComputePipelineAsync({ layout: 'auto', compute: { module: await shaders.module('surface_eval.comp') } });
+    const b = this.buffers;
+    const tvb = this.buffer('hull samples', tv.length ? tv : new Uint32Array(4));
+    const pos = this.empty('hull positions', n * 16), nrm = this.empty('hull normals', n * 16), info = this.empty('hull info', n * 16);
+    const push = this.empty('hull push', 256, UNIFORM);
+    const groups = Math.ceil(Math.max(n, 1) / 64), y = Math.ceil(groups / MAX_GROUPS), x = Math.ceil(groups / y);
+    device.queue.writeBuffer(push, 0, new Uint32Array([n, x * 64, 0, 0, P]));
+    this.uploadControlPoints();
+    const enc = device.createCommandEncoder();
+    this.encodeCompute(enc);
+    if (n > 0) {
+      const cp = enc.beginComputePass();
+      cp.setPipeline(evalPass);
+      cp.setBindGroup(0, device.createBindGroup({ layout: evalPass.getBindGroupLayout(0), entries: [b.vertices, b.patches, b.irregular, b.limits, tvb, pos, nrm, info].map((buffer, binding) => ({ binding, resource: { buffer } })) }));
+      cp.setBindGroup(3, device.createBindGroup({ layout: evalPass.getBindGroupLayout(3), entries: [{ binding: 0, resource: { buffer: push } }] }));
+      cp.dispatchWorkgroups(x, y);
+      cp.end();
+    }
+    const L = tables.limitCount;
+    const rb = device.createBuffer({ size: Math.max(n * 16 + L * 32, 16), usage: MAP_READ | COPY_DST });
+    if (n > 0) enc.copyBufferToBuffer(pos, 0, rb, 0, n * 16);
+    if (L > 0) enc.copyBufferToBuffer(b.limits, 0, rb, n * 16, L * 32);
+    device.queue.submit([enc.finish()]);
+    await rb.mapAsync(1);
+    const f = new Float32Array(rb.getMappedRange().slice(0));
+    rb.unmap();
+    const points = [];
+    for (let i = 0; i < n; i++) points.push([f[4 * i], f[4 * i + 1], f[4 * i + 2]]);
+    for (let i = 0; i < L; i++) points.push([f[4 * n + 8 * i], f[4 * n + 8 * i + 1], f[4 * n + 8 * i + 2]]);
+    for (const buf of [tvb, pos, nrm, info, push, rb]) buf.destroy();
+    return points;
+  }
+
+  setView(view) {
+    const s = this.s, aspect = s.width / s.height;
+    const cam = frameCamera(view, this.bounds, aspect);
+    this.camera = cam;
+    const v = viewMatrix(cam);
+    const vp = multiply(projectionMatrix(cam, aspect), v);
+    const right = [v[0], v[4], v[8]], up = [v[1], v[5], v[9]], forward = [-v[2], -v[6], -v[10]];
+    const az = ((s.lightAzimuthDeg ?? -40) * Math.PI) / 180, el = ((s.lightElevationDeg ?? 35) * Math.PI) / 180;
+    const light = s.shade === 'levels'
+      ? normalize(add(add(mul(forward, -1), mul(up, 0.45)), mul(right, -0.3)))
+      : normalize(add(add(mul(forward, -Math.cos(el) * Math.cos(az)), mul(right, Math.cos(el) * Math.sin(az))), mul(up, Math.sin(el))));
+    const push = new DataView(new ArrayBuffer(128));
+    for (let i = 0; i < 16; i++) push.setFloat32(4 * i, vp[i], true);
+    for (let i = 0; i < 3; i++) {
+      push.setFloat32(64 + 4 * i, cam.eye[i], true);
+      push.setFloat32(80 + 4 * i, light[i], true);
+      push.setFloat32(96 + 4 * i, 0.006, true);
+    }
+    const base = s.color ?? [DEFAULT_BASE, DEFAULT_BASE, DEFAULT_BASE];
+    push.setUint32(76, packSrgb8(base), true);
+    push.setUint32(112, SHADES[s.shade], true);
+    push.setFloat32(116, 2e-3, true);
+    push.setUint32(120, this.surface.tables.patchCount, true);
+    push.setUint32(124, (s.shade === 'levels' ? 1 : 0) | (view.zUp ? 4 : 0), true);
+    this.pushData.set(new Uint32Array(push.buffer), this.drawPushOffset / 4);
+    this.clear = [...s.background.map(srgbToLinear), 1];
+  }
+
+  uploadControlPoints() {
+    this.device.queue.writeBuffer(this.buffers.vertices, 0, this.controlPoints);
+    this.device.queue.writeBuffer(this.buffers.push, 0, this.pushData);
+  }
+
+  encodeCompute(enc) {
+    // One compute pass per dispatch: WebGPU orders their storage accesses like limn's barriers.
+    for (const p of this.passes) {
+      const cp = enc.beginComputePass({ label: p.label });
+      cp.setPipeline(p.pipeline);
+      cp.setBindGroup(0, p.bindGroup);
+      cp.setBindGroup(3, p.push);
+      cp.dispatchWorkgroups(p.x, p.y);
+      cp.end();
+    }
+  }
+
+  /** Records and submits one frame (upload, compute passes, draw, copy to the readback buffer). */
+  frame() {
+    const t0 = performance.now();
+    const { device, s } = this;
+    this.uploadControlPoints();
+    const enc = device.createCommandEncoder();
+    this.encodeCompute(enc);
+    const rp = enc.beginRenderPass({
+      colorAttachments: [{
+        view: (this.msaa ?? this.color).createView(), resolveTarget: this.msaa ? this.color.createView() : undefined,
+        clearValue: this.clear, loadOp: 'clear', storeOp: this.msaa ? 'discard' : 'store',
+      }],
+      depthStencilAttachment: { view: this.depth.createView(), depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'discard' },
+    });
+    rp.setPipeline(this.drawPipeline);
+    rp.setBindGroup(0, this.drawGroups[0]);
+    rp.setBindGroup(3, this.drawGroups[1]);
+    const count = this.tess.indices.length;
+    if (s.shade === 'levels') {
+      rp.draw(count);
+    } else {
+      rp.setIndexBuffer(this.buffers.triangles, 'uint32');
+      rp.drawIndexed(count);
+    }
+    rp.end();
+    enc.copyTextureToBuffer({ texture: this.color }, { buffer: this.readback, bytesPerRow: this.rowBytes }, [s.width, s.height]);
+    device.queue.submit([enc.finish()]);
+    this.timings.js = performance.now() - t0;
+  }
+
+  /** The frame's pixels, RGBA8 rows top to bottom (sRGB, as the PNG holds them). */
+  async pixels() {
+    const { s } = this;
+    await this.readback.mapAsync(1);
+    const src = new Uint8Array(this.readback.getMappedRange());
+    const out = new Uint8Array(s.width * s.height * 4);
+    for (let y = 0; y < s.height; y++) out.set(src.subarray(y * this.rowBytes, y * this.rowBytes + s.width * 4), y * s.width * 4);
+    this.readback.unmap();
+    return out;
+  }
+
+  triangleCount() { return this.tess.indices.length / 3; }
+
+  destroy() {
+    for (const buf of Object.values(this.buffers)) buf.destroy();
+    for (const t of [this.color, this.msaa, this.depth]) t?.destroy();
+    this.readback.destroy();
+  }
+}
