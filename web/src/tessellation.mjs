@@ -37,13 +37,15 @@ class PtexMap {
         this.vertexFaces[a].push(f);
       }
     }
-    // Keys as numbers while they fit in 53 bits (depth <= 9), else strings.
+    // Keys as numbers while they fit in 53 bits (depth <= 9), else strings; kindOf undoes them.
     const bits = Math.ceil(Math.log2(2 * R + 1));
-    if (34 + 2 * bits - 4 <= 53) {
-      const s = 2 ** bits;
+    if (30 + 2 * bits <= 53) {
+      const s = 2 ** bits, kindUnit = 2 ** (27 + 2 * bits);
       this.makeKey = (kind, id, a, b) => ((kind * 2 ** 27 + id) * s + a) * s + b;
+      this.kindOf = (k) => Math.floor(k / kindUnit);
     } else {
       this.makeKey = (kind, id, a, b) => `${kind},${id},${a},${b}`;
+      this.kindOf = (k) => Number(k.split(',')[0]);
     }
   }
 
@@ -65,8 +67,9 @@ class PtexMap {
   }
 
   key(p, U, V) {
-    const R = this.R, f = this.face[p], sub = this.sub[p], fv = this.faceVerts(f);
+    const R = this.R;
     if (U > 0 && U < R && V > 0 && V < R) return this.makeKey(0, p, U, V);
+    const f = this.face[p], sub = this.sub[p], fv = this.faceVerts(f);
     if (sub < 0) {
       if (V === 0) return this.onEdge(fv[0], fv[1], 2 * U);
       if (U === R) return this.onEdge(fv[1], fv[2], 2 * V);
@@ -170,8 +173,7 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
     let s = onUVSeam.get(k);
     if (s === undefined) {
       s = false;
-      const kind = typeof k === 'number' ? Math.floor(k / 2 ** (27 + 2 * Math.ceil(Math.log2(2 * R + 1)))) : Number(k.split(',')[0]);
-      if (kind !== 0) {
+      if (keys.kindOf(k) !== 0) {
         const charts = keys.charts(e.ptex, U, V);
         const c0 = charts[0].uv.map(f32);
         for (const c of charts) s ||= f32(c.uv[0]) !== c0[0] || f32(c.uv[1]) !== c0[1];
@@ -185,18 +187,21 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
     if (withUV) uvs.push(uv);
     return vElement.length - 1;
   };
+  // Points inside a ptex face (most of them) are owned through an array, the rest by key.
+  const side = R - 1, interiorOwner = new Int32Array(Math.max(keys.face.length * side * side, 1)).fill(-1);
   const vertexFor = (ei, U, V, create) => {
     const e = elements[ei];
-    const k = keys.key(e.ptex, U, V);
-    let first = owner.get(k);
-    if (first === undefined) {
+    const inside = U > 0 && U < R && V > 0 && V < R;
+    const k = inside ? (e.ptex * side + U - 1) * side + V - 1 : keys.key(e.ptex, U, V);
+    let first = inside ? interiorOwner[k] : owner.get(k);
+    if (first === undefined || first < 0) {
       if (!create) return NONE;
       const unit = TESS_ONE / e.W;
       first = vElement.length;
-      owner.set(k, first);
+      if (inside) interiorOwner[k] = first; else owner.set(k, first);
       push(ei, ((U - e.U0) * unit) | (((V - e.V0) * unit) << 16), withUV ? uvOf(e, U, V) : null, first);
     }
-    if (!splitUVSeams || !seamPoint(e, U, V, k)) return first;
+    if (inside || !splitUVSeams || !seamPoint(e, U, V, k)) return first;
     const uv = uvOf(e, U, V);
     if (uvs[first][0] === uv[0] && uvs[first][1] === uv[1]) return first;
     const ck = `${k}|${uv[0]}|${uv[1]}`;
