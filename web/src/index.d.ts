@@ -71,3 +71,7 @@ export function viewMatrix(camera: Camera): number[];
 export function projectionMatrix(camera: Camera, aspect: number): number[];
 /** The generated WGSL of one of limn's shaders, by its GLSL name ('surface.vert'). */
 export function loadShader(name: string): Promise<string>;
+export interface Renderer {
+  /** The drawn surface as limn-render --mesh-out writes it: xyzw per vertex, 3 indices a triangle. */
+  drawnMesh(): Promise<{ positions: Float32Array; triangles: Uint32Array }>;
+}

@@ -194,22 +194,33 @@ export class Renderer {
   // limn-render's framing hull (renderer.cpp surfaceSamples): each patch at (s, t) in {0, 1/2, 1}^2
   // and every limit point, here evaluated by the same passes on the GPU and read back.
   async surfaceSamples() {
-    const { device, surface } = this;
-    const { tables } = surface;
-    const P = tables.patchCount;
-    const st = [0, 16384, 32768];
+    const { tables } = this.surface;
+    const P = tables.patchCount, st = [0, 16384, 32768];
     const tv = new Uint32Array(P * 9 * 4);
     let n = 0;
-    // patchPositions' order: v outer, u inner.
-    for (let p = 0; p < P; p++) for (const t of st) for (const u of st) { tv.set([p, u | (t << 16), 0, 0], 4 * n++); }
+    for (let p = 0; p < P; p++) for (const t of st) for (const u of st) tv.set([p, u | (t << 16), 0, 0], 4 * n++);
+    const tvb = this.buffer('hull samples', tv);
+    const { positions, limits } = await this.evaluate(tvb, n, true);
+    tvb.destroy();
+    const points = [];
+    for (let i = 0; i < n; i++) points.push([positions[4 * i], positions[4 * i + 1], positions[4 * i + 2]]);
+    for (let i = 0; i < tables.limitCount; i++) points.push([limits[8 * i], limits[8 * i + 1], limits[8 * i + 2]]);
+    return points;
+  }
+
+  // The frame's compute passes, then surface_eval.comp (the vertex stage's evaluation, as a
+  // compute pass: limn-render's --eval compute and --mesh-out) over `n` tessellation vertices.
+  async evaluate(tvb, n, withLimits = false) {
+    const { device } = this;
+    const { tables } = this.surface;
     const shaders = new ShaderCache(device);
-    const evalPass = await device.createComputePipelineAsync({ layout: 'auto', compute: { module: await shaders.module('surface_eval.comp') } });
+    this.evalPass ??= await device.createComputePipelineAsync({ layout: 'auto', compute: { module: await shaders.module('surface_eval.comp') } });
+    const evalPass = this.evalPass;
     const b = this.buffers;
-    const tvb = this.buffer('hull samples', tv.length ? tv : new Uint32Array(4));
-    const pos = this.empty('hull positions', n * 16), nrm = this.empty('hull normals', n * 16), info = this.empty('hull info', n * 16);
-    const push = this.empty('hull push', 256, UNIFORM);
+    const pos = this.empty('evaluated positions', n * 16), nrm = this.empty('evaluated normals', n * 16), info = this.empty('evaluated ptex', n * 16);
+    const push = this.empty('evaluate push', 256, UNIFORM);
     const groups = Math.ceil(Math.max(n, 1) / 64), y = Math.ceil(groups / MAX_GROUPS), x = Math.ceil(groups / y);
-    device.queue.writeBuffer(push, 0, new Uint32Array([n, x * 64, 0, 0, P]));
+    device.queue.writeBuffer(push, 0, new Uint32Array([n, x * 64, 0, 0, tables.patchCount]));
     this.uploadControlPoints();
     const enc = device.createCommandEncoder();
     this.encodeCompute(enc);
@@ -221,7 +232,7 @@ export class Renderer {
       cp.dispatchWorkgroups(x, y);
       cp.end();
     }
-    const L = tables.limitCount;
+    const L = withLimits ? tables.limitCount : 0;
     const rb = device.createBuffer({ size: Math.max(n * 16 + L * 32, 16), usage: MAP_READ | COPY_DST });
     if (n > 0) enc.copyBufferToBuffer(pos, 0, rb, 0, n * 16);
     if (L > 0) enc.copyBufferToBuffer(b.limits, 0, rb, n * 16, L * 32);
@@ -229,11 +240,14 @@ export class Renderer {
     await rb.mapAsync(1);
     const f = new Float32Array(rb.getMappedRange().slice(0));
     rb.unmap();
-    const points = [];
-    for (let i = 0; i < n; i++) points.push([f[4 * i], f[4 * i + 1], f[4 * i + 2]]);
-    for (let i = 0; i < L; i++) points.push([f[4 * n + 8 * i], f[4 * n + 8 * i + 1], f[4 * n + 8 * i + 2]]);
-    for (const buf of [tvb, pos, nrm, info, push, rb]) buf.destroy();
-    return points;
+    for (const buf of [pos, nrm, info, push, rb]) buf.destroy();
+    return { positions: f.subarray(0, 4 * n), limits: f.subarray(4 * n) };
+  }
+
+  /** The drawn surface, as limn-render --mesh-out writes it: positions (4 floats each) and triangles. */
+  async drawnMesh() {
+    const { positions } = await this.evaluate(this.buffers.tessVertices, this.tess.vertexCount);
+    return { positions, triangles: this.tess.indices };
   }
 
   setView(view) {
