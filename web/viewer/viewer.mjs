@@ -128,6 +128,7 @@ function setBusy(on) { $('busy').hidden = !on; document.body.dataset.busy = on ?
 let dirty = false, drawing = false;
 function requestDraw() {
   dirty = true;
+  document.body.dataset.idle = '';
   if (!drawing) requestAnimationFrame(drawLoop);
 }
 
@@ -146,6 +147,7 @@ async function drawLoop() {
   } finally {
     drawing = false;
     document.body.dataset.frames = stats.frames;
+    if (!dirty) document.body.dataset.idle = '1';
   }
 }
 
