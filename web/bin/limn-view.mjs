@@ -70,7 +70,8 @@ function checkContainer(path) {
 function fileFor(roots, urlPath) {
   let path;
   try { path = decodeURIComponent(urlPath.split('?')[0]); } catch { return null; }
-  if (path.includes('\0')) return null;
+  // Only the page and what it loads: no dot files, no installed packages (the viewer's tests').
+  if (path.includes('\0') || path.split('/').some((part) => part.startsWith('.') || part === 'node_modules')) return null;
   for (const [prefix, dir] of roots) {
     if (prefix.endsWith('/') ? !path.startsWith(prefix) : path !== prefix) continue;
     const full = prefix.endsWith('/') ? resolve(dir, `.${path.slice(prefix.length - 1)}`) : dir;
