@@ -26,6 +26,9 @@ tests=false
 [ "${1:-}" = --tests ] && tests=true
 if $tests; then
   command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
+  # The browser viewer's tests (web/viewer/test): Debian's chromium, whose WebGPU runs headless
+  # on SwiftShader; playwright-core (below) drives it, never downloading a browser of its own.
+  packages+=(chromium)
 fi
 
 # Test-only npm packages, pinned by tests/tools/package-lock.json, into tests/tools/node_modules
@@ -91,6 +94,21 @@ web_tools() {
   fi
 }
 
+# The viewer's test-only npm package (playwright-core), pinned by web/viewer/package-lock.json,
+# into web/viewer/node_modules (ignored by git); idempotent and not fatal like npm_tools.
+viewer_tools() {
+  $tests || return 0
+  local dir
+  dir="$(cd "$(dirname "$0")/.." && pwd)/web/viewer"
+  cmp -s "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json" && return 0
+  echo "setup: npm ci in web/viewer (playwright-core)" >&2
+  if (cd "$dir" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null 2>&1); then
+    cp "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"
+  else
+    echo "setup: warning: npm ci in web/viewer failed; the viewer's browser tests will fail until it succeeds" >&2
+  fi
+}
+
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
@@ -99,6 +117,7 @@ done
 if [ ${#missing[@]} -eq 0 ]; then
   npm_tools
   web_tools
+  viewer_tools
   exit 0
 fi
 
@@ -113,3 +132,4 @@ $sudo apt-get update -qq >/dev/null
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 npm_tools
 web_tools
+viewer_tools

@@ -23,3 +23,9 @@ ctest --test-dir "$dir" --output-on-failure -j "$(nproc)" "${exclude[@]}"
 if [ "$kind" = release ]; then
   LIMN_BUILD_DIR="$PWD/build" node --test web/test/
 fi
+
+# The browser viewer (web/viewer): headless Chromium (WebGPU on SwiftShader) against build/'s
+# limn-render, and limn-view; release run only, about 1.5 minutes.
+if [ "$kind" = release ]; then
+  LIMN_BUILD_DIR="$PWD/build" node --test web/viewer/test/
+fi
