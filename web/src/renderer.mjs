@@ -45,6 +45,27 @@ function appendRows(tables, withWeights) {
   return { starts, index, weight, firstRows };
 }
 
+// subdivision_draw.cpp's checkFixedSize: refuses, before building it, a fixed tessellation
+// whose index or vertex buffer would pass WebGPU's 128 MiB storage-buffer limit.
+function checkFixedSize(tables, tessCap) {
+  const N = tables.depth, cap = 2 ** Math.floor(Math.log2(Math.max(tessCap, 1)));
+  let triangles = 0, points = 0;
+  const add = (size, level) => {
+    const W = size * 2 ** N, S = Math.min(Math.min(2 ** (N - level), cap), Math.max(W, 1));
+    triangles += 2 * S * S;
+    points += S * S;
+  };
+  const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
+  for (let i = 0; i < tables.patchCount; i++) add(pf[24 * i + 19], pw[24 * i + 20] & 0xff);
+  const qf = new Float32Array(tables.irregular.buffer);
+  for (let i = 0; i < tables.irregularCount; i++) add(qf[8 * i + 7], N);
+  const limit = 128 * 2 ** 20, indexBytes = triangles * 12, vertexBytes = points * 16;
+  if (indexBytes <= limit && vertexBytes <= limit) return;
+  throw new LimnError(`the fixed tessellation (--edge-pixels 0) would draw about ${triangles} triangles: GPU buffer ` +
+    `'${indexBytes > limit ? 'triangle indices' : 'tessellation vertices'}' would need about ${(Math.max(indexBytes, vertexBytes) / 2 ** 20).toFixed(1)} MiB, ` +
+    "over WebGPU's 128 MiB storage-buffer limit; use a lower --tess, or tables of lower depth (limn-tables --depth)", 'input');
+}
+
 /**
  * A renderer for one loaded surface (chunks.mjs's loadLimn). settings: {width, height, samples
  * (1|4), shade, edgePixels (0: fixed grids), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
@@ -106,6 +127,7 @@ export class Renderer {
         vertex: { firstOut: L.first + L.facePoints + L.edgePoints, firstRow: stencil.firstRows[2 * (l - 1) + 1], count: L.vertexPoints },
       });
     }
+    checkFixedSize(tables, s.tess);
     const tess = buildTessellation({ ...mesh, uvs: surface.uvs }, tables, s.tess, !!surface.uvs);
     this.tess = tess;
     const b = this.buffers = {

@@ -6,34 +6,15 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { readFileSync, writeFileSync } from 'node:fs';
+import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { container, scratch, tool, repo } from './support.mjs';
+import { container, paperSphereObj, scratch, tool, repo } from './support.mjs';
 import { privateIcd } from '../src/node_device.mjs';
 import { decodePng } from '../src/png.mjs';
 import { compareImages } from './compare.mjs';
 
 const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd, XDG_RUNTIME_DIR: process.env.XDG_RUNTIME_DIR ?? '/tmp' };
-
-// The paper's demo sphere (tests/support/paper_sphere.h): 16 segments x 16 rings, fans at the poles.
-function paperSphereObj() {
-  const S = 16, R = 16, v = ['v 0 1 0'], f = [];
-  for (let i = 1; i < R; i++) {
-    for (let j = 0; j < S; j++) {
-      const th = (Math.PI * i) / R, ph = (2 * Math.PI * j) / S;
-      v.push(`v ${Math.sin(th) * Math.cos(ph)} ${Math.cos(th)} ${-Math.sin(th) * Math.sin(ph)}`);
-    }
-  }
-  v.push('v 0 -1 0');
-  const idx = (i, j) => 1 + (i - 1) * S + (j % S) + 1; // OBJ is 1-based
-  for (let j = 0; j < S; j++) f.push(`f 1 ${idx(1, j)} ${idx(1, j + 1)}`);
-  for (let i = 1; i + 1 < R; i++) for (let j = 0; j < S; j++) f.push(`f ${idx(i, j)} ${idx(i + 1, j)} ${idx(i + 1, j + 1)} ${idx(i, j + 1)}`);
-  for (let j = 0; j < S; j++) f.push(`f ${idx(R - 1, j)} ${v.length} ${idx(R - 1, j + 1)}`);
-  const path = join(scratch, 'paper_sphere.obj');
-  writeFileSync(path, `${v.join('\n')}\n${f.join('\n')}\n`);
-  return path;
-}
 
 function renderBoth(limn, args, name) {
   const web = join(scratch, `${name}-web.png`), native = join(scratch, `${name}-native.png`);
