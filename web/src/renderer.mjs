@@ -201,14 +201,24 @@ export class Renderer {
     const perSample = s.sampleShading && s.samples > 1;
     const vs = await shaders.module(perSample ? 'surface_per_sample.vert' : 'surface.vert');
     const fs = await shaders.module(perSample ? 'surface_per_sample.frag' : 'surface.frag');
-    this.drawPipeline = await device.createRenderPipelineAsync({
-      label: 'surface', layout: 'auto',
+    const drawLayout = device.createPipelineLayout({ bindGroupLayouts: [
+      groupLayout(device, (await loadShaderText('surface.vert')) + (await loadShaderText('surface.frag')), 1 | 2),
+      device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }),
+      device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 1 | 2, buffer: { type: 'uniform' } }] })] });
+    const drawPipeline = (cullMode) => device.createRenderPipelineAsync({
+      label: `surface (cull ${cullMode})`, layout: drawLayout,
       vertex: { module: vs },
       fragment: { module: fs, targets: [{ format: 'rgba8unorm-srgb' }] },
-      primitive: { topology: 'triangle-list', cullMode: 'none', frontFace: 'ccw' },
+      primitive: { topology: 'triangle-list', cullMode, frontFace: 'ccw' },
       depthStencil: { format: 'depth32float', depthWriteEnabled: true, depthCompare: 'less' },
       multisample: { count: s.samples },
     });
+    this.drawPipeline = await drawPipeline('none');
+    // View-adaptive on a closed surface seen from outside: the rasterizer drops back faces, as
+    // limn-render's culled draw does (subdivision_pass.cpp culledPipeline).
+    if (this.adaptive && this.closed && this.orientation !== 0) {
+      this.culledPipeline = await drawPipeline(this.orientation > 0 ? 'back' : 'front');
+    }
     const group = (pipeline, index, buffers) => device.createBindGroup({
       layout: pipeline.getBindGroupLayout(index),
       entries: buffers.map((buf, binding) => (buf ? { binding, resource: buf.buffer ? buf : { buffer: buf } } : null)).filter(Boolean),
@@ -368,6 +378,7 @@ export class Renderer {
       const bb = this.bounds, e = cam.eye;
       const outside = [0, 1, 2].some((i) => e[i] < bb.min[i] || e[i] > bb.max[i]);
       const facing = outside ? this.orientation : 0;
+      this.facing = facing;
       const pushes = adaptivePushes(this.adaptiveData, this.surface.tables, this.adaptiveOptions,
         { viewProj: vp, eye: cam.eye, facing, width: s.width, height: s.height });
       for (const { name, pass } of this.adaptivePasses) {
@@ -411,7 +422,7 @@ export class Renderer {
       }],
       depthStencilAttachment: { view: this.depth.createView(), depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'discard' },
     });
-    rp.setPipeline(this.drawPipeline);
+    rp.setPipeline(this.culledPipeline && this.facing ? this.culledPipeline : this.drawPipeline);
     rp.setBindGroup(0, this.drawGroups[0]);
     rp.setBindGroup(3, this.drawGroups[1]);
     const count = this.tess.indices.length;
