@@ -456,6 +456,20 @@ export class Renderer {
 
   triangleCount() { return this.tess.indices.length / 3; }
 
+  /** Triangles the last frame drew (view-adaptive: read back from the scan's totals). */
+  async drawnTriangles() {
+    if (!this.adaptive) return this.triangleCount();
+    const rb = this.device.createBuffer({ size: 16, usage: MAP_READ | COPY_DST });
+    const enc = this.device.createCommandEncoder();
+    enc.copyBufferToBuffer(this.buffers.totals, 0, rb, 0, 16);
+    this.device.queue.submit([enc.finish()]);
+    await rb.mapAsync(1);
+    const n = new Uint32Array(rb.getMappedRange())[0] / 3;
+    rb.unmap();
+    rb.destroy();
+    return n;
+  }
+
   destroy() {
     for (const buf of Object.values(this.buffers)) buf.destroy();
     for (const t of [this.color, this.msaa, this.depth]) t?.destroy();
