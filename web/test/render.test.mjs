@@ -37,6 +37,7 @@ const cases = [
   ['fixed: car depth 3', () => container('osd/catmark/catmark_car.obj', { depth: 3 }), [...fixed, '--tess', '4'], [4], ['lit', 'levels']],
   // The view-adaptive tessellation (limn-render's default, --edge-pixels 4).
   ['adaptive: spot depth 3', spot(3), [], [1, 4], ['lit', 'levels']],
+  ['adaptive: spot depth 3, normals and per-sample shading', spot(3), ['--sample-shading'], [4], ['normal', 'lit']],
   ['adaptive: spot depth 6', spot(6), [], [4], ['lit']],
   ['adaptive: creased torus depth 3', () => container('osd/catmark/catmark_torus_creases0.obj', { depth: 3 }), ['--view', '30,40'], [4], ['lit', 'levels']],
   ['adaptive: paper sphere depth 6 in its camera', sphere6, ['--eye', '0,12,22', '--target', '0,0,0', '--size', '1280x720'], [4], ['lit']],
