@@ -13,9 +13,10 @@ import { requestNodeDevice } from '../src/node_device.mjs';
 const TOOL = 'limn-web-render';
 const HELP = `usage: ${TOOL} [options] IN.limn -o OUT.png
 Renders a .limn container (limn-classify | limn-tables [| limn-seams]) with limn's own passes on
-WebGPU: per level the face-, edge- and vertex-point compute passes, the limit points, and the
-watertight fixed tessellation evaluated in the vertex stage (paper 000). The options are
-limn-render's; what is not listed is not supported here.
+WebGPU: per level the face-, edge- and vertex-point compute passes, the limit points, the
+view-adaptive tessellation's passes (cull, rates, counts, scan, emit) or the fixed grids, and the
+draw that evaluates the surface in the vertex stage (paper 000). The options are limn-render's;
+what is not listed is not supported here.
   -o FILE                 the PNG to write (RGB, 8 bits)
   --size WxH              image size (default 1024x768)
   --view AZ,EL            auto-framed camera: azimuth, elevation in degrees (default -30,20)
@@ -31,12 +32,13 @@ limn-render's; what is not listed is not supported here.
   --shade MODE            lit, normal, uv, levels (default lit; texture: not supported here yet)
   --color R,G,B           base colour, sRGB 0..1 (default 0.8,0.8,0.8)
   --background R,G,B      sRGB 0..1 (default 0.2,0.2,0.2)
-  --tess N                most segments per patch side (default 64; rounded down to a power of two)
-  --edge-pixels P         0: the fixed grids (the only tessellation here so far; limn-render's
-                          default is its view-adaptive 4)
+  --tess N                most segments per patch edge (default 64)
+  --edge-pixels P         view-adaptive: segments of about P pixels (default 4); 0: the fixed
+                          grids of 2^(depth-l) segments per level-l patch side
   --bench N               render N frames, print limn-render's --bench JSON fields on stdout
   --help, --version
-Not supported here yet: --displace, --texture, view-adaptive tessellation, BLND (blending surfaces).
+Not supported here yet: --displace, --texture, --wire, --mesh-out, smooth UVs under --shade uv,
+BLND (blending surfaces).
 Exit codes: 0 ok, 1 bad input, 2 usage, 3 missing capability.
 `;
 
@@ -49,7 +51,7 @@ function numbers(opt, v, n) {
 }
 
 function parseArgs(argv) {
-  const o = { settings: { view: {}, samples: 1, width: 1024, height: 768, shade: 'lit', edgePixels: 0, tess: 64 }, bench: 0 };
+  const o = { settings: { view: {}, samples: 1, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 }, bench: 0 };
   const s = o.settings;
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
@@ -146,7 +148,7 @@ async function main(argv) {
       gpu_ms: { compute: null, draw: null, total: +median(times).toFixed(3) },
       passes: {},
       cpu_ms: +median(js).toFixed(3),
-      triangles: renderer.triangleCount(),
+      triangles: await renderer.drawnTriangles(),
       vertices_evaluated: surface.tables.totalVertices - surface.tables.levels[0].count + surface.tables.limitCount + renderer.tess.vertexCount,
       buffer_bytes: Object.values(renderer.buffers).reduce((n, b) => n + b.size, 0),
       peak_rss_mb: +(process.resourceUsage().maxRSS / 1024).toFixed(1),

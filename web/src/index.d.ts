@@ -45,7 +45,7 @@ export interface ViewSpec { azimuthDeg?: number; elevationDeg?: number; fovDeg?:
 /** limn-render's settings, by its option names (--size, --samples, --shade, --edge-pixels, --tess, ...). */
 export interface RenderSettings {
   width?: number; height?: number; samples?: 1 | 4; sampleShading?: boolean; shade?: Shade;
-  /** 0: the fixed grids (the only tessellation implemented here so far). */
+  /** View-adaptive segments of about this many pixels (limn-render's default 4); 0: the fixed grids. */
   edgePixels?: number; tess?: number; view?: ViewSpec;
   lightAzimuthDeg?: number; lightElevationDeg?: number; color?: Vec3; background?: Vec3;
 }
@@ -58,6 +58,8 @@ export class Renderer {
   /** The last frame's RGBA8 pixels, rows top to bottom. */
   pixels(): Promise<Uint8Array>;
   triangleCount(): number;
+  /** Triangles the last frame drew (view-adaptive: read back from the GPU). */
+  drawnTriangles(): Promise<number>;
   destroy(): void;
   readonly timings: { js: number };
 }

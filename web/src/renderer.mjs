@@ -6,15 +6,26 @@
 //   their irregular face's limit points (4.3), into a 4x multisampled sRGB target.
 // The control points go straight into the level-0 range of the vertex buffer (queue.writeBuffer:
 // what limn-render's staging copy and copy_points.comp do on Vulkan).
-import { ShaderCache } from './shaders.mjs';
+import { ShaderCache, loadShader as loadShaderText } from './shaders.mjs';
 import { buildTessellation } from './tessellation.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
+import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS } from './adaptive.mjs';
 
 const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
 const MAX_GROUPS = 65535;
 const STORAGE = 0x80, COPY_DST = 0x08, COPY_SRC = 0x04, INDEX = 0x10, UNIFORM = 0x40, MAP_READ = 0x01;
-const RENDER_ATTACHMENT = 0x10, TEX_COPY_SRC = 0x01;
+const RENDER_ATTACHMENT = 0x10, TEX_COPY_SRC = 0x01, INDIRECT = 0x100;
+
+// An explicit bind group layout for group 0 of a generated shader, from its declarations (an
+// 'auto' layout leaves out what the entry point does not use, and limn binds by position).
+function groupLayout(device, wgsl, visibility) {
+  const entries = [];
+  for (const m of wgsl.matchAll(/@group\(0\) @binding\((\d+)\)\s*\nvar<storage, (read|read_write)>/g)) {
+    entries.push({ binding: Number(m[1]), visibility, buffer: { type: m[2] === 'read' ? 'read-only-storage' : 'storage' } });
+  }
+  return device.createBindGroupLayout({ entries: entries.sort((a, b) => a.binding - b.binding) });
+}
 
 export const SHADES = { lit: 0, normal: 1, uv: 2, levels: 3, texture: 4 };
 const DEFAULT_BASE = 0.8;
@@ -45,6 +56,27 @@ function appendRows(tables, withWeights) {
   return { starts, index, weight, firstRows };
 }
 
+// subdivision_draw.cpp's checkFixedSize: refuses, before building it, a fixed tessellation
+// whose index or vertex buffer would pass WebGPU's 128 MiB storage-buffer limit.
+function checkFixedSize(tables, tessCap) {
+  const N = tables.depth, cap = 2 ** Math.floor(Math.log2(Math.max(tessCap, 1)));
+  let triangles = 0, points = 0;
+  const add = (size, level) => {
+    const W = size * 2 ** N, S = Math.min(Math.min(2 ** (N - level), cap), Math.max(W, 1));
+    triangles += 2 * S * S;
+    points += S * S;
+  };
+  const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
+  for (let i = 0; i < tables.patchCount; i++) add(pf[24 * i + 19], pw[24 * i + 20] & 0xff);
+  const qf = new Float32Array(tables.irregular.buffer);
+  for (let i = 0; i < tables.irregularCount; i++) add(qf[8 * i + 7], N);
+  const limit = 128 * 2 ** 20, indexBytes = triangles * 12, vertexBytes = points * 16;
+  if (indexBytes <= limit && vertexBytes <= limit) return;
+  throw new LimnError(`the fixed tessellation (--edge-pixels 0) would draw about ${triangles} triangles: GPU buffer ` +
+    `'${indexBytes > limit ? 'triangle indices' : 'tessellation vertices'}' would need about ${(Math.max(indexBytes, vertexBytes) / 2 ** 20).toFixed(1)} MiB, ` +
+    "over WebGPU's 128 MiB storage-buffer limit; use a lower --tess, or tables of lower depth (limn-tables --depth)", 'input');
+}
+
 /**
  * A renderer for one loaded surface (chunks.mjs's loadLimn). settings: {width, height, samples
  * (1|4), shade, edgePixels (0: fixed grids), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
@@ -65,7 +97,6 @@ export class Renderer {
     if (s.samples !== 1 && s.samples !== 4) throw new LimnError(`--samples must be 1 or 4 (the counts WebGPU offers), not ${s.samples}`, 'usage');
     if (!(s.shade in SHADES)) throw new LimnError(`--shade ${s.shade}: one of ${Object.keys(SHADES).join(', ')}`, 'usage');
     if (s.shade === 'uv' && !surface.uvs) throw new LimnError('--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade lit or normal', 'input');
-    if (s.edgePixels > 0) throw new LimnError('the view-adaptive tessellation (--edge-pixels > 0) is not supported here yet; use --edge-pixels 0', 'capability');
     if (s.shade === 'texture' || s.displace) throw new LimnError('--texture and --displace are not supported here yet', 'capability');
     if (surface.uvs && s.shade === 'uv' && surface.tables.options.fvar !== 5) {
       throw new LimnError('smooth face-varying UVs (TAGS fvar other than "all") are not supported here yet', 'capability');
@@ -106,7 +137,27 @@ export class Renderer {
         vertex: { firstOut: L.first + L.facePoints + L.edgePoints, firstRow: stencil.firstRows[2 * (l - 1) + 1], count: L.vertexPoints },
       });
     }
-    const tess = buildTessellation({ ...mesh, uvs: surface.uvs }, tables, s.tess, !!surface.uvs);
+    this.adaptive = s.edgePixels > 0;
+    let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
+    if (this.adaptive) {
+      const ep = buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables);
+      let minimum = 0;
+      for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
+      const p = Math.max(s.edgePixels, 0.25);
+      const viewBudget = Math.max(Math.floor((32 * s.width * s.height) / (p * p)), 2 ** 20);
+      const samplePositions = s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
+      this.adaptiveOptions = {
+        edgePixels: s.edgePixels, tess: s.tess, cull: true, samplePositions, texelsPerUV: 0,
+        sharePoints: s.shade !== 'uv' && s.shade !== 'texture',
+        maxVertices: minimum + ep.elements.length + viewBudget, maxTriangles: minimum + 2 * viewBudget,
+      };
+      this.adaptiveData = adaptiveData(ep, tables, this.adaptiveOptions);
+      this.closed = ep.pieces.length > 0 && ep.pieces.every((pc) => pc.users[1] !== 0xffffffff);
+      this.orientation = this.closed ? surfaceOrientation(mesh) : 0;
+    } else {
+      checkFixedSize(tables, s.tess);
+      tess = buildTessellation({ ...mesh, uvs: surface.uvs }, tables, s.tess, !!surface.uvs);
+    }
     this.tess = tess;
     const b = this.buffers = {
       vertices: this.empty('table vertices', tables.totalVertices * 16),
@@ -125,8 +176,23 @@ export class Renderer {
       triangles: this.buffer('triangle indices', tess.indices, STORAGE | INDEX),
       triangleLevels: this.buffer('triangle levels', tess.triangleLevels),
       texture: this.buffer('colour texture', new Uint32Array([1, 1, 0xffffffff])),
-      push: this.empty('push constants', PUSH_SLOT * (4 + 3 * tables.depth), UNIFORM),
+      push: this.empty('push constants', PUSH_SLOT * (9 + 3 * tables.depth), UNIFORM),
     };
+    if (this.adaptive) {
+      const d = this.adaptiveData;
+      Object.assign(b, {
+        elements: this.buffer('adaptive elements', d.elements),
+        pieces: this.buffer('adaptive edge pieces', d.pieces),
+        cull: this.empty('adaptive cull flags', d.elementCount * 4),
+        rates: this.empty('adaptive edge rates', d.pieceCount * 4),
+        pieceEnds: this.empty('adaptive piece ends', d.pieceCount * 16),
+        info: this.empty('adaptive element offsets', d.elementCount * 16),
+        totals: this.empty('adaptive totals', TOTALS_WORDS * 4, STORAGE | INDIRECT),
+        tessVertices: this.empty('adaptive tessellation vertices', d.capV * 16),
+        triangles: this.empty('adaptive triangle indices', d.capT * 12, STORAGE | INDEX),
+        triangleLevels: this.empty('adaptive triangle levels', d.capT * 4),
+      });
+    }
     this.controlPoints = new Float32Array(mesh.vertexCount * 4);
     for (let i = 0; i < mesh.vertexCount; i++) {
       this.controlPoints.set([mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2], 1], 4 * i);
@@ -135,14 +201,24 @@ export class Renderer {
     const perSample = s.sampleShading && s.samples > 1;
     const vs = await shaders.module(perSample ? 'surface_per_sample.vert' : 'surface.vert');
     const fs = await shaders.module(perSample ? 'surface_per_sample.frag' : 'surface.frag');
-    this.drawPipeline = await device.createRenderPipelineAsync({
-      label: 'surface', layout: 'auto',
+    const drawLayout = device.createPipelineLayout({ bindGroupLayouts: [
+      groupLayout(device, (await loadShaderText('surface.vert')) + (await loadShaderText('surface.frag')), 1 | 2),
+      device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }),
+      device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 1 | 2, buffer: { type: 'uniform' } }] })] });
+    const drawPipeline = (cullMode) => device.createRenderPipelineAsync({
+      label: `surface (cull ${cullMode})`, layout: drawLayout,
       vertex: { module: vs },
       fragment: { module: fs, targets: [{ format: 'rgba8unorm-srgb' }] },
-      primitive: { topology: 'triangle-list', cullMode: 'none', frontFace: 'ccw' },
+      primitive: { topology: 'triangle-list', cullMode, frontFace: 'ccw' },
       depthStencil: { format: 'depth32float', depthWriteEnabled: true, depthCompare: 'less' },
       multisample: { count: s.samples },
     });
+    this.drawPipeline = await drawPipeline('none');
+    // View-adaptive on a closed surface seen from outside: the rasterizer drops back faces, as
+    // limn-render's culled draw does (subdivision_pass.cpp culledPipeline).
+    if (this.adaptive && this.closed && this.orientation !== 0) {
+      this.culledPipeline = await drawPipeline(this.orientation > 0 ? 'back' : 'front');
+    }
     const group = (pipeline, index, buffers) => device.createBindGroup({
       layout: pipeline.getBindGroupLayout(index),
       entries: buffers.map((buf, binding) => (buf ? { binding, resource: buf.buffer ? buf : { buffer: buf } } : null)).filter(Boolean),
@@ -156,14 +232,14 @@ export class Renderer {
     const faceGroup = group(facePass, 0, [b.vertices, b.faceStarts, b.faceIndices]);
     const stencilGroup = group(stencilPass, 0, [b.vertices, b.stencilStarts, b.stencilIndices, b.stencilWeights]);
     this.passes = [];
-    this.pushData = new Uint32Array((PUSH_SLOT / 4) * (4 + 3 * tables.depth));
+    this.pushData = new Uint32Array((PUSH_SLOT / 4) * (9 + 3 * tables.depth));
     const dispatch = (pipeline, bindGroup, count, fields, label) => {
       if (count === 0) return;
       const groups = Math.ceil(count / 64);
       const y = Math.ceil(groups / MAX_GROUPS), x = Math.ceil(groups / y);
       const p = pushGroup(pipeline);
       this.pushData.set([count, x * 64, 0, 0, ...fields], p.offset / 4);
-      this.passes.push({ pipeline, bindGroup, push: p.group, x, y, label });
+      this.passes.push({ pipeline, bindGroup, push: p.group, x, y, label, pushOffset: p.offset });
     };
     for (const L of this.levels) {
       dispatch(facePass, faceGroup, L.face.count, [L.face.firstOut, L.face.firstRow], `face points L${L.level}`);
@@ -172,6 +248,28 @@ export class Renderer {
     }
     dispatch(limitPass, group(limitPass, 0, [b.vertices, b.limitStarts, b.limitIndices, b.limitWeights, b.limits]), tables.limitCount,
       [tables.limitCount, 0], 'limit points');
+    if (this.adaptive) {
+      // The five passes (adaptive_tess.cpp); their push constants depend on the view (setView).
+      const d = this.adaptiveData;
+      const bindings = {
+        'adaptive_cull.comp': [b.vertices, b.patches, b.irregular, b.limits, b.cull],
+        'adaptive_rates.comp': [b.vertices, b.patches, b.irregular, b.limits, b.pieces, b.cull, b.rates, b.pieceEnds],
+        'adaptive_counts.comp': [b.elements, b.pieces, b.rates, b.cull, b.info, b.pieceEnds],
+        'adaptive_scan.comp': [b.info, b.totals],
+        'adaptive_emit.comp': [b.elements, b.totals, b.pieces, b.rates, b.info, b.tessVertices, b.triangles, b.triangleLevels],
+      };
+      this.adaptivePasses = [];
+      for (const [name, count] of [['adaptive_cull.comp', d.elementCount], ['adaptive_rates.comp', d.pieceCount], ['adaptive_counts.comp', d.elementCount], ['adaptive_scan.comp', 1], ['adaptive_emit.comp', d.elementCount]]) {
+        const module = await shaders.module(name);
+        const layout0 = groupLayout(device, await loadShaderText(name), 4 /* COMPUTE */);
+        const layout3 = device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 4, buffer: { type: 'uniform' } }] });
+        const pipeline = await device.createComputePipelineAsync({ label: name, layout: device.createPipelineLayout({ bindGroupLayouts: [layout0, device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }), layout3] }), compute: { module } });
+        const bindGroup = device.createBindGroup({ layout: layout0, entries: bindings[name].map((buffer, binding) => ({ binding, resource: { buffer } })) });
+        const before = this.passes.length;
+        dispatch(pipeline, bindGroup, count, [], name);
+        if (this.passes.length > before) this.adaptivePasses.push({ name, pass: this.passes[this.passes.length - 1], count });
+      }
+    }
     const drawPush = pushGroup(this.drawPipeline);
     this.drawPushOffset = drawPush.offset;
     this.drawGroups = [group(this.drawPipeline, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture]), drawPush.group];
@@ -223,7 +321,7 @@ export class Renderer {
     device.queue.writeBuffer(push, 0, new Uint32Array([n, x * 64, 0, 0, tables.patchCount]));
     this.uploadControlPoints();
     const enc = device.createCommandEncoder();
-    this.encodeCompute(enc);
+    this.encodeCompute(enc, false);
     if (n > 0) {
       const cp = enc.beginComputePass();
       cp.setPipeline(evalPass);
@@ -275,6 +373,20 @@ export class Renderer {
     push.setUint32(120, this.surface.tables.patchCount, true);
     push.setUint32(124, (s.shade === 'levels' ? 1 : 0) | (view.zUp ? 4 : 0), true);
     this.pushData.set(new Uint32Array(push.buffer), this.drawPushOffset / 4);
+    if (this.adaptive) {
+      // Back faces may be culled only on a closed surface seen from outside the control points' box.
+      const bb = this.bounds, e = cam.eye;
+      const outside = [0, 1, 2].some((i) => e[i] < bb.min[i] || e[i] > bb.max[i]);
+      const facing = outside ? this.orientation : 0;
+      this.facing = facing;
+      const pushes = adaptivePushes(this.adaptiveData, this.surface.tables, this.adaptiveOptions,
+        { viewProj: vp, eye: cam.eye, facing, width: s.width, height: s.height });
+      for (const { name, pass } of this.adaptivePasses) {
+        const words = pushes.find((q) => q[0] === name)[2];
+        // The dispatch header (count, row invocations) stays; the pass's own fields follow at 16.
+        this.pushData.set(words, pass.pushOffset / 4 + 4);
+      }
+    }
     this.clear = [...s.background.map(srgbToLinear), 1];
   }
 
@@ -283,9 +395,10 @@ export class Renderer {
     this.device.queue.writeBuffer(this.buffers.push, 0, this.pushData);
   }
 
-  encodeCompute(enc) {
+  encodeCompute(enc, withAdaptive = true) {
     // One compute pass per dispatch: WebGPU orders their storage accesses like limn's barriers.
     for (const p of this.passes) {
+      if (!withAdaptive && p.label.startsWith('adaptive')) continue;
       const cp = enc.beginComputePass({ label: p.label });
       cp.setPipeline(p.pipeline);
       cp.setBindGroup(0, p.bindGroup);
@@ -309,11 +422,16 @@ export class Renderer {
       }],
       depthStencilAttachment: { view: this.depth.createView(), depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'discard' },
     });
-    rp.setPipeline(this.drawPipeline);
+    rp.setPipeline(this.culledPipeline && this.facing ? this.culledPipeline : this.drawPipeline);
     rp.setBindGroup(0, this.drawGroups[0]);
     rp.setBindGroup(3, this.drawGroups[1]);
     const count = this.tess.indices.length;
-    if (s.shade === 'levels') {
+    if (this.adaptive && s.shade === 'levels') {
+      rp.drawIndirect(this.buffers.totals, DRAW_ARGS);
+    } else if (this.adaptive) {
+      rp.setIndexBuffer(this.buffers.triangles, 'uint32');
+      rp.drawIndexedIndirect(this.buffers.totals, INDEXED_DRAW_ARGS);
+    } else if (s.shade === 'levels') {
       rp.draw(count);
     } else {
       rp.setIndexBuffer(this.buffers.triangles, 'uint32');
@@ -337,6 +455,20 @@ export class Renderer {
   }
 
   triangleCount() { return this.tess.indices.length / 3; }
+
+  /** Triangles the last frame drew (view-adaptive: read back from the scan's totals). */
+  async drawnTriangles() {
+    if (!this.adaptive) return this.triangleCount();
+    const rb = this.device.createBuffer({ size: 16, usage: MAP_READ | COPY_DST });
+    const enc = this.device.createCommandEncoder();
+    enc.copyBufferToBuffer(this.buffers.totals, 0, rb, 0, 16);
+    this.device.queue.submit([enc.finish()]);
+    await rb.mapAsync(1);
+    const n = new Uint32Array(rb.getMappedRange())[0] / 3;
+    rb.unmap();
+    rb.destroy();
+    return n;
+  }
 
   destroy() {
     for (const buf of Object.values(this.buffers)) buf.destroy();

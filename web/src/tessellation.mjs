@@ -11,7 +11,7 @@ export const TESS_ONE = 32768;
 const NONE = 0xffffffff;
 
 // OpenSubdiv's ptex faces: one per quad, n per n-gon (sub-face k).
-class PtexMap {
+export class PtexMap {
   constructor(mesh, R) {
     this.mesh = mesh;
     this.R = R;

@@ -49,6 +49,6 @@ test('what is not supported here exits 3 and says so', () => {
   const r = run(limn, '-o', join(scratch, 'x.png'), '--displace', 'map.png');
   assert.equal(r.status, 3, r.stderr);
   assert.match(r.stderr, /--displace is not supported here/);
-  const b = run(limn, '-o', join(scratch, 'x.png'), '--edge-pixels', '4');
+  const b = run(limn, '-o', join(scratch, 'x.png'), '--texture', 'map.png');
   assert.equal(b.status, 3, b.stderr);
 });

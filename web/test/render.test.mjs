@@ -1,14 +1,14 @@
 // limn-web-render's images against limn-render's for the same container and options, both on the
 // private Mesa 25 lavapipe (the same rasterizer): at most 0.5% of the covered pixels may differ by
-// more than 8/255. Fixed grids (--edge-pixels 0), 1 and 4 samples, lit and --shade levels, on real
-// models: spot (depths 1, 3, 6), a creased torus, a model with face-varying UVs and tags, the
-// paper's demo sphere in its camera, and the paper-size car.
+// more than 8/255. The fixed grids (--edge-pixels 0) and the view-adaptive tessellation, 1 and 4
+// samples, lit and --shade levels, on real models: spot (depths 1, 3, 6), a creased torus, a model
+// with face-varying UVs and tags, the paper's demo sphere in its camera, and the paper-size car.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { readFileSync, writeFileSync } from 'node:fs';
+import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { container, scratch, tool, repo } from './support.mjs';
+import { container, paperSphereObj, scratch, tool, repo } from './support.mjs';
 import { privateIcd } from '../src/node_device.mjs';
 import { decodePng } from '../src/png.mjs';
 import { compareImages } from './compare.mjs';
@@ -16,41 +16,32 @@ import { compareImages } from './compare.mjs';
 const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd, XDG_RUNTIME_DIR: process.env.XDG_RUNTIME_DIR ?? '/tmp' };
 
-// The paper's demo sphere (tests/support/paper_sphere.h): 16 segments x 16 rings, fans at the poles.
-function paperSphereObj() {
-  const S = 16, R = 16, v = ['v 0 1 0'], f = [];
-  for (let i = 1; i < R; i++) {
-    for (let j = 0; j < S; j++) {
-      const th = (Math.PI * i) / R, ph = (2 * Math.PI * j) / S;
-      v.push(`v ${Math.sin(th) * Math.cos(ph)} ${Math.cos(th)} ${-Math.sin(th) * Math.sin(ph)}`);
-    }
-  }
-  v.push('v 0 -1 0');
-  const idx = (i, j) => 1 + (i - 1) * S + (j % S) + 1; // OBJ is 1-based
-  for (let j = 0; j < S; j++) f.push(`f 1 ${idx(1, j)} ${idx(1, j + 1)}`);
-  for (let i = 1; i + 1 < R; i++) for (let j = 0; j < S; j++) f.push(`f ${idx(i, j)} ${idx(i + 1, j)} ${idx(i + 1, j + 1)} ${idx(i, j + 1)}`);
-  for (let j = 0; j < S; j++) f.push(`f ${idx(R - 1, j)} ${v.length} ${idx(R - 1, j + 1)}`);
-  const path = join(scratch, 'paper_sphere.obj');
-  writeFileSync(path, `${v.join('\n')}\n${f.join('\n')}\n`);
-  return path;
-}
-
 function renderBoth(limn, args, name) {
   const web = join(scratch, `${name}-web.png`), native = join(scratch, `${name}-native.png`);
-  execFileSync(process.execPath, [cli, limn, '-o', web, '--edge-pixels', '0', ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
-  execFileSync(tool('limn-render'), [limn, '-o', native, '--edge-pixels', '0', ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
+  execFileSync(process.execPath, [cli, limn, '-o', web, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
+  execFileSync(tool('limn-render'), [limn, '-o', native, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
   return compareImages(decodePng(readFileSync(web)), decodePng(readFileSync(native)));
 }
 
+const spot = (depth) => () => container('quad/spot_quadrangulated.obj', { depth });
+const sphere6 = () => container(paperSphereObj(), { depth: 6, name: 'paper_sphere_d6.limn' });
+const fixed = ['--edge-pixels', '0'];
 const cases = [
-  ['spot depth 1', () => container('quad/spot_quadrangulated.obj', { depth: 1 }), [], [1, 4], ['lit', 'levels']],
-  ['spot depth 3', () => container('quad/spot_quadrangulated.obj', { depth: 3 }), [], [4], ['lit', 'levels']],
-  ['spot depth 6 (grids capped at 4)', () => container('quad/spot_quadrangulated.obj', { depth: 6 }), ['--tess', '4'], [1], ['lit', 'levels']],
-  ['creased torus depth 3', () => container('osd/catmark/catmark_torus_creases0.obj', { depth: 3 }), ['--view', '30,40'], [4], ['lit', 'levels']],
-  ['face-varying UVs and tags depth 2', () => container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), [], [1], ['lit', 'levels']],
-  ['paper sphere depth 6 in its camera', () => container(paperSphereObj(), { depth: 6, name: 'paper_sphere_d6.limn' }),
-    ['--eye', '0,12,22', '--target', '0,0,0', '--tess', '16', '--size', '1280x720'], [4], ['lit']],
-  ['car depth 3', () => container('osd/catmark/catmark_car.obj', { depth: 3 }), ['--tess', '4'], [4], ['lit', 'levels']],
+  // The fixed grids (--edge-pixels 0).
+  ['fixed: spot depth 1', spot(1), fixed, [1, 4], ['lit', 'levels']],
+  ['fixed: spot depth 3', spot(3), fixed, [4], ['lit', 'levels']],
+  ['fixed: spot depth 6 (grids capped at 4)', spot(6), [...fixed, '--tess', '4'], [1], ['lit', 'levels']],
+  ['fixed: creased torus depth 3', () => container('osd/catmark/catmark_torus_creases0.obj', { depth: 3 }), [...fixed, '--view', '30,40'], [4], ['lit', 'levels']],
+  ['fixed: face-varying UVs and tags depth 2', () => container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), fixed, [1], ['lit', 'levels']],
+  ['fixed: paper sphere depth 6 in its camera', sphere6, [...fixed, '--eye', '0,12,22', '--target', '0,0,0', '--tess', '16', '--size', '1280x720'], [4], ['lit']],
+  ['fixed: car depth 3', () => container('osd/catmark/catmark_car.obj', { depth: 3 }), [...fixed, '--tess', '4'], [4], ['lit', 'levels']],
+  // The view-adaptive tessellation (limn-render's default, --edge-pixels 4).
+  ['adaptive: spot depth 3', spot(3), [], [1, 4], ['lit', 'levels']],
+  ['adaptive: spot depth 3, normals and per-sample shading', spot(3), ['--sample-shading'], [4], ['normal', 'lit']],
+  ['adaptive: spot depth 6', spot(6), [], [4], ['lit']],
+  ['adaptive: creased torus depth 3', () => container('osd/catmark/catmark_torus_creases0.obj', { depth: 3 }), ['--view', '30,40'], [4], ['lit', 'levels']],
+  ['adaptive: paper sphere depth 6 in its camera', sphere6, ['--eye', '0,12,22', '--target', '0,0,0', '--size', '1280x720'], [4], ['lit']],
+  ['adaptive: car depth 6', () => container('osd/catmark/catmark_car.obj', { depth: 6 }), [], [4], ['lit']],
 ];
 
 for (const [label, make, args, samplesList, shades] of cases) {

@@ -31,3 +31,23 @@ export function container(mesh, { depth = 2, seams = false, tablesArgs = [], nam
 }
 
 export const read = (p) => new Uint8Array(readFileSync(p));
+
+// The paper's demo sphere (tests/support/paper_sphere.h): 16 segments x 16 rings, fans at the poles.
+export function paperSphereObj() {
+  const S = 16, R = 16, v = ['v 0 1 0'], f = [];
+  for (let i = 1; i < R; i++) {
+    for (let j = 0; j < S; j++) {
+      const th = (Math.PI * i) / R, ph = (2 * Math.PI * j) / S;
+      v.push(`v ${Math.sin(th) * Math.cos(ph)} ${Math.cos(th)} ${-Math.sin(th) * Math.sin(ph)}`);
+    }
+  }
+  v.push('v 0 -1 0');
+  const idx = (i, j) => 1 + (i - 1) * S + (j % S) + 1; // OBJ is 1-based
+  for (let j = 0; j < S; j++) f.push(`f 1 ${idx(1, j)} ${idx(1, j + 1)}`);
+  for (let i = 1; i + 1 < R; i++) for (let j = 0; j < S; j++) f.push(`f ${idx(i, j)} ${idx(i + 1, j)} ${idx(i + 1, j + 1)} ${idx(i, j + 1)}`);
+  for (let j = 0; j < S; j++) f.push(`f ${idx(R - 1, j)} ${v.length} ${idx(R - 1, j + 1)}`);
+  const path = join(scratch, 'paper_sphere.obj');
+  writeFileSync(path, `${v.join('\n')}\n${f.join('\n')}\n`);
+  return path;
+}
+
