@@ -3,6 +3,7 @@
 // levels, 1 and 4 samples; then interaction on the same page (a drag turns the view and the URL
 // follows; the URL reloaded draws the same bytes; a truncated container dropped on the page
 // shows the reader's error and the page goes on working), with no console error or warning.
+// Fixed grids and view-adaptive tessellation (limn-render's default) both.
 //
 // What differs, and why: with 1 sample the two agree within the criterion (at most 1% of the
 // covered pixels off by more than 8/255). With 4 samples the silhouette differs: SwiftShader
@@ -105,9 +106,15 @@ test('spot depth 3 from ?model=: lit and levels, 4 then 1 samples, as limn-rende
   await page.getByLabel('lit').check();
   await settled(page, n + 1);
   t.diagnostic(check('spot lit, 1 sample', compare(await shot(), native(spot, [...common, '--samples', '1'], 'spot-lit-1')), 1));
+  // View-adaptive (limn-render's default) from the panel: a new renderer.
+  n = await frames(page);
+  await page.getByLabel('View-adaptive').check();
+  await settled(page, n + 1);
+  t.diagnostic(check('spot lit, 1 sample, view-adaptive', compare(await shot(), native(spot, ['--view', '-30,20', '--samples', '1', '--edge-pixels', '4'], 'spot-adaptive-1')), 1));
+  assert.doesNotMatch(await page.evaluate(() => location.search), /edgePixels/);
   // The command the panel prints is the one that drew the reference.
   assert.equal(await page.locator('#command').textContent(),
-    'limn-render spot_d3.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --edge-pixels 0 --tess 64');
+    'limn-render spot_d3.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --edge-pixels 4 --tess 64');
 });
 
 test('a drag turns the view, the URL follows, and reloading it draws the same image', async (t) => {
@@ -128,14 +135,14 @@ test('a drag turns the view, the URL follows, and reloading it draws the same im
   const moved = compare(before, turned);
   assert.ok(moved.off > 0.2 * moved.covered, `the drag changed only ${moved.off} of ${moved.covered} pixels`);
   // The same view by limn-render from the URL's options (the check above, 1 sample).
-  t.diagnostic(check('spot after the drag', compare(turned, native(spot, ['--view', '-54,12', '--edge-pixels', '0', '--samples', '1'], 'spot-dragged')), 1));
+  t.diagnostic(check('spot after the drag', compare(turned, native(spot, ['--view', '-54,12', '--edge-pixels', '4', '--samples', '1'], 'spot-dragged')), 1));
   await page.reload();
   await settled(page);
   const again = await shot();
   assert.deepEqual(Buffer.from(again.rgba), Buffer.from(turned.rgba), 'the reloaded URL draws other pixels');
 });
 
-test('a truncated container dropped on the page shows the reader\'s error; the page goes on working', async (t) => {
+test('a truncated or damaged container dropped on the page shows the reader\'s error; the page goes on working', async (t) => {
   const bytes = readFileSync(spot).subarray(0, 4000);
   let expected;
   try { loadLimn(new Uint8Array(bytes)); } catch (e) { expected = `truncated.limn: ${e.message}`; }
@@ -149,6 +156,30 @@ test('a truncated container dropped on the page shows the reader\'s error; the p
   await page.waitForFunction(() => document.getElementById('errors').textContent !== '');
   assert.equal(await errorText(page), expected);
   t.diagnostic(`shown: ${expected}`);
+  // A damaged chunk: the error names it.
+  const damaged = new Uint8Array(readFileSync(spot));
+  damaged[100000] ^= 0xff;
+  try { loadLimn(damaged); } catch (e) { expected = `damaged.limn: ${e.message}`; }
+  assert.match(expected, /^damaged\.limn: chunk [A-Z]{4}: /);
+  await page.evaluate(async () => {
+    const b = new Uint8Array(await (await fetch('../models/spot_d3.limn')).arrayBuffer());
+    b[100000] ^= 0xff;
+    const dt = new DataTransfer();
+    dt.items.add(new File([b], 'damaged.limn'));
+    document.getElementById('stage').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+  });
+  await page.waitForFunction((text) => document.getElementById('errors').textContent === text, expected);
+  t.diagnostic(`shown: ${expected}`);
+  // An image the browser cannot decode, dropped as a map: said so, next to the container's error.
+  await page.evaluate(() => {
+    const dt = new DataTransfer();
+    dt.items.add(new File([new Uint8Array([0x89, 0x50, 0x4e, 0x47, 1, 2, 3])], 'broken.png', { type: 'image/png' }));
+    document.getElementById('stage').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+  });
+  await page.waitForFunction(() => document.querySelectorAll('#errors .error').length === 2);
+  const mapError = await page.locator('#errors .error').nth(1).textContent();
+  assert.match(mapError, /^broken\.png: the browser cannot decode this image \(.+\); use PNG, JPEG or WebP$/);
+  t.diagnostic(`shown: ${mapError}`);
   // Still spot, still turning: a key press draws the next view.
   const before = await shot();
   const n = await frames(page);
@@ -159,4 +190,18 @@ test('a truncated container dropped on the page shows the reader\'s error; the p
   const after = compare(before, await shot());
   assert.ok(after.off > 0.05 * after.covered, 'the key press did not turn the view');
   assert.deepEqual(page.problems, []);
+});
+
+test('without a WebGPU adapter the page says what to enable', async () => {
+  const { chromium } = await import('playwright-core');
+  const { CHROMIUM, FLAGS } = await import('./browser.mjs');
+  const plain = await chromium.launch({ executablePath: CHROMIUM, args: FLAGS.filter((f) => !/webgpu|vulkan|angle/i.test(f)) });
+  try {
+    const p = await plain.newPage();
+    await p.goto(`${base()}/viewer/?model=../models/spot_d3.limn`);
+    await p.waitForFunction(() => document.body.dataset.ready === '1');
+    assert.match(await p.locator('#errors').textContent(), /^WebGPU is there but offers no adapter .* --enable-unsafe-webgpu --enable-features=Vulkan/);
+  } finally {
+    await plain.close();
+  }
 });
