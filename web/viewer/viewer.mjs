@@ -123,6 +123,15 @@ async function ensureRenderer() {
   return renderer;
 }
 
+// One GPU job at a time: a frame, a new renderer (a model dropped while the turntable turns) or
+// the benchmark never use a renderer that another is replacing.
+let gpuWork = Promise.resolve();
+function exclusive(job) {
+  const run = gpuWork.then(job, job);
+  gpuWork = run.catch(() => {});
+  return run;
+}
+
 function setBusy(on) { $('busy').hidden = !on; document.body.dataset.busy = on ? '1' : ''; }
 
 // --- drawing: only when something changed -------------------------------------------------------
@@ -139,7 +148,7 @@ async function drawLoop() {
   try {
     while (dirty) {
       dirty = false;
-      await drawOnce();
+      await exclusive(drawOnce);
       if (turntable) { state = orbit(state, 0.5, 0, renderer.camera); dirty = true; scheduleUrl(); }
       if (dirty) await new Promise(requestAnimationFrame);
     }
@@ -169,6 +178,7 @@ async function drawOnce() {
   const wall = performance.now() - t0;
   const gpuMs = await timer.read();
   const triangles = await r.drawnTriangles();
+  clearError('render');
   stats.frames++;
   const now = performance.now();
   if (!stats.fpsSince || now - stats.fpsSince > 2000) { stats.fpsSince = now; stats.fpsFrames = 0; }
@@ -231,7 +241,7 @@ async function openModel(bytes, name) {
   $('model-name').textContent = `${name}: ${surface.mesh.vertexCount} control points, depth ${surface.tables.depth}`;
   $('welcome').hidden = true;
   try {
-    await ensureRenderer();
+    await exclusive(ensureRenderer);
   } catch (e) {
     showError('model', `${name}: ${describe(e)}`);
     model = previous;
@@ -396,11 +406,11 @@ async function bench(frames) {
     const why = refusal({ edgePixels: c.edgePixels });
     if (why) { console.log(JSON.stringify({ ...line, unsupported: why })); continue; }
     state = { ...state, edgePixels: c.edgePixels };
-    await ensureRenderer();
-    await drawOnce(); // pipelines and first uploads
+    await exclusive(ensureRenderer);
+    await exclusive(drawOnce); // pipelines and first uploads
     const t = { gpu: [], js: [], wall: [] };
     for (let f = 0; f < frames; f++) {
-      const r = await drawOnce();
+      const r = await exclusive(drawOnce);
       if (r.gpuMs !== null) t.gpu.push(r.gpuMs);
       t.js.push(r.js);
       t.wall.push(r.wall);

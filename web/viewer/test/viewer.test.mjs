@@ -6,15 +6,17 @@
 // Fixed grids and view-adaptive tessellation (limn-render's default) both.
 //
 // What differs, and why: with 1 sample the two agree within the criterion (at most 1% of the
-// covered pixels off by more than 8/255). With 4 samples the silhouette differs: SwiftShader
-// covers the 4 samples of a pixel that the edge crosses differently from lavapipe (as many
-// pixels lighter as darker, up to ~80/255, only where the surface meets the background), so the
-// 4-sample images are held to the criterion on the pixels away from the silhouette and the
-// silhouette's share is bounded separately.
+// covered pixels off by more than 8/255; measured 17 of 14362 lit, 55 levels). With 4 samples
+// SwiftShader's multisampled rasterization covers the samples of a pixel that an edge crosses
+// differently from lavapipe's: as many pixels come out lighter as darker, up to ~80/255, along
+// the silhouette (212 of 14591 lit, 1.5%) and, with --shade levels, along the colour steps
+// between patches. Pixel centres agree (the 1-sample images); the cause inside SwiftShader was not
+// looked into. So the 4-sample images are held to the criterion away from the silhouette, and the
+// whole image to 3%.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { readFileSync, writeFileSync } from 'node:fs';
+import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { container, scratch, tool } from '../../test/support.mjs';
 import { decodePng } from '../../src/png.mjs';
@@ -81,11 +83,6 @@ function check(name, r, samples) {
   return what;
 }
 
-async function save(name, img) {
-  const { encodePng } = await import('../../src/png.mjs');
-  writeFileSync(join(scratch, `${name}.png`), encodePng(img.width, img.height, img.rgba, 4));
-}
-
 test('spot depth 3 from ?model=: lit and levels, 4 then 1 samples, as limn-render draws them', async (t) => {
   await page.goto(`${base()}/viewer/?model=../models/spot_d3.limn&size=${SIZE.join('x')}&edgePixels=0&samples=4`);
   await settled(page);
@@ -140,6 +137,10 @@ test('a drag turns the view, the URL follows, and reloading it draws the same im
   await settled(page);
   const again = await shot();
   assert.deepEqual(Buffer.from(again.rgba), Buffer.from(turned.rgba), 'the reloaded URL draws other pixels');
+  // Nothing changes, nothing is drawn.
+  const drawn = await frames(page);
+  await page.waitForTimeout(1500);
+  assert.equal(await frames(page), drawn, 'the page drew frames while nothing changed');
 });
 
 test('a truncated or damaged container dropped on the page shows the reader\'s error; the page goes on working', async (t) => {
@@ -189,6 +190,16 @@ test('a truncated or damaged container dropped on the page shows the reader\'s e
   assert.match(await page.evaluate(() => location.search), /view=-49,12/);
   const after = compare(before, await shot());
   assert.ok(after.off > 0.05 * after.covered, 'the key press did not turn the view');
+  // The turntable turns the view frame after frame until it is turned off.
+  const turning = await frames(page);
+  await page.getByLabel('Turntable').check();
+  await page.waitForFunction((n) => +document.body.dataset.frames >= n + 2, turning);
+  await page.getByLabel('Turntable').uncheck();
+  await settled(page);
+  assert.match(await page.evaluate(() => location.search), /view=-4[0-8](\.\d+)?,12(&|$)/);
+  const stopped = await frames(page);
+  await page.waitForTimeout(1000);
+  assert.equal(await frames(page), stopped);
   assert.deepEqual(page.problems, []);
 });
 
