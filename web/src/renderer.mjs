@@ -415,12 +415,13 @@ export class Renderer {
     this.uploadControlPoints();
     const enc = device.createCommandEncoder();
     this.encodeCompute(enc);
+    this.views ??= { target: (this.msaa ?? this.color).createView(), resolve: this.msaa ? this.color.createView() : undefined, depth: this.depth.createView() };
     const rp = enc.beginRenderPass({
       colorAttachments: [{
-        view: (this.msaa ?? this.color).createView(), resolveTarget: this.msaa ? this.color.createView() : undefined,
+        view: this.views.target, resolveTarget: this.views.resolve,
         clearValue: this.clear, loadOp: 'clear', storeOp: this.msaa ? 'discard' : 'store',
       }],
-      depthStencilAttachment: { view: this.depth.createView(), depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'discard' },
+      depthStencilAttachment: { view: this.views.depth, depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'discard' },
     });
     rp.setPipeline(this.culledPipeline && this.facing ? this.culledPipeline : this.drawPipeline);
     rp.setBindGroup(0, this.drawGroups[0]);
