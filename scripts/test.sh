@@ -21,7 +21,7 @@ ctest --test-dir "$dir" --output-on-failure -j "$(nproc)" "${exclude[@]}"
 # The WebGPU runtime (web/): node --test, on Dawn over the private Mesa 25 of setup.sh --tests,
 # in the release run only (its image tests compare with build/'s limn-render).
 if [ "$kind" = release ]; then
-  LIMN_BUILD_DIR="$PWD/build" node --test web/test/
+  LIMN_BUILD_DIR="$PWD/build" node --test web/test/*.test.mjs
 fi
 
 # The browser viewer (web/viewer): headless Chromium (WebGPU on SwiftShader) against build/'s

@@ -144,7 +144,7 @@ async function main(argv) {
     const s = o.settings;
     const report = {
       frames: o.bench, samples: s.samples, sample_shading: !!s.sampleShading, supersample: 1,
-      size: [s.width, s.height],
+      size: `${s.width}x${s.height}`,
       gpu_ms: { compute: null, draw: null, total: +median(times).toFixed(3) },
       passes: {},
       cpu_ms: +median(js).toFixed(3),

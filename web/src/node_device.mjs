@@ -1,6 +1,7 @@
 // A WebGPU device in Node: Dawn (npm `webgpu`) on the private Mesa 25 lavapipe that
 // scripts/setup.sh --tests unpacks into web/.mesa (Dawn refuses Debian 12's Mesa 22.3 over
-// Vulkan). An explicit VK_ICD_FILENAMES is kept.
+// Vulkan). An explicit VK_ICD_FILENAMES is kept. LIMN_WEB_DAWN_FLAGS adds Dawn's create() flags
+// (space-separated, e.g. "enable-dawn-features=disable_robustness") for experiments.
 import { existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { create, globals } from 'webgpu';
@@ -19,7 +20,7 @@ export async function requestNodeDevice({ backend = 'vulkan', limits = {} } = {}
   if (!process.env.VK_ICD_FILENAMES && existsSync(privateIcd)) process.env.VK_ICD_FILENAMES = privateIcd;
   process.env.XDG_RUNTIME_DIR ??= '/tmp';
   Object.assign(globalThis, globals);
-  const gpu = create(backend === 'null' ? ['backend=null'] : ['backend=vulkan']);
+  const gpu = create([backend === 'null' ? 'backend=null' : 'backend=vulkan', ...(process.env.LIMN_WEB_DAWN_FLAGS ? process.env.LIMN_WEB_DAWN_FLAGS.split(' ') : [])]);
   navigators.push(gpu);
   const adapter = await gpu.requestAdapter();
   if (!adapter) {

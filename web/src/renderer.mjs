@@ -148,7 +148,9 @@ export class Renderer {
       const samplePositions = s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
       this.adaptiveOptions = {
         edgePixels: s.edgePixels, tess: s.tess, cull: true, samplePositions, texelsPerUV: 0,
-        sharePoints: s.shade !== 'uv' && s.shade !== 'texture',
+        // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.
+        evaluated: !!s.meshOut,
+        sharePoints: !s.meshOut && s.shade !== 'uv' && s.shade !== 'texture',
         maxVertices: minimum + ep.elements.length + viewBudget, maxTriangles: minimum + 2 * viewBudget,
       };
       this.adaptiveData = adaptiveData(ep, tables, this.adaptiveOptions);
@@ -342,10 +344,38 @@ export class Renderer {
     return { positions: f.subarray(0, 4 * n), limits: f.subarray(4 * n) };
   }
 
-  /** The drawn surface, as limn-render --mesh-out writes it: positions (4 floats each) and triangles. */
+  /**
+   * The drawn surface, as limn-render --mesh-out writes it: positions (4 floats each) and
+   * triangles. View-adaptive: this view's emitted tessellation (create with settings.meshOut).
+   */
   async drawnMesh() {
-    const { positions } = await this.evaluate(this.buffers.tessVertices, this.tess.vertexCount);
-    return { positions, triangles: this.tess.indices };
+    if (!this.adaptive) {
+      const { positions } = await this.evaluate(this.buffers.tessVertices, this.tess.vertexCount);
+      return { positions, triangles: this.tess.indices };
+    }
+    const { device } = this;
+    this.uploadControlPoints();
+    const enc = device.createCommandEncoder();
+    this.encodeCompute(enc, true);
+    const rb = device.createBuffer({ size: TOTALS_WORDS * 4, usage: MAP_READ | COPY_DST });
+    enc.copyBufferToBuffer(this.buffers.totals, 0, rb, 0, TOTALS_WORDS * 4);
+    device.queue.submit([enc.finish()]);
+    await rb.mapAsync(1);
+    const t = new Uint32Array(rb.getMappedRange().slice(0));
+    rb.unmap();
+    rb.destroy();
+    if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --edge-pixels or lower --tess', 'input');
+    const triangles = t[16], vertices = t[17];
+    const tri = device.createBuffer({ size: Math.max(triangles * 12, 16), usage: MAP_READ | COPY_DST });
+    const e2 = device.createCommandEncoder();
+    if (triangles) e2.copyBufferToBuffer(this.buffers.triangles, 0, tri, 0, triangles * 12);
+    device.queue.submit([e2.finish()]);
+    await tri.mapAsync(1);
+    const indices = new Uint32Array(tri.getMappedRange().slice(0, triangles * 12));
+    tri.unmap();
+    tri.destroy();
+    const { positions } = await this.evaluate(this.buffers.tessVertices, vertices);
+    return { positions, triangles: indices };
   }
 
   setView(view) {
@@ -415,12 +445,13 @@ export class Renderer {
     this.uploadControlPoints();
     const enc = device.createCommandEncoder();
     this.encodeCompute(enc);
+    this.views ??= { target: (this.msaa ?? this.color).createView(), resolve: this.msaa ? this.color.createView() : undefined, depth: this.depth.createView() };
     const rp = enc.beginRenderPass({
       colorAttachments: [{
-        view: (this.msaa ?? this.color).createView(), resolveTarget: this.msaa ? this.color.createView() : undefined,
+        view: this.views.target, resolveTarget: this.views.resolve,
         clearValue: this.clear, loadOp: 'clear', storeOp: this.msaa ? 'discard' : 'store',
       }],
-      depthStencilAttachment: { view: this.depth.createView(), depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'discard' },
+      depthStencilAttachment: { view: this.views.depth, depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'discard' },
     });
     rp.setPipeline(this.culledPipeline && this.facing ? this.culledPipeline : this.drawPipeline);
     rp.setBindGroup(0, this.drawGroups[0]);

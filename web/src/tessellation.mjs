@@ -188,17 +188,21 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
     return vElement.length - 1;
   };
   // Points inside a ptex face (most of them) are owned through an array, the rest by key.
-  const side = R - 1, interiorOwner = new Int32Array(Math.max(keys.face.length * side * side, 1)).fill(-1);
+  // (An array only while it is small: deep tables have few points in a huge lattice.)
+  const side = R - 1, slots = keys.face.length * side * side;
+  const interiorOwner = slots <= 2 ** 26 ? new Int32Array(Math.max(slots, 1)).fill(-1) : new Map();
+  const getInterior = interiorOwner instanceof Map ? (k) => interiorOwner.get(k) ?? -1 : (k) => interiorOwner[k];
+  const setInterior = interiorOwner instanceof Map ? (k, v) => interiorOwner.set(k, v) : (k, v) => { interiorOwner[k] = v; };
   const vertexFor = (ei, U, V, create) => {
     const e = elements[ei];
     const inside = U > 0 && U < R && V > 0 && V < R;
     const k = inside ? (e.ptex * side + U - 1) * side + V - 1 : keys.key(e.ptex, U, V);
-    let first = inside ? interiorOwner[k] : owner.get(k);
+    let first = inside ? getInterior(k) : owner.get(k);
     if (first === undefined || first < 0) {
       if (!create) return NONE;
       const unit = TESS_ONE / e.W;
       first = vElement.length;
-      if (inside) interiorOwner[k] = first; else owner.set(k, first);
+      if (inside) setInterior(k, first); else owner.set(k, first);
       push(ei, ((U - e.U0) * unit) | (((V - e.V0) * unit) << 16), withUV ? uvOf(e, U, V) : null, first);
     }
     if (inside || !splitUVSeams || !seamPoint(e, U, V, k)) return first;
