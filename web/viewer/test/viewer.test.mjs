@@ -29,7 +29,8 @@ let browser, server, spot, page;
 
 before(async () => {
   spot = container('quad/spot_quadrangulated.obj', { depth: 3 });
-  server = await serveModels({ 'spot_d3.limn': spot });
+  // One origin for every page: Chromium keeps compiled pipelines per origin.
+  server = await serveModels({ 'spot_d3.limn': spot, 'spot_d1.limn': container('quad/spot_quadrangulated.obj', { depth: 1 }) });
   browser = await launch();
   page = await newPage(browser);
 });
@@ -219,5 +220,27 @@ test('without a WebGPU adapter the page says what to enable', async () => {
     assert.match(await p.locator('#errors').textContent(), /^WebGPU is there but offers no adapter .* --enable-unsafe-webgpu --enable-features=Vulkan/);
   } finally {
     await plain.close();
+  }
+});
+
+test('?bench=N prints one JSON line per tessellation on the console', async () => {
+  const p = await newPage(browser);
+  try {
+    const lines = [];
+    const done = new Promise((resolve) => p.on('console', (m) => {
+      if (m.text().startsWith('{')) lines.push(JSON.parse(m.text()));
+      if (m.text() === 'limn-viewer bench: done') resolve();
+    }));
+    await p.goto(`${base()}/viewer/?model=../models/spot_d1.limn&size=96x72&samples=1&edgePixels=0&bench=2`);
+    await done;
+    assert.deepEqual(lines.map((l) => [l.tessellation, l.edge_pixels, l.depth, l.frames, l.size.join('x')]),
+      [['fixed', 0, 1, 2, '96x72'], ['adaptive', 4, 1, 2, '96x72']]);
+    for (const l of lines) {
+      assert.ok(l.triangles > 0 && l.js_ms > 0 && l.wall_ms >= l.js_ms, JSON.stringify(l));
+      assert.ok(l.gpu_ms === null || l.gpu_ms > 0, JSON.stringify(l));
+    }
+    assert.deepEqual(p.problems, []);
+  } finally {
+    await p.close();
   }
 });
