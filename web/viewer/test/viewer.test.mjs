@@ -206,6 +206,19 @@ test('a truncated or damaged container dropped on the page shows the reader\'s e
   const stopped = await frames(page);
   await page.waitForTimeout(1000);
   assert.equal(await frames(page), stopped);
+  // Two fingers moving apart zoom in: the camera becomes explicit (eye and target in the URL).
+  const box = await page.locator('#view').boundingBox();
+  const cdp = await page.context().newCDPSession(page);
+  await cdp.send('Emulation.setTouchEmulationEnabled', { enabled: true, maxTouchPoints: 2 });
+  const touch = (type, d) => cdp.send('Input.dispatchTouchEvent', {
+    type, touchPoints: type === 'touchEnd' ? [] : [{ x: box.x + 160 - d, y: box.y + 120, id: 1 }, { x: box.x + 160 + d, y: box.y + 120, id: 2 }],
+  });
+  const pinched = await frames(page);
+  await touch('touchStart', 20);
+  for (const d of [30, 40]) await touch('touchMove', d);
+  await touch('touchEnd', 40);
+  await settled(page, pinched + 1);
+  assert.match(await page.evaluate(() => location.search), /eye=[-\d.e]+,[-\d.e]+,[-\d.e]+&target=/);
   assert.deepEqual(page.problems, []);
 });
 
