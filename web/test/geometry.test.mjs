@@ -2,7 +2,7 @@
 // container and options (fixed grids): the same triangles, every position within 1e-6 of the
 // diagonal. This pins the JavaScript port of the watertight tessellation vertex for vertex, and
 // the generated WGSL of the subdivision passes and the surface evaluation.
-import { test } from 'node:test';
+import { test, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
@@ -52,6 +52,10 @@ function optionView(args) {
 // the image tests' tolerance); marked todo until it is found.
 const knownGap = new Set(['view-adaptive: spot depth 3', 'view-adaptive: car depth 4']);
 
+// One device for every case (each device costs Dawn's start-up and its pipeline compiles).
+let gpu = null;
+after(() => gpu?.device.destroy());
+
 for (const [label, mesh, depth, args] of cases) {
   const todo = knownGap.has(label) ? 'view-adaptive triangle counts differ where there are irregular faces' : undefined;
   test(`geometry: ${label}`, { todo }, async () => {
@@ -62,14 +66,14 @@ for (const [label, mesh, depth, args] of cases) {
       { env: { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd }, stdio: 'ignore' });
     const native = readPly(readFileSync(ply));
     const surface = loadLimn(new Uint8Array(readFileSync(limn)));
-    const { device } = await requestNodeDevice();
+    gpu ??= await requestNodeDevice();
+    const { device } = gpu;
     const tess = args.includes('--tess') ? Number(args[args.indexOf('--tess') + 1]) : 64;
     const r = await Renderer.create(device, surface, adaptive
       ? { width: 320, height: 240, samples: 1, edgePixels: 4, tess, view: optionView(args), meshOut: true }
       : { width: 64, height: 64, samples: 1, edgePixels: 0, tess, view: { eye: [0, 0, 10] } });
     const web = await r.drawnMesh();
     r.destroy();
-    device.destroy();
     assert.equal(web.triangles.length, native.triangles.length, 'triangle count');
     assert.equal(web.positions.length / 4, native.positions.length / 3, 'vertex count');
     assert.deepEqual(web.triangles, native.triangles, 'the same triangles over the same vertices');
