@@ -30,7 +30,7 @@ after(() => gpu?.device.destroy());
 
 // limn-web-render's settings for the options these tests use (its defaults otherwise).
 function settingsOf(args) {
-  const s = { view: {}, samples: 1, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 };
+  const s = { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 };
   const nums = (v) => v.split(',').map(Number);
   for (let i = 0; i < args.length; i++) {
     const v = args[i + 1];
