@@ -27,7 +27,7 @@ what is not listed is not supported here.
   --up-axis y|z           the world's up axis (default y)
   --fov DEG               vertical field of view (default 35)
   --light AZ,EL           key light relative to the camera (default -40,35)
-  --samples 1|4           MSAA samples per pixel (default 1)
+  --samples 1|4           MSAA samples per pixel (default 4, as limn-render's)
   --sample-shading        shade each sample on its own (with --samples 4)
   --shade MODE            lit, normal, uv, levels (default lit; texture: not supported here yet)
   --color R,G,B           base colour, sRGB 0..1 (default 0.8,0.8,0.8)
@@ -51,7 +51,7 @@ function numbers(opt, v, n) {
 }
 
 function parseArgs(argv) {
-  const o = { settings: { view: {}, samples: 1, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 }, bench: 0 };
+  const o = { settings: { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 }, bench: 0 };
   const s = o.settings;
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];

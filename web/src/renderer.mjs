@@ -77,6 +77,16 @@ function checkFixedSize(tables, tessCap) {
     "over WebGPU's 128 MiB storage-buffer limit; use a lower --tess, or tables of lower depth (limn-tables --depth)", 'input');
 }
 
+// The CPU-built tessellations of a loaded surface, kept with its tables (they are never written
+// after they are built): renderers of one surface with other views, sizes or shades share them.
+const builtFor = new WeakMap();
+function cached(tables, key, build) {
+  let m = builtFor.get(tables);
+  if (!m) builtFor.set(tables, (m = new Map()));
+  if (!m.has(key)) m.set(key, build());
+  return m.get(key);
+}
+
 /**
  * A renderer for one loaded surface (chunks.mjs's loadLimn). settings: {width, height, samples
  * (1|4), shade, edgePixels (0: fixed grids), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
@@ -140,7 +150,7 @@ export class Renderer {
     this.adaptive = s.edgePixels > 0;
     let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
     if (this.adaptive) {
-      const ep = buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables);
+      const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables));
       let minimum = 0;
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
       const p = Math.max(s.edgePixels, 0.25);
@@ -158,7 +168,8 @@ export class Renderer {
       this.orientation = this.closed ? surfaceOrientation(mesh) : 0;
     } else {
       checkFixedSize(tables, s.tess);
-      tess = buildTessellation({ ...mesh, uvs: surface.uvs }, tables, s.tess, !!surface.uvs);
+      const cap = 2 ** Math.floor(Math.log2(Math.max(s.tess, 1)));
+      tess = cached(tables, `fixed ${cap}`, () => buildTessellation({ ...mesh, uvs: surface.uvs }, tables, cap, !!surface.uvs));
     }
     this.tess = tess;
     const b = this.buffers = {

@@ -97,20 +97,22 @@ export class PtexMap {
   }
 
   ownUV(p, u, v) {
+    // Allocation-free (it runs for every tessellation vertex): the corners' UVs are read in place.
     const f = this.face[p], sub = this.sub[p], n = this.mesh.faceSizes[f];
-    let c;
+    const { uvs, faceOffsets } = this.mesh, ix = uvs.indices, val = uvs.values, o = faceOffsets[f];
+    const w0 = (1 - u) * (1 - v), w1 = u * (1 - v), w2 = u * v, w3 = (1 - u) * v;
     if (sub < 0) {
-      c = [0, 1, 2, 3].map((i) => this.uvAt(f, i));
-    } else {
-      const k = sub;
-      let cx = 0, cy = 0;
-      for (let i = 0; i < n; i++) { const q = this.uvAt(f, i); cx += q[0]; cy += q[1]; }
-      const a = this.uvAt(f, k), b = this.uvAt(f, (k + 1) % n), d = this.uvAt(f, (k + n - 1) % n);
-      c = [a, [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], [cx / n, cy / n], [0.5 * (d[0] + a[0]), 0.5 * (d[1] + a[1])]];
+      const a = 2 * ix[o], b = 2 * ix[o + 1], c = 2 * ix[o + 2], d = 2 * ix[o + 3];
+      return [w0 * val[a] + w1 * val[b] + w2 * val[c] + w3 * val[d],
+        w0 * val[a + 1] + w1 * val[b + 1] + w2 * val[c + 1] + w3 * val[d + 1]];
     }
-    const w = [(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v];
-    return [w[0] * c[0][0] + w[1] * c[1][0] + w[2] * c[2][0] + w[3] * c[3][0],
-      w[0] * c[0][1] + w[1] * c[1][1] + w[2] * c[2][1] + w[3] * c[3][1]];
+    const k = sub;
+    let cx = 0, cy = 0;
+    for (let i = 0; i < n; i++) { const q = 2 * ix[o + i]; cx += val[q]; cy += val[q + 1]; }
+    const a = 2 * ix[o + k], b = 2 * ix[o + ((k + 1) % n)], d = 2 * ix[o + ((k + n - 1) % n)];
+    const c1x = 0.5 * (val[a] + val[b]), c1y = 0.5 * (val[a + 1] + val[b + 1]);
+    const c3x = 0.5 * (val[d] + val[a]), c3y = 0.5 * (val[d + 1] + val[a + 1]);
+    return [w0 * val[a] + w1 * c1x + w2 * (cx / n) + w3 * c3x, w0 * val[a + 1] + w1 * c1y + w2 * (cy / n) + w3 * c3y];
   }
 
   // The point's UV in every base face containing it, in increasing face order.
@@ -145,6 +147,17 @@ export class PtexMap {
 
 const f32 = Math.fround;
 
+// A growable typed array: the tessellation has hundreds of thousands of vertices and indices, and
+// plain arrays of small arrays spent most of its time in allocation and garbage collection.
+class Grow {
+  constructor(Type, capacity = 1 << 12) { this.a = new Type(capacity); this.n = 0; }
+  push(x) {
+    if (this.n === this.a.length) { const b = new this.a.constructor(2 * this.n); b.set(this.a); this.a = b; }
+    this.a[this.n++] = x;
+  }
+  view() { return this.a.subarray(0, this.n); }
+}
+
 /**
  * The fixed tessellation of tables (chunks.mjs's decodeTables) for `mesh`, capped at `cap`
  * segments per side. Returns { vertices: Uint32Array (4 words a vertex: element, s | t << 16,
@@ -166,9 +179,9 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
   for (let i = 0; i < P; i++) add(pw[24 * i + 16], pf[24 * i + 17], pf[24 * i + 18], pf[24 * i + 19], pw[24 * i + 20] & 0xff);
   for (let i = 0; i < tables.irregularCount; i++) add(qw[8 * i + 4], qf[8 * i + 5], qf[8 * i + 6], qf[8 * i + 7], N);
 
-  const vElement = [], vST = [], uvs = [], geometry = [];
+  const vElement = new Grow(Uint32Array), vST = new Grow(Uint32Array), uvs = new Grow(Float32Array), geometry = new Grow(Uint32Array);
   const owner = new Map(), onUVSeam = new Map(), copies = new Map();
-  const uvOf = (e, U, V) => keys.ownUV(e.ptex, U / R, V / R).map(f32);
+  const uvOf = (e, U, V) => { const q = keys.ownUV(e.ptex, U / R, V / R); q[0] = f32(q[0]); q[1] = f32(q[1]); return q; };
   const seamPoint = (e, U, V, k) => {
     let s = onUVSeam.get(k);
     if (s === undefined) {
@@ -184,8 +197,8 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
   };
   const push = (ei, st, uv, geom) => {
     vElement.push(ei); vST.push(st); geometry.push(geom);
-    if (withUV) uvs.push(uv);
-    return vElement.length - 1;
+    if (withUV) { uvs.push(uv[0]); uvs.push(uv[1]); }
+    return vElement.n - 1;
   };
   // Points inside a ptex face (most of them) are owned through an array, the rest by key.
   // (An array only while it is small: deep tables have few points in a huge lattice.)
@@ -201,17 +214,17 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
     if (first === undefined || first < 0) {
       if (!create) return NONE;
       const unit = TESS_ONE / e.W;
-      first = vElement.length;
+      first = vElement.n;
       if (inside) setInterior(k, first); else owner.set(k, first);
       push(ei, ((U - e.U0) * unit) | (((V - e.V0) * unit) << 16), withUV ? uvOf(e, U, V) : null, first);
     }
     if (inside || !splitUVSeams || !seamPoint(e, U, V, k)) return first;
     const uv = uvOf(e, U, V);
-    if (uvs[first][0] === uv[0] && uvs[first][1] === uv[1]) return first;
+    if (uvs.a[2 * first] === uv[0] && uvs.a[2 * first + 1] === uv[1]) return first;
     const ck = `${k}|${uv[0]}|${uv[1]}`;
     let c = copies.get(ck);
     if (c === undefined) {
-      c = push(vElement[first], vST[first], uv, first);
+      c = push(vElement.a[first], vST.a[first], uv, first);
       copies.set(ck, c);
     }
     return c;
@@ -222,7 +235,7 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
     for (let j = 0; j <= e.S; j++) for (let i = 0; i <= e.S; i++) vertexFor(ei, e.U0 + i * step, e.V0 + j * step, true);
   }
 
-  const indices = [], triangleLevels = [];
+  const indices = new Grow(Uint32Array, 1 << 14), triangleLevels = new Grow(Uint32Array);
   for (let ei = 0; ei < elements.length; ei++) {
     const e = elements[ei], S = e.S, step = e.W / S;
     const find = (U, V) => vertexFor(ei, U, V, false);
@@ -238,8 +251,8 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
     };
     const stitched = [0, 1, 2, 3].map((side) => edgePoints(side, 0, e.W).length !== S + 1);
     const grid = (i, j) => find(e.U0 + i * step, e.V0 + j * step);
-    const first = indices.length;
-    const tri = (a, b, c) => indices.push(a, b, c);
+    const first = indices.n;
+    const tri = (a, b, c) => { indices.push(a); indices.push(b); indices.push(c); };
     for (let j = 0; j < S; j++) {
       for (let i = 0; i < S; i++) {
         const onB = [j === 0 && stitched[0], i + 1 === S && stitched[1], j + 1 === S && stitched[2], i === 0 && stitched[3]];
@@ -257,7 +270,7 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
         if (i === 0) ring.push(...edgePoints(3, e.W - y1, e.W - y0).slice(0, -1)); else ring.push(grid(i, j + 1));
         if (S === 1) {
           const cu = (e.U0 + 0.5 * e.W) / R, cv = (e.V0 + 0.5 * e.W) / R;
-          const centre = push(ei, (TESS_ONE / 2) | ((TESS_ONE / 2) << 16), withUV ? keys.ownUV(e.ptex, cu, cv).map(f32) : null, vElement.length);
+          const centre = push(ei, (TESS_ONE / 2) | ((TESS_ONE / 2) << 16), withUV ? keys.ownUV(e.ptex, cu, cv).map(f32) : null, vElement.n);
           for (let r = 0; r < ring.length; r++) tri(centre, ring[r], ring[(r + 1) % ring.length]);
           continue;
         }
@@ -267,16 +280,16 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
       }
     }
     const level = ei < P ? pw[24 * ei + 20] & 0xff : 255;
-    for (let t = first; t < indices.length; t += 3) triangleLevels.push(level);
+    for (let t = first; t < indices.n; t += 3) triangleLevels.push(level);
   }
 
-  const n = vElement.length;
+  const n = vElement.n;
   const vertices = new Uint32Array(Math.max(n, 1) * 4);
   const vf = new Float32Array(vertices.buffer);
   for (let i = 0; i < n; i++) {
-    vertices[4 * i] = vElement[i];
-    vertices[4 * i + 1] = vST[i];
-    if (withUV) { vf[4 * i + 2] = uvs[i][0]; vf[4 * i + 3] = uvs[i][1]; }
+    vertices[4 * i] = vElement.a[i];
+    vertices[4 * i + 1] = vST.a[i];
+    if (withUV) { vf[4 * i + 2] = uvs.a[2 * i]; vf[4 * i + 3] = uvs.a[2 * i + 1]; }
   }
-  return { vertices, vertexCount: n, indices: Uint32Array.from(indices), triangleLevels: Uint32Array.from(triangleLevels), geometry };
+  return { vertices, vertexCount: n, indices: indices.view().slice(), triangleLevels: triangleLevels.view().slice(), geometry: Array.from(geometry.view()) };
 }

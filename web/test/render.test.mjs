@@ -3,7 +3,12 @@
 // more than 8/255. The fixed grids (--edge-pixels 0) and the view-adaptive tessellation, 1 and 4
 // samples, lit and --shade levels, on real models: spot (depths 1, 3, 6), a creased torus, a model
 // with face-varying UVs and tags, the paper's demo sphere in its camera, and the paper-size car.
-import { test } from 'node:test';
+//
+// The web side renders in this process through the library (one device, each container loaded
+// once, so its CPU tessellation is built once and Dawn compiles each pipeline once); limn-render
+// runs as a command. The command line's own path to the same pixels is pinned by the same-bytes
+// test below and by cli.test.mjs.
+import { test, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
@@ -11,16 +16,56 @@ import { join } from 'node:path';
 import { container, paperSphereObj, scratch, tool, repo } from './support.mjs';
 import { privateIcd } from '../src/node_device.mjs';
 import { decodePng } from '../src/png.mjs';
+import { requestNodeDevice } from '../src/node_device.mjs';
+import { loadLimn } from '../src/chunks.mjs';
+import { Renderer } from '../src/renderer.mjs';
 import { compareImages } from './compare.mjs';
 
 const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd, XDG_RUNTIME_DIR: process.env.XDG_RUNTIME_DIR ?? '/tmp' };
 
-function renderBoth(limn, args, name) {
-  const web = join(scratch, `${name}-web.png`), native = join(scratch, `${name}-native.png`);
-  execFileSync(process.execPath, [cli, limn, '-o', web, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
+let gpu = null;
+const surfaces = new Map();
+after(() => gpu?.device.destroy());
+
+// limn-web-render's settings for the options these tests use (its defaults otherwise).
+function settingsOf(args) {
+  const s = { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 };
+  const nums = (v) => v.split(',').map(Number);
+  for (let i = 0; i < args.length; i++) {
+    const v = args[i + 1];
+    switch (args[i]) {
+      case '--size': [s.width, s.height] = v.split('x').map(Number); i++; break;
+      case '--samples': s.samples = Number(v); i++; break;
+      case '--shade': s.shade = v; i++; break;
+      case '--edge-pixels': s.edgePixels = Number(v); i++; break;
+      case '--tess': s.tess = Number(v); i++; break;
+      case '--view': [s.view.azimuthDeg, s.view.elevationDeg] = nums(v); i++; break;
+      case '--eye': s.view.eye = nums(v); i++; break;
+      case '--target': s.view.target = nums(v); i++; break;
+      case '--sample-shading': s.sampleShading = true; break;
+      default: throw new Error(`settingsOf: ${args[i]} is not mapped here`);
+    }
+  }
+  return s;
+}
+
+async function renderBoth(limn, args, name) {
+  const native = join(scratch, `${name}-native.png`);
   execFileSync(tool('limn-render'), [limn, '-o', native, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
-  return compareImages(decodePng(readFileSync(web)), decodePng(readFileSync(native)));
+  gpu ??= await requestNodeDevice();
+  const { device } = gpu;
+  if (!surfaces.has(limn)) surfaces.set(limn, loadLimn(new Uint8Array(readFileSync(limn))));
+  const errors = [];
+  device.onuncapturederror = (e) => errors.push(e.error.message);
+  const s = settingsOf(args);
+  const r = await Renderer.create(device, surfaces.get(limn), s);
+  r.frame();
+  await device.queue.onSubmittedWorkDone();
+  const rgba = await r.pixels();
+  r.destroy();
+  assert.deepEqual(errors, [], `${name}: WebGPU errors`);
+  return compareImages({ width: s.width, height: s.height, rgba }, decodePng(readFileSync(native)));
 }
 
 const spot = (depth) => () => container('quad/spot_quadrangulated.obj', { depth });
@@ -45,13 +90,13 @@ const cases = [
 ];
 
 for (const [label, make, args, samplesList, shades] of cases) {
-  test(`images: ${label}`, () => {
+  test(`images: ${label}`, async () => {
     const limn = make();
     for (const samples of samplesList) {
       for (const shade of shades) {
         const name = `${label.replace(/\W+/g, '_')}-${samples}-${shade}`;
         const size = args.includes('--size') ? [] : ['--size', '320x240'];
-        const r = renderBoth(limn, [...size, '--samples', String(samples), '--shade', shade, ...args], name);
+        const r = await renderBoth(limn, [...size, '--samples', String(samples), '--shade', shade, ...args], name);
         assert.ok(r.covered > 2000, `${name}: only ${r.covered} covered pixels`);
         assert.ok(r.fraction <= 0.005, `${name}: ${r.off} of ${r.covered} covered pixels differ by more than 8/255 (worst ${r.worst})`);
       }
