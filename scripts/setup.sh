@@ -31,6 +31,9 @@ if $tests; then
   # commands, and munge for their authentication. The test runs them from a private folder; the
   # packages' own services are not used.
   packages+=(slurm-wlm munge)
+  # The browser viewer's tests (web/viewer/test): Debian's chromium, whose WebGPU runs headless
+  # on SwiftShader; playwright-core (below) drives it, never downloading a browser of its own.
+  packages+=(chromium)
 fi
 
 # Test-only npm packages, pinned by tests/tools/package-lock.json, into tests/tools/node_modules
@@ -57,6 +60,60 @@ npm_tools() {
   fi
 }
 
+# The WebGPU runtime's tests (web/): its npm packages, pinned by web/package-lock.json, into
+# web/node_modules, and Mesa 25's lavapipe unpacked privately into web/.mesa (both ignored by
+# git). Dawn (npm `webgpu`) refuses Debian 12's Mesa 22.3 over Vulkan; Mesa 25.0.7 comes from
+# bookworm-backports with apt-get download into a private apt state, never installed system-wide
+# (limn's own GPU tests and reference images are made on Debian's Mesa). Idempotent like
+# npm_tools; not fatal: without them the web tests fail saying what is missing.
+web_tools() {
+  $tests || return 0
+  local dir
+  dir="$(cd "$(dirname "$0")/.." && pwd)/web"
+  if ! cmp -s "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"; then
+    echo "setup: npm ci in web (webgpu, naga-wasm)" >&2
+    if (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null 2>&1); then
+      cp "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"
+    else
+      echo "setup: warning: npm ci in web failed; the web tests will fail until it succeeds" >&2
+    fi
+  fi
+  local m="$dir/.mesa" lib="usr/lib/x86_64-linux-gnu/libvulkan_lvp.so"
+  [ -f "$m/icd.json" ] && [ -f "$m/root/$lib" ] && return 0
+  echo "setup: Mesa 25 lavapipe from bookworm-backports into web/.mesa (private)" >&2
+  rm -rf "$m" && mkdir -p "$m/lists/partial" "$m/debs"
+  local mirror
+  mirror=$(sed -n 's/^URIs: *//p' /etc/apt/sources.list.d/debian.sources 2>/dev/null | head -1)
+  echo "deb ${mirror:-http://deb.debian.org/debian} bookworm-backports main" > "$m/sources.list"
+  local a=(-o "Dir::Etc::SourceList=$m/sources.list" -o Dir::Etc::SourceParts=/dev/null
+           -o "Dir::State::Lists=$m/lists" -o "Dir::Cache=$m/cache" -o APT::Sandbox::User=root)
+  if apt-get "${a[@]}" update -qq >/dev/null 2>&1 &&
+     (cd "$m/debs" && apt-get "${a[@]}" download -qq mesa-vulkan-drivers/bookworm-backports >/dev/null 2>&1); then
+    for f in "$m"/debs/*.deb; do dpkg -x "$f" "$m/root"; done
+    printf '{"file_format_version":"1.0.1","ICD":{"library_path":"%s","api_version":"1.4.305"}}\n' \
+      "$m/root/$lib" > "$m/icd.json"
+    rm -rf "$m/debs" "$m/lists" "$m/cache"
+  else
+    echo "setup: warning: could not download Mesa 25 from bookworm-backports; the web tests will fail" >&2
+    rm -rf "$m"
+  fi
+}
+
+# The viewer's test-only npm package (playwright-core), pinned by web/viewer/package-lock.json,
+# into web/viewer/node_modules (ignored by git); idempotent and not fatal like npm_tools.
+viewer_tools() {
+  $tests || return 0
+  local dir
+  dir="$(cd "$(dirname "$0")/.." && pwd)/web/viewer"
+  cmp -s "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json" && return 0
+  echo "setup: npm ci in web/viewer (playwright-core)" >&2
+  if (cd "$dir" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null 2>&1); then
+    cp "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"
+  else
+    echo "setup: warning: npm ci in web/viewer failed; the viewer's browser tests will fail until it succeeds" >&2
+  fi
+}
+
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
@@ -64,6 +121,8 @@ for p in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   npm_tools
+  web_tools
+  viewer_tools
   exit 0
 fi
 
@@ -77,3 +136,5 @@ export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq >/dev/null
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 npm_tools
+web_tools
+viewer_tools

@@ -17,3 +17,16 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # tools in the CLI tests.
 exclude=(); [ "$kind" = asan ] && exclude=(-LE '^(heavy|render|slurm)$' -E '_NOT_BUILT$')
 ctest --test-dir "$dir" --output-on-failure -j "$(nproc)" "${exclude[@]}"
+
+# The WebGPU runtime (web/): node --test, on Dawn over the private Mesa 25 of setup.sh --tests,
+# in the release run only (its image tests compare with build/'s limn-render).
+if [ "$kind" = release ]; then
+  LIMN_BUILD_DIR="$PWD/build" node --test web/test/*.test.mjs
+fi
+
+# The browser viewer (web/viewer): headless Chromium (WebGPU on SwiftShader) against build/'s
+# limn-render, and limn-view; release run only, about 2 minutes (SwiftShader draws spot at
+# depth 3 in ~3 s a frame). The test files by name: browser.mjs is a helper.
+if [ "$kind" = release ]; then
+  LIMN_BUILD_DIR="$PWD/build" node --test web/viewer/test/*.test.mjs
+fi

@@ -184,6 +184,17 @@ TEST(MakefileExamples, BuildsOnceThenNothing) {
     EXPECT_EQ(pngSize(out / "torus.height.png"), std::make_pair(64u, 64u));
     // The cube's atlas: 6 faces, 3 tiles to a row, 16 texels a tile.
     EXPECT_EQ(pngSize(out / "cube.trim.png"), std::make_pair(48u, 32u));
+    // The web stage: the viewer, the runtime and a container per example, linked from the index.
+    for (const auto* file : {"index.html", "viewer/index.html", "viewer/viewer.mjs", "src/index.mjs",
+                             "shaders/surface_vert.wgsl"})
+        EXPECT_TRUE(fs::is_regular_file(out / "web" / file)) << file;
+    for (const auto& name : names) {
+        EXPECT_EQ(test::readFile(out / "web" / "models" / (name + ".limn")),
+                  test::readFile(out / (name + ".d3.limn")));
+        EXPECT_NE(test::readFile(out / "web" / "index.html")
+                      .find("viewer/?model=../models/" + name + ".limn&amp;view=-30,20"),
+                  std::string::npos);
+    }
     // A depfile names the inputs a render read, the height map included.
     EXPECT_EQ(test::readFile(out / "torus.displaced.png.d"),
               (out / "torus.displaced.png").string() + ": " + (out / "torus.seams.limn").string() +
@@ -222,6 +233,7 @@ TEST(MakefileExamples, BuildsOnceThenNothing) {
         if (rel.rfind("torus.", 0) == 0) torusFiles.insert(rel);
     }
     EXPECT_GT(torusFiles.size(), 30u);
+    torusFiles.insert("web/models/torus.limn"); // the web stage's copy for the viewer
     EXPECT_EQ(rewritten(out, before), torusFiles);
     EXPECT_EQ(make(out, {subset, "-q"}).exitCode, 0);
 }

@@ -1,0 +1,182 @@
+#!/usr/bin/env node
+// limn-web-render: renders a .limn container with limn's passes on WebGPU (Dawn for Node), with
+// limn-render's option names for what it supports. Exit codes as limn's tools: 0 ok, 1 bad input,
+// 2 usage, 3 missing capability (no WebGPU adapter, or a feature not supported here).
+import { readFileSync, renameSync, rmSync, writeFileSync } from 'node:fs';
+import { dirname, basename, join } from 'node:path';
+import { loadLimn } from '../src/chunks.mjs';
+import { LimnError } from '../src/container.mjs';
+import { Renderer, SHADES } from '../src/renderer.mjs';
+import { encodePng } from '../src/png.mjs';
+import { requestNodeDevice } from '../src/node_device.mjs';
+
+const TOOL = 'limn-web-render';
+const HELP = `usage: ${TOOL} [options] IN.limn -o OUT.png
+Renders a .limn container (limn-classify | limn-tables [| limn-seams]) with limn's own passes on
+WebGPU: per level the face-, edge- and vertex-point compute passes, the limit points, the
+view-adaptive tessellation's passes (cull, rates, counts, scan, emit) or the fixed grids, and the
+draw that evaluates the surface in the vertex stage (paper 000). The options are limn-render's;
+what is not listed is not supported here.
+  -o FILE                 the PNG to write (RGB, 8 bits)
+  --size WxH              image size (default 1024x768)
+  --view AZ,EL            auto-framed camera: azimuth, elevation in degrees (default -30,20)
+  --eye X,Y,Z             explicit camera position (with --target, default the box centre,
+                          and --up, default the world's up)
+  --target X,Y,Z
+  --up X,Y,Z
+  --up-axis y|z           the world's up axis (default y)
+  --fov DEG               vertical field of view (default 35)
+  --light AZ,EL           key light relative to the camera (default -40,35)
+  --samples 1|4           MSAA samples per pixel (default 4, as limn-render's)
+  --sample-shading        shade each sample on its own (with --samples 4)
+  --shade MODE            lit, normal, uv, levels (default lit; texture: not supported here yet)
+  --color R,G,B           base colour, sRGB 0..1 (default 0.8,0.8,0.8)
+  --background R,G,B      sRGB 0..1 (default 0.2,0.2,0.2)
+  --tess N                most segments per patch edge (default 64)
+  --edge-pixels P         view-adaptive: segments of about P pixels (default 4); 0: the fixed
+                          grids of 2^(depth-l) segments per level-l patch side
+  --bench N               render N frames, print limn-render's --bench JSON fields on stdout
+  --help, --version
+Not supported here yet: --displace, --texture, --wire, --mesh-out, smooth UVs under --shade uv,
+BLND (blending surfaces).
+Exit codes: 0 ok, 1 bad input, 2 usage, 3 missing capability.
+`;
+
+class Usage extends Error {}
+
+function numbers(opt, v, n) {
+  const parts = v.split(',').map(Number);
+  if (parts.length !== n || parts.some((x) => !Number.isFinite(x))) throw new Usage(`${opt}: '${v}' is not ${n} comma-separated numbers`);
+  return parts;
+}
+
+function parseArgs(argv) {
+  const o = { settings: { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 }, bench: 0 };
+  const s = o.settings;
+  for (let i = 0; i < argv.length; i++) {
+    const a = argv[i];
+    const value = () => {
+      if (i + 1 >= argv.length) throw new Usage(`${a} needs a value`);
+      return argv[++i];
+    };
+    switch (a) {
+      case '--help': case '-h': o.help = true; break;
+      case '--version': o.version = true; break;
+      case '-o': case '--output': o.output = value(); break;
+      case '--size': {
+        const m = /^(\d+)x(\d+)$/.exec(value());
+        if (!m || +m[1] < 1 || +m[2] < 1 || +m[1] > 16384 || +m[2] > 16384) throw new Usage(`--size: '${argv[i]}' is not WIDTHxHEIGHT with each 1 to 16384`);
+        s.width = +m[1]; s.height = +m[2];
+        break;
+      }
+      case '--view': { const [az, el] = numbers(a, value(), 2); s.view.azimuthDeg = az; s.view.elevationDeg = el; o.viewGiven = true; break; }
+      case '--eye': s.view.eye = numbers(a, value(), 3); break;
+      case '--target': s.view.target = numbers(a, value(), 3); break;
+      case '--up': s.view.up = numbers(a, value(), 3); break;
+      case '--up-axis': { const v = value(); if (v !== 'y' && v !== 'z') throw new Usage('--up-axis: y or z'); s.view.zUp = v === 'z'; break; }
+      case '--fov': { const [f] = numbers(a, value(), 1); if (f < 1 || f > 170) throw new Usage('--fov: 1 to 170'); s.view.fovDeg = f; break; }
+      case '--light': { const [az, el] = numbers(a, value(), 2); s.lightAzimuthDeg = az; s.lightElevationDeg = el; break; }
+      case '--samples': { const v = value(); if (v !== '1' && v !== '4') throw new Usage(`--samples: '${v}' is not 1 or 4 (the MSAA counts WebGPU offers)`); s.samples = +v; break; }
+      case '--sample-shading': s.sampleShading = true; break;
+      case '--shade': { const v = value(); if (!(v in SHADES)) throw new Usage(`--shade: '${v}' is not one of ${Object.keys(SHADES).join(', ')}`); s.shade = v; break; }
+      case '--color': s.color = numbers(a, value(), 3); break;
+      case '--background': s.background = numbers(a, value(), 3); break;
+      case '--tess': { const [t] = numbers(a, value(), 1); if (!Number.isInteger(t) || t < 1 || t > 4096) throw new Usage('--tess: an integer from 1 to 4096'); s.tess = t; break; }
+      case '--edge-pixels': { const [p] = numbers(a, value(), 1); if (p < 0 || p > 4096) throw new Usage('--edge-pixels: 0 to 4096'); s.edgePixels = p; break; }
+      case '--bench': { const [n] = numbers(a, value(), 1); if (!Number.isInteger(n) || n < 0 || n > 100000) throw new Usage('--bench: 0 to 100000 frames'); o.bench = n; break; }
+      case '--displace': case '--texture': case '--displace-scale': case '--displace-mid': case '--no-seam-fix':
+        throw Object.assign(new LimnError(`${a} is not supported here yet; use limn-render`, 'capability'), { capability: true });
+      default:
+        if (a.startsWith('-') && a !== '-') throw new Usage(`unknown option ${a} (see --help)`);
+        if (o.input) throw new Usage(`one input file, not '${o.input}' and '${a}'`);
+        o.input = a;
+    }
+  }
+  if (o.help || o.version) return o;
+  if (!o.input) throw new Usage('no input file (see --help)');
+  if (!o.output && !o.bench) throw new Usage('no output: give -o OUT.png (or --bench N)');
+  if (o.output && !o.output.endsWith('.png')) throw new Usage(`-o ${o.output}: only PNG is written here (name it .png)`);
+  if (s.view.eye && o.viewGiven) throw new Usage('--view and --eye exclude each other');
+  if ((s.view.target || s.view.up) && !s.view.eye) throw new Usage('--target and --up describe an explicit camera; give --eye too');
+  return o;
+}
+
+async function main(argv) {
+  const o = parseArgs(argv);
+  if (o.help) { process.stdout.write(HELP); return 0; }
+  if (o.version) { process.stdout.write(`${TOOL} 0.1.0\n`); return 0; }
+  let bytes;
+  try {
+    bytes = readFileSync(o.input);
+  } catch (e) {
+    throw new LimnError(`cannot read: ${e.code ?? e.message}`, 'input');
+  }
+  const surface = loadLimn(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength));
+  const { device, adapter } = await requestNodeDevice();
+  let lost = null;
+  device.lost.then((info) => { lost = info; });
+  device.onuncapturederror = (e) => { lost ??= { message: e.error.message }; };
+  const renderer = await Renderer.create(device, surface, o.settings);
+  const frames = Math.max(o.bench, 1);
+  const times = [], js = [];
+  for (let f = 0; f < frames; f++) {
+    const t0 = performance.now();
+    renderer.frame();
+    await device.queue.onSubmittedWorkDone();
+    times.push(performance.now() - t0);
+    js.push(renderer.timings.js);
+  }
+  const pixels = await renderer.pixels();
+  if (lost) throw new Error(`the WebGPU device failed: ${lost.message}`);
+  if (o.output) {
+    const tmp = join(dirname(o.output), `.${basename(o.output)}.limn-tmp-${process.pid}`);
+    try {
+      writeFileSync(tmp, encodePng(o.settings.width, o.settings.height, pixels));
+      renameSync(tmp, o.output);
+    } catch (e) {
+      rmSync(tmp, { force: true });
+      throw new LimnError(`cannot write: ${e.code ?? e.message}`, 'output');
+    }
+  }
+  if (o.bench) {
+    // Medians over the frames after the first (pipeline compiles and first uploads).
+    const median = (a) => { const b = a.slice(a.length > 1 ? 1 : 0).sort((x, y) => x - y); return b[b.length >> 1]; };
+    const s = o.settings;
+    const report = {
+      frames: o.bench, samples: s.samples, sample_shading: !!s.sampleShading, supersample: 1,
+      size: `${s.width}x${s.height}`,
+      gpu_ms: { compute: null, draw: null, total: +median(times).toFixed(3) },
+      passes: {},
+      cpu_ms: +median(js).toFixed(3),
+      triangles: await renderer.drawnTriangles(),
+      vertices_evaluated: surface.tables.totalVertices - surface.tables.levels[0].count + surface.tables.limitCount + renderer.tess.vertexCount,
+      buffer_bytes: Object.values(renderer.buffers).reduce((n, b) => n + b.size, 0),
+      peak_rss_mb: +(process.resourceUsage().maxRSS / 1024).toFixed(1),
+      device: adapter.info.description || adapter.info.device,
+    };
+    process.stdout.write(`${JSON.stringify(report)}\n`);
+  }
+  renderer.destroy();
+  device.destroy();
+  return 0;
+}
+
+try {
+  process.exitCode = await main(process.argv.slice(2));
+} catch (e) {
+  const file = e instanceof LimnError && !['usage', 'capability', 'output', 'input'].includes(e.where) ? `${process.argv.slice(2).find((a) => !a.startsWith('-')) ?? ''}: ` : '';
+  if (e instanceof Usage) {
+    process.stderr.write(`${TOOL}: error: ${e.message}\n`);
+    process.exitCode = 2;
+  } else if (e instanceof LimnError) {
+    const what = ['usage', 'capability', 'output', 'input'].includes(e.where) ? e.detail : e.message;
+    process.stderr.write(`${TOOL}: error: ${file}${what}\n`);
+    process.exitCode = e.where === 'usage' ? 2 : e.where === 'capability' || e.capability ? 3 : 1;
+  } else if (e.capability) {
+    process.stderr.write(`${TOOL}: error: ${e.message}\n`);
+    process.exitCode = 3;
+  } else {
+    process.stderr.write(`${TOOL}: error: ${e.stack ?? e.message}\n`);
+    process.exitCode = 1;
+  }
+}

@@ -1,0 +1,386 @@
+// The chunks the WebGPU runtime reads (formats/limn.md, sections 5-8): MESH, FVUV, TAGS, MATL,
+// CLSF, TBLS (versions 1 and 2), SEAM. Every count and index is checked as the C++ readers check it
+// (lib/mesh/mesh_chunks.cpp, lib/mesh/mesh.cpp validateMesh, lib/topology/classification.cpp,
+// lib/subdiv/tables_chunk.cpp, lib/seams/seams.cpp), so that nothing out of range reaches the GPU.
+import { LimnError, chunkReader, parseContainer } from './container.mjs';
+
+const MAX_DEPTH = 16;
+const MAX_COORDINATE = 1e18; // lib/mesh: beyond it a float square overflows
+const MAX_STENCIL_WEIGHT = 1e6;
+const INFINITE_SHARPNESS = 10;
+
+// 64-bit FNV-1a in two 32-bit halves (prime 2^40 + 0x1b3), as lib/container's hashBytes.
+export class Fnv64 {
+  constructor(hi = 0xcbf29ce4, lo = 0x84222325) { this.hi = hi >>> 0; this.lo = lo >>> 0; }
+  update(bytes) {
+    let { hi, lo } = this;
+    for (let i = 0; i < bytes.length; i++) {
+      lo = (lo ^ bytes[i]) >>> 0;
+      const t = lo * 0x1b3;
+      const nlo = t >>> 0;
+      hi = (hi * 0x1b3 + Math.floor(t / 4294967296) + ((lo << 8) >>> 0)) >>> 0;
+      lo = nlo;
+    }
+    this.hi = hi; this.lo = lo;
+    return this;
+  }
+  get value() { return (BigInt(this.hi) << 32n) | BigInt(this.lo); }
+}
+const bytesOf = (a) => new Uint8Array(a.buffer, a.byteOffset, a.byteLength);
+
+function decodeMesh(chunk) {
+  const r = chunkReader(chunk, 1);
+  const V = r.u32('vertex count'), F = r.u32('face count'), C = r.u64n('corner count');
+  const positions = r.array(Float64Array, V * 3, 'positions');
+  const faceSizes = r.array(Uint32Array, F, 'face sizes');
+  const faceVertices = r.array(Uint32Array, C, 'face vertices');
+  r.requireEnd();
+  const where = 'chunk MESH';
+  if (V === 0) throw new LimnError('the mesh has no vertices', where);
+  if (F === 0) throw new LimnError('the mesh has no faces', where);
+  const faceOffsets = new Uint32Array(F + 1);
+  let sum = 0;
+  for (let f = 0; f < F; f++) {
+    sum += faceSizes[f];
+    if (sum > C) throw new LimnError(`face sizes add up to more than the ${C} corners (at face ${f})`, where);
+    faceOffsets[f + 1] = sum;
+  }
+  if (sum !== C) throw new LimnError(`face sizes add up to ${sum}, not the ${C} corners stored`, where);
+  for (let i = 0; i < V * 3; i++) {
+    const x = positions[i];
+    if (!Number.isFinite(x)) throw new LimnError(`vertex ${Math.floor(i / 3)} has a non-finite position (NaN or Inf)`, where);
+    if (Math.abs(x) > MAX_COORDINATE) throw new LimnError(`vertex ${Math.floor(i / 3)} lies beyond the 1e18 that the GPU's float arithmetic carries; scale the mesh down`, where);
+  }
+  const seen = new Int32Array(V).fill(-1);
+  for (let f = 0; f < F; f++) {
+    const a = faceOffsets[f], b = faceOffsets[f + 1];
+    if (b - a < 3) throw new LimnError(`face ${f} has ${b - a} vertices; a face needs at least 3`, where);
+    for (let i = a; i < b; i++) {
+      const v = faceVertices[i];
+      if (v >= V) throw new LimnError(`face ${f} refers to vertex ${v} but there are only ${V}`, where);
+      if (seen[v] === f) throw new LimnError(`face ${f} is degenerate: it uses vertex ${v} twice`, where);
+      seen[v] = f;
+    }
+  }
+  return { vertexCount: V, faceCount: F, positions, faceOffsets, faceVertices, faceSizes };
+}
+
+function decodeUVs(chunk, mesh) {
+  const r = chunkReader(chunk, 1);
+  const N = r.u32('UV count');
+  r.zero32();
+  const C = r.u64n('corner count');
+  if (C !== mesh.faceVertices.length) r.fail(`UV corner count ${C} differs from the mesh's ${mesh.faceVertices.length}`);
+  const values = r.array(Float64Array, N * 2, 'UV values');
+  const indices = r.array(Uint32Array, C, 'UV indices');
+  r.requireEnd();
+  for (let i = 0; i < values.length; i++) {
+    if (!Number.isFinite(values[i])) throw new LimnError(`UV ${i >> 1} is not finite`, 'chunk FVUV');
+  }
+  for (let c = 0; c < C; c++) {
+    if (indices[c] >= N) throw new LimnError(`corner ${c} refers to UV ${indices[c]} but there are only ${N}`, 'chunk FVUV');
+  }
+  return { values, indices };
+}
+
+function decodeTags(chunk, mesh) {
+  const r = chunkReader(chunk, 1);
+  const option = (max, what) => {
+    const v = r.u8(what);
+    if (v !== 255 && v > max) r.fail(`${what} value ${v} is out of range`);
+    return v === 255 ? null : v;
+  };
+  const tags = {
+    boundary: option(2, 'boundary rule'), fvar: option(5, 'face-varying rule'),
+    creaseMethod: option(1, 'crease method'), triangles: option(1, 'triangle rule'),
+  };
+  const nc = r.u32('crease count'), nk = r.u32('corner count'), nh = r.u32('hole count');
+  if (nc > Math.floor(r.remaining / 12)) r.fail(`crease count ${nc} too large`);
+  tags.creases = [];
+  for (let i = 0; i < nc; i++) {
+    const v0 = r.u32(), v1 = r.u32(), sharpness = r.f32();
+    if (v0 >= mesh.vertexCount || v1 >= mesh.vertexCount || v0 === v1) r.fail(`crease ${i} joins vertices ${v0} and ${v1}, not an edge of the mesh's ${mesh.vertexCount} vertices`);
+    if (!(sharpness >= 0) || !Number.isFinite(sharpness)) r.fail(`crease ${i} has sharpness ${sharpness}`);
+    tags.creases.push({ v0, v1, sharpness });
+  }
+  if (nk > Math.floor(r.remaining / 8)) r.fail(`corner count ${nk} too large`);
+  tags.corners = [];
+  for (let i = 0; i < nk; i++) {
+    const vertex = r.u32(), sharpness = r.f32();
+    if (vertex >= mesh.vertexCount) r.fail(`corner ${i} refers to vertex ${vertex} of ${mesh.vertexCount}`);
+    if (!(sharpness >= 0) || !Number.isFinite(sharpness)) r.fail(`corner ${i} has sharpness ${sharpness}`);
+    tags.corners.push({ vertex, sharpness });
+  }
+  tags.holes = r.array(Uint32Array, nh, 'holes');
+  r.requireEnd();
+  for (const h of tags.holes) if (h >= mesh.faceCount) throw new LimnError(`hole face ${h} of ${mesh.faceCount}`, 'chunk TAGS');
+  return tags;
+}
+
+function decodeMaterial(chunk) {
+  const r = chunkReader(chunk, 1);
+  const baseColorFactor = [];
+  for (let c = 0; c < 4; c++) {
+    const v = r.f32();
+    if (!(v >= 0 && v <= 1)) r.fail(`base colour factor component ${c} is not within 0 to 1`);
+    baseColorFactor.push(v);
+  }
+  const formatLength = r.u32('format length');
+  r.zero32();
+  const textureLength = r.u64n('texture length');
+  if (formatLength > 255) r.fail(`texture format name of ${formatLength} bytes (at most 255)`);
+  if ((formatLength === 0) !== (textureLength === 0)) r.fail('a texture needs a format name, and a format name a texture');
+  const name = r.bytesOf(formatLength, 'texture format name');
+  for (const ch of name) {
+    if (!/[A-Za-z0-9._-]/.test(String.fromCharCode(ch))) r.fail('texture format name holds a character other than A-Z a-z 0-9 . _ -');
+  }
+  const texture = r.bytesOf(textureLength, 'texture bytes');
+  r.requireEnd();
+  return { baseColorFactor, textureFormat: String.fromCharCode(...name), texture };
+}
+
+function decodeClassification(chunk, mesh) {
+  const r = chunkReader(chunk, 1);
+  const options = { boundary: r.u8(), creaseMethod: r.u8(), triangles: r.u8(), fvar: r.u8() };
+  if (options.boundary > 2 || options.creaseMethod > 1 || options.triangles > 1 || options.fvar > 5) r.fail('scheme option out of range');
+  const V = r.u32('vertex count'), F = r.u32('face count');
+  if (V !== mesh.vertexCount || F !== mesh.faceCount) {
+    r.fail(`classification is for ${V} vertices and ${F} faces, the mesh has ${mesh.vertexCount} and ${mesh.faceCount}`);
+  }
+  const counts = { edges: r.u32(), boundaryEdges: r.u32(), nonManifoldEdges: r.u32(), uvSeamEdges: r.u32() };
+  r.zero32();
+  const vertexValence = r.array(Uint32Array, V, 'vertex valences');
+  const vertexFlags = r.array(Uint32Array, V, 'vertex flags');
+  const faceFlags = r.array(Uint32Array, F, 'face flags');
+  r.requireEnd();
+  return { options, ...counts, vertexValence, vertexFlags, faceFlags };
+}
+
+// The hash TBLS records (lib/subdiv/tables.cpp topologyHash).
+function topologyHash(mesh, tags, options) {
+  const h = new Fnv64();
+  h.update(bytesOf(mesh.faceOffsets)).update(bytesOf(mesh.faceVertices));
+  h.update(new Uint8Array([options.boundary, options.creaseMethod, options.triangles, options.fvar]));
+  const w = new DataView(new ArrayBuffer(12));
+  for (const c of tags?.creases ?? []) {
+    w.setUint32(0, c.v0, true); w.setUint32(4, c.v1, true); w.setFloat32(8, c.sharpness, true);
+    h.update(new Uint8Array(w.buffer, 0, 12));
+  }
+  for (const c of tags?.corners ?? []) {
+    w.setUint32(0, c.vertex, true); w.setFloat32(4, c.sharpness, true);
+    h.update(new Uint8Array(w.buffer, 0, 8));
+  }
+  h.update(bytesOf(tags?.holes ?? new Uint32Array(0)));
+  w.setUint32(0, mesh.vertexCount, true);
+  h.update(new Uint8Array(w.buffer, 0, 4));
+  return h.value;
+}
+
+function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0) {
+  const n = r.u32(), entries = r.u32(), hasWeights = r.u32();
+  r.zero32(`${what}: reserved field`);
+  if (n !== rows) r.fail(`${what}: ${n} rows, expected ${rows}`);
+  if (hasWeights !== (weights ? 1 : 0)) r.fail(`${what}: weight flag is wrong`);
+  const start = r.array(Uint32Array, rows + 1, `${what} starts`);
+  const index = r.array(Uint32Array, entries, `${what} indices`);
+  const weight = weights ? r.array(Float32Array, entries, `${what} weights`) : null;
+  if (start[0] !== 0 || start[rows] !== entries) r.fail(`${what}: row starts do not span the ${entries} entries`);
+  for (let i = 0; i < rows; i++) {
+    if (start[i + 1] < start[i] || start[i + 1] - start[i] > 65536) r.fail(`${what}: row ${i} has a bad length`);
+    if (!weights && start[i + 1] === start[i]) r.fail(`${what}: face point ${i} is empty`);
+  }
+  for (let i = 0; i < entries; i++) {
+    const x = index[i];
+    if (!((x >= lo0 && x < hi0) || (x >= lo1 && x < hi1))) r.fail(`${what}: entry ${i} reads vertex ${x} outside the levels it may read`);
+    if (weights && !(Math.abs(weight[i]) <= MAX_STENCIL_WEIGHT)) r.fail(`${what}: entry ${i} has weight ${weight[i]}; a stencil weight must be finite and within +-1e6`);
+  }
+  return { rows, start, index, weight };
+}
+
+const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
+
+function decodeTables(chunk, mesh, tags) {
+  if (chunk.version > 2) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 or 2); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 2);
+  const patchWords = chunk.version >= 2 ? 22 : 21;
+  const depth = r.u32('depth');
+  if (depth > MAX_DEPTH) r.fail(`depth ${depth} is out of range`);
+  const flags = r.u32('flags');
+  if (flags > 1) r.fail('unknown flags');
+  const options = { boundary: r.u8(), creaseMethod: r.u8(), triangles: r.u8(), fvar: r.u8() };
+  if (options.boundary > 2 || options.creaseMethod > 1 || options.triangles > 1 || options.fvar > 5) r.fail('scheme option out of range');
+  r.zero32();
+  const hash = r.u64('topology hash');
+  if (hash !== topologyHash(mesh, tags, options)) {
+    throw new LimnError('the subdivision tables were built for a different mesh topology or tags; re-run limn-tables', 'chunk TBLS');
+  }
+  const totalVertices = r.u32(), P = r.u32('patch count'), Q = r.u32('irregular count'), L = r.u32('limit count');
+  const levels = [];
+  let sum = 0;
+  for (let l = 0; l <= depth; l++) {
+    const lv = { first: r.u32(), facePoints: r.u32(), edgePoints: r.u32(), vertexPoints: r.u32(), regularPatches: r.u32(), irregularFaces: r.u32() };
+    if (lv.first !== sum) r.fail(`level ${l} does not start where the previous ends`);
+    lv.count = lv.facePoints + lv.edgePoints + lv.vertexPoints;
+    sum += lv.count;
+    if (sum > totalVertices) r.fail('level vertex counts exceed the total');
+    levels.push(lv);
+  }
+  if (sum !== totalVertices) r.fail('level vertex counts do not add up to the total');
+  if (levels[0].count !== mesh.vertexCount) r.fail(`level 0 has ${levels[0].count} vertices, the mesh ${mesh.vertexCount}`);
+  const facePoints = [], edgePoints = [], vertexPoints = [];
+  for (let l = 1; l <= depth; l++) {
+    const p = levels[l - 1], c = levels[l];
+    const end = p.first + p.count, faceEnd = c.first + c.facePoints;
+    facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end));
+    edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd));
+    vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd));
+  }
+  const ptex = ptexCount(mesh), R = 2 ** depth;
+  const squares = [];
+  const dyadic = (x) => Number.isFinite(x) && Number.isInteger(x * R);
+  const checkDomain = (p, u0, v0, size, what) => {
+    if (p >= ptex) r.fail(`${what} refers to ptex face ${p} that does not exist`);
+    if (!(size > 0) || !dyadic(size) || !dyadic(u0) || !dyadic(v0) || u0 < 0 || v0 < 0 || u0 + size > 1 || v0 + size > 1) {
+      r.fail(`${what} has a domain outside its ptex face or finer than the tables' depth`);
+    }
+    const W = size * R, U0 = u0 * R, V0 = v0 * R;
+    if ((W & (W - 1)) !== 0 || U0 % W !== 0 || V0 % W !== 0) r.fail(`${what} has a domain that is not a cell of its ptex face's quadtree`);
+    squares.push({ ptex: p, W, U0, V0 });
+  };
+  if (P > Math.floor(r.remaining / (4 * patchWords))) r.fail(`patch count ${P} is too large`);
+  // GPU layout: 24 words a patch (surface_eval.glsl's Patch: cv[16], ptex, u0, v0, size, packed,
+  // sharpness, 2 words of padding).
+  const W = 24;
+  const patches = new Uint32Array(Math.max(P, 1) * W);
+  const pf = new Float32Array(patches.buffer);
+  for (let i = 0; i < P; i++) {
+    const what = `patch ${i}`;
+    const w = patches.subarray(W * i, W * i + W);
+    for (let k = 0; k < 16; k++) w[k] = r.u32();
+    w[16] = r.u32(); pf[W * i + 17] = r.f32(); pf[W * i + 18] = r.f32(); pf[W * i + 19] = r.f32();
+    const packed = r.u32();
+    w[20] = packed;
+    const level = packed & 0xff, boundary = (packed >>> 8) & 0xff, crease = (packed >>> 16) & 0xff;
+    if ((packed >>> 24) !== 0 || boundary > 15 || level > depth) r.fail(`${what}: bad level or boundary mask`);
+    const sharpness = chunk.version >= 2 ? r.f32() : 0;
+    pf[W * i + 21] = sharpness;
+    const oneBit = crease !== 0 && (crease & (crease - 1)) === 0 && crease <= 8;
+    if (crease ? !(oneBit && boundary === 0 && sharpness > 0 && sharpness < INFINITE_SHARPNESS) : sharpness !== 0) {
+      r.fail(`${what}: bad crease edge or sharpness`);
+    }
+    const lv = levels[level];
+    for (let k = 0; k < 16; k++) {
+      const cv = w[k];
+      if (cv >= totalVertices || (cv !== 0 && (cv < lv.first || cv >= lv.first + lv.count))) r.fail(`${what} has a control point outside its level`);
+    }
+    checkDomain(w[16], pf[W * i + 17], pf[W * i + 18], pf[W * i + 19], what);
+  }
+  if (Q > Math.floor(r.remaining / 32)) r.fail('irregular face count is too large');
+  const irregular = new Uint32Array(Math.max(Q, 1) * 8);
+  const qf = new Float32Array(irregular.buffer);
+  for (let i = 0; i < Q; i++) {
+    for (let k = 0; k < 4; k++) {
+      const c = r.u32();
+      if (c >= L) r.fail(`irregular face ${i} refers to a missing limit point`);
+      irregular[8 * i + k] = c;
+    }
+    irregular[8 * i + 4] = r.u32(); qf[8 * i + 5] = r.f32(); qf[8 * i + 6] = r.f32(); qf[8 * i + 7] = r.f32();
+    checkDomain(irregular[8 * i + 4], qf[8 * i + 5], qf[8 * i + 6], qf[8 * i + 7], `irregular face ${i}`);
+  }
+  // The domains tile every ptex face exactly once, or not at all (lib/subdiv/tables_chunk.cpp).
+  squares.sort((a, b) => a.ptex - b.ptex);
+  for (let first = 0, end = 0; first < squares.length; first = end) {
+    const p = squares[first].ptex;
+    const present = new Set();
+    let area = 0;
+    for (end = first; end < squares.length && squares[end].ptex === p; end++) {
+      const q = squares[end];
+      const key = `${q.W},${q.U0 / q.W},${q.V0 / q.W}`;
+      if (present.has(key)) r.fail(`two domains cover the same square of ptex face ${p}`);
+      present.add(key);
+      area += q.W * q.W;
+    }
+    for (let k = first; k < end; k++) {
+      for (let W = squares[k].W * 2; W <= R; W *= 2) {
+        if (present.has(`${W},${Math.floor(squares[k].U0 / W)},${Math.floor(squares[k].V0 / W)}`)) r.fail(`a domain lies inside another one of ptex face ${p}`);
+      }
+    }
+    if (area !== R * R) r.fail(`the domains do not cover ptex face ${p} exactly once`);
+  }
+  const last = levels[depth];
+  const lo = last.first, hi = last.first + last.count;
+  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi);
+  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi);
+  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi);
+  const limitVertex = r.array(Uint32Array, L, 'limit vertices');
+  for (const v of limitVertex) if (v < lo || v >= hi) r.fail("a limit point's vertex is not at the last level");
+  const limitFlags = r.array(Uint32Array, L, 'limit flags');
+  for (const f of limitFlags) if (f > 1) r.fail('unknown limit point flag');
+  r.requireEnd();
+  return {
+    depth, uniform: (flags & 1) === 1, options, totalVertices, levels, facePoints, edgePoints, vertexPoints,
+    patchCount: P, patches, irregularCount: Q, irregular, limitCount: L, limitPosition, limitTangent1, limitTangent2,
+    limitVertex, limitFlags,
+  };
+}
+
+function seamsSourceHash(byType) {
+  let h = { hi: 0x5ea4, lo: 0x5ea45ea4 };
+  for (const [type, value] of [['TBLS', 0x534c4254], ['FVUV', 0x56555646]]) {
+    const c = byType.get(type);
+    if (!c) continue;
+    const f = new Fnv64(h.hi, (h.lo ^ value) >>> 0).update(c.payload);
+    h = { hi: f.hi, lo: f.lo };
+  }
+  return (BigInt(h.hi) << 32n) | BigInt(h.lo);
+}
+
+function decodeSeams(chunk, elements, expectedHash) {
+  const r = chunkReader(chunk, 1);
+  const hash = r.u64('source hash');
+  if (hash !== expectedHash) throw new LimnError('the seams were made for other tables or UVs; re-run limn-seams', 'chunk SEAM');
+  const E = r.u32('element count'), U = r.u32('UV count');
+  if (E !== elements) r.fail(`seams for ${E} elements, the tables have ${elements}`);
+  if (E > Math.floor(r.remaining / 96)) r.fail(`element count ${E} is too large`);
+  // GPU layout: 24 words an element, as the chunk (ElementSeams), then the UVs.
+  const records = r.array(Uint32Array, E * 24, 'elements');
+  const uvs = r.array(Float32Array, U * 2, 'UVs');
+  r.requireEnd();
+  const rf = new Float32Array(records.buffer);
+  for (let i = 0; i < U * 2; i++) if (!Number.isFinite(uvs[i])) throw new LimnError(`UV ${i >> 1} is not finite`, 'chunk SEAM');
+  for (let i = 0; i < E; i++) {
+    const e = 24 * i;
+    for (let k = 0; k < 4; k++) {
+      if (!Number.isFinite(rf[e + 2 * k]) || !Number.isFinite(rf[e + 2 * k + 1])) throw new LimnError(`element ${i} has a non-finite UV`, 'chunk SEAM');
+      const cf = records[e + 8 + 2 * k], cc = records[e + 9 + 2 * k];
+      if (cc < 1 || cc > 4096 || cf > U || cc > U - cf) throw new LimnError(`element ${i} corner ${k} UV range is out of bounds`, 'chunk SEAM');
+      const ef = records[e + 16 + 2 * k], es = records[e + 17 + 2 * k];
+      if (es < 1 || es > 2 || ef > U || 2 * es > U - ef) throw new LimnError(`element ${i} edge ${k} UV range is out of bounds`, 'chunk SEAM');
+    }
+  }
+  return { records, uvs, uvCount: U };
+}
+
+/**
+ * Reads a .limn file into what the runtime uploads. Throws LimnError (bad input) naming the
+ * chunk; BLND is refused (blending surfaces are not supported here).
+ */
+export function loadLimn(bytes) {
+  const chunks = parseContainer(bytes);
+  const byType = new Map(chunks.map((c) => [c.type, c]));
+  if (byType.has('BLND')) {
+    throw new LimnError('blending surfaces are not supported here; render this file with limn-render', 'chunk BLND');
+  }
+  if (!byType.has('MESH')) throw new LimnError('the container has no MESH chunk (was it made by limn-classify?)', 'container');
+  const mesh = decodeMesh(byType.get('MESH'));
+  const uvs = byType.has('FVUV') ? decodeUVs(byType.get('FVUV'), mesh) : null;
+  const tags = byType.has('TAGS') ? decodeTags(byType.get('TAGS'), mesh) : null;
+  const material = byType.has('MATL') ? decodeMaterial(byType.get('MATL')) : null;
+  const classification = byType.has('CLSF') ? decodeClassification(byType.get('CLSF'), mesh) : null;
+  if (!byType.has('TBLS')) throw new LimnError('the container has no subdivision tables; run limn-tables --depth N on it', 'container');
+  const tables = decodeTables(byType.get('TBLS'), mesh, tags);
+  const seams = byType.has('SEAM')
+    ? decodeSeams(byType.get('SEAM'), tables.patchCount + tables.irregularCount, seamsSourceHash(byType))
+    : null;
+  return { mesh, uvs, tags, material, classification, tables, seams };
+}

@@ -1,0 +1,520 @@
+// limn-render's frame on WebGPU, pass for pass (lib/render/renderer.cpp, subdivision_pass.cpp,
+// subdivision_draw.cpp), with the same WGSL that gen-shaders.mjs makes from limn's GLSL:
+//   per level l = 1..N: face points, then edge points and vertex points (paper 000, 3.3 and 4.2);
+//   limit points (4.4); then the draw of the fixed watertight tessellation, whose vertices the
+//   vertex stage evaluates from their patch's 16 control points (the bicubic B-spline, eq. 1) or
+//   their irregular face's limit points (4.3), into a 4x multisampled sRGB target.
+// The control points go straight into the level-0 range of the vertex buffer (queue.writeBuffer:
+// what limn-render's staging copy and copy_points.comp do on Vulkan).
+import { ShaderCache, loadShader as loadShaderText } from './shaders.mjs';
+import { buildTessellation } from './tessellation.mjs';
+import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
+import { LimnError } from './container.mjs';
+import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS } from './adaptive.mjs';
+
+const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
+const MAX_GROUPS = 65535;
+const STORAGE = 0x80, COPY_DST = 0x08, COPY_SRC = 0x04, INDEX = 0x10, UNIFORM = 0x40, MAP_READ = 0x01;
+const RENDER_ATTACHMENT = 0x10, TEX_COPY_SRC = 0x01, INDIRECT = 0x100;
+
+// An explicit bind group layout for group 0 of a generated shader, from its declarations (an
+// 'auto' layout leaves out what the entry point does not use, and limn binds by position).
+function groupLayout(device, wgsl, visibility) {
+  const entries = [];
+  for (const m of wgsl.matchAll(/@group\(0\) @binding\((\d+)\)\s*\nvar<storage, (read|read_write)>/g)) {
+    entries.push({ binding: Number(m[1]), visibility, buffer: { type: m[2] === 'read' ? 'read-only-storage' : 'storage' } });
+  }
+  return device.createBindGroupLayout({ entries: entries.sort((a, b) => a.binding - b.binding) });
+}
+
+export const SHADES = { lit: 0, normal: 1, uv: 2, levels: 3, texture: 4 };
+const DEFAULT_BASE = 0.8;
+
+const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4));
+function packSrgb8(c) {
+  let packed = 0;
+  for (let i = 0; i < 3; i++) packed |= Math.round(Math.min(Math.max(c[i], 0), 1) * 255) << (8 * i);
+  return packed >>> 0;
+}
+
+// Concatenates stencil tables as subdivision_draw.cpp's appendRows: starts rebased, one row more
+// per table; returns the first row of each table.
+function appendRows(tables, withWeights) {
+  let rows = 0, entries = 0;
+  for (const t of tables) { rows += t.rows + 1; entries += t.index.length; }
+  const starts = new Uint32Array(Math.max(rows, 1)), index = new Uint32Array(Math.max(entries, 1));
+  const weight = withWeights ? new Float32Array(Math.max(entries, 1)) : null;
+  const firstRows = [];
+  let r = 0, e = 0;
+  for (const t of tables) {
+    firstRows.push(r);
+    for (let i = 0; i <= t.rows; i++) starts[r++] = e + t.start[i];
+    index.set(t.index, e);
+    if (withWeights) weight.set(t.weight, e);
+    e += t.index.length;
+  }
+  return { starts, index, weight, firstRows };
+}
+
+// subdivision_draw.cpp's checkFixedSize: refuses, before building it, a fixed tessellation
+// whose index or vertex buffer would pass WebGPU's 128 MiB storage-buffer limit.
+function checkFixedSize(tables, tessCap) {
+  const N = tables.depth, cap = 2 ** Math.floor(Math.log2(Math.max(tessCap, 1)));
+  let triangles = 0, points = 0;
+  const add = (size, level) => {
+    const W = size * 2 ** N, S = Math.min(Math.min(2 ** (N - level), cap), Math.max(W, 1));
+    triangles += 2 * S * S;
+    points += S * S;
+  };
+  const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
+  for (let i = 0; i < tables.patchCount; i++) add(pf[24 * i + 19], pw[24 * i + 20] & 0xff);
+  const qf = new Float32Array(tables.irregular.buffer);
+  for (let i = 0; i < tables.irregularCount; i++) add(qf[8 * i + 7], N);
+  const limit = 128 * 2 ** 20, indexBytes = triangles * 12, vertexBytes = points * 16;
+  if (indexBytes <= limit && vertexBytes <= limit) return;
+  throw new LimnError(`the fixed tessellation (--edge-pixels 0) would draw about ${triangles} triangles: GPU buffer ` +
+    `'${indexBytes > limit ? 'triangle indices' : 'tessellation vertices'}' would need about ${(Math.max(indexBytes, vertexBytes) / 2 ** 20).toFixed(1)} MiB, ` +
+    "over WebGPU's 128 MiB storage-buffer limit; use a lower --tess, or tables of lower depth (limn-tables --depth)", 'input');
+}
+
+// The CPU-built tessellations of a loaded surface, kept with its tables (they are never written
+// after they are built): renderers of one surface with other views, sizes or shades share them.
+const builtFor = new WeakMap();
+function cached(tables, key, build) {
+  let m = builtFor.get(tables);
+  if (!m) builtFor.set(tables, (m = new Map()));
+  if (!m.has(key)) m.set(key, build());
+  return m.get(key);
+}
+
+/**
+ * A renderer for one loaded surface (chunks.mjs's loadLimn). settings: {width, height, samples
+ * (1|4), shade, edgePixels (0: fixed grids), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
+ * eye, target, up}, color, background, sampleShading}.
+ */
+export class Renderer {
+  static async create(device, surface, settings) {
+    const r = new Renderer(device, surface, settings);
+    await r.init();
+    return r;
+  }
+
+  constructor(device, surface, settings) {
+    this.device = device;
+    this.surface = surface;
+    this.s = { width: 800, height: 600, samples: 4, shade: 'lit', edgePixels: 0, tess: 64, view: {}, background: [0.2, 0.2, 0.2], ...settings };
+    const s = this.s;
+    if (s.samples !== 1 && s.samples !== 4) throw new LimnError(`--samples must be 1 or 4 (the counts WebGPU offers), not ${s.samples}`, 'usage');
+    if (!(s.shade in SHADES)) throw new LimnError(`--shade ${s.shade}: one of ${Object.keys(SHADES).join(', ')}`, 'usage');
+    if (s.shade === 'uv' && !surface.uvs) throw new LimnError('--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade lit or normal', 'input');
+    if (s.shade === 'texture' || s.displace) throw new LimnError('--texture and --displace are not supported here yet', 'capability');
+    if (surface.uvs && s.shade === 'uv' && surface.tables.options.fvar !== 5) {
+      throw new LimnError('smooth face-varying UVs (TAGS fvar other than "all") are not supported here yet', 'capability');
+    }
+    this.timings = { js: 0 };
+  }
+
+  buffer(label, data, usage = STORAGE) {
+    const size = Math.max(Math.ceil(data.byteLength / 4) * 4, 16);
+    const b = this.device.createBuffer({ label, size, usage: usage | COPY_DST, mappedAtCreation: true });
+    new Uint8Array(b.getMappedRange()).set(new Uint8Array(data.buffer, data.byteOffset, data.byteLength));
+    b.unmap();
+    return b;
+  }
+
+  empty(label, size, usage = STORAGE) {
+    return this.device.createBuffer({ label, size: Math.max(size, 16), usage: usage | COPY_DST | COPY_SRC });
+  }
+
+  async init() {
+    const { device, surface, s } = this;
+    const { mesh, tables } = surface;
+    const shaders = new ShaderCache(device);
+    const compute = async (name) => device.createComputePipelineAsync({ label: name, layout: 'auto', compute: { module: await shaders.module(name) } });
+
+    // Tables: every level's face-point rows, edge- and vertex-point rows, the limit stencils.
+    const face = appendRows(tables.facePoints, false);
+    const stencil = appendRows(tables.edgePoints.flatMap((e, l) => [e, tables.vertexPoints[l]]), true);
+    const limit = appendRows([tables.limitPosition, tables.limitTangent1, tables.limitTangent2], true);
+    if (limit.index.byteLength > 128 << 20) throw new LimnError('limit tables over 128 MiB (they come in chunks in limn-render) are not supported here', 'capability');
+    this.levels = [];
+    for (let l = 1; l <= tables.depth; l++) {
+      const L = tables.levels[l];
+      this.levels.push({
+        level: l,
+        face: { firstOut: L.first, firstRow: face.firstRows[l - 1], count: L.facePoints },
+        edge: { firstOut: L.first + L.facePoints, firstRow: stencil.firstRows[2 * (l - 1)], count: L.edgePoints },
+        vertex: { firstOut: L.first + L.facePoints + L.edgePoints, firstRow: stencil.firstRows[2 * (l - 1) + 1], count: L.vertexPoints },
+      });
+    }
+    this.adaptive = s.edgePixels > 0;
+    let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
+    if (this.adaptive) {
+      const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables));
+      let minimum = 0;
+      for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
+      const p = Math.max(s.edgePixels, 0.25);
+      const viewBudget = Math.max(Math.floor((32 * s.width * s.height) / (p * p)), 2 ** 20);
+      const samplePositions = s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
+      this.adaptiveOptions = {
+        edgePixels: s.edgePixels, tess: s.tess, cull: true, samplePositions, texelsPerUV: 0,
+        // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.
+        evaluated: !!s.meshOut,
+        sharePoints: !s.meshOut && s.shade !== 'uv' && s.shade !== 'texture',
+        maxVertices: minimum + ep.elements.length + viewBudget, maxTriangles: minimum + 2 * viewBudget,
+      };
+      this.adaptiveData = adaptiveData(ep, tables, this.adaptiveOptions);
+      this.closed = ep.pieces.length > 0 && ep.pieces.every((pc) => pc.users[1] !== 0xffffffff);
+      this.orientation = this.closed ? surfaceOrientation(mesh) : 0;
+    } else {
+      checkFixedSize(tables, s.tess);
+      const cap = 2 ** Math.floor(Math.log2(Math.max(s.tess, 1)));
+      tess = cached(tables, `fixed ${cap}`, () => buildTessellation({ ...mesh, uvs: surface.uvs }, tables, cap, !!surface.uvs));
+    }
+    this.tess = tess;
+    const b = this.buffers = {
+      vertices: this.empty('table vertices', tables.totalVertices * 16),
+      faceStarts: this.buffer('face-point starts', face.starts),
+      faceIndices: this.buffer('face-point indices', face.index),
+      stencilStarts: this.buffer('stencil starts', stencil.starts),
+      stencilIndices: this.buffer('stencil indices', stencil.index),
+      stencilWeights: this.buffer('stencil weights', stencil.weight),
+      limitStarts: this.buffer('limit starts', limit.starts),
+      limitIndices: this.buffer('limit indices', limit.index),
+      limitWeights: this.buffer('limit weights', limit.weight),
+      limits: this.empty('limit points', Math.max(tables.limitCount, 1) * 32),
+      patches: this.buffer('patches', tables.patches),
+      irregular: this.buffer('irregular faces', tables.irregular),
+      tessVertices: this.buffer('tessellation vertices', tess.vertices),
+      triangles: this.buffer('triangle indices', tess.indices, STORAGE | INDEX),
+      triangleLevels: this.buffer('triangle levels', tess.triangleLevels),
+      texture: this.buffer('colour texture', new Uint32Array([1, 1, 0xffffffff])),
+      push: this.empty('push constants', PUSH_SLOT * (9 + 3 * tables.depth), UNIFORM),
+    };
+    if (this.adaptive) {
+      const d = this.adaptiveData;
+      Object.assign(b, {
+        elements: this.buffer('adaptive elements', d.elements),
+        pieces: this.buffer('adaptive edge pieces', d.pieces),
+        cull: this.empty('adaptive cull flags', d.elementCount * 4),
+        rates: this.empty('adaptive edge rates', d.pieceCount * 4),
+        pieceEnds: this.empty('adaptive piece ends', d.pieceCount * 16),
+        info: this.empty('adaptive element offsets', d.elementCount * 16),
+        totals: this.empty('adaptive totals', TOTALS_WORDS * 4, STORAGE | INDIRECT),
+        tessVertices: this.empty('adaptive tessellation vertices', d.capV * 16),
+        triangles: this.empty('adaptive triangle indices', d.capT * 12, STORAGE | INDEX),
+        triangleLevels: this.empty('adaptive triangle levels', d.capT * 4),
+      });
+    }
+    this.controlPoints = new Float32Array(mesh.vertexCount * 4);
+    for (let i = 0; i < mesh.vertexCount; i++) {
+      this.controlPoints.set([mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2], 1], 4 * i);
+    }
+    const [facePass, stencilPass, limitPass] = await Promise.all(['subdiv_face_points.comp', 'subdiv_stencils.comp', 'subdiv_limit.comp'].map(compute));
+    const perSample = s.sampleShading && s.samples > 1;
+    const vs = await shaders.module(perSample ? 'surface_per_sample.vert' : 'surface.vert');
+    const fs = await shaders.module(perSample ? 'surface_per_sample.frag' : 'surface.frag');
+    const drawLayout = device.createPipelineLayout({ bindGroupLayouts: [
+      groupLayout(device, (await loadShaderText('surface.vert')) + (await loadShaderText('surface.frag')), 1 | 2),
+      device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }),
+      device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 1 | 2, buffer: { type: 'uniform' } }] })] });
+    const drawPipeline = (cullMode) => device.createRenderPipelineAsync({
+      label: `surface (cull ${cullMode})`, layout: drawLayout,
+      vertex: { module: vs },
+      fragment: { module: fs, targets: [{ format: 'rgba8unorm-srgb' }] },
+      primitive: { topology: 'triangle-list', cullMode, frontFace: 'ccw' },
+      depthStencil: { format: 'depth32float', depthWriteEnabled: true, depthCompare: 'less' },
+      multisample: { count: s.samples },
+    });
+    this.drawPipeline = await drawPipeline('none');
+    // View-adaptive on a closed surface seen from outside: the rasterizer drops back faces, as
+    // limn-render's culled draw does (subdivision_pass.cpp culledPipeline).
+    if (this.adaptive && this.closed && this.orientation !== 0) {
+      this.culledPipeline = await drawPipeline(this.orientation > 0 ? 'back' : 'front');
+    }
+    const group = (pipeline, index, buffers) => device.createBindGroup({
+      layout: pipeline.getBindGroupLayout(index),
+      entries: buffers.map((buf, binding) => (buf ? { binding, resource: buf.buffer ? buf : { buffer: buf } } : null)).filter(Boolean),
+    });
+    // Each pass gets its own 256-byte slot of push constants (written once per frame).
+    let slot = 0;
+    const pushGroup = (pipeline) => {
+      const offset = PUSH_SLOT * slot++;
+      return { offset, group: device.createBindGroup({ layout: pipeline.getBindGroupLayout(3), entries: [{ binding: 0, resource: { buffer: b.push, offset, size: PUSH_SLOT } }] }) };
+    };
+    const faceGroup = group(facePass, 0, [b.vertices, b.faceStarts, b.faceIndices]);
+    const stencilGroup = group(stencilPass, 0, [b.vertices, b.stencilStarts, b.stencilIndices, b.stencilWeights]);
+    this.passes = [];
+    this.pushData = new Uint32Array((PUSH_SLOT / 4) * (9 + 3 * tables.depth));
+    const dispatch = (pipeline, bindGroup, count, fields, label) => {
+      if (count === 0) return;
+      const groups = Math.ceil(count / 64);
+      const y = Math.ceil(groups / MAX_GROUPS), x = Math.ceil(groups / y);
+      const p = pushGroup(pipeline);
+      this.pushData.set([count, x * 64, 0, 0, ...fields], p.offset / 4);
+      this.passes.push({ pipeline, bindGroup, push: p.group, x, y, label, pushOffset: p.offset });
+    };
+    for (const L of this.levels) {
+      dispatch(facePass, faceGroup, L.face.count, [L.face.firstOut, L.face.firstRow], `face points L${L.level}`);
+      dispatch(stencilPass, stencilGroup, L.edge.count, [L.edge.firstOut, L.edge.firstRow], `edge points L${L.level}`);
+      dispatch(stencilPass, stencilGroup, L.vertex.count, [L.vertex.firstOut, L.vertex.firstRow], `vertex points L${L.level}`);
+    }
+    dispatch(limitPass, group(limitPass, 0, [b.vertices, b.limitStarts, b.limitIndices, b.limitWeights, b.limits]), tables.limitCount,
+      [tables.limitCount, 0], 'limit points');
+    if (this.adaptive) {
+      // The five passes (adaptive_tess.cpp); their push constants depend on the view (setView).
+      const d = this.adaptiveData;
+      const bindings = {
+        'adaptive_cull.comp': [b.vertices, b.patches, b.irregular, b.limits, b.cull],
+        'adaptive_rates.comp': [b.vertices, b.patches, b.irregular, b.limits, b.pieces, b.cull, b.rates, b.pieceEnds],
+        'adaptive_counts.comp': [b.elements, b.pieces, b.rates, b.cull, b.info, b.pieceEnds],
+        'adaptive_scan.comp': [b.info, b.totals],
+        'adaptive_emit.comp': [b.elements, b.totals, b.pieces, b.rates, b.info, b.tessVertices, b.triangles, b.triangleLevels],
+      };
+      this.adaptivePasses = [];
+      for (const [name, count] of [['adaptive_cull.comp', d.elementCount], ['adaptive_rates.comp', d.pieceCount], ['adaptive_counts.comp', d.elementCount], ['adaptive_scan.comp', 1], ['adaptive_emit.comp', d.elementCount]]) {
+        const module = await shaders.module(name);
+        const layout0 = groupLayout(device, await loadShaderText(name), 4 /* COMPUTE */);
+        const layout3 = device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 4, buffer: { type: 'uniform' } }] });
+        const pipeline = await device.createComputePipelineAsync({ label: name, layout: device.createPipelineLayout({ bindGroupLayouts: [layout0, device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }), layout3] }), compute: { module } });
+        const bindGroup = device.createBindGroup({ layout: layout0, entries: bindings[name].map((buffer, binding) => ({ binding, resource: { buffer } })) });
+        const before = this.passes.length;
+        dispatch(pipeline, bindGroup, count, [], name);
+        if (this.passes.length > before) this.adaptivePasses.push({ name, pass: this.passes[this.passes.length - 1], count });
+      }
+    }
+    const drawPush = pushGroup(this.drawPipeline);
+    this.drawPushOffset = drawPush.offset;
+    this.drawGroups = [group(this.drawPipeline, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture]), drawPush.group];
+
+    // Framing: the control points' box and sphere (boundsOf), the hull samples when auto-framed.
+    const points = [];
+    for (let i = 0; i < mesh.vertexCount; i++) points.push([mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]]);
+    this.bounds = boundsOf(points);
+    this.bounds.hull = s.view.eye ? [] : await this.surfaceSamples();
+    this.setView(s.view);
+
+    const w = s.width, h = s.height;
+    this.color = device.createTexture({ size: [w, h], format: 'rgba8unorm-srgb', usage: RENDER_ATTACHMENT | TEX_COPY_SRC, sampleCount: 1 });
+    if (s.samples > 1) this.msaa = device.createTexture({ size: [w, h], format: 'rgba8unorm-srgb', usage: RENDER_ATTACHMENT, sampleCount: s.samples });
+    this.depth = device.createTexture({ size: [w, h], format: 'depth32float', usage: RENDER_ATTACHMENT, sampleCount: s.samples });
+    this.rowBytes = Math.ceil((w * 4) / 256) * 256;
+    this.readback = device.createBuffer({ size: this.rowBytes * h, usage: MAP_READ | COPY_DST });
+  }
+
+  // limn-render's framing hull (renderer.cpp surfaceSamples): each patch at (s, t) in {0, 1/2, 1}^2
+  // and every limit point, here evaluated by the same passes on the GPU and read back.
+  async surfaceSamples() {
+    const { tables } = this.surface;
+    const P = tables.patchCount, st = [0, 16384, 32768];
+    const tv = new Uint32Array(P * 9 * 4);
+    let n = 0;
+    for (let p = 0; p < P; p++) for (const t of st) for (const u of st) tv.set([p, u | (t << 16), 0, 0], 4 * n++);
+    const tvb = this.buffer('hull samples', tv);
+    const { positions, limits } = await this.evaluate(tvb, n, true);
+    tvb.destroy();
+    const points = [];
+    for (let i = 0; i < n; i++) points.push([positions[4 * i], positions[4 * i + 1], positions[4 * i + 2]]);
+    for (let i = 0; i < tables.limitCount; i++) points.push([limits[8 * i], limits[8 * i + 1], limits[8 * i + 2]]);
+    return points;
+  }
+
+  // The frame's compute passes, then surface_eval.comp (the vertex stage's evaluation, as a
+  // compute pass: limn-render's --eval compute and --mesh-out) over `n` tessellation vertices.
+  async evaluate(tvb, n, withLimits = false) {
+    const { device } = this;
+    const { tables } = this.surface;
+    const shaders = new ShaderCache(device);
+    this.evalPass ??= await device.createComputePipelineAsync({ layout: 'auto', compute: { module: await shaders.module('surface_eval.comp') } });
+    const evalPass = this.evalPass;
+    const b = this.buffers;
+    const pos = this.empty('evaluated positions', n * 16), nrm = this.empty('evaluated normals', n * 16), info = this.empty('evaluated ptex', n * 16);
+    const push = this.empty('evaluate push', 256, UNIFORM);
+    const groups = Math.ceil(Math.max(n, 1) / 64), y = Math.ceil(groups / MAX_GROUPS), x = Math.ceil(groups / y);
+    device.queue.writeBuffer(push, 0, new Uint32Array([n, x * 64, 0, 0, tables.patchCount]));
+    this.uploadControlPoints();
+    const enc = device.createCommandEncoder();
+    this.encodeCompute(enc, false);
+    if (n > 0) {
+      const cp = enc.beginComputePass();
+      cp.setPipeline(evalPass);
+      cp.setBindGroup(0, device.createBindGroup({ layout: evalPass.getBindGroupLayout(0), entries: [b.vertices, b.patches, b.irregular, b.limits, tvb, pos, nrm, info].map((buffer, binding) => ({ binding, resource: { buffer } })) }));
+      cp.setBindGroup(3, device.createBindGroup({ layout: evalPass.getBindGroupLayout(3), entries: [{ binding: 0, resource: { buffer: push } }] }));
+      cp.dispatchWorkgroups(x, y);
+      cp.end();
+    }
+    const L = withLimits ? tables.limitCount : 0;
+    const rb = device.createBuffer({ size: Math.max(n * 16 + L * 32, 16), usage: MAP_READ | COPY_DST });
+    if (n > 0) enc.copyBufferToBuffer(pos, 0, rb, 0, n * 16);
+    if (L > 0) enc.copyBufferToBuffer(b.limits, 0, rb, n * 16, L * 32);
+    device.queue.submit([enc.finish()]);
+    await rb.mapAsync(1);
+    const f = new Float32Array(rb.getMappedRange().slice(0));
+    rb.unmap();
+    for (const buf of [pos, nrm, info, push, rb]) buf.destroy();
+    return { positions: f.subarray(0, 4 * n), limits: f.subarray(4 * n) };
+  }
+
+  /**
+   * The drawn surface, as limn-render --mesh-out writes it: positions (4 floats each) and
+   * triangles. View-adaptive: this view's emitted tessellation (create with settings.meshOut).
+   */
+  async drawnMesh() {
+    if (!this.adaptive) {
+      const { positions } = await this.evaluate(this.buffers.tessVertices, this.tess.vertexCount);
+      return { positions, triangles: this.tess.indices };
+    }
+    const { device } = this;
+    this.uploadControlPoints();
+    const enc = device.createCommandEncoder();
+    this.encodeCompute(enc, true);
+    const rb = device.createBuffer({ size: TOTALS_WORDS * 4, usage: MAP_READ | COPY_DST });
+    enc.copyBufferToBuffer(this.buffers.totals, 0, rb, 0, TOTALS_WORDS * 4);
+    device.queue.submit([enc.finish()]);
+    await rb.mapAsync(1);
+    const t = new Uint32Array(rb.getMappedRange().slice(0));
+    rb.unmap();
+    rb.destroy();
+    if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --edge-pixels or lower --tess', 'input');
+    const triangles = t[16], vertices = t[17];
+    const tri = device.createBuffer({ size: Math.max(triangles * 12, 16), usage: MAP_READ | COPY_DST });
+    const e2 = device.createCommandEncoder();
+    if (triangles) e2.copyBufferToBuffer(this.buffers.triangles, 0, tri, 0, triangles * 12);
+    device.queue.submit([e2.finish()]);
+    await tri.mapAsync(1);
+    const indices = new Uint32Array(tri.getMappedRange().slice(0, triangles * 12));
+    tri.unmap();
+    tri.destroy();
+    const { positions } = await this.evaluate(this.buffers.tessVertices, vertices);
+    return { positions, triangles: indices };
+  }
+
+  setView(view) {
+    const s = this.s, aspect = s.width / s.height;
+    const cam = frameCamera(view, this.bounds, aspect);
+    this.camera = cam;
+    const v = viewMatrix(cam);
+    const vp = multiply(projectionMatrix(cam, aspect), v);
+    const right = [v[0], v[4], v[8]], up = [v[1], v[5], v[9]], forward = [-v[2], -v[6], -v[10]];
+    const az = ((s.lightAzimuthDeg ?? -40) * Math.PI) / 180, el = ((s.lightElevationDeg ?? 35) * Math.PI) / 180;
+    const light = s.shade === 'levels'
+      ? normalize(add(add(mul(forward, -1), mul(up, 0.45)), mul(right, -0.3)))
+      : normalize(add(add(mul(forward, -Math.cos(el) * Math.cos(az)), mul(right, Math.cos(el) * Math.sin(az))), mul(up, Math.sin(el))));
+    const push = new DataView(new ArrayBuffer(128));
+    for (let i = 0; i < 16; i++) push.setFloat32(4 * i, vp[i], true);
+    for (let i = 0; i < 3; i++) {
+      push.setFloat32(64 + 4 * i, cam.eye[i], true);
+      push.setFloat32(80 + 4 * i, light[i], true);
+      push.setFloat32(96 + 4 * i, 0.006, true);
+    }
+    const base = s.color ?? [DEFAULT_BASE, DEFAULT_BASE, DEFAULT_BASE];
+    push.setUint32(76, packSrgb8(base), true);
+    push.setUint32(112, SHADES[s.shade], true);
+    push.setFloat32(116, 2e-3, true);
+    push.setUint32(120, this.surface.tables.patchCount, true);
+    push.setUint32(124, (s.shade === 'levels' ? 1 : 0) | (view.zUp ? 4 : 0), true);
+    this.pushData.set(new Uint32Array(push.buffer), this.drawPushOffset / 4);
+    if (this.adaptive) {
+      // Back faces may be culled only on a closed surface seen from outside the control points' box.
+      const bb = this.bounds, e = cam.eye;
+      const outside = [0, 1, 2].some((i) => e[i] < bb.min[i] || e[i] > bb.max[i]);
+      const facing = outside ? this.orientation : 0;
+      this.facing = facing;
+      const pushes = adaptivePushes(this.adaptiveData, this.surface.tables, this.adaptiveOptions,
+        { viewProj: vp, eye: cam.eye, facing, width: s.width, height: s.height });
+      for (const { name, pass } of this.adaptivePasses) {
+        const words = pushes.find((q) => q[0] === name)[2];
+        // The dispatch header (count, row invocations) stays; the pass's own fields follow at 16.
+        this.pushData.set(words, pass.pushOffset / 4 + 4);
+      }
+    }
+    this.clear = [...s.background.map(srgbToLinear), 1];
+  }
+
+  uploadControlPoints() {
+    this.device.queue.writeBuffer(this.buffers.vertices, 0, this.controlPoints);
+    this.device.queue.writeBuffer(this.buffers.push, 0, this.pushData);
+  }
+
+  encodeCompute(enc, withAdaptive = true) {
+    // One compute pass per dispatch: WebGPU orders their storage accesses like limn's barriers.
+    for (const p of this.passes) {
+      if (!withAdaptive && p.label.startsWith('adaptive')) continue;
+      const cp = enc.beginComputePass({ label: p.label });
+      cp.setPipeline(p.pipeline);
+      cp.setBindGroup(0, p.bindGroup);
+      cp.setBindGroup(3, p.push);
+      cp.dispatchWorkgroups(p.x, p.y);
+      cp.end();
+    }
+  }
+
+  /** Records and submits one frame (upload, compute passes, draw, copy to the readback buffer). */
+  frame() {
+    const t0 = performance.now();
+    const { device, s } = this;
+    this.uploadControlPoints();
+    const enc = device.createCommandEncoder();
+    this.encodeCompute(enc);
+    this.views ??= { target: (this.msaa ?? this.color).createView(), resolve: this.msaa ? this.color.createView() : undefined, depth: this.depth.createView() };
+    const rp = enc.beginRenderPass({
+      colorAttachments: [{
+        view: this.views.target, resolveTarget: this.views.resolve,
+        clearValue: this.clear, loadOp: 'clear', storeOp: this.msaa ? 'discard' : 'store',
+      }],
+      depthStencilAttachment: { view: this.views.depth, depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'discard' },
+    });
+    rp.setPipeline(this.culledPipeline && this.facing ? this.culledPipeline : this.drawPipeline);
+    rp.setBindGroup(0, this.drawGroups[0]);
+    rp.setBindGroup(3, this.drawGroups[1]);
+    const count = this.tess.indices.length;
+    if (this.adaptive && s.shade === 'levels') {
+      rp.drawIndirect(this.buffers.totals, DRAW_ARGS);
+    } else if (this.adaptive) {
+      rp.setIndexBuffer(this.buffers.triangles, 'uint32');
+      rp.drawIndexedIndirect(this.buffers.totals, INDEXED_DRAW_ARGS);
+    } else if (s.shade === 'levels') {
+      rp.draw(count);
+    } else {
+      rp.setIndexBuffer(this.buffers.triangles, 'uint32');
+      rp.drawIndexed(count);
+    }
+    rp.end();
+    enc.copyTextureToBuffer({ texture: this.color }, { buffer: this.readback, bytesPerRow: this.rowBytes }, [s.width, s.height]);
+    device.queue.submit([enc.finish()]);
+    this.timings.js = performance.now() - t0;
+  }
+
+  /** The frame's pixels, RGBA8 rows top to bottom (sRGB, as the PNG holds them). */
+  async pixels() {
+    const { s } = this;
+    await this.readback.mapAsync(1);
+    const src = new Uint8Array(this.readback.getMappedRange());
+    const out = new Uint8Array(s.width * s.height * 4);
+    for (let y = 0; y < s.height; y++) out.set(src.subarray(y * this.rowBytes, y * this.rowBytes + s.width * 4), y * s.width * 4);
+    this.readback.unmap();
+    return out;
+  }
+
+  triangleCount() { return this.tess.indices.length / 3; }
+
+  /** Triangles the last frame drew (view-adaptive: read back from the scan's totals). */
+  async drawnTriangles() {
+    if (!this.adaptive) return this.triangleCount();
+    const rb = this.device.createBuffer({ size: 16, usage: MAP_READ | COPY_DST });
+    const enc = this.device.createCommandEncoder();
+    enc.copyBufferToBuffer(this.buffers.totals, 0, rb, 0, 16);
+    this.device.queue.submit([enc.finish()]);
+    await rb.mapAsync(1);
+    const n = new Uint32Array(rb.getMappedRange())[0] / 3;
+    rb.unmap();
+    rb.destroy();
+    return n;
+  }
+
+  destroy() {
+    for (const buf of Object.values(this.buffers)) buf.destroy();
+    for (const t of [this.color, this.msaa, this.depth]) t?.destroy();
+    this.readback.destroy();
+  }
+}

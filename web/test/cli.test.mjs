@@ -1,0 +1,54 @@
+// limn-web-render's command line: exit codes (1 bad input, 2 usage, 3 capability), errors in
+// limn's format naming the file and chunk, no output file left behind, no hang (timeouts).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { container, scratch, repo } from './support.mjs';
+
+const cli = join(repo, 'web/bin/limn-web-render.mjs');
+const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
+
+test('usage errors exit 2', () => {
+  for (const args of [[], ['x.limn'], ['--frobnicate'], ['x.limn', '-o', 'y.png', '--samples', '3'], ['x.limn', '-o', 'y.jpg']]) {
+    const r = run(...args);
+    assert.equal(r.status, 2, `${args.join(' ')}: ${r.stderr}`);
+    assert.match(r.stderr, /^limn-web-render: error: /);
+  }
+  assert.equal(run('--help').status, 0);
+});
+
+test('damaged containers exit 1 naming the chunk, and leave no output', () => {
+  const bytes = readFileSync(container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, seams: true }));
+  const out = join(scratch, 'damaged.png');
+  const cut = join(scratch, 'cut.limn');
+  writeFileSync(cut, bytes.subarray(0, 300));
+  let r = run(cut, '-o', out);
+  assert.equal(r.status, 1, r.stderr);
+  assert.match(r.stderr, /^limn-web-render: error: .*cut\.limn: header: header says \d+ bytes/);
+  // A TBLS count corrupted (the limit-point count, 36 bytes into its payload).
+  const chunks = [];
+  for (let o = 24; o < bytes.length;) {
+    const n = Number(bytes.readBigUInt64LE(o + 8));
+    chunks.push({ type: bytes.toString('latin1', o, o + 4), o });
+    o += 16 + Math.ceil(n / 8) * 8;
+  }
+  const tbls = chunks.find((c) => c.type === 'TBLS').o;
+  const bad = Buffer.from(bytes);
+  bad.writeUInt32LE(0x7fffffff, tbls + 16 + 36);
+  writeFileSync(cut, bad);
+  r = run(cut, '-o', out);
+  assert.equal(r.status, 1, r.stderr);
+  assert.match(r.stderr, /chunk TBLS: /);
+  assert.equal(existsSync(out), false);
+});
+
+test('what is not supported here exits 3 and says so', () => {
+  const limn = container('quad/spot_quadrangulated.obj', { depth: 1 });
+  const r = run(limn, '-o', join(scratch, 'x.png'), '--displace', 'map.png');
+  assert.equal(r.status, 3, r.stderr);
+  assert.match(r.stderr, /--displace is not supported here/);
+  const b = run(limn, '-o', join(scratch, 'x.png'), '--texture', 'map.png');
+  assert.equal(b.status, 3, b.stderr);
+});

@@ -1,0 +1,112 @@
+// limn-web-render's images against limn-render's for the same container and options, both on the
+// private Mesa 25 lavapipe (the same rasterizer): at most 0.5% of the covered pixels may differ by
+// more than 8/255. The fixed grids (--edge-pixels 0) and the view-adaptive tessellation, 1 and 4
+// samples, lit and --shade levels, on real models: spot (depths 1, 3, 6), a creased torus, a model
+// with face-varying UVs and tags, the paper's demo sphere in its camera, and the paper-size car.
+//
+// The web side renders in this process through the library (one device, each container loaded
+// once, so its CPU tessellation is built once and Dawn compiles each pipeline once); limn-render
+// runs as a command. The command line's own path to the same pixels is pinned by the same-bytes
+// test below and by cli.test.mjs.
+import { test, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { container, paperSphereObj, scratch, tool, repo } from './support.mjs';
+import { privateIcd } from '../src/node_device.mjs';
+import { decodePng } from '../src/png.mjs';
+import { requestNodeDevice } from '../src/node_device.mjs';
+import { loadLimn } from '../src/chunks.mjs';
+import { Renderer } from '../src/renderer.mjs';
+import { compareImages } from './compare.mjs';
+
+const cli = join(repo, 'web/bin/limn-web-render.mjs');
+const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd, XDG_RUNTIME_DIR: process.env.XDG_RUNTIME_DIR ?? '/tmp' };
+
+let gpu = null;
+const surfaces = new Map();
+after(() => gpu?.device.destroy());
+
+// limn-web-render's settings for the options these tests use (its defaults otherwise).
+function settingsOf(args) {
+  const s = { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 };
+  const nums = (v) => v.split(',').map(Number);
+  for (let i = 0; i < args.length; i++) {
+    const v = args[i + 1];
+    switch (args[i]) {
+      case '--size': [s.width, s.height] = v.split('x').map(Number); i++; break;
+      case '--samples': s.samples = Number(v); i++; break;
+      case '--shade': s.shade = v; i++; break;
+      case '--edge-pixels': s.edgePixels = Number(v); i++; break;
+      case '--tess': s.tess = Number(v); i++; break;
+      case '--view': [s.view.azimuthDeg, s.view.elevationDeg] = nums(v); i++; break;
+      case '--eye': s.view.eye = nums(v); i++; break;
+      case '--target': s.view.target = nums(v); i++; break;
+      case '--sample-shading': s.sampleShading = true; break;
+      default: throw new Error(`settingsOf: ${args[i]} is not mapped here`);
+    }
+  }
+  return s;
+}
+
+async function renderBoth(limn, args, name) {
+  const native = join(scratch, `${name}-native.png`);
+  execFileSync(tool('limn-render'), [limn, '-o', native, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
+  gpu ??= await requestNodeDevice();
+  const { device } = gpu;
+  if (!surfaces.has(limn)) surfaces.set(limn, loadLimn(new Uint8Array(readFileSync(limn))));
+  const errors = [];
+  device.onuncapturederror = (e) => errors.push(e.error.message);
+  const s = settingsOf(args);
+  const r = await Renderer.create(device, surfaces.get(limn), s);
+  r.frame();
+  await device.queue.onSubmittedWorkDone();
+  const rgba = await r.pixels();
+  r.destroy();
+  assert.deepEqual(errors, [], `${name}: WebGPU errors`);
+  return compareImages({ width: s.width, height: s.height, rgba }, decodePng(readFileSync(native)));
+}
+
+const spot = (depth) => () => container('quad/spot_quadrangulated.obj', { depth });
+const sphere6 = () => container(paperSphereObj(), { depth: 6, name: 'paper_sphere_d6.limn' });
+const fixed = ['--edge-pixels', '0'];
+const cases = [
+  // The fixed grids (--edge-pixels 0).
+  ['fixed: spot depth 1', spot(1), fixed, [1, 4], ['lit', 'levels']],
+  ['fixed: spot depth 3', spot(3), fixed, [4], ['lit', 'levels']],
+  ['fixed: spot depth 6 (grids capped at 4)', spot(6), [...fixed, '--tess', '4'], [1], ['lit', 'levels']],
+  ['fixed: creased torus depth 3', () => container('osd/catmark/catmark_torus_creases0.obj', { depth: 3 }), [...fixed, '--view', '30,40'], [4], ['lit', 'levels']],
+  ['fixed: face-varying UVs and tags depth 2', () => container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), fixed, [1], ['lit', 'levels']],
+  ['fixed: paper sphere depth 6 in its camera', sphere6, [...fixed, '--eye', '0,12,22', '--target', '0,0,0', '--tess', '16', '--size', '1280x720'], [4], ['lit']],
+  ['fixed: car depth 3', () => container('osd/catmark/catmark_car.obj', { depth: 3 }), [...fixed, '--tess', '4'], [4], ['lit', 'levels']],
+  // The view-adaptive tessellation (limn-render's default, --edge-pixels 4).
+  ['adaptive: spot depth 3', spot(3), [], [1, 4], ['lit', 'levels']],
+  ['adaptive: spot depth 3, normals and per-sample shading', spot(3), ['--sample-shading'], [4], ['normal', 'lit']],
+  ['adaptive: spot depth 6', spot(6), [], [4], ['lit']],
+  ['adaptive: creased torus depth 3', () => container('osd/catmark/catmark_torus_creases0.obj', { depth: 3 }), ['--view', '30,40'], [4], ['lit', 'levels']],
+  ['adaptive: paper sphere depth 6 in its camera', sphere6, ['--eye', '0,12,22', '--target', '0,0,0', '--size', '1280x720'], [4], ['lit']],
+  ['adaptive: car depth 6', () => container('osd/catmark/catmark_car.obj', { depth: 6 }), [], [4], ['lit']],
+];
+
+for (const [label, make, args, samplesList, shades] of cases) {
+  test(`images: ${label}`, async () => {
+    const limn = make();
+    for (const samples of samplesList) {
+      for (const shade of shades) {
+        const name = `${label.replace(/\W+/g, '_')}-${samples}-${shade}`;
+        const size = args.includes('--size') ? [] : ['--size', '320x240'];
+        const r = await renderBoth(limn, [...size, '--samples', String(samples), '--shade', shade, ...args], name);
+        assert.ok(r.covered > 2000, `${name}: only ${r.covered} covered pixels`);
+        assert.ok(r.fraction <= 0.005, `${name}: ${r.off} of ${r.covered} covered pixels differ by more than 8/255 (worst ${r.worst})`);
+      }
+    }
+  });
+}
+
+test('the same command twice writes the same bytes', () => {
+  const limn = container('quad/spot_quadrangulated.obj', { depth: 1 });
+  const a = join(scratch, 'twice-a.png'), b = join(scratch, 'twice-b.png');
+  for (const out of [a, b]) execFileSync(process.execPath, [cli, limn, '-o', out, '--size', '200x150', '--samples', '4'], { env, stdio: 'ignore' });
+  assert.deepEqual(readFileSync(a), readFileSync(b));
+});

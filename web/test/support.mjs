@@ -1,0 +1,53 @@
+// Test helpers: limn's own tools from the build (LIMN_BUILD_DIR, default build/ at the repository
+// root) make the containers; tests fail, naming what is missing, when they are not built.
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { tmpdir } from 'node:os';
+import { fileURLToPath } from 'node:url';
+
+export const repo = fileURLToPath(new URL('../../', import.meta.url));
+export const buildDir = process.env.LIMN_BUILD_DIR ?? join(repo, 'build');
+export const scratch = join(tmpdir(), `limn-web-test-${process.pid}`);
+mkdirSync(scratch, { recursive: true });
+process.on('exit', () => rmSync(scratch, { recursive: true, force: true }));
+
+export function tool(name) {
+  const p = join(buildDir, 'bin', name);
+  if (!existsSync(p)) throw new Error(`${p} is missing: build limn first (scripts/build.sh release)`);
+  return p;
+}
+
+/** Runs limn-classify | limn-tables | [limn-seams] on a mesh of tests/data; returns the path. */
+export function container(mesh, { depth = 2, seams = false, tablesArgs = [], name } = {}) {
+  const out = join(scratch, name ?? `${mesh.replace(/[/.]/g, '_')}_d${depth}${seams ? '_s' : ''}.limn`);
+  if (existsSync(out)) return out;
+  const src = mesh.startsWith('/') ? mesh : join(repo, 'tests/data', mesh);
+  let bytes = execFileSync(tool('limn-classify'), [src, '-o', '-'], { maxBuffer: 1 << 30 });
+  bytes = execFileSync(tool('limn-tables'), ['--depth', String(depth), ...tablesArgs, '-', '-o', '-'], { input: bytes, maxBuffer: 1 << 30 });
+  if (seams) bytes = execFileSync(tool('limn-seams'), ['-', '-o', '-'], { input: bytes, maxBuffer: 1 << 30 });
+  writeFileSync(out, bytes);
+  return out;
+}
+
+export const read = (p) => new Uint8Array(readFileSync(p));
+
+// The paper's demo sphere (tests/support/paper_sphere.h): 16 segments x 16 rings, fans at the poles.
+export function paperSphereObj() {
+  const S = 16, R = 16, v = ['v 0 1 0'], f = [];
+  for (let i = 1; i < R; i++) {
+    for (let j = 0; j < S; j++) {
+      const th = (Math.PI * i) / R, ph = (2 * Math.PI * j) / S;
+      v.push(`v ${Math.sin(th) * Math.cos(ph)} ${Math.cos(th)} ${-Math.sin(th) * Math.sin(ph)}`);
+    }
+  }
+  v.push('v 0 -1 0');
+  const idx = (i, j) => 1 + (i - 1) * S + (j % S) + 1; // OBJ is 1-based
+  for (let j = 0; j < S; j++) f.push(`f 1 ${idx(1, j)} ${idx(1, j + 1)}`);
+  for (let i = 1; i + 1 < R; i++) for (let j = 0; j < S; j++) f.push(`f ${idx(i, j)} ${idx(i + 1, j)} ${idx(i + 1, j + 1)} ${idx(i, j + 1)}`);
+  for (let j = 0; j < S; j++) f.push(`f ${idx(R - 1, j)} ${v.length} ${idx(R - 1, j + 1)}`);
+  const path = join(scratch, 'paper_sphere.obj');
+  writeFileSync(path, `${v.join('\n')}\n${f.join('\n')}\n`);
+  return path;
+}
+

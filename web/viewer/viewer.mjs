@@ -1,0 +1,477 @@
+// The limn viewer: a .limn container drawn in the page by the web/ runtime (limn-render's passes
+// and shaders on WebGPU). State lives in the URL (state.mjs); it draws only when something
+// changed, or while the turntable turns; errors are shown in the panel, in words.
+import { loadLimn, Renderer, LimnError } from '../src/index.mjs';
+import { parseQuery, toQuery, renderCommand, DEFAULTS, SHADE_NAMES } from './state.mjs';
+import { orbit, zoom, pan, frame, viewSpec } from './orbit.mjs';
+import { attachControls } from './controls.mjs';
+import { requestDevice, GpuTimer, ViewerError } from './gpu.mjs';
+
+const $ = (id) => document.getElementById(id);
+const canvas = $('view'), stage = $('stage');
+const query = parseQuery(location.search);
+let state = query.state;
+const sources = { model: query.model, displace: query.displace, texture: query.texture };
+let gpu = null, timer = null, context = null;
+let model = null; // { surface, name }
+let renderer = null, rendererKey = '';
+let map = null; // { name, bitmap }
+let turntable = query.turntable;
+const stats = { frames: 0, fpsFrames: 0, fpsSince: 0 };
+// Parameters the link asked for: an unsupported one is an error shown, a default one is not.
+const asked = new Set(new URLSearchParams(location.search).keys());
+
+// --- errors ---------------------------------------------------------------------------------
+const errors = new Map();
+function showError(key, message) {
+  errors.set(key, message);
+  renderErrors();
+}
+function clearError(key) { if (errors.delete(key)) renderErrors(); }
+function renderErrors() {
+  const box = $('errors');
+  box.replaceChildren(...[...errors.values()].map((m) => Object.assign(document.createElement('div'), { className: 'error', textContent: m })));
+  document.body.dataset.errors = errors.size;
+}
+// A LimnError names the chunk it is about ('chunk TBLS: ...'); its other kinds say only what.
+const GENERIC = ['capability', 'usage', 'input', 'output'];
+function describe(e) {
+  if (e instanceof LimnError) return GENERIC.includes(e.where) ? e.detail : e.message;
+  return e instanceof ViewerError ? e.message : `${e.name ?? 'Error'}: ${e.message ?? e}`;
+}
+
+// --- what the runtime supports ------------------------------------------------------------------
+// The renderer's constructor refuses, in words, what the runtime cannot draw, before any GPU work:
+// a control is disabled with that reason rather than drawing something else.
+const WIRE_MISSING = 'the WebGPU runtime draws no wireframe overlay yet (limn-render --wire)';
+function refusal(overrides) {
+  if (!gpu || !model) return null;
+  try {
+    // Each option is probed alone, on settings the runtime draws, so that one refusal does not hide another.
+    const base = { ...rendererSettings(state), edgePixels: 0, shade: 'lit', sampleShading: false, displace: undefined, texture: undefined };
+    new Renderer(gpu.device, model.surface, { ...base, ...overrides });
+    return null;
+  } catch (e) {
+    return describe(e);
+  }
+}
+
+function rendererSettings(s) {
+  const [width, height] = canvasSize();
+  return {
+    width, height, samples: s.samples, sampleShading: s.sampleShading, shade: s.shade, edgePixels: s.edgePixels, tess: s.tess,
+    view: viewSpec(s), color: s.color ?? undefined, background: s.background,
+    lightAzimuthDeg: s.light[0], lightElevationDeg: s.light[1],
+    ...mapSettings(s),
+  };
+}
+
+function mapSettings(s) {
+  if (map && sources.displace) return { displace: { image: map.bitmap, scale: s.displaceScale, mid: s.displaceMid, seamFix: s.seamFix } };
+  if (map && sources.texture) return { texture: map.bitmap };
+  return {};
+}
+
+// Options the runtime refuses fall back to ones it draws; a link that asked for them says so.
+function supportedState(s) {
+  const out = { ...s };
+  const fallback = (key, value, why) => {
+    if (asked.has(key)) showError(`fallback-${key}`, `${key}=${s[key]}: ${why}; drawing ${key}=${value} instead`);
+    out[key] = value;
+  };
+  if (out.edgePixels > 0) { const why = refusal({ edgePixels: out.edgePixels }); if (why) fallback('edgePixels', 0, why); }
+  if (out.shade !== 'lit') { const why = refusal({ shade: out.shade }); if (why) fallback('shade', 'lit', why); }
+  if (out.wire) fallback('wire', false, WIRE_MISSING);
+  return out;
+}
+
+// --- canvas and renderer ------------------------------------------------------------------------
+function canvasSize() {
+  if (state.size) return state.size;
+  const r = devicePixelRatio || 1;
+  return [Math.max(1, Math.round(stage.clientWidth * r)), Math.max(1, Math.round(stage.clientHeight * r))];
+}
+
+function layoutCanvas() {
+  const [w, h] = canvasSize();
+  canvas.width = w; canvas.height = h;
+  const r = state.size ? 1 : devicePixelRatio || 1;
+  canvas.style.width = `${w / r}px`; canvas.style.height = `${h / r}px`;
+}
+
+// What needs a new renderer (buffers, pipelines, targets); the rest is set on the one there.
+// (View-adaptive tessellation shares points across UV seams unless the shading needs the UVs.)
+const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), model?.serial, map?.serial]);
+
+async function ensureRenderer() {
+  const s = supportedState(state);
+  const key = keyOf(s);
+  if (renderer && key === rendererKey) return renderer;
+  renderer?.destroy();
+  renderer = null;
+  layoutCanvas();
+  context.configure({ device: gpu.device, format: 'rgba8unorm', usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_DST, alphaMode: 'opaque' });
+  // Created framed (limn-render's hull framing needs the surface samples), then given the view.
+  const settings = rendererSettings(s);
+  setBusy(true);
+  try {
+    renderer = await Renderer.create(gpu.device, model.surface, { ...settings, view: viewSpec({ ...s, eye: null }) });
+  } finally {
+    setBusy(false);
+  }
+  rendererKey = key;
+  return renderer;
+}
+
+// One GPU job at a time: a frame, a new renderer (a model dropped while the turntable turns) or
+// the benchmark never use a renderer that another is replacing.
+let gpuWork = Promise.resolve();
+function exclusive(job) {
+  const run = gpuWork.then(job, job);
+  gpuWork = run.catch(() => {});
+  return run;
+}
+
+function setBusy(on) { $('busy').hidden = !on; document.body.dataset.busy = on ? '1' : ''; }
+
+// --- drawing: only when something changed -------------------------------------------------------
+let dirty = false, drawing = false;
+function requestDraw() {
+  dirty = true;
+  document.body.dataset.idle = '';
+  if (!drawing) requestAnimationFrame(drawLoop);
+}
+
+async function drawLoop() {
+  if (drawing || !model || !gpu) return;
+  drawing = true;
+  try {
+    while (dirty) {
+      dirty = false;
+      await exclusive(drawOnce);
+      if (turntable) { state = orbit(state, 0.5, 0, renderer.camera); dirty = true; scheduleUrl(); }
+      if (dirty) await new Promise(requestAnimationFrame);
+    }
+  } catch (e) {
+    showError('render', `drawing failed: ${describe(e)}`);
+  } finally {
+    drawing = false;
+    document.body.dataset.frames = stats.frames;
+    if (!dirty) document.body.dataset.idle = '1';
+  }
+}
+
+async function drawOnce() {
+  const r = await ensureRenderer();
+  const s = supportedState(state);
+  const t0 = performance.now();
+  Object.assign(r.s, { shade: s.shade, background: s.background, color: s.color ?? undefined, lightAzimuthDeg: s.light[0], lightElevationDeg: s.light[1] });
+  r.setView(viewSpec(s));
+  timer.begin();
+  r.frame();
+  const enc = gpu.device.createCommandEncoder({ label: 'to canvas' });
+  enc.copyTextureToTexture({ texture: r.color }, { texture: context.getCurrentTexture() }, [r.s.width, r.s.height]);
+  gpu.device.queue.submit([enc.finish()]);
+  timer.end();
+  const js = performance.now() - t0;
+  await gpu.device.queue.onSubmittedWorkDone();
+  const wall = performance.now() - t0;
+  const gpuMs = await timer.read();
+  const triangles = await r.drawnTriangles();
+  clearError('render');
+  stats.frames++;
+  const now = performance.now();
+  if (!stats.fpsSince || now - stats.fpsSince > 2000) { stats.fpsSince = now; stats.fpsFrames = 0; }
+  stats.fpsFrames++;
+  const fps = now > stats.fpsSince ? (1000 * (stats.fpsFrames - 1)) / (now - stats.fpsSince) : 0;
+  $('st-tris').textContent = triangles.toLocaleString('en-US');
+  $('st-gpu').textContent = gpuMs === null ? (timer.available ? '–' : 'no timestamp queries') : gpuMs.toFixed(2);
+  $('st-js').textContent = js.toFixed(2);
+  $('st-wall').textContent = wall.toFixed(1);
+  $('st-fps').textContent = stats.fpsFrames > 1 ? fps.toFixed(1) : '–';
+  $('st-size').textContent = `${r.s.width}×${r.s.height}, ${r.s.samples} sample${r.s.samples > 1 ? 's' : ''}`;
+  updateCameraText(s);
+  document.body.dataset.frames = stats.frames;
+  return { gpuMs, js, wall, triangles };
+}
+
+// --- state changes ----------------------------------------------------------------------------
+let urlTimer = 0;
+// Chromium refuses (with a console warning) more than ~100 history updates in 10 s: coalesce.
+function scheduleUrl() {
+  if (!urlTimer) urlTimer = setTimeout(writeUrl, 250);
+}
+function writeUrl() {
+  clearTimeout(urlTimer);
+  urlTimer = 0;
+  const q = toQuery(state, sources);
+  const extra = turntable ? `${q ? '&' : ''}turntable=1` : '';
+  history.replaceState(null, '', `${location.pathname}?${q}${extra}`);
+  document.body.dataset.url = location.search;
+}
+
+function commit(next, { immediate = false } = {}) {
+  state = next;
+  immediate ? writeUrl() : scheduleUrl();
+  syncPanel();
+  requestDraw();
+}
+
+function camera() { return renderer?.camera ?? { eye: [0, 0, 1], target: [0, 0, 0], up: [0, 1, 0] }; }
+function updateCameraText(s) {
+  $('camera-text').textContent = s.eye ? `eye ${s.eye.join(', ')}  target ${(s.target ?? camera().target.map((x) => +x.toPrecision(6))).join(', ')}` : `view ${s.view.join(', ')} (framed)`;
+  const [w, h] = canvasSize();
+  $('command').textContent = renderCommand(s, { modelName: model?.name ?? 'MODEL.limn', width: w, height: h, displace: sources.displace && map?.name, texture: sources.texture && map?.name });
+}
+
+// --- loading ------------------------------------------------------------------------------------
+let serial = 0;
+async function openModel(bytes, name) {
+  let surface;
+  try {
+    surface = loadLimn(new Uint8Array(bytes));
+  } catch (e) {
+    showError('model', `${name}: ${describe(e)}`);
+    return false;
+  }
+  clearError('model');
+  for (const k of [...errors.keys()]) if (k.startsWith('fallback-')) clearError(k);
+  const previous = model;
+  model = { surface, name, serial: ++serial };
+  $('model-name').textContent = `${name}: ${surface.mesh.vertexCount} control points, depth ${surface.tables.depth}`;
+  $('welcome').hidden = true;
+  try {
+    await exclusive(ensureRenderer);
+  } catch (e) {
+    showError('model', `${name}: ${describe(e)}`);
+    model = previous;
+    rendererKey = '';
+    return false;
+  }
+  syncPanel();
+  requestDraw();
+  return true;
+}
+
+async function fetchBytes(url, what) {
+  let response;
+  try {
+    response = await fetch(url);
+  } catch (e) {
+    throw new ViewerError(`${what}=${url}: cannot fetch it (${e.message}); is the server running, and does it allow this page to read it?`);
+  }
+  if (!response.ok) throw new ViewerError(`${what}=${url}: the server answered ${response.status} ${response.statusText}`);
+  return response.arrayBuffer();
+}
+
+async function openMap(blob, name, kind) {
+  let bitmap;
+  try {
+    bitmap = await createImageBitmap(blob, { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
+  } catch (e) {
+    showError('map', `${name}: the browser cannot decode this image (${e.message}); use PNG, JPEG or WebP`);
+    return;
+  }
+  clearError('map');
+  map = { name, bitmap, serial: ++serial };
+  sources[kind] = name;
+  $('map-name').textContent = `${name}: ${bitmap.width}×${bitmap.height}, as ${kind === 'displace' ? 'displacement' : 'colour'} map`;
+  const why = refusal(mapSettings(state));
+  if (why) {
+    showError('map', `${name} decoded (${bitmap.width}×${bitmap.height}), but it cannot be used: ${why}`);
+    map = null;
+    sources[kind] = null;
+  }
+  syncPanel();
+  requestDraw();
+}
+
+const baseName = (url) => decodeURIComponent(url.split(/[?#]/)[0].split('/').pop() || url);
+
+// --- the panel ----------------------------------------------------------------------------------
+function setEnabled(input, why) {
+  input.disabled = !!why;
+  const label = input.closest('label');
+  if (!label) return;
+  label.classList.toggle('disabled', !!why);
+  label.title = why ?? '';
+  let note = label.querySelector('.why');
+  if (why && !note) note = label.appendChild(Object.assign(document.createElement('span'), { className: 'why' }));
+  if (note) note.textContent = why ?? '';
+  if (note && !why) note.remove();
+}
+
+function buildPanel() {
+  const shade = $('shade');
+  for (const name of SHADE_NAMES) {
+    const label = document.createElement('label');
+    label.className = 'opt';
+    label.innerHTML = `<input type="radio" name="shade" value="${name}"> ${name}`;
+    shade.append(label);
+    label.firstChild.addEventListener('change', () => commit({ ...state, shade: name }));
+  }
+  for (const t of [1, 2, 4, 8, 16, 32, 64, 128, 256]) $('tess').append(new Option(String(t), String(t)));
+  $('tess').addEventListener('change', (e) => commit({ ...state, tess: +e.target.value }));
+  $('samples').addEventListener('change', (e) => commit({ ...state, samples: +e.target.value }));
+  $('sampleShading').addEventListener('change', (e) => commit({ ...state, sampleShading: e.target.checked }));
+  $('wire').addEventListener('change', (e) => commit({ ...state, wire: e.target.checked }));
+  $('mode-fixed').addEventListener('change', () => commit({ ...state, edgePixels: 0 }));
+  $('mode-adaptive').addEventListener('change', () => commit({ ...state, edgePixels: lastEdgePixels }));
+  $('edgePixels').addEventListener('change', (e) => {
+    const v = +e.target.value;
+    if (Number.isFinite(v) && v > 0 && v <= 4096) { lastEdgePixels = v; commit({ ...state, edgePixels: v }); }
+  });
+  for (const k of ['displaceScale', 'displaceMid']) {
+    $(k).addEventListener('change', (e) => { const v = +e.target.value; if (Number.isFinite(v)) commit({ ...state, [k]: v }); });
+  }
+  $('seamFix').addEventListener('change', (e) => commit({ ...state, seamFix: e.target.checked }));
+  $('reset').addEventListener('click', () => commit({ ...state, view: [...DEFAULTS.view], eye: null, target: null, up: null }, { immediate: true }));
+  $('frame').addEventListener('click', () => commit(frame(state, camera()), { immediate: true }));
+  $('turntable').addEventListener('change', (e) => setTurntable(e.target.checked));
+}
+let lastEdgePixels = DEFAULTS.edgePixels;
+
+function setTurntable(on) {
+  turntable = on;
+  $('turntable').checked = on;
+  writeUrl();
+  if (on) requestDraw();
+}
+
+function syncPanel() {
+  const s = supportedState(state);
+  for (const input of $('shade').querySelectorAll('input')) {
+    input.checked = input.value === s.shade;
+    setEnabled(input, input.value === 'lit' ? null : refusal({ shade: input.value }));
+  }
+  $('samples').value = String(s.samples);
+  $('sampleShading').checked = s.sampleShading;
+  setEnabled($('sampleShading'), s.samples === 1 ? 'with 4 samples only' : refusal({ sampleShading: true }));
+  $('wire').checked = s.wire;
+  setEnabled($('wire'), WIRE_MISSING);
+  if (s.edgePixels > 0) lastEdgePixels = s.edgePixels;
+  $('mode-fixed').checked = s.edgePixels === 0;
+  $('mode-adaptive').checked = s.edgePixels > 0;
+  const adaptiveWhy = refusal({ edgePixels: lastEdgePixels });
+  setEnabled($('mode-adaptive'), adaptiveWhy);
+  $('edgePixels').value = String(lastEdgePixels);
+  setEnabled($('edgePixels'), adaptiveWhy);
+  if (![...$('tess').options].some((o) => +o.value === s.tess)) $('tess').append(new Option(String(s.tess), String(s.tess)));
+  $('tess').value = String(s.tess);
+  $('displaceScale').value = String(s.displaceScale);
+  $('displaceMid').value = String(s.displaceMid);
+  $('seamFix').checked = s.seamFix;
+  const displaceWhy = !map || !sources.displace ? 'drop a height map image on the page first' : null;
+  for (const k of ['displaceScale', 'displaceMid', 'seamFix']) setEnabled($(k), displaceWhy);
+  $('turntable').checked = turntable;
+  updateCameraText(s);
+}
+
+// --- files: drop anywhere, or the pickers ---------------------------------------------------------
+async function openFile(file) {
+  if (/\.limn$/i.test(file.name) || !file.type.startsWith('image/')) {
+    const bytes = await file.arrayBuffer();
+    if (await openModel(bytes, file.name)) {
+      sources.model = null; // a local file has no URL to share
+      writeUrl();
+    }
+  } else {
+    await openMap(file, file.name, state.shade === 'texture' ? 'texture' : 'displace');
+  }
+}
+
+function attachFiles() {
+  let depth = 0;
+  const hint = $('drop-hint');
+  document.addEventListener('dragenter', (e) => { e.preventDefault(); depth++; hint.hidden = false; });
+  document.addEventListener('dragleave', () => { if (--depth <= 0) { depth = 0; hint.hidden = true; } });
+  document.addEventListener('dragover', (e) => e.preventDefault());
+  document.addEventListener('drop', (e) => {
+    e.preventDefault();
+    depth = 0;
+    hint.hidden = true;
+    const file = e.dataTransfer?.files?.[0];
+    if (file) openFile(file);
+  });
+  $('open-model').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openFile(f); e.target.value = ''; });
+  $('open-map').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openMap(f, f.name, state.shade === 'texture' ? 'texture' : 'displace'); e.target.value = ''; });
+}
+
+// --- ?bench=N: frame times of fixed grids and view-adaptive, one JSON line each ------------------
+async function bench(frames) {
+  const median = (a) => { const b = [...a].sort((x, y) => x - y); return b.length ? b[b.length >> 1] : null; };
+  const configs = [{ tessellation: 'fixed', edgePixels: 0 }, { tessellation: 'adaptive', edgePixels: state.edgePixels > 0 ? state.edgePixels : DEFAULTS.edgePixels }];
+  for (const c of configs) {
+    const line = { bench: 'limn-viewer', model: model.name, depth: model.surface.tables.depth, tessellation: c.tessellation, edge_pixels: c.edgePixels, tess: state.tess, samples: state.samples, size: canvasSize(), frames };
+    const why = refusal({ edgePixels: c.edgePixels });
+    if (why) { console.log(JSON.stringify({ ...line, unsupported: why })); continue; }
+    state = { ...state, edgePixels: c.edgePixels };
+    await exclusive(ensureRenderer);
+    await exclusive(drawOnce); // pipelines and first uploads
+    const t = { gpu: [], js: [], wall: [] };
+    for (let f = 0; f < frames; f++) {
+      const r = await exclusive(drawOnce);
+      if (r.gpuMs !== null) t.gpu.push(r.gpuMs);
+      t.js.push(r.js);
+      t.wall.push(r.wall);
+      t.triangles = r.triangles;
+    }
+    const fix = (x) => (x === null ? null : +x.toFixed(3));
+    console.log(JSON.stringify({ ...line, triangles: t.triangles, gpu_ms: fix(median(t.gpu)), js_ms: fix(median(t.js)), wall_ms: fix(median(t.wall)), adapter: gpu.description }));
+  }
+  console.log('limn-viewer bench: done');
+}
+
+// --- start ---------------------------------------------------------------------------------------
+async function start() {
+  $('boot')?.remove();
+  buildPanel();
+  attachFiles();
+  for (const e of query.errors) showError(`url-${e}`, `in the link: ${e}`);
+  try {
+    gpu = await requestDevice();
+  } catch (e) {
+    showError('gpu', describe(e));
+    document.body.dataset.ready = '1';
+    return;
+  }
+  $('st-adapter').textContent = gpu.description;
+  timer = new GpuTimer(gpu.device);
+  gpu.device.lost.then((info) => { if (info.reason !== 'destroyed') showError('gpu', `the WebGPU device was lost: ${info.message || info.reason}; reload the page`); });
+  gpu.device.addEventListener('uncapturederror', (e) => showError('gpu-error', `WebGPU error: ${e.error.message}`));
+  context = canvas.getContext('webgpu');
+  attachControls(canvas, stage, {
+    orbit: (dAz, dEl) => commit(orbit(state, dAz, dEl, camera())),
+    pan: (dx, dy) => commit(pan(state, dx, dy, camera(), canvas.height)),
+    zoom: (f) => commit(zoom(state, f, camera())),
+    key: (k) => (k === 'turntable' ? setTurntable(!turntable) : k === 'frame' ? commit(frame(state, camera())) : commit({ ...state, view: [...DEFAULTS.view], eye: null, target: null, up: null })),
+    end: () => writeUrl(),
+  });
+  if (!state.size) {
+    let resizeTimer = 0;
+    new ResizeObserver(() => { clearTimeout(resizeTimer); resizeTimer = setTimeout(() => model && requestDraw(), 150); }).observe(stage);
+  }
+  syncPanel();
+  if (sources.model) {
+    try {
+      await openModel(await fetchBytes(sources.model, 'model'), baseName(sources.model));
+    } catch (e) {
+      showError('model', describe(e));
+    }
+  } else {
+    $('welcome').hidden = false;
+  }
+  const mapUrl = sources.displace ?? sources.texture;
+  if (mapUrl) {
+    try {
+      const bytes = await fetchBytes(mapUrl, sources.displace ? 'displace' : 'texture');
+      await openMap(new Blob([bytes]), baseName(mapUrl), sources.displace ? 'displace' : 'texture');
+    } catch (e) {
+      showError('map', describe(e));
+    }
+  }
+  document.body.dataset.ready = '1';
+  if (query.bench && model) await bench(query.bench);
+}
+
+start();
