@@ -23,6 +23,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -935,6 +936,19 @@ int main(int argc, char** argv) {
         }
         settings.tessCap = static_cast<uint32_t>(tess);
         settings.edgePixels = edgePixels;
+        if (in.tables && edgePixels > 0) { // the fixed grids draw irregular faces' corners only
+            // Never silently approximate (docs/irregular.md): say when drawn points can fall where
+            // the irregular faces' surface is only bilinear.
+            const IrregularSurfaceCounts irr = irregularSurfaceCounts(*in.tables);
+            if (irr.bilinear)
+                cli::warn(displayName(input) + ": " + std::to_string(irr.bilinear) + " irregular faces are drawn " +
+                          "bilinear between their corners (tables without their surface); re-run limn-tables");
+            else if (irr.basis + irr.subPatches && uint64_t(tess) > (uint64_t(1) << irr.exactLevels))
+                cli::warn(displayName(input) + ": --tess " + std::to_string(tess) + " can draw points within 2^-" +
+                          std::to_string(irr.exactLevels) + " of extraordinary corners, where the surface is " +
+                          "bilinear; re-run limn-tables with --irregular-levels " +
+                          std::to_string(std::bit_width(uint32_t(tess) - 1)));
+        }
         std::optional<render::FloatImage> displacementMap, textureMap;
         if (!displace.empty()) {
             displacementMap = loadMap("--displace", displace);
