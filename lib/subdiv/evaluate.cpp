@@ -255,6 +255,13 @@ SurfacePoint evaluateIrregular(const Tables& t, std::span<const glm::dvec3> V,
     // binary floating point, as the shader does in 1/32768 fixed point.
     const IrregularFace* q = &t.irregular[face];
     if (exact) *exact = true;
+    if ((s == 0 || s == 1) && (tt == 0 || tt == 1)) { // a corner: its limit point, as the fixed grids draw it
+        const LimitPoint& c = limits[q->corner[s == 0 ? (tt == 0 ? 0 : 3) : (tt == 0 ? 1 : 2)]];
+        SurfacePoint r{};
+        r.position = c.position;
+        r.normal = c.normal;
+        return r;
+    }
     if (face < t.irregularNodes.size()) {
         uint32_t node = face;
         for (uint32_t level = 0; level <= t.irregularLevels; ++level) {

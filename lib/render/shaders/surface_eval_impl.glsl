@@ -121,6 +121,12 @@ void smoothPoint(uint h, uint st, out vec3 P, out vec3 n) {
 // normal's sign is the patch's (the sub-patches' axes are the face's).
 void irregularPoint(uint face, uint st, uint patchCount, out vec3 P, out vec3 n) {
     uint S = st & 0xFFFFu, T = st >> 16;
+    if ((S == 0u || S == 32768u) && (T == 0u || T == 32768u)) { // a corner: its limit point, as the fixed grids draw it
+        uint k = S == 0u ? (T == 0u ? 0u : 3u) : (T == 0u ? 1u : 2u);
+        uint c = irregulars.f[face].corner[k];
+        P = limits.v[2u * c].xyz, n = limits.v[2u * c + 1u].xyz;
+        return;
+    }
     uint node = patchCount + face, leaf = face, ls = S, lt = T;
     for (int k = 0; k < 17; ++k) {
         uint c = (S >= 16384u ? 1u : 0u) | (T >= 16384u ? 2u : 0u);
