@@ -936,7 +936,9 @@ int main(int argc, char** argv) {
         }
         settings.tessCap = static_cast<uint32_t>(tess);
         settings.edgePixels = edgePixels;
-        if (in.tables && edgePixels > 0) { // the fixed grids draw irregular faces' corners only
+        // The fixed grids draw irregular faces' corners only; uniform tables (the full-subdivision
+        // baseline) draw every face from its corners by design.
+        if (in.tables && !in.tables->uniform && edgePixels > 0) {
             // Never silently approximate (docs/irregular.md): say when drawn points can fall where
             // the irregular faces' surface is only bilinear.
             const IrregularSurfaceCounts irr = irregularSurfaceCounts(*in.tables);
