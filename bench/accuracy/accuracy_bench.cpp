@@ -9,7 +9,11 @@
 // Prints one JSON object per mesh on stdout and a table on stderr.
 // Usage: bench_accuracy [--depth N] [--uniform] [--osd-isolation L] [--reference-isolation R]
 //        [-v: list the approximate limit points] MESH...
+//        bench_accuracy --ply DRAWN.ply MESH: what limn-render --mesh-out drew (any tessellation,
+//        the view-adaptive one included): every vertex, and the centroid of every triangle whose
+//        corners share a ptex face (at the interpolated (ptex, u, v)), against isolation 10.
 #include "base/error.h"
+#include "drawn_ply.h"
 #include "mesh/import.h"
 #include "osd_oracle.h"
 #include "subdiv/evaluate.h"
@@ -44,6 +48,85 @@ struct Worst {
     }
 };
 
+std::string readAll(const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw std::runtime_error("cannot read " + path);
+    std::string out;
+    char buf[1 << 16];
+    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) out.append(buf, n);
+    std::fclose(f);
+    return out;
+}
+
+// The --ply mode: a drawn mesh against OpenSubdiv's limit.
+int comparePly(const std::string& plyPath, const std::string& meshPath, int refIso) {
+    Warnings w;
+    Mesh mesh = importMeshFile(meshPath, w);
+    SchemeOptions so = resolveSchemeOptions(mesh.tags, {});
+    const test::Drawn d = test::parsePly(readAll(plyPath));
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const auto& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const double diag = glm::length(hi - lo);
+    test::OsdLimitSurface ref(mesh, so, refIso);
+    auto smooth = test::smoothCorners(mesh, so);
+    // Per vertex a point just inside one of its triangles (of its ptex face): picks the side of
+    // a crease as the drawn element did.
+    std::vector<glm::dvec2> inside(d.vertices.size(), glm::dvec2(-1));
+    auto uvOf = [&](int32_t i) { return glm::dvec2(d.vertices[i].uv[0], d.vertices[i].uv[1]); };
+    for (const auto& t : d.triangles) {
+        const auto &a = d.vertices[t[0]], &b = d.vertices[t[1]], &c = d.vertices[t[2]];
+        if (a.ptex != b.ptex || a.ptex != c.ptex) continue;
+        const glm::dvec2 m = (uvOf(t[0]) + uvOf(t[1]) + uvOf(t[2])) / 3.0;
+        for (int k = 0; k < 3; ++k)
+            if (inside[t[k]].x < 0) inside[t[k]] = uvOf(t[k]) + (m - uvOf(t[k])) * 1e-5;
+    }
+    Worst dP, dN, tP;
+    size_t off = 0, offN = 0, flipped = 0, compared = 0, tris = 0, triOff = 0;
+    for (size_t i = 0; i < d.vertices.size(); ++i) {
+        const auto& v = d.vertices[i];
+        const glm::dvec2 in = inside[i].x < 0 ? uvOf(int32_t(i)) : inside[i];
+        glm::dvec3 rp, rn;
+        if (!ref.evaluate(v.ptex, v.uv[0], v.uv[1], in.x, in.y, rp, rn)) continue;
+        char where[120];
+        std::snprintf(where, sizeof where, "ptex %d (%.6g, %.6g)", v.ptex, v.uv[0], v.uv[1]);
+        const double e = glm::length(glm::dvec3(v.p[0], v.p[1], v.p[2]) - rp) / diag;
+        dP.update(e, where);
+        off += e > 1e-5;
+        const int bv = test::baseVertexAt(mesh, uint32_t(v.ptex), v.uv[0], v.uv[1]);
+        const double a = angleDeg(glm::dvec3(v.n[0], v.n[1], v.n[2]), rn);
+        if (a > 90) ++flipped;
+        if (!(bv >= 0 && smooth[bv])) dN.update(a, where), offN += a > 0.5;
+        ++compared;
+    }
+    for (const auto& t : d.triangles) {
+        const auto &a = d.vertices[t[0]], &b = d.vertices[t[1]], &c = d.vertices[t[2]];
+        if (a.ptex != b.ptex || a.ptex != c.ptex) continue;
+        const glm::dvec2 m = (uvOf(t[0]) + uvOf(t[1]) + uvOf(t[2])) / 3.0;
+        glm::dvec3 rp, rn;
+        if (!ref.evaluate(a.ptex, m.x, m.y, rp, rn)) continue;
+        const glm::dvec3 p = (glm::dvec3(a.p[0], a.p[1], a.p[2]) + glm::dvec3(b.p[0], b.p[1], b.p[2]) +
+                              glm::dvec3(c.p[0], c.p[1], c.p[2])) / 3.0;
+        char where[120];
+        std::snprintf(where, sizeof where, "ptex %d (%.6g, %.6g)", a.ptex, m.x, m.y);
+        const double e = glm::length(p - rp) / diag;
+        tP.update(e, where);
+        triOff += e > 1e-5;
+        ++tris;
+    }
+    std::string name = meshPath.substr(meshPath.find_last_of('/') + 1);
+    std::printf("{\"mesh\":\"%s\",\"ply\":\"%s\",\"vertices\":%zu,\"vertices_off\":%zu,"
+                "\"max_position_error\":%.3e,\"max_normal_degrees\":%.4g,\"normals_off\":%zu,"
+                "\"flipped_normals\":%zu,\"triangles\":%zu,\"centroids_off\":%zu,"
+                "\"max_centroid_error\":%.3e,\"worst_position_at\":\"%s\",\"worst_normal_at\":\"%s\","
+                "\"worst_centroid_at\":\"%s\"}\n",
+                name.c_str(), plyPath.c_str(), compared, off, dP.value, dN.value, offN, flipped, tris,
+                triOff, tP.value, dP.where.c_str(), dN.where.c_str(), tP.where.c_str());
+    std::fprintf(stderr, "%-28s %9zu %8zu %9.2e %8.3g %6zu %9zu %8zu %9.2e\n",
+                 name.substr(0, name.find('.')).c_str(), compared, off, dP.value, dN.value, flipped, tris,
+                 triOff, tP.value);
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -52,6 +135,7 @@ int main(int argc, char** argv) {
     int osdIso = -1; // the isolation compared with the reference (default: depth)
     int refIso = 10; // the reference's isolation (OpenSubdiv's maximum)
     bool verbose = false;
+    std::string ply;
     std::vector<std::string> meshes;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--depth") && i + 1 < argc)
@@ -60,12 +144,23 @@ int main(int argc, char** argv) {
             osdIso = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--reference-isolation") && i + 1 < argc)
             refIso = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--ply") && i + 1 < argc)
+            ply = argv[++i];
         else if (!std::strcmp(argv[i], "-v"))
             verbose = true;
         else if (!std::strcmp(argv[i], "--uniform"))
             uniform = true;
         else
             meshes.push_back(argv[i]);
+    }
+    if (!ply.empty()) {
+        if (meshes.size() != 1) {
+            std::fprintf(stderr, "bench_accuracy: --ply needs exactly one MESH\n");
+            return 2;
+        }
+        std::fprintf(stderr, "%-28s %9s %8s %9s %8s %6s %9s %8s %9s\n", "mesh", "vertices", ">1e-5",
+                     "max dP", "max dN", "flip", "triangles", ">1e-5", "centroid");
+        return comparePly(ply, meshes[0], refIso);
     }
     std::fprintf(stderr, "%-28s %6s %7s %9s %8s %9s %9s %9s %8s %9s %8s\n", "mesh", "approx",
                  "limits", "bytes", "elements", "drawn", "limn dP", "limn dN", "flipped",

@@ -18,6 +18,9 @@
 // the poles, radius 1 as in the paper's demo, and radius 5) at 1280x720 from (0,12,22), depth 6.
 // --only MODEL (repeatable: spot's or the car's file stem, sphere, sphere_r5) keeps those
 // models' rows. --samples: per pixel, 4 (limn-render's default, and this benchmark's) or 1.
+// --irregular: instead, the irregular faces' surface (docs/irregular.md) against the bilinear
+// irregular faces of before (tables "bilinear": --irregular-levels 0), view-adaptive only: spot
+// at depths 3 and 6, the car at 3, the paper's sphere at 6.
 // Per configuration: covered pixels,
 // drawn triangles (after culling, from the GPU) and triangles per covered pixel, vertices
 // evaluated, buffer bytes, compute/draw/frame GPU ms, cpu_ms of a still camera and with the
@@ -141,7 +144,7 @@ struct ViewConfig {
     uint64_t triangles = 0, vertices = 0, bufferBytes = 0, covered = 0;
 };
 
-int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::string>& only) {
+int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::string>& only, bool irregular) {
     gpu::Context ctx;
     std::map<std::string, Mesh> meshes;
     Warnings w;
@@ -162,7 +165,15 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
         c.eye = eye;
         configs.push_back(c);
     };
+    if (irregular)
+        for (const char* tables : {"adaptive", "bilinear"}) {
+            if (!spot.empty())
+                for (int d : {3, 6}) add(spot, tables, d, 4.0, 1024, 768);
+            if (!car.empty()) add(car, tables, 3, 4.0, 1024, 768);
+            add("sphere", tables, 6, 4.0, 1280, 720, glm::dvec3(0, 12, 22));
+        }
     for (double ep : {4.0, 0.0}) {
+        if (irregular) break;
         if (!spot.empty()) {
             for (int d : {3, 5, 6}) add(spot, "adaptive", d, ep, 1024, 768);
             for (int d : {5, 6}) add(spot, "uniform", d, ep, 1024, 768);
@@ -187,6 +198,7 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
             TablesOptions to;
             to.depth = c.depth;
             to.uniform = c.tables == "uniform";
+            if (c.tables == "bilinear") to.irregularLevels = 0;
             try {
                 t = std::make_shared<Tables>(buildTables(*c.mesh, resolveSchemeOptions(c.mesh->tags, {}), to, w));
             } catch (const Error& e) {
@@ -267,6 +279,19 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
                 std::fprintf(stderr, "%s depth %d: adaptive / uniform frame %.3f\n", a.model.c_str(), a.depth,
                              median(a.frame) / median(u.frame));
             }
+    // The irregular faces' surface over bilinear irregular faces (at most 1.1 wanted).
+    for (const ViewConfig& a : configs)
+        for (const ViewConfig& b : configs)
+            if (a.tables == "adaptive" && b.tables == "bilinear" && a.model == b.model && a.depth == b.depth &&
+                a.skipped.empty() && b.skipped.empty()) {
+                std::printf("{\"bench\":\"irregular_surface_ratio\",\"model\":\"%s\",\"depth\":%d,"
+                            "\"frame_over_bilinear\":%.4f,\"triangles_over_bilinear\":%.4f}\n",
+                            a.model.c_str(), a.depth, median(a.frame) / median(b.frame),
+                            double(a.triangles) / double(std::max<uint64_t>(b.triangles, 1)));
+                std::fprintf(stderr, "%s depth %d: irregular surface / bilinear frame %.3f, triangles %.3f\n",
+                             a.model.c_str(), a.depth, median(a.frame) / median(b.frame),
+                             double(a.triangles) / double(std::max<uint64_t>(b.triangles, 1)));
+            }
     std::fprintf(stderr, "\ndevice: %s; %d rounds x %d frames; %u sample(s) a pixel; orbit %g deg/frame\n",
                  ctx.deviceName().c_str(), o.rounds, o.frames, o.samples, orbitDeg);
     return 0;
@@ -284,7 +309,7 @@ int usageError(const std::string& why) {
 
 int main(int argc, char** argv) {
     Options o;
-    bool viewAdaptive = false;
+    bool viewAdaptive = false, irregular = false;
     double orbitDeg = 2;
     std::set<std::string> only;
     for (int i = 1; i < argc; ++i) {
@@ -292,6 +317,8 @@ int main(int argc, char** argv) {
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
         if (a == "--view-adaptive")
             viewAdaptive = true;
+        else if (a == "--irregular")
+            irregular = true;
         else if (a == "--only")
             only.insert(next());
         else if (a == "--samples") {
@@ -319,7 +346,7 @@ int main(int argc, char** argv) {
         return usageError("give at least one mesh; frames, rounds >= 1; depth 1-8");
     if (viewAdaptive) {
         try {
-            return runViewAdaptive(o, orbitDeg, only);
+            return runViewAdaptive(o, orbitDeg, only, irregular);
         } catch (const Error& e) {
             std::fprintf(stderr, "bench_render: %s\n", e.what());
             return int(e.kind());

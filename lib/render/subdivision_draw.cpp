@@ -147,7 +147,8 @@ void checkTableSize(const Tables& t) {
                            {"face-point indices", face * 4},
                            {"stencil indices", stencil * 4},
                            {"limit points", uint64_t(t.limitPosition.rows()) * 32},
-                           {"patches", uint64_t(t.patches.size()) * 96}};
+                           {"patches", (uint64_t(t.patches.size()) + t.irregular.size() + t.irregularNodes.size() +
+                                        t.subPatches.size()) * 96}};
     for (const Sized& z : sized)
         if (z.bytes > limit) {
             char msg[400];
@@ -190,6 +191,88 @@ std::vector<LimitChunk> limitChunks(const SubdivisionDraw& d, uint64_t maxBytes)
     return out;
 }
 
+// The quadtree codes of tables.h made absolute indices into the GPU buffers (surface_eval.glsl):
+// nodes and sub-patches into the patches buffer, leaves into the irregular faces'. Every
+// irregular face gets a root node, with no children where the tables have no quadtree.
+namespace {
+void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
+    const uint32_t P = static_cast<uint32_t>(t.patches.size()), I = static_cast<uint32_t>(t.irregular.size());
+    const uint32_t nodes = std::max<uint32_t>(I, static_cast<uint32_t>(t.irregularNodes.size()));
+    // After the sub-patches: per smooth face a header (valence, corner, its basis's first
+    // record, K, the corner's limit point) and its support points, 16 a record; then per basis,
+    // per band and quadrant, per support point a record of its 16 weights.
+    std::vector<uint32_t> header(t.smoothIrregular.size()), basisFirst(t.irregularBases.size());
+    uint32_t next = P + nodes + static_cast<uint32_t>(t.subPatches.size());
+    for (size_t i = 0; i < t.smoothIrregular.size(); ++i) {
+        header[i] = next;
+        next += 1 + (t.irregularBases[t.smoothIrregular[i].basis].supportSize() + 15) / 16;
+    }
+    for (size_t b = 0; b < t.irregularBases.size(); ++b) {
+        basisFirst[b] = next;
+        next += t.irregularBases[b].levels * 3 * t.irregularBases[b].supportSize();
+    }
+    std::vector<uint32_t> faceOf(t.smoothIrregular.size(), 0);
+    for (uint32_t i = 0; i < nodes; ++i) {
+        GpuPatch g{};
+        std::fill(std::begin(g.cv), std::end(g.cv), kNodeNone);
+        if (i < t.irregularNodes.size())
+            for (int q = 0; q < 4; ++q) {
+                const uint32_t c = t.irregularNodes[i][q], kind = c & ~kNodeIndexMask, x = c & kNodeIndexMask;
+                if (c != kNodeNone && kind == kNodeBasis) faceOf[x] = i;
+                g.cv[q] = c == kNodeNone       ? kNodeNone
+                          : kind == kNodeBasis ? kNodeBasis | header[x]
+                          : kind == kNodeChild ? kNodeChild | (P + x)
+                          : kind == kNodeLeaf  ? kNodeLeaf | (I + x)
+                                               : kNodeSubPatch | (P + nodes + x);
+            }
+        d.irregularNodes.push_back(g);
+    }
+    for (const Patch& p : t.subPatches) {
+        GpuPatch g{};
+        std::copy(std::begin(p.cv), std::end(p.cv), g.cv);
+        g.ptex = p.ptex;
+        g.u0 = p.u0, g.v0 = p.v0, g.size = p.size;
+        g.levelBoundary = uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16;
+        g.sharpness = p.sharpness;
+        d.irregularNodes.push_back(g);
+    }
+    for (size_t i = 0; i < t.smoothIrregular.size(); ++i) {
+        const Tables::SmoothIrregular& f = t.smoothIrregular[i];
+        const IrregularBasis& b = t.irregularBases[f.basis];
+        GpuPatch h{};
+        h.cv[0] = b.valence, h.cv[1] = f.corner, h.cv[2] = basisFirst[f.basis], h.cv[3] = b.levels;
+        h.cv[4] = t.irregular[faceOf[i]].corner[f.corner];
+        d.irregularNodes.push_back(h);
+        for (uint32_t k = 0; k < b.supportSize(); k += 16) {
+            GpuPatch g{};
+            for (uint32_t j = 0; j < 16 && k + j < b.supportSize(); ++j) g.cv[j] = t.smoothPoints[f.first + k + j];
+            d.irregularNodes.push_back(g);
+        }
+    }
+    for (const IrregularBasis& b : t.irregularBases) {
+        const uint32_t M = b.supportSize();
+        for (uint32_t block = 0; block < b.levels * 3; ++block)
+            for (uint32_t i = 0; i < M; ++i) {
+                GpuPatch g{};
+                for (uint32_t j = 0; j < 16; ++j) std::memcpy(&g.cv[j], &b.weights[(size_t(block) * 16 + j) * M + i], 4);
+                d.irregularNodes.push_back(g);
+            }
+    }
+}
+} // namespace
+
+std::vector<GpuPatch> SubdivisionDraw::patchBuffer() const {
+    std::vector<GpuPatch> out = patches;
+    out.insert(out.end(), irregularNodes.begin(), irregularNodes.end());
+    return out;
+}
+
+std::vector<GpuIrregularFace> SubdivisionDraw::irregularBuffer() const {
+    std::vector<GpuIrregularFace> out = irregular;
+    out.insert(out.end(), irregularLeaves.begin(), irregularLeaves.end());
+    return out;
+}
+
 SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t tessCap,
                                    const DisplacementPlan* displacement, bool adaptive) {
     checkTableSize(t);
@@ -197,7 +280,7 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
     SubdivisionDraw d;
     d.baseVertices = t.levels[0].count();
     d.totalVertices = t.totalVertices;
-    for (uint32_t l = 1; l <= t.depth; ++l) {
+    for (uint32_t l = 1; l < t.levels.size(); ++l) { // with the irregular faces' extra levels
         const LevelInfo& L = t.levels[l];
         LevelPasses p{};
         p.level = l;
@@ -225,13 +308,16 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
         g.sharpness = p.sharpness;
         d.patches.push_back(g);
     }
-    for (const IrregularFace& q : t.irregular) {
+    auto irregularFace = [](const IrregularFace& q) {
         GpuIrregularFace g{};
         std::copy(std::begin(q.corner), std::end(q.corner), g.corner);
         g.ptex = q.ptex;
         g.u0 = q.u0, g.v0 = q.v0, g.size = q.size;
-        d.irregular.push_back(g);
-    }
+        return g;
+    };
+    for (const IrregularFace& q : t.irregular) d.irregular.push_back(irregularFace(q));
+    packIrregularQuadtrees(t, d);
+    for (const IrregularFace& q : t.irregularLeaves) d.irregularLeaves.push_back(irregularFace(q));
 
     d.hasUVs = mesh.hasUVs();
     d.bounds = boundsOf(mesh.positions); // the limit surface lies in the control points' hull

@@ -67,6 +67,14 @@ struct SubdivisionDraw {
     std::vector<float> limitWeights;
     std::vector<GpuPatch> patches;
     std::vector<GpuIrregularFace> irregular;
+    // The irregular faces' quadtrees (docs/irregular.md): after the patches in the patches
+    // buffer, a root node per irregular face (in order), the other nodes, then the sub-patches;
+    // after the irregular faces in theirs, the leaves. patchBuffer() and irregularBuffer() are
+    // what is uploaded.
+    std::vector<GpuPatch> irregularNodes;
+    std::vector<GpuIrregularFace> irregularLeaves;
+    std::vector<GpuPatch> patchBuffer() const;
+    std::vector<GpuIrregularFace> irregularBuffer() const;
     std::vector<GpuTessVertex> tessVertices;
     std::vector<uint32_t> triangles;      // 3 per triangle, into tessVertices
     std::vector<uint32_t> triangleLevels; // per triangle: its element's level, 255 if irregular

@@ -84,8 +84,8 @@ struct SubdivisionPass::Gpu {
           stencilIndices(uploadBufferNow(ctx, "stencil indices", d.stencilIndices)),
           stencilWeights(uploadBufferNow(ctx, "stencil weights", d.stencilWeights)),
           limits(ctx, {"limit points", uint64_t(std::max(d.limitCount, 1u)) * 32}),
-          patches(uploadBufferNow(ctx, "patches", d.patches)),
-          irregular(uploadBufferNow(ctx, "irregular faces", d.irregular)),
+          patches(uploadBufferNow(ctx, "patches", d.patchBuffer())),
+          irregular(uploadBufferNow(ctx, "irregular faces", d.irregularBuffer())),
           tessVertices(uploadBufferNow(ctx, "tessellation vertices", d.tessVertices)),
           // Indices are also read by the vertex stage for --shade levels.
           triangles(uploadBufferNow(ctx, "triangle indices", d.triangles, gpu::kIndex | gpu::kStorage)),

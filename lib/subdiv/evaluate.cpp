@@ -36,7 +36,7 @@ glm::dvec3 apply(const StencilTable& table, size_t row, std::span<const glm::dve
 std::vector<glm::dvec3> evaluateVertices(const Tables& t, std::span<const glm::dvec3> control) {
     std::vector<glm::dvec3> V(t.totalVertices);
     for (size_t i = 0; i < t.levels[0].count(); ++i) V[i] = control[i];
-    for (uint32_t l = 1; l <= t.depth; ++l) {
+    for (uint32_t l = 1; l < t.levels.size(); ++l) { // with the irregular faces' extra levels
         const LevelInfo& info = t.levels[l];
         const StencilTable& faces = t.facePoints[l - 1];
         uint32_t out = info.first;
@@ -175,6 +175,129 @@ std::vector<LimitPoint> evaluateLimitPoints(const Tables& t, std::span<const glm
         out[i].normal = glm::normalize(glm::cross(out[i].tangent1, out[i].tangent2));
     }
     return out;
+}
+
+namespace {
+
+// A smooth irregular face's band-k sub-patch in quadrant q at its local (s, t): its control
+// points from the basis weights of the face's support (irregular_basis.h).
+SurfacePoint basisPatch(const Tables& t, const Tables::SmoothIrregular& f, std::span<const glm::dvec3> V,
+                        uint32_t k, uint32_t q, double s, double tt) {
+    const IrregularBasis& b = t.irregularBases[f.basis];
+    const uint32_t M = b.supportSize();
+    const float* w = b.weights.data() + (size_t(k - 1) * 3 + (q - 1)) * 16 * M;
+    glm::dvec3 P[4][4];
+    for (int j = 0; j < 16; ++j) {
+        glm::dvec3 c(0.0);
+        for (uint32_t i = 0; i < M; ++i) c += double(w[size_t(j) * M + i]) * V[t.smoothPoints[f.first + i]];
+        P[j % 4][j / 4] = c;
+    }
+    double bu[4], du[4], bv[4], dv[4];
+    bsplineBasis(s, bu, du);
+    bsplineBasis(tt, bv, dv);
+    SurfacePoint r{};
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            r.position += bu[i] * bv[j] * P[i][j];
+            r.du += du[i] * bv[j] * P[i][j];
+            r.dv += bu[i] * dv[j] * P[i][j];
+        }
+    r.normal = glm::normalize(glm::cross(r.du, r.dv));
+    return r;
+}
+
+// A smooth irregular face at its (s, t): turned so that the extraordinary corner is at (0, 0)
+// (a rotation, so normals keep their sign), then its band k = the number of halvings until
+// max(s, t) >= 1/2, at most K; within 2^-K of the corner, the bilinear blend of the corner's
+// limit point and the three band-K points around it.
+SurfacePoint evaluateSmooth(const Tables& t, std::span<const glm::dvec3> V, std::span<const LimitPoint> limits,
+                            uint32_t face, uint32_t smooth, double s, double tt, bool* exact) {
+    const Tables::SmoothIrregular& f = t.smoothIrregular[smooth];
+    const IrregularBasis& b = t.irregularBases[f.basis];
+    double a, c;
+    switch (f.corner) {
+    case 0: a = s, c = tt; break;
+    case 1: a = tt, c = 1 - s; break;
+    case 2: a = 1 - s, c = 1 - tt; break;
+    default: a = 1 - tt, c = s; break;
+    }
+    const LimitPoint& ev = limits[t.irregular[face].corner[f.corner]];
+    SurfacePoint r{};
+    if (a == 0 && c == 0) {
+        r.position = ev.position;
+        r.normal = ev.normal;
+        return r;
+    }
+    uint32_t k = 1;
+    while (std::max(a, c) < 0.5 && k < b.levels) a *= 2, c *= 2, ++k;
+    if (std::max(a, c) >= 0.5) {
+        const uint32_t qu = a >= 0.5 ? 1 : 0, qv = c >= 0.5 ? 1 : 0;
+        const uint32_t q = qu && !qv ? 1 : qu && qv ? 2 : 3;
+        return basisPatch(t, f, V, k, q, 2 * a - qu, 2 * c - qv);
+    }
+    if (exact) *exact = false;
+    const SurfacePoint c1 = basisPatch(t, f, V, k, 1, 0, 0), c2 = basisPatch(t, f, V, k, 2, 0, 0),
+                       c3 = basisPatch(t, f, V, k, 3, 0, 0);
+    const double x = 2 * a, y = 2 * c;
+    const double w[4] = {(1 - x) * (1 - y), x * (1 - y), x * y, (1 - x) * y};
+    r.position = w[0] * ev.position + w[1] * c1.position + w[2] * c2.position + w[3] * c3.position;
+    const glm::dvec3 n = w[0] * ev.normal + w[1] * c1.normal + w[2] * c2.normal + w[3] * c3.normal;
+    r.normal = glm::normalize(n);
+    return r;
+}
+
+} // namespace
+
+SurfacePoint evaluateIrregular(const Tables& t, std::span<const glm::dvec3> V,
+                               std::span<const LimitPoint> limits, uint32_t face, double s,
+                               double tt, bool* exact) {
+    // Descend the face's quadtree (docs/irregular.md): each step halves the domain, exactly in
+    // binary floating point, as the shader does in 1/32768 fixed point.
+    const IrregularFace* q = &t.irregular[face];
+    if (exact) *exact = true;
+    if ((s == 0 || s == 1) && (tt == 0 || tt == 1)) { // a corner: its limit point, as the fixed grids draw it
+        const LimitPoint& c = limits[q->corner[s == 0 ? (tt == 0 ? 0 : 3) : (tt == 0 ? 1 : 2)]];
+        SurfacePoint r{};
+        r.position = c.position;
+        r.normal = c.normal;
+        return r;
+    }
+    if (face < t.irregularNodes.size()) {
+        uint32_t node = face;
+        for (uint32_t level = 0; level <= t.irregularLevels; ++level) {
+            const int qu = s >= 0.5 ? 1 : 0, qv = tt >= 0.5 ? 1 : 0;
+            s = 2 * s - qu, tt = 2 * tt - qv;
+            const uint32_t code = t.irregularNodes[node][qu | qv << 1];
+            const uint32_t kind = code & ~kNodeIndexMask, index = code & kNodeIndexMask;
+            if (code == kNodeNone) break;
+            if (kind == kNodeBasis) // only at the root: (s, t) not yet halved
+                return evaluateSmooth(t, V, limits, face, index, (s + qu) / 2, (tt + qv) / 2, exact);
+            if (kind == kNodeSubPatch) {
+                return evaluatePatch(t.subPatches[index], V, s, tt); // derivatives per ptex unit
+            }
+            if (kind == kNodeLeaf) {
+                q = &t.irregularLeaves[index];
+                break;
+            }
+            node = index;
+        }
+    }
+    // A leaf (or a face without a quadtree): the bilinear blend of its corners' limit points,
+    // exact only at the corners.
+    const double w[4] = {(1 - s) * (1 - tt), s * (1 - tt), s * tt, (1 - s) * tt};
+    SurfacePoint r{};
+    glm::dvec3 N(0.0);
+    for (int k = 0; k < 4; ++k) {
+        r.position += w[k] * limits[q->corner[k]].position;
+        N += w[k] * limits[q->corner[k]].normal;
+    }
+    const glm::dvec3 c[4] = {limits[q->corner[0]].position, limits[q->corner[1]].position,
+                             limits[q->corner[2]].position, limits[q->corner[3]].position};
+    r.du = ((1 - tt) * (c[1] - c[0]) + tt * (c[2] - c[3])) / double(q->size);
+    r.dv = ((1 - s) * (c[3] - c[0]) + s * (c[2] - c[1])) / double(q->size);
+    r.normal = glm::length(N) > 0 ? glm::normalize(N) : N;
+    if (exact) *exact = (s == 0 || s == 1) && (tt == 0 || tt == 1);
+    return r;
 }
 
 } // namespace limn

@@ -39,6 +39,15 @@ struct LimitPoint {
 
 std::vector<LimitPoint> evaluateLimitPoints(const Tables& tables, std::span<const glm::dvec3> vertices);
 
+// The surface of irregular face `face` at its local (s, t) in [0,1]^2 (docs/irregular.md): on
+// its quadtree's sub-patch there, or, in a leaf (within 2^-K of an extraordinary corner), the
+// bilinear blend of the leaf's corner limit points, which is exact only at those corners;
+// `exact` (if given) says which. Faces of tables without a quadtree are all leaf. Derivatives
+// are per unit of ptex u and v.
+SurfacePoint evaluateIrregular(const Tables& tables, std::span<const glm::dvec3> vertices,
+                               std::span<const LimitPoint> limits, uint32_t face, double s,
+                               double t, bool* exact = nullptr);
+
 // Uniform cubic B-spline basis and its derivative at t in [0,1] (paper 000, section 3.2).
 void bsplineBasis(double t, double b[4], double d[4]);
 

@@ -182,6 +182,7 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     uo.triangles = o.triangles;
     TablesOptions to;
     to.depth = static_cast<int>(depth);
+    to.irregularLevels = 0; // the UVs of irregular faces stay bilinear (docs/irregular.md)
     tables_ = buildTables(uv, uo, to, warnings);
     vertices_ = evaluateVertices(tables_, uv.positions);
     limits_ = evaluateLimitPoints(tables_, vertices_);

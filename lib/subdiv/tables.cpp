@@ -118,6 +118,26 @@ uint64_t topologyHash(const Mesh& mesh, const SchemeOptions& options) {
     return hashBytes({reinterpret_cast<const uint8_t*>(&vcount), 4}, h);
 }
 
+IrregularSurfaceCounts irregularSurfaceCounts(const Tables& t) {
+    IrregularSurfaceCounts c;
+    uint32_t most = kMaxDepth + 1;
+    for (size_t i = 0; i < t.irregular.size(); ++i) {
+        const uint32_t code = i < t.irregularNodes.size() ? t.irregularNodes[i][0] : kNodeNone;
+        if (code == kNodeNone) {
+            ++c.bilinear;
+        } else if ((code & ~kNodeIndexMask) == kNodeBasis) {
+            ++c.basis;
+            const auto& f = t.smoothIrregular[code & kNodeIndexMask];
+            most = std::min(most, t.irregularBases[f.basis].levels);
+        } else {
+            ++c.subPatches;
+            most = std::min(most, t.irregularLevels);
+        }
+    }
+    c.exactLevels = most > uint32_t(kMaxDepth) ? 0 : most;
+    return c;
+}
+
 uint64_t uniformTableVertices(const Mesh& mesh, int depth) {
     const uint64_t corners = mesh.cornerCount();
     // Edges: each interior edge is shared by two corners; count the distinct ones exactly.
@@ -185,6 +205,10 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
                               "all-quad mesh (non-quads are split at the first level: use "
                               "--depth 1 or more)");
 
+    // Levels beyond N under T_N only (docs/irregular.md); none for uniform tables.
+    const uint32_t K = opts.uniform ? 0u
+                                    : static_cast<uint32_t>(std::clamp(opts.irregularLevels, 0, kMaxDepth - opts.depth));
+    const uint32_t D = N + K;
     Sharpness sharp = baseSharpness(baseTopo, mesh.tags, options.boundary, warnings);
     std::vector<Level> levels;
     levels.push_back(makeBaseLevel(std::move(baseTopo), std::move(sharp)));
@@ -195,6 +219,16 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     std::vector<std::vector<uint8_t>> irregularSets; // T_l
     std::vector<std::vector<uint8_t>> patchSets;     // D_l \ T_l with a limit surface
     std::vector<std::vector<uint32_t>> creaseEdges;  // per face: a single-crease patch's edge
+    // Faces of T_N around one smooth interior extraordinary vertex: drawn from per-valence
+    // weights of their support, not refined further (irregular_basis.h).
+    struct Smooth {
+        uint32_t face, basis, corner;
+        std::vector<uint32_t> support; // level-N vertices
+    };
+    std::vector<Smooth> smooth;
+    std::vector<IrregularBasis> bases;
+    std::vector<int> basisOfValence; // -1: not tried, -2: failed
+    const uint32_t basisLevels = opts.uniform ? 0u : static_cast<uint32_t>(std::clamp(opts.irregularLevels, 0, kMaxDepth));
     for (uint32_t l = 0;; ++l) {
         Level& L = levels[l];
         const uint32_t F = L.topo.faceCount();
@@ -214,11 +248,31 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         }
         irregularSets.push_back(T);
         patchSets.push_back(P);
-        if (l == N) break;
+        if (l == N && basisLevels > 0) {
+            int corner = 0;
+            uint32_t valence = 0;
+            std::vector<uint32_t> support;
+            for (uint32_t f = 0; f < F; ++f) {
+                if (!T[f] || !smoothSupport(L, f, corner, valence, support)) continue;
+                if (basisOfValence.size() <= valence) basisOfValence.resize(valence + 1, -1);
+                if (basisOfValence[valence] == -1) {
+                    try {
+                        bases.push_back(buildIrregularBasis(valence, basisLevels));
+                        basisOfValence[valence] = static_cast<int>(bases.size() - 1);
+                    } catch (const std::exception&) {
+                        basisOfValence[valence] = -2; // refined like any other (never seen)
+                    }
+                }
+                if (basisOfValence[valence] < 0) continue;
+                smooth.push_back({f, uint32_t(basisOfValence[valence]), uint32_t(corner), support});
+                T[f] = 0; // not refined further
+            }
+        }
+        if (l == D) break;
         std::vector<uint8_t> S = opts.uniform ? std::vector<uint8_t>(F, 1) : oneRing(L.topo, T);
         if (std::find(S.begin(), S.end(), 1) == S.end()) {
             // Nothing left to refine: the remaining levels are empty.
-            for (uint32_t m = l + 1; m <= N; ++m) {
+            for (uint32_t m = l + 1; m <= D; ++m) {
                 Level empty;
                 empty.depth = m;
                 levels.push_back(std::move(empty));
@@ -237,7 +291,7 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
             // (adaptive refinement does not grow faster than that once it is local).
             uint64_t built = 0;
             for (const auto& lv : levels) built += lv.topo.vertexCount();
-            const uint64_t need = (built + estimate * (N - l)) * kTableBytesPerVertex;
+            const uint64_t need = (built + estimate * (D - l)) * kTableBytesPerVertex;
             if (need > opts.maxMemoryBytes)
                 throwBadInput("depth " + std::to_string(N) + " needs about " + cli::formatBytes(need) +
                               " of memory (level " + std::to_string(l + 1) + " alone about " +
@@ -263,28 +317,15 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     // the order the corners are first met; a vertex's sectors' limit points are consecutive.
     // Their masks are exact (exact_limits.h): undecayed semi-sharp vertices are refined locally
     // beyond level N and their stencils composed back onto level-N vertices, darts and valence-2
-    // vertices get the eigenvectors of their local subdivision matrix.
-    const Level& LN = levels[N];
-    const auto& TN = irregularSets[N];
-    auto cornerVertex = [&](uint32_t f, int k) {
-        return LN.topo.vertex(LN.topo.faceHalfedge(f) + (LN.frames[f].rotation + k) % 4);
+    // vertices get the eigenvectors of their local subdivision matrix. The same for the corners
+    // of T_D, the irregular leaves.
+    struct LocalLimits {
+        StencilTable position, tangent1, tangent2; // over the level's local vertices
+        std::vector<uint8_t> exact;
+        std::vector<uint32_t> vertex;
+        std::vector<std::array<uint32_t, 4>> corners; // per face of T, its corners' limit points
+        std::vector<uint32_t> faces;                  // those faces
     };
-    std::vector<uint32_t> cornerIndex(LN.topo.vertexCount(), kNone);
-    std::vector<uint32_t> cornerVertices; // in first-met order
-    for (uint32_t f = 0; f < TN.size(); ++f)
-        if (TN[f])
-            for (int k = 0; k < 4; ++k) {
-                const uint32_t v = cornerVertex(f, k);
-                if (cornerIndex[v] != kNone) continue;
-                cornerIndex[v] = static_cast<uint32_t>(cornerVertices.size());
-                cornerVertices.push_back(v);
-            }
-    const std::vector<VertexLimits> vertexLimits =
-        exactVertexLimits(LN, cornerVertices, TN, options, ptexBase);
-    // Limit stencils over level-N local vertices, remapped to global indices after pruning.
-    StencilTable localPosition, localTangent1, localTangent2;
-    std::vector<uint8_t> limitExactLocal;
-    std::vector<uint32_t> limitLocalVertex, limitBase;
     // Masks are computed in double and stored as the float the GPU reads.
     auto append = [](StencilTable& t, const std::vector<WeightedPoint>& list) {
         for (const auto& wp : list) {
@@ -293,40 +334,63 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         }
         t.addRow();
     };
-    for (size_t i = 0; i < cornerVertices.size(); ++i) {
-        limitBase.push_back(static_cast<uint32_t>(limitLocalVertex.size()));
-        for (const LimitMasks& m : vertexLimits[i].sectors) {
-            append(localPosition, m.position);
-            append(localTangent1, m.tangent1);
-            append(localTangent2, m.tangent2);
-            limitExactLocal.push_back(m.exact ? 1 : 0);
-            limitLocalVertex.push_back(cornerVertices[i]);
+    auto limitsAt = [&](uint32_t lv) {
+        LocalLimits out;
+        const Level& LN = levels[lv];
+        const auto& TN = irregularSets[lv];
+        if (std::find(TN.begin(), TN.end(), 1) == TN.end()) return out;
+        auto cornerVertex = [&](uint32_t f, int k) {
+            return LN.topo.vertex(LN.topo.faceHalfedge(f) + (LN.frames[f].rotation + k) % 4);
+        };
+        std::vector<uint32_t> cornerIndex(LN.topo.vertexCount(), kNone);
+        std::vector<uint32_t> cornerVertices; // in first-met order
+        for (uint32_t f = 0; f < TN.size(); ++f)
+            if (TN[f])
+                for (int k = 0; k < 4; ++k) {
+                    const uint32_t v = cornerVertex(f, k);
+                    if (cornerIndex[v] != kNone) continue;
+                    cornerIndex[v] = static_cast<uint32_t>(cornerVertices.size());
+                    cornerVertices.push_back(v);
+                }
+        const std::vector<VertexLimits> vertexLimits =
+            exactVertexLimits(LN, cornerVertices, TN, options, ptexBase);
+        std::vector<uint32_t> limitBase;
+        for (size_t i = 0; i < cornerVertices.size(); ++i) {
+            limitBase.push_back(static_cast<uint32_t>(out.vertex.size()));
+            for (const LimitMasks& m : vertexLimits[i].sectors) {
+                append(out.position, m.position);
+                append(out.tangent1, m.tangent1);
+                append(out.tangent2, m.tangent2);
+                out.exact.push_back(m.exact ? 1 : 0);
+                out.vertex.push_back(cornerVertices[i]);
+            }
         }
-    }
-    std::vector<std::array<uint32_t, 4>> irregularCorners;
-    std::vector<uint32_t> irregularFaceIds;
-    for (uint32_t f = 0; f < TN.size(); ++f) {
-        if (!TN[f]) continue;
-        std::array<uint32_t, 4> corners{};
-        for (int k = 0; k < 4; ++k) {
-            const uint32_t i = cornerIndex[cornerVertex(f, k)];
-            const VertexLimits& vl = vertexLimits[i];
-            const size_t pos = size_t(std::find(vl.ringFaces.begin(), vl.ringFaces.end(), f) -
-                                      vl.ringFaces.begin());
-            corners[k] = limitBase[i] + vl.ringSector[pos];
+        for (uint32_t f = 0; f < TN.size(); ++f) {
+            if (!TN[f]) continue;
+            std::array<uint32_t, 4> corners{};
+            for (int k = 0; k < 4; ++k) {
+                const uint32_t i = cornerIndex[cornerVertex(f, k)];
+                const VertexLimits& vl = vertexLimits[i];
+                const size_t pos = size_t(std::find(vl.ringFaces.begin(), vl.ringFaces.end(), f) -
+                                          vl.ringFaces.begin());
+                corners[k] = limitBase[i] + vl.ringSector[pos];
+            }
+            out.corners.push_back(corners);
+            out.faces.push_back(f);
         }
-        irregularCorners.push_back(corners);
-        irregularFaceIds.push_back(f);
-    }
+        return out;
+    };
+    LocalLimits limN = limitsAt(N), limD;
+    if (D > N) limD = limitsAt(D);
 
     // Prune to the vertices something reads, from the last level down (paper 000 keeps all; the
     // tables then grow with the support region only).
-    std::vector<std::vector<uint8_t>> needed(N + 1);
-    for (uint32_t l = 0; l <= N; ++l) needed[l].assign(levels[l].topo.vertexCount(), 0);
+    std::vector<std::vector<uint8_t>> needed(D + 1);
+    for (uint32_t l = 0; l <= D; ++l) needed[l].assign(levels[l].topo.vertexCount(), 0);
     std::fill(needed[0].begin(), needed[0].end(), 1); // the control points are uploaded anyway
     // A patch reads its 16 points less the phantoms (across an inf-sharp crease those are real
     // vertices that it does not read).
-    for (uint32_t l = 0; l <= N; ++l) {
+    for (uint32_t l = 0; l <= D; ++l) {
         std::vector<uint32_t> identity(levels[l].topo.vertexCount());
         for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
         for (uint32_t f = 0; f < patchSets[l].size(); ++f) {
@@ -336,9 +400,13 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
                 if (!isPhantom(p.boundary, i)) needed[l][p.cv[i]] = 1;
         }
     }
-    for (const auto* table : {&localPosition, &localTangent1, &localTangent2})
+    for (const auto* table : {&limN.position, &limN.tangent1, &limN.tangent2})
         for (uint32_t v : table->indices) needed[N][v] = 1;
-    for (uint32_t l = N; l >= 1; --l) {
+    for (const auto* table : {&limD.position, &limD.tangent1, &limD.tangent2})
+        for (uint32_t v : table->indices) needed[D][v] = 1;
+    for (const Smooth& sm : smooth)
+        for (uint32_t v : sm.support) needed[N][v] = 1;
+    for (uint32_t l = D; l >= 1; --l) {
         const Level& L = levels[l];
         const LevelStencils& st = stencils[l];
         const uint32_t fp = L.facePointCount, ep = L.edgePointCount;
@@ -359,12 +427,13 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     // Global numbering: level by level, keeping face, edge, vertex point order.
     Tables t;
     t.depth = N;
+    t.irregularLevels = K;
     t.uniform = opts.uniform;
     t.options = options;
     t.topologyHash = topologyHash(mesh, options);
-    std::vector<std::vector<uint32_t>> remap(N + 1);
+    std::vector<std::vector<uint32_t>> remap(D + 1);
     uint32_t next = 0;
-    for (uint32_t l = 0; l <= N; ++l) {
+    for (uint32_t l = 0; l <= D; ++l) {
         const Level& L = levels[l];
         LevelInfo info;
         info.first = next;
@@ -389,7 +458,7 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
     }
     t.totalVertices = next;
 
-    for (uint32_t l = 1; l <= N; ++l) {
+    for (uint32_t l = 1; l <= D; ++l) {
         const Level& L = levels[l];
         const LevelStencils& st = stencils[l];
         const uint32_t base = t.levels[l].first, parentBase = t.levels[l - 1].first;
@@ -422,32 +491,96 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
         t.vertexPoints.push_back(std::move(verts));
     }
 
-    for (uint32_t l = 0; l <= N; ++l)
+    // Patches to level N are drawn; deeper ones are sub-patches of the irregular faces.
+    std::vector<std::vector<uint32_t>> subIndex(D + 1);
+    for (uint32_t l = 0; l <= D; ++l)
         for (uint32_t f = 0; f < patchSets[l].size(); ++f)
-            if (patchSets[l][f])
-                t.patches.push_back(
-                    gatherPatch(levels[l], f, t.levels[l].first, remap[l], creaseEdges[l][f]));
+            if (patchSets[l][f]) {
+                Patch p = gatherPatch(levels[l], f, t.levels[l].first, remap[l], creaseEdges[l][f]);
+                if (l <= N) {
+                    t.patches.push_back(p);
+                    continue;
+                }
+                if (subIndex[l].empty()) subIndex[l].assign(patchSets[l].size(), kNone);
+                subIndex[l][f] = static_cast<uint32_t>(t.subPatches.size());
+                t.subPatches.push_back(p);
+            }
 
-    const uint32_t baseN = t.levels[N].first;
-    auto globalize = [&](StencilTable& out, StencilTable&& local) {
-        out = std::move(local);
+    // Limit points: those of T_N's corners, then those of the leaves' (T_D's) corners.
+    const uint32_t baseN = t.levels[N].first, baseD = t.levels[D].first;
+    auto globalize = [&](StencilTable& out, const StencilTable& a, const StencilTable& b) {
+        out = a;
         for (auto& v : out.indices) v = baseN + remap[N][v];
+        for (size_t r = 0; r < b.rows(); ++r) {
+            for (uint32_t k = b.start[r]; k < b.start[r + 1]; ++k) {
+                out.indices.push_back(baseD + remap[D][b.indices[k]]);
+                out.weights.push_back(b.weights[k]);
+            }
+            out.addRow();
+        }
     };
-    globalize(t.limitPosition, std::move(localPosition));
-    globalize(t.limitTangent1, std::move(localTangent1));
-    globalize(t.limitTangent2, std::move(localTangent2));
-    for (uint32_t v : limitLocalVertex) t.limitVertex.push_back(baseN + remap[N][v]);
-    t.limitExact = limitExactLocal;
-    for (uint8_t e : limitExactLocal) t.approximateLimitPoints += e ? 0 : 1;
-    for (size_t i = 0; i < irregularFaceIds.size(); ++i) {
-        const FaceFrame& fr = LN.frames[irregularFaceIds[i]];
+    globalize(t.limitPosition, limN.position, limD.position);
+    globalize(t.limitTangent1, limN.tangent1, limD.tangent1);
+    globalize(t.limitTangent2, limN.tangent2, limD.tangent2);
+    for (uint32_t v : limN.vertex) t.limitVertex.push_back(baseN + remap[N][v]);
+    for (uint32_t v : limD.vertex) t.limitVertex.push_back(baseD + remap[D][v]);
+    t.limitExact = limN.exact;
+    t.limitExact.insert(t.limitExact.end(), limD.exact.begin(), limD.exact.end());
+    // Counted once per surface point: a leaf's approximate corner is that of its face at level N.
+    for (uint8_t e : limN.exact) t.approximateLimitPoints += e ? 0 : 1;
+    auto faceOf = [&](const Level& L, uint32_t f, const std::array<uint32_t, 4>& corners, uint32_t offset) {
+        const FaceFrame& fr = L.frames[f];
         IrregularFace face{};
-        for (int k = 0; k < 4; ++k) face.corner[k] = irregularCorners[i][k];
+        for (int k = 0; k < 4; ++k) face.corner[k] = offset + corners[k];
         face.ptex = fr.ptex;
         face.u0 = static_cast<float>(fr.u0);
         face.v0 = static_cast<float>(fr.v0);
         face.size = static_cast<float>(fr.size);
-        t.irregular.push_back(face);
+        return face;
+    };
+    for (size_t i = 0; i < limN.faces.size(); ++i)
+        t.irregular.push_back(faceOf(levels[N], limN.faces[i], limN.corners[i], 0));
+    const uint32_t leafOffset = static_cast<uint32_t>(limN.vertex.size());
+    for (size_t i = 0; i < limD.faces.size(); ++i)
+        t.irregularLeaves.push_back(faceOf(levels[D], limD.faces[i], limD.corners[i], leafOffset));
+
+    // The quadtree of each irregular face: a node per face of T_l (N <= l < D), the roots (T_N)
+    // first in the order of t.irregular; a child's quadrant comes from its ptex frame.
+    t.irregularBases = std::move(bases);
+    std::vector<uint32_t> smoothOf(irregularSets[N].size(), kNone);
+    for (size_t i = 0; i < smooth.size(); ++i) {
+        smoothOf[smooth[i].face] = static_cast<uint32_t>(i);
+        t.smoothIrregular.push_back({smooth[i].basis, smooth[i].corner, uint32_t(t.smoothPoints.size())});
+        for (uint32_t v : smooth[i].support) t.smoothPoints.push_back(baseN + remap[N][v]);
+    }
+    if (D > N || !smooth.empty()) {
+        std::vector<std::vector<uint32_t>> nodeIndex(D + 1);
+        for (uint32_t l = N; l < std::max(D, N + 1); ++l) {
+            nodeIndex[l].assign(irregularSets[l].size(), kNone);
+            for (uint32_t f = 0; f < irregularSets[l].size(); ++f)
+                if (irregularSets[l][f]) {
+                    nodeIndex[l][f] = static_cast<uint32_t>(t.irregularNodes.size());
+                    const uint32_t b = l == N && smoothOf[f] != kNone ? kNodeBasis | smoothOf[f] : kNodeNone;
+                    t.irregularNodes.push_back({b, b, b, b});
+                }
+        }
+        std::vector<uint32_t> leafIndex(irregularSets[D].size(), kNone);
+        for (size_t i = 0; i < limD.faces.size(); ++i) leafIndex[limD.faces[i]] = static_cast<uint32_t>(i);
+        for (uint32_t l = N + 1; l <= D; ++l) {
+            const Level& L = levels[l];
+            for (uint32_t cf = 0; cf < L.topo.faceCount(); ++cf) {
+                const uint32_t pf = L.faceParent[cf];
+                if (!L.complete[cf] || nodeIndex[l - 1][pf] == kNone) continue;
+                const FaceFrame &c = L.frames[cf], &p = levels[l - 1].frames[pf];
+                const int q = (c.u0 > p.u0 ? 1 : 0) | (c.v0 > p.v0 ? 2 : 0);
+                uint32_t code = kNodeNone;
+                if (patchSets[l][cf])
+                    code = kNodeSubPatch | subIndex[l][cf];
+                else if (irregularSets[l][cf])
+                    code = l < D ? kNodeChild | nodeIndex[l][cf] : kNodeLeaf | leafIndex[cf];
+                t.irregularNodes[nodeIndex[l - 1][pf]][q] = code;
+            }
+        }
     }
     return t;
 }

@@ -10,8 +10,10 @@
 
 #include "base/warnings.h"
 #include "mesh/mesh.h"
+#include "subdiv/irregular_basis.h"
 #include "topology/features.h"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -85,6 +87,12 @@ struct TablesOptions {
     // Faces along a straight semi-sharp crease are single-crease patches (OpenSubdiv's
     // useSingleCreasePatch) instead of being isolated until the crease has decayed.
     bool singleCreasePatches = true;
+    // Levels refined beyond `depth` under the faces left irregular at `depth`, so that those
+    // faces are evaluated on the limit surface: their sub-patches at levels depth+1..depth+K
+    // (docs/irregular.md). Every (s, t) of an irregular face on the grid of 2^-K is on a
+    // sub-patch or is a limit point; K = 6 covers the view-adaptive default of 64 segments.
+    // Capped so that depth + K <= kMaxDepth; none for uniform tables.
+    int irregularLevels = 6;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;
@@ -97,23 +105,61 @@ inline constexpr uint64_t kTableBytesPerVertex = 768;
 // after the first, every face is a quad): the upper bound of adaptive tables too.
 uint64_t uniformTableVertices(const Mesh& mesh, int depth);
 
+// A node of an irregular face's quadtree: per child quadrant c = (s >= 1/2) | (t >= 1/2) << 1 of
+// its face, a code: the kind in the top two bits, an index below.
+inline constexpr uint32_t kNodeSubPatch = 0u << 30; // into Tables::subPatches
+inline constexpr uint32_t kNodeChild = 1u << 30;    // into Tables::irregularNodes
+inline constexpr uint32_t kNodeLeaf = 2u << 30;     // into Tables::irregularLeaves
+inline constexpr uint32_t kNodeBasis = 3u << 30;    // into Tables::smoothIrregular (all four)
+inline constexpr uint32_t kNodeNone = 0xFFFFFFFFu;  // no surface there (never in a built table)
+inline constexpr uint32_t kNodeIndexMask = (1u << 30) - 1;
+
 struct Tables {
     uint32_t depth = 0;
     bool uniform = false;
     SchemeOptions options;
     uint64_t topologyHash = 0; // of the faces and tags the tables were built from
-    std::vector<LevelInfo> levels; // 0..depth
+    std::vector<LevelInfo> levels; // 0..depth + irregularLevels
     uint32_t totalVertices = 0;
-    // Per level 1..depth (index l-1): the three passes of paper 000, 4.2.
+    // Per level 1..depth + irregularLevels (index l-1): the three passes of paper 000, 4.2.
     std::vector<StencilTable> facePoints, edgePoints, vertexPoints;
     std::vector<Patch> patches; // sorted by level
     std::vector<IrregularFace> irregular;
+    // The surface of the irregular faces (docs/irregular.md): levels depth+1..depth+K refine only
+    // under them. irregularNodes[i] for i < irregular.size() is the root of irregular[i]; the
+    // quadtree's leaves are regular sub-patches and, at level depth+K, irregular leaves drawn
+    // from their corners' limit points (only their corners are exact).
+    uint32_t irregularLevels = 0; // K
+    std::vector<Patch> subPatches;
+    std::vector<std::array<uint32_t, 4>> irregularNodes;
+    std::vector<IrregularFace> irregularLeaves;
+    // Irregular faces around one smooth interior extraordinary vertex are not refined further:
+    // their sub-patches come from per-valence weights of their 2n + 8 surrounding level-N
+    // points (irregular_basis.h). A root node of kNodeBasis codes names one of these.
+    struct SmoothIrregular {
+        uint32_t basis;  // into irregularBases
+        uint32_t corner; // the extraordinary corner (ptex order)
+        uint32_t first;  // its 2n + 8 points: smoothPoints[first ...]
+    };
+    std::vector<IrregularBasis> irregularBases;
+    std::vector<SmoothIrregular> smoothIrregular;
+    std::vector<uint32_t> smoothPoints; // global vertex indices (level N)
     // Limit points (paper 000, 4.4; math.md C): position and two tangents per point.
     StencilTable limitPosition, limitTangent1, limitTangent2;
     std::vector<uint32_t> limitVertex; // the level-N vertex (global index) of each limit point
     std::vector<uint8_t> limitExact;     // per limit point: 0 where the masks only approximate
     uint32_t approximateLimitPoints = 0; // count of those (see docs)
 };
+
+// How the irregular faces' surface is drawn (docs/irregular.md): from a per-valence basis, on
+// sub-patches of a quadtree, or bilinear between their corners' limit points (tables without
+// their surface). Every point at least 2^-exactLevels of a face from its extraordinary corners
+// is on the limit surface (for the bilinear ones only the corners are).
+struct IrregularSurfaceCounts {
+    size_t basis = 0, subPatches = 0, bilinear = 0;
+    uint32_t exactLevels = 0; // the smallest K among the faces that are not bilinear
+};
+IrregularSurfaceCounts irregularSurfaceCounts(const Tables& tables);
 
 // Hash of what tables depend on: faces, tags and scheme options (never positions).
 uint64_t topologyHash(const Mesh& mesh, const SchemeOptions& options);

@@ -9,8 +9,9 @@ namespace limn {
 
 inline constexpr FourCC kTablesChunk{"TBLS"};
 // Version 2 adds single-crease patches (a crease edge and a sharpness per patch); version 1 is
-// still read (its patches have none).
-inline constexpr uint32_t kTablesChunkVersion = 2;
+// still read (its patches have none). Version 3 adds the irregular faces' quadtrees: levels
+// beyond the depth, sub-patches, nodes and leaves (docs/irregular.md); older ones have none.
+inline constexpr uint32_t kTablesChunkVersion = 3;
 
 Chunk encodeTablesChunk(const Tables& tables);
 

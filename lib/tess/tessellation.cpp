@@ -254,14 +254,8 @@ std::vector<TessPoint> evaluateTessellation(const Tables& t, const Tessellation&
             out[i] = {p.position, p.normal};
             continue;
         }
-        const IrregularFace& q = t.irregular[tv.element - P];
-        const double w[4] = {(1 - s) * (1 - u), s * (1 - u), s * u, (1 - s) * u};
-        glm::dvec3 pos(0.0), nrm(0.0);
-        for (int k = 0; k < 4; ++k) {
-            pos += w[k] * limits[q.corner[k]].position;
-            nrm += w[k] * limits[q.corner[k]].normal;
-        }
-        out[i] = {pos, glm::normalize(nrm)};
+        SurfacePoint p = evaluateIrregular(t, V, limits, tv.element - P, s, u);
+        out[i] = {p.position, p.normal};
     }
     return out;
 }

@@ -42,17 +42,20 @@ TEST(TablesChunk, RoundTripIsLossless) {
 
 // Tables are built from topology alone: moving every vertex changes no byte (paper 000: only the
 // GPU passes re-run when an animated mesh moves).
-// Version 2 added a sharpness to every patch record; a version-1 chunk (the same bytes without
-// it) still reads, as tables without single-crease patches; other versions are refused by name.
+// Version 2 added a sharpness to every patch record, version 3 the irregular faces' surface (six
+// counts after the irregular faces, zero for tables without it); a version-1 chunk (the same
+// bytes without them) still reads, as tables without single-crease patches and with bilinear
+// irregular faces; other versions are refused by name.
 TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
     Mesh m = load("osd/catmark/catmark_single_crease.obj");
     Warnings w;
     TablesOptions o;
     o.depth = 3;
     o.singleCreasePatches = false;
+    o.irregularLevels = 0;
     Tables t = buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
     Chunk v2 = encodeTablesChunk(t);
-    ASSERT_EQ(v2.version, 2u);
+    ASSERT_EQ(v2.version, 3u);
     // The patch records follow the header, the levels and the level stencil tables.
     auto tableBytes = [](const StencilTable& table, bool weights) {
         return 16 + 4 * (table.start.size() + table.indices.size() + (weights ? table.weights.size() : 0));
@@ -65,7 +68,10 @@ TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
     v1.payload.assign(v2.payload.begin(), v2.payload.begin() + at);
     for (size_t i = 0; i < t.patches.size(); ++i, at += 88)
         v1.payload.insert(v1.payload.end(), v2.payload.begin() + at, v2.payload.begin() + at + 84);
-    v1.payload.insert(v1.payload.end(), v2.payload.begin() + at, v2.payload.end());
+    const size_t faces = at + 32 * t.irregular.size();
+    v1.payload.insert(v1.payload.end(), v2.payload.begin() + at, v2.payload.begin() + faces);
+    for (size_t i = 0; i < 24; ++i) ASSERT_EQ(v2.payload[faces + i], 0) << "version 3's counts";
+    v1.payload.insert(v1.payload.end(), v2.payload.begin() + faces + 24, v2.payload.end());
     EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(v1, &m)).payload, v2.payload);
 
     o.singleCreasePatches = true;
@@ -78,7 +84,7 @@ TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
         EXPECT_EQ(back.patches[i].crease, crease.patches[i].crease);
         EXPECT_EQ(back.patches[i].sharpness, crease.patches[i].sharpness);
     }
-    for (uint32_t version : {0u, 3u}) {
+    for (uint32_t version : {0u, 4u}) {
         Chunk bad = v2;
         bad.version = version;
         try {

@@ -98,8 +98,11 @@ int main(int argc, char** argv) {
                    "(holes and faces without a limit surface), uv_seam_edges, boundary_rule and\n"
                    "chunks (type, version, bytes). With subdivision tables (limn-tables): depth,\n"
                    "uniform, table_bytes, table_vertices, patches, limit_points,\n"
-                   "approximate_limit_points and levels (per level 0..N: vertices computed at that\n"
-                   "level, regular_patches drawn at it, irregular_faces: faces refined further, or\n"
+                   "approximate_limit_points, irregular_surface (how the faces left irregular at\n"
+                   "level N are drawn: basis, sub_patches, bilinear counts, and exact_levels K: every\n"
+                   "point at least 2^-K of a face from its extraordinary corners is on the limit\n"
+                   "surface; docs/irregular.md) and levels (per level 0..N+K: vertices computed at\n"
+                   "that level, regular_patches at it, irregular_faces: faces refined further, or\n"
                    "at the last level drawn at their limit corners).\n");
         if (!parser.parse(ac, av)) return 0;
 
@@ -191,6 +194,11 @@ int main(int argc, char** argv) {
                     .field("patches", tables->patches.size())
                     .field("limit_points", tables->limitPosition.rows())
                     .field("approximate_limit_points", tables->approximateLimitPoints);
+                const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
+                j.key("irregular_surface").beginObject();
+                j.field("basis", irr.basis).field("sub_patches", irr.subPatches).field("bilinear", irr.bilinear)
+                    .field("exact_levels", irr.exactLevels);
+                j.endObject();
                 j.key("levels").beginArray();
                 for (const auto& L : tables->levels) {
                     j.beginObject();
@@ -232,6 +240,10 @@ int main(int argc, char** argv) {
                             tables->depth, tables->uniform ? "uniform" : "adaptive", tableBytes,
                             tables->totalVertices, tables->patches.size(),
                             tables->limitPosition.rows(), tables->approximateLimitPoints);
+                const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
+                std::printf("  irregular surface      %zu from a valence basis, %zu on sub-patches, %zu bilinear "
+                            "(exact beyond 2^-%u of their extraordinary corners)\n",
+                            irr.basis, irr.subPatches, irr.bilinear, irr.exactLevels);
                 for (size_t l = 0; l < tables->levels.size(); ++l)
                     std::printf("    level %zu: %u vertices, %u regular patches, %u irregular faces\n", l,
                                 tables->levels[l].count(), tables->levels[l].regularPatches,

@@ -13,6 +13,8 @@
 #include "image/output_image.h"
 #include "subdiv/tables_chunk.h"
 
+#include <bit>
+
 namespace limn::render_tool {
 
 namespace {
@@ -123,6 +125,23 @@ std::optional<render::FloatImage> materialTexture(const MeshMaterial& m, const s
     }
 }
 
+// The fixed grids draw irregular faces' corners only, and uniform tables (the full-subdivision
+// baseline) draw every face from its corners by design; the view-adaptive tessellation draws
+// points inside irregular faces. Never silently approximate (docs/irregular.md): say when drawn
+// points can fall where the irregular faces' surface is only bilinear.
+void warnApproximateIrregularFaces(const RenderJob& job, const RenderInput& in) {
+    if (!in.tables || in.tables->uniform || job.edgePixels <= 0) return;
+    const IrregularSurfaceCounts irr = irregularSurfaceCounts(*in.tables);
+    if (irr.bilinear)
+        cli::warn(displayName(job.input) + ": " + std::to_string(irr.bilinear) + " irregular faces are drawn " +
+                  "bilinear between their corners (tables without their surface); re-run limn-tables");
+    else if (irr.basis + irr.subPatches && uint64_t(job.tess) > (uint64_t(1) << irr.exactLevels))
+        cli::warn(displayName(job.input) + ": --tess " + std::to_string(job.tess) + " can draw points within 2^-" +
+                  std::to_string(irr.exactLevels) + " of extraordinary corners, where the surface is " +
+                  "bilinear; re-run limn-tables with --irregular-levels " +
+                  std::to_string(std::bit_width(uint32_t(job.tess) - 1)));
+}
+
 } // namespace
 
 void readRenderInput(RenderJob& job, RenderInput& in) {
@@ -159,6 +178,7 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
     }
     settings.tessCap = static_cast<uint32_t>(job.tess);
     settings.edgePixels = job.edgePixels;
+    warnApproximateIrregularFaces(job, in);
     if (!displace.empty()) {
         in.displacementMap = loadMap("--displace", displace);
         settings.displacementMap = &*in.displacementMap;

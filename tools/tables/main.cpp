@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
     return cli::run("limn-tables", argc, argv, [](int ac, char** av) {
         cli::Common common;
         std::string input = "-";
-        int depth = 3;
+        int depth = 3, irregularLevels = TablesOptions{}.irregularLevels;
         bool uniform = false, noCreasePatches = false;
         uint64_t maxMemory = cli::defaultMemoryBudget();
         cli::Parser parser(
@@ -32,6 +32,12 @@ int main(int argc, char** argv) {
             .integer("-d, --depth", "N", &depth, 0, kMaxDepth, "subdivision levels")
             .flag("--uniform", &uniform,
                   "subdivide every face to level N (the paper's full-subdivision baseline)")
+            .integer("--irregular-levels", "K", &irregularLevels, 0, kMaxDepth,
+                     "levels refined beyond N under the faces left irregular at level N, whose "
+                     "surface is then drawn from their regular sub-patches: exact at every point "
+                     "at least 2^-K of the face from an extraordinary corner, which covers every "
+                     "drawn vertex up to --tess 2^K (capped at depth 16 in all; 0: drawn bilinear "
+                     "between their corners' limit points, as before)")
             .flag("--no-crease-patches", &noCreasePatches,
                   "isolate creases and sharp corners to level N like extraordinary vertices, "
                   "instead of drawing the regular faces along infinitely sharp ones as boundary "
@@ -45,10 +51,11 @@ int main(int argc, char** argv) {
                     "estimate comes from the counts, before each level is refined")
             .notes("Non-quad faces are split at the first level, so --depth 0 needs an all-quad\n"
                    "mesh. --depth N is the number of levels stored and drawn: patches of every\n"
-                   "level up to N, the faces left irregular at level N drawn through the limit\n"
-                   "points of their corners. A semi-sharp crease or corner of sharpness s that has\n"
-                   "not decayed by level N (s > N) is refined further around its vertices while\n"
-                   "the tables are built, until it has (level ceil(s) with uniform creasing), and\n"
+                   "level up to N, the faces left irregular at level N drawn on their sub-patches\n"
+                   "of levels N+1..N+K (--irregular-levels; docs/irregular.md). A semi-sharp\n"
+                   "crease or corner of sharpness s that has not decayed by level N (s > N) is\n"
+                   "refined further around its vertices while the tables are built, until it has\n"
+                   "(level ceil(s) with uniform creasing), and\n"
                    "its limit points are composed back onto level-N vertices: what is drawn stays\n"
                    "N levels deep and the stored levels are the same, only the limit stencils are\n"
                    "exact. Darts, cone points and corners use the eigenvectors of\n"
@@ -77,6 +84,7 @@ int main(int argc, char** argv) {
             TablesOptions opts;
             opts.depth = depth;
             opts.uniform = uniform;
+            opts.irregularLevels = irregularLevels;
             opts.infSharpPatches = opts.singleCreasePatches = !noCreasePatches;
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);

@@ -1,6 +1,6 @@
 // Evaluates one tessellation vertex of the subdivision surface: the bicubic B-spline of its
-// patch (paper 000, eq. 1) with phantom rows beyond boundary edges (math.md C.4), or the bilinear
-// blend of its irregular face's limit points. Shared by the draw's vertex shader and the
+// patch (paper 000, eq. 1) with phantom rows beyond boundary edges (math.md C.4), or its
+// irregular face's surface (its sub-patches, docs/irregular.md). Shared by the draw's vertex shader and the
 // --mesh-out compute pass, so both compute the same surface with the same code.
 #ifndef LIMN_SURFACE_EVAL_GLSL
 #define LIMN_SURFACE_EVAL_GLSL
@@ -20,6 +20,16 @@ struct IrregularFace {
     uint ptex;
     float u0, v0, size;
 };
+
+// An irregular face's quadtree node (Patches buffer, after the drawn patches): per quadrant a
+// code, its kind in the top two bits (lib/subdiv/tables.h, kNode*), the index below an absolute
+// index into the Patches buffer (sub-patch, node) or the Irregulars buffer (leaf).
+#define IRREGULAR_KIND 0xC0000000u
+#define IRREGULAR_SUBPATCH 0x00000000u
+#define IRREGULAR_NODE 0x40000000u
+#define IRREGULAR_LEAF 0x80000000u
+#define IRREGULAR_BASIS 0xC0000000u // a smooth face's header (all four codes of a root alike)
+#define IRREGULAR_NONE 0xFFFFFFFFu
 
 #define BOUNDARY_V0 1u
 #define BOUNDARY_U1 2u

@@ -27,52 +27,164 @@ void patchBasis(Patch pt, float s, float t, out float bu[4], out float du[4], ou
         creaseBasisAcross(s, (crease & BOUNDARY_U1) != 0u, pt.sharpness, bu, du);
 }
 
+// A patch's position and (unnormalized) Du x Dv at patch-local (s, t).
+void patchPoint(Patch pt, float s, float t, out vec3 P, out vec3 n) {
+    float bu[4], du[4], bv[4], dv[4];
+    patchBasis(pt, s, t, bu, du, bv, dv);
+    P = vec3(0.0);
+    vec3 Du = vec3(0.0), Dv = vec3(0.0);
+    for (int j = 0; j < 4; ++j) {
+        vec3 row = vec3(0.0), rowDu = vec3(0.0), rowDv = vec3(0.0);
+        for (int i = 0; i < 4; ++i) {
+            vec3 c = vertices.p[pt.cv[4 * j + i]].xyz;
+            row += bu[i] * c;
+            rowDu += du[i] * c;
+        }
+        P += bv[j] * row;
+        Du += bv[j] * rowDu;
+        Dv += dv[j] * row;
+    }
+    n = cross(Du, Dv);
+}
+
+// A smooth irregular face's band-k sub-patch in quadrant q at local (s, t) (lib/subdiv/
+// irregular_basis.h): its 16 control points from the per-valence weights (header record h:
+// valence, corner, the basis's first record, K, the corner's limit point; then the support
+// points, 16 a record; the basis: per band and quadrant, per support point a record of 16
+// weights).
+void basisPatchPoint(uint h, uint k, uint q, float s, float t, out vec3 P, out vec3 n) {
+    Patch hd = patches.p[h];
+    uint M = 2u * hd.cv[0] + 8u;
+    uint block = hd.cv[2] + ((k - 1u) * 3u + (q - 1u)) * M;
+    vec3 c[16];
+    for (int j = 0; j < 16; ++j) c[j] = vec3(0.0);
+    for (uint i = 0u; i < M; ++i) {
+        vec3 x = vertices.p[patches.p[h + 1u + i / 16u].cv[i % 16u]].xyz;
+        Patch w = patches.p[block + i];
+        for (int j = 0; j < 16; ++j) c[j] += uintBitsToFloat(w.cv[j]) * x;
+    }
+    float bu[4], du[4], bv[4], dv[4];
+    bspline(s, bu, du);
+    bspline(t, bv, dv);
+    P = vec3(0.0);
+    vec3 Du = vec3(0.0), Dv = vec3(0.0);
+    for (int j = 0; j < 4; ++j) {
+        vec3 row = vec3(0.0), rowDu = vec3(0.0);
+        for (int i = 0; i < 4; ++i) {
+            row += bu[i] * c[4 * j + i];
+            rowDu += du[i] * c[4 * j + i];
+        }
+        P += bv[j] * row;
+        Du += bv[j] * rowDu;
+        Dv += dv[j] * row;
+    }
+    n = cross(Du, Dv);
+}
+
+// A smooth irregular face at st (1/32768 units), lib/subdiv/evaluate.cpp's evaluateSmooth: turned
+// so that its extraordinary corner is at (0, 0), the band from the halvings of max(s, t), the
+// corner itself its limit point, within 2^-K of it the bilinear blend of that and three band-K
+// points.
+void smoothPoint(uint h, uint st, out vec3 P, out vec3 n) {
+    Patch hd = patches.p[h];
+    uint S = st & 0xFFFFu, T = st >> 16, corner = hd.cv[1], K = hd.cv[3];
+    uint a = corner == 0u ? S : corner == 1u ? T : corner == 2u ? 32768u - S : 32768u - T;
+    uint c = corner == 0u ? T : corner == 1u ? 32768u - S : corner == 2u ? 32768u - T : S;
+    vec3 evP = limits.v[2u * hd.cv[4]].xyz, evN = limits.v[2u * hd.cv[4] + 1u].xyz;
+    if (a == 0u && c == 0u) {
+        P = evP, n = evN;
+        return;
+    }
+    uint k = 1u;
+    while (max(a, c) < 16384u && k < K) a *= 2u, c *= 2u, ++k;
+    if (max(a, c) >= 16384u) {
+        uint qu = a >= 16384u ? 1u : 0u, qv = c >= 16384u ? 1u : 0u;
+        uint q = qv == 0u ? 1u : qu == 1u ? 2u : 3u;
+        basisPatchPoint(h, k, q, float(2u * a - qu * 32768u) / 32768.0, float(2u * c - qv * 32768u) / 32768.0, P, n);
+        return;
+    }
+    vec3 P1, P2, P3, n1, n2, n3;
+    basisPatchPoint(h, k, 1u, 0.0, 0.0, P1, n1);
+    basisPatchPoint(h, k, 2u, 0.0, 0.0, P2, n2);
+    basisPatchPoint(h, k, 3u, 0.0, 0.0, P3, n3);
+    float x = float(a) / 16384.0, y = float(c) / 16384.0;
+    float w[4] = float[4]((1.0 - x) * (1.0 - y), x * (1.0 - y), x * y, (1.0 - x) * y);
+    P = w[0] * evP + w[1] * P1 + w[2] * P2 + w[3] * P3;
+    n = w[0] * evN + w[1] * normalize(n1) + w[2] * normalize(n2) + w[3] * normalize(n3);
+}
+
+// The surface of irregular face `face` at st = s | t << 16 (1/32768 units) (docs/irregular.md,
+// lib/subdiv/evaluate.h's evaluateIrregular): its quadtree, whose root is patches.p[patchCount
+// + face] (a node's four child codes in cv[0..3]), is walked by halving (s, t), exactly in these
+// fixed-point units, to the regular sub-patch there; within 2^-K of an extraordinary corner (a
+// leaf), or for tables without quadtrees, the bilinear blend of the corner limit points. The
+// normal's sign is the patch's (the sub-patches' axes are the face's).
+void irregularPoint(uint face, uint st, uint patchCount, out vec3 P, out vec3 n) {
+    uint S = st & 0xFFFFu, T = st >> 16;
+    if ((S == 0u || S == 32768u) && (T == 0u || T == 32768u)) { // a corner: its limit point, as the fixed grids draw it
+        uint k = S == 0u ? (T == 0u ? 0u : 3u) : (T == 0u ? 1u : 2u);
+        uint c = irregulars.f[face].corner[k];
+        P = limits.v[2u * c].xyz, n = limits.v[2u * c + 1u].xyz;
+        return;
+    }
+    uint node = patchCount + face, leaf = face, ls = S, lt = T;
+    for (int k = 0; k < 17; ++k) {
+        uint c = (S >= 16384u ? 1u : 0u) | (T >= 16384u ? 2u : 0u);
+        uint code = patches.p[node].cv[c];
+        if (code == IRREGULAR_NONE) break;
+        if ((code & IRREGULAR_KIND) == IRREGULAR_BASIS) { // only at the root
+            smoothPoint(code & ~IRREGULAR_KIND, st, P, n);
+            return;
+        }
+        S = 2u * S - ((c & 1u) != 0u ? 32768u : 0u);
+        T = 2u * T - ((c & 2u) != 0u ? 32768u : 0u);
+        uint kind = code & IRREGULAR_KIND, index = code & ~IRREGULAR_KIND;
+        if (kind == IRREGULAR_SUBPATCH) {
+            patchPoint(patches.p[index], float(S) / 32768.0, float(T) / 32768.0, P, n);
+            return;
+        }
+        if (kind == IRREGULAR_LEAF) {
+            leaf = index, ls = S, lt = T;
+            break;
+        }
+        node = index;
+    }
+    IrregularFace q = irregulars.f[leaf];
+    float s = float(ls) / 32768.0, t = float(lt) / 32768.0;
+    float w[4] = float[4]((1.0 - s) * (1.0 - t), s * (1.0 - t), s * t, (1.0 - s) * t);
+    P = vec3(0.0);
+    n = vec3(0.0);
+    for (int k = 0; k < 4; ++k) {
+        P += w[k] * limits.v[2 * q.corner[k]].xyz;
+        n += w[k] * limits.v[2 * q.corner[k] + 1].xyz;
+    }
+}
+
 // `element` (a patch index, or patchCount + an irregular face), at `st` = s | t << 16 in 1/32768.
 SurfaceSample evaluateElement(uint element, uint st, uint patchCount) {
-    uvec2 tv = uvec2(element, st);
-    float s = float(tv.y & 0xFFFFu) / 32768.0, t = float(tv.y >> 16) / 32768.0;
+    float s = float(st & 0xFFFFu) / 32768.0, t = float(st >> 16) / 32768.0;
     SurfaceSample r;
-    if (tv.x < patchCount) {
-        Patch pt = patches.p[tv.x];
-        float bu[4], du[4], bv[4], dv[4];
-        patchBasis(pt, s, t, bu, du, bv, dv);
-        vec3 P = vec3(0.0), Du = vec3(0.0), Dv = vec3(0.0);
-        for (int j = 0; j < 4; ++j) {
-            vec3 row = vec3(0.0), rowDu = vec3(0.0), rowDv = vec3(0.0);
-            for (int i = 0; i < 4; ++i) {
-                vec3 c = vertices.p[pt.cv[4 * j + i]].xyz;
-                row += bu[i] * c;
-                rowDu += du[i] * c;
-            }
-            P += bv[j] * row;
-            Du += bv[j] * rowDu;
-            Dv += dv[j] * row;
-        }
-        vec3 n = cross(Du, Dv);
-        r.position = P;
-        r.normal = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0);
+    vec3 P, n;
+    if (element < patchCount) {
+        Patch pt = patches.p[element];
+        patchPoint(pt, s, t, P, n);
         r.ptex = pt.ptex;
         r.uv = vec2(pt.u0, pt.v0) + pt.size * vec2(s, t);
         r.level = pt.levelBoundary & 0xFFu;
     } else {
-        IrregularFace q = irregulars.f[tv.x - patchCount];
-        float w[4] = float[4]((1.0 - s) * (1.0 - t), s * (1.0 - t), s * t, (1.0 - s) * t);
-        vec3 P = vec3(0.0), N = vec3(0.0);
-        for (int k = 0; k < 4; ++k) {
-            P += w[k] * limits.v[2 * q.corner[k]].xyz;
-            N += w[k] * limits.v[2 * q.corner[k] + 1].xyz;
-        }
-        r.position = P;
-        r.normal = dot(N, N) > 0.0 ? normalize(N) : vec3(0.0);
+        IrregularFace q = irregulars.f[element - patchCount];
+        irregularPoint(element - patchCount, st, patchCount, P, n);
         r.ptex = q.ptex;
         r.uv = vec2(q.u0, q.v0) + q.size * vec2(s, t);
         r.level = 255u;
     }
+    r.position = P;
+    r.normal = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0);
     return r;
 }
 
-// The positions of one element at three parameters (st as in evaluateElement), its control
-// points or limit points read once (adaptive_rates.comp samples each edge piece three times: on
+// The positions of one element at three parameters (st as in evaluateElement), a patch's
+// control points read once (adaptive_rates.comp samples each edge piece three times: on
 // lavapipe the repeated reads were most of that pass). The same sums, in the same order, as
 // evaluateElement's positions.
 void elementPositions3(uint element, uint st[3], uint patchCount, out vec3 P[3]) {
@@ -93,15 +205,9 @@ void elementPositions3(uint element, uint st[3], uint patchCount, out vec3 P[3])
             P[q] = p;
         }
     } else {
-        IrregularFace f = irregulars.f[element - patchCount];
-        vec3 c[4];
-        for (int k = 0; k < 4; ++k) c[k] = limits.v[2 * f.corner[k]].xyz;
         for (int q = 0; q < 3; ++q) {
-            float s = float(st[q] & 0xFFFFu) / 32768.0, t = float(st[q] >> 16) / 32768.0;
-            float w[4] = float[4]((1.0 - s) * (1.0 - t), s * (1.0 - t), s * t, (1.0 - s) * t);
-            vec3 p = vec3(0.0);
-            for (int k = 0; k < 4; ++k) p += w[k] * c[k];
-            P[q] = p;
+            vec3 n;
+            irregularPoint(element - patchCount, st[q], patchCount, P[q], n);
         }
     }
 }

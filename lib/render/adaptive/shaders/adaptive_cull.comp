@@ -3,8 +3,8 @@
 // not have drawn a sample; a culled element is still emitted at its smallest rate for --mesh-out.
 //
 // Outside the view frustum: a regular patch lies in the convex hull of its 16 Bezier control
-// points (converted from its B-spline ones, paper 000, eq. 1), an irregular face (bilinear) in
-// that of its four limit points; the element is culled when all of them are outside one clip
+// points (converted from its B-spline ones, paper 000, eq. 1), an irregular face drawn bilinear
+// (tables without its sub-patches) in that of its four limit points; the element is culled when all of them are outside one clip
 // plane. Patches on a mesh boundary (whose phantom points are not among the control points) and
 // single-crease patches are never culled.
 //
@@ -138,6 +138,10 @@ void main() {
             }
             if (all == 0u && betweenSamples(P, 16u)) all = 128u;
         }
+    } else if (patches.p[e].cv[0] != IRREGULAR_NONE) {
+        // An irregular face on its sub-patches (docs/irregular.md) is not in the hull of its
+        // corners: never culled (there are few; their hulls would be those of their sub-patches).
+        all = 0u;
     } else {
         IrregularFace q = irregulars.f[e - pc.patchCount];
         vec3 P[16], U[12], V[12];

@@ -1,0 +1,41 @@
+// The surface of a face left irregular at the last level around one smooth interior
+// extraordinary vertex (docs/irregular.md; Stam 1998's setting, without the eigenbasis): its
+// sub-patches at levels 1..K deeper are regular bicubic B-splines whose 16 control points are
+// fixed linear combinations of the face's 2n + 8 surrounding points (n the valence), the same
+// for every such face of valence n. The combinations are found once per valence by refining a
+// generated mesh around a valence-n vertex with the tables' own rules, so they follow limn's
+// (and OpenSubdiv's) Catmull-Clark exactly.
+#pragma once
+
+#include "subdiv/level.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace limn {
+
+struct IrregularBasis {
+    uint32_t valence = 0;
+    uint32_t levels = 0; // K
+    // weights[((k - 1) * 3 + (q - 1)) * 16 * m + j * m + i]: control point j (P_{j%4, j/4}) of
+    // the band-k sub-patch in quadrant q (1: s >= 1/2 > t, 2: both >= 1/2, 3: t >= 1/2 > s, in
+    // the band's square [0, 2^-(k-1)]^2 with the extraordinary vertex at (0, 0)), as weights of
+    // the m = 2n + 8 support points (smoothSupport's order).
+    std::vector<float> weights;
+    uint32_t supportSize() const { return 2 * valence + 8; }
+};
+
+// Builds the basis of valence n (>= 3) for K levels (1..16). Throws Error on failure.
+IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);
+
+// Whether face f of level L is a quad whose surface these bases give: exactly one corner is an
+// extraordinary vertex (valence n >= 3, any n != 4), the other three have valence 4, every face
+// around its corners is a quad, nothing there is on a boundary, sharp, or without a limit. Then
+// `corner` is the extraordinary corner's ptex index (0: (0,0), 1: (1,0), 2: (1,1), 3: (0,1)),
+// `valence` its valence and `support` the 2n + 8 vertices of the faces around its corners in
+// a canonical order (corners from the extraordinary one counter-clockwise, faces around each
+// counter-clockwise from f, each face's vertices from that corner on; each vertex once).
+bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
+                   std::vector<uint32_t>& support);
+
+} // namespace limn
