@@ -5,6 +5,12 @@ find_package(PkgConfig REQUIRED)
 find_package(glm CONFIG REQUIRED)
 find_package(OpenMesh CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
+# Compressed glTF geometry, each decoded by its own library: KHR_draco_mesh_compression (Draco)
+# and EXT_/KHR_meshopt_compression (meshoptimizer); nlohmann's JSON (tinygltf's own parser) reads
+# the extensions before tinygltf does (lib/mesh/gltf_prepass.cpp).
+find_package(draco CONFIG REQUIRED)
+find_package(meshoptimizer CONFIG REQUIRED)
+find_package(nlohmann_json CONFIG REQUIRED)
 find_package(Vulkan REQUIRED COMPONENTS glslangValidator)
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 

@@ -14,7 +14,8 @@ namespace limn {
 // "-" means standard input / standard output everywhere.
 inline bool isStdio(const std::string& path) { return path.empty() || path == "-"; }
 
-// Reads a whole file (or stdin for "-"). Throws Error(BadInput) naming the file.
+// Reads a whole file (or stdin for "-"). Throws Error(BadInput) naming the file, and for an empty
+// standard input (a failed command upstream in a pipe).
 std::vector<uint8_t> readInput(const std::string& path);
 
 // The extension of a path, lower-cased, with the dot (".obj"); empty for stdin or none.
