@@ -31,12 +31,11 @@ int main(int argc, char** argv) {
                     {"none", "corners-only", "corners-plus1", "corners-plus2", "boundaries", "all"},
                     "UV smoothing rule [default: the mesh's fvar tag, else all]")
             .choice("--quads", &quads, {"auto", "off", "pairs", "ngon"},
-                    "quads back from triangles [default: auto]")
+                    "quads back from triangles (see below)")
             .real("--quad-face-angle", "DEG", &faceAngle, 0, 180,
-                  "pairs: most angle between the two triangles' normals [default: 60; 0..180]")
+                  "pairs: max angle between the normals")
             .real("--quad-shape-angle", "DEG", &shapeAngle, 0, 180,
-                  "pairs: most angle of a quad corner from square; 180 also allows concave quads\n"
-                  "[default: 75; 0..180]")
+                  "pairs: max corner angle off square")
             .notes("The format is chosen by the extension, or by content on standard input.\n"
                    "--fvar is OpenSubdiv's face-varying linear interpolation, stored as the mesh's\n"
                    "tag (OBJ: t facevaryinginterpolateboundary): none smooths UVs everywhere;\n"
@@ -51,8 +50,8 @@ int main(int argc, char** argv) {
                    "--quad-face-angle, corners within --quad-shape-angle of square and convex; same\n"
                    "UVs on the edge, no crease on it; Blender's defaults are 40 and 40): triangles\n"
                    "written one after the other first (exporters write a quad's two so), then the\n"
-                   "best-shaped pairs; deterministic. off keeps the\n"
-                   "triangles. auto: for glTF input ngon if the file uses FB_ngon_encoding, else\n"
+                   "best-shaped pairs; deterministic; 180 turns a limit off (the shape limit's\n"
+                   "convexity check with it). off keeps the triangles. auto: for glTF input ngon if the file uses FB_ngon_encoding, else\n"
                    "pairs; for other input off. Triangles left unpaired are reported as a warning.\n"
                    "A glTF's base colour (factor and texture image bytes) is kept in a MATL chunk\n"
                    "(formats/limn.md), which limn-render draws.\n"
