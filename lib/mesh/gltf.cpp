@@ -73,61 +73,6 @@ struct Welder {
         return it->second;
     }
 
-    // POSITION and TEXCOORD_0 from accessors or Draco, morph targets applied with `weights`.
-    static gltf::PrimitiveData primitiveData(const tinygltf::Model& model, const tinygltf::Primitive& prim,
-                                             const gltf::Prepass& pre, std::pair<int, int> key,
-                                             const std::vector<double>& weights, const std::string& what) {
-        gltf::PrimitiveData d;
-        if (auto draco = pre.draco.find(key); draco != pre.draco.end()) {
-            gltf::decodeDraco(model, draco->second, what, d);
-        } else {
-            auto pos = prim.attributes.find("POSITION");
-            if (pos == prim.attributes.end()) throwBadInput(what + " has no POSITION attribute");
-            const gltf::AccessorData p = gltf::readAccessor(model, pos->second, what + " POSITION");
-            if (p.components != 3) throwBadInput(what + " POSITION is not a 3-vector");
-            d.positions.resize(p.count);
-            for (size_t i = 0; i < p.count; ++i) d.positions[i] = {p.at(i, 0), p.at(i, 1), p.at(i, 2)};
-            if (auto tc = prim.attributes.find("TEXCOORD_0"); tc != prim.attributes.end()) {
-                const gltf::AccessorData t = gltf::readAccessor(model, tc->second, what + " TEXCOORD_0");
-                if (t.components != 2 || t.count != p.count) throwBadInput(what + " TEXCOORD_0 does not match POSITION");
-                d.texcoords.resize(t.count);
-                for (size_t i = 0; i < t.count; ++i) d.texcoords[i] = {t.at(i, 0), t.at(i, 1)};
-            }
-            if (prim.indices >= 0) {
-                d.indices = gltf::readIndices(model, prim.indices, what + " indices");
-                d.hasIndices = true;
-            } else if (auto iv = pre.indicesWithoutView.find(key); iv != pre.indicesWithoutView.end()) {
-                d.indices = gltf::readIndices(model, iv->second, what + " indices");
-                d.hasIndices = true;
-            }
-        }
-        // Morph targets (glTF 2.0, 3.7.2.2): position = base + sum of weight * displacement.
-        if (!prim.targets.empty() && !weights.empty()) {
-            if (weights.size() != prim.targets.size())
-                throwBadInput(what + " has " + std::to_string(prim.targets.size()) + " morph targets but " +
-                              std::to_string(weights.size()) + " weights");
-            for (size_t t = 0; t < prim.targets.size(); ++t) {
-                if (weights[t] == 0.0) continue;
-                const std::string target = what + " morph target " + std::to_string(t);
-                if (auto a = prim.targets[t].find("POSITION"); a != prim.targets[t].end()) {
-                    const gltf::AccessorData delta = gltf::readAccessor(model, a->second, target + " POSITION");
-                    if (delta.components != 3 || delta.count != d.positions.size())
-                        throwBadInput(target + " POSITION does not match the primitive's POSITION");
-                    for (size_t i = 0; i < delta.count; ++i)
-                        d.positions[i] += weights[t] * glm::dvec3(delta.at(i, 0), delta.at(i, 1), delta.at(i, 2));
-                }
-                if (auto a = prim.targets[t].find("TEXCOORD_0"); a != prim.targets[t].end() && !d.texcoords.empty()) {
-                    const gltf::AccessorData delta = gltf::readAccessor(model, a->second, target + " TEXCOORD_0");
-                    if (delta.components != 2 || delta.count != d.texcoords.size())
-                        throwBadInput(target + " TEXCOORD_0 does not match the primitive's TEXCOORD_0");
-                    for (size_t i = 0; i < delta.count; ++i)
-                        d.texcoords[i] += weights[t] * glm::dvec2(delta.at(i, 0), delta.at(i, 1));
-                }
-            }
-        }
-        return d;
-    }
-
     void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                       const gltf::Prepass& pre, std::pair<int, int> key, const std::vector<double>& weights,
                       const glm::dmat4& transform, const std::string& what) {
@@ -141,7 +86,7 @@ struct Welder {
             if (material < 0) material = prim.material;
             else if (prim.material != material) otherMaterials = true;
         }
-        const gltf::PrimitiveData d = primitiveData(model, prim, pre, key, weights, what);
+        const gltf::PrimitiveData d = gltf::primitiveData(model, prim, pre, key, weights, what);
         std::vector<uint32_t> welded(d.positions.size());
         for (size_t i = 0; i < d.positions.size(); ++i) {
             const glm::dvec3 q(transform * glm::dvec4(d.positions[i], 1.0));
@@ -364,18 +309,19 @@ std::span<const uint8_t> glbJson(std::span<const uint8_t> bytes) {
 
 } // namespace
 
-Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
-              Warnings& warnings, std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material,
-              GltfPolygons* polygons) {
+namespace gltf {
+
+Loaded load(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir, Warnings& warnings,
+            std::vector<std::string>* filesRead, std::map<int, std::vector<uint8_t>>* images) {
+    Loaded out;
     refuseDeepJson(binary ? glbJson(bytes) : bytes);
-    const gltf::Prepass pre = gltf::prepass(bytes, binary, warnings);
-    if (!pre.rewritten.empty()) bytes = pre.rewritten;
+    out.pre = gltf::prepass(bytes, binary, warnings);
+    if (!out.pre.rewritten.empty()) bytes = out.pre.rewritten;
     tinygltf::TinyGLTF loader;
-    ImageBytes images;
-    loader.SetImageLoader(keepImageBytes, material ? &images : nullptr);
+    loader.SetImageLoader(keepImageBytes, images);
     loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readAndRecord,
                            &tinygltf::WriteWholeFile, filesRead});
-    tinygltf::Model model;
+    tinygltf::Model& model = out.model;
     std::string err, warn;
     bool ok;
     if (binary)
@@ -389,7 +335,7 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
         while (!err.empty() && err.back() == '\n') err.pop_back();
         throwBadInput("glTF: " + (err.empty() ? std::string("cannot parse") : err));
     }
-    std::vector<int> roots;
+    std::vector<int>& roots = out.roots;
     if (!model.scenes.empty()) {
         int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
         if (scene >= static_cast<int>(model.scenes.size()))
@@ -404,9 +350,75 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
             if (!isChild[i]) roots.push_back(static_cast<int>(i));
     }
     // The node graph is checked before any buffer is decoded.
-    const std::vector<gltf::NodeInstance> instances = gltf::sceneInstances(model, roots, warnings);
-    gltf::decodeMeshopt(model, pre);
+    out.instances = gltf::sceneInstances(model, roots, warnings);
+    gltf::decodeMeshopt(model, out.pre);
+    return out;
+}
 
+} // namespace gltf
+
+gltf::PrimitiveData gltf::primitiveData(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                         const gltf::Prepass& pre, std::pair<int, int> key,
+                                         const std::vector<double>& weights, const std::string& what) {
+    gltf::PrimitiveData d;
+    if (auto draco = pre.draco.find(key); draco != pre.draco.end()) {
+        gltf::decodeDraco(model, draco->second, what, d);
+    } else {
+        auto pos = prim.attributes.find("POSITION");
+        if (pos == prim.attributes.end()) throwBadInput(what + " has no POSITION attribute");
+        const gltf::AccessorData p = gltf::readAccessor(model, pos->second, what + " POSITION");
+        if (p.components != 3) throwBadInput(what + " POSITION is not a 3-vector");
+        d.positions.resize(p.count);
+        for (size_t i = 0; i < p.count; ++i) d.positions[i] = {p.at(i, 0), p.at(i, 1), p.at(i, 2)};
+        if (auto tc = prim.attributes.find("TEXCOORD_0"); tc != prim.attributes.end()) {
+            const gltf::AccessorData t = gltf::readAccessor(model, tc->second, what + " TEXCOORD_0");
+            if (t.components != 2 || t.count != p.count) throwBadInput(what + " TEXCOORD_0 does not match POSITION");
+            d.texcoords.resize(t.count);
+            for (size_t i = 0; i < t.count; ++i) d.texcoords[i] = {t.at(i, 0), t.at(i, 1)};
+        }
+        if (prim.indices >= 0) {
+            d.indices = gltf::readIndices(model, prim.indices, what + " indices");
+            d.hasIndices = true;
+        } else if (auto iv = pre.indicesWithoutView.find(key); iv != pre.indicesWithoutView.end()) {
+            d.indices = gltf::readIndices(model, iv->second, what + " indices");
+            d.hasIndices = true;
+        }
+    }
+    // Morph targets (glTF 2.0, 3.7.2.2): position = base + sum of weight * displacement.
+    if (!prim.targets.empty() && !weights.empty()) {
+        if (weights.size() != prim.targets.size())
+            throwBadInput(what + " has " + std::to_string(prim.targets.size()) + " morph targets but " +
+                          std::to_string(weights.size()) + " weights");
+        for (size_t t = 0; t < prim.targets.size(); ++t) {
+            if (weights[t] == 0.0) continue;
+            const std::string target = what + " morph target " + std::to_string(t);
+            if (auto a = prim.targets[t].find("POSITION"); a != prim.targets[t].end()) {
+                const gltf::AccessorData delta = gltf::readAccessor(model, a->second, target + " POSITION");
+                if (delta.components != 3 || delta.count != d.positions.size())
+                    throwBadInput(target + " POSITION does not match the primitive's POSITION");
+                for (size_t i = 0; i < delta.count; ++i)
+                    d.positions[i] += weights[t] * glm::dvec3(delta.at(i, 0), delta.at(i, 1), delta.at(i, 2));
+            }
+            if (auto a = prim.targets[t].find("TEXCOORD_0"); a != prim.targets[t].end() && !d.texcoords.empty()) {
+                const gltf::AccessorData delta = gltf::readAccessor(model, a->second, target + " TEXCOORD_0");
+                if (delta.components != 2 || delta.count != d.texcoords.size())
+                    throwBadInput(target + " TEXCOORD_0 does not match the primitive's TEXCOORD_0");
+                for (size_t i = 0; i < delta.count; ++i)
+                    d.texcoords[i] += weights[t] * glm::dvec2(delta.at(i, 0), delta.at(i, 1));
+            }
+        }
+    }
+    return d;
+}
+
+Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
+              Warnings& warnings, std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material,
+              GltfPolygons* polygons) {
+    ImageBytes images;
+    gltf::Loaded loaded = gltf::load(bytes, binary, baseDir, warnings, filesRead, material ? &images : nullptr);
+    const tinygltf::Model& model = loaded.model;
+    const gltf::Prepass& pre = loaded.pre;
+    const std::vector<gltf::NodeInstance>& instances = loaded.instances;
     Welder w;
     w.rebuildNgons = polygons && polygons->rebuildNgons;
     for (const auto& instance : instances) {
@@ -436,9 +448,8 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
         w.mesh.uvIndices.clear();
     }
     // The UVs address the base colour texture as a viewer shows it (limn draws one texture).
-    if (w.mesh.hasUVs() && w.material >= 0 &&
-        transformTexCoord(model.materials[std::min<size_t>(w.material, model.materials.size() - 1)]
-                              .pbrMetallicRoughness.baseColorTexture) == 0)
+    if (w.mesh.hasUVs() && w.material >= 0 && size_t(w.material) < model.materials.size() &&
+        transformTexCoord(model.materials[size_t(w.material)].pbrMetallicRoughness.baseColorTexture) == 0)
         if (const auto t = textureTransform(model, w.material))
             for (auto& uv : w.mesh.uvs) {
                 const glm::dvec3 g = *t * glm::dvec3(uv.x, 1.0 - uv.y, 1.0); // limn's v is up

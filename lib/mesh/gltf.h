@@ -43,4 +43,18 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
               Warnings& warnings, std::vector<std::string>* filesRead = nullptr,
               std::optional<MeshMaterial>* material = nullptr, GltfPolygons* polygons = nullptr);
 
+// A glTF's morph-target animation as control-point sets on readGltf's mesh (same topology, same
+// vertex order): the first animation's `weights` channels, sampled at their keyframes (fps 0) or
+// every 1/fps seconds from the first keyframe to the last, with the channel's interpolation
+// (STEP, LINEAR, CUBICSPLINE; glTF 2.0, 3.11). Vertices that readGltf welds (same position under
+// the default weights) take the first one's position; a frame in which they move apart is
+// counted in `unwelded`. Refuses a file without such an animation.
+struct GltfMorphFrames {
+    std::vector<double> times;                       // seconds
+    std::vector<std::vector<glm::dvec3>> positions;  // per frame, one per vertex of readGltf's mesh
+    size_t unwelded = 0;                             // frames where welded vertices move apart
+};
+GltfMorphFrames readGltfMorphFrames(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
+                                    Warnings& warnings, double fps = 0);
+
 } // namespace limn

@@ -128,6 +128,7 @@ AccessorData readAccessor(const tinygltf::Model& model, int index, const std::st
 
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int index, const std::string& what) {
     if (index >= 0 && index < static_cast<int>(model.accessors.size())) {
+        if (model.accessors[index].normalized) throwBadInput(what + ": indices must not be normalized");
         const int type = model.accessors[index].componentType;
         if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
             type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)

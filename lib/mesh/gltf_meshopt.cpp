@@ -17,11 +17,13 @@ constexpr uint64_t kMaxDecodedBytes = uint64_t(4) << 30;
 } // namespace
 
 void decodeMeshopt(tinygltf::Model& model, const Prepass& prepass) {
+    uint64_t placeholders = 0;
     for (const auto& [b, length] : prepass.placeholderBuffers) {
         if (b < 0 || b >= static_cast<int>(model.buffers.size())) continue;
-        if (length > kMaxDecodedBytes)
+        placeholders += length;
+        if (length > kMaxDecodedBytes || placeholders > kMaxDecodedBytes)
             throwBadInput("glTF: fallback buffer " + std::to_string(b) + " declares " + std::to_string(length) +
-                          " bytes, more than limn reads");
+                          " bytes, more than limn reads (4 GiB in all)");
         model.buffers[b].data.assign(size_t(length), 0);
     }
     uint64_t decoded = 0;

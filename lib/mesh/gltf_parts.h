@@ -65,6 +65,10 @@ struct PrimitiveData {
 };
 void decodeDraco(const tinygltf::Model& model, const DracoPrimitive& draco, const std::string& what,
                  PrimitiveData& out);
+// POSITION, TEXCOORD_0 and indices of a primitive (`key`: mesh and primitive index), from
+// accessors or Draco, with morph targets applied with `weights` (glTF 2.0, 3.7.2.2).
+PrimitiveData primitiveData(const tinygltf::Model& model, const tinygltf::Primitive& prim, const Prepass& pre,
+                            std::pair<int, int> key, const std::vector<double>& weights, const std::string& what);
 
 // An accessor's elements as doubles (normalized integers mapped to [0, 1] or [-1, 1]), with a
 // sparse accessor's substitutions applied and zeros where there is no buffer view.
@@ -90,5 +94,17 @@ struct NodeInstance {
 inline constexpr uint64_t kMaxNodeInstances = 1'000'000;
 std::vector<NodeInstance> sceneInstances(const tinygltf::Model& model, const std::vector<int>& roots,
                                          Warnings& warnings);
+
+// A parsed file: tinygltf's model with every meshopt view decoded, the pre-pass, the scene's
+// roots and its node instances (the node graph checked). `images` (optional) gets each image's
+// file bytes.
+struct Loaded {
+    tinygltf::Model model;
+    Prepass pre;
+    std::vector<int> roots;
+    std::vector<NodeInstance> instances;
+};
+Loaded load(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir, Warnings& warnings,
+            std::vector<std::string>* filesRead, std::map<int, std::vector<uint8_t>>* images);
 
 } // namespace limn::gltf

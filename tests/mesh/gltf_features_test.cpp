@@ -199,3 +199,40 @@ TEST(GltfFeatures, NgonEncodingRebuildsPolygons) {
 }
 
 } // namespace
+
+namespace {
+
+// The morph-target animation as control-point sets (the library side of limn-render --frames):
+// frame k equals the mesh read with that frame's weights as its default weights.
+TEST(GltfFeatures, MorphAnimationFramesAreTheMeshWithThoseWeights) {
+    const std::string json = test::readFile(feature("morph_animation.gltf"));
+    auto bytes = [](const std::string& s) { return std::span(reinterpret_cast<const uint8_t*>(s.data()), s.size()); };
+    auto withWeight = [&](double w) { // the file with its default weight replaced
+        std::string s = json;
+        const size_t at = s.find("\"weights\": [\n    0.25\n   ]");
+        EXPECT_NE(at, std::string::npos);
+        s.replace(at, std::string("\"weights\": [\n    0.25\n   ]").size(), "\"weights\": [" + std::to_string(w) + "]");
+        Warnings w2;
+        return readGltf(bytes(s), false, "", w2);
+    };
+    Warnings w;
+    const GltfMorphFrames keys = readGltfMorphFrames(bytes(json), false, "", w);
+    EXPECT_EQ(keys.times, (std::vector<double>{0, 1, 2}));
+    const GltfMorphFrames sampled = readGltfMorphFrames(bytes(json), false, "", w, 2.0);
+    EXPECT_EQ(sampled.times, (std::vector<double>{0, 0.5, 1, 1.5, 2}));
+    const double expected[] = {0, 0.5, 1, 0.75, 0.5}; // linear between 0, 1, 0.5
+    const Mesh reference = withWeight(0.25);
+    for (size_t k = 0; k < sampled.times.size(); ++k) {
+        SCOPED_TRACE(k);
+        const Mesh m = withWeight(expected[k]);
+        ASSERT_EQ(m.faceVertices, reference.faceVertices); // one topology for every frame
+        EXPECT_EQ(sampled.positions[k], m.positions);
+    }
+    EXPECT_EQ(sampled.unwelded, 0u);
+    EXPECT_TRUE(w.empty());
+    // Without an animation: a clear refusal.
+    const auto cube = test::readBytes(feature("cube.gltf"));
+    EXPECT_THROW(readGltfMorphFrames(cube, false, "", w), Error);
+}
+
+} // namespace

@@ -51,8 +51,9 @@ int main(int argc, char** argv) {
                    "UVs on the edge, no crease on it; Blender's defaults are 40 and 40): triangles\n"
                    "written one after the other first (exporters write a quad's two so), then the\n"
                    "best-shaped pairs; deterministic; 180 turns a limit off (the shape limit's\n"
-                   "convexity check with it). off keeps the triangles. auto: for glTF input ngon if the file uses FB_ngon_encoding, else\n"
-                   "pairs; for other input off. Triangles left unpaired are reported as a warning.\n"
+                   "convexity check with it). off keeps the triangles. auto: for glTF input ngon\n"
+                   "if the file uses FB_ngon_encoding, else pairs; for other input off. Triangles\n"
+                   "left unpaired are reported as a warning.\n"
                    "A glTF's base colour (factor and texture image bytes) is kept in a MATL chunk\n"
                    "(formats/limn.md), which limn-render draws.\n"
                    "Example:\n  limn-classify frog.obj | limn-tables --depth 4 | limn-render -o frog.png\n");

@@ -289,6 +289,22 @@ def ngon():
     b.write("ngon_encoding.gltf")
 
 
+def morph_animation():
+    # The strip with one target (the top row lifted by 1), default weight 0.25, and an animation
+    # of that weight: 0, 1, 0.5 at 0, 1, 2 seconds, linear.
+    b = Builder()
+    pos = dense_positions(b)
+    target = b.accessor(b.view(f32([0, 0, 0] * 3 + [0, 0, 1] * 3)), 5126, 6, "VEC3", {"min": [0, 0, 0], "max": [0, 0, 1]})
+    idx = b.accessor(b.view(u16(STRIP_IDX)), 5123, 12, "SCALAR")
+    times = b.accessor(b.view(f32([0, 1, 2])), 5126, 3, "SCALAR", {"min": [0], "max": [2]})
+    weights = b.accessor(b.view(f32([0, 1, 0.5])), 5126, 3, "SCALAR")
+    b.doc["_prim"] = {"attributes": {"POSITION": pos}, "indices": idx, "targets": [{"POSITION": target}]}
+    one_node_scene(b.doc, {"weights": [0.25]})
+    b.doc["animations"] = [{"channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}],
+                            "samplers": [{"input": times, "output": weights, "interpolation": "LINEAR"}]}]
+    b.write("morph_animation.gltf")
+
+
 def main():
     cube("cube.gltf")
     cube_draco()
@@ -297,6 +313,7 @@ def main():
     strip_file("sparse.gltf", sparse_positions)
     strip_file("no_buffer_view.gltf", zero_positions)
     strip_file("morph_targets.gltf", dense_positions, prim_extra=morph_targets, mesh_extra={"weights": [0.25, 0.5]})
+    morph_animation()
     texture_transform()
     mirrored()
     # 60 nodes, each listing the next twice: 2^60 paths to the last one.
