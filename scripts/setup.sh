@@ -13,6 +13,10 @@ packages=(
   make
   # libraries the users chose (see ../shared/docs/toolchain.md)
   libopenmesh-dev libosd-dev libglm-dev libopenimageio-dev libtinygltf-dev
+  # compressed glTF, each decoded by its own library (lib/mesh/gltf_draco.cpp, gltf_meshopt.cpp):
+  # KHR_draco_mesh_compression and EXT_/KHR_meshopt_compression; nlohmann's JSON (tinygltf's
+  # parser) reads the extensions before tinygltf 2.7, which refuses Draco's and meshopt's JSON
+  libdraco-dev libmeshoptimizer-dev nlohmann-json3-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-tools glslang-dev spirv-tools
   # PNG encoding/decoding of our own (lib/image); OpenImageIO pulls it in too, named for clarity

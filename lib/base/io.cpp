@@ -68,6 +68,11 @@ std::vector<uint8_t> readInput(const std::string& path) {
         data.insert(data.end(), buffer, buffer + n);
     }
     if (fd != STDIN_FILENO) ::close(fd);
+    // Nothing on standard input is nearly always a failed command earlier in the pipe (its error
+    // is on the terminal above); "the mesh has no vertices" would blame the wrong stage.
+    if (data.empty() && isStdio(path))
+        throw Error(ErrorKind::BadInput,
+                    "empty input on <stdin> (did the command before it in the pipe fail?)");
     return data;
 }
 

@@ -16,7 +16,8 @@ inline bool isStdio(const std::string& path) { return path.empty() || path == "-
 // An input's name in messages: "<stdin>" for standard input.
 inline std::string displayName(const std::string& path) { return isStdio(path) ? "<stdin>" : path; }
 
-// Reads a whole file (or stdin for "-"). Throws Error(BadInput) naming the file.
+// Reads a whole file (or stdin for "-"). Throws Error(BadInput) naming the file, and for an empty
+// standard input (a failed command upstream in a pipe).
 std::vector<uint8_t> readInput(const std::string& path);
 
 // The extension of a path, lower-cased, with the dot (".obj"); empty for stdin or none.

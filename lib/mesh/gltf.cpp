@@ -1,15 +1,15 @@
 #include "mesh/gltf.h"
+#include "mesh/gltf_parts.h"
 
 #include "base/error.h"
 #include "base/io.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
-#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <cmath>
 #include <map>
@@ -46,102 +46,9 @@ std::string imageFormatName(const std::vector<uint8_t>& bytes, const tinygltf::I
     return "texture";
 }
 
-// A bounds-checked view of one accessor's elements.
-class AccessorView {
-public:
-    AccessorView(const tinygltf::Model& model, int index, const std::string& what) : what_(what) {
-        if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-            throwBadInput(what + ": accessor " + std::to_string(index) + " does not exist");
-        const auto& a = model.accessors[index];
-        if (a.sparse.isSparse) throwBadInput(what + ": sparse accessors are not supported");
-        if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model.bufferViews.size()))
-            throwBadInput(what + ": accessor " + std::to_string(index) + " has no buffer view");
-        const auto& view = model.bufferViews[a.bufferView];
-        if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()))
-            throwBadInput(what + ": buffer view refers to a missing buffer");
-        const auto& buffer = model.buffers[view.buffer].data;
-        components_ = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
-        componentSize_ = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
-        if (components_ <= 0 || componentSize_ <= 0)
-            throwBadInput(what + ": unsupported accessor type");
-        componentType_ = a.componentType;
-        normalized_ = a.normalized;
-        count_ = a.count;
-        size_t elementSize = size_t(components_) * size_t(componentSize_);
-        stride_ = view.byteStride ? view.byteStride : elementSize;
-        if (stride_ < elementSize) throwBadInput(what + ": byte stride smaller than an element");
-        if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
-            throwBadInput(what + ": buffer view runs past its buffer");
-        if (a.byteOffset > view.byteLength)
-            throwBadInput(what + ": accessor offset runs past its buffer view");
-        size_t avail = view.byteLength - a.byteOffset;
-        if (count_ > 0 && (count_ - 1 > (avail - std::min(avail, elementSize)) / stride_ ||
-                           avail < elementSize))
-            throwBadInput(what + ": " + std::to_string(count_) +
-                          " elements run past the end of the buffer view");
-        base_ = buffer.data() + view.byteOffset + a.byteOffset;
-    }
-
-    size_t count() const { return count_; }
-    int components() const { return components_; }
-
-    double component(size_t element, int c) const {
-        const uint8_t* p = base_ + element * stride_ + size_t(c) * size_t(componentSize_);
-        switch (componentType_) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-            float f;
-            std::memcpy(&f, p, 4);
-            return f;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized_ ? p[0] / 255.0 : p[0];
-        case TINYGLTF_COMPONENT_TYPE_BYTE: {
-            auto v = static_cast<int8_t>(p[0]);
-            return normalized_ ? std::max(v / 127.0, -1.0) : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-            uint16_t v;
-            std::memcpy(&v, p, 2);
-            return normalized_ ? v / 65535.0 : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: {
-            int16_t v;
-            std::memcpy(&v, p, 2);
-            return normalized_ ? std::max(v / 32767.0, -1.0) : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-            uint32_t v;
-            std::memcpy(&v, p, 4);
-            return v;
-        }
-        default: throwBadInput(what_ + ": unsupported component type");
-        }
-    }
-
-    uint32_t index(size_t element) const {
-        if (componentType_ != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            componentType_ != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            componentType_ != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-            throwBadInput(what_ + ": indices must be unsigned integers");
-        return static_cast<uint32_t>(component(element, 0));
-    }
-
-private:
-    std::string what_;
-    const uint8_t* base_ = nullptr;
-    size_t count_ = 0, stride_ = 0;
-    int components_ = 0, componentSize_ = 0, componentType_ = 0;
-    bool normalized_ = false;
-};
-
-glm::dmat4 nodeMatrix(const tinygltf::Node& n) {
-    if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
-    glm::dmat4 m(1.0);
-    if (n.translation.size() == 3)
-        m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
-    if (n.rotation.size() == 4) // glTF stores x, y, z, w
-        m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
-    if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
-    return m;
+// The morph target weights of an instance: the node's, else the mesh's (glTF 2.0, 3.7.2.2).
+const std::vector<double>& morphWeights(const tinygltf::Node& node, const tinygltf::Mesh& mesh) {
+    return node.weights.empty() ? mesh.weights : node.weights;
 }
 
 struct Welder {
@@ -149,7 +56,8 @@ struct Welder {
     std::map<std::array<double, 3>, uint32_t> positionIndex;
     std::map<std::array<double, 2>, uint32_t> uvIndex;
     bool anyUV = false, anyWithoutUV = false;
-    size_t degenerate = 0, skippedPrimitives = 0;
+    size_t degenerate = 0, skippedPrimitives = 0, mirrored = 0, ngons = 0;
+    bool rebuildNgons = false;
     int material = -1;           // the first triangle primitive's material
     bool otherMaterials = false; // a later primitive has another one
 
@@ -166,6 +74,7 @@ struct Welder {
     }
 
     void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                      const gltf::Prepass& pre, std::pair<int, int> key, const std::vector<double>& weights,
                       const glm::dmat4& transform, const std::string& what) {
         int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
@@ -173,55 +82,36 @@ struct Welder {
             ++skippedPrimitives;
             return;
         }
-        auto pos = prim.attributes.find("POSITION");
-        if (pos == prim.attributes.end()) throwBadInput(what + " has no POSITION attribute");
         if (prim.material >= 0) {
             if (material < 0) material = prim.material;
             else if (prim.material != material) otherMaterials = true;
         }
-        AccessorView positions(model, pos->second, what + " POSITION");
-        if (positions.components() != 3) throwBadInput(what + " POSITION is not a 3-vector");
-        std::vector<uint32_t> welded(positions.count());
-        for (size_t i = 0; i < positions.count(); ++i) {
-            glm::dvec4 p(positions.component(i, 0), positions.component(i, 1),
-                         positions.component(i, 2), 1.0);
-            const glm::dvec3 q(transform * p);
+        const gltf::PrimitiveData d = gltf::primitiveData(model, prim, pre, key, weights, what);
+        std::vector<uint32_t> welded(d.positions.size());
+        for (size_t i = 0; i < d.positions.size(); ++i) {
+            const glm::dvec3 q(transform * glm::dvec4(d.positions[i], 1.0));
             // A NaN would also break the welding map's ordering; refuse it like Inf.
             if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
                 throwBadInput(what + " POSITION " + std::to_string(i) +
-                              " is not finite (NaN or Inf), after the node transforms");
+                              " is not finite (NaN or Inf), after the node transforms and morph targets");
             welded[i] = weldPosition(q);
         }
-        std::vector<uint32_t> uvs;
-        auto tc = prim.attributes.find("TEXCOORD_0");
-        if (tc != prim.attributes.end()) {
-            AccessorView texcoords(model, tc->second, what + " TEXCOORD_0");
-            if (texcoords.components() != 2 || texcoords.count() != positions.count())
-                throwBadInput(what + " TEXCOORD_0 does not match POSITION");
-            uvs.resize(texcoords.count());
-            for (size_t i = 0; i < texcoords.count(); ++i) {
-                const double u = texcoords.component(i, 0), v = texcoords.component(i, 1);
-                if (!std::isfinite(u) || !std::isfinite(v))
-                    throwBadInput(what + " TEXCOORD_0 " + std::to_string(i) + " is not finite");
-                uvs[i] = weldUV({u, 1.0 - v});
-            }
-            anyUV = true;
-        } else {
-            anyWithoutUV = true;
+        std::vector<uint32_t> uvs(d.texcoords.size());
+        for (size_t i = 0; i < d.texcoords.size(); ++i) {
+            const double u = d.texcoords[i].x, v = d.texcoords[i].y;
+            if (!std::isfinite(u) || !std::isfinite(v))
+                throwBadInput(what + " TEXCOORD_0 " + std::to_string(i) + " is not finite");
+            uvs[i] = weldUV({u, 1.0 - v});
         }
-        std::vector<uint32_t> corners;
-        if (prim.indices >= 0) {
-            AccessorView indices(model, prim.indices, what + " indices");
-            corners.resize(indices.count());
-            for (size_t i = 0; i < indices.count(); ++i) {
-                corners[i] = indices.index(i);
-                if (corners[i] >= positions.count())
-                    throwBadInput(what + " index " + std::to_string(corners[i]) +
-                                  " is past the " + std::to_string(positions.count()) +
-                                  " vertices");
-            }
+        (d.texcoords.empty() ? anyWithoutUV : anyUV) = true;
+        std::vector<uint32_t> corners = d.indices;
+        if (d.hasIndices) {
+            for (uint32_t c : corners)
+                if (c >= d.positions.size())
+                    throwBadInput(what + " index " + std::to_string(c) + " is past the " +
+                                  std::to_string(d.positions.size()) + " vertices");
         } else {
-            corners.resize(positions.count());
+            corners.resize(d.positions.size());
             for (size_t i = 0; i < corners.size(); ++i) corners[i] = static_cast<uint32_t>(i);
         }
         // Strips and fans as the triangles glTF 2.0 (3.7.2.1) defines: strip triangle i is
@@ -237,34 +127,45 @@ struct Welder {
             corners = std::move(list);
         }
         if (corners.size() % 3) throwBadInput(what + " index count is not a multiple of 3");
+        // A transform with a negative determinant mirrors the mesh: glTF 2.0 (3.7.4) reverses the
+        // winding, so that the instance stays right side out.
+        const bool mirror = glm::determinant(glm::dmat3(transform)) < 0;
+        if (mirror) ++mirrored;
+        const bool ngon = rebuildNgons && mode == TINYGLTF_MODE_TRIANGLES && prim.extensions.count("FB_ngon_encoding");
+        std::vector<uint32_t> polygon, polygonUVs;
+        auto emit = [&] { // the polygon in `polygon` (glTF indices), welded
+            std::vector<uint32_t> face, faceUV;
+            for (uint32_t c : polygon) {
+                face.push_back(welded[c]);
+                faceUV.push_back(uvs.empty() ? ~0u : uvs[c]);
+            }
+            if (mirror) {
+                std::reverse(face.begin() + 1, face.end());
+                std::reverse(faceUV.begin() + 1, faceUV.end());
+            }
+            std::vector<uint32_t> sorted = face;
+            std::sort(sorted.begin(), sorted.end());
+            if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+                ++degenerate; // collapsed by welding or degenerate in the file
+                return;
+            }
+            if (face.size() > 3) ++ngons;
+            mesh.addFace(face);
+            mesh.uvIndices.insert(mesh.uvIndices.end(), faceUV.begin(), faceUV.end());
+        };
         for (size_t t = 0; t < corners.size(); t += 3) {
-            uint32_t a = welded[corners[t]], b = welded[corners[t + 1]], c = welded[corners[t + 2]];
-            if (a == b || b == c || a == c) { // collapsed by welding or degenerate in the file
-                ++degenerate;
+            const uint32_t a = corners[t], b = corners[t + 1], c = corners[t + 2];
+            // FB_ngon_encoding: the triangles of one polygon are consecutive and share their first
+            // index, as a fan (a, b, c), (a, c, d), ...; a triangle that does not continue the
+            // fan starts a new polygon.
+            if (ngon && !polygon.empty() && polygon.front() == a && polygon.back() == b) {
+                polygon.push_back(c);
                 continue;
             }
-            uint32_t tri[3] = {a, b, c};
-            mesh.addFace(tri);
-            for (int k = 0; k < 3; ++k)
-                mesh.uvIndices.push_back(uvs.empty() ? ~0u : uvs[corners[t + k]]);
+            if (!polygon.empty()) emit();
+            polygon = {a, b, c};
         }
-    }
-
-    void addNode(const tinygltf::Model& model, int nodeIndex, const glm::dmat4& parent, int depth) {
-        if (nodeIndex < 0 || nodeIndex >= static_cast<int>(model.nodes.size()))
-            throwBadInput("node " + std::to_string(nodeIndex) + " does not exist");
-        if (depth > 256) throwBadInput("node hierarchy deeper than 256 (a cycle?)");
-        const auto& node = model.nodes[nodeIndex];
-        glm::dmat4 transform = parent * nodeMatrix(node);
-        if (node.mesh >= 0) {
-            if (node.mesh >= static_cast<int>(model.meshes.size()))
-                throwBadInput("node " + std::to_string(nodeIndex) + " refers to a missing mesh");
-            const auto& m = model.meshes[node.mesh];
-            for (size_t p = 0; p < m.primitives.size(); ++p)
-                addPrimitive(model, m.primitives[p], transform,
-                             "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p));
-        }
-        for (int child : node.children) addNode(model, child, transform, depth + 1);
+        if (!polygon.empty()) emit();
     }
 };
 
@@ -295,6 +196,43 @@ bool readAndRecord(std::vector<unsigned char>* out, std::string* err, const std:
 
 namespace {
 
+// The base colour texture's KHR_texture_transform as the matrix its specification gives
+// (translation * rotation * scale, on glTF's UVs), or nothing when the texture has none.
+std::optional<glm::dmat3> textureTransform(const tinygltf::Model& model, int materialIndex) {
+    if (materialIndex < 0 || materialIndex >= static_cast<int>(model.materials.size())) return {};
+    const auto& ext = model.materials[materialIndex].pbrMetallicRoughness.baseColorTexture.extensions;
+    auto it = ext.find("KHR_texture_transform");
+    if (it == ext.end() || !it->second.IsObject()) return {};
+    const tinygltf::Value& t = it->second;
+    auto number = [&](const tinygltf::Value& v, const std::string& what) {
+        if (!v.IsNumber()) throwBadInput("glTF: KHR_texture_transform " + what + " is not a number");
+        const double d = v.GetNumberAsDouble();
+        if (!std::isfinite(d)) throwBadInput("glTF: KHR_texture_transform " + what + " is not finite");
+        return d;
+    };
+    auto pair = [&](const char* key, glm::dvec2 fallback) {
+        if (!t.Has(key)) return fallback;
+        const auto& v = t.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2) throwBadInput(std::string("glTF: KHR_texture_transform ") + key + " is not two numbers");
+        return glm::dvec2(number(v.Get(0), key), number(v.Get(1), key));
+    };
+    const glm::dvec2 offset = pair("offset", {0, 0}), scale = pair("scale", {1, 1});
+    const double r = t.Has("rotation") ? number(t.Get("rotation"), "rotation") : 0.0;
+    const glm::dmat3 translation(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);
+    const glm::dmat3 rotation(std::cos(r), std::sin(r), 0, -std::sin(r), std::cos(r), 0, 0, 0, 1);
+    const glm::dmat3 scaling(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+    return translation * rotation * scaling;
+}
+
+// The texture coordinate set KHR_texture_transform's texCoord names instead of the texture's.
+int transformTexCoord(const tinygltf::TextureInfo& ref) {
+    auto it = ref.extensions.find("KHR_texture_transform");
+    if (it != ref.extensions.end() && it->second.IsObject() && it->second.Has("texCoord") &&
+        it->second.Get("texCoord").IsInt())
+        return it->second.Get("texCoord").GetNumberAsInt();
+    return ref.texCoord;
+}
+
 // The base colour of material `index` (glTF 2.0, 3.9.2: pbrMetallicRoughness.baseColorFactor
 // and baseColorTexture).
 MeshMaterial baseColor(const tinygltf::Model& model, int index, ImageBytes& images,
@@ -322,8 +260,8 @@ MeshMaterial baseColor(const tinygltf::Model& model, int index, ImageBytes& imag
     const int source = model.textures[ref.index].source;
     if (source < 0 || source >= static_cast<int>(model.images.size()))
         throwBadInput("glTF: texture " + std::to_string(ref.index) + " has no image");
-    if (ref.texCoord != 0) {
-        warnings.add("the base colour texture uses TEXCOORD_" + std::to_string(ref.texCoord) +
+    if (transformTexCoord(ref) != 0) {
+        warnings.add("the base colour texture uses TEXCOORD_" + std::to_string(transformTexCoord(ref)) +
                      ", limn keeps only TEXCOORD_0; texture dropped");
         return m;
     }
@@ -371,15 +309,19 @@ std::span<const uint8_t> glbJson(std::span<const uint8_t> bytes) {
 
 } // namespace
 
-Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
-              Warnings& warnings, std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material) {
+namespace gltf {
+
+Loaded load(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir, Warnings& warnings,
+            std::vector<std::string>* filesRead, std::map<int, std::vector<uint8_t>>* images) {
+    Loaded out;
     refuseDeepJson(binary ? glbJson(bytes) : bytes);
+    out.pre = gltf::prepass(bytes, binary, warnings);
+    if (!out.pre.rewritten.empty()) bytes = out.pre.rewritten;
     tinygltf::TinyGLTF loader;
-    ImageBytes images;
-    loader.SetImageLoader(keepImageBytes, material ? &images : nullptr);
+    loader.SetImageLoader(keepImageBytes, images);
     loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readAndRecord,
                            &tinygltf::WriteWholeFile, filesRead});
-    tinygltf::Model model;
+    tinygltf::Model& model = out.model;
     std::string err, warn;
     bool ok;
     if (binary)
@@ -393,8 +335,7 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
         while (!err.empty() && err.back() == '\n') err.pop_back();
         throwBadInput("glTF: " + (err.empty() ? std::string("cannot parse") : err));
     }
-    Welder w;
-    std::vector<int> roots;
+    std::vector<int>& roots = out.roots;
     if (!model.scenes.empty()) {
         int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
         if (scene >= static_cast<int>(model.scenes.size()))
@@ -408,7 +349,89 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
         for (size_t i = 0; i < model.nodes.size(); ++i)
             if (!isChild[i]) roots.push_back(static_cast<int>(i));
     }
-    for (int root : roots) w.addNode(model, root, glm::dmat4(1.0), 0);
+    // The node graph is checked before any buffer is decoded.
+    out.instances = gltf::sceneInstances(model, roots, warnings);
+    gltf::decodeMeshopt(model, out.pre);
+    return out;
+}
+
+} // namespace gltf
+
+gltf::PrimitiveData gltf::primitiveData(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                         const gltf::Prepass& pre, std::pair<int, int> key,
+                                         const std::vector<double>& weights, const std::string& what) {
+    gltf::PrimitiveData d;
+    if (auto draco = pre.draco.find(key); draco != pre.draco.end()) {
+        gltf::decodeDraco(model, draco->second, what, d);
+    } else {
+        auto pos = prim.attributes.find("POSITION");
+        if (pos == prim.attributes.end()) throwBadInput(what + " has no POSITION attribute");
+        const gltf::AccessorData p = gltf::readAccessor(model, pos->second, what + " POSITION");
+        if (p.components != 3) throwBadInput(what + " POSITION is not a 3-vector");
+        d.positions.resize(p.count);
+        for (size_t i = 0; i < p.count; ++i) d.positions[i] = {p.at(i, 0), p.at(i, 1), p.at(i, 2)};
+        if (auto tc = prim.attributes.find("TEXCOORD_0"); tc != prim.attributes.end()) {
+            const gltf::AccessorData t = gltf::readAccessor(model, tc->second, what + " TEXCOORD_0");
+            if (t.components != 2 || t.count != p.count) throwBadInput(what + " TEXCOORD_0 does not match POSITION");
+            d.texcoords.resize(t.count);
+            for (size_t i = 0; i < t.count; ++i) d.texcoords[i] = {t.at(i, 0), t.at(i, 1)};
+        }
+        if (prim.indices >= 0) {
+            d.indices = gltf::readIndices(model, prim.indices, what + " indices");
+            d.hasIndices = true;
+        } else if (auto iv = pre.indicesWithoutView.find(key); iv != pre.indicesWithoutView.end()) {
+            d.indices = gltf::readIndices(model, iv->second, what + " indices");
+            d.hasIndices = true;
+        }
+    }
+    // Morph targets (glTF 2.0, 3.7.2.2): position = base + sum of weight * displacement.
+    if (!prim.targets.empty() && !weights.empty()) {
+        if (weights.size() != prim.targets.size())
+            throwBadInput(what + " has " + std::to_string(prim.targets.size()) + " morph targets but " +
+                          std::to_string(weights.size()) + " weights");
+        for (size_t t = 0; t < prim.targets.size(); ++t) {
+            if (weights[t] == 0.0) continue;
+            const std::string target = what + " morph target " + std::to_string(t);
+            if (auto a = prim.targets[t].find("POSITION"); a != prim.targets[t].end()) {
+                const gltf::AccessorData delta = gltf::readAccessor(model, a->second, target + " POSITION");
+                if (delta.components != 3 || delta.count != d.positions.size())
+                    throwBadInput(target + " POSITION does not match the primitive's POSITION");
+                for (size_t i = 0; i < delta.count; ++i)
+                    d.positions[i] += weights[t] * glm::dvec3(delta.at(i, 0), delta.at(i, 1), delta.at(i, 2));
+            }
+            if (auto a = prim.targets[t].find("TEXCOORD_0"); a != prim.targets[t].end() && !d.texcoords.empty()) {
+                const gltf::AccessorData delta = gltf::readAccessor(model, a->second, target + " TEXCOORD_0");
+                if (delta.components != 2 || delta.count != d.texcoords.size())
+                    throwBadInput(target + " TEXCOORD_0 does not match the primitive's TEXCOORD_0");
+                for (size_t i = 0; i < delta.count; ++i)
+                    d.texcoords[i] += weights[t] * glm::dvec2(delta.at(i, 0), delta.at(i, 1));
+            }
+        }
+    }
+    return d;
+}
+
+Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
+              Warnings& warnings, std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material,
+              GltfPolygons* polygons) {
+    ImageBytes images;
+    gltf::Loaded loaded = gltf::load(bytes, binary, baseDir, warnings, filesRead, material ? &images : nullptr);
+    const tinygltf::Model& model = loaded.model;
+    const gltf::Prepass& pre = loaded.pre;
+    const std::vector<gltf::NodeInstance>& instances = loaded.instances;
+    Welder w;
+    w.rebuildNgons = polygons && polygons->rebuildNgons;
+    for (const auto& instance : instances) {
+        const auto& node = model.nodes[instance.node];
+        if (node.mesh < 0) continue;
+        if (node.mesh >= static_cast<int>(model.meshes.size()))
+            throwBadInput("glTF: node " + std::to_string(instance.node) + " refers to a missing mesh");
+        const auto& m = model.meshes[node.mesh];
+        for (size_t p = 0; p < m.primitives.size(); ++p)
+            w.addPrimitive(model, m.primitives[p], pre, {node.mesh, int(p)}, morphWeights(node, m),
+                           instance.transform,
+                           "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p));
+    }
     if (w.skippedPrimitives) {
         const std::string skipped = std::to_string(w.skippedPrimitives) + " point or line primitives";
         if (w.mesh.faceCount() == 0) throwBadInput("glTF: no triangles to subdivide, only " + skipped);
@@ -424,12 +447,24 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
     } else if (!w.anyUV) {
         w.mesh.uvIndices.clear();
     }
+    // The UVs address the base colour texture as a viewer shows it (limn draws one texture).
+    if (w.mesh.hasUVs() && w.material >= 0 && size_t(w.material) < model.materials.size() &&
+        transformTexCoord(model.materials[size_t(w.material)].pbrMetallicRoughness.baseColorTexture) == 0)
+        if (const auto t = textureTransform(model, w.material))
+            for (auto& uv : w.mesh.uvs) {
+                const glm::dvec3 g = *t * glm::dvec3(uv.x, 1.0 - uv.y, 1.0); // limn's v is up
+                uv = {g.x, 1.0 - g.y};
+            }
     validateMesh(w.mesh);
     if (material && w.material >= 0) {
         *material = baseColor(model, w.material, images, warnings);
         if (w.otherMaterials)
             warnings.add("the primitives use more than one material; limn draws the first one's "
                          "base colour on the whole mesh");
+    }
+    if (polygons) {
+        polygons->fileHasNgonEncoding = pre.ngonEncoding;
+        polygons->ngonsRebuilt = w.ngons;
     }
     return std::move(w.mesh);
 }

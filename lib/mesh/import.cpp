@@ -55,9 +55,14 @@ const char* formatName(MeshFormat f) {
     return "unknown";
 }
 
+MeshFormat importFormat(const std::string& path, std::span<const uint8_t> bytes) {
+    return isStdio(path) ? formatFromContent(bytes) : formatFromExtension(extensionOf(path));
+}
+
 Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
-                std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material) {
-    MeshFormat format = isStdio(path) ? formatFromContent(bytes) : formatFromExtension(extensionOf(path));
+                std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material,
+                GltfPolygons* polygons) {
+    MeshFormat format = importFormat(path, bytes);
     if (format == MeshFormat::Unknown) {
         Error e(ErrorKind::BadInput, "unknown mesh format '" + extensionOf(path) +
                                          "'; limn reads .obj, .gltf, .glb, .ply, .off and .limn");
@@ -68,9 +73,9 @@ Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warning
         switch (format) {
         case MeshFormat::Obj: return readObj(bytes, warnings);
         case MeshFormat::Gltf:
-            return readGltf(bytes, false, directoryOf(path), warnings, filesRead, material);
+            return readGltf(bytes, false, directoryOf(path), warnings, filesRead, material, polygons);
         case MeshFormat::Glb:
-            return readGltf(bytes, true, directoryOf(path), warnings, filesRead, material);
+            return readGltf(bytes, true, directoryOf(path), warnings, filesRead, material, polygons);
         case MeshFormat::Ply: return readWithOpenMesh(bytes, ".ply", warnings);
         case MeshFormat::Off: return readWithOpenMesh(bytes, ".off", warnings);
         case MeshFormat::Container: {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "base/warnings.h"
+#include "mesh/gltf.h"
 #include "mesh/material.h"
 #include "mesh/mesh.h"
 
@@ -25,8 +26,13 @@ const char* formatName(MeshFormat format);
 // `filesRead` (optional) gets the files besides `path` that the mesh pulled in (a .gltf's
 // buffers and images), for depfiles. `material` (optional) gets a glTF's base colour (see
 // readGltf) and a container's MATL chunk; other formats leave it unchanged.
+// `polygons` (optional) is passed to the glTF reader (FB_ngon_encoding); other formats leave it
+// unchanged.
 Mesh importMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
-                std::vector<std::string>* filesRead = nullptr, std::optional<MeshMaterial>* material = nullptr);
+                std::vector<std::string>* filesRead = nullptr, std::optional<MeshMaterial>* material = nullptr,
+                GltfPolygons* polygons = nullptr);
+// The format importMesh reads `path` (and, for standard input, `bytes`) as.
+MeshFormat importFormat(const std::string& path, std::span<const uint8_t> bytes);
 
 // The mesh of a .limn container (its MESH chunks; filesRead untouched) or of any mesh file
 // importMesh reads: what every tool that takes "a container or a mesh" reads.

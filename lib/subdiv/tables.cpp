@@ -6,6 +6,7 @@
 #include "subdiv/exact_limits.h"
 #include "subdiv/level.h"
 #include "subdiv/limit_masks.h"
+#include "topology/orientation.h"
 
 #include <algorithm>
 #include <array>
@@ -76,6 +77,10 @@ Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase,
 }
 
 void requireManifold(const Topology& T) {
+    // Two faces that run their edge the same way: a fixable inconsistency, or (a Möbius strip)
+    // a surface without an orientation; the message says which.
+    if (const Orientation o = checkOrientation(T); o.misorientedEdges)
+        throwBadInput(describeMisorientation(T, o));
     for (uint32_t e = 0; e < T.edgeCount(); ++e)
         if (T.edgeIsNonManifold(e)) {
             auto [a, b] = T.edgeVertices(e);

@@ -25,7 +25,7 @@ struct Tool {
 const std::vector<Tool> kTools = {
     {"limn-classify",
      {"-o", "--output", "--depfile", "-q", "--quiet", "-v", "--verbose", "-h", "--help",
-      "--version", "--boundary", "--fvar"}},
+      "--version", "--boundary", "--fvar", "--quads", "--quad-face-angle", "--quad-shape-angle"}},
     {"limn-info", {"-q", "--quiet", "-v", "--verbose", "-h", "--help", "--version", "--json"}},
     {"limn-examples",
      {"-o", "--output", "--only", "--list", "--list-sequences", "-q", "--quiet", "-v", "--verbose", "-h", "--help",

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 
 using namespace limn;
@@ -204,6 +205,74 @@ TEST(Messages, InfoPrintsTheBoundsThatDisplaceScalePercentUses) {
     r = test::run({bin("limn-render"), f.d2, "--displace", (f.dir / "h.png").string(),
                    "--displace-scale", "2x", "-o", (f.dir / "o.png").string()});
     EXPECT_EQ(r.exitCode, 2) << r.err;
+}
+
+} // namespace
+
+namespace {
+
+// A tool at the end of a pipe whose first command failed reads nothing: it says so, instead of
+// blaming the (absent) mesh.
+TEST(Messages, EmptyStandardInputBlamesTheUpstreamCommand) {
+    for (const char* tool : {"limn-classify", "limn-tables", "limn-seams", "limn-render", "limn-info", "limn-loop",
+                             "limn-trim", "limn-blend"}) {
+        SCOPED_TRACE(tool);
+        test::ScratchDir dir;
+        std::vector<std::string> args = {bin(tool)};
+        if (std::string(tool) == "limn-render") args.insert(args.end(), {"-o", (dir / "o.png").string()});
+        const auto r = test::run(args, "");
+        EXPECT_EQ(r.exitCode, 1) << r.err;
+        EXPECT_NE(r.err.find("empty input on <stdin> (did the command before it in the pipe fail?)"), std::string::npos)
+            << r.err;
+        EXPECT_EQ(r.err.find("no vertices"), std::string::npos) << r.err;
+    }
+}
+
+// 60 glTF nodes that each list the next twice (2^60 paths) once kept limn-info and
+// limn-classify busy forever; a cycle too. Both are refused before any work.
+TEST(Messages, GltfNodeGraphsThatAreNotTreesAreRefusedWithinASecond) {
+    for (const char* tool : {"limn-info", "limn-classify"})
+        for (const char* file : {"dag.gltf", "cycle.gltf"}) {
+            SCOPED_TRACE(std::string(tool) + " " + file);
+            test::ScratchDir dir;
+            const auto start = std::chrono::steady_clock::now();
+            auto r = test::run({bin(tool), test::modelPath(std::string("gltf/features/") + file).string(), "-o",
+                                (dir / "o.limn").string()});
+            if (std::string(tool) == "limn-info")
+                r = test::run({bin(tool), test::modelPath(std::string("gltf/features/") + file).string()});
+            EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2)); // both runs
+            EXPECT_EQ(r.exitCode, 1) << r.err;
+            EXPECT_NE(r.err.find("glTF requires the nodes to form trees"), std::string::npos) << r.err;
+            EXPECT_TRUE(test::filesIn(dir.path()).empty());
+        }
+}
+
+// A Möbius strip (a strip of four quads whose ends join with a half twist) is not orientable;
+// a mesh with one face flipped is orientable and the message says how many faces to flip.
+TEST(Messages, MoebiusStripIsNotOrientable) {
+    test::ScratchDir dir;
+    // Vertices 0..4 along the bottom edge, 5..9 along the top; the last quad joins column 4 to
+    // column 0 upside down.
+    std::string moebius;
+    for (int i = 0; i < 5; ++i) moebius += "v " + std::to_string(i) + " 0 " + std::to_string(i % 2) + "\n";
+    for (int i = 0; i < 5; ++i) moebius += "v " + std::to_string(i) + " 1 " + std::to_string((i + 1) % 2) + "\n";
+    moebius += "f 1 2 7 6\nf 2 3 8 7\nf 3 4 9 8\nf 4 5 10 9\nf 5 6 1 10\n";
+    test::writeFile(dir / "moebius.obj", moebius);
+    auto c = test::run({bin("limn-classify"), "-q", (dir / "moebius.obj").string(), "-o", (dir / "m.limn").string()});
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    auto t = test::run({bin("limn-tables"), (dir / "m.limn").string(), "-o", (dir / "t.limn").string()});
+    EXPECT_EQ(t.exitCode, 1);
+    EXPECT_NE(t.err.find("the mesh is not orientable"), std::string::npos) << t.err;
+    EXPECT_EQ(t.err.find("non-manifold"), std::string::npos) << t.err;
+    // The cube with its top face flipped: orientable, one face to flip.
+    std::string cube = kCubeObj;
+    cube.replace(cube.find("f 5/1 6/2 7/3 8/4"), 17, "f 8/4 7/3 6/2 5/1");
+    test::writeFile(dir / "flipped.obj", cube);
+    ASSERT_EQ(test::run({bin("limn-classify"), "-q", (dir / "flipped.obj").string(), "-o", (dir / "f.limn").string()}).exitCode, 0);
+    t = test::run({bin("limn-tables"), (dir / "f.limn").string(), "-o", (dir / "t.limn").string()});
+    EXPECT_EQ(t.exitCode, 1);
+    EXPECT_NE(t.err.find("faces of opposite orientation meet at 4 edges"), std::string::npos) << t.err;
+    EXPECT_NE(t.err.find("flipping 1 faces would make the mesh consistent"), std::string::npos) << t.err;
 }
 
 } // namespace

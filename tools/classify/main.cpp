@@ -10,13 +10,15 @@
 #include "seams/seams.h"
 #include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
+#include "topology/quad_pairs.h"
 
 using namespace limn;
 
 int main(int argc, char** argv) {
     return cli::run("limn-classify", argc, argv, [](int ac, char** av) {
         cli::Common common;
-        std::string input = "-", boundary, fvar;
+        double faceAngle = 60, shapeAngle = 75;
+        std::string input = "-", boundary, fvar, quads = "auto";
         cli::Parser parser(
             "limn-classify", "[options] [INPUT|-] [-o OUTPUT|-]",
             "Reads a polygon mesh and writes a .limn container holding the mesh, its UVs and\n"
@@ -29,6 +31,12 @@ int main(int argc, char** argv) {
             .choice("--fvar", &fvar,
                     {"none", "corners-only", "corners-plus1", "corners-plus2", "boundaries", "all"},
                     "UV smoothing rule [default: the mesh's fvar tag, else all]")
+            .choice("--quads", &quads, {"auto", "off", "pairs", "ngon"},
+                    "quads back from triangles (see below)")
+            .real("--quad-face-angle", "DEG", &faceAngle, 0, 180,
+                  "pairs: max angle between the normals")
+            .real("--quad-shape-angle", "DEG", &shapeAngle, 0, 180,
+                  "pairs: max corner angle off square")
             .notes("The format is chosen by the extension, or by content on standard input.\n"
                    "--fvar is OpenSubdiv's face-varying linear interpolation, stored as the mesh's\n"
                    "tag (OBJ: t facevaryinginterpolateboundary): none smooths UVs everywhere;\n"
@@ -36,6 +44,17 @@ int main(int argc, char** argv) {
                    "3+ UV regions, also darts and concave corners sharp; boundaries keeps every UV\n"
                    "boundary linear; all interpolates UVs linearly (the default, as OpenSubdiv's).\n"
                    "Chunks of an input .limn that limn-classify does not own are kept unchanged.\n"
+                   "--quads: glTF carries only triangles, and Catmull-Clark of triangles is lumpy.\n"
+                   "ngon rebuilds the polygons a glTF stores with FB_ngon_encoding (an error if it\n"
+                   "does not); pairs joins two triangles into a quad where their shared edge looks\n"
+                   "like a quad's diagonal, with the limits of Blender's Tris to Quads (normals within\n"
+                   "--quad-face-angle, corners within --quad-shape-angle of square and convex; same\n"
+                   "UVs on the edge, no crease on it; Blender's defaults are 40 and 40): triangles\n"
+                   "written one after the other first (exporters write a quad's two so), then the\n"
+                   "best-shaped pairs; deterministic; 180 turns a limit off (the shape limit's\n"
+                   "convexity check with it). off keeps the triangles. auto: for glTF input ngon\n"
+                   "if the file uses FB_ngon_encoding, else pairs; for other input off. Triangles\n"
+                   "left unpaired are reported as a warning.\n"
                    "A glTF's base colour (factor and texture image bytes) is kept in a MATL chunk\n"
                    "(formats/limn.md), which limn-render draws.\n"
                    "Example:\n  limn-classify frog.obj | limn-tables --depth 4 | limn-render -o frog.png\n");
@@ -59,7 +78,40 @@ int main(int argc, char** argv) {
         } else {
             // A glTF's base colour (factor, texture bytes) travels in MATL, so that a pipeline
             // from the container draws what the asset shows.
-            mesh = importMesh(input, bytes, warnings, &inputs, &material);
+            const MeshFormat format = importFormat(input, bytes);
+            const bool gltf = format == MeshFormat::Gltf || format == MeshFormat::Glb;
+            if (quads == "auto") quads = gltf ? "auto" : "off";
+            GltfPolygons polygons;
+            polygons.rebuildNgons = quads == "auto" || quads == "ngon";
+            mesh = importMesh(input, bytes, warnings, &inputs, &material, &polygons);
+            if (quads == "ngon" && !polygons.fileHasNgonEncoding) {
+                Error e(ErrorKind::BadInput, "--quads ngon: the file does not use FB_ngon_encoding, so its "
+                                             "triangles carry no polygons; use --quads pairs");
+                e.setFile(input);
+                throw e;
+            }
+            if (quads == "auto") quads = polygons.fileHasNgonEncoding ? "ngon" : "pairs";
+        }
+        const std::string name = input == "-" ? std::string("<stdin>") : input;
+        if (quads == "ngon" || quads == "pairs") {
+            size_t triangles = 0;
+            for (size_t f = 0; f < mesh.faceCount(); ++f) triangles += mesh.faceSize(f) == 3;
+            std::string made;
+            if (quads == "pairs") {
+                QuadJoinOptions o;
+                o.maxFaceAngle = faceAngle * std::numbers::pi / 180;
+                o.maxShapeAngle = shapeAngle * std::numbers::pi / 180;
+                const QuadJoinReport r = joinTrianglePairs(mesh, o);
+                triangles = r.trianglesLeft;
+                made = std::to_string(r.quadsMade) + " quads from " + std::to_string(r.trianglesBefore) + " triangles";
+            } else {
+                made = "the file's polygons (FB_ngon_encoding)";
+            }
+            cli::info("--quads " + quads + ": " + made + ", " + std::to_string(triangles) + " triangles left");
+            if (triangles)
+                cli::warn(name + ": --quads " + quads + ": " + std::to_string(triangles) +
+                          " triangles left without a partner (each makes extraordinary vertices); " +
+                          std::to_string(mesh.faceCount()) + " faces in all");
         }
         if (!fvar.empty()) {
             static const char* const names[] = {"none", "corners-only", "corners-plus1",
