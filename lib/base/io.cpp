@@ -177,9 +177,14 @@ void prepareRemovalOnSignal(const std::vector<std::string>& paths) {
     g_landedCount = static_cast<sig_atomic_t>(g_landedOffsets.size());
 }
 
-void markLandedForRemovalOnSignal(const std::string& path) {
-    if (auto it = g_landedIndex.find(path); it != g_landedIndex.end() && g_landedCount > 0) g_landedFlags[it->second] = 1;
+namespace {
+void setLandedFlag(const std::string& path, sig_atomic_t landed) {
+    if (auto it = g_landedIndex.find(path); it != g_landedIndex.end() && g_landedCount > 0)
+        g_landedFlags[it->second] = landed;
 }
+} // namespace
+
+void markLandedForRemovalOnSignal(const std::string& path) { setLandedFlag(path, 1); }
 
 void clearRemovalOnSignal() { g_landedCount = 0; }
 
@@ -326,8 +331,14 @@ void OutputFile::commit() {
         committed_ = true;
         return;
     }
-    if (::rename(tempPath_.c_str(), target_.c_str()) != 0)
+    // A prepared sequence frame is flagged before it lands, not after: a signal between the
+    // rename and a later flag left the frame behind (a --shard part's frame under SIGTERM). The
+    // handler then removes the temporary file or the frame, whichever exists at that moment.
+    setLandedFlag(path_, 1);
+    if (::rename(tempPath_.c_str(), target_.c_str()) != 0) {
+        setLandedFlag(path_, 0);
         throwOutputError("cannot rename into place", path_);
+    }
     committed_ = true;
     unregisterTemp(tempSlot_);
     tempSlot_ = -1;
