@@ -70,32 +70,32 @@ fn adaptiveSamplePosition_u0028_vu2_u003b_u1_u003b(packed: ptr<function, vec2<u3
     var b: u32;
     var local: u32;
 
-    let _e61 = (*s);
-    if (_e61 < 2u) {
-        let _e64 = (*packed)[0u];
-        local = _e64;
+    let _e62 = (*s);
+    if (_e62 < 2u) {
+        let _e65 = (*packed)[0u];
+        local = _e65;
     } else {
-        let _e66 = (*packed)[1u];
-        local = _e66;
+        let _e67 = (*packed)[1u];
+        local = _e67;
     }
-    let _e67 = local;
-    let _e68 = (*s);
-    b = (_e67 >> bitcast<u32>((16u * (_e68 & 1u))));
-    let _e73 = b;
-    let _e76 = b;
-    return (vec2<f32>(f32((_e73 & 255u)), f32(((_e76 >> bitcast<u32>(8i)) & 255u))) / vec2(256f));
+    let _e68 = local;
+    let _e69 = (*s);
+    b = (_e68 >> bitcast<u32>((16u * (_e69 & 1u))));
+    let _e74 = b;
+    let _e77 = b;
+    return (vec2<f32>(f32((_e74 & 255u)), f32(((_e77 >> bitcast<u32>(8i)) & 255u))) / vec2(256f));
 }
 
 fn samplePosition_u0028_u1_u003b(s_1: ptr<function, u32>) -> vec2<f32> {
     var param: vec2<u32>;
     var param_1: u32;
 
-    let _e61 = pc.samples;
-    param = _e61;
-    let _e62 = (*s_1);
-    param_1 = _e62;
-    let _e63 = adaptiveSamplePosition_u0028_vu2_u003b_u1_u003b((&param), (&param_1));
-    return _e63;
+    let _e62 = pc.samples;
+    param = _e62;
+    let _e63 = (*s_1);
+    param_1 = _e63;
+    let _e64 = adaptiveSamplePosition_u0028_vu2_u003b_u1_u003b((&param), (&param_1));
+    return _e64;
 }
 
 fn betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b(P: ptr<function, array<vec3<f32>, 16>>, np: ptr<function, u32>) -> bool {
@@ -113,85 +113,85 @@ fn betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b(P: ptr<function, array
     var phi_325_: bool;
     var phi_370_: bool;
 
-    let _e71 = pc.enabled;
-    sampleCount = min(((_e71 >> bitcast<u32>(8i)) & 255u), 4u);
-    let _e76 = sampleCount;
-    if (_e76 == 0u) {
+    let _e72 = pc.enabled;
+    sampleCount = min(((_e72 >> bitcast<u32>(8i)) & 255u), 4u);
+    let _e77 = sampleCount;
+    if (_e77 == 0u) {
         return false;
     }
     lo = vec2<f32>(1000000000000000000000000000000f, 1000000000000000000000000000000f);
     hi = vec2<f32>(-1000000000000000000000000000000f, -1000000000000000000000000000000f);
     k = 0u;
     loop {
-        let _e78 = k;
-        let _e79 = (*np);
-        if (_e78 < _e79) {
-            let _e82 = pc.viewProj;
-            let _e83 = k;
-            let _e85 = (*P)[_e83];
-            c = (_e82 * vec4<f32>(_e85.x, _e85.y, _e85.z, 1f));
-            let _e92 = c[3u];
-            if !((_e92 > 0.000001f)) {
+        let _e79 = k;
+        let _e80 = (*np);
+        if (_e79 < _e80) {
+            let _e83 = pc.viewProj;
+            let _e84 = k;
+            let _e86 = (*P)[_e84];
+            c = (_e83 * vec4<f32>(_e86.x, _e86.y, _e86.z, 1f));
+            let _e93 = c[3u];
+            if !((_e93 > 0.000001f)) {
                 return false;
             }
-            let _e95 = c;
-            let _e98 = c[3u];
-            let _e105 = pc.viewport;
-            px = ((((_e95.xy / vec2(_e98)) * 0.5f) + vec2(0.5f)) * _e105);
-            let _e107 = lo;
-            let _e108 = px;
-            lo = min(_e107, _e108);
-            let _e110 = hi;
-            let _e111 = px;
-            hi = max(_e110, _e111);
+            let _e96 = c;
+            let _e99 = c[3u];
+            let _e106 = pc.viewport;
+            px = ((((_e96.xy / vec2(_e99)) * 0.5f) + vec2(0.5f)) * _e106);
+            let _e108 = lo;
+            let _e109 = px;
+            lo = min(_e108, _e109);
+            let _e111 = hi;
+            let _e112 = px;
+            hi = max(_e111, _e112);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e113 = k;
-            k = (_e113 + bitcast<u32>(1i));
+            let _e114 = k;
+            k = (_e114 + bitcast<u32>(1i));
         }
     }
-    let _e117 = hi[0u];
-    let _e119 = lo[0u];
-    let _e121 = ((_e117 - _e119) < 1000000f);
-    phi_325_ = _e121;
-    if _e121 {
-        let _e123 = hi[1u];
-        let _e125 = lo[1u];
-        phi_325_ = ((_e123 - _e125) < 1000000f);
+    let _e118 = hi[0u];
+    let _e120 = lo[0u];
+    let _e122 = ((_e118 - _e120) < 1000000f);
+    phi_325_ = _e122;
+    if _e122 {
+        let _e124 = hi[1u];
+        let _e126 = lo[1u];
+        phi_325_ = ((_e124 - _e126) < 1000000f);
     }
-    let _e129 = phi_325_;
-    if !(_e129) {
+    let _e130 = phi_325_;
+    if !(_e130) {
         return false;
     }
     s_2 = 0u;
     loop {
-        let _e131 = s_2;
-        let _e132 = sampleCount;
-        if (_e131 < _e132) {
-            let _e134 = lo;
-            let _e137 = s_2;
-            param_2 = _e137;
-            let _e138 = samplePosition_u0028_u1_u003b((&param_2));
-            first = ceil(((_e134 - vec2(0.0625f)) - _e138));
-            let _e141 = hi;
-            let _e144 = s_2;
-            param_3 = _e144;
-            let _e145 = samplePosition_u0028_u1_u003b((&param_3));
-            last = floor(((_e141 + vec2(0.0625f)) - _e145));
-            let _e149 = first[0u];
-            let _e151 = last[0u];
-            let _e152 = (_e149 <= _e151);
-            phi_370_ = _e152;
-            if _e152 {
-                let _e154 = first[1u];
-                let _e156 = last[1u];
-                phi_370_ = (_e154 <= _e156);
+        let _e132 = s_2;
+        let _e133 = sampleCount;
+        if (_e132 < _e133) {
+            let _e135 = lo;
+            let _e138 = s_2;
+            param_2 = _e138;
+            let _e139 = samplePosition_u0028_u1_u003b((&param_2));
+            first = ceil(((_e135 - vec2(0.0625f)) - _e139));
+            let _e142 = hi;
+            let _e145 = s_2;
+            param_3 = _e145;
+            let _e146 = samplePosition_u0028_u1_u003b((&param_3));
+            last = floor(((_e142 + vec2(0.0625f)) - _e146));
+            let _e150 = first[0u];
+            let _e152 = last[0u];
+            let _e153 = (_e150 <= _e152);
+            phi_370_ = _e153;
+            if _e153 {
+                let _e155 = first[1u];
+                let _e157 = last[1u];
+                phi_370_ = (_e155 <= _e157);
             }
-            let _e159 = phi_370_;
-            if _e159 {
+            let _e160 = phi_370_;
+            if _e160 {
                 return false;
             }
             continue;
@@ -199,8 +199,8 @@ fn betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b(P: ptr<function, array
             break;
         }
         continuing {
-            let _e160 = s_2;
-            s_2 = (_e160 + bitcast<u32>(1i));
+            let _e161 = s_2;
+            s_2 = (_e161 + bitcast<u32>(1i));
         }
     }
     return true;
@@ -214,30 +214,30 @@ fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1
 
     a = 0u;
     loop {
-        let _e67 = a;
-        let _e68 = (*nu);
-        if (_e67 < _e68) {
+        let _e68 = a;
+        let _e69 = (*nu);
+        if (_e68 < _e69) {
             b_1 = 0u;
             loop {
-                let _e70 = b_1;
-                let _e71 = (*nv);
-                if (_e70 < _e71) {
-                    let _e73 = a;
-                    let _e75 = (*U)[_e73];
-                    let _e76 = b_1;
-                    let _e78 = (*V)[_e76];
-                    let _e82 = pc.eye[3u];
-                    C = (cross(_e75, _e78) * _e82);
+                let _e71 = b_1;
+                let _e72 = (*nv);
+                if (_e71 < _e72) {
+                    let _e74 = a;
+                    let _e76 = (*U)[_e74];
+                    let _e77 = b_1;
+                    let _e79 = (*V)[_e77];
+                    let _e83 = pc.eye[3u];
+                    C = (cross(_e76, _e79) * _e83);
                     k_1 = 0u;
                     loop {
-                        let _e84 = k_1;
-                        let _e85 = (*np_1);
-                        if (_e84 < _e85) {
-                            let _e87 = k_1;
-                            let _e89 = (*P_1)[_e87];
-                            let _e91 = pc.eye;
-                            let _e94 = C;
-                            if !((dot((_e89 - _e91.xyz), _e94) > 0f)) {
+                        let _e85 = k_1;
+                        let _e86 = (*np_1);
+                        if (_e85 < _e86) {
+                            let _e88 = k_1;
+                            let _e90 = (*P_1)[_e88];
+                            let _e92 = pc.eye;
+                            let _e95 = C;
+                            if !((dot((_e90 - _e92.xyz), _e95) > 0f)) {
                                 return false;
                             }
                             continue;
@@ -245,8 +245,8 @@ fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1
                             break;
                         }
                         continuing {
-                            let _e98 = k_1;
-                            k_1 = (_e98 + bitcast<u32>(1i));
+                            let _e99 = k_1;
+                            k_1 = (_e99 + bitcast<u32>(1i));
                         }
                     }
                     continue;
@@ -254,8 +254,8 @@ fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1
                     break;
                 }
                 continuing {
-                    let _e101 = b_1;
-                    b_1 = (_e101 + bitcast<u32>(1i));
+                    let _e102 = b_1;
+                    b_1 = (_e102 + bitcast<u32>(1i));
                 }
             }
             continue;
@@ -263,8 +263,8 @@ fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1
             break;
         }
         continuing {
-            let _e104 = a;
-            a = (_e104 + bitcast<u32>(1i));
+            let _e105 = a;
+            a = (_e105 + bitcast<u32>(1i));
         }
     }
     return true;
@@ -274,47 +274,47 @@ fn outside_u0028_vf3_u003b(p: ptr<function, vec3<f32>>) -> u32 {
     var c_1: vec4<f32>;
     var m: u32;
 
-    let _e61 = pc.viewProj;
-    let _e62 = (*p);
-    c_1 = (_e61 * vec4<f32>(_e62.x, _e62.y, _e62.z, 1f));
+    let _e62 = pc.viewProj;
+    let _e63 = (*p);
+    c_1 = (_e62 * vec4<f32>(_e63.x, _e63.y, _e63.z, 1f));
     m = 0u;
-    let _e69 = c_1[0u];
-    let _e71 = c_1[3u];
-    if (_e69 < -(_e71)) {
-        let _e74 = m;
-        m = (_e74 | 1u);
+    let _e70 = c_1[0u];
+    let _e72 = c_1[3u];
+    if (_e70 < -(_e72)) {
+        let _e75 = m;
+        m = (_e75 | 1u);
     }
-    let _e77 = c_1[0u];
-    let _e79 = c_1[3u];
-    if (_e77 > _e79) {
-        let _e81 = m;
-        m = (_e81 | 2u);
+    let _e78 = c_1[0u];
+    let _e80 = c_1[3u];
+    if (_e78 > _e80) {
+        let _e82 = m;
+        m = (_e82 | 2u);
     }
-    let _e84 = c_1[1u];
-    let _e86 = c_1[3u];
-    if (_e84 < -(_e86)) {
-        let _e89 = m;
-        m = (_e89 | 4u);
+    let _e85 = c_1[1u];
+    let _e87 = c_1[3u];
+    if (_e85 < -(_e87)) {
+        let _e90 = m;
+        m = (_e90 | 4u);
     }
-    let _e92 = c_1[1u];
-    let _e94 = c_1[3u];
-    if (_e92 > _e94) {
-        let _e96 = m;
-        m = (_e96 | 8u);
+    let _e93 = c_1[1u];
+    let _e95 = c_1[3u];
+    if (_e93 > _e95) {
+        let _e97 = m;
+        m = (_e97 | 8u);
     }
-    let _e99 = c_1[2u];
-    if (_e99 < 0f) {
-        let _e101 = m;
-        m = (_e101 | 16u);
+    let _e100 = c_1[2u];
+    if (_e100 < 0f) {
+        let _e102 = m;
+        m = (_e102 | 16u);
     }
-    let _e104 = c_1[2u];
-    let _e106 = c_1[3u];
-    if (_e104 > _e106) {
-        let _e108 = m;
-        m = (_e108 | 32u);
+    let _e105 = c_1[2u];
+    let _e107 = c_1[3u];
+    if (_e105 > _e107) {
+        let _e109 = m;
+        m = (_e109 | 32u);
     }
-    let _e110 = m;
-    return _e110;
+    let _e111 = m;
+    return _e111;
 }
 
 fn bezierPoints_u0028_vf3_u005b_16_u005d_u003b(P_2: ptr<function, array<vec3<f32>, 16>>) {
@@ -330,67 +330,67 @@ fn bezierPoints_u0028_vf3_u005b_16_u005d_u003b(P_2: ptr<function, array<vec3<f32
 
     pass_ = 0i;
     loop {
-        let _e67 = pass_;
-        if (_e67 < 2i) {
+        let _e68 = pass_;
+        if (_e68 < 2i) {
             r = 0i;
             loop {
-                let _e69 = r;
-                if (_e69 < 4i) {
-                    let _e71 = pass_;
-                    if (_e71 == 0i) {
-                        let _e73 = r;
-                        local_1 = (4i * _e73);
+                let _e70 = r;
+                if (_e70 < 4i) {
+                    let _e72 = pass_;
+                    if (_e72 == 0i) {
+                        let _e74 = r;
+                        local_1 = (4i * _e74);
                     } else {
-                        let _e75 = r;
-                        local_1 = _e75;
+                        let _e76 = r;
+                        local_1 = _e76;
                     }
-                    let _e76 = local_1;
-                    s0_ = _e76;
-                    let _e77 = pass_;
-                    st = select(4i, 1i, (_e77 == 0i));
-                    let _e80 = s0_;
-                    let _e82 = (*P_2)[_e80];
-                    a_1 = _e82;
-                    let _e83 = s0_;
-                    let _e84 = st;
-                    let _e87 = (*P_2)[(_e83 + _e84)];
-                    b_2 = _e87;
-                    let _e88 = s0_;
-                    let _e89 = st;
-                    let _e93 = (*P_2)[(_e88 + (2i * _e89))];
-                    c_2 = _e93;
-                    let _e94 = s0_;
-                    let _e95 = st;
-                    let _e99 = (*P_2)[(_e94 + (3i * _e95))];
-                    d = _e99;
-                    let _e100 = s0_;
-                    let _e101 = a_1;
-                    let _e102 = b_2;
-                    let _e105 = c_2;
-                    (*P_2)[_e100] = (((_e101 + (_e102 * 4f)) + _e105) / vec3(6f));
-                    let _e110 = s0_;
-                    let _e111 = st;
-                    let _e113 = b_2;
-                    let _e115 = c_2;
-                    (*P_2)[(_e110 + _e111)] = (((_e113 * 2f) + _e115) / vec3(3f));
-                    let _e120 = s0_;
-                    let _e121 = st;
-                    let _e124 = b_2;
-                    let _e125 = c_2;
-                    (*P_2)[(_e120 + (2i * _e121))] = ((_e124 + (_e125 * 2f)) / vec3(3f));
-                    let _e131 = s0_;
-                    let _e132 = st;
-                    let _e135 = b_2;
-                    let _e136 = c_2;
-                    let _e139 = d;
-                    (*P_2)[(_e131 + (3i * _e132))] = (((_e135 + (_e136 * 4f)) + _e139) / vec3(6f));
+                    let _e77 = local_1;
+                    s0_ = _e77;
+                    let _e78 = pass_;
+                    st = select(4i, 1i, (_e78 == 0i));
+                    let _e81 = s0_;
+                    let _e83 = (*P_2)[_e81];
+                    a_1 = _e83;
+                    let _e84 = s0_;
+                    let _e85 = st;
+                    let _e88 = (*P_2)[(_e84 + _e85)];
+                    b_2 = _e88;
+                    let _e89 = s0_;
+                    let _e90 = st;
+                    let _e94 = (*P_2)[(_e89 + (2i * _e90))];
+                    c_2 = _e94;
+                    let _e95 = s0_;
+                    let _e96 = st;
+                    let _e100 = (*P_2)[(_e95 + (3i * _e96))];
+                    d = _e100;
+                    let _e101 = s0_;
+                    let _e102 = a_1;
+                    let _e103 = b_2;
+                    let _e106 = c_2;
+                    (*P_2)[_e101] = (((_e102 + (_e103 * 4f)) + _e106) / vec3(6f));
+                    let _e111 = s0_;
+                    let _e112 = st;
+                    let _e114 = b_2;
+                    let _e116 = c_2;
+                    (*P_2)[(_e111 + _e112)] = (((_e114 * 2f) + _e116) / vec3(3f));
+                    let _e121 = s0_;
+                    let _e122 = st;
+                    let _e125 = b_2;
+                    let _e126 = c_2;
+                    (*P_2)[(_e121 + (2i * _e122))] = ((_e125 + (_e126 * 2f)) / vec3(3f));
+                    let _e132 = s0_;
+                    let _e133 = st;
+                    let _e136 = b_2;
+                    let _e137 = c_2;
+                    let _e140 = d;
+                    (*P_2)[(_e132 + (3i * _e133))] = (((_e136 + (_e137 * 4f)) + _e140) / vec3(6f));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e144 = r;
-                    r = (_e144 + 1i);
+                    let _e145 = r;
+                    r = (_e145 + 1i);
                 }
             }
             continue;
@@ -398,18 +398,18 @@ fn bezierPoints_u0028_vf3_u005b_16_u005d_u003b(P_2: ptr<function, array<vec3<f32
             break;
         }
         continuing {
-            let _e146 = pass_;
-            pass_ = (_e146 + 1i);
+            let _e147 = pass_;
+            pass_ = (_e147 + 1i);
         }
     }
     return;
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e59 = gl_GlobalInvocationID_1[1u];
-    let _e60 = (*rowInvocations);
-    let _e63 = gl_GlobalInvocationID_1[0u];
-    return ((_e59 * _e60) + _e63);
+    let _e60 = gl_GlobalInvocationID_1[1u];
+    let _e61 = (*rowInvocations);
+    let _e64 = gl_GlobalInvocationID_1[0u];
+    return ((_e60 * _e61) + _e64);
 }
 
 fn main_1() {
@@ -450,140 +450,140 @@ fn main_1() {
     var param_23: u32;
     var phi_673_: bool;
     var phi_757_: bool;
-    var phi_836_: bool;
-    var phi_885_: bool;
+    var phi_845_: bool;
+    var phi_894_: bool;
 
-    let _e93 = pc.limnRowInvocations;
-    param_4 = _e93;
-    let _e94 = limnInvocationIndex_u0028_u1_u003b((&param_4));
-    e = _e94;
-    let _e95 = e;
-    let _e97 = pc.limnCount;
-    if (_e95 >= _e97) {
+    let _e94 = pc.limnRowInvocations;
+    param_4 = _e94;
+    let _e95 = limnInvocationIndex_u0028_u1_u003b((&param_4));
+    e = _e95;
+    let _e96 = e;
+    let _e98 = pc.limnCount;
+    if (_e96 >= _e98) {
         return;
     }
     all_ = 63u;
-    let _e100 = pc.enabled;
-    if ((_e100 & 1u) == 0u) {
+    let _e101 = pc.enabled;
+    if ((_e101 & 1u) == 0u) {
         all_ = 0u;
     } else {
-        let _e103 = e;
-        let _e105 = pc.patchCount;
-        if (_e103 < _e105) {
-            let _e107 = e;
-            let _e110 = patches.p[_e107];
-            pt.cv[0i] = _e110.cv[0];
-            pt.cv[1i] = _e110.cv[1];
-            pt.cv[2i] = _e110.cv[2];
-            pt.cv[3i] = _e110.cv[3];
-            pt.cv[4i] = _e110.cv[4];
-            pt.cv[5i] = _e110.cv[5];
-            pt.cv[6i] = _e110.cv[6];
-            pt.cv[7i] = _e110.cv[7];
-            pt.cv[8i] = _e110.cv[8];
-            pt.cv[9i] = _e110.cv[9];
-            pt.cv[10i] = _e110.cv[10];
-            pt.cv[11i] = _e110.cv[11];
-            pt.cv[12i] = _e110.cv[12];
-            pt.cv[13i] = _e110.cv[13];
-            pt.cv[14i] = _e110.cv[14];
-            pt.cv[15i] = _e110.cv[15];
-            pt.ptex = _e110.ptex;
-            pt.u0_ = _e110.u0_;
-            pt.v0_ = _e110.v0_;
-            pt.size = _e110.size;
-            pt.levelBoundary = _e110.levelBoundary;
-            pt.sharpness = _e110.sharpness;
-            pt.pad1_ = _e110.pad1_;
-            pt.pad2_ = _e110.pad2_;
-            let _e162 = pt.levelBoundary;
-            if (((_e162 >> bitcast<u32>(8i)) & 3855u) != 0u) {
+        let _e104 = e;
+        let _e106 = pc.patchCount;
+        if (_e104 < _e106) {
+            let _e108 = e;
+            let _e111 = patches.p[_e108];
+            pt.cv[0i] = _e111.cv[0];
+            pt.cv[1i] = _e111.cv[1];
+            pt.cv[2i] = _e111.cv[2];
+            pt.cv[3i] = _e111.cv[3];
+            pt.cv[4i] = _e111.cv[4];
+            pt.cv[5i] = _e111.cv[5];
+            pt.cv[6i] = _e111.cv[6];
+            pt.cv[7i] = _e111.cv[7];
+            pt.cv[8i] = _e111.cv[8];
+            pt.cv[9i] = _e111.cv[9];
+            pt.cv[10i] = _e111.cv[10];
+            pt.cv[11i] = _e111.cv[11];
+            pt.cv[12i] = _e111.cv[12];
+            pt.cv[13i] = _e111.cv[13];
+            pt.cv[14i] = _e111.cv[14];
+            pt.cv[15i] = _e111.cv[15];
+            pt.ptex = _e111.ptex;
+            pt.u0_ = _e111.u0_;
+            pt.v0_ = _e111.v0_;
+            pt.size = _e111.size;
+            pt.levelBoundary = _e111.levelBoundary;
+            pt.sharpness = _e111.sharpness;
+            pt.pad1_ = _e111.pad1_;
+            pt.pad2_ = _e111.pad2_;
+            let _e163 = pt.levelBoundary;
+            if (((_e163 >> bitcast<u32>(8i)) & 3855u) != 0u) {
                 all_ = 0u;
             } else {
                 k_2 = 0i;
                 loop {
-                    let _e167 = k_2;
-                    if (_e167 < 16i) {
-                        let _e169 = k_2;
+                    let _e168 = k_2;
+                    if (_e168 < 16i) {
                         let _e170 = k_2;
-                        let _e173 = pt.cv[_e170];
-                        let _e176 = vertices.p[_e173];
-                        P_3[_e169] = _e176.xyz;
+                        let _e171 = k_2;
+                        let _e174 = pt.cv[_e171];
+                        let _e177 = vertices.p[_e174];
+                        P_3[_e170] = _e177.xyz;
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e179 = k_2;
-                        k_2 = (_e179 + 1i);
+                        let _e180 = k_2;
+                        k_2 = (_e180 + 1i);
                     }
                 }
-                let _e181 = P_3;
-                param_5 = _e181;
+                let _e182 = P_3;
+                param_5 = _e182;
                 bezierPoints_u0028_vf3_u005b_16_u005d_u003b((&param_5));
-                let _e182 = param_5;
-                P_3 = _e182;
+                let _e183 = param_5;
+                P_3 = _e183;
                 k_3 = 0i;
                 loop {
-                    let _e183 = k_3;
-                    if (_e183 < 16i) {
-                        let _e185 = k_3;
-                        let _e187 = P_3[_e185];
-                        param_6 = _e187;
-                        let _e188 = outside_u0028_vf3_u003b((&param_6));
-                        let _e189 = all_;
-                        all_ = (_e189 & _e188);
+                    let _e184 = k_3;
+                    if (_e184 < 16i) {
+                        let _e186 = k_3;
+                        let _e188 = P_3[_e186];
+                        param_6 = _e188;
+                        let _e189 = outside_u0028_vf3_u003b((&param_6));
+                        let _e190 = all_;
+                        all_ = (_e190 & _e189);
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e191 = k_3;
-                        k_3 = (_e191 + 1i);
+                        let _e192 = k_3;
+                        k_3 = (_e192 + 1i);
                     }
                 }
-                let _e193 = all_;
-                let _e194 = (_e193 == 0u);
-                phi_673_ = _e194;
-                if _e194 {
-                    let _e197 = pc.eye[3u];
-                    phi_673_ = (_e197 != 0f);
+                let _e194 = all_;
+                let _e195 = (_e194 == 0u);
+                phi_673_ = _e195;
+                if _e195 {
+                    let _e198 = pc.eye[3u];
+                    phi_673_ = (_e198 != 0f);
                 }
-                let _e200 = phi_673_;
-                if _e200 {
+                let _e201 = phi_673_;
+                if _e201 {
                     j = 0i;
                     loop {
-                        let _e201 = j;
-                        if (_e201 < 4i) {
+                        let _e202 = j;
+                        if (_e202 < 4i) {
                             i = 0i;
                             loop {
-                                let _e203 = i;
-                                if (_e203 < 3i) {
-                                    let _e205 = j;
-                                    let _e207 = i;
-                                    let _e209 = j;
-                                    let _e211 = i;
-                                    let _e215 = P_3[(((4i * _e209) + _e211) + 1i)];
-                                    let _e216 = j;
-                                    let _e218 = i;
-                                    let _e221 = P_3[((4i * _e216) + _e218)];
-                                    U_1[((3i * _e205) + _e207)] = (_e215 - _e221);
-                                    let _e224 = i;
-                                    let _e226 = j;
-                                    let _e228 = i;
-                                    let _e231 = j;
-                                    let _e234 = P_3[((4i * (_e228 + 1i)) + _e231)];
-                                    let _e235 = i;
-                                    let _e237 = j;
-                                    let _e240 = P_3[((4i * _e235) + _e237)];
-                                    V_1[((4i * _e224) + _e226)] = (_e234 - _e240);
+                                let _e204 = i;
+                                if (_e204 < 3i) {
+                                    let _e206 = j;
+                                    let _e208 = i;
+                                    let _e210 = j;
+                                    let _e212 = i;
+                                    let _e216 = P_3[(((4i * _e210) + _e212) + 1i)];
+                                    let _e217 = j;
+                                    let _e219 = i;
+                                    let _e222 = P_3[((4i * _e217) + _e219)];
+                                    U_1[((3i * _e206) + _e208)] = (_e216 - _e222);
+                                    let _e225 = i;
+                                    let _e227 = j;
+                                    let _e229 = i;
+                                    let _e232 = j;
+                                    let _e235 = P_3[((4i * (_e229 + 1i)) + _e232)];
+                                    let _e236 = i;
+                                    let _e238 = j;
+                                    let _e241 = P_3[((4i * _e236) + _e238)];
+                                    V_1[((4i * _e225) + _e227)] = (_e235 - _e241);
                                     continue;
                                 } else {
                                     break;
                                 }
                                 continuing {
-                                    let _e243 = i;
-                                    i = (_e243 + 1i);
+                                    let _e244 = i;
+                                    i = (_e244 + 1i);
                                 }
                             }
                             continue;
@@ -591,129 +591,135 @@ fn main_1() {
                             break;
                         }
                         continuing {
-                            let _e245 = j;
-                            j = (_e245 + 1i);
+                            let _e246 = j;
+                            j = (_e246 + 1i);
                         }
                     }
-                    let _e247 = P_3;
-                    param_7 = _e247;
+                    let _e248 = P_3;
+                    param_7 = _e248;
                     param_8 = 16u;
-                    let _e248 = U_1;
-                    param_9 = _e248;
+                    let _e249 = U_1;
+                    param_9 = _e249;
                     param_10 = 12u;
-                    let _e249 = V_1;
-                    param_11 = _e249;
+                    let _e250 = V_1;
+                    param_11 = _e250;
                     param_12 = 12u;
-                    let _e250 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_7), (&param_8), (&param_9), (&param_10), (&param_11), (&param_12));
-                    if _e250 {
+                    let _e251 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_7), (&param_8), (&param_9), (&param_10), (&param_11), (&param_12));
+                    if _e251 {
                         all_ = 64u;
                     }
                 }
-                let _e251 = all_;
-                let _e252 = (_e251 == 0u);
-                phi_757_ = _e252;
-                if _e252 {
-                    let _e253 = P_3;
-                    param_13 = _e253;
+                let _e252 = all_;
+                let _e253 = (_e252 == 0u);
+                phi_757_ = _e253;
+                if _e253 {
+                    let _e254 = P_3;
+                    param_13 = _e254;
                     param_14 = 16u;
-                    let _e254 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_13), (&param_14));
-                    phi_757_ = _e254;
+                    let _e255 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_13), (&param_14));
+                    phi_757_ = _e255;
                 }
-                let _e256 = phi_757_;
-                if _e256 {
+                let _e257 = phi_757_;
+                if _e257 {
                     all_ = 128u;
                 }
             }
         } else {
-            let _e257 = e;
-            let _e259 = pc.patchCount;
-            let _e263 = irregulars.f[(_e257 - _e259)];
-            q.corner[0i] = _e263.corner[0];
-            q.corner[1i] = _e263.corner[1];
-            q.corner[2i] = _e263.corner[2];
-            q.corner[3i] = _e263.corner[3];
-            q.ptex = _e263.ptex;
-            q.u0_ = _e263.u0_;
-            q.v0_ = _e263.v0_;
-            q.size = _e263.size;
-            k_4 = 0i;
-            loop {
-                let _e282 = k_4;
-                if (_e282 < 4i) {
-                    let _e284 = k_4;
-                    let _e285 = k_4;
-                    let _e288 = q.corner[_e285];
-                    let _e292 = limits.v[(2u * _e288)];
-                    P_4[_e284] = _e292.xyz;
-                    let _e295 = k_4;
-                    let _e297 = P_4[_e295];
-                    param_15 = _e297;
-                    let _e298 = outside_u0028_vf3_u003b((&param_15));
-                    let _e299 = all_;
-                    all_ = (_e299 & _e298);
-                    continue;
-                } else {
-                    break;
+            let _e258 = e;
+            let _e263 = patches.p[_e258].cv[0i];
+            if (_e263 != 4294967295u) {
+                all_ = 0u;
+            } else {
+                let _e265 = e;
+                let _e267 = pc.patchCount;
+                let _e271 = irregulars.f[(_e265 - _e267)];
+                q.corner[0i] = _e271.corner[0];
+                q.corner[1i] = _e271.corner[1];
+                q.corner[2i] = _e271.corner[2];
+                q.corner[3i] = _e271.corner[3];
+                q.ptex = _e271.ptex;
+                q.u0_ = _e271.u0_;
+                q.v0_ = _e271.v0_;
+                q.size = _e271.size;
+                k_4 = 0i;
+                loop {
+                    let _e290 = k_4;
+                    if (_e290 < 4i) {
+                        let _e292 = k_4;
+                        let _e293 = k_4;
+                        let _e296 = q.corner[_e293];
+                        let _e300 = limits.v[(2u * _e296)];
+                        P_4[_e292] = _e300.xyz;
+                        let _e303 = k_4;
+                        let _e305 = P_4[_e303];
+                        param_15 = _e305;
+                        let _e306 = outside_u0028_vf3_u003b((&param_15));
+                        let _e307 = all_;
+                        all_ = (_e307 & _e306);
+                        continue;
+                    } else {
+                        break;
+                    }
+                    continuing {
+                        let _e309 = k_4;
+                        k_4 = (_e309 + 1i);
+                    }
                 }
-                continuing {
-                    let _e301 = k_4;
-                    k_4 = (_e301 + 1i);
+                let _e311 = all_;
+                let _e312 = (_e311 == 0u);
+                phi_845_ = _e312;
+                if _e312 {
+                    let _e315 = pc.eye[3u];
+                    phi_845_ = (_e315 != 0f);
                 }
-            }
-            let _e303 = all_;
-            let _e304 = (_e303 == 0u);
-            phi_836_ = _e304;
-            if _e304 {
-                let _e307 = pc.eye[3u];
-                phi_836_ = (_e307 != 0f);
-            }
-            let _e310 = phi_836_;
-            if _e310 {
-                let _e312 = P_4[1i];
-                let _e314 = P_4[0i];
-                U_2[0i] = (_e312 - _e314);
-                let _e318 = P_4[2i];
-                let _e320 = P_4[3i];
-                U_2[1i] = (_e318 - _e320);
-                let _e324 = P_4[3i];
-                let _e326 = P_4[0i];
-                V_2[0i] = (_e324 - _e326);
-                let _e330 = P_4[2i];
-                let _e332 = P_4[1i];
-                V_2[1i] = (_e330 - _e332);
-                let _e335 = P_4;
-                param_16 = _e335;
-                param_17 = 4u;
-                let _e336 = U_2;
-                param_18 = _e336;
-                param_19 = 2u;
-                let _e337 = V_2;
-                param_20 = _e337;
-                param_21 = 2u;
-                let _e338 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_16), (&param_17), (&param_18), (&param_19), (&param_20), (&param_21));
-                if _e338 {
-                    all_ = 64u;
+                let _e318 = phi_845_;
+                if _e318 {
+                    let _e320 = P_4[1i];
+                    let _e322 = P_4[0i];
+                    U_2[0i] = (_e320 - _e322);
+                    let _e326 = P_4[2i];
+                    let _e328 = P_4[3i];
+                    U_2[1i] = (_e326 - _e328);
+                    let _e332 = P_4[3i];
+                    let _e334 = P_4[0i];
+                    V_2[0i] = (_e332 - _e334);
+                    let _e338 = P_4[2i];
+                    let _e340 = P_4[1i];
+                    V_2[1i] = (_e338 - _e340);
+                    let _e343 = P_4;
+                    param_16 = _e343;
+                    param_17 = 4u;
+                    let _e344 = U_2;
+                    param_18 = _e344;
+                    param_19 = 2u;
+                    let _e345 = V_2;
+                    param_20 = _e345;
+                    param_21 = 2u;
+                    let _e346 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_16), (&param_17), (&param_18), (&param_19), (&param_20), (&param_21));
+                    if _e346 {
+                        all_ = 64u;
+                    }
                 }
-            }
-            let _e339 = all_;
-            let _e340 = (_e339 == 0u);
-            phi_885_ = _e340;
-            if _e340 {
-                let _e341 = P_4;
-                param_22 = _e341;
-                param_23 = 4u;
-                let _e342 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_22), (&param_23));
-                phi_885_ = _e342;
-            }
-            let _e344 = phi_885_;
-            if _e344 {
-                all_ = 128u;
+                let _e347 = all_;
+                let _e348 = (_e347 == 0u);
+                phi_894_ = _e348;
+                if _e348 {
+                    let _e349 = P_4;
+                    param_22 = _e349;
+                    param_23 = 4u;
+                    let _e350 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_22), (&param_23));
+                    phi_894_ = _e350;
+                }
+                let _e352 = phi_894_;
+                if _e352 {
+                    all_ = 128u;
+                }
             }
         }
     }
-    let _e345 = e;
-    let _e346 = all_;
-    cull.c[_e345] = select(0u, 1u, (_e346 != 0u));
+    let _e353 = e;
+    let _e354 = all_;
+    cull.c[_e353] = select(0u, 1u, (_e354 != 0u));
     return;
 }
 

@@ -20,12 +20,16 @@ struct SurfaceSample {
     level: u32,
 }
 
+struct Vertices {
+    p: array<vec4<f32>>,
+}
+
 struct Patches {
     p: array<Patch>,
 }
 
-struct Vertices {
-    p: array<vec4<f32>>,
+struct Limits {
+    v: array<vec4<f32>>,
 }
 
 struct IrregularFace {
@@ -38,10 +42,6 @@ struct IrregularFace {
 
 struct Irregulars {
     f: array<IrregularFace>,
-}
-
-struct Limits {
-    v: array<vec4<f32>>,
 }
 
 struct Map {
@@ -83,14 +83,14 @@ struct Normals {
 }
 
 var<private> gl_GlobalInvocationID_1: vec3<u32>;
-@group(0) @binding(1) 
-var<storage, read> patches: Patches;
 @group(0) @binding(0) 
 var<storage, read> vertices: Vertices;
-@group(0) @binding(2) 
-var<storage, read> irregulars: Irregulars;
+@group(0) @binding(1) 
+var<storage, read> patches: Patches;
 @group(0) @binding(3) 
 var<storage, read> limits: Limits;
+@group(0) @binding(2) 
+var<storage, read> irregulars: Irregulars;
 @group(0) @binding(6) 
 var<storage, read> map: Map;
 @group(3) @binding(0) var<uniform> pc: Push;
@@ -102,33 +102,33 @@ var<storage, read> tessVertices: TessVertices;
 var<storage, read_write> normals: Normals;
 
 fn texelAt_u0028_u1_u003b_u1_u003b(x: ptr<function, u32>, y: ptr<function, u32>) -> f32 {
-    let _e65 = (*y);
-    let _e67 = map.width;
-    let _e69 = (*x);
-    let _e73 = map.v[((_e65 * _e67) + _e69)];
-    return _e73;
+    let _e74 = (*y);
+    let _e76 = map.width;
+    let _e78 = (*x);
+    let _e82 = map.v[((_e74 * _e76) + _e78)];
+    return _e82;
 }
 
 fn wrapTexel_u0028_f1_u003b_u1_u003b(i: ptr<function, f32>, n: ptr<function, u32>) -> u32 {
     var k: i32;
     var local: i32;
 
-    let _e67 = (*i);
-    let _e68 = i32(_e67);
-    let _e69 = (*n);
-    let _e70 = bitcast<i32>(_e69);
-    k = (_e68 - (i32(floor((f32(_e68) / f32(_e70)))) * _e70));
-    let _e78 = k;
-    if (_e78 < 0i) {
-        let _e80 = k;
-        let _e81 = (*n);
-        local = (_e80 + bitcast<i32>(_e81));
+    let _e76 = (*i);
+    let _e77 = i32(_e76);
+    let _e78 = (*n);
+    let _e79 = bitcast<i32>(_e78);
+    k = (_e77 - (i32(floor((f32(_e77) / f32(_e79)))) * _e79));
+    let _e87 = k;
+    if (_e87 < 0i) {
+        let _e89 = k;
+        let _e90 = (*n);
+        local = (_e89 + bitcast<i32>(_e90));
     } else {
-        let _e84 = k;
-        local = _e84;
+        let _e93 = k;
+        local = _e93;
     }
-    let _e85 = local;
-    return bitcast<u32>(_e85);
+    let _e94 = local;
+    return bitcast<u32>(_e94);
 }
 
 fn sampleMap_u0028_vf2_u003b(uv: ptr<function, vec2<f32>>) -> f32 {
@@ -166,87 +166,87 @@ fn sampleMap_u0028_vf2_u003b(uv: ptr<function, vec2<f32>>) -> f32 {
     var param_19: u32;
     var value: f32;
 
-    let _e98 = (*uv)[0u];
-    let _e100 = map.width;
-    x_1 = ((_e98 * f32(_e100)) - 0.5f);
-    let _e105 = (*uv)[1u];
-    let _e108 = map.height;
-    y_1 = (((1f - _e105) * f32(_e108)) - 0.5f);
-    let _e112 = x_1;
-    fx0_ = floor(_e112);
-    let _e114 = y_1;
-    fy0_ = floor(_e114);
-    let _e116 = x_1;
-    let _e117 = fx0_;
-    fx = (_e116 - _e117);
-    let _e119 = y_1;
-    let _e120 = fy0_;
-    fy = (_e119 - _e120);
-    let _e122 = fx0_;
-    param = _e122;
-    let _e124 = map.width;
-    param_1 = _e124;
-    let _e125 = wrapTexel_u0028_f1_u003b_u1_u003b((&param), (&param_1));
-    x0_ = _e125;
+    let _e107 = (*uv)[0u];
+    let _e109 = map.width;
+    x_1 = ((_e107 * f32(_e109)) - 0.5f);
+    let _e114 = (*uv)[1u];
+    let _e117 = map.height;
+    y_1 = (((1f - _e114) * f32(_e117)) - 0.5f);
+    let _e121 = x_1;
+    fx0_ = floor(_e121);
+    let _e123 = y_1;
+    fy0_ = floor(_e123);
+    let _e125 = x_1;
     let _e126 = fx0_;
-    param_2 = (_e126 + 1f);
-    let _e129 = map.width;
-    param_3 = _e129;
-    let _e130 = wrapTexel_u0028_f1_u003b_u1_u003b((&param_2), (&param_3));
-    x1_ = _e130;
-    let _e131 = fy0_;
-    param_4 = _e131;
-    let _e133 = map.height;
-    param_5 = _e133;
-    let _e134 = wrapTexel_u0028_f1_u003b_u1_u003b((&param_4), (&param_5));
-    y0_ = _e134;
-    let _e135 = fy0_;
-    param_6 = (_e135 + 1f);
-    let _e138 = map.height;
-    param_7 = _e138;
-    let _e139 = wrapTexel_u0028_f1_u003b_u1_u003b((&param_6), (&param_7));
-    y1_ = _e139;
-    let _e140 = x0_;
-    param_8 = _e140;
-    let _e141 = y0_;
-    param_9 = _e141;
-    let _e142 = texelAt_u0028_u1_u003b_u1_u003b((&param_8), (&param_9));
-    let _e143 = fx;
-    let _e144 = x1_;
-    param_10 = _e144;
-    let _e145 = y0_;
-    param_11 = _e145;
-    let _e146 = texelAt_u0028_u1_u003b_u1_u003b((&param_10), (&param_11));
-    let _e147 = x0_;
-    param_12 = _e147;
-    let _e148 = y0_;
-    param_13 = _e148;
-    let _e149 = texelAt_u0028_u1_u003b_u1_u003b((&param_12), (&param_13));
-    top = (_e142 + (_e143 * (_e146 - _e149)));
-    let _e153 = x0_;
-    param_14 = _e153;
-    let _e154 = y1_;
-    param_15 = _e154;
-    let _e155 = texelAt_u0028_u1_u003b_u1_u003b((&param_14), (&param_15));
-    let _e156 = fx;
-    let _e157 = x1_;
-    param_16 = _e157;
-    let _e158 = y1_;
-    param_17 = _e158;
-    let _e159 = texelAt_u0028_u1_u003b_u1_u003b((&param_16), (&param_17));
-    let _e160 = x0_;
-    param_18 = _e160;
-    let _e161 = y1_;
-    param_19 = _e161;
-    let _e162 = texelAt_u0028_u1_u003b_u1_u003b((&param_18), (&param_19));
-    bottom = (_e155 + (_e156 * (_e159 - _e162)));
-    let _e166 = top;
-    let _e167 = fy;
-    let _e168 = bottom;
-    let _e169 = top;
-    value = (_e166 + (_e167 * (_e168 - _e169)));
-    let _e173 = value;
-    return _e173;
+    fx = (_e125 - _e126);
+    let _e128 = y_1;
+    let _e129 = fy0_;
+    fy = (_e128 - _e129);
+    let _e131 = fx0_;
+    param = _e131;
+    let _e133 = map.width;
+    param_1 = _e133;
+    let _e134 = wrapTexel_u0028_f1_u003b_u1_u003b((&param), (&param_1));
+    x0_ = _e134;
+    let _e135 = fx0_;
+    param_2 = (_e135 + 1f);
+    let _e138 = map.width;
+    param_3 = _e138;
+    let _e139 = wrapTexel_u0028_f1_u003b_u1_u003b((&param_2), (&param_3));
+    x1_ = _e139;
+    let _e140 = fy0_;
+    param_4 = _e140;
+    let _e142 = map.height;
+    param_5 = _e142;
+    let _e143 = wrapTexel_u0028_f1_u003b_u1_u003b((&param_4), (&param_5));
+    y0_ = _e143;
+    let _e144 = fy0_;
+    param_6 = (_e144 + 1f);
+    let _e147 = map.height;
+    param_7 = _e147;
+    let _e148 = wrapTexel_u0028_f1_u003b_u1_u003b((&param_6), (&param_7));
+    y1_ = _e148;
+    let _e149 = x0_;
+    param_8 = _e149;
+    let _e150 = y0_;
+    param_9 = _e150;
+    let _e151 = texelAt_u0028_u1_u003b_u1_u003b((&param_8), (&param_9));
+    let _e152 = fx;
+    let _e153 = x1_;
+    param_10 = _e153;
+    let _e154 = y0_;
+    param_11 = _e154;
+    let _e155 = texelAt_u0028_u1_u003b_u1_u003b((&param_10), (&param_11));
+    let _e156 = x0_;
+    param_12 = _e156;
+    let _e157 = y0_;
+    param_13 = _e157;
+    let _e158 = texelAt_u0028_u1_u003b_u1_u003b((&param_12), (&param_13));
+    top = (_e151 + (_e152 * (_e155 - _e158)));
+    let _e162 = x0_;
+    param_14 = _e162;
+    let _e163 = y1_;
+    param_15 = _e163;
+    let _e164 = texelAt_u0028_u1_u003b_u1_u003b((&param_14), (&param_15));
+    let _e165 = fx;
+    let _e166 = x1_;
+    param_16 = _e166;
+    let _e167 = y1_;
+    param_17 = _e167;
+    let _e168 = texelAt_u0028_u1_u003b_u1_u003b((&param_16), (&param_17));
+    let _e169 = x0_;
+    param_18 = _e169;
+    let _e170 = y1_;
+    param_19 = _e170;
+    let _e171 = texelAt_u0028_u1_u003b_u1_u003b((&param_18), (&param_19));
+    bottom = (_e164 + (_e165 * (_e168 - _e171)));
+    let _e175 = top;
+    let _e176 = fy;
+    let _e177 = bottom;
+    let _e178 = top;
+    value = (_e175 + (_e176 * (_e177 - _e178)));
+    let _e182 = value;
+    return _e182;
 }
 
 fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<function, f32>, b: ptr<function, array<f32, 4>>, d: ptr<function, array<f32, 4>>) {
@@ -254,38 +254,38 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
     var t3_: f32;
     var s: f32;
 
-    let _e69 = (*t);
-    let _e70 = (*t);
-    t2_ = (_e69 * _e70);
-    let _e72 = t2_;
-    let _e73 = (*t);
-    t3_ = (_e72 * _e73);
-    let _e75 = (*t);
-    s = (1f - _e75);
-    let _e77 = s;
-    let _e78 = s;
-    let _e80 = s;
-    (*b)[0i] = (((_e77 * _e78) * _e80) / 6f);
-    let _e84 = t3_;
-    let _e86 = t2_;
-    (*b)[1i] = ((((3f * _e84) - (6f * _e86)) + 4f) / 6f);
-    let _e92 = t3_;
-    let _e94 = t2_;
-    let _e97 = (*t);
-    (*b)[2i] = (((((-3f * _e92) + (3f * _e94)) + (3f * _e97)) + 1f) / 6f);
-    let _e103 = t3_;
-    (*b)[3i] = (_e103 / 6f);
-    let _e106 = s;
-    let _e108 = s;
-    (*d)[0i] = ((-(_e106) * _e108) / 2f);
-    let _e112 = t2_;
-    let _e114 = (*t);
-    (*d)[1i] = (((9f * _e112) - (12f * _e114)) / 6f);
-    let _e119 = t2_;
-    let _e121 = (*t);
-    (*d)[2i] = ((((-9f * _e119) + (6f * _e121)) + 3f) / 6f);
-    let _e127 = t2_;
-    (*d)[3i] = (_e127 / 2f);
+    let _e78 = (*t);
+    let _e79 = (*t);
+    t2_ = (_e78 * _e79);
+    let _e81 = t2_;
+    let _e82 = (*t);
+    t3_ = (_e81 * _e82);
+    let _e84 = (*t);
+    s = (1f - _e84);
+    let _e86 = s;
+    let _e87 = s;
+    let _e89 = s;
+    (*b)[0i] = (((_e86 * _e87) * _e89) / 6f);
+    let _e93 = t3_;
+    let _e95 = t2_;
+    (*b)[1i] = ((((3f * _e93) - (6f * _e95)) + 4f) / 6f);
+    let _e101 = t3_;
+    let _e103 = t2_;
+    let _e106 = (*t);
+    (*b)[2i] = (((((-3f * _e101) + (3f * _e103)) + (3f * _e106)) + 1f) / 6f);
+    let _e112 = t3_;
+    (*b)[3i] = (_e112 / 6f);
+    let _e115 = s;
+    let _e117 = s;
+    (*d)[0i] = ((-(_e115) * _e117) / 2f);
+    let _e121 = t2_;
+    let _e123 = (*t);
+    (*d)[1i] = (((9f * _e121) - (12f * _e123)) / 6f);
+    let _e128 = t2_;
+    let _e130 = (*t);
+    (*d)[2i] = ((((-9f * _e128) + (6f * _e130)) + 3f) / 6f);
+    let _e136 = t2_;
+    (*d)[3i] = (_e136 / 2f);
     return;
 }
 
@@ -312,74 +312,74 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var k_1: i32;
 
     M = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
-    let _e87 = (*sharpness);
-    s_1 = _e87;
+    let _e96 = (*sharpness);
+    s_1 = _e96;
     scale = 1f;
     i_1 = 0i;
     loop {
-        let _e88 = i_1;
-        let _e90 = s_1;
-        if ((_e88 < 12i) && (_e90 > 0f)) {
-            let _e93 = (*t_1);
-            left = (_e93 < 0.5f);
-            let _e95 = s_1;
-            w = min(_e95, 1f);
-            let _e98 = M[0i];
-            let _e100 = M[1i];
-            e01_ = ((_e98 + _e100) * 0.5f);
-            let _e104 = M[1i];
-            let _e106 = M[2i];
-            e12_ = ((_e104 + _e106) * 0.5f);
-            let _e110 = M[2i];
-            let _e112 = M[3i];
-            e23_ = ((_e110 + _e112) * 0.5f);
-            let _e115 = w;
-            let _e117 = M[1i];
-            let _e119 = w;
-            let _e122 = M[0i];
-            let _e124 = M[1i];
-            let _e128 = M[2i];
-            crease = ((_e117 * _e115) + ((((_e122 + (_e124 * 6f)) + _e128) * (1f - _e119)) / vec4(8f)));
-            let _e135 = M[1i];
+        let _e97 = i_1;
+        let _e99 = s_1;
+        if ((_e97 < 12i) && (_e99 > 0f)) {
+            let _e102 = (*t_1);
+            left = (_e102 < 0.5f);
+            let _e104 = s_1;
+            w = min(_e104, 1f);
+            let _e107 = M[0i];
+            let _e109 = M[1i];
+            e01_ = ((_e107 + _e109) * 0.5f);
+            let _e113 = M[1i];
+            let _e115 = M[2i];
+            e12_ = ((_e113 + _e115) * 0.5f);
+            let _e119 = M[2i];
+            let _e121 = M[3i];
+            e23_ = ((_e119 + _e121) * 0.5f);
+            let _e124 = w;
+            let _e126 = M[1i];
+            let _e128 = w;
+            let _e131 = M[0i];
+            let _e133 = M[1i];
             let _e137 = M[2i];
-            let _e141 = M[3i];
-            v2_ = (((_e135 + (_e137 * 6f)) + _e141) / vec4(8f));
-            let _e145 = left;
-            if _e145 {
-                let _e146 = e01_;
-                M[0i] = _e146;
-                let _e148 = crease;
-                M[1i] = _e148;
-                let _e150 = e12_;
-                M[2i] = _e150;
-                let _e152 = v2_;
-                M[3i] = _e152;
+            crease = ((_e126 * _e124) + ((((_e131 + (_e133 * 6f)) + _e137) * (1f - _e128)) / vec4(8f)));
+            let _e144 = M[1i];
+            let _e146 = M[2i];
+            let _e150 = M[3i];
+            v2_ = (((_e144 + (_e146 * 6f)) + _e150) / vec4(8f));
+            let _e154 = left;
+            if _e154 {
+                let _e155 = e01_;
+                M[0i] = _e155;
+                let _e157 = crease;
+                M[1i] = _e157;
+                let _e159 = e12_;
+                M[2i] = _e159;
+                let _e161 = v2_;
+                M[3i] = _e161;
             } else {
-                let _e154 = crease;
-                M[0i] = _e154;
-                let _e156 = e12_;
-                M[1i] = _e156;
-                let _e158 = v2_;
-                M[2i] = _e158;
-                let _e160 = e23_;
-                M[3i] = _e160;
+                let _e163 = crease;
+                M[0i] = _e163;
+                let _e165 = e12_;
+                M[1i] = _e165;
+                let _e167 = v2_;
+                M[2i] = _e167;
+                let _e169 = e23_;
+                M[3i] = _e169;
             }
-            let _e162 = s_1;
-            s_1 = (_e162 - 1f);
-            let _e164 = scale;
-            scale = (_e164 * 2f);
-            let _e166 = left;
-            if _e166 {
-                let _e167 = (*t_1);
-                local_1 = (2f * _e167);
+            let _e171 = s_1;
+            s_1 = (_e171 - 1f);
+            let _e173 = scale;
+            scale = (_e173 * 2f);
+            let _e175 = left;
+            if _e175 {
+                let _e176 = (*t_1);
+                local_1 = (2f * _e176);
             } else {
-                let _e169 = (*t_1);
-                local_1 = ((2f * _e169) - 1f);
+                let _e178 = (*t_1);
+                local_1 = ((2f * _e178) - 1f);
             }
-            let _e172 = local_1;
-            (*t_1) = _e172;
-            let _e173 = left;
-            if !(_e173) {
+            let _e181 = local_1;
+            (*t_1) = _e181;
+            let _e182 = left;
+            if !(_e182) {
                 break;
             }
             continue;
@@ -387,55 +387,55 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             break;
         }
         continuing {
-            let _e175 = i_1;
-            i_1 = (_e175 + 1i);
+            let _e184 = i_1;
+            i_1 = (_e184 + 1i);
         }
     }
-    let _e177 = (*t_1);
-    param_20 = _e177;
+    let _e186 = (*t_1);
+    param_20 = _e186;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_20), (&param_21), (&param_22));
-    let _e178 = param_21;
-    bt = _e178;
-    let _e179 = param_22;
-    dt = _e179;
-    let _e181 = bt[0i];
-    let _e183 = M[0i];
-    let _e186 = bt[1i];
-    let _e188 = M[1i];
-    let _e192 = bt[2i];
-    let _e194 = M[2i];
-    let _e198 = bt[3i];
-    let _e200 = M[3i];
-    B = ((((_e183 * _e181) + (_e188 * _e186)) + (_e194 * _e192)) + (_e200 * _e198));
-    let _e203 = scale;
-    let _e205 = dt[0i];
-    let _e207 = M[0i];
-    let _e210 = dt[1i];
-    let _e212 = M[1i];
-    let _e216 = dt[2i];
-    let _e218 = M[2i];
-    let _e222 = dt[3i];
-    let _e224 = M[3i];
-    D = (((((_e207 * _e205) + (_e212 * _e210)) + (_e218 * _e216)) + (_e224 * _e222)) * _e203);
+    let _e187 = param_21;
+    bt = _e187;
+    let _e188 = param_22;
+    dt = _e188;
+    let _e190 = bt[0i];
+    let _e192 = M[0i];
+    let _e195 = bt[1i];
+    let _e197 = M[1i];
+    let _e201 = bt[2i];
+    let _e203 = M[2i];
+    let _e207 = bt[3i];
+    let _e209 = M[3i];
+    B = ((((_e192 * _e190) + (_e197 * _e195)) + (_e203 * _e201)) + (_e209 * _e207));
+    let _e212 = scale;
+    let _e214 = dt[0i];
+    let _e216 = M[0i];
+    let _e219 = dt[1i];
+    let _e221 = M[1i];
+    let _e225 = dt[2i];
+    let _e227 = M[2i];
+    let _e231 = dt[3i];
+    let _e233 = M[3i];
+    D = (((((_e216 * _e214) + (_e221 * _e219)) + (_e227 * _e225)) + (_e233 * _e231)) * _e212);
     k_1 = 0i;
     loop {
-        let _e228 = k_1;
-        if (_e228 < 4i) {
-            let _e230 = k_1;
-            let _e231 = k_1;
-            let _e233 = B[_e231];
-            (*b_1)[_e230] = _e233;
-            let _e235 = k_1;
-            let _e236 = k_1;
-            let _e238 = D[_e236];
-            (*d_1)[_e235] = _e238;
+        let _e237 = k_1;
+        if (_e237 < 4i) {
+            let _e239 = k_1;
+            let _e240 = k_1;
+            let _e242 = B[_e240];
+            (*b_1)[_e239] = _e242;
+            let _e244 = k_1;
+            let _e245 = k_1;
+            let _e247 = D[_e245];
+            (*d_1)[_e244] = _e247;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e240 = k_1;
-            k_1 = (_e240 + 1i);
+            let _e249 = k_1;
+            k_1 = (_e249 + 1i);
         }
     }
     return;
@@ -453,84 +453,84 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
     var local_3: f32;
     var local_4: f32;
 
-    let _e78 = (*atEnd);
-    if _e78 {
-        let _e79 = (*x_2);
-        local_2 = (1f - _e79);
+    let _e87 = (*atEnd);
+    if _e87 {
+        let _e88 = (*x_2);
+        local_2 = (1f - _e88);
     } else {
-        let _e81 = (*x_2);
-        local_2 = _e81;
+        let _e90 = (*x_2);
+        local_2 = _e90;
     }
-    let _e82 = local_2;
-    param_23 = _e82;
-    let _e83 = (*sharpness_1);
-    param_24 = _e83;
+    let _e91 = local_2;
+    param_23 = _e91;
+    let _e92 = (*sharpness_1);
+    param_24 = _e92;
     creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_23), (&param_24), (&param_25), (&param_26));
-    let _e84 = param_25;
-    cb = _e84;
-    let _e85 = param_26;
-    cd = _e85;
+    let _e93 = param_25;
+    cb = _e93;
+    let _e94 = param_26;
+    cd = _e94;
     k_2 = 0i;
     loop {
-        let _e86 = k_2;
-        if (_e86 < 4i) {
-            let _e88 = k_2;
-            let _e89 = (*atEnd);
-            if _e89 {
-                let _e90 = k_2;
-                let _e93 = cb[(3i - _e90)];
-                local_3 = _e93;
+        let _e95 = k_2;
+        if (_e95 < 4i) {
+            let _e97 = k_2;
+            let _e98 = (*atEnd);
+            if _e98 {
+                let _e99 = k_2;
+                let _e102 = cb[(3i - _e99)];
+                local_3 = _e102;
             } else {
-                let _e94 = k_2;
-                let _e96 = cb[_e94];
-                local_3 = _e96;
+                let _e103 = k_2;
+                let _e105 = cb[_e103];
+                local_3 = _e105;
             }
-            let _e97 = local_3;
-            (*b_2)[_e88] = _e97;
-            let _e99 = k_2;
-            let _e100 = (*atEnd);
-            if _e100 {
-                let _e101 = k_2;
-                let _e104 = cd[(3i - _e101)];
-                local_4 = -(_e104);
+            let _e106 = local_3;
+            (*b_2)[_e97] = _e106;
+            let _e108 = k_2;
+            let _e109 = (*atEnd);
+            if _e109 {
+                let _e110 = k_2;
+                let _e113 = cd[(3i - _e110)];
+                local_4 = -(_e113);
             } else {
-                let _e106 = k_2;
-                let _e108 = cd[_e106];
-                local_4 = _e108;
+                let _e115 = k_2;
+                let _e117 = cd[_e115];
+                local_4 = _e117;
             }
-            let _e109 = local_4;
-            (*d_2)[_e99] = _e109;
+            let _e118 = local_4;
+            (*d_2)[_e108] = _e118;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e111 = k_2;
-            k_2 = (_e111 + 1i);
+            let _e120 = k_2;
+            k_2 = (_e120 + 1i);
         }
     }
     return;
 }
 
 fn foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b(b_3: ptr<function, array<f32, 4>>, atStart: ptr<function, bool>, atEnd_1: ptr<function, bool>) {
-    let _e66 = (*atStart);
-    if _e66 {
-        let _e68 = (*b_3)[0i];
-        let _e71 = (*b_3)[1i];
-        (*b_3)[1i] = (_e71 + (2f * _e68));
-        let _e75 = (*b_3)[0i];
-        let _e77 = (*b_3)[2i];
-        (*b_3)[2i] = (_e77 - _e75);
+    let _e75 = (*atStart);
+    if _e75 {
+        let _e77 = (*b_3)[0i];
+        let _e80 = (*b_3)[1i];
+        (*b_3)[1i] = (_e80 + (2f * _e77));
+        let _e84 = (*b_3)[0i];
+        let _e86 = (*b_3)[2i];
+        (*b_3)[2i] = (_e86 - _e84);
         (*b_3)[0i] = 0f;
     }
-    let _e81 = (*atEnd_1);
-    if _e81 {
-        let _e83 = (*b_3)[3i];
-        let _e86 = (*b_3)[2i];
-        (*b_3)[2i] = (_e86 + (2f * _e83));
-        let _e90 = (*b_3)[3i];
-        let _e92 = (*b_3)[1i];
-        (*b_3)[1i] = (_e92 - _e90);
+    let _e90 = (*atEnd_1);
+    if _e90 {
+        let _e92 = (*b_3)[3i];
+        let _e95 = (*b_3)[2i];
+        (*b_3)[2i] = (_e95 + (2f * _e92));
+        let _e99 = (*b_3)[3i];
+        let _e101 = (*b_3)[1i];
+        (*b_3)[1i] = (_e101 - _e99);
         (*b_3)[3i] = 0f;
     }
     return;
@@ -568,96 +568,92 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_53: array<f32, 4>;
     var param_54: array<f32, 4>;
 
-    let _e101 = (*pt).levelBoundary;
-    mask = ((_e101 >> bitcast<u32>(8i)) & 15u);
-    let _e105 = (*s_2);
-    param_27 = _e105;
+    let _e110 = (*pt).levelBoundary;
+    mask = ((_e110 >> bitcast<u32>(8i)) & 15u);
+    let _e114 = (*s_2);
+    param_27 = _e114;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_27), (&param_28), (&param_29));
-    let _e106 = param_28;
-    (*bu) = _e106;
-    let _e107 = param_29;
-    (*du) = _e107;
-    let _e108 = (*t_2);
-    param_30 = _e108;
+    let _e115 = param_28;
+    (*bu) = _e115;
+    let _e116 = param_29;
+    (*du) = _e116;
+    let _e117 = (*t_2);
+    param_30 = _e117;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_30), (&param_31), (&param_32));
-    let _e109 = param_31;
-    (*bv) = _e109;
-    let _e110 = param_32;
-    (*dv) = _e110;
-    let _e111 = mask;
-    let _e114 = mask;
-    let _e117 = (*bu);
-    param_33 = _e117;
-    param_34 = ((_e111 & 8u) != 0u);
-    param_35 = ((_e114 & 2u) != 0u);
+    let _e118 = param_31;
+    (*bv) = _e118;
+    let _e119 = param_32;
+    (*dv) = _e119;
+    let _e120 = mask;
+    let _e123 = mask;
+    let _e126 = (*bu);
+    param_33 = _e126;
+    param_34 = ((_e120 & 8u) != 0u);
+    param_35 = ((_e123 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_33), (&param_34), (&param_35));
-    let _e118 = param_33;
-    (*bu) = _e118;
-    let _e119 = mask;
-    let _e122 = mask;
-    let _e125 = (*du);
-    param_36 = _e125;
-    param_37 = ((_e119 & 8u) != 0u);
-    param_38 = ((_e122 & 2u) != 0u);
+    let _e127 = param_33;
+    (*bu) = _e127;
+    let _e128 = mask;
+    let _e131 = mask;
+    let _e134 = (*du);
+    param_36 = _e134;
+    param_37 = ((_e128 & 8u) != 0u);
+    param_38 = ((_e131 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_36), (&param_37), (&param_38));
-    let _e126 = param_36;
-    (*du) = _e126;
-    let _e127 = mask;
-    let _e130 = mask;
-    let _e133 = (*bv);
-    param_39 = _e133;
-    param_40 = ((_e127 & 1u) != 0u);
-    param_41 = ((_e130 & 4u) != 0u);
+    let _e135 = param_36;
+    (*du) = _e135;
+    let _e136 = mask;
+    let _e139 = mask;
+    let _e142 = (*bv);
+    param_39 = _e142;
+    param_40 = ((_e136 & 1u) != 0u);
+    param_41 = ((_e139 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_39), (&param_40), (&param_41));
-    let _e134 = param_39;
-    (*bv) = _e134;
-    let _e135 = mask;
-    let _e138 = mask;
-    let _e141 = (*dv);
-    param_42 = _e141;
-    param_43 = ((_e135 & 1u) != 0u);
-    param_44 = ((_e138 & 4u) != 0u);
+    let _e143 = param_39;
+    (*bv) = _e143;
+    let _e144 = mask;
+    let _e147 = mask;
+    let _e150 = (*dv);
+    param_42 = _e150;
+    param_43 = ((_e144 & 1u) != 0u);
+    param_44 = ((_e147 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_42), (&param_43), (&param_44));
-    let _e142 = param_42;
-    (*dv) = _e142;
-    let _e144 = (*pt).levelBoundary;
-    crease_1 = ((_e144 >> bitcast<u32>(16i)) & 15u);
-    let _e148 = crease_1;
-    if ((_e148 & 5u) != 0u) {
-        let _e151 = crease_1;
-        let _e154 = (*t_2);
-        param_45 = _e154;
-        param_46 = ((_e151 & 4u) != 0u);
-        let _e156 = (*pt).sharpness;
-        param_47 = _e156;
+    let _e151 = param_42;
+    (*dv) = _e151;
+    let _e153 = (*pt).levelBoundary;
+    crease_1 = ((_e153 >> bitcast<u32>(16i)) & 15u);
+    let _e157 = crease_1;
+    if ((_e157 & 5u) != 0u) {
+        let _e160 = crease_1;
+        let _e163 = (*t_2);
+        param_45 = _e163;
+        param_46 = ((_e160 & 4u) != 0u);
+        let _e165 = (*pt).sharpness;
+        param_47 = _e165;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47), (&param_48), (&param_49));
-        let _e157 = param_48;
-        (*bv) = _e157;
-        let _e158 = param_49;
-        (*dv) = _e158;
+        let _e166 = param_48;
+        (*bv) = _e166;
+        let _e167 = param_49;
+        (*dv) = _e167;
     }
-    let _e159 = crease_1;
-    if ((_e159 & 10u) != 0u) {
-        let _e162 = crease_1;
-        let _e165 = (*s_2);
-        param_50 = _e165;
-        param_51 = ((_e162 & 2u) != 0u);
-        let _e167 = (*pt).sharpness;
-        param_52 = _e167;
+    let _e168 = crease_1;
+    if ((_e168 & 10u) != 0u) {
+        let _e171 = crease_1;
+        let _e174 = (*s_2);
+        param_50 = _e174;
+        param_51 = ((_e171 & 2u) != 0u);
+        let _e176 = (*pt).sharpness;
+        param_52 = _e176;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_50), (&param_51), (&param_52), (&param_53), (&param_54));
-        let _e168 = param_53;
-        (*bu) = _e168;
-        let _e169 = param_54;
-        (*du) = _e169;
+        let _e177 = param_53;
+        (*bu) = _e177;
+        let _e178 = param_54;
+        (*du) = _e178;
     }
     return;
 }
 
-fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>, st: ptr<function, u32>, patchCount: ptr<function, u32>) -> SurfaceSample {
-    var tv: vec2<u32>;
-    var s_3: f32;
-    var t_3: f32;
-    var pt_1: Patch;
+fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(pt_1: ptr<function, Patch>, s_3: ptr<function, f32>, t_3: ptr<function, f32>, P: ptr<function, vec3<f32>>, n_1: ptr<function, vec3<f32>>) {
     var bu_1: array<f32, 4>;
     var du_1: array<f32, 4>;
     var bv_1: array<f32, 4>;
@@ -669,7 +665,6 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_59: array<f32, 4>;
     var param_60: array<f32, 4>;
     var param_61: array<f32, 4>;
-    var P: vec3<f32>;
     var Du: vec3<f32>;
     var Dv: vec3<f32>;
     var j: i32;
@@ -678,381 +673,1093 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var rowDv: vec3<f32>;
     var i_2: i32;
     var c: vec3<f32>;
-    var n_1: vec3<f32>;
-    var r: SurfaceSample;
-    var local_5: vec3<f32>;
-    var q: IrregularFace;
-    var w_1: array<f32, 4>;
-    var P_1: vec3<f32>;
-    var N: vec3<f32>;
-    var k_3: i32;
-    var local_6: vec3<f32>;
 
-    let _e99 = (*element);
-    let _e100 = (*st);
-    tv = vec2<u32>(_e99, _e100);
-    let _e103 = tv[1u];
-    s_3 = (f32((_e103 & 65535u)) / 32768f);
-    let _e108 = tv[1u];
-    t_3 = (f32((_e108 >> bitcast<u32>(16i))) / 32768f);
-    let _e114 = tv[0u];
-    let _e115 = (*patchCount);
-    if (_e114 < _e115) {
-        let _e118 = tv[0u];
-        let _e121 = patches.p[_e118];
-        pt_1.cv[0i] = _e121.cv[0];
-        pt_1.cv[1i] = _e121.cv[1];
-        pt_1.cv[2i] = _e121.cv[2];
-        pt_1.cv[3i] = _e121.cv[3];
-        pt_1.cv[4i] = _e121.cv[4];
-        pt_1.cv[5i] = _e121.cv[5];
-        pt_1.cv[6i] = _e121.cv[6];
-        pt_1.cv[7i] = _e121.cv[7];
-        pt_1.cv[8i] = _e121.cv[8];
-        pt_1.cv[9i] = _e121.cv[9];
-        pt_1.cv[10i] = _e121.cv[10];
-        pt_1.cv[11i] = _e121.cv[11];
-        pt_1.cv[12i] = _e121.cv[12];
-        pt_1.cv[13i] = _e121.cv[13];
-        pt_1.cv[14i] = _e121.cv[14];
-        pt_1.cv[15i] = _e121.cv[15];
-        pt_1.ptex = _e121.ptex;
-        pt_1.u0_ = _e121.u0_;
-        pt_1.v0_ = _e121.v0_;
-        pt_1.size = _e121.size;
-        pt_1.levelBoundary = _e121.levelBoundary;
-        pt_1.sharpness = _e121.sharpness;
-        pt_1.pad1_ = _e121.pad1_;
-        pt_1.pad2_ = _e121.pad2_;
-        let _e172 = pt_1;
-        param_55 = _e172;
-        let _e173 = s_3;
-        param_56 = _e173;
-        let _e174 = t_3;
-        param_57 = _e174;
-        patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_55), (&param_56), (&param_57), (&param_58), (&param_59), (&param_60), (&param_61));
-        let _e175 = param_58;
-        bu_1 = _e175;
-        let _e176 = param_59;
-        du_1 = _e176;
-        let _e177 = param_60;
-        bv_1 = _e177;
-        let _e178 = param_61;
-        dv_1 = _e178;
-        P = vec3<f32>(0f, 0f, 0f);
-        Du = vec3<f32>(0f, 0f, 0f);
-        Dv = vec3<f32>(0f, 0f, 0f);
-        j = 0i;
-        loop {
-            let _e179 = j;
-            if (_e179 < 4i) {
-                row = vec3<f32>(0f, 0f, 0f);
-                rowDu = vec3<f32>(0f, 0f, 0f);
-                rowDv = vec3<f32>(0f, 0f, 0f);
-                i_2 = 0i;
-                loop {
-                    let _e181 = i_2;
-                    if (_e181 < 4i) {
-                        let _e183 = j;
-                        let _e185 = i_2;
-                        let _e189 = pt_1.cv[((4i * _e183) + _e185)];
-                        let _e192 = vertices.p[_e189];
-                        c = _e192.xyz;
-                        let _e194 = i_2;
-                        let _e196 = bu_1[_e194];
-                        let _e197 = c;
-                        let _e199 = row;
-                        row = (_e199 + (_e197 * _e196));
-                        let _e201 = i_2;
-                        let _e203 = du_1[_e201];
-                        let _e204 = c;
-                        let _e206 = rowDu;
-                        rowDu = (_e206 + (_e204 * _e203));
-                        continue;
-                    } else {
-                        break;
-                    }
-                    continuing {
-                        let _e208 = i_2;
-                        i_2 = (_e208 + 1i);
-                    }
+    let _e96 = (*pt_1);
+    param_55 = _e96;
+    let _e97 = (*s_3);
+    param_56 = _e97;
+    let _e98 = (*t_3);
+    param_57 = _e98;
+    patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_55), (&param_56), (&param_57), (&param_58), (&param_59), (&param_60), (&param_61));
+    let _e99 = param_58;
+    bu_1 = _e99;
+    let _e100 = param_59;
+    du_1 = _e100;
+    let _e101 = param_60;
+    bv_1 = _e101;
+    let _e102 = param_61;
+    dv_1 = _e102;
+    (*P) = vec3<f32>(0f, 0f, 0f);
+    Du = vec3<f32>(0f, 0f, 0f);
+    Dv = vec3<f32>(0f, 0f, 0f);
+    j = 0i;
+    loop {
+        let _e103 = j;
+        if (_e103 < 4i) {
+            row = vec3<f32>(0f, 0f, 0f);
+            rowDu = vec3<f32>(0f, 0f, 0f);
+            rowDv = vec3<f32>(0f, 0f, 0f);
+            i_2 = 0i;
+            loop {
+                let _e105 = i_2;
+                if (_e105 < 4i) {
+                    let _e107 = j;
+                    let _e109 = i_2;
+                    let _e113 = (*pt_1).cv[((4i * _e107) + _e109)];
+                    let _e116 = vertices.p[_e113];
+                    c = _e116.xyz;
+                    let _e118 = i_2;
+                    let _e120 = bu_1[_e118];
+                    let _e121 = c;
+                    let _e123 = row;
+                    row = (_e123 + (_e121 * _e120));
+                    let _e125 = i_2;
+                    let _e127 = du_1[_e125];
+                    let _e128 = c;
+                    let _e130 = rowDu;
+                    rowDu = (_e130 + (_e128 * _e127));
+                    continue;
+                } else {
+                    break;
                 }
-                let _e210 = j;
-                let _e212 = bv_1[_e210];
-                let _e213 = row;
-                let _e215 = P;
-                P = (_e215 + (_e213 * _e212));
-                let _e217 = j;
-                let _e219 = bv_1[_e217];
-                let _e220 = rowDu;
-                let _e222 = Du;
-                Du = (_e222 + (_e220 * _e219));
-                let _e224 = j;
-                let _e226 = dv_1[_e224];
-                let _e227 = row;
-                let _e229 = Dv;
-                Dv = (_e229 + (_e227 * _e226));
-                continue;
-            } else {
-                break;
+                continuing {
+                    let _e132 = i_2;
+                    i_2 = (_e132 + 1i);
+                }
             }
-            continuing {
-                let _e231 = j;
-                j = (_e231 + 1i);
-            }
-        }
-        let _e233 = Du;
-        let _e234 = Dv;
-        n_1 = cross(_e233, _e234);
-        let _e236 = P;
-        r.position = _e236;
-        let _e238 = n_1;
-        let _e239 = n_1;
-        if (dot(_e238, _e239) > 0f) {
-            let _e242 = n_1;
-            local_5 = normalize(_e242);
+            let _e134 = j;
+            let _e136 = bv_1[_e134];
+            let _e137 = row;
+            let _e139 = (*P);
+            (*P) = (_e139 + (_e137 * _e136));
+            let _e141 = j;
+            let _e143 = bv_1[_e141];
+            let _e144 = rowDu;
+            let _e146 = Du;
+            Du = (_e146 + (_e144 * _e143));
+            let _e148 = j;
+            let _e150 = dv_1[_e148];
+            let _e151 = row;
+            let _e153 = Dv;
+            Dv = (_e153 + (_e151 * _e150));
+            continue;
         } else {
-            local_5 = vec3<f32>(0f, 0f, 0f);
+            break;
         }
-        let _e244 = local_5;
-        r.normal = _e244;
-        let _e247 = pt_1.ptex;
-        r.ptex = _e247;
-        let _e250 = pt_1.u0_;
-        let _e252 = pt_1.v0_;
-        let _e255 = pt_1.size;
-        let _e256 = s_3;
-        let _e257 = t_3;
-        r.uv = (vec2<f32>(_e250, _e252) + (vec2<f32>(_e256, _e257) * _e255));
-        let _e263 = pt_1.levelBoundary;
-        r.level = (_e263 & 255u);
-    } else {
-        let _e267 = tv[0u];
-        let _e268 = (*patchCount);
-        let _e272 = irregulars.f[(_e267 - _e268)];
-        q.corner[0i] = _e272.corner[0];
-        q.corner[1i] = _e272.corner[1];
-        q.corner[2i] = _e272.corner[2];
-        q.corner[3i] = _e272.corner[3];
-        q.ptex = _e272.ptex;
-        q.u0_ = _e272.u0_;
-        q.v0_ = _e272.v0_;
-        q.size = _e272.size;
-        let _e291 = s_3;
-        let _e293 = t_3;
-        let _e296 = s_3;
-        let _e297 = t_3;
-        let _e300 = s_3;
-        let _e301 = t_3;
-        let _e303 = s_3;
-        let _e305 = t_3;
-        w_1 = array<f32, 4>(((1f - _e291) * (1f - _e293)), (_e296 * (1f - _e297)), (_e300 * _e301), ((1f - _e303) * _e305));
-        P_1 = vec3<f32>(0f, 0f, 0f);
-        N = vec3<f32>(0f, 0f, 0f);
-        k_3 = 0i;
-        loop {
-            let _e308 = k_3;
-            if (_e308 < 4i) {
-                let _e310 = k_3;
-                let _e312 = w_1[_e310];
-                let _e313 = k_3;
-                let _e316 = q.corner[_e313];
-                let _e320 = limits.v[(2u * _e316)];
-                let _e323 = P_1;
-                P_1 = (_e323 + (_e320.xyz * _e312));
-                let _e325 = k_3;
-                let _e327 = w_1[_e325];
-                let _e328 = k_3;
-                let _e331 = q.corner[_e328];
-                let _e336 = limits.v[((2u * _e331) + 1u)];
-                let _e339 = N;
-                N = (_e339 + (_e336.xyz * _e327));
-                continue;
-            } else {
-                break;
-            }
-            continuing {
-                let _e341 = k_3;
-                k_3 = (_e341 + 1i);
-            }
+        continuing {
+            let _e155 = j;
+            j = (_e155 + 1i);
         }
-        let _e343 = P_1;
-        r.position = _e343;
-        let _e345 = N;
-        let _e346 = N;
-        if (dot(_e345, _e346) > 0f) {
-            let _e349 = N;
-            local_6 = normalize(_e349);
-        } else {
-            local_6 = vec3<f32>(0f, 0f, 0f);
-        }
-        let _e351 = local_6;
-        r.normal = _e351;
-        let _e354 = q.ptex;
-        r.ptex = _e354;
-        let _e357 = q.u0_;
-        let _e359 = q.v0_;
-        let _e362 = q.size;
-        let _e363 = s_3;
-        let _e364 = t_3;
-        r.uv = (vec2<f32>(_e357, _e359) + (vec2<f32>(_e363, _e364) * _e362));
-        r.level = 255u;
     }
-    let _e370 = r;
-    return _e370;
+    let _e157 = Du;
+    let _e158 = Dv;
+    (*n_1) = cross(_e157, _e158);
+    return;
 }
 
-fn displacedAt_u0028_u1_u003b_i1_u003b_i1_u003b(e: ptr<function, u32>, S: ptr<function, i32>, T: ptr<function, i32>) -> vec3<f32> {
+fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(h: ptr<function, u32>, k_3: ptr<function, u32>, q: ptr<function, u32>, s_4: ptr<function, f32>, t_4: ptr<function, f32>, P_1: ptr<function, vec3<f32>>, n_2: ptr<function, vec3<f32>>) {
+    var hd: Patch;
+    var M_1: u32;
+    var block: u32;
+    var j_1: i32;
+    var c_1: array<vec3<f32>, 16>;
+    var i_3: u32;
+    var x_3: vec3<f32>;
+    var w_1: Patch;
+    var j_2: i32;
+    var bu_2: array<f32, 4>;
+    var du_2: array<f32, 4>;
+    var param_62: f32;
+    var param_63: array<f32, 4>;
+    var param_64: array<f32, 4>;
+    var bv_2: array<f32, 4>;
+    var dv_2: array<f32, 4>;
+    var param_65: f32;
+    var param_66: array<f32, 4>;
+    var param_67: array<f32, 4>;
+    var Du_1: vec3<f32>;
+    var Dv_1: vec3<f32>;
+    var j_3: i32;
+    var row_1: vec3<f32>;
+    var rowDu_1: vec3<f32>;
+    var i_4: i32;
+
+    let _e104 = (*h);
+    let _e107 = patches.p[_e104];
+    hd.cv[0i] = _e107.cv[0];
+    hd.cv[1i] = _e107.cv[1];
+    hd.cv[2i] = _e107.cv[2];
+    hd.cv[3i] = _e107.cv[3];
+    hd.cv[4i] = _e107.cv[4];
+    hd.cv[5i] = _e107.cv[5];
+    hd.cv[6i] = _e107.cv[6];
+    hd.cv[7i] = _e107.cv[7];
+    hd.cv[8i] = _e107.cv[8];
+    hd.cv[9i] = _e107.cv[9];
+    hd.cv[10i] = _e107.cv[10];
+    hd.cv[11i] = _e107.cv[11];
+    hd.cv[12i] = _e107.cv[12];
+    hd.cv[13i] = _e107.cv[13];
+    hd.cv[14i] = _e107.cv[14];
+    hd.cv[15i] = _e107.cv[15];
+    hd.ptex = _e107.ptex;
+    hd.u0_ = _e107.u0_;
+    hd.v0_ = _e107.v0_;
+    hd.size = _e107.size;
+    hd.levelBoundary = _e107.levelBoundary;
+    hd.sharpness = _e107.sharpness;
+    hd.pad1_ = _e107.pad1_;
+    hd.pad2_ = _e107.pad2_;
+    let _e160 = hd.cv[0i];
+    M_1 = ((2u * _e160) + 8u);
+    let _e165 = hd.cv[2i];
+    let _e166 = (*k_3);
+    let _e169 = (*q);
+    let _e172 = M_1;
+    block = (_e165 + ((((_e166 - 1u) * 3u) + (_e169 - 1u)) * _e172));
+    j_1 = 0i;
+    loop {
+        let _e175 = j_1;
+        if (_e175 < 16i) {
+            let _e177 = j_1;
+            c_1[_e177] = vec3<f32>(0f, 0f, 0f);
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e179 = j_1;
+            j_1 = (_e179 + 1i);
+        }
+    }
+    i_3 = 0u;
+    loop {
+        let _e181 = i_3;
+        let _e182 = M_1;
+        if (_e181 < _e182) {
+            let _e184 = (*h);
+            let _e186 = i_3;
+            let _e189 = i_3;
+            let _e195 = patches.p[((_e184 + 1u) + (_e186 / 16u))].cv[(_e189 % 16u)];
+            let _e198 = vertices.p[_e195];
+            x_3 = _e198.xyz;
+            let _e200 = block;
+            let _e201 = i_3;
+            let _e205 = patches.p[(_e200 + _e201)];
+            w_1.cv[0i] = _e205.cv[0];
+            w_1.cv[1i] = _e205.cv[1];
+            w_1.cv[2i] = _e205.cv[2];
+            w_1.cv[3i] = _e205.cv[3];
+            w_1.cv[4i] = _e205.cv[4];
+            w_1.cv[5i] = _e205.cv[5];
+            w_1.cv[6i] = _e205.cv[6];
+            w_1.cv[7i] = _e205.cv[7];
+            w_1.cv[8i] = _e205.cv[8];
+            w_1.cv[9i] = _e205.cv[9];
+            w_1.cv[10i] = _e205.cv[10];
+            w_1.cv[11i] = _e205.cv[11];
+            w_1.cv[12i] = _e205.cv[12];
+            w_1.cv[13i] = _e205.cv[13];
+            w_1.cv[14i] = _e205.cv[14];
+            w_1.cv[15i] = _e205.cv[15];
+            w_1.ptex = _e205.ptex;
+            w_1.u0_ = _e205.u0_;
+            w_1.v0_ = _e205.v0_;
+            w_1.size = _e205.size;
+            w_1.levelBoundary = _e205.levelBoundary;
+            w_1.sharpness = _e205.sharpness;
+            w_1.pad1_ = _e205.pad1_;
+            w_1.pad2_ = _e205.pad2_;
+            j_2 = 0i;
+            loop {
+                let _e256 = j_2;
+                if (_e256 < 16i) {
+                    let _e258 = j_2;
+                    let _e259 = j_2;
+                    let _e262 = w_1.cv[_e259];
+                    let _e264 = x_3;
+                    let _e267 = c_1[_e258];
+                    c_1[_e258] = (_e267 + (_e264 * bitcast<f32>(_e262)));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e270 = j_2;
+                    j_2 = (_e270 + 1i);
+                }
+            }
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e272 = i_3;
+            i_3 = (_e272 + bitcast<u32>(1i));
+        }
+    }
+    let _e275 = (*s_4);
+    param_62 = _e275;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_62), (&param_63), (&param_64));
+    let _e276 = param_63;
+    bu_2 = _e276;
+    let _e277 = param_64;
+    du_2 = _e277;
+    let _e278 = (*t_4);
+    param_65 = _e278;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_65), (&param_66), (&param_67));
+    let _e279 = param_66;
+    bv_2 = _e279;
+    let _e280 = param_67;
+    dv_2 = _e280;
+    (*P_1) = vec3<f32>(0f, 0f, 0f);
+    Du_1 = vec3<f32>(0f, 0f, 0f);
+    Dv_1 = vec3<f32>(0f, 0f, 0f);
+    j_3 = 0i;
+    loop {
+        let _e281 = j_3;
+        if (_e281 < 4i) {
+            row_1 = vec3<f32>(0f, 0f, 0f);
+            rowDu_1 = vec3<f32>(0f, 0f, 0f);
+            i_4 = 0i;
+            loop {
+                let _e283 = i_4;
+                if (_e283 < 4i) {
+                    let _e285 = i_4;
+                    let _e287 = bu_2[_e285];
+                    let _e288 = j_3;
+                    let _e290 = i_4;
+                    let _e293 = c_1[((4i * _e288) + _e290)];
+                    let _e295 = row_1;
+                    row_1 = (_e295 + (_e293 * _e287));
+                    let _e297 = i_4;
+                    let _e299 = du_2[_e297];
+                    let _e300 = j_3;
+                    let _e302 = i_4;
+                    let _e305 = c_1[((4i * _e300) + _e302)];
+                    let _e307 = rowDu_1;
+                    rowDu_1 = (_e307 + (_e305 * _e299));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e309 = i_4;
+                    i_4 = (_e309 + 1i);
+                }
+            }
+            let _e311 = j_3;
+            let _e313 = bv_2[_e311];
+            let _e314 = row_1;
+            let _e316 = (*P_1);
+            (*P_1) = (_e316 + (_e314 * _e313));
+            let _e318 = j_3;
+            let _e320 = bv_2[_e318];
+            let _e321 = rowDu_1;
+            let _e323 = Du_1;
+            Du_1 = (_e323 + (_e321 * _e320));
+            let _e325 = j_3;
+            let _e327 = dv_2[_e325];
+            let _e328 = row_1;
+            let _e330 = Dv_1;
+            Dv_1 = (_e330 + (_e328 * _e327));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e332 = j_3;
+            j_3 = (_e332 + 1i);
+        }
+    }
+    let _e334 = Du_1;
+    let _e335 = Dv_1;
+    (*n_2) = cross(_e334, _e335);
+    return;
+}
+
+fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u32>, st: ptr<function, u32>, P_2: ptr<function, vec3<f32>>, n_3: ptr<function, vec3<f32>>) {
+    var hd_1: Patch;
+    var S: u32;
+    var T: u32;
+    var corner: u32;
+    var K: u32;
+    var a: u32;
+    var local_5: u32;
+    var local_6: u32;
+    var local_7: u32;
+    var c_2: u32;
+    var local_8: u32;
+    var local_9: u32;
+    var local_10: u32;
+    var evP: vec3<f32>;
+    var evN: vec3<f32>;
+    var k_4: u32;
+    var qu: u32;
+    var qv: u32;
+    var q_1: u32;
+    var local_11: u32;
+    var param_68: u32;
+    var param_69: u32;
+    var param_70: u32;
+    var param_71: f32;
+    var param_72: f32;
+    var param_73: vec3<f32>;
+    var param_74: vec3<f32>;
+    var P1_: vec3<f32>;
+    var n1_: vec3<f32>;
+    var param_75: u32;
+    var param_76: u32;
+    var param_77: u32;
+    var param_78: f32;
+    var param_79: f32;
+    var param_80: vec3<f32>;
+    var param_81: vec3<f32>;
+    var P2_: vec3<f32>;
+    var n2_: vec3<f32>;
+    var param_82: u32;
+    var param_83: u32;
+    var param_84: u32;
+    var param_85: f32;
+    var param_86: f32;
+    var param_87: vec3<f32>;
+    var param_88: vec3<f32>;
+    var P3_: vec3<f32>;
+    var n3_: vec3<f32>;
+    var param_89: u32;
+    var param_90: u32;
+    var param_91: u32;
+    var param_92: f32;
+    var param_93: f32;
+    var param_94: vec3<f32>;
+    var param_95: vec3<f32>;
+    var x_4: f32;
+    var y_2: f32;
+    var w_2: array<f32, 4>;
+
+    let _e133 = (*h_1);
+    let _e136 = patches.p[_e133];
+    hd_1.cv[0i] = _e136.cv[0];
+    hd_1.cv[1i] = _e136.cv[1];
+    hd_1.cv[2i] = _e136.cv[2];
+    hd_1.cv[3i] = _e136.cv[3];
+    hd_1.cv[4i] = _e136.cv[4];
+    hd_1.cv[5i] = _e136.cv[5];
+    hd_1.cv[6i] = _e136.cv[6];
+    hd_1.cv[7i] = _e136.cv[7];
+    hd_1.cv[8i] = _e136.cv[8];
+    hd_1.cv[9i] = _e136.cv[9];
+    hd_1.cv[10i] = _e136.cv[10];
+    hd_1.cv[11i] = _e136.cv[11];
+    hd_1.cv[12i] = _e136.cv[12];
+    hd_1.cv[13i] = _e136.cv[13];
+    hd_1.cv[14i] = _e136.cv[14];
+    hd_1.cv[15i] = _e136.cv[15];
+    hd_1.ptex = _e136.ptex;
+    hd_1.u0_ = _e136.u0_;
+    hd_1.v0_ = _e136.v0_;
+    hd_1.size = _e136.size;
+    hd_1.levelBoundary = _e136.levelBoundary;
+    hd_1.sharpness = _e136.sharpness;
+    hd_1.pad1_ = _e136.pad1_;
+    hd_1.pad2_ = _e136.pad2_;
+    let _e187 = (*st);
+    S = (_e187 & 65535u);
+    let _e189 = (*st);
+    T = (_e189 >> bitcast<u32>(16i));
+    let _e194 = hd_1.cv[1i];
+    corner = _e194;
+    let _e197 = hd_1.cv[3i];
+    K = _e197;
+    let _e198 = corner;
+    if (_e198 == 0u) {
+        let _e200 = S;
+        local_5 = _e200;
+    } else {
+        let _e201 = corner;
+        if (_e201 == 1u) {
+            let _e203 = T;
+            local_6 = _e203;
+        } else {
+            let _e204 = corner;
+            if (_e204 == 2u) {
+                let _e206 = S;
+                local_7 = (32768u - _e206);
+            } else {
+                let _e208 = T;
+                local_7 = (32768u - _e208);
+            }
+            let _e210 = local_7;
+            local_6 = _e210;
+        }
+        let _e211 = local_6;
+        local_5 = _e211;
+    }
+    let _e212 = local_5;
+    a = _e212;
+    let _e213 = corner;
+    if (_e213 == 0u) {
+        let _e215 = T;
+        local_8 = _e215;
+    } else {
+        let _e216 = corner;
+        if (_e216 == 1u) {
+            let _e218 = S;
+            local_9 = (32768u - _e218);
+        } else {
+            let _e220 = corner;
+            if (_e220 == 2u) {
+                let _e222 = T;
+                local_10 = (32768u - _e222);
+            } else {
+                let _e224 = S;
+                local_10 = _e224;
+            }
+            let _e225 = local_10;
+            local_9 = _e225;
+        }
+        let _e226 = local_9;
+        local_8 = _e226;
+    }
+    let _e227 = local_8;
+    c_2 = _e227;
+    let _e230 = hd_1.cv[4i];
+    let _e234 = limits.v[(2u * _e230)];
+    evP = _e234.xyz;
+    let _e238 = hd_1.cv[4i];
+    let _e243 = limits.v[((2u * _e238) + 1u)];
+    evN = _e243.xyz;
+    let _e245 = a;
+    let _e247 = c_2;
+    if ((_e245 == 0u) && (_e247 == 0u)) {
+        let _e250 = evP;
+        (*P_2) = _e250;
+        let _e251 = evN;
+        (*n_3) = _e251;
+        return;
+    }
+    k_4 = 1u;
+    loop {
+        let _e252 = a;
+        let _e253 = c_2;
+        let _e256 = k_4;
+        let _e257 = K;
+        if ((max(_e252, _e253) < 16384u) && (_e256 < _e257)) {
+            let _e260 = a;
+            a = (_e260 * 2u);
+            let _e262 = c_2;
+            c_2 = (_e262 * 2u);
+            let _e264 = k_4;
+            k_4 = (_e264 + bitcast<u32>(1i));
+            continue;
+        } else {
+            break;
+        }
+    }
+    let _e267 = a;
+    let _e268 = c_2;
+    if (max(_e267, _e268) >= 16384u) {
+        let _e271 = a;
+        qu = select(0u, 1u, (_e271 >= 16384u));
+        let _e274 = c_2;
+        qv = select(0u, 1u, (_e274 >= 16384u));
+        let _e277 = qv;
+        if (_e277 == 0u) {
+            local_11 = 1u;
+        } else {
+            let _e279 = qu;
+            local_11 = select(3u, 2u, (_e279 == 1u));
+        }
+        let _e282 = local_11;
+        q_1 = _e282;
+        let _e283 = a;
+        let _e285 = qu;
+        let _e290 = c_2;
+        let _e292 = qv;
+        let _e297 = (*h_1);
+        param_68 = _e297;
+        let _e298 = k_4;
+        param_69 = _e298;
+        let _e299 = q_1;
+        param_70 = _e299;
+        param_71 = (f32(((2u * _e283) - (_e285 * 32768u))) / 32768f);
+        param_72 = (f32(((2u * _e290) - (_e292 * 32768u))) / 32768f);
+        basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_68), (&param_69), (&param_70), (&param_71), (&param_72), (&param_73), (&param_74));
+        let _e300 = param_73;
+        (*P_2) = _e300;
+        let _e301 = param_74;
+        (*n_3) = _e301;
+        return;
+    }
+    let _e302 = (*h_1);
+    param_75 = _e302;
+    let _e303 = k_4;
+    param_76 = _e303;
+    param_77 = 1u;
+    param_78 = 0f;
+    param_79 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_75), (&param_76), (&param_77), (&param_78), (&param_79), (&param_80), (&param_81));
+    let _e304 = param_80;
+    P1_ = _e304;
+    let _e305 = param_81;
+    n1_ = _e305;
+    let _e306 = (*h_1);
+    param_82 = _e306;
+    let _e307 = k_4;
+    param_83 = _e307;
+    param_84 = 2u;
+    param_85 = 0f;
+    param_86 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_82), (&param_83), (&param_84), (&param_85), (&param_86), (&param_87), (&param_88));
+    let _e308 = param_87;
+    P2_ = _e308;
+    let _e309 = param_88;
+    n2_ = _e309;
+    let _e310 = (*h_1);
+    param_89 = _e310;
+    let _e311 = k_4;
+    param_90 = _e311;
+    param_91 = 3u;
+    param_92 = 0f;
+    param_93 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_89), (&param_90), (&param_91), (&param_92), (&param_93), (&param_94), (&param_95));
+    let _e312 = param_94;
+    P3_ = _e312;
+    let _e313 = param_95;
+    n3_ = _e313;
+    let _e314 = a;
+    x_4 = (f32(_e314) / 16384f);
+    let _e317 = c_2;
+    y_2 = (f32(_e317) / 16384f);
+    let _e320 = x_4;
+    let _e322 = y_2;
+    let _e325 = x_4;
+    let _e326 = y_2;
+    let _e329 = x_4;
+    let _e330 = y_2;
+    let _e332 = x_4;
+    let _e334 = y_2;
+    w_2 = array<f32, 4>(((1f - _e320) * (1f - _e322)), (_e325 * (1f - _e326)), (_e329 * _e330), ((1f - _e332) * _e334));
+    let _e338 = w_2[0i];
+    let _e339 = evP;
+    let _e342 = w_2[1i];
+    let _e343 = P1_;
+    let _e347 = w_2[2i];
+    let _e348 = P2_;
+    let _e352 = w_2[3i];
+    let _e353 = P3_;
+    (*P_2) = ((((_e339 * _e338) + (_e343 * _e342)) + (_e348 * _e347)) + (_e353 * _e352));
+    let _e357 = w_2[0i];
+    let _e358 = evN;
+    let _e361 = w_2[1i];
+    let _e362 = n1_;
+    let _e367 = w_2[2i];
+    let _e368 = n2_;
+    let _e373 = w_2[3i];
+    let _e374 = n3_;
+    (*n_3) = ((((_e358 * _e357) + (normalize(_e362) * _e361)) + (normalize(_e368) * _e367)) + (normalize(_e374) * _e373));
+    return;
+}
+
+fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr<function, u32>, st_1: ptr<function, u32>, patchCount: ptr<function, u32>, P_3: ptr<function, vec3<f32>>, n_4: ptr<function, vec3<f32>>) {
+    var S_1: u32;
+    var T_1: u32;
+    var k_5: u32;
+    var local_12: u32;
+    var c_3: u32;
+    var node: u32;
+    var leaf: u32;
+    var ls: u32;
+    var lt: u32;
+    var k_6: i32;
+    var c_4: u32;
+    var code: u32;
+    var param_96: u32;
+    var param_97: u32;
+    var param_98: vec3<f32>;
+    var param_99: vec3<f32>;
+    var kind: u32;
+    var index: u32;
+    var param_100: Patch;
+    var param_101: f32;
+    var param_102: f32;
+    var param_103: vec3<f32>;
+    var param_104: vec3<f32>;
+    var q_2: IrregularFace;
+    var s_5: f32;
+    var t_5: f32;
+    var w_3: array<f32, 4>;
+    var k_7: i32;
+    var phi_1388_: bool;
+
+    let _e105 = (*st_1);
+    S_1 = (_e105 & 65535u);
+    let _e107 = (*st_1);
+    T_1 = (_e107 >> bitcast<u32>(16i));
+    let _e110 = S_1;
+    let _e112 = S_1;
+    let _e114 = ((_e110 == 0u) || (_e112 == 32768u));
+    phi_1388_ = _e114;
+    if _e114 {
+        let _e115 = T_1;
+        let _e117 = T_1;
+        phi_1388_ = ((_e115 == 0u) || (_e117 == 32768u));
+    }
+    let _e121 = phi_1388_;
+    if _e121 {
+        let _e122 = S_1;
+        if (_e122 == 0u) {
+            let _e124 = T_1;
+            local_12 = select(3u, 0u, (_e124 == 0u));
+        } else {
+            let _e127 = T_1;
+            local_12 = select(2u, 1u, (_e127 == 0u));
+        }
+        let _e130 = local_12;
+        k_5 = _e130;
+        let _e131 = (*face);
+        let _e132 = k_5;
+        let _e137 = irregulars.f[_e131].corner[_e132];
+        c_3 = _e137;
+        let _e138 = c_3;
+        let _e142 = limits.v[(2u * _e138)];
+        (*P_3) = _e142.xyz;
+        let _e144 = c_3;
+        let _e149 = limits.v[((2u * _e144) + 1u)];
+        (*n_4) = _e149.xyz;
+        return;
+    }
+    let _e151 = (*patchCount);
+    let _e152 = (*face);
+    node = (_e151 + _e152);
+    let _e154 = (*face);
+    leaf = _e154;
+    let _e155 = S_1;
+    ls = _e155;
+    let _e156 = T_1;
+    lt = _e156;
+    k_6 = 0i;
+    loop {
+        let _e157 = k_6;
+        if (_e157 < 17i) {
+            let _e159 = S_1;
+            let _e162 = T_1;
+            c_4 = (select(0u, 1u, (_e159 >= 16384u)) | select(0u, 2u, (_e162 >= 16384u)));
+            let _e166 = node;
+            let _e167 = c_4;
+            let _e172 = patches.p[_e166].cv[_e167];
+            code = _e172;
+            let _e173 = code;
+            if (_e173 == 4294967295u) {
+                break;
+            }
+            let _e175 = code;
+            if ((_e175 & 3221225472u) == 3221225472u) {
+                let _e178 = code;
+                param_96 = (_e178 & 1073741823u);
+                let _e180 = (*st_1);
+                param_97 = _e180;
+                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_96), (&param_97), (&param_98), (&param_99));
+                let _e181 = param_98;
+                (*P_3) = _e181;
+                let _e182 = param_99;
+                (*n_4) = _e182;
+                return;
+            }
+            let _e183 = S_1;
+            let _e185 = c_4;
+            S_1 = ((2u * _e183) - select(0u, 32768u, ((_e185 & 1u) != 0u)));
+            let _e190 = T_1;
+            let _e192 = c_4;
+            T_1 = ((2u * _e190) - select(0u, 32768u, ((_e192 & 2u) != 0u)));
+            let _e197 = code;
+            kind = (_e197 & 3221225472u);
+            let _e199 = code;
+            index = (_e199 & 1073741823u);
+            let _e201 = kind;
+            if (_e201 == 0u) {
+                let _e203 = index;
+                let _e204 = S_1;
+                let _e207 = T_1;
+                let _e212 = patches.p[_e203];
+                param_100.cv[0i] = _e212.cv[0];
+                param_100.cv[1i] = _e212.cv[1];
+                param_100.cv[2i] = _e212.cv[2];
+                param_100.cv[3i] = _e212.cv[3];
+                param_100.cv[4i] = _e212.cv[4];
+                param_100.cv[5i] = _e212.cv[5];
+                param_100.cv[6i] = _e212.cv[6];
+                param_100.cv[7i] = _e212.cv[7];
+                param_100.cv[8i] = _e212.cv[8];
+                param_100.cv[9i] = _e212.cv[9];
+                param_100.cv[10i] = _e212.cv[10];
+                param_100.cv[11i] = _e212.cv[11];
+                param_100.cv[12i] = _e212.cv[12];
+                param_100.cv[13i] = _e212.cv[13];
+                param_100.cv[14i] = _e212.cv[14];
+                param_100.cv[15i] = _e212.cv[15];
+                param_100.ptex = _e212.ptex;
+                param_100.u0_ = _e212.u0_;
+                param_100.v0_ = _e212.v0_;
+                param_100.size = _e212.size;
+                param_100.levelBoundary = _e212.levelBoundary;
+                param_100.sharpness = _e212.sharpness;
+                param_100.pad1_ = _e212.pad1_;
+                param_100.pad2_ = _e212.pad2_;
+                param_101 = (f32(_e204) / 32768f);
+                param_102 = (f32(_e207) / 32768f);
+                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_100), (&param_101), (&param_102), (&param_103), (&param_104));
+                let _e263 = param_103;
+                (*P_3) = _e263;
+                let _e264 = param_104;
+                (*n_4) = _e264;
+                return;
+            }
+            let _e265 = kind;
+            if (_e265 == 2147483648u) {
+                let _e267 = index;
+                leaf = _e267;
+                let _e268 = S_1;
+                ls = _e268;
+                let _e269 = T_1;
+                lt = _e269;
+                break;
+            }
+            let _e270 = index;
+            node = _e270;
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e271 = k_6;
+            k_6 = (_e271 + 1i);
+        }
+    }
+    let _e273 = leaf;
+    let _e276 = irregulars.f[_e273];
+    q_2.corner = _e276.corner;
+    q_2.ptex = _e276.ptex;
+    q_2.u0_ = _e276.u0_;
+    q_2.v0_ = _e276.v0_;
+    q_2.size = _e276.size;
+    let _e287 = ls;
+    s_5 = (f32(_e287) / 32768f);
+    let _e290 = lt;
+    t_5 = (f32(_e290) / 32768f);
+    let _e293 = s_5;
+    let _e295 = t_5;
+    let _e298 = s_5;
+    let _e299 = t_5;
+    let _e302 = s_5;
+    let _e303 = t_5;
+    let _e305 = s_5;
+    let _e307 = t_5;
+    w_3 = array<f32, 4>(((1f - _e293) * (1f - _e295)), (_e298 * (1f - _e299)), (_e302 * _e303), ((1f - _e305) * _e307));
+    (*P_3) = vec3<f32>(0f, 0f, 0f);
+    (*n_4) = vec3<f32>(0f, 0f, 0f);
+    k_7 = 0i;
+    loop {
+        let _e310 = k_7;
+        if (_e310 < 4i) {
+            let _e312 = k_7;
+            let _e314 = w_3[_e312];
+            let _e315 = k_7;
+            let _e318 = q_2.corner[_e315];
+            let _e322 = limits.v[(2u * _e318)];
+            let _e325 = (*P_3);
+            (*P_3) = (_e325 + (_e322.xyz * _e314));
+            let _e327 = k_7;
+            let _e329 = w_3[_e327];
+            let _e330 = k_7;
+            let _e333 = q_2.corner[_e330];
+            let _e338 = limits.v[((2u * _e333) + 1u)];
+            let _e341 = (*n_4);
+            (*n_4) = (_e341 + (_e338.xyz * _e329));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e343 = k_7;
+            k_7 = (_e343 + 1i);
+        }
+    }
+    return;
+}
+
+fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>, st_2: ptr<function, u32>, patchCount_1: ptr<function, u32>) -> SurfaceSample {
+    var s_6: f32;
+    var t_6: f32;
+    var pt_2: Patch;
+    var P_4: vec3<f32>;
+    var n_5: vec3<f32>;
+    var param_105: Patch;
+    var param_106: f32;
+    var param_107: f32;
+    var param_108: vec3<f32>;
+    var param_109: vec3<f32>;
+    var r: SurfaceSample;
+    var q_3: IrregularFace;
+    var param_110: u32;
+    var param_111: u32;
+    var param_112: u32;
+    var param_113: vec3<f32>;
+    var param_114: vec3<f32>;
+    var local_13: vec3<f32>;
+
+    let _e93 = (*st_2);
+    s_6 = (f32((_e93 & 65535u)) / 32768f);
+    let _e97 = (*st_2);
+    t_6 = (f32((_e97 >> bitcast<u32>(16i))) / 32768f);
+    let _e102 = (*element);
+    let _e103 = (*patchCount_1);
+    if (_e102 < _e103) {
+        let _e105 = (*element);
+        let _e108 = patches.p[_e105];
+        pt_2.cv[0i] = _e108.cv[0];
+        pt_2.cv[1i] = _e108.cv[1];
+        pt_2.cv[2i] = _e108.cv[2];
+        pt_2.cv[3i] = _e108.cv[3];
+        pt_2.cv[4i] = _e108.cv[4];
+        pt_2.cv[5i] = _e108.cv[5];
+        pt_2.cv[6i] = _e108.cv[6];
+        pt_2.cv[7i] = _e108.cv[7];
+        pt_2.cv[8i] = _e108.cv[8];
+        pt_2.cv[9i] = _e108.cv[9];
+        pt_2.cv[10i] = _e108.cv[10];
+        pt_2.cv[11i] = _e108.cv[11];
+        pt_2.cv[12i] = _e108.cv[12];
+        pt_2.cv[13i] = _e108.cv[13];
+        pt_2.cv[14i] = _e108.cv[14];
+        pt_2.cv[15i] = _e108.cv[15];
+        pt_2.ptex = _e108.ptex;
+        pt_2.u0_ = _e108.u0_;
+        pt_2.v0_ = _e108.v0_;
+        pt_2.size = _e108.size;
+        pt_2.levelBoundary = _e108.levelBoundary;
+        pt_2.sharpness = _e108.sharpness;
+        pt_2.pad1_ = _e108.pad1_;
+        pt_2.pad2_ = _e108.pad2_;
+        let _e159 = pt_2;
+        param_105 = _e159;
+        let _e160 = s_6;
+        param_106 = _e160;
+        let _e161 = t_6;
+        param_107 = _e161;
+        patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_105), (&param_106), (&param_107), (&param_108), (&param_109));
+        let _e162 = param_108;
+        P_4 = _e162;
+        let _e163 = param_109;
+        n_5 = _e163;
+        let _e165 = pt_2.ptex;
+        r.ptex = _e165;
+        let _e168 = pt_2.u0_;
+        let _e170 = pt_2.v0_;
+        let _e173 = pt_2.size;
+        let _e174 = s_6;
+        let _e175 = t_6;
+        r.uv = (vec2<f32>(_e168, _e170) + (vec2<f32>(_e174, _e175) * _e173));
+        let _e181 = pt_2.levelBoundary;
+        r.level = (_e181 & 255u);
+    } else {
+        let _e184 = (*element);
+        let _e185 = (*patchCount_1);
+        let _e189 = irregulars.f[(_e184 - _e185)];
+        q_3.corner = _e189.corner;
+        q_3.ptex = _e189.ptex;
+        q_3.u0_ = _e189.u0_;
+        q_3.v0_ = _e189.v0_;
+        q_3.size = _e189.size;
+        let _e200 = (*element);
+        let _e201 = (*patchCount_1);
+        param_110 = (_e200 - _e201);
+        let _e203 = (*st_2);
+        param_111 = _e203;
+        let _e204 = (*patchCount_1);
+        param_112 = _e204;
+        irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_110), (&param_111), (&param_112), (&param_113), (&param_114));
+        let _e205 = param_113;
+        P_4 = _e205;
+        let _e206 = param_114;
+        n_5 = _e206;
+        let _e208 = q_3.ptex;
+        r.ptex = _e208;
+        let _e211 = q_3.u0_;
+        let _e213 = q_3.v0_;
+        let _e216 = q_3.size;
+        let _e217 = s_6;
+        let _e218 = t_6;
+        r.uv = (vec2<f32>(_e211, _e213) + (vec2<f32>(_e217, _e218) * _e216));
+        r.level = 255u;
+    }
+    let _e224 = P_4;
+    r.position = _e224;
+    let _e226 = n_5;
+    let _e227 = n_5;
+    if (dot(_e226, _e227) > 0f) {
+        let _e230 = n_5;
+        local_13 = normalize(_e230);
+    } else {
+        local_13 = vec3<f32>(0f, 0f, 0f);
+    }
+    let _e232 = local_13;
+    r.normal = _e232;
+    let _e234 = r;
+    return _e234;
+}
+
+fn displacedAt_u0028_u1_u003b_i1_u003b_i1_u003b(e: ptr<function, u32>, S_2: ptr<function, i32>, T_2: ptr<function, i32>) -> vec3<f32> {
     var p: SurfaceSample;
-    var param_62: u32;
-    var param_63: u32;
-    var param_64: u32;
-    var s_4: f32;
-    var t_4: f32;
+    var param_115: u32;
+    var param_116: u32;
+    var param_117: u32;
+    var s_7: f32;
+    var t_7: f32;
     var el: AdaptiveElement;
     var uv_1: vec2<f32>;
-    var param_65: vec2<f32>;
+    var param_118: vec2<f32>;
 
-    let _e75 = (*S);
-    let _e77 = (*T);
-    let _e82 = (*e);
-    param_62 = _e82;
-    param_63 = (bitcast<u32>(_e75) | (bitcast<u32>(_e77) << bitcast<u32>(16i)));
-    let _e84 = pc.patchCount;
-    param_64 = _e84;
-    let _e85 = evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b((&param_62), (&param_63), (&param_64));
-    p = _e85;
-    let _e86 = (*S);
-    s_4 = (f32(_e86) / 32768f);
-    let _e89 = (*T);
-    t_4 = (f32(_e89) / 32768f);
-    let _e92 = (*e);
-    let _e95 = elements.e[_e92];
-    el.sideFirst = _e95.sideFirst;
-    el.sideCount = _e95.sideCount;
-    el.uv[0i] = _e95.uv[0];
-    el.uv[1i] = _e95.uv[1];
-    el.uv[2i] = _e95.uv[2];
-    el.uv[3i] = _e95.uv[3];
-    el.level = _e95.level;
-    el.crease = _e95.crease;
-    el.pad1_ = _e95.pad1_;
-    el.pad2_ = _e95.pad2_;
-    let _e120 = el.uv[0i];
-    let _e123 = el.uv[1i];
-    let _e124 = s_4;
-    let _e129 = el.uv[3i];
-    let _e132 = el.uv[2i];
-    let _e133 = s_4;
-    let _e136 = t_4;
-    uv_1 = mix(mix(_e120, _e123, vec2(_e124)), mix(_e129, _e132, vec2(_e133)), vec2(_e136));
-    let _e140 = p.position;
-    let _e142 = p.normal;
-    let _e144 = pc.scale;
-    let _e145 = uv_1;
-    param_65 = _e145;
-    let _e146 = sampleMap_u0028_vf2_u003b((&param_65));
-    let _e148 = pc.mid;
-    return (_e140 + (_e142 * (_e144 * (_e146 - _e148))));
+    let _e84 = (*S_2);
+    let _e86 = (*T_2);
+    let _e91 = (*e);
+    param_115 = _e91;
+    param_116 = (bitcast<u32>(_e84) | (bitcast<u32>(_e86) << bitcast<u32>(16i)));
+    let _e93 = pc.patchCount;
+    param_117 = _e93;
+    let _e94 = evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b((&param_115), (&param_116), (&param_117));
+    p = _e94;
+    let _e95 = (*S_2);
+    s_7 = (f32(_e95) / 32768f);
+    let _e98 = (*T_2);
+    t_7 = (f32(_e98) / 32768f);
+    let _e101 = (*e);
+    let _e104 = elements.e[_e101];
+    el.sideFirst = _e104.sideFirst;
+    el.sideCount = _e104.sideCount;
+    el.uv[0i] = _e104.uv[0];
+    el.uv[1i] = _e104.uv[1];
+    el.uv[2i] = _e104.uv[2];
+    el.uv[3i] = _e104.uv[3];
+    el.level = _e104.level;
+    el.crease = _e104.crease;
+    el.pad1_ = _e104.pad1_;
+    el.pad2_ = _e104.pad2_;
+    let _e129 = el.uv[0i];
+    let _e132 = el.uv[1i];
+    let _e133 = s_7;
+    let _e138 = el.uv[3i];
+    let _e141 = el.uv[2i];
+    let _e142 = s_7;
+    let _e145 = t_7;
+    uv_1 = mix(mix(_e129, _e132, vec2(_e133)), mix(_e138, _e141, vec2(_e142)), vec2(_e145));
+    let _e149 = p.position;
+    let _e151 = p.normal;
+    let _e153 = pc.scale;
+    let _e154 = uv_1;
+    param_118 = _e154;
+    let _e155 = sampleMap_u0028_vf2_u003b((&param_118));
+    let _e157 = pc.mid;
+    return (_e149 + (_e151 * (_e153 * (_e155 - _e157))));
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e65 = gl_GlobalInvocationID_1[1u];
-    let _e66 = (*rowInvocations);
-    let _e69 = gl_GlobalInvocationID_1[0u];
-    return ((_e65 * _e66) + _e69);
+    let _e74 = gl_GlobalInvocationID_1[1u];
+    let _e75 = (*rowInvocations);
+    let _e78 = gl_GlobalInvocationID_1[0u];
+    return ((_e74 * _e75) + _e78);
 }
 
 fn main_1() {
-    var i_3: u32;
-    var param_66: u32;
-    var tv_1: vec4<u32>;
-    var S_1: i32;
-    var T_1: i32;
+    var i_5: u32;
+    var param_119: u32;
+    var tv: vec4<u32>;
+    var S_3: i32;
+    var T_3: i32;
     var ds: i32;
     var dt_1: i32;
     var p0_: vec3<f32>;
-    var param_67: u32;
-    var param_68: i32;
-    var param_69: i32;
-    var du_2: vec3<f32>;
-    var param_70: u32;
-    var param_71: i32;
-    var param_72: i32;
-    var dv_2: vec3<f32>;
-    var param_73: u32;
-    var param_74: i32;
-    var param_75: i32;
-    var n_2: vec3<f32>;
+    var param_120: u32;
+    var param_121: i32;
+    var param_122: i32;
+    var du_3: vec3<f32>;
+    var param_123: u32;
+    var param_124: i32;
+    var param_125: i32;
+    var dv_3: vec3<f32>;
+    var param_126: u32;
+    var param_127: i32;
+    var param_128: i32;
+    var n_6: vec3<f32>;
     var len: f32;
-    var local_7: vec3<f32>;
+    var local_14: vec3<f32>;
 
-    let _e86 = pc.limnRowInvocations;
-    param_66 = _e86;
-    let _e87 = limnInvocationIndex_u0028_u1_u003b((&param_66));
-    i_3 = _e87;
-    let _e88 = i_3;
-    let _e90 = pc.limnCount;
-    if (_e88 >= _e90) {
+    let _e95 = pc.limnRowInvocations;
+    param_119 = _e95;
+    let _e96 = limnInvocationIndex_u0028_u1_u003b((&param_119));
+    i_5 = _e96;
+    let _e97 = i_5;
+    let _e99 = pc.limnCount;
+    if (_e97 >= _e99) {
         return;
     }
-    let _e92 = i_3;
-    let _e95 = tessVertices.v[_e92];
-    tv_1 = _e95;
-    let _e97 = tv_1[1u];
-    S_1 = bitcast<i32>((_e97 & 65535u));
-    let _e101 = tv_1[1u];
-    T_1 = bitcast<i32>((_e101 >> bitcast<u32>(16i)));
-    let _e105 = S_1;
-    ds = select(-32i, 32i, ((_e105 + 32i) <= 32768i));
-    let _e109 = T_1;
-    dt_1 = select(-32i, 32i, ((_e109 + 32i) <= 32768i));
-    let _e114 = tv_1[0u];
-    param_67 = _e114;
-    let _e115 = S_1;
-    param_68 = _e115;
-    let _e116 = T_1;
-    param_69 = _e116;
-    let _e117 = displacedAt_u0028_u1_u003b_i1_u003b_i1_u003b((&param_67), (&param_68), (&param_69));
-    p0_ = _e117;
-    let _e118 = S_1;
-    let _e119 = ds;
-    let _e122 = tv_1[0u];
-    param_70 = _e122;
-    param_71 = (_e118 + _e119);
-    let _e123 = T_1;
-    param_72 = _e123;
-    let _e124 = displacedAt_u0028_u1_u003b_i1_u003b_i1_u003b((&param_70), (&param_71), (&param_72));
-    let _e125 = p0_;
-    let _e127 = ds;
-    du_2 = ((_e124 - _e125) * f32(sign(_e127)));
-    let _e131 = T_1;
-    let _e132 = dt_1;
-    let _e135 = tv_1[0u];
-    param_73 = _e135;
-    let _e136 = S_1;
-    param_74 = _e136;
-    param_75 = (_e131 + _e132);
-    let _e137 = displacedAt_u0028_u1_u003b_i1_u003b_i1_u003b((&param_73), (&param_74), (&param_75));
-    let _e138 = p0_;
-    let _e140 = dt_1;
-    dv_2 = ((_e137 - _e138) * f32(sign(_e140)));
-    let _e144 = du_2;
-    let _e145 = dv_2;
-    n_2 = cross(_e144, _e145);
-    let _e147 = n_2;
-    len = length(_e147);
-    let _e149 = i_3;
-    let _e150 = len;
-    if (_e150 > 0f) {
-        let _e152 = n_2;
-        let _e153 = len;
-        local_7 = (_e152 / vec3(_e153));
+    let _e101 = i_5;
+    let _e104 = tessVertices.v[_e101];
+    tv = _e104;
+    let _e106 = tv[1u];
+    S_3 = bitcast<i32>((_e106 & 65535u));
+    let _e110 = tv[1u];
+    T_3 = bitcast<i32>((_e110 >> bitcast<u32>(16i)));
+    let _e114 = S_3;
+    ds = select(-32i, 32i, ((_e114 + 32i) <= 32768i));
+    let _e118 = T_3;
+    dt_1 = select(-32i, 32i, ((_e118 + 32i) <= 32768i));
+    let _e123 = tv[0u];
+    param_120 = _e123;
+    let _e124 = S_3;
+    param_121 = _e124;
+    let _e125 = T_3;
+    param_122 = _e125;
+    let _e126 = displacedAt_u0028_u1_u003b_i1_u003b_i1_u003b((&param_120), (&param_121), (&param_122));
+    p0_ = _e126;
+    let _e127 = S_3;
+    let _e128 = ds;
+    let _e131 = tv[0u];
+    param_123 = _e131;
+    param_124 = (_e127 + _e128);
+    let _e132 = T_3;
+    param_125 = _e132;
+    let _e133 = displacedAt_u0028_u1_u003b_i1_u003b_i1_u003b((&param_123), (&param_124), (&param_125));
+    let _e134 = p0_;
+    let _e136 = ds;
+    du_3 = ((_e133 - _e134) * f32(sign(_e136)));
+    let _e140 = T_3;
+    let _e141 = dt_1;
+    let _e144 = tv[0u];
+    param_126 = _e144;
+    let _e145 = S_3;
+    param_127 = _e145;
+    param_128 = (_e140 + _e141);
+    let _e146 = displacedAt_u0028_u1_u003b_i1_u003b_i1_u003b((&param_126), (&param_127), (&param_128));
+    let _e147 = p0_;
+    let _e149 = dt_1;
+    dv_3 = ((_e146 - _e147) * f32(sign(_e149)));
+    let _e153 = du_3;
+    let _e154 = dv_3;
+    n_6 = cross(_e153, _e154);
+    let _e156 = n_6;
+    len = length(_e156);
+    let _e158 = i_5;
+    let _e159 = len;
+    if (_e159 > 0f) {
+        let _e161 = n_6;
+        let _e162 = len;
+        local_14 = (_e161 / vec3(_e162));
     } else {
-        local_7 = vec3<f32>(0f, 0f, 0f);
+        local_14 = vec3<f32>(0f, 0f, 0f);
     }
-    let _e156 = local_7;
-    normals.n[_e149] = vec4<f32>(_e156.x, _e156.y, _e156.z, 0f);
+    let _e165 = local_14;
+    normals.n[_e158] = vec4<f32>(_e165.x, _e165.y, _e165.z, 0f);
     return;
 }
 

@@ -12,12 +12,16 @@ struct Patch {
     pad2_: u32,
 }
 
+struct Vertices {
+    p: array<vec4<f32>>,
+}
+
 struct Patches {
     p: array<Patch>,
 }
 
-struct Vertices {
-    p: array<vec4<f32>>,
+struct Limits {
+    v: array<vec4<f32>>,
 }
 
 struct IrregularFace {
@@ -30,10 +34,6 @@ struct IrregularFace {
 
 struct Irregulars {
     f: array<IrregularFace>,
-}
-
-struct Limits {
-    v: array<vec4<f32>>,
 }
 
 struct Push {
@@ -66,14 +66,14 @@ struct PieceEnds {
 }
 
 var<private> gl_GlobalInvocationID_1: vec3<u32>;
-@group(0) @binding(1) 
-var<storage, read> patches: Patches;
 @group(0) @binding(0) 
 var<storage, read> vertices: Vertices;
-@group(0) @binding(2) 
-var<storage, read> irregulars: Irregulars;
+@group(0) @binding(1) 
+var<storage, read> patches: Patches;
 @group(0) @binding(3) 
 var<storage, read> limits: Limits;
+@group(0) @binding(2) 
+var<storage, read> irregulars: Irregulars;
 @group(3) @binding(0) var<uniform> pc: Push;
 @group(0) @binding(4) 
 var<storage, read> pieces: Pieces;
@@ -89,38 +89,38 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
     var t3_: f32;
     var s: f32;
 
-    let _e75 = (*t);
-    let _e76 = (*t);
-    t2_ = (_e75 * _e76);
-    let _e78 = t2_;
-    let _e79 = (*t);
-    t3_ = (_e78 * _e79);
-    let _e81 = (*t);
-    s = (1f - _e81);
-    let _e83 = s;
-    let _e84 = s;
-    let _e86 = s;
-    (*b)[0i] = (((_e83 * _e84) * _e86) / 6f);
-    let _e90 = t3_;
-    let _e92 = t2_;
-    (*b)[1i] = ((((3f * _e90) - (6f * _e92)) + 4f) / 6f);
-    let _e98 = t3_;
-    let _e100 = t2_;
-    let _e103 = (*t);
-    (*b)[2i] = (((((-3f * _e98) + (3f * _e100)) + (3f * _e103)) + 1f) / 6f);
-    let _e109 = t3_;
-    (*b)[3i] = (_e109 / 6f);
-    let _e112 = s;
-    let _e114 = s;
-    (*d)[0i] = ((-(_e112) * _e114) / 2f);
-    let _e118 = t2_;
-    let _e120 = (*t);
-    (*d)[1i] = (((9f * _e118) - (12f * _e120)) / 6f);
+    let _e82 = (*t);
+    let _e83 = (*t);
+    t2_ = (_e82 * _e83);
+    let _e85 = t2_;
+    let _e86 = (*t);
+    t3_ = (_e85 * _e86);
+    let _e88 = (*t);
+    s = (1f - _e88);
+    let _e90 = s;
+    let _e91 = s;
+    let _e93 = s;
+    (*b)[0i] = (((_e90 * _e91) * _e93) / 6f);
+    let _e97 = t3_;
+    let _e99 = t2_;
+    (*b)[1i] = ((((3f * _e97) - (6f * _e99)) + 4f) / 6f);
+    let _e105 = t3_;
+    let _e107 = t2_;
+    let _e110 = (*t);
+    (*b)[2i] = (((((-3f * _e105) + (3f * _e107)) + (3f * _e110)) + 1f) / 6f);
+    let _e116 = t3_;
+    (*b)[3i] = (_e116 / 6f);
+    let _e119 = s;
+    let _e121 = s;
+    (*d)[0i] = ((-(_e119) * _e121) / 2f);
     let _e125 = t2_;
     let _e127 = (*t);
-    (*d)[2i] = ((((-9f * _e125) + (6f * _e127)) + 3f) / 6f);
-    let _e133 = t2_;
-    (*d)[3i] = (_e133 / 2f);
+    (*d)[1i] = (((9f * _e125) - (12f * _e127)) / 6f);
+    let _e132 = t2_;
+    let _e134 = (*t);
+    (*d)[2i] = ((((-9f * _e132) + (6f * _e134)) + 3f) / 6f);
+    let _e140 = t2_;
+    (*d)[3i] = (_e140 / 2f);
     return;
 }
 
@@ -147,74 +147,74 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var k: i32;
 
     M = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
-    let _e93 = (*sharpness);
-    s_1 = _e93;
+    let _e100 = (*sharpness);
+    s_1 = _e100;
     scale = 1f;
     i = 0i;
     loop {
-        let _e94 = i;
-        let _e96 = s_1;
-        if ((_e94 < 12i) && (_e96 > 0f)) {
-            let _e99 = (*t_1);
-            left = (_e99 < 0.5f);
-            let _e101 = s_1;
-            w = min(_e101, 1f);
-            let _e104 = M[0i];
-            let _e106 = M[1i];
-            e01_ = ((_e104 + _e106) * 0.5f);
-            let _e110 = M[1i];
-            let _e112 = M[2i];
-            e12_ = ((_e110 + _e112) * 0.5f);
-            let _e116 = M[2i];
-            let _e118 = M[3i];
-            e23_ = ((_e116 + _e118) * 0.5f);
-            let _e121 = w;
-            let _e123 = M[1i];
-            let _e125 = w;
-            let _e128 = M[0i];
+        let _e101 = i;
+        let _e103 = s_1;
+        if ((_e101 < 12i) && (_e103 > 0f)) {
+            let _e106 = (*t_1);
+            left = (_e106 < 0.5f);
+            let _e108 = s_1;
+            w = min(_e108, 1f);
+            let _e111 = M[0i];
+            let _e113 = M[1i];
+            e01_ = ((_e111 + _e113) * 0.5f);
+            let _e117 = M[1i];
+            let _e119 = M[2i];
+            e12_ = ((_e117 + _e119) * 0.5f);
+            let _e123 = M[2i];
+            let _e125 = M[3i];
+            e23_ = ((_e123 + _e125) * 0.5f);
+            let _e128 = w;
             let _e130 = M[1i];
-            let _e134 = M[2i];
-            crease = ((_e123 * _e121) + ((((_e128 + (_e130 * 6f)) + _e134) * (1f - _e125)) / vec4(8f)));
-            let _e141 = M[1i];
-            let _e143 = M[2i];
-            let _e147 = M[3i];
-            v2_ = (((_e141 + (_e143 * 6f)) + _e147) / vec4(8f));
-            let _e151 = left;
-            if _e151 {
-                let _e152 = e01_;
-                M[0i] = _e152;
-                let _e154 = crease;
-                M[1i] = _e154;
-                let _e156 = e12_;
-                M[2i] = _e156;
-                let _e158 = v2_;
-                M[3i] = _e158;
+            let _e132 = w;
+            let _e135 = M[0i];
+            let _e137 = M[1i];
+            let _e141 = M[2i];
+            crease = ((_e130 * _e128) + ((((_e135 + (_e137 * 6f)) + _e141) * (1f - _e132)) / vec4(8f)));
+            let _e148 = M[1i];
+            let _e150 = M[2i];
+            let _e154 = M[3i];
+            v2_ = (((_e148 + (_e150 * 6f)) + _e154) / vec4(8f));
+            let _e158 = left;
+            if _e158 {
+                let _e159 = e01_;
+                M[0i] = _e159;
+                let _e161 = crease;
+                M[1i] = _e161;
+                let _e163 = e12_;
+                M[2i] = _e163;
+                let _e165 = v2_;
+                M[3i] = _e165;
             } else {
-                let _e160 = crease;
-                M[0i] = _e160;
-                let _e162 = e12_;
-                M[1i] = _e162;
-                let _e164 = v2_;
-                M[2i] = _e164;
-                let _e166 = e23_;
-                M[3i] = _e166;
+                let _e167 = crease;
+                M[0i] = _e167;
+                let _e169 = e12_;
+                M[1i] = _e169;
+                let _e171 = v2_;
+                M[2i] = _e171;
+                let _e173 = e23_;
+                M[3i] = _e173;
             }
-            let _e168 = s_1;
-            s_1 = (_e168 - 1f);
-            let _e170 = scale;
-            scale = (_e170 * 2f);
-            let _e172 = left;
-            if _e172 {
-                let _e173 = (*t_1);
-                local = (2f * _e173);
-            } else {
-                let _e175 = (*t_1);
-                local = ((2f * _e175) - 1f);
-            }
-            let _e178 = local;
-            (*t_1) = _e178;
+            let _e175 = s_1;
+            s_1 = (_e175 - 1f);
+            let _e177 = scale;
+            scale = (_e177 * 2f);
             let _e179 = left;
-            if !(_e179) {
+            if _e179 {
+                let _e180 = (*t_1);
+                local = (2f * _e180);
+            } else {
+                let _e182 = (*t_1);
+                local = ((2f * _e182) - 1f);
+            }
+            let _e185 = local;
+            (*t_1) = _e185;
+            let _e186 = left;
+            if !(_e186) {
                 break;
             }
             continue;
@@ -222,55 +222,55 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             break;
         }
         continuing {
-            let _e181 = i;
-            i = (_e181 + 1i);
+            let _e188 = i;
+            i = (_e188 + 1i);
         }
     }
-    let _e183 = (*t_1);
-    param = _e183;
+    let _e190 = (*t_1);
+    param = _e190;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param), (&param_1), (&param_2));
-    let _e184 = param_1;
-    bt = _e184;
-    let _e185 = param_2;
-    dt = _e185;
-    let _e187 = bt[0i];
-    let _e189 = M[0i];
-    let _e192 = bt[1i];
-    let _e194 = M[1i];
-    let _e198 = bt[2i];
-    let _e200 = M[2i];
-    let _e204 = bt[3i];
-    let _e206 = M[3i];
-    B = ((((_e189 * _e187) + (_e194 * _e192)) + (_e200 * _e198)) + (_e206 * _e204));
-    let _e209 = scale;
-    let _e211 = dt[0i];
-    let _e213 = M[0i];
-    let _e216 = dt[1i];
-    let _e218 = M[1i];
-    let _e222 = dt[2i];
-    let _e224 = M[2i];
-    let _e228 = dt[3i];
-    let _e230 = M[3i];
-    D = (((((_e213 * _e211) + (_e218 * _e216)) + (_e224 * _e222)) + (_e230 * _e228)) * _e209);
+    let _e191 = param_1;
+    bt = _e191;
+    let _e192 = param_2;
+    dt = _e192;
+    let _e194 = bt[0i];
+    let _e196 = M[0i];
+    let _e199 = bt[1i];
+    let _e201 = M[1i];
+    let _e205 = bt[2i];
+    let _e207 = M[2i];
+    let _e211 = bt[3i];
+    let _e213 = M[3i];
+    B = ((((_e196 * _e194) + (_e201 * _e199)) + (_e207 * _e205)) + (_e213 * _e211));
+    let _e216 = scale;
+    let _e218 = dt[0i];
+    let _e220 = M[0i];
+    let _e223 = dt[1i];
+    let _e225 = M[1i];
+    let _e229 = dt[2i];
+    let _e231 = M[2i];
+    let _e235 = dt[3i];
+    let _e237 = M[3i];
+    D = (((((_e220 * _e218) + (_e225 * _e223)) + (_e231 * _e229)) + (_e237 * _e235)) * _e216);
     k = 0i;
     loop {
-        let _e234 = k;
-        if (_e234 < 4i) {
-            let _e236 = k;
-            let _e237 = k;
-            let _e239 = B[_e237];
-            (*b_1)[_e236] = _e239;
-            let _e241 = k;
-            let _e242 = k;
-            let _e244 = D[_e242];
-            (*d_1)[_e241] = _e244;
+        let _e241 = k;
+        if (_e241 < 4i) {
+            let _e243 = k;
+            let _e244 = k;
+            let _e246 = B[_e244];
+            (*b_1)[_e243] = _e246;
+            let _e248 = k;
+            let _e249 = k;
+            let _e251 = D[_e249];
+            (*d_1)[_e248] = _e251;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e246 = k;
-            k = (_e246 + 1i);
+            let _e253 = k;
+            k = (_e253 + 1i);
         }
     }
     return;
@@ -288,84 +288,84 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
     var local_2: f32;
     var local_3: f32;
 
-    let _e84 = (*atEnd);
-    if _e84 {
-        let _e85 = (*x);
-        local_1 = (1f - _e85);
+    let _e91 = (*atEnd);
+    if _e91 {
+        let _e92 = (*x);
+        local_1 = (1f - _e92);
     } else {
-        let _e87 = (*x);
-        local_1 = _e87;
+        let _e94 = (*x);
+        local_1 = _e94;
     }
-    let _e88 = local_1;
-    param_3 = _e88;
-    let _e89 = (*sharpness_1);
-    param_4 = _e89;
+    let _e95 = local_1;
+    param_3 = _e95;
+    let _e96 = (*sharpness_1);
+    param_4 = _e96;
     creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_3), (&param_4), (&param_5), (&param_6));
-    let _e90 = param_5;
-    cb = _e90;
-    let _e91 = param_6;
-    cd = _e91;
+    let _e97 = param_5;
+    cb = _e97;
+    let _e98 = param_6;
+    cd = _e98;
     k_1 = 0i;
     loop {
-        let _e92 = k_1;
-        if (_e92 < 4i) {
-            let _e94 = k_1;
-            let _e95 = (*atEnd);
-            if _e95 {
-                let _e96 = k_1;
-                let _e99 = cb[(3i - _e96)];
-                local_2 = _e99;
+        let _e99 = k_1;
+        if (_e99 < 4i) {
+            let _e101 = k_1;
+            let _e102 = (*atEnd);
+            if _e102 {
+                let _e103 = k_1;
+                let _e106 = cb[(3i - _e103)];
+                local_2 = _e106;
             } else {
-                let _e100 = k_1;
-                let _e102 = cb[_e100];
-                local_2 = _e102;
-            }
-            let _e103 = local_2;
-            (*b_2)[_e94] = _e103;
-            let _e105 = k_1;
-            let _e106 = (*atEnd);
-            if _e106 {
                 let _e107 = k_1;
-                let _e110 = cd[(3i - _e107)];
-                local_3 = -(_e110);
-            } else {
-                let _e112 = k_1;
-                let _e114 = cd[_e112];
-                local_3 = _e114;
+                let _e109 = cb[_e107];
+                local_2 = _e109;
             }
-            let _e115 = local_3;
-            (*d_2)[_e105] = _e115;
+            let _e110 = local_2;
+            (*b_2)[_e101] = _e110;
+            let _e112 = k_1;
+            let _e113 = (*atEnd);
+            if _e113 {
+                let _e114 = k_1;
+                let _e117 = cd[(3i - _e114)];
+                local_3 = -(_e117);
+            } else {
+                let _e119 = k_1;
+                let _e121 = cd[_e119];
+                local_3 = _e121;
+            }
+            let _e122 = local_3;
+            (*d_2)[_e112] = _e122;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e117 = k_1;
-            k_1 = (_e117 + 1i);
+            let _e124 = k_1;
+            k_1 = (_e124 + 1i);
         }
     }
     return;
 }
 
 fn foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b(b_3: ptr<function, array<f32, 4>>, atStart: ptr<function, bool>, atEnd_1: ptr<function, bool>) {
-    let _e72 = (*atStart);
-    if _e72 {
-        let _e74 = (*b_3)[0i];
-        let _e77 = (*b_3)[1i];
-        (*b_3)[1i] = (_e77 + (2f * _e74));
+    let _e79 = (*atStart);
+    if _e79 {
         let _e81 = (*b_3)[0i];
-        let _e83 = (*b_3)[2i];
-        (*b_3)[2i] = (_e83 - _e81);
+        let _e84 = (*b_3)[1i];
+        (*b_3)[1i] = (_e84 + (2f * _e81));
+        let _e88 = (*b_3)[0i];
+        let _e90 = (*b_3)[2i];
+        (*b_3)[2i] = (_e90 - _e88);
         (*b_3)[0i] = 0f;
     }
-    let _e87 = (*atEnd_1);
-    if _e87 {
-        let _e89 = (*b_3)[3i];
-        let _e92 = (*b_3)[2i];
-        (*b_3)[2i] = (_e92 + (2f * _e89));
+    let _e94 = (*atEnd_1);
+    if _e94 {
         let _e96 = (*b_3)[3i];
-        let _e98 = (*b_3)[1i];
-        (*b_3)[1i] = (_e98 - _e96);
+        let _e99 = (*b_3)[2i];
+        (*b_3)[2i] = (_e99 + (2f * _e96));
+        let _e103 = (*b_3)[3i];
+        let _e105 = (*b_3)[1i];
+        (*b_3)[1i] = (_e105 - _e103);
         (*b_3)[3i] = 0f;
     }
     return;
@@ -403,98 +403,92 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_33: array<f32, 4>;
     var param_34: array<f32, 4>;
 
-    let _e107 = (*pt).levelBoundary;
-    mask = ((_e107 >> bitcast<u32>(8i)) & 15u);
-    let _e111 = (*s_2);
-    param_7 = _e111;
+    let _e114 = (*pt).levelBoundary;
+    mask = ((_e114 >> bitcast<u32>(8i)) & 15u);
+    let _e118 = (*s_2);
+    param_7 = _e118;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_7), (&param_8), (&param_9));
-    let _e112 = param_8;
-    (*bu) = _e112;
-    let _e113 = param_9;
-    (*du) = _e113;
-    let _e114 = (*t_2);
-    param_10 = _e114;
+    let _e119 = param_8;
+    (*bu) = _e119;
+    let _e120 = param_9;
+    (*du) = _e120;
+    let _e121 = (*t_2);
+    param_10 = _e121;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_10), (&param_11), (&param_12));
-    let _e115 = param_11;
-    (*bv) = _e115;
-    let _e116 = param_12;
-    (*dv) = _e116;
-    let _e117 = mask;
-    let _e120 = mask;
-    let _e123 = (*bu);
-    param_13 = _e123;
-    param_14 = ((_e117 & 8u) != 0u);
-    param_15 = ((_e120 & 2u) != 0u);
+    let _e122 = param_11;
+    (*bv) = _e122;
+    let _e123 = param_12;
+    (*dv) = _e123;
+    let _e124 = mask;
+    let _e127 = mask;
+    let _e130 = (*bu);
+    param_13 = _e130;
+    param_14 = ((_e124 & 8u) != 0u);
+    param_15 = ((_e127 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_13), (&param_14), (&param_15));
-    let _e124 = param_13;
-    (*bu) = _e124;
-    let _e125 = mask;
-    let _e128 = mask;
-    let _e131 = (*du);
-    param_16 = _e131;
-    param_17 = ((_e125 & 8u) != 0u);
-    param_18 = ((_e128 & 2u) != 0u);
+    let _e131 = param_13;
+    (*bu) = _e131;
+    let _e132 = mask;
+    let _e135 = mask;
+    let _e138 = (*du);
+    param_16 = _e138;
+    param_17 = ((_e132 & 8u) != 0u);
+    param_18 = ((_e135 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
-    let _e132 = param_16;
-    (*du) = _e132;
-    let _e133 = mask;
-    let _e136 = mask;
-    let _e139 = (*bv);
-    param_19 = _e139;
-    param_20 = ((_e133 & 1u) != 0u);
-    param_21 = ((_e136 & 4u) != 0u);
+    let _e139 = param_16;
+    (*du) = _e139;
+    let _e140 = mask;
+    let _e143 = mask;
+    let _e146 = (*bv);
+    param_19 = _e146;
+    param_20 = ((_e140 & 1u) != 0u);
+    param_21 = ((_e143 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
-    let _e140 = param_19;
-    (*bv) = _e140;
-    let _e141 = mask;
-    let _e144 = mask;
-    let _e147 = (*dv);
-    param_22 = _e147;
-    param_23 = ((_e141 & 1u) != 0u);
-    param_24 = ((_e144 & 4u) != 0u);
+    let _e147 = param_19;
+    (*bv) = _e147;
+    let _e148 = mask;
+    let _e151 = mask;
+    let _e154 = (*dv);
+    param_22 = _e154;
+    param_23 = ((_e148 & 1u) != 0u);
+    param_24 = ((_e151 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_22), (&param_23), (&param_24));
-    let _e148 = param_22;
-    (*dv) = _e148;
-    let _e150 = (*pt).levelBoundary;
-    crease_1 = ((_e150 >> bitcast<u32>(16i)) & 15u);
-    let _e154 = crease_1;
-    if ((_e154 & 5u) != 0u) {
-        let _e157 = crease_1;
-        let _e160 = (*t_2);
-        param_25 = _e160;
-        param_26 = ((_e157 & 4u) != 0u);
-        let _e162 = (*pt).sharpness;
-        param_27 = _e162;
+    let _e155 = param_22;
+    (*dv) = _e155;
+    let _e157 = (*pt).levelBoundary;
+    crease_1 = ((_e157 >> bitcast<u32>(16i)) & 15u);
+    let _e161 = crease_1;
+    if ((_e161 & 5u) != 0u) {
+        let _e164 = crease_1;
+        let _e167 = (*t_2);
+        param_25 = _e167;
+        param_26 = ((_e164 & 4u) != 0u);
+        let _e169 = (*pt).sharpness;
+        param_27 = _e169;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_25), (&param_26), (&param_27), (&param_28), (&param_29));
-        let _e163 = param_28;
-        (*bv) = _e163;
-        let _e164 = param_29;
-        (*dv) = _e164;
+        let _e170 = param_28;
+        (*bv) = _e170;
+        let _e171 = param_29;
+        (*dv) = _e171;
     }
-    let _e165 = crease_1;
-    if ((_e165 & 10u) != 0u) {
-        let _e168 = crease_1;
-        let _e171 = (*s_2);
-        param_30 = _e171;
-        param_31 = ((_e168 & 2u) != 0u);
-        let _e173 = (*pt).sharpness;
-        param_32 = _e173;
+    let _e172 = crease_1;
+    if ((_e172 & 10u) != 0u) {
+        let _e175 = crease_1;
+        let _e178 = (*s_2);
+        param_30 = _e178;
+        param_31 = ((_e175 & 2u) != 0u);
+        let _e180 = (*pt).sharpness;
+        param_32 = _e180;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_30), (&param_31), (&param_32), (&param_33), (&param_34));
-        let _e174 = param_33;
-        (*bu) = _e174;
-        let _e175 = param_34;
-        (*du) = _e175;
+        let _e181 = param_33;
+        (*bu) = _e181;
+        let _e182 = param_34;
+        (*du) = _e182;
     }
     return;
 }
 
-fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_u005d_u003b(element: ptr<function, u32>, st: ptr<function, array<u32, 3>>, patchCount: ptr<function, u32>, P: ptr<function, array<vec3<f32>, 3>>) {
-    var pt_1: Patch;
-    var k_2: i32;
-    var c: array<vec3<f32>, 16>;
-    var q: i32;
-    var s_3: f32;
-    var t_3: f32;
+fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(pt_1: ptr<function, Patch>, s_3: ptr<function, f32>, t_3: ptr<function, f32>, P: ptr<function, vec3<f32>>, n: ptr<function, vec3<f32>>) {
     var bu_1: array<f32, 4>;
     var du_1: array<f32, 4>;
     var bv_1: array<f32, 4>;
@@ -506,247 +500,1033 @@ fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_
     var param_39: array<f32, 4>;
     var param_40: array<f32, 4>;
     var param_41: array<f32, 4>;
-    var p: vec3<f32>;
+    var Du: vec3<f32>;
+    var Dv: vec3<f32>;
     var j: i32;
     var row: vec3<f32>;
+    var rowDu: vec3<f32>;
+    var rowDv: vec3<f32>;
     var i_1: i32;
-    var f: IrregularFace;
-    var k_3: i32;
-    var c_1: array<vec3<f32>, 4>;
-    var q_1: i32;
-    var s_4: f32;
-    var t_4: f32;
-    var w_1: array<f32, 4>;
-    var p_1: vec3<f32>;
-    var k_4: i32;
+    var c: vec3<f32>;
 
-    let _e103 = (*element);
-    let _e104 = (*patchCount);
-    if (_e103 < _e104) {
-        let _e106 = (*element);
-        let _e109 = patches.p[_e106];
-        pt_1.cv[0i] = _e109.cv[0];
-        pt_1.cv[1i] = _e109.cv[1];
-        pt_1.cv[2i] = _e109.cv[2];
-        pt_1.cv[3i] = _e109.cv[3];
-        pt_1.cv[4i] = _e109.cv[4];
-        pt_1.cv[5i] = _e109.cv[5];
-        pt_1.cv[6i] = _e109.cv[6];
-        pt_1.cv[7i] = _e109.cv[7];
-        pt_1.cv[8i] = _e109.cv[8];
-        pt_1.cv[9i] = _e109.cv[9];
-        pt_1.cv[10i] = _e109.cv[10];
-        pt_1.cv[11i] = _e109.cv[11];
-        pt_1.cv[12i] = _e109.cv[12];
-        pt_1.cv[13i] = _e109.cv[13];
-        pt_1.cv[14i] = _e109.cv[14];
-        pt_1.cv[15i] = _e109.cv[15];
-        pt_1.ptex = _e109.ptex;
-        pt_1.u0_ = _e109.u0_;
-        pt_1.v0_ = _e109.v0_;
-        pt_1.size = _e109.size;
-        pt_1.levelBoundary = _e109.levelBoundary;
-        pt_1.sharpness = _e109.sharpness;
-        pt_1.pad1_ = _e109.pad1_;
-        pt_1.pad2_ = _e109.pad2_;
-        k_2 = 0i;
+    let _e100 = (*pt_1);
+    param_35 = _e100;
+    let _e101 = (*s_3);
+    param_36 = _e101;
+    let _e102 = (*t_3);
+    param_37 = _e102;
+    patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
+    let _e103 = param_38;
+    bu_1 = _e103;
+    let _e104 = param_39;
+    du_1 = _e104;
+    let _e105 = param_40;
+    bv_1 = _e105;
+    let _e106 = param_41;
+    dv_1 = _e106;
+    (*P) = vec3<f32>(0f, 0f, 0f);
+    Du = vec3<f32>(0f, 0f, 0f);
+    Dv = vec3<f32>(0f, 0f, 0f);
+    j = 0i;
+    loop {
+        let _e107 = j;
+        if (_e107 < 4i) {
+            row = vec3<f32>(0f, 0f, 0f);
+            rowDu = vec3<f32>(0f, 0f, 0f);
+            rowDv = vec3<f32>(0f, 0f, 0f);
+            i_1 = 0i;
+            loop {
+                let _e109 = i_1;
+                if (_e109 < 4i) {
+                    let _e111 = j;
+                    let _e113 = i_1;
+                    let _e117 = (*pt_1).cv[((4i * _e111) + _e113)];
+                    let _e120 = vertices.p[_e117];
+                    c = _e120.xyz;
+                    let _e122 = i_1;
+                    let _e124 = bu_1[_e122];
+                    let _e125 = c;
+                    let _e127 = row;
+                    row = (_e127 + (_e125 * _e124));
+                    let _e129 = i_1;
+                    let _e131 = du_1[_e129];
+                    let _e132 = c;
+                    let _e134 = rowDu;
+                    rowDu = (_e134 + (_e132 * _e131));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e136 = i_1;
+                    i_1 = (_e136 + 1i);
+                }
+            }
+            let _e138 = j;
+            let _e140 = bv_1[_e138];
+            let _e141 = row;
+            let _e143 = (*P);
+            (*P) = (_e143 + (_e141 * _e140));
+            let _e145 = j;
+            let _e147 = bv_1[_e145];
+            let _e148 = rowDu;
+            let _e150 = Du;
+            Du = (_e150 + (_e148 * _e147));
+            let _e152 = j;
+            let _e154 = dv_1[_e152];
+            let _e155 = row;
+            let _e157 = Dv;
+            Dv = (_e157 + (_e155 * _e154));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e159 = j;
+            j = (_e159 + 1i);
+        }
+    }
+    let _e161 = Du;
+    let _e162 = Dv;
+    (*n) = cross(_e161, _e162);
+    return;
+}
+
+fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(h: ptr<function, u32>, k_2: ptr<function, u32>, q: ptr<function, u32>, s_4: ptr<function, f32>, t_4: ptr<function, f32>, P_1: ptr<function, vec3<f32>>, n_1: ptr<function, vec3<f32>>) {
+    var hd: Patch;
+    var M_1: u32;
+    var block: u32;
+    var j_1: i32;
+    var c_1: array<vec3<f32>, 16>;
+    var i_2: u32;
+    var x_1: vec3<f32>;
+    var w_1: Patch;
+    var j_2: i32;
+    var bu_2: array<f32, 4>;
+    var du_2: array<f32, 4>;
+    var param_42: f32;
+    var param_43: array<f32, 4>;
+    var param_44: array<f32, 4>;
+    var bv_2: array<f32, 4>;
+    var dv_2: array<f32, 4>;
+    var param_45: f32;
+    var param_46: array<f32, 4>;
+    var param_47: array<f32, 4>;
+    var Du_1: vec3<f32>;
+    var Dv_1: vec3<f32>;
+    var j_3: i32;
+    var row_1: vec3<f32>;
+    var rowDu_1: vec3<f32>;
+    var i_3: i32;
+
+    let _e108 = (*h);
+    let _e111 = patches.p[_e108];
+    hd.cv[0i] = _e111.cv[0];
+    hd.cv[1i] = _e111.cv[1];
+    hd.cv[2i] = _e111.cv[2];
+    hd.cv[3i] = _e111.cv[3];
+    hd.cv[4i] = _e111.cv[4];
+    hd.cv[5i] = _e111.cv[5];
+    hd.cv[6i] = _e111.cv[6];
+    hd.cv[7i] = _e111.cv[7];
+    hd.cv[8i] = _e111.cv[8];
+    hd.cv[9i] = _e111.cv[9];
+    hd.cv[10i] = _e111.cv[10];
+    hd.cv[11i] = _e111.cv[11];
+    hd.cv[12i] = _e111.cv[12];
+    hd.cv[13i] = _e111.cv[13];
+    hd.cv[14i] = _e111.cv[14];
+    hd.cv[15i] = _e111.cv[15];
+    hd.ptex = _e111.ptex;
+    hd.u0_ = _e111.u0_;
+    hd.v0_ = _e111.v0_;
+    hd.size = _e111.size;
+    hd.levelBoundary = _e111.levelBoundary;
+    hd.sharpness = _e111.sharpness;
+    hd.pad1_ = _e111.pad1_;
+    hd.pad2_ = _e111.pad2_;
+    let _e164 = hd.cv[0i];
+    M_1 = ((2u * _e164) + 8u);
+    let _e169 = hd.cv[2i];
+    let _e170 = (*k_2);
+    let _e173 = (*q);
+    let _e176 = M_1;
+    block = (_e169 + ((((_e170 - 1u) * 3u) + (_e173 - 1u)) * _e176));
+    j_1 = 0i;
+    loop {
+        let _e179 = j_1;
+        if (_e179 < 16i) {
+            let _e181 = j_1;
+            c_1[_e181] = vec3<f32>(0f, 0f, 0f);
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e183 = j_1;
+            j_1 = (_e183 + 1i);
+        }
+    }
+    i_2 = 0u;
+    loop {
+        let _e185 = i_2;
+        let _e186 = M_1;
+        if (_e185 < _e186) {
+            let _e188 = (*h);
+            let _e190 = i_2;
+            let _e193 = i_2;
+            let _e199 = patches.p[((_e188 + 1u) + (_e190 / 16u))].cv[(_e193 % 16u)];
+            let _e202 = vertices.p[_e199];
+            x_1 = _e202.xyz;
+            let _e204 = block;
+            let _e205 = i_2;
+            let _e209 = patches.p[(_e204 + _e205)];
+            w_1.cv[0i] = _e209.cv[0];
+            w_1.cv[1i] = _e209.cv[1];
+            w_1.cv[2i] = _e209.cv[2];
+            w_1.cv[3i] = _e209.cv[3];
+            w_1.cv[4i] = _e209.cv[4];
+            w_1.cv[5i] = _e209.cv[5];
+            w_1.cv[6i] = _e209.cv[6];
+            w_1.cv[7i] = _e209.cv[7];
+            w_1.cv[8i] = _e209.cv[8];
+            w_1.cv[9i] = _e209.cv[9];
+            w_1.cv[10i] = _e209.cv[10];
+            w_1.cv[11i] = _e209.cv[11];
+            w_1.cv[12i] = _e209.cv[12];
+            w_1.cv[13i] = _e209.cv[13];
+            w_1.cv[14i] = _e209.cv[14];
+            w_1.cv[15i] = _e209.cv[15];
+            w_1.ptex = _e209.ptex;
+            w_1.u0_ = _e209.u0_;
+            w_1.v0_ = _e209.v0_;
+            w_1.size = _e209.size;
+            w_1.levelBoundary = _e209.levelBoundary;
+            w_1.sharpness = _e209.sharpness;
+            w_1.pad1_ = _e209.pad1_;
+            w_1.pad2_ = _e209.pad2_;
+            j_2 = 0i;
+            loop {
+                let _e260 = j_2;
+                if (_e260 < 16i) {
+                    let _e262 = j_2;
+                    let _e263 = j_2;
+                    let _e266 = w_1.cv[_e263];
+                    let _e268 = x_1;
+                    let _e271 = c_1[_e262];
+                    c_1[_e262] = (_e271 + (_e268 * bitcast<f32>(_e266)));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e274 = j_2;
+                    j_2 = (_e274 + 1i);
+                }
+            }
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e276 = i_2;
+            i_2 = (_e276 + bitcast<u32>(1i));
+        }
+    }
+    let _e279 = (*s_4);
+    param_42 = _e279;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
+    let _e280 = param_43;
+    bu_2 = _e280;
+    let _e281 = param_44;
+    du_2 = _e281;
+    let _e282 = (*t_4);
+    param_45 = _e282;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
+    let _e283 = param_46;
+    bv_2 = _e283;
+    let _e284 = param_47;
+    dv_2 = _e284;
+    (*P_1) = vec3<f32>(0f, 0f, 0f);
+    Du_1 = vec3<f32>(0f, 0f, 0f);
+    Dv_1 = vec3<f32>(0f, 0f, 0f);
+    j_3 = 0i;
+    loop {
+        let _e285 = j_3;
+        if (_e285 < 4i) {
+            row_1 = vec3<f32>(0f, 0f, 0f);
+            rowDu_1 = vec3<f32>(0f, 0f, 0f);
+            i_3 = 0i;
+            loop {
+                let _e287 = i_3;
+                if (_e287 < 4i) {
+                    let _e289 = i_3;
+                    let _e291 = bu_2[_e289];
+                    let _e292 = j_3;
+                    let _e294 = i_3;
+                    let _e297 = c_1[((4i * _e292) + _e294)];
+                    let _e299 = row_1;
+                    row_1 = (_e299 + (_e297 * _e291));
+                    let _e301 = i_3;
+                    let _e303 = du_2[_e301];
+                    let _e304 = j_3;
+                    let _e306 = i_3;
+                    let _e309 = c_1[((4i * _e304) + _e306)];
+                    let _e311 = rowDu_1;
+                    rowDu_1 = (_e311 + (_e309 * _e303));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e313 = i_3;
+                    i_3 = (_e313 + 1i);
+                }
+            }
+            let _e315 = j_3;
+            let _e317 = bv_2[_e315];
+            let _e318 = row_1;
+            let _e320 = (*P_1);
+            (*P_1) = (_e320 + (_e318 * _e317));
+            let _e322 = j_3;
+            let _e324 = bv_2[_e322];
+            let _e325 = rowDu_1;
+            let _e327 = Du_1;
+            Du_1 = (_e327 + (_e325 * _e324));
+            let _e329 = j_3;
+            let _e331 = dv_2[_e329];
+            let _e332 = row_1;
+            let _e334 = Dv_1;
+            Dv_1 = (_e334 + (_e332 * _e331));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e336 = j_3;
+            j_3 = (_e336 + 1i);
+        }
+    }
+    let _e338 = Du_1;
+    let _e339 = Dv_1;
+    (*n_1) = cross(_e338, _e339);
+    return;
+}
+
+fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u32>, st: ptr<function, u32>, P_2: ptr<function, vec3<f32>>, n_2: ptr<function, vec3<f32>>) {
+    var hd_1: Patch;
+    var S: u32;
+    var T: u32;
+    var corner: u32;
+    var K: u32;
+    var a: u32;
+    var local_4: u32;
+    var local_5: u32;
+    var local_6: u32;
+    var c_2: u32;
+    var local_7: u32;
+    var local_8: u32;
+    var local_9: u32;
+    var evP: vec3<f32>;
+    var evN: vec3<f32>;
+    var k_3: u32;
+    var qu: u32;
+    var qv: u32;
+    var q_1: u32;
+    var local_10: u32;
+    var param_48: u32;
+    var param_49: u32;
+    var param_50: u32;
+    var param_51: f32;
+    var param_52: f32;
+    var param_53: vec3<f32>;
+    var param_54: vec3<f32>;
+    var P1_: vec3<f32>;
+    var n1_: vec3<f32>;
+    var param_55: u32;
+    var param_56: u32;
+    var param_57: u32;
+    var param_58: f32;
+    var param_59: f32;
+    var param_60: vec3<f32>;
+    var param_61: vec3<f32>;
+    var P2_: vec3<f32>;
+    var n2_: vec3<f32>;
+    var param_62: u32;
+    var param_63: u32;
+    var param_64: u32;
+    var param_65: f32;
+    var param_66: f32;
+    var param_67: vec3<f32>;
+    var param_68: vec3<f32>;
+    var P3_: vec3<f32>;
+    var n3_: vec3<f32>;
+    var param_69: u32;
+    var param_70: u32;
+    var param_71: u32;
+    var param_72: f32;
+    var param_73: f32;
+    var param_74: vec3<f32>;
+    var param_75: vec3<f32>;
+    var x_2: f32;
+    var y: f32;
+    var w_2: array<f32, 4>;
+
+    let _e137 = (*h_1);
+    let _e140 = patches.p[_e137];
+    hd_1.cv[0i] = _e140.cv[0];
+    hd_1.cv[1i] = _e140.cv[1];
+    hd_1.cv[2i] = _e140.cv[2];
+    hd_1.cv[3i] = _e140.cv[3];
+    hd_1.cv[4i] = _e140.cv[4];
+    hd_1.cv[5i] = _e140.cv[5];
+    hd_1.cv[6i] = _e140.cv[6];
+    hd_1.cv[7i] = _e140.cv[7];
+    hd_1.cv[8i] = _e140.cv[8];
+    hd_1.cv[9i] = _e140.cv[9];
+    hd_1.cv[10i] = _e140.cv[10];
+    hd_1.cv[11i] = _e140.cv[11];
+    hd_1.cv[12i] = _e140.cv[12];
+    hd_1.cv[13i] = _e140.cv[13];
+    hd_1.cv[14i] = _e140.cv[14];
+    hd_1.cv[15i] = _e140.cv[15];
+    hd_1.ptex = _e140.ptex;
+    hd_1.u0_ = _e140.u0_;
+    hd_1.v0_ = _e140.v0_;
+    hd_1.size = _e140.size;
+    hd_1.levelBoundary = _e140.levelBoundary;
+    hd_1.sharpness = _e140.sharpness;
+    hd_1.pad1_ = _e140.pad1_;
+    hd_1.pad2_ = _e140.pad2_;
+    let _e191 = (*st);
+    S = (_e191 & 65535u);
+    let _e193 = (*st);
+    T = (_e193 >> bitcast<u32>(16i));
+    let _e198 = hd_1.cv[1i];
+    corner = _e198;
+    let _e201 = hd_1.cv[3i];
+    K = _e201;
+    let _e202 = corner;
+    if (_e202 == 0u) {
+        let _e204 = S;
+        local_4 = _e204;
+    } else {
+        let _e205 = corner;
+        if (_e205 == 1u) {
+            let _e207 = T;
+            local_5 = _e207;
+        } else {
+            let _e208 = corner;
+            if (_e208 == 2u) {
+                let _e210 = S;
+                local_6 = (32768u - _e210);
+            } else {
+                let _e212 = T;
+                local_6 = (32768u - _e212);
+            }
+            let _e214 = local_6;
+            local_5 = _e214;
+        }
+        let _e215 = local_5;
+        local_4 = _e215;
+    }
+    let _e216 = local_4;
+    a = _e216;
+    let _e217 = corner;
+    if (_e217 == 0u) {
+        let _e219 = T;
+        local_7 = _e219;
+    } else {
+        let _e220 = corner;
+        if (_e220 == 1u) {
+            let _e222 = S;
+            local_8 = (32768u - _e222);
+        } else {
+            let _e224 = corner;
+            if (_e224 == 2u) {
+                let _e226 = T;
+                local_9 = (32768u - _e226);
+            } else {
+                let _e228 = S;
+                local_9 = _e228;
+            }
+            let _e229 = local_9;
+            local_8 = _e229;
+        }
+        let _e230 = local_8;
+        local_7 = _e230;
+    }
+    let _e231 = local_7;
+    c_2 = _e231;
+    let _e234 = hd_1.cv[4i];
+    let _e238 = limits.v[(2u * _e234)];
+    evP = _e238.xyz;
+    let _e242 = hd_1.cv[4i];
+    let _e247 = limits.v[((2u * _e242) + 1u)];
+    evN = _e247.xyz;
+    let _e249 = a;
+    let _e251 = c_2;
+    if ((_e249 == 0u) && (_e251 == 0u)) {
+        let _e254 = evP;
+        (*P_2) = _e254;
+        let _e255 = evN;
+        (*n_2) = _e255;
+        return;
+    }
+    k_3 = 1u;
+    loop {
+        let _e256 = a;
+        let _e257 = c_2;
+        let _e260 = k_3;
+        let _e261 = K;
+        if ((max(_e256, _e257) < 16384u) && (_e260 < _e261)) {
+            let _e264 = a;
+            a = (_e264 * 2u);
+            let _e266 = c_2;
+            c_2 = (_e266 * 2u);
+            let _e268 = k_3;
+            k_3 = (_e268 + bitcast<u32>(1i));
+            continue;
+        } else {
+            break;
+        }
+    }
+    let _e271 = a;
+    let _e272 = c_2;
+    if (max(_e271, _e272) >= 16384u) {
+        let _e275 = a;
+        qu = select(0u, 1u, (_e275 >= 16384u));
+        let _e278 = c_2;
+        qv = select(0u, 1u, (_e278 >= 16384u));
+        let _e281 = qv;
+        if (_e281 == 0u) {
+            local_10 = 1u;
+        } else {
+            let _e283 = qu;
+            local_10 = select(3u, 2u, (_e283 == 1u));
+        }
+        let _e286 = local_10;
+        q_1 = _e286;
+        let _e287 = a;
+        let _e289 = qu;
+        let _e294 = c_2;
+        let _e296 = qv;
+        let _e301 = (*h_1);
+        param_48 = _e301;
+        let _e302 = k_3;
+        param_49 = _e302;
+        let _e303 = q_1;
+        param_50 = _e303;
+        param_51 = (f32(((2u * _e287) - (_e289 * 32768u))) / 32768f);
+        param_52 = (f32(((2u * _e294) - (_e296 * 32768u))) / 32768f);
+        basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_48), (&param_49), (&param_50), (&param_51), (&param_52), (&param_53), (&param_54));
+        let _e304 = param_53;
+        (*P_2) = _e304;
+        let _e305 = param_54;
+        (*n_2) = _e305;
+        return;
+    }
+    let _e306 = (*h_1);
+    param_55 = _e306;
+    let _e307 = k_3;
+    param_56 = _e307;
+    param_57 = 1u;
+    param_58 = 0f;
+    param_59 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_55), (&param_56), (&param_57), (&param_58), (&param_59), (&param_60), (&param_61));
+    let _e308 = param_60;
+    P1_ = _e308;
+    let _e309 = param_61;
+    n1_ = _e309;
+    let _e310 = (*h_1);
+    param_62 = _e310;
+    let _e311 = k_3;
+    param_63 = _e311;
+    param_64 = 2u;
+    param_65 = 0f;
+    param_66 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_62), (&param_63), (&param_64), (&param_65), (&param_66), (&param_67), (&param_68));
+    let _e312 = param_67;
+    P2_ = _e312;
+    let _e313 = param_68;
+    n2_ = _e313;
+    let _e314 = (*h_1);
+    param_69 = _e314;
+    let _e315 = k_3;
+    param_70 = _e315;
+    param_71 = 3u;
+    param_72 = 0f;
+    param_73 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_69), (&param_70), (&param_71), (&param_72), (&param_73), (&param_74), (&param_75));
+    let _e316 = param_74;
+    P3_ = _e316;
+    let _e317 = param_75;
+    n3_ = _e317;
+    let _e318 = a;
+    x_2 = (f32(_e318) / 16384f);
+    let _e321 = c_2;
+    y = (f32(_e321) / 16384f);
+    let _e324 = x_2;
+    let _e326 = y;
+    let _e329 = x_2;
+    let _e330 = y;
+    let _e333 = x_2;
+    let _e334 = y;
+    let _e336 = x_2;
+    let _e338 = y;
+    w_2 = array<f32, 4>(((1f - _e324) * (1f - _e326)), (_e329 * (1f - _e330)), (_e333 * _e334), ((1f - _e336) * _e338));
+    let _e342 = w_2[0i];
+    let _e343 = evP;
+    let _e346 = w_2[1i];
+    let _e347 = P1_;
+    let _e351 = w_2[2i];
+    let _e352 = P2_;
+    let _e356 = w_2[3i];
+    let _e357 = P3_;
+    (*P_2) = ((((_e343 * _e342) + (_e347 * _e346)) + (_e352 * _e351)) + (_e357 * _e356));
+    let _e361 = w_2[0i];
+    let _e362 = evN;
+    let _e365 = w_2[1i];
+    let _e366 = n1_;
+    let _e371 = w_2[2i];
+    let _e372 = n2_;
+    let _e377 = w_2[3i];
+    let _e378 = n3_;
+    (*n_2) = ((((_e362 * _e361) + (normalize(_e366) * _e365)) + (normalize(_e372) * _e371)) + (normalize(_e378) * _e377));
+    return;
+}
+
+fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr<function, u32>, st_1: ptr<function, u32>, patchCount: ptr<function, u32>, P_3: ptr<function, vec3<f32>>, n_3: ptr<function, vec3<f32>>) {
+    var S_1: u32;
+    var T_1: u32;
+    var k_4: u32;
+    var local_11: u32;
+    var c_3: u32;
+    var node: u32;
+    var leaf: u32;
+    var ls: u32;
+    var lt: u32;
+    var k_5: i32;
+    var c_4: u32;
+    var code: u32;
+    var param_76: u32;
+    var param_77: u32;
+    var param_78: vec3<f32>;
+    var param_79: vec3<f32>;
+    var kind: u32;
+    var index: u32;
+    var param_80: Patch;
+    var param_81: f32;
+    var param_82: f32;
+    var param_83: vec3<f32>;
+    var param_84: vec3<f32>;
+    var q_2: IrregularFace;
+    var s_5: f32;
+    var t_5: f32;
+    var w_3: array<f32, 4>;
+    var k_6: i32;
+    var phi_1375_: bool;
+
+    let _e109 = (*st_1);
+    S_1 = (_e109 & 65535u);
+    let _e111 = (*st_1);
+    T_1 = (_e111 >> bitcast<u32>(16i));
+    let _e114 = S_1;
+    let _e116 = S_1;
+    let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
+    phi_1375_ = _e118;
+    if _e118 {
+        let _e119 = T_1;
+        let _e121 = T_1;
+        phi_1375_ = ((_e119 == 0u) || (_e121 == 32768u));
+    }
+    let _e125 = phi_1375_;
+    if _e125 {
+        let _e126 = S_1;
+        if (_e126 == 0u) {
+            let _e128 = T_1;
+            local_11 = select(3u, 0u, (_e128 == 0u));
+        } else {
+            let _e131 = T_1;
+            local_11 = select(2u, 1u, (_e131 == 0u));
+        }
+        let _e134 = local_11;
+        k_4 = _e134;
+        let _e135 = (*face);
+        let _e136 = k_4;
+        let _e141 = irregulars.f[_e135].corner[_e136];
+        c_3 = _e141;
+        let _e142 = c_3;
+        let _e146 = limits.v[(2u * _e142)];
+        (*P_3) = _e146.xyz;
+        let _e148 = c_3;
+        let _e153 = limits.v[((2u * _e148) + 1u)];
+        (*n_3) = _e153.xyz;
+        return;
+    }
+    let _e155 = (*patchCount);
+    let _e156 = (*face);
+    node = (_e155 + _e156);
+    let _e158 = (*face);
+    leaf = _e158;
+    let _e159 = S_1;
+    ls = _e159;
+    let _e160 = T_1;
+    lt = _e160;
+    k_5 = 0i;
+    loop {
+        let _e161 = k_5;
+        if (_e161 < 17i) {
+            let _e163 = S_1;
+            let _e166 = T_1;
+            c_4 = (select(0u, 1u, (_e163 >= 16384u)) | select(0u, 2u, (_e166 >= 16384u)));
+            let _e170 = node;
+            let _e171 = c_4;
+            let _e176 = patches.p[_e170].cv[_e171];
+            code = _e176;
+            let _e177 = code;
+            if (_e177 == 4294967295u) {
+                break;
+            }
+            let _e179 = code;
+            if ((_e179 & 3221225472u) == 3221225472u) {
+                let _e182 = code;
+                param_76 = (_e182 & 1073741823u);
+                let _e184 = (*st_1);
+                param_77 = _e184;
+                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_76), (&param_77), (&param_78), (&param_79));
+                let _e185 = param_78;
+                (*P_3) = _e185;
+                let _e186 = param_79;
+                (*n_3) = _e186;
+                return;
+            }
+            let _e187 = S_1;
+            let _e189 = c_4;
+            S_1 = ((2u * _e187) - select(0u, 32768u, ((_e189 & 1u) != 0u)));
+            let _e194 = T_1;
+            let _e196 = c_4;
+            T_1 = ((2u * _e194) - select(0u, 32768u, ((_e196 & 2u) != 0u)));
+            let _e201 = code;
+            kind = (_e201 & 3221225472u);
+            let _e203 = code;
+            index = (_e203 & 1073741823u);
+            let _e205 = kind;
+            if (_e205 == 0u) {
+                let _e207 = index;
+                let _e208 = S_1;
+                let _e211 = T_1;
+                let _e216 = patches.p[_e207];
+                param_80.cv[0i] = _e216.cv[0];
+                param_80.cv[1i] = _e216.cv[1];
+                param_80.cv[2i] = _e216.cv[2];
+                param_80.cv[3i] = _e216.cv[3];
+                param_80.cv[4i] = _e216.cv[4];
+                param_80.cv[5i] = _e216.cv[5];
+                param_80.cv[6i] = _e216.cv[6];
+                param_80.cv[7i] = _e216.cv[7];
+                param_80.cv[8i] = _e216.cv[8];
+                param_80.cv[9i] = _e216.cv[9];
+                param_80.cv[10i] = _e216.cv[10];
+                param_80.cv[11i] = _e216.cv[11];
+                param_80.cv[12i] = _e216.cv[12];
+                param_80.cv[13i] = _e216.cv[13];
+                param_80.cv[14i] = _e216.cv[14];
+                param_80.cv[15i] = _e216.cv[15];
+                param_80.ptex = _e216.ptex;
+                param_80.u0_ = _e216.u0_;
+                param_80.v0_ = _e216.v0_;
+                param_80.size = _e216.size;
+                param_80.levelBoundary = _e216.levelBoundary;
+                param_80.sharpness = _e216.sharpness;
+                param_80.pad1_ = _e216.pad1_;
+                param_80.pad2_ = _e216.pad2_;
+                param_81 = (f32(_e208) / 32768f);
+                param_82 = (f32(_e211) / 32768f);
+                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_80), (&param_81), (&param_82), (&param_83), (&param_84));
+                let _e267 = param_83;
+                (*P_3) = _e267;
+                let _e268 = param_84;
+                (*n_3) = _e268;
+                return;
+            }
+            let _e269 = kind;
+            if (_e269 == 2147483648u) {
+                let _e271 = index;
+                leaf = _e271;
+                let _e272 = S_1;
+                ls = _e272;
+                let _e273 = T_1;
+                lt = _e273;
+                break;
+            }
+            let _e274 = index;
+            node = _e274;
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e275 = k_5;
+            k_5 = (_e275 + 1i);
+        }
+    }
+    let _e277 = leaf;
+    let _e280 = irregulars.f[_e277];
+    q_2.corner = _e280.corner;
+    q_2.ptex = _e280.ptex;
+    q_2.u0_ = _e280.u0_;
+    q_2.v0_ = _e280.v0_;
+    q_2.size = _e280.size;
+    let _e291 = ls;
+    s_5 = (f32(_e291) / 32768f);
+    let _e294 = lt;
+    t_5 = (f32(_e294) / 32768f);
+    let _e297 = s_5;
+    let _e299 = t_5;
+    let _e302 = s_5;
+    let _e303 = t_5;
+    let _e306 = s_5;
+    let _e307 = t_5;
+    let _e309 = s_5;
+    let _e311 = t_5;
+    w_3 = array<f32, 4>(((1f - _e297) * (1f - _e299)), (_e302 * (1f - _e303)), (_e306 * _e307), ((1f - _e309) * _e311));
+    (*P_3) = vec3<f32>(0f, 0f, 0f);
+    (*n_3) = vec3<f32>(0f, 0f, 0f);
+    k_6 = 0i;
+    loop {
+        let _e314 = k_6;
+        if (_e314 < 4i) {
+            let _e316 = k_6;
+            let _e318 = w_3[_e316];
+            let _e319 = k_6;
+            let _e322 = q_2.corner[_e319];
+            let _e326 = limits.v[(2u * _e322)];
+            let _e329 = (*P_3);
+            (*P_3) = (_e329 + (_e326.xyz * _e318));
+            let _e331 = k_6;
+            let _e333 = w_3[_e331];
+            let _e334 = k_6;
+            let _e337 = q_2.corner[_e334];
+            let _e342 = limits.v[((2u * _e337) + 1u)];
+            let _e345 = (*n_3);
+            (*n_3) = (_e345 + (_e342.xyz * _e333));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e347 = k_6;
+            k_6 = (_e347 + 1i);
+        }
+    }
+    return;
+}
+
+fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 3>>, patchCount_1: ptr<function, u32>, P_4: ptr<function, array<vec3<f32>, 3>>) {
+    var pt_2: Patch;
+    var k_7: i32;
+    var c_5: array<vec3<f32>, 16>;
+    var q_3: i32;
+    var s_6: f32;
+    var t_6: f32;
+    var bu_3: array<f32, 4>;
+    var du_3: array<f32, 4>;
+    var bv_3: array<f32, 4>;
+    var dv_3: array<f32, 4>;
+    var param_85: Patch;
+    var param_86: f32;
+    var param_87: f32;
+    var param_88: array<f32, 4>;
+    var param_89: array<f32, 4>;
+    var param_90: array<f32, 4>;
+    var param_91: array<f32, 4>;
+    var p: vec3<f32>;
+    var j_4: i32;
+    var row_2: vec3<f32>;
+    var i_4: i32;
+    var q_4: i32;
+    var n_4: vec3<f32>;
+    var param_92: u32;
+    var param_93: u32;
+    var param_94: u32;
+    var param_95: vec3<f32>;
+    var param_96: vec3<f32>;
+
+    let _e108 = (*element);
+    let _e109 = (*patchCount_1);
+    if (_e108 < _e109) {
+        let _e111 = (*element);
+        let _e114 = patches.p[_e111];
+        pt_2.cv[0i] = _e114.cv[0];
+        pt_2.cv[1i] = _e114.cv[1];
+        pt_2.cv[2i] = _e114.cv[2];
+        pt_2.cv[3i] = _e114.cv[3];
+        pt_2.cv[4i] = _e114.cv[4];
+        pt_2.cv[5i] = _e114.cv[5];
+        pt_2.cv[6i] = _e114.cv[6];
+        pt_2.cv[7i] = _e114.cv[7];
+        pt_2.cv[8i] = _e114.cv[8];
+        pt_2.cv[9i] = _e114.cv[9];
+        pt_2.cv[10i] = _e114.cv[10];
+        pt_2.cv[11i] = _e114.cv[11];
+        pt_2.cv[12i] = _e114.cv[12];
+        pt_2.cv[13i] = _e114.cv[13];
+        pt_2.cv[14i] = _e114.cv[14];
+        pt_2.cv[15i] = _e114.cv[15];
+        pt_2.ptex = _e114.ptex;
+        pt_2.u0_ = _e114.u0_;
+        pt_2.v0_ = _e114.v0_;
+        pt_2.size = _e114.size;
+        pt_2.levelBoundary = _e114.levelBoundary;
+        pt_2.sharpness = _e114.sharpness;
+        pt_2.pad1_ = _e114.pad1_;
+        pt_2.pad2_ = _e114.pad2_;
+        k_7 = 0i;
         loop {
-            let _e160 = k_2;
-            if (_e160 < 16i) {
-                let _e162 = k_2;
-                let _e163 = k_2;
-                let _e166 = pt_1.cv[_e163];
-                let _e169 = vertices.p[_e166];
-                c[_e162] = _e169.xyz;
+            let _e165 = k_7;
+            if (_e165 < 16i) {
+                let _e167 = k_7;
+                let _e168 = k_7;
+                let _e171 = pt_2.cv[_e168];
+                let _e174 = vertices.p[_e171];
+                c_5[_e167] = _e174.xyz;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e172 = k_2;
-                k_2 = (_e172 + 1i);
+                let _e177 = k_7;
+                k_7 = (_e177 + 1i);
             }
         }
-        q = 0i;
+        q_3 = 0i;
         loop {
-            let _e174 = q;
-            if (_e174 < 3i) {
-                let _e176 = q;
-                let _e178 = (*st)[_e176];
-                s_3 = (f32((_e178 & 65535u)) / 32768f);
-                let _e182 = q;
-                let _e184 = (*st)[_e182];
-                t_3 = (f32((_e184 >> bitcast<u32>(16i))) / 32768f);
-                let _e189 = pt_1;
-                param_35 = _e189;
-                let _e190 = s_3;
-                param_36 = _e190;
-                let _e191 = t_3;
-                param_37 = _e191;
-                patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
-                let _e192 = param_38;
-                bu_1 = _e192;
-                let _e193 = param_39;
-                du_1 = _e193;
-                let _e194 = param_40;
-                bv_1 = _e194;
-                let _e195 = param_41;
-                dv_1 = _e195;
+            let _e179 = q_3;
+            if (_e179 < 3i) {
+                let _e181 = q_3;
+                let _e183 = (*st_2)[_e181];
+                s_6 = (f32((_e183 & 65535u)) / 32768f);
+                let _e187 = q_3;
+                let _e189 = (*st_2)[_e187];
+                t_6 = (f32((_e189 >> bitcast<u32>(16i))) / 32768f);
+                let _e194 = pt_2;
+                param_85 = _e194;
+                let _e195 = s_6;
+                param_86 = _e195;
+                let _e196 = t_6;
+                param_87 = _e196;
+                patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_85), (&param_86), (&param_87), (&param_88), (&param_89), (&param_90), (&param_91));
+                let _e197 = param_88;
+                bu_3 = _e197;
+                let _e198 = param_89;
+                du_3 = _e198;
+                let _e199 = param_90;
+                bv_3 = _e199;
+                let _e200 = param_91;
+                dv_3 = _e200;
                 p = vec3<f32>(0f, 0f, 0f);
-                j = 0i;
+                j_4 = 0i;
                 loop {
-                    let _e196 = j;
-                    if (_e196 < 4i) {
-                        row = vec3<f32>(0f, 0f, 0f);
-                        i_1 = 0i;
+                    let _e201 = j_4;
+                    if (_e201 < 4i) {
+                        row_2 = vec3<f32>(0f, 0f, 0f);
+                        i_4 = 0i;
                         loop {
-                            let _e198 = i_1;
-                            if (_e198 < 4i) {
-                                let _e200 = i_1;
-                                let _e202 = bu_1[_e200];
-                                let _e203 = j;
-                                let _e205 = i_1;
-                                let _e208 = c[((4i * _e203) + _e205)];
-                                let _e210 = row;
-                                row = (_e210 + (_e208 * _e202));
+                            let _e203 = i_4;
+                            if (_e203 < 4i) {
+                                let _e205 = i_4;
+                                let _e207 = bu_3[_e205];
+                                let _e208 = j_4;
+                                let _e210 = i_4;
+                                let _e213 = c_5[((4i * _e208) + _e210)];
+                                let _e215 = row_2;
+                                row_2 = (_e215 + (_e213 * _e207));
                                 continue;
                             } else {
                                 break;
                             }
                             continuing {
-                                let _e212 = i_1;
-                                i_1 = (_e212 + 1i);
+                                let _e217 = i_4;
+                                i_4 = (_e217 + 1i);
                             }
                         }
-                        let _e214 = j;
-                        let _e216 = bv_1[_e214];
-                        let _e217 = row;
-                        let _e219 = p;
-                        p = (_e219 + (_e217 * _e216));
+                        let _e219 = j_4;
+                        let _e221 = bv_3[_e219];
+                        let _e222 = row_2;
+                        let _e224 = p;
+                        p = (_e224 + (_e222 * _e221));
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e221 = j;
-                        j = (_e221 + 1i);
+                        let _e226 = j_4;
+                        j_4 = (_e226 + 1i);
                     }
                 }
-                let _e223 = q;
-                let _e224 = p;
-                (*P)[_e223] = _e224;
+                let _e228 = q_3;
+                let _e229 = p;
+                (*P_4)[_e228] = _e229;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e226 = q;
-                q = (_e226 + 1i);
+                let _e231 = q_3;
+                q_3 = (_e231 + 1i);
             }
         }
     } else {
-        let _e228 = (*element);
-        let _e229 = (*patchCount);
-        let _e233 = irregulars.f[(_e228 - _e229)];
-        f.corner[0i] = _e233.corner[0];
-        f.corner[1i] = _e233.corner[1];
-        f.corner[2i] = _e233.corner[2];
-        f.corner[3i] = _e233.corner[3];
-        f.ptex = _e233.ptex;
-        f.u0_ = _e233.u0_;
-        f.v0_ = _e233.v0_;
-        f.size = _e233.size;
-        k_3 = 0i;
+        q_4 = 0i;
         loop {
-            let _e252 = k_3;
-            if (_e252 < 4i) {
-                let _e254 = k_3;
-                let _e255 = k_3;
-                let _e258 = f.corner[_e255];
-                let _e262 = limits.v[(2u * _e258)];
-                c_1[_e254] = _e262.xyz;
+            let _e233 = q_4;
+            if (_e233 < 3i) {
+                let _e235 = (*element);
+                let _e236 = (*patchCount_1);
+                let _e238 = q_4;
+                let _e239 = q_4;
+                param_92 = (_e235 - _e236);
+                let _e241 = (*st_2)[_e238];
+                param_93 = _e241;
+                let _e242 = (*patchCount_1);
+                param_94 = _e242;
+                irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_92), (&param_93), (&param_94), (&param_95), (&param_96));
+                let _e243 = param_95;
+                (*P_4)[_e239] = _e243;
+                let _e245 = param_96;
+                n_4 = _e245;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e265 = k_3;
-                k_3 = (_e265 + 1i);
-            }
-        }
-        q_1 = 0i;
-        loop {
-            let _e267 = q_1;
-            if (_e267 < 3i) {
-                let _e269 = q_1;
-                let _e271 = (*st)[_e269];
-                s_4 = (f32((_e271 & 65535u)) / 32768f);
-                let _e275 = q_1;
-                let _e277 = (*st)[_e275];
-                t_4 = (f32((_e277 >> bitcast<u32>(16i))) / 32768f);
-                let _e282 = s_4;
-                let _e284 = t_4;
-                let _e287 = s_4;
-                let _e288 = t_4;
-                let _e291 = s_4;
-                let _e292 = t_4;
-                let _e294 = s_4;
-                let _e296 = t_4;
-                w_1 = array<f32, 4>(((1f - _e282) * (1f - _e284)), (_e287 * (1f - _e288)), (_e291 * _e292), ((1f - _e294) * _e296));
-                p_1 = vec3<f32>(0f, 0f, 0f);
-                k_4 = 0i;
-                loop {
-                    let _e299 = k_4;
-                    if (_e299 < 4i) {
-                        let _e301 = k_4;
-                        let _e303 = w_1[_e301];
-                        let _e304 = k_4;
-                        let _e306 = c_1[_e304];
-                        let _e308 = p_1;
-                        p_1 = (_e308 + (_e306 * _e303));
-                        continue;
-                    } else {
-                        break;
-                    }
-                    continuing {
-                        let _e310 = k_4;
-                        k_4 = (_e310 + 1i);
-                    }
-                }
-                let _e312 = q_1;
-                let _e313 = p_1;
-                (*P)[_e312] = _e313;
-                continue;
-            } else {
-                break;
-            }
-            continuing {
-                let _e315 = q_1;
-                q_1 = (_e315 + 1i);
+                let _e246 = q_4;
+                q_4 = (_e246 + 1i);
             }
         }
     }
     return;
 }
 
-fn midST_u0028_u1_u003b_u1_u003b(a: ptr<function, u32>, b_4: ptr<function, u32>) -> u32 {
-    let _e71 = (*a);
-    let _e73 = (*b_4);
-    let _e77 = (*a);
+fn midST_u0028_u1_u003b_u1_u003b(a_1: ptr<function, u32>, b_4: ptr<function, u32>) -> u32 {
+    let _e78 = (*a_1);
     let _e80 = (*b_4);
-    return ((((_e71 & 65535u) + (_e73 & 65535u)) / 2u) | ((((_e77 >> bitcast<u32>(16i)) + (_e80 >> bitcast<u32>(16i))) / 2u) << bitcast<u32>(16i)));
+    let _e84 = (*a_1);
+    let _e87 = (*b_4);
+    return ((((_e78 & 65535u) + (_e80 & 65535u)) / 2u) | ((((_e84 >> bitcast<u32>(16i)) + (_e87 >> bitcast<u32>(16i))) / 2u) << bitcast<u32>(16i)));
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e71 = gl_GlobalInvocationID_1[1u];
-    let _e72 = (*rowInvocations);
-    let _e75 = gl_GlobalInvocationID_1[0u];
-    return ((_e71 * _e72) + _e75);
+    let _e78 = gl_GlobalInvocationID_1[1u];
+    let _e79 = (*rowInvocations);
+    let _e82 = gl_GlobalInvocationID_1[0u];
+    return ((_e78 * _e79) + _e82);
 }
 
 fn main_1() {
-    var i_2: u32;
-    var param_42: u32;
+    var i_5: u32;
+    var param_97: u32;
     var p0_: vec4<u32>;
     var p1_: vec4<u32>;
     var visible: bool;
@@ -754,357 +1534,357 @@ fn main_1() {
     var r: u32;
     var size: u32;
     var ends: vec4<f32>;
-    var st_1: array<u32, 3>;
-    var param_43: u32;
-    var param_44: u32;
+    var st_3: array<u32, 3>;
+    var param_98: u32;
+    var param_99: u32;
     var behind: u32;
     var allOut: u32;
-    var P_1: array<vec3<f32>, 3>;
-    var param_45: u32;
-    var param_46: array<u32, 3>;
-    var param_47: u32;
-    var param_48: array<vec3<f32>, 3>;
-    var k_5: i32;
-    var c_2: vec4<f32>;
+    var P_5: array<vec3<f32>, 3>;
+    var param_100: u32;
+    var param_101: array<u32, 3>;
+    var param_102: u32;
+    var param_103: array<vec3<f32>, 3>;
+    var k_8: i32;
+    var c_6: vec4<f32>;
     var o: u32;
     var px: array<vec2<f32>, 3>;
-    var local_4: vec2<f32>;
+    var local_12: vec2<f32>;
     var len: f32;
     var chord: vec2<f32>;
     var cl: f32;
     var off: vec2<f32>;
     var d_3: f32;
-    var local_5: f32;
+    var local_13: f32;
     var want: f32;
-    var k_6: i32;
+    var k_9: i32;
     var e: u32;
-    var local_6: u32;
-    var pt_2: Patch;
+    var local_14: u32;
+    var pt_3: Patch;
     var crease_2: u32;
     var alongS: bool;
     var creaseAlongS: bool;
     var most: f32;
-    var phi_989_: bool;
-    var phi_990_: bool;
-    var phi_1192_: bool;
-    var phi_1286_: bool;
+    var phi_1925_: bool;
+    var phi_1926_: bool;
+    var phi_2128_: bool;
+    var phi_2222_: bool;
 
-    let _e109 = pc.limnRowInvocations;
-    param_42 = _e109;
-    let _e110 = limnInvocationIndex_u0028_u1_u003b((&param_42));
-    i_2 = _e110;
-    let _e111 = i_2;
-    let _e113 = pc.limnCount;
-    if (_e111 >= _e113) {
+    let _e116 = pc.limnRowInvocations;
+    param_97 = _e116;
+    let _e117 = limnInvocationIndex_u0028_u1_u003b((&param_97));
+    i_5 = _e117;
+    let _e118 = i_5;
+    let _e120 = pc.limnCount;
+    if (_e118 >= _e120) {
         return;
     }
-    let _e115 = i_2;
-    let _e119 = pieces.v[(2u * _e115)];
-    p0_ = _e119;
-    let _e120 = i_2;
-    let _e125 = pieces.v[((2u * _e120) + 1u)];
-    p1_ = _e125;
-    let _e127 = p1_[0u];
-    let _e130 = cull.c[_e127];
-    let _e131 = (_e130 == 0u);
-    phi_990_ = _e131;
-    if !(_e131) {
-        let _e134 = p1_[1u];
-        let _e135 = (_e134 != 4294967295u);
-        phi_989_ = _e135;
-        if _e135 {
-            let _e137 = p1_[1u];
-            let _e140 = cull.c[_e137];
-            phi_989_ = (_e140 == 0u);
+    let _e122 = i_5;
+    let _e126 = pieces.v[(2u * _e122)];
+    p0_ = _e126;
+    let _e127 = i_5;
+    let _e132 = pieces.v[((2u * _e127) + 1u)];
+    p1_ = _e132;
+    let _e134 = p1_[0u];
+    let _e137 = cull.c[_e134];
+    let _e138 = (_e137 == 0u);
+    phi_1926_ = _e138;
+    if !(_e138) {
+        let _e141 = p1_[1u];
+        let _e142 = (_e141 != 4294967295u);
+        phi_1925_ = _e142;
+        if _e142 {
+            let _e144 = p1_[1u];
+            let _e147 = cull.c[_e144];
+            phi_1925_ = (_e147 == 0u);
         }
-        let _e143 = phi_989_;
-        phi_990_ = _e143;
+        let _e150 = phi_1925_;
+        phi_1926_ = _e150;
     }
-    let _e145 = phi_990_;
-    visible = _e145;
-    let _e147 = pc.tess;
-    let _e149 = p0_[3u];
-    cap = max(min(_e147, _e149), 1u);
+    let _e152 = phi_1926_;
+    visible = _e152;
+    let _e154 = pc.tess;
+    let _e156 = p0_[3u];
+    cap = max(min(_e154, _e156), 1u);
     r = 1u;
     size = 1u;
     ends = vec4<f32>(300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f);
-    let _e152 = visible;
-    if _e152 {
-        let _e154 = p0_[1u];
-        let _e156 = p0_[1u];
-        param_43 = _e156;
-        let _e158 = p0_[2u];
-        param_44 = _e158;
-        let _e159 = midST_u0028_u1_u003b_u1_u003b((&param_43), (&param_44));
-        let _e161 = p0_[2u];
-        st_1 = array<u32, 3>(_e154, _e159, _e161);
+    let _e159 = visible;
+    if _e159 {
+        let _e161 = p0_[1u];
+        let _e163 = p0_[1u];
+        param_98 = _e163;
+        let _e165 = p0_[2u];
+        param_99 = _e165;
+        let _e166 = midST_u0028_u1_u003b_u1_u003b((&param_98), (&param_99));
+        let _e168 = p0_[2u];
+        st_3 = array<u32, 3>(_e161, _e166, _e168);
         behind = 0u;
         allOut = 63u;
-        let _e164 = p0_[0u];
-        param_45 = _e164;
-        let _e165 = st_1;
-        param_46 = _e165;
-        let _e167 = pc.patchCount;
-        param_47 = _e167;
-        elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_u005d_u003b((&param_45), (&param_46), (&param_47), (&param_48));
-        let _e168 = param_48;
-        P_1 = _e168;
-        k_5 = 0i;
+        let _e171 = p0_[0u];
+        param_100 = _e171;
+        let _e172 = st_3;
+        param_101 = _e172;
+        let _e174 = pc.patchCount;
+        param_102 = _e174;
+        elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_u005d_u003b((&param_100), (&param_101), (&param_102), (&param_103));
+        let _e175 = param_103;
+        P_5 = _e175;
+        k_8 = 0i;
         loop {
-            let _e169 = k_5;
-            if (_e169 < 3i) {
-                let _e172 = pc.viewProj;
-                let _e173 = k_5;
-                let _e175 = P_1[_e173];
-                c_2 = (_e172 * vec4<f32>(_e175.x, _e175.y, _e175.z, 1f));
+            let _e176 = k_8;
+            if (_e176 < 3i) {
+                let _e179 = pc.viewProj;
+                let _e180 = k_8;
+                let _e182 = P_5[_e180];
+                c_6 = (_e179 * vec4<f32>(_e182.x, _e182.y, _e182.z, 1f));
                 o = 0u;
-                let _e182 = c_2[0u];
-                let _e184 = c_2[3u];
-                if (_e182 < -(_e184)) {
-                    let _e187 = o;
-                    o = (_e187 | 1u);
-                }
-                let _e190 = c_2[0u];
-                let _e192 = c_2[3u];
-                if (_e190 > _e192) {
+                let _e189 = c_6[0u];
+                let _e191 = c_6[3u];
+                if (_e189 < -(_e191)) {
                     let _e194 = o;
-                    o = (_e194 | 2u);
+                    o = (_e194 | 1u);
                 }
-                let _e197 = c_2[1u];
-                let _e199 = c_2[3u];
-                if (_e197 < -(_e199)) {
-                    let _e202 = o;
-                    o = (_e202 | 4u);
+                let _e197 = c_6[0u];
+                let _e199 = c_6[3u];
+                if (_e197 > _e199) {
+                    let _e201 = o;
+                    o = (_e201 | 2u);
                 }
-                let _e205 = c_2[1u];
-                let _e207 = c_2[3u];
-                if (_e205 > _e207) {
+                let _e204 = c_6[1u];
+                let _e206 = c_6[3u];
+                if (_e204 < -(_e206)) {
                     let _e209 = o;
-                    o = (_e209 | 8u);
+                    o = (_e209 | 4u);
                 }
-                let _e212 = c_2[2u];
-                if (_e212 < 0f) {
-                    let _e214 = o;
-                    o = (_e214 | 16u);
+                let _e212 = c_6[1u];
+                let _e214 = c_6[3u];
+                if (_e212 > _e214) {
+                    let _e216 = o;
+                    o = (_e216 | 8u);
                 }
-                let _e217 = c_2[2u];
-                let _e219 = c_2[3u];
-                if (_e217 > _e219) {
+                let _e219 = c_6[2u];
+                if (_e219 < 0f) {
                     let _e221 = o;
-                    o = (_e221 | 32u);
+                    o = (_e221 | 16u);
                 }
-                let _e223 = o;
-                let _e224 = allOut;
-                allOut = (_e224 & _e223);
-                let _e227 = c_2[3u];
-                if !((_e227 > 0.000001f)) {
-                    let _e230 = behind;
-                    behind = (_e230 + bitcast<u32>(1i));
+                let _e224 = c_6[2u];
+                let _e226 = c_6[3u];
+                if (_e224 > _e226) {
+                    let _e228 = o;
+                    o = (_e228 | 32u);
                 }
-                let _e233 = k_5;
-                let _e235 = c_2[3u];
-                if (_e235 > 0.000001f) {
-                    let _e237 = c_2;
-                    let _e240 = c_2[3u];
-                    let _e244 = pc.halfViewport;
-                    local_4 = ((_e237.xy / vec2(_e240)) * _e244);
+                let _e230 = o;
+                let _e231 = allOut;
+                allOut = (_e231 & _e230);
+                let _e234 = c_6[3u];
+                if !((_e234 > 0.000001f)) {
+                    let _e237 = behind;
+                    behind = (_e237 + bitcast<u32>(1i));
+                }
+                let _e240 = k_8;
+                let _e242 = c_6[3u];
+                if (_e242 > 0.000001f) {
+                    let _e244 = c_6;
+                    let _e247 = c_6[3u];
+                    let _e251 = pc.halfViewport;
+                    local_12 = ((_e244.xy / vec2(_e247)) * _e251);
                 } else {
-                    local_4 = vec2<f32>(0f, 0f);
+                    local_12 = vec2<f32>(0f, 0f);
                 }
-                let _e246 = local_4;
-                px[_e233] = _e246;
+                let _e253 = local_12;
+                px[_e240] = _e253;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e248 = k_5;
-                k_5 = (_e248 + 1i);
+                let _e255 = k_8;
+                k_8 = (_e255 + 1i);
             }
         }
-        let _e251 = px[0i];
-        let _e253 = px[1i];
-        let _e256 = px[1i];
-        let _e258 = px[2i];
-        len = (distance(_e251, _e253) + distance(_e256, _e258));
-        let _e261 = behind;
-        if (_e261 == 0u) {
-            let _e264 = px[0i];
-            let _e266 = px[2i];
-            let _e273 = pc.halfViewport;
-            ends = (vec4<f32>(_e264.x, _e264.y, _e266.x, _e266.y) + _e273.xyxy);
+        let _e258 = px[0i];
+        let _e260 = px[1i];
+        let _e263 = px[1i];
+        let _e265 = px[2i];
+        len = (distance(_e258, _e260) + distance(_e263, _e265));
+        let _e268 = behind;
+        if (_e268 == 0u) {
+            let _e271 = px[0i];
+            let _e273 = px[2i];
+            let _e280 = pc.halfViewport;
+            ends = (vec4<f32>(_e271.x, _e271.y, _e273.x, _e273.y) + _e280.xyxy);
         }
-        let _e276 = behind;
-        if (_e276 == 3u) {
+        let _e283 = behind;
+        if (_e283 == 3u) {
             r = 1u;
             size = 1u;
         } else {
-            let _e278 = behind;
-            let _e279 = (_e278 != 0u);
-            phi_1192_ = _e279;
-            if !(_e279) {
-                let _e281 = len;
-                phi_1192_ = !((_e281 < 1000000000f));
+            let _e285 = behind;
+            let _e286 = (_e285 != 0u);
+            phi_2128_ = _e286;
+            if !(_e286) {
+                let _e288 = len;
+                phi_2128_ = !((_e288 < 1000000000f));
             }
-            let _e285 = phi_1192_;
-            if _e285 {
-                let _e286 = cap;
-                r = _e286;
-                let _e287 = cap;
-                size = _e287;
+            let _e292 = phi_2128_;
+            if _e292 {
+                let _e293 = cap;
+                r = _e293;
+                let _e294 = cap;
+                size = _e294;
             } else {
-                let _e289 = px[2i];
-                let _e291 = px[0i];
-                chord = (_e289 - _e291);
-                let _e293 = chord;
-                cl = length(_e293);
-                let _e296 = px[1i];
+                let _e296 = px[2i];
                 let _e298 = px[0i];
-                let _e300 = px[2i];
-                off = (_e296 - ((_e298 + _e300) * 0.5f));
-                let _e304 = cl;
-                if (_e304 > 0.000001f) {
-                    let _e307 = chord[0u];
-                    let _e309 = off[1u];
-                    let _e312 = chord[1u];
-                    let _e314 = off[0u];
-                    let _e318 = cl;
-                    local_5 = (abs(((_e307 * _e309) - (_e312 * _e314))) / _e318);
+                chord = (_e296 - _e298);
+                let _e300 = chord;
+                cl = length(_e300);
+                let _e303 = px[1i];
+                let _e305 = px[0i];
+                let _e307 = px[2i];
+                off = (_e303 - ((_e305 + _e307) * 0.5f));
+                let _e311 = cl;
+                if (_e311 > 0.000001f) {
+                    let _e314 = chord[0u];
+                    let _e316 = off[1u];
+                    let _e319 = chord[1u];
+                    let _e321 = off[0u];
+                    let _e325 = cl;
+                    local_13 = (abs(((_e314 * _e316) - (_e319 * _e321))) / _e325);
                 } else {
-                    let _e320 = off;
-                    local_5 = length(_e320);
+                    let _e327 = off;
+                    local_13 = length(_e327);
                 }
-                let _e322 = local_5;
-                d_3 = _e322;
-                let _e323 = len;
-                let _e325 = pc.edgePixels;
-                let _e328 = d_3;
-                let _e330 = pc.edgePixels;
-                want = max(ceil((_e323 / _e325)), ceil(sqrt((_e328 / (0.025f * _e330)))));
-                k_6 = 0i;
+                let _e329 = local_13;
+                d_3 = _e329;
+                let _e330 = len;
+                let _e332 = pc.edgePixels;
+                let _e335 = d_3;
+                let _e337 = pc.edgePixels;
+                want = max(ceil((_e330 / _e332)), ceil(sqrt((_e335 / (0.025f * _e337)))));
+                k_9 = 0i;
                 loop {
-                    let _e336 = k_6;
-                    if (_e336 < 2i) {
-                        let _e338 = k_6;
-                        if (_e338 == 0i) {
-                            let _e341 = p1_[0u];
-                            local_6 = _e341;
+                    let _e343 = k_9;
+                    if (_e343 < 2i) {
+                        let _e345 = k_9;
+                        if (_e345 == 0i) {
+                            let _e348 = p1_[0u];
+                            local_14 = _e348;
                         } else {
-                            let _e343 = p1_[1u];
-                            local_6 = _e343;
+                            let _e350 = p1_[1u];
+                            local_14 = _e350;
                         }
-                        let _e344 = local_6;
-                        e = _e344;
-                        let _e345 = e;
-                        let _e346 = (_e345 == 4294967295u);
-                        phi_1286_ = _e346;
-                        if !(_e346) {
-                            let _e348 = e;
-                            let _e350 = pc.patchCount;
-                            phi_1286_ = (_e348 >= _e350);
+                        let _e351 = local_14;
+                        e = _e351;
+                        let _e352 = e;
+                        let _e353 = (_e352 == 4294967295u);
+                        phi_2222_ = _e353;
+                        if !(_e353) {
+                            let _e355 = e;
+                            let _e357 = pc.patchCount;
+                            phi_2222_ = (_e355 >= _e357);
                         }
-                        let _e353 = phi_1286_;
-                        if _e353 {
+                        let _e360 = phi_2222_;
+                        if _e360 {
                             continue;
                         }
-                        let _e354 = e;
-                        let _e357 = patches.p[_e354];
-                        pt_2.cv[0i] = _e357.cv[0];
-                        pt_2.cv[1i] = _e357.cv[1];
-                        pt_2.cv[2i] = _e357.cv[2];
-                        pt_2.cv[3i] = _e357.cv[3];
-                        pt_2.cv[4i] = _e357.cv[4];
-                        pt_2.cv[5i] = _e357.cv[5];
-                        pt_2.cv[6i] = _e357.cv[6];
-                        pt_2.cv[7i] = _e357.cv[7];
-                        pt_2.cv[8i] = _e357.cv[8];
-                        pt_2.cv[9i] = _e357.cv[9];
-                        pt_2.cv[10i] = _e357.cv[10];
-                        pt_2.cv[11i] = _e357.cv[11];
-                        pt_2.cv[12i] = _e357.cv[12];
-                        pt_2.cv[13i] = _e357.cv[13];
-                        pt_2.cv[14i] = _e357.cv[14];
-                        pt_2.cv[15i] = _e357.cv[15];
-                        pt_2.ptex = _e357.ptex;
-                        pt_2.u0_ = _e357.u0_;
-                        pt_2.v0_ = _e357.v0_;
-                        pt_2.size = _e357.size;
-                        pt_2.levelBoundary = _e357.levelBoundary;
-                        pt_2.sharpness = _e357.sharpness;
-                        pt_2.pad1_ = _e357.pad1_;
-                        pt_2.pad2_ = _e357.pad2_;
-                        let _e409 = pt_2.levelBoundary;
-                        crease_2 = ((_e409 >> bitcast<u32>(16i)) & 15u);
-                        let _e413 = crease_2;
-                        if (_e413 == 0u) {
-                            let _e415 = k_6;
-                            if (_e415 == 0i) {
+                        let _e361 = e;
+                        let _e364 = patches.p[_e361];
+                        pt_3.cv[0i] = _e364.cv[0];
+                        pt_3.cv[1i] = _e364.cv[1];
+                        pt_3.cv[2i] = _e364.cv[2];
+                        pt_3.cv[3i] = _e364.cv[3];
+                        pt_3.cv[4i] = _e364.cv[4];
+                        pt_3.cv[5i] = _e364.cv[5];
+                        pt_3.cv[6i] = _e364.cv[6];
+                        pt_3.cv[7i] = _e364.cv[7];
+                        pt_3.cv[8i] = _e364.cv[8];
+                        pt_3.cv[9i] = _e364.cv[9];
+                        pt_3.cv[10i] = _e364.cv[10];
+                        pt_3.cv[11i] = _e364.cv[11];
+                        pt_3.cv[12i] = _e364.cv[12];
+                        pt_3.cv[13i] = _e364.cv[13];
+                        pt_3.cv[14i] = _e364.cv[14];
+                        pt_3.cv[15i] = _e364.cv[15];
+                        pt_3.ptex = _e364.ptex;
+                        pt_3.u0_ = _e364.u0_;
+                        pt_3.v0_ = _e364.v0_;
+                        pt_3.size = _e364.size;
+                        pt_3.levelBoundary = _e364.levelBoundary;
+                        pt_3.sharpness = _e364.sharpness;
+                        pt_3.pad1_ = _e364.pad1_;
+                        pt_3.pad2_ = _e364.pad2_;
+                        let _e416 = pt_3.levelBoundary;
+                        crease_2 = ((_e416 >> bitcast<u32>(16i)) & 15u);
+                        let _e420 = crease_2;
+                        if (_e420 == 0u) {
+                            let _e422 = k_9;
+                            if (_e422 == 0i) {
                                 continue;
                             }
                             break;
                         }
-                        let _e417 = k_6;
-                        if (_e417 == 0i) {
-                            let _e420 = p0_[1u];
-                            let _e423 = p0_[2u];
-                            alongS = ((_e420 & 65535u) != (_e423 & 65535u));
-                            let _e426 = crease_2;
-                            creaseAlongS = ((_e426 & 5u) != 0u);
-                            let _e429 = alongS;
-                            let _e430 = creaseAlongS;
-                            if (_e429 == _e430) {
+                        let _e424 = k_9;
+                        if (_e424 == 0i) {
+                            let _e427 = p0_[1u];
+                            let _e430 = p0_[2u];
+                            alongS = ((_e427 & 65535u) != (_e430 & 65535u));
+                            let _e433 = crease_2;
+                            creaseAlongS = ((_e433 & 5u) != 0u);
+                            let _e436 = alongS;
+                            let _e437 = creaseAlongS;
+                            if (_e436 == _e437) {
                                 break;
                             }
                         }
-                        let _e433 = pt_2.sharpness;
-                        most = exp2(ceil(_e433));
-                        let _e436 = k_6;
-                        if (_e436 == 0i) {
-                            let _e438 = want;
-                            let _e439 = len;
-                            let _e442 = pc.edgePixels;
-                            let _e445 = most;
+                        let _e440 = pt_3.sharpness;
+                        most = exp2(ceil(_e440));
+                        let _e443 = k_9;
+                        if (_e443 == 0i) {
+                            let _e445 = want;
                             let _e446 = len;
-                            want = max(_e438, max(ceil(((2f * _e439) / _e442)), min(_e445, ceil(sqrt((_e446 / 0.25f))))));
+                            let _e449 = pc.edgePixels;
+                            let _e452 = most;
+                            let _e453 = len;
+                            want = max(_e445, max(ceil(((2f * _e446) / _e449)), min(_e452, ceil(sqrt((_e453 / 0.25f))))));
                         } else {
-                            let _e453 = want;
-                            let _e454 = most;
-                            let _e455 = len;
-                            want = max(_e453, min(_e454, ceil((_e455 / 1f))));
+                            let _e460 = want;
+                            let _e461 = most;
+                            let _e462 = len;
+                            want = max(_e460, min(_e461, ceil((_e462 / 1f))));
                         }
                         break;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e460 = k_6;
-                        k_6 = (_e460 + 1i);
+                        let _e467 = k_9;
+                        k_9 = (_e467 + 1i);
                     }
                 }
-                let _e463 = pc.texels;
-                if (_e463 > 0f) {
-                    let _e465 = want;
-                    let _e467 = p1_[2u];
-                    let _e470 = pc.texels;
-                    let _e473 = len;
-                    want = max(_e465, min(ceil((bitcast<f32>(_e467) * _e470)), ceil((0.5f * _e473))));
+                let _e470 = pc.texels;
+                if (_e470 > 0f) {
+                    let _e472 = want;
+                    let _e474 = p1_[2u];
+                    let _e477 = pc.texels;
+                    let _e480 = len;
+                    want = max(_e472, min(ceil((bitcast<f32>(_e474) * _e477)), ceil((0.5f * _e480))));
                 }
-                let _e478 = want;
-                let _e479 = cap;
-                size = u32(clamp(_e478, 1f, f32(_e479)));
-                let _e483 = allOut;
-                let _e485 = size;
-                r = select(_e485, 1u, (_e483 != 0u));
+                let _e485 = want;
+                let _e486 = cap;
+                size = u32(clamp(_e485, 1f, f32(_e486)));
+                let _e490 = allOut;
+                let _e492 = size;
+                r = select(_e492, 1u, (_e490 != 0u));
             }
         }
     }
-    let _e487 = i_2;
-    let _e488 = r;
-    let _e489 = size;
-    rates.r[_e487] = (_e488 | (_e489 << bitcast<u32>(16i)));
-    let _e495 = i_2;
-    let _e496 = ends;
-    pieceEnds.v[_e495] = _e496;
+    let _e494 = i_5;
+    let _e495 = r;
+    let _e496 = size;
+    rates.r[_e494] = (_e495 | (_e496 << bitcast<u32>(16i)));
+    let _e502 = i_5;
+    let _e503 = ends;
+    pieceEnds.v[_e502] = _e503;
     return;
 }
 

@@ -20,12 +20,16 @@ struct SurfaceSample {
     level: u32,
 }
 
+struct Vertices {
+    p: array<vec4<f32>>,
+}
+
 struct Patches {
     p: array<Patch>,
 }
 
-struct Vertices {
-    p: array<vec4<f32>>,
+struct Limits {
+    v: array<vec4<f32>>,
 }
 
 struct IrregularFace {
@@ -38,10 +42,6 @@ struct IrregularFace {
 
 struct Irregulars {
     f: array<IrregularFace>,
-}
-
-struct Limits {
-    v: array<vec4<f32>>,
 }
 
 struct TessVertices {
@@ -69,14 +69,14 @@ struct Info {
 }
 
 var<private> gl_GlobalInvocationID_1: vec3<u32>;
-@group(0) @binding(1) 
-var<storage, read> patches: Patches;
 @group(0) @binding(0) 
 var<storage, read> vertices: Vertices;
-@group(0) @binding(2) 
-var<storage, read> irregulars: Irregulars;
+@group(0) @binding(1) 
+var<storage, read> patches: Patches;
 @group(0) @binding(3) 
 var<storage, read> limits: Limits;
+@group(0) @binding(2) 
+var<storage, read> irregulars: Irregulars;
 @group(0) @binding(4) 
 var<storage, read> tessVertices: TessVertices;
 @group(3) @binding(0) var<uniform> pc: Push;
@@ -92,38 +92,38 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
     var t3_: f32;
     var s: f32;
 
-    let _e65 = (*t);
-    let _e66 = (*t);
-    t2_ = (_e65 * _e66);
-    let _e68 = t2_;
-    let _e69 = (*t);
-    t3_ = (_e68 * _e69);
-    let _e71 = (*t);
-    s = (1f - _e71);
-    let _e73 = s;
-    let _e74 = s;
-    let _e76 = s;
-    (*b)[0i] = (((_e73 * _e74) * _e76) / 6f);
-    let _e80 = t3_;
-    let _e82 = t2_;
-    (*b)[1i] = ((((3f * _e80) - (6f * _e82)) + 4f) / 6f);
-    let _e88 = t3_;
-    let _e90 = t2_;
-    let _e93 = (*t);
-    (*b)[2i] = (((((-3f * _e88) + (3f * _e90)) + (3f * _e93)) + 1f) / 6f);
-    let _e99 = t3_;
-    (*b)[3i] = (_e99 / 6f);
-    let _e102 = s;
-    let _e104 = s;
-    (*d)[0i] = ((-(_e102) * _e104) / 2f);
-    let _e108 = t2_;
-    let _e110 = (*t);
-    (*d)[1i] = (((9f * _e108) - (12f * _e110)) / 6f);
-    let _e115 = t2_;
-    let _e117 = (*t);
-    (*d)[2i] = ((((-9f * _e115) + (6f * _e117)) + 3f) / 6f);
-    let _e123 = t2_;
-    (*d)[3i] = (_e123 / 2f);
+    let _e74 = (*t);
+    let _e75 = (*t);
+    t2_ = (_e74 * _e75);
+    let _e77 = t2_;
+    let _e78 = (*t);
+    t3_ = (_e77 * _e78);
+    let _e80 = (*t);
+    s = (1f - _e80);
+    let _e82 = s;
+    let _e83 = s;
+    let _e85 = s;
+    (*b)[0i] = (((_e82 * _e83) * _e85) / 6f);
+    let _e89 = t3_;
+    let _e91 = t2_;
+    (*b)[1i] = ((((3f * _e89) - (6f * _e91)) + 4f) / 6f);
+    let _e97 = t3_;
+    let _e99 = t2_;
+    let _e102 = (*t);
+    (*b)[2i] = (((((-3f * _e97) + (3f * _e99)) + (3f * _e102)) + 1f) / 6f);
+    let _e108 = t3_;
+    (*b)[3i] = (_e108 / 6f);
+    let _e111 = s;
+    let _e113 = s;
+    (*d)[0i] = ((-(_e111) * _e113) / 2f);
+    let _e117 = t2_;
+    let _e119 = (*t);
+    (*d)[1i] = (((9f * _e117) - (12f * _e119)) / 6f);
+    let _e124 = t2_;
+    let _e126 = (*t);
+    (*d)[2i] = ((((-9f * _e124) + (6f * _e126)) + 3f) / 6f);
+    let _e132 = t2_;
+    (*d)[3i] = (_e132 / 2f);
     return;
 }
 
@@ -150,74 +150,74 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var k: i32;
 
     M = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
-    let _e83 = (*sharpness);
-    s_1 = _e83;
+    let _e92 = (*sharpness);
+    s_1 = _e92;
     scale = 1f;
     i = 0i;
     loop {
-        let _e84 = i;
-        let _e86 = s_1;
-        if ((_e84 < 12i) && (_e86 > 0f)) {
-            let _e89 = (*t_1);
-            left = (_e89 < 0.5f);
-            let _e91 = s_1;
-            w = min(_e91, 1f);
-            let _e94 = M[0i];
-            let _e96 = M[1i];
-            e01_ = ((_e94 + _e96) * 0.5f);
-            let _e100 = M[1i];
-            let _e102 = M[2i];
-            e12_ = ((_e100 + _e102) * 0.5f);
-            let _e106 = M[2i];
-            let _e108 = M[3i];
-            e23_ = ((_e106 + _e108) * 0.5f);
-            let _e111 = w;
-            let _e113 = M[1i];
-            let _e115 = w;
-            let _e118 = M[0i];
-            let _e120 = M[1i];
-            let _e124 = M[2i];
-            crease = ((_e113 * _e111) + ((((_e118 + (_e120 * 6f)) + _e124) * (1f - _e115)) / vec4(8f)));
-            let _e131 = M[1i];
+        let _e93 = i;
+        let _e95 = s_1;
+        if ((_e93 < 12i) && (_e95 > 0f)) {
+            let _e98 = (*t_1);
+            left = (_e98 < 0.5f);
+            let _e100 = s_1;
+            w = min(_e100, 1f);
+            let _e103 = M[0i];
+            let _e105 = M[1i];
+            e01_ = ((_e103 + _e105) * 0.5f);
+            let _e109 = M[1i];
+            let _e111 = M[2i];
+            e12_ = ((_e109 + _e111) * 0.5f);
+            let _e115 = M[2i];
+            let _e117 = M[3i];
+            e23_ = ((_e115 + _e117) * 0.5f);
+            let _e120 = w;
+            let _e122 = M[1i];
+            let _e124 = w;
+            let _e127 = M[0i];
+            let _e129 = M[1i];
             let _e133 = M[2i];
-            let _e137 = M[3i];
-            v2_ = (((_e131 + (_e133 * 6f)) + _e137) / vec4(8f));
-            let _e141 = left;
-            if _e141 {
-                let _e142 = e01_;
-                M[0i] = _e142;
-                let _e144 = crease;
-                M[1i] = _e144;
-                let _e146 = e12_;
-                M[2i] = _e146;
-                let _e148 = v2_;
-                M[3i] = _e148;
+            crease = ((_e122 * _e120) + ((((_e127 + (_e129 * 6f)) + _e133) * (1f - _e124)) / vec4(8f)));
+            let _e140 = M[1i];
+            let _e142 = M[2i];
+            let _e146 = M[3i];
+            v2_ = (((_e140 + (_e142 * 6f)) + _e146) / vec4(8f));
+            let _e150 = left;
+            if _e150 {
+                let _e151 = e01_;
+                M[0i] = _e151;
+                let _e153 = crease;
+                M[1i] = _e153;
+                let _e155 = e12_;
+                M[2i] = _e155;
+                let _e157 = v2_;
+                M[3i] = _e157;
             } else {
-                let _e150 = crease;
-                M[0i] = _e150;
-                let _e152 = e12_;
-                M[1i] = _e152;
-                let _e154 = v2_;
-                M[2i] = _e154;
-                let _e156 = e23_;
-                M[3i] = _e156;
+                let _e159 = crease;
+                M[0i] = _e159;
+                let _e161 = e12_;
+                M[1i] = _e161;
+                let _e163 = v2_;
+                M[2i] = _e163;
+                let _e165 = e23_;
+                M[3i] = _e165;
             }
-            let _e158 = s_1;
-            s_1 = (_e158 - 1f);
-            let _e160 = scale;
-            scale = (_e160 * 2f);
-            let _e162 = left;
-            if _e162 {
-                let _e163 = (*t_1);
-                local = (2f * _e163);
+            let _e167 = s_1;
+            s_1 = (_e167 - 1f);
+            let _e169 = scale;
+            scale = (_e169 * 2f);
+            let _e171 = left;
+            if _e171 {
+                let _e172 = (*t_1);
+                local = (2f * _e172);
             } else {
-                let _e165 = (*t_1);
-                local = ((2f * _e165) - 1f);
+                let _e174 = (*t_1);
+                local = ((2f * _e174) - 1f);
             }
-            let _e168 = local;
-            (*t_1) = _e168;
-            let _e169 = left;
-            if !(_e169) {
+            let _e177 = local;
+            (*t_1) = _e177;
+            let _e178 = left;
+            if !(_e178) {
                 break;
             }
             continue;
@@ -225,55 +225,55 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             break;
         }
         continuing {
-            let _e171 = i;
-            i = (_e171 + 1i);
+            let _e180 = i;
+            i = (_e180 + 1i);
         }
     }
-    let _e173 = (*t_1);
-    param = _e173;
+    let _e182 = (*t_1);
+    param = _e182;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param), (&param_1), (&param_2));
-    let _e174 = param_1;
-    bt = _e174;
-    let _e175 = param_2;
-    dt = _e175;
-    let _e177 = bt[0i];
-    let _e179 = M[0i];
-    let _e182 = bt[1i];
-    let _e184 = M[1i];
-    let _e188 = bt[2i];
-    let _e190 = M[2i];
-    let _e194 = bt[3i];
-    let _e196 = M[3i];
-    B = ((((_e179 * _e177) + (_e184 * _e182)) + (_e190 * _e188)) + (_e196 * _e194));
-    let _e199 = scale;
-    let _e201 = dt[0i];
-    let _e203 = M[0i];
-    let _e206 = dt[1i];
-    let _e208 = M[1i];
-    let _e212 = dt[2i];
-    let _e214 = M[2i];
-    let _e218 = dt[3i];
-    let _e220 = M[3i];
-    D = (((((_e203 * _e201) + (_e208 * _e206)) + (_e214 * _e212)) + (_e220 * _e218)) * _e199);
+    let _e183 = param_1;
+    bt = _e183;
+    let _e184 = param_2;
+    dt = _e184;
+    let _e186 = bt[0i];
+    let _e188 = M[0i];
+    let _e191 = bt[1i];
+    let _e193 = M[1i];
+    let _e197 = bt[2i];
+    let _e199 = M[2i];
+    let _e203 = bt[3i];
+    let _e205 = M[3i];
+    B = ((((_e188 * _e186) + (_e193 * _e191)) + (_e199 * _e197)) + (_e205 * _e203));
+    let _e208 = scale;
+    let _e210 = dt[0i];
+    let _e212 = M[0i];
+    let _e215 = dt[1i];
+    let _e217 = M[1i];
+    let _e221 = dt[2i];
+    let _e223 = M[2i];
+    let _e227 = dt[3i];
+    let _e229 = M[3i];
+    D = (((((_e212 * _e210) + (_e217 * _e215)) + (_e223 * _e221)) + (_e229 * _e227)) * _e208);
     k = 0i;
     loop {
-        let _e224 = k;
-        if (_e224 < 4i) {
-            let _e226 = k;
-            let _e227 = k;
-            let _e229 = B[_e227];
-            (*b_1)[_e226] = _e229;
-            let _e231 = k;
-            let _e232 = k;
-            let _e234 = D[_e232];
-            (*d_1)[_e231] = _e234;
+        let _e233 = k;
+        if (_e233 < 4i) {
+            let _e235 = k;
+            let _e236 = k;
+            let _e238 = B[_e236];
+            (*b_1)[_e235] = _e238;
+            let _e240 = k;
+            let _e241 = k;
+            let _e243 = D[_e241];
+            (*d_1)[_e240] = _e243;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e236 = k;
-            k = (_e236 + 1i);
+            let _e245 = k;
+            k = (_e245 + 1i);
         }
     }
     return;
@@ -291,84 +291,84 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
     var local_2: f32;
     var local_3: f32;
 
-    let _e74 = (*atEnd);
-    if _e74 {
-        let _e75 = (*x);
-        local_1 = (1f - _e75);
+    let _e83 = (*atEnd);
+    if _e83 {
+        let _e84 = (*x);
+        local_1 = (1f - _e84);
     } else {
-        let _e77 = (*x);
-        local_1 = _e77;
+        let _e86 = (*x);
+        local_1 = _e86;
     }
-    let _e78 = local_1;
-    param_3 = _e78;
-    let _e79 = (*sharpness_1);
-    param_4 = _e79;
+    let _e87 = local_1;
+    param_3 = _e87;
+    let _e88 = (*sharpness_1);
+    param_4 = _e88;
     creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_3), (&param_4), (&param_5), (&param_6));
-    let _e80 = param_5;
-    cb = _e80;
-    let _e81 = param_6;
-    cd = _e81;
+    let _e89 = param_5;
+    cb = _e89;
+    let _e90 = param_6;
+    cd = _e90;
     k_1 = 0i;
     loop {
-        let _e82 = k_1;
-        if (_e82 < 4i) {
-            let _e84 = k_1;
-            let _e85 = (*atEnd);
-            if _e85 {
-                let _e86 = k_1;
-                let _e89 = cb[(3i - _e86)];
-                local_2 = _e89;
+        let _e91 = k_1;
+        if (_e91 < 4i) {
+            let _e93 = k_1;
+            let _e94 = (*atEnd);
+            if _e94 {
+                let _e95 = k_1;
+                let _e98 = cb[(3i - _e95)];
+                local_2 = _e98;
             } else {
-                let _e90 = k_1;
-                let _e92 = cb[_e90];
-                local_2 = _e92;
+                let _e99 = k_1;
+                let _e101 = cb[_e99];
+                local_2 = _e101;
             }
-            let _e93 = local_2;
-            (*b_2)[_e84] = _e93;
-            let _e95 = k_1;
-            let _e96 = (*atEnd);
-            if _e96 {
-                let _e97 = k_1;
-                let _e100 = cd[(3i - _e97)];
-                local_3 = -(_e100);
+            let _e102 = local_2;
+            (*b_2)[_e93] = _e102;
+            let _e104 = k_1;
+            let _e105 = (*atEnd);
+            if _e105 {
+                let _e106 = k_1;
+                let _e109 = cd[(3i - _e106)];
+                local_3 = -(_e109);
             } else {
-                let _e102 = k_1;
-                let _e104 = cd[_e102];
-                local_3 = _e104;
+                let _e111 = k_1;
+                let _e113 = cd[_e111];
+                local_3 = _e113;
             }
-            let _e105 = local_3;
-            (*d_2)[_e95] = _e105;
+            let _e114 = local_3;
+            (*d_2)[_e104] = _e114;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e107 = k_1;
-            k_1 = (_e107 + 1i);
+            let _e116 = k_1;
+            k_1 = (_e116 + 1i);
         }
     }
     return;
 }
 
 fn foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b(b_3: ptr<function, array<f32, 4>>, atStart: ptr<function, bool>, atEnd_1: ptr<function, bool>) {
-    let _e62 = (*atStart);
-    if _e62 {
-        let _e64 = (*b_3)[0i];
-        let _e67 = (*b_3)[1i];
-        (*b_3)[1i] = (_e67 + (2f * _e64));
-        let _e71 = (*b_3)[0i];
-        let _e73 = (*b_3)[2i];
-        (*b_3)[2i] = (_e73 - _e71);
+    let _e71 = (*atStart);
+    if _e71 {
+        let _e73 = (*b_3)[0i];
+        let _e76 = (*b_3)[1i];
+        (*b_3)[1i] = (_e76 + (2f * _e73));
+        let _e80 = (*b_3)[0i];
+        let _e82 = (*b_3)[2i];
+        (*b_3)[2i] = (_e82 - _e80);
         (*b_3)[0i] = 0f;
     }
-    let _e77 = (*atEnd_1);
-    if _e77 {
-        let _e79 = (*b_3)[3i];
-        let _e82 = (*b_3)[2i];
-        (*b_3)[2i] = (_e82 + (2f * _e79));
-        let _e86 = (*b_3)[3i];
-        let _e88 = (*b_3)[1i];
-        (*b_3)[1i] = (_e88 - _e86);
+    let _e86 = (*atEnd_1);
+    if _e86 {
+        let _e88 = (*b_3)[3i];
+        let _e91 = (*b_3)[2i];
+        (*b_3)[2i] = (_e91 + (2f * _e88));
+        let _e95 = (*b_3)[3i];
+        let _e97 = (*b_3)[1i];
+        (*b_3)[1i] = (_e97 - _e95);
         (*b_3)[3i] = 0f;
     }
     return;
@@ -406,96 +406,92 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_33: array<f32, 4>;
     var param_34: array<f32, 4>;
 
-    let _e97 = (*pt).levelBoundary;
-    mask = ((_e97 >> bitcast<u32>(8i)) & 15u);
-    let _e101 = (*s_2);
-    param_7 = _e101;
+    let _e106 = (*pt).levelBoundary;
+    mask = ((_e106 >> bitcast<u32>(8i)) & 15u);
+    let _e110 = (*s_2);
+    param_7 = _e110;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_7), (&param_8), (&param_9));
-    let _e102 = param_8;
-    (*bu) = _e102;
-    let _e103 = param_9;
-    (*du) = _e103;
-    let _e104 = (*t_2);
-    param_10 = _e104;
+    let _e111 = param_8;
+    (*bu) = _e111;
+    let _e112 = param_9;
+    (*du) = _e112;
+    let _e113 = (*t_2);
+    param_10 = _e113;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_10), (&param_11), (&param_12));
-    let _e105 = param_11;
-    (*bv) = _e105;
-    let _e106 = param_12;
-    (*dv) = _e106;
-    let _e107 = mask;
-    let _e110 = mask;
-    let _e113 = (*bu);
-    param_13 = _e113;
-    param_14 = ((_e107 & 8u) != 0u);
-    param_15 = ((_e110 & 2u) != 0u);
+    let _e114 = param_11;
+    (*bv) = _e114;
+    let _e115 = param_12;
+    (*dv) = _e115;
+    let _e116 = mask;
+    let _e119 = mask;
+    let _e122 = (*bu);
+    param_13 = _e122;
+    param_14 = ((_e116 & 8u) != 0u);
+    param_15 = ((_e119 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_13), (&param_14), (&param_15));
-    let _e114 = param_13;
-    (*bu) = _e114;
-    let _e115 = mask;
-    let _e118 = mask;
-    let _e121 = (*du);
-    param_16 = _e121;
-    param_17 = ((_e115 & 8u) != 0u);
-    param_18 = ((_e118 & 2u) != 0u);
+    let _e123 = param_13;
+    (*bu) = _e123;
+    let _e124 = mask;
+    let _e127 = mask;
+    let _e130 = (*du);
+    param_16 = _e130;
+    param_17 = ((_e124 & 8u) != 0u);
+    param_18 = ((_e127 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
-    let _e122 = param_16;
-    (*du) = _e122;
-    let _e123 = mask;
-    let _e126 = mask;
-    let _e129 = (*bv);
-    param_19 = _e129;
-    param_20 = ((_e123 & 1u) != 0u);
-    param_21 = ((_e126 & 4u) != 0u);
+    let _e131 = param_16;
+    (*du) = _e131;
+    let _e132 = mask;
+    let _e135 = mask;
+    let _e138 = (*bv);
+    param_19 = _e138;
+    param_20 = ((_e132 & 1u) != 0u);
+    param_21 = ((_e135 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
-    let _e130 = param_19;
-    (*bv) = _e130;
-    let _e131 = mask;
-    let _e134 = mask;
-    let _e137 = (*dv);
-    param_22 = _e137;
-    param_23 = ((_e131 & 1u) != 0u);
-    param_24 = ((_e134 & 4u) != 0u);
+    let _e139 = param_19;
+    (*bv) = _e139;
+    let _e140 = mask;
+    let _e143 = mask;
+    let _e146 = (*dv);
+    param_22 = _e146;
+    param_23 = ((_e140 & 1u) != 0u);
+    param_24 = ((_e143 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_22), (&param_23), (&param_24));
-    let _e138 = param_22;
-    (*dv) = _e138;
-    let _e140 = (*pt).levelBoundary;
-    crease_1 = ((_e140 >> bitcast<u32>(16i)) & 15u);
-    let _e144 = crease_1;
-    if ((_e144 & 5u) != 0u) {
-        let _e147 = crease_1;
-        let _e150 = (*t_2);
-        param_25 = _e150;
-        param_26 = ((_e147 & 4u) != 0u);
-        let _e152 = (*pt).sharpness;
-        param_27 = _e152;
+    let _e147 = param_22;
+    (*dv) = _e147;
+    let _e149 = (*pt).levelBoundary;
+    crease_1 = ((_e149 >> bitcast<u32>(16i)) & 15u);
+    let _e153 = crease_1;
+    if ((_e153 & 5u) != 0u) {
+        let _e156 = crease_1;
+        let _e159 = (*t_2);
+        param_25 = _e159;
+        param_26 = ((_e156 & 4u) != 0u);
+        let _e161 = (*pt).sharpness;
+        param_27 = _e161;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_25), (&param_26), (&param_27), (&param_28), (&param_29));
-        let _e153 = param_28;
-        (*bv) = _e153;
-        let _e154 = param_29;
-        (*dv) = _e154;
+        let _e162 = param_28;
+        (*bv) = _e162;
+        let _e163 = param_29;
+        (*dv) = _e163;
     }
-    let _e155 = crease_1;
-    if ((_e155 & 10u) != 0u) {
-        let _e158 = crease_1;
-        let _e161 = (*s_2);
-        param_30 = _e161;
-        param_31 = ((_e158 & 2u) != 0u);
-        let _e163 = (*pt).sharpness;
-        param_32 = _e163;
+    let _e164 = crease_1;
+    if ((_e164 & 10u) != 0u) {
+        let _e167 = crease_1;
+        let _e170 = (*s_2);
+        param_30 = _e170;
+        param_31 = ((_e167 & 2u) != 0u);
+        let _e172 = (*pt).sharpness;
+        param_32 = _e172;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_30), (&param_31), (&param_32), (&param_33), (&param_34));
-        let _e164 = param_33;
-        (*bu) = _e164;
-        let _e165 = param_34;
-        (*du) = _e165;
+        let _e173 = param_33;
+        (*bu) = _e173;
+        let _e174 = param_34;
+        (*du) = _e174;
     }
     return;
 }
 
-fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>, st: ptr<function, u32>, patchCount: ptr<function, u32>) -> SurfaceSample {
-    var tv: vec2<u32>;
-    var s_3: f32;
-    var t_3: f32;
-    var pt_1: Patch;
+fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(pt_1: ptr<function, Patch>, s_3: ptr<function, f32>, t_3: ptr<function, f32>, P: ptr<function, vec3<f32>>, n: ptr<function, vec3<f32>>) {
     var bu_1: array<f32, 4>;
     var du_1: array<f32, 4>;
     var bv_1: array<f32, 4>;
@@ -507,7 +503,6 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_39: array<f32, 4>;
     var param_40: array<f32, 4>;
     var param_41: array<f32, 4>;
-    var P: vec3<f32>;
     var Du: vec3<f32>;
     var Dv: vec3<f32>;
     var j: i32;
@@ -516,290 +511,1002 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var rowDv: vec3<f32>;
     var i_1: i32;
     var c: vec3<f32>;
-    var n: vec3<f32>;
-    var r: SurfaceSample;
-    var local_4: vec3<f32>;
-    var q: IrregularFace;
-    var w_1: array<f32, 4>;
-    var P_1: vec3<f32>;
-    var N: vec3<f32>;
-    var k_2: i32;
-    var local_5: vec3<f32>;
 
-    let _e95 = (*element);
-    let _e96 = (*st);
-    tv = vec2<u32>(_e95, _e96);
-    let _e99 = tv[1u];
-    s_3 = (f32((_e99 & 65535u)) / 32768f);
-    let _e104 = tv[1u];
-    t_3 = (f32((_e104 >> bitcast<u32>(16i))) / 32768f);
-    let _e110 = tv[0u];
-    let _e111 = (*patchCount);
-    if (_e110 < _e111) {
-        let _e114 = tv[0u];
-        let _e117 = patches.p[_e114];
-        pt_1.cv[0i] = _e117.cv[0];
-        pt_1.cv[1i] = _e117.cv[1];
-        pt_1.cv[2i] = _e117.cv[2];
-        pt_1.cv[3i] = _e117.cv[3];
-        pt_1.cv[4i] = _e117.cv[4];
-        pt_1.cv[5i] = _e117.cv[5];
-        pt_1.cv[6i] = _e117.cv[6];
-        pt_1.cv[7i] = _e117.cv[7];
-        pt_1.cv[8i] = _e117.cv[8];
-        pt_1.cv[9i] = _e117.cv[9];
-        pt_1.cv[10i] = _e117.cv[10];
-        pt_1.cv[11i] = _e117.cv[11];
-        pt_1.cv[12i] = _e117.cv[12];
-        pt_1.cv[13i] = _e117.cv[13];
-        pt_1.cv[14i] = _e117.cv[14];
-        pt_1.cv[15i] = _e117.cv[15];
-        pt_1.ptex = _e117.ptex;
-        pt_1.u0_ = _e117.u0_;
-        pt_1.v0_ = _e117.v0_;
-        pt_1.size = _e117.size;
-        pt_1.levelBoundary = _e117.levelBoundary;
-        pt_1.sharpness = _e117.sharpness;
-        pt_1.pad1_ = _e117.pad1_;
-        pt_1.pad2_ = _e117.pad2_;
-        let _e168 = pt_1;
-        param_35 = _e168;
-        let _e169 = s_3;
-        param_36 = _e169;
-        let _e170 = t_3;
-        param_37 = _e170;
-        patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
-        let _e171 = param_38;
-        bu_1 = _e171;
-        let _e172 = param_39;
-        du_1 = _e172;
-        let _e173 = param_40;
-        bv_1 = _e173;
-        let _e174 = param_41;
-        dv_1 = _e174;
-        P = vec3<f32>(0f, 0f, 0f);
-        Du = vec3<f32>(0f, 0f, 0f);
-        Dv = vec3<f32>(0f, 0f, 0f);
-        j = 0i;
-        loop {
-            let _e175 = j;
-            if (_e175 < 4i) {
-                row = vec3<f32>(0f, 0f, 0f);
-                rowDu = vec3<f32>(0f, 0f, 0f);
-                rowDv = vec3<f32>(0f, 0f, 0f);
-                i_1 = 0i;
-                loop {
-                    let _e177 = i_1;
-                    if (_e177 < 4i) {
-                        let _e179 = j;
-                        let _e181 = i_1;
-                        let _e185 = pt_1.cv[((4i * _e179) + _e181)];
-                        let _e188 = vertices.p[_e185];
-                        c = _e188.xyz;
-                        let _e190 = i_1;
-                        let _e192 = bu_1[_e190];
-                        let _e193 = c;
-                        let _e195 = row;
-                        row = (_e195 + (_e193 * _e192));
-                        let _e197 = i_1;
-                        let _e199 = du_1[_e197];
-                        let _e200 = c;
-                        let _e202 = rowDu;
-                        rowDu = (_e202 + (_e200 * _e199));
-                        continue;
-                    } else {
-                        break;
-                    }
-                    continuing {
-                        let _e204 = i_1;
-                        i_1 = (_e204 + 1i);
-                    }
+    let _e92 = (*pt_1);
+    param_35 = _e92;
+    let _e93 = (*s_3);
+    param_36 = _e93;
+    let _e94 = (*t_3);
+    param_37 = _e94;
+    patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
+    let _e95 = param_38;
+    bu_1 = _e95;
+    let _e96 = param_39;
+    du_1 = _e96;
+    let _e97 = param_40;
+    bv_1 = _e97;
+    let _e98 = param_41;
+    dv_1 = _e98;
+    (*P) = vec3<f32>(0f, 0f, 0f);
+    Du = vec3<f32>(0f, 0f, 0f);
+    Dv = vec3<f32>(0f, 0f, 0f);
+    j = 0i;
+    loop {
+        let _e99 = j;
+        if (_e99 < 4i) {
+            row = vec3<f32>(0f, 0f, 0f);
+            rowDu = vec3<f32>(0f, 0f, 0f);
+            rowDv = vec3<f32>(0f, 0f, 0f);
+            i_1 = 0i;
+            loop {
+                let _e101 = i_1;
+                if (_e101 < 4i) {
+                    let _e103 = j;
+                    let _e105 = i_1;
+                    let _e109 = (*pt_1).cv[((4i * _e103) + _e105)];
+                    let _e112 = vertices.p[_e109];
+                    c = _e112.xyz;
+                    let _e114 = i_1;
+                    let _e116 = bu_1[_e114];
+                    let _e117 = c;
+                    let _e119 = row;
+                    row = (_e119 + (_e117 * _e116));
+                    let _e121 = i_1;
+                    let _e123 = du_1[_e121];
+                    let _e124 = c;
+                    let _e126 = rowDu;
+                    rowDu = (_e126 + (_e124 * _e123));
+                    continue;
+                } else {
+                    break;
                 }
-                let _e206 = j;
-                let _e208 = bv_1[_e206];
-                let _e209 = row;
-                let _e211 = P;
-                P = (_e211 + (_e209 * _e208));
-                let _e213 = j;
-                let _e215 = bv_1[_e213];
-                let _e216 = rowDu;
-                let _e218 = Du;
-                Du = (_e218 + (_e216 * _e215));
-                let _e220 = j;
-                let _e222 = dv_1[_e220];
-                let _e223 = row;
-                let _e225 = Dv;
-                Dv = (_e225 + (_e223 * _e222));
-                continue;
-            } else {
-                break;
+                continuing {
+                    let _e128 = i_1;
+                    i_1 = (_e128 + 1i);
+                }
             }
-            continuing {
-                let _e227 = j;
-                j = (_e227 + 1i);
-            }
-        }
-        let _e229 = Du;
-        let _e230 = Dv;
-        n = cross(_e229, _e230);
-        let _e232 = P;
-        r.position = _e232;
-        let _e234 = n;
-        let _e235 = n;
-        if (dot(_e234, _e235) > 0f) {
-            let _e238 = n;
-            local_4 = normalize(_e238);
+            let _e130 = j;
+            let _e132 = bv_1[_e130];
+            let _e133 = row;
+            let _e135 = (*P);
+            (*P) = (_e135 + (_e133 * _e132));
+            let _e137 = j;
+            let _e139 = bv_1[_e137];
+            let _e140 = rowDu;
+            let _e142 = Du;
+            Du = (_e142 + (_e140 * _e139));
+            let _e144 = j;
+            let _e146 = dv_1[_e144];
+            let _e147 = row;
+            let _e149 = Dv;
+            Dv = (_e149 + (_e147 * _e146));
+            continue;
         } else {
-            local_4 = vec3<f32>(0f, 0f, 0f);
+            break;
         }
-        let _e240 = local_4;
-        r.normal = _e240;
-        let _e243 = pt_1.ptex;
-        r.ptex = _e243;
-        let _e246 = pt_1.u0_;
-        let _e248 = pt_1.v0_;
-        let _e251 = pt_1.size;
-        let _e252 = s_3;
-        let _e253 = t_3;
-        r.uv = (vec2<f32>(_e246, _e248) + (vec2<f32>(_e252, _e253) * _e251));
-        let _e259 = pt_1.levelBoundary;
-        r.level = (_e259 & 255u);
-    } else {
-        let _e263 = tv[0u];
-        let _e264 = (*patchCount);
-        let _e268 = irregulars.f[(_e263 - _e264)];
-        q.corner[0i] = _e268.corner[0];
-        q.corner[1i] = _e268.corner[1];
-        q.corner[2i] = _e268.corner[2];
-        q.corner[3i] = _e268.corner[3];
-        q.ptex = _e268.ptex;
-        q.u0_ = _e268.u0_;
-        q.v0_ = _e268.v0_;
-        q.size = _e268.size;
-        let _e287 = s_3;
-        let _e289 = t_3;
-        let _e292 = s_3;
-        let _e293 = t_3;
-        let _e296 = s_3;
-        let _e297 = t_3;
-        let _e299 = s_3;
-        let _e301 = t_3;
-        w_1 = array<f32, 4>(((1f - _e287) * (1f - _e289)), (_e292 * (1f - _e293)), (_e296 * _e297), ((1f - _e299) * _e301));
-        P_1 = vec3<f32>(0f, 0f, 0f);
-        N = vec3<f32>(0f, 0f, 0f);
-        k_2 = 0i;
-        loop {
-            let _e304 = k_2;
-            if (_e304 < 4i) {
-                let _e306 = k_2;
-                let _e308 = w_1[_e306];
-                let _e309 = k_2;
-                let _e312 = q.corner[_e309];
-                let _e316 = limits.v[(2u * _e312)];
-                let _e319 = P_1;
-                P_1 = (_e319 + (_e316.xyz * _e308));
-                let _e321 = k_2;
-                let _e323 = w_1[_e321];
-                let _e324 = k_2;
-                let _e327 = q.corner[_e324];
-                let _e332 = limits.v[((2u * _e327) + 1u)];
-                let _e335 = N;
-                N = (_e335 + (_e332.xyz * _e323));
-                continue;
-            } else {
-                break;
-            }
-            continuing {
-                let _e337 = k_2;
-                k_2 = (_e337 + 1i);
-            }
+        continuing {
+            let _e151 = j;
+            j = (_e151 + 1i);
         }
-        let _e339 = P_1;
-        r.position = _e339;
-        let _e341 = N;
-        let _e342 = N;
-        if (dot(_e341, _e342) > 0f) {
-            let _e345 = N;
-            local_5 = normalize(_e345);
-        } else {
-            local_5 = vec3<f32>(0f, 0f, 0f);
-        }
-        let _e347 = local_5;
-        r.normal = _e347;
-        let _e350 = q.ptex;
-        r.ptex = _e350;
-        let _e353 = q.u0_;
-        let _e355 = q.v0_;
-        let _e358 = q.size;
-        let _e359 = s_3;
-        let _e360 = t_3;
-        r.uv = (vec2<f32>(_e353, _e355) + (vec2<f32>(_e359, _e360) * _e358));
-        r.level = 255u;
     }
-    let _e366 = r;
-    return _e366;
+    let _e153 = Du;
+    let _e154 = Dv;
+    (*n) = cross(_e153, _e154);
+    return;
 }
 
-fn evaluateTessVertex_u0028_u1_u003b_u1_u003b(vi: ptr<function, u32>, patchCount_1: ptr<function, u32>) -> SurfaceSample {
-    var tv_1: vec2<u32>;
-    var param_42: u32;
-    var param_43: u32;
-    var param_44: u32;
+fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(h: ptr<function, u32>, k_2: ptr<function, u32>, q: ptr<function, u32>, s_4: ptr<function, f32>, t_4: ptr<function, f32>, P_1: ptr<function, vec3<f32>>, n_1: ptr<function, vec3<f32>>) {
+    var hd: Patch;
+    var M_1: u32;
+    var block: u32;
+    var j_1: i32;
+    var c_1: array<vec3<f32>, 16>;
+    var i_2: u32;
+    var x_1: vec3<f32>;
+    var w_1: Patch;
+    var j_2: i32;
+    var bu_2: array<f32, 4>;
+    var du_2: array<f32, 4>;
+    var param_42: f32;
+    var param_43: array<f32, 4>;
+    var param_44: array<f32, 4>;
+    var bv_2: array<f32, 4>;
+    var dv_2: array<f32, 4>;
+    var param_45: f32;
+    var param_46: array<f32, 4>;
+    var param_47: array<f32, 4>;
+    var Du_1: vec3<f32>;
+    var Dv_1: vec3<f32>;
+    var j_3: i32;
+    var row_1: vec3<f32>;
+    var rowDu_1: vec3<f32>;
+    var i_3: i32;
 
-    let _e65 = (*vi);
-    let _e68 = tessVertices.v[_e65];
-    tv_1 = _e68.xy;
-    let _e71 = tv_1[0u];
-    param_42 = _e71;
-    let _e73 = tv_1[1u];
-    param_43 = _e73;
-    let _e74 = (*patchCount_1);
-    param_44 = _e74;
-    let _e75 = evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b((&param_42), (&param_43), (&param_44));
-    return _e75;
+    let _e100 = (*h);
+    let _e103 = patches.p[_e100];
+    hd.cv[0i] = _e103.cv[0];
+    hd.cv[1i] = _e103.cv[1];
+    hd.cv[2i] = _e103.cv[2];
+    hd.cv[3i] = _e103.cv[3];
+    hd.cv[4i] = _e103.cv[4];
+    hd.cv[5i] = _e103.cv[5];
+    hd.cv[6i] = _e103.cv[6];
+    hd.cv[7i] = _e103.cv[7];
+    hd.cv[8i] = _e103.cv[8];
+    hd.cv[9i] = _e103.cv[9];
+    hd.cv[10i] = _e103.cv[10];
+    hd.cv[11i] = _e103.cv[11];
+    hd.cv[12i] = _e103.cv[12];
+    hd.cv[13i] = _e103.cv[13];
+    hd.cv[14i] = _e103.cv[14];
+    hd.cv[15i] = _e103.cv[15];
+    hd.ptex = _e103.ptex;
+    hd.u0_ = _e103.u0_;
+    hd.v0_ = _e103.v0_;
+    hd.size = _e103.size;
+    hd.levelBoundary = _e103.levelBoundary;
+    hd.sharpness = _e103.sharpness;
+    hd.pad1_ = _e103.pad1_;
+    hd.pad2_ = _e103.pad2_;
+    let _e156 = hd.cv[0i];
+    M_1 = ((2u * _e156) + 8u);
+    let _e161 = hd.cv[2i];
+    let _e162 = (*k_2);
+    let _e165 = (*q);
+    let _e168 = M_1;
+    block = (_e161 + ((((_e162 - 1u) * 3u) + (_e165 - 1u)) * _e168));
+    j_1 = 0i;
+    loop {
+        let _e171 = j_1;
+        if (_e171 < 16i) {
+            let _e173 = j_1;
+            c_1[_e173] = vec3<f32>(0f, 0f, 0f);
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e175 = j_1;
+            j_1 = (_e175 + 1i);
+        }
+    }
+    i_2 = 0u;
+    loop {
+        let _e177 = i_2;
+        let _e178 = M_1;
+        if (_e177 < _e178) {
+            let _e180 = (*h);
+            let _e182 = i_2;
+            let _e185 = i_2;
+            let _e191 = patches.p[((_e180 + 1u) + (_e182 / 16u))].cv[(_e185 % 16u)];
+            let _e194 = vertices.p[_e191];
+            x_1 = _e194.xyz;
+            let _e196 = block;
+            let _e197 = i_2;
+            let _e201 = patches.p[(_e196 + _e197)];
+            w_1.cv[0i] = _e201.cv[0];
+            w_1.cv[1i] = _e201.cv[1];
+            w_1.cv[2i] = _e201.cv[2];
+            w_1.cv[3i] = _e201.cv[3];
+            w_1.cv[4i] = _e201.cv[4];
+            w_1.cv[5i] = _e201.cv[5];
+            w_1.cv[6i] = _e201.cv[6];
+            w_1.cv[7i] = _e201.cv[7];
+            w_1.cv[8i] = _e201.cv[8];
+            w_1.cv[9i] = _e201.cv[9];
+            w_1.cv[10i] = _e201.cv[10];
+            w_1.cv[11i] = _e201.cv[11];
+            w_1.cv[12i] = _e201.cv[12];
+            w_1.cv[13i] = _e201.cv[13];
+            w_1.cv[14i] = _e201.cv[14];
+            w_1.cv[15i] = _e201.cv[15];
+            w_1.ptex = _e201.ptex;
+            w_1.u0_ = _e201.u0_;
+            w_1.v0_ = _e201.v0_;
+            w_1.size = _e201.size;
+            w_1.levelBoundary = _e201.levelBoundary;
+            w_1.sharpness = _e201.sharpness;
+            w_1.pad1_ = _e201.pad1_;
+            w_1.pad2_ = _e201.pad2_;
+            j_2 = 0i;
+            loop {
+                let _e252 = j_2;
+                if (_e252 < 16i) {
+                    let _e254 = j_2;
+                    let _e255 = j_2;
+                    let _e258 = w_1.cv[_e255];
+                    let _e260 = x_1;
+                    let _e263 = c_1[_e254];
+                    c_1[_e254] = (_e263 + (_e260 * bitcast<f32>(_e258)));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e266 = j_2;
+                    j_2 = (_e266 + 1i);
+                }
+            }
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e268 = i_2;
+            i_2 = (_e268 + bitcast<u32>(1i));
+        }
+    }
+    let _e271 = (*s_4);
+    param_42 = _e271;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
+    let _e272 = param_43;
+    bu_2 = _e272;
+    let _e273 = param_44;
+    du_2 = _e273;
+    let _e274 = (*t_4);
+    param_45 = _e274;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
+    let _e275 = param_46;
+    bv_2 = _e275;
+    let _e276 = param_47;
+    dv_2 = _e276;
+    (*P_1) = vec3<f32>(0f, 0f, 0f);
+    Du_1 = vec3<f32>(0f, 0f, 0f);
+    Dv_1 = vec3<f32>(0f, 0f, 0f);
+    j_3 = 0i;
+    loop {
+        let _e277 = j_3;
+        if (_e277 < 4i) {
+            row_1 = vec3<f32>(0f, 0f, 0f);
+            rowDu_1 = vec3<f32>(0f, 0f, 0f);
+            i_3 = 0i;
+            loop {
+                let _e279 = i_3;
+                if (_e279 < 4i) {
+                    let _e281 = i_3;
+                    let _e283 = bu_2[_e281];
+                    let _e284 = j_3;
+                    let _e286 = i_3;
+                    let _e289 = c_1[((4i * _e284) + _e286)];
+                    let _e291 = row_1;
+                    row_1 = (_e291 + (_e289 * _e283));
+                    let _e293 = i_3;
+                    let _e295 = du_2[_e293];
+                    let _e296 = j_3;
+                    let _e298 = i_3;
+                    let _e301 = c_1[((4i * _e296) + _e298)];
+                    let _e303 = rowDu_1;
+                    rowDu_1 = (_e303 + (_e301 * _e295));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e305 = i_3;
+                    i_3 = (_e305 + 1i);
+                }
+            }
+            let _e307 = j_3;
+            let _e309 = bv_2[_e307];
+            let _e310 = row_1;
+            let _e312 = (*P_1);
+            (*P_1) = (_e312 + (_e310 * _e309));
+            let _e314 = j_3;
+            let _e316 = bv_2[_e314];
+            let _e317 = rowDu_1;
+            let _e319 = Du_1;
+            Du_1 = (_e319 + (_e317 * _e316));
+            let _e321 = j_3;
+            let _e323 = dv_2[_e321];
+            let _e324 = row_1;
+            let _e326 = Dv_1;
+            Dv_1 = (_e326 + (_e324 * _e323));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e328 = j_3;
+            j_3 = (_e328 + 1i);
+        }
+    }
+    let _e330 = Du_1;
+    let _e331 = Dv_1;
+    (*n_1) = cross(_e330, _e331);
+    return;
+}
+
+fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u32>, st: ptr<function, u32>, P_2: ptr<function, vec3<f32>>, n_2: ptr<function, vec3<f32>>) {
+    var hd_1: Patch;
+    var S: u32;
+    var T: u32;
+    var corner: u32;
+    var K: u32;
+    var a: u32;
+    var local_4: u32;
+    var local_5: u32;
+    var local_6: u32;
+    var c_2: u32;
+    var local_7: u32;
+    var local_8: u32;
+    var local_9: u32;
+    var evP: vec3<f32>;
+    var evN: vec3<f32>;
+    var k_3: u32;
+    var qu: u32;
+    var qv: u32;
+    var q_1: u32;
+    var local_10: u32;
+    var param_48: u32;
+    var param_49: u32;
+    var param_50: u32;
+    var param_51: f32;
+    var param_52: f32;
+    var param_53: vec3<f32>;
+    var param_54: vec3<f32>;
+    var P1_: vec3<f32>;
+    var n1_: vec3<f32>;
+    var param_55: u32;
+    var param_56: u32;
+    var param_57: u32;
+    var param_58: f32;
+    var param_59: f32;
+    var param_60: vec3<f32>;
+    var param_61: vec3<f32>;
+    var P2_: vec3<f32>;
+    var n2_: vec3<f32>;
+    var param_62: u32;
+    var param_63: u32;
+    var param_64: u32;
+    var param_65: f32;
+    var param_66: f32;
+    var param_67: vec3<f32>;
+    var param_68: vec3<f32>;
+    var P3_: vec3<f32>;
+    var n3_: vec3<f32>;
+    var param_69: u32;
+    var param_70: u32;
+    var param_71: u32;
+    var param_72: f32;
+    var param_73: f32;
+    var param_74: vec3<f32>;
+    var param_75: vec3<f32>;
+    var x_2: f32;
+    var y: f32;
+    var w_2: array<f32, 4>;
+
+    let _e129 = (*h_1);
+    let _e132 = patches.p[_e129];
+    hd_1.cv[0i] = _e132.cv[0];
+    hd_1.cv[1i] = _e132.cv[1];
+    hd_1.cv[2i] = _e132.cv[2];
+    hd_1.cv[3i] = _e132.cv[3];
+    hd_1.cv[4i] = _e132.cv[4];
+    hd_1.cv[5i] = _e132.cv[5];
+    hd_1.cv[6i] = _e132.cv[6];
+    hd_1.cv[7i] = _e132.cv[7];
+    hd_1.cv[8i] = _e132.cv[8];
+    hd_1.cv[9i] = _e132.cv[9];
+    hd_1.cv[10i] = _e132.cv[10];
+    hd_1.cv[11i] = _e132.cv[11];
+    hd_1.cv[12i] = _e132.cv[12];
+    hd_1.cv[13i] = _e132.cv[13];
+    hd_1.cv[14i] = _e132.cv[14];
+    hd_1.cv[15i] = _e132.cv[15];
+    hd_1.ptex = _e132.ptex;
+    hd_1.u0_ = _e132.u0_;
+    hd_1.v0_ = _e132.v0_;
+    hd_1.size = _e132.size;
+    hd_1.levelBoundary = _e132.levelBoundary;
+    hd_1.sharpness = _e132.sharpness;
+    hd_1.pad1_ = _e132.pad1_;
+    hd_1.pad2_ = _e132.pad2_;
+    let _e183 = (*st);
+    S = (_e183 & 65535u);
+    let _e185 = (*st);
+    T = (_e185 >> bitcast<u32>(16i));
+    let _e190 = hd_1.cv[1i];
+    corner = _e190;
+    let _e193 = hd_1.cv[3i];
+    K = _e193;
+    let _e194 = corner;
+    if (_e194 == 0u) {
+        let _e196 = S;
+        local_4 = _e196;
+    } else {
+        let _e197 = corner;
+        if (_e197 == 1u) {
+            let _e199 = T;
+            local_5 = _e199;
+        } else {
+            let _e200 = corner;
+            if (_e200 == 2u) {
+                let _e202 = S;
+                local_6 = (32768u - _e202);
+            } else {
+                let _e204 = T;
+                local_6 = (32768u - _e204);
+            }
+            let _e206 = local_6;
+            local_5 = _e206;
+        }
+        let _e207 = local_5;
+        local_4 = _e207;
+    }
+    let _e208 = local_4;
+    a = _e208;
+    let _e209 = corner;
+    if (_e209 == 0u) {
+        let _e211 = T;
+        local_7 = _e211;
+    } else {
+        let _e212 = corner;
+        if (_e212 == 1u) {
+            let _e214 = S;
+            local_8 = (32768u - _e214);
+        } else {
+            let _e216 = corner;
+            if (_e216 == 2u) {
+                let _e218 = T;
+                local_9 = (32768u - _e218);
+            } else {
+                let _e220 = S;
+                local_9 = _e220;
+            }
+            let _e221 = local_9;
+            local_8 = _e221;
+        }
+        let _e222 = local_8;
+        local_7 = _e222;
+    }
+    let _e223 = local_7;
+    c_2 = _e223;
+    let _e226 = hd_1.cv[4i];
+    let _e230 = limits.v[(2u * _e226)];
+    evP = _e230.xyz;
+    let _e234 = hd_1.cv[4i];
+    let _e239 = limits.v[((2u * _e234) + 1u)];
+    evN = _e239.xyz;
+    let _e241 = a;
+    let _e243 = c_2;
+    if ((_e241 == 0u) && (_e243 == 0u)) {
+        let _e246 = evP;
+        (*P_2) = _e246;
+        let _e247 = evN;
+        (*n_2) = _e247;
+        return;
+    }
+    k_3 = 1u;
+    loop {
+        let _e248 = a;
+        let _e249 = c_2;
+        let _e252 = k_3;
+        let _e253 = K;
+        if ((max(_e248, _e249) < 16384u) && (_e252 < _e253)) {
+            let _e256 = a;
+            a = (_e256 * 2u);
+            let _e258 = c_2;
+            c_2 = (_e258 * 2u);
+            let _e260 = k_3;
+            k_3 = (_e260 + bitcast<u32>(1i));
+            continue;
+        } else {
+            break;
+        }
+    }
+    let _e263 = a;
+    let _e264 = c_2;
+    if (max(_e263, _e264) >= 16384u) {
+        let _e267 = a;
+        qu = select(0u, 1u, (_e267 >= 16384u));
+        let _e270 = c_2;
+        qv = select(0u, 1u, (_e270 >= 16384u));
+        let _e273 = qv;
+        if (_e273 == 0u) {
+            local_10 = 1u;
+        } else {
+            let _e275 = qu;
+            local_10 = select(3u, 2u, (_e275 == 1u));
+        }
+        let _e278 = local_10;
+        q_1 = _e278;
+        let _e279 = a;
+        let _e281 = qu;
+        let _e286 = c_2;
+        let _e288 = qv;
+        let _e293 = (*h_1);
+        param_48 = _e293;
+        let _e294 = k_3;
+        param_49 = _e294;
+        let _e295 = q_1;
+        param_50 = _e295;
+        param_51 = (f32(((2u * _e279) - (_e281 * 32768u))) / 32768f);
+        param_52 = (f32(((2u * _e286) - (_e288 * 32768u))) / 32768f);
+        basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_48), (&param_49), (&param_50), (&param_51), (&param_52), (&param_53), (&param_54));
+        let _e296 = param_53;
+        (*P_2) = _e296;
+        let _e297 = param_54;
+        (*n_2) = _e297;
+        return;
+    }
+    let _e298 = (*h_1);
+    param_55 = _e298;
+    let _e299 = k_3;
+    param_56 = _e299;
+    param_57 = 1u;
+    param_58 = 0f;
+    param_59 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_55), (&param_56), (&param_57), (&param_58), (&param_59), (&param_60), (&param_61));
+    let _e300 = param_60;
+    P1_ = _e300;
+    let _e301 = param_61;
+    n1_ = _e301;
+    let _e302 = (*h_1);
+    param_62 = _e302;
+    let _e303 = k_3;
+    param_63 = _e303;
+    param_64 = 2u;
+    param_65 = 0f;
+    param_66 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_62), (&param_63), (&param_64), (&param_65), (&param_66), (&param_67), (&param_68));
+    let _e304 = param_67;
+    P2_ = _e304;
+    let _e305 = param_68;
+    n2_ = _e305;
+    let _e306 = (*h_1);
+    param_69 = _e306;
+    let _e307 = k_3;
+    param_70 = _e307;
+    param_71 = 3u;
+    param_72 = 0f;
+    param_73 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_69), (&param_70), (&param_71), (&param_72), (&param_73), (&param_74), (&param_75));
+    let _e308 = param_74;
+    P3_ = _e308;
+    let _e309 = param_75;
+    n3_ = _e309;
+    let _e310 = a;
+    x_2 = (f32(_e310) / 16384f);
+    let _e313 = c_2;
+    y = (f32(_e313) / 16384f);
+    let _e316 = x_2;
+    let _e318 = y;
+    let _e321 = x_2;
+    let _e322 = y;
+    let _e325 = x_2;
+    let _e326 = y;
+    let _e328 = x_2;
+    let _e330 = y;
+    w_2 = array<f32, 4>(((1f - _e316) * (1f - _e318)), (_e321 * (1f - _e322)), (_e325 * _e326), ((1f - _e328) * _e330));
+    let _e334 = w_2[0i];
+    let _e335 = evP;
+    let _e338 = w_2[1i];
+    let _e339 = P1_;
+    let _e343 = w_2[2i];
+    let _e344 = P2_;
+    let _e348 = w_2[3i];
+    let _e349 = P3_;
+    (*P_2) = ((((_e335 * _e334) + (_e339 * _e338)) + (_e344 * _e343)) + (_e349 * _e348));
+    let _e353 = w_2[0i];
+    let _e354 = evN;
+    let _e357 = w_2[1i];
+    let _e358 = n1_;
+    let _e363 = w_2[2i];
+    let _e364 = n2_;
+    let _e369 = w_2[3i];
+    let _e370 = n3_;
+    (*n_2) = ((((_e354 * _e353) + (normalize(_e358) * _e357)) + (normalize(_e364) * _e363)) + (normalize(_e370) * _e369));
+    return;
+}
+
+fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr<function, u32>, st_1: ptr<function, u32>, patchCount: ptr<function, u32>, P_3: ptr<function, vec3<f32>>, n_3: ptr<function, vec3<f32>>) {
+    var S_1: u32;
+    var T_1: u32;
+    var k_4: u32;
+    var local_11: u32;
+    var c_3: u32;
+    var node: u32;
+    var leaf: u32;
+    var ls: u32;
+    var lt: u32;
+    var k_5: i32;
+    var c_4: u32;
+    var code: u32;
+    var param_76: u32;
+    var param_77: u32;
+    var param_78: vec3<f32>;
+    var param_79: vec3<f32>;
+    var kind: u32;
+    var index: u32;
+    var param_80: Patch;
+    var param_81: f32;
+    var param_82: f32;
+    var param_83: vec3<f32>;
+    var param_84: vec3<f32>;
+    var q_2: IrregularFace;
+    var s_5: f32;
+    var t_5: f32;
+    var w_3: array<f32, 4>;
+    var k_6: i32;
+    var phi_1372_: bool;
+
+    let _e101 = (*st_1);
+    S_1 = (_e101 & 65535u);
+    let _e103 = (*st_1);
+    T_1 = (_e103 >> bitcast<u32>(16i));
+    let _e106 = S_1;
+    let _e108 = S_1;
+    let _e110 = ((_e106 == 0u) || (_e108 == 32768u));
+    phi_1372_ = _e110;
+    if _e110 {
+        let _e111 = T_1;
+        let _e113 = T_1;
+        phi_1372_ = ((_e111 == 0u) || (_e113 == 32768u));
+    }
+    let _e117 = phi_1372_;
+    if _e117 {
+        let _e118 = S_1;
+        if (_e118 == 0u) {
+            let _e120 = T_1;
+            local_11 = select(3u, 0u, (_e120 == 0u));
+        } else {
+            let _e123 = T_1;
+            local_11 = select(2u, 1u, (_e123 == 0u));
+        }
+        let _e126 = local_11;
+        k_4 = _e126;
+        let _e127 = (*face);
+        let _e128 = k_4;
+        let _e133 = irregulars.f[_e127].corner[_e128];
+        c_3 = _e133;
+        let _e134 = c_3;
+        let _e138 = limits.v[(2u * _e134)];
+        (*P_3) = _e138.xyz;
+        let _e140 = c_3;
+        let _e145 = limits.v[((2u * _e140) + 1u)];
+        (*n_3) = _e145.xyz;
+        return;
+    }
+    let _e147 = (*patchCount);
+    let _e148 = (*face);
+    node = (_e147 + _e148);
+    let _e150 = (*face);
+    leaf = _e150;
+    let _e151 = S_1;
+    ls = _e151;
+    let _e152 = T_1;
+    lt = _e152;
+    k_5 = 0i;
+    loop {
+        let _e153 = k_5;
+        if (_e153 < 17i) {
+            let _e155 = S_1;
+            let _e158 = T_1;
+            c_4 = (select(0u, 1u, (_e155 >= 16384u)) | select(0u, 2u, (_e158 >= 16384u)));
+            let _e162 = node;
+            let _e163 = c_4;
+            let _e168 = patches.p[_e162].cv[_e163];
+            code = _e168;
+            let _e169 = code;
+            if (_e169 == 4294967295u) {
+                break;
+            }
+            let _e171 = code;
+            if ((_e171 & 3221225472u) == 3221225472u) {
+                let _e174 = code;
+                param_76 = (_e174 & 1073741823u);
+                let _e176 = (*st_1);
+                param_77 = _e176;
+                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_76), (&param_77), (&param_78), (&param_79));
+                let _e177 = param_78;
+                (*P_3) = _e177;
+                let _e178 = param_79;
+                (*n_3) = _e178;
+                return;
+            }
+            let _e179 = S_1;
+            let _e181 = c_4;
+            S_1 = ((2u * _e179) - select(0u, 32768u, ((_e181 & 1u) != 0u)));
+            let _e186 = T_1;
+            let _e188 = c_4;
+            T_1 = ((2u * _e186) - select(0u, 32768u, ((_e188 & 2u) != 0u)));
+            let _e193 = code;
+            kind = (_e193 & 3221225472u);
+            let _e195 = code;
+            index = (_e195 & 1073741823u);
+            let _e197 = kind;
+            if (_e197 == 0u) {
+                let _e199 = index;
+                let _e200 = S_1;
+                let _e203 = T_1;
+                let _e208 = patches.p[_e199];
+                param_80.cv[0i] = _e208.cv[0];
+                param_80.cv[1i] = _e208.cv[1];
+                param_80.cv[2i] = _e208.cv[2];
+                param_80.cv[3i] = _e208.cv[3];
+                param_80.cv[4i] = _e208.cv[4];
+                param_80.cv[5i] = _e208.cv[5];
+                param_80.cv[6i] = _e208.cv[6];
+                param_80.cv[7i] = _e208.cv[7];
+                param_80.cv[8i] = _e208.cv[8];
+                param_80.cv[9i] = _e208.cv[9];
+                param_80.cv[10i] = _e208.cv[10];
+                param_80.cv[11i] = _e208.cv[11];
+                param_80.cv[12i] = _e208.cv[12];
+                param_80.cv[13i] = _e208.cv[13];
+                param_80.cv[14i] = _e208.cv[14];
+                param_80.cv[15i] = _e208.cv[15];
+                param_80.ptex = _e208.ptex;
+                param_80.u0_ = _e208.u0_;
+                param_80.v0_ = _e208.v0_;
+                param_80.size = _e208.size;
+                param_80.levelBoundary = _e208.levelBoundary;
+                param_80.sharpness = _e208.sharpness;
+                param_80.pad1_ = _e208.pad1_;
+                param_80.pad2_ = _e208.pad2_;
+                param_81 = (f32(_e200) / 32768f);
+                param_82 = (f32(_e203) / 32768f);
+                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_80), (&param_81), (&param_82), (&param_83), (&param_84));
+                let _e259 = param_83;
+                (*P_3) = _e259;
+                let _e260 = param_84;
+                (*n_3) = _e260;
+                return;
+            }
+            let _e261 = kind;
+            if (_e261 == 2147483648u) {
+                let _e263 = index;
+                leaf = _e263;
+                let _e264 = S_1;
+                ls = _e264;
+                let _e265 = T_1;
+                lt = _e265;
+                break;
+            }
+            let _e266 = index;
+            node = _e266;
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e267 = k_5;
+            k_5 = (_e267 + 1i);
+        }
+    }
+    let _e269 = leaf;
+    let _e272 = irregulars.f[_e269];
+    q_2.corner = _e272.corner;
+    q_2.ptex = _e272.ptex;
+    q_2.u0_ = _e272.u0_;
+    q_2.v0_ = _e272.v0_;
+    q_2.size = _e272.size;
+    let _e283 = ls;
+    s_5 = (f32(_e283) / 32768f);
+    let _e286 = lt;
+    t_5 = (f32(_e286) / 32768f);
+    let _e289 = s_5;
+    let _e291 = t_5;
+    let _e294 = s_5;
+    let _e295 = t_5;
+    let _e298 = s_5;
+    let _e299 = t_5;
+    let _e301 = s_5;
+    let _e303 = t_5;
+    w_3 = array<f32, 4>(((1f - _e289) * (1f - _e291)), (_e294 * (1f - _e295)), (_e298 * _e299), ((1f - _e301) * _e303));
+    (*P_3) = vec3<f32>(0f, 0f, 0f);
+    (*n_3) = vec3<f32>(0f, 0f, 0f);
+    k_6 = 0i;
+    loop {
+        let _e306 = k_6;
+        if (_e306 < 4i) {
+            let _e308 = k_6;
+            let _e310 = w_3[_e308];
+            let _e311 = k_6;
+            let _e314 = q_2.corner[_e311];
+            let _e318 = limits.v[(2u * _e314)];
+            let _e321 = (*P_3);
+            (*P_3) = (_e321 + (_e318.xyz * _e310));
+            let _e323 = k_6;
+            let _e325 = w_3[_e323];
+            let _e326 = k_6;
+            let _e329 = q_2.corner[_e326];
+            let _e334 = limits.v[((2u * _e329) + 1u)];
+            let _e337 = (*n_3);
+            (*n_3) = (_e337 + (_e334.xyz * _e325));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e339 = k_6;
+            k_6 = (_e339 + 1i);
+        }
+    }
+    return;
+}
+
+fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>, st_2: ptr<function, u32>, patchCount_1: ptr<function, u32>) -> SurfaceSample {
+    var s_6: f32;
+    var t_6: f32;
+    var pt_2: Patch;
+    var P_4: vec3<f32>;
+    var n_4: vec3<f32>;
+    var param_85: Patch;
+    var param_86: f32;
+    var param_87: f32;
+    var param_88: vec3<f32>;
+    var param_89: vec3<f32>;
+    var r: SurfaceSample;
+    var q_3: IrregularFace;
+    var param_90: u32;
+    var param_91: u32;
+    var param_92: u32;
+    var param_93: vec3<f32>;
+    var param_94: vec3<f32>;
+    var local_12: vec3<f32>;
+
+    let _e89 = (*st_2);
+    s_6 = (f32((_e89 & 65535u)) / 32768f);
+    let _e93 = (*st_2);
+    t_6 = (f32((_e93 >> bitcast<u32>(16i))) / 32768f);
+    let _e98 = (*element);
+    let _e99 = (*patchCount_1);
+    if (_e98 < _e99) {
+        let _e101 = (*element);
+        let _e104 = patches.p[_e101];
+        pt_2.cv[0i] = _e104.cv[0];
+        pt_2.cv[1i] = _e104.cv[1];
+        pt_2.cv[2i] = _e104.cv[2];
+        pt_2.cv[3i] = _e104.cv[3];
+        pt_2.cv[4i] = _e104.cv[4];
+        pt_2.cv[5i] = _e104.cv[5];
+        pt_2.cv[6i] = _e104.cv[6];
+        pt_2.cv[7i] = _e104.cv[7];
+        pt_2.cv[8i] = _e104.cv[8];
+        pt_2.cv[9i] = _e104.cv[9];
+        pt_2.cv[10i] = _e104.cv[10];
+        pt_2.cv[11i] = _e104.cv[11];
+        pt_2.cv[12i] = _e104.cv[12];
+        pt_2.cv[13i] = _e104.cv[13];
+        pt_2.cv[14i] = _e104.cv[14];
+        pt_2.cv[15i] = _e104.cv[15];
+        pt_2.ptex = _e104.ptex;
+        pt_2.u0_ = _e104.u0_;
+        pt_2.v0_ = _e104.v0_;
+        pt_2.size = _e104.size;
+        pt_2.levelBoundary = _e104.levelBoundary;
+        pt_2.sharpness = _e104.sharpness;
+        pt_2.pad1_ = _e104.pad1_;
+        pt_2.pad2_ = _e104.pad2_;
+        let _e155 = pt_2;
+        param_85 = _e155;
+        let _e156 = s_6;
+        param_86 = _e156;
+        let _e157 = t_6;
+        param_87 = _e157;
+        patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_85), (&param_86), (&param_87), (&param_88), (&param_89));
+        let _e158 = param_88;
+        P_4 = _e158;
+        let _e159 = param_89;
+        n_4 = _e159;
+        let _e161 = pt_2.ptex;
+        r.ptex = _e161;
+        let _e164 = pt_2.u0_;
+        let _e166 = pt_2.v0_;
+        let _e169 = pt_2.size;
+        let _e170 = s_6;
+        let _e171 = t_6;
+        r.uv = (vec2<f32>(_e164, _e166) + (vec2<f32>(_e170, _e171) * _e169));
+        let _e177 = pt_2.levelBoundary;
+        r.level = (_e177 & 255u);
+    } else {
+        let _e180 = (*element);
+        let _e181 = (*patchCount_1);
+        let _e185 = irregulars.f[(_e180 - _e181)];
+        q_3.corner = _e185.corner;
+        q_3.ptex = _e185.ptex;
+        q_3.u0_ = _e185.u0_;
+        q_3.v0_ = _e185.v0_;
+        q_3.size = _e185.size;
+        let _e196 = (*element);
+        let _e197 = (*patchCount_1);
+        param_90 = (_e196 - _e197);
+        let _e199 = (*st_2);
+        param_91 = _e199;
+        let _e200 = (*patchCount_1);
+        param_92 = _e200;
+        irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
+        let _e201 = param_93;
+        P_4 = _e201;
+        let _e202 = param_94;
+        n_4 = _e202;
+        let _e204 = q_3.ptex;
+        r.ptex = _e204;
+        let _e207 = q_3.u0_;
+        let _e209 = q_3.v0_;
+        let _e212 = q_3.size;
+        let _e213 = s_6;
+        let _e214 = t_6;
+        r.uv = (vec2<f32>(_e207, _e209) + (vec2<f32>(_e213, _e214) * _e212));
+        r.level = 255u;
+    }
+    let _e220 = P_4;
+    r.position = _e220;
+    let _e222 = n_4;
+    let _e223 = n_4;
+    if (dot(_e222, _e223) > 0f) {
+        let _e226 = n_4;
+        local_12 = normalize(_e226);
+    } else {
+        local_12 = vec3<f32>(0f, 0f, 0f);
+    }
+    let _e228 = local_12;
+    r.normal = _e228;
+    let _e230 = r;
+    return _e230;
+}
+
+fn evaluateTessVertex_u0028_u1_u003b_u1_u003b(vi: ptr<function, u32>, patchCount_2: ptr<function, u32>) -> SurfaceSample {
+    var tv: vec2<u32>;
+    var param_95: u32;
+    var param_96: u32;
+    var param_97: u32;
+
+    let _e74 = (*vi);
+    let _e77 = tessVertices.v[_e74];
+    tv = _e77.xy;
+    let _e80 = tv[0u];
+    param_95 = _e80;
+    let _e82 = tv[1u];
+    param_96 = _e82;
+    let _e83 = (*patchCount_2);
+    param_97 = _e83;
+    let _e84 = evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b((&param_95), (&param_96), (&param_97));
+    return _e84;
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e61 = gl_GlobalInvocationID_1[1u];
-    let _e62 = (*rowInvocations);
-    let _e65 = gl_GlobalInvocationID_1[0u];
-    return ((_e61 * _e62) + _e65);
+    let _e70 = gl_GlobalInvocationID_1[1u];
+    let _e71 = (*rowInvocations);
+    let _e74 = gl_GlobalInvocationID_1[0u];
+    return ((_e70 * _e71) + _e74);
 }
 
 fn main_1() {
-    var i_2: u32;
-    var param_45: u32;
-    var s_4: SurfaceSample;
-    var param_46: u32;
-    var param_47: u32;
+    var i_4: u32;
+    var param_98: u32;
+    var s_7: SurfaceSample;
+    var param_99: u32;
+    var param_100: u32;
 
-    let _e65 = pc.limnRowInvocations;
-    param_45 = _e65;
-    let _e66 = limnInvocationIndex_u0028_u1_u003b((&param_45));
-    i_2 = _e66;
-    let _e67 = i_2;
-    let _e69 = pc.limnCount;
-    if (_e67 >= _e69) {
+    let _e74 = pc.limnRowInvocations;
+    param_98 = _e74;
+    let _e75 = limnInvocationIndex_u0028_u1_u003b((&param_98));
+    i_4 = _e75;
+    let _e76 = i_4;
+    let _e78 = pc.limnCount;
+    if (_e76 >= _e78) {
         return;
     }
-    let _e71 = i_2;
-    param_46 = _e71;
-    let _e73 = pc.patchCount;
-    param_47 = _e73;
-    let _e74 = evaluateTessVertex_u0028_u1_u003b_u1_u003b((&param_46), (&param_47));
-    s_4 = _e74;
-    let _e75 = i_2;
-    let _e77 = s_4.position;
-    positions.p[_e75] = vec4<f32>(_e77.x, _e77.y, _e77.z, 1f);
-    let _e84 = i_2;
-    let _e86 = s_4.normal;
-    normals.n[_e84] = vec4<f32>(_e86.x, _e86.y, _e86.z, 0f);
-    let _e93 = i_2;
-    let _e95 = s_4.ptex;
-    let _e98 = s_4.uv[0u];
-    let _e102 = s_4.uv[1u];
-    let _e105 = s_4.level;
-    info.i[_e93] = vec4<u32>(_e95, bitcast<u32>(_e98), bitcast<u32>(_e102), _e105);
+    let _e80 = i_4;
+    param_99 = _e80;
+    let _e82 = pc.patchCount;
+    param_100 = _e82;
+    let _e83 = evaluateTessVertex_u0028_u1_u003b_u1_u003b((&param_99), (&param_100));
+    s_7 = _e83;
+    let _e84 = i_4;
+    let _e86 = s_7.position;
+    positions.p[_e84] = vec4<f32>(_e86.x, _e86.y, _e86.z, 1f);
+    let _e93 = i_4;
+    let _e95 = s_7.normal;
+    normals.n[_e93] = vec4<f32>(_e95.x, _e95.y, _e95.z, 0f);
+    let _e102 = i_4;
+    let _e104 = s_7.ptex;
+    let _e107 = s_7.uv[0u];
+    let _e111 = s_7.uv[1u];
+    let _e114 = s_7.level;
+    info.i[_e102] = vec4<u32>(_e104, bitcast<u32>(_e107), bitcast<u32>(_e111), _e114);
     return;
 }
 

@@ -20,12 +20,16 @@ struct SurfaceSample {
     level: u32,
 }
 
+struct Vertices {
+    p: array<vec4<f32>>,
+}
+
 struct Patches {
     p: array<Patch>,
 }
 
-struct Vertices {
-    p: array<vec4<f32>>,
+struct Limits {
+    v: array<vec4<f32>>,
 }
 
 struct IrregularFace {
@@ -38,10 +42,6 @@ struct IrregularFace {
 
 struct Irregulars {
     f: array<IrregularFace>,
-}
-
-struct Limits {
-    v: array<vec4<f32>>,
 }
 
 struct TessVertices {
@@ -82,14 +82,14 @@ struct VertexOutput {
     @builtin(position) gl_Position: vec4<f32>,
 }
 
-@group(0) @binding(1) 
-var<storage, read> patches: Patches;
 @group(0) @binding(0) 
 var<storage, read> vertices: Vertices;
-@group(0) @binding(2) 
-var<storage, read> irregulars: Irregulars;
+@group(0) @binding(1) 
+var<storage, read> patches: Patches;
 @group(0) @binding(3) 
 var<storage, read> limits: Limits;
+@group(0) @binding(2) 
+var<storage, read> irregulars: Irregulars;
 @group(0) @binding(4) 
 var<storage, read> tessVertices: TessVertices;
 var<private> gl_VertexIndex_1: i32;
@@ -109,38 +109,38 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
     var t3_: f32;
     var s: f32;
 
-    let _e68 = (*t);
-    let _e69 = (*t);
-    t2_ = (_e68 * _e69);
-    let _e71 = t2_;
-    let _e72 = (*t);
-    t3_ = (_e71 * _e72);
-    let _e74 = (*t);
-    s = (1f - _e74);
-    let _e76 = s;
-    let _e77 = s;
-    let _e79 = s;
-    (*b)[0i] = (((_e76 * _e77) * _e79) / 6f);
-    let _e83 = t3_;
-    let _e85 = t2_;
-    (*b)[1i] = ((((3f * _e83) - (6f * _e85)) + 4f) / 6f);
+    let _e76 = (*t);
+    let _e77 = (*t);
+    t2_ = (_e76 * _e77);
+    let _e79 = t2_;
+    let _e80 = (*t);
+    t3_ = (_e79 * _e80);
+    let _e82 = (*t);
+    s = (1f - _e82);
+    let _e84 = s;
+    let _e85 = s;
+    let _e87 = s;
+    (*b)[0i] = (((_e84 * _e85) * _e87) / 6f);
     let _e91 = t3_;
     let _e93 = t2_;
-    let _e96 = (*t);
-    (*b)[2i] = (((((-3f * _e91) + (3f * _e93)) + (3f * _e96)) + 1f) / 6f);
-    let _e102 = t3_;
-    (*b)[3i] = (_e102 / 6f);
-    let _e105 = s;
-    let _e107 = s;
-    (*d)[0i] = ((-(_e105) * _e107) / 2f);
-    let _e111 = t2_;
-    let _e113 = (*t);
-    (*d)[1i] = (((9f * _e111) - (12f * _e113)) / 6f);
-    let _e118 = t2_;
-    let _e120 = (*t);
-    (*d)[2i] = ((((-9f * _e118) + (6f * _e120)) + 3f) / 6f);
+    (*b)[1i] = ((((3f * _e91) - (6f * _e93)) + 4f) / 6f);
+    let _e99 = t3_;
+    let _e101 = t2_;
+    let _e104 = (*t);
+    (*b)[2i] = (((((-3f * _e99) + (3f * _e101)) + (3f * _e104)) + 1f) / 6f);
+    let _e110 = t3_;
+    (*b)[3i] = (_e110 / 6f);
+    let _e113 = s;
+    let _e115 = s;
+    (*d)[0i] = ((-(_e113) * _e115) / 2f);
+    let _e119 = t2_;
+    let _e121 = (*t);
+    (*d)[1i] = (((9f * _e119) - (12f * _e121)) / 6f);
     let _e126 = t2_;
-    (*d)[3i] = (_e126 / 2f);
+    let _e128 = (*t);
+    (*d)[2i] = ((((-9f * _e126) + (6f * _e128)) + 3f) / 6f);
+    let _e134 = t2_;
+    (*d)[3i] = (_e134 / 2f);
     return;
 }
 
@@ -167,74 +167,74 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var k: i32;
 
     M = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
-    let _e86 = (*sharpness);
-    s_1 = _e86;
+    let _e94 = (*sharpness);
+    s_1 = _e94;
     scale = 1f;
     i = 0i;
     loop {
-        let _e87 = i;
-        let _e89 = s_1;
-        if ((_e87 < 12i) && (_e89 > 0f)) {
-            let _e92 = (*t_1);
-            left = (_e92 < 0.5f);
-            let _e94 = s_1;
-            w = min(_e94, 1f);
-            let _e97 = M[0i];
-            let _e99 = M[1i];
-            e01_ = ((_e97 + _e99) * 0.5f);
-            let _e103 = M[1i];
-            let _e105 = M[2i];
-            e12_ = ((_e103 + _e105) * 0.5f);
-            let _e109 = M[2i];
-            let _e111 = M[3i];
-            e23_ = ((_e109 + _e111) * 0.5f);
-            let _e114 = w;
-            let _e116 = M[1i];
-            let _e118 = w;
-            let _e121 = M[0i];
-            let _e123 = M[1i];
-            let _e127 = M[2i];
-            crease = ((_e116 * _e114) + ((((_e121 + (_e123 * 6f)) + _e127) * (1f - _e118)) / vec4(8f)));
-            let _e134 = M[1i];
-            let _e136 = M[2i];
-            let _e140 = M[3i];
-            v2_ = (((_e134 + (_e136 * 6f)) + _e140) / vec4(8f));
-            let _e144 = left;
-            if _e144 {
-                let _e145 = e01_;
-                M[0i] = _e145;
-                let _e147 = crease;
-                M[1i] = _e147;
-                let _e149 = e12_;
-                M[2i] = _e149;
-                let _e151 = v2_;
-                M[3i] = _e151;
-            } else {
-                let _e153 = crease;
+        let _e95 = i;
+        let _e97 = s_1;
+        if ((_e95 < 12i) && (_e97 > 0f)) {
+            let _e100 = (*t_1);
+            left = (_e100 < 0.5f);
+            let _e102 = s_1;
+            w = min(_e102, 1f);
+            let _e105 = M[0i];
+            let _e107 = M[1i];
+            e01_ = ((_e105 + _e107) * 0.5f);
+            let _e111 = M[1i];
+            let _e113 = M[2i];
+            e12_ = ((_e111 + _e113) * 0.5f);
+            let _e117 = M[2i];
+            let _e119 = M[3i];
+            e23_ = ((_e117 + _e119) * 0.5f);
+            let _e122 = w;
+            let _e124 = M[1i];
+            let _e126 = w;
+            let _e129 = M[0i];
+            let _e131 = M[1i];
+            let _e135 = M[2i];
+            crease = ((_e124 * _e122) + ((((_e129 + (_e131 * 6f)) + _e135) * (1f - _e126)) / vec4(8f)));
+            let _e142 = M[1i];
+            let _e144 = M[2i];
+            let _e148 = M[3i];
+            v2_ = (((_e142 + (_e144 * 6f)) + _e148) / vec4(8f));
+            let _e152 = left;
+            if _e152 {
+                let _e153 = e01_;
                 M[0i] = _e153;
-                let _e155 = e12_;
+                let _e155 = crease;
                 M[1i] = _e155;
-                let _e157 = v2_;
+                let _e157 = e12_;
                 M[2i] = _e157;
-                let _e159 = e23_;
+                let _e159 = v2_;
                 M[3i] = _e159;
-            }
-            let _e161 = s_1;
-            s_1 = (_e161 - 1f);
-            let _e163 = scale;
-            scale = (_e163 * 2f);
-            let _e165 = left;
-            if _e165 {
-                let _e166 = (*t_1);
-                local = (2f * _e166);
             } else {
-                let _e168 = (*t_1);
-                local = ((2f * _e168) - 1f);
+                let _e161 = crease;
+                M[0i] = _e161;
+                let _e163 = e12_;
+                M[1i] = _e163;
+                let _e165 = v2_;
+                M[2i] = _e165;
+                let _e167 = e23_;
+                M[3i] = _e167;
             }
-            let _e171 = local;
-            (*t_1) = _e171;
-            let _e172 = left;
-            if !(_e172) {
+            let _e169 = s_1;
+            s_1 = (_e169 - 1f);
+            let _e171 = scale;
+            scale = (_e171 * 2f);
+            let _e173 = left;
+            if _e173 {
+                let _e174 = (*t_1);
+                local = (2f * _e174);
+            } else {
+                let _e176 = (*t_1);
+                local = ((2f * _e176) - 1f);
+            }
+            let _e179 = local;
+            (*t_1) = _e179;
+            let _e180 = left;
+            if !(_e180) {
                 break;
             }
             continue;
@@ -242,55 +242,55 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             break;
         }
         continuing {
-            let _e174 = i;
-            i = (_e174 + 1i);
+            let _e182 = i;
+            i = (_e182 + 1i);
         }
     }
-    let _e176 = (*t_1);
-    param = _e176;
+    let _e184 = (*t_1);
+    param = _e184;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param), (&param_1), (&param_2));
-    let _e177 = param_1;
-    bt = _e177;
-    let _e178 = param_2;
-    dt = _e178;
-    let _e180 = bt[0i];
-    let _e182 = M[0i];
-    let _e185 = bt[1i];
-    let _e187 = M[1i];
-    let _e191 = bt[2i];
-    let _e193 = M[2i];
-    let _e197 = bt[3i];
-    let _e199 = M[3i];
-    B = ((((_e182 * _e180) + (_e187 * _e185)) + (_e193 * _e191)) + (_e199 * _e197));
-    let _e202 = scale;
-    let _e204 = dt[0i];
-    let _e206 = M[0i];
-    let _e209 = dt[1i];
-    let _e211 = M[1i];
-    let _e215 = dt[2i];
-    let _e217 = M[2i];
-    let _e221 = dt[3i];
-    let _e223 = M[3i];
-    D = (((((_e206 * _e204) + (_e211 * _e209)) + (_e217 * _e215)) + (_e223 * _e221)) * _e202);
+    let _e185 = param_1;
+    bt = _e185;
+    let _e186 = param_2;
+    dt = _e186;
+    let _e188 = bt[0i];
+    let _e190 = M[0i];
+    let _e193 = bt[1i];
+    let _e195 = M[1i];
+    let _e199 = bt[2i];
+    let _e201 = M[2i];
+    let _e205 = bt[3i];
+    let _e207 = M[3i];
+    B = ((((_e190 * _e188) + (_e195 * _e193)) + (_e201 * _e199)) + (_e207 * _e205));
+    let _e210 = scale;
+    let _e212 = dt[0i];
+    let _e214 = M[0i];
+    let _e217 = dt[1i];
+    let _e219 = M[1i];
+    let _e223 = dt[2i];
+    let _e225 = M[2i];
+    let _e229 = dt[3i];
+    let _e231 = M[3i];
+    D = (((((_e214 * _e212) + (_e219 * _e217)) + (_e225 * _e223)) + (_e231 * _e229)) * _e210);
     k = 0i;
     loop {
-        let _e227 = k;
-        if (_e227 < 4i) {
-            let _e229 = k;
-            let _e230 = k;
-            let _e232 = B[_e230];
-            (*b_1)[_e229] = _e232;
-            let _e234 = k;
-            let _e235 = k;
-            let _e237 = D[_e235];
-            (*d_1)[_e234] = _e237;
+        let _e235 = k;
+        if (_e235 < 4i) {
+            let _e237 = k;
+            let _e238 = k;
+            let _e240 = B[_e238];
+            (*b_1)[_e237] = _e240;
+            let _e242 = k;
+            let _e243 = k;
+            let _e245 = D[_e243];
+            (*d_1)[_e242] = _e245;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e239 = k;
-            k = (_e239 + 1i);
+            let _e247 = k;
+            k = (_e247 + 1i);
         }
     }
     return;
@@ -308,84 +308,84 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
     var local_2: f32;
     var local_3: f32;
 
-    let _e77 = (*atEnd);
-    if _e77 {
-        let _e78 = (*x);
-        local_1 = (1f - _e78);
+    let _e85 = (*atEnd);
+    if _e85 {
+        let _e86 = (*x);
+        local_1 = (1f - _e86);
     } else {
-        let _e80 = (*x);
-        local_1 = _e80;
+        let _e88 = (*x);
+        local_1 = _e88;
     }
-    let _e81 = local_1;
-    param_3 = _e81;
-    let _e82 = (*sharpness_1);
-    param_4 = _e82;
+    let _e89 = local_1;
+    param_3 = _e89;
+    let _e90 = (*sharpness_1);
+    param_4 = _e90;
     creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_3), (&param_4), (&param_5), (&param_6));
-    let _e83 = param_5;
-    cb = _e83;
-    let _e84 = param_6;
-    cd = _e84;
+    let _e91 = param_5;
+    cb = _e91;
+    let _e92 = param_6;
+    cd = _e92;
     k_1 = 0i;
     loop {
-        let _e85 = k_1;
-        if (_e85 < 4i) {
-            let _e87 = k_1;
-            let _e88 = (*atEnd);
-            if _e88 {
-                let _e89 = k_1;
-                let _e92 = cb[(3i - _e89)];
-                local_2 = _e92;
+        let _e93 = k_1;
+        if (_e93 < 4i) {
+            let _e95 = k_1;
+            let _e96 = (*atEnd);
+            if _e96 {
+                let _e97 = k_1;
+                let _e100 = cb[(3i - _e97)];
+                local_2 = _e100;
             } else {
-                let _e93 = k_1;
-                let _e95 = cb[_e93];
-                local_2 = _e95;
+                let _e101 = k_1;
+                let _e103 = cb[_e101];
+                local_2 = _e103;
             }
-            let _e96 = local_2;
-            (*b_2)[_e87] = _e96;
-            let _e98 = k_1;
-            let _e99 = (*atEnd);
-            if _e99 {
-                let _e100 = k_1;
-                let _e103 = cd[(3i - _e100)];
-                local_3 = -(_e103);
+            let _e104 = local_2;
+            (*b_2)[_e95] = _e104;
+            let _e106 = k_1;
+            let _e107 = (*atEnd);
+            if _e107 {
+                let _e108 = k_1;
+                let _e111 = cd[(3i - _e108)];
+                local_3 = -(_e111);
             } else {
-                let _e105 = k_1;
-                let _e107 = cd[_e105];
-                local_3 = _e107;
+                let _e113 = k_1;
+                let _e115 = cd[_e113];
+                local_3 = _e115;
             }
-            let _e108 = local_3;
-            (*d_2)[_e98] = _e108;
+            let _e116 = local_3;
+            (*d_2)[_e106] = _e116;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e110 = k_1;
-            k_1 = (_e110 + 1i);
+            let _e118 = k_1;
+            k_1 = (_e118 + 1i);
         }
     }
     return;
 }
 
 fn foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b(b_3: ptr<function, array<f32, 4>>, atStart: ptr<function, bool>, atEnd_1: ptr<function, bool>) {
-    let _e65 = (*atStart);
-    if _e65 {
-        let _e67 = (*b_3)[0i];
-        let _e70 = (*b_3)[1i];
-        (*b_3)[1i] = (_e70 + (2f * _e67));
-        let _e74 = (*b_3)[0i];
-        let _e76 = (*b_3)[2i];
-        (*b_3)[2i] = (_e76 - _e74);
+    let _e73 = (*atStart);
+    if _e73 {
+        let _e75 = (*b_3)[0i];
+        let _e78 = (*b_3)[1i];
+        (*b_3)[1i] = (_e78 + (2f * _e75));
+        let _e82 = (*b_3)[0i];
+        let _e84 = (*b_3)[2i];
+        (*b_3)[2i] = (_e84 - _e82);
         (*b_3)[0i] = 0f;
     }
-    let _e80 = (*atEnd_1);
-    if _e80 {
-        let _e82 = (*b_3)[3i];
-        let _e85 = (*b_3)[2i];
-        (*b_3)[2i] = (_e85 + (2f * _e82));
-        let _e89 = (*b_3)[3i];
-        let _e91 = (*b_3)[1i];
-        (*b_3)[1i] = (_e91 - _e89);
+    let _e88 = (*atEnd_1);
+    if _e88 {
+        let _e90 = (*b_3)[3i];
+        let _e93 = (*b_3)[2i];
+        (*b_3)[2i] = (_e93 + (2f * _e90));
+        let _e97 = (*b_3)[3i];
+        let _e99 = (*b_3)[1i];
+        (*b_3)[1i] = (_e99 - _e97);
         (*b_3)[3i] = 0f;
     }
     return;
@@ -423,96 +423,92 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_33: array<f32, 4>;
     var param_34: array<f32, 4>;
 
-    let _e100 = (*pt).levelBoundary;
-    mask = ((_e100 >> bitcast<u32>(8i)) & 15u);
-    let _e104 = (*s_2);
-    param_7 = _e104;
+    let _e108 = (*pt).levelBoundary;
+    mask = ((_e108 >> bitcast<u32>(8i)) & 15u);
+    let _e112 = (*s_2);
+    param_7 = _e112;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_7), (&param_8), (&param_9));
-    let _e105 = param_8;
-    (*bu) = _e105;
-    let _e106 = param_9;
-    (*du) = _e106;
-    let _e107 = (*t_2);
-    param_10 = _e107;
+    let _e113 = param_8;
+    (*bu) = _e113;
+    let _e114 = param_9;
+    (*du) = _e114;
+    let _e115 = (*t_2);
+    param_10 = _e115;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_10), (&param_11), (&param_12));
-    let _e108 = param_11;
-    (*bv) = _e108;
-    let _e109 = param_12;
-    (*dv) = _e109;
-    let _e110 = mask;
-    let _e113 = mask;
-    let _e116 = (*bu);
-    param_13 = _e116;
-    param_14 = ((_e110 & 8u) != 0u);
-    param_15 = ((_e113 & 2u) != 0u);
-    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_13), (&param_14), (&param_15));
-    let _e117 = param_13;
-    (*bu) = _e117;
+    let _e116 = param_11;
+    (*bv) = _e116;
+    let _e117 = param_12;
+    (*dv) = _e117;
     let _e118 = mask;
     let _e121 = mask;
-    let _e124 = (*du);
-    param_16 = _e124;
-    param_17 = ((_e118 & 8u) != 0u);
-    param_18 = ((_e121 & 2u) != 0u);
-    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
-    let _e125 = param_16;
-    (*du) = _e125;
+    let _e124 = (*bu);
+    param_13 = _e124;
+    param_14 = ((_e118 & 8u) != 0u);
+    param_15 = ((_e121 & 2u) != 0u);
+    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_13), (&param_14), (&param_15));
+    let _e125 = param_13;
+    (*bu) = _e125;
     let _e126 = mask;
     let _e129 = mask;
-    let _e132 = (*bv);
-    param_19 = _e132;
-    param_20 = ((_e126 & 1u) != 0u);
-    param_21 = ((_e129 & 4u) != 0u);
-    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
-    let _e133 = param_19;
-    (*bv) = _e133;
+    let _e132 = (*du);
+    param_16 = _e132;
+    param_17 = ((_e126 & 8u) != 0u);
+    param_18 = ((_e129 & 2u) != 0u);
+    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
+    let _e133 = param_16;
+    (*du) = _e133;
     let _e134 = mask;
     let _e137 = mask;
-    let _e140 = (*dv);
-    param_22 = _e140;
-    param_23 = ((_e134 & 1u) != 0u);
-    param_24 = ((_e137 & 4u) != 0u);
+    let _e140 = (*bv);
+    param_19 = _e140;
+    param_20 = ((_e134 & 1u) != 0u);
+    param_21 = ((_e137 & 4u) != 0u);
+    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
+    let _e141 = param_19;
+    (*bv) = _e141;
+    let _e142 = mask;
+    let _e145 = mask;
+    let _e148 = (*dv);
+    param_22 = _e148;
+    param_23 = ((_e142 & 1u) != 0u);
+    param_24 = ((_e145 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_22), (&param_23), (&param_24));
-    let _e141 = param_22;
-    (*dv) = _e141;
-    let _e143 = (*pt).levelBoundary;
-    crease_1 = ((_e143 >> bitcast<u32>(16i)) & 15u);
-    let _e147 = crease_1;
-    if ((_e147 & 5u) != 0u) {
-        let _e150 = crease_1;
-        let _e153 = (*t_2);
-        param_25 = _e153;
-        param_26 = ((_e150 & 4u) != 0u);
-        let _e155 = (*pt).sharpness;
-        param_27 = _e155;
+    let _e149 = param_22;
+    (*dv) = _e149;
+    let _e151 = (*pt).levelBoundary;
+    crease_1 = ((_e151 >> bitcast<u32>(16i)) & 15u);
+    let _e155 = crease_1;
+    if ((_e155 & 5u) != 0u) {
+        let _e158 = crease_1;
+        let _e161 = (*t_2);
+        param_25 = _e161;
+        param_26 = ((_e158 & 4u) != 0u);
+        let _e163 = (*pt).sharpness;
+        param_27 = _e163;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_25), (&param_26), (&param_27), (&param_28), (&param_29));
-        let _e156 = param_28;
-        (*bv) = _e156;
-        let _e157 = param_29;
-        (*dv) = _e157;
+        let _e164 = param_28;
+        (*bv) = _e164;
+        let _e165 = param_29;
+        (*dv) = _e165;
     }
-    let _e158 = crease_1;
-    if ((_e158 & 10u) != 0u) {
-        let _e161 = crease_1;
-        let _e164 = (*s_2);
-        param_30 = _e164;
-        param_31 = ((_e161 & 2u) != 0u);
-        let _e166 = (*pt).sharpness;
-        param_32 = _e166;
+    let _e166 = crease_1;
+    if ((_e166 & 10u) != 0u) {
+        let _e169 = crease_1;
+        let _e172 = (*s_2);
+        param_30 = _e172;
+        param_31 = ((_e169 & 2u) != 0u);
+        let _e174 = (*pt).sharpness;
+        param_32 = _e174;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_30), (&param_31), (&param_32), (&param_33), (&param_34));
-        let _e167 = param_33;
-        (*bu) = _e167;
-        let _e168 = param_34;
-        (*du) = _e168;
+        let _e175 = param_33;
+        (*bu) = _e175;
+        let _e176 = param_34;
+        (*du) = _e176;
     }
     return;
 }
 
-fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>, st: ptr<function, u32>, patchCount: ptr<function, u32>) -> SurfaceSample {
-    var tv: vec2<u32>;
-    var s_3: f32;
-    var t_3: f32;
-    var pt_1: Patch;
+fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(pt_1: ptr<function, Patch>, s_3: ptr<function, f32>, t_3: ptr<function, f32>, P: ptr<function, vec3<f32>>, n: ptr<function, vec3<f32>>) {
     var bu_1: array<f32, 4>;
     var du_1: array<f32, 4>;
     var bv_1: array<f32, 4>;
@@ -524,7 +520,6 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_39: array<f32, 4>;
     var param_40: array<f32, 4>;
     var param_41: array<f32, 4>;
-    var P: vec3<f32>;
     var Du: vec3<f32>;
     var Dv: vec3<f32>;
     var j: i32;
@@ -533,286 +528,998 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var rowDv: vec3<f32>;
     var i_1: i32;
     var c: vec3<f32>;
-    var n: vec3<f32>;
-    var r: SurfaceSample;
-    var local_4: vec3<f32>;
-    var q: IrregularFace;
-    var w_1: array<f32, 4>;
-    var P_1: vec3<f32>;
-    var N: vec3<f32>;
-    var k_2: i32;
-    var local_5: vec3<f32>;
 
-    let _e98 = (*element);
-    let _e99 = (*st);
-    tv = vec2<u32>(_e98, _e99);
-    let _e102 = tv[1u];
-    s_3 = (f32((_e102 & 65535u)) / 32768f);
-    let _e107 = tv[1u];
-    t_3 = (f32((_e107 >> bitcast<u32>(16i))) / 32768f);
-    let _e113 = tv[0u];
-    let _e114 = (*patchCount);
-    if (_e113 < _e114) {
-        let _e117 = tv[0u];
-        let _e120 = patches.p[_e117];
-        pt_1.cv[0i] = _e120.cv[0];
-        pt_1.cv[1i] = _e120.cv[1];
-        pt_1.cv[2i] = _e120.cv[2];
-        pt_1.cv[3i] = _e120.cv[3];
-        pt_1.cv[4i] = _e120.cv[4];
-        pt_1.cv[5i] = _e120.cv[5];
-        pt_1.cv[6i] = _e120.cv[6];
-        pt_1.cv[7i] = _e120.cv[7];
-        pt_1.cv[8i] = _e120.cv[8];
-        pt_1.cv[9i] = _e120.cv[9];
-        pt_1.cv[10i] = _e120.cv[10];
-        pt_1.cv[11i] = _e120.cv[11];
-        pt_1.cv[12i] = _e120.cv[12];
-        pt_1.cv[13i] = _e120.cv[13];
-        pt_1.cv[14i] = _e120.cv[14];
-        pt_1.cv[15i] = _e120.cv[15];
-        pt_1.ptex = _e120.ptex;
-        pt_1.u0_ = _e120.u0_;
-        pt_1.v0_ = _e120.v0_;
-        pt_1.size = _e120.size;
-        pt_1.levelBoundary = _e120.levelBoundary;
-        pt_1.sharpness = _e120.sharpness;
-        pt_1.pad1_ = _e120.pad1_;
-        pt_1.pad2_ = _e120.pad2_;
-        let _e171 = pt_1;
-        param_35 = _e171;
-        let _e172 = s_3;
-        param_36 = _e172;
-        let _e173 = t_3;
-        param_37 = _e173;
-        patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
-        let _e174 = param_38;
-        bu_1 = _e174;
-        let _e175 = param_39;
-        du_1 = _e175;
-        let _e176 = param_40;
-        bv_1 = _e176;
-        let _e177 = param_41;
-        dv_1 = _e177;
-        P = vec3<f32>(0f, 0f, 0f);
-        Du = vec3<f32>(0f, 0f, 0f);
-        Dv = vec3<f32>(0f, 0f, 0f);
-        j = 0i;
-        loop {
-            let _e178 = j;
-            if (_e178 < 4i) {
-                row = vec3<f32>(0f, 0f, 0f);
-                rowDu = vec3<f32>(0f, 0f, 0f);
-                rowDv = vec3<f32>(0f, 0f, 0f);
-                i_1 = 0i;
-                loop {
-                    let _e180 = i_1;
-                    if (_e180 < 4i) {
-                        let _e182 = j;
-                        let _e184 = i_1;
-                        let _e188 = pt_1.cv[((4i * _e182) + _e184)];
-                        let _e191 = vertices.p[_e188];
-                        c = _e191.xyz;
-                        let _e193 = i_1;
-                        let _e195 = bu_1[_e193];
-                        let _e196 = c;
-                        let _e198 = row;
-                        row = (_e198 + (_e196 * _e195));
-                        let _e200 = i_1;
-                        let _e202 = du_1[_e200];
-                        let _e203 = c;
-                        let _e205 = rowDu;
-                        rowDu = (_e205 + (_e203 * _e202));
-                        continue;
-                    } else {
-                        break;
-                    }
-                    continuing {
-                        let _e207 = i_1;
-                        i_1 = (_e207 + 1i);
-                    }
+    let _e94 = (*pt_1);
+    param_35 = _e94;
+    let _e95 = (*s_3);
+    param_36 = _e95;
+    let _e96 = (*t_3);
+    param_37 = _e96;
+    patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
+    let _e97 = param_38;
+    bu_1 = _e97;
+    let _e98 = param_39;
+    du_1 = _e98;
+    let _e99 = param_40;
+    bv_1 = _e99;
+    let _e100 = param_41;
+    dv_1 = _e100;
+    (*P) = vec3<f32>(0f, 0f, 0f);
+    Du = vec3<f32>(0f, 0f, 0f);
+    Dv = vec3<f32>(0f, 0f, 0f);
+    j = 0i;
+    loop {
+        let _e101 = j;
+        if (_e101 < 4i) {
+            row = vec3<f32>(0f, 0f, 0f);
+            rowDu = vec3<f32>(0f, 0f, 0f);
+            rowDv = vec3<f32>(0f, 0f, 0f);
+            i_1 = 0i;
+            loop {
+                let _e103 = i_1;
+                if (_e103 < 4i) {
+                    let _e105 = j;
+                    let _e107 = i_1;
+                    let _e111 = (*pt_1).cv[((4i * _e105) + _e107)];
+                    let _e114 = vertices.p[_e111];
+                    c = _e114.xyz;
+                    let _e116 = i_1;
+                    let _e118 = bu_1[_e116];
+                    let _e119 = c;
+                    let _e121 = row;
+                    row = (_e121 + (_e119 * _e118));
+                    let _e123 = i_1;
+                    let _e125 = du_1[_e123];
+                    let _e126 = c;
+                    let _e128 = rowDu;
+                    rowDu = (_e128 + (_e126 * _e125));
+                    continue;
+                } else {
+                    break;
                 }
-                let _e209 = j;
-                let _e211 = bv_1[_e209];
-                let _e212 = row;
-                let _e214 = P;
-                P = (_e214 + (_e212 * _e211));
-                let _e216 = j;
-                let _e218 = bv_1[_e216];
-                let _e219 = rowDu;
-                let _e221 = Du;
-                Du = (_e221 + (_e219 * _e218));
-                let _e223 = j;
-                let _e225 = dv_1[_e223];
-                let _e226 = row;
-                let _e228 = Dv;
-                Dv = (_e228 + (_e226 * _e225));
-                continue;
-            } else {
-                break;
+                continuing {
+                    let _e130 = i_1;
+                    i_1 = (_e130 + 1i);
+                }
             }
-            continuing {
-                let _e230 = j;
-                j = (_e230 + 1i);
-            }
-        }
-        let _e232 = Du;
-        let _e233 = Dv;
-        n = cross(_e232, _e233);
-        let _e235 = P;
-        r.position = _e235;
-        let _e237 = n;
-        let _e238 = n;
-        if (dot(_e237, _e238) > 0f) {
-            let _e241 = n;
-            local_4 = normalize(_e241);
+            let _e132 = j;
+            let _e134 = bv_1[_e132];
+            let _e135 = row;
+            let _e137 = (*P);
+            (*P) = (_e137 + (_e135 * _e134));
+            let _e139 = j;
+            let _e141 = bv_1[_e139];
+            let _e142 = rowDu;
+            let _e144 = Du;
+            Du = (_e144 + (_e142 * _e141));
+            let _e146 = j;
+            let _e148 = dv_1[_e146];
+            let _e149 = row;
+            let _e151 = Dv;
+            Dv = (_e151 + (_e149 * _e148));
+            continue;
         } else {
-            local_4 = vec3<f32>(0f, 0f, 0f);
+            break;
         }
-        let _e243 = local_4;
-        r.normal = _e243;
-        let _e246 = pt_1.ptex;
-        r.ptex = _e246;
-        let _e249 = pt_1.u0_;
-        let _e251 = pt_1.v0_;
-        let _e254 = pt_1.size;
-        let _e255 = s_3;
-        let _e256 = t_3;
-        r.uv = (vec2<f32>(_e249, _e251) + (vec2<f32>(_e255, _e256) * _e254));
-        let _e262 = pt_1.levelBoundary;
-        r.level = (_e262 & 255u);
-    } else {
-        let _e266 = tv[0u];
-        let _e267 = (*patchCount);
-        let _e271 = irregulars.f[(_e266 - _e267)];
-        q.corner[0i] = _e271.corner[0];
-        q.corner[1i] = _e271.corner[1];
-        q.corner[2i] = _e271.corner[2];
-        q.corner[3i] = _e271.corner[3];
-        q.ptex = _e271.ptex;
-        q.u0_ = _e271.u0_;
-        q.v0_ = _e271.v0_;
-        q.size = _e271.size;
-        let _e290 = s_3;
-        let _e292 = t_3;
-        let _e295 = s_3;
-        let _e296 = t_3;
-        let _e299 = s_3;
-        let _e300 = t_3;
-        let _e302 = s_3;
-        let _e304 = t_3;
-        w_1 = array<f32, 4>(((1f - _e290) * (1f - _e292)), (_e295 * (1f - _e296)), (_e299 * _e300), ((1f - _e302) * _e304));
-        P_1 = vec3<f32>(0f, 0f, 0f);
-        N = vec3<f32>(0f, 0f, 0f);
-        k_2 = 0i;
-        loop {
-            let _e307 = k_2;
-            if (_e307 < 4i) {
-                let _e309 = k_2;
-                let _e311 = w_1[_e309];
-                let _e312 = k_2;
-                let _e315 = q.corner[_e312];
-                let _e319 = limits.v[(2u * _e315)];
-                let _e322 = P_1;
-                P_1 = (_e322 + (_e319.xyz * _e311));
-                let _e324 = k_2;
-                let _e326 = w_1[_e324];
-                let _e327 = k_2;
-                let _e330 = q.corner[_e327];
-                let _e335 = limits.v[((2u * _e330) + 1u)];
-                let _e338 = N;
-                N = (_e338 + (_e335.xyz * _e326));
-                continue;
-            } else {
-                break;
-            }
-            continuing {
-                let _e340 = k_2;
-                k_2 = (_e340 + 1i);
-            }
+        continuing {
+            let _e153 = j;
+            j = (_e153 + 1i);
         }
-        let _e342 = P_1;
-        r.position = _e342;
-        let _e344 = N;
-        let _e345 = N;
-        if (dot(_e344, _e345) > 0f) {
-            let _e348 = N;
-            local_5 = normalize(_e348);
-        } else {
-            local_5 = vec3<f32>(0f, 0f, 0f);
-        }
-        let _e350 = local_5;
-        r.normal = _e350;
-        let _e353 = q.ptex;
-        r.ptex = _e353;
-        let _e356 = q.u0_;
-        let _e358 = q.v0_;
-        let _e361 = q.size;
-        let _e362 = s_3;
-        let _e363 = t_3;
-        r.uv = (vec2<f32>(_e356, _e358) + (vec2<f32>(_e362, _e363) * _e361));
-        r.level = 255u;
     }
-    let _e369 = r;
-    return _e369;
+    let _e155 = Du;
+    let _e156 = Dv;
+    (*n) = cross(_e155, _e156);
+    return;
 }
 
-fn evaluateTessVertex_u0028_u1_u003b_u1_u003b(vi: ptr<function, u32>, patchCount_1: ptr<function, u32>) -> SurfaceSample {
-    var tv_1: vec2<u32>;
-    var param_42: u32;
-    var param_43: u32;
-    var param_44: u32;
+fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(h: ptr<function, u32>, k_2: ptr<function, u32>, q: ptr<function, u32>, s_4: ptr<function, f32>, t_4: ptr<function, f32>, P_1: ptr<function, vec3<f32>>, n_1: ptr<function, vec3<f32>>) {
+    var hd: Patch;
+    var M_1: u32;
+    var block: u32;
+    var j_1: i32;
+    var c_1: array<vec3<f32>, 16>;
+    var i_2: u32;
+    var x_1: vec3<f32>;
+    var w_1: Patch;
+    var j_2: i32;
+    var bu_2: array<f32, 4>;
+    var du_2: array<f32, 4>;
+    var param_42: f32;
+    var param_43: array<f32, 4>;
+    var param_44: array<f32, 4>;
+    var bv_2: array<f32, 4>;
+    var dv_2: array<f32, 4>;
+    var param_45: f32;
+    var param_46: array<f32, 4>;
+    var param_47: array<f32, 4>;
+    var Du_1: vec3<f32>;
+    var Dv_1: vec3<f32>;
+    var j_3: i32;
+    var row_1: vec3<f32>;
+    var rowDu_1: vec3<f32>;
+    var i_3: i32;
 
-    let _e68 = (*vi);
-    let _e71 = tessVertices.v[_e68];
-    tv_1 = _e71.xy;
-    let _e74 = tv_1[0u];
-    param_42 = _e74;
-    let _e76 = tv_1[1u];
-    param_43 = _e76;
-    let _e77 = (*patchCount_1);
-    param_44 = _e77;
-    let _e78 = evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b((&param_42), (&param_43), (&param_44));
-    return _e78;
+    let _e102 = (*h);
+    let _e105 = patches.p[_e102];
+    hd.cv[0i] = _e105.cv[0];
+    hd.cv[1i] = _e105.cv[1];
+    hd.cv[2i] = _e105.cv[2];
+    hd.cv[3i] = _e105.cv[3];
+    hd.cv[4i] = _e105.cv[4];
+    hd.cv[5i] = _e105.cv[5];
+    hd.cv[6i] = _e105.cv[6];
+    hd.cv[7i] = _e105.cv[7];
+    hd.cv[8i] = _e105.cv[8];
+    hd.cv[9i] = _e105.cv[9];
+    hd.cv[10i] = _e105.cv[10];
+    hd.cv[11i] = _e105.cv[11];
+    hd.cv[12i] = _e105.cv[12];
+    hd.cv[13i] = _e105.cv[13];
+    hd.cv[14i] = _e105.cv[14];
+    hd.cv[15i] = _e105.cv[15];
+    hd.ptex = _e105.ptex;
+    hd.u0_ = _e105.u0_;
+    hd.v0_ = _e105.v0_;
+    hd.size = _e105.size;
+    hd.levelBoundary = _e105.levelBoundary;
+    hd.sharpness = _e105.sharpness;
+    hd.pad1_ = _e105.pad1_;
+    hd.pad2_ = _e105.pad2_;
+    let _e158 = hd.cv[0i];
+    M_1 = ((2u * _e158) + 8u);
+    let _e163 = hd.cv[2i];
+    let _e164 = (*k_2);
+    let _e167 = (*q);
+    let _e170 = M_1;
+    block = (_e163 + ((((_e164 - 1u) * 3u) + (_e167 - 1u)) * _e170));
+    j_1 = 0i;
+    loop {
+        let _e173 = j_1;
+        if (_e173 < 16i) {
+            let _e175 = j_1;
+            c_1[_e175] = vec3<f32>(0f, 0f, 0f);
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e177 = j_1;
+            j_1 = (_e177 + 1i);
+        }
+    }
+    i_2 = 0u;
+    loop {
+        let _e179 = i_2;
+        let _e180 = M_1;
+        if (_e179 < _e180) {
+            let _e182 = (*h);
+            let _e184 = i_2;
+            let _e187 = i_2;
+            let _e193 = patches.p[((_e182 + 1u) + (_e184 / 16u))].cv[(_e187 % 16u)];
+            let _e196 = vertices.p[_e193];
+            x_1 = _e196.xyz;
+            let _e198 = block;
+            let _e199 = i_2;
+            let _e203 = patches.p[(_e198 + _e199)];
+            w_1.cv[0i] = _e203.cv[0];
+            w_1.cv[1i] = _e203.cv[1];
+            w_1.cv[2i] = _e203.cv[2];
+            w_1.cv[3i] = _e203.cv[3];
+            w_1.cv[4i] = _e203.cv[4];
+            w_1.cv[5i] = _e203.cv[5];
+            w_1.cv[6i] = _e203.cv[6];
+            w_1.cv[7i] = _e203.cv[7];
+            w_1.cv[8i] = _e203.cv[8];
+            w_1.cv[9i] = _e203.cv[9];
+            w_1.cv[10i] = _e203.cv[10];
+            w_1.cv[11i] = _e203.cv[11];
+            w_1.cv[12i] = _e203.cv[12];
+            w_1.cv[13i] = _e203.cv[13];
+            w_1.cv[14i] = _e203.cv[14];
+            w_1.cv[15i] = _e203.cv[15];
+            w_1.ptex = _e203.ptex;
+            w_1.u0_ = _e203.u0_;
+            w_1.v0_ = _e203.v0_;
+            w_1.size = _e203.size;
+            w_1.levelBoundary = _e203.levelBoundary;
+            w_1.sharpness = _e203.sharpness;
+            w_1.pad1_ = _e203.pad1_;
+            w_1.pad2_ = _e203.pad2_;
+            j_2 = 0i;
+            loop {
+                let _e254 = j_2;
+                if (_e254 < 16i) {
+                    let _e256 = j_2;
+                    let _e257 = j_2;
+                    let _e260 = w_1.cv[_e257];
+                    let _e262 = x_1;
+                    let _e265 = c_1[_e256];
+                    c_1[_e256] = (_e265 + (_e262 * bitcast<f32>(_e260)));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e268 = j_2;
+                    j_2 = (_e268 + 1i);
+                }
+            }
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e270 = i_2;
+            i_2 = (_e270 + bitcast<u32>(1i));
+        }
+    }
+    let _e273 = (*s_4);
+    param_42 = _e273;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
+    let _e274 = param_43;
+    bu_2 = _e274;
+    let _e275 = param_44;
+    du_2 = _e275;
+    let _e276 = (*t_4);
+    param_45 = _e276;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
+    let _e277 = param_46;
+    bv_2 = _e277;
+    let _e278 = param_47;
+    dv_2 = _e278;
+    (*P_1) = vec3<f32>(0f, 0f, 0f);
+    Du_1 = vec3<f32>(0f, 0f, 0f);
+    Dv_1 = vec3<f32>(0f, 0f, 0f);
+    j_3 = 0i;
+    loop {
+        let _e279 = j_3;
+        if (_e279 < 4i) {
+            row_1 = vec3<f32>(0f, 0f, 0f);
+            rowDu_1 = vec3<f32>(0f, 0f, 0f);
+            i_3 = 0i;
+            loop {
+                let _e281 = i_3;
+                if (_e281 < 4i) {
+                    let _e283 = i_3;
+                    let _e285 = bu_2[_e283];
+                    let _e286 = j_3;
+                    let _e288 = i_3;
+                    let _e291 = c_1[((4i * _e286) + _e288)];
+                    let _e293 = row_1;
+                    row_1 = (_e293 + (_e291 * _e285));
+                    let _e295 = i_3;
+                    let _e297 = du_2[_e295];
+                    let _e298 = j_3;
+                    let _e300 = i_3;
+                    let _e303 = c_1[((4i * _e298) + _e300)];
+                    let _e305 = rowDu_1;
+                    rowDu_1 = (_e305 + (_e303 * _e297));
+                    continue;
+                } else {
+                    break;
+                }
+                continuing {
+                    let _e307 = i_3;
+                    i_3 = (_e307 + 1i);
+                }
+            }
+            let _e309 = j_3;
+            let _e311 = bv_2[_e309];
+            let _e312 = row_1;
+            let _e314 = (*P_1);
+            (*P_1) = (_e314 + (_e312 * _e311));
+            let _e316 = j_3;
+            let _e318 = bv_2[_e316];
+            let _e319 = rowDu_1;
+            let _e321 = Du_1;
+            Du_1 = (_e321 + (_e319 * _e318));
+            let _e323 = j_3;
+            let _e325 = dv_2[_e323];
+            let _e326 = row_1;
+            let _e328 = Dv_1;
+            Dv_1 = (_e328 + (_e326 * _e325));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e330 = j_3;
+            j_3 = (_e330 + 1i);
+        }
+    }
+    let _e332 = Du_1;
+    let _e333 = Dv_1;
+    (*n_1) = cross(_e332, _e333);
+    return;
+}
+
+fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u32>, st: ptr<function, u32>, P_2: ptr<function, vec3<f32>>, n_2: ptr<function, vec3<f32>>) {
+    var hd_1: Patch;
+    var S: u32;
+    var T: u32;
+    var corner: u32;
+    var K: u32;
+    var a: u32;
+    var local_4: u32;
+    var local_5: u32;
+    var local_6: u32;
+    var c_2: u32;
+    var local_7: u32;
+    var local_8: u32;
+    var local_9: u32;
+    var evP: vec3<f32>;
+    var evN: vec3<f32>;
+    var k_3: u32;
+    var qu: u32;
+    var qv: u32;
+    var q_1: u32;
+    var local_10: u32;
+    var param_48: u32;
+    var param_49: u32;
+    var param_50: u32;
+    var param_51: f32;
+    var param_52: f32;
+    var param_53: vec3<f32>;
+    var param_54: vec3<f32>;
+    var P1_: vec3<f32>;
+    var n1_: vec3<f32>;
+    var param_55: u32;
+    var param_56: u32;
+    var param_57: u32;
+    var param_58: f32;
+    var param_59: f32;
+    var param_60: vec3<f32>;
+    var param_61: vec3<f32>;
+    var P2_: vec3<f32>;
+    var n2_: vec3<f32>;
+    var param_62: u32;
+    var param_63: u32;
+    var param_64: u32;
+    var param_65: f32;
+    var param_66: f32;
+    var param_67: vec3<f32>;
+    var param_68: vec3<f32>;
+    var P3_: vec3<f32>;
+    var n3_: vec3<f32>;
+    var param_69: u32;
+    var param_70: u32;
+    var param_71: u32;
+    var param_72: f32;
+    var param_73: f32;
+    var param_74: vec3<f32>;
+    var param_75: vec3<f32>;
+    var x_2: f32;
+    var y: f32;
+    var w_2: array<f32, 4>;
+
+    let _e131 = (*h_1);
+    let _e134 = patches.p[_e131];
+    hd_1.cv[0i] = _e134.cv[0];
+    hd_1.cv[1i] = _e134.cv[1];
+    hd_1.cv[2i] = _e134.cv[2];
+    hd_1.cv[3i] = _e134.cv[3];
+    hd_1.cv[4i] = _e134.cv[4];
+    hd_1.cv[5i] = _e134.cv[5];
+    hd_1.cv[6i] = _e134.cv[6];
+    hd_1.cv[7i] = _e134.cv[7];
+    hd_1.cv[8i] = _e134.cv[8];
+    hd_1.cv[9i] = _e134.cv[9];
+    hd_1.cv[10i] = _e134.cv[10];
+    hd_1.cv[11i] = _e134.cv[11];
+    hd_1.cv[12i] = _e134.cv[12];
+    hd_1.cv[13i] = _e134.cv[13];
+    hd_1.cv[14i] = _e134.cv[14];
+    hd_1.cv[15i] = _e134.cv[15];
+    hd_1.ptex = _e134.ptex;
+    hd_1.u0_ = _e134.u0_;
+    hd_1.v0_ = _e134.v0_;
+    hd_1.size = _e134.size;
+    hd_1.levelBoundary = _e134.levelBoundary;
+    hd_1.sharpness = _e134.sharpness;
+    hd_1.pad1_ = _e134.pad1_;
+    hd_1.pad2_ = _e134.pad2_;
+    let _e185 = (*st);
+    S = (_e185 & 65535u);
+    let _e187 = (*st);
+    T = (_e187 >> bitcast<u32>(16i));
+    let _e192 = hd_1.cv[1i];
+    corner = _e192;
+    let _e195 = hd_1.cv[3i];
+    K = _e195;
+    let _e196 = corner;
+    if (_e196 == 0u) {
+        let _e198 = S;
+        local_4 = _e198;
+    } else {
+        let _e199 = corner;
+        if (_e199 == 1u) {
+            let _e201 = T;
+            local_5 = _e201;
+        } else {
+            let _e202 = corner;
+            if (_e202 == 2u) {
+                let _e204 = S;
+                local_6 = (32768u - _e204);
+            } else {
+                let _e206 = T;
+                local_6 = (32768u - _e206);
+            }
+            let _e208 = local_6;
+            local_5 = _e208;
+        }
+        let _e209 = local_5;
+        local_4 = _e209;
+    }
+    let _e210 = local_4;
+    a = _e210;
+    let _e211 = corner;
+    if (_e211 == 0u) {
+        let _e213 = T;
+        local_7 = _e213;
+    } else {
+        let _e214 = corner;
+        if (_e214 == 1u) {
+            let _e216 = S;
+            local_8 = (32768u - _e216);
+        } else {
+            let _e218 = corner;
+            if (_e218 == 2u) {
+                let _e220 = T;
+                local_9 = (32768u - _e220);
+            } else {
+                let _e222 = S;
+                local_9 = _e222;
+            }
+            let _e223 = local_9;
+            local_8 = _e223;
+        }
+        let _e224 = local_8;
+        local_7 = _e224;
+    }
+    let _e225 = local_7;
+    c_2 = _e225;
+    let _e228 = hd_1.cv[4i];
+    let _e232 = limits.v[(2u * _e228)];
+    evP = _e232.xyz;
+    let _e236 = hd_1.cv[4i];
+    let _e241 = limits.v[((2u * _e236) + 1u)];
+    evN = _e241.xyz;
+    let _e243 = a;
+    let _e245 = c_2;
+    if ((_e243 == 0u) && (_e245 == 0u)) {
+        let _e248 = evP;
+        (*P_2) = _e248;
+        let _e249 = evN;
+        (*n_2) = _e249;
+        return;
+    }
+    k_3 = 1u;
+    loop {
+        let _e250 = a;
+        let _e251 = c_2;
+        let _e254 = k_3;
+        let _e255 = K;
+        if ((max(_e250, _e251) < 16384u) && (_e254 < _e255)) {
+            let _e258 = a;
+            a = (_e258 * 2u);
+            let _e260 = c_2;
+            c_2 = (_e260 * 2u);
+            let _e262 = k_3;
+            k_3 = (_e262 + bitcast<u32>(1i));
+            continue;
+        } else {
+            break;
+        }
+    }
+    let _e265 = a;
+    let _e266 = c_2;
+    if (max(_e265, _e266) >= 16384u) {
+        let _e269 = a;
+        qu = select(0u, 1u, (_e269 >= 16384u));
+        let _e272 = c_2;
+        qv = select(0u, 1u, (_e272 >= 16384u));
+        let _e275 = qv;
+        if (_e275 == 0u) {
+            local_10 = 1u;
+        } else {
+            let _e277 = qu;
+            local_10 = select(3u, 2u, (_e277 == 1u));
+        }
+        let _e280 = local_10;
+        q_1 = _e280;
+        let _e281 = a;
+        let _e283 = qu;
+        let _e288 = c_2;
+        let _e290 = qv;
+        let _e295 = (*h_1);
+        param_48 = _e295;
+        let _e296 = k_3;
+        param_49 = _e296;
+        let _e297 = q_1;
+        param_50 = _e297;
+        param_51 = (f32(((2u * _e281) - (_e283 * 32768u))) / 32768f);
+        param_52 = (f32(((2u * _e288) - (_e290 * 32768u))) / 32768f);
+        basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_48), (&param_49), (&param_50), (&param_51), (&param_52), (&param_53), (&param_54));
+        let _e298 = param_53;
+        (*P_2) = _e298;
+        let _e299 = param_54;
+        (*n_2) = _e299;
+        return;
+    }
+    let _e300 = (*h_1);
+    param_55 = _e300;
+    let _e301 = k_3;
+    param_56 = _e301;
+    param_57 = 1u;
+    param_58 = 0f;
+    param_59 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_55), (&param_56), (&param_57), (&param_58), (&param_59), (&param_60), (&param_61));
+    let _e302 = param_60;
+    P1_ = _e302;
+    let _e303 = param_61;
+    n1_ = _e303;
+    let _e304 = (*h_1);
+    param_62 = _e304;
+    let _e305 = k_3;
+    param_63 = _e305;
+    param_64 = 2u;
+    param_65 = 0f;
+    param_66 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_62), (&param_63), (&param_64), (&param_65), (&param_66), (&param_67), (&param_68));
+    let _e306 = param_67;
+    P2_ = _e306;
+    let _e307 = param_68;
+    n2_ = _e307;
+    let _e308 = (*h_1);
+    param_69 = _e308;
+    let _e309 = k_3;
+    param_70 = _e309;
+    param_71 = 3u;
+    param_72 = 0f;
+    param_73 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_69), (&param_70), (&param_71), (&param_72), (&param_73), (&param_74), (&param_75));
+    let _e310 = param_74;
+    P3_ = _e310;
+    let _e311 = param_75;
+    n3_ = _e311;
+    let _e312 = a;
+    x_2 = (f32(_e312) / 16384f);
+    let _e315 = c_2;
+    y = (f32(_e315) / 16384f);
+    let _e318 = x_2;
+    let _e320 = y;
+    let _e323 = x_2;
+    let _e324 = y;
+    let _e327 = x_2;
+    let _e328 = y;
+    let _e330 = x_2;
+    let _e332 = y;
+    w_2 = array<f32, 4>(((1f - _e318) * (1f - _e320)), (_e323 * (1f - _e324)), (_e327 * _e328), ((1f - _e330) * _e332));
+    let _e336 = w_2[0i];
+    let _e337 = evP;
+    let _e340 = w_2[1i];
+    let _e341 = P1_;
+    let _e345 = w_2[2i];
+    let _e346 = P2_;
+    let _e350 = w_2[3i];
+    let _e351 = P3_;
+    (*P_2) = ((((_e337 * _e336) + (_e341 * _e340)) + (_e346 * _e345)) + (_e351 * _e350));
+    let _e355 = w_2[0i];
+    let _e356 = evN;
+    let _e359 = w_2[1i];
+    let _e360 = n1_;
+    let _e365 = w_2[2i];
+    let _e366 = n2_;
+    let _e371 = w_2[3i];
+    let _e372 = n3_;
+    (*n_2) = ((((_e356 * _e355) + (normalize(_e360) * _e359)) + (normalize(_e366) * _e365)) + (normalize(_e372) * _e371));
+    return;
+}
+
+fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr<function, u32>, st_1: ptr<function, u32>, patchCount: ptr<function, u32>, P_3: ptr<function, vec3<f32>>, n_3: ptr<function, vec3<f32>>) {
+    var S_1: u32;
+    var T_1: u32;
+    var k_4: u32;
+    var local_11: u32;
+    var c_3: u32;
+    var node: u32;
+    var leaf: u32;
+    var ls: u32;
+    var lt: u32;
+    var k_5: i32;
+    var c_4: u32;
+    var code: u32;
+    var param_76: u32;
+    var param_77: u32;
+    var param_78: vec3<f32>;
+    var param_79: vec3<f32>;
+    var kind: u32;
+    var index: u32;
+    var param_80: Patch;
+    var param_81: f32;
+    var param_82: f32;
+    var param_83: vec3<f32>;
+    var param_84: vec3<f32>;
+    var q_2: IrregularFace;
+    var s_5: f32;
+    var t_5: f32;
+    var w_3: array<f32, 4>;
+    var k_6: i32;
+    var phi_1355_: bool;
+
+    let _e103 = (*st_1);
+    S_1 = (_e103 & 65535u);
+    let _e105 = (*st_1);
+    T_1 = (_e105 >> bitcast<u32>(16i));
+    let _e108 = S_1;
+    let _e110 = S_1;
+    let _e112 = ((_e108 == 0u) || (_e110 == 32768u));
+    phi_1355_ = _e112;
+    if _e112 {
+        let _e113 = T_1;
+        let _e115 = T_1;
+        phi_1355_ = ((_e113 == 0u) || (_e115 == 32768u));
+    }
+    let _e119 = phi_1355_;
+    if _e119 {
+        let _e120 = S_1;
+        if (_e120 == 0u) {
+            let _e122 = T_1;
+            local_11 = select(3u, 0u, (_e122 == 0u));
+        } else {
+            let _e125 = T_1;
+            local_11 = select(2u, 1u, (_e125 == 0u));
+        }
+        let _e128 = local_11;
+        k_4 = _e128;
+        let _e129 = (*face);
+        let _e130 = k_4;
+        let _e135 = irregulars.f[_e129].corner[_e130];
+        c_3 = _e135;
+        let _e136 = c_3;
+        let _e140 = limits.v[(2u * _e136)];
+        (*P_3) = _e140.xyz;
+        let _e142 = c_3;
+        let _e147 = limits.v[((2u * _e142) + 1u)];
+        (*n_3) = _e147.xyz;
+        return;
+    }
+    let _e149 = (*patchCount);
+    let _e150 = (*face);
+    node = (_e149 + _e150);
+    let _e152 = (*face);
+    leaf = _e152;
+    let _e153 = S_1;
+    ls = _e153;
+    let _e154 = T_1;
+    lt = _e154;
+    k_5 = 0i;
+    loop {
+        let _e155 = k_5;
+        if (_e155 < 17i) {
+            let _e157 = S_1;
+            let _e160 = T_1;
+            c_4 = (select(0u, 1u, (_e157 >= 16384u)) | select(0u, 2u, (_e160 >= 16384u)));
+            let _e164 = node;
+            let _e165 = c_4;
+            let _e170 = patches.p[_e164].cv[_e165];
+            code = _e170;
+            let _e171 = code;
+            if (_e171 == 4294967295u) {
+                break;
+            }
+            let _e173 = code;
+            if ((_e173 & 3221225472u) == 3221225472u) {
+                let _e176 = code;
+                param_76 = (_e176 & 1073741823u);
+                let _e178 = (*st_1);
+                param_77 = _e178;
+                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_76), (&param_77), (&param_78), (&param_79));
+                let _e179 = param_78;
+                (*P_3) = _e179;
+                let _e180 = param_79;
+                (*n_3) = _e180;
+                return;
+            }
+            let _e181 = S_1;
+            let _e183 = c_4;
+            S_1 = ((2u * _e181) - select(0u, 32768u, ((_e183 & 1u) != 0u)));
+            let _e188 = T_1;
+            let _e190 = c_4;
+            T_1 = ((2u * _e188) - select(0u, 32768u, ((_e190 & 2u) != 0u)));
+            let _e195 = code;
+            kind = (_e195 & 3221225472u);
+            let _e197 = code;
+            index = (_e197 & 1073741823u);
+            let _e199 = kind;
+            if (_e199 == 0u) {
+                let _e201 = index;
+                let _e202 = S_1;
+                let _e205 = T_1;
+                let _e210 = patches.p[_e201];
+                param_80.cv[0i] = _e210.cv[0];
+                param_80.cv[1i] = _e210.cv[1];
+                param_80.cv[2i] = _e210.cv[2];
+                param_80.cv[3i] = _e210.cv[3];
+                param_80.cv[4i] = _e210.cv[4];
+                param_80.cv[5i] = _e210.cv[5];
+                param_80.cv[6i] = _e210.cv[6];
+                param_80.cv[7i] = _e210.cv[7];
+                param_80.cv[8i] = _e210.cv[8];
+                param_80.cv[9i] = _e210.cv[9];
+                param_80.cv[10i] = _e210.cv[10];
+                param_80.cv[11i] = _e210.cv[11];
+                param_80.cv[12i] = _e210.cv[12];
+                param_80.cv[13i] = _e210.cv[13];
+                param_80.cv[14i] = _e210.cv[14];
+                param_80.cv[15i] = _e210.cv[15];
+                param_80.ptex = _e210.ptex;
+                param_80.u0_ = _e210.u0_;
+                param_80.v0_ = _e210.v0_;
+                param_80.size = _e210.size;
+                param_80.levelBoundary = _e210.levelBoundary;
+                param_80.sharpness = _e210.sharpness;
+                param_80.pad1_ = _e210.pad1_;
+                param_80.pad2_ = _e210.pad2_;
+                param_81 = (f32(_e202) / 32768f);
+                param_82 = (f32(_e205) / 32768f);
+                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_80), (&param_81), (&param_82), (&param_83), (&param_84));
+                let _e261 = param_83;
+                (*P_3) = _e261;
+                let _e262 = param_84;
+                (*n_3) = _e262;
+                return;
+            }
+            let _e263 = kind;
+            if (_e263 == 2147483648u) {
+                let _e265 = index;
+                leaf = _e265;
+                let _e266 = S_1;
+                ls = _e266;
+                let _e267 = T_1;
+                lt = _e267;
+                break;
+            }
+            let _e268 = index;
+            node = _e268;
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e269 = k_5;
+            k_5 = (_e269 + 1i);
+        }
+    }
+    let _e271 = leaf;
+    let _e274 = irregulars.f[_e271];
+    q_2.corner = _e274.corner;
+    q_2.ptex = _e274.ptex;
+    q_2.u0_ = _e274.u0_;
+    q_2.v0_ = _e274.v0_;
+    q_2.size = _e274.size;
+    let _e285 = ls;
+    s_5 = (f32(_e285) / 32768f);
+    let _e288 = lt;
+    t_5 = (f32(_e288) / 32768f);
+    let _e291 = s_5;
+    let _e293 = t_5;
+    let _e296 = s_5;
+    let _e297 = t_5;
+    let _e300 = s_5;
+    let _e301 = t_5;
+    let _e303 = s_5;
+    let _e305 = t_5;
+    w_3 = array<f32, 4>(((1f - _e291) * (1f - _e293)), (_e296 * (1f - _e297)), (_e300 * _e301), ((1f - _e303) * _e305));
+    (*P_3) = vec3<f32>(0f, 0f, 0f);
+    (*n_3) = vec3<f32>(0f, 0f, 0f);
+    k_6 = 0i;
+    loop {
+        let _e308 = k_6;
+        if (_e308 < 4i) {
+            let _e310 = k_6;
+            let _e312 = w_3[_e310];
+            let _e313 = k_6;
+            let _e316 = q_2.corner[_e313];
+            let _e320 = limits.v[(2u * _e316)];
+            let _e323 = (*P_3);
+            (*P_3) = (_e323 + (_e320.xyz * _e312));
+            let _e325 = k_6;
+            let _e327 = w_3[_e325];
+            let _e328 = k_6;
+            let _e331 = q_2.corner[_e328];
+            let _e336 = limits.v[((2u * _e331) + 1u)];
+            let _e339 = (*n_3);
+            (*n_3) = (_e339 + (_e336.xyz * _e327));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e341 = k_6;
+            k_6 = (_e341 + 1i);
+        }
+    }
+    return;
+}
+
+fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>, st_2: ptr<function, u32>, patchCount_1: ptr<function, u32>) -> SurfaceSample {
+    var s_6: f32;
+    var t_6: f32;
+    var pt_2: Patch;
+    var P_4: vec3<f32>;
+    var n_4: vec3<f32>;
+    var param_85: Patch;
+    var param_86: f32;
+    var param_87: f32;
+    var param_88: vec3<f32>;
+    var param_89: vec3<f32>;
+    var r: SurfaceSample;
+    var q_3: IrregularFace;
+    var param_90: u32;
+    var param_91: u32;
+    var param_92: u32;
+    var param_93: vec3<f32>;
+    var param_94: vec3<f32>;
+    var local_12: vec3<f32>;
+
+    let _e91 = (*st_2);
+    s_6 = (f32((_e91 & 65535u)) / 32768f);
+    let _e95 = (*st_2);
+    t_6 = (f32((_e95 >> bitcast<u32>(16i))) / 32768f);
+    let _e100 = (*element);
+    let _e101 = (*patchCount_1);
+    if (_e100 < _e101) {
+        let _e103 = (*element);
+        let _e106 = patches.p[_e103];
+        pt_2.cv[0i] = _e106.cv[0];
+        pt_2.cv[1i] = _e106.cv[1];
+        pt_2.cv[2i] = _e106.cv[2];
+        pt_2.cv[3i] = _e106.cv[3];
+        pt_2.cv[4i] = _e106.cv[4];
+        pt_2.cv[5i] = _e106.cv[5];
+        pt_2.cv[6i] = _e106.cv[6];
+        pt_2.cv[7i] = _e106.cv[7];
+        pt_2.cv[8i] = _e106.cv[8];
+        pt_2.cv[9i] = _e106.cv[9];
+        pt_2.cv[10i] = _e106.cv[10];
+        pt_2.cv[11i] = _e106.cv[11];
+        pt_2.cv[12i] = _e106.cv[12];
+        pt_2.cv[13i] = _e106.cv[13];
+        pt_2.cv[14i] = _e106.cv[14];
+        pt_2.cv[15i] = _e106.cv[15];
+        pt_2.ptex = _e106.ptex;
+        pt_2.u0_ = _e106.u0_;
+        pt_2.v0_ = _e106.v0_;
+        pt_2.size = _e106.size;
+        pt_2.levelBoundary = _e106.levelBoundary;
+        pt_2.sharpness = _e106.sharpness;
+        pt_2.pad1_ = _e106.pad1_;
+        pt_2.pad2_ = _e106.pad2_;
+        let _e157 = pt_2;
+        param_85 = _e157;
+        let _e158 = s_6;
+        param_86 = _e158;
+        let _e159 = t_6;
+        param_87 = _e159;
+        patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_85), (&param_86), (&param_87), (&param_88), (&param_89));
+        let _e160 = param_88;
+        P_4 = _e160;
+        let _e161 = param_89;
+        n_4 = _e161;
+        let _e163 = pt_2.ptex;
+        r.ptex = _e163;
+        let _e166 = pt_2.u0_;
+        let _e168 = pt_2.v0_;
+        let _e171 = pt_2.size;
+        let _e172 = s_6;
+        let _e173 = t_6;
+        r.uv = (vec2<f32>(_e166, _e168) + (vec2<f32>(_e172, _e173) * _e171));
+        let _e179 = pt_2.levelBoundary;
+        r.level = (_e179 & 255u);
+    } else {
+        let _e182 = (*element);
+        let _e183 = (*patchCount_1);
+        let _e187 = irregulars.f[(_e182 - _e183)];
+        q_3.corner = _e187.corner;
+        q_3.ptex = _e187.ptex;
+        q_3.u0_ = _e187.u0_;
+        q_3.v0_ = _e187.v0_;
+        q_3.size = _e187.size;
+        let _e198 = (*element);
+        let _e199 = (*patchCount_1);
+        param_90 = (_e198 - _e199);
+        let _e201 = (*st_2);
+        param_91 = _e201;
+        let _e202 = (*patchCount_1);
+        param_92 = _e202;
+        irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
+        let _e203 = param_93;
+        P_4 = _e203;
+        let _e204 = param_94;
+        n_4 = _e204;
+        let _e206 = q_3.ptex;
+        r.ptex = _e206;
+        let _e209 = q_3.u0_;
+        let _e211 = q_3.v0_;
+        let _e214 = q_3.size;
+        let _e215 = s_6;
+        let _e216 = t_6;
+        r.uv = (vec2<f32>(_e209, _e211) + (vec2<f32>(_e215, _e216) * _e214));
+        r.level = 255u;
+    }
+    let _e222 = P_4;
+    r.position = _e222;
+    let _e224 = n_4;
+    let _e225 = n_4;
+    if (dot(_e224, _e225) > 0f) {
+        let _e228 = n_4;
+        local_12 = normalize(_e228);
+    } else {
+        local_12 = vec3<f32>(0f, 0f, 0f);
+    }
+    let _e230 = local_12;
+    r.normal = _e230;
+    let _e232 = r;
+    return _e232;
+}
+
+fn evaluateTessVertex_u0028_u1_u003b_u1_u003b(vi: ptr<function, u32>, patchCount_2: ptr<function, u32>) -> SurfaceSample {
+    var tv: vec2<u32>;
+    var param_95: u32;
+    var param_96: u32;
+    var param_97: u32;
+
+    let _e76 = (*vi);
+    let _e79 = tessVertices.v[_e76];
+    tv = _e79.xy;
+    let _e82 = tv[0u];
+    param_95 = _e82;
+    let _e84 = tv[1u];
+    param_96 = _e84;
+    let _e85 = (*patchCount_2);
+    param_97 = _e85;
+    let _e86 = evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b((&param_95), (&param_96), (&param_97));
+    return _e86;
 }
 
 fn main_1() {
     var vi_1: u32;
     var level: u32;
-    var s_4: SurfaceSample;
-    var param_45: u32;
-    var param_46: u32;
+    var s_7: SurfaceSample;
+    var param_98: u32;
+    var param_99: u32;
 
-    let _e67 = gl_VertexIndex_1;
-    vi_1 = bitcast<u32>(_e67);
+    let _e75 = gl_VertexIndex_1;
+    vi_1 = bitcast<u32>(_e75);
     level = 0u;
-    let _e70 = pc.flags;
-    if ((_e70 & 1u) != 0u) {
-        let _e73 = vi_1;
-        let _e77 = triangleLevels.l[(_e73 / 3u)];
-        level = _e77;
-        let _e78 = vi_1;
-        let _e81 = triangles.i[_e78];
-        vi_1 = _e81;
+    let _e78 = pc.flags;
+    if ((_e78 & 1u) != 0u) {
+        let _e81 = vi_1;
+        let _e85 = triangleLevels.l[(_e81 / 3u)];
+        level = _e85;
+        let _e86 = vi_1;
+        let _e89 = triangles.i[_e86];
+        vi_1 = _e89;
     }
-    let _e82 = vi_1;
-    param_45 = _e82;
-    let _e84 = pc.patchCount;
-    param_46 = _e84;
-    let _e85 = evaluateTessVertex_u0028_u1_u003b_u1_u003b((&param_45), (&param_46));
-    s_4 = _e85;
-    let _e87 = s_4.position;
-    outWorld = _e87;
-    let _e89 = s_4.normal;
-    outNormal = _e89;
     let _e90 = vi_1;
-    let _e93 = tessVertices.v[_e90];
-    outUV = bitcast<vec2<f32>>(_e93.zw);
-    let _e96 = level;
-    outLevel = _e96;
-    let _e98 = pc.viewProj;
-    let _e100 = s_4.position;
-    unnamed.gl_Position = (_e98 * vec4<f32>(_e100.x, _e100.y, _e100.z, 1f));
+    param_98 = _e90;
+    let _e92 = pc.patchCount;
+    param_99 = _e92;
+    let _e93 = evaluateTessVertex_u0028_u1_u003b_u1_u003b((&param_98), (&param_99));
+    s_7 = _e93;
+    let _e95 = s_7.position;
+    outWorld = _e95;
+    let _e97 = s_7.normal;
+    outNormal = _e97;
+    let _e98 = vi_1;
+    let _e101 = tessVertices.v[_e98];
+    outUV = bitcast<vec2<f32>>(_e101.zw);
+    let _e104 = level;
+    outLevel = _e104;
+    let _e106 = pc.viewProj;
+    let _e108 = s_7.position;
+    unnamed.gl_Position = (_e106 * vec4<f32>(_e108.x, _e108.y, _e108.z, 1f));
     return;
 }
 

@@ -1,5 +1,5 @@
 // The chunks the WebGPU runtime reads (formats/limn.md, sections 5-8): MESH, FVUV, TAGS, MATL,
-// CLSF, TBLS (versions 1 and 2), SEAM. Every count and index is checked as the C++ readers check it
+// CLSF, TBLS (versions 1 to 3), SEAM. Every count and index is checked as the C++ readers check it
 // (lib/mesh/mesh_chunks.cpp, lib/mesh/mesh.cpp validateMesh, lib/topology/classification.cpp,
 // lib/subdiv/tables_chunk.cpp, lib/seams/seams.cpp), so that nothing out of range reaches the GPU.
 import { LimnError, chunkReader, parseContainer } from './container.mjs';
@@ -8,6 +8,10 @@ const MAX_DEPTH = 16;
 const MAX_COORDINATE = 1e18; // lib/mesh: beyond it a float square overflows
 const MAX_STENCIL_WEIGHT = 1e6;
 const INFINITE_SHARPNESS = 10;
+const MAX_STENCIL_VALENCE = 32767;
+// An irregular face's quadtree node codes (lib/subdiv/tables.h): the kind in the top two bits.
+const NODE_SUBPATCH = 0, NODE_CHILD = 1 << 30, NODE_LEAF = (2 << 30) >>> 0, NODE_BASIS = (3 << 30) >>> 0;
+const NODE_NONE = 0xffffffff, NODE_INDEX = (1 << 30) - 1;
 
 // 64-bit FNV-1a in two 32-bit halves (prime 2^40 + 0x1b3), as lib/container's hashBytes.
 export class Fnv64 {
@@ -200,8 +204,8 @@ function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0) {
 const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 2) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 or 2); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 2);
+  if (chunk.version > 3) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 3); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 3);
   const patchWords = chunk.version >= 2 ? 22 : 21;
   const depth = r.u32('depth');
   if (depth > MAX_DEPTH) r.fail(`depth ${depth} is out of range`);
@@ -209,7 +213,11 @@ function decodeTables(chunk, mesh, tags) {
   if (flags > 1) r.fail('unknown flags');
   const options = { boundary: r.u8(), creaseMethod: r.u8(), triangles: r.u8(), fvar: r.u8() };
   if (options.boundary > 2 || options.creaseMethod > 1 || options.triangles > 1 || options.fvar > 5) r.fail('scheme option out of range');
-  r.zero32();
+  // Version 3: the levels refined beyond depth under the irregular faces; before: reserved.
+  const extra = r.u32('irregular levels');
+  if (chunk.version < 3 && extra !== 0) r.fail('reserved field is not zero');
+  if (extra > MAX_DEPTH - depth || (extra && (flags & 1))) r.fail(`irregular levels ${extra} out of range`);
+  const D = depth + extra;
   const hash = r.u64('topology hash');
   if (hash !== topologyHash(mesh, tags, options)) {
     throw new LimnError('the subdivision tables were built for a different mesh topology or tags; re-run limn-tables', 'chunk TBLS');
@@ -217,7 +225,7 @@ function decodeTables(chunk, mesh, tags) {
   const totalVertices = r.u32(), P = r.u32('patch count'), Q = r.u32('irregular count'), L = r.u32('limit count');
   const levels = [];
   let sum = 0;
-  for (let l = 0; l <= depth; l++) {
+  for (let l = 0; l <= D; l++) {
     const lv = { first: r.u32(), facePoints: r.u32(), edgePoints: r.u32(), vertexPoints: r.u32(), regularPatches: r.u32(), irregularFaces: r.u32() };
     if (lv.first !== sum) r.fail(`level ${l} does not start where the previous ends`);
     lv.count = lv.facePoints + lv.edgePoints + lv.vertexPoints;
@@ -228,7 +236,7 @@ function decodeTables(chunk, mesh, tags) {
   if (sum !== totalVertices) r.fail('level vertex counts do not add up to the total');
   if (levels[0].count !== mesh.vertexCount) r.fail(`level 0 has ${levels[0].count} vertices, the mesh ${mesh.vertexCount}`);
   const facePoints = [], edgePoints = [], vertexPoints = [];
-  for (let l = 1; l <= depth; l++) {
+  for (let l = 1; l <= D; l++) {
     const p = levels[l - 1], c = levels[l];
     const end = p.first + p.count, faceEnd = c.first + c.facePoints;
     facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end));
@@ -237,12 +245,15 @@ function decodeTables(chunk, mesh, tags) {
   }
   const ptex = ptexCount(mesh), R = 2 ** depth;
   const squares = [];
-  const dyadic = (x) => Number.isFinite(x) && Number.isInteger(x * R);
-  const checkDomain = (p, u0, v0, size, what) => {
+  const dyadic = (x, most) => Number.isFinite(x) && Number.isInteger(x * 2 ** most);
+  // Sub-patches and leaves (drawn = false) lie inside the irregular faces, down to level D.
+  const checkDomain = (p, u0, v0, size, what, drawn = true) => {
     if (p >= ptex) r.fail(`${what} refers to ptex face ${p} that does not exist`);
-    if (!(size > 0) || !dyadic(size) || !dyadic(u0) || !dyadic(v0) || u0 < 0 || v0 < 0 || u0 + size > 1 || v0 + size > 1) {
+    const most = drawn ? depth : D;
+    if (!(size > 0) || !dyadic(size, most) || !dyadic(u0, most) || !dyadic(v0, most) || u0 < 0 || v0 < 0 || u0 + size > 1 || v0 + size > 1) {
       r.fail(`${what} has a domain outside its ptex face or finer than the tables' depth`);
     }
+    if (!drawn) return;
     const W = size * R, U0 = u0 * R, V0 = v0 * R;
     if ((W & (W - 1)) !== 0 || U0 % W !== 0 || V0 % W !== 0) r.fail(`${what} has a domain that is not a cell of its ptex face's quadtree`);
     squares.push({ ptex: p, W, U0, V0 });
@@ -251,19 +262,16 @@ function decodeTables(chunk, mesh, tags) {
   // GPU layout: 24 words a patch (surface_eval.glsl's Patch: cv[16], ptex, u0, v0, size, packed,
   // sharpness, 2 words of padding).
   const W = 24;
-  const patches = new Uint32Array(Math.max(P, 1) * W);
-  const pf = new Float32Array(patches.buffer);
-  for (let i = 0; i < P; i++) {
-    const what = `patch ${i}`;
-    const w = patches.subarray(W * i, W * i + W);
+  // Reads one patch record into w (24 words) / f (its float view).
+  const readPatch = (w, f, what, drawn) => {
     for (let k = 0; k < 16; k++) w[k] = r.u32();
-    w[16] = r.u32(); pf[W * i + 17] = r.f32(); pf[W * i + 18] = r.f32(); pf[W * i + 19] = r.f32();
+    w[16] = r.u32(); f[17] = r.f32(); f[18] = r.f32(); f[19] = r.f32();
     const packed = r.u32();
     w[20] = packed;
     const level = packed & 0xff, boundary = (packed >>> 8) & 0xff, crease = (packed >>> 16) & 0xff;
-    if ((packed >>> 24) !== 0 || boundary > 15 || level > depth) r.fail(`${what}: bad level or boundary mask`);
+    if ((packed >>> 24) !== 0 || boundary > 15 || (drawn ? level > depth : level <= depth || level > D)) r.fail(`${what}: bad level or boundary mask`);
     const sharpness = chunk.version >= 2 ? r.f32() : 0;
-    pf[W * i + 21] = sharpness;
+    f[21] = sharpness;
     const oneBit = crease !== 0 && (crease & (crease - 1)) === 0 && crease <= 8;
     if (crease ? !(oneBit && boundary === 0 && sharpness > 0 && sharpness < INFINITE_SHARPNESS) : sharpness !== 0) {
       r.fail(`${what}: bad crease edge or sharpness`);
@@ -273,20 +281,30 @@ function decodeTables(chunk, mesh, tags) {
       const cv = w[k];
       if (cv >= totalVertices || (cv !== 0 && (cv < lv.first || cv >= lv.first + lv.count))) r.fail(`${what} has a control point outside its level`);
     }
-    checkDomain(w[16], pf[W * i + 17], pf[W * i + 18], pf[W * i + 19], what);
+    checkDomain(w[16], f[17], f[18], f[19], what, drawn);
+  };
+  const patchRecords = new Uint32Array(P * W);
+  for (let i = 0; i < P; i++) {
+    const w = patchRecords.subarray(W * i, W * i + W);
+    readPatch(w, new Float32Array(w.buffer, w.byteOffset, W), `patch ${i}`, true);
   }
-  if (Q > Math.floor(r.remaining / 32)) r.fail('irregular face count is too large');
-  const irregular = new Uint32Array(Math.max(Q, 1) * 8);
-  const qf = new Float32Array(irregular.buffer);
-  for (let i = 0; i < Q; i++) {
+  const readFace = (q, qf, what, drawn) => {
     for (let k = 0; k < 4; k++) {
       const c = r.u32();
-      if (c >= L) r.fail(`irregular face ${i} refers to a missing limit point`);
-      irregular[8 * i + k] = c;
+      if (c >= L) r.fail(`${what} refers to a missing limit point`);
+      q[k] = c;
     }
-    irregular[8 * i + 4] = r.u32(); qf[8 * i + 5] = r.f32(); qf[8 * i + 6] = r.f32(); qf[8 * i + 7] = r.f32();
-    checkDomain(irregular[8 * i + 4], qf[8 * i + 5], qf[8 * i + 6], qf[8 * i + 7], `irregular face ${i}`);
-  }
+    q[4] = r.u32(); qf[5] = r.f32(); qf[6] = r.f32(); qf[7] = r.f32();
+    checkDomain(q[4], qf[5], qf[6], qf[7], what, drawn);
+  };
+  const readFaces = (n, what, drawn) => {
+    const out = new Uint32Array(n * 8), of = new Float32Array(out.buffer);
+    for (let i = 0; i < n; i++) readFace(out.subarray(8 * i, 8 * i + 8), of.subarray(8 * i, 8 * i + 8), `${what} ${i}`, drawn);
+    return out;
+  };
+  if (Q > Math.floor(r.remaining / 32)) r.fail('irregular face count is too large');
+  const irregularFaces = readFaces(Q, 'irregular face', true);
+  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatch, readFaces, patchWords, depth, levels, Q }) : null;
   // The domains tile every ptex face exactly once, or not at all (lib/subdiv/tables_chunk.cpp).
   squares.sort((a, b) => a.ptex - b.ptex);
   for (let first = 0, end = 0; first < squares.length; first = end) {
@@ -307,21 +325,140 @@ function decodeTables(chunk, mesh, tags) {
     }
     if (area !== R * R) r.fail(`the domains do not cover ptex face ${p} exactly once`);
   }
-  const last = levels[depth];
-  const lo = last.first, hi = last.first + last.count;
-  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi);
-  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi);
-  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi);
+  // Limit points read level N (the irregular faces' corners) or level D (the leaves').
+  const last = levels[depth], deepest = levels[D];
+  const lo = last.first, hi = last.first + last.count, lo1 = deepest.first, hi1 = deepest.first + deepest.count;
+  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi, lo1, hi1);
+  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi, lo1, hi1);
+  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi, lo1, hi1);
   const limitVertex = r.array(Uint32Array, L, 'limit vertices');
-  for (const v of limitVertex) if (v < lo || v >= hi) r.fail("a limit point's vertex is not at the last level");
+  for (const v of limitVertex) if (!((v >= lo && v < hi) || (v >= lo1 && v < hi1))) r.fail("a limit point's vertex is not at the last level");
   const limitFlags = r.array(Uint32Array, L, 'limit flags');
   for (const f of limitFlags) if (f > 1) r.fail('unknown limit point flag');
   r.requireEnd();
+  // The GPU buffers, as subdivision_draw.cpp's patchBuffer() and irregularBuffer(): the patches,
+  // then the irregular faces' quadtrees; the irregular faces, then the leaves.
+  const surface = packIrregularQuadtrees(P, Q, irregularFaces, v3);
+  const patches = new Uint32Array(Math.max(P * W + surface.nodes.length, W));
+  patches.set(patchRecords);
+  patches.set(surface.nodes, P * W);
+  const irregular = new Uint32Array(Math.max(Q * 8 + surface.leaves.length, 8));
+  irregular.set(irregularFaces);
+  irregular.set(surface.leaves, Q * 8);
   return {
-    depth, uniform: (flags & 1) === 1, options, totalVertices, levels, facePoints, edgePoints, vertexPoints,
+    depth, irregularLevels: extra, uniform: (flags & 1) === 1, options, totalVertices, levels, facePoints, edgePoints, vertexPoints,
     patchCount: P, patches, irregularCount: Q, irregular, limitCount: L, limitPosition, limitTangent1, limitTangent2,
     limitVertex, limitFlags,
   };
+}
+
+// TBLS version 3's irregular-face surface (lib/subdiv/tables_chunk.cpp): sub-patches, quadtree
+// nodes, leaves, per-valence bases, smooth faces and their points, with the C++ reader's checks.
+function readIrregularSurface(r, { readPatch, readFaces, patchWords, depth, levels, Q }) {
+  const subs = r.u32('sub-patch count');
+  if (subs > Math.floor(r.remaining / (4 * patchWords))) r.fail(`sub-patch count ${subs} is too large`);
+  const subPatches = new Uint32Array(subs * 24);
+  for (let i = 0; i < subs; i++) {
+    const w = subPatches.subarray(24 * i, 24 * i + 24);
+    readPatch(w, new Float32Array(w.buffer, w.byteOffset, 24), `sub-patch ${i}`, false);
+  }
+  const nodes = r.u32('irregular node count');
+  if (nodes > Math.floor(r.remaining / 16)) r.fail('irregular node count is too large');
+  if (nodes && nodes < Q) r.fail('an irregular face has no quadtree');
+  const codes = r.array(Uint32Array, nodes * 4, 'irregular nodes');
+  const leafCount = r.u32('irregular leaf count');
+  if (leafCount > Math.floor(r.remaining / 32)) r.fail('irregular leaf count is too large');
+  for (let i = 0; i < nodes; i++) {
+    for (let q = 0; q < 4; q++) {
+      const c = codes[4 * i + q], x = c & NODE_INDEX, kind = (c & ~NODE_INDEX) >>> 0;
+      // Children come after their parent, so every walk ends.
+      const ok = c === NODE_NONE || kind === NODE_BASIS || (kind === NODE_SUBPATCH && x < subs) ||
+        (kind === NODE_CHILD && x > i && x < nodes) || (kind === NODE_LEAF && x < leafCount);
+      if (!ok) r.fail(`irregular node ${i} has a bad child`);
+    }
+  }
+  const leaves = readFaces(leafCount, 'irregular leaf', false);
+  const baseCount = r.u32('irregular basis count');
+  if (baseCount > Math.floor(r.remaining / 8)) r.fail('irregular basis count is too large');
+  const bases = [];
+  for (let i = 0; i < baseCount; i++) {
+    const valence = r.u32(), lv = r.u32();
+    if (valence < 3 || valence > MAX_STENCIL_VALENCE || lv < 1 || lv > MAX_DEPTH) r.fail(`irregular basis ${i} has a bad valence or level count`);
+    const support = 2 * valence + 8;
+    const weights = r.array(Float32Array, lv * 48 * support, 'irregular basis weights');
+    for (const x of weights) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`irregular basis ${i} has a bad weight`);
+    bases.push({ valence, levels: lv, support, weights });
+  }
+  const smoothCount = r.u32('smooth irregular face count');
+  if (smoothCount > Math.floor(r.remaining / 12)) r.fail('smooth irregular face count is too large');
+  const smooth = [];
+  for (let i = 0; i < smoothCount; i++) {
+    const f = { basis: r.u32(), corner: r.u32(), first: r.u32() };
+    if (f.basis >= baseCount || f.corner > 3) r.fail(`smooth irregular face ${i} is bad`);
+    smooth.push(f);
+  }
+  const points = r.u32('smooth irregular point count');
+  const smoothPoints = r.array(Uint32Array, points, 'smooth irregular points');
+  const LN = levels[depth];
+  for (const v of smoothPoints) if (v < LN.first || v >= LN.first + LN.count) r.fail('a smooth irregular point is not at the last level');
+  for (const f of smooth) if (f.first + bases[f.basis].support > points) r.fail("a smooth irregular face's points run past the end");
+  // Basis codes name a smooth face, and only roots hold them (all four alike).
+  for (let i = 0; i < nodes; i++) {
+    for (let q = 0; q < 4; q++) {
+      const c = codes[4 * i + q];
+      if (c !== NODE_NONE && ((c & ~NODE_INDEX) >>> 0) === NODE_BASIS &&
+        (i >= Q || (c & NODE_INDEX) >= smoothCount || codes[4 * i] !== c || codes[4 * i + 3] !== c)) r.fail(`irregular node ${i} has a bad basis code`);
+    }
+  }
+  return { subPatches, subs, codes, nodes, leaves, bases, smooth, smoothPoints };
+}
+
+// subdivision_draw.cpp's packIrregularQuadtrees: the quadtree codes made absolute indices into
+// the GPU buffers (surface_eval.glsl), 24 words a record as a Patch. Every irregular face gets a
+// root node, with no children where the tables have no quadtree.
+function packIrregularQuadtrees(P, Q, irregularFaces, v3) {
+  const W = 24;
+  if (!v3) v3 = { subPatches: new Uint32Array(0), subs: 0, codes: new Uint32Array(0), nodes: 0, leaves: new Uint32Array(0), bases: [], smooth: [], smoothPoints: new Uint32Array(0) };
+  const nodes = Math.max(Q, v3.nodes);
+  const header = [], basisFirst = [];
+  let next = P + nodes + v3.subs;
+  for (const f of v3.smooth) { header.push(next); next += 1 + Math.ceil(v3.bases[f.basis].support / 16); }
+  for (const b of v3.bases) { basisFirst.push(next); next += b.levels * 3 * b.support; }
+  const out = new Uint32Array((next - P) * W);
+  const faceOf = new Uint32Array(v3.smooth.length);
+  for (let i = 0; i < nodes; i++) {
+    const g = out.subarray(W * i, W * i + 16);
+    g.fill(NODE_NONE);
+    if (i >= v3.nodes) continue;
+    for (let q = 0; q < 4; q++) {
+      const c = v3.codes[4 * i + q], kind = (c & ~NODE_INDEX) >>> 0, x = c & NODE_INDEX;
+      if (c !== NODE_NONE && kind === NODE_BASIS) faceOf[x] = i;
+      g[q] = c === NODE_NONE ? NODE_NONE
+        : kind === NODE_BASIS ? (NODE_BASIS | header[x]) >>> 0
+          : kind === NODE_CHILD ? (NODE_CHILD | (P + x)) >>> 0
+            : kind === NODE_LEAF ? (NODE_LEAF | (Q + x)) >>> 0
+              : (NODE_SUBPATCH | (P + nodes + x)) >>> 0;
+    }
+  }
+  // Sub-patch records are already in the GPU layout (padding words zero).
+  out.set(v3.subPatches, W * nodes);
+  let at = nodes + v3.subs;
+  const of = new Float32Array(out.buffer);
+  v3.smooth.forEach((f, i) => {
+    const b = v3.bases[f.basis];
+    out.set([b.valence, f.corner, basisFirst[f.basis], b.levels, irregularFaces[8 * faceOf[i] + f.corner]], W * at++);
+    for (let k = 0; k < b.support; k += 16) {
+      for (let j = 0; j < 16 && k + j < b.support; j++) out[W * at + j] = v3.smoothPoints[f.first + k + j];
+      at++;
+    }
+  });
+  for (const b of v3.bases) {
+    const M = b.support;
+    for (let block = 0; block < b.levels * 3; block++) {
+      for (let i = 0; i < M; i++, at++) for (let j = 0; j < 16; j++) of[W * at + j] = b.weights[(block * 16 + j) * M + i];
+    }
+  }
+  return { nodes: out, leaves: v3.leaves };
 }
 
 function seamsSourceHash(byType) {

@@ -15,11 +15,13 @@ export interface StencilTable { rows: number; start: Uint32Array; index: Uint32A
 export interface Level { first: number; facePoints: number; edgePoints: number; vertexPoints: number; regularPatches: number; irregularFaces: number; count: number }
 export interface SchemeOptions { boundary: number; creaseMethod: number; triangles: number; fvar: number }
 export interface Tables {
-  depth: number; uniform: boolean; options: SchemeOptions; totalVertices: number; levels: Level[];
+  /** levels: 0..depth + irregularLevels (TBLS v3: levels refined only under the irregular faces). */
+  depth: number; irregularLevels: number; uniform: boolean; options: SchemeOptions; totalVertices: number; levels: Level[];
   facePoints: StencilTable[]; edgePoints: StencilTable[]; vertexPoints: StencilTable[];
-  /** 24 words a patch: cv[16], ptex, u0, v0, size, level | boundary << 8 | crease << 16, sharpness, 2 pad. */
+  /** 24 words a patch: cv[16], ptex, u0, v0, size, level | boundary << 8 | crease << 16, sharpness, 2 pad;
+   *  after the patchCount patches, the irregular faces' quadtrees as limn-render uploads them. */
   patchCount: number; patches: Uint32Array;
-  /** 8 words an irregular face: corner[4], ptex, u0, v0, size. */
+  /** 8 words an irregular face: corner[4], ptex, u0, v0, size; after the irregularCount faces, the leaves. */
   irregularCount: number; irregular: Uint32Array;
   limitCount: number; limitPosition: StencilTable; limitTangent1: StencilTable; limitTangent2: StencilTable;
   limitVertex: Uint32Array; limitFlags: Uint32Array;

@@ -138,7 +138,7 @@ export class Renderer {
     const limit = appendRows([tables.limitPosition, tables.limitTangent1, tables.limitTangent2], true);
     if (limit.index.byteLength > 128 << 20) throw new LimnError('limit tables over 128 MiB (they come in chunks in limn-render) are not supported here', 'capability');
     this.levels = [];
-    for (let l = 1; l <= tables.depth; l++) {
+    for (let l = 1; l < tables.levels.length; l++) { // with the irregular faces' extra levels
       const L = tables.levels[l];
       this.levels.push({
         level: l,
@@ -189,7 +189,7 @@ export class Renderer {
       triangles: this.buffer('triangle indices', tess.indices, STORAGE | INDEX),
       triangleLevels: this.buffer('triangle levels', tess.triangleLevels),
       texture: this.buffer('colour texture', new Uint32Array([1, 1, 0xffffffff])),
-      push: this.empty('push constants', PUSH_SLOT * (9 + 3 * tables.depth), UNIFORM),
+      push: this.empty('push constants', PUSH_SLOT * (9 + 3 * (tables.levels.length - 1)), UNIFORM),
     };
     if (this.adaptive) {
       const d = this.adaptiveData;
@@ -245,7 +245,7 @@ export class Renderer {
     const faceGroup = group(facePass, 0, [b.vertices, b.faceStarts, b.faceIndices]);
     const stencilGroup = group(stencilPass, 0, [b.vertices, b.stencilStarts, b.stencilIndices, b.stencilWeights]);
     this.passes = [];
-    this.pushData = new Uint32Array((PUSH_SLOT / 4) * (9 + 3 * tables.depth));
+    this.pushData = new Uint32Array((PUSH_SLOT / 4) * (9 + 3 * (tables.levels.length - 1)));
     const dispatch = (pipeline, bindGroup, count, fields, label) => {
       if (count === 0) return;
       const groups = Math.ceil(count / 64);

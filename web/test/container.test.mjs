@@ -42,7 +42,12 @@ function expectLimnError(bytes, where) {
 test('reads a real container: every chunk limn-render reads', () => {
   const s = loadLimn(small());
   assert.ok(s.mesh.vertexCount > 0 && s.tables.depth === 2 && s.seams && s.uvs && s.classification);
-  assert.equal(s.tables.patches.length, s.tables.patchCount * 24);
+  // TBLS v3 (limn-tables' default): the irregular faces' quadtrees follow the patches, their
+  // leaves the irregular faces (subdivision_draw.cpp patchBuffer, irregularBuffer).
+  assert.ok(s.tables.irregularCount > 0 && s.tables.irregularLevels > 0);
+  assert.ok(s.tables.patches.length >= (s.tables.patchCount + s.tables.irregularCount) * 24);
+  assert.equal(s.tables.patches.length % 24, 0);
+  assert.ok(s.tables.levels.length > s.tables.depth + 1);
   assert.equal(s.seams.records.length, (s.tables.patchCount + s.tables.irregularCount) * 24);
 });
 
@@ -108,9 +113,40 @@ test('byte flips are accepted or refused with a LimnError, never another excepti
 test('BLND is refused clearly, a newer chunk version names itself', () => {
   const chunks = parseContainer(small());
   expectLimnError(build([...chunks, { type: 'BLND', version: 1, payload: new Uint8Array(24) }]), /chunk BLND: blending surfaces are not supported here/);
-  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 3 } : c));
-  expectLimnError(build(newer), /chunk TBLS: version 3 is newer/);
+  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 4 } : c));
+  expectLimnError(build(newer), /chunk TBLS: version 4 is newer/);
   const unknown = [...chunks, { type: 'ZZZZ', version: 9, payload: new Uint8Array(5) }];
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
+});
+
+// Where TBLS v3's irregular-surface section starts (formats/limn.md): after the header, levels,
+// stencil tables, patches and irregular faces, as read back from the decoded tables.
+function irregularSectionOffset(t) {
+  let o = 40 + 24 * t.levels.length;
+  const table = (st, weights) => 16 + 4 * (st.rows + 1 + st.index.length * (weights ? 2 : 1));
+  for (let l = 0; l + 1 < t.levels.length; l++) o += table(t.facePoints[l], false) + table(t.edgePoints[l], true) + table(t.vertexPoints[l], true);
+  return o + 88 * t.patchCount + 32 * t.irregularCount;
+}
+
+test('hostile TBLS v3 irregular-surface fields are refused by name, never a hang', () => {
+  const bytes = small(), chunks = parseContainer(bytes);
+  const s = loadLimn(bytes);
+  const at = irregularSectionOffset(s.tables);
+  const patched = (edit) => build(chunks.map((c) => {
+    if (c.type !== 'TBLS') return c;
+    const payload = c.payload.slice();
+    edit(new DataView(payload.buffer));
+    return { ...c, payload };
+  }));
+  const subs = new DataView(chunks.find((c) => c.type === 'TBLS').payload.slice().buffer).getUint32(at, true);
+  const nodes = at + 4 + 88 * subs + 4;
+  // The section as located holds the reader's own sub-patch and node counts.
+  assert.ok(subs > 0 && subs < 1e6);
+  // A node naming itself (or an earlier node) as its child would make the GPU's walk endless.
+  expectLimnError(patched((v) => v.setUint32(nodes, (1 << 30) >>> 0, true)), /chunk TBLS: .*irregular node 0 has a bad child/);
+  expectLimnError(patched((v) => v.setUint32(nodes + 4, 0x3fffffff, true)), /chunk TBLS: .*irregular node 0 has a bad child/);
+  expectLimnError(patched((v) => v.setUint32(at, 0xffffffff, true)), /chunk TBLS: .*sub-patch count 4294967295 is too large/);
+  // Extra levels on uniform tables, or more than depth 16 allows.
+  expectLimnError(patched((v) => v.setUint32(12, 15, true)), /chunk TBLS: .*irregular levels 15 out of range/);
 });
