@@ -257,8 +257,22 @@ Tables buildTables(const Mesh& mesh, const SchemeOptions& options, const TablesO
             int corner = 0;
             uint32_t valence = 0;
             std::vector<uint32_t> support;
+            std::vector<uint32_t> facesAt(L.topo.vertexCount(), 0);
+            for (uint32_t f = 0; f < F; ++f)
+                for (uint32_t v : L.topo.faceVertices(f)) ++facesAt[v];
             for (uint32_t f = 0; f < F; ++f) {
-                if (!T[f] || !smoothSupport(L, f, corner, valence, support)) continue;
+                if (!T[f]) continue;
+                // Around a vertex of more than kMaxBasisValence faces (a huge n-gon's centre,
+                // a hostile fan) either way costs K levels of thousands of faces: a 32,767-gon
+                // at depth 2 took minutes. Such a face stays bilinear between its limit points,
+                // counted as such (irregularSurfaceCounts; limn-render and limn-info say so).
+                bool crowded = false;
+                for (uint32_t v : L.topo.faceVertices(f)) crowded |= facesAt[v] > kMaxBasisValence;
+                if (crowded) {
+                    T[f] = 0;
+                    continue;
+                }
+                if (!smoothSupport(L, f, corner, valence, support)) continue;
                 if (basisOfValence.size() <= valence) basisOfValence.resize(valence + 1, -1);
                 if (basisOfValence[valence] == -1) {
                     try {

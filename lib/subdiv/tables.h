@@ -75,6 +75,9 @@ struct IrregularFace {
 inline constexpr uint32_t kMaxStencilValence = 32767;
 // Ptex coordinates stay exact in float down to 2^-16; deeper levels would not tile exactly.
 inline constexpr int kMaxDepth = 16;
+// Irregular faces get their surface (per-valence bases, irregular_basis.h, or K more levels)
+// only where no corner has more faces than this; the others stay bilinear, and are counted.
+inline constexpr uint32_t kMaxBasisValence = 64;
 // A level with more vertices than this is refused (about 10 GB of tables).
 inline constexpr uint64_t kMaxLevelVertices = 1ull << 28;
 
