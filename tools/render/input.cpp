@@ -134,7 +134,9 @@ void warnApproximateIrregularFaces(const RenderJob& job, const RenderInput& in) 
     const IrregularSurfaceCounts irr = irregularSurfaceCounts(*in.tables);
     if (irr.bilinear)
         cli::warn(displayName(job.input) + ": " + std::to_string(irr.bilinear) + " irregular faces are drawn " +
-                  "bilinear between their corners (tables without their surface); re-run limn-tables");
+                  "bilinear between their corners (around a vertex of more than " +
+                  std::to_string(kMaxBasisValence) + " faces, or tables made without their surface: " +
+                  "re-run limn-tables)");
     else if (irr.basis + irr.subPatches && uint64_t(job.tess) > (uint64_t(1) << irr.exactLevels))
         cli::warn(displayName(job.input) + ": --tess " + std::to_string(job.tess) + " can draw points within 2^-" +
                   std::to_string(irr.exactLevels) + " of extraordinary corners, where the surface is " +
