@@ -72,7 +72,12 @@ TEST(AdaptiveSharedPoints, SameImageFewerVertices) {
                     EXPECT_EQ(shared.pixels, own.pixels) << "sharing the points changed pixels";
                     EXPECT_EQ(shared.triangles, own.triangles);
                     if (std::string(v.name) == "far") {
-                        EXPECT_LT(double(shared.vertices), 0.9 * double(own.vertices))
+                        // Sharing saves the points on element sides. catmark_gregory_test7 is mostly
+                        // irregular faces, which now carry interior points of their own (drawn on
+                        // their sub-patches, with curvature-driven rates: docs/irregular.md), so
+                        // its saving fell from over 10% to 8.4% (3,786 against 4,135).
+                        const double most = std::string(model).find("gregory_test7") != std::string::npos ? 0.93 : 0.9;
+                        EXPECT_LT(double(shared.vertices), most * double(own.vertices))
                             << shared.vertices << " vertices with shared points, " << own.vertices << " without";
                     }
                 }
