@@ -195,6 +195,17 @@ std::vector<LimitChunk> limitChunks(const SubdivisionDraw& d, uint64_t maxBytes)
 // nodes and sub-patches into the patches buffer, leaves into the irregular faces'. Every
 // irregular face gets a root node, with no children where the tables have no quadtree.
 namespace {
+// A patch as surface_eval.glsl reads it: a regular patch, or an irregular face's sub-patch.
+GpuPatch gpuPatch(const Patch& p) {
+    GpuPatch g{};
+    std::copy(std::begin(p.cv), std::end(p.cv), g.cv);
+    g.ptex = p.ptex;
+    g.u0 = p.u0, g.v0 = p.v0, g.size = p.size;
+    g.levelBoundary = uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16;
+    g.sharpness = p.sharpness;
+    return g;
+}
+
 void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
     const uint32_t P = static_cast<uint32_t>(t.patches.size()), I = static_cast<uint32_t>(t.irregular.size());
     const uint32_t nodes = std::max<uint32_t>(I, static_cast<uint32_t>(t.irregularNodes.size()));
@@ -227,15 +238,7 @@ void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
             }
         d.irregularNodes.push_back(g);
     }
-    for (const Patch& p : t.subPatches) {
-        GpuPatch g{};
-        std::copy(std::begin(p.cv), std::end(p.cv), g.cv);
-        g.ptex = p.ptex;
-        g.u0 = p.u0, g.v0 = p.v0, g.size = p.size;
-        g.levelBoundary = uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16;
-        g.sharpness = p.sharpness;
-        d.irregularNodes.push_back(g);
-    }
+    for (const Patch& p : t.subPatches) d.irregularNodes.push_back(gpuPatch(p));
     for (size_t i = 0; i < t.smoothIrregular.size(); ++i) {
         const Tables::SmoothIrregular& f = t.smoothIrregular[i];
         const IrregularBasis& b = t.irregularBases[f.basis];
@@ -299,15 +302,7 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
     for (const StencilTable* table : {&t.limitPosition, &t.limitTangent1, &t.limitTangent2})
         appendRows(*table, d.limitStarts, d.limitIndices, &d.limitWeights);
 
-    for (const Patch& p : t.patches) {
-        GpuPatch g{};
-        std::copy(std::begin(p.cv), std::end(p.cv), g.cv);
-        g.ptex = p.ptex;
-        g.u0 = p.u0, g.v0 = p.v0, g.size = p.size;
-        g.levelBoundary = uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16;
-        g.sharpness = p.sharpness;
-        d.patches.push_back(g);
-    }
+    for (const Patch& p : t.patches) d.patches.push_back(gpuPatch(p));
     auto irregularFace = [](const IrregularFace& q) {
         GpuIrregularFace g{};
         std::copy(std::begin(q.corner), std::end(q.corner), g.corner);
