@@ -4,25 +4,17 @@
 
 namespace limn::render {
 
-namespace {
-
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
-
-} // namespace
-
 bool planSequence(const SequenceRequest& request) {
     const int sequenceOptions = (request.turntable > 0) + request.cameras + request.frames;
     const bool sequence = sequenceOptions > 0;
-    if (sequenceOptions > 1) usage("--turntable, --cameras and --frames exclude each other");
+    if (sequenceOptions > 1) throwUsage("--turntable, --cameras and --frames exclude each other");
     if (request.turntable && request.eye)
-        usage("--turntable turns the --view camera around the up axis; leave out --eye");
+        throwUsage("--turntable turns the --view camera around the up axis; leave out --eye");
     if (request.cameras && (request.eye || request.view))
-        usage("--cameras gives every frame's camera; leave out --view and --eye");
-    if (sequence && request.bench) usage("--bench measures one frame; leave out --turntable, --cameras and --frames");
+        throwUsage("--cameras gives every frame's camera; leave out --view and --eye");
+    if (sequence && request.bench) throwUsage("--bench measures one frame; leave out --turntable, --cameras and --frames");
     if (request.part && !sequence)
-        usage("--shard and --frame-range render part of a sequence; give --turntable, --cameras or --frames");
+        throwUsage("--shard and --frame-range render part of a sequence; give --turntable, --cameras or --frames");
     return sequence;
 }
 

@@ -19,10 +19,6 @@ namespace limn::render_tool {
 
 namespace {
 
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
-
 // An image given to an option; errors say which option and what to do.
 render::FloatImage loadMap(const std::string& option, const std::string& path) {
     try {
@@ -154,7 +150,7 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
     readSurface(input, job.surface, warnings, in);
     cli::printWarnings(warnings, displayName(input));
     if (in.blend && !job.frameFiles.empty())
-        usage("--frames: a blending surface is built from its control points on the CPU (charts, "
+        throwUsage("--frames: a blending surface is built from its control points on the CPU (charts, "
               "local surfaces); render the frames' subdivision surface (--surface subdivision) or "
               "run limn-blend per frame");
     in.frames = readFrameMeshes(job.frameFiles, in.mesh, in.filesRead);
@@ -223,7 +219,7 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
     }
     settings.blendGrid = static_cast<uint32_t>(job.grid);
     if (in.blend && (!displace.empty() || !texture.empty()))
-        usage(
+        throwUsage(
             "--displace and --texture apply to the subdivision surface, not a blending surface "
             "(--surface subdivision draws the TBLS one)");
     settings.evalInCompute =

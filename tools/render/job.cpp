@@ -13,23 +13,19 @@ namespace limn::render_tool {
 
 namespace {
 
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
-
 // The explicit camera (--eye, --target, --up) and --view.
 void checkCamera(const RenderJob& job) {
     const render::ViewSpec& view = job.settings.view;
-    if (view.eye && job.viewGiven) usage("--view and --eye exclude each other");
+    if (view.eye && job.viewGiven) throwUsage("--view and --eye exclude each other");
     if ((view.target || view.up) && !view.eye)
-        usage("--target and --up describe an explicit camera; give --eye too");
+        throwUsage("--target and --up describe an explicit camera; give --eye too");
     if (view.eye && view.target && *view.eye == *view.target)
-        usage("--eye and --target are the same point, so the camera has no direction");
+        throwUsage("--eye and --target are the same point, so the camera has no direction");
     // The same checks as a --cameras line (sequence.cpp), so both ways of placing a camera agree.
-    if (view.up && glm::length(*view.up) == 0) usage("--up: the up vector is zero");
+    if (view.up && glm::length(*view.up) == 0) throwUsage("--up: the up vector is zero");
     if (view.up && view.eye && view.target &&
         glm::length(glm::cross(glm::normalize(*view.target - *view.eye), glm::normalize(*view.up))) < 1e-9)
-        usage("--up is parallel to the view direction (--eye to --target), so the image has no up");
+        throwUsage("--up is parallel to the view direction (--eye to --target), so the image has no up");
 }
 
 // What the options set in the renderer's settings, but for the input's maps and material
@@ -56,7 +52,7 @@ void readSequence(RenderJob& job) {
     if (job.turntable) job.views = render::turntableViews(job.settings.view, job.turntable);
     if (!job.camerasPath.empty()) {
         if (isStdio(job.camerasPath) && isStdio(job.input))
-            usage("--cameras - and the input cannot both be standard input");
+            throwUsage("--cameras - and the input cannot both be standard input");
         auto bytes = limn::readInput(job.camerasPath);
         try {
             job.views = render::parseCameraFile(std::string(bytes.begin(), bytes.end()), job.settings.view.fovDeg);
@@ -79,7 +75,7 @@ void readSequence(RenderJob& job) {
 void planJob(RenderJob& job) {
     checkCamera(job);
     if (job.benchOrbit != 0 && !job.bench)
-        usage("--bench-orbit turns the camera between --bench frames; give --bench FRAMES too");
+        throwUsage("--bench-orbit turns the camera between --bench frames; give --bench FRAMES too");
     job.sequence = render::planSequence({.turntable = job.turntable,
                                          .cameras = !job.camerasPath.empty(),
                                          .frames = !job.framesPattern.empty(),
@@ -105,9 +101,9 @@ void planJob(RenderJob& job) {
                   : job.surfaceName == "control"     ? Surface::Control
                                                      : Surface::Auto;
     if (!job.trimPath.empty() && (job.surface == Surface::Subdivision || job.surface == Surface::Control))
-        usage("--trim cuts blending surfaces; it does not go with --surface " + job.surfaceName);
+        throwUsage("--trim cuts blending surfaces; it does not go with --surface " + job.surfaceName);
     if (job.surface == Surface::Control && (!job.texture.empty() || !job.displace.empty() || job.shade == "levels"))
-        usage("--texture, --displace and --shade levels draw the subdivision surface, and "
+        throwUsage("--texture, --displace and --shade levels draw the subdivision surface, and "
               "--surface control draws the control mesh; leave out --surface control");
     readSequence(job);
     job.inputs = {job.input};

@@ -20,15 +20,11 @@ glm::dvec3 vec3Option(const std::string& option, const std::string& value) {
     return {v[0], v[1], v[2]};
 }
 
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
-
 // R,G,B with each component 0 to 1 (--color, --background, --back-faces).
 glm::dvec3 colourOption(const std::string& option, const std::string& value) {
     auto c = cli::parseNumberList(option, value, 3);
     for (double x : c)
-        if (!(x >= 0 && x <= 1)) usage(option + ": each component must be 0 to 1");
+        if (!(x >= 0 && x <= 1)) throwUsage(option + ": each component must be 0 to 1");
     return {c[0], c[1], c[2]};
 }
 
@@ -77,12 +73,12 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                                         text.find_first_not_of("0123456789") == std::string::npos;
                     if (digits) n = std::stoull(text);
                     if (!digits || n < 1 || n > 16384)
-                        usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
+                        throwUsage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
                     return static_cast<unsigned>(n);
                 };
                 const size_t x = v.find('x');
                 if (x == std::string::npos)
-                    usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
+                    throwUsage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
                 const unsigned w = side(v.substr(0, x)), h = side(v.substr(x + 1));
                 settings.width = w;
                 settings.height = h;
@@ -92,9 +88,9 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
             "--view", "AZ,EL",
             [&](const std::string& v) {
                 auto n = cli::parseNumberList("--view", v, 2);
-                if (n[1] < -90 || n[1] > 90) usage("--view: elevation must be -90 to 90");
+                if (n[1] < -90 || n[1] > 90) throwUsage("--view: elevation must be -90 to 90");
                 // As --light: 1e308 degrees made a NaN camera and a blank image with exit 0.
-                if (n[0] < -360 || n[0] > 360) usage("--view: azimuth must be -360 to 360");
+                if (n[0] < -360 || n[0] > 360) throwUsage("--view: azimuth must be -360 to 360");
                 settings.view.azimuthDeg = n[0];
                 settings.view.elevationDeg = n[1];
                 viewGiven = true;
@@ -132,7 +128,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
             [&](const std::string& v) {
                 auto n = cli::parseNumberList("--light", v, 2);
                 if (!(n[0] >= -360 && n[0] <= 360) || !(n[1] >= -90 && n[1] <= 90))
-                    usage("--light: azimuth must be -360 to 360 and elevation -90 to 90");
+                    throwUsage("--light: azimuth must be -360 to 360 and elevation -90 to 90");
                 settings.lightAzimuthDeg = n[0];
                 settings.lightElevationDeg = n[1];
             },
@@ -195,7 +191,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                 displaceScale = std::strtod(number.c_str(), &end);
                 if (number.empty() || *end != '\0' || !std::isfinite(displaceScale) ||
                     std::abs(displaceScale) > 1e6)
-                    usage("--displace-scale: '" + v + "' is not a number (or a percentage "
+                    throwUsage("--displace-scale: '" + v + "' is not a number (or a percentage "
                           "like 2%) within -1e6 to 1e6");
             },
             "1", "world units per unit of map value, or P% of the control mesh's bounding-box "
@@ -247,7 +243,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
             "--samples", "1|4",
             [&](const std::string& v) {
                 if (v != "1" && v != "4")
-                    usage("--samples: '" + v + "' is not 1 or 4 (the MSAA counts WebGPU offers)");
+                    throwUsage("--samples: '" + v + "' is not 1 or 4 (the MSAA counts WebGPU offers)");
                 samples = v == "1" ? 1 : 4;
             },
             "4",
@@ -272,7 +268,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
         .custom(
             "--bit-depth", "8|16",
             [&](const std::string& v) {
-                if (v != "8" && v != "16") usage("--bit-depth: '" + v + "' is not 8 or 16");
+                if (v != "8" && v != "16") throwUsage("--bit-depth: '" + v + "' is not 8 or 16");
                 bitDepth = v == "8" ? 8 : 16;
                 bitDepthGiven = true;
             },
@@ -309,7 +305,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                 const bool digits = !v.empty() && v.size() <= 6 && v.find_first_not_of("0123456789") == std::string::npos;
                 const unsigned long n = digits ? std::stoul(v) : 0;
                 if (n < 1 || n > render::kMaxFrames)
-                    usage("--turntable: '" + v + "' is not a number of views from 1 to " +
+                    throwUsage("--turntable: '" + v + "' is not a number of views from 1 to " +
                           std::to_string(render::kMaxFrames));
                 turntable = static_cast<uint32_t>(n);
             },
