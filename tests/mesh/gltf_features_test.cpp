@@ -218,7 +218,7 @@ TEST(GltfFeatures, MorphAnimationFramesAreTheMeshWithThoseWeights) {
     Warnings w;
     const GltfMorphFrames keys = readGltfMorphFrames(bytes(json), false, "", w);
     EXPECT_EQ(keys.times, (std::vector<double>{0, 1, 2}));
-    const GltfMorphFrames sampled = readGltfMorphFrames(bytes(json), false, "", w, 2.0);
+    const GltfMorphFrames sampled = readGltfMorphFrames(bytes(json), false, "", w, {.fps = 2.0});
     EXPECT_EQ(sampled.times, (std::vector<double>{0, 0.5, 1, 1.5, 2}));
     const double expected[] = {0, 0.5, 1, 0.75, 0.5}; // linear between 0, 1, 0.5
     const Mesh reference = withWeight(0.25);
@@ -228,6 +228,7 @@ TEST(GltfFeatures, MorphAnimationFramesAreTheMeshWithThoseWeights) {
         ASSERT_EQ(m.faceVertices, reference.faceVertices); // one topology for every frame
         EXPECT_EQ(sampled.positions[k], m.positions);
     }
+    EXPECT_EQ(sampled.base, reference.positions);
     EXPECT_EQ(sampled.unwelded, 0u);
     EXPECT_TRUE(w.empty());
     // Without an animation: a clear refusal.

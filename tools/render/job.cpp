@@ -5,6 +5,7 @@
 #include "base/error.h"
 #include "base/io.h"
 #include "image/image_file.h"
+#include "mesh/import.h"
 #include "render/sequence_plan.h"
 
 #include <glm/geometric.hpp>
@@ -51,7 +52,21 @@ void mapSettings(RenderJob& job) {
     settings.view.zUp = job.upAxis == "z";
 }
 
-// A sequence's views (--turntable, --cameras) or mesh files (--frames), and its frame numbers.
+// --frames FILE.gltf: the morph-target animation, read whole before any work (a file without one,
+// or one too long to hold, is refused here); its positions are held for one framing of the whole
+// sequence, within the memory the --frames meshes may take.
+void readAnimation(RenderJob& job) {
+    Warnings warnings;
+    job.animation = importGltfMorphFrames(job.framesPattern, limn::readInput(job.framesPattern), warnings,
+                                          {.fps = job.fps,
+                                           .maxFrames = render::kMaxFrames,
+                                           .maxPositionBytes = cli::defaultMemoryBudget(),
+                                           .filesRead = &job.animationFiles});
+    cli::printWarnings(warnings, displayName(job.framesPattern));
+}
+
+// A sequence's views (--turntable, --cameras), mesh files or glTF animation (--frames), and its
+// frame numbers.
 void readSequence(RenderJob& job) {
     if (job.turntable) job.views = render::turntableViews(job.settings.view, job.turntable);
     if (!job.camerasPath.empty()) {
@@ -65,9 +80,12 @@ void readSequence(RenderJob& job) {
             throw;
         }
     }
-    if (!job.framesPattern.empty())
+    if (!job.framesPattern.empty() && render::isAnimationFile(job.framesPattern))
+        readAnimation(job);
+    else if (!job.framesPattern.empty())
         job.frameFiles = render::findFrameFiles(render::parseFramePattern("--frames", job.framesPattern));
-    job.frameNumbers = render::sequenceFrameNumbers(job.views, job.frameFiles);
+    job.frameNumbers = render::sequenceFrameNumbers(job.views, job.frameFiles,
+                                                    job.animation ? job.animation->positions.size() : 0);
     if (!job.sequence) return;
     job.part = render::framesOfPart(job.frameNumbers, job.frameRange.value_or(render::FrameRange{}),
                                     job.shard.value_or(render::Shard{}));
@@ -83,6 +101,8 @@ void planJob(RenderJob& job) {
     job.sequence = render::planSequence({.turntable = job.turntable,
                                          .cameras = !job.camerasPath.empty(),
                                          .frames = !job.framesPattern.empty(),
+                                         .animation = render::isAnimationFile(job.framesPattern),
+                                         .fps = job.fps > 0,
                                          .eye = bool(job.settings.view.eye),
                                          .view = job.viewGiven,
                                          .bench = job.bench > 0,
@@ -114,6 +134,10 @@ void planJob(RenderJob& job) {
     for (const std::string* extra : {&job.trimPath, &job.displace, &job.texture, &job.camerasPath})
         if (!extra->empty()) job.inputs.push_back(*extra);
     for (const auto& f : job.frameFiles) job.inputs.push_back(f.path);
+    if (job.animation) {
+        job.inputs.push_back(job.framesPattern);
+        job.inputs.insert(job.inputs.end(), job.animationFiles.begin(), job.animationFiles.end());
+    }
 }
 
 } // namespace limn::render_tool
