@@ -240,13 +240,18 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
         if (!job.colorGiven)
             settings.baseColor =
                 glm::dvec3(render::linearToSrgb(f.r), render::linearToSrgb(f.g), render::linearToSrgb(f.b));
-        // Textures are drawn on the subdivision surface only (as --texture is).
-        const bool drawsTexture = in.tables && !in.blend && in.mesh.hasUVs() &&
-                                  (shade == "lit" || shade == "texture");
+        // Textures are drawn on the subdivision surface and the control mesh (as --texture is),
+        // not on a blending surface; --shade normal and uv ask for something else.
+        const bool shaded = shade == "lit" || shade == "texture";
         if (texture.empty() && in.material->hasTexture()) {
-            if (!drawsTexture)
-                cli::info("the base colour texture is drawn on the subdivision surface with "
-                          "--shade lit or texture only; not drawn");
+            if (shaded && in.blend)
+                cli::warn(displayName(input) + ": the base colour texture is not drawn on a blending surface "
+                          "(--surface subdivision draws it on the subdivision surface)");
+            else if (shaded && !in.mesh.hasUVs())
+                cli::warn(displayName(input) + ": the base colour texture is not drawn: the mesh has no "
+                          "texture coordinates");
+            else if (!shaded)
+                cli::info("the base colour texture is drawn with --shade lit or texture; not drawn");
             else if ((in.textureMap = materialTexture(*in.material, input))) {
                 settings.texture = &*in.textureMap;
                 settings.shade = render::Shade::Texture;

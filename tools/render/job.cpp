@@ -126,8 +126,8 @@ void planJob(RenderJob& job) {
                                                      : Surface::Auto;
     if (!job.trimPath.empty() && (job.surface == Surface::Subdivision || job.surface == Surface::Control))
         usage("--trim cuts blending surfaces; it does not go with --surface " + job.surfaceName);
-    if (job.surface == Surface::Control && (!job.texture.empty() || !job.displace.empty() || job.shade == "levels"))
-        usage("--texture, --displace and --shade levels draw the subdivision surface, and "
+    if (job.surface == Surface::Control && (!job.displace.empty() || job.shade == "levels"))
+        usage("--displace and --shade levels draw the subdivision surface, and "
               "--surface control draws the control mesh; leave out --surface control");
     readSequence(job);
     job.inputs = {job.input};
