@@ -44,6 +44,12 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
               Warnings& warnings, std::vector<std::string>* filesRead = nullptr,
               std::optional<MeshMaterial>* material = nullptr, GltfPolygons* polygons = nullptr);
 
+// readGltf for untrusted bytes that must not reach the file system (a fuzzer, a service): no file
+// is read, so a buffer or image must be embedded (a GLB buffer or a data: URI); one named by any
+// other URI is refused.
+Mesh readGltfEmbedded(std::span<const uint8_t> bytes, bool binary, Warnings& warnings,
+                      std::optional<MeshMaterial>* material = nullptr);
+
 // A glTF's morph-target animation as control-point sets on readGltf's mesh (same topology, same
 // vertex order): the first animation's `weights` channels, sampled at their keyframes (fps 0) or
 // every 1/fps seconds from the first keyframe to the last, with the channel's interpolation
@@ -63,6 +69,7 @@ struct GltfMorphRequest {
     size_t maxFrames = 1'000'000;
     uint64_t maxPositionBytes = UINT64_MAX;
     std::vector<std::string>* filesRead = nullptr; // the external files read, as for readGltf
+    bool embeddedOnly = false; // read no file, as readGltfEmbedded
 };
 GltfMorphFrames readGltfMorphFrames(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
                                     Warnings& warnings, const GltfMorphRequest& request = {});

@@ -100,8 +100,9 @@ GltfMorphFrames readGltfMorphFrames(std::span<const uint8_t> bytes, bool binary,
                                     Warnings& warnings, const GltfMorphRequest& request) {
     const double fps = request.fps;
     Warnings ignored; // readGltf's warnings are the same file's; report them once
-    const Mesh reference = readGltf(bytes, binary, baseDir, ignored, request.filesRead);
-    const gltf::Loaded loaded = gltf::load(bytes, binary, baseDir, warnings, nullptr, nullptr);
+    const std::string* dir = request.embeddedOnly ? nullptr : &baseDir;
+    const Mesh reference = gltf::readFrom(bytes, binary, dir, ignored, request.filesRead, nullptr, nullptr);
+    const gltf::Loaded loaded = gltf::load(bytes, binary, dir, warnings, nullptr, nullptr);
     const tinygltf::Model& model = loaded.model;
     const std::vector<WeightsChannel> channels = weightsChannels(model);
 

@@ -237,3 +237,38 @@ TEST(GltfFeatures, MorphAnimationFramesAreTheMeshWithThoseWeights) {
 }
 
 } // namespace
+
+namespace {
+
+// readGltfEmbedded reads what the bytes hold and no file: embedded buffers and images as readGltf
+// does, while a buffer named by a file URI (next to the file, or anywhere) is refused by name.
+TEST(GltfFeatures, EmbeddedOnlyReadsNoFile) {
+    Warnings w;
+    const auto cube = test::readBytes(feature("cube.gltf")); // a data: URI buffer
+    EXPECT_EQ(readGltfEmbedded(cube, false, w).positions, readGltf(cube, false, "", w).positions);
+    std::optional<MeshMaterial> material;
+    const auto box = test::readBytes(test::modelPath("gltf/BoxTextured/BoxTextured.glb"));
+    EXPECT_EQ(readGltfEmbedded(box, true, w, &material).faceVertices, readGltf(box, true, "", w).faceVertices);
+    EXPECT_TRUE(material && material->hasTexture());
+    const std::string dir = test::modelPath("gltf/AnimatedMorphCube").string() + "/";
+    const auto external = test::readBytes(dir + "AnimatedMorphCube.gltf"); // AnimatedMorphCube.bin
+    EXPECT_EQ(readGltf(external, false, dir, w).vertexCount(), 8u);
+    try {
+        readGltfEmbedded(external, false, w);
+        ADD_FAILURE() << "an external buffer was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("AnimatedMorphCube.bin: this reader reads embedded data only"),
+                  std::string::npos)
+            << e.what();
+    }
+    // An absolute path is no way around it, and the animation reader takes the same rule.
+    std::string json(external.begin(), external.end());
+    json.replace(json.find("\"AnimatedMorphCube.bin\""), 23, "\"" + dir + "AnimatedMorphCube.bin\"");
+    const std::span bytes(reinterpret_cast<const uint8_t*>(json.data()), json.size());
+    EXPECT_EQ(readGltf(bytes, false, "", w).vertexCount(), 8u);
+    EXPECT_THROW(readGltfEmbedded(bytes, false, w), Error);
+    EXPECT_EQ(readGltfMorphFrames(bytes, false, "", w).positions.size(), 127u);
+    EXPECT_THROW(readGltfMorphFrames(bytes, false, "", w, {.embeddedOnly = true}), Error);
+}
+
+} // namespace
