@@ -9,6 +9,20 @@ OutputFile::Kind meshFileKind(MeshFormat format, bool ascii) {
                                                                             : OutputFile::Kind::Binary;
 }
 
+uint64_t estimateFrameBytes(const OutputPlan& plan, const FrameSize& size) {
+    uint64_t bytes = 0;
+    if (plan.writeImage) {
+        const uint64_t pixels = uint64_t(size.width) * size.height;
+        bytes += plan.imageFormat == ImageFormat::Exr ? pixels * 5 * sizeof(float)
+                                                      : pixels * (size.alpha ? 4 : 3) * uint64_t(size.bitDepth / 8);
+    }
+    // Per triangle three 4-byte indices, and half a vertex of 24 bytes (a closed triangle mesh
+    // has about half as many vertices as triangles; splits at UV seams and creases add more):
+    // binary PLY's size at the least; the text formats take more.
+    if (plan.meshPattern || !plan.mesh.empty()) bytes += size.meshTriangles * (3 * 4 + 24 / 2);
+    return bytes;
+}
+
 OutputFile::Kind OutputPlan::meshFileKind() const {
     return render::meshFileKind(*meshFormat, meshAscii);
 }

@@ -238,16 +238,13 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             settings.displacementMap ? &displacement : nullptr, settings.texture,
             viewAdaptive_ ? &adaptive : nullptr, targetFormat_);
     } else {
-        if (settings.texture)
-            throw Error(ErrorKind::BadInput,
-                        "--texture is drawn on the subdivision surface; run limn-tables first");
         if (settings.wire == Wire::Triangles)
             throw Error(ErrorKind::Usage,
                         "--wire-triangles draws the edges of a subdivision surface's triangles; this "
                         "file has no tables (run limn-tables first), or use --wire for the mesh edges");
         ControlMeshDraw draw = prepareControlMesh(mesh);
         bounds = draw.bounds;
-        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw), targetFormat_);
+        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw), settings.texture, targetFormat_);
     }
     finishSetup(mesh, bounds);
 }

@@ -5,6 +5,7 @@
 #include "base/error.h"
 #include "base/io.h"
 #include "image/image_file.h"
+#include "mesh/import.h"
 #include "render/sequence_plan.h"
 
 #include <glm/geometric.hpp>
@@ -47,7 +48,21 @@ void mapSettings(RenderJob& job) {
     settings.view.zUp = job.upAxis == "z";
 }
 
-// A sequence's views (--turntable, --cameras) or mesh files (--frames), and its frame numbers.
+// --frames FILE.gltf: the morph-target animation, read whole before any work (a file without one,
+// or one too long to hold, is refused here); its positions are held for one framing of the whole
+// sequence, within the memory the --frames meshes may take.
+void readAnimation(RenderJob& job) {
+    Warnings warnings;
+    job.animation = importGltfMorphFrames(job.framesPattern, limn::readInput(job.framesPattern), warnings,
+                                          {.fps = job.fps,
+                                           .maxFrames = render::kMaxFrames,
+                                           .maxPositionBytes = cli::defaultMemoryBudget(),
+                                           .filesRead = &job.animationFiles});
+    cli::printWarnings(warnings, displayName(job.framesPattern));
+}
+
+// A sequence's views (--turntable, --cameras), mesh files or glTF animation (--frames), and its
+// frame numbers.
 void readSequence(RenderJob& job) {
     if (job.turntable) job.views = render::turntableViews(job.settings.view, job.turntable);
     if (!job.camerasPath.empty()) {
@@ -61,9 +76,12 @@ void readSequence(RenderJob& job) {
             throw;
         }
     }
-    if (!job.framesPattern.empty())
+    if (!job.framesPattern.empty() && render::isAnimationFile(job.framesPattern))
+        readAnimation(job);
+    else if (!job.framesPattern.empty())
         job.frameFiles = render::findFrameFiles(render::parseFramePattern("--frames", job.framesPattern));
-    job.frameNumbers = render::sequenceFrameNumbers(job.views, job.frameFiles);
+    job.frameNumbers = render::sequenceFrameNumbers(job.views, job.frameFiles,
+                                                    job.animation ? job.animation->positions.size() : 0);
     if (!job.sequence) return;
     job.part = render::framesOfPart(job.frameNumbers, job.frameRange.value_or(render::FrameRange{}),
                                     job.shard.value_or(render::Shard{}));
@@ -79,6 +97,8 @@ void planJob(RenderJob& job) {
     job.sequence = render::planSequence({.turntable = job.turntable,
                                          .cameras = !job.camerasPath.empty(),
                                          .frames = !job.framesPattern.empty(),
+                                         .animation = render::isAnimationFile(job.framesPattern),
+                                         .fps = job.fps > 0,
                                          .eye = bool(job.settings.view.eye),
                                          .view = job.viewGiven,
                                          .bench = job.bench > 0,
@@ -102,14 +122,18 @@ void planJob(RenderJob& job) {
                                                      : Surface::Auto;
     if (!job.trimPath.empty() && (job.surface == Surface::Subdivision || job.surface == Surface::Control))
         throwUsage("--trim cuts blending surfaces; it does not go with --surface " + job.surfaceName);
-    if (job.surface == Surface::Control && (!job.texture.empty() || !job.displace.empty() || job.shade == "levels"))
-        throwUsage("--texture, --displace and --shade levels draw the subdivision surface, and "
+    if (job.surface == Surface::Control && (!job.displace.empty() || job.shade == "levels"))
+        throwUsage("--displace and --shade levels draw the subdivision surface, and "
               "--surface control draws the control mesh; leave out --surface control");
     readSequence(job);
     job.inputs = {job.input};
     for (const std::string* extra : {&job.trimPath, &job.displace, &job.texture, &job.camerasPath})
         if (!extra->empty()) job.inputs.push_back(*extra);
     for (const auto& f : job.frameFiles) job.inputs.push_back(f.path);
+    if (job.animation) {
+        job.inputs.push_back(job.framesPattern);
+        job.inputs.insert(job.inputs.end(), job.animationFiles.begin(), job.animationFiles.end());
+    }
 }
 
 } // namespace limn::render_tool

@@ -3,6 +3,7 @@
 
 #include "base/error.h"
 #include "render/blend_draw.h"
+#include "render/sequence_plan.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -284,6 +285,14 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
             "                            readback, CPU float copies), e.g. 512M, 2G; more is\n"
             "                            refused before drawing [default: the smaller of half\n"
             "                            the machine's memory and the device's memory]")
+        .custom(
+            "--max-output", "SIZE",
+            [&](const std::string& v) { job.maxOutput = cli::parseByteSize("--max-output", v); }, "",
+            "most bytes a sequence may write, e.g. 2G: one whose estimated size (frames\n"
+            "                            times width x height x channels x bytes per sample,\n"
+            "                            uncompressed, plus --mesh-out meshes) is more is refused\n"
+            "                            before any work [default: the free space of the frames'\n"
+            "                            folder]")
         .text("--device", "NAME", &device,
               "Vulkan device: case-insensitive substring of its name [default: a discrete or\n"
               "                            integrated GPU if present, else the CPU device "
@@ -318,7 +327,14 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
         .text("--frames", "PATTERN", &framesPattern,
               "render the meshes PATTERN names (walk_%04d.obj: every existing number) with\n"
               "                            INPUT's topology and tables, uploading only their positions;\n"
-              "                            frame k of the input goes to -o NAME_%04d.png with the same k")
+              "                            frame k of the input goes to -o NAME_%04d.png with the same k.\n"
+              "                            A .gltf or .glb instead: its first animation's morph-target\n"
+              "                            weights, frame k at its k-th keyframe (INPUT: that glTF, or a\n"
+              "                            container made from it)")
+        .custom(
+            "--fps", "N", [&](const std::string& v) { job.fps = render::parseFps("--fps", v); }, "",
+            "with --frames FILE.gltf: sample the animation N times a second (0 < N <= 1000)\n"
+            "                            from its first keyframe to its last, instead of at its keyframes")
         .custom(
             "--shard", "I/N", [&](const std::string& v) { job.shard = render::parseShard("--shard", v); }, "",
             "render only part I of N (0 <= I < N) of the sequence, a contiguous block of\n"
