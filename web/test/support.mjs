@@ -19,11 +19,11 @@ export function tool(name) {
 }
 
 /** Runs limn-classify | limn-tables | [limn-seams] on a mesh of tests/data; returns the path. */
-export function container(mesh, { depth = 2, seams = false, tablesArgs = [], name } = {}) {
+export function container(mesh, { depth = 2, seams = false, tablesArgs = [], classifyArgs = [], name } = {}) {
   const out = join(scratch, name ?? `${mesh.replace(/[/.]/g, '_')}_d${depth}${seams ? '_s' : ''}.limn`);
   if (existsSync(out)) return out;
   const src = mesh.startsWith('/') ? mesh : join(repo, 'tests/data', mesh);
-  let bytes = execFileSync(tool('limn-classify'), [src, '-o', '-'], { maxBuffer: 1 << 30 });
+  let bytes = execFileSync(tool('limn-classify'), [...classifyArgs, src, '-o', '-'], { maxBuffer: 1 << 30 });
   bytes = execFileSync(tool('limn-tables'), ['--depth', String(depth), ...tablesArgs, '-', '-o', '-'], { input: bytes, maxBuffer: 1 << 30 });
   if (seams) bytes = execFileSync(tool('limn-seams'), ['-', '-o', '-'], { input: bytes, maxBuffer: 1 << 30 });
   writeFileSync(out, bytes);
