@@ -147,7 +147,9 @@ function applyMaps(o, surface) {
     const drawn = surface.uvs && (s.shade === 'lit' || s.shade === 'texture');
     if (!o.texture && m.texture.length && drawn) {
       try {
-        if (m.textureFormat.toLowerCase() !== 'png') throw new Error(`a ${m.textureFormat} image; PNG is what limn-web-render decodes`);
+        // The format name is a hint (a file name or extension); the bytes decide.
+        const png = [0x89, 0x50, 0x4e, 0x47].every((b, i) => m.texture[i] === b);
+        if (!png) throw new Error(`'${m.textureFormat}' is not a PNG, and PNG is what limn-web-render decodes`);
         s.texture = decodePngImage(m.texture, 'the MATL base colour texture');
         s.shade = 'texture';
       } catch (e) {

@@ -443,7 +443,8 @@ export class Renderer {
       push.setFloat32(80 + 4 * i, light[i], true);
       push.setFloat32(96 + 4 * i, 0.006, true);
     }
-    const base = s.color ?? [DEFAULT_BASE, DEFAULT_BASE, DEFAULT_BASE];
+    // renderer.cpp: a texture is drawn as it is (white base) unless a colour is given.
+    const base = s.color ?? (s.texture ? [1, 1, 1] : [DEFAULT_BASE, DEFAULT_BASE, DEFAULT_BASE]);
     push.setUint32(76, packSrgb8(base), true);
     push.setUint32(112, SHADES[s.shade], true);
     push.setFloat32(116, 2e-3, true);
