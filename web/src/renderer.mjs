@@ -78,6 +78,23 @@ function checkFixedSize(tables, tessCap) {
     "over WebGPU's 128 MiB storage-buffer limit; use a lower --tess, or tables of lower depth (limn-tables --depth)", 'input');
 }
 
+// subdivision_draw.cpp's checkTableSize: refuses, before anything is built, tables whose own GPU
+// buffers would pass WebGPU's 128 MiB storage-buffer limit, whatever the tessellation. The
+// patches buffer is counted as uploaded: the regular patches and, after them, the irregular
+// faces' quadtree nodes, sub-patches, smooth faces and per-valence basis records (TBLS v3).
+function checkTableSize(tables, face, stencil) {
+  const limit = 128 * 2 ** 20;
+  const sized = [['table vertices', tables.totalVertices * 16], ['face-point indices', face.index.byteLength],
+    ['stencil indices', stencil.index.byteLength], ['limit points', tables.limitCount * 32],
+    ['patches', tables.patches.byteLength], ['irregular faces', tables.irregular.byteLength]];
+  for (const [name, bytes] of sized) {
+    if (bytes > limit) {
+      throw new LimnError(`GPU buffer '${name}' would need ${(bytes / 2 ** 20).toFixed(1)} MiB, over WebGPU's 128 MiB storage-buffer ` +
+        'limit, whatever the tessellation; use feature-adaptive tables (limn-tables without --uniform) or a lower --depth', 'input');
+    }
+  }
+}
+
 // The CPU-built tessellations of a loaded surface, kept with its tables (they are never written
 // after they are built): renderers of one surface with other views, sizes or shades share them.
 const builtFor = new WeakMap();
@@ -115,8 +132,8 @@ export class Renderer {
       if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
       checkDisplacement(s.displace);
     }
-    if (surface.uvs && s.shade === 'uv' && surface.tables.options.fvar !== 5) {
-      throw new LimnError('smooth face-varying UVs (TAGS fvar other than "all") are not supported here yet', 'capability');
+    if (surface.uvs && (s.shade === 'uv' || s.shade === 'texture') && surface.tables.options.fvar !== 5) {
+      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under --shade ${s.shade} are not supported here yet`, 'capability');
     }
     this.timings = { js: 0 };
   }
@@ -143,6 +160,7 @@ export class Renderer {
     const face = appendRows(tables.facePoints, false);
     const stencil = appendRows(tables.edgePoints.flatMap((e, l) => [e, tables.vertexPoints[l]]), true);
     const limit = appendRows([tables.limitPosition, tables.limitTangent1, tables.limitTangent2], true);
+    checkTableSize(tables, face, stencil);
     if (limit.index.byteLength > 128 << 20) throw new LimnError('limit tables over 128 MiB (they come in chunks in limn-render) are not supported here', 'capability');
     this.levels = [];
     for (let l = 1; l < tables.levels.length; l++) { // with the irregular faces' extra levels
