@@ -12,7 +12,7 @@ import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { container, scratch, tool } from './support.mjs';
+import { quadSphere as quadSphereInputs, scratch, tool } from './support.mjs';
 import { privateIcd, requestNodeDevice } from '../src/node_device.mjs';
 import { loadLimn } from '../src/chunks.mjs';
 import { Renderer } from '../src/renderer.mjs';
@@ -23,19 +23,14 @@ import { compareImages } from './compare.mjs';
 const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd, XDG_RUNTIME_DIR: process.env.XDG_RUNTIME_DIR ?? '/tmp' };
 const SCALE = 0.2, MID = 0.5; // Makefile.examples' DISPLACE
 
-let gpu = null, inputs = null;
+let gpu = null;
 after(() => gpu?.device.destroy());
 
-// The quad_sphere container with seams, its surface height map and the UV-noise map, made once.
+let loaded = null;
 function quadSphere() {
-  if (inputs) return inputs;
-  execFileSync(tool('limn-examples'), ['-q', '-o', scratch, '--only', 'quad_sphere']);
-  const limn = container(join(scratch, 'quad_sphere.obj'), { depth: 3, seams: true });
-  const height = join(scratch, 'quad_sphere.height.png'), noise = join(scratch, 'uv-noise.png');
-  execFileSync(tool('limn-heightmap'), ['-q', '--kind', 'surface', '--size', '256', limn, '-o', height]);
-  execFileSync(tool('limn-heightmap'), ['-q', '--kind', 'uv', '--size', '256', '-o', noise]);
-  inputs = { limn, surface: loadLimn(new Uint8Array(readFileSync(limn))), height, noise };
-  return inputs;
+  loaded ??= { ...quadSphereInputs(), surface: null };
+  loaded.surface ??= loadLimn(new Uint8Array(readFileSync(loaded.limn)));
+  return loaded;
 }
 
 async function webRenderer(settings) {
