@@ -75,7 +75,7 @@ web_tools() {
   local dir
   dir="$(cd "$(dirname "$0")/.." && pwd)/web"
   if ! cmp -s "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"; then
-    echo "setup: npm ci in web (webgpu, naga-wasm)" >&2
+    echo "setup: npm ci in web (webgpu, naga-wasm, pngjs)" >&2
     if (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null 2>&1); then
       cp "$dir/package-lock.json" "$dir/node_modules/.limn-installed-lock.json"
     else

@@ -9,6 +9,7 @@ import { LimnError } from '../src/container.mjs';
 import { Renderer, SHADES } from '../src/renderer.mjs';
 import { encodePng } from '../src/png.mjs';
 import { requestNodeDevice } from '../src/node_device.mjs';
+import { readImageFile, decodePngImage, heightMap } from '../src/node_image.mjs';
 
 const TOOL = 'limn-web-render';
 const HELP = `usage: ${TOOL} [options] IN.limn -o OUT.png
@@ -29,16 +30,26 @@ what is not listed is not supported here.
   --light AZ,EL           key light relative to the camera (default -40,35)
   --samples 1|4           MSAA samples per pixel (default 4, as limn-render's)
   --sample-shading        shade each sample on its own (with --samples 4)
-  --shade MODE            lit, normal, uv, levels (default lit; texture: not supported here yet)
-  --color R,G,B           base colour, sRGB 0..1 (default 0.8,0.8,0.8)
+  --shade MODE            lit, normal, uv, levels, texture (default lit; texture with --texture
+                          or a MATL chunk's base colour texture)
+  --color R,G,B           base colour, sRGB 0..1 (default a MATL chunk's, else 0.8,0.8,0.8)
+  --texture MAP           colour texture (PNG) [default: the MATL chunk's base colour texture]
+  --displace MAP          displace the subdivision surface along its normal by a height map
+                          (PNG; channel 0), sampled bilinearly with wrap-around at the mesh UVs;
+                          needs a SEAM chunk (limn-seams)
+  --displace-scale S|P%   world units per unit of map value, or P% of the control mesh's
+                          bounding-box diagonal (default 1)
+  --displace-mid M        the map value meaning zero (default 0)
+  --no-seam-fix           sample the map with each face's own UV only (the cracks that the seam
+                          fix of paper 000, 4.5 removes)
   --background R,G,B      sRGB 0..1 (default 0.2,0.2,0.2)
   --tess N                most segments per patch edge (default 64)
   --edge-pixels P         view-adaptive: segments of about P pixels (default 4); 0: the fixed
                           grids of 2^(depth-l) segments per level-l patch side
   --bench N               render N frames, print limn-render's --bench JSON fields on stdout
   --help, --version
-Not supported here yet: --displace, --texture, --wire, --mesh-out, smooth UVs under --shade uv,
-BLND (blending surfaces).
+Not supported here yet: --wire, --mesh-out, smooth face-varying UVs under --shade uv, --texture
+or --displace, BLND (blending surfaces); images other than PNG.
 Exit codes: 0 ok, 1 bad input, 2 usage, 3 missing capability.
 `;
 
@@ -84,8 +95,16 @@ function parseArgs(argv) {
       case '--tess': { const [t] = numbers(a, value(), 1); if (!Number.isInteger(t) || t < 1 || t > 4096) throw new Usage('--tess: an integer from 1 to 4096'); s.tess = t; break; }
       case '--edge-pixels': { const [p] = numbers(a, value(), 1); if (p < 0 || p > 4096) throw new Usage('--edge-pixels: 0 to 4096'); s.edgePixels = p; break; }
       case '--bench': { const [n] = numbers(a, value(), 1); if (!Number.isInteger(n) || n < 0 || n > 100000) throw new Usage('--bench: 0 to 100000 frames'); o.bench = n; break; }
-      case '--displace': case '--texture': case '--displace-scale': case '--displace-mid': case '--no-seam-fix':
-        throw Object.assign(new LimnError(`${a} is not supported here yet; use limn-render`, 'capability'), { capability: true });
+      case '--displace': o.displace = value(); break;
+      case '--texture': o.texture = value(); break;
+      case '--displace-scale': {
+        const v = value(), percent = v.endsWith('%'), x = Number(percent ? v.slice(0, -1) : v);
+        if ((percent ? v.length < 2 : v === '') || !Number.isFinite(x) || Math.abs(x) > 1e6) throw new Usage(`--displace-scale: '${v}' is not a number (or a percentage like 2%) within -1e6 to 1e6`);
+        o.displaceScale = x; o.displaceScalePercent = percent;
+        break;
+      }
+      case '--displace-mid': { const [m] = numbers(a, value(), 1); if (Math.abs(m) > 1e6) throw new Usage('--displace-mid: -1e6 to 1e6'); o.displaceMid = m; break; }
+      case '--no-seam-fix': o.noSeamFix = true; break;
       default:
         if (a.startsWith('-') && a !== '-') throw new Usage(`unknown option ${a} (see --help)`);
         if (o.input) throw new Usage(`one input file, not '${o.input}' and '${a}'`);
@@ -101,6 +120,45 @@ function parseArgs(argv) {
   return o;
 }
 
+const linearToSrgb = (c) => { c = Math.min(Math.max(c, 0), 1); return c <= 0.0031308 ? 12.92 * c : 1.055 * c ** (1 / 2.4) - 0.055; };
+
+// tools/render/input.cpp: the maps, and a MATL chunk's base colour (factor and texture).
+function applyMaps(o, surface) {
+  const s = o.settings;
+  if (!o.displace && (o.displaceScale !== undefined || o.displaceMid !== undefined || o.noSeamFix)) {
+    process.stderr.write(`${TOOL}: warning: --displace-scale, --displace-mid and --no-seam-fix shape the --displace map; without --displace they do nothing\n`);
+  }
+  if (o.displace) {
+    let scale = o.displaceScale ?? 1;
+    if (o.displaceScalePercent) {
+      const P = surface.mesh.positions, lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+      for (let i = 0; i < P.length; i++) { lo[i % 3] = Math.min(lo[i % 3], P[i]); hi[i % 3] = Math.max(hi[i % 3], P[i]); }
+      scale = (scale / 100) * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+    }
+    s.displace = { map: heightMap(readImageFile(o.displace, '--displace')), scale, mid: o.displaceMid ?? 0, seamFix: !o.noSeamFix };
+  }
+  if (o.texture) {
+    s.texture = readImageFile(o.texture, '--texture');
+    if (s.shade === 'lit') s.shade = 'texture';
+  }
+  const m = surface.material;
+  if (m) {
+    if (!s.color) s.color = m.baseColorFactor.slice(0, 3).map(linearToSrgb);
+    const drawn = surface.uvs && (s.shade === 'lit' || s.shade === 'texture');
+    if (!o.texture && m.texture.length && drawn) {
+      try {
+        // The format name is a hint (a file name or extension); the bytes decide.
+        const png = [0x89, 0x50, 0x4e, 0x47].every((b, i) => m.texture[i] === b);
+        if (!png) throw new Error(`'${m.textureFormat}' is not a PNG, and PNG is what limn-web-render decodes`);
+        s.texture = decodePngImage(m.texture, 'the MATL base colour texture');
+        s.shade = 'texture';
+      } catch (e) {
+        process.stderr.write(`${TOOL}: warning: ${o.input}: the base colour texture cannot be read (${e.detail ?? e.message}); drawing the base colour factor instead\n`);
+      }
+    }
+  }
+}
+
 async function main(argv) {
   const o = parseArgs(argv);
   if (o.help) { process.stdout.write(HELP); return 0; }
@@ -112,6 +170,7 @@ async function main(argv) {
     throw new LimnError(`cannot read: ${e.code ?? e.message}`, 'input');
   }
   const surface = loadLimn(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength));
+  applyMaps(o, surface);
   const { device, adapter } = await requestNodeDevice();
   let lost = null;
   device.lost.then((info) => { lost = info; });

@@ -479,7 +479,7 @@ function decodeSeams(chunk, elements, expectedHash) {
   const E = r.u32('element count'), U = r.u32('UV count');
   if (E !== elements) r.fail(`seams for ${E} elements, the tables have ${elements}`);
   if (E > Math.floor(r.remaining / 96)) r.fail(`element count ${E} is too large`);
-  // GPU layout: 24 words an element, as the chunk (ElementSeams), then the UVs.
+  // 24 words an element as the chunk has them (own UVs, then (first, count) pairs), then the UVs.
   const records = r.array(Uint32Array, E * 24, 'elements');
   const uvs = r.array(Float32Array, U * 2, 'UVs');
   r.requireEnd();

@@ -50,6 +50,19 @@ export interface RenderSettings {
   /** View-adaptive segments of about this many pixels (limn-render's default 4); 0: the fixed grids. */
   edgePixels?: number; tess?: number; view?: ViewSpec;
   lightAzimuthDeg?: number; lightElevationDeg?: number; color?: Vec3; background?: Vec3;
+  /** --texture (or a MATL texture): values 0..1 as decoded, 3 a texel, rows top to bottom; with shade 'texture'. */
+  texture?: ImageRGB;
+  /** --displace: needs the container's SEAM chunk (limn-seams). */
+  displace?: Displacement;
+}
+export interface ImageRGB { width: number; height: number; rgb: Float32Array }
+export interface Displacement {
+  /** Channel 0 of the height map, rows top to bottom (v = 0 is the bottom row). */
+  map: { width: number; height: number; values: Float32Array };
+  /** --displace-scale (world units per unit of map value) and --displace-mid (the value meaning zero). */
+  scale: number; mid: number;
+  /** false: --no-seam-fix (each face samples its own UV; cracks open at UV seams). */
+  seamFix: boolean;
 }
 export class Renderer {
   static create(device: GPUDevice, surface: Surface, settings: RenderSettings): Promise<Renderer>;

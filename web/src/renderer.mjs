@@ -10,7 +10,8 @@ import { ShaderCache, loadShader as loadShaderText } from './shaders.mjs';
 import { buildTessellation } from './tessellation.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
-import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS } from './adaptive.mjs';
+import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS } from './adaptive.mjs';
+import { textureWords, fixedDisplacementPlan, checkDisplacement, addDisplacementPasses } from './displacement.mjs';
 
 const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
 const MAX_GROUPS = 65535;
@@ -77,6 +78,23 @@ function checkFixedSize(tables, tessCap) {
     "over WebGPU's 128 MiB storage-buffer limit; use a lower --tess, or tables of lower depth (limn-tables --depth)", 'input');
 }
 
+// subdivision_draw.cpp's checkTableSize: refuses, before anything is built, tables whose own GPU
+// buffers would pass WebGPU's 128 MiB storage-buffer limit, whatever the tessellation. The
+// patches buffer is counted as uploaded: the regular patches and, after them, the irregular
+// faces' quadtree nodes, sub-patches, smooth faces and per-valence basis records (TBLS v3).
+function checkTableSize(tables, face, stencil) {
+  const limit = 128 * 2 ** 20;
+  const sized = [['table vertices', tables.totalVertices * 16], ['face-point indices', face.index.byteLength],
+    ['stencil indices', stencil.index.byteLength], ['limit points', tables.limitCount * 32],
+    ['patches', tables.patches.byteLength], ['irregular faces', tables.irregular.byteLength]];
+  for (const [name, bytes] of sized) {
+    if (bytes > limit) {
+      throw new LimnError(`GPU buffer '${name}' would need ${(bytes / 2 ** 20).toFixed(1)} MiB, over WebGPU's 128 MiB storage-buffer ` +
+        'limit, whatever the tessellation; use feature-adaptive tables (limn-tables without --uniform) or a lower --depth', 'input');
+    }
+  }
+}
+
 // The CPU-built tessellations of a loaded surface, kept with its tables (they are never written
 // after they are built): renderers of one surface with other views, sizes or shades share them.
 const builtFor = new WeakMap();
@@ -107,9 +125,15 @@ export class Renderer {
     if (s.samples !== 1 && s.samples !== 4) throw new LimnError(`--samples must be 1 or 4 (the counts WebGPU offers), not ${s.samples}`, 'usage');
     if (!(s.shade in SHADES)) throw new LimnError(`--shade ${s.shade}: one of ${Object.keys(SHADES).join(', ')}`, 'usage');
     if (s.shade === 'uv' && !surface.uvs) throw new LimnError('--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade lit or normal', 'input');
-    if (s.shade === 'texture' || s.displace) throw new LimnError('--texture and --displace are not supported here yet', 'capability');
-    if (surface.uvs && s.shade === 'uv' && surface.tables.options.fvar !== 5) {
-      throw new LimnError('smooth face-varying UVs (TAGS fvar other than "all") are not supported here yet', 'capability');
+    if (s.shade === 'texture' && !s.texture) throw new LimnError('--shade texture needs --texture MAP', 'usage');
+    if ((s.texture || s.displace) && !surface.uvs) throw new LimnError('--texture and --displace need texture coordinates; the mesh has none', 'input');
+    if (s.displace) {
+      if (!surface.seams) throw new LimnError('--displace needs the seam UVs of a SEAM chunk: run limn-seams on the container first', 'input');
+      if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
+      checkDisplacement(s.displace);
+    }
+    if (surface.uvs && (s.shade === 'uv' || s.shade === 'texture') && surface.tables.options.fvar !== 5) {
+      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under --shade ${s.shade} are not supported here yet`, 'capability');
     }
     this.timings = { js: 0 };
   }
@@ -136,6 +160,7 @@ export class Renderer {
     const face = appendRows(tables.facePoints, false);
     const stencil = appendRows(tables.edgePoints.flatMap((e, l) => [e, tables.vertexPoints[l]]), true);
     const limit = appendRows([tables.limitPosition, tables.limitTangent1, tables.limitTangent2], true);
+    checkTableSize(tables, face, stencil);
     if (limit.index.byteLength > 128 << 20) throw new LimnError('limit tables over 128 MiB (they come in chunks in limn-render) are not supported here', 'capability');
     this.levels = [];
     for (let l = 1; l < tables.levels.length; l++) { // with the irregular faces' extra levels
@@ -157,19 +182,24 @@ export class Renderer {
       const viewBudget = Math.max(Math.floor((32 * s.width * s.height) / (p * p)), 2 ** 20);
       const samplePositions = s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
       this.adaptiveOptions = {
-        edgePixels: s.edgePixels, tess: s.tess, cull: true, samplePositions, texelsPerUV: 0,
+        edgePixels: s.edgePixels, tess: s.tess, samplePositions,
         // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.
-        evaluated: !!s.meshOut,
-        sharePoints: !s.meshOut && s.shade !== 'uv' && s.shade !== 'texture',
+        // and with displacement: the compute passes read the whole capacity (zeroed slots included).
+        evaluated: !!s.meshOut || !!s.displace,
+        sharePoints: !s.meshOut && !s.displace && s.shade !== 'uv' && s.shade !== 'texture',
+        // Displacement moves the surface off its control points' hull: no culling then.
+        cull: !s.displace,
+        // With a displacement map, at least a segment per texel (up to one per 2 pixels).
+        texelsPerUV: s.displace ? Math.max(s.displace.map.width, s.displace.map.height) : 0,
         maxVertices: minimum + ep.elements.length + viewBudget, maxTriangles: minimum + 2 * viewBudget,
       };
       this.adaptiveData = adaptiveData(ep, tables, this.adaptiveOptions);
       this.closed = ep.pieces.length > 0 && ep.pieces.every((pc) => pc.users[1] !== 0xffffffff);
-      this.orientation = this.closed ? surfaceOrientation(mesh) : 0;
+      this.orientation = this.closed && !s.displace ? surfaceOrientation(mesh) : 0;
     } else {
       checkFixedSize(tables, s.tess);
       const cap = 2 ** Math.floor(Math.log2(Math.max(s.tess, 1)));
-      tess = cached(tables, `fixed ${cap}`, () => buildTessellation({ ...mesh, uvs: surface.uvs }, tables, cap, !!surface.uvs));
+      tess = cached(tables, `fixed ${cap}`, () => ({ ...buildTessellation({ ...mesh, uvs: surface.uvs }, tables, cap, !!surface.uvs), key: `fixed ${cap}` }));
     }
     this.tess = tess;
     const b = this.buffers = {
@@ -188,8 +218,8 @@ export class Renderer {
       tessVertices: this.buffer('tessellation vertices', tess.vertices),
       triangles: this.buffer('triangle indices', tess.indices, STORAGE | INDEX),
       triangleLevels: this.buffer('triangle levels', tess.triangleLevels),
-      texture: this.buffer('colour texture', new Uint32Array([1, 1, 0xffffffff])),
-      push: this.empty('push constants', PUSH_SLOT * (9 + 3 * (tables.levels.length - 1)), UNIFORM),
+      texture: this.buffer('colour texture', textureWords(s.texture)),
+      push: this.empty('push constants', PUSH_SLOT * (12 + 3 * (tables.levels.length - 1)), UNIFORM),
     };
     if (this.adaptive) {
       const d = this.adaptiveData;
@@ -212,10 +242,12 @@ export class Renderer {
     }
     const [facePass, stencilPass, limitPass] = await Promise.all(['subdiv_face_points.comp', 'subdiv_stencils.comp', 'subdiv_limit.comp'].map(compute));
     const perSample = s.sampleShading && s.samples > 1;
-    const vs = await shaders.module(perSample ? 'surface_per_sample.vert' : 'surface.vert');
+    // Displaced: the vertices were evaluated and moved by compute passes; the draw fetches them.
+    const vertexStage = s.displace ? 'surface_fetch' : 'surface';
+    const vs = await shaders.module(perSample ? `${vertexStage}_per_sample.vert` : `${vertexStage}.vert`);
     const fs = await shaders.module(perSample ? 'surface_per_sample.frag' : 'surface.frag');
     const drawLayout = device.createPipelineLayout({ bindGroupLayouts: [
-      groupLayout(device, (await loadShaderText('surface.vert')) + (await loadShaderText('surface.frag')), 1 | 2),
+      groupLayout(device, (await loadShaderText(`${vertexStage}.vert`)) + (await loadShaderText('surface.frag')), 1 | 2),
       device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }),
       device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 1 | 2, buffer: { type: 'uniform' } }] })] });
     const drawPipeline = (cullMode) => device.createRenderPipelineAsync({
@@ -238,14 +270,14 @@ export class Renderer {
     });
     // Each pass gets its own 256-byte slot of push constants (written once per frame).
     let slot = 0;
-    const pushGroup = (pipeline) => {
+    const pushGroup = this.pushGroup = (pipeline) => {
       const offset = PUSH_SLOT * slot++;
       return { offset, group: device.createBindGroup({ layout: pipeline.getBindGroupLayout(3), entries: [{ binding: 0, resource: { buffer: b.push, offset, size: PUSH_SLOT } }] }) };
     };
     const faceGroup = group(facePass, 0, [b.vertices, b.faceStarts, b.faceIndices]);
     const stencilGroup = group(stencilPass, 0, [b.vertices, b.stencilStarts, b.stencilIndices, b.stencilWeights]);
     this.passes = [];
-    this.pushData = new Uint32Array((PUSH_SLOT / 4) * (9 + 3 * (tables.levels.length - 1)));
+    this.pushData = new Uint32Array((PUSH_SLOT / 4) * (12 + 3 * (tables.levels.length - 1)));
     const dispatch = (pipeline, bindGroup, count, fields, label) => {
       if (count === 0) return;
       const groups = Math.ceil(count / 64);
@@ -254,6 +286,7 @@ export class Renderer {
       this.pushData.set([count, x * 64, 0, 0, ...fields], p.offset / 4);
       this.passes.push({ pipeline, bindGroup, push: p.group, x, y, label, pushOffset: p.offset });
     };
+    this.dispatch = dispatch;
     for (const L of this.levels) {
       dispatch(facePass, faceGroup, L.face.count, [L.face.firstOut, L.face.firstRow], `face points L${L.level}`);
       dispatch(stencilPass, stencilGroup, L.edge.count, [L.edge.firstOut, L.edge.firstRow], `edge points L${L.level}`);
@@ -283,15 +316,32 @@ export class Renderer {
         if (this.passes.length > before) this.adaptivePasses.push({ name, pass: this.passes[this.passes.length - 1], count });
       }
     }
+    if (s.displace) {
+      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, surface.seams, s.displace.seamFix));
+      await addDisplacementPasses(this, compute, group, plan);
+    }
     const drawPush = pushGroup(this.drawPipeline);
     this.drawPushOffset = drawPush.offset;
-    this.drawGroups = [group(this.drawPipeline, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture]), drawPush.group];
+    const drawBuffers = s.displace
+      ? [b.displaced, b.displacedNormals, b.tessVertices, b.triangles, b.triangleLevels, null, null, b.texture]
+      : [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture];
+    this.drawGroups = [group(this.drawPipeline, 0, drawBuffers), drawPush.group];
 
     // Framing: the control points' box and sphere (boundsOf), the hull samples when auto-framed.
     const points = [];
     for (let i = 0; i < mesh.vertexCount; i++) points.push([mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]]);
     this.bounds = boundsOf(points);
-    this.bounds.hull = s.view.eye ? [] : await this.surfaceSamples();
+    if (s.displace) {
+      // renderer.cpp: the displaced surface leaves the hull; frame the box padded by half the
+      // scale instead of the surface samples.
+      const pad = Math.abs(s.displace.scale) * 0.5;
+      this.bounds.min = this.bounds.min.map((x) => x - pad);
+      this.bounds.max = this.bounds.max.map((x) => x + pad);
+      if (this.bounds.sphereRadius > 0) this.bounds.sphereRadius += pad;
+      this.bounds.hull = [];
+    } else {
+      this.bounds.hull = s.view.eye ? [] : await this.surfaceSamples();
+    }
     this.setView(s.view);
 
     const w = s.width, h = s.height;
@@ -358,35 +408,39 @@ export class Renderer {
   /**
    * The drawn surface, as limn-render --mesh-out writes it: positions (4 floats each) and
    * triangles. View-adaptive: this view's emitted tessellation (create with settings.meshOut).
+   * Displaced: the displaced positions.
    */
   async drawnMesh() {
-    if (!this.adaptive) {
-      const { positions } = await this.evaluate(this.buffers.tessVertices, this.tess.vertexCount);
-      return { positions, triangles: this.tess.indices };
+    let triangles = this.tess.indices, vertices = this.tess.vertexCount;
+    if (this.adaptive || this.s.displace) {
+      this.uploadControlPoints();
+      const enc = this.device.createCommandEncoder();
+      this.encodeCompute(enc, true);
+      this.device.queue.submit([enc.finish()]);
     }
-    const { device } = this;
-    this.uploadControlPoints();
-    const enc = device.createCommandEncoder();
-    this.encodeCompute(enc, true);
-    const rb = device.createBuffer({ size: TOTALS_WORDS * 4, usage: MAP_READ | COPY_DST });
-    enc.copyBufferToBuffer(this.buffers.totals, 0, rb, 0, TOTALS_WORDS * 4);
-    device.queue.submit([enc.finish()]);
+    if (this.adaptive) {
+      const t = await this.readBuffer(this.buffers.totals, TOTALS_WORDS * 4, Uint32Array);
+      if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --edge-pixels or lower --tess', 'input');
+      vertices = t[17];
+      triangles = await this.readBuffer(this.buffers.triangles, t[16] * 12, Uint32Array);
+    }
+    // Displaced: what the frame's passes moved; else the tessellation evaluated again.
+    const positions = this.s.displace
+      ? await this.readBuffer(this.buffers.displaced, vertices * 16, Float32Array)
+      : (await this.evaluate(this.buffers.tessVertices, vertices)).positions;
+    return { positions, triangles };
+  }
+
+  async readBuffer(buffer, bytes, Type) {
+    const rb = this.device.createBuffer({ size: Math.max(bytes, 16), usage: MAP_READ | COPY_DST });
+    const enc = this.device.createCommandEncoder();
+    if (bytes) enc.copyBufferToBuffer(buffer, 0, rb, 0, bytes);
+    this.device.queue.submit([enc.finish()]);
     await rb.mapAsync(1);
-    const t = new Uint32Array(rb.getMappedRange().slice(0));
+    const out = new Type(rb.getMappedRange().slice(0, bytes));
     rb.unmap();
     rb.destroy();
-    if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --edge-pixels or lower --tess', 'input');
-    const triangles = t[16], vertices = t[17];
-    const tri = device.createBuffer({ size: Math.max(triangles * 12, 16), usage: MAP_READ | COPY_DST });
-    const e2 = device.createCommandEncoder();
-    if (triangles) e2.copyBufferToBuffer(this.buffers.triangles, 0, tri, 0, triangles * 12);
-    device.queue.submit([e2.finish()]);
-    await tri.mapAsync(1);
-    const indices = new Uint32Array(tri.getMappedRange().slice(0, triangles * 12));
-    tri.unmap();
-    tri.destroy();
-    const { positions } = await this.evaluate(this.buffers.tessVertices, vertices);
-    return { positions, triangles: indices };
+    return out;
   }
 
   setView(view) {
@@ -407,7 +461,8 @@ export class Renderer {
       push.setFloat32(80 + 4 * i, light[i], true);
       push.setFloat32(96 + 4 * i, 0.006, true);
     }
-    const base = s.color ?? [DEFAULT_BASE, DEFAULT_BASE, DEFAULT_BASE];
+    // renderer.cpp: a texture is drawn as it is (white base) unless a colour is given.
+    const base = s.color ?? (s.texture ? [1, 1, 1] : [DEFAULT_BASE, DEFAULT_BASE, DEFAULT_BASE]);
     push.setUint32(76, packSrgb8(base), true);
     push.setUint32(112, SHADES[s.shade], true);
     push.setFloat32(116, 2e-3, true);
@@ -439,12 +494,12 @@ export class Renderer {
   encodeCompute(enc, withAdaptive = true) {
     // One compute pass per dispatch: WebGPU orders their storage accesses like limn's barriers.
     for (const p of this.passes) {
-      if (!withAdaptive && p.label.startsWith('adaptive')) continue;
+      if (!withAdaptive && (p.indirect || p.label.startsWith('adaptive'))) continue;
       const cp = enc.beginComputePass({ label: p.label });
       cp.setPipeline(p.pipeline);
       cp.setBindGroup(0, p.bindGroup);
       cp.setBindGroup(3, p.push);
-      cp.dispatchWorkgroups(p.x, p.y);
+      if (p.indirect) cp.dispatchWorkgroupsIndirect(this.buffers.totals, DISPATCH_ARGS); else cp.dispatchWorkgroups(p.x, p.y);
       cp.end();
     }
   }

@@ -6,6 +6,7 @@ import { spawnSync } from 'node:child_process';
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { container, scratch, repo } from './support.mjs';
+import { encodePng } from '../src/png.mjs';
 
 const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
@@ -44,11 +45,28 @@ test('damaged containers exit 1 naming the chunk, and leave no output', () => {
   assert.equal(existsSync(out), false);
 });
 
-test('what is not supported here exits 3 and says so', () => {
-  const limn = container('quad/spot_quadrangulated.obj', { depth: 1 });
-  const r = run(limn, '-o', join(scratch, 'x.png'), '--displace', 'map.png');
+test('what is not supported here exits 3 and says so; maps it cannot use exit 1 naming them', () => {
+  const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 });
+  const out = join(scratch, 'x.png');
+  // Smooth face-varying UVs (an fvar rule other than "all").
+  const smooth = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_boundaries.limn' });
+  const r = run(smooth, '-o', out, '--shade', 'uv');
   assert.equal(r.status, 3, r.stderr);
-  assert.match(r.stderr, /--displace is not supported here/);
-  const b = run(limn, '-o', join(scratch, 'x.png'), '--texture', 'map.png');
-  assert.equal(b.status, 3, b.stderr);
+  assert.match(r.stderr, /smooth face-varying UVs .* not supported here/);
+  // --displace needs the seam records (limn-seams); a map that is not a PNG is named.
+  const noMap = run(limn, '-o', out, '--displace', join(scratch, 'absent.png'));
+  assert.equal(noMap.status, 1, noMap.stderr);
+  assert.match(noMap.stderr, /--displace .*absent\.png: cannot read/);
+  const notPng = join(scratch, 'not.png');
+  writeFileSync(notPng, 'not a png');
+  const bad = run(limn, '-o', out, '--texture', notPng);
+  assert.equal(bad.status, 1, bad.stderr);
+  assert.match(bad.stderr, /--texture .*not\.png: not a PNG/);
+  const map = join(scratch, 'map.png');
+  writeFileSync(map, encodePng(2, 2, new Uint8Array(16).fill(128)));
+  const seamless = run(limn, '-o', out, '--displace', map);
+  assert.equal(seamless.status, 1, seamless.stderr);
+  assert.match(seamless.stderr, /run limn-seams/);
+  assert.equal(run(limn, '-o', out, '--displace', map, '--displace-scale', 'x%').status, 2);
+  assert.equal(existsSync(out), false);
 });

@@ -37,3 +37,17 @@ test('accepted byte flips render without a GPU error', async () => {
   assert.deepEqual(errors, []);
   device.destroy();
 });
+
+// Tables whose own buffers pass WebGPU's 128 MiB binding limit are refused by name before any GPU
+// work (no device is even needed): the patches buffer as uploaded, with the irregular faces'
+// quadtree, sub-patch and basis records after the patches (TBLS v3), not the patch count alone.
+test('tables over 128 MiB are refused, naming the buffer, before any GPU work', async () => {
+  const surface = loadLimn(read(container('quad/spot_quadrangulated.obj', { depth: 1 })));
+  const { tables } = surface;
+  assert.ok(tables.patches.byteLength > tables.patchCount * 96, 'spot has irregular-face records after its patches');
+  // As many records past the patches as would pass 128 MiB, with the patches themselves small.
+  const records = { byteLength: tables.patchCount * 96 + 129 * 2 ** 20 };
+  const big = { ...surface, tables: { ...tables, patches: records } };
+  await assert.rejects(Renderer.create(null, big, { width: 64, height: 48, edgePixels: 4, view: {} }),
+    /GPU buffer 'patches' would need 1\d\d\.\d MiB, over WebGPU's 128 MiB storage-buffer limit/);
+});

@@ -2,7 +2,8 @@
 // private Mesa 25 lavapipe (the same rasterizer): at most 0.5% of the covered pixels may differ by
 // more than 8/255. The fixed grids (--edge-pixels 0) and the view-adaptive tessellation, 1 and 4
 // samples, lit and --shade levels, on real models: spot (depths 1, 3, 6), a creased torus, a model
-// with face-varying UVs and tags, the paper's demo sphere in its camera, and the paper-size car.
+// with face-varying UVs and tags, the paper's demo sphere in its camera, the paper-size car, and
+// colour textures (--texture, a glTF's MATL texture).
 //
 // The web side renders in this process through the library (one device, each container loaded
 // once, so its CPU tessellation is built once and Dawn compiles each pipeline once); limn-render
@@ -20,6 +21,7 @@ import { requestNodeDevice } from '../src/node_device.mjs';
 import { loadLimn } from '../src/chunks.mjs';
 import { Renderer } from '../src/renderer.mjs';
 import { compareImages } from './compare.mjs';
+import { readImageFile } from '../src/node_image.mjs';
 
 const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd, XDG_RUNTIME_DIR: process.env.XDG_RUNTIME_DIR ?? '/tmp' };
@@ -44,9 +46,12 @@ function settingsOf(args) {
       case '--eye': s.view.eye = nums(v); i++; break;
       case '--target': s.view.target = nums(v); i++; break;
       case '--sample-shading': s.sampleShading = true; break;
+      case '--texture': s.texture = readImageFile(v, '--texture'); i++; break;
+      case '--color': s.color = nums(v); i++; break;
       default: throw new Error(`settingsOf: ${args[i]} is not mapped here`);
     }
   }
+  if (s.texture && s.shade === 'lit') s.shade = 'texture'; // as limn-render's --texture
   return s;
 }
 
@@ -71,6 +76,7 @@ async function renderBoth(limn, args, name) {
 const spot = (depth) => () => container('quad/spot_quadrangulated.obj', { depth });
 const sphere6 = () => container(paperSphereObj(), { depth: 6, name: 'paper_sphere_d6.limn' });
 const fixed = ['--edge-pixels', '0'];
+const spotTexture = join(repo, 'tests/data/textures/spot_texture.png');
 const cases = [
   // The fixed grids (--edge-pixels 0).
   ['fixed: spot depth 1', spot(1), fixed, [1, 4], ['lit', 'levels']],
@@ -87,6 +93,9 @@ const cases = [
   ['adaptive: creased torus depth 3', () => container('osd/catmark/catmark_torus_creases0.obj', { depth: 3 }), ['--view', '30,40'], [4], ['lit', 'levels']],
   ['adaptive: paper sphere depth 6 in its camera', sphere6, ['--eye', '0,12,22', '--target', '0,0,0', '--size', '1280x720'], [4], ['lit']],
   ['adaptive: car depth 6', () => container('osd/catmark/catmark_car.obj', { depth: 6 }), [], [4], ['lit']],
+  // A colour texture (--texture; --color tints it), on both tessellations.
+  ['fixed: spot depth 2 with its texture', spot(2), [...fixed, '--texture', spotTexture], [4], ['lit']],
+  ['adaptive: spot depth 2 with its texture, tinted', spot(2), ['--texture', spotTexture, '--color', '1,0.6,0.4'], [1], ['lit']],
 ];
 
 for (const [label, make, args, samplesList, shades] of cases) {
@@ -109,4 +118,19 @@ test('the same command twice writes the same bytes', () => {
   const a = join(scratch, 'twice-a.png'), b = join(scratch, 'twice-b.png');
   for (const out of [a, b]) execFileSync(process.execPath, [cli, limn, '-o', out, '--size', '200x150', '--samples', '4'], { env, stdio: 'ignore' });
   assert.deepEqual(readFileSync(a), readFileSync(b));
+});
+
+// A glTF's material (limn-classify keeps it in MATL): its base colour texture is drawn without
+// --texture, through the command line (its map and MATL handling), on both tessellations.
+test('a MATL base colour texture (BoxTextured.glb), through limn-web-render', () => {
+  const limn = container('gltf/BoxTextured/BoxTextured.glb', { depth: 2 });
+  for (const ep of ['0', '4']) {
+    const args = ['--size', '320x240', '--edge-pixels', ep];
+    const native = join(scratch, `box-${ep}-native.png`), web = join(scratch, `box-${ep}-web.png`);
+    execFileSync(tool('limn-render'), ['-q', limn, '-o', native, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
+    execFileSync(process.execPath, [cli, limn, '-o', web, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
+    const r = compareImages(decodePng(readFileSync(web)), decodePng(readFileSync(native)));
+    assert.ok(r.covered > 20000, `edge pixels ${ep}: only ${r.covered} covered pixels`);
+    assert.ok(r.fraction <= 0.005, `edge pixels ${ep}: ${r.off} of ${r.covered} covered pixels differ by more than 8/255 (worst ${r.worst})`);
+  }
 });

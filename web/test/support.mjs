@@ -19,11 +19,11 @@ export function tool(name) {
 }
 
 /** Runs limn-classify | limn-tables | [limn-seams] on a mesh of tests/data; returns the path. */
-export function container(mesh, { depth = 2, seams = false, tablesArgs = [], name } = {}) {
+export function container(mesh, { depth = 2, seams = false, tablesArgs = [], classifyArgs = [], name } = {}) {
   const out = join(scratch, name ?? `${mesh.replace(/[/.]/g, '_')}_d${depth}${seams ? '_s' : ''}.limn`);
   if (existsSync(out)) return out;
   const src = mesh.startsWith('/') ? mesh : join(repo, 'tests/data', mesh);
-  let bytes = execFileSync(tool('limn-classify'), [src, '-o', '-'], { maxBuffer: 1 << 30 });
+  let bytes = execFileSync(tool('limn-classify'), [...classifyArgs, src, '-o', '-'], { maxBuffer: 1 << 30 });
   bytes = execFileSync(tool('limn-tables'), ['--depth', String(depth), ...tablesArgs, '-', '-o', '-'], { input: bytes, maxBuffer: 1 << 30 });
   if (seams) bytes = execFileSync(tool('limn-seams'), ['-', '-o', '-'], { input: bytes, maxBuffer: 1 << 30 });
   writeFileSync(out, bytes);
@@ -31,6 +31,22 @@ export function container(mesh, { depth = 2, seams = false, tablesArgs = [], nam
 }
 
 export const read = (p) => new Uint8Array(readFileSync(p));
+
+/**
+ * The README's displacement example (Makefile.examples): quad_sphere from limn-examples, with
+ * tables at depth 3 and seams, its surface height map (continuous across UV seams) and the UV
+ * noise map (different texels on the two sides of every seam), 256 texels square. Made once.
+ */
+export function quadSphere() {
+  const limn = join(scratch, 'quad_sphere_d3_s.limn');
+  const height = join(scratch, 'quad_sphere.height.png'), noise = join(scratch, 'uv-noise.png');
+  if (existsSync(noise)) return { limn, height, noise };
+  execFileSync(tool('limn-examples'), ['-q', '-o', scratch, '--only', 'quad_sphere']);
+  container(join(scratch, 'quad_sphere.obj'), { depth: 3, seams: true, name: 'quad_sphere_d3_s.limn' });
+  execFileSync(tool('limn-heightmap'), ['-q', '--kind', 'surface', '--size', '256', limn, '-o', height]);
+  execFileSync(tool('limn-heightmap'), ['-q', '--kind', 'uv', '--size', '256', '-o', noise]);
+  return { limn, height, noise };
+}
 
 // The paper's demo sphere (tests/support/paper_sphere.h): 16 segments x 16 rings, fans at the poles.
 export function paperSphereObj() {

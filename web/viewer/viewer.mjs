@@ -5,7 +5,7 @@ import { loadLimn, Renderer, LimnError } from '../src/index.mjs';
 import { parseQuery, toQuery, renderCommand, DEFAULTS, SHADE_NAMES } from './state.mjs';
 import { orbit, zoom, pan, frame, viewSpec } from './orbit.mjs';
 import { attachControls } from './controls.mjs';
-import { requestDevice, GpuTimer, ViewerError } from './gpu.mjs';
+import { requestDevice, GpuTimer, ViewerError, imagePixels } from './gpu.mjs';
 
 const $ = (id) => document.getElementById(id);
 const canvas = $('view'), stage = $('stage');
@@ -15,7 +15,7 @@ const sources = { model: query.model, displace: query.displace, texture: query.t
 let gpu = null, timer = null, context = null;
 let model = null; // { surface, name }
 let renderer = null, rendererKey = '';
-let map = null; // { name, bitmap }
+let map = null; // { name, image: {width, height, rgb, values}, serial }
 let turntable = query.turntable;
 const stats = { frames: 0, fpsFrames: 0, fpsSince: 0 };
 // Parameters the link asked for: an unsupported one is an error shown, a default one is not.
@@ -66,11 +66,18 @@ function rendererSettings(s) {
   };
 }
 
+// The dropped map as a displacement (scale, mid and the seam fix from the panel) or a colour
+// texture; without one, a glTF's base colour texture (MATL), as limn-render draws it.
 function mapSettings(s) {
-  if (map && sources.displace) return { displace: { image: map.bitmap, scale: s.displaceScale, mid: s.displaceMid, seamFix: s.seamFix } };
-  if (map && sources.texture) return { texture: map.bitmap };
+  if (map && sources.displace) {
+    const { width, height, values } = map.image;
+    return { displace: { map: { width, height, values }, scale: s.displaceScale, mid: s.displaceMid, seamFix: s.seamFix } };
+  }
+  if (map && sources.texture) return { texture: map.image };
+  if (model?.texture) return { texture: model.texture };
   return {};
 }
+const textureSettings = () => { const m = mapSettings(state); return m.texture ? { texture: m.texture } : {}; };
 
 // Options the runtime refuses fall back to ones it draws; a link that asked for them says so.
 function supportedState(s) {
@@ -80,7 +87,7 @@ function supportedState(s) {
     out[key] = value;
   };
   if (out.edgePixels > 0) { const why = refusal({ edgePixels: out.edgePixels }); if (why) fallback('edgePixels', 0, why); }
-  if (out.shade !== 'lit') { const why = refusal({ shade: out.shade }); if (why) fallback('shade', 'lit', why); }
+  if (out.shade !== 'lit') { const why = refusal({ shade: out.shade, ...textureSettings() }); if (why) fallback('shade', 'lit', why); }
   if (out.wire) fallback('wire', false, WIRE_MISSING);
   return out;
 }
@@ -101,7 +108,10 @@ function layoutCanvas() {
 
 // What needs a new renderer (buffers, pipelines, targets); the rest is set on the one there.
 // (View-adaptive tessellation shares points across UV seams unless the shading needs the UVs.)
-const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), model?.serial, map?.serial]);
+// A displacement's scale, mid and seam fix are set up with the renderer (its framing, the fixed
+// grids' sample UVs), so changing them makes a new one.
+const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), model?.serial, map?.serial,
+  sources.displace && map ? [s.displaceScale, s.displaceMid, s.seamFix] : null]);
 
 async function ensureRenderer() {
   const s = supportedState(state);
@@ -237,7 +247,12 @@ async function openModel(bytes, name) {
   clearError('model');
   for (const k of [...errors.keys()]) if (k.startsWith('fallback-')) clearError(k);
   const previous = model;
-  model = { surface, name, serial: ++serial };
+  model = { surface, name, serial: ++serial, texture: await materialTexture(surface, name) };
+  if (surface.material && !state.color && !asked.has('color')) {
+    // limn-render's base colour from MATL (linear factor, drawn as sRGB) unless --color is given.
+    const srgb = (c) => (c <= 0.0031308 ? 12.92 * c : 1.055 * c ** (1 / 2.4) - 0.055);
+    state = { ...state, color: surface.material.baseColorFactor.slice(0, 3).map((c) => +srgb(c).toFixed(4)) };
+  }
   $('model-name').textContent = `${name}: ${surface.mesh.vertexCount} control points, depth ${surface.tables.depth}`;
   $('welcome').hidden = true;
   try {
@@ -253,6 +268,19 @@ async function openModel(bytes, name) {
   return true;
 }
 
+// A MATL chunk's base colour texture, decoded by the browser; null (with the reason shown) if it
+// cannot be: the geometry is still drawn, in the base colour factor, as limn-render does.
+async function materialTexture(surface, name) {
+  const m = surface.material;
+  if (!m || !m.texture.length || !surface.uvs) return null;
+  try {
+    return await imagePixels(gpu.device, await createImageBitmap(new Blob([m.texture]), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' }));
+  } catch (e) {
+    showError('material', `${name}: the base colour texture cannot be decoded (${e.message}); drawing the base colour factor instead`);
+    return null;
+  }
+}
+
 async function fetchBytes(url, what) {
   let response;
   try {
@@ -264,24 +292,32 @@ async function fetchBytes(url, what) {
   return response.arrayBuffer();
 }
 
-async function openMap(blob, name, kind) {
-  let bitmap;
+async function openMap(blob, name, kind, url = name) {
+  let image;
   try {
-    bitmap = await createImageBitmap(blob, { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
+    const bitmap = await createImageBitmap(blob, { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
+    image = await imagePixels(gpu.device, bitmap);
+    bitmap.close();
   } catch (e) {
     showError('map', `${name}: the browser cannot decode this image (${e.message}); use PNG, JPEG or WebP`);
     return;
   }
   clearError('map');
-  map = { name, bitmap, serial: ++serial };
-  sources[kind] = name;
-  $('map-name').textContent = `${name}: ${bitmap.width}×${bitmap.height}, as ${kind === 'displace' ? 'displacement' : 'colour'} map`;
+  const previous = { map, displace: sources.displace, texture: sources.texture };
+  map = { name, image, serial: ++serial };
+  sources.displace = sources.texture = null;
+  sources[kind] = url;
+  $('map-name').textContent = `${name}: ${image.width}×${image.height}, as ${kind === 'displace' ? 'displacement' : 'colour'} map`;
   const why = refusal(mapSettings(state));
   if (why) {
-    showError('map', `${name} decoded (${bitmap.width}×${bitmap.height}), but it cannot be used: ${why}`);
-    map = null;
-    sources[kind] = null;
+    showError('map', `${name} decoded (${image.width}×${image.height}), but it cannot be used: ${why}`);
+    ({ map } = previous);
+    sources.displace = previous.displace;
+    sources.texture = previous.texture;
+  } else if (kind === 'texture' && state.shade === 'lit') {
+    state = { ...state, shade: 'texture' }; // as limn-render's --texture
   }
+  writeUrl();
   syncPanel();
   requestDraw();
 }
@@ -342,7 +378,7 @@ function syncPanel() {
   const s = supportedState(state);
   for (const input of $('shade').querySelectorAll('input')) {
     input.checked = input.value === s.shade;
-    setEnabled(input, input.value === 'lit' ? null : refusal({ shade: input.value }));
+    setEnabled(input, input.value === 'lit' ? null : refusal({ shade: input.value, ...textureSettings() }));
   }
   $('samples').value = String(s.samples);
   $('sampleShading').checked = s.sampleShading;
@@ -465,7 +501,7 @@ async function start() {
   if (mapUrl) {
     try {
       const bytes = await fetchBytes(mapUrl, sources.displace ? 'displace' : 'texture');
-      await openMap(new Blob([bytes]), baseName(mapUrl), sources.displace ? 'displace' : 'texture');
+      await openMap(new Blob([bytes]), baseName(mapUrl), sources.displace ? 'displace' : 'texture', mapUrl);
     } catch (e) {
       showError('map', describe(e));
     }

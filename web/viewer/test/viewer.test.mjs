@@ -18,19 +18,23 @@ import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { container, scratch, tool } from '../../test/support.mjs';
+import { container, quadSphere, scratch, tool } from '../../test/support.mjs';
 import { decodePng } from '../../src/png.mjs';
 import { loadLimn } from '../../src/chunks.mjs';
 import { launch, newPage, settled, frames, errorText, serveModels } from './browser.mjs';
 
 const SIZE = [320, 240];
 const BG = [51, 51, 51];
-let browser, server, spot, page;
+let browser, server, spot, sphere, page;
 
 before(async () => {
   spot = container('quad/spot_quadrangulated.obj', { depth: 3 });
+  sphere = quadSphere();
   // One origin for every page: Chromium keeps compiled pipelines per origin.
-  server = await serveModels({ 'spot_d3.limn': spot, 'spot_d1.limn': container('quad/spot_quadrangulated.obj', { depth: 1 }) });
+  server = await serveModels({
+    'spot_d3.limn': spot, 'spot_d1.limn': container('quad/spot_quadrangulated.obj', { depth: 1 }),
+    'quad_sphere.limn': sphere.limn, 'quad_sphere.height.png': sphere.height,
+  });
   browser = await launch();
   page = await newPage(browser);
 });
@@ -252,6 +256,37 @@ test('?bench=N prints one JSON line per tessellation on the console', async () =
       assert.ok(l.triangles > 0 && l.js_ms > 0 && l.wall_ms >= l.js_ms, JSON.stringify(l));
       assert.ok(l.gpu_ms === null || l.gpu_ms > 0, JSON.stringify(l));
     }
+    assert.deepEqual(p.problems, []);
+  } finally {
+    await p.close();
+  }
+});
+
+// The paper's Figure 14, live: the README's displaced quad_sphere (its height map from ?displace=,
+// scale and mid from the link), as limn-render draws it with the seam fix, then with the panel's
+// seam fix turned off, then view-adaptive; one page, 1 sample (see above for SwiftShader's 4).
+test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and view-adaptive, as limn-render draws it', async (t) => {
+  const p = await newPage(browser);
+  try {
+    const shotOf = async () => decodePng(await p.locator('#view').screenshot());
+    await p.goto(`${base()}/viewer/?model=../models/quad_sphere.limn&displace=../models/quad_sphere.height.png&displaceScale=0.2&displaceMid=0.5&size=${SIZE.join('x')}&samples=1&edgePixels=0`);
+    await settled(p);
+    assert.equal(await p.locator('#errors').textContent(), '');
+    const args = ['--view', '-30,20', '--samples', '1', '--displace', sphere.height, '--displace-scale', '0.2', '--displace-mid', '0.5'];
+    const fixed = await shotOf();
+    t.diagnostic(check('displaced, seam fix, fixed grids', compare(fixed, native(sphere.limn, [...args, '--edge-pixels', '0'], 'sphere-fixed')), 1));
+    let n = await frames(p);
+    await p.locator('#seamFix').uncheck();
+    await settled(p, n + 1);
+    assert.match(await p.evaluate(() => location.search), /seamFix=0/);
+    t.diagnostic(check('displaced, no seam fix, fixed grids', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '0', '--no-seam-fix'], 'sphere-nofix')), 1));
+    n = await frames(p);
+    await p.locator('#seamFix').check();
+    await p.getByLabel('View-adaptive').check();
+    await settled(p, n + 1);
+    t.diagnostic(check('displaced, seam fix, view-adaptive', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '4'], 'sphere-adaptive')), 1));
+    assert.equal(await p.locator('#command').textContent(),
+      `limn-render quad_sphere.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --edge-pixels 4 --tess 64 --displace quad_sphere.height.png --displace-scale 0.2 --displace-mid 0.5`);
     assert.deepEqual(p.problems, []);
   } finally {
     await p.close();

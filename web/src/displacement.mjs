@@ -1,0 +1,181 @@
+// Texture displacement with paper 000's seam fix (4.5), as limn-render does it
+// (lib/render/subdivision_pass.cpp, subdivision_draw.cpp): the tessellation vertices are evaluated
+// once by a compute pass (surface_eval.comp), moved along their limit normals by
+// scale * (average sample - mid) (displace.comp; adaptive_displace.comp for the view-adaptive
+// tessellation), given the displaced surface's normals (displaced_normals.comp;
+// adaptive_displaced_normals.comp), and the draw only fetches them (surface_fetch.vert).
+// The seam fix: every copy of a point on a UV seam samples the map at the UVs the point has in
+// every face around it, in increasing face order, so the copies move by the same bits and the
+// displaced surface stays watertight; without it each copy samples its own chart and cracks open
+// (the paper's Figure 4).
+import { LimnError } from './container.mjs';
+import { TESS_ONE } from './tessellation.mjs';
+import { ROW_GROUPS } from './adaptive.mjs';
+
+const f32 = Math.fround;
+
+/** The map as displace.comp reads it: width, height, then channel 0 of each texel (float bits). */
+export function mapWords(map) {
+  const w = new Uint32Array(2 + map.width * map.height);
+  w[0] = map.width;
+  w[1] = map.height;
+  new Float32Array(w.buffer, 8).set(map.values.subarray(0, map.width * map.height));
+  return w;
+}
+
+/**
+ * The colour texture as surface.frag reads it: width, height, then sRGB RGBA8 texels packed
+ * R | G << 8 | B << 16 | 0xff << 24 (subdivision_pass.cpp textureWords); one white texel without one.
+ * texture: {width, height, rgb (Float32Array of width*height*3 values in 0..1, as decoded)}.
+ */
+export function textureWords(texture) {
+  if (!texture) return new Uint32Array([1, 1, 0xffffffff]);
+  const n = texture.width * texture.height, w = new Uint32Array(2 + n);
+  w[0] = texture.width;
+  w[1] = texture.height;
+  const byte = (v) => Math.round(Math.min(Math.max(v, 0), 1) * 255);
+  for (let i = 0; i < n; i++) {
+    w[2 + i] = (byte(texture.rgb[3 * i]) | (byte(texture.rgb[3 * i + 1]) << 8) | (byte(texture.rgb[3 * i + 2]) << 16) | 0xff000000) >>> 0;
+  }
+  return w;
+}
+
+/**
+ * renderer.cpp's check: an EXR-like map times --displace-scale must stay within the 1e18 that
+ * positions may reach (mesh.cpp), or the image comes out blank.
+ */
+export function checkDisplacement(d) {
+  let far = 0;
+  for (const v of d.map.values) far = Math.max(far, Math.abs((v - d.mid) * d.scale));
+  if (!(far <= 1e18)) {
+    throw new LimnError(`--displace: the map's values times --displace-scale move the surface by up to ${far.toPrecision(3)}, ` +
+      "beyond the 1e18 that the GPU's float arithmetic carries", 'input');
+  }
+}
+
+// subdivision_draw.cpp's sideUVsOf: the UVs a fixed-grid vertex samples the map at, from its
+// element's seam record (paper 000, Figures 8 and 9): a corner every face around it, an edge
+// point both sides' UVs interpolated along the edge, an interior point its own face's.
+function sideUVsOf(seams, element, st, out) {
+  const r = seams.records, rf = new Float32Array(r.buffer, r.byteOffset, r.length), base = 24 * element;
+  const S = st & 0xffff, T = st >>> 16;
+  const s0 = S === 0, s1 = S === TESS_ONE, t0 = T === 0, t1 = T === TESS_ONE;
+  const s = S / TESS_ONE, t = T / TESS_ONE;
+  const uv = seams.uvs;
+  if ((s0 || s1) && (t0 || t1)) {
+    const k = s0 ? (t0 ? 0 : 3) : (t0 ? 1 : 2);
+    const first = r[base + 8 + 2 * k], count = r[base + 9 + 2 * k];
+    for (let i = 0; i < count; i++) out.push(uv[2 * (first + i)], uv[2 * (first + i) + 1]);
+    return count;
+  }
+  let edge = -1, x = 0;
+  if (t0) { edge = 0; x = s; } else if (s1) { edge = 1; x = t; } else if (t1) { edge = 2; x = 1 - s; } else if (s0) { edge = 3; x = 1 - t; }
+  if (edge >= 0) {
+    const first = r[base + 16 + 2 * edge], sides = r[base + 17 + 2 * edge];
+    for (let i = 0; i < sides; i++) {
+      const a = 2 * (first + 2 * i), b = a + 2;
+      out.push(f32(uv[a] + x * (uv[b] - uv[a])), f32(uv[a + 1] + x * (uv[b + 1] - uv[a + 1])));
+    }
+    return sides;
+  }
+  const c = (k) => [rf[base + 2 * k], rf[base + 2 * k + 1]];
+  const [c0, c1, c2, c3] = [c(0), c(1), c(2), c(3)];
+  const w0 = (1 - s) * (1 - t), w1 = s * (1 - t), w2 = s * t, w3 = (1 - s) * t;
+  out.push(f32(w0 * c0[0] + w1 * c1[0] + w2 * c2[0] + w3 * c3[0]), f32(w0 * c0[1] + w1 * c1[1] + w2 * c2[1] + w3 * c3[1]));
+  return 1;
+}
+
+/**
+ * The SEAM records as adaptive_displace.comp's ElementSeams reads them: own[4], then cornerFirst,
+ * cornerCount, edgeFirst, edgeSides as uvec4s (the chunk interleaves each first with its count).
+ */
+export function seamGpuRecords(seams) {
+  const r = seams.records, out = new Uint32Array(Math.max(r.length, 24));
+  for (let base = 0; base < r.length; base += 24) {
+    out.set(r.subarray(base, base + 8), base);
+    for (let k = 0; k < 4; k++) {
+      out[base + 8 + k] = r[base + 8 + 2 * k];
+      out[base + 12 + k] = r[base + 9 + 2 * k];
+      out[base + 16 + k] = r[base + 16 + 2 * k];
+      out[base + 20 + k] = r[base + 17 + 2 * k];
+    }
+  }
+  return out;
+}
+
+/**
+ * The fixed grids' displacement plan (prepareSubdivision with a DisplacementPlan): per vertex
+ * the range of UVs it samples, and the triangles around its point (all copies of a seam point
+ * together, in index order) for the displaced normals.
+ */
+export function fixedDisplacementPlan(tess, seams, seamFix) {
+  const n = tess.vertexCount, v = tess.vertices, vf = new Float32Array(v.buffer, v.byteOffset, v.length);
+  const sideRanges = new Uint32Array(Math.max(n, 1) * 2), uvs = [];
+  for (let i = 0; i < n; i++) {
+    const first = uvs.length / 2;
+    const count = seamFix ? sideUVsOf(seams, v[4 * i], v[4 * i + 1], uvs) : (uvs.push(vf[4 * i + 2], vf[4 * i + 3]), 1);
+    sideRanges[2 * i] = first;
+    sideRanges[2 * i + 1] = count;
+  }
+  const geometry = tess.geometry, indices = tess.indices;
+  const count = new Uint32Array(n + 1);
+  for (const idx of indices) count[geometry[idx] + 1]++;
+  for (let i = 0; i < n; i++) count[i + 1] += count[i];
+  const incident = new Uint32Array(Math.max(indices.length, 1)), fill = count.slice(0, n);
+  for (let k = 0; k < indices.length; k++) incident[fill[geometry[indices[k]]]++] = Math.floor(k / 3);
+  const incidentRanges = new Uint32Array(Math.max(n, 1) * 2);
+  for (let i = 0; i < n; i++) {
+    const g = geometry[i];
+    incidentRanges[2 * i] = count[g];
+    incidentRanges[2 * i + 1] = count[g + 1] - count[g];
+  }
+  return { sideRanges, sideUVs: Float32Array.from(uvs.length ? uvs : [0, 0]), incidentRanges, incident };
+}
+
+// subdivision_pass.cpp with a displacement: surface_eval.comp over the tessellation vertices,
+// then displace and displaced normals (fixed grids: displace.comp, displaced_normals.comp over
+// the CPU-built plan; view-adaptive: adaptive_displace*.comp over what this frame emitted,
+// dispatched indirectly from the scan's totals).
+export async function addDisplacementPasses(r, compute, group, plan) {
+  const { s, buffers: b } = r, { tables } = r.surface, d = s.displace;
+  const n = r.adaptive ? r.adaptiveData.capV : Math.max(r.tess.vertexCount, 1);
+  Object.assign(b, {
+    evalPositions: r.empty('evaluated positions', n * 16),
+    evalNormals: r.empty('evaluated normals', n * 16),
+    evalInfo: r.empty('evaluated ptex', n * 16),
+    displaced: r.empty('displaced positions', n * 16),
+    displacedNormals: r.empty('displaced normals', n * 16),
+    map: r.buffer('displacement map', mapWords(d.map)),
+  });
+  const [evalPass, displacePass, normalsPass] = await Promise.all((r.adaptive
+    ? ['surface_eval.comp', 'adaptive_displace.comp', 'adaptive_displaced_normals.comp']
+    : ['surface_eval.comp', 'displace.comp', 'displaced_normals.comp']).map(compute));
+  const f32 = (x) => new Uint32Array(new Float32Array([x]).buffer)[0];
+  const evalGroup = group(evalPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.evalPositions, b.evalNormals, b.evalInfo]);
+  if (r.adaptive) {
+    b.seamElements = r.buffer('seam elements', seamGpuRecords(r.surface.seams));
+    b.seamUVs = r.buffer('seam UVs', r.surface.seams.uvs);
+    const indirect = (pipeline, bindGroup, fields, label) => {
+      const p = r.pushGroup(pipeline);
+      r.pushData.set([n, ROW_GROUPS * 64, 0, 0, ...fields], p.offset / 4);
+      r.passes.push({ pipeline, bindGroup, push: p.group, indirect: true, label, pushOffset: p.offset });
+    };
+    indirect(evalPass, evalGroup, [tables.patchCount], 'evaluate surface');
+    indirect(displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.tessVertices, b.seamElements, b.seamUVs, b.map, b.displaced]),
+      [f32(d.scale), f32(d.mid), d.seamFix ? 1 : 0, 0], 'displace');
+    indirect(normalsPass, group(normalsPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.elements, b.map, b.displacedNormals]),
+      [tables.patchCount, f32(d.scale), f32(d.mid)], 'displaced normals');
+    return;
+  }
+  Object.assign(b, {
+    sideRanges: r.buffer('displacement sample ranges', plan.sideRanges),
+    sideUVs: r.buffer('displacement sample UVs', plan.sideUVs),
+    incidentRanges: r.buffer('incident ranges', plan.incidentRanges),
+    incident: r.buffer('incident triangles', plan.incident),
+  });
+  const count = r.tess.vertexCount;
+  r.dispatch(evalPass, evalGroup, count, [tables.patchCount], 'evaluate surface');
+  r.dispatch(displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.sideRanges, b.sideUVs, b.map, b.displaced]),
+    count, [f32(d.scale), f32(d.mid)], 'displace');
+  r.dispatch(normalsPass, group(normalsPass, 0, [b.displaced, b.triangles, b.incidentRanges, b.incident, b.displacedNormals]), count, [], 'displaced normals');
+}
