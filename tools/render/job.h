@@ -50,7 +50,7 @@ struct RenderJob {
     bool sampleShading = false;
     bool bitDepthGiven = false;
     uint64_t maxMemory = 0;
-    double edgePixels = 4, benchOrbit = 0;
+    double edgePixels = 32, maxError = 0.1, benchOrbit = 0;
     // Options that set the renderer's settings directly (--size, --view, --light, colours, ...).
     render::RenderSettings settings;
 
