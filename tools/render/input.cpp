@@ -208,6 +208,7 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
     }
     settings.tessCap = static_cast<uint32_t>(job.tess);
     settings.edgePixels = job.edgePixels;
+    settings.maxError = job.maxError;
     warnApproximateIrregularFaces(job, in);
     if (!displace.empty()) {
         in.displacementMap = loadMap("--displace", displace);

@@ -53,7 +53,7 @@ struct RenderJob {
     bool bitDepthGiven = false;
     uint64_t maxMemory = 0;
     uint64_t maxOutput = 0; // --max-output (0: the free space where the frames go)
-    double edgePixels = 4, benchOrbit = 0;
+    double edgePixels = 32, maxError = 0.1, benchOrbit = 0;
     // Options that set the renderer's settings directly (--size, --view, --light, colours, ...).
     render::RenderSettings settings;
 

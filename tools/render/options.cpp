@@ -40,7 +40,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                 &displace = job.displace, &texture = job.texture, &upAxis = job.upAxis,
                 &camerasPath = job.camerasPath, &framesPattern = job.framesPattern;
     double &displaceScale = job.displaceScale, &displaceMid = job.displaceMid, &edgePixels = job.edgePixels,
-           &benchOrbit = job.benchOrbit;
+           &maxError = job.maxError, &benchOrbit = job.benchOrbit;
     bool &displaceScalePercent = job.displaceScalePercent, &noSeamFix = job.noSeamFix, &wire = job.wire,
          &wireTriangles = job.wireTriangles, &alpha = job.alpha, &validate = job.validate,
          &syncValidation = job.syncValidation, &meshAscii = job.meshAscii, &viewGiven = job.viewGiven,
@@ -222,9 +222,15 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                  "                            gets what its pixels need, 1 to N; --edge-pixels 0: a\n"
                  "                            level-l patch side gets min(2^(depth-l), N) (N rounded\n"
                  "                            down to a power of two)")
+        .real("--max-error", "PX", &maxError, 0, 4096,
+              "view-adaptive tessellation: each patch edge gets the fewest segments\n"
+              "                            whose chords stay within PX pixels of the limit surface\n"
+              "                            on screen (estimated from the surface's second\n"
+              "                            differences along the edge, docs/adaptive.md); 0:\n"
+              "                            segments of about --edge-pixels (chord tolerance P/40)")
         .real("--edge-pixels", "P", &edgePixels, 0, 4096,
-              "view-adaptive tessellation: each patch edge is cut into segments of\n"
-              "                            about P pixels on screen, decided per frame on the GPU\n"
+              "view-adaptive tessellation: no segment longer than P pixels on screen,\n"
+              "                            decided per frame on the GPU\n"
               "                            (compute passes; patches outside the view, between\n"
               "                            the samples or facing away are not drawn, which changes\n"
               "                            no pixel); 0: the fixed grids of 2^(depth-l) segments per\n"
