@@ -168,6 +168,12 @@ bool onBoundary(const Mesh& m, const BoundaryInfo& b, const PlyVertex& v) {
            (w0 && u1 && edge(k, k + 1)) || (u0 && w1 && edge(k + n - 1, k));
 }
 
+// The largest distance, in pixels of the view, between a drawn triangle's centroid and the
+// limit surface at its interpolated (ptex, u, v) (1b. below). Measured over these cases: at most
+// 0.69 px in patches and 0.51 px in irregular faces; with bilinear irregular faces (tables with
+// --irregular-levels 0) 3.9 px (prism7), 13.4 px (smoothtris0 d2) and 23.8 px (d1).
+constexpr double kCentroidPixels = 1.0;
+
 class AdaptiveRender : public ::testing::TestWithParam<Case> {};
 
 TEST_P(AdaptiveRender, OnTheLimitSurfaceWatertightAndSizedByTheView) {
@@ -234,6 +240,54 @@ TEST_P(AdaptiveRender, OnTheLimitSurfaceWatertightAndSizedByTheView) {
     EXPECT_LE(worstP, 1e-5) << compared << " vertices compared";
     EXPECT_LE(worstN, 0.5) << "degrees, with sign";
 
+    // 1b. Between drawn vertices: each drawn triangle's centroid, labelled with the interpolated
+    // (ptex, u, v), against OpenSubdiv's limit there, in pixels of this view (the camera of 3.
+    // below). That is the flatness of the triangles: their edges are about --edge-pixels long
+    // on screen (3.), so a centroid is off by about L^2 / 8R for a surface bending with radius R
+    // pixels; it must hold inside the irregular faces, drawn on their sub-patches, as inside
+    // patches (bilinear irregular faces were up to 1.9e-2 of the diagonal off: pixels here).
+    const glm::dmat4 vp = glm::perspective(glm::radians(fov), double(W) / H, 0.01, 1000.0) *
+                          glm::lookAt(eye, target, glm::dvec3(0, 1, 0));
+    auto toScreen = [&](const glm::dvec3& p, glm::dvec2& s) {
+        const glm::dvec4 q = vp * glm::dvec4(p, 1.0);
+        s = glm::dvec2(q.x / q.w * W / 2, q.y / q.w * H / 2);
+        return q.w > 0 && std::abs(q.x) <= q.w && std::abs(q.y) <= q.w;
+    };
+    double worstInside[2] = {0, 0}; // pixels: in patches, in irregular faces
+    size_t centroids[2] = {0, 0}, mixedPtex = 0;
+    for (const auto& tri : drawn.triangles) {
+        const PlyVertex &a = drawn.vertices[size_t(tri[0])], &b = drawn.vertices[size_t(tri[1])],
+                        &e = drawn.vertices[size_t(tri[2])];
+        if (a.ptex != b.ptex || a.ptex != e.ptex) {
+            ++mixedPtex; // a shared point labelled with a neighbour's ptex face
+            continue;
+        }
+        const double u = (double(a.uv[0]) + b.uv[0] + e.uv[0]) / 3, v = (double(a.uv[1]) + b.uv[1] + e.uv[1]) / 3;
+        const glm::dvec3 got = (glm::dvec3(a.p[0], a.p[1], a.p[2]) + glm::dvec3(b.p[0], b.p[1], b.p[2]) +
+                                glm::dvec3(e.p[0], e.p[1], e.p[2])) / 3.0;
+        glm::dvec3 ref, refN;
+        ASSERT_TRUE(osd.evaluate(a.ptex, u, v, ref, refN));
+        // Triangles wholly on screen and facing the eye (on closed surfaces: back faces are
+        // culled and kept in --mesh-out at their smallest rate), as in 3.
+        glm::dvec2 sg, sr, s[3];
+        bool shown = toScreen(got, sg) && toScreen(ref, sr);
+        for (int k = 0; k < 3 && shown; ++k) {
+            const float* q = drawn.vertices[size_t(tri[k])].p;
+            shown = toScreen(glm::dvec3(q[0], q[1], q[2]), s[k]);
+        }
+        const glm::dvec2 e1 = s[1] - s[0], e2 = s[2] - s[0];
+        const double area = e1.x * e2.y - e1.y * e2.x;
+        if (!shown || (c.closed ? area <= 0 : area == 0)) continue;
+        int kind = 0;
+        for (const Dom& d : domains[uint32_t(a.ptex)])
+            if (!d.patch && u >= d.u0 && u <= d.u0 + d.size && v >= d.v0 && v <= d.v0 + d.size) kind = 1;
+        worstInside[kind] = std::max(worstInside[kind], glm::length(sg - sr));
+        ++centroids[kind];
+    }
+    EXPECT_GT(centroids[0] + centroids[1], 300u) << mixedPtex << " triangles across ptex faces";
+    EXPECT_LE(worstInside[0], kCentroidPixels) << centroids[0] << " triangle centroids in patches";
+    EXPECT_LE(worstInside[1], kCentroidPixels) << centroids[1] << " triangle centroids in irregular faces";
+
     // 2. Welded by exact position: each directed edge once, its reverse once (closed), or
     // unpaired only on the mesh boundary.
     std::map<std::array<float, 3>, int> weld;
@@ -282,8 +336,6 @@ TEST_P(AdaptiveRender, OnTheLimitSurfaceWatertightAndSizedByTheView) {
     // polyline, the parameter spacing is uniform rather than by arc length, interior grid
     // diagonals are sqrt(2) longer and zipper strips join sides to a ring at their own spacing).
     // And the rates vary: some ptex side carries >= 32 segments.
-    const glm::dmat4 vp = glm::perspective(glm::radians(fov), double(W) / H, 0.01, 1000.0) *
-                          glm::lookAt(eye, target, glm::dvec3(0, 1, 0));
     std::vector<double> lengths;
     for (const auto& tri : drawn.triangles) {
         glm::dvec2 s[3];
@@ -328,9 +380,10 @@ TEST_P(AdaptiveRender, OnTheLimitSurfaceWatertightAndSizedByTheView) {
         EXPECT_LE(least, 1u) << "no element at the smallest rate";
     }
     std::printf("%s d%d: %zu vertices, %zu triangles, edge px median %.2f p99 %.2f max %.2f, most "
-                "interior rate of an element %d, worst %.2e diag %.3f deg\n",
+                "interior rate of an element %d, worst %.2e diag %.3f deg, centroids %.3f px "
+                "(%zu in patches) %.3f px (%zu in irregular faces)\n",
                 c.model.c_str(), c.depth, drawn.vertices.size(), drawn.triangles.size(), p50, p99,
-                lengths.back(), mostRate, worstP, worstN);
+                lengths.back(), mostRate, worstP, worstN, worstInside[0], centroids[0], worstInside[1], centroids[1]);
 }
 
 const Case kCases[] = {
