@@ -132,38 +132,53 @@ export function fixedDisplacementPlan(tess, seams, seamFix) {
   return { sideRanges, sideUVs: Float32Array.from(uvs.length ? uvs : [0, 0]), incidentRanges, incident };
 }
 
-// subdivision_pass.cpp with a displacement: surface_eval.comp over the tessellation vertices,
-// then displace and displaced normals (fixed grids: displace.comp, displaced_normals.comp over
-// the CPU-built plan; view-adaptive: adaptive_displace*.comp over what this frame emitted,
-// dispatched indirectly from the scan's totals).
-export async function addDisplacementPasses(r, compute, group, plan) {
-  const { s, buffers: b } = r, { tables } = r.surface, d = s.displace;
+// The evaluation dispatches of the view-adaptive tessellation read how many vertices the frame
+// emitted from the scan's totals (dispatchWorkgroupsIndirect); their header holds the capacity.
+function indirectPass(r, pipeline, bindGroup, fields, label) {
+  const p = r.pushGroup(pipeline);
+  r.pushData.set([r.adaptiveData.capV, ROW_GROUPS * 64, 0, 0, ...fields], p.offset / 4);
+  r.passes.push({ pipeline, bindGroup, push: p.group, indirect: true, label, pushOffset: p.offset });
+}
+
+/**
+ * subdivision_pass.cpp's --eval compute: surface_eval.comp evaluates every tessellation vertex once
+ * into evalPositions/evalNormals/evalInfo (for displacement, and for the wireframe's positions).
+ */
+export async function addComputeEvaluation(r, compute, group) {
+  const { buffers: b } = r, { tables } = r.surface;
   const n = r.adaptive ? r.adaptiveData.capV : Math.max(r.tess.vertexCount, 1);
   Object.assign(b, {
     evalPositions: r.empty('evaluated positions', n * 16),
     evalNormals: r.empty('evaluated normals', n * 16),
     evalInfo: r.empty('evaluated ptex', n * 16),
+  });
+  const evalPass = await compute('surface_eval.comp');
+  const evalGroup = group(evalPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.evalPositions, b.evalNormals, b.evalInfo]);
+  if (r.adaptive) indirectPass(r, evalPass, evalGroup, [tables.patchCount], 'evaluate surface');
+  else r.dispatch(evalPass, evalGroup, r.tess.vertexCount, [tables.patchCount], 'evaluate surface');
+}
+
+// subdivision_pass.cpp with a displacement, after addComputeEvaluation: displace and displaced
+// normals (fixed grids: displace.comp, displaced_normals.comp over the CPU-built plan;
+// view-adaptive: adaptive_displace*.comp over what this frame emitted).
+export async function addDisplacementPasses(r, compute, group, plan) {
+  const { s, buffers: b } = r, { tables } = r.surface, d = s.displace;
+  const n = r.adaptive ? r.adaptiveData.capV : Math.max(r.tess.vertexCount, 1);
+  Object.assign(b, {
     displaced: r.empty('displaced positions', n * 16),
     displacedNormals: r.empty('displaced normals', n * 16),
     map: r.buffer('displacement map', mapWords(d.map)),
   });
-  const [evalPass, displacePass, normalsPass] = await Promise.all((r.adaptive
-    ? ['surface_eval.comp', 'adaptive_displace.comp', 'adaptive_displaced_normals.comp']
-    : ['surface_eval.comp', 'displace.comp', 'displaced_normals.comp']).map(compute));
+  const [displacePass, normalsPass] = await Promise.all((r.adaptive
+    ? ['adaptive_displace.comp', 'adaptive_displaced_normals.comp']
+    : ['displace.comp', 'displaced_normals.comp']).map(compute));
   const f32 = (x) => new Uint32Array(new Float32Array([x]).buffer)[0];
-  const evalGroup = group(evalPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.evalPositions, b.evalNormals, b.evalInfo]);
   if (r.adaptive) {
     b.seamElements = r.buffer('seam elements', seamGpuRecords(r.surface.seams));
     b.seamUVs = r.buffer('seam UVs', r.surface.seams.uvs);
-    const indirect = (pipeline, bindGroup, fields, label) => {
-      const p = r.pushGroup(pipeline);
-      r.pushData.set([n, ROW_GROUPS * 64, 0, 0, ...fields], p.offset / 4);
-      r.passes.push({ pipeline, bindGroup, push: p.group, indirect: true, label, pushOffset: p.offset });
-    };
-    indirect(evalPass, evalGroup, [tables.patchCount], 'evaluate surface');
-    indirect(displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.tessVertices, b.seamElements, b.seamUVs, b.map, b.displaced]),
+    indirectPass(r, displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.tessVertices, b.seamElements, b.seamUVs, b.map, b.displaced]),
       [f32(d.scale), f32(d.mid), d.seamFix ? 1 : 0, 0], 'displace');
-    indirect(normalsPass, group(normalsPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.elements, b.map, b.displacedNormals]),
+    indirectPass(r, normalsPass, group(normalsPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.elements, b.map, b.displacedNormals]),
       [tables.patchCount, f32(d.scale), f32(d.mid)], 'displaced normals');
     return;
   }
@@ -174,7 +189,6 @@ export async function addDisplacementPasses(r, compute, group, plan) {
     incident: r.buffer('incident triangles', plan.incident),
   });
   const count = r.tess.vertexCount;
-  r.dispatch(evalPass, evalGroup, count, [tables.patchCount], 'evaluate surface');
   r.dispatch(displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.sideRanges, b.sideUVs, b.map, b.displaced]),
     count, [f32(d.scale), f32(d.mid)], 'displace');
   r.dispatch(normalsPass, group(normalsPass, 0, [b.displaced, b.triangles, b.incidentRanges, b.incident, b.displacedNormals]), count, [], 'displaced normals');

@@ -10,8 +10,8 @@ import { ShaderCache, loadShader as loadShaderText } from './shaders.mjs';
 import { buildTessellation } from './tessellation.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
-import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS } from './adaptive.mjs';
-import { textureWords, fixedDisplacementPlan, checkDisplacement, addDisplacementPasses } from './displacement.mjs';
+import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
+import { textureWords, fixedDisplacementPlan, checkDisplacement, addComputeEvaluation, addDisplacementPasses } from './displacement.mjs';
 
 const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
 const MAX_GROUPS = 65535;
@@ -126,6 +126,7 @@ export class Renderer {
     if (!(s.shade in SHADES)) throw new LimnError(`--shade ${s.shade}: one of ${Object.keys(SHADES).join(', ')}`, 'usage');
     if (s.shade === 'uv' && !surface.uvs) throw new LimnError('--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade lit or normal', 'input');
     if (s.shade === 'texture' && !s.texture) throw new LimnError('--shade texture needs --texture MAP', 'usage');
+    if (s.wire && s.wire !== 'triangles') throw new LimnError(`wire '${s.wire}': only 'triangles' (limn-render --wire-triangles) is drawn here`, 'capability');
     if ((s.texture || s.displace) && !surface.uvs) throw new LimnError('--texture and --displace need texture coordinates; the mesh has none', 'input');
     if (s.displace) {
       if (!surface.seams) throw new LimnError('--displace needs the seam UVs of a SEAM chunk: run limn-seams on the container first', 'input');
@@ -180,13 +181,14 @@ export class Renderer {
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
       const p = Math.max(s.edgePixels, 0.25);
       const viewBudget = Math.max(Math.floor((32 * s.width * s.height) / (p * p)), 2 ** 20);
-      const samplePositions = s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
+      // renderer.cpp: no sample-based cull under a wireframe (its lines light pixels no triangle covers).
+      const samplePositions = s.wire ? [] : s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
       this.adaptiveOptions = {
         edgePixels: s.edgePixels, tess: s.tess, samplePositions,
         // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.
         // and with displacement: the compute passes read the whole capacity (zeroed slots included).
-        evaluated: !!s.meshOut || !!s.displace,
-        sharePoints: !s.meshOut && !s.displace && s.shade !== 'uv' && s.shade !== 'texture',
+        evaluated: !!s.meshOut || !!s.displace || !!s.wire,
+        sharePoints: !s.meshOut && !s.displace && !s.wire && s.shade !== 'uv' && s.shade !== 'texture',
         // Displacement moves the surface off its control points' hull: no culling then.
         cull: !s.displace,
         // With a displacement map, at least a segment per texel (up to one per 2 pixels).
@@ -246,10 +248,12 @@ export class Renderer {
     const vertexStage = s.displace ? 'surface_fetch' : 'surface';
     const vs = await shaders.module(perSample ? `${vertexStage}_per_sample.vert` : `${vertexStage}.vert`);
     const fs = await shaders.module(perSample ? 'surface_per_sample.frag' : 'surface.frag');
-    const drawLayout = device.createPipelineLayout({ bindGroupLayouts: [
+    const drawGroupLayouts = [
       groupLayout(device, (await loadShaderText(`${vertexStage}.vert`)) + (await loadShaderText('surface.frag')), 1 | 2),
       device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }),
-      device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 1 | 2, buffer: { type: 'uniform' } }] })] });
+      device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 1 | 2, buffer: { type: 'uniform' } }] })];
+    const drawLayout = device.createPipelineLayout({ bindGroupLayouts: drawGroupLayouts });
+    drawLayout.groups = drawGroupLayouts;
     const drawPipeline = (cullMode) => device.createRenderPipelineAsync({
       label: `surface (cull ${cullMode})`, layout: drawLayout,
       vertex: { module: vs },
@@ -316,6 +320,7 @@ export class Renderer {
         if (this.passes.length > before) this.adaptivePasses.push({ name, pass: this.passes[this.passes.length - 1], count });
       }
     }
+    if (s.displace || s.wire) await addComputeEvaluation(this, compute, group);
     if (s.displace) {
       const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, surface.seams, s.displace.seamFix));
       await addDisplacementPasses(this, compute, group, plan);
@@ -326,6 +331,21 @@ export class Renderer {
       ? [b.displaced, b.displacedNormals, b.tessVertices, b.triangles, b.triangleLevels, null, null, b.texture]
       : [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture];
     this.drawGroups = [group(this.drawPipeline, 0, drawBuffers), drawPush.group];
+    if (s.wire) {
+      // --wire-triangles: the edges of every triangle drawn, at the positions the draw read
+      // (evaluated or displaced), pulled towards the eye (wire_triangles.vert); same push constants.
+      const wireLayout = groupLayout(device, await loadShaderText('wire_triangles.vert'), 1);
+      this.wirePipeline = await device.createRenderPipelineAsync({
+        label: 'wire (triangles)',
+        layout: device.createPipelineLayout({ bindGroupLayouts: [wireLayout, drawLayout.groups[1], drawLayout.groups[2], drawLayout.groups[3]] }),
+        vertex: { module: await shaders.module('wire_triangles.vert') },
+        fragment: { module: await shaders.module('wire.frag'), targets: [{ format: 'rgba8unorm-srgb' }] },
+        primitive: { topology: 'line-list' },
+        depthStencil: { format: 'depth32float', depthWriteEnabled: false, depthCompare: 'less-equal' },
+        multisample: { count: s.samples },
+      });
+      this.wireGroup = device.createBindGroup({ layout: wireLayout, entries: [s.displace ? b.displaced : b.evalPositions, b.triangles].map((buffer, binding) => ({ binding, resource: { buffer } })) });
+    }
 
     // Framing: the control points' box and sphere (boundsOf), the hull samples when auto-framed.
     const points = [];
@@ -533,6 +553,12 @@ export class Renderer {
     } else {
       rp.setIndexBuffer(this.buffers.triangles, 'uint32');
       rp.drawIndexed(count);
+    }
+    if (this.wirePipeline) {
+      rp.setPipeline(this.wirePipeline);
+      rp.setBindGroup(0, this.wireGroup);
+      rp.setBindGroup(3, this.drawGroups[1]);
+      if (this.adaptive) rp.drawIndirect(this.buffers.totals, WIRE_DRAW_ARGS); else rp.draw(2 * count);
     }
     rp.end();
     enc.copyTextureToBuffer({ texture: this.color }, { buffer: this.readback, bytesPerRow: this.rowBytes }, [s.width, s.height]);

@@ -43,15 +43,16 @@ async function webRenderer(settings) {
 
 const displaced = (map, seamFix = true) => ({ map: heightMap(readImageFile(map, '--displace')), scale: SCALE, mid: MID, seamFix });
 
-for (const [label, edgePixels, samples, shade] of [['fixed grids', 0, 4, 'lit'], ['view-adaptive', 4, 4, 'lit'], ['view-adaptive, levels', 4, 1, 'levels']]) {
+const cases = [['fixed grids', 0, 4, 'lit'], ['view-adaptive', 4, 4, 'lit'], ['view-adaptive, levels, wireframe', 4, 1, 'levels', true]];
+for (const [label, edgePixels, samples, shade, wire] of cases) {
   test(`displaced quad_sphere, seam fix on, ${label}: the image limn-render draws`, async () => {
     const { limn, height } = quadSphere();
     const name = `displaced-${edgePixels}-${samples}-${shade}`;
     const native = join(scratch, `${name}.png`);
     const args = ['--size', '320x240', '--samples', String(samples), '--shade', shade, '--edge-pixels', String(edgePixels),
-      '--displace', height, '--displace-scale', String(SCALE), '--displace-mid', String(MID)];
+      '--displace', height, '--displace-scale', String(SCALE), '--displace-mid', String(MID), ...(wire ? ['--wire-triangles'] : [])];
     execFileSync(tool('limn-render'), ['-q', limn, '-o', native, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
-    const s = { width: 320, height: 240, samples, shade, edgePixels, tess: 64, view: {}, displace: displaced(height) };
+    const s = { width: 320, height: 240, samples, shade, edgePixels, tess: 64, view: {}, displace: displaced(height), wire: wire ? 'triangles' : undefined };
     const { r, errors } = await webRenderer(s);
     r.frame();
     const rgba = await r.pixels();

@@ -3,7 +3,7 @@
 // more than 8/255. The fixed grids (--edge-pixels 0) and the view-adaptive tessellation, 1 and 4
 // samples, lit and --shade levels, on real models: spot (depths 1, 3, 6), a creased torus, a model
 // with face-varying UVs and tags, the paper's demo sphere in its camera, the paper-size car, and
-// colour textures (--texture, a glTF's MATL texture).
+// colour textures (--texture, a glTF's MATL texture) and the triangles' wireframe (--wire-triangles).
 //
 // The web side renders in this process through the library (one device, each container loaded
 // once, so its CPU tessellation is built once and Dawn compiles each pipeline once); limn-render
@@ -48,6 +48,7 @@ function settingsOf(args) {
       case '--sample-shading': s.sampleShading = true; break;
       case '--texture': s.texture = readImageFile(v, '--texture'); i++; break;
       case '--color': s.color = nums(v); i++; break;
+      case '--wire-triangles': s.wire = 'triangles'; break;
       default: throw new Error(`settingsOf: ${args[i]} is not mapped here`);
     }
   }
@@ -96,6 +97,9 @@ const cases = [
   // A colour texture (--texture; --color tints it), on both tessellations.
   ['fixed: spot depth 2 with its texture', spot(2), [...fixed, '--texture', spotTexture], [4], ['lit']],
   ['adaptive: spot depth 2 with its texture, tinted', spot(2), ['--texture', spotTexture, '--color', '1,0.6,0.4'], [1], ['lit']],
+  // The wireframe overlay of the triangles drawn (--wire-triangles).
+  ['fixed: spot depth 2 with its triangles\' wireframe', spot(2), [...fixed, '--wire-triangles'], [4], ['lit']],
+  ['adaptive: spot depth 2 with its triangles\' wireframe', spot(2), ['--wire-triangles'], [1], ['levels']],
 ];
 
 for (const [label, make, args, samplesList, shades] of cases) {

@@ -43,7 +43,6 @@ function describe(e) {
 // --- what the runtime supports ------------------------------------------------------------------
 // The renderer's constructor refuses, in words, what the runtime cannot draw, before any GPU work:
 // a control is disabled with that reason rather than drawing something else.
-const WIRE_MISSING = 'the WebGPU runtime draws no wireframe overlay yet (limn-render --wire)';
 function refusal(overrides) {
   if (!gpu || !model) return null;
   try {
@@ -60,6 +59,7 @@ function rendererSettings(s) {
   const [width, height] = canvasSize();
   return {
     width, height, samples: s.samples, sampleShading: s.sampleShading, shade: s.shade, edgePixels: s.edgePixels, tess: s.tess,
+    wire: s.wire ? 'triangles' : undefined, // limn-render --wire-triangles: the edges of the triangles drawn
     view: viewSpec(s), color: s.color ?? undefined, background: s.background,
     lightAzimuthDeg: s.light[0], lightElevationDeg: s.light[1],
     ...mapSettings(s),
@@ -88,7 +88,6 @@ function supportedState(s) {
   };
   if (out.edgePixels > 0) { const why = refusal({ edgePixels: out.edgePixels }); if (why) fallback('edgePixels', 0, why); }
   if (out.shade !== 'lit') { const why = refusal({ shade: out.shade, ...textureSettings() }); if (why) fallback('shade', 'lit', why); }
-  if (out.wire) fallback('wire', false, WIRE_MISSING);
   return out;
 }
 
@@ -110,7 +109,7 @@ function layoutCanvas() {
 // (View-adaptive tessellation shares points across UV seams unless the shading needs the UVs.)
 // A displacement's scale, mid and seam fix are set up with the renderer (its framing, the fixed
 // grids' sample UVs), so changing them makes a new one.
-const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), model?.serial, map?.serial,
+const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.wire, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), model?.serial, map?.serial,
   sources.displace && map ? [s.displaceScale, s.displaceMid, s.seamFix] : null]);
 
 async function ensureRenderer() {
@@ -384,7 +383,6 @@ function syncPanel() {
   $('sampleShading').checked = s.sampleShading;
   setEnabled($('sampleShading'), s.samples === 1 ? 'with 4 samples only' : refusal({ sampleShading: true }));
   $('wire').checked = s.wire;
-  setEnabled($('wire'), WIRE_MISSING);
   if (s.edgePixels > 0) lastEdgePixels = s.edgePixels;
   $('mode-fixed').checked = s.edgePixels === 0;
   $('mode-adaptive').checked = s.edgePixels > 0;

@@ -265,7 +265,7 @@ test('?bench=N prints one JSON line per tessellation on the console', async () =
 // The paper's Figure 14, live: the README's displaced quad_sphere (its height map from ?displace=,
 // scale and mid from the link), as limn-render draws it with the seam fix, then with the panel's
 // seam fix turned off, then view-adaptive; one page, 1 sample (see above for SwiftShader's 4).
-test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and view-adaptive, as limn-render draws it', async (t) => {
+test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and view-adaptive, wireframe, as limn-render draws it', async (t) => {
   const p = await newPage(browser);
   try {
     const shotOf = async () => decodePng(await p.locator('#view').screenshot());
@@ -287,6 +287,12 @@ test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and 
     t.diagnostic(check('displaced, seam fix, view-adaptive', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '4'], 'sphere-adaptive')), 1));
     assert.equal(await p.locator('#command').textContent(),
       `limn-render quad_sphere.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --edge-pixels 4 --tess 64 --displace quad_sphere.height.png --displace-scale 0.2 --displace-mid 0.5`);
+    // The wireframe overlay: the triangles this view's rates chose (limn-render --wire-triangles).
+    n = await frames(p);
+    await p.locator('#wire').check();
+    await settled(p, n + 1);
+    assert.match(await p.locator('#command').textContent(), / --wire-triangles /);
+    t.diagnostic(check('displaced, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '4', '--wire-triangles'], 'sphere-wire')), 1));
     assert.deepEqual(p.problems, []);
   } finally {
     await p.close();
