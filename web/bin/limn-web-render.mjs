@@ -36,7 +36,7 @@ what is not listed is not supported here.
   --texture MAP           colour texture (PNG) [default: the MATL chunk's base colour texture]
   --displace MAP          displace the subdivision surface along its normal by a height map
                           (PNG; channel 0), sampled bilinearly with wrap-around at the mesh UVs;
-                          needs a SEAM chunk (limn-seams)
+                          the seam UVs from the SEAM chunk (limn-seams), else computed
   --displace-scale S|P%   world units per unit of map value, or P% of the control mesh's
                           bounding-box diagonal (default 1)
   --displace-mid M        the map value meaning zero (default 0)

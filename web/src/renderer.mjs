@@ -11,7 +11,7 @@ import { buildTessellation } from './tessellation.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
 import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
-import { textureWords, fixedDisplacementPlan, checkDisplacement, addComputeEvaluation, addDisplacementPasses } from './displacement.mjs';
+import { textureWords, fixedDisplacementPlan, checkDisplacement, addComputeEvaluation, addDisplacementPasses, computeSeams } from './displacement.mjs';
 
 const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
 const MAX_GROUPS = 65535;
@@ -129,7 +129,6 @@ export class Renderer {
     if (s.wire && s.wire !== 'triangles') throw new LimnError(`wire '${s.wire}': only 'triangles' (limn-render --wire-triangles) is drawn here`, 'capability');
     if ((s.texture || s.displace) && !surface.uvs) throw new LimnError('--texture and --displace need texture coordinates; the mesh has none', 'input');
     if (s.displace) {
-      if (!surface.seams) throw new LimnError('--displace needs the seam UVs of a SEAM chunk: run limn-seams on the container first', 'input');
       if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
       checkDisplacement(s.displace);
     }
@@ -322,7 +321,9 @@ export class Renderer {
     }
     if (s.displace || s.wire) await addComputeEvaluation(this, compute, group);
     if (s.displace) {
-      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, surface.seams, s.displace.seamFix));
+      // The SEAM chunk's records, or the same computed here (limn-render does so too).
+      this.seams = surface.seams ?? cached(tables, 'seams', () => computeSeams(mesh, surface.uvs, tables));
+      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, this.seams, s.displace.seamFix));
       await addDisplacementPasses(this, compute, group, plan);
     }
     const drawPush = pushGroup(this.drawPipeline);

@@ -53,7 +53,7 @@ test('what is not supported here exits 3 and says so; maps it cannot use exit 1 
   const r = run(smooth, '-o', out, '--shade', 'uv');
   assert.equal(r.status, 3, r.stderr);
   assert.match(r.stderr, /smooth face-varying UVs .* not supported here/);
-  // --displace needs the seam records (limn-seams); a map that is not a PNG is named.
+  // A map that cannot be read or is not a PNG is named.
   const noMap = run(limn, '-o', out, '--displace', join(scratch, 'absent.png'));
   assert.equal(noMap.status, 1, noMap.stderr);
   assert.match(noMap.stderr, /--displace .*absent\.png: cannot read/);
@@ -64,9 +64,10 @@ test('what is not supported here exits 3 and says so; maps it cannot use exit 1 
   assert.match(bad.stderr, /--texture .*not\.png: not a PNG/);
   const map = join(scratch, 'map.png');
   writeFileSync(map, encodePng(2, 2, new Uint8Array(16).fill(128)));
-  const seamless = run(limn, '-o', out, '--displace', map);
-  assert.equal(seamless.status, 1, seamless.stderr);
-  assert.match(seamless.stderr, /run limn-seams/);
+  // Displacement needs UVs.
+  const noUVs = run(container('osd/catmark/catmark_pyramid_creases2.obj', { depth: 1 }), '-o', out, '--displace', map);
+  assert.equal(noUVs.status, 1, noUVs.stderr);
+  assert.match(noUVs.stderr, /need texture coordinates; the mesh has none/);
   assert.equal(run(limn, '-o', out, '--displace', map, '--displace-scale', 'x%').status, 2);
   assert.equal(existsSync(out), false);
 });

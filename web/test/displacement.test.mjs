@@ -16,6 +16,7 @@ import { quadSphere as quadSphereInputs, scratch, tool } from './support.mjs';
 import { privateIcd, requestNodeDevice } from '../src/node_device.mjs';
 import { loadLimn } from '../src/chunks.mjs';
 import { Renderer } from '../src/renderer.mjs';
+import { computeSeams } from '../src/displacement.mjs';
 import { decodePng } from '../src/png.mjs';
 import { readImageFile, heightMap } from '../src/node_image.mjs';
 import { compareImages } from './compare.mjs';
@@ -103,4 +104,14 @@ test('displaced quad_sphere: watertight with the seam fix, cracked without (fixe
       }
     }
   }
+});
+
+// Without a SEAM chunk the renderer computes the seam records itself, as limn-render does: they
+// are limn-seams' own, bit for bit (the chunk written by limn-seams is the reference).
+test('seam records computed without a SEAM chunk are the ones limn-seams writes', () => {
+  const { surface } = quadSphere();
+  const c = computeSeams(surface.mesh, surface.uvs, surface.tables);
+  assert.equal(c.uvCount, surface.seams.uvCount);
+  assert.deepEqual(new Uint32Array(c.records.buffer, c.records.byteOffset, c.records.length), surface.seams.records);
+  assert.deepEqual(new Uint32Array(c.uvs.buffer), new Uint32Array(surface.seams.uvs.buffer, surface.seams.uvs.byteOffset, surface.seams.uvs.length));
 });

@@ -33,7 +33,7 @@ before(async () => {
   // One origin for every page: Chromium keeps compiled pipelines per origin.
   server = await serveModels({
     'spot_d3.limn': spot, 'spot_d1.limn': container('quad/spot_quadrangulated.obj', { depth: 1 }),
-    'quad_sphere.limn': sphere.limn, 'quad_sphere.height.png': sphere.height,
+    'quad_sphere.limn': sphere.limn, 'quad_sphere.height.png': sphere.height, 'uv-noise.png': sphere.noise,
   });
   browser = await launch();
   page = await newPage(browser);
@@ -293,6 +293,19 @@ test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and 
     await settled(p, n + 1);
     assert.match(await p.locator('#command').textContent(), / --wire-triangles /);
     t.diagnostic(check('displaced, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '4', '--wire-triangles'], 'sphere-wire')), 1));
+    // Another map dropped on the page replaces the first (a local file: not in the URL).
+    n = await frames(p);
+    await p.evaluate(async () => {
+      const b = await (await fetch('../models/uv-noise.png')).arrayBuffer();
+      const dt = new DataTransfer();
+      dt.items.add(new File([b], 'uv-noise.png', { type: 'image/png' }));
+      document.getElementById('stage').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    });
+    await settled(p, n + 1);
+    assert.doesNotMatch(await p.evaluate(() => location.search), /displace=/);
+    assert.match(await p.locator('#command').textContent(), / --displace uv-noise\.png /);
+    const noisy = args.map((a) => (a === sphere.height ? sphere.noise : a));
+    t.diagnostic(check('dropped UV-noise map, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...noisy, '--edge-pixels', '4', '--wire-triangles'], 'sphere-noise')), 1));
     assert.deepEqual(p.problems, []);
   } finally {
     await p.close();
