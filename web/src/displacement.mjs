@@ -40,11 +40,21 @@ export function textureWords(texture) {
   return w;
 }
 
+/** A map's GPU buffer (4 bytes a texel) must fit WebGPU's 128 MiB storage-buffer binding. */
+export function checkMapSize(option, map) {
+  const bytes = 8 + 4 * map.width * map.height;
+  if (bytes > 128 * 2 ** 20) {
+    throw new LimnError(`${option}: a ${map.width}x${map.height} map needs ${(bytes / 2 ** 20).toFixed(1)} MiB on the GPU, over WebGPU's ` +
+      '128 MiB storage-buffer limit; scale it down (at most about 5792x5792)', 'input');
+  }
+}
+
 /**
  * renderer.cpp's check: an EXR-like map times --displace-scale must stay within the 1e18 that
  * positions may reach (mesh.cpp), or the image comes out blank.
  */
 export function checkDisplacement(d) {
+  checkMapSize('--displace', d.map);
   let far = 0;
   for (const v of d.map.values) far = Math.max(far, Math.abs((v - d.mid) * d.scale));
   if (!(far <= 1e18)) {

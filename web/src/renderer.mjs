@@ -11,7 +11,7 @@ import { buildTessellation } from './tessellation.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
 import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
-import { textureWords, fixedDisplacementPlan, checkDisplacement, addComputeEvaluation, addDisplacementPasses, computeSeams } from './displacement.mjs';
+import { textureWords, fixedDisplacementPlan, checkDisplacement, checkMapSize, addComputeEvaluation, addDisplacementPasses, computeSeams } from './displacement.mjs';
 
 const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
 const MAX_GROUPS = 65535;
@@ -127,6 +127,7 @@ export class Renderer {
     if (s.shade === 'uv' && !surface.uvs) throw new LimnError('--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade lit or normal', 'input');
     if (s.shade === 'texture' && !s.texture) throw new LimnError('--shade texture needs --texture MAP', 'usage');
     if (s.wire && s.wire !== 'triangles') throw new LimnError(`wire '${s.wire}': only 'triangles' (limn-render --wire-triangles) is drawn here`, 'capability');
+    if (s.texture) checkMapSize('--texture', s.texture);
     if ((s.texture || s.displace) && !surface.uvs) throw new LimnError('--texture and --displace need texture coordinates; the mesh has none', 'input');
     if (s.displace) {
       if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
