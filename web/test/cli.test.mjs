@@ -62,6 +62,14 @@ test('what is not supported here exits 3 and says so; maps it cannot use exit 1 
   const bad = run(limn, '-o', out, '--texture', notPng);
   assert.equal(bad.status, 1, bad.stderr);
   assert.match(bad.stderr, /--texture .*not\.png: not a PNG/);
+  // A PNG too large for the GPU is refused from its header, before its pixels are decoded.
+  const big = join(scratch, 'big.png'), header = encodePng(1, 1, new Uint8Array(4));
+  header.writeUInt32BE(20000, 16);
+  header.writeUInt32BE(20000, 20);
+  writeFileSync(big, header);
+  const huge = run(limn, '-o', out, '--displace', big);
+  assert.equal(huge.status, 1, huge.stderr);
+  assert.match(huge.stderr, /big\.png: a 20000x20000 image, over the 2\^25 texels/);
   const map = join(scratch, 'map.png');
   writeFileSync(map, encodePng(2, 2, new Uint8Array(16).fill(128)));
   // Displacement needs UVs.
