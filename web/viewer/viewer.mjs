@@ -411,7 +411,7 @@ async function openFile(file) {
       writeUrl();
     }
   } else {
-    await openMap(file, file.name, state.shade === 'texture' ? 'texture' : 'displace');
+    await openMap(file, file.name, $('map-kind').value);
   }
 }
 
@@ -429,7 +429,7 @@ function attachFiles() {
     if (file) openFile(file);
   });
   $('open-model').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openFile(f); e.target.value = ''; });
-  $('open-map').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openMap(f, f.name, state.shade === 'texture' ? 'texture' : 'displace'); e.target.value = ''; });
+  $('open-map').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openMap(f, f.name, $('map-kind').value); e.target.value = ''; });
 }
 
 // --- ?bench=N: frame times of fixed grids and view-adaptive, one JSON line each ------------------

@@ -326,6 +326,17 @@ test('spot with its texture from ?texture=, as limn-render --texture draws it', 
     const texture = join(repo, 'tests/data/textures/spot_texture.png');
     const shotOf = decodePng(await p.locator('#view').screenshot());
     t.diagnostic(check('spot textured', compare(shotOf, native(container('quad/spot_quadrangulated.obj', { depth: 1 }), ['--view', '-30,20', '--samples', '1', '--edge-pixels', '0', '--texture', texture], 'spot-texture')), 1));
+    // The panel says what a dropped image becomes: here a colour texture, replacing the linked one.
+    await p.selectOption('#map-kind', 'texture');
+    await p.evaluate(async () => {
+      const b = await (await fetch('../models/spot_texture.png')).arrayBuffer();
+      const dt = new DataTransfer();
+      dt.items.add(new File([b], 'dropped.png', { type: 'image/png' }));
+      document.getElementById('stage').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    });
+    await p.waitForFunction(() => /^dropped\.png: 1024×1024, as colour map$/.test(document.getElementById('map-name').textContent));
+    await settled(p);
+    assert.match(await p.locator('#command').textContent(), / --shade texture .*--texture dropped\.png$/);
     assert.deepEqual(p.problems, []);
   } finally {
     await p.close();
