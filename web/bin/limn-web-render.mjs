@@ -46,11 +46,12 @@ what is not listed is not supported here.
   --tess N                most segments per patch edge (default 64)
   --edge-pixels P         view-adaptive: segments of about P pixels (default 4); 0: the fixed
                           grids of 2^(depth-l) segments per level-l patch side
+  --wire                  overlay the patch and face outlines (drawn on the fixed grids)
   --wire-triangles        overlay the edges of every triangle drawn (view-adaptive: the rates
                           this view chose)
   --bench N               render N frames, print limn-render's --bench JSON fields on stdout
   --help, --version
-Not supported here yet: --wire (outlines), --mesh-out, smooth face-varying UVs under --shade uv, --texture
+Not supported here yet: --mesh-out, smooth face-varying UVs under --shade uv, --texture
 or --displace, BLND (blending surfaces); images other than PNG.
 Exit codes: 0 ok, 1 bad input, 2 usage, 3 missing capability.
 `;
@@ -107,6 +108,7 @@ function parseArgs(argv) {
       }
       case '--displace-mid': { const [m] = numbers(a, value(), 1); if (Math.abs(m) > 1e6) throw new Usage('--displace-mid: -1e6 to 1e6'); o.displaceMid = m; break; }
       case '--no-seam-fix': o.noSeamFix = true; break;
+      case '--wire': s.wire = 'outlines'; break;
       case '--wire-triangles': s.wire = 'triangles'; break;
       default:
         if (a.startsWith('-') && a !== '-') throw new Usage(`unknown option ${a} (see --help)`);
@@ -119,6 +121,7 @@ function parseArgs(argv) {
   if (!o.output && !o.bench) throw new Usage('no output: give -o OUT.png (or --bench N)');
   if (o.output && !o.output.endsWith('.png')) throw new Usage(`-o ${o.output}: only PNG is written here (name it .png)`);
   if (s.view.eye && o.viewGiven) throw new Usage('--view and --eye exclude each other');
+  if (argv.includes('--wire') && argv.includes('--wire-triangles')) throw new Usage('--wire and --wire-triangles exclude each other');
   if ((s.view.target || s.view.up) && !s.view.eye) throw new Usage('--target and --up describe an explicit camera; give --eye too');
   return o;
 }

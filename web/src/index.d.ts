@@ -54,8 +54,9 @@ export interface RenderSettings {
   texture?: ImageRGB;
   /** --displace: the seam UVs from the container's SEAM chunk (limn-seams), else computed. */
   displace?: Displacement;
-  /** 'triangles': limn-render --wire-triangles, the edges of every triangle drawn. */
-  wire?: 'triangles';
+  /** 'triangles': limn-render --wire-triangles, the edges of every triangle drawn; 'outlines':
+   *  --wire, the patches' and faces' outlines (drawn on the fixed grids). */
+  wire?: 'triangles' | 'outlines';
 }
 export interface ImageRGB { width: number; height: number; rgb: Float32Array }
 export interface Displacement {

@@ -95,6 +95,17 @@ function checkTableSize(tables, face, stencil) {
   }
 }
 
+// subdivision_draw.cpp: the elements' outline segments, each once (an edge two elements share is
+// listed by both), in the order first seen.
+function wireLines(outline) {
+  const seen = new Set(), out = [];
+  for (let i = 0; i + 1 < outline.length; i += 2) {
+    const a = outline[i], b = outline[i + 1], key = Math.min(a, b) * 2 ** 32 + Math.max(a, b);
+    if (!seen.has(key)) { seen.add(key); out.push(a, b); }
+  }
+  return Uint32Array.from(out);
+}
+
 // The CPU-built tessellations of a loaded surface, kept with its tables (they are never written
 // after they are built): renderers of one surface with other views, sizes or shades share them.
 const builtFor = new WeakMap();
@@ -126,7 +137,7 @@ export class Renderer {
     if (!(s.shade in SHADES)) throw new LimnError(`--shade ${s.shade}: one of ${Object.keys(SHADES).join(', ')}`, 'usage');
     if (s.shade === 'uv' && !surface.uvs) throw new LimnError('--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade lit or normal', 'input');
     if (s.shade === 'texture' && !s.texture) throw new LimnError('--shade texture needs --texture MAP', 'usage');
-    if (s.wire && s.wire !== 'triangles') throw new LimnError(`wire '${s.wire}': only 'triangles' (limn-render --wire-triangles) is drawn here`, 'capability');
+    if (s.wire && s.wire !== 'triangles' && s.wire !== 'outlines') throw new LimnError(`wire '${s.wire}': 'outlines' (limn-render --wire) or 'triangles' (--wire-triangles)`, 'usage');
     if (s.texture) checkMapSize('--texture', s.texture);
     if ((s.texture || s.displace) && !surface.uvs) throw new LimnError('--texture and --displace need texture coordinates; the mesh has none', 'input');
     if (s.displace) {
@@ -173,7 +184,8 @@ export class Renderer {
         vertex: { firstOut: L.first + L.facePoints + L.edgePoints, firstRow: stencil.firstRows[2 * (l - 1) + 1], count: L.vertexPoints },
       });
     }
-    this.adaptive = s.edgePixels > 0;
+    // renderer.cpp: the element outlines exist for the fixed grids only, so --wire draws those.
+    this.adaptive = s.edgePixels > 0 && s.wire !== 'outlines';
     let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
     if (this.adaptive) {
       const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables));
@@ -334,19 +346,27 @@ export class Renderer {
       : [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture];
     this.drawGroups = [group(this.drawPipeline, 0, drawBuffers), drawPush.group];
     if (s.wire) {
-      // --wire-triangles: the edges of every triangle drawn, at the positions the draw read
-      // (evaluated or displaced), pulled towards the eye (wire_triangles.vert); same push constants.
-      const wireLayout = groupLayout(device, await loadShaderText('wire_triangles.vert'), 1);
+      // --wire-triangles: the edges of every triangle drawn; --wire: the elements' outlines, each
+      // segment once (subdivision_draw.cpp's wireLines); at the positions the draw read (evaluated
+      // or displaced), pulled towards the eye (wire*.vert); same push constants.
+      const outlines = s.wire === 'outlines', wireVert = outlines ? 'wire.vert' : 'wire_triangles.vert';
+      const wireLayout = groupLayout(device, await loadShaderText(wireVert), 1);
       this.wirePipeline = await device.createRenderPipelineAsync({
-        label: 'wire (triangles)',
+        label: `wire (${s.wire})`,
         layout: device.createPipelineLayout({ bindGroupLayouts: [wireLayout, drawLayout.groups[1], drawLayout.groups[2], drawLayout.groups[3]] }),
-        vertex: { module: await shaders.module('wire_triangles.vert') },
+        vertex: { module: await shaders.module(wireVert) },
         fragment: { module: await shaders.module('wire.frag'), targets: [{ format: 'rgba8unorm-srgb' }] },
         primitive: { topology: 'line-list' },
         depthStencil: { format: 'depth32float', depthWriteEnabled: false, depthCompare: 'less-equal' },
         multisample: { count: s.samples },
       });
-      this.wireGroup = device.createBindGroup({ layout: wireLayout, entries: [s.displace ? b.displaced : b.evalPositions, b.triangles].map((buffer, binding) => ({ binding, resource: { buffer } })) });
+      const drawn = s.displace ? b.displaced : b.evalPositions;
+      this.wireGroup = device.createBindGroup({ layout: wireLayout, entries: (outlines ? [drawn] : [drawn, b.triangles]).map((buffer, binding) => ({ binding, resource: { buffer } })) });
+      if (outlines) {
+        const lines = cached(tables, `outline ${tess.key}`, () => wireLines(tess.outline));
+        this.wireLineCount = lines.length;
+        b.wireLines = this.buffer('wire lines', lines, INDEX);
+      }
     }
 
     // Framing: the control points' box and sphere (boundsOf), the hull samples when auto-framed.
@@ -560,7 +580,10 @@ export class Renderer {
       rp.setPipeline(this.wirePipeline);
       rp.setBindGroup(0, this.wireGroup);
       rp.setBindGroup(3, this.drawGroups[1]);
-      if (this.adaptive) rp.drawIndirect(this.buffers.totals, WIRE_DRAW_ARGS); else rp.draw(2 * count);
+      if (this.wireLineCount !== undefined) {
+        rp.setIndexBuffer(this.buffers.wireLines, 'uint32');
+        rp.drawIndexed(this.wireLineCount);
+      } else if (this.adaptive) rp.drawIndirect(this.buffers.totals, WIRE_DRAW_ARGS); else rp.draw(2 * count);
     }
     rp.end();
     enc.copyTextureToBuffer({ texture: this.color }, { buffer: this.readback, bytesPerRow: this.rowBytes }, [s.width, s.height]);

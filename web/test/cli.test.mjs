@@ -12,7 +12,7 @@ const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
 
 test('usage errors exit 2', () => {
-  for (const args of [[], ['x.limn'], ['--frobnicate'], ['x.limn', '-o', 'y.png', '--samples', '3'], ['x.limn', '-o', 'y.jpg']]) {
+  for (const args of [[], ['x.limn'], ['--frobnicate'], ['x.limn', '-o', 'y.png', '--samples', '3'], ['x.limn', '-o', 'y.jpg'], ['x.limn', '-o', 'y.png', '--wire', '--wire-triangles']]) {
     const r = run(...args);
     assert.equal(r.status, 2, `${args.join(' ')}: ${r.stderr}`);
     assert.match(r.stderr, /^limn-web-render: error: /);

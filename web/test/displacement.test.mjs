@@ -45,17 +45,18 @@ async function webRenderer(settings) {
 const displaced = (map, seamFix = true) => ({ map: heightMap(readImageFile(map, '--displace')), scale: SCALE, mid: MID, seamFix });
 
 // Two renders cover lit and levels shading (both use the displaced normals), 4 and 1 samples,
-// both tessellations and the wireframe over the displaced surface: each costs seconds of CPU.
-const cases = [['fixed grids', 0, 4, 'lit'], ['view-adaptive, levels, wireframe', 4, 1, 'levels', true]];
+// both tessellations and both wireframes over the displaced surface (--wire: the elements'
+// outlines; --wire-triangles): each costs seconds of CPU.
+const cases = [['fixed grids, outlines', 0, 4, 'lit', 'outlines'], ['view-adaptive, levels, triangles\' wireframe', 4, 1, 'levels', 'triangles']];
 for (const [label, edgePixels, samples, shade, wire] of cases) {
   test(`displaced quad_sphere, seam fix on, ${label}: the image limn-render draws`, async () => {
     const { limn, height } = quadSphere();
     const name = `displaced-${edgePixels}-${samples}-${shade}`;
     const native = join(scratch, `${name}.png`);
     const args = ['--size', '320x240', '--samples', String(samples), '--shade', shade, '--edge-pixels', String(edgePixels),
-      '--displace', height, '--displace-scale', String(SCALE), '--displace-mid', String(MID), ...(wire ? ['--wire-triangles'] : [])];
+      '--displace', height, '--displace-scale', String(SCALE), '--displace-mid', String(MID), ...({ outlines: ['--wire'], triangles: ['--wire-triangles'] }[wire] ?? [])];
     execFileSync(tool('limn-render'), ['-q', limn, '-o', native, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
-    const s = { width: 320, height: 240, samples, shade, edgePixels, tess: 64, view: {}, displace: displaced(height), wire: wire ? 'triangles' : undefined };
+    const s = { width: 320, height: 240, samples, shade, edgePixels, tess: 64, view: {}, displace: displaced(height), wire };
     const { r, errors } = await webRenderer(s);
     r.frame();
     const rgba = await r.pixels();
