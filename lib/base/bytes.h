@@ -79,6 +79,15 @@ private:
     std::string context_;
 };
 
+// Appends a value's bytes (host order, little-endian) to a byte vector: for encoders that build
+// their output in a plain vector (PLY bodies, glTF buffers).
+template <class T>
+void appendRaw(std::vector<uint8_t>& out, const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto* p = reinterpret_cast<const uint8_t*>(&value);
+    out.insert(out.end(), p, p + sizeof(T));
+}
+
 class ByteWriter {
 public:
     template <class T>

@@ -39,5 +39,8 @@ private:
 [[noreturn]] inline void throwBadInput(std::string message, std::string where = {}) {
     throw Error(ErrorKind::BadInput, std::move(message), std::move(where));
 }
+[[noreturn]] inline void throwUsage(std::string message) {
+    throw Error(ErrorKind::Usage, std::move(message));
+}
 
 } // namespace limn

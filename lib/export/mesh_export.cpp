@@ -1,5 +1,6 @@
 #include "export/mesh_export.h"
 
+#include "base/bytes.h"
 #include "base/error.h"
 #include "mesh/text_format.h"
 
@@ -50,12 +51,6 @@ public:
 private:
     std::map<std::array<uint32_t, N>, uint32_t> ids_;
 };
-
-template <class T>
-void appendRaw(std::vector<unsigned char>& out, const T& value) {
-    const auto* p = reinterpret_cast<const unsigned char*>(&value);
-    out.insert(out.end(), p, p + sizeof(T));
-}
 
 // Appends a bufferView over bytes [offset, end of buffer) and an accessor of `count` elements.
 int addAccessor(tinygltf::Model& model, size_t offset, int target, int componentType, int type,

@@ -1,21 +1,12 @@
 #include "export/ply.h"
 
+#include "base/bytes.h"
 #include "mesh/text_format.h"
 
 #include <charconv>
 #include <cstring>
 
 namespace limn::render {
-
-namespace {
-
-template <class T>
-void appendRaw(std::vector<uint8_t>& out, const T& value) {
-    const auto* p = reinterpret_cast<const uint8_t*>(&value);
-    out.insert(out.end(), p, p + sizeof(T));
-}
-
-} // namespace
 
 std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
     const size_t triangles = mesh.triangles.size() / 3;

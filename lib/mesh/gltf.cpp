@@ -173,9 +173,30 @@ struct Welder {
 
 namespace {
 
+// What tinygltf's file callbacks may do: read files (noting each in `filesRead`), or none at all.
+struct FileAccess {
+    std::vector<std::string>* filesRead = nullptr;
+    bool allowed = true;
+};
+
+// Without file access nothing is looked up: every name "exists", so that the read is refused with
+// the reason (not "file not found"), and tinygltf's path expansion (wordexp) is not run either:
+// untrusted bytes reach neither the file system nor the shell's expansion rules.
+bool fileExists(const std::string& path, void* user) {
+    return !static_cast<FileAccess*>(user)->allowed || tinygltf::FileExists(path, nullptr);
+}
+std::string expandPath(const std::string& path, void* user) {
+    return static_cast<FileAccess*>(user)->allowed ? tinygltf::ExpandFilePath(path, nullptr) : path;
+}
+
 // Reads a file the asset names (buffers, images) for tinygltf, noting each (the depfile lists them).
 bool readAndRecord(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                    void* user) {
+    const FileAccess& access = *static_cast<FileAccess*>(user);
+    if (!access.allowed) {
+        if (err) *err += path + ": this reader reads embedded data only (a GLB buffer or a data: URI)\n";
+        return false;
+    }
     // limn's reader, not tinygltf's: a directory named as a buffer gave "out of memory" with no
     // name; this one names the file and refuses directories and endless inputs.
     if (isStdio(path)) { // readInput's name for standard input
@@ -188,7 +209,7 @@ bool readAndRecord(std::vector<unsigned char>* out, std::string* err, const std:
         if (err) *err += path + ": " + e.what() + "\n";
         return false;
     }
-    if (user) static_cast<std::vector<std::string>*>(user)->push_back(path);
+    if (access.filesRead) access.filesRead->push_back(path);
     return true;
 }
 
@@ -311,26 +332,27 @@ std::span<const uint8_t> glbJson(std::span<const uint8_t> bytes) {
 
 namespace gltf {
 
-Loaded load(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir, Warnings& warnings,
+Loaded load(std::span<const uint8_t> bytes, bool binary, const std::string* baseDir, Warnings& warnings,
             std::vector<std::string>* filesRead, std::map<int, std::vector<uint8_t>>* images) {
     Loaded out;
+    FileAccess access{filesRead, baseDir != nullptr};
+    const std::string dir = baseDir ? *baseDir : std::string();
     refuseDeepJson(binary ? glbJson(bytes) : bytes);
     out.pre = gltf::prepass(bytes, binary, warnings);
     if (!out.pre.rewritten.empty()) bytes = out.pre.rewritten;
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keepImageBytes, images);
-    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readAndRecord,
-                           &tinygltf::WriteWholeFile, filesRead});
+    loader.SetFsCallbacks({&fileExists, &expandPath, &readAndRecord, &tinygltf::WriteWholeFile, &access});
     tinygltf::Model& model = out.model;
     std::string err, warn;
     bool ok;
     if (binary)
         ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                         static_cast<unsigned int>(bytes.size()), baseDir);
+                                         static_cast<unsigned int>(bytes.size()), dir);
     else
         ok = loader.LoadASCIIFromString(&model, &err, &warn,
                                         reinterpret_cast<const char*>(bytes.data()),
-                                        static_cast<unsigned int>(bytes.size()), baseDir);
+                                        static_cast<unsigned int>(bytes.size()), dir);
     if (!ok) {
         while (!err.empty() && err.back() == '\n') err.pop_back();
         throwBadInput("glTF: " + (err.empty() ? std::string("cannot parse") : err));
@@ -414,6 +436,17 @@ gltf::PrimitiveData gltf::primitiveData(const tinygltf::Model& model, const tiny
 Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
               Warnings& warnings, std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material,
               GltfPolygons* polygons) {
+    return gltf::readFrom(bytes, binary, &baseDir, warnings, filesRead, material, polygons);
+}
+
+Mesh readGltfEmbedded(std::span<const uint8_t> bytes, bool binary, Warnings& warnings,
+                      std::optional<MeshMaterial>* material) {
+    return gltf::readFrom(bytes, binary, nullptr, warnings, nullptr, material, nullptr);
+}
+
+Mesh gltf::readFrom(std::span<const uint8_t> bytes, bool binary, const std::string* baseDir, Warnings& warnings,
+                    std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material,
+                    GltfPolygons* polygons) {
     ImageBytes images;
     gltf::Loaded loaded = gltf::load(bytes, binary, baseDir, warnings, filesRead, material ? &images : nullptr);
     const tinygltf::Model& model = loaded.model;

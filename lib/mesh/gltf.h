@@ -14,6 +14,7 @@
 #include "mesh/material.h"
 #include "mesh/mesh.h"
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -43,18 +44,34 @@ Mesh readGltf(std::span<const uint8_t> bytes, bool binary, const std::string& ba
               Warnings& warnings, std::vector<std::string>* filesRead = nullptr,
               std::optional<MeshMaterial>* material = nullptr, GltfPolygons* polygons = nullptr);
 
+// readGltf for untrusted bytes that must not reach the file system (a fuzzer, a service): no file
+// is read, so a buffer or image must be embedded (a GLB buffer or a data: URI); one named by any
+// other URI is refused.
+Mesh readGltfEmbedded(std::span<const uint8_t> bytes, bool binary, Warnings& warnings,
+                      std::optional<MeshMaterial>* material = nullptr);
+
 // A glTF's morph-target animation as control-point sets on readGltf's mesh (same topology, same
 // vertex order): the first animation's `weights` channels, sampled at their keyframes (fps 0) or
 // every 1/fps seconds from the first keyframe to the last, with the channel's interpolation
 // (STEP, LINEAR, CUBICSPLINE; glTF 2.0, 3.11). Vertices that readGltf welds (same position under
 // the default weights) take the first one's position; a frame in which they move apart is
-// counted in `unwelded`. Refuses a file without such an animation.
+// counted in `unwelded`. Refuses a file without such an animation, and one whose frames would be
+// more than `maxFrames` or whose positions would take more than `maxPositionBytes` (checked
+// before they are computed).
 struct GltfMorphFrames {
+    std::vector<glm::dvec3> base;                    // readGltf's positions (the default weights)
     std::vector<double> times;                       // seconds
     std::vector<std::vector<glm::dvec3>> positions;  // per frame, one per vertex of readGltf's mesh
     size_t unwelded = 0;                             // frames where welded vertices move apart
 };
+struct GltfMorphRequest {
+    double fps = 0; // 0: the keyframes
+    size_t maxFrames = 1'000'000;
+    uint64_t maxPositionBytes = UINT64_MAX;
+    std::vector<std::string>* filesRead = nullptr; // the external files read, as for readGltf
+    bool embeddedOnly = false; // read no file, as readGltfEmbedded
+};
 GltfMorphFrames readGltfMorphFrames(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
-                                    Warnings& warnings, double fps = 0);
+                                    Warnings& warnings, const GltfMorphRequest& request = {});
 
 } // namespace limn

@@ -97,10 +97,12 @@ std::vector<WeightsChannel> weightsChannels(const tinygltf::Model& model) {
 } // namespace
 
 GltfMorphFrames readGltfMorphFrames(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir,
-                                    Warnings& warnings, double fps) {
+                                    Warnings& warnings, const GltfMorphRequest& request) {
+    const double fps = request.fps;
     Warnings ignored; // readGltf's warnings are the same file's; report them once
-    const Mesh reference = readGltf(bytes, binary, baseDir, ignored);
-    const gltf::Loaded loaded = gltf::load(bytes, binary, baseDir, warnings, nullptr, nullptr);
+    const std::string* dir = request.embeddedOnly ? nullptr : &baseDir;
+    const Mesh reference = gltf::readFrom(bytes, binary, dir, ignored, request.filesRead, nullptr, nullptr);
+    const gltf::Loaded loaded = gltf::load(bytes, binary, dir, warnings, nullptr, nullptr);
     const tinygltf::Model& model = loaded.model;
     const std::vector<WeightsChannel> channels = weightsChannels(model);
 
@@ -112,9 +114,20 @@ GltfMorphFrames readGltfMorphFrames(std::span<const uint8_t> bytes, bool binary,
     } else {
         const double first = *keys.begin(), last = *keys.rbegin();
         const double count = std::floor((last - first) * fps + 1e-9) + 1;
-        if (!(count <= 1e6)) throwBadInput("glTF: the animation at that --fps is more than a million frames");
+        if (!(count <= double(request.maxFrames)))
+            throwBadInput("glTF: the animation at " + std::to_string(fps) + " frames per second is more than " +
+                          std::to_string(request.maxFrames) + " frames");
         for (double k = 0; k < count; ++k) out.times.push_back(first + k / fps);
     }
+    if (out.times.size() > request.maxFrames)
+        throwBadInput("glTF: the animation has " + std::to_string(out.times.size()) + " keyframes, more than " +
+                      std::to_string(request.maxFrames));
+    const uint64_t bytesNeeded = uint64_t(out.times.size()) * reference.positions.size() * sizeof(glm::dvec3);
+    if (bytesNeeded > request.maxPositionBytes)
+        throwBadInput("glTF: " + std::to_string(out.times.size()) + " frames of " +
+                      std::to_string(reference.positions.size()) + " vertices need " + std::to_string(bytesNeeded) +
+                      " bytes of positions, more than the " + std::to_string(request.maxPositionBytes) + " allowed");
+    out.base = reference.positions;
     // Default-weight position -> welded vertex, exactly as readGltf welded it.
     std::map<std::array<double, 3>, uint32_t> vertexAt;
     for (size_t v = 0; v < reference.positions.size(); ++v)

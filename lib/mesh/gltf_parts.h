@@ -6,6 +6,7 @@
 #pragma once
 
 #include "base/warnings.h"
+#include "mesh/gltf.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -14,6 +15,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -104,7 +106,11 @@ struct Loaded {
     std::vector<int> roots;
     std::vector<NodeInstance> instances;
 };
-Loaded load(std::span<const uint8_t> bytes, bool binary, const std::string& baseDir, Warnings& warnings,
+// `baseDir` nullptr: no file is read (readGltfEmbedded).
+Loaded load(std::span<const uint8_t> bytes, bool binary, const std::string* baseDir, Warnings& warnings,
             std::vector<std::string>* filesRead, std::map<int, std::vector<uint8_t>>* images);
+// readGltf, or with `baseDir` nullptr readGltfEmbedded.
+Mesh readFrom(std::span<const uint8_t> bytes, bool binary, const std::string* baseDir, Warnings& warnings,
+              std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material, GltfPolygons* polygons);
 
 } // namespace limn::gltf

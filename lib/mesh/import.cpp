@@ -99,6 +99,19 @@ Mesh loadOrImportMesh(const std::string& path, std::span<const uint8_t> bytes, W
     return importMesh(path, bytes, warnings, filesRead);
 }
 
+GltfMorphFrames importGltfMorphFrames(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
+                                      const GltfMorphRequest& request) {
+    try {
+        const MeshFormat format = importFormat(path, bytes);
+        if (format != MeshFormat::Gltf && format != MeshFormat::Glb)
+            throwBadInput("a morph-target animation is read from a .gltf or .glb file");
+        return readGltfMorphFrames(bytes, format == MeshFormat::Glb, directoryOf(path), warnings, request);
+    } catch (Error& e) {
+        e.setFile(path);
+        throw;
+    }
+}
+
 Mesh importMeshFile(const std::string& path, Warnings& warnings,
                     std::vector<std::string>* filesRead) {
     auto bytes = readInput(path);

@@ -39,6 +39,11 @@ MeshFormat importFormat(const std::string& path, std::span<const uint8_t> bytes)
 Mesh loadOrImportMesh(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
                       std::vector<std::string>* filesRead = nullptr);
 
+// A .gltf's or .glb's morph-target animation (readGltfMorphFrames), its buffers found next to
+// `path` as importMesh finds them. Errors carry the file name.
+GltfMorphFrames importGltfMorphFrames(const std::string& path, std::span<const uint8_t> bytes, Warnings& warnings,
+                                      const GltfMorphRequest& request = {});
+
 // Reads the file (or stdin) and imports it.
 Mesh importMeshFile(const std::string& path, Warnings& warnings,
                     std::vector<std::string>* filesRead = nullptr);

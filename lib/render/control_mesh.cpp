@@ -1,6 +1,7 @@
 #include "render/control_mesh.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <utility>
 
@@ -14,6 +15,20 @@ std::vector<uint32_t> ptexFaceBase(const Mesh& mesh) {
         next += mesh.faceSize(f) == 4 ? 1 : mesh.faceSize(f);
     }
     return base;
+}
+
+std::vector<uint32_t> textureWords(const FloatImage* img) {
+    if (!img) return {1, 1, 0xFFFFFFFFu};
+    std::vector<uint32_t> w{img->width, img->height};
+    for (size_t i = 0; i < size_t(img->width) * img->height; ++i) {
+        uint32_t c = 0;
+        for (uint32_t k = 0; k < 3; ++k) {
+            float v = img->values[i * img->channels + std::min(k, img->channels - 1)];
+            c |= uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)) << (8 * k);
+        }
+        w.push_back(c | 0xFF000000u);
+    }
+    return w;
 }
 
 ControlMeshDraw prepareControlMesh(const Mesh& mesh) {

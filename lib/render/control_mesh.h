@@ -4,6 +4,7 @@
 // face that is not a hole uses it).
 #pragma once
 
+#include "image/image_file.h"
 #include "mesh/mesh.h"
 #include "render/camera.h"
 
@@ -39,6 +40,10 @@ struct ControlMeshDraw {
 // Ptex face index of each face's first Ptex face: a quad has one Ptex face, an n-gon n of them
 // (OpenSubdiv's Far::PtexIndices numbering). Size F.
 std::vector<uint32_t> ptexFaceBase(const Mesh& mesh);
+
+// The colour texture as the fragment stages read it (shaders/texture_sample.glsl): width, height,
+// then sRGB RGBA8 texels, rows top to bottom; one white texel when there is none.
+std::vector<uint32_t> textureWords(const FloatImage* image);
 
 // The mesh must be valid (validateMesh).
 ControlMeshDraw prepareControlMesh(const Mesh& mesh);

@@ -18,7 +18,7 @@ uint64_t bytes(const std::vector<T>& v) {
 } // namespace
 
 struct ControlMeshPass::Gpu {
-    Gpu(gpu::Context& ctx, const ControlMeshDraw& d, gpu::TargetFormat target)
+    Gpu(gpu::Context& ctx, const ControlMeshDraw& d, const FloatImage* colour, gpu::TargetFormat target)
         : vertices(ctx, {"vertices", bytes(d.controlPoints)}),
           faceOffsets(ctx, {"face offsets", bytes(d.faceOffsets)}),
           faceVertices(ctx, {"face vertices", bytes(d.faceVertices)}),
@@ -26,13 +26,14 @@ struct ControlMeshPass::Gpu {
           corners(ctx, {"corners", bytes(d.corners)}), uvs(ctx, {"uvs", bytes(d.uvs)}),
           triangles(ctx, {"triangle indices", bytes(d.triangles), gpu::kIndex}),
           edges(ctx, {"edge indices", bytes(d.edges), gpu::kIndex}),
+          texture(gpu::uploadBufferNow(ctx, "colour texture", textureWords(colour))),
           faceNormalsPass(ctx, {"face normals", face_normals_comp_spv, 4, sizeof(VertexPush)}),
-          meshPipeline(ctx, {"mesh", mesh_vert_spv, mesh_frag_spv, 4, sizeof(DrawPush)}, target),
+          meshPipeline(ctx, {"mesh", mesh_vert_spv, mesh_frag_spv, 5, sizeof(DrawPush)}, target),
           wirePipeline(ctx, {"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
                              gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
                        target) {
         normalBindings = faceNormalsPass.bind({vertices, faceOffsets, faceVertices, faceNormals});
-        meshBindings = meshPipeline.bind({vertices, faceNormals, corners, uvs});
+        meshBindings = meshPipeline.bind({vertices, faceNormals, corners, uvs, texture});
         wireBindings = wirePipeline.bind({vertices});
         // Topology is uploaded once; positions every frame.
         gpu::uploadArrayNow<uint32_t>(ctx, faceOffsets, d.faceOffsets);
@@ -43,14 +44,15 @@ struct ControlMeshPass::Gpu {
         gpu::uploadArrayNow<uint32_t>(ctx, edges, d.edges);
     }
 
-    gpu::Buffer vertices, faceOffsets, faceVertices, faceNormals, corners, uvs, triangles, edges;
+    gpu::Buffer vertices, faceOffsets, faceVertices, faceNormals, corners, uvs, triangles, edges, texture;
     gpu::ComputePipeline faceNormalsPass;
     gpu::GraphicsPipeline meshPipeline, wirePipeline;
     gpu::BindGroup normalBindings, meshBindings, wireBindings;
 };
 
-ControlMeshPass::ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, gpu::TargetFormat target)
-    : ctx_(ctx), draw_(std::move(draw)), gpu_(std::make_unique<Gpu>(ctx, draw_, target)) {}
+ControlMeshPass::ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, const FloatImage* texture,
+                                 gpu::TargetFormat target)
+    : ctx_(ctx), draw_(std::move(draw)), gpu_(std::make_unique<Gpu>(ctx, draw_, texture, target)) {}
 
 ControlMeshPass::~ControlMeshPass() = default;
 
@@ -100,7 +102,7 @@ uint64_t ControlMeshPass::bufferBytes() const {
     auto& g = *gpu_;
     uint64_t sum = 0;
     for (const gpu::Buffer* b : {&g.vertices, &g.faceOffsets, &g.faceVertices, &g.faceNormals,
-                                 &g.corners, &g.uvs, &g.triangles, &g.edges})
+                                 &g.corners, &g.uvs, &g.triangles, &g.edges, &g.texture})
         sum += b->size();
     return sum;
 }

@@ -1,5 +1,5 @@
 // The control mesh's GPU frame: a face-normal compute pass, then fan triangles drawn flat (with
-// wire edges). Used for containers without subdivision tables.
+// wire edges), lit or textured. Used for containers without subdivision tables.
 #pragma once
 
 #include "gpu/context.h"
@@ -12,7 +12,9 @@ namespace limn::render {
 
 class ControlMeshPass : public FramePass {
 public:
-    ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, gpu::TargetFormat target = {});
+    // `texture` (optional): the colour texture drawn with Shade::Texture.
+    ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, const FloatImage* texture = nullptr,
+                    gpu::TargetFormat target = {});
     ~ControlMeshPass() override;
 
     const gpu::Buffer& vertexBuffer() const override;

@@ -4,17 +4,23 @@
 
 namespace limn::render {
 
-namespace {
-
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
-
-} // namespace
-
 OutputFile::Kind meshFileKind(MeshFormat format, bool ascii) {
     return ascii || format == MeshFormat::Obj || format == MeshFormat::Gltf ? OutputFile::Kind::Text
                                                                             : OutputFile::Kind::Binary;
+}
+
+uint64_t estimateFrameBytes(const OutputPlan& plan, const FrameSize& size) {
+    uint64_t bytes = 0;
+    if (plan.writeImage) {
+        const uint64_t pixels = uint64_t(size.width) * size.height;
+        bytes += plan.imageFormat == ImageFormat::Exr ? pixels * 5 * sizeof(float)
+                                                      : pixels * (size.alpha ? 4 : 3) * uint64_t(size.bitDepth / 8);
+    }
+    // Per triangle three 4-byte indices, and half a vertex of 24 bytes (a closed triangle mesh
+    // has about half as many vertices as triangles; splits at UV seams and creases add more):
+    // binary PLY's size at the least; the text formats take more.
+    if (plan.meshPattern || !plan.mesh.empty()) bytes += size.meshTriangles * (3 * 4 + 24 / 2);
+    return bytes;
 }
 
 OutputFile::Kind OutputPlan::meshFileKind() const {
@@ -37,17 +43,17 @@ OutputPlan planOutputs(const OutputRequest& request) {
     plan.meshAscii = request.meshAscii;
     if (request.sequence) {
         if (plan.image.empty() || isStdio(plan.image))
-            usage("a sequence writes one image per frame: give -o NAME_%04d.png");
+            throwUsage("a sequence writes one image per frame: give -o NAME_%04d.png");
         plan.imagePattern = parseFramePattern("-o", plan.image); // exactly one frame number
         if (!plan.mesh.empty()) plan.meshPattern = parseFramePattern("--mesh-out", plan.mesh);
     } else {
         for (const std::string* path : {&plan.image, &plan.mesh})
             if (hasFrameNumber(*path))
-                usage("'" + *path + "' numbers frames, but there is one image; give --turntable, "
+                throwUsage("'" + *path + "' numbers frames, but there is one image; give --turntable, "
                       "--cameras or --frames (or write %% for a literal %)");
     }
     if (request.bench && isStdio(plan.image) && !plan.image.empty())
-        usage("--bench prints JSON on standard output; write the image with -o FILE");
+        throwUsage("--bench prints JSON on standard output; write the image with -o FILE");
     if (!plan.mesh.empty()) {
         plan.meshFormat = meshFormatFromPath(plan.mesh);
         if (!plan.meshFormat)
@@ -55,16 +61,16 @@ OutputPlan planOutputs(const OutputRequest& request) {
                         std::string("--mesh-out: unknown extension; limn-render writes ") + kMeshFormats,
                         plan.mesh);
         if (plan.meshAscii && *plan.meshFormat != MeshFormat::Ply)
-            usage("--mesh-ascii applies to a .ply --mesh-out, not " + plan.mesh);
+            throwUsage("--mesh-ascii applies to a .ply --mesh-out, not " + plan.mesh);
     }
     if (plan.meshAscii && plan.mesh.empty())
-        usage("--mesh-ascii applies to a .ply --mesh-out; give --mesh-out FILE.ply");
+        throwUsage("--mesh-ascii applies to a .ply --mesh-out; give --mesh-out FILE.ply");
     // The image goes to standard output by default, unless --bench or --mesh-out is the
     // output asked for.
     plan.writeImage = !plan.image.empty() || (!request.bench && plan.mesh.empty());
     if (isStdio(plan.mesh) && !plan.mesh.empty() &&
         (request.bench || (plan.writeImage && isStdio(plan.image))))
-        usage("--mesh-out - and the image (or --bench JSON) cannot share standard output");
+        throwUsage("--mesh-out - and the image (or --bench JSON) cannot share standard output");
     if (plan.image.empty() && plan.writeImage) plan.image = "-";
     // The image format comes from the name, before any work; never silently another one.
     if (plan.writeImage) {
@@ -78,7 +84,7 @@ OutputPlan planOutputs(const OutputRequest& request) {
         plan.imageFormat = *f;
     }
     if (request.bitDepthGiven && (!plan.writeImage || plan.imageFormat == ImageFormat::Exr))
-        usage(plan.writeImage ? "--bit-depth sets PNG samples; an .exr is always 32-bit float"
+        throwUsage(plan.writeImage ? "--bit-depth sets PNG samples; an .exr is always 32-bit float"
                               : "--bit-depth applies to the image, and none is written");
     return plan;
 }

@@ -51,6 +51,21 @@ struct OutputPlan {
 // --mesh-out, --bit-depth without a PNG.
 OutputPlan planOutputs(const OutputRequest& request);
 
+// A sequence's size on disk, estimated before any work so that a run that cannot fit is refused
+// before it writes anything (--max-output). An image counts uncompressed: width x height x
+// channels x bytes per sample (PNG: RGB, or RGBA with `alpha`, 1 or 2 bytes; EXR: RGBA and Z as
+// 32-bit floats); PNG's compression makes most frames smaller, but what a frame compresses to is
+// not known before it is drawn. A mesh counts the least its drawn triangles take (indices, and
+// vertices of six 32-bit floats), from the control mesh's triangles (a subdivision surface draws
+// more): a lower bound.
+struct FrameSize {
+    uint32_t width = 0, height = 0;
+    bool alpha = false;
+    int bitDepth = 8;
+    uint64_t meshTriangles = 0; // the control mesh's triangles; 0: not known yet
+};
+uint64_t estimateFrameBytes(const OutputPlan& plan, const FrameSize& size);
+
 // A --mesh-out file's kind, as OutputPlan::meshFileKind.
 OutputFile::Kind meshFileKind(MeshFormat format, bool ascii);
 

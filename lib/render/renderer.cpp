@@ -178,6 +178,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         draw.limitChunkBytes = settings.limitChunkBytes;
         AdaptiveOptions adaptive;
         adaptive.edgePixels = static_cast<float>(settings.edgePixels);
+        adaptive.maxError = static_cast<float>(settings.maxError);
         adaptive.tess = settings.tessCap;
         // Displacement moves the surface off its control points' hull: no culling then (it
         // would have to widen every test by the largest displacement).
@@ -199,11 +200,14 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         {
             // Per-frame buffers: every element at its smallest (whole-surface --mesh-out), plus
             // a budget for the view: about 2 triangles per P x P pixels seen, with room for back
-            // faces, off-screen parts and rounding (x32), at least 2^20.
+            // faces, off-screen parts and rounding (x32), at least 2^20. With the error
+            // estimate, P is at most 4 (segments within 0.25 px of a curve are shorter only
+            // where its radius is under 8 px).
             uint64_t minimum = 0;
             for (const auto& e : draw.pieces.elements)
                 for (int k = 0; k < 4; ++k) minimum += e.sideCount[k];
-            const double p = std::max(settings.edgePixels, 0.25);
+            const double p =
+                std::max(settings.maxError > 0 ? std::min(settings.edgePixels, 4.0) : settings.edgePixels, 0.25);
             const uint64_t view = std::max<uint64_t>(
                 uint64_t(32.0 * drawWidth_ * drawHeight_ / (p * p)), uint64_t(1) << 20);
             adaptive.maxVertices = minimum + draw.pieces.elements.size() + view;
@@ -238,16 +242,13 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
             settings.displacementMap ? &displacement : nullptr, settings.texture,
             viewAdaptive_ ? &adaptive : nullptr, targetFormat_);
     } else {
-        if (settings.texture)
-            throw Error(ErrorKind::BadInput,
-                        "--texture is drawn on the subdivision surface; run limn-tables first");
         if (settings.wire == Wire::Triangles)
             throw Error(ErrorKind::Usage,
                         "--wire-triangles draws the edges of a subdivision surface's triangles; this "
                         "file has no tables (run limn-tables first), or use --wire for the mesh edges");
         ControlMeshDraw draw = prepareControlMesh(mesh);
         bounds = draw.bounds;
-        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw), targetFormat_);
+        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw), settings.texture, targetFormat_);
     }
     finishSetup(mesh, bounds);
 }

@@ -63,6 +63,10 @@ struct RenderSettings {
     // of 2^(N-l) segments per level-l patch side. (limn-render's default is 4; the library's 0
     // keeps callers that compare with fixed references unchanged.) Wire::Outlines uses the fixed grids.
     double edgePixels = 0;
+    // ... and the on-screen distance in pixels between the drawn chords and the surface, at
+    // most (the rates' error estimate, AdaptiveOptions::maxError); 0: segments of about
+    // edgePixels. limn-render's default is 0.1 with edgePixels 32.
+    double maxError = 0;
     bool cull = true;                     // view-adaptive: skip elements outside the frustum
     // ... and those between the image's sample positions (they draw nothing; not with wires)
     bool sampleCull = true;

@@ -1,35 +1,50 @@
 #include "render/sequence_plan.h"
 
+#include "base/cli.h"
 #include "base/error.h"
 
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
 namespace limn::render {
-
-namespace {
-
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
-
-} // namespace
 
 bool planSequence(const SequenceRequest& request) {
     const int sequenceOptions = (request.turntable > 0) + request.cameras + request.frames;
     const bool sequence = sequenceOptions > 0;
-    if (sequenceOptions > 1) usage("--turntable, --cameras and --frames exclude each other");
+    if (sequenceOptions > 1) throwUsage("--turntable, --cameras and --frames exclude each other");
     if (request.turntable && request.eye)
-        usage("--turntable turns the --view camera around the up axis; leave out --eye");
+        throwUsage("--turntable turns the --view camera around the up axis; leave out --eye");
     if (request.cameras && (request.eye || request.view))
-        usage("--cameras gives every frame's camera; leave out --view and --eye");
-    if (sequence && request.bench) usage("--bench measures one frame; leave out --turntable, --cameras and --frames");
+        throwUsage("--cameras gives every frame's camera; leave out --view and --eye");
+    if (sequence && request.bench) throwUsage("--bench measures one frame; leave out --turntable, --cameras and --frames");
+    if (request.fps && !request.animation)
+        throwUsage("--fps samples a glTF's morph-target animation; give --frames FILE.gltf (or .glb)");
     if (request.part && !sequence)
-        usage("--shard and --frame-range render part of a sequence; give --turntable, --cameras or --frames");
+        throwUsage("--shard and --frame-range render part of a sequence; give --turntable, --cameras or --frames");
     return sequence;
 }
 
+bool isAnimationFile(const std::string& frames) {
+    if (hasFrameNumber(frames)) return false;
+    std::string ext = std::filesystem::path(frames).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".gltf" || ext == ".glb";
+}
+
+double parseFps(const std::string& option, const std::string& text) {
+    const std::vector<double> v = cli::parseNumberList(option, text, 1);
+    if (!(v[0] > 0 && v[0] <= kMaxFps))
+        throwUsage(option + ": '" + text + "' is not a number of frames per second above 0 and at most " +
+              std::to_string(int(kMaxFps)));
+    return v[0];
+}
+
 std::vector<uint64_t> sequenceFrameNumbers(const std::vector<ViewSpec>& views,
-                                           const std::vector<FrameFile>& frameFiles) {
+                                           const std::vector<FrameFile>& frameFiles, size_t animationFrames) {
     std::vector<uint64_t> numbers;
     for (size_t k = 0; k < views.size(); ++k) numbers.push_back(k);
+    for (size_t k = 0; k < animationFrames; ++k) numbers.push_back(k);
     for (const auto& f : frameFiles) numbers.push_back(f.number);
     return numbers;
 }

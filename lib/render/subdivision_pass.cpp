@@ -1,6 +1,7 @@
 #include "render/subdivision_pass.h"
 
 #include "base/error.h"
+#include "render/control_mesh.h"
 #include "render_shaders.h"
 
 #include <glm/vector_relational.hpp>
@@ -49,22 +50,6 @@ std::vector<uint32_t> mapWords(const FloatImage& img) {
         uint32_t bits;
         std::memcpy(&bits, &img.values[i * img.channels], 4);
         w.push_back(bits);
-    }
-    return w;
-}
-
-// The colour texture for surface.frag: width, height, then sRGB RGBA8 texels (one white texel
-// when there is none).
-std::vector<uint32_t> textureWords(const FloatImage* img) {
-    if (!img) return {1, 1, 0xFFFFFFFFu};
-    std::vector<uint32_t> w{img->width, img->height};
-    for (size_t i = 0; i < size_t(img->width) * img->height; ++i) {
-        uint32_t c = 0;
-        for (uint32_t k = 0; k < 3; ++k) {
-            float v = img->values[i * img->channels + std::min(k, img->channels - 1)];
-            c |= uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)) << (8 * k);
-        }
-        w.push_back(c | 0xFF000000u);
     }
     return w;
 }

@@ -1,5 +1,7 @@
 #include "subdiv/tables_chunk.h"
 
+#include "subdiv/tables_stream.h"
+
 #include "base/bytes.h"
 #include "base/cli.h"
 #include "base/error.h"
@@ -7,57 +9,15 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace limn {
 
 namespace {
-
-constexpr float kMaxStencilWeight = 1e6f;
-
-void writeTable(ByteWriter& w, const StencilTable& t, bool weights) {
-    w.write<uint32_t>(static_cast<uint32_t>(t.rows()));
-    w.write<uint32_t>(static_cast<uint32_t>(t.indices.size()));
-    w.write<uint32_t>(weights ? 1u : 0u);
-    w.write<uint32_t>(0);
-    w.writeArray(t.start);
-    w.writeArray(t.indices);
-    if (weights) w.writeArray(t.weights);
-}
-
-// Reads a stencil table with `rows` rows whose sources must lie in [lo0, hi0) or [lo1, hi1).
-StencilTable readTable(ByteReader& r, const std::string& what, uint32_t rows, bool weights,
-                       uint32_t lo0, uint32_t hi0, uint32_t lo1 = 0, uint32_t hi1 = 0) {
-    StencilTable t;
-    uint32_t n = r.read<uint32_t>(), entries = r.read<uint32_t>(), hasWeights = r.read<uint32_t>();
-    if (r.read<uint32_t>() != 0) r.fail(what + ": reserved field is not zero");
-    if (n != rows)
-        r.fail(what + ": " + std::to_string(n) + " rows, expected " + std::to_string(rows));
-    if (hasWeights != (weights ? 1u : 0u)) r.fail(what + ": weight flag is wrong");
-    t.start = r.readArray<uint32_t>(uint64_t(rows) + 1, (what + " starts").c_str());
-    t.indices = r.readArray<uint32_t>(entries, (what + " indices").c_str());
-    if (weights) t.weights = r.readArray<float>(entries, (what + " weights").c_str());
-    if (t.start[0] != 0 || t.start[rows] != entries)
-        r.fail(what + ": row starts do not span the " + std::to_string(entries) + " entries");
-    for (uint32_t i = 0; i < rows; ++i)
-        if (t.start[i + 1] < t.start[i] || t.start[i + 1] - t.start[i] > (1u << 16))
-            r.fail(what + ": row " + std::to_string(i) + " has a bad length");
-    for (uint32_t i = 0; i < entries; ++i) {
-        uint32_t x = t.indices[i];
-        if (!((x >= lo0 && x < hi0) || (x >= lo1 && x < hi1)))
-            r.fail(what + ": entry " + std::to_string(i) + " reads vertex " + std::to_string(x) +
-                   " outside the levels it may read");
-        // Catmull-Clark's masks (refinement and limit, any valence) have weights of order 1; a
-        // finite 3e38 can only come from a damaged file, and the GPU's float sums would be NaN.
-        if (weights && !(std::abs(t.weights[i]) <= kMaxStencilWeight))
-            r.fail(what + ": entry " + std::to_string(i) + " has weight " + cli::shortNumber(t.weights[i]) +
-                   "; a stencil weight must be finite and within +-1e6");
-    }
-    for (uint32_t i = 0; !weights && i < rows; ++i)
-        if (t.start[i + 1] == t.start[i])
-            r.fail(what + ": face point " + std::to_string(i) + " is empty");
-    return t;
-}
 
 bool isDyadic(float x, uint32_t maxDepth) {
     float scaled = x * float(1u << maxDepth);
@@ -72,7 +32,10 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
     return n;
 }
 
-Chunk encodeTablesChunk(const Tables& t) {
+Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
+    if (version != 3 && version != kTablesChunkVersion)
+        throw std::logic_error("TBLS: only versions 3 and 4 are written");
+    const bool compact = version >= 4;
     ByteWriter w;
     // The size of the layout below, reserved so a large table is written in one pass.
     auto tableBytes = [](const StencilTable& table, bool weights) {
@@ -106,19 +69,10 @@ Chunk encodeTablesChunk(const Tables& t) {
                            L.irregularFaces})
             w.write<uint32_t>(x);
     for (uint32_t l = 0; l + 1 < t.levels.size(); ++l) {
-        writeTable(w, t.facePoints[l], false);
-        writeTable(w, t.edgePoints[l], true);
-        writeTable(w, t.vertexPoints[l], true);
+        writeStencilTable(w, t.facePoints[l], false, compact);
+        writeStencilTable(w, t.edgePoints[l], true, compact);
+        writeStencilTable(w, t.vertexPoints[l], true, compact);
     }
-    auto writePatch = [&](const Patch& p) {
-        w.writeArray(std::span<const uint32_t>(p.cv, 16));
-        w.write<uint32_t>(p.ptex);
-        w.write<float>(p.u0);
-        w.write<float>(p.v0);
-        w.write<float>(p.size);
-        w.write<uint32_t>(uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16);
-        w.write<float>(p.sharpness);
-    };
     auto writeFace = [&](const IrregularFace& q) {
         w.writeArray(std::span<const uint32_t>(q.corner, 4));
         w.write<uint32_t>(q.ptex);
@@ -126,32 +80,72 @@ Chunk encodeTablesChunk(const Tables& t) {
         w.write<float>(q.v0);
         w.write<float>(q.size);
     };
-    for (const auto& p : t.patches) writePatch(p);
+    auto writeRecords = [&](const std::vector<Patch>& patches) {
+        if (compact) return writePatchStream(w, patches);
+        for (const Patch& p : patches) {
+            w.writeArray(std::span<const uint32_t>(p.cv, 16));
+            w.write<uint32_t>(p.ptex);
+            w.write<float>(p.u0);
+            w.write<float>(p.v0);
+            w.write<float>(p.size);
+            w.write<uint32_t>(uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16);
+            w.write<float>(p.sharpness);
+        }
+    };
+    writeRecords(t.patches);
     for (const auto& q : t.irregular) writeFace(q);
     // Version 3: the irregular faces' quadtrees (docs/irregular.md).
     w.write<uint32_t>(static_cast<uint32_t>(t.subPatches.size()));
-    for (const auto& p : t.subPatches) writePatch(p);
+    writeRecords(t.subPatches);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularNodes.size()));
     for (const auto& n : t.irregularNodes) w.writeArray(std::span<const uint32_t>(n.data(), 4));
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularLeaves.size()));
     for (const auto& q : t.irregularLeaves) writeFace(q);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularBases.size()));
     for (const auto& b : t.irregularBases) {
+        // Version 4: each of the k·48 sub-patch control points names its row of weights, and
+        // equal rows are stored once (the three sub-patches of a band share half their points).
+        if (!compact) {
+            w.write<uint32_t>(b.valence);
+            w.write<uint32_t>(b.levels);
+            w.writeArray(b.weights);
+            continue;
+        }
+        const size_t M = b.supportSize(), count = size_t(b.levels) * 48;
+        std::map<std::vector<uint32_t>, uint16_t> rowOf; // a row's weight bits -> its number
+        std::vector<uint16_t> pick(count);
+        std::vector<float> rows;
+        for (size_t j = 0; j < count; ++j) {
+            std::vector<uint32_t> bits(M);
+            for (size_t i = 0; i < M; ++i) bits[i] = std::bit_cast<uint32_t>(b.weights[j * M + i]);
+            auto [it, added] = rowOf.try_emplace(std::move(bits), static_cast<uint16_t>(rowOf.size()));
+            if (added) rows.insert(rows.end(), b.weights.begin() + long(j * M), b.weights.begin() + long((j + 1) * M));
+            pick[j] = it->second;
+        }
         w.write<uint32_t>(b.valence);
         w.write<uint32_t>(b.levels);
-        w.writeArray(b.weights);
+        w.write<uint32_t>(static_cast<uint32_t>(rowOf.size()));
+        w.writeArray(pick);
+        w.writeArray(rows);
     }
     w.write<uint32_t>(static_cast<uint32_t>(t.smoothIrregular.size()));
     for (const auto& f : t.smoothIrregular)
         for (uint32_t x : {f.basis, f.corner, f.first}) w.write<uint32_t>(x);
     w.write<uint32_t>(static_cast<uint32_t>(t.smoothPoints.size()));
-    w.writeArray(t.smoothPoints);
-    writeTable(w, t.limitPosition, true);
-    writeTable(w, t.limitTangent1, true);
-    writeTable(w, t.limitTangent2, true);
+    if (!compact) w.writeArray(t.smoothPoints);
+    std::vector<uint8_t> points; // version 4: differences from the previous point
+    uint32_t previous = 0;
+    for (uint32_t v : t.smoothPoints) {
+        writeVarint(points, zigzag(int64_t(v) - previous));
+        previous = v;
+    }
+    if (compact) writeStream(w, points);
+    writeStencilTable(w, t.limitPosition, true, compact);
+    writeStencilTable(w, t.limitTangent1, true, compact);
+    writeStencilTable(w, t.limitTangent2, true, compact);
     w.writeArray(t.limitVertex);
     for (uint8_t e : t.limitExact) w.write<uint32_t>(e ? 0u : 1u); // bit 0: approximate
-    return {kTablesChunk, kTablesChunkVersion, w.take()};
+    return {kTablesChunk, version, w.take()};
 }
 
 Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
@@ -162,6 +156,7 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
                       std::to_string(kTablesChunkVersion) + ")" +
                       (chunk.version ? "; upgrade limn" : ""));
     const uint32_t patchBytes = chunk.version >= 2 ? 88 : 84;
+    const bool compact = chunk.version >= 4; // compact stencil tables and bases
     ByteReader r(chunk.payload, "chunk TBLS");
     Tables t;
     t.depth = r.read<uint32_t>();
@@ -213,10 +208,10 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         std::string lv = "level " + std::to_string(l);
         uint32_t parentEnd = P.first + P.count(), faceEnd = L.first + L.facePoints;
         t.facePoints.push_back(
-            readTable(r, lv + " face points", L.facePoints, false, P.first, parentEnd));
-        t.edgePoints.push_back(readTable(r, lv + " edge points", L.edgePoints, true, P.first,
+            readStencilTable(r, compact, lv + " face points", L.facePoints, false, P.first, parentEnd));
+        t.edgePoints.push_back(readStencilTable(r, compact, lv + " edge points", L.edgePoints, true, P.first,
                                          parentEnd, L.first, faceEnd));
-        t.vertexPoints.push_back(readTable(r, lv + " vertex points", L.vertexPoints, true, P.first,
+        t.vertexPoints.push_back(readStencilTable(r, compact, lv + " vertex points", L.vertexPoints, true, P.first,
                                            parentEnd, L.first, faceEnd));
     }
     const uint32_t ptexCount = mesh ? ptexFaceCount(*mesh) : 0xFFFFFFFFu;
@@ -242,21 +237,45 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
             r.fail(what + " has a domain that is not a cell of its ptex face's quadtree");
         squares.push_back({ptex, W, U0, V0});
     };
-    if (patches > r.remaining() / patchBytes)
-        r.fail("patch count " + std::to_string(patches) + " is too large");
+    // Version 4's records come from a stream (writePatches); earlier ones are plain.
+    StreamReader* in = nullptr;
+    uint32_t lastCorner = 0, lastPtex = 0;
     auto readPatch = [&](Patch& p, const std::string& what, bool drawn) {
-        for (uint32_t& cv : p.cv) cv = r.read<uint32_t>();
-        p.ptex = r.read<uint32_t>();
-        p.u0 = r.read<float>();
-        p.v0 = r.read<float>();
-        p.size = r.read<float>();
-        uint32_t packed = r.read<uint32_t>();
+        uint32_t packed = 0;
+        if (in) {
+            p.cv[5] = lastCorner = in->after(lastCorner, "a control point");
+            for (int i = 0; i < 16; ++i) {
+                if (i == 5) continue;
+                const uint64_t z = in->varint();
+                const int64_t x = z == 0 ? 0 : int64_t(p.cv[5]) + unzigzag(z - 1);
+                if (x < 0 || x > int64_t(0xFFFFFFFFu)) in->fail(what + ": a control point out of range");
+                p.cv[i] = static_cast<uint32_t>(x);
+            }
+            p.ptex = lastPtex = in->after(lastPtex, "a ptex face");
+            float* domain[3] = {&p.u0, &p.v0, &p.size};
+            for (float* x : domain) {
+                const uint64_t u = in->varint();
+                if (u > 65536) in->fail(what + ": a domain outside its ptex face");
+                *x = static_cast<float>(double(u) / 65536.0);
+            }
+            const uint64_t word = in->varint();
+            if (word > 0xFFFFFFu) in->fail(what + ": bad level or boundary mask");
+            packed = static_cast<uint32_t>(word);
+            p.sharpness = (packed >> 16) & 0xFF ? in->rawFloat() : 0.0f;
+        } else {
+            for (uint32_t& cv : p.cv) cv = r.read<uint32_t>();
+            p.ptex = r.read<uint32_t>();
+            p.u0 = r.read<float>();
+            p.v0 = r.read<float>();
+            p.size = r.read<float>();
+            packed = r.read<uint32_t>();
+        }
         p.level = static_cast<uint8_t>(packed & 0xFF);
         p.boundary = static_cast<uint8_t>((packed >> 8) & 0xFF);
         p.crease = static_cast<uint8_t>((packed >> 16) & 0xFF);
         if ((packed >> 24) != 0 || p.boundary > 15 || (drawn ? p.level > t.depth : p.level <= t.depth || p.level > D))
             r.fail(what + ": bad level or boundary mask");
-        if (chunk.version >= 2) p.sharpness = r.read<float>();
+        if (chunk.version >= 2 && !in) p.sharpness = r.read<float>();
         // A single-crease patch: one crease edge, a finite sharpness > 0, no boundary.
         const bool oneBit = p.crease != 0 && (p.crease & (p.crease - 1)) == 0 && p.crease <= 8;
         if (p.crease ? !(oneBit && p.boundary == 0 && p.sharpness > 0 &&
@@ -269,8 +288,23 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
                 r.fail(what + " has a control point outside its level");
         checkDomain(p.ptex, p.u0, p.v0, p.size, what, drawn);
     };
-    t.patches.resize(patches);
-    for (uint32_t i = 0; i < patches; ++i) readPatch(t.patches[i], "patch " + std::to_string(i), true);
+    // At least 20 bytes a record in a stream (16 control points, ptex, domain, packed word).
+    auto readPatches = [&](std::vector<Patch>& out, uint32_t count, const std::string& what, bool drawn) {
+        std::optional<StreamReader> stream;
+        if (compact) {
+            stream.emplace(r, what + "es");
+            if (count > stream->size() / 20) r.fail(what + " count " + std::to_string(count) + " is too large");
+            in = &*stream;
+            lastCorner = lastPtex = 0;
+        } else if (count > r.remaining() / patchBytes) {
+            r.fail(what + " count " + std::to_string(count) + " is too large");
+        }
+        out.resize(count);
+        for (uint32_t i = 0; i < count; ++i) readPatch(out[i], what + " " + std::to_string(i), drawn);
+        if (stream) stream->finish();
+        in = nullptr;
+    };
+    readPatches(t.patches, patches, "patch", true);
     auto readFace = [&](IrregularFace& q, const std::string& what, bool drawn) {
         for (uint32_t& c : q.corner) {
             c = r.read<uint32_t>();
@@ -287,9 +321,7 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     for (uint32_t i = 0; i < irregular; ++i) readFace(t.irregular[i], "irregular face " + std::to_string(i), true);
     if (chunk.version >= 3) {
         const uint32_t subs = r.read<uint32_t>();
-        if (subs > r.remaining() / patchBytes) r.fail("sub-patch count " + std::to_string(subs) + " is too large");
-        t.subPatches.resize(subs);
-        for (uint32_t i = 0; i < subs; ++i) readPatch(t.subPatches[i], "sub-patch " + std::to_string(i), false);
+        readPatches(t.subPatches, subs, "sub-patch", false);
         const uint32_t nodes = r.read<uint32_t>();
         if (nodes > r.remaining() / 16) r.fail("irregular node count is too large");
         if (nodes && nodes < irregular) r.fail("an irregular face has no quadtree");
@@ -317,8 +349,21 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
             if (basis.valence < 3 || basis.valence > kMaxStencilValence || basis.levels < 1 ||
                 basis.levels > uint32_t(kMaxDepth))
                 r.fail("irregular basis " + std::to_string(i) + " has a bad valence or level count");
-            basis.weights = r.readArray<float>(uint64_t(basis.levels) * 48 * basis.supportSize(),
-                                               "irregular basis weights");
+            const uint64_t M = basis.supportSize(), count = uint64_t(basis.levels) * 48;
+            if (compact) {
+                const uint32_t distinct = r.read<uint32_t>();
+                if (distinct == 0 || distinct > count)
+                    r.fail("irregular basis " + std::to_string(i) + " has a bad row count");
+                const std::vector<uint16_t> pick = r.readArray<uint16_t>(count, "irregular basis rows");
+                const std::vector<float> rows = r.readArray<float>(distinct * M, "irregular basis weights");
+                basis.weights.resize(count * M);
+                for (uint64_t j = 0; j < count; ++j) {
+                    if (pick[j] >= distinct) r.fail("irregular basis " + std::to_string(i) + " names a missing row");
+                    std::copy_n(rows.begin() + long(pick[j] * M), M, basis.weights.begin() + long(j * M));
+                }
+            } else {
+                basis.weights = r.readArray<float>(count * M, "irregular basis weights");
+            }
             for (float x : basis.weights)
                 if (!(std::abs(x) <= kMaxStencilWeight))
                     r.fail("irregular basis " + std::to_string(i) + " has a bad weight");
@@ -332,7 +377,16 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
             t.smoothIrregular.push_back(f);
         }
         const uint32_t points = r.read<uint32_t>();
-        t.smoothPoints = r.readArray<uint32_t>(points, "smooth irregular points");
+        if (compact) {
+            StreamReader pts(r, "smooth irregular points");
+            if (points > pts.size()) pts.fail("count " + std::to_string(points) + " is too large");
+            t.smoothPoints.reserve(points);
+            for (uint32_t i = 0, previous = 0; i < points; ++i)
+                t.smoothPoints.push_back(previous = pts.after(previous, "a point"));
+            pts.finish();
+        } else {
+            t.smoothPoints = r.readArray<uint32_t>(points, "smooth irregular points");
+        }
         const LevelInfo& LN = t.levels[t.depth];
         for (uint32_t v : t.smoothPoints)
             if (v < LN.first || v >= LN.first + LN.count()) r.fail("a smooth irregular point is not at the last level");
@@ -381,9 +435,9 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     // Limit points read level N (the irregular faces' corners) or level D (the leaves').
     const LevelInfo &LN = t.levels[t.depth], &LD = t.levels[D];
     uint32_t lo = LN.first, hi = LN.first + LN.count(), lo1 = LD.first, hi1 = LD.first + LD.count();
-    t.limitPosition = readTable(r, "limit positions", limits, true, lo, hi, lo1, hi1);
-    t.limitTangent1 = readTable(r, "limit tangents 1", limits, true, lo, hi, lo1, hi1);
-    t.limitTangent2 = readTable(r, "limit tangents 2", limits, true, lo, hi, lo1, hi1);
+    t.limitPosition = readStencilTable(r, compact, "limit positions", limits, true, lo, hi, lo1, hi1);
+    t.limitTangent1 = readStencilTable(r, compact, "limit tangents 1", limits, true, lo, hi, lo1, hi1);
+    t.limitTangent2 = readStencilTable(r, compact, "limit tangents 2", limits, true, lo, hi, lo1, hi1);
     t.limitVertex = r.readArray<uint32_t>(limits, "limit vertices");
     for (uint32_t v : t.limitVertex)
         if (!((v >= lo && v < hi) || (v >= lo1 && v < hi1)))

@@ -11,9 +11,12 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // Version 2 adds single-crease patches (a crease edge and a sharpness per patch); version 1 is
 // still read (its patches have none). Version 3 adds the irregular faces' quadtrees: levels
 // beyond the depth, sub-patches, nodes and leaves (docs/irregular.md); older ones have none.
-inline constexpr uint32_t kTablesChunkVersion = 3;
+// Version 4 stores the same tables compactly: stencil tables as palette indices and varint
+// differences, per-valence bases with each distinct row of weights once (formats/limn.md).
+inline constexpr uint32_t kTablesChunkVersion = 4;
 
-Chunk encodeTablesChunk(const Tables& tables);
+// Writes the current version; 3 (the plain layout) for tests and fuzz seeds of older files.
+Chunk encodeTablesChunk(const Tables& tables, uint32_t version = kTablesChunkVersion);
 
 // Decodes and validates every count and index. With `mesh`, also checks that the tables were
 // built from this mesh's topology (hash of faces, tags and options) and that ptex ids exist.

@@ -53,7 +53,7 @@ TEST(Messages, SurfaceControlWithSubdivisionOptionsSaysWhy) {
                          (f.dir / "t.png").string()})
                   .exitCode,
               0);
-    auto r = test::run({bin("limn-render"), f.d2, "--texture", (f.dir / "t.png").string(),
+    auto r = test::run({bin("limn-render"), f.d2, "--displace", (f.dir / "t.png").string(),
                         "--surface", "control", "-o", (f.dir / "o.png").string()});
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_EQ(r.err.find("run limn-tables first"), std::string::npos) << r.err;

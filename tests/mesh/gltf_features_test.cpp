@@ -218,7 +218,7 @@ TEST(GltfFeatures, MorphAnimationFramesAreTheMeshWithThoseWeights) {
     Warnings w;
     const GltfMorphFrames keys = readGltfMorphFrames(bytes(json), false, "", w);
     EXPECT_EQ(keys.times, (std::vector<double>{0, 1, 2}));
-    const GltfMorphFrames sampled = readGltfMorphFrames(bytes(json), false, "", w, 2.0);
+    const GltfMorphFrames sampled = readGltfMorphFrames(bytes(json), false, "", w, {.fps = 2.0});
     EXPECT_EQ(sampled.times, (std::vector<double>{0, 0.5, 1, 1.5, 2}));
     const double expected[] = {0, 0.5, 1, 0.75, 0.5}; // linear between 0, 1, 0.5
     const Mesh reference = withWeight(0.25);
@@ -228,11 +228,47 @@ TEST(GltfFeatures, MorphAnimationFramesAreTheMeshWithThoseWeights) {
         ASSERT_EQ(m.faceVertices, reference.faceVertices); // one topology for every frame
         EXPECT_EQ(sampled.positions[k], m.positions);
     }
+    EXPECT_EQ(sampled.base, reference.positions);
     EXPECT_EQ(sampled.unwelded, 0u);
     EXPECT_TRUE(w.empty());
     // Without an animation: a clear refusal.
     const auto cube = test::readBytes(feature("cube.gltf"));
     EXPECT_THROW(readGltfMorphFrames(cube, false, "", w), Error);
+}
+
+} // namespace
+
+namespace {
+
+// readGltfEmbedded reads what the bytes hold and no file: embedded buffers and images as readGltf
+// does, while a buffer named by a file URI (next to the file, or anywhere) is refused by name.
+TEST(GltfFeatures, EmbeddedOnlyReadsNoFile) {
+    Warnings w;
+    const auto cube = test::readBytes(feature("cube.gltf")); // a data: URI buffer
+    EXPECT_EQ(readGltfEmbedded(cube, false, w).positions, readGltf(cube, false, "", w).positions);
+    std::optional<MeshMaterial> material;
+    const auto box = test::readBytes(test::modelPath("gltf/BoxTextured/BoxTextured.glb"));
+    EXPECT_EQ(readGltfEmbedded(box, true, w, &material).faceVertices, readGltf(box, true, "", w).faceVertices);
+    EXPECT_TRUE(material && material->hasTexture());
+    const std::string dir = test::modelPath("gltf/AnimatedMorphCube").string() + "/";
+    const auto external = test::readBytes(dir + "AnimatedMorphCube.gltf"); // AnimatedMorphCube.bin
+    EXPECT_EQ(readGltf(external, false, dir, w).vertexCount(), 8u);
+    try {
+        readGltfEmbedded(external, false, w);
+        ADD_FAILURE() << "an external buffer was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("AnimatedMorphCube.bin: this reader reads embedded data only"),
+                  std::string::npos)
+            << e.what();
+    }
+    // An absolute path is no way around it, and the animation reader takes the same rule.
+    std::string json(external.begin(), external.end());
+    json.replace(json.find("\"AnimatedMorphCube.bin\""), 23, "\"" + dir + "AnimatedMorphCube.bin\"");
+    const std::span bytes(reinterpret_cast<const uint8_t*>(json.data()), json.size());
+    EXPECT_EQ(readGltf(bytes, false, "", w).vertexCount(), 8u);
+    EXPECT_THROW(readGltfEmbedded(bytes, false, w), Error);
+    EXPECT_EQ(readGltfMorphFrames(bytes, false, "", w).positions.size(), 127u);
+    EXPECT_THROW(readGltfMorphFrames(bytes, false, "", w, {.embeddedOnly = true}), Error);
 }
 
 } // namespace

@@ -147,13 +147,16 @@ TEST(Displacement, NoCrackPixelsInSixteenViews) {
     // pixel at view 0,-20 whose welded --mesh-out is closed). A crack test must not count folds.
     const std::string scale = std::to_string(0.03 * diagonalOf(obj));
     size_t withFix = 0, withoutFix = 0;
-    for (int view = 0; view < 16; ++view) {
-        const std::string az = std::to_string(view * 22.5), el = view % 2 ? "35" : "-20";
+    // The sixteen views as two turntables of eight (a turntable's frame k is the single render
+    // of its view, Turntable.EveryFrameIsTheSingleRenderOfItsView): azimuths 0, 45, ... at
+    // elevation -20 and 22.5, 67.5, ... at 35, in four processes instead of thirty-two.
+    for (int ring = 0; ring < 2; ++ring) {
+        const std::string view = ring ? "22.5,35" : "0,-20";
         for (bool fix : {true, false}) {
-            const std::string png = (dir / "view.png").string();
-            std::vector<std::string> argv = {bin("limn-render"), limn, "--validate", "-o", png};
+            const std::string frames = (dir / (std::string(fix ? "fix" : "nofix") + "_%d.png")).string();
+            std::vector<std::string> argv = {bin("limn-render"), limn, "--validate", "-o", frames};
             for (const std::string& a : std::vector<std::string>{
-                     "--size=200x150", "--view=" + az + "," + el, "--displace=" + map,
+                     "--size=200x150", "--view=" + view, "--turntable=8", "--displace=" + map,
                      "--displace-scale=" + scale, "--displace-mid=0.5", "--background=1,0,1",
                      "--back-faces=0,1,0",
                      // One sample per pixel: a crack pixel is exactly the key colour, not a
@@ -162,10 +165,13 @@ TEST(Displacement, NoCrackPixelsInSixteenViews) {
                 argv.push_back(a);
             if (!fix) argv.push_back("--no-seam-fix");
             runOk(argv);
-            size_t n = crackPixels(readPng(png));
-            (fix ? withFix : withoutFix) += n;
-            if (fix) {
-                EXPECT_EQ(n, 0u) << "view " << az << "," << el;
+            for (int k = 0; k < 8; ++k) {
+                const auto png = dir / (std::string(fix ? "fix" : "nofix") + "_" + std::to_string(k) + ".png");
+                size_t n = crackPixels(readPng(png.string()));
+                (fix ? withFix : withoutFix) += n;
+                if (fix) {
+                    EXPECT_EQ(n, 0u) << "view " << view << ", turntable frame " << k;
+                }
             }
         }
     }

@@ -513,6 +513,24 @@ TEST(GltfMaterial, BaseColorFactorTintsAndColorOverrides) {
     }
 }
 
+// A textured mesh file given straight to limn-render (no tables): its control mesh is drawn with
+// the texture, quadrant by quadrant as the texture file has it (the plane is flat, so the control
+// mesh lies where the surface would), and nothing is said about it.
+TEST(GltfMaterial, ControlMeshOfATexturedMeshFileIsTextured) {
+    ScratchDir dir;
+    const std::string gltf = writePlane(dir, "straight", Storage::Glb, quadrantTexture());
+    std::string err;
+    const render::Image img = renderPlane(dir, gltf, {}, &err);
+    for (int q = 0; q < 4; ++q) {
+        const auto [x, y] = kQuadrantPixel[q];
+        EXPECT_EQ(bright(img.at(x, y)), expectedBright(q)) << "quadrant " << q;
+    }
+    EXPECT_EQ(err, "");
+    // --shade normal asks for the normals: the texture is left out, and only -v says so.
+    renderPlane(dir, gltf, {"--shade", "normal", "-v"}, &err);
+    EXPECT_NE(err.find("base colour texture is drawn with --shade lit or texture"), std::string::npos) << err;
+}
+
 // A texture that cannot be decoded: a warning, and the factor alone is drawn.
 TEST(GltfMaterial, CorruptTextureWarnsAndDrawsTheFactor) {
     ScratchDir dir;

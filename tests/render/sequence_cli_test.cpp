@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
@@ -188,6 +189,42 @@ TEST(SequenceErrors, RefusedBeforeAnyFileIsWritten) {
         EXPECT_NE(r.err.find(c.words), std::string::npos) << r.err;
         EXPECT_EQ(files(out.path()), (std::vector<std::string>{"bad.txt"})) << r.err;
     }
+}
+
+// A sequence is estimated before any work (images uncompressed, meshes at the least) and refused
+// when it would write more than --max-output, or by default the free space where it goes.
+TEST(SequenceErrors, AnOversizedSequenceIsRefusedAtOnce) {
+    ScratchDir out;
+    const std::string cube = modelPath("gltf/features/cube.gltf").string(), o = (out / "f_%06d.png").string();
+    const struct {
+        std::vector<std::string> args;
+        const char* words;
+        bool beforeInput; // refused before the input is read: at once
+    } cases[] = {
+        // 100000 x 96 x 72 x 3 bytes: 2.07 GB.
+        {{"--turntable", "100000", "--size", "96x72", "--max-output", "1G"}, "more than --max-output", true},
+        // 100000 x 16384^2 x 4 bytes: 107 TB, more than any disk this runs on.
+        {{"--turntable", "100000", "--size", "16384x16384", "--alpha"}, "more than the free space in", true},
+        // 1000 frames of 8 x 8 x 3 bytes (192 KB) fit in 300K (307,200 bytes); with the cube's 12
+        // triangles at 24 bytes each per frame (480 KB) they do not.
+        {{"--turntable", "1000", "--size", "8x8", "--max-output", "300K", "--mesh-out", (out / "m_%06d.ply").string()},
+         "and meshes at least", false},
+    };
+    for (const auto& c : cases) {
+        const auto start = std::chrono::steady_clock::now();
+        auto r = run(with({bin("limn-render"), cube, "-o", o}, c.args));
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find(c.words), std::string::npos) << r.err;
+        EXPECT_TRUE(files(out.path()).empty()) << r.err;
+        if (c.beforeInput) {
+            EXPECT_LT(seconds, 1.0) << r.err;
+        }
+    }
+    // A sequence whose estimate is exactly --max-output is rendered (2 x 96 x 72 x 3 bytes).
+    auto r = run(with({bin("limn-render"), cube, "-o", o},
+                      {"--turntable", "2", "--size", "96x72", "--max-output", "41472"}));
+    EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
 TEST(SequenceErrors, AFrameWithOtherFacesFailsAndLeavesNoFrames) {

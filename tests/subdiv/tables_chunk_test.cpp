@@ -40,6 +40,28 @@ TEST(TablesChunk, RoundTripIsLossless) {
     }
 }
 
+// Version 4 stores the same tables as version 3 in fewer bytes (compact stencil tables, patch
+// records and per-valence bases): both read back to the same tables, on meshes whose irregular
+// faces take every kind of surface (bases, sub-patch quadtrees with boundaries, creases and
+// single-crease sub-patches, leaves).
+TEST(TablesChunk, VersionFourReadsAsVersionThree) {
+    for (const char* model : {"osd/catmark/catmark_smoothtris0.obj", "osd/catmark/catmark_cubes_semisharp.obj",
+                              "quad/osd_catmark_xord_boundary.obj", "osd/catmark/catmark_single_crease.obj"}) {
+        SCOPED_TRACE(model);
+        Mesh m = load(model);
+        for (int depth : {1, 2}) {
+            const Tables t = build(m, depth);
+            const Chunk v3 = encodeTablesChunk(t, 3), v4 = encodeTablesChunk(t);
+            ASSERT_EQ(v4.version, 4u);
+            EXPECT_LT(v4.payload.size(), v3.payload.size() * 3 / 4);
+            const Tables a = decodeTablesChunk(v3, &m), b = decodeTablesChunk(v4, &m);
+            EXPECT_EQ(encodeTablesChunk(b, 3).payload, v3.payload);
+            EXPECT_EQ(encodeTablesChunk(a).payload, v4.payload);
+            EXPECT_FALSE(b.subPatches.empty() && b.irregularBases.empty());
+        }
+    }
+}
+
 // Tables are built from topology alone: moving every vertex changes no byte (paper 000: only the
 // GPU passes re-run when an animated mesh moves).
 // Version 2 added a sharpness to every patch record, version 3 the irregular faces' surface (six
@@ -54,7 +76,7 @@ TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
     o.singleCreasePatches = false;
     o.irregularLevels = 0;
     Tables t = buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
-    Chunk v2 = encodeTablesChunk(t);
+    Chunk v2 = encodeTablesChunk(t, 3); // the plain layout of versions 1 to 3
     ASSERT_EQ(v2.version, 3u);
     // The patch records follow the header, the levels and the level stencil tables.
     auto tableBytes = [](const StencilTable& table, bool weights) {
@@ -72,7 +94,8 @@ TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
     v1.payload.insert(v1.payload.end(), v2.payload.begin() + at, v2.payload.begin() + faces);
     for (size_t i = 0; i < 24; ++i) ASSERT_EQ(v2.payload[faces + i], 0) << "version 3's counts";
     v1.payload.insert(v1.payload.end(), v2.payload.begin() + faces + 24, v2.payload.end());
-    EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(v1, &m)).payload, v2.payload);
+    EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(v1, &m), 3).payload, v2.payload);
+    EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(v1, &m)).payload, encodeTablesChunk(t).payload);
 
     o.singleCreasePatches = true;
     Tables crease = buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
@@ -84,7 +107,7 @@ TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
         EXPECT_EQ(back.patches[i].crease, crease.patches[i].crease);
         EXPECT_EQ(back.patches[i].sharpness, crease.patches[i].sharpness);
     }
-    for (uint32_t version : {0u, 4u}) {
+    for (uint32_t version : {0u, 5u}) {
         Chunk bad = v2;
         bad.version = version;
         try {

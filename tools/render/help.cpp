@@ -41,7 +41,12 @@ const char* const kRenderNotes =
     "literal %), and each frame is the same bytes as a single render with its camera\n"
     "and mesh. Frames are written as they are done, each atomically; an error removes\n"
     "the frames this run wrote. All frames are framed alike: for --frames the box of\n"
-    "every frame's control points. Progress (frame i/N, time left) goes to stderr\n"
+    "every frame's control points. --frames FILE.gltf animates INPUT (that glTF, or a\n"
+    "container made from it) with the glTF's morph targets: its first animation's\n"
+    "weights at each keyframe (or --fps N times a second). A sequence is estimated\n"
+    "before any work (images uncompressed, meshes at the least) and refused when it\n"
+    "is more than --max-output (default: the free space where it goes).\n"
+    "Progress (frame i/N, time left) goes to stderr\n"
     "when it is a terminal. --shard and --frame-range render part of a sequence as\n"
     "the whole run would (one sequence over several processes or machines: README,\n"
     "Rendering on a cluster); an error removes only that part's frames.\n"
@@ -68,7 +73,8 @@ const char* const kRenderNotes =
     "t.png\n"
     "  limn-render spot.limn --turntable 36 -o spin_%02d.png\n"
     "  limn-render spot.limn --turntable 36 --shard 1/4 -o spin_%02d.png   (frames 9-17)\n"
-    "  limn-render twist.limn --frames twist/twist_%04d.obj -o twist_%04d.png\n";
+    "  limn-render twist.limn --frames twist/twist_%04d.obj -o twist_%04d.png\n"
+    "  limn-render cube.limn --frames cube.gltf --fps 24 -o cube_%04d.png\n";
 
 const char* const kRenderExitCodes =
     "Exit codes:\n"

@@ -13,15 +13,13 @@
 #include "image/output_image.h"
 #include "subdiv/tables_chunk.h"
 
+#include <algorithm>
 #include <bit>
+#include <cstdio>
 
 namespace limn::render_tool {
 
 namespace {
-
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
 
 // An image given to an option; errors say which option and what to do.
 render::FloatImage loadMap(const std::string& option, const std::string& path) {
@@ -113,6 +111,36 @@ std::vector<SequenceFrame> readFrameMeshes(const std::vector<render::FrameFile>&
     return frames;
 }
 
+// --frames FILE.gltf: the animation's frames, once the input is known to be the glTF's base mesh
+// (its default-weight positions, vertex for vertex: the frames replace the control points by
+// index, so a container made from another mesh, or the vertices in another order, would draw
+// garbage). The input's faces may differ (limn-classify --quads joins triangles; the vertices
+// stay).
+std::vector<SequenceFrame> animationFrames(RenderJob& job, const Mesh& mesh) {
+    GltfMorphFrames& a = *job.animation;
+    const std::string glTF = displayName(job.framesPattern);
+    if (a.base.size() != mesh.positions.size())
+        throwBadInput("--frames " + glTF + ": the glTF's base mesh has " + std::to_string(a.base.size()) +
+                      " vertices, the input has " + std::to_string(mesh.positions.size()) +
+                      "; give the glTF itself or a container made from it");
+    // Containers keep positions as f64, so a container made from the glTF has them exactly; the
+    // tolerance only forgives a round trip through text.
+    const double tolerance = 1e-9 * std::max(1.0, boundingBox(mesh).diagonal());
+    for (size_t v = 0; v < a.base.size(); ++v)
+        if (glm::length(a.base[v] - mesh.positions[v]) > tolerance)
+            throwBadInput("--frames " + glTF + ": the input's vertex " + std::to_string(v) +
+                          " is not where the glTF's base mesh (its default weights) has it; give the glTF "
+                          "itself or a container made from it");
+    std::vector<SequenceFrame> frames;
+    for (size_t k = 0; k < a.positions.size(); ++k) {
+        char when[64];
+        std::snprintf(when, sizeof when, " at %.4g s", a.times[k]);
+        frames.push_back({k, glTF + when, std::move(a.positions[k])});
+    }
+    a.positions.clear();
+    return frames;
+}
+
 // The material's base colour texture, decoded; nullopt (with a warning) when it cannot be: the
 // geometry is still worth drawing, in the base colour factor.
 std::optional<render::FloatImage> materialTexture(const MeshMaterial& m, const std::string& input) {
@@ -153,11 +181,11 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
     Warnings warnings;
     readSurface(input, job.surface, warnings, in);
     cli::printWarnings(warnings, displayName(input));
-    if (in.blend && !job.frameFiles.empty())
-        usage("--frames: a blending surface is built from its control points on the CPU (charts, "
+    if (in.blend && (!job.frameFiles.empty() || job.animation))
+        throwUsage("--frames: a blending surface is built from its control points on the CPU (charts, "
               "local surfaces); render the frames' subdivision surface (--surface subdivision) or "
               "run limn-blend per frame");
-    in.frames = readFrameMeshes(job.frameFiles, in.mesh, in.filesRead);
+    in.frames = job.animation ? animationFrames(job, in.mesh) : readFrameMeshes(job.frameFiles, in.mesh, in.filesRead);
     // No silent fallbacks: a classified container without tables draws its control mesh,
     // which is rarely what was meant; a --grid without a blending surface does nothing.
     if (job.surface == Surface::Auto && !in.tables && !in.blend && isContainerFile(input))
@@ -180,6 +208,7 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
     }
     settings.tessCap = static_cast<uint32_t>(job.tess);
     settings.edgePixels = job.edgePixels;
+    settings.maxError = job.maxError;
     warnApproximateIrregularFaces(job, in);
     if (!displace.empty()) {
         in.displacementMap = loadMap("--displace", displace);
@@ -208,13 +237,18 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
         if (!job.colorGiven)
             settings.baseColor =
                 glm::dvec3(render::linearToSrgb(f.r), render::linearToSrgb(f.g), render::linearToSrgb(f.b));
-        // Textures are drawn on the subdivision surface only (as --texture is).
-        const bool drawsTexture = in.tables && !in.blend && in.mesh.hasUVs() &&
-                                  (shade == "lit" || shade == "texture");
+        // Textures are drawn on the subdivision surface and the control mesh (as --texture is),
+        // not on a blending surface; --shade normal and uv ask for something else.
+        const bool shaded = shade == "lit" || shade == "texture";
         if (texture.empty() && in.material->hasTexture()) {
-            if (!drawsTexture)
-                cli::info("the base colour texture is drawn on the subdivision surface with "
-                          "--shade lit or texture only; not drawn");
+            if (shaded && in.blend)
+                cli::warn(displayName(input) + ": the base colour texture is not drawn on a blending surface "
+                          "(--surface subdivision draws it on the subdivision surface)");
+            else if (shaded && !in.mesh.hasUVs())
+                cli::warn(displayName(input) + ": the base colour texture is not drawn: the mesh has no "
+                          "texture coordinates");
+            else if (!shaded)
+                cli::info("the base colour texture is drawn with --shade lit or texture; not drawn");
             else if ((in.textureMap = materialTexture(*in.material, input))) {
                 settings.texture = &*in.textureMap;
                 settings.shade = render::Shade::Texture;
@@ -223,7 +257,7 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
     }
     settings.blendGrid = static_cast<uint32_t>(job.grid);
     if (in.blend && (!displace.empty() || !texture.empty()))
-        usage(
+        throwUsage(
             "--displace and --texture apply to the subdivision surface, not a blending surface "
             "(--surface subdivision draws the TBLS one)");
     settings.evalInCompute =

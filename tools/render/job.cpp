@@ -5,6 +5,7 @@
 #include "base/error.h"
 #include "base/io.h"
 #include "image/image_file.h"
+#include "mesh/import.h"
 #include "render/sequence_plan.h"
 
 #include <glm/geometric.hpp>
@@ -13,23 +14,19 @@ namespace limn::render_tool {
 
 namespace {
 
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
-
 // The explicit camera (--eye, --target, --up) and --view.
 void checkCamera(const RenderJob& job) {
     const render::ViewSpec& view = job.settings.view;
-    if (view.eye && job.viewGiven) usage("--view and --eye exclude each other");
+    if (view.eye && job.viewGiven) throwUsage("--view and --eye exclude each other");
     if ((view.target || view.up) && !view.eye)
-        usage("--target and --up describe an explicit camera; give --eye too");
+        throwUsage("--target and --up describe an explicit camera; give --eye too");
     if (view.eye && view.target && *view.eye == *view.target)
-        usage("--eye and --target are the same point, so the camera has no direction");
+        throwUsage("--eye and --target are the same point, so the camera has no direction");
     // The same checks as a --cameras line (sequence.cpp), so both ways of placing a camera agree.
-    if (view.up && glm::length(*view.up) == 0) usage("--up: the up vector is zero");
+    if (view.up && glm::length(*view.up) == 0) throwUsage("--up: the up vector is zero");
     if (view.up && view.eye && view.target &&
         glm::length(glm::cross(glm::normalize(*view.target - *view.eye), glm::normalize(*view.up))) < 1e-9)
-        usage("--up is parallel to the view direction (--eye to --target), so the image has no up");
+        throwUsage("--up is parallel to the view direction (--eye to --target), so the image has no up");
 }
 
 // What the options set in the renderer's settings, but for the input's maps and material
@@ -51,12 +48,26 @@ void mapSettings(RenderJob& job) {
     settings.view.zUp = job.upAxis == "z";
 }
 
-// A sequence's views (--turntable, --cameras) or mesh files (--frames), and its frame numbers.
+// --frames FILE.gltf: the morph-target animation, read whole before any work (a file without one,
+// or one too long to hold, is refused here); its positions are held for one framing of the whole
+// sequence, within the memory the --frames meshes may take.
+void readAnimation(RenderJob& job) {
+    Warnings warnings;
+    job.animation = importGltfMorphFrames(job.framesPattern, limn::readInput(job.framesPattern), warnings,
+                                          {.fps = job.fps,
+                                           .maxFrames = render::kMaxFrames,
+                                           .maxPositionBytes = cli::defaultMemoryBudget(),
+                                           .filesRead = &job.animationFiles});
+    cli::printWarnings(warnings, displayName(job.framesPattern));
+}
+
+// A sequence's views (--turntable, --cameras), mesh files or glTF animation (--frames), and its
+// frame numbers.
 void readSequence(RenderJob& job) {
     if (job.turntable) job.views = render::turntableViews(job.settings.view, job.turntable);
     if (!job.camerasPath.empty()) {
         if (isStdio(job.camerasPath) && isStdio(job.input))
-            usage("--cameras - and the input cannot both be standard input");
+            throwUsage("--cameras - and the input cannot both be standard input");
         auto bytes = limn::readInput(job.camerasPath);
         try {
             job.views = render::parseCameraFile(std::string(bytes.begin(), bytes.end()), job.settings.view.fovDeg);
@@ -65,9 +76,12 @@ void readSequence(RenderJob& job) {
             throw;
         }
     }
-    if (!job.framesPattern.empty())
+    if (!job.framesPattern.empty() && render::isAnimationFile(job.framesPattern))
+        readAnimation(job);
+    else if (!job.framesPattern.empty())
         job.frameFiles = render::findFrameFiles(render::parseFramePattern("--frames", job.framesPattern));
-    job.frameNumbers = render::sequenceFrameNumbers(job.views, job.frameFiles);
+    job.frameNumbers = render::sequenceFrameNumbers(job.views, job.frameFiles,
+                                                    job.animation ? job.animation->positions.size() : 0);
     if (!job.sequence) return;
     job.part = render::framesOfPart(job.frameNumbers, job.frameRange.value_or(render::FrameRange{}),
                                     job.shard.value_or(render::Shard{}));
@@ -79,10 +93,12 @@ void readSequence(RenderJob& job) {
 void planJob(RenderJob& job) {
     checkCamera(job);
     if (job.benchOrbit != 0 && !job.bench)
-        usage("--bench-orbit turns the camera between --bench frames; give --bench FRAMES too");
+        throwUsage("--bench-orbit turns the camera between --bench frames; give --bench FRAMES too");
     job.sequence = render::planSequence({.turntable = job.turntable,
                                          .cameras = !job.camerasPath.empty(),
                                          .frames = !job.framesPattern.empty(),
+                                         .animation = render::isAnimationFile(job.framesPattern),
+                                         .fps = job.fps > 0,
                                          .eye = bool(job.settings.view.eye),
                                          .view = job.viewGiven,
                                          .bench = job.bench > 0,
@@ -105,15 +121,19 @@ void planJob(RenderJob& job) {
                   : job.surfaceName == "control"     ? Surface::Control
                                                      : Surface::Auto;
     if (!job.trimPath.empty() && (job.surface == Surface::Subdivision || job.surface == Surface::Control))
-        usage("--trim cuts blending surfaces; it does not go with --surface " + job.surfaceName);
-    if (job.surface == Surface::Control && (!job.texture.empty() || !job.displace.empty() || job.shade == "levels"))
-        usage("--texture, --displace and --shade levels draw the subdivision surface, and "
+        throwUsage("--trim cuts blending surfaces; it does not go with --surface " + job.surfaceName);
+    if (job.surface == Surface::Control && (!job.displace.empty() || job.shade == "levels"))
+        throwUsage("--displace and --shade levels draw the subdivision surface, and "
               "--surface control draws the control mesh; leave out --surface control");
     readSequence(job);
     job.inputs = {job.input};
     for (const std::string* extra : {&job.trimPath, &job.displace, &job.texture, &job.camerasPath})
         if (!extra->empty()) job.inputs.push_back(*extra);
     for (const auto& f : job.frameFiles) job.inputs.push_back(f.path);
+    if (job.animation) {
+        job.inputs.push_back(job.framesPattern);
+        job.inputs.insert(job.inputs.end(), job.animationFiles.begin(), job.animationFiles.end());
+    }
 }
 
 } // namespace limn::render_tool

@@ -9,6 +9,7 @@
 #include "blend/blend_surface.h"
 #include "gpu/context.h"
 #include "gpu/validation.h"
+#include "mesh/gltf.h"
 #include "mesh/material.h"
 #include "mesh/mesh.h"
 #include "render/output_plan.h"
@@ -44,13 +45,15 @@ struct RenderJob {
     int bench = 0, tess = 64, grid = 16;
     uint32_t turntable = 0;
     std::string camerasPath, framesPattern;
+    double fps = 0; // --fps (0: a glTF animation's keyframes)
     std::optional<render::Shard> shard;           // --shard I/N
     std::optional<render::FrameRange> frameRange; // --frame-range A-B
     int samples = 4, supersample = 1, bitDepth = 8;
     bool sampleShading = false;
     bool bitDepthGiven = false;
     uint64_t maxMemory = 0;
-    double edgePixels = 4, benchOrbit = 0;
+    uint64_t maxOutput = 0; // --max-output (0: the free space where the frames go)
+    double edgePixels = 32, maxError = 0.1, benchOrbit = 0;
     // Options that set the renderer's settings directly (--size, --view, --light, colours, ...).
     render::RenderSettings settings;
 
@@ -61,6 +64,11 @@ struct RenderJob {
     // A sequence's frames: their numbers (which name the outputs), and their views or meshes.
     std::vector<render::ViewSpec> views;
     std::vector<render::FrameFile> frameFiles;
+    // --frames FILE.gltf|.glb: its morph-target animation, read before any work (its positions
+    // move to RenderInput::frames once the input is checked against its base mesh), and the
+    // files it pulled in (buffers).
+    std::optional<GltfMorphFrames> animation;
+    std::vector<std::string> animationFiles;
     std::vector<uint64_t> frameNumbers;
     // The positions in the sequence this run renders and writes (--shard, --frame-range; all of
     // them without), and their frame numbers. The framing still takes every frame, so a part's
@@ -132,6 +140,9 @@ void readRenderInput(RenderJob& job, RenderInput& in);
 // Refuses outputs that would overwrite an input or land in a missing folder, opens a single
 // render's files and the depfile.
 void openOutputs(const RenderJob& job, OutputFiles& files);
+// Refuses (Error(Usage)) a sequence whose estimated size (render/output_plan.h) is more than
+// --max-output or the free space of the frames' folder; `in` (when read) adds its meshes.
+void refuseOversizedSequence(const RenderJob& job, const RenderInput* in);
 // The last frame's pixels as the image's format needs them, and their encoding.
 struct FramePixels {
     render::Image image;        // 8-bit PNG

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
         std::future<std::unique_ptr<gpu::Context>> pendingContext = startDevice(job);
         RenderInput in;
         readRenderInput(job, in);
+        if (job.outputs.meshPattern) refuseOversizedSequence(job, &in); // now with the meshes
         const EncodedOutputs encoded = renderOnDevice(job, in, pendingContext.get(), files);
         commitOutputs(job, in, files, encoded);
         return 0;

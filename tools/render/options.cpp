@@ -3,6 +3,7 @@
 
 #include "base/error.h"
 #include "render/blend_draw.h"
+#include "render/sequence_plan.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -20,15 +21,11 @@ glm::dvec3 vec3Option(const std::string& option, const std::string& value) {
     return {v[0], v[1], v[2]};
 }
 
-[[noreturn]] void usage(const std::string& message) {
-    throw Error(ErrorKind::Usage, message);
-}
-
 // R,G,B with each component 0 to 1 (--color, --background, --back-faces).
 glm::dvec3 colourOption(const std::string& option, const std::string& value) {
     auto c = cli::parseNumberList(option, value, 3);
     for (double x : c)
-        if (!(x >= 0 && x <= 1)) usage(option + ": each component must be 0 to 1");
+        if (!(x >= 0 && x <= 1)) throwUsage(option + ": each component must be 0 to 1");
     return {c[0], c[1], c[2]};
 }
 
@@ -43,7 +40,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                 &displace = job.displace, &texture = job.texture, &upAxis = job.upAxis,
                 &camerasPath = job.camerasPath, &framesPattern = job.framesPattern;
     double &displaceScale = job.displaceScale, &displaceMid = job.displaceMid, &edgePixels = job.edgePixels,
-           &benchOrbit = job.benchOrbit;
+           &maxError = job.maxError, &benchOrbit = job.benchOrbit;
     bool &displaceScalePercent = job.displaceScalePercent, &noSeamFix = job.noSeamFix, &wire = job.wire,
          &wireTriangles = job.wireTriangles, &alpha = job.alpha, &validate = job.validate,
          &syncValidation = job.syncValidation, &meshAscii = job.meshAscii, &viewGiven = job.viewGiven,
@@ -77,12 +74,12 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                                         text.find_first_not_of("0123456789") == std::string::npos;
                     if (digits) n = std::stoull(text);
                     if (!digits || n < 1 || n > 16384)
-                        usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
+                        throwUsage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
                     return static_cast<unsigned>(n);
                 };
                 const size_t x = v.find('x');
                 if (x == std::string::npos)
-                    usage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
+                    throwUsage("--size: '" + v + "' is not WIDTHxHEIGHT with each 1 to 16384");
                 const unsigned w = side(v.substr(0, x)), h = side(v.substr(x + 1));
                 settings.width = w;
                 settings.height = h;
@@ -92,9 +89,9 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
             "--view", "AZ,EL",
             [&](const std::string& v) {
                 auto n = cli::parseNumberList("--view", v, 2);
-                if (n[1] < -90 || n[1] > 90) usage("--view: elevation must be -90 to 90");
+                if (n[1] < -90 || n[1] > 90) throwUsage("--view: elevation must be -90 to 90");
                 // As --light: 1e308 degrees made a NaN camera and a blank image with exit 0.
-                if (n[0] < -360 || n[0] > 360) usage("--view: azimuth must be -360 to 360");
+                if (n[0] < -360 || n[0] > 360) throwUsage("--view: azimuth must be -360 to 360");
                 settings.view.azimuthDeg = n[0];
                 settings.view.elevationDeg = n[1];
                 viewGiven = true;
@@ -132,7 +129,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
             [&](const std::string& v) {
                 auto n = cli::parseNumberList("--light", v, 2);
                 if (!(n[0] >= -360 && n[0] <= 360) || !(n[1] >= -90 && n[1] <= 90))
-                    usage("--light: azimuth must be -360 to 360 and elevation -90 to 90");
+                    throwUsage("--light: azimuth must be -360 to 360 and elevation -90 to 90");
                 settings.lightAzimuthDeg = n[0];
                 settings.lightElevationDeg = n[1];
             },
@@ -195,7 +192,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                 displaceScale = std::strtod(number.c_str(), &end);
                 if (number.empty() || *end != '\0' || !std::isfinite(displaceScale) ||
                     std::abs(displaceScale) > 1e6)
-                    usage("--displace-scale: '" + v + "' is not a number (or a percentage "
+                    throwUsage("--displace-scale: '" + v + "' is not a number (or a percentage "
                           "like 2%) within -1e6 to 1e6");
             },
             "1", "world units per unit of map value, or P% of the control mesh's bounding-box "
@@ -225,9 +222,15 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                  "                            gets what its pixels need, 1 to N; --edge-pixels 0: a\n"
                  "                            level-l patch side gets min(2^(depth-l), N) (N rounded\n"
                  "                            down to a power of two)")
+        .real("--max-error", "PX", &maxError, 0, 4096,
+              "view-adaptive tessellation: each patch edge gets the fewest segments\n"
+              "                            whose chords stay within PX pixels of the limit surface\n"
+              "                            on screen (estimated from the surface's second\n"
+              "                            differences along the edge, docs/adaptive.md); 0:\n"
+              "                            segments of about --edge-pixels (chord tolerance P/40)")
         .real("--edge-pixels", "P", &edgePixels, 0, 4096,
-              "view-adaptive tessellation: each patch edge is cut into segments of\n"
-              "                            about P pixels on screen, decided per frame on the GPU\n"
+              "view-adaptive tessellation: no segment longer than P pixels on screen,\n"
+              "                            decided per frame on the GPU\n"
               "                            (compute passes; patches outside the view, between\n"
               "                            the samples or facing away are not drawn, which changes\n"
               "                            no pixel); 0: the fixed grids of 2^(depth-l) segments per\n"
@@ -247,7 +250,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
             "--samples", "1|4",
             [&](const std::string& v) {
                 if (v != "1" && v != "4")
-                    usage("--samples: '" + v + "' is not 1 or 4 (the MSAA counts WebGPU offers)");
+                    throwUsage("--samples: '" + v + "' is not 1 or 4 (the MSAA counts WebGPU offers)");
                 samples = v == "1" ? 1 : 4;
             },
             "4",
@@ -272,7 +275,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
         .custom(
             "--bit-depth", "8|16",
             [&](const std::string& v) {
-                if (v != "8" && v != "16") usage("--bit-depth: '" + v + "' is not 8 or 16");
+                if (v != "8" && v != "16") throwUsage("--bit-depth: '" + v + "' is not 8 or 16");
                 bitDepth = v == "8" ? 8 : 16;
                 bitDepthGiven = true;
             },
@@ -288,6 +291,14 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
             "                            readback, CPU float copies), e.g. 512M, 2G; more is\n"
             "                            refused before drawing [default: the smaller of half\n"
             "                            the machine's memory and the device's memory]")
+        .custom(
+            "--max-output", "SIZE",
+            [&](const std::string& v) { job.maxOutput = cli::parseByteSize("--max-output", v); }, "",
+            "most bytes a sequence may write, e.g. 2G: one whose estimated size (frames\n"
+            "                            times width x height x channels x bytes per sample,\n"
+            "                            uncompressed, plus --mesh-out meshes) is more is refused\n"
+            "                            before any work [default: the free space of the frames'\n"
+            "                            folder]")
         .text("--device", "NAME", &device,
               "Vulkan device: case-insensitive substring of its name [default: a discrete or\n"
               "                            integrated GPU if present, else the CPU device "
@@ -309,7 +320,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
                 const bool digits = !v.empty() && v.size() <= 6 && v.find_first_not_of("0123456789") == std::string::npos;
                 const unsigned long n = digits ? std::stoul(v) : 0;
                 if (n < 1 || n > render::kMaxFrames)
-                    usage("--turntable: '" + v + "' is not a number of views from 1 to " +
+                    throwUsage("--turntable: '" + v + "' is not a number of views from 1 to " +
                           std::to_string(render::kMaxFrames));
                 turntable = static_cast<uint32_t>(n);
             },
@@ -322,7 +333,14 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
         .text("--frames", "PATTERN", &framesPattern,
               "render the meshes PATTERN names (walk_%04d.obj: every existing number) with\n"
               "                            INPUT's topology and tables, uploading only their positions;\n"
-              "                            frame k of the input goes to -o NAME_%04d.png with the same k")
+              "                            frame k of the input goes to -o NAME_%04d.png with the same k.\n"
+              "                            A .gltf or .glb instead: its first animation's morph-target\n"
+              "                            weights, frame k at its k-th keyframe (INPUT: that glTF, or a\n"
+              "                            container made from it)")
+        .custom(
+            "--fps", "N", [&](const std::string& v) { job.fps = render::parseFps("--fps", v); }, "",
+            "with --frames FILE.gltf: sample the animation N times a second (0 < N <= 1000)\n"
+            "                            from its first keyframe to its last, instead of at its keyframes")
         .custom(
             "--shard", "I/N", [&](const std::string& v) { job.shard = render::parseShard("--shard", v); }, "",
             "render only part I of N (0 <= I < N) of the sequence, a contiguous block of\n"

@@ -12,10 +12,43 @@
 
 namespace limn::render_tool {
 
+void refuseOversizedSequence(const RenderJob& job, const RenderInput* in) {
+    if (!job.sequence || !job.outputs.imagePattern) return;
+    uint64_t triangles = 0;
+    if (in)
+        for (size_t f = 0; f < in->mesh.faceCount(); ++f) triangles += std::max<uint32_t>(in->mesh.faceSize(f), 2) - 2;
+    const uint64_t frameBytes = render::estimateFrameBytes(
+        job.outputs, {.width = job.settings.width,
+                      .height = job.settings.height,
+                      .alpha = job.settings.alpha,
+                      .bitDepth = job.bitDepth,
+                      .meshTriangles = triangles});
+    const uint64_t frames = job.part.size(), total = frames * frameBytes;
+    std::filesystem::path folder = std::filesystem::path(render::framePath(*job.outputs.imagePattern, 0)).parent_path();
+    if (folder.empty()) folder = ".";
+    uint64_t limit = job.maxOutput;
+    std::string what = "--max-output";
+    if (!limit) {
+        std::error_code error;
+        const std::filesystem::space_info space = std::filesystem::space(folder, error);
+        if (error) return; // a missing folder is refused next, with its name
+        limit = space.available;
+        what = "the free space in " + folder.string();
+    }
+    if (total > limit)
+        throw Error(ErrorKind::Usage,
+                    "the sequence's " + std::to_string(frames) + " frames would write about " +
+                        cli::formatBytes(total) + " (" + cli::formatBytes(frameBytes) +
+                        " each, counting images uncompressed" + (in && triangles ? " and meshes at least" : "") +
+                        "), more than " + what + " (" + cli::formatBytes(limit) +
+                        "); render fewer frames, smaller images, or give --max-output SIZE");
+}
+
 void openOutputs(const RenderJob& job, OutputFiles& files) {
     const render::OutputPlan& plan = job.outputs;
     const std::vector<std::string>& inputs = job.inputs;
     if (job.sequence) {
+        refuseOversizedSequence(job, nullptr);
         files.paths = plan.framePaths(job.partNumbers);
         for (const std::string& o : files.paths) refuseOverwritingInputs(o, inputs);
         for (const std::string& o : {files.paths.front(), files.paths.back()}) {
@@ -75,8 +108,11 @@ void removeFrames(const std::vector<std::string>& paths) {
 
 void commitOutputs(const RenderJob& job, const RenderInput& in, OutputFiles& files,
                    const EncodedOutputs& encoded) {
-    std::vector<std::string> inputs = job.inputs;
-    inputs.insert(inputs.end(), in.filesRead.begin(), in.filesRead.end());
+    // Each file once (a glTF given as the input and to --frames, and its buffers, is read twice).
+    std::vector<std::string> inputs;
+    for (const auto* list : {&job.inputs, &in.filesRead})
+        for (const std::string& f : *list)
+            if (std::find(inputs.begin(), inputs.end(), f) == inputs.end()) inputs.push_back(f);
     files.depfile->setRule(files.paths, inputs); // the image and/or the mesh
     try {
         // A depfile that cannot be written fails the run before the outputs land; a sequence's

@@ -44,7 +44,10 @@ what is not listed is not supported here.
                           fix of paper 000, 4.5 removes)
   --background R,G,B      sRGB 0..1 (default 0.2,0.2,0.2)
   --tess N                most segments per patch edge (default 64)
-  --edge-pixels P         view-adaptive: segments of about P pixels (default 4); 0: the fixed
+  --max-error PX          view-adaptive: each patch edge gets the fewest segments whose chords
+                          stay within PX pixels of the surface (default 0.1); 0: segments of
+                          about --edge-pixels
+  --edge-pixels P         view-adaptive: segments of at most P pixels (default 32); 0: the fixed
                           grids of 2^(depth-l) segments per level-l patch side
   --wire                  overlay the patch and face outlines (drawn on the fixed grids)
   --wire-triangles        overlay the edges of every triangle drawn (view-adaptive: the rates
@@ -65,7 +68,7 @@ function numbers(opt, v, n) {
 }
 
 function parseArgs(argv) {
-  const o = { settings: { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 }, bench: 0 };
+  const o = { settings: { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 32, maxError: 0.1, tess: 64 }, bench: 0 };
   const s = o.settings;
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
@@ -96,6 +99,7 @@ function parseArgs(argv) {
       case '--color': s.color = numbers(a, value(), 3); break;
       case '--background': s.background = numbers(a, value(), 3); break;
       case '--tess': { const [t] = numbers(a, value(), 1); if (!Number.isInteger(t) || t < 1 || t > 4096) throw new Usage('--tess: an integer from 1 to 4096'); s.tess = t; break; }
+      case '--max-error': { const [e] = numbers(a, value(), 1); if (e < 0 || e > 4096) throw new Usage('--max-error: 0 to 4096'); s.maxError = e; break; }
       case '--edge-pixels': { const [p] = numbers(a, value(), 1); if (p < 0 || p > 4096) throw new Usage('--edge-pixels: 0 to 4096'); s.edgePixels = p; break; }
       case '--bench': { const [n] = numbers(a, value(), 1); if (!Number.isInteger(n) || n < 0 || n > 100000) throw new Usage('--bench: 0 to 100000 frames'); o.bench = n; break; }
       case '--displace': o.displace = value(); break;

@@ -47,6 +47,7 @@ struct Push {
     tess: u32,
     patchCount: u32,
     texels: f32,
+    maxError: f32,
 }
 
 struct Pieces {
@@ -83,6 +84,114 @@ var<storage, read> cull: Cull;
 var<storage, read_write> rates: Rates;
 @group(0) @binding(7) 
 var<storage, read_write> pieceEnds: PieceEnds;
+
+fn pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b(P: ptr<function, vec3<f32>>, jx: ptr<function, vec3<f32>>, jy: ptr<function, vec3<f32>>) {
+    var M: mat4x4<f32>;
+    var c: vec4<f32>;
+    var rx: vec3<f32>;
+    var ry: vec3<f32>;
+    var rw: vec3<f32>;
+
+    let _e85 = pc.viewProj;
+    M = _e85;
+    let _e86 = M;
+    let _e87 = (*P);
+    c = (_e86 * vec4<f32>(_e87.x, _e87.y, _e87.z, 1f));
+    let _e95 = M[0][0u];
+    let _e98 = M[1][0u];
+    let _e101 = M[2][0u];
+    rx = vec3<f32>(_e95, _e98, _e101);
+    let _e105 = M[0][1u];
+    let _e108 = M[1][1u];
+    let _e111 = M[2][1u];
+    ry = vec3<f32>(_e105, _e108, _e111);
+    let _e115 = M[0][3u];
+    let _e118 = M[1][3u];
+    let _e121 = M[2][3u];
+    rw = vec3<f32>(_e115, _e118, _e121);
+    let _e125 = pc.halfViewport[0u];
+    let _e126 = rx;
+    let _e128 = c[0u];
+    let _e130 = c[3u];
+    let _e132 = rw;
+    let _e137 = c[3u];
+    (*jx) = (((_e126 - (_e132 * (_e128 / _e130))) * _e125) / vec3(_e137));
+    let _e142 = pc.halfViewport[1u];
+    let _e143 = ry;
+    let _e145 = c[1u];
+    let _e147 = c[3u];
+    let _e149 = rw;
+    let _e154 = c[3u];
+    (*jy) = (((_e143 - (_e149 * (_e145 / _e147))) * _e142) / vec3(_e154));
+    return;
+}
+
+fn errorSegments_u0028_vf3_u005b_5_u005d_u003b(P_1: ptr<function, array<vec3<f32>, 5>>) -> f32 {
+    var E: array<vec3<f32>, 5>;
+    var most: f32;
+    var k: i32;
+    var jx_1: vec3<f32>;
+    var jy_1: vec3<f32>;
+    var param: vec3<f32>;
+    var param_1: vec3<f32>;
+    var param_2: vec3<f32>;
+    var n: f32;
+
+    let _e87 = (*P_1)[1i];
+    let _e89 = (*P_1)[0i];
+    let _e91 = (*P_1)[2i];
+    E[1i] = ((_e87 - ((_e89 + _e91) * 0.5f)) * 4f);
+    let _e98 = (*P_1)[2i];
+    let _e100 = (*P_1)[0i];
+    let _e102 = (*P_1)[4i];
+    E[2i] = (_e98 - ((_e100 + _e102) * 0.5f));
+    let _e108 = (*P_1)[3i];
+    let _e110 = (*P_1)[2i];
+    let _e112 = (*P_1)[4i];
+    E[3i] = ((_e108 - ((_e110 + _e112) * 0.5f)) * 4f);
+    let _e119 = E[1i];
+    let _e122 = E[2i];
+    E[0i] = ((_e119 * 2f) - _e122);
+    let _e126 = E[3i];
+    let _e129 = E[2i];
+    E[4i] = ((_e126 * 2f) - _e129);
+    most = 0f;
+    k = 0i;
+    loop {
+        let _e132 = k;
+        if (_e132 < 5i) {
+            let _e134 = k;
+            let _e136 = (*P_1)[_e134];
+            param = _e136;
+            pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param), (&param_1), (&param_2));
+            let _e137 = param_1;
+            jx_1 = _e137;
+            let _e138 = param_2;
+            jy_1 = _e138;
+            let _e139 = most;
+            let _e140 = jx_1;
+            let _e141 = k;
+            let _e143 = E[_e141];
+            let _e145 = jy_1;
+            let _e146 = k;
+            let _e148 = E[_e146];
+            most = max(_e139, length(vec2<f32>(dot(_e140, _e143), dot(_e145, _e148))));
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e153 = k;
+            k = (_e153 + 1i);
+        }
+    }
+    let _e155 = most;
+    let _e157 = pc.maxError;
+    n = ceil(sqrt((_e155 / _e157)));
+    let _e161 = n;
+    let _e163 = n;
+    return select(1000000000f, _e163, (_e161 < 1000000000f));
+}
 
 fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<function, f32>, b: ptr<function, array<f32, 4>>, d: ptr<function, array<f32, 4>>) {
     var t2_: f32;
@@ -125,7 +234,7 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
 }
 
 fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t_1: ptr<function, f32>, sharpness: ptr<function, f32>, b_1: ptr<function, array<f32, 4>>, d_1: ptr<function, array<f32, 4>>) {
-    var M: array<vec4<f32>, 4>;
+    var M_1: array<vec4<f32>, 4>;
     var s_1: f32;
     var scale: f32;
     var i: i32;
@@ -139,14 +248,14 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var local: f32;
     var bt: array<f32, 4>;
     var dt: array<f32, 4>;
-    var param: f32;
-    var param_1: array<f32, 4>;
-    var param_2: array<f32, 4>;
+    var param_3: f32;
+    var param_4: array<f32, 4>;
+    var param_5: array<f32, 4>;
     var B: vec4<f32>;
     var D: vec4<f32>;
-    var k: i32;
+    var k_1: i32;
 
-    M = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
+    M_1 = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
     let _e100 = (*sharpness);
     s_1 = _e100;
     scale = 1f;
@@ -159,45 +268,45 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             left = (_e106 < 0.5f);
             let _e108 = s_1;
             w = min(_e108, 1f);
-            let _e111 = M[0i];
-            let _e113 = M[1i];
+            let _e111 = M_1[0i];
+            let _e113 = M_1[1i];
             e01_ = ((_e111 + _e113) * 0.5f);
-            let _e117 = M[1i];
-            let _e119 = M[2i];
+            let _e117 = M_1[1i];
+            let _e119 = M_1[2i];
             e12_ = ((_e117 + _e119) * 0.5f);
-            let _e123 = M[2i];
-            let _e125 = M[3i];
+            let _e123 = M_1[2i];
+            let _e125 = M_1[3i];
             e23_ = ((_e123 + _e125) * 0.5f);
             let _e128 = w;
-            let _e130 = M[1i];
+            let _e130 = M_1[1i];
             let _e132 = w;
-            let _e135 = M[0i];
-            let _e137 = M[1i];
-            let _e141 = M[2i];
+            let _e135 = M_1[0i];
+            let _e137 = M_1[1i];
+            let _e141 = M_1[2i];
             crease = ((_e130 * _e128) + ((((_e135 + (_e137 * 6f)) + _e141) * (1f - _e132)) / vec4(8f)));
-            let _e148 = M[1i];
-            let _e150 = M[2i];
-            let _e154 = M[3i];
+            let _e148 = M_1[1i];
+            let _e150 = M_1[2i];
+            let _e154 = M_1[3i];
             v2_ = (((_e148 + (_e150 * 6f)) + _e154) / vec4(8f));
             let _e158 = left;
             if _e158 {
                 let _e159 = e01_;
-                M[0i] = _e159;
+                M_1[0i] = _e159;
                 let _e161 = crease;
-                M[1i] = _e161;
+                M_1[1i] = _e161;
                 let _e163 = e12_;
-                M[2i] = _e163;
+                M_1[2i] = _e163;
                 let _e165 = v2_;
-                M[3i] = _e165;
+                M_1[3i] = _e165;
             } else {
                 let _e167 = crease;
-                M[0i] = _e167;
+                M_1[0i] = _e167;
                 let _e169 = e12_;
-                M[1i] = _e169;
+                M_1[1i] = _e169;
                 let _e171 = v2_;
-                M[2i] = _e171;
+                M_1[2i] = _e171;
                 let _e173 = e23_;
-                M[3i] = _e173;
+                M_1[3i] = _e173;
             }
             let _e175 = s_1;
             s_1 = (_e175 - 1f);
@@ -227,41 +336,41 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
         }
     }
     let _e190 = (*t_1);
-    param = _e190;
-    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param), (&param_1), (&param_2));
-    let _e191 = param_1;
+    param_3 = _e190;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_3), (&param_4), (&param_5));
+    let _e191 = param_4;
     bt = _e191;
-    let _e192 = param_2;
+    let _e192 = param_5;
     dt = _e192;
     let _e194 = bt[0i];
-    let _e196 = M[0i];
+    let _e196 = M_1[0i];
     let _e199 = bt[1i];
-    let _e201 = M[1i];
+    let _e201 = M_1[1i];
     let _e205 = bt[2i];
-    let _e207 = M[2i];
+    let _e207 = M_1[2i];
     let _e211 = bt[3i];
-    let _e213 = M[3i];
+    let _e213 = M_1[3i];
     B = ((((_e196 * _e194) + (_e201 * _e199)) + (_e207 * _e205)) + (_e213 * _e211));
     let _e216 = scale;
     let _e218 = dt[0i];
-    let _e220 = M[0i];
+    let _e220 = M_1[0i];
     let _e223 = dt[1i];
-    let _e225 = M[1i];
+    let _e225 = M_1[1i];
     let _e229 = dt[2i];
-    let _e231 = M[2i];
+    let _e231 = M_1[2i];
     let _e235 = dt[3i];
-    let _e237 = M[3i];
+    let _e237 = M_1[3i];
     D = (((((_e220 * _e218) + (_e225 * _e223)) + (_e231 * _e229)) + (_e237 * _e235)) * _e216);
-    k = 0i;
+    k_1 = 0i;
     loop {
-        let _e241 = k;
+        let _e241 = k_1;
         if (_e241 < 4i) {
-            let _e243 = k;
-            let _e244 = k;
+            let _e243 = k_1;
+            let _e244 = k_1;
             let _e246 = B[_e244];
             (*b_1)[_e243] = _e246;
-            let _e248 = k;
-            let _e249 = k;
+            let _e248 = k_1;
+            let _e249 = k_1;
             let _e251 = D[_e249];
             (*d_1)[_e248] = _e251;
             continue;
@@ -269,8 +378,8 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             break;
         }
         continuing {
-            let _e253 = k;
-            k = (_e253 + 1i);
+            let _e253 = k_1;
+            k_1 = (_e253 + 1i);
         }
     }
     return;
@@ -280,11 +389,11 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
     var local_1: f32;
     var cb: array<f32, 4>;
     var cd: array<f32, 4>;
-    var param_3: f32;
-    var param_4: f32;
-    var param_5: array<f32, 4>;
-    var param_6: array<f32, 4>;
-    var k_1: i32;
+    var param_6: f32;
+    var param_7: f32;
+    var param_8: array<f32, 4>;
+    var param_9: array<f32, 4>;
+    var k_2: i32;
     var local_2: f32;
     var local_3: f32;
 
@@ -297,39 +406,39 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
         local_1 = _e94;
     }
     let _e95 = local_1;
-    param_3 = _e95;
+    param_6 = _e95;
     let _e96 = (*sharpness_1);
-    param_4 = _e96;
-    creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_3), (&param_4), (&param_5), (&param_6));
-    let _e97 = param_5;
+    param_7 = _e96;
+    creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_6), (&param_7), (&param_8), (&param_9));
+    let _e97 = param_8;
     cb = _e97;
-    let _e98 = param_6;
+    let _e98 = param_9;
     cd = _e98;
-    k_1 = 0i;
+    k_2 = 0i;
     loop {
-        let _e99 = k_1;
+        let _e99 = k_2;
         if (_e99 < 4i) {
-            let _e101 = k_1;
+            let _e101 = k_2;
             let _e102 = (*atEnd);
             if _e102 {
-                let _e103 = k_1;
+                let _e103 = k_2;
                 let _e106 = cb[(3i - _e103)];
                 local_2 = _e106;
             } else {
-                let _e107 = k_1;
+                let _e107 = k_2;
                 let _e109 = cb[_e107];
                 local_2 = _e109;
             }
             let _e110 = local_2;
             (*b_2)[_e101] = _e110;
-            let _e112 = k_1;
+            let _e112 = k_2;
             let _e113 = (*atEnd);
             if _e113 {
-                let _e114 = k_1;
+                let _e114 = k_2;
                 let _e117 = cd[(3i - _e114)];
                 local_3 = -(_e117);
             } else {
-                let _e119 = k_1;
+                let _e119 = k_2;
                 let _e121 = cd[_e119];
                 local_3 = _e121;
             }
@@ -340,8 +449,8 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
             break;
         }
         continuing {
-            let _e124 = k_1;
-            k_1 = (_e124 + 1i);
+            let _e124 = k_2;
+            k_2 = (_e124 + 1i);
         }
     }
     return;
@@ -373,15 +482,12 @@ fn foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b(b_3: ptr<function,
 
 fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(pt: ptr<function, Patch>, s_2: ptr<function, f32>, t_2: ptr<function, f32>, bu: ptr<function, array<f32, 4>>, du: ptr<function, array<f32, 4>>, bv: ptr<function, array<f32, 4>>, dv: ptr<function, array<f32, 4>>) {
     var mask: u32;
-    var param_7: f32;
-    var param_8: array<f32, 4>;
-    var param_9: array<f32, 4>;
     var param_10: f32;
     var param_11: array<f32, 4>;
     var param_12: array<f32, 4>;
-    var param_13: array<f32, 4>;
-    var param_14: bool;
-    var param_15: bool;
+    var param_13: f32;
+    var param_14: array<f32, 4>;
+    var param_15: array<f32, 4>;
     var param_16: array<f32, 4>;
     var param_17: bool;
     var param_18: bool;
@@ -391,69 +497,72 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_22: array<f32, 4>;
     var param_23: bool;
     var param_24: bool;
-    var crease_1: u32;
-    var param_25: f32;
+    var param_25: array<f32, 4>;
     var param_26: bool;
-    var param_27: f32;
-    var param_28: array<f32, 4>;
-    var param_29: array<f32, 4>;
+    var param_27: bool;
+    var crease_1: u32;
+    var param_28: f32;
+    var param_29: bool;
     var param_30: f32;
-    var param_31: bool;
-    var param_32: f32;
-    var param_33: array<f32, 4>;
-    var param_34: array<f32, 4>;
+    var param_31: array<f32, 4>;
+    var param_32: array<f32, 4>;
+    var param_33: f32;
+    var param_34: bool;
+    var param_35: f32;
+    var param_36: array<f32, 4>;
+    var param_37: array<f32, 4>;
 
     let _e114 = (*pt).levelBoundary;
     mask = ((_e114 >> bitcast<u32>(8i)) & 15u);
     let _e118 = (*s_2);
-    param_7 = _e118;
-    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_7), (&param_8), (&param_9));
-    let _e119 = param_8;
+    param_10 = _e118;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_10), (&param_11), (&param_12));
+    let _e119 = param_11;
     (*bu) = _e119;
-    let _e120 = param_9;
+    let _e120 = param_12;
     (*du) = _e120;
     let _e121 = (*t_2);
-    param_10 = _e121;
-    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_10), (&param_11), (&param_12));
-    let _e122 = param_11;
+    param_13 = _e121;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_13), (&param_14), (&param_15));
+    let _e122 = param_14;
     (*bv) = _e122;
-    let _e123 = param_12;
+    let _e123 = param_15;
     (*dv) = _e123;
     let _e124 = mask;
     let _e127 = mask;
     let _e130 = (*bu);
-    param_13 = _e130;
-    param_14 = ((_e124 & 8u) != 0u);
-    param_15 = ((_e127 & 2u) != 0u);
-    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_13), (&param_14), (&param_15));
-    let _e131 = param_13;
+    param_16 = _e130;
+    param_17 = ((_e124 & 8u) != 0u);
+    param_18 = ((_e127 & 2u) != 0u);
+    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
+    let _e131 = param_16;
     (*bu) = _e131;
     let _e132 = mask;
     let _e135 = mask;
     let _e138 = (*du);
-    param_16 = _e138;
-    param_17 = ((_e132 & 8u) != 0u);
-    param_18 = ((_e135 & 2u) != 0u);
-    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
-    let _e139 = param_16;
+    param_19 = _e138;
+    param_20 = ((_e132 & 8u) != 0u);
+    param_21 = ((_e135 & 2u) != 0u);
+    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
+    let _e139 = param_19;
     (*du) = _e139;
     let _e140 = mask;
     let _e143 = mask;
     let _e146 = (*bv);
-    param_19 = _e146;
-    param_20 = ((_e140 & 1u) != 0u);
-    param_21 = ((_e143 & 4u) != 0u);
-    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
-    let _e147 = param_19;
+    param_22 = _e146;
+    param_23 = ((_e140 & 1u) != 0u);
+    param_24 = ((_e143 & 4u) != 0u);
+    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_22), (&param_23), (&param_24));
+    let _e147 = param_22;
     (*bv) = _e147;
     let _e148 = mask;
     let _e151 = mask;
     let _e154 = (*dv);
-    param_22 = _e154;
-    param_23 = ((_e148 & 1u) != 0u);
-    param_24 = ((_e151 & 4u) != 0u);
-    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_22), (&param_23), (&param_24));
-    let _e155 = param_22;
+    param_25 = _e154;
+    param_26 = ((_e148 & 1u) != 0u);
+    param_27 = ((_e151 & 4u) != 0u);
+    foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_25), (&param_26), (&param_27));
+    let _e155 = param_25;
     (*dv) = _e155;
     let _e157 = (*pt).levelBoundary;
     crease_1 = ((_e157 >> bitcast<u32>(16i)) & 15u);
@@ -461,45 +570,45 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     if ((_e161 & 5u) != 0u) {
         let _e164 = crease_1;
         let _e167 = (*t_2);
-        param_25 = _e167;
-        param_26 = ((_e164 & 4u) != 0u);
+        param_28 = _e167;
+        param_29 = ((_e164 & 4u) != 0u);
         let _e169 = (*pt).sharpness;
-        param_27 = _e169;
-        creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_25), (&param_26), (&param_27), (&param_28), (&param_29));
-        let _e170 = param_28;
+        param_30 = _e169;
+        creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
+        let _e170 = param_31;
         (*bv) = _e170;
-        let _e171 = param_29;
+        let _e171 = param_32;
         (*dv) = _e171;
     }
     let _e172 = crease_1;
     if ((_e172 & 10u) != 0u) {
         let _e175 = crease_1;
         let _e178 = (*s_2);
-        param_30 = _e178;
-        param_31 = ((_e175 & 2u) != 0u);
+        param_33 = _e178;
+        param_34 = ((_e175 & 2u) != 0u);
         let _e180 = (*pt).sharpness;
-        param_32 = _e180;
-        creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_30), (&param_31), (&param_32), (&param_33), (&param_34));
-        let _e181 = param_33;
+        param_35 = _e180;
+        creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_33), (&param_34), (&param_35), (&param_36), (&param_37));
+        let _e181 = param_36;
         (*bu) = _e181;
-        let _e182 = param_34;
+        let _e182 = param_37;
         (*du) = _e182;
     }
     return;
 }
 
-fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(pt_1: ptr<function, Patch>, s_3: ptr<function, f32>, t_3: ptr<function, f32>, P: ptr<function, vec3<f32>>, n: ptr<function, vec3<f32>>) {
+fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(pt_1: ptr<function, Patch>, s_3: ptr<function, f32>, t_3: ptr<function, f32>, P_2: ptr<function, vec3<f32>>, n_1: ptr<function, vec3<f32>>) {
     var bu_1: array<f32, 4>;
     var du_1: array<f32, 4>;
     var bv_1: array<f32, 4>;
     var dv_1: array<f32, 4>;
-    var param_35: Patch;
-    var param_36: f32;
-    var param_37: f32;
-    var param_38: array<f32, 4>;
-    var param_39: array<f32, 4>;
-    var param_40: array<f32, 4>;
+    var param_38: Patch;
+    var param_39: f32;
+    var param_40: f32;
     var param_41: array<f32, 4>;
+    var param_42: array<f32, 4>;
+    var param_43: array<f32, 4>;
+    var param_44: array<f32, 4>;
     var Du: vec3<f32>;
     var Dv: vec3<f32>;
     var j: i32;
@@ -507,24 +616,24 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var rowDu: vec3<f32>;
     var rowDv: vec3<f32>;
     var i_1: i32;
-    var c: vec3<f32>;
+    var c_1: vec3<f32>;
 
     let _e100 = (*pt_1);
-    param_35 = _e100;
+    param_38 = _e100;
     let _e101 = (*s_3);
-    param_36 = _e101;
+    param_39 = _e101;
     let _e102 = (*t_3);
-    param_37 = _e102;
-    patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
-    let _e103 = param_38;
+    param_40 = _e102;
+    patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_38), (&param_39), (&param_40), (&param_41), (&param_42), (&param_43), (&param_44));
+    let _e103 = param_41;
     bu_1 = _e103;
-    let _e104 = param_39;
+    let _e104 = param_42;
     du_1 = _e104;
-    let _e105 = param_40;
+    let _e105 = param_43;
     bv_1 = _e105;
-    let _e106 = param_41;
+    let _e106 = param_44;
     dv_1 = _e106;
-    (*P) = vec3<f32>(0f, 0f, 0f);
+    (*P_2) = vec3<f32>(0f, 0f, 0f);
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
     j = 0i;
@@ -542,15 +651,15 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
                     let _e113 = i_1;
                     let _e117 = (*pt_1).cv[((4i * _e111) + _e113)];
                     let _e120 = vertices.p[_e117];
-                    c = _e120.xyz;
+                    c_1 = _e120.xyz;
                     let _e122 = i_1;
                     let _e124 = bu_1[_e122];
-                    let _e125 = c;
+                    let _e125 = c_1;
                     let _e127 = row;
                     row = (_e127 + (_e125 * _e124));
                     let _e129 = i_1;
                     let _e131 = du_1[_e129];
-                    let _e132 = c;
+                    let _e132 = c_1;
                     let _e134 = rowDu;
                     rowDu = (_e134 + (_e132 * _e131));
                     continue;
@@ -565,8 +674,8 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
             let _e138 = j;
             let _e140 = bv_1[_e138];
             let _e141 = row;
-            let _e143 = (*P);
-            (*P) = (_e143 + (_e141 * _e140));
+            let _e143 = (*P_2);
+            (*P_2) = (_e143 + (_e141 * _e140));
             let _e145 = j;
             let _e147 = bv_1[_e145];
             let _e148 = rowDu;
@@ -588,30 +697,30 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     }
     let _e161 = Du;
     let _e162 = Dv;
-    (*n) = cross(_e161, _e162);
+    (*n_1) = cross(_e161, _e162);
     return;
 }
 
-fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(h: ptr<function, u32>, k_2: ptr<function, u32>, q: ptr<function, u32>, s_4: ptr<function, f32>, t_4: ptr<function, f32>, P_1: ptr<function, vec3<f32>>, n_1: ptr<function, vec3<f32>>) {
+fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b(h: ptr<function, u32>, k_3: ptr<function, u32>, q: ptr<function, u32>, s_4: ptr<function, f32>, t_4: ptr<function, f32>, P_3: ptr<function, vec3<f32>>, n_2: ptr<function, vec3<f32>>) {
     var hd: Patch;
-    var M_1: u32;
+    var M_2: u32;
     var block: u32;
     var j_1: i32;
-    var c_1: array<vec3<f32>, 16>;
+    var c_2: array<vec3<f32>, 16>;
     var i_2: u32;
     var x_1: vec3<f32>;
     var w_1: Patch;
     var j_2: i32;
     var bu_2: array<f32, 4>;
     var du_2: array<f32, 4>;
-    var param_42: f32;
-    var param_43: array<f32, 4>;
-    var param_44: array<f32, 4>;
-    var bv_2: array<f32, 4>;
-    var dv_2: array<f32, 4>;
     var param_45: f32;
     var param_46: array<f32, 4>;
     var param_47: array<f32, 4>;
+    var bv_2: array<f32, 4>;
+    var dv_2: array<f32, 4>;
+    var param_48: f32;
+    var param_49: array<f32, 4>;
+    var param_50: array<f32, 4>;
     var Du_1: vec3<f32>;
     var Dv_1: vec3<f32>;
     var j_3: i32;
@@ -646,18 +755,18 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     hd.pad1_ = _e111.pad1_;
     hd.pad2_ = _e111.pad2_;
     let _e164 = hd.cv[0i];
-    M_1 = ((2u * _e164) + 8u);
+    M_2 = ((2u * _e164) + 8u);
     let _e169 = hd.cv[2i];
-    let _e170 = (*k_2);
+    let _e170 = (*k_3);
     let _e173 = (*q);
-    let _e176 = M_1;
+    let _e176 = M_2;
     block = (_e169 + ((((_e170 - 1u) * 3u) + (_e173 - 1u)) * _e176));
     j_1 = 0i;
     loop {
         let _e179 = j_1;
         if (_e179 < 16i) {
             let _e181 = j_1;
-            c_1[_e181] = vec3<f32>(0f, 0f, 0f);
+            c_2[_e181] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
@@ -670,7 +779,7 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     i_2 = 0u;
     loop {
         let _e185 = i_2;
-        let _e186 = M_1;
+        let _e186 = M_2;
         if (_e185 < _e186) {
             let _e188 = (*h);
             let _e190 = i_2;
@@ -713,8 +822,8 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
                     let _e263 = j_2;
                     let _e266 = w_1.cv[_e263];
                     let _e268 = x_1;
-                    let _e271 = c_1[_e262];
-                    c_1[_e262] = (_e271 + (_e268 * bitcast<f32>(_e266)));
+                    let _e271 = c_2[_e262];
+                    c_2[_e262] = (_e271 + (_e268 * bitcast<f32>(_e266)));
                     continue;
                 } else {
                     break;
@@ -734,20 +843,20 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
         }
     }
     let _e279 = (*s_4);
-    param_42 = _e279;
-    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
-    let _e280 = param_43;
+    param_45 = _e279;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
+    let _e280 = param_46;
     bu_2 = _e280;
-    let _e281 = param_44;
+    let _e281 = param_47;
     du_2 = _e281;
     let _e282 = (*t_4);
-    param_45 = _e282;
-    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e283 = param_46;
+    param_48 = _e282;
+    bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_48), (&param_49), (&param_50));
+    let _e283 = param_49;
     bv_2 = _e283;
-    let _e284 = param_47;
+    let _e284 = param_50;
     dv_2 = _e284;
-    (*P_1) = vec3<f32>(0f, 0f, 0f);
+    (*P_3) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
@@ -764,14 +873,14 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
                     let _e291 = bu_2[_e289];
                     let _e292 = j_3;
                     let _e294 = i_3;
-                    let _e297 = c_1[((4i * _e292) + _e294)];
+                    let _e297 = c_2[((4i * _e292) + _e294)];
                     let _e299 = row_1;
                     row_1 = (_e299 + (_e297 * _e291));
                     let _e301 = i_3;
                     let _e303 = du_2[_e301];
                     let _e304 = j_3;
                     let _e306 = i_3;
-                    let _e309 = c_1[((4i * _e304) + _e306)];
+                    let _e309 = c_2[((4i * _e304) + _e306)];
                     let _e311 = rowDu_1;
                     rowDu_1 = (_e311 + (_e309 * _e303));
                     continue;
@@ -786,8 +895,8 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             let _e315 = j_3;
             let _e317 = bv_2[_e315];
             let _e318 = row_1;
-            let _e320 = (*P_1);
-            (*P_1) = (_e320 + (_e318 * _e317));
+            let _e320 = (*P_3);
+            (*P_3) = (_e320 + (_e318 * _e317));
             let _e322 = j_3;
             let _e324 = bv_2[_e322];
             let _e325 = rowDu_1;
@@ -809,11 +918,11 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     }
     let _e338 = Du_1;
     let _e339 = Dv_1;
-    (*n_1) = cross(_e338, _e339);
+    (*n_2) = cross(_e338, _e339);
     return;
 }
 
-fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u32>, st: ptr<function, u32>, P_2: ptr<function, vec3<f32>>, n_2: ptr<function, vec3<f32>>) {
+fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u32>, st: ptr<function, u32>, P_4: ptr<function, vec3<f32>>, n_3: ptr<function, vec3<f32>>) {
     var hd_1: Patch;
     var S: u32;
     var T: u32;
@@ -823,51 +932,51 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     var local_4: u32;
     var local_5: u32;
     var local_6: u32;
-    var c_2: u32;
+    var c_3: u32;
     var local_7: u32;
     var local_8: u32;
     var local_9: u32;
     var evP: vec3<f32>;
     var evN: vec3<f32>;
-    var k_3: u32;
+    var k_4: u32;
     var qu: u32;
     var qv: u32;
     var q_1: u32;
     var local_10: u32;
-    var param_48: u32;
-    var param_49: u32;
-    var param_50: u32;
-    var param_51: f32;
-    var param_52: f32;
-    var param_53: vec3<f32>;
-    var param_54: vec3<f32>;
+    var param_51: u32;
+    var param_52: u32;
+    var param_53: u32;
+    var param_54: f32;
+    var param_55: f32;
+    var param_56: vec3<f32>;
+    var param_57: vec3<f32>;
     var P1_: vec3<f32>;
     var n1_: vec3<f32>;
-    var param_55: u32;
-    var param_56: u32;
-    var param_57: u32;
-    var param_58: f32;
-    var param_59: f32;
-    var param_60: vec3<f32>;
-    var param_61: vec3<f32>;
+    var param_58: u32;
+    var param_59: u32;
+    var param_60: u32;
+    var param_61: f32;
+    var param_62: f32;
+    var param_63: vec3<f32>;
+    var param_64: vec3<f32>;
     var P2_: vec3<f32>;
     var n2_: vec3<f32>;
-    var param_62: u32;
-    var param_63: u32;
-    var param_64: u32;
-    var param_65: f32;
-    var param_66: f32;
-    var param_67: vec3<f32>;
-    var param_68: vec3<f32>;
+    var param_65: u32;
+    var param_66: u32;
+    var param_67: u32;
+    var param_68: f32;
+    var param_69: f32;
+    var param_70: vec3<f32>;
+    var param_71: vec3<f32>;
     var P3_: vec3<f32>;
     var n3_: vec3<f32>;
-    var param_69: u32;
-    var param_70: u32;
-    var param_71: u32;
-    var param_72: f32;
-    var param_73: f32;
-    var param_74: vec3<f32>;
-    var param_75: vec3<f32>;
+    var param_72: u32;
+    var param_73: u32;
+    var param_74: u32;
+    var param_75: f32;
+    var param_76: f32;
+    var param_77: vec3<f32>;
+    var param_78: vec3<f32>;
     var x_2: f32;
     var y: f32;
     var w_2: array<f32, 4>;
@@ -957,7 +1066,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
         local_7 = _e230;
     }
     let _e231 = local_7;
-    c_2 = _e231;
+    c_3 = _e231;
     let _e234 = hd_1.cv[4i];
     let _e238 = limits.v[(2u * _e234)];
     evP = _e238.xyz;
@@ -965,38 +1074,38 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     let _e247 = limits.v[((2u * _e242) + 1u)];
     evN = _e247.xyz;
     let _e249 = a;
-    let _e251 = c_2;
+    let _e251 = c_3;
     if ((_e249 == 0u) && (_e251 == 0u)) {
         let _e254 = evP;
-        (*P_2) = _e254;
+        (*P_4) = _e254;
         let _e255 = evN;
-        (*n_2) = _e255;
+        (*n_3) = _e255;
         return;
     }
-    k_3 = 1u;
+    k_4 = 1u;
     loop {
         let _e256 = a;
-        let _e257 = c_2;
-        let _e260 = k_3;
+        let _e257 = c_3;
+        let _e260 = k_4;
         let _e261 = K;
         if ((max(_e256, _e257) < 16384u) && (_e260 < _e261)) {
             let _e264 = a;
             a = (_e264 * 2u);
-            let _e266 = c_2;
-            c_2 = (_e266 * 2u);
-            let _e268 = k_3;
-            k_3 = (_e268 + bitcast<u32>(1i));
+            let _e266 = c_3;
+            c_3 = (_e266 * 2u);
+            let _e268 = k_4;
+            k_4 = (_e268 + bitcast<u32>(1i));
             continue;
         } else {
             break;
         }
     }
     let _e271 = a;
-    let _e272 = c_2;
+    let _e272 = c_3;
     if (max(_e271, _e272) >= 16384u) {
         let _e275 = a;
         qu = select(0u, 1u, (_e275 >= 16384u));
-        let _e278 = c_2;
+        let _e278 = c_3;
         qv = select(0u, 1u, (_e278 >= 16384u));
         let _e281 = qv;
         if (_e281 == 0u) {
@@ -1009,62 +1118,62 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
         q_1 = _e286;
         let _e287 = a;
         let _e289 = qu;
-        let _e294 = c_2;
+        let _e294 = c_3;
         let _e296 = qv;
         let _e301 = (*h_1);
-        param_48 = _e301;
-        let _e302 = k_3;
-        param_49 = _e302;
+        param_51 = _e301;
+        let _e302 = k_4;
+        param_52 = _e302;
         let _e303 = q_1;
-        param_50 = _e303;
-        param_51 = (f32(((2u * _e287) - (_e289 * 32768u))) / 32768f);
-        param_52 = (f32(((2u * _e294) - (_e296 * 32768u))) / 32768f);
-        basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_48), (&param_49), (&param_50), (&param_51), (&param_52), (&param_53), (&param_54));
-        let _e304 = param_53;
-        (*P_2) = _e304;
-        let _e305 = param_54;
-        (*n_2) = _e305;
+        param_53 = _e303;
+        param_54 = (f32(((2u * _e287) - (_e289 * 32768u))) / 32768f);
+        param_55 = (f32(((2u * _e294) - (_e296 * 32768u))) / 32768f);
+        basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_51), (&param_52), (&param_53), (&param_54), (&param_55), (&param_56), (&param_57));
+        let _e304 = param_56;
+        (*P_4) = _e304;
+        let _e305 = param_57;
+        (*n_3) = _e305;
         return;
     }
     let _e306 = (*h_1);
-    param_55 = _e306;
-    let _e307 = k_3;
-    param_56 = _e307;
-    param_57 = 1u;
-    param_58 = 0f;
-    param_59 = 0f;
-    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_55), (&param_56), (&param_57), (&param_58), (&param_59), (&param_60), (&param_61));
-    let _e308 = param_60;
+    param_58 = _e306;
+    let _e307 = k_4;
+    param_59 = _e307;
+    param_60 = 1u;
+    param_61 = 0f;
+    param_62 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_58), (&param_59), (&param_60), (&param_61), (&param_62), (&param_63), (&param_64));
+    let _e308 = param_63;
     P1_ = _e308;
-    let _e309 = param_61;
+    let _e309 = param_64;
     n1_ = _e309;
     let _e310 = (*h_1);
-    param_62 = _e310;
-    let _e311 = k_3;
-    param_63 = _e311;
-    param_64 = 2u;
-    param_65 = 0f;
-    param_66 = 0f;
-    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_62), (&param_63), (&param_64), (&param_65), (&param_66), (&param_67), (&param_68));
-    let _e312 = param_67;
+    param_65 = _e310;
+    let _e311 = k_4;
+    param_66 = _e311;
+    param_67 = 2u;
+    param_68 = 0f;
+    param_69 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_65), (&param_66), (&param_67), (&param_68), (&param_69), (&param_70), (&param_71));
+    let _e312 = param_70;
     P2_ = _e312;
-    let _e313 = param_68;
+    let _e313 = param_71;
     n2_ = _e313;
     let _e314 = (*h_1);
-    param_69 = _e314;
-    let _e315 = k_3;
-    param_70 = _e315;
-    param_71 = 3u;
-    param_72 = 0f;
-    param_73 = 0f;
-    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_69), (&param_70), (&param_71), (&param_72), (&param_73), (&param_74), (&param_75));
-    let _e316 = param_74;
+    param_72 = _e314;
+    let _e315 = k_4;
+    param_73 = _e315;
+    param_74 = 3u;
+    param_75 = 0f;
+    param_76 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_72), (&param_73), (&param_74), (&param_75), (&param_76), (&param_77), (&param_78));
+    let _e316 = param_77;
     P3_ = _e316;
-    let _e317 = param_75;
+    let _e317 = param_78;
     n3_ = _e317;
     let _e318 = a;
     x_2 = (f32(_e318) / 16384f);
-    let _e321 = c_2;
+    let _e321 = c_3;
     y = (f32(_e321) / 16384f);
     let _e324 = x_2;
     let _e326 = y;
@@ -1083,7 +1192,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     let _e352 = P2_;
     let _e356 = w_2[3i];
     let _e357 = P3_;
-    (*P_2) = ((((_e343 * _e342) + (_e347 * _e346)) + (_e352 * _e351)) + (_e357 * _e356));
+    (*P_4) = ((((_e343 * _e342) + (_e347 * _e346)) + (_e352 * _e351)) + (_e357 * _e356));
     let _e361 = w_2[0i];
     let _e362 = evN;
     let _e365 = w_2[1i];
@@ -1092,40 +1201,40 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     let _e372 = n2_;
     let _e377 = w_2[3i];
     let _e378 = n3_;
-    (*n_2) = ((((_e362 * _e361) + (normalize(_e366) * _e365)) + (normalize(_e372) * _e371)) + (normalize(_e378) * _e377));
+    (*n_3) = ((((_e362 * _e361) + (normalize(_e366) * _e365)) + (normalize(_e372) * _e371)) + (normalize(_e378) * _e377));
     return;
 }
 
-fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr<function, u32>, st_1: ptr<function, u32>, patchCount: ptr<function, u32>, P_3: ptr<function, vec3<f32>>, n_3: ptr<function, vec3<f32>>) {
+fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr<function, u32>, st_1: ptr<function, u32>, patchCount: ptr<function, u32>, P_5: ptr<function, vec3<f32>>, n_4: ptr<function, vec3<f32>>) {
     var S_1: u32;
     var T_1: u32;
-    var k_4: u32;
+    var k_5: u32;
     var local_11: u32;
-    var c_3: u32;
+    var c_4: u32;
     var node: u32;
     var leaf: u32;
     var ls: u32;
     var lt: u32;
-    var k_5: i32;
-    var c_4: u32;
+    var k_6: i32;
+    var c_5: u32;
     var code: u32;
-    var param_76: u32;
-    var param_77: u32;
-    var param_78: vec3<f32>;
-    var param_79: vec3<f32>;
+    var param_79: u32;
+    var param_80: u32;
+    var param_81: vec3<f32>;
+    var param_82: vec3<f32>;
     var kind: u32;
     var index: u32;
-    var param_80: Patch;
-    var param_81: f32;
-    var param_82: f32;
-    var param_83: vec3<f32>;
-    var param_84: vec3<f32>;
+    var param_83: Patch;
+    var param_84: f32;
+    var param_85: f32;
+    var param_86: vec3<f32>;
+    var param_87: vec3<f32>;
     var q_2: IrregularFace;
     var s_5: f32;
     var t_5: f32;
     var w_3: array<f32, 4>;
-    var k_6: i32;
-    var phi_1375_: bool;
+    var k_7: i32;
+    var phi_1385_: bool;
 
     let _e109 = (*st_1);
     S_1 = (_e109 & 65535u);
@@ -1134,13 +1243,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e114 = S_1;
     let _e116 = S_1;
     let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
-    phi_1375_ = _e118;
+    phi_1385_ = _e118;
     if _e118 {
         let _e119 = T_1;
         let _e121 = T_1;
-        phi_1375_ = ((_e119 == 0u) || (_e121 == 32768u));
+        phi_1385_ = ((_e119 == 0u) || (_e121 == 32768u));
     }
-    let _e125 = phi_1375_;
+    let _e125 = phi_1385_;
     if _e125 {
         let _e126 = S_1;
         if (_e126 == 0u) {
@@ -1151,17 +1260,17 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
             local_11 = select(2u, 1u, (_e131 == 0u));
         }
         let _e134 = local_11;
-        k_4 = _e134;
+        k_5 = _e134;
         let _e135 = (*face);
-        let _e136 = k_4;
+        let _e136 = k_5;
         let _e141 = irregulars.f[_e135].corner[_e136];
-        c_3 = _e141;
-        let _e142 = c_3;
+        c_4 = _e141;
+        let _e142 = c_4;
         let _e146 = limits.v[(2u * _e142)];
-        (*P_3) = _e146.xyz;
-        let _e148 = c_3;
+        (*P_5) = _e146.xyz;
+        let _e148 = c_4;
         let _e153 = limits.v[((2u * _e148) + 1u)];
-        (*n_3) = _e153.xyz;
+        (*n_4) = _e153.xyz;
         return;
     }
     let _e155 = (*patchCount);
@@ -1173,15 +1282,15 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     ls = _e159;
     let _e160 = T_1;
     lt = _e160;
-    k_5 = 0i;
+    k_6 = 0i;
     loop {
-        let _e161 = k_5;
+        let _e161 = k_6;
         if (_e161 < 17i) {
             let _e163 = S_1;
             let _e166 = T_1;
-            c_4 = (select(0u, 1u, (_e163 >= 16384u)) | select(0u, 2u, (_e166 >= 16384u)));
+            c_5 = (select(0u, 1u, (_e163 >= 16384u)) | select(0u, 2u, (_e166 >= 16384u)));
             let _e170 = node;
-            let _e171 = c_4;
+            let _e171 = c_5;
             let _e176 = patches.p[_e170].cv[_e171];
             code = _e176;
             let _e177 = code;
@@ -1191,21 +1300,21 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
             let _e179 = code;
             if ((_e179 & 3221225472u) == 3221225472u) {
                 let _e182 = code;
-                param_76 = (_e182 & 1073741823u);
+                param_79 = (_e182 & 1073741823u);
                 let _e184 = (*st_1);
-                param_77 = _e184;
-                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_76), (&param_77), (&param_78), (&param_79));
-                let _e185 = param_78;
-                (*P_3) = _e185;
-                let _e186 = param_79;
-                (*n_3) = _e186;
+                param_80 = _e184;
+                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_79), (&param_80), (&param_81), (&param_82));
+                let _e185 = param_81;
+                (*P_5) = _e185;
+                let _e186 = param_82;
+                (*n_4) = _e186;
                 return;
             }
             let _e187 = S_1;
-            let _e189 = c_4;
+            let _e189 = c_5;
             S_1 = ((2u * _e187) - select(0u, 32768u, ((_e189 & 1u) != 0u)));
             let _e194 = T_1;
-            let _e196 = c_4;
+            let _e196 = c_5;
             T_1 = ((2u * _e194) - select(0u, 32768u, ((_e196 & 2u) != 0u)));
             let _e201 = code;
             kind = (_e201 & 3221225472u);
@@ -1217,37 +1326,37 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
                 let _e208 = S_1;
                 let _e211 = T_1;
                 let _e216 = patches.p[_e207];
-                param_80.cv[0i] = _e216.cv[0];
-                param_80.cv[1i] = _e216.cv[1];
-                param_80.cv[2i] = _e216.cv[2];
-                param_80.cv[3i] = _e216.cv[3];
-                param_80.cv[4i] = _e216.cv[4];
-                param_80.cv[5i] = _e216.cv[5];
-                param_80.cv[6i] = _e216.cv[6];
-                param_80.cv[7i] = _e216.cv[7];
-                param_80.cv[8i] = _e216.cv[8];
-                param_80.cv[9i] = _e216.cv[9];
-                param_80.cv[10i] = _e216.cv[10];
-                param_80.cv[11i] = _e216.cv[11];
-                param_80.cv[12i] = _e216.cv[12];
-                param_80.cv[13i] = _e216.cv[13];
-                param_80.cv[14i] = _e216.cv[14];
-                param_80.cv[15i] = _e216.cv[15];
-                param_80.ptex = _e216.ptex;
-                param_80.u0_ = _e216.u0_;
-                param_80.v0_ = _e216.v0_;
-                param_80.size = _e216.size;
-                param_80.levelBoundary = _e216.levelBoundary;
-                param_80.sharpness = _e216.sharpness;
-                param_80.pad1_ = _e216.pad1_;
-                param_80.pad2_ = _e216.pad2_;
-                param_81 = (f32(_e208) / 32768f);
-                param_82 = (f32(_e211) / 32768f);
-                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_80), (&param_81), (&param_82), (&param_83), (&param_84));
-                let _e267 = param_83;
-                (*P_3) = _e267;
-                let _e268 = param_84;
-                (*n_3) = _e268;
+                param_83.cv[0i] = _e216.cv[0];
+                param_83.cv[1i] = _e216.cv[1];
+                param_83.cv[2i] = _e216.cv[2];
+                param_83.cv[3i] = _e216.cv[3];
+                param_83.cv[4i] = _e216.cv[4];
+                param_83.cv[5i] = _e216.cv[5];
+                param_83.cv[6i] = _e216.cv[6];
+                param_83.cv[7i] = _e216.cv[7];
+                param_83.cv[8i] = _e216.cv[8];
+                param_83.cv[9i] = _e216.cv[9];
+                param_83.cv[10i] = _e216.cv[10];
+                param_83.cv[11i] = _e216.cv[11];
+                param_83.cv[12i] = _e216.cv[12];
+                param_83.cv[13i] = _e216.cv[13];
+                param_83.cv[14i] = _e216.cv[14];
+                param_83.cv[15i] = _e216.cv[15];
+                param_83.ptex = _e216.ptex;
+                param_83.u0_ = _e216.u0_;
+                param_83.v0_ = _e216.v0_;
+                param_83.size = _e216.size;
+                param_83.levelBoundary = _e216.levelBoundary;
+                param_83.sharpness = _e216.sharpness;
+                param_83.pad1_ = _e216.pad1_;
+                param_83.pad2_ = _e216.pad2_;
+                param_84 = (f32(_e208) / 32768f);
+                param_85 = (f32(_e211) / 32768f);
+                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_83), (&param_84), (&param_85), (&param_86), (&param_87));
+                let _e267 = param_86;
+                (*P_5) = _e267;
+                let _e268 = param_87;
+                (*n_4) = _e268;
                 return;
             }
             let _e269 = kind;
@@ -1267,8 +1376,8 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
             break;
         }
         continuing {
-            let _e275 = k_5;
-            k_5 = (_e275 + 1i);
+            let _e275 = k_6;
+            k_6 = (_e275 + 1i);
         }
     }
     let _e277 = leaf;
@@ -1291,42 +1400,42 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e309 = s_5;
     let _e311 = t_5;
     w_3 = array<f32, 4>(((1f - _e297) * (1f - _e299)), (_e302 * (1f - _e303)), (_e306 * _e307), ((1f - _e309) * _e311));
-    (*P_3) = vec3<f32>(0f, 0f, 0f);
-    (*n_3) = vec3<f32>(0f, 0f, 0f);
-    k_6 = 0i;
+    (*P_5) = vec3<f32>(0f, 0f, 0f);
+    (*n_4) = vec3<f32>(0f, 0f, 0f);
+    k_7 = 0i;
     loop {
-        let _e314 = k_6;
+        let _e314 = k_7;
         if (_e314 < 4i) {
-            let _e316 = k_6;
+            let _e316 = k_7;
             let _e318 = w_3[_e316];
-            let _e319 = k_6;
+            let _e319 = k_7;
             let _e322 = q_2.corner[_e319];
             let _e326 = limits.v[(2u * _e322)];
-            let _e329 = (*P_3);
-            (*P_3) = (_e329 + (_e326.xyz * _e318));
-            let _e331 = k_6;
+            let _e329 = (*P_5);
+            (*P_5) = (_e329 + (_e326.xyz * _e318));
+            let _e331 = k_7;
             let _e333 = w_3[_e331];
-            let _e334 = k_6;
+            let _e334 = k_7;
             let _e337 = q_2.corner[_e334];
             let _e342 = limits.v[((2u * _e337) + 1u)];
-            let _e345 = (*n_3);
-            (*n_3) = (_e345 + (_e342.xyz * _e333));
+            let _e345 = (*n_4);
+            (*n_4) = (_e345 + (_e342.xyz * _e333));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e347 = k_6;
-            k_6 = (_e347 + 1i);
+            let _e347 = k_7;
+            k_7 = (_e347 + 1i);
         }
     }
     return;
 }
 
-fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 3>>, patchCount_1: ptr<function, u32>, P_4: ptr<function, array<vec3<f32>, 3>>) {
+fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_vf3_u005b_5_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 5>>, patchCount_1: ptr<function, u32>, P_6: ptr<function, array<vec3<f32>, 5>>) {
     var pt_2: Patch;
-    var k_7: i32;
-    var c_5: array<vec3<f32>, 16>;
+    var k_8: i32;
+    var c_6: array<vec3<f32>, 16>;
     var q_3: i32;
     var s_6: f32;
     var t_6: f32;
@@ -1334,24 +1443,24 @@ fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_
     var du_3: array<f32, 4>;
     var bv_3: array<f32, 4>;
     var dv_3: array<f32, 4>;
-    var param_85: Patch;
-    var param_86: f32;
-    var param_87: f32;
-    var param_88: array<f32, 4>;
-    var param_89: array<f32, 4>;
-    var param_90: array<f32, 4>;
+    var param_88: Patch;
+    var param_89: f32;
+    var param_90: f32;
     var param_91: array<f32, 4>;
+    var param_92: array<f32, 4>;
+    var param_93: array<f32, 4>;
+    var param_94: array<f32, 4>;
     var p: vec3<f32>;
     var j_4: i32;
     var row_2: vec3<f32>;
     var i_4: i32;
     var q_4: i32;
-    var n_4: vec3<f32>;
-    var param_92: u32;
-    var param_93: u32;
-    var param_94: u32;
-    var param_95: vec3<f32>;
-    var param_96: vec3<f32>;
+    var n_5: vec3<f32>;
+    var param_95: u32;
+    var param_96: u32;
+    var param_97: u32;
+    var param_98: vec3<f32>;
+    var param_99: vec3<f32>;
 
     let _e108 = (*element);
     let _e109 = (*patchCount_1);
@@ -1382,28 +1491,28 @@ fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_
         pt_2.sharpness = _e114.sharpness;
         pt_2.pad1_ = _e114.pad1_;
         pt_2.pad2_ = _e114.pad2_;
-        k_7 = 0i;
+        k_8 = 0i;
         loop {
-            let _e165 = k_7;
+            let _e165 = k_8;
             if (_e165 < 16i) {
-                let _e167 = k_7;
-                let _e168 = k_7;
+                let _e167 = k_8;
+                let _e168 = k_8;
                 let _e171 = pt_2.cv[_e168];
                 let _e174 = vertices.p[_e171];
-                c_5[_e167] = _e174.xyz;
+                c_6[_e167] = _e174.xyz;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e177 = k_7;
-                k_7 = (_e177 + 1i);
+                let _e177 = k_8;
+                k_8 = (_e177 + 1i);
             }
         }
         q_3 = 0i;
         loop {
             let _e179 = q_3;
-            if (_e179 < 3i) {
+            if (_e179 < 5i) {
                 let _e181 = q_3;
                 let _e183 = (*st_2)[_e181];
                 s_6 = (f32((_e183 & 65535u)) / 32768f);
@@ -1411,19 +1520,19 @@ fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_
                 let _e189 = (*st_2)[_e187];
                 t_6 = (f32((_e189 >> bitcast<u32>(16i))) / 32768f);
                 let _e194 = pt_2;
-                param_85 = _e194;
+                param_88 = _e194;
                 let _e195 = s_6;
-                param_86 = _e195;
+                param_89 = _e195;
                 let _e196 = t_6;
-                param_87 = _e196;
-                patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_85), (&param_86), (&param_87), (&param_88), (&param_89), (&param_90), (&param_91));
-                let _e197 = param_88;
+                param_90 = _e196;
+                patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_88), (&param_89), (&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
+                let _e197 = param_91;
                 bu_3 = _e197;
-                let _e198 = param_89;
+                let _e198 = param_92;
                 du_3 = _e198;
-                let _e199 = param_90;
+                let _e199 = param_93;
                 bv_3 = _e199;
-                let _e200 = param_91;
+                let _e200 = param_94;
                 dv_3 = _e200;
                 p = vec3<f32>(0f, 0f, 0f);
                 j_4 = 0i;
@@ -1439,7 +1548,7 @@ fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_
                                 let _e207 = bu_3[_e205];
                                 let _e208 = j_4;
                                 let _e210 = i_4;
-                                let _e213 = c_5[((4i * _e208) + _e210)];
+                                let _e213 = c_6[((4i * _e208) + _e210)];
                                 let _e215 = row_2;
                                 row_2 = (_e215 + (_e213 * _e207));
                                 continue;
@@ -1467,7 +1576,7 @@ fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_
                 }
                 let _e228 = q_3;
                 let _e229 = p;
-                (*P_4)[_e228] = _e229;
+                (*P_6)[_e228] = _e229;
                 continue;
             } else {
                 break;
@@ -1481,21 +1590,21 @@ fn elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_
         q_4 = 0i;
         loop {
             let _e233 = q_4;
-            if (_e233 < 3i) {
+            if (_e233 < 5i) {
                 let _e235 = (*element);
                 let _e236 = (*patchCount_1);
                 let _e238 = q_4;
                 let _e239 = q_4;
-                param_92 = (_e235 - _e236);
+                param_95 = (_e235 - _e236);
                 let _e241 = (*st_2)[_e238];
-                param_93 = _e241;
+                param_96 = _e241;
                 let _e242 = (*patchCount_1);
-                param_94 = _e242;
-                irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_92), (&param_93), (&param_94), (&param_95), (&param_96));
-                let _e243 = param_95;
-                (*P_4)[_e239] = _e243;
-                let _e245 = param_96;
-                n_4 = _e245;
+                param_97 = _e242;
+                irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_95), (&param_96), (&param_97), (&param_98), (&param_99));
+                let _e243 = param_98;
+                (*P_6)[_e239] = _e243;
+                let _e245 = param_99;
+                n_5 = _e245;
                 continue;
             } else {
                 break;
@@ -1526,7 +1635,7 @@ fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32
 
 fn main_1() {
     var i_5: u32;
-    var param_97: u32;
+    var param_100: u32;
     var p0_: vec4<u32>;
     var p1_: vec4<u32>;
     var visible: bool;
@@ -1534,357 +1643,411 @@ fn main_1() {
     var r: u32;
     var size: u32;
     var ends: vec4<f32>;
-    var st_3: array<u32, 3>;
-    var param_98: u32;
-    var param_99: u32;
+    var mid: u32;
+    var param_101: u32;
+    var param_102: u32;
+    var st_3: array<u32, 5>;
+    var param_103: u32;
+    var param_104: u32;
+    var param_105: u32;
+    var param_106: u32;
     var behind: u32;
     var allOut: u32;
-    var P_5: array<vec3<f32>, 3>;
-    var param_100: u32;
-    var param_101: array<u32, 3>;
-    var param_102: u32;
-    var param_103: array<vec3<f32>, 3>;
-    var k_8: i32;
-    var c_6: vec4<f32>;
+    var P_7: array<vec3<f32>, 5>;
+    var param_107: u32;
+    var param_108: array<u32, 5>;
+    var param_109: u32;
+    var param_110: array<vec3<f32>, 5>;
+    var k_9: i32;
+    var c_7: vec4<f32>;
     var o: u32;
-    var px: array<vec2<f32>, 3>;
+    var px: array<vec2<f32>, 5>;
     var local_12: vec2<f32>;
     var len: f32;
+    var local_13: f32;
+    var want: f32;
+    var param_111: array<vec3<f32>, 5>;
     var chord: vec2<f32>;
     var cl: f32;
     var off: vec2<f32>;
     var d_3: f32;
-    var local_13: f32;
-    var want: f32;
-    var k_9: i32;
+    var local_14: f32;
+    var k_10: i32;
     var e: u32;
-    var local_14: u32;
+    var local_15: u32;
     var pt_3: Patch;
     var crease_2: u32;
     var alongS: bool;
     var creaseAlongS: bool;
-    var most: f32;
-    var phi_1925_: bool;
-    var phi_1926_: bool;
-    var phi_2128_: bool;
-    var phi_2222_: bool;
+    var most_1: f32;
+    var local_16: f32;
+    var phi_2102_: bool;
+    var phi_2103_: bool;
+    var phi_2348_: bool;
+    var phi_2453_: bool;
 
-    let _e116 = pc.limnRowInvocations;
-    param_97 = _e116;
-    let _e117 = limnInvocationIndex_u0028_u1_u003b((&param_97));
-    i_5 = _e117;
-    let _e118 = i_5;
-    let _e120 = pc.limnCount;
-    if (_e118 >= _e120) {
+    let _e124 = pc.limnRowInvocations;
+    param_100 = _e124;
+    let _e125 = limnInvocationIndex_u0028_u1_u003b((&param_100));
+    i_5 = _e125;
+    let _e126 = i_5;
+    let _e128 = pc.limnCount;
+    if (_e126 >= _e128) {
         return;
     }
-    let _e122 = i_5;
-    let _e126 = pieces.v[(2u * _e122)];
-    p0_ = _e126;
-    let _e127 = i_5;
-    let _e132 = pieces.v[((2u * _e127) + 1u)];
-    p1_ = _e132;
-    let _e134 = p1_[0u];
-    let _e137 = cull.c[_e134];
-    let _e138 = (_e137 == 0u);
-    phi_1926_ = _e138;
-    if !(_e138) {
-        let _e141 = p1_[1u];
-        let _e142 = (_e141 != 4294967295u);
-        phi_1925_ = _e142;
-        if _e142 {
-            let _e144 = p1_[1u];
-            let _e147 = cull.c[_e144];
-            phi_1925_ = (_e147 == 0u);
+    let _e130 = i_5;
+    let _e134 = pieces.v[(2u * _e130)];
+    p0_ = _e134;
+    let _e135 = i_5;
+    let _e140 = pieces.v[((2u * _e135) + 1u)];
+    p1_ = _e140;
+    let _e142 = p1_[0u];
+    let _e145 = cull.c[_e142];
+    let _e146 = (_e145 == 0u);
+    phi_2103_ = _e146;
+    if !(_e146) {
+        let _e149 = p1_[1u];
+        let _e150 = (_e149 != 4294967295u);
+        phi_2102_ = _e150;
+        if _e150 {
+            let _e152 = p1_[1u];
+            let _e155 = cull.c[_e152];
+            phi_2102_ = (_e155 == 0u);
         }
-        let _e150 = phi_1925_;
-        phi_1926_ = _e150;
+        let _e158 = phi_2102_;
+        phi_2103_ = _e158;
     }
-    let _e152 = phi_1926_;
-    visible = _e152;
-    let _e154 = pc.tess;
-    let _e156 = p0_[3u];
-    cap = max(min(_e154, _e156), 1u);
+    let _e160 = phi_2103_;
+    visible = _e160;
+    let _e162 = pc.tess;
+    let _e164 = p0_[3u];
+    cap = max(min(_e162, _e164), 1u);
     r = 1u;
     size = 1u;
     ends = vec4<f32>(300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f);
-    let _e159 = visible;
-    if _e159 {
-        let _e161 = p0_[1u];
-        let _e163 = p0_[1u];
-        param_98 = _e163;
-        let _e165 = p0_[2u];
-        param_99 = _e165;
-        let _e166 = midST_u0028_u1_u003b_u1_u003b((&param_98), (&param_99));
-        let _e168 = p0_[2u];
-        st_3 = array<u32, 3>(_e161, _e166, _e168);
+    let _e167 = visible;
+    if _e167 {
+        let _e169 = p0_[1u];
+        param_101 = _e169;
+        let _e171 = p0_[2u];
+        param_102 = _e171;
+        let _e172 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
+        mid = _e172;
+        let _e174 = p0_[1u];
+        let _e176 = p0_[1u];
+        param_103 = _e176;
+        let _e177 = mid;
+        param_104 = _e177;
+        let _e178 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
+        let _e179 = mid;
+        let _e180 = mid;
+        param_105 = _e180;
+        let _e182 = p0_[2u];
+        param_106 = _e182;
+        let _e183 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
+        let _e185 = p0_[2u];
+        st_3 = array<u32, 5>(_e174, _e178, _e179, _e183, _e185);
         behind = 0u;
         allOut = 63u;
-        let _e171 = p0_[0u];
-        param_100 = _e171;
-        let _e172 = st_3;
-        param_101 = _e172;
-        let _e174 = pc.patchCount;
-        param_102 = _e174;
-        elementPositions3_u0028_u1_u003b_u1_u005b_3_u005d_u003b_u1_u003b_vf3_u005b_3_u005d_u003b((&param_100), (&param_101), (&param_102), (&param_103));
-        let _e175 = param_103;
-        P_5 = _e175;
-        k_8 = 0i;
+        let _e188 = p0_[0u];
+        param_107 = _e188;
+        let _e189 = st_3;
+        param_108 = _e189;
+        let _e191 = pc.patchCount;
+        param_109 = _e191;
+        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110));
+        let _e192 = param_110;
+        P_7 = _e192;
+        k_9 = 0i;
         loop {
-            let _e176 = k_8;
-            if (_e176 < 3i) {
-                let _e179 = pc.viewProj;
-                let _e180 = k_8;
-                let _e182 = P_5[_e180];
-                c_6 = (_e179 * vec4<f32>(_e182.x, _e182.y, _e182.z, 1f));
+            let _e193 = k_9;
+            if (_e193 < 5i) {
+                let _e196 = pc.viewProj;
+                let _e197 = k_9;
+                let _e199 = P_7[_e197];
+                c_7 = (_e196 * vec4<f32>(_e199.x, _e199.y, _e199.z, 1f));
                 o = 0u;
-                let _e189 = c_6[0u];
-                let _e191 = c_6[3u];
-                if (_e189 < -(_e191)) {
-                    let _e194 = o;
-                    o = (_e194 | 1u);
+                let _e206 = c_7[0u];
+                let _e208 = c_7[3u];
+                if (_e206 < -(_e208)) {
+                    let _e211 = o;
+                    o = (_e211 | 1u);
                 }
-                let _e197 = c_6[0u];
-                let _e199 = c_6[3u];
-                if (_e197 > _e199) {
-                    let _e201 = o;
-                    o = (_e201 | 2u);
+                let _e214 = c_7[0u];
+                let _e216 = c_7[3u];
+                if (_e214 > _e216) {
+                    let _e218 = o;
+                    o = (_e218 | 2u);
                 }
-                let _e204 = c_6[1u];
-                let _e206 = c_6[3u];
-                if (_e204 < -(_e206)) {
-                    let _e209 = o;
-                    o = (_e209 | 4u);
+                let _e221 = c_7[1u];
+                let _e223 = c_7[3u];
+                if (_e221 < -(_e223)) {
+                    let _e226 = o;
+                    o = (_e226 | 4u);
                 }
-                let _e212 = c_6[1u];
-                let _e214 = c_6[3u];
-                if (_e212 > _e214) {
-                    let _e216 = o;
-                    o = (_e216 | 8u);
+                let _e229 = c_7[1u];
+                let _e231 = c_7[3u];
+                if (_e229 > _e231) {
+                    let _e233 = o;
+                    o = (_e233 | 8u);
                 }
-                let _e219 = c_6[2u];
-                if (_e219 < 0f) {
-                    let _e221 = o;
-                    o = (_e221 | 16u);
+                let _e236 = c_7[2u];
+                if (_e236 < 0f) {
+                    let _e238 = o;
+                    o = (_e238 | 16u);
                 }
-                let _e224 = c_6[2u];
-                let _e226 = c_6[3u];
-                if (_e224 > _e226) {
-                    let _e228 = o;
-                    o = (_e228 | 32u);
+                let _e241 = c_7[2u];
+                let _e243 = c_7[3u];
+                if (_e241 > _e243) {
+                    let _e245 = o;
+                    o = (_e245 | 32u);
                 }
-                let _e230 = o;
-                let _e231 = allOut;
-                allOut = (_e231 & _e230);
-                let _e234 = c_6[3u];
-                if !((_e234 > 0.000001f)) {
-                    let _e237 = behind;
-                    behind = (_e237 + bitcast<u32>(1i));
+                let _e247 = o;
+                let _e248 = allOut;
+                allOut = (_e248 & _e247);
+                let _e251 = c_7[3u];
+                if !((_e251 > 0.000001f)) {
+                    let _e254 = behind;
+                    behind = (_e254 + bitcast<u32>(1i));
                 }
-                let _e240 = k_8;
-                let _e242 = c_6[3u];
-                if (_e242 > 0.000001f) {
-                    let _e244 = c_6;
-                    let _e247 = c_6[3u];
-                    let _e251 = pc.halfViewport;
-                    local_12 = ((_e244.xy / vec2(_e247)) * _e251);
+                let _e257 = k_9;
+                let _e259 = c_7[3u];
+                if (_e259 > 0.000001f) {
+                    let _e261 = c_7;
+                    let _e264 = c_7[3u];
+                    let _e268 = pc.halfViewport;
+                    local_12 = ((_e261.xy / vec2(_e264)) * _e268);
                 } else {
                     local_12 = vec2<f32>(0f, 0f);
                 }
-                let _e253 = local_12;
-                px[_e240] = _e253;
+                let _e270 = local_12;
+                px[_e257] = _e270;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e255 = k_8;
-                k_8 = (_e255 + 1i);
+                let _e272 = k_9;
+                k_9 = (_e272 + 1i);
             }
         }
-        let _e258 = px[0i];
-        let _e260 = px[1i];
-        let _e263 = px[1i];
-        let _e265 = px[2i];
-        len = (distance(_e258, _e260) + distance(_e263, _e265));
-        let _e268 = behind;
-        if (_e268 == 0u) {
-            let _e271 = px[0i];
-            let _e273 = px[2i];
-            let _e280 = pc.halfViewport;
-            ends = (vec4<f32>(_e271.x, _e271.y, _e273.x, _e273.y) + _e280.xyxy);
+        let _e275 = pc.maxError;
+        if (_e275 > 0f) {
+            let _e278 = px[0i];
+            let _e280 = px[1i];
+            let _e283 = px[1i];
+            let _e285 = px[2i];
+            let _e289 = px[2i];
+            let _e291 = px[3i];
+            let _e295 = px[3i];
+            let _e297 = px[4i];
+            local_13 = (((distance(_e278, _e280) + distance(_e283, _e285)) + distance(_e289, _e291)) + distance(_e295, _e297));
+        } else {
+            let _e301 = px[0i];
+            let _e303 = px[2i];
+            let _e306 = px[2i];
+            let _e308 = px[4i];
+            local_13 = (distance(_e301, _e303) + distance(_e306, _e308));
         }
-        let _e283 = behind;
-        if (_e283 == 3u) {
+        let _e311 = local_13;
+        len = _e311;
+        let _e312 = behind;
+        if (_e312 == 0u) {
+            let _e315 = px[0i];
+            let _e317 = px[4i];
+            let _e324 = pc.halfViewport;
+            ends = (vec4<f32>(_e315.x, _e315.y, _e317.x, _e317.y) + _e324.xyxy);
+        }
+        let _e327 = behind;
+        if (_e327 == 5u) {
             r = 1u;
             size = 1u;
         } else {
-            let _e285 = behind;
-            let _e286 = (_e285 != 0u);
-            phi_2128_ = _e286;
-            if !(_e286) {
-                let _e288 = len;
-                phi_2128_ = !((_e288 < 1000000000f));
+            let _e329 = behind;
+            let _e330 = (_e329 != 0u);
+            phi_2348_ = _e330;
+            if !(_e330) {
+                let _e332 = len;
+                phi_2348_ = !((_e332 < 1000000000f));
             }
-            let _e292 = phi_2128_;
-            if _e292 {
-                let _e293 = cap;
-                r = _e293;
-                let _e294 = cap;
-                size = _e294;
+            let _e336 = phi_2348_;
+            if _e336 {
+                let _e337 = cap;
+                r = _e337;
+                let _e338 = cap;
+                size = _e338;
             } else {
-                let _e296 = px[2i];
-                let _e298 = px[0i];
-                chord = (_e296 - _e298);
-                let _e300 = chord;
-                cl = length(_e300);
-                let _e303 = px[1i];
-                let _e305 = px[0i];
-                let _e307 = px[2i];
-                off = (_e303 - ((_e305 + _e307) * 0.5f));
-                let _e311 = cl;
-                if (_e311 > 0.000001f) {
-                    let _e314 = chord[0u];
-                    let _e316 = off[1u];
-                    let _e319 = chord[1u];
-                    let _e321 = off[0u];
-                    let _e325 = cl;
-                    local_13 = (abs(((_e314 * _e316) - (_e319 * _e321))) / _e325);
+                let _e339 = len;
+                let _e341 = pc.edgePixels;
+                want = ceil((_e339 / _e341));
+                let _e345 = pc.maxError;
+                if (_e345 > 0f) {
+                    let _e347 = want;
+                    let _e348 = P_7;
+                    param_111 = _e348;
+                    let _e349 = errorSegments_u0028_vf3_u005b_5_u005d_u003b((&param_111));
+                    want = max(_e347, _e349);
                 } else {
-                    let _e327 = off;
-                    local_13 = length(_e327);
+                    let _e352 = px[4i];
+                    let _e354 = px[0i];
+                    chord = (_e352 - _e354);
+                    let _e356 = chord;
+                    cl = length(_e356);
+                    let _e359 = px[2i];
+                    let _e361 = px[0i];
+                    let _e363 = px[4i];
+                    off = (_e359 - ((_e361 + _e363) * 0.5f));
+                    let _e367 = cl;
+                    if (_e367 > 0.000001f) {
+                        let _e370 = chord[0u];
+                        let _e372 = off[1u];
+                        let _e375 = chord[1u];
+                        let _e377 = off[0u];
+                        let _e381 = cl;
+                        local_14 = (abs(((_e370 * _e372) - (_e375 * _e377))) / _e381);
+                    } else {
+                        let _e383 = off;
+                        local_14 = length(_e383);
+                    }
+                    let _e385 = local_14;
+                    d_3 = _e385;
+                    let _e386 = want;
+                    let _e387 = d_3;
+                    let _e389 = pc.edgePixels;
+                    want = max(_e386, ceil(sqrt((_e387 / (0.025f * _e389)))));
                 }
-                let _e329 = local_13;
-                d_3 = _e329;
-                let _e330 = len;
-                let _e332 = pc.edgePixels;
-                let _e335 = d_3;
-                let _e337 = pc.edgePixels;
-                want = max(ceil((_e330 / _e332)), ceil(sqrt((_e335 / (0.025f * _e337)))));
-                k_9 = 0i;
+                k_10 = 0i;
                 loop {
-                    let _e343 = k_9;
-                    if (_e343 < 2i) {
-                        let _e345 = k_9;
-                        if (_e345 == 0i) {
-                            let _e348 = p1_[0u];
-                            local_14 = _e348;
+                    let _e395 = k_10;
+                    if (_e395 < 2i) {
+                        let _e397 = k_10;
+                        if (_e397 == 0i) {
+                            let _e400 = p1_[0u];
+                            local_15 = _e400;
                         } else {
-                            let _e350 = p1_[1u];
-                            local_14 = _e350;
+                            let _e402 = p1_[1u];
+                            local_15 = _e402;
                         }
-                        let _e351 = local_14;
-                        e = _e351;
-                        let _e352 = e;
-                        let _e353 = (_e352 == 4294967295u);
-                        phi_2222_ = _e353;
-                        if !(_e353) {
-                            let _e355 = e;
-                            let _e357 = pc.patchCount;
-                            phi_2222_ = (_e355 >= _e357);
+                        let _e403 = local_15;
+                        e = _e403;
+                        let _e404 = e;
+                        let _e405 = (_e404 == 4294967295u);
+                        phi_2453_ = _e405;
+                        if !(_e405) {
+                            let _e407 = e;
+                            let _e409 = pc.patchCount;
+                            phi_2453_ = (_e407 >= _e409);
                         }
-                        let _e360 = phi_2222_;
-                        if _e360 {
+                        let _e412 = phi_2453_;
+                        if _e412 {
                             continue;
                         }
-                        let _e361 = e;
-                        let _e364 = patches.p[_e361];
-                        pt_3.cv[0i] = _e364.cv[0];
-                        pt_3.cv[1i] = _e364.cv[1];
-                        pt_3.cv[2i] = _e364.cv[2];
-                        pt_3.cv[3i] = _e364.cv[3];
-                        pt_3.cv[4i] = _e364.cv[4];
-                        pt_3.cv[5i] = _e364.cv[5];
-                        pt_3.cv[6i] = _e364.cv[6];
-                        pt_3.cv[7i] = _e364.cv[7];
-                        pt_3.cv[8i] = _e364.cv[8];
-                        pt_3.cv[9i] = _e364.cv[9];
-                        pt_3.cv[10i] = _e364.cv[10];
-                        pt_3.cv[11i] = _e364.cv[11];
-                        pt_3.cv[12i] = _e364.cv[12];
-                        pt_3.cv[13i] = _e364.cv[13];
-                        pt_3.cv[14i] = _e364.cv[14];
-                        pt_3.cv[15i] = _e364.cv[15];
-                        pt_3.ptex = _e364.ptex;
-                        pt_3.u0_ = _e364.u0_;
-                        pt_3.v0_ = _e364.v0_;
-                        pt_3.size = _e364.size;
-                        pt_3.levelBoundary = _e364.levelBoundary;
-                        pt_3.sharpness = _e364.sharpness;
-                        pt_3.pad1_ = _e364.pad1_;
-                        pt_3.pad2_ = _e364.pad2_;
-                        let _e416 = pt_3.levelBoundary;
-                        crease_2 = ((_e416 >> bitcast<u32>(16i)) & 15u);
-                        let _e420 = crease_2;
-                        if (_e420 == 0u) {
-                            let _e422 = k_9;
-                            if (_e422 == 0i) {
+                        let _e413 = e;
+                        let _e416 = patches.p[_e413];
+                        pt_3.cv[0i] = _e416.cv[0];
+                        pt_3.cv[1i] = _e416.cv[1];
+                        pt_3.cv[2i] = _e416.cv[2];
+                        pt_3.cv[3i] = _e416.cv[3];
+                        pt_3.cv[4i] = _e416.cv[4];
+                        pt_3.cv[5i] = _e416.cv[5];
+                        pt_3.cv[6i] = _e416.cv[6];
+                        pt_3.cv[7i] = _e416.cv[7];
+                        pt_3.cv[8i] = _e416.cv[8];
+                        pt_3.cv[9i] = _e416.cv[9];
+                        pt_3.cv[10i] = _e416.cv[10];
+                        pt_3.cv[11i] = _e416.cv[11];
+                        pt_3.cv[12i] = _e416.cv[12];
+                        pt_3.cv[13i] = _e416.cv[13];
+                        pt_3.cv[14i] = _e416.cv[14];
+                        pt_3.cv[15i] = _e416.cv[15];
+                        pt_3.ptex = _e416.ptex;
+                        pt_3.u0_ = _e416.u0_;
+                        pt_3.v0_ = _e416.v0_;
+                        pt_3.size = _e416.size;
+                        pt_3.levelBoundary = _e416.levelBoundary;
+                        pt_3.sharpness = _e416.sharpness;
+                        pt_3.pad1_ = _e416.pad1_;
+                        pt_3.pad2_ = _e416.pad2_;
+                        let _e468 = pt_3.levelBoundary;
+                        crease_2 = ((_e468 >> bitcast<u32>(16i)) & 15u);
+                        let _e472 = crease_2;
+                        if (_e472 == 0u) {
+                            let _e474 = k_10;
+                            if (_e474 == 0i) {
                                 continue;
                             }
                             break;
                         }
-                        let _e424 = k_9;
-                        if (_e424 == 0i) {
-                            let _e427 = p0_[1u];
-                            let _e430 = p0_[2u];
-                            alongS = ((_e427 & 65535u) != (_e430 & 65535u));
-                            let _e433 = crease_2;
-                            creaseAlongS = ((_e433 & 5u) != 0u);
-                            let _e436 = alongS;
-                            let _e437 = creaseAlongS;
-                            if (_e436 == _e437) {
+                        let _e476 = k_10;
+                        if (_e476 == 0i) {
+                            let _e479 = p0_[1u];
+                            let _e482 = p0_[2u];
+                            alongS = ((_e479 & 65535u) != (_e482 & 65535u));
+                            let _e485 = crease_2;
+                            creaseAlongS = ((_e485 & 5u) != 0u);
+                            let _e488 = alongS;
+                            let _e489 = creaseAlongS;
+                            if (_e488 == _e489) {
                                 break;
                             }
                         }
-                        let _e440 = pt_3.sharpness;
-                        most = exp2(ceil(_e440));
-                        let _e443 = k_9;
-                        if (_e443 == 0i) {
-                            let _e445 = want;
-                            let _e446 = len;
-                            let _e449 = pc.edgePixels;
-                            let _e452 = most;
-                            let _e453 = len;
-                            want = max(_e445, max(ceil(((2f * _e446) / _e449)), min(_e452, ceil(sqrt((_e453 / 0.25f))))));
+                        let _e492 = pt_3.sharpness;
+                        most_1 = exp2(ceil(_e492));
+                        let _e495 = k_10;
+                        if (_e495 == 0i) {
+                            let _e497 = want;
+                            let _e499 = pc.maxError;
+                            if (_e499 > 0f) {
+                                let _e501 = want;
+                                local_16 = (2f * _e501);
+                            } else {
+                                let _e503 = len;
+                                let _e506 = pc.edgePixels;
+                                local_16 = ceil(((2f * _e503) / _e506));
+                            }
+                            let _e509 = local_16;
+                            let _e510 = most_1;
+                            let _e511 = len;
+                            want = max(_e497, max(_e509, min(_e510, ceil(sqrt((_e511 / 0.25f))))));
                         } else {
-                            let _e460 = want;
-                            let _e461 = most;
-                            let _e462 = len;
-                            want = max(_e460, min(_e461, ceil((_e462 / 1f))));
+                            let _e518 = want;
+                            let _e519 = most_1;
+                            let _e520 = len;
+                            want = max(_e518, min(_e519, ceil((_e520 / 1f))));
                         }
                         break;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e467 = k_9;
-                        k_9 = (_e467 + 1i);
+                        let _e525 = k_10;
+                        k_10 = (_e525 + 1i);
                     }
                 }
-                let _e470 = pc.texels;
-                if (_e470 > 0f) {
-                    let _e472 = want;
-                    let _e474 = p1_[2u];
-                    let _e477 = pc.texels;
-                    let _e480 = len;
-                    want = max(_e472, min(ceil((bitcast<f32>(_e474) * _e477)), ceil((0.5f * _e480))));
+                let _e528 = pc.texels;
+                if (_e528 > 0f) {
+                    let _e530 = want;
+                    let _e532 = p1_[2u];
+                    let _e535 = pc.texels;
+                    let _e538 = len;
+                    want = max(_e530, min(ceil((bitcast<f32>(_e532) * _e535)), ceil((0.5f * _e538))));
                 }
-                let _e485 = want;
-                let _e486 = cap;
-                size = u32(clamp(_e485, 1f, f32(_e486)));
-                let _e490 = allOut;
-                let _e492 = size;
-                r = select(_e492, 1u, (_e490 != 0u));
+                let _e543 = want;
+                let _e544 = cap;
+                size = u32(clamp(_e543, 1f, f32(_e544)));
+                let _e548 = allOut;
+                let _e550 = size;
+                r = select(_e550, 1u, (_e548 != 0u));
             }
         }
     }
-    let _e494 = i_5;
-    let _e495 = r;
-    let _e496 = size;
-    rates.r[_e494] = (_e495 | (_e496 << bitcast<u32>(16i)));
-    let _e502 = i_5;
-    let _e503 = ends;
-    pieceEnds.v[_e502] = _e503;
+    let _e552 = i_5;
+    let _e553 = r;
+    let _e554 = size;
+    rates.r[_e552] = (_e553 | (_e554 << bitcast<u32>(16i)));
+    let _e560 = i_5;
+    let _e561 = ends;
+    pieceEnds.v[_e560] = _e561;
     return;
 }
 

@@ -11,8 +11,16 @@ struct DrawPush {
     flags: u32,
 }
 
+struct Texture {
+    width: u32,
+    height: u32,
+    rgba: array<u32>,
+}
+
 @group(3) @binding(0) var<uniform> pc: DrawPush;
 var<private> gl_FrontFacing_1: bool;
+@group(0) @binding(4) 
+var<storage, read> tex: Texture;
 var<private> outColor: vec4<f32>;
 var<private> inNormal_1: vec3<f32>;
 var<private> inUV_1: vec2<f32>;
@@ -27,135 +35,290 @@ fn lightRig_u0028_vf3_u003b_vf3_u003b_vf3_u003b(albedo: ptr<function, vec3<f32>>
     var fill: f32;
     var highlight: f32;
 
-    let _e52 = pc.eye;
-    let _e54 = (*world);
-    v = normalize((_e52.xyz - _e54));
-    let _e57 = (*n);
-    let _e58 = v;
-    if (dot(_e57, _e58) < 0f) {
-        let _e61 = (*n);
-        (*n) = -(_e61);
+    let _e54 = pc.eye;
+    let _e56 = (*world);
+    v = normalize((_e54.xyz - _e56));
+    let _e59 = (*n);
+    let _e60 = v;
+    if (dot(_e59, _e60) < 0f) {
+        let _e63 = (*n);
+        (*n) = -(_e63);
     }
-    let _e64 = pc.flags;
-    up = select(vec3<f32>(0f, 1f, 0f), vec3<f32>(0f, 0f, 1f), vec3(((_e64 & 4u) != 0u)));
-    let _e69 = (*n);
-    let _e70 = up;
-    ambient = mix(vec3<f32>(0.09f, 0.09f, 0.09f), vec3<f32>(0.32f, 0.32f, 0.32f), vec3((0.5f + (0.5f * dot(_e69, _e70)))));
-    let _e77 = pc.light;
-    l = _e77.xyz;
-    let _e79 = (*n);
-    let _e80 = l;
-    key = max(dot(_e79, _e80), 0f);
-    let _e83 = (*n);
-    let _e84 = v;
-    fill = max(dot(_e83, _e84), 0f);
+    let _e66 = pc.flags;
+    up = select(vec3<f32>(0f, 1f, 0f), vec3<f32>(0f, 0f, 1f), vec3(((_e66 & 4u) != 0u)));
+    let _e71 = (*n);
+    let _e72 = up;
+    ambient = mix(vec3<f32>(0.09f, 0.09f, 0.09f), vec3<f32>(0.32f, 0.32f, 0.32f), vec3((0.5f + (0.5f * dot(_e71, _e72)))));
+    let _e79 = pc.light;
+    l = _e79.xyz;
+    let _e81 = (*n);
+    let _e82 = l;
+    key = max(dot(_e81, _e82), 0f);
+    let _e85 = (*n);
+    let _e86 = v;
+    fill = max(dot(_e85, _e86), 0f);
     highlight = 0f;
-    let _e87 = key;
-    if (_e87 > 0f) {
-        let _e89 = (*n);
-        let _e90 = l;
-        let _e91 = v;
-        highlight = pow(max(dot(_e89, normalize((_e90 + _e91))), 0f), 40f);
+    let _e89 = key;
+    if (_e89 > 0f) {
+        let _e91 = (*n);
+        let _e92 = l;
+        let _e93 = v;
+        highlight = pow(max(dot(_e91, normalize((_e92 + _e93))), 0f), 40f);
     }
-    let _e97 = (*albedo);
-    let _e98 = ambient;
-    let _e99 = key;
-    let _e103 = fill;
-    let _e108 = highlight;
-    return ((_e97 * ((_e98 + vec3((0.75f * _e99))) + vec3((0.18f * _e103)))) + vec3((0.06f * _e108)));
+    let _e99 = (*albedo);
+    let _e100 = ambient;
+    let _e101 = key;
+    let _e105 = fill;
+    let _e110 = highlight;
+    return ((_e99 * ((_e100 + vec3((0.75f * _e101))) + vec3((0.18f * _e105)))) + vec3((0.06f * _e110)));
 }
 
 fn srgbToLinear_u0028_vf3_u003b(c: ptr<function, vec3<f32>>) -> vec3<f32> {
-    let _e42 = (*c);
-    let _e45 = (*c);
-    let _e51 = (*c);
-    return select((_e42 / vec3(12.92f)), pow(((_e45 + vec3(0.055f)) / vec3(1.055f)), vec3<f32>(2.4f, 2.4f, 2.4f)), (_e51 > vec3<f32>(0.04045f, 0.04045f, 0.04045f)));
+    let _e44 = (*c);
+    let _e47 = (*c);
+    let _e53 = (*c);
+    return select((_e44 / vec3(12.92f)), pow(((_e47 + vec3(0.055f)) / vec3(1.055f)), vec3<f32>(2.4f, 2.4f, 2.4f)), (_e53 > vec3<f32>(0.04045f, 0.04045f, 0.04045f)));
 }
 
 fn unpackSrgb8_u0028_u1_u003b(c_1: ptr<function, u32>) -> vec3<f32> {
     var param: vec3<f32>;
 
-    let _e43 = (*c_1);
-    let _e46 = (*c_1);
-    let _e51 = (*c_1);
-    param = (vec3<f32>(f32((_e43 & 255u)), f32(((_e46 >> bitcast<u32>(8i)) & 255u)), f32(((_e51 >> bitcast<u32>(16i)) & 255u))) / vec3(255f));
-    let _e59 = srgbToLinear_u0028_vf3_u003b((&param));
-    return _e59;
+    let _e45 = (*c_1);
+    let _e48 = (*c_1);
+    let _e53 = (*c_1);
+    param = (vec3<f32>(f32((_e45 & 255u)), f32(((_e48 >> bitcast<u32>(8i)) & 255u)), f32(((_e53 >> bitcast<u32>(16i)) & 255u))) / vec3(255f));
+    let _e61 = srgbToLinear_u0028_vf3_u003b((&param));
+    return _e61;
 }
 
 fn baseColour_u0028_() -> vec3<f32> {
     var param_1: u32;
 
-    let _e44 = pc.eye[3u];
-    param_1 = bitcast<u32>(_e44);
-    let _e46 = unpackSrgb8_u0028_u1_u003b((&param_1));
-    return _e46;
+    let _e46 = pc.eye[3u];
+    param_1 = bitcast<u32>(_e46);
+    let _e48 = unpackSrgb8_u0028_u1_u003b((&param_1));
+    return _e48;
+}
+
+fn texel_u0028_u1_u003b_u1_u003b(x: ptr<function, u32>, y: ptr<function, u32>) -> vec3<f32> {
+    var c_2: u32;
+    var param_2: vec3<f32>;
+
+    let _e47 = (*y);
+    let _e49 = tex.width;
+    let _e51 = (*x);
+    let _e55 = tex.rgba[((_e47 * _e49) + _e51)];
+    c_2 = _e55;
+    let _e56 = c_2;
+    let _e59 = c_2;
+    let _e64 = c_2;
+    param_2 = (vec3<f32>(f32((_e56 & 255u)), f32(((_e59 >> bitcast<u32>(8i)) & 255u)), f32(((_e64 >> bitcast<u32>(16i)) & 255u))) / vec3(255f));
+    let _e72 = srgbToLinear_u0028_vf3_u003b((&param_2));
+    return _e72;
+}
+
+fn wrap_u0028_f1_u003b_u1_u003b(i: ptr<function, f32>, n_1: ptr<function, u32>) -> u32 {
+    var k: i32;
+    var local: i32;
+
+    let _e47 = (*i);
+    let _e48 = i32(_e47);
+    let _e49 = (*n_1);
+    let _e50 = bitcast<i32>(_e49);
+    k = (_e48 - (i32(floor((f32(_e48) / f32(_e50)))) * _e50));
+    let _e58 = k;
+    if (_e58 < 0i) {
+        let _e60 = k;
+        let _e61 = (*n_1);
+        local = (_e60 + bitcast<i32>(_e61));
+    } else {
+        let _e64 = k;
+        local = _e64;
+    }
+    let _e65 = local;
+    return bitcast<u32>(_e65);
+}
+
+fn sampleTexture_u0028_vf2_u003b(uv: ptr<function, vec2<f32>>) -> vec3<f32> {
+    var x_1: f32;
+    var y_1: f32;
+    var x0_: f32;
+    var y0_: f32;
+    var fx: f32;
+    var fy: f32;
+    var ix0_: u32;
+    var param_3: f32;
+    var param_4: u32;
+    var ix1_: u32;
+    var param_5: f32;
+    var param_6: u32;
+    var iy0_: u32;
+    var param_7: f32;
+    var param_8: u32;
+    var iy1_: u32;
+    var param_9: f32;
+    var param_10: u32;
+    var top: vec3<f32>;
+    var param_11: u32;
+    var param_12: u32;
+    var param_13: u32;
+    var param_14: u32;
+    var bottom: vec3<f32>;
+    var param_15: u32;
+    var param_16: u32;
+    var param_17: u32;
+    var param_18: u32;
+
+    let _e73 = (*uv)[0u];
+    let _e75 = tex.width;
+    x_1 = ((_e73 * f32(_e75)) - 0.5f);
+    let _e80 = (*uv)[1u];
+    let _e83 = tex.height;
+    y_1 = (((1f - _e80) * f32(_e83)) - 0.5f);
+    let _e87 = x_1;
+    x0_ = floor(_e87);
+    let _e89 = y_1;
+    y0_ = floor(_e89);
+    let _e91 = x_1;
+    let _e92 = x0_;
+    fx = (_e91 - _e92);
+    let _e94 = y_1;
+    let _e95 = y0_;
+    fy = (_e94 - _e95);
+    let _e97 = x0_;
+    param_3 = _e97;
+    let _e99 = tex.width;
+    param_4 = _e99;
+    let _e100 = wrap_u0028_f1_u003b_u1_u003b((&param_3), (&param_4));
+    ix0_ = _e100;
+    let _e101 = x0_;
+    param_5 = (_e101 + 1f);
+    let _e104 = tex.width;
+    param_6 = _e104;
+    let _e105 = wrap_u0028_f1_u003b_u1_u003b((&param_5), (&param_6));
+    ix1_ = _e105;
+    let _e106 = y0_;
+    param_7 = _e106;
+    let _e108 = tex.height;
+    param_8 = _e108;
+    let _e109 = wrap_u0028_f1_u003b_u1_u003b((&param_7), (&param_8));
+    iy0_ = _e109;
+    let _e110 = y0_;
+    param_9 = (_e110 + 1f);
+    let _e113 = tex.height;
+    param_10 = _e113;
+    let _e114 = wrap_u0028_f1_u003b_u1_u003b((&param_9), (&param_10));
+    iy1_ = _e114;
+    let _e115 = ix0_;
+    param_11 = _e115;
+    let _e116 = iy0_;
+    param_12 = _e116;
+    let _e117 = texel_u0028_u1_u003b_u1_u003b((&param_11), (&param_12));
+    let _e118 = ix1_;
+    param_13 = _e118;
+    let _e119 = iy0_;
+    param_14 = _e119;
+    let _e120 = texel_u0028_u1_u003b_u1_u003b((&param_13), (&param_14));
+    let _e121 = fx;
+    top = mix(_e117, _e120, vec3(_e121));
+    let _e124 = ix0_;
+    param_15 = _e124;
+    let _e125 = iy1_;
+    param_16 = _e125;
+    let _e126 = texel_u0028_u1_u003b_u1_u003b((&param_15), (&param_16));
+    let _e127 = ix1_;
+    param_17 = _e127;
+    let _e128 = iy1_;
+    param_18 = _e128;
+    let _e129 = texel_u0028_u1_u003b_u1_u003b((&param_17), (&param_18));
+    let _e130 = fx;
+    bottom = mix(_e126, _e129, vec3(_e130));
+    let _e133 = top;
+    let _e134 = bottom;
+    let _e135 = fy;
+    return mix(_e133, _e134, vec3(_e135));
 }
 
 fn backFaceKey_u0028_vf4_u003b(colour: ptr<function, vec4<f32>>) -> bool {
-    var param_2: u32;
-    var phi_98_: bool;
+    var param_19: u32;
+    var phi_115_: bool;
 
-    let _e44 = pc.flags;
-    let _e46 = ((_e44 & 2u) == 0u);
-    phi_98_ = _e46;
-    if !(_e46) {
-        let _e48 = gl_FrontFacing_1;
-        phi_98_ = _e48;
+    let _e46 = pc.flags;
+    let _e48 = ((_e46 & 2u) == 0u);
+    phi_115_ = _e48;
+    if !(_e48) {
+        let _e50 = gl_FrontFacing_1;
+        phi_115_ = _e50;
     }
-    let _e50 = phi_98_;
-    if _e50 {
+    let _e52 = phi_115_;
+    if _e52 {
         return false;
     }
-    let _e53 = pc.light[3u];
-    param_2 = bitcast<u32>(_e53);
-    let _e55 = unpackSrgb8_u0028_u1_u003b((&param_2));
-    (*colour) = vec4<f32>(_e55.x, _e55.y, _e55.z, 1f);
+    let _e55 = pc.light[3u];
+    param_19 = bitcast<u32>(_e55);
+    let _e57 = unpackSrgb8_u0028_u1_u003b((&param_19));
+    (*colour) = vec4<f32>(_e57.x, _e57.y, _e57.z, 1f);
     return true;
 }
 
 fn main_1() {
-    var param_3: vec4<f32>;
-    var n_1: vec3<f32>;
-    var param_4: vec3<f32>;
-    var param_5: vec3<f32>;
-    var param_6: vec3<f32>;
-    var param_7: vec3<f32>;
-    var param_8: vec3<f32>;
+    var param_20: vec4<f32>;
+    var n_2: vec3<f32>;
+    var param_21: vec3<f32>;
+    var param_22: vec3<f32>;
+    var albedo_1: vec3<f32>;
+    var local_1: vec3<f32>;
+    var param_23: vec2<f32>;
+    var param_24: vec3<f32>;
+    var param_25: vec3<f32>;
+    var param_26: vec3<f32>;
 
-    let _e48 = backFaceKey_u0028_vf4_u003b((&param_3));
-    let _e49 = param_3;
-    outColor = _e49;
-    if _e48 {
+    let _e53 = backFaceKey_u0028_vf4_u003b((&param_20));
+    let _e54 = param_20;
+    outColor = _e54;
+    if _e53 {
         return;
     }
-    let _e50 = inNormal_1;
-    n_1 = _e50;
-    let _e52 = pc.shade;
-    if (_e52 == 1u) {
-        let _e54 = n_1;
-        param_4 = ((_e54 * 0.5f) + vec3(0.5f));
-        let _e58 = srgbToLinear_u0028_vf3_u003b((&param_4));
-        outColor = vec4<f32>(_e58.x, _e58.y, _e58.z, 1f);
+    let _e55 = inNormal_1;
+    n_2 = _e55;
+    let _e57 = pc.shade;
+    if (_e57 == 1u) {
+        let _e59 = n_2;
+        param_21 = ((_e59 * 0.5f) + vec3(0.5f));
+        let _e63 = srgbToLinear_u0028_vf3_u003b((&param_21));
+        outColor = vec4<f32>(_e63.x, _e63.y, _e63.z, 1f);
         return;
     }
-    let _e64 = pc.shade;
-    if (_e64 == 2u) {
-        let _e66 = inUV_1;
-        let _e69 = clamp(_e66, vec2(0f), vec2(1f));
-        param_5 = vec3<f32>(_e69.x, _e69.y, 0f);
-        let _e73 = srgbToLinear_u0028_vf3_u003b((&param_5));
-        outColor = vec4<f32>(_e73.x, _e73.y, _e73.z, 1f);
+    let _e69 = pc.shade;
+    if (_e69 == 2u) {
+        let _e71 = inUV_1;
+        let _e74 = clamp(_e71, vec2(0f), vec2(1f));
+        param_22 = vec3<f32>(_e74.x, _e74.y, 0f);
+        let _e78 = srgbToLinear_u0028_vf3_u003b((&param_22));
+        outColor = vec4<f32>(_e78.x, _e78.y, _e78.z, 1f);
         return;
     }
-    let _e78 = baseColour_u0028_();
-    param_6 = _e78;
-    let _e79 = n_1;
-    param_7 = _e79;
-    let _e80 = inWorld_1;
-    param_8 = _e80;
-    let _e81 = lightRig_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param_6), (&param_7), (&param_8));
-    outColor = vec4<f32>(_e81.x, _e81.y, _e81.z, 1f);
+    let _e84 = pc.shade;
+    if (_e84 == 4u) {
+        let _e86 = inUV_1;
+        param_23 = _e86;
+        let _e87 = sampleTexture_u0028_vf2_u003b((&param_23));
+        let _e88 = baseColour_u0028_();
+        local_1 = (_e87 * _e88);
+    } else {
+        let _e90 = baseColour_u0028_();
+        local_1 = _e90;
+    }
+    let _e91 = local_1;
+    albedo_1 = _e91;
+    let _e92 = albedo_1;
+    param_24 = _e92;
+    let _e93 = n_2;
+    param_25 = _e93;
+    let _e94 = inWorld_1;
+    param_26 = _e94;
+    let _e95 = lightRig_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param_24), (&param_25), (&param_26));
+    outColor = vec4<f32>(_e95.x, _e95.y, _e95.z, 1f);
     return;
 }
 

@@ -152,7 +152,7 @@ export function adaptivePushes(data, tables, options, view) {
   const vp = view.viewProj.map(f32);
   const cull = [...vp, f32(view.eye[0]), f32(view.eye[1]), f32(view.eye[2]), f32(view.facing), tables.patchCount,
     ((options.cull ? 1 : 0) | (samples << 8)) >>> 0, f32(view.width), f32(view.height), packed[0], packed[1]];
-  const rates = [...vp, f32(0.5 * view.width), f32(0.5 * view.height), f32(options.edgePixels), options.tess, tables.patchCount, f32(options.texelsPerUV ?? 0)];
+  const rates = [...vp, f32(0.5 * view.width), f32(0.5 * view.height), f32(options.edgePixels), options.tess, tables.patchCount, f32(options.texelsPerUV ?? 0), f32(options.maxError ?? 0)];
   const counts = [options.tess, 0, data.shared ? 1 : 0, samples, packed[0], packed[1], options.evaluated ? 0 : 1];
   const scan = [data.elementCount, data.capV, data.capT, ROW_GROUPS, EVAL_GROUP_SIZE, data.shared];
   const emit = [data.pointBase, data.capT, 0, 0, 0, 0, 0, data.shared ? 1 : 0];

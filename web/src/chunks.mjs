@@ -1,12 +1,12 @@
 // The chunks the WebGPU runtime reads (formats/limn.md, sections 5-8): MESH, FVUV, TAGS, MATL,
-// CLSF, TBLS (versions 1 to 3), SEAM. Every count and index is checked as the C++ readers check it
+// CLSF, TBLS (versions 1 to 4), SEAM. Every count and index is checked as the C++ readers check it
 // (lib/mesh/mesh_chunks.cpp, lib/mesh/mesh.cpp validateMesh, lib/topology/classification.cpp,
 // lib/subdiv/tables_chunk.cpp, lib/seams/seams.cpp), so that nothing out of range reaches the GPU.
 import { LimnError, chunkReader, parseContainer } from './container.mjs';
+import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
 
 const MAX_DEPTH = 16;
 const MAX_COORDINATE = 1e18; // lib/mesh: beyond it a float square overflows
-const MAX_STENCIL_WEIGHT = 1e6;
 const INFINITE_SHARPNESS = 10;
 const MAX_STENCIL_VALENCE = 32767;
 // An irregular face's quadtree node codes (lib/subdiv/tables.h): the kind in the top two bits.
@@ -180,14 +180,17 @@ function topologyHash(mesh, tags, options) {
   return h.value;
 }
 
-function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0) {
+function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compact = false) {
   const n = r.u32(), entries = r.u32(), hasWeights = r.u32();
-  r.zero32(`${what}: reserved field`);
+  const fourth = r.u32(); // version 4: the palette's size; before: reserved
+  if (!compact && fourth !== 0) r.fail(`${what}: reserved field is not zero`);
   if (n !== rows) r.fail(`${what}: ${n} rows, expected ${rows}`);
   if (hasWeights !== (weights ? 1 : 0)) r.fail(`${what}: weight flag is wrong`);
-  const start = r.array(Uint32Array, rows + 1, `${what} starts`);
-  const index = r.array(Uint32Array, entries, `${what} indices`);
-  const weight = weights ? r.array(Float32Array, entries, `${what} weights`) : null;
+  const { start, index, weight } = compact ? readCompactStencils(r, what, rows, entries, weights, fourth) : {
+    start: r.array(Uint32Array, rows + 1, `${what} starts`),
+    index: r.array(Uint32Array, entries, `${what} indices`),
+    weight: weights ? r.array(Float32Array, entries, `${what} weights`) : null,
+  };
   if (start[0] !== 0 || start[rows] !== entries) r.fail(`${what}: row starts do not span the ${entries} entries`);
   for (let i = 0; i < rows; i++) {
     if (start[i + 1] < start[i] || start[i + 1] - start[i] > 65536) r.fail(`${what}: row ${i} has a bad length`);
@@ -204,9 +207,10 @@ function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0) {
 const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 3) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 3); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 3);
+  if (chunk.version > 4) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 4); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 4);
   const patchWords = chunk.version >= 2 ? 22 : 21;
+  const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
   const depth = r.u32('depth');
   if (depth > MAX_DEPTH) r.fail(`depth ${depth} is out of range`);
   const flags = r.u32('flags');
@@ -239,9 +243,9 @@ function decodeTables(chunk, mesh, tags) {
   for (let l = 1; l <= D; l++) {
     const p = levels[l - 1], c = levels[l];
     const end = p.first + p.count, faceEnd = c.first + c.facePoints;
-    facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end));
-    edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd));
-    vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd));
+    facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end, 0, 0, compact));
+    edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd, compact));
+    vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd, compact));
   }
   const ptex = ptexCount(mesh), R = 2 ** depth;
   const squares = [];
@@ -258,19 +262,45 @@ function decodeTables(chunk, mesh, tags) {
     if ((W & (W - 1)) !== 0 || U0 % W !== 0 || V0 % W !== 0) r.fail(`${what} has a domain that is not a cell of its ptex face's quadtree`);
     squares.push({ ptex: p, W, U0, V0 });
   };
-  if (P > Math.floor(r.remaining / (4 * patchWords))) r.fail(`patch count ${P} is too large`);
   // GPU layout: 24 words a patch (surface_eval.glsl's Patch: cv[16], ptex, u0, v0, size, packed,
   // sharpness, 2 words of padding).
   const W = 24;
   // Reads one patch record into w (24 words) / f (its float view).
+  // Version 4's records come from a stream (tables_chunk.cpp's writePatches): control points as
+  // differences from P11 (0 stays 0), P11 and ptex from the previous record's, the domain in
+  // units of 2^-16, the packed word, the sharpness only for single-crease patches.
+  let stream = null, lastCorner = 0, lastPtex = 0;
   const readPatch = (w, f, what, drawn) => {
-    for (let k = 0; k < 16; k++) w[k] = r.u32();
-    w[16] = r.u32(); f[17] = r.f32(); f[18] = r.f32(); f[19] = r.f32();
-    const packed = r.u32();
+    let packed, sharpness;
+    if (stream) {
+      w[5] = lastCorner = stream.after(lastCorner, 'a control point');
+      for (let k = 0; k < 16; k++) {
+        if (k === 5) continue;
+        const z = stream.varint();
+        const d = z - 1;
+        const x = z === 0 ? 0 : w[5] + (d % 2 === 1 ? -(d + 1) / 2 : d / 2);
+        if (x < 0 || x > 0xffffffff) stream.fail(`${what}: a control point out of range`);
+        w[k] = x;
+      }
+      w[16] = lastPtex = stream.after(lastPtex, 'a ptex face');
+      for (let k = 17; k < 20; k++) {
+        const u = stream.varint();
+        if (u > 65536) stream.fail(`${what}: a domain outside its ptex face`);
+        f[k] = u / 65536;
+      }
+      packed = stream.varint();
+      if (packed > 0xffffff) stream.fail(`${what}: bad level or boundary mask`);
+    } else {
+      for (let k = 0; k < 16; k++) w[k] = r.u32();
+      w[16] = r.u32(); f[17] = r.f32(); f[18] = r.f32(); f[19] = r.f32();
+      packed = r.u32();
+    }
     w[20] = packed;
     const level = packed & 0xff, boundary = (packed >>> 8) & 0xff, crease = (packed >>> 16) & 0xff;
     if ((packed >>> 24) !== 0 || boundary > 15 || (drawn ? level > depth : level <= depth || level > D)) r.fail(`${what}: bad level or boundary mask`);
-    const sharpness = chunk.version >= 2 ? r.f32() : 0;
+    if (stream) sharpness = crease ? stream.rawFloat() : 0;
+    else sharpness = chunk.version >= 2 ? r.f32() : 0;
+
     f[21] = sharpness;
     const oneBit = crease !== 0 && (crease & (crease - 1)) === 0 && crease <= 8;
     if (crease ? !(oneBit && boundary === 0 && sharpness > 0 && sharpness < INFINITE_SHARPNESS) : sharpness !== 0) {
@@ -283,11 +313,26 @@ function decodeTables(chunk, mesh, tags) {
     }
     checkDomain(w[16], f[17], f[18], f[19], what, drawn);
   };
-  const patchRecords = new Uint32Array(P * W);
-  for (let i = 0; i < P; i++) {
-    const w = patchRecords.subarray(W * i, W * i + W);
-    readPatch(w, new Float32Array(w.buffer, w.byteOffset, W), `patch ${i}`, true);
-  }
+  // Reads `count` patch records (24 GPU words each); at least 20 bytes a record in a stream.
+  const readPatches = (count, what, drawn) => {
+    if (compact) {
+      stream = new Stream(r, `${what}es`);
+      if (count > Math.floor(stream.size / 20)) r.fail(`${what} count ${count} is too large`);
+      lastCorner = lastPtex = 0;
+    } else if (count > Math.floor(r.remaining / (4 * patchWords))) {
+      r.fail(`${what} count ${count} is too large`);
+    }
+    const out = new Uint32Array(count * W);
+    for (let i = 0; i < count; i++) {
+      const w = out.subarray(W * i, W * i + W);
+      readPatch(w, new Float32Array(w.buffer, w.byteOffset, W), `${what} ${i}`, drawn);
+    }
+    if (stream) stream.finish();
+    stream = null;
+    return out;
+  };
+  const patchRecords = readPatches(P, 'patch', true);
+
   const readFace = (q, qf, what, drawn) => {
     for (let k = 0; k < 4; k++) {
       const c = r.u32();
@@ -304,7 +349,7 @@ function decodeTables(chunk, mesh, tags) {
   };
   if (Q > Math.floor(r.remaining / 32)) r.fail('irregular face count is too large');
   const irregularFaces = readFaces(Q, 'irregular face', true);
-  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatch, readFaces, patchWords, depth, levels, Q }) : null;
+  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatches, readFaces, compact, depth, levels, Q }) : null;
   // The domains tile every ptex face exactly once, or not at all (lib/subdiv/tables_chunk.cpp).
   squares.sort((a, b) => a.ptex - b.ptex);
   for (let first = 0, end = 0; first < squares.length; first = end) {
@@ -328,9 +373,9 @@ function decodeTables(chunk, mesh, tags) {
   // Limit points read level N (the irregular faces' corners) or level D (the leaves').
   const last = levels[depth], deepest = levels[D];
   const lo = last.first, hi = last.first + last.count, lo1 = deepest.first, hi1 = deepest.first + deepest.count;
-  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi, lo1, hi1);
-  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi, lo1, hi1);
-  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi, lo1, hi1);
+  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi, lo1, hi1, compact);
+  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi, lo1, hi1, compact);
+  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi, lo1, hi1, compact);
   const limitVertex = r.array(Uint32Array, L, 'limit vertices');
   for (const v of limitVertex) if (!((v >= lo && v < hi) || (v >= lo1 && v < hi1))) r.fail("a limit point's vertex is not at the last level");
   const limitFlags = r.array(Uint32Array, L, 'limit flags');
@@ -354,14 +399,9 @@ function decodeTables(chunk, mesh, tags) {
 
 // TBLS version 3's irregular-face surface (lib/subdiv/tables_chunk.cpp): sub-patches, quadtree
 // nodes, leaves, per-valence bases, smooth faces and their points, with the C++ reader's checks.
-function readIrregularSurface(r, { readPatch, readFaces, patchWords, depth, levels, Q }) {
+function readIrregularSurface(r, { readPatches, readFaces, compact, depth, levels, Q }) {
   const subs = r.u32('sub-patch count');
-  if (subs > Math.floor(r.remaining / (4 * patchWords))) r.fail(`sub-patch count ${subs} is too large`);
-  const subPatches = new Uint32Array(subs * 24);
-  for (let i = 0; i < subs; i++) {
-    const w = subPatches.subarray(24 * i, 24 * i + 24);
-    readPatch(w, new Float32Array(w.buffer, w.byteOffset, 24), `sub-patch ${i}`, false);
-  }
+  const subPatches = readPatches(subs, 'sub-patch', false);
   const nodes = r.u32('irregular node count');
   if (nodes > Math.floor(r.remaining / 16)) r.fail('irregular node count is too large');
   if (nodes && nodes < Q) r.fail('an irregular face has no quadtree');
@@ -385,7 +425,20 @@ function readIrregularSurface(r, { readPatch, readFaces, patchWords, depth, leve
     const valence = r.u32(), lv = r.u32();
     if (valence < 3 || valence > MAX_STENCIL_VALENCE || lv < 1 || lv > MAX_DEPTH) r.fail(`irregular basis ${i} has a bad valence or level count`);
     const support = 2 * valence + 8;
-    const weights = r.array(Float32Array, lv * 48 * support, 'irregular basis weights');
+    let weights;
+    if (compact) { // each control point names its row of weights; equal rows are stored once
+      const distinct = r.u32('irregular basis row count');
+      if (distinct === 0 || distinct > lv * 48) r.fail(`irregular basis ${i} has a bad row count`);
+      const pick = r.array(Uint16Array, lv * 48, 'irregular basis rows');
+      const rows = r.array(Float32Array, distinct * support, 'irregular basis weights');
+      weights = new Float32Array(lv * 48 * support);
+      pick.forEach((row, j) => {
+        if (row >= distinct) r.fail(`irregular basis ${i} names a missing row`);
+        weights.set(rows.subarray(row * support, (row + 1) * support), j * support);
+      });
+    } else {
+      weights = r.array(Float32Array, lv * 48 * support, 'irregular basis weights');
+    }
     for (const x of weights) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`irregular basis ${i} has a bad weight`);
     bases.push({ valence, levels: lv, support, weights });
   }
@@ -398,7 +451,16 @@ function readIrregularSurface(r, { readPatch, readFaces, patchWords, depth, leve
     smooth.push(f);
   }
   const points = r.u32('smooth irregular point count');
-  const smoothPoints = r.array(Uint32Array, points, 'smooth irregular points');
+  let smoothPoints;
+  if (compact) { // differences from the previous point
+    const s = new Stream(r, 'smooth irregular points');
+    if (points > s.size) s.fail(`count ${points} is too large`);
+    smoothPoints = new Uint32Array(points);
+    for (let i = 0, previous = 0; i < points; i++) smoothPoints[i] = previous = s.after(previous, 'a point');
+    s.finish();
+  } else {
+    smoothPoints = r.array(Uint32Array, points, 'smooth irregular points');
+  }
   const LN = levels[depth];
   for (const v of smoothPoints) if (v < LN.first || v >= LN.first + LN.count) r.fail('a smooth irregular point is not at the last level');
   for (const f of smooth) if (f.first + bases[f.basis].support > points) r.fail("a smooth irregular face's points run past the end");

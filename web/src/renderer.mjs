@@ -118,7 +118,9 @@ function cached(tables, key, build) {
 
 /**
  * A renderer for one loaded surface (chunks.mjs's loadLimn). settings: {width, height, samples
- * (1|4), shade, edgePixels (0: fixed grids), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
+ * (1|4), shade, edgePixels (0: fixed grids; else the longest segment allowed), maxError (pixels
+ * between the drawn chords and the surface, at most; limn-render's --max-error, default 0.1; 0:
+ * segments of about edgePixels), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
  * eye, target, up}, color, background, sampleShading}.
  */
 export class Renderer {
@@ -131,7 +133,7 @@ export class Renderer {
   constructor(device, surface, settings) {
     this.device = device;
     this.surface = surface;
-    this.s = { width: 800, height: 600, samples: 4, shade: 'lit', edgePixels: 0, tess: 64, view: {}, background: [0.2, 0.2, 0.2], ...settings };
+    this.s = { width: 800, height: 600, samples: 4, shade: 'lit', edgePixels: 0, maxError: 0.1, tess: 64, view: {}, background: [0.2, 0.2, 0.2], ...settings };
     const s = this.s;
     if (s.samples !== 1 && s.samples !== 4) throw new LimnError(`--samples must be 1 or 4 (the counts WebGPU offers), not ${s.samples}`, 'usage');
     if (!(s.shade in SHADES)) throw new LimnError(`--shade ${s.shade}: one of ${Object.keys(SHADES).join(', ')}`, 'usage');
@@ -191,12 +193,12 @@ export class Renderer {
       const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables));
       let minimum = 0;
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
-      const p = Math.max(s.edgePixels, 0.25);
+      const p = Math.max(s.maxError > 0 ? Math.min(s.edgePixels, 4) : s.edgePixels, 0.25); // as renderer.cpp
       const viewBudget = Math.max(Math.floor((32 * s.width * s.height) / (p * p)), 2 ** 20);
       // renderer.cpp: no sample-based cull under a wireframe (its lines light pixels no triangle covers).
       const samplePositions = s.wire ? [] : s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
       this.adaptiveOptions = {
-        edgePixels: s.edgePixels, tess: s.tess, samplePositions,
+        edgePixels: s.edgePixels, maxError: s.maxError, tess: s.tess, samplePositions,
         // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.
         // and with displacement: the compute passes read the whole capacity (zeroed slots included).
         evaluated: !!s.meshOut || !!s.displace || !!s.wire,

@@ -5,7 +5,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { loadLimn } from '../src/chunks.mjs';
 import { LimnError, parseContainer } from '../src/container.mjs';
-import { container, read } from './support.mjs';
+import { join } from 'node:path';
+import { container, read, repo } from './support.mjs';
 
 const small = () => read(container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, seams: true }));
 
@@ -42,7 +43,7 @@ function expectLimnError(bytes, where) {
 test('reads a real container: every chunk limn-render reads', () => {
   const s = loadLimn(small());
   assert.ok(s.mesh.vertexCount > 0 && s.tables.depth === 2 && s.seams && s.uvs && s.classification);
-  // TBLS v3 (limn-tables' default): the irregular faces' quadtrees follow the patches, their
+  // TBLS v4 (limn-tables' default): the irregular faces' quadtrees follow the patches, their
   // leaves the irregular faces (subdivision_draw.cpp patchBuffer, irregularBuffer).
   assert.ok(s.tables.irregularCount > 0 && s.tables.irregularLevels > 0);
   assert.ok(s.tables.patches.length >= (s.tables.patchCount + s.tables.irregularCount) * 24);
@@ -113,34 +114,37 @@ test('byte flips are accepted or refused with a LimnError, never another excepti
 test('BLND is refused clearly, a newer chunk version names itself', () => {
   const chunks = parseContainer(small());
   expectLimnError(build([...chunks, { type: 'BLND', version: 1, payload: new Uint8Array(24) }]), /chunk BLND: blending surfaces are not supported here/);
-  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 4 } : c));
-  expectLimnError(build(newer), /chunk TBLS: version 4 is newer/);
+  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 5 } : c));
+  expectLimnError(build(newer), /chunk TBLS: version 5 is newer/);
   const unknown = [...chunks, { type: 'ZZZZ', version: 9, payload: new Uint8Array(5) }];
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
 });
 
-// Where TBLS v3's irregular-surface section starts (formats/limn.md): after the header, levels,
-// stencil tables, patches and irregular faces, as read back from the decoded tables.
-function irregularSectionOffset(t) {
+// Where TBLS v4's irregular-surface section starts (formats/limn.md): after the header, levels,
+// stencil tables (their palettes and streams), the patch stream and the irregular faces, walked
+// over the payload's own length fields.
+function irregularSectionOffset(t, payload) {
+  const v = new DataView(payload.buffer, payload.byteOffset, payload.byteLength);
+  const stream = (o) => o + 4 + Math.ceil(v.getUint32(o, true) / 4) * 4;
   let o = 40 + 24 * t.levels.length;
-  const table = (st, weights) => 16 + 4 * (st.rows + 1 + st.index.length * (weights ? 2 : 1));
-  for (let l = 0; l + 1 < t.levels.length; l++) o += table(t.facePoints[l], false) + table(t.edgePoints[l], true) + table(t.vertexPoints[l], true);
-  return o + 88 * t.patchCount + 32 * t.irregularCount;
+  for (let k = 0; k < 3 * (t.levels.length - 1); k++) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
+  return { at: stream(o) + 32 * t.irregularCount, stream };
 }
 
-test('hostile TBLS v3 irregular-surface fields are refused by name, never a hang', () => {
+test('hostile TBLS v4 irregular-surface fields are refused by name, never a hang', () => {
   const bytes = small(), chunks = parseContainer(bytes);
   const s = loadLimn(bytes);
-  const at = irregularSectionOffset(s.tables);
+  const tbls = chunks.find((c) => c.type === 'TBLS').payload;
+  const { at, stream } = irregularSectionOffset(s.tables, tbls);
   const patched = (edit) => build(chunks.map((c) => {
     if (c.type !== 'TBLS') return c;
     const payload = c.payload.slice();
     edit(new DataView(payload.buffer));
     return { ...c, payload };
   }));
-  const subs = new DataView(chunks.find((c) => c.type === 'TBLS').payload.slice().buffer).getUint32(at, true);
-  const nodes = at + 4 + 88 * subs + 4;
+  const subs = new DataView(tbls.slice().buffer).getUint32(at, true);
+  const nodes = stream(at + 4) + 4;
   // The section as located holds the reader's own sub-patch and node counts.
   assert.ok(subs > 0 && subs < 1e6);
   // A node naming itself (or an earlier node) as its child would make the GPU's walk endless.
@@ -149,4 +153,15 @@ test('hostile TBLS v3 irregular-surface fields are refused by name, never a hang
   expectLimnError(patched((v) => v.setUint32(at, 0xffffffff, true)), /chunk TBLS: .*sub-patch count 4294967295 is too large/);
   // Extra levels on uniform tables, or more than depth 16 allows.
   expectLimnError(patched((v) => v.setUint32(12, 15, true)), /chunk TBLS: .*irregular levels 15 out of range/);
+});
+
+// TBLS v4 (compact stencil tables, patch streams, deduplicated bases, point streams) and v3 (the
+// plain layout; this seed was converted from the v4 one by a separate decoder written from
+// formats/limn.md) of the same tables, with valence bases, sub-patch quadtrees and leaves, read
+// to the same GPU buffers and stencils.
+test('TBLS v4 and v3 of the same tables read the same', () => {
+  const seed = (v) => read(join(repo, `fuzz/corpus/render_input/pentagon_tower_d1_irregular_v${v}.limn`));
+  const v3 = loadLimn(seed(3)).tables, v4 = loadLimn(seed(4)).tables;
+  assert.ok(v4.irregularLevels > 0 && v4.patches.length > (v4.patchCount + v4.irregularCount) * 24);
+  assert.deepEqual(v4, v3);
 });

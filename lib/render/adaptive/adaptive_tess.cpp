@@ -27,7 +27,9 @@ struct RatePush { // adaptive_rates.comp
     float edgePixels;
     uint32_t tess, patchCount;
     float texels;
+    float maxError;
 };
+static_assert(sizeof(RatePush) + 16 <= 128); // after LIMN_DISPATCH_HEADER, within WebGPU's immediates
 struct CountPush { // adaptive_counts.comp
     uint32_t tess;
     uint32_t vertexLoops; // loop iterations the emit pass spends per vertex beyond its own
@@ -214,6 +216,7 @@ void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     rp.tess = options_.tess;
     rp.patchCount = patchCount_;
     rp.texels = options_.texelsPerUV;
+    rp.maxError = options_.maxError;
     timed.begin(cmd, "adaptive rates", true);
     cmd.dispatch(*passes_->rates, rateBind_, pieceCount_, rp);
     cmd.endTimed();

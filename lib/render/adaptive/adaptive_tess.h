@@ -5,8 +5,9 @@
 //
 //   adaptive_cull.comp    per element: outside the frustum, facing away, or between the
 //                         image's samples? (hull of its Bezier points; it draws nothing then)
-//   adaptive_rates.comp   per edge piece: segments = its projected pixels / --edge-pixels,
-//                         clamped to 1..--tess (from the piece owner's surface only)
+//   adaptive_rates.comp   per edge piece: the fewest segments within --max-error pixels of the
+//                         surface, none longer than --edge-pixels, clamped to 1..--tess (from
+//                         the piece owner's surface only)
 //   adaptive_counts.comp  per element: interior rates (or flat: its boundary only, less the
 //                         fan triangles that hold no sample), vertex and triangle counts
 //   adaptive_scan.comp    one workgroup: deterministic prefix sums -> offsets, indirect args
@@ -64,7 +65,12 @@ struct AdaptivePipelines {
 };
 
 struct AdaptiveOptions {
-    float edgePixels = 4;   // target projected segment length
+    // Rates from the screen-space error (adaptive_rates.comp): each edge piece gets the fewest
+    // segments whose chords stay within maxError pixels of the surface, and none longer than
+    // edgePixels. maxError 0: segments of about edgePixels (with a chord tolerance of
+    // edgePixels / 40), the rule before the error estimate.
+    float edgePixels = 4;
+    float maxError = 0;
     uint32_t tess = 64;     // most segments per edge piece and per element interior
     bool cull = true;       // skip drawing elements outside the frustum
     bool backFaceCull = true; // ... and those facing away (closed surfaces seen from outside)

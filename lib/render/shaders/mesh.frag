@@ -1,5 +1,6 @@
 // Shading of the control mesh: `lit` is the studio rig (lightRig, draw_common.glsl) on the flat
-// face normals; `normal` and `uv` store the value itself.
+// face normals, `texture` the same with the colour texture as the subdivision surface samples it
+// (texture_sample.glsl); `normal` and `uv` store the value itself.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LIMN_FRAGMENT_STAGE
@@ -9,6 +10,9 @@ layout(location = 0) in vec3 inWorld;
 layout(location = 1) flat in vec3 inNormal;
 layout(location = 2) in vec2 inUV;
 layout(location = 0) out vec4 outColor;
+
+#define LIMN_TEXTURE_BINDING 4
+#include "texture_sample.glsl"
 
 void main() {
     if (backFaceKey(outColor)) return;
@@ -22,5 +26,6 @@ void main() {
         return;
     }
     // Two-sided (control meshes may be open); zero for degenerate faces (n = 0).
-    outColor = vec4(lightRig(baseColour(), n, inWorld), 1.0);
+    vec3 albedo = pc.shade == SHADE_TEXTURE ? sampleTexture(inUV) * baseColour() : baseColour();
+    outColor = vec4(lightRig(albedo, n, inWorld), 1.0);
 }

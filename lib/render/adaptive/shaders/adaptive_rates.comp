@@ -1,13 +1,16 @@
 // View-adaptive tessellation, pass 2 of 5 (issue 11): per edge piece, its segments this frame.
-// Decided once per piece from data both sides share: the piece owner's surface at the piece's
-// two ends and middle (the draw's own sums, surface_eval_impl.glsl's elementPositions3), projected to
-// pixels; so the two patches of an edge can never disagree (OpenSubdiv PR #435). The rate is
-// ceil(length / edgePixels), at least the displacement map's texels along the piece (at most
-// one segment per 2 pixels), clamped to 1..tess and to the piece's parameter span. A piece whose
+// Decided once per piece from data both sides share: the piece owner's surface at five points of
+// the piece (ends, quarters, middle; the draw's own sums, surface_eval_impl.glsl's
+// elementPositions5), projected to pixels; so the two patches of an edge can never disagree
+// (OpenSubdiv PR #435). The rate is the fewest segments whose chords stay within maxError pixels
+// of the curve (see errorSegments below), at least ceil(length / edgePixels) (the longest segment
+// allowed) and the displacement map's texels along the piece (at most one segment per 2 pixels),
+// clamped to 1..tess and to the piece's parameter span. maxError 0 keeps the length rule with
+// the chord tolerance it had before (kChordPerEdgePixel). A piece whose
 // every user element is culled gets 1, so does one whose samples are all beyond one clip plane
 // (off screen: only its look is at stake, never the watertightness, which holds at any rates);
 // one that crosses the eye plane gets tess. Written as rate | size << 16, where size is the
-// rate its projected length alone asks for: adaptive_counts.comp sizes an element's interior
+// rate its projection alone asks for: adaptive_counts.comp sizes an element's interior
 // from its sides' sizes, so a large element whose sides are off screen stays fine inside.
 // Also written: the piece's two ends in pixels (from the image's bottom left, as the cull's
 // sample positions), which adaptive_counts.comp tests a flat element's triangles with; far
@@ -32,13 +35,14 @@ layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
     layout(offset = 16) mat4 viewProj;
     vec2 halfViewport;  // pixels per unit of NDC
-    float edgePixels;   // target segment length
+    float edgePixels;   // longest segment allowed (maxError 0: target segment length)
     uint tess;          // most segments per piece
     uint patchCount;
     float texels;       // displacement map texels per unit of UV (0: none)
+    float maxError;     // pixels between a chord and the surface, at most (0: the length rule)
 } pc;
 
-// Chord tolerance per pixel of --edge-pixels: 0.1 px at the default 4 (on spot and catmark_car at
+// maxError 0 (the length rule): chord tolerance per pixel of --edge-pixels: 0.1 px at 4 (on spot and catmark_car at
 // depth 6 it drew 1.4-3.6% more triangles and halved the 4-sample silhouette pixels that differ
 // from the fixed grids'); coarser targets loosen it with them.
 const float kChordPerEdgePixel = 0.025;
@@ -56,6 +60,46 @@ uint midST(uint a, uint b) {
     return (((a & 0xFFFFu) + (b & 0xFFFFu)) / 2u) | ((((a >> 16) + (b >> 16)) / 2u) << 16);
 }
 
+// The projection's Jacobian d(pixels)/dP at world point P (rows: x, y).
+void pixelJacobian(vec3 P, out vec3 jx, out vec3 jy) {
+    mat4 M = pc.viewProj;
+    vec4 c = M * vec4(P, 1.0);
+    vec3 rx = vec3(M[0][0], M[1][0], M[2][0]), ry = vec3(M[0][1], M[1][1], M[2][1]);
+    vec3 rw = vec3(M[0][3], M[1][3], M[2][3]);
+    jx = pc.halfViewport.x * (rx - (c.x / c.w) * rw) / c.w;
+    jy = pc.halfViewport.y * (ry - (c.y / c.w) * rw) / c.w;
+}
+
+// The fewest even segments whose chords stay within maxError pixels of the piece's curve f on
+// screen. A chord over a parameter step h is within h^2 / 8 max|f''| of its arc (linear
+// interpolation's error bound), so n segments of a piece of span H keep E / n^2, E = H^2 / 8 f''.
+// The second differences of the five samples are f''(1/4), f''(1/2), f''(3/4) times H^2 / 32,
+// H^2 / 8, H^2 / 32 exactly when the piece is a cubic (a patch side: one polynomial segment of
+// the bicubic B-spline), whose f'' is linear: so E at the ends and the three samples, a vector
+// in world units, is E(0) = 2 E(1/4) - E(1/2) and E(1) = 2 E(3/4) - E(1/2), and its largest
+// length is at an end. Each is projected to pixels with the projection's Jacobian at its point:
+// what moves on screen (at a silhouette the outline, facing the eye only depth, which no pixel
+// shows). That bounds the on-screen error up to the projection's change across a segment
+// (first order). Not a bound where the piece is not a cubic: irregular faces (a valence basis,
+// exact only away from their extraordinary corner) and across a semi-sharp crease (the crease
+// rules below handle those); and inside an element only the sides are measured (docs/adaptive.md).
+float errorSegments(vec3 P[5]) {
+    vec3 E[5];
+    E[1] = 4.0 * (P[1] - 0.5 * (P[0] + P[2]));
+    E[2] = P[2] - 0.5 * (P[0] + P[4]);
+    E[3] = 4.0 * (P[3] - 0.5 * (P[2] + P[4]));
+    E[0] = 2.0 * E[1] - E[2];
+    E[4] = 2.0 * E[3] - E[2];
+    float most = 0.0;
+    for (int k = 0; k < 5; ++k) {
+        vec3 jx, jy;
+        pixelJacobian(P[k], jx, jy);
+        most = max(most, length(vec2(dot(jx, E[k]), dot(jy, E[k]))));
+    }
+    float n = ceil(sqrt(most / pc.maxError));
+    return n < 1e9 ? n : 1e9; // not finite: as fine as the piece may be
+}
+
 void main() {
     uint i = limnInvocationIndex(pc.limnRowInvocations);
     if (i >= pc.limnCount) return;
@@ -65,12 +109,13 @@ void main() {
     uint r = 1u, size = 1u;
     vec4 ends = vec4(ADAPTIVE_NO_ENDS);
     if (visible) {
-        uint st[3] = uint[3](p0.y, midST(p0.y, p0.z), p0.z);
-        vec2 px[3];
+        uint mid = midST(p0.y, p0.z);
+        uint st[5] = uint[5](p0.y, midST(p0.y, mid), mid, midST(mid, p0.z), p0.z);
+        vec2 px[5];
         uint behind = 0u, allOut = 63u;
-        vec3 P[3];
-        elementPositions3(p0.x, st, pc.patchCount, P);
-        for (int k = 0; k < 3; ++k) {
+        vec3 P[5];
+        elementPositions5(p0.x, st, pc.patchCount, P);
+        for (int k = 0; k < 5; ++k) {
             vec4 c = pc.viewProj * vec4(P[k], 1.0);
             uint o = 0u;
             if (c.x < -c.w) o |= 1u;
@@ -83,23 +128,30 @@ void main() {
             if (!(c.w > 1e-6)) ++behind;
             px[k] = c.w > 1e-6 ? c.xy / c.w * pc.halfViewport : vec2(0.0);
         }
-        float len = distance(px[0], px[1]) + distance(px[1], px[2]);
-        if (behind == 0u) ends = vec4(px[0], px[2]) + pc.halfViewport.xyxy;
-        if (behind == 3u) {
+        float len = pc.maxError > 0.0
+            ? distance(px[0], px[1]) + distance(px[1], px[2]) + distance(px[2], px[3]) + distance(px[3], px[4])
+            : distance(px[0], px[2]) + distance(px[2], px[4]);
+        if (behind == 0u) ends = vec4(px[0], px[4]) + pc.halfViewport.xyxy;
+        if (behind == 5u) {
             r = 1u, size = 1u;
         } else if (behind != 0u || !(len < 1e9)) {
             r = cap, size = cap;
         } else {
-            // Flatness (the chord criterion): the middle sample's distance in pixels from the
+            // maxError 0, flatness (the chord criterion): the middle sample's distance in pixels from the
             // chord of the ends, d, shrinks like d / n^2 over n segments; where the projected
             // edge bends (silhouettes, tight curves) enough segments keep each chord within
             // kChordPerEdgePixel * edgePixels of the curve, so the outline the rasterizer
             // samples is the surface's.
-            vec2 chord = px[2] - px[0];
-            float cl = length(chord);
-            vec2 off = px[1] - 0.5 * (px[0] + px[2]);
-            float d = cl > 1e-6 ? abs(chord.x * off.y - chord.y * off.x) / cl : length(off);
-            float want = max(ceil(len / pc.edgePixels), ceil(sqrt(d / (kChordPerEdgePixel * pc.edgePixels))));
+            float want = ceil(len / pc.edgePixels);
+            if (pc.maxError > 0.0) {
+                want = max(want, errorSegments(P));
+            } else {
+                vec2 chord = px[4] - px[0];
+                float cl = length(chord);
+                vec2 off = px[2] - 0.5 * (px[0] + px[4]);
+                float d = cl > 1e-6 ? abs(chord.x * off.y - chord.y * off.x) / cl : length(off);
+                want = max(want, ceil(sqrt(d / (kChordPerEdgePixel * pc.edgePixels))));
+            }
             // A piece across the crease of a single-crease patch: the surface bends within
             // 2^-ceil(s) of the crease (in the patch's own units at any level, s decayed with the
             // level). Owned by the crease patch, the piece is graded towards the crease: its
@@ -126,8 +178,8 @@ void main() {
                     if (alongS == creaseAlongS) break;   // along the crease
                 }
                 float most = exp2(ceil(pt.sharpness));
-                if (k == 0) // graded (adaptive_emit.comp's pieceST)
-                    want = max(want, max(ceil(2.0 * len / pc.edgePixels),
+                if (k == 0) // graded (adaptive_emit.comp's pieceST; the last segment twice an even one)
+                    want = max(want, max(pc.maxError > 0.0 ? 2.0 * want : ceil(2.0 * len / pc.edgePixels),
                                          min(most, ceil(sqrt(len / kCreaseFirstPixels)))));
                 else
                     want = max(want, min(most, ceil(len / kCreasePixels)));

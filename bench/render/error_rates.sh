@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# What the view-adaptive frame costs against the cost of shading its pixels (docs/benchmarks.md,
+# "Rates from the screen-space error"): per model, limn-render --bench with
+#   default   the error-driven rates (--max-error 0.25, --edge-pixels 32)
+#   old       the rule before them (--max-error 0 --edge-pixels 4: segments of about 4 px)
+#   coarse    --edge-pixels 1000 --max-error 0 (about 2 triangles an element: the pixels' shading)
+# interleaved in rounds (the machine is noisy and shared); one JSON line per run on stdout, and
+# per model the median cpu_ms ratios default/coarse and old/coarse with triangles per covered
+# pixel on stderr. Models: quad_sphere (limn-examples) at depth 3 with seams (README's pipeline),
+# spot and catmark_car (tests/data) at depth 3.
+# Usage: bench/render/error_rates.sh [-s 1920x1080] [-n 4] [-f 10] [-r 3] [-m "quad_sphere spot car"]
+# (tools in build/bin, or $LIMN_BIN)
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+bin=${LIMN_BIN:-$here/../../build/bin}
+data=$here/../../tests/data
+size=1920x1080 samples=4 frames=10 rounds=3 models="quad_sphere spot car"
+while getopts "s:n:f:r:m:" o; do
+  case $o in s) size=$OPTARG ;; n) samples=$OPTARG ;; f) frames=$OPTARG ;; r) rounds=$OPTARG ;; m) models=$OPTARG ;; *) exit 2 ;; esac
+done
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+for m in $models; do
+  case $m in
+    quad_sphere) "$bin/limn-examples" --only quad_sphere -o "$tmp" >/dev/null; obj=$tmp/quad_sphere.obj ;;
+    spot) obj=$data/quad/spot_control_mesh.obj ;;
+    car) obj=$data/osd/catmark/catmark_car.obj ;;
+    *) echo "unknown model $m" >&2; exit 2 ;;
+  esac
+  "$bin/limn-classify" "$obj" | "$bin/limn-tables" --depth 3 | "$bin/limn-seams" > "$tmp/$m.limn"
+done
+declare -A args=([default]="" [old]="--max-error 0 --edge-pixels 4" [coarse]="--max-error 0 --edge-pixels 1000")
+for r in $(seq "$rounds"); do
+  for m in $models; do
+    for c in default old coarse; do
+      # shellcheck disable=SC2086
+      line=$("$bin/limn-render" "$tmp/$m.limn" --size "$size" --samples "$samples" --bench "$frames" ${args[$c]})
+      echo "$line" | sed "s/^{/{\"model\":\"$m\",\"config\":\"$c\",\"round\":$r,/" | tee -a "$tmp/all.jsonl"
+    done
+  done
+done
+# Covered pixels (web/test/compare.mjs: not the background), from one image per model, the
+# default's (the tessellations cover the same pixels within their silhouettes' error).
+for m in $models; do
+  "$bin/limn-render" "$tmp/$m.limn" --size "$size" --samples 1 -o "$tmp/$m.png" 2>/dev/null
+  node "$here/../../web/test/compare.mjs" "$tmp/$m.png" "$tmp/$m.png" | sed "s/^{/{\"model\":\"$m\",/" >> "$tmp/covered.jsonl"
+done
+python3 - "$tmp" "$models" <<'EOF' >&2
+import json, statistics, sys
+tmp, models = sys.argv[1], sys.argv[2].split()
+cov = {j['model']: j['covered'] for j in map(json.loads, open(tmp + '/covered.jsonl'))}
+runs = [json.loads(l) for l in open(tmp + '/all.jsonl')]
+configs = ('default', 'old', 'coarse')
+print('%-12s %-8s %9s %9s %12s %10s %12s' % ('model', 'config', 'cpu_ms', 'gpu_ms', 'cpu/coarse', 'triangles', 'tri/covered'))
+for m in models:
+    med = {c: statistics.median(r['cpu_ms'] for r in runs if r['model'] == m and r['config'] == c) for c in configs}
+    for c in configs:
+        rs = [r for r in runs if r['model'] == m and r['config'] == c]
+        gpu = statistics.median(r['gpu_ms']['total'] for r in rs)
+        tri = rs[-1]['triangles']
+        print('%-12s %-8s %9.1f %9.1f %12.2f %10d %12.3f' % (m, c, med[c], gpu, med[c] / med['coarse'], tri, tri / cov[m]))
+EOF

@@ -1,0 +1,60 @@
+// Version 4's compact encodings of the TBLS chunk (formats/limn.md, "Compact encodings"): byte
+// streams of LEB128 varints for stencil tables (palette indices and index differences), patch
+// records and point lists; and the plain stencil tables of versions 1 to 3.
+#pragma once
+
+#include "base/bytes.h"
+#include "subdiv/tables.h"
+
+#include <bit>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace limn {
+
+// Catmull-Clark's masks (refinement and limit, any valence) have weights of order 1; a finite
+// 3e38 can only come from a damaged file, and the GPU's float sums would be NaN.
+inline constexpr float kMaxStencilWeight = 1e6f;
+
+void writeVarint(std::vector<uint8_t>& out, uint64_t x);
+// Signed differences as unsigned varints: 0, -1, 1, -2, ... -> 0, 1, 2, 3, ...
+inline uint64_t zigzag(int64_t d) { return d >= 0 ? uint64_t(d) * 2 : uint64_t(-(d + 1)) * 2 + 1; }
+inline int64_t unzigzag(uint64_t z) { return (z & 1) ? -int64_t(z >> 1) - 1 : int64_t(z >> 1); }
+
+// A stream: u32 length, the bytes, zero padding to a multiple of 4.
+void writeStream(ByteWriter& w, const std::vector<uint8_t>& stream);
+
+// Reads a stream's framing from `r` and its varints after; every failure names `what` and is
+// reported through r (ByteReader::fail).
+class StreamReader {
+public:
+    StreamReader(ByteReader& r, std::string what);
+    size_t size() const { return data_.size(); }
+    uint64_t varint();
+    // A u32 given as a zigzag difference from `previous`.
+    uint32_t after(uint32_t previous, const char* what);
+    float rawFloat(); // 4 raw little-endian bytes
+    void finish() {
+        if (at_ != data_.size()) fail("unexpected bytes after the last record");
+    }
+    [[noreturn]] void fail(const std::string& message) const { r_.fail(what_ + ": " + message); }
+
+private:
+    ByteReader& r_;
+    std::string what_;
+    std::span<const uint8_t> data_;
+    size_t at_ = 0;
+};
+
+// A stencil table in the plain layout (versions 1 to 3) or the compact one (version 4).
+void writeStencilTable(ByteWriter& w, const StencilTable& t, bool weights, bool compact);
+// Reads a stencil table with `rows` rows whose sources must lie in [lo0, hi0) or [lo1, hi1).
+StencilTable readStencilTable(ByteReader& r, bool compact, const std::string& what, uint32_t rows, bool weights,
+                              uint32_t lo0, uint32_t hi0, uint32_t lo1 = 0, uint32_t hi1 = 0);
+
+// Version 4's patch records, one stream for the list (the reader is decodeTablesChunk's).
+void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches);
+
+} // namespace limn
