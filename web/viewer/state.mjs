@@ -132,7 +132,7 @@ export function renderCommand(state, { modelName = 'MODEL.limn', width, height, 
   if (!same(state.light, DEFAULTS.light)) a.push('--light', state.light.join(','));
   a.push('--shade', state.shade, '--samples', String(state.samples), '--edge-pixels', String(state.edgePixels), '--tess', String(state.tess));
   if (state.sampleShading) a.push('--sample-shading');
-  if (state.wire) a.push('--wire');
+  if (state.wire) a.push('--wire-triangles');
   if (state.color) a.push('--color', state.color.join(','));
   if (!same(state.background, DEFAULTS.background)) a.push('--background', state.background.join(','));
   if (displace) {
