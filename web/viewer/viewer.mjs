@@ -58,7 +58,7 @@ function refusal(overrides) {
 function rendererSettings(s) {
   const [width, height] = canvasSize();
   return {
-    width, height, samples: s.samples, sampleShading: s.sampleShading, shade: s.shade, edgePixels: s.edgePixels, tess: s.tess,
+    width, height, samples: s.samples, sampleShading: s.sampleShading, shade: s.shade, maxError: s.maxError, edgePixels: s.edgePixels, tess: s.tess,
     wire: s.wire ? 'triangles' : undefined, // limn-render --wire-triangles: the edges of the triangles drawn
     view: viewSpec(s), color: s.color ?? undefined, background: s.background,
     lightAzimuthDeg: s.light[0], lightElevationDeg: s.light[1],
@@ -353,6 +353,10 @@ function buildPanel() {
   $('wire').addEventListener('change', (e) => commit({ ...state, wire: e.target.checked }));
   $('mode-fixed').addEventListener('change', () => commit({ ...state, edgePixels: 0 }));
   $('mode-adaptive').addEventListener('change', () => commit({ ...state, edgePixels: lastEdgePixels }));
+  $('maxError').addEventListener('change', (e) => {
+    const v = +e.target.value;
+    if (Number.isFinite(v) && v >= 0 && v <= 4096) commit({ ...state, maxError: v });
+  });
   $('edgePixels').addEventListener('change', (e) => {
     const v = +e.target.value;
     if (Number.isFinite(v) && v > 0 && v <= 4096) { lastEdgePixels = v; commit({ ...state, edgePixels: v }); }
@@ -391,6 +395,8 @@ function syncPanel() {
   setEnabled($('mode-adaptive'), adaptiveWhy);
   $('edgePixels').value = String(lastEdgePixels);
   setEnabled($('edgePixels'), adaptiveWhy);
+  $('maxError').value = String(s.maxError);
+  setEnabled($('maxError'), adaptiveWhy);
   if (![...$('tess').options].some((o) => +o.value === s.tess)) $('tess').append(new Option(String(s.tess), String(s.tess)));
   $('tess').value = String(s.tess);
   $('displaceScale').value = String(s.displaceScale);

@@ -114,11 +114,11 @@ test('spot depth 3 from ?model=: lit and levels, 4 then 1 samples, as limn-rende
   n = await frames(page);
   await page.getByLabel('View-adaptive').check();
   await settled(page, n + 1);
-  t.diagnostic(check('spot lit, 1 sample, view-adaptive', compare(await shot(), native(spot, ['--view', '-30,20', '--samples', '1', '--edge-pixels', '4'], 'spot-adaptive-1')), 1));
+  t.diagnostic(check('spot lit, 1 sample, view-adaptive', compare(await shot(), native(spot, ['--view', '-30,20', '--samples', '1', '--edge-pixels', '32'], 'spot-adaptive-1')), 1));
   assert.doesNotMatch(await page.evaluate(() => location.search), /edgePixels/);
   // The command the panel prints is the one that drew the reference.
   assert.equal(await page.locator('#command').textContent(),
-    'limn-render spot_d3.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --edge-pixels 4 --tess 64');
+    'limn-render spot_d3.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --max-error 0.1 --edge-pixels 32 --tess 64');
 });
 
 test('a drag turns the view, the URL follows, and reloading it draws the same image', async (t) => {
@@ -139,7 +139,7 @@ test('a drag turns the view, the URL follows, and reloading it draws the same im
   const moved = compare(before, turned);
   assert.ok(moved.off > 0.2 * moved.covered, `the drag changed only ${moved.off} of ${moved.covered} pixels`);
   // The same view by limn-render from the URL's options (the check above, 1 sample).
-  t.diagnostic(check('spot after the drag', compare(turned, native(spot, ['--view', '-54,12', '--edge-pixels', '4', '--samples', '1'], 'spot-dragged')), 1));
+  t.diagnostic(check('spot after the drag', compare(turned, native(spot, ['--view', '-54,12', '--edge-pixels', '32', '--samples', '1'], 'spot-dragged')), 1));
   await page.reload();
   await settled(page);
   const again = await shot();
@@ -286,15 +286,15 @@ test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and 
     await p.locator('#seamFix').check();
     await p.getByLabel('View-adaptive').check();
     await settled(p, n + 1);
-    t.diagnostic(check('displaced, seam fix, view-adaptive', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '4'], 'sphere-adaptive')), 1));
+    t.diagnostic(check('displaced, seam fix, view-adaptive', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '32'], 'sphere-adaptive')), 1));
     assert.equal(await p.locator('#command').textContent(),
-      `limn-render quad_sphere.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --edge-pixels 4 --tess 64 --displace quad_sphere.height.png --displace-scale 0.2 --displace-mid 0.5`);
+      `limn-render quad_sphere.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --max-error 0.1 --edge-pixels 32 --tess 64 --displace quad_sphere.height.png --displace-scale 0.2 --displace-mid 0.5`);
     // The wireframe overlay: the triangles this view's rates chose (limn-render --wire-triangles).
     n = await frames(p);
     await p.locator('#wire').check();
     await settled(p, n + 1);
     assert.match(await p.locator('#command').textContent(), / --wire-triangles /);
-    t.diagnostic(check('displaced, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '4', '--wire-triangles'], 'sphere-wire')), 1));
+    t.diagnostic(check('displaced, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '32', '--wire-triangles'], 'sphere-wire')), 1));
     // Another map dropped on the page replaces the first (a local file: not in the URL).
     n = await frames(p);
     await p.evaluate(async () => {
@@ -307,7 +307,7 @@ test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and 
     assert.doesNotMatch(await p.evaluate(() => location.search), /displace=/);
     assert.match(await p.locator('#command').textContent(), / --displace uv-noise\.png /);
     const noisy = args.map((a) => (a === sphere.height ? sphere.noise : a));
-    t.diagnostic(check('dropped UV-noise map, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...noisy, '--edge-pixels', '4', '--wire-triangles'], 'sphere-noise')), 1));
+    t.diagnostic(check('dropped UV-noise map, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...noisy, '--edge-pixels', '32', '--wire-triangles'], 'sphere-noise')), 1));
     assert.deepEqual(p.problems, []);
   } finally {
     await p.close();
