@@ -30,7 +30,7 @@ after(() => gpu?.device.destroy());
 
 // limn-web-render's settings for the options these tests use (its defaults otherwise).
 function settingsOf(args) {
-  const s = { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 };
+  const s = { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 32, maxError: 0.1, tess: 64 };
   const nums = (v) => v.split(',').map(Number);
   for (let i = 0; i < args.length; i++) {
     const v = args[i + 1];
@@ -39,6 +39,7 @@ function settingsOf(args) {
       case '--samples': s.samples = Number(v); i++; break;
       case '--shade': s.shade = v; i++; break;
       case '--edge-pixels': s.edgePixels = Number(v); i++; break;
+      case '--max-error': s.maxError = Number(v); i++; break;
       case '--tess': s.tess = Number(v); i++; break;
       case '--view': [s.view.azimuthDeg, s.view.elevationDeg] = nums(v); i++; break;
       case '--eye': s.view.eye = nums(v); i++; break;
@@ -80,7 +81,7 @@ const cases = [
   ['fixed: face-varying UVs and tags depth 2', () => container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), fixed, [1], ['lit', 'levels']],
   ['fixed: paper sphere depth 6 in its camera', sphere6, [...fixed, '--eye', '0,12,22', '--target', '0,0,0', '--tess', '16', '--size', '1280x720'], [4], ['lit']],
   ['fixed: car depth 3', () => container('osd/catmark/catmark_car.obj', { depth: 3 }), [...fixed, '--tess', '4'], [4], ['lit', 'levels']],
-  // The view-adaptive tessellation (limn-render's default, --edge-pixels 4).
+  // The view-adaptive tessellation (limn-render's default, --max-error 0.1 --edge-pixels 32).
   ['adaptive: spot depth 3', spot(3), [], [1, 4], ['lit', 'levels']],
   ['adaptive: spot depth 3, normals and per-sample shading', spot(3), ['--sample-shading'], [4], ['normal', 'lit']],
   ['adaptive: spot depth 6', spot(6), [], [4], ['lit']],
