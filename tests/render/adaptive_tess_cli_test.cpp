@@ -528,7 +528,7 @@ TEST(AdaptiveCli, AViewOverItsBuffersWritesNothing) {
                   "-q", "-o", png});
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("more than its buffers hold"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("nothing written: raise --edge-pixels or lower --tess"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nothing written: raise --max-error or --edge-pixels, or lower --tess"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(png));
     r = run({tool("limn-render").string(), limn, "--size", "64x48", "--edge-pixels", "0.001", "--turntable", "2",
              "-o", (dir / "t_%d.png").string()});

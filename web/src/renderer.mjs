@@ -377,7 +377,7 @@ export class Renderer {
     const t = new Uint32Array(rb.getMappedRange().slice(0));
     rb.unmap();
     rb.destroy();
-    if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --edge-pixels or lower --tess', 'input');
+    if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --max-error or --edge-pixels, or lower --tess', 'input');
     const triangles = t[16], vertices = t[17];
     const tri = device.createBuffer({ size: Math.max(triangles * 12, 16), usage: MAP_READ | COPY_DST });
     const e2 = device.createCommandEncoder();
