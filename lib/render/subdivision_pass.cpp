@@ -406,7 +406,7 @@ std::string SubdivisionPass::tessellationShortfall() const {
                 ? std::string()
                 : ", more than its buffers hold (" + std::to_string(gpu_->adaptive->vertexCapacity()) +
                       " vertices, " + std::to_string(gpu_->adaptive->triangleCapacity()) + " triangles)") +
-           "; nothing written: raise --edge-pixels or lower --tess";
+           "; nothing written: raise --max-error or --edge-pixels, or lower --tess";
 }
 
 DrawnMesh SubdivisionPass::drawnMesh() {

@@ -464,7 +464,7 @@ export class Renderer {
     }
     if (this.adaptive) {
       const t = await this.readBuffer(this.buffers.totals, TOTALS_WORDS * 4, Uint32Array);
-      if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --edge-pixels or lower --tess', 'input');
+      if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --max-error or --edge-pixels, or lower --tess', 'input');
       vertices = t[17];
       triangles = await this.readBuffer(this.buffers.triangles, t[16] * 12, Uint32Array);
     }

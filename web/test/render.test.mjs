@@ -41,6 +41,7 @@ function settingsOf(args) {
       case '--samples': s.samples = Number(v); i++; break;
       case '--shade': s.shade = v; i++; break;
       case '--edge-pixels': s.edgePixels = Number(v); i++; break;
+      case '--max-error': s.maxError = Number(v); i++; break;
       case '--tess': s.tess = Number(v); i++; break;
       case '--view': [s.view.azimuthDeg, s.view.elevationDeg] = nums(v); i++; break;
       case '--eye': s.view.eye = nums(v); i++; break;
