@@ -427,16 +427,19 @@ DrawnMesh SubdivisionPass::drawnMesh() {
         std::memcpy(&v.v, &info[i].z, 4);
         if (draw_.hasUVs && !gpu_->adaptive)
             v.s = draw_.tessVertices[i].u, v.t = draw_.tessVertices[i].v;
+        if (!gpu_->adaptive)
+            v.approximate = drawnPointIsApproximate(draw_, draw_.tessVertices[i].element, draw_.tessVertices[i].st);
     }
     out.hasTexCoords = draw_.hasUVs; // the tessellation split its vertices at UV seams
     if (gpu_->adaptive) {
         // The vertices the view-adaptive passes emitted this frame: (element, s|t, own-chart UV).
-        if (draw_.hasUVs) {
-            auto emitted = gpu::readbackArrayNow<glm::uvec4>(ctx_, gpu_->adaptive->tessVertices(), n);
-            for (size_t i = 0; i < n; ++i) {
+        auto emitted = gpu::readbackArrayNow<glm::uvec4>(ctx_, gpu_->adaptive->tessVertices(), n);
+        for (size_t i = 0; i < n; ++i) {
+            if (draw_.hasUVs) {
                 std::memcpy(&out.vertices[i].s, &emitted[i].z, 4);
                 std::memcpy(&out.vertices[i].t, &emitted[i].w, 4);
             }
+            out.vertices[i].approximate = drawnPointIsApproximate(draw_, emitted[i].x, emitted[i].y);
         }
         auto tris = gpu::readbackArrayNow<uint32_t>(ctx_, gpu_->adaptive->triangles(),
                                                     size_t(totals.writtenTriangles) * 3);
