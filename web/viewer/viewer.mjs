@@ -443,7 +443,7 @@ async function bench(frames) {
   const median = (a) => { const b = [...a].sort((x, y) => x - y); return b.length ? b[b.length >> 1] : null; };
   const configs = [{ tessellation: 'fixed', edgePixels: 0 }, { tessellation: 'adaptive', edgePixels: state.edgePixels > 0 ? state.edgePixels : DEFAULTS.edgePixels }];
   for (const c of configs) {
-    const line = { bench: 'limn-viewer', model: model.name, depth: model.surface.tables.depth, tessellation: c.tessellation, edge_pixels: c.edgePixels, tess: state.tess, samples: state.samples, size: canvasSize(), frames };
+    const line = { bench: 'limn-viewer', model: model.name, depth: model.surface.tables.depth, tessellation: c.tessellation, edge_pixels: c.edgePixels, max_error: c.edgePixels > 0 ? state.maxError : null, tess: state.tess, samples: state.samples, size: canvasSize(), frames };
     const why = refusal({ edgePixels: c.edgePixels });
     if (why) { console.log(JSON.stringify({ ...line, unsupported: why })); continue; }
     state = { ...state, edgePixels: c.edgePixels };

@@ -252,8 +252,8 @@ test('?bench=N prints one JSON line per tessellation on the console', async () =
     }));
     await p.goto(`${base()}/viewer/?model=../models/spot_d1.limn&size=96x72&samples=1&edgePixels=0&bench=2`);
     await done;
-    assert.deepEqual(lines.map((l) => [l.tessellation, l.edge_pixels, l.depth, l.frames, l.size.join('x')]),
-      [['fixed', 0, 1, 2, '96x72'], ['adaptive', 4, 1, 2, '96x72']]);
+    assert.deepEqual(lines.map((l) => [l.tessellation, l.edge_pixels, l.max_error, l.depth, l.frames, l.size.join('x')]),
+      [['fixed', 0, null, 1, 2, '96x72'], ['adaptive', 32, 0.1, 1, 2, '96x72']]);
     for (const l of lines) {
       assert.ok(l.triangles > 0 && l.js_ms > 0 && l.wall_ms >= l.js_ms, JSON.stringify(l));
       assert.ok(l.gpu_ms === null || l.gpu_ms > 0, JSON.stringify(l));
