@@ -82,6 +82,7 @@ int comparePly(const std::string& plyPath, const std::string& meshPath, int refI
     }
     Worst dP, dN, tP;
     size_t off = 0, offN = 0, flipped = 0, compared = 0, tris = 0, triOff = 0;
+    size_t flagged = 0, offUnflagged = 0; // the PLY's `approximate` property, when it has one
     for (size_t i = 0; i < d.vertices.size(); ++i) {
         const auto& v = d.vertices[i];
         const glm::dvec2 in = inside[i].x < 0 ? uvOf(int32_t(i)) : inside[i];
@@ -92,6 +93,8 @@ int comparePly(const std::string& plyPath, const std::string& meshPath, int refI
         const double e = glm::length(glm::dvec3(v.p[0], v.p[1], v.p[2]) - rp) / diag;
         dP.update(e, where);
         off += e > 1e-5;
+        flagged += v.approximate != 0;
+        offUnflagged += e > 1e-5 && !v.approximate;
         const int bv = test::baseVertexAt(mesh, uint32_t(v.ptex), v.uv[0], v.uv[1]);
         const double a = angleDeg(glm::dvec3(v.n[0], v.n[1], v.n[2]), rn);
         if (a > 90) ++flipped;
@@ -118,9 +121,10 @@ int comparePly(const std::string& plyPath, const std::string& meshPath, int refI
                 "\"max_position_error\":%.3e,\"max_normal_degrees\":%.4g,\"normals_off\":%zu,"
                 "\"flipped_normals\":%zu,\"triangles\":%zu,\"centroids_off\":%zu,"
                 "\"max_centroid_error\":%.3e,\"worst_position_at\":\"%s\",\"worst_normal_at\":\"%s\","
-                "\"worst_centroid_at\":\"%s\"}\n",
+                "\"worst_centroid_at\":\"%s\",\"vertices_flagged_approximate\":%zu,"
+                "\"vertices_off_not_flagged\":%zu}\n",
                 name.c_str(), plyPath.c_str(), compared, off, dP.value, dN.value, offN, flipped, tris,
-                triOff, tP.value, dP.where.c_str(), dN.where.c_str(), tP.where.c_str());
+                triOff, tP.value, dP.where.c_str(), dN.where.c_str(), tP.where.c_str(), flagged, offUnflagged);
     std::fprintf(stderr, "%-28s %9zu %8zu %9.2e %8.3g %6zu %9zu %8zu %9.2e\n",
                  name.substr(0, name.find('.')).c_str(), compared, off, dP.value, dN.value, flipped, tris,
                  triOff, tP.value);

@@ -4,19 +4,24 @@
 #   default   the error-driven rates (--max-error 0.25, --edge-pixels 32)
 #   old       the rule before them (--max-error 0 --edge-pixels 4: segments of about 4 px)
 #   coarse    --edge-pixels 1000 --max-error 0 (about 2 triangles an element: the pixels' shading)
+#   eX        --max-error X (with -e "X ...": other error targets)
 # interleaved in rounds (the machine is noisy and shared); one JSON line per run on stdout, and
 # per model the median cpu_ms ratios default/coarse and old/coarse with triangles per covered
 # pixel on stderr. Models: quad_sphere (limn-examples) at depth 3 with seams (README's pipeline),
 # spot and catmark_car (tests/data) at depth 3.
 # Usage: bench/render/error_rates.sh [-s 1920x1080] [-n 4] [-f 10] [-r 3] [-m "quad_sphere spot car"]
+#        [-c "default old coarse"] [-e "0.25"]
 # (tools in build/bin, or $LIMN_BIN)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 bin=${LIMN_BIN:-$here/../../build/bin}
 data=$here/../../tests/data
-size=1920x1080 samples=4 frames=10 rounds=3 models="quad_sphere spot car"
-while getopts "s:n:f:r:m:" o; do
-  case $o in s) size=$OPTARG ;; n) samples=$OPTARG ;; f) frames=$OPTARG ;; r) rounds=$OPTARG ;; m) models=$OPTARG ;; *) exit 2 ;; esac
+size=1920x1080 samples=4 frames=10 rounds=3 models="quad_sphere spot car" configs="default old coarse" errors=""
+while getopts "s:n:f:r:m:c:e:" o; do
+  case $o in
+    s) size=$OPTARG ;; n) samples=$OPTARG ;; f) frames=$OPTARG ;; r) rounds=$OPTARG ;; m) models=$OPTARG ;;
+    c) configs=$OPTARG ;; e) errors=$OPTARG ;; *) exit 2 ;;
+  esac
 done
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 for m in $models; do
@@ -29,9 +34,11 @@ for m in $models; do
   "$bin/limn-classify" "$obj" | "$bin/limn-tables" --depth 3 | "$bin/limn-seams" > "$tmp/$m.limn"
 done
 declare -A args=([default]="" [old]="--max-error 0 --edge-pixels 4" [coarse]="--max-error 0 --edge-pixels 1000")
+for e in $errors; do args[e$e]="--max-error $e"; configs="$configs e$e"; done
+case " $configs " in *" coarse "*) ;; *) configs="$configs coarse" ;; esac # the ratios' base
 for r in $(seq "$rounds"); do
   for m in $models; do
-    for c in default old coarse; do
+    for c in $configs; do
       # shellcheck disable=SC2086
       line=$("$bin/limn-render" "$tmp/$m.limn" --size "$size" --samples "$samples" --bench "$frames" ${args[$c]})
       echo "$line" | sed "s/^{/{\"model\":\"$m\",\"config\":\"$c\",\"round\":$r,/" | tee -a "$tmp/all.jsonl"
@@ -44,12 +51,11 @@ for m in $models; do
   "$bin/limn-render" "$tmp/$m.limn" --size "$size" --samples 1 -o "$tmp/$m.png" 2>/dev/null
   node "$here/../../web/test/compare.mjs" "$tmp/$m.png" "$tmp/$m.png" | sed "s/^{/{\"model\":\"$m\",/" >> "$tmp/covered.jsonl"
 done
-python3 - "$tmp" "$models" <<'EOF' >&2
+python3 - "$tmp" "$models" "$configs" <<'EOF' >&2
 import json, statistics, sys
-tmp, models = sys.argv[1], sys.argv[2].split()
+tmp, models, configs = sys.argv[1], sys.argv[2].split(), sys.argv[3].split()
 cov = {j['model']: j['covered'] for j in map(json.loads, open(tmp + '/covered.jsonl'))}
 runs = [json.loads(l) for l in open(tmp + '/all.jsonl')]
-configs = ('default', 'old', 'coarse')
 print('%-12s %-8s %9s %9s %12s %10s %12s' % ('model', 'config', 'cpu_ms', 'gpu_ms', 'cpu/coarse', 'triangles', 'tri/covered'))
 for m in models:
     med = {c: statistics.median(r['cpu_ms'] for r in runs if r['model'] == m and r['config'] == c) for c in configs}

@@ -3,6 +3,7 @@
 #include "base/bytes.h"
 #include "mesh/text_format.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstring>
 
@@ -18,6 +19,9 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
         header += std::string("property float ") + p + "\n";
     header += "property int ptex\nproperty float u\nproperty float v\n";
     if (mesh.hasTexCoords) header += "property float s\nproperty float t\n";
+    const bool flags = std::any_of(mesh.vertices.begin(), mesh.vertices.end(),
+                                   [](const DrawnVertex& v) { return v.approximate != 0; });
+    if (flags) header += "property uchar approximate\n";
     header += "element face " + std::to_string(triangles) + "\n";
     header += "property list uchar int vertex_indices\nend_header\n";
 
@@ -39,6 +43,7 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
                 body += ' ';
                 appendShortest(body, v.t);
             }
+            if (flags) body += v.approximate ? " 1" : " 0";
             body += '\n';
         }
         for (size_t t = 0; t < triangles; ++t)
@@ -58,6 +63,7 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
             appendRaw(out, v.s);
             appendRaw(out, v.t);
         }
+        if (flags) out.push_back(v.approximate ? 1 : 0);
     }
     for (size_t t = 0; t < triangles; ++t) {
         out.push_back(3);

@@ -1,6 +1,7 @@
 // The triangles limn-render drew, as PLY (--mesh-out): one vertex per drawn corner with
 // `float x y z nx ny nz`, `int ptex`, `float u v`, then `float s t` (the texture UV) when the mesh
-// has texture coordinates, and faces as `list uchar int vertex_indices`.
+// has texture coordinates, then `uchar approximate` when some vertex is not on the limit surface
+// (DrawnVertex), and faces as `list uchar int vertex_indices`.
 // Binary little-endian by default, ASCII on request; floats in ASCII are the shortest text that
 // reads back to the same float, so both forms carry the same values.
 #pragma once
@@ -19,6 +20,9 @@ struct DrawnVertex {
     // The texture coordinate as drawn (DrawnMesh::hasTexCoords): the vertex's UV in its element's
     // face-varying chart, v = 0 at the bottom of the image as in OBJ and the mesh's UVs.
     float s = 0, t = 0;
+    // Where the surface is approximate (drawn bilinear within 2^-K of an extraordinary corner,
+    // docs/irregular.md): `uchar approximate` 1, written only when some vertex has it.
+    uint8_t approximate = 0;
 };
 
 struct DrawnMesh {

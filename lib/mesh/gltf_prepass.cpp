@@ -107,6 +107,28 @@ void readDraco(Json& doc, Prepass& out) {
     }
 }
 
+// Every buffer view within its buffer's byteLength (glTF 2.0, 3.6.2.2: offset + length at most
+// the buffer's length). tinygltf 2.7 hands an image's buffer view to the image loader unchecked,
+// so a view past its buffer's end read past tinygltf's copy of the buffer (found by fuzz_gltf).
+void checkBufferViews(const Json& doc) {
+    auto views = doc.find("bufferViews");
+    auto buffers = doc.find("buffers");
+    if (views == doc.end() || !views->is_array() || buffers == doc.end() || !buffers->is_array()) return;
+    for (size_t v = 0; v < views->size(); ++v) {
+        const auto& view = (*views)[v];
+        if (!view.is_object() || !view.contains("buffer")) continue; // tinygltf names the fault
+        const std::string what = "buffer view " + std::to_string(v);
+        const uint64_t b = count(view, "buffer", what);
+        if (b >= buffers->size() || !(*buffers)[b].is_object()) continue; // as above
+        const uint64_t size = count((*buffers)[b], "byteLength", "buffer " + std::to_string(b));
+        const uint64_t offset = count(view, "byteOffset", what, 0), length = count(view, "byteLength", what);
+        if (offset > size || length > size - offset)
+            throwBadInput("glTF: " + what + " (" + std::to_string(length) + " bytes at " + std::to_string(offset) +
+                          ") runs past the end of buffer " + std::to_string(b) + " (" + std::to_string(size) +
+                          " bytes)");
+    }
+}
+
 void readMeshopt(Json& doc, bool binary, Prepass& out) {
     auto views = doc.find("bufferViews");
     if (views != doc.end() && views->is_array()) {
@@ -190,6 +212,7 @@ Prepass prepass(std::span<const uint8_t> bytes, bool binary, Warnings& warnings)
     if (!ignored.empty())
         warnings.add("the file uses " + list(ignored) + ", which limn does not read (optional; ignored)");
 
+    checkBufferViews(doc);
     readDraco(doc, out);
     readMeshopt(doc, binary, out);
     if (out.indicesWithoutView.empty() && out.placeholderBuffers.empty()) return out;

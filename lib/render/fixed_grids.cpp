@@ -124,9 +124,12 @@ std::unique_ptr<DisplacementPasses> FixedGrids::makeDisplacement(gpu::Context& c
 }
 
 void FixedGrids::finishDrawnMesh(gpu::Context&, DrawnMesh& out) const {
-    if (draw_.hasUVs) // the grids split their vertices at UV seams
-        for (size_t i = 0; i < out.vertices.size(); ++i)
-            out.vertices[i].s = draw_.tessVertices[i].u, out.vertices[i].t = draw_.tessVertices[i].v;
+    for (size_t i = 0; i < out.vertices.size(); ++i) {
+        const GpuTessVertex& t = draw_.tessVertices[i];
+        if (draw_.hasUVs) // the grids split their vertices at UV seams
+            out.vertices[i].s = t.u, out.vertices[i].t = t.v;
+        out.vertices[i].approximate = drawnPointIsApproximate(draw_, t.element, t.st);
+    }
     out.triangles = draw_.triangles;
 }
 

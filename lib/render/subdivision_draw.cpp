@@ -443,4 +443,37 @@ float surfaceOrientation(const Mesh& mesh, const std::vector<glm::dvec3>& positi
     return volume > 1e-6 * scale ? 1.0f : volume < -1e-6 * scale ? -1.0f : 0.0f;
 }
 
+bool drawnPointIsApproximate(const SubdivisionDraw& d, uint32_t element, uint32_t st) {
+    const uint32_t P = static_cast<uint32_t>(d.patches.size());
+    if (element < P) return false;
+    const uint32_t face = element - P, full = 32768, half = 16384;
+    uint32_t S = st & 0xFFFFu, T = st >> 16;
+    auto corner = [&](uint32_t a, uint32_t b) { return (a == 0 || a == full) && (b == 0 || b == full); };
+    if (corner(S, T)) return false;
+    auto node = [&](uint32_t i) -> const GpuPatch& { return d.irregularNodes.at(i - P); };
+    if (face >= d.irregularNodes.size()) return true; // no quadtree: bilinear
+    uint32_t at = P + face;
+    for (int k = 0; k < 17; ++k) {
+        const uint32_t c = (S >= half ? 1u : 0u) | (T >= half ? 2u : 0u), code = node(at).cv[c];
+        if (code == kNodeNone) break;
+        const uint32_t kind = code & ~kNodeIndexMask, index = code & kNodeIndexMask;
+        if (kind == kNodeBasis) { // a smooth face: bilinear only within 2^-K of its corner
+            const GpuPatch& h = node(index);
+            const uint32_t r = h.cv[1], K = h.cv[3];
+            uint32_t a = r == 0 ? S : r == 1 ? T : r == 2 ? full - S : full - T;
+            uint32_t b = r == 0 ? T : r == 1 ? full - S : r == 2 ? full - T : S;
+            if (a == 0 && b == 0) return false;
+            for (uint32_t band = 1; std::max(a, b) < half && band < K; ++band) a *= 2, b *= 2;
+            return std::max(a, b) < half;
+        }
+        S = 2 * S - ((c & 1) ? full : 0);
+        T = 2 * T - ((c & 2) ? full : 0);
+        if (kind == kNodeSubPatch) return false;
+        if (kind == kNodeLeaf) return !corner(S, T);
+        at = index;
+    }
+    // A face (or node) without children there: the face's corners' bilinear blend.
+    return !corner(st & 0xFFFFu, st >> 16);
+}
+
 } // namespace limn::render

@@ -108,6 +108,12 @@ struct DisplacementPlan {
     bool seamFix = true;          // average every face's sample (false: each side its own)
 };
 
+// Whether the surface point of `element` at st (GpuTessVertex) is approximate: in an irregular
+// face drawn bilinear there (within 2^-K of an extraordinary corner, a leaf of its quadtree, or
+// a face without a surface: surface_eval_impl.glsl's irregularPoint), and not one of the
+// corners, which are limit points. The same walk as the shader, on the buffers it reads.
+bool drawnPointIsApproximate(const SubdivisionDraw& draw, uint32_t element, uint32_t st);
+
 // `tessCap` caps the segments per side of any patch (--tess; rounded down to a power of two).
 // Before building it, the fixed tessellation's size is estimated, and one whose index or vertex
 // buffer would pass 128 MiB is refused with the estimate and what to do. With `adaptive`, no

@@ -194,7 +194,15 @@ TEST(MakefileExamples, BuildsOnceThenNothing) {
         EXPECT_NE(test::readFile(out / "web" / "index.html")
                       .find("viewer/?model=../models/" + name + ".limn&amp;view=-30,20"),
                   std::string::npos);
+        // Displaced: the container with seams and the height map, linked with the scale and mid.
+        for (const auto* suffix : {".seams.limn", ".height.png"})
+            EXPECT_EQ(test::readFile(out / "web" / "models" / (name + suffix)), test::readFile(out / (name + suffix)));
+        EXPECT_NE(test::readFile(out / "web" / "index.html")
+                      .find("viewer/?model=../models/" + name + ".seams.limn&amp;view=-30,20&amp;displace=../models/" +
+                            name + ".height.png&amp;displaceScale=0.2&amp;displaceMid=0.5\""),
+                  std::string::npos);
     }
+    EXPECT_EQ(test::readFile(out / "web" / "models" / "uv-noise.png"), test::readFile(out / "uv-noise.png"));
     // A depfile names the inputs a render read, the height map included.
     EXPECT_EQ(test::readFile(out / "torus.displaced.png.d"),
               (out / "torus.displaced.png").string() + ": " + (out / "torus.seams.limn").string() +
@@ -209,7 +217,7 @@ TEST(MakefileExamples, BuildsOnceThenNothing) {
     EXPECT_EQ(second.err, "");
     EXPECT_EQ(rewritten(out, before), std::set<std::string>{});
 
-    // A changed map re-renders just the images displaced by it.
+    // A changed map re-renders just the images displaced by it (and the viewer's copy).
     touchAfterEverything(out, out / "uv-noise.png");
     EXPECT_EQ(make(out, {subset, "-q"}).exitCode, 1);
     before = writeTimes(out);
@@ -218,7 +226,8 @@ TEST(MakefileExamples, BuildsOnceThenNothing) {
     EXPECT_EQ(third.out, "");
     EXPECT_EQ(rewritten(out, before),
               (std::set<std::string>{"cube.cracks-nofix.png", "cube.cracks-nofix.png.d",
-                                     "cube.cracks-fixed.png", "cube.cracks-fixed.png.d"}));
+                                     "cube.cracks-fixed.png", "cube.cracks-fixed.png.d",
+                                     "web/models/uv-noise.png"}));
 
     // A changed mesh rebuilds everything made from it, and nothing else.
     touchAfterEverything(out, out / "meshes" / "torus.obj");
@@ -233,7 +242,9 @@ TEST(MakefileExamples, BuildsOnceThenNothing) {
         if (rel.rfind("torus.", 0) == 0) torusFiles.insert(rel);
     }
     EXPECT_GT(torusFiles.size(), 30u);
-    torusFiles.insert("web/models/torus.limn"); // the web stage's copy for the viewer
+    // The web stage's copies for the viewer.
+    for (const auto* copy : {"web/models/torus.limn", "web/models/torus.seams.limn", "web/models/torus.height.png"})
+        torusFiles.insert(copy);
     EXPECT_EQ(rewritten(out, before), torusFiles);
     EXPECT_EQ(make(out, {subset, "-q"}).exitCode, 0);
 }

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -129,6 +130,31 @@ TEST(HostileGltf, ABufferThatIsADirectoryIsNamed) {
         ADD_FAILURE() << "accepted";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("is a directory, not a file"), std::string::npos) << e.what();
+    }
+}
+
+// A buffer view past its buffer's end (found by fuzz_gltf: BoxTextured.glb with its buffer's
+// byteLength lowered, so that the embedded PNG's view ran past tinygltf's copy of the buffer, read
+// out of bounds by the image callback) is refused by name.
+TEST(HostileGltf, ABufferViewPastItsBufferIsRefused) {
+    std::vector<uint8_t> glb = test::readBytes(test::modelPath("gltf/BoxTextured/BoxTextured.glb"));
+    const std::string key = "\"buffers\":[{\"byteLength\":3273}";
+    auto at = std::search(glb.begin(), glb.end(), key.begin(), key.end());
+    ASSERT_NE(at, glb.end());
+    std::memcpy(&*at + key.size() - 5, "1636", 4); // same length: the chunk sizes stay right
+    for (const bool embeddedOnly : {false, true}) {
+        Warnings w;
+        try {
+            if (embeddedOnly)
+                readGltfEmbedded(glb, true, w);
+            else
+                readGltf(glb, true, "", w);
+            ADD_FAILURE() << "accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("buffer view 3 (2433 bytes at 840) runs past the end of buffer 0 (1636 bytes)"),
+                      std::string::npos)
+                << e.what();
+        }
     }
 }
 

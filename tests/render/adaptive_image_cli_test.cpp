@@ -199,7 +199,9 @@ INSTANTIATE_TEST_SUITE_P(Shared, AdaptiveBackFaces, ::testing::ValuesIn(kCullCas
 // The error-driven rates (--max-error, docs/adaptive.md): the default image against the same
 // view drawn with segments of at most a pixel (--edge-pixels 1, whose chords are within a few
 // hundredths of a pixel of the surface: the reference), at most `allowed` of the covered pixels
-// off by more than 8/255; and the default image the same bytes twice.
+// off by more than 8/255; the default image the same bytes twice (spot); welded, the drawn mesh
+// closed (closed inputs). Measured: spot 0.44%, quad_sphere 0.26%, displaced 0.85%, the
+// icosphere 0.03%, the car 0.90% at 640x480 and 0.53% at 1280x960.
 namespace {
 struct ErrorCase {
     std::string name;
@@ -208,6 +210,7 @@ struct ErrorCase {
     double allowed = 0.005;
     bool displaced = false;  // a surface height map (limn-heightmap --kind surface) on it
     bool closed = true;      // the drawn mesh, welded by exact position, is closed
+    bool twice = false;      // render the default image twice: the same bytes
 };
 
 // Directed edges of the drawn mesh welded by exact position: used more than once, and without
@@ -268,8 +271,10 @@ TEST_P(AdaptiveErrorRates, CloseToOnePixelSegments) {
     EXPECT_LE(double(differ), c.allowed * double(covered)) << differ << " of " << covered;
     std::printf("%s: %zu of %zu covered pixels differ from --edge-pixels 1 by > 8/255\n", c.name.c_str(), differ,
                 covered);
-    render("again.png", {});
-    EXPECT_EQ(readBytes(dir / "default.png"), readBytes(dir / "again.png"));
+    if (c.twice) {
+        render("again.png", {});
+        EXPECT_EQ(readBytes(dir / "default.png"), readBytes(dir / "again.png"));
+    }
     if (!c.closed) return;
     // The two sides of every edge drew the same points: welded, the drawn mesh is closed.
     std::vector<std::string> argv = {tool("limn-render").string(), limn, "--mesh-out", (dir / "drawn.ply").string()};
@@ -282,7 +287,7 @@ TEST_P(AdaptiveErrorRates, CloseToOnePixelSegments) {
 }
 
 const ErrorCase kErrorCases[] = {
-    {"spot", "quad/spot_control_mesh.obj", {"--size", "640x480"}},
+    {"spot", "quad/spot_control_mesh.obj", {"--size", "640x480"}, 0.005, false, true, true},
     {"quad_sphere", "quad_sphere", {"--size", "640x480"}},
     // Displaced: both draw the map's bumps at segments of 2 pixels where its texels are denser
     // (the texel bound's cap), the reference at 1: 0.85% off, and 0.83% with the rule before

@@ -93,6 +93,52 @@ TEST(AdaptiveDisplacement, AlongTheNormalClosedWithSeamFixOpenWithout) {
     }
 }
 
+// --mesh-out flags the vertices drawn where the surface is approximate (bilinear within 2^-K of
+// an extraordinary corner, docs/irregular.md): with K = 2 tables (the default --tess 64 lands
+// vertices there) every vertex off OpenSubdiv's limit by more than 1e-5 of the diagonal is
+// flagged and every unflagged one is on it; with the default K = 6 nothing is, and the PLY keeps
+// its layout without the property.
+TEST(AdaptiveCli, MeshOutFlagsTheApproximateVertices) {
+    ScratchDir dir;
+    const std::string obj = modelPath("osd/catmark/catmark_smoothtris0.obj").string(), limn = (dir / "c.limn").string();
+    ASSERT_EQ(run({tool("limn-classify").string(), obj, "-o", limn}).exitCode, 0);
+    Warnings w;
+    const Mesh mesh = importMeshFile(obj, w);
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const auto& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const double diag = glm::length(hi - lo);
+    OsdLimitSurface osd(mesh, resolveSchemeOptions(mesh.tags, {}), 10);
+    for (const char* K : {"2", "6"}) {
+        SCOPED_TRACE(std::string("--irregular-levels ") + K);
+        const std::string tables = (dir / "t.limn").string(), ply = (dir / "m.ply").string();
+        auto r = run({tool("limn-tables").string(), limn, "-q", "--depth", "2", "--irregular-levels", K, "-o", tables});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        r = run({tool("limn-render").string(), tables, "-q", "--size", "160x120", "--mesh-out", ply, "-o",
+                 (dir / "i.png").string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const Drawn drawn = parsePly(readFile(ply));
+        size_t flagged = 0, off = 0, offUnflagged = 0;
+        for (const PlyVertex& v : drawn.vertices) {
+            glm::dvec3 ref, refN;
+            ASSERT_TRUE(osd.evaluate(v.ptex, v.uv[0], v.uv[1], ref, refN));
+            const bool isOff = glm::length(glm::dvec3(v.p[0], v.p[1], v.p[2]) - ref) / diag > 1e-5;
+            flagged += v.approximate, off += isOff, offUnflagged += isOff && !v.approximate;
+        }
+        EXPECT_EQ(offUnflagged, 0u);
+        if (std::string(K) == "2") {
+            EXPECT_TRUE(drawn.hasApproximate);
+            EXPECT_GT(off, 20u);
+            EXPECT_GE(flagged, off);
+            EXPECT_LE(flagged, off + off / 10) << "flagged vertices that are on the limit";
+        } else {
+            EXPECT_FALSE(drawn.hasApproximate);
+            EXPECT_EQ(off, 0u);
+        }
+        std::printf("K %s: %zu vertices, %zu off the limit, %zu flagged approximate\n", K,
+                    drawn.vertices.size(), off, flagged);
+    }
+}
+
 // --tess that is not a power of two used to crash the fixed grids ("vector::_M_range_insert");
 // both modes now render and stay welded closed.
 TEST(AdaptiveCli, TessNotAPowerOfTwoInBothModes) {
@@ -199,7 +245,7 @@ TEST(AdaptiveCli, AViewOverItsBuffersWritesNothing) {
                   "-q", "-o", png});
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("more than its buffers hold"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("nothing written: raise --edge-pixels or lower --tess"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nothing written: raise --max-error or --edge-pixels, or lower --tess"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(png));
     r = run({tool("limn-render").string(), limn, "--size", "64x48", "--edge-pixels", "0.001", "--turntable", "2",
              "-o", (dir / "t_%d.png").string()});

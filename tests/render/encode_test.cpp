@@ -92,6 +92,25 @@ TEST(Ply, BinaryLayout) {
     EXPECT_EQ(bytes[body + 3 * 36], 3);
 }
 
+// The approximate flag is a last `uchar approximate` property, present only when some vertex
+// has it (so meshes drawn on the limit everywhere keep the layout above).
+TEST(Ply, ApproximateFlagOnlyWhenSomeVertexHasIt) {
+    DrawnMesh m = oneTriangle();
+    EXPECT_EQ(encodePly(m, false).size(), encodePly(oneTriangle(), false).size());
+    m.vertices[1].approximate = 1;
+    auto bytes = encodePly(m, false);
+    std::string text(bytes.begin(), bytes.end());
+    const size_t end = text.find("end_header\n");
+    EXPECT_NE(text.substr(0, end).find("property float v\nproperty uchar approximate\nelement face"), std::string::npos);
+    const size_t body = end + 11;
+    ASSERT_EQ(bytes.size() - body, 3u * 37 + 13);
+    EXPECT_EQ(bytes[body + 36], 0);
+    EXPECT_EQ(bytes[body + 37 + 36], 1);
+    EXPECT_EQ(bytes[body + 2 * 37 + 36], 0);
+    const auto ascii = encodePly(m, true);
+    EXPECT_NE(std::string(ascii.begin(), ascii.end()).find(" 0.5 0.25 0\n"), std::string::npos);
+}
+
 TEST(Ply, AsciiRoundTripsFloats) {
     auto bytes = encodePly(oneTriangle(), true);
     std::string text(bytes.begin(), bytes.end());

@@ -72,7 +72,7 @@ std::vector<glm::dvec3> plyPositions(const std::string& text) {
 
 const std::vector<std::string> kCamera = {"--size", "80x60", "--eye", "3,2,4", "--target", "0,0,0", "--validate"};
 
-std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+std::vector<std::string> plus(std::vector<std::string> a, const std::vector<std::string>& b) {
     a.insert(a.end(), b.begin(), b.end());
     return a;
 }
@@ -82,7 +82,7 @@ std::vector<std::string> with(std::vector<std::string> a, const std::vector<std:
 TEST(MorphFrames, AFrameIsTheMeshWithThatKeyframesWeights) {
     ScratchDir out;
     const std::string gltf = morphCube().string();
-    auto r = run(with({limnRender(), gltf, "--frames", gltf, "--frame-range", "70-70", "-o",
+    auto r = run(plus({limnRender(), gltf, "--frames", gltf, "--frame-range", "70-70", "-o",
                        (out / "f_%04d.png").string(), "--mesh-out", (out / "f_%04d.ply").string(), "--mesh-ascii",
                        "--depfile", (out / "f.d").string()},
                       kCamera));
@@ -121,20 +121,22 @@ TEST(MorphFrames, AFrameIsTheMeshWithThatKeyframesWeights) {
     writeFile(single / "morphed.gltf", json);
     std::filesystem::copy_file(modelPath("gltf/AnimatedMorphCube/AnimatedMorphCube.bin"),
                                single / "AnimatedMorphCube.bin");
-    r = run(with({limnRender(), (single / "morphed.gltf").string(), "-o", (single / "single.png").string()}, kCamera));
+    r = run(plus({limnRender(), (single / "morphed.gltf").string(), "-o", (single / "single.png").string()}, kCamera));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(readBytes(single / "single.png"), readBytes(out / "f_0070.png"));
 }
 
-// A container made from the glTF takes its frames (limn-classify joins the cube's triangles into
-// quads; the vertices stay); --fps resamples the animation (keyframes from 0 to 4.19999743 s at
+// A container made from the glTF takes its frames (limn-classify joins the cube's 12 triangles
+// into 6 quads; the vertices stay, in their order); --fps resamples the animation (keyframes from 0 to 4.19999743 s at
 // 5 fps: 21 frames, 0 to 20).
 TEST(MorphFrames, AContainerMadeFromTheGltfAndFps) {
     ScratchDir out;
     const std::string gltf = morphCube().string(), limn = (out / "cube.limn").string();
-    auto r = run({tool("limn-tables").string(), gltf, "--depth", "1", "-q", "-o", limn});
+    auto r = run({tool("limn-classify").string(), gltf, "-q", "-o", limn});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    r = run(with({limnRender(), limn, "--frames", gltf, "--fps", "5", "--frame-range", "19-30", "-o",
+    r = run({tool("limn-tables").string(), limn, "--depth", "1", "-q", "-o", limn});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = run(plus({limnRender(), limn, "--frames", gltf, "--fps", "5", "--frame-range", "19-30", "-o",
                   (out / "f_%02d.png").string()},
                  kCamera));
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -170,7 +172,7 @@ TEST(MorphFrames, RefusedBeforeAnyFileIsWritten) {
         {{rest, "--frames", gltf, "-o", o}, 1, "is not where the glTF's base mesh"},
     };
     for (const auto& c : cases) {
-        r = run(with(with({limnRender()}, c.args), {"--size", "32x24"}));
+        r = run(plus(plus({limnRender()}, c.args), {"--size", "32x24"}));
         EXPECT_EQ(r.exitCode, c.exit) << r.err;
         EXPECT_NE(r.err.find(c.words), std::string::npos) << r.err;
         EXPECT_EQ(filesIn(out.path()), (std::vector<std::string>{"AnimatedMorphCube.bin", "cube.obj", "rest.gltf"})) << r.err;

@@ -143,3 +143,32 @@ TEST(SequencePlan, FrameNumbers) {
     EXPECT_EQ(sequenceFrameNumbers({}, {{7, "w_0007.obj"}, {9, "w_0009.obj"}}), (std::vector<uint64_t>{7, 9}));
     EXPECT_TRUE(sequenceFrameNumbers({}, {}).empty());
 }
+
+// A sequence's size before any work: images uncompressed (RGB or RGBA, 1 or 2 bytes a sample; EXR
+// five 32-bit floats a pixel), meshes at 24 bytes a control-mesh triangle.
+TEST(OutputPlan, FrameBytesAreEstimatedFromTheImageAndTheMesh) {
+    const OutputPlan png = planOutputs({.image = "f_%d.png", .sequence = true});
+    EXPECT_EQ(estimateFrameBytes(png, {.width = 320, .height = 240}), 320u * 240 * 3);
+    EXPECT_EQ(estimateFrameBytes(png, {.width = 320, .height = 240, .alpha = true, .bitDepth = 16}),
+              320u * 240 * 4 * 2);
+    const OutputPlan exr = planOutputs({.image = "f_%d.exr", .sequence = true});
+    EXPECT_EQ(estimateFrameBytes(exr, {.width = 10, .height = 10}), 10u * 10 * 5 * 4);
+    EXPECT_EQ(estimateFrameBytes(png, {.width = 1, .height = 1, .meshTriangles = 100}), 3u); // no --mesh-out
+    const OutputPlan meshes = planOutputs({.image = "f_%d.png", .mesh = "m_%d.ply", .sequence = true});
+    EXPECT_EQ(estimateFrameBytes(meshes, {.width = 1, .height = 1, .meshTriangles = 100}), 3u + 100 * 24);
+}
+
+TEST(SequencePlan, GltfAnimationAndFps) {
+    EXPECT_TRUE(isAnimationFile("cube.gltf"));
+    EXPECT_TRUE(isAnimationFile("dir/Cube.GLB"));
+    EXPECT_FALSE(isAnimationFile("walk_%04d.gltf")); // a pattern of mesh files
+    EXPECT_FALSE(isAnimationFile("cube.obj"));
+    EXPECT_EQ(parseFps("--fps", "24"), 24.0);
+    EXPECT_EQ(parseFps("--fps", "1000"), 1000.0);
+    for (const char* bad : {"0", "-1", "1000.5", "nan", "x"})
+        EXPECT_NE(usageMessage([&] { parseFps("--fps", bad); }).find("--fps"), std::string::npos) << bad;
+    EXPECT_TRUE(planSequence({.frames = true, .animation = true, .fps = true}));
+    EXPECT_NE(usageMessage([] { planSequence({.frames = true, .fps = true}); }).find("--frames FILE.gltf"),
+              std::string::npos);
+    EXPECT_EQ(sequenceFrameNumbers({}, {}, 3), (std::vector<uint64_t>{0, 1, 2}));
+}

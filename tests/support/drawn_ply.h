@@ -1,6 +1,6 @@
 // Reads the binary PLY that `limn-render --mesh-out` writes (render/ply.cpp; layout in its
-// --help): per vertex float x y z nx ny nz, int ptex, float u v, and float s t when the header
-// declares them (meshes with UVs); per face a uchar 3 and three int indices. Written here from the documented layout, not with limn's encoder.
+// --help): per vertex float x y z nx ny nz, int ptex, float u v, float s t when the header
+// declares them (meshes with UVs), uchar approximate when it declares it; per face a uchar 3 and three int indices. Written here from the documented layout, not with limn's encoder.
 #pragma once
 
 #include <algorithm>
@@ -20,12 +20,14 @@ struct PlyVertex {
     int32_t ptex;
     float uv[2];
     float st[2] = {0, 0}; // the texture UV, when the PLY has s, t
+    uint8_t approximate = 0; // when the PLY has the property
 };
 
 struct Drawn {
     std::vector<PlyVertex> vertices;
     std::vector<std::array<int32_t, 3>> triangles;
     bool hasST = false;
+    bool hasApproximate = false;
 };
 
 inline Drawn parsePly(const std::string& bytes) {
@@ -38,8 +40,9 @@ inline Drawn parsePly(const std::string& bytes) {
         if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
         if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
         if (line == "property float t") d.hasST = true; // after "property float s"
+        if (line == "property uchar approximate") d.hasApproximate = true; // the last one
     }
-    const size_t stride = d.hasST ? 44 : 36;
+    const size_t stride = (d.hasST ? 44 : 36) + (d.hasApproximate ? 1 : 0);
     const char* p = bytes.data() + end + 11;
     if (bytes.size() - (end + 11) != vertices * stride + faces * 13)
         throw std::runtime_error("PLY size");
@@ -50,6 +53,7 @@ inline Drawn parsePly(const std::string& bytes) {
         std::memcpy(&v.ptex, p + 24, 4);
         std::memcpy(v.uv, p + 28, 8);
         if (d.hasST) std::memcpy(v.st, p + 36, 8);
+        if (d.hasApproximate) v.approximate = uint8_t(p[stride - 1]);
         p += stride;
     }
     for (size_t f = 0; f < faces; ++f) {

@@ -4,10 +4,12 @@
 // the same machine load; 4 samples. Prints one table row per case; medians of the frames after
 // the first. EDGE_PIXELS: 4 (limn-render's default, view-adaptive) or 0 (the fixed grids, whose
 // depth-6 cases are capped by --tess to fit WebGPU's 128 MiB buffers).
-//   node web/bench/compare.mjs [FRAMES] [EDGE_PIXELS]   (needs build/bin: scripts/build.sh release)
+// The README's displaced quad_sphere (paper 000, 4.5: displacement with the seam fix) too.
+//   node web/bench/compare.mjs [FRAMES] [EDGE_PIXELS] [CASE]   (CASE: only cases whose label has it;
+//   needs build/bin: scripts/build.sh release)
 import { execFileSync } from 'node:child_process';
 import { join } from 'node:path';
-import { container, paperSphereObj, tool, repo } from '../test/support.mjs';
+import { container, paperSphereObj, quadSphere, tool, repo } from '../test/support.mjs';
 import { privateIcd } from '../src/node_device.mjs';
 
 const frames = process.argv[2] ?? '10';
@@ -21,7 +23,9 @@ const cases = [
   ['spot d6 1024x768', () => container('quad/spot_quadrangulated.obj', { depth: 6 }), ['--size', '1024x768', ...cap('16')]],
   ...[1, 2, 3, 4, 5, 6].map((d) => [`sphere d${d} 1280x720`, () => sphere(d), ['--size', '1280x720', '--eye', '0,12,22', '--target', '0,0,0']]),
   ['car d6 1024x768', () => container('osd/catmark/catmark_car.obj', { depth: 6 }), ['--size', '1024x768', ...cap('8')]],
-];
+  ['quad_sphere d3 displaced 1024x768', () => quadSphere().limn,
+    ['--size', '1024x768', '--displace', quadSphere().height, '--displace-scale', '0.2', '--displace-mid', '0.5']],
+].filter(([label]) => label.includes(process.argv[4] ?? ''));
 console.log('| case | triangles | native frame ms (gpu total) | native cpu ms | web frame ms | web JS ms | web / native |');
 console.log('|---|---|---|---|---|---|---|');
 for (const [label, make, args] of cases) {

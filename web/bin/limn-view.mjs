@@ -10,12 +10,17 @@ import { basename, extname, join, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const TOOL = 'limn-view';
-const HELP = `usage: ${TOOL} MODEL.limn|DIR [--port P]
+const HELP = `usage: ${TOOL} MODEL.limn|DIR [--port P] [--displace MAP [--displace-scale S] [--displace-mid M] | --texture MAP]
 Serves limn's browser viewer and MODEL.limn on http://127.0.0.1 (this machine only) and prints
 the URL that opens it; the model is read again at every request, so a reload shows a rebuilt file.
 With a directory (make -f Makefile.examples STAGES=web writes out/web), serves that directory,
 which holds the viewer and an index page of examples. Stop it with Ctrl-C.
-  --port P     the port (1 to 65535; default 0: any free port)
+  --port P              the port (1 to 65535; default 0: any free port)
+  --displace MAP        open the model displaced by this height map (limn-render's option; the
+                        page's panel turns the seam fix off and on)
+  --displace-scale S    world units per unit of map value (default 1)
+  --displace-mid M      the map value meaning zero (default 0)
+  --texture MAP         open the model with this colour texture
   --help, --version
 Open the printed URL in a browser with WebGPU (Chrome or Edge 113+; on Linux Chrome/Chromium with
 --enable-unsafe-webgpu --enable-features=Vulkan).
@@ -42,11 +47,18 @@ function parseArgs(argv) {
       if (v === undefined) throw new Failure('--port needs a value', 2);
       if (!/^\d+$/.test(v) || +v > 65535) throw new Failure(`--port: '${v}' is not a port number (0 to 65535)`, 2);
       o.port = +v;
+    } else if (['--displace', '--texture', '--displace-scale', '--displace-mid'].includes(a)) {
+      const v = argv[++i];
+      if (v === undefined) throw new Failure(`${a} needs a value`, 2);
+      if (a.startsWith('--displace-') && !(v.trim() !== '' && Number.isFinite(Number(v)) && Math.abs(Number(v)) <= 1e6)) throw new Failure(`${a}: '${v}' is not a number within -1e6 to 1e6`, 2);
+      o[{ '--displace': 'displace', '--texture': 'texture', '--displace-scale': 'displaceScale', '--displace-mid': 'displaceMid' }[a]] = v;
     } else if (a.startsWith('-') && a !== '-') throw new Failure(`unknown option ${a} (see --help)`, 2);
     else if (o.input) throw new Failure(`one model or directory, not '${o.input}' and '${a}'`, 2);
     else o.input = a;
   }
   if (!o.help && !o.version && !o.input) throw new Failure('no model given (see --help)', 2);
+  if (o.displace && o.texture) throw new Failure('one map: --displace or --texture, not both', 2);
+  if (!o.displace && (o.displaceScale !== undefined || o.displaceMid !== undefined)) throw new Failure('--displace-scale and --displace-mid shape the --displace map; give --displace MAP', 2);
   return o;
 }
 
@@ -114,6 +126,16 @@ async function main(argv) {
     const name = encodeURIComponent(basename(o.input));
     roots = [['/viewer/', join(web, 'viewer')], ['/src/', join(web, 'src')], ['/shaders/', join(web, 'shaders')], [`/model/${name}`, resolve(o.input)]];
     path = `/viewer/?model=/model/${name}`;
+    const map = o.displace ?? o.texture;
+    if (map) {
+      // The map as the model is: served at a path of its own, read again at every request.
+      try { statSync(map); } catch (e) { throw new Failure(`${map}: cannot read it (${e.code})`, 1); }
+      const mapName = encodeURIComponent(basename(map));
+      roots.push([`/map/${mapName}`, resolve(map)]);
+      path += `&${o.displace ? 'displace' : 'texture'}=/map/${mapName}`;
+      if (o.displaceScale !== undefined) path += `&displaceScale=${Number(o.displaceScale)}`;
+      if (o.displaceMid !== undefined) path += `&displaceMid=${Number(o.displaceMid)}`;
+    }
     redirect = path;
   }
   const server = serve(roots, redirect);

@@ -36,7 +36,7 @@ what is not listed is not supported here.
   --texture MAP           colour texture (PNG) [default: the MATL chunk's base colour texture]
   --displace MAP          displace the subdivision surface along its normal by a height map
                           (PNG; channel 0), sampled bilinearly with wrap-around at the mesh UVs;
-                          needs a SEAM chunk (limn-seams)
+                          the seam UVs from the SEAM chunk (limn-seams), else computed
   --displace-scale S|P%   world units per unit of map value, or P% of the control mesh's
                           bounding-box diagonal (default 1)
   --displace-mid M        the map value meaning zero (default 0)
@@ -49,9 +49,12 @@ what is not listed is not supported here.
                           about --edge-pixels
   --edge-pixels P         view-adaptive: segments of at most P pixels (default 32); 0: the fixed
                           grids of 2^(depth-l) segments per level-l patch side
+  --wire                  overlay the patch and face outlines (drawn on the fixed grids)
+  --wire-triangles        overlay the edges of every triangle drawn (view-adaptive: the rates
+                          this view chose)
   --bench N               render N frames, print limn-render's --bench JSON fields on stdout
   --help, --version
-Not supported here yet: --wire, --mesh-out, smooth face-varying UVs under --shade uv, --texture
+Not supported here yet: --mesh-out, smooth face-varying UVs under --shade uv, --texture
 or --displace, BLND (blending surfaces); images other than PNG.
 Exit codes: 0 ok, 1 bad input, 2 usage, 3 missing capability.
 `;
@@ -109,6 +112,8 @@ function parseArgs(argv) {
       }
       case '--displace-mid': { const [m] = numbers(a, value(), 1); if (Math.abs(m) > 1e6) throw new Usage('--displace-mid: -1e6 to 1e6'); o.displaceMid = m; break; }
       case '--no-seam-fix': o.noSeamFix = true; break;
+      case '--wire': s.wire = 'outlines'; break;
+      case '--wire-triangles': s.wire = 'triangles'; break;
       default:
         if (a.startsWith('-') && a !== '-') throw new Usage(`unknown option ${a} (see --help)`);
         if (o.input) throw new Usage(`one input file, not '${o.input}' and '${a}'`);
@@ -120,6 +125,7 @@ function parseArgs(argv) {
   if (!o.output && !o.bench) throw new Usage('no output: give -o OUT.png (or --bench N)');
   if (o.output && !o.output.endsWith('.png')) throw new Usage(`-o ${o.output}: only PNG is written here (name it .png)`);
   if (s.view.eye && o.viewGiven) throw new Usage('--view and --eye exclude each other');
+  if (argv.includes('--wire') && argv.includes('--wire-triangles')) throw new Usage('--wire and --wire-triangles exclude each other');
   if ((s.view.target || s.view.up) && !s.view.eye) throw new Usage('--target and --up describe an explicit camera; give --eye too');
   return o;
 }

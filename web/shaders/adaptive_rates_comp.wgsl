@@ -126,7 +126,8 @@ fn pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b(P: ptr<function, vec3<f32>>
     return;
 }
 
-fn errorSegments_u0028_vf3_u005b_5_u005d_u003b(P_1: ptr<function, array<vec3<f32>, 5>>) -> f32 {
+fn errorSegments_u0028_vf3_u005b_5_u005d_u003b(S: ptr<function, array<vec3<f32>, 5>>) -> f32 {
+    var P_1: array<vec3<f32>, 5>;
     var E: array<vec3<f32>, 5>;
     var most: f32;
     var k: i32;
@@ -137,60 +138,66 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b(P_1: ptr<function, array<vec3<f32
     var param_2: vec3<f32>;
     var n: f32;
 
-    let _e87 = (*P_1)[1i];
-    let _e89 = (*P_1)[0i];
-    let _e91 = (*P_1)[2i];
-    E[1i] = ((_e87 - ((_e89 + _e91) * 0.5f)) * 4f);
-    let _e98 = (*P_1)[2i];
-    let _e100 = (*P_1)[0i];
-    let _e102 = (*P_1)[4i];
-    E[2i] = (_e98 - ((_e100 + _e102) * 0.5f));
-    let _e108 = (*P_1)[3i];
-    let _e110 = (*P_1)[2i];
-    let _e112 = (*P_1)[4i];
-    E[3i] = ((_e108 - ((_e110 + _e112) * 0.5f)) * 4f);
-    let _e119 = E[1i];
-    let _e122 = E[2i];
-    E[0i] = ((_e119 * 2f) - _e122);
-    let _e126 = E[3i];
-    let _e129 = E[2i];
-    E[4i] = ((_e126 * 2f) - _e129);
+    let _e88 = (*S)[0i];
+    let _e90 = (*S)[3i];
+    let _e92 = (*S)[1i];
+    let _e94 = (*S)[4i];
+    let _e96 = (*S)[2i];
+    P_1 = array<vec3<f32>, 5>(_e88, _e90, _e92, _e94, _e96);
+    let _e99 = P_1[1i];
+    let _e101 = P_1[0i];
+    let _e103 = P_1[2i];
+    E[1i] = ((_e99 - ((_e101 + _e103) * 0.5f)) * 4f);
+    let _e110 = P_1[2i];
+    let _e112 = P_1[0i];
+    let _e114 = P_1[4i];
+    E[2i] = (_e110 - ((_e112 + _e114) * 0.5f));
+    let _e120 = P_1[3i];
+    let _e122 = P_1[2i];
+    let _e124 = P_1[4i];
+    E[3i] = ((_e120 - ((_e122 + _e124) * 0.5f)) * 4f);
+    let _e131 = E[1i];
+    let _e134 = E[2i];
+    E[0i] = ((_e131 * 2f) - _e134);
+    let _e138 = E[3i];
+    let _e141 = E[2i];
+    E[4i] = ((_e138 * 2f) - _e141);
     most = 0f;
     k = 0i;
     loop {
-        let _e132 = k;
-        if (_e132 < 5i) {
-            let _e134 = k;
-            let _e136 = (*P_1)[_e134];
-            param = _e136;
-            pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param), (&param_1), (&param_2));
-            let _e137 = param_1;
-            jx_1 = _e137;
-            let _e138 = param_2;
-            jy_1 = _e138;
-            let _e139 = most;
-            let _e140 = jx_1;
-            let _e141 = k;
-            let _e143 = E[_e141];
-            let _e145 = jy_1;
+        let _e144 = k;
+        if (_e144 < 5i) {
             let _e146 = k;
-            let _e148 = E[_e146];
-            most = max(_e139, length(vec2<f32>(dot(_e140, _e143), dot(_e145, _e148))));
+            let _e148 = P_1[_e146];
+            param = _e148;
+            pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param), (&param_1), (&param_2));
+            let _e149 = param_1;
+            jx_1 = _e149;
+            let _e150 = param_2;
+            jy_1 = _e150;
+            let _e151 = most;
+            let _e152 = jx_1;
+            let _e153 = k;
+            let _e155 = E[_e153];
+            let _e157 = jy_1;
+            let _e158 = k;
+            let _e160 = E[_e158];
+            most = max(_e151, length(vec2<f32>(dot(_e152, _e155), dot(_e157, _e160))));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e153 = k;
-            k = (_e153 + 1i);
+            let _e165 = k;
+            k = (_e165 + 1i);
         }
     }
-    let _e155 = most;
-    let _e157 = pc.maxError;
-    n = ceil(sqrt((_e155 / _e157)));
-    let _e161 = n;
-    let _e163 = n;
-    return select(1000000000f, _e163, (_e161 < 1000000000f));
+    let _e167 = most;
+    let _e169 = pc.maxError;
+    n = ceil(sqrt((_e167 / _e169)));
+    let _e173 = n;
+    let _e175 = n;
+    return select(1000000000f, _e175, (_e173 < 1000000000f));
 }
 
 fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<function, f32>, b: ptr<function, array<f32, 4>>, d: ptr<function, array<f32, 4>>) {
@@ -924,7 +931,7 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
 
 fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u32>, st: ptr<function, u32>, P_4: ptr<function, vec3<f32>>, n_3: ptr<function, vec3<f32>>) {
     var hd_1: Patch;
-    var S: u32;
+    var S_1: u32;
     var T: u32;
     var corner: u32;
     var K: u32;
@@ -1008,7 +1015,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     hd_1.pad1_ = _e140.pad1_;
     hd_1.pad2_ = _e140.pad2_;
     let _e191 = (*st);
-    S = (_e191 & 65535u);
+    S_1 = (_e191 & 65535u);
     let _e193 = (*st);
     T = (_e193 >> bitcast<u32>(16i));
     let _e198 = hd_1.cv[1i];
@@ -1017,7 +1024,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     K = _e201;
     let _e202 = corner;
     if (_e202 == 0u) {
-        let _e204 = S;
+        let _e204 = S_1;
         local_4 = _e204;
     } else {
         let _e205 = corner;
@@ -1027,7 +1034,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
         } else {
             let _e208 = corner;
             if (_e208 == 2u) {
-                let _e210 = S;
+                let _e210 = S_1;
                 local_6 = (32768u - _e210);
             } else {
                 let _e212 = T;
@@ -1048,7 +1055,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     } else {
         let _e220 = corner;
         if (_e220 == 1u) {
-            let _e222 = S;
+            let _e222 = S_1;
             local_8 = (32768u - _e222);
         } else {
             let _e224 = corner;
@@ -1056,7 +1063,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
                 let _e226 = T;
                 local_9 = (32768u - _e226);
             } else {
-                let _e228 = S;
+                let _e228 = S_1;
                 local_9 = _e228;
             }
             let _e229 = local_9;
@@ -1206,7 +1213,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
 }
 
 fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr<function, u32>, st_1: ptr<function, u32>, patchCount: ptr<function, u32>, P_5: ptr<function, vec3<f32>>, n_4: ptr<function, vec3<f32>>) {
-    var S_1: u32;
+    var S_2: u32;
     var T_1: u32;
     var k_5: u32;
     var local_11: u32;
@@ -1234,24 +1241,24 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_7: i32;
-    var phi_1385_: bool;
+    var phi_1386_: bool;
 
     let _e109 = (*st_1);
-    S_1 = (_e109 & 65535u);
+    S_2 = (_e109 & 65535u);
     let _e111 = (*st_1);
     T_1 = (_e111 >> bitcast<u32>(16i));
-    let _e114 = S_1;
-    let _e116 = S_1;
+    let _e114 = S_2;
+    let _e116 = S_2;
     let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
-    phi_1385_ = _e118;
+    phi_1386_ = _e118;
     if _e118 {
         let _e119 = T_1;
         let _e121 = T_1;
-        phi_1385_ = ((_e119 == 0u) || (_e121 == 32768u));
+        phi_1386_ = ((_e119 == 0u) || (_e121 == 32768u));
     }
-    let _e125 = phi_1385_;
+    let _e125 = phi_1386_;
     if _e125 {
-        let _e126 = S_1;
+        let _e126 = S_2;
         if (_e126 == 0u) {
             let _e128 = T_1;
             local_11 = select(3u, 0u, (_e128 == 0u));
@@ -1278,7 +1285,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     node = (_e155 + _e156);
     let _e158 = (*face);
     leaf = _e158;
-    let _e159 = S_1;
+    let _e159 = S_2;
     ls = _e159;
     let _e160 = T_1;
     lt = _e160;
@@ -1286,7 +1293,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     loop {
         let _e161 = k_6;
         if (_e161 < 17i) {
-            let _e163 = S_1;
+            let _e163 = S_2;
             let _e166 = T_1;
             c_5 = (select(0u, 1u, (_e163 >= 16384u)) | select(0u, 2u, (_e166 >= 16384u)));
             let _e170 = node;
@@ -1310,9 +1317,9 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
                 (*n_4) = _e186;
                 return;
             }
-            let _e187 = S_1;
+            let _e187 = S_2;
             let _e189 = c_5;
-            S_1 = ((2u * _e187) - select(0u, 32768u, ((_e189 & 1u) != 0u)));
+            S_2 = ((2u * _e187) - select(0u, 32768u, ((_e189 & 1u) != 0u)));
             let _e194 = T_1;
             let _e196 = c_5;
             T_1 = ((2u * _e194) - select(0u, 32768u, ((_e196 & 2u) != 0u)));
@@ -1323,7 +1330,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
             let _e205 = kind;
             if (_e205 == 0u) {
                 let _e207 = index;
-                let _e208 = S_1;
+                let _e208 = S_2;
                 let _e211 = T_1;
                 let _e216 = patches.p[_e207];
                 param_83.cv[0i] = _e216.cv[0];
@@ -1363,7 +1370,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
             if (_e269 == 2147483648u) {
                 let _e271 = index;
                 leaf = _e271;
-                let _e272 = S_1;
+                let _e272 = S_2;
                 ls = _e272;
                 let _e273 = T_1;
                 lt = _e273;
@@ -1432,11 +1439,12 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     return;
 }
 
-fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_vf3_u005b_5_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 5>>, patchCount_1: ptr<function, u32>, P_6: ptr<function, array<vec3<f32>, 5>>) {
+fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 5>>, count: ptr<function, u32>, patchCount_1: ptr<function, u32>, P_6: ptr<function, array<vec3<f32>, 5>>) {
+    var q_3: i32;
     var pt_2: Patch;
     var k_8: i32;
     var c_6: array<vec3<f32>, 16>;
-    var q_3: i32;
+    var q_4: u32;
     var s_6: f32;
     var t_6: f32;
     var bu_3: array<f32, 4>;
@@ -1454,7 +1462,7 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_vf3_u005b_5_
     var j_4: i32;
     var row_2: vec3<f32>;
     var i_4: i32;
-    var q_4: i32;
+    var q_5: u32;
     var n_5: vec3<f32>;
     var param_95: u32;
     var param_96: u32;
@@ -1462,156 +1470,173 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_vf3_u005b_5_
     var param_98: vec3<f32>;
     var param_99: vec3<f32>;
 
-    let _e108 = (*element);
-    let _e109 = (*patchCount_1);
-    if (_e108 < _e109) {
-        let _e111 = (*element);
-        let _e114 = patches.p[_e111];
-        pt_2.cv[0i] = _e114.cv[0];
-        pt_2.cv[1i] = _e114.cv[1];
-        pt_2.cv[2i] = _e114.cv[2];
-        pt_2.cv[3i] = _e114.cv[3];
-        pt_2.cv[4i] = _e114.cv[4];
-        pt_2.cv[5i] = _e114.cv[5];
-        pt_2.cv[6i] = _e114.cv[6];
-        pt_2.cv[7i] = _e114.cv[7];
-        pt_2.cv[8i] = _e114.cv[8];
-        pt_2.cv[9i] = _e114.cv[9];
-        pt_2.cv[10i] = _e114.cv[10];
-        pt_2.cv[11i] = _e114.cv[11];
-        pt_2.cv[12i] = _e114.cv[12];
-        pt_2.cv[13i] = _e114.cv[13];
-        pt_2.cv[14i] = _e114.cv[14];
-        pt_2.cv[15i] = _e114.cv[15];
-        pt_2.ptex = _e114.ptex;
-        pt_2.u0_ = _e114.u0_;
-        pt_2.v0_ = _e114.v0_;
-        pt_2.size = _e114.size;
-        pt_2.levelBoundary = _e114.levelBoundary;
-        pt_2.sharpness = _e114.sharpness;
-        pt_2.pad1_ = _e114.pad1_;
-        pt_2.pad2_ = _e114.pad2_;
+    q_3 = 0i;
+    loop {
+        let _e110 = q_3;
+        if (_e110 < 5i) {
+            let _e112 = q_3;
+            (*P_6)[_e112] = vec3<f32>(0f, 0f, 0f);
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e114 = q_3;
+            q_3 = (_e114 + 1i);
+        }
+    }
+    let _e116 = (*element);
+    let _e117 = (*patchCount_1);
+    if (_e116 < _e117) {
+        let _e119 = (*element);
+        let _e122 = patches.p[_e119];
+        pt_2.cv[0i] = _e122.cv[0];
+        pt_2.cv[1i] = _e122.cv[1];
+        pt_2.cv[2i] = _e122.cv[2];
+        pt_2.cv[3i] = _e122.cv[3];
+        pt_2.cv[4i] = _e122.cv[4];
+        pt_2.cv[5i] = _e122.cv[5];
+        pt_2.cv[6i] = _e122.cv[6];
+        pt_2.cv[7i] = _e122.cv[7];
+        pt_2.cv[8i] = _e122.cv[8];
+        pt_2.cv[9i] = _e122.cv[9];
+        pt_2.cv[10i] = _e122.cv[10];
+        pt_2.cv[11i] = _e122.cv[11];
+        pt_2.cv[12i] = _e122.cv[12];
+        pt_2.cv[13i] = _e122.cv[13];
+        pt_2.cv[14i] = _e122.cv[14];
+        pt_2.cv[15i] = _e122.cv[15];
+        pt_2.ptex = _e122.ptex;
+        pt_2.u0_ = _e122.u0_;
+        pt_2.v0_ = _e122.v0_;
+        pt_2.size = _e122.size;
+        pt_2.levelBoundary = _e122.levelBoundary;
+        pt_2.sharpness = _e122.sharpness;
+        pt_2.pad1_ = _e122.pad1_;
+        pt_2.pad2_ = _e122.pad2_;
         k_8 = 0i;
         loop {
-            let _e165 = k_8;
-            if (_e165 < 16i) {
-                let _e167 = k_8;
-                let _e168 = k_8;
-                let _e171 = pt_2.cv[_e168];
-                let _e174 = vertices.p[_e171];
-                c_6[_e167] = _e174.xyz;
+            let _e173 = k_8;
+            if (_e173 < 16i) {
+                let _e175 = k_8;
+                let _e176 = k_8;
+                let _e179 = pt_2.cv[_e176];
+                let _e182 = vertices.p[_e179];
+                c_6[_e175] = _e182.xyz;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e177 = k_8;
-                k_8 = (_e177 + 1i);
+                let _e185 = k_8;
+                k_8 = (_e185 + 1i);
             }
         }
-        q_3 = 0i;
+        q_4 = 0u;
         loop {
-            let _e179 = q_3;
-            if (_e179 < 5i) {
-                let _e181 = q_3;
-                let _e183 = (*st_2)[_e181];
-                s_6 = (f32((_e183 & 65535u)) / 32768f);
-                let _e187 = q_3;
-                let _e189 = (*st_2)[_e187];
-                t_6 = (f32((_e189 >> bitcast<u32>(16i))) / 32768f);
-                let _e194 = pt_2;
-                param_88 = _e194;
-                let _e195 = s_6;
-                param_89 = _e195;
-                let _e196 = t_6;
-                param_90 = _e196;
+            let _e187 = q_4;
+            let _e188 = (*count);
+            if (_e187 < _e188) {
+                let _e190 = q_4;
+                let _e192 = (*st_2)[_e190];
+                s_6 = (f32((_e192 & 65535u)) / 32768f);
+                let _e196 = q_4;
+                let _e198 = (*st_2)[_e196];
+                t_6 = (f32((_e198 >> bitcast<u32>(16i))) / 32768f);
+                let _e203 = pt_2;
+                param_88 = _e203;
+                let _e204 = s_6;
+                param_89 = _e204;
+                let _e205 = t_6;
+                param_90 = _e205;
                 patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_88), (&param_89), (&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
-                let _e197 = param_91;
-                bu_3 = _e197;
-                let _e198 = param_92;
-                du_3 = _e198;
-                let _e199 = param_93;
-                bv_3 = _e199;
-                let _e200 = param_94;
-                dv_3 = _e200;
+                let _e206 = param_91;
+                bu_3 = _e206;
+                let _e207 = param_92;
+                du_3 = _e207;
+                let _e208 = param_93;
+                bv_3 = _e208;
+                let _e209 = param_94;
+                dv_3 = _e209;
                 p = vec3<f32>(0f, 0f, 0f);
                 j_4 = 0i;
                 loop {
-                    let _e201 = j_4;
-                    if (_e201 < 4i) {
+                    let _e210 = j_4;
+                    if (_e210 < 4i) {
                         row_2 = vec3<f32>(0f, 0f, 0f);
                         i_4 = 0i;
                         loop {
-                            let _e203 = i_4;
-                            if (_e203 < 4i) {
-                                let _e205 = i_4;
-                                let _e207 = bu_3[_e205];
-                                let _e208 = j_4;
-                                let _e210 = i_4;
-                                let _e213 = c_6[((4i * _e208) + _e210)];
-                                let _e215 = row_2;
-                                row_2 = (_e215 + (_e213 * _e207));
+                            let _e212 = i_4;
+                            if (_e212 < 4i) {
+                                let _e214 = i_4;
+                                let _e216 = bu_3[_e214];
+                                let _e217 = j_4;
+                                let _e219 = i_4;
+                                let _e222 = c_6[((4i * _e217) + _e219)];
+                                let _e224 = row_2;
+                                row_2 = (_e224 + (_e222 * _e216));
                                 continue;
                             } else {
                                 break;
                             }
                             continuing {
-                                let _e217 = i_4;
-                                i_4 = (_e217 + 1i);
+                                let _e226 = i_4;
+                                i_4 = (_e226 + 1i);
                             }
                         }
-                        let _e219 = j_4;
-                        let _e221 = bv_3[_e219];
-                        let _e222 = row_2;
-                        let _e224 = p;
-                        p = (_e224 + (_e222 * _e221));
+                        let _e228 = j_4;
+                        let _e230 = bv_3[_e228];
+                        let _e231 = row_2;
+                        let _e233 = p;
+                        p = (_e233 + (_e231 * _e230));
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e226 = j_4;
-                        j_4 = (_e226 + 1i);
+                        let _e235 = j_4;
+                        j_4 = (_e235 + 1i);
                     }
                 }
-                let _e228 = q_3;
-                let _e229 = p;
-                (*P_6)[_e228] = _e229;
+                let _e237 = q_4;
+                let _e238 = p;
+                (*P_6)[_e237] = _e238;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e231 = q_3;
-                q_3 = (_e231 + 1i);
+                let _e240 = q_4;
+                q_4 = (_e240 + bitcast<u32>(1i));
             }
         }
     } else {
-        q_4 = 0i;
+        q_5 = 0u;
         loop {
-            let _e233 = q_4;
-            if (_e233 < 5i) {
-                let _e235 = (*element);
-                let _e236 = (*patchCount_1);
-                let _e238 = q_4;
-                let _e239 = q_4;
-                param_95 = (_e235 - _e236);
-                let _e241 = (*st_2)[_e238];
-                param_96 = _e241;
-                let _e242 = (*patchCount_1);
-                param_97 = _e242;
+            let _e243 = q_5;
+            let _e244 = (*count);
+            if (_e243 < _e244) {
+                let _e246 = (*element);
+                let _e247 = (*patchCount_1);
+                let _e249 = q_5;
+                let _e250 = q_5;
+                param_95 = (_e246 - _e247);
+                let _e252 = (*st_2)[_e249];
+                param_96 = _e252;
+                let _e253 = (*patchCount_1);
+                param_97 = _e253;
                 irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_95), (&param_96), (&param_97), (&param_98), (&param_99));
-                let _e243 = param_98;
-                (*P_6)[_e239] = _e243;
-                let _e245 = param_99;
-                n_5 = _e245;
+                let _e254 = param_98;
+                (*P_6)[_e250] = _e254;
+                let _e256 = param_99;
+                n_5 = _e256;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e246 = q_4;
-                q_4 = (_e246 + 1i);
+                let _e257 = q_5;
+                q_5 = (_e257 + bitcast<u32>(1i));
             }
         }
     }
@@ -1651,14 +1676,16 @@ fn main_1() {
     var param_104: u32;
     var param_105: u32;
     var param_106: u32;
+    var count_1: u32;
     var behind: u32;
     var allOut: u32;
     var P_7: array<vec3<f32>, 5>;
     var param_107: u32;
     var param_108: array<u32, 5>;
     var param_109: u32;
-    var param_110: array<vec3<f32>, 5>;
-    var k_9: i32;
+    var param_110: u32;
+    var param_111: array<vec3<f32>, 5>;
+    var k_9: u32;
     var c_7: vec4<f32>;
     var o: u32;
     var px: array<vec2<f32>, 5>;
@@ -1666,7 +1693,7 @@ fn main_1() {
     var len: f32;
     var local_13: f32;
     var want: f32;
-    var param_111: array<vec3<f32>, 5>;
+    var param_112: array<vec3<f32>, 5>;
     var chord: vec2<f32>;
     var cl: f32;
     var off: vec2<f32>;
@@ -1681,373 +1708,379 @@ fn main_1() {
     var creaseAlongS: bool;
     var most_1: f32;
     var local_16: f32;
-    var phi_2102_: bool;
-    var phi_2103_: bool;
-    var phi_2348_: bool;
-    var phi_2453_: bool;
+    var phi_2129_: bool;
+    var phi_2130_: bool;
+    var phi_2383_: bool;
+    var phi_2488_: bool;
 
-    let _e124 = pc.limnRowInvocations;
-    param_100 = _e124;
-    let _e125 = limnInvocationIndex_u0028_u1_u003b((&param_100));
-    i_5 = _e125;
-    let _e126 = i_5;
-    let _e128 = pc.limnCount;
-    if (_e126 >= _e128) {
+    let _e126 = pc.limnRowInvocations;
+    param_100 = _e126;
+    let _e127 = limnInvocationIndex_u0028_u1_u003b((&param_100));
+    i_5 = _e127;
+    let _e128 = i_5;
+    let _e130 = pc.limnCount;
+    if (_e128 >= _e130) {
         return;
     }
-    let _e130 = i_5;
-    let _e134 = pieces.v[(2u * _e130)];
-    p0_ = _e134;
-    let _e135 = i_5;
-    let _e140 = pieces.v[((2u * _e135) + 1u)];
-    p1_ = _e140;
-    let _e142 = p1_[0u];
-    let _e145 = cull.c[_e142];
-    let _e146 = (_e145 == 0u);
-    phi_2103_ = _e146;
-    if !(_e146) {
-        let _e149 = p1_[1u];
-        let _e150 = (_e149 != 4294967295u);
-        phi_2102_ = _e150;
-        if _e150 {
-            let _e152 = p1_[1u];
-            let _e155 = cull.c[_e152];
-            phi_2102_ = (_e155 == 0u);
+    let _e132 = i_5;
+    let _e136 = pieces.v[(2u * _e132)];
+    p0_ = _e136;
+    let _e137 = i_5;
+    let _e142 = pieces.v[((2u * _e137) + 1u)];
+    p1_ = _e142;
+    let _e144 = p1_[0u];
+    let _e147 = cull.c[_e144];
+    let _e148 = (_e147 == 0u);
+    phi_2130_ = _e148;
+    if !(_e148) {
+        let _e151 = p1_[1u];
+        let _e152 = (_e151 != 4294967295u);
+        phi_2129_ = _e152;
+        if _e152 {
+            let _e154 = p1_[1u];
+            let _e157 = cull.c[_e154];
+            phi_2129_ = (_e157 == 0u);
         }
-        let _e158 = phi_2102_;
-        phi_2103_ = _e158;
+        let _e160 = phi_2129_;
+        phi_2130_ = _e160;
     }
-    let _e160 = phi_2103_;
-    visible = _e160;
-    let _e162 = pc.tess;
-    let _e164 = p0_[3u];
-    cap = max(min(_e162, _e164), 1u);
+    let _e162 = phi_2130_;
+    visible = _e162;
+    let _e164 = pc.tess;
+    let _e166 = p0_[3u];
+    cap = max(min(_e164, _e166), 1u);
     r = 1u;
     size = 1u;
     ends = vec4<f32>(300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f);
-    let _e167 = visible;
-    if _e167 {
-        let _e169 = p0_[1u];
-        param_101 = _e169;
-        let _e171 = p0_[2u];
-        param_102 = _e171;
-        let _e172 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
-        mid = _e172;
-        let _e174 = p0_[1u];
+    let _e169 = visible;
+    if _e169 {
+        let _e171 = p0_[1u];
+        param_101 = _e171;
+        let _e173 = p0_[2u];
+        param_102 = _e173;
+        let _e174 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
+        mid = _e174;
         let _e176 = p0_[1u];
-        param_103 = _e176;
         let _e177 = mid;
-        param_104 = _e177;
-        let _e178 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
-        let _e179 = mid;
-        let _e180 = mid;
-        param_105 = _e180;
-        let _e182 = p0_[2u];
-        param_106 = _e182;
-        let _e183 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
-        let _e185 = p0_[2u];
-        st_3 = array<u32, 5>(_e174, _e178, _e179, _e183, _e185);
+        let _e179 = p0_[2u];
+        let _e181 = p0_[1u];
+        param_103 = _e181;
+        let _e182 = mid;
+        param_104 = _e182;
+        let _e183 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
+        let _e184 = mid;
+        param_105 = _e184;
+        let _e186 = p0_[2u];
+        param_106 = _e186;
+        let _e187 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
+        st_3 = array<u32, 5>(_e176, _e177, _e179, _e183, _e187);
+        let _e190 = pc.maxError;
+        count_1 = select(3u, 5u, (_e190 > 0f));
         behind = 0u;
         allOut = 63u;
-        let _e188 = p0_[0u];
-        param_107 = _e188;
-        let _e189 = st_3;
-        param_108 = _e189;
-        let _e191 = pc.patchCount;
-        param_109 = _e191;
-        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110));
-        let _e192 = param_110;
-        P_7 = _e192;
-        k_9 = 0i;
+        let _e194 = p0_[0u];
+        param_107 = _e194;
+        let _e195 = st_3;
+        param_108 = _e195;
+        let _e196 = count_1;
+        param_109 = _e196;
+        let _e198 = pc.patchCount;
+        param_110 = _e198;
+        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111));
+        let _e199 = param_111;
+        P_7 = _e199;
+        k_9 = 0u;
         loop {
-            let _e193 = k_9;
-            if (_e193 < 5i) {
-                let _e196 = pc.viewProj;
-                let _e197 = k_9;
-                let _e199 = P_7[_e197];
-                c_7 = (_e196 * vec4<f32>(_e199.x, _e199.y, _e199.z, 1f));
+            let _e200 = k_9;
+            let _e201 = count_1;
+            if (_e200 < _e201) {
+                let _e204 = pc.viewProj;
+                let _e205 = k_9;
+                let _e207 = P_7[_e205];
+                c_7 = (_e204 * vec4<f32>(_e207.x, _e207.y, _e207.z, 1f));
                 o = 0u;
-                let _e206 = c_7[0u];
-                let _e208 = c_7[3u];
-                if (_e206 < -(_e208)) {
-                    let _e211 = o;
-                    o = (_e211 | 1u);
-                }
                 let _e214 = c_7[0u];
                 let _e216 = c_7[3u];
-                if (_e214 > _e216) {
-                    let _e218 = o;
-                    o = (_e218 | 2u);
+                if (_e214 < -(_e216)) {
+                    let _e219 = o;
+                    o = (_e219 | 1u);
                 }
-                let _e221 = c_7[1u];
-                let _e223 = c_7[3u];
-                if (_e221 < -(_e223)) {
+                let _e222 = c_7[0u];
+                let _e224 = c_7[3u];
+                if (_e222 > _e224) {
                     let _e226 = o;
-                    o = (_e226 | 4u);
+                    o = (_e226 | 2u);
                 }
                 let _e229 = c_7[1u];
                 let _e231 = c_7[3u];
-                if (_e229 > _e231) {
-                    let _e233 = o;
-                    o = (_e233 | 8u);
+                if (_e229 < -(_e231)) {
+                    let _e234 = o;
+                    o = (_e234 | 4u);
                 }
-                let _e236 = c_7[2u];
-                if (_e236 < 0f) {
-                    let _e238 = o;
-                    o = (_e238 | 16u);
+                let _e237 = c_7[1u];
+                let _e239 = c_7[3u];
+                if (_e237 > _e239) {
+                    let _e241 = o;
+                    o = (_e241 | 8u);
                 }
-                let _e241 = c_7[2u];
-                let _e243 = c_7[3u];
-                if (_e241 > _e243) {
-                    let _e245 = o;
-                    o = (_e245 | 32u);
+                let _e244 = c_7[2u];
+                if (_e244 < 0f) {
+                    let _e246 = o;
+                    o = (_e246 | 16u);
                 }
-                let _e247 = o;
-                let _e248 = allOut;
-                allOut = (_e248 & _e247);
+                let _e249 = c_7[2u];
                 let _e251 = c_7[3u];
-                if !((_e251 > 0.000001f)) {
-                    let _e254 = behind;
-                    behind = (_e254 + bitcast<u32>(1i));
+                if (_e249 > _e251) {
+                    let _e253 = o;
+                    o = (_e253 | 32u);
                 }
-                let _e257 = k_9;
+                let _e255 = o;
+                let _e256 = allOut;
+                allOut = (_e256 & _e255);
                 let _e259 = c_7[3u];
-                if (_e259 > 0.000001f) {
-                    let _e261 = c_7;
-                    let _e264 = c_7[3u];
-                    let _e268 = pc.halfViewport;
-                    local_12 = ((_e261.xy / vec2(_e264)) * _e268);
+                if !((_e259 > 0.000001f)) {
+                    let _e262 = behind;
+                    behind = (_e262 + bitcast<u32>(1i));
+                }
+                let _e265 = k_9;
+                let _e267 = c_7[3u];
+                if (_e267 > 0.000001f) {
+                    let _e269 = c_7;
+                    let _e272 = c_7[3u];
+                    let _e276 = pc.halfViewport;
+                    local_12 = ((_e269.xy / vec2(_e272)) * _e276);
                 } else {
                     local_12 = vec2<f32>(0f, 0f);
                 }
-                let _e270 = local_12;
-                px[_e257] = _e270;
+                let _e278 = local_12;
+                px[_e265] = _e278;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e272 = k_9;
-                k_9 = (_e272 + 1i);
+                let _e280 = k_9;
+                k_9 = (_e280 + bitcast<u32>(1i));
             }
         }
-        let _e275 = pc.maxError;
-        if (_e275 > 0f) {
-            let _e278 = px[0i];
-            let _e280 = px[1i];
-            let _e283 = px[1i];
-            let _e285 = px[2i];
-            let _e289 = px[2i];
+        let _e283 = count_1;
+        if (_e283 == 5u) {
+            let _e286 = px[0i];
+            let _e288 = px[3i];
             let _e291 = px[3i];
-            let _e295 = px[3i];
-            let _e297 = px[4i];
-            local_13 = (((distance(_e278, _e280) + distance(_e283, _e285)) + distance(_e289, _e291)) + distance(_e295, _e297));
+            let _e293 = px[1i];
+            let _e297 = px[1i];
+            let _e299 = px[4i];
+            let _e303 = px[4i];
+            let _e305 = px[2i];
+            local_13 = (((distance(_e286, _e288) + distance(_e291, _e293)) + distance(_e297, _e299)) + distance(_e303, _e305));
         } else {
-            let _e301 = px[0i];
-            let _e303 = px[2i];
-            let _e306 = px[2i];
-            let _e308 = px[4i];
-            local_13 = (distance(_e301, _e303) + distance(_e306, _e308));
+            let _e309 = px[0i];
+            let _e311 = px[1i];
+            let _e314 = px[1i];
+            let _e316 = px[2i];
+            local_13 = (distance(_e309, _e311) + distance(_e314, _e316));
         }
-        let _e311 = local_13;
-        len = _e311;
-        let _e312 = behind;
-        if (_e312 == 0u) {
-            let _e315 = px[0i];
-            let _e317 = px[4i];
-            let _e324 = pc.halfViewport;
-            ends = (vec4<f32>(_e315.x, _e315.y, _e317.x, _e317.y) + _e324.xyxy);
+        let _e319 = local_13;
+        len = _e319;
+        let _e320 = behind;
+        if (_e320 == 0u) {
+            let _e323 = px[0i];
+            let _e325 = px[2i];
+            let _e332 = pc.halfViewport;
+            ends = (vec4<f32>(_e323.x, _e323.y, _e325.x, _e325.y) + _e332.xyxy);
         }
-        let _e327 = behind;
-        if (_e327 == 5u) {
+        let _e335 = behind;
+        let _e336 = count_1;
+        if (_e335 == _e336) {
             r = 1u;
             size = 1u;
         } else {
-            let _e329 = behind;
-            let _e330 = (_e329 != 0u);
-            phi_2348_ = _e330;
-            if !(_e330) {
-                let _e332 = len;
-                phi_2348_ = !((_e332 < 1000000000f));
+            let _e338 = behind;
+            let _e339 = (_e338 != 0u);
+            phi_2383_ = _e339;
+            if !(_e339) {
+                let _e341 = len;
+                phi_2383_ = !((_e341 < 1000000000f));
             }
-            let _e336 = phi_2348_;
-            if _e336 {
-                let _e337 = cap;
-                r = _e337;
-                let _e338 = cap;
-                size = _e338;
+            let _e345 = phi_2383_;
+            if _e345 {
+                let _e346 = cap;
+                r = _e346;
+                let _e347 = cap;
+                size = _e347;
             } else {
-                let _e339 = len;
-                let _e341 = pc.edgePixels;
-                want = ceil((_e339 / _e341));
-                let _e345 = pc.maxError;
-                if (_e345 > 0f) {
-                    let _e347 = want;
-                    let _e348 = P_7;
-                    param_111 = _e348;
-                    let _e349 = errorSegments_u0028_vf3_u005b_5_u005d_u003b((&param_111));
-                    want = max(_e347, _e349);
+                let _e348 = len;
+                let _e350 = pc.edgePixels;
+                want = ceil((_e348 / _e350));
+                let _e354 = pc.maxError;
+                if (_e354 > 0f) {
+                    let _e356 = want;
+                    let _e357 = P_7;
+                    param_112 = _e357;
+                    let _e358 = errorSegments_u0028_vf3_u005b_5_u005d_u003b((&param_112));
+                    want = max(_e356, _e358);
                 } else {
-                    let _e352 = px[4i];
-                    let _e354 = px[0i];
-                    chord = (_e352 - _e354);
-                    let _e356 = chord;
-                    cl = length(_e356);
-                    let _e359 = px[2i];
-                    let _e361 = px[0i];
-                    let _e363 = px[4i];
-                    off = (_e359 - ((_e361 + _e363) * 0.5f));
-                    let _e367 = cl;
-                    if (_e367 > 0.000001f) {
-                        let _e370 = chord[0u];
-                        let _e372 = off[1u];
-                        let _e375 = chord[1u];
-                        let _e377 = off[0u];
-                        let _e381 = cl;
-                        local_14 = (abs(((_e370 * _e372) - (_e375 * _e377))) / _e381);
+                    let _e361 = px[2i];
+                    let _e363 = px[0i];
+                    chord = (_e361 - _e363);
+                    let _e365 = chord;
+                    cl = length(_e365);
+                    let _e368 = px[1i];
+                    let _e370 = px[0i];
+                    let _e372 = px[2i];
+                    off = (_e368 - ((_e370 + _e372) * 0.5f));
+                    let _e376 = cl;
+                    if (_e376 > 0.000001f) {
+                        let _e379 = chord[0u];
+                        let _e381 = off[1u];
+                        let _e384 = chord[1u];
+                        let _e386 = off[0u];
+                        let _e390 = cl;
+                        local_14 = (abs(((_e379 * _e381) - (_e384 * _e386))) / _e390);
                     } else {
-                        let _e383 = off;
-                        local_14 = length(_e383);
+                        let _e392 = off;
+                        local_14 = length(_e392);
                     }
-                    let _e385 = local_14;
-                    d_3 = _e385;
-                    let _e386 = want;
-                    let _e387 = d_3;
-                    let _e389 = pc.edgePixels;
-                    want = max(_e386, ceil(sqrt((_e387 / (0.025f * _e389)))));
+                    let _e394 = local_14;
+                    d_3 = _e394;
+                    let _e395 = want;
+                    let _e396 = d_3;
+                    let _e398 = pc.edgePixels;
+                    want = max(_e395, ceil(sqrt((_e396 / (0.025f * _e398)))));
                 }
                 k_10 = 0i;
                 loop {
-                    let _e395 = k_10;
-                    if (_e395 < 2i) {
-                        let _e397 = k_10;
-                        if (_e397 == 0i) {
-                            let _e400 = p1_[0u];
-                            local_15 = _e400;
+                    let _e404 = k_10;
+                    if (_e404 < 2i) {
+                        let _e406 = k_10;
+                        if (_e406 == 0i) {
+                            let _e409 = p1_[0u];
+                            local_15 = _e409;
                         } else {
-                            let _e402 = p1_[1u];
-                            local_15 = _e402;
+                            let _e411 = p1_[1u];
+                            local_15 = _e411;
                         }
-                        let _e403 = local_15;
-                        e = _e403;
-                        let _e404 = e;
-                        let _e405 = (_e404 == 4294967295u);
-                        phi_2453_ = _e405;
-                        if !(_e405) {
-                            let _e407 = e;
-                            let _e409 = pc.patchCount;
-                            phi_2453_ = (_e407 >= _e409);
+                        let _e412 = local_15;
+                        e = _e412;
+                        let _e413 = e;
+                        let _e414 = (_e413 == 4294967295u);
+                        phi_2488_ = _e414;
+                        if !(_e414) {
+                            let _e416 = e;
+                            let _e418 = pc.patchCount;
+                            phi_2488_ = (_e416 >= _e418);
                         }
-                        let _e412 = phi_2453_;
-                        if _e412 {
+                        let _e421 = phi_2488_;
+                        if _e421 {
                             continue;
                         }
-                        let _e413 = e;
-                        let _e416 = patches.p[_e413];
-                        pt_3.cv[0i] = _e416.cv[0];
-                        pt_3.cv[1i] = _e416.cv[1];
-                        pt_3.cv[2i] = _e416.cv[2];
-                        pt_3.cv[3i] = _e416.cv[3];
-                        pt_3.cv[4i] = _e416.cv[4];
-                        pt_3.cv[5i] = _e416.cv[5];
-                        pt_3.cv[6i] = _e416.cv[6];
-                        pt_3.cv[7i] = _e416.cv[7];
-                        pt_3.cv[8i] = _e416.cv[8];
-                        pt_3.cv[9i] = _e416.cv[9];
-                        pt_3.cv[10i] = _e416.cv[10];
-                        pt_3.cv[11i] = _e416.cv[11];
-                        pt_3.cv[12i] = _e416.cv[12];
-                        pt_3.cv[13i] = _e416.cv[13];
-                        pt_3.cv[14i] = _e416.cv[14];
-                        pt_3.cv[15i] = _e416.cv[15];
-                        pt_3.ptex = _e416.ptex;
-                        pt_3.u0_ = _e416.u0_;
-                        pt_3.v0_ = _e416.v0_;
-                        pt_3.size = _e416.size;
-                        pt_3.levelBoundary = _e416.levelBoundary;
-                        pt_3.sharpness = _e416.sharpness;
-                        pt_3.pad1_ = _e416.pad1_;
-                        pt_3.pad2_ = _e416.pad2_;
-                        let _e468 = pt_3.levelBoundary;
-                        crease_2 = ((_e468 >> bitcast<u32>(16i)) & 15u);
-                        let _e472 = crease_2;
-                        if (_e472 == 0u) {
-                            let _e474 = k_10;
-                            if (_e474 == 0i) {
+                        let _e422 = e;
+                        let _e425 = patches.p[_e422];
+                        pt_3.cv[0i] = _e425.cv[0];
+                        pt_3.cv[1i] = _e425.cv[1];
+                        pt_3.cv[2i] = _e425.cv[2];
+                        pt_3.cv[3i] = _e425.cv[3];
+                        pt_3.cv[4i] = _e425.cv[4];
+                        pt_3.cv[5i] = _e425.cv[5];
+                        pt_3.cv[6i] = _e425.cv[6];
+                        pt_3.cv[7i] = _e425.cv[7];
+                        pt_3.cv[8i] = _e425.cv[8];
+                        pt_3.cv[9i] = _e425.cv[9];
+                        pt_3.cv[10i] = _e425.cv[10];
+                        pt_3.cv[11i] = _e425.cv[11];
+                        pt_3.cv[12i] = _e425.cv[12];
+                        pt_3.cv[13i] = _e425.cv[13];
+                        pt_3.cv[14i] = _e425.cv[14];
+                        pt_3.cv[15i] = _e425.cv[15];
+                        pt_3.ptex = _e425.ptex;
+                        pt_3.u0_ = _e425.u0_;
+                        pt_3.v0_ = _e425.v0_;
+                        pt_3.size = _e425.size;
+                        pt_3.levelBoundary = _e425.levelBoundary;
+                        pt_3.sharpness = _e425.sharpness;
+                        pt_3.pad1_ = _e425.pad1_;
+                        pt_3.pad2_ = _e425.pad2_;
+                        let _e477 = pt_3.levelBoundary;
+                        crease_2 = ((_e477 >> bitcast<u32>(16i)) & 15u);
+                        let _e481 = crease_2;
+                        if (_e481 == 0u) {
+                            let _e483 = k_10;
+                            if (_e483 == 0i) {
                                 continue;
                             }
                             break;
                         }
-                        let _e476 = k_10;
-                        if (_e476 == 0i) {
-                            let _e479 = p0_[1u];
-                            let _e482 = p0_[2u];
-                            alongS = ((_e479 & 65535u) != (_e482 & 65535u));
-                            let _e485 = crease_2;
-                            creaseAlongS = ((_e485 & 5u) != 0u);
-                            let _e488 = alongS;
-                            let _e489 = creaseAlongS;
-                            if (_e488 == _e489) {
+                        let _e485 = k_10;
+                        if (_e485 == 0i) {
+                            let _e488 = p0_[1u];
+                            let _e491 = p0_[2u];
+                            alongS = ((_e488 & 65535u) != (_e491 & 65535u));
+                            let _e494 = crease_2;
+                            creaseAlongS = ((_e494 & 5u) != 0u);
+                            let _e497 = alongS;
+                            let _e498 = creaseAlongS;
+                            if (_e497 == _e498) {
                                 break;
                             }
                         }
-                        let _e492 = pt_3.sharpness;
-                        most_1 = exp2(ceil(_e492));
-                        let _e495 = k_10;
-                        if (_e495 == 0i) {
-                            let _e497 = want;
-                            let _e499 = pc.maxError;
-                            if (_e499 > 0f) {
-                                let _e501 = want;
-                                local_16 = (2f * _e501);
+                        let _e501 = pt_3.sharpness;
+                        most_1 = exp2(ceil(_e501));
+                        let _e504 = k_10;
+                        if (_e504 == 0i) {
+                            let _e506 = want;
+                            let _e508 = pc.maxError;
+                            if (_e508 > 0f) {
+                                let _e510 = want;
+                                local_16 = (2f * _e510);
                             } else {
-                                let _e503 = len;
-                                let _e506 = pc.edgePixels;
-                                local_16 = ceil(((2f * _e503) / _e506));
+                                let _e512 = len;
+                                let _e515 = pc.edgePixels;
+                                local_16 = ceil(((2f * _e512) / _e515));
                             }
-                            let _e509 = local_16;
-                            let _e510 = most_1;
-                            let _e511 = len;
-                            want = max(_e497, max(_e509, min(_e510, ceil(sqrt((_e511 / 0.25f))))));
-                        } else {
-                            let _e518 = want;
+                            let _e518 = local_16;
                             let _e519 = most_1;
                             let _e520 = len;
-                            want = max(_e518, min(_e519, ceil((_e520 / 1f))));
+                            want = max(_e506, max(_e518, min(_e519, ceil(sqrt((_e520 / 0.25f))))));
+                        } else {
+                            let _e527 = want;
+                            let _e528 = most_1;
+                            let _e529 = len;
+                            want = max(_e527, min(_e528, ceil((_e529 / 1f))));
                         }
                         break;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e525 = k_10;
-                        k_10 = (_e525 + 1i);
+                        let _e534 = k_10;
+                        k_10 = (_e534 + 1i);
                     }
                 }
-                let _e528 = pc.texels;
-                if (_e528 > 0f) {
-                    let _e530 = want;
-                    let _e532 = p1_[2u];
-                    let _e535 = pc.texels;
-                    let _e538 = len;
-                    want = max(_e530, min(ceil((bitcast<f32>(_e532) * _e535)), ceil((0.5f * _e538))));
+                let _e537 = pc.texels;
+                if (_e537 > 0f) {
+                    let _e539 = want;
+                    let _e541 = p1_[2u];
+                    let _e544 = pc.texels;
+                    let _e547 = len;
+                    want = max(_e539, min(ceil((bitcast<f32>(_e541) * _e544)), ceil((0.5f * _e547))));
                 }
-                let _e543 = want;
-                let _e544 = cap;
-                size = u32(clamp(_e543, 1f, f32(_e544)));
-                let _e548 = allOut;
-                let _e550 = size;
-                r = select(_e550, 1u, (_e548 != 0u));
+                let _e552 = want;
+                let _e553 = cap;
+                size = u32(clamp(_e552, 1f, f32(_e553)));
+                let _e557 = allOut;
+                let _e559 = size;
+                r = select(_e559, 1u, (_e557 != 0u));
             }
         }
     }
-    let _e552 = i_5;
-    let _e553 = r;
-    let _e554 = size;
-    rates.r[_e552] = (_e553 | (_e554 << bitcast<u32>(16i)));
-    let _e560 = i_5;
-    let _e561 = ends;
-    pieceEnds.v[_e560] = _e561;
+    let _e561 = i_5;
+    let _e562 = r;
+    let _e563 = size;
+    rates.r[_e561] = (_e562 | (_e563 << bitcast<u32>(16i)));
+    let _e569 = i_5;
+    let _e570 = ends;
+    pieceEnds.v[_e569] = _e570;
     return;
 }
 

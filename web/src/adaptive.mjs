@@ -8,7 +8,7 @@ const NO_ELEMENT = 0xffffffff;
 const pack = (s, t) => (s | (t << 16)) >>> 0;
 const MAX_BUFFER = 128 * 2 ** 20;
 export const TOTALS_WORDS = 24;
-export const INDEXED_DRAW_ARGS = 0, DRAW_ARGS = 20, DISPATCH_ARGS = 36;
+export const INDEXED_DRAW_ARGS = 0, DRAW_ARGS = 20, DISPATCH_ARGS = 36, WIRE_DRAW_ARGS = 72;
 export const ROW_GROUPS = 65535, EVAL_GROUP_SIZE = 64;
 
 function sidePoint(d, k, x) {

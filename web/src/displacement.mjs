@@ -9,7 +9,7 @@
 // displaced surface stays watertight; without it each copy samples its own chart and cracks open
 // (the paper's Figure 4).
 import { LimnError } from './container.mjs';
-import { TESS_ONE } from './tessellation.mjs';
+import { TESS_ONE, PtexMap } from './tessellation.mjs';
 import { ROW_GROUPS } from './adaptive.mjs';
 
 const f32 = Math.fround;
@@ -40,11 +40,21 @@ export function textureWords(texture) {
   return w;
 }
 
+/** A map's GPU buffer (4 bytes a texel) must fit WebGPU's 128 MiB storage-buffer binding. */
+export function checkMapSize(option, map) {
+  const bytes = 8 + 4 * map.width * map.height;
+  if (bytes > 128 * 2 ** 20) {
+    throw new LimnError(`${option}: a ${map.width}x${map.height} map needs ${(bytes / 2 ** 20).toFixed(1)} MiB on the GPU, over WebGPU's ` +
+      '128 MiB storage-buffer limit; scale it down (at most about 5792x5792)', 'input');
+  }
+}
+
 /**
  * renderer.cpp's check: an EXR-like map times --displace-scale must stay within the 1e18 that
  * positions may reach (mesh.cpp), or the image comes out blank.
  */
 export function checkDisplacement(d) {
+  checkMapSize('--displace', d.map);
   let far = 0;
   for (const v of d.map.values) far = Math.max(far, Math.abs((v - d.mid) * d.scale));
   if (!(far <= 1e18)) {
@@ -83,6 +93,56 @@ function sideUVsOf(seams, element, st, out) {
   const w0 = (1 - s) * (1 - t), w1 = s * (1 - t), w2 = s * t, w3 = (1 - s) * t;
   out.push(f32(w0 * c0[0] + w1 * c1[0] + w2 * c2[0] + w3 * c3[0]), f32(w0 * c0[1] + w1 * c1[1] + w2 * c2[1] + w3 * c3[1]));
   return 1;
+}
+
+/**
+ * lib/seams/seams.cpp's computeSeams, for a container without a SEAM chunk (limn-render computes
+ * them too): per element, its corners' UVs in their own face, every distinct UV of each corner
+ * in the faces around it, and per edge the distinct (start, end) UV pairs of the faces along it,
+ * in increasing face order. Returns the chunk's layout ({records, uvs, uvCount}).
+ */
+export function computeSeams(mesh, uvs, tables) {
+  const R = 2 ** (tables.depth + 1); // one step finer than the finest element: edge midpoints are lattice points
+  const ptex = new PtexMap({ ...mesh, uvs }, R);
+  const E = tables.patchCount + tables.irregularCount;
+  const records = new Uint32Array(Math.max(E, 1) * 24), rf = new Float32Array(records.buffer), out = [];
+  const CU = [0, 1, 1, 0], CV = [0, 0, 1, 1];
+  const same = (x, y) => x[0] === y[0] && x[1] === y[1];
+  const f2 = (uv) => [f32(uv[0]), f32(uv[1])];
+  const add = (e, p, u0, v0, size) => {
+    const base = 24 * e, U0 = Math.trunc(u0 * R), V0 = Math.trunc(v0 * R), W = Math.trunc(size * R);
+    const at = (k) => [U0 + CU[k] * W, V0 + CV[k] * W];
+    for (let k = 0; k < 4; k++) {
+      const own = f2(ptex.ownUV(p, u0 + CU[k] * size, v0 + CV[k] * size));
+      rf[base + 2 * k] = own[0];
+      rf[base + 2 * k + 1] = own[1];
+      const first = out.length, distinct = [];
+      for (const c of ptex.charts(p, ...at(k))) {
+        const uv = f2(c.uv);
+        if (!distinct.some((d) => same(d, uv))) { distinct.push(uv); out.push(uv); }
+      }
+      records[base + 8 + 2 * k] = first;
+      records[base + 9 + 2 * k] = distinct.length;
+    }
+    for (let k = 0; k < 4; k++) {
+      const [Ua, Va] = at(k), [Ub, Vb] = at((k + 1) % 4);
+      const ends = [ptex.charts(p, Ua, Va), ptex.charts(p, Ub, Vb)];
+      const sides = [];
+      records[base + 16 + 2 * k] = out.length;
+      for (const side of ptex.charts(p, (Ua + Ub) / 2, (Va + Vb) / 2)) { // the faces along the edge
+        const pair = ends.map((list) => { let uv = [0, 0]; for (const c of list) if (c.face === side.face) uv = f2(c.uv); return uv; });
+        if (sides.some((x) => same(x[0], pair[0]) && same(x[1], pair[1]))) continue;
+        sides.push(pair);
+        out.push(pair[0], pair[1]);
+      }
+      records[base + 17 + 2 * k] = sides.length;
+    }
+  };
+  const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
+  const qw = tables.irregular, qf = new Float32Array(qw.buffer, qw.byteOffset, qw.length);
+  for (let i = 0; i < tables.patchCount; i++) add(i, pw[24 * i + 16], pf[24 * i + 17], pf[24 * i + 18], pf[24 * i + 19]);
+  for (let i = 0; i < tables.irregularCount; i++) add(tables.patchCount + i, qw[8 * i + 4], qf[8 * i + 5], qf[8 * i + 6], qf[8 * i + 7]);
+  return { records: records.subarray(0, E * 24), uvs: Float32Array.from(out.flat()), uvCount: out.length };
 }
 
 /**
@@ -132,38 +192,53 @@ export function fixedDisplacementPlan(tess, seams, seamFix) {
   return { sideRanges, sideUVs: Float32Array.from(uvs.length ? uvs : [0, 0]), incidentRanges, incident };
 }
 
-// subdivision_pass.cpp with a displacement: surface_eval.comp over the tessellation vertices,
-// then displace and displaced normals (fixed grids: displace.comp, displaced_normals.comp over
-// the CPU-built plan; view-adaptive: adaptive_displace*.comp over what this frame emitted,
-// dispatched indirectly from the scan's totals).
-export async function addDisplacementPasses(r, compute, group, plan) {
-  const { s, buffers: b } = r, { tables } = r.surface, d = s.displace;
+// The evaluation dispatches of the view-adaptive tessellation read how many vertices the frame
+// emitted from the scan's totals (dispatchWorkgroupsIndirect); their header holds the capacity.
+function indirectPass(r, pipeline, bindGroup, fields, label) {
+  const p = r.pushGroup(pipeline);
+  r.pushData.set([r.adaptiveData.capV, ROW_GROUPS * 64, 0, 0, ...fields], p.offset / 4);
+  r.passes.push({ pipeline, bindGroup, push: p.group, indirect: true, label, pushOffset: p.offset });
+}
+
+/**
+ * subdivision_pass.cpp's --eval compute: surface_eval.comp evaluates every tessellation vertex once
+ * into evalPositions/evalNormals/evalInfo (for displacement, and for the wireframe's positions).
+ */
+export async function addComputeEvaluation(r, compute, group) {
+  const { buffers: b } = r, { tables } = r.surface;
   const n = r.adaptive ? r.adaptiveData.capV : Math.max(r.tess.vertexCount, 1);
   Object.assign(b, {
     evalPositions: r.empty('evaluated positions', n * 16),
     evalNormals: r.empty('evaluated normals', n * 16),
     evalInfo: r.empty('evaluated ptex', n * 16),
+  });
+  const evalPass = await compute('surface_eval.comp');
+  const evalGroup = group(evalPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.evalPositions, b.evalNormals, b.evalInfo]);
+  if (r.adaptive) indirectPass(r, evalPass, evalGroup, [tables.patchCount], 'evaluate surface');
+  else r.dispatch(evalPass, evalGroup, r.tess.vertexCount, [tables.patchCount], 'evaluate surface');
+}
+
+// subdivision_pass.cpp with a displacement, after addComputeEvaluation: displace and displaced
+// normals (fixed grids: displace.comp, displaced_normals.comp over the CPU-built plan;
+// view-adaptive: adaptive_displace*.comp over what this frame emitted).
+export async function addDisplacementPasses(r, compute, group, plan) {
+  const { s, buffers: b } = r, { tables } = r.surface, d = s.displace;
+  const n = r.adaptive ? r.adaptiveData.capV : Math.max(r.tess.vertexCount, 1);
+  Object.assign(b, {
     displaced: r.empty('displaced positions', n * 16),
     displacedNormals: r.empty('displaced normals', n * 16),
     map: r.buffer('displacement map', mapWords(d.map)),
   });
-  const [evalPass, displacePass, normalsPass] = await Promise.all((r.adaptive
-    ? ['surface_eval.comp', 'adaptive_displace.comp', 'adaptive_displaced_normals.comp']
-    : ['surface_eval.comp', 'displace.comp', 'displaced_normals.comp']).map(compute));
+  const [displacePass, normalsPass] = await Promise.all((r.adaptive
+    ? ['adaptive_displace.comp', 'adaptive_displaced_normals.comp']
+    : ['displace.comp', 'displaced_normals.comp']).map(compute));
   const f32 = (x) => new Uint32Array(new Float32Array([x]).buffer)[0];
-  const evalGroup = group(evalPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.evalPositions, b.evalNormals, b.evalInfo]);
   if (r.adaptive) {
-    b.seamElements = r.buffer('seam elements', seamGpuRecords(r.surface.seams));
-    b.seamUVs = r.buffer('seam UVs', r.surface.seams.uvs);
-    const indirect = (pipeline, bindGroup, fields, label) => {
-      const p = r.pushGroup(pipeline);
-      r.pushData.set([n, ROW_GROUPS * 64, 0, 0, ...fields], p.offset / 4);
-      r.passes.push({ pipeline, bindGroup, push: p.group, indirect: true, label, pushOffset: p.offset });
-    };
-    indirect(evalPass, evalGroup, [tables.patchCount], 'evaluate surface');
-    indirect(displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.tessVertices, b.seamElements, b.seamUVs, b.map, b.displaced]),
+    b.seamElements = r.buffer('seam elements', seamGpuRecords(r.seams));
+    b.seamUVs = r.buffer('seam UVs', r.seams.uvs);
+    indirectPass(r, displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.tessVertices, b.seamElements, b.seamUVs, b.map, b.displaced]),
       [f32(d.scale), f32(d.mid), d.seamFix ? 1 : 0, 0], 'displace');
-    indirect(normalsPass, group(normalsPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.elements, b.map, b.displacedNormals]),
+    indirectPass(r, normalsPass, group(normalsPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.elements, b.map, b.displacedNormals]),
       [tables.patchCount, f32(d.scale), f32(d.mid)], 'displaced normals');
     return;
   }
@@ -174,7 +249,6 @@ export async function addDisplacementPasses(r, compute, group, plan) {
     incident: r.buffer('incident triangles', plan.incident),
   });
   const count = r.tess.vertexCount;
-  r.dispatch(evalPass, evalGroup, count, [tables.patchCount], 'evaluate surface');
   r.dispatch(displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.sideRanges, b.sideUVs, b.map, b.displaced]),
     count, [f32(d.scale), f32(d.mid)], 'displace');
   r.dispatch(normalsPass, group(normalsPass, 0, [b.displaced, b.triangles, b.incidentRanges, b.incident, b.displacedNormals]), count, [], 'displaced normals');

@@ -52,8 +52,11 @@ export interface RenderSettings {
   lightAzimuthDeg?: number; lightElevationDeg?: number; color?: Vec3; background?: Vec3;
   /** --texture (or a MATL texture): values 0..1 as decoded, 3 a texel, rows top to bottom; with shade 'texture'. */
   texture?: ImageRGB;
-  /** --displace: needs the container's SEAM chunk (limn-seams). */
+  /** --displace: the seam UVs from the container's SEAM chunk (limn-seams), else computed. */
   displace?: Displacement;
+  /** 'triangles': limn-render --wire-triangles, the edges of every triangle drawn; 'outlines':
+   *  --wire, the patches' and faces' outlines (drawn on the fixed grids). */
+  wire?: 'triangles' | 'outlines';
 }
 export interface ImageRGB { width: number; height: number; rgb: Float32Array }
 export interface Displacement {

@@ -10,6 +10,13 @@ const require = createRequire(import.meta.url);
 
 /** PNG bytes -> {width, height, rgb: Float32Array (3 a texel, rows top to bottom)}. */
 export function decodePngImage(bytes, what) {
+  // The header's size first: an image the GPU cannot take (4 bytes a texel, 128 MiB) is refused
+  // before its pixels are allocated (a 20000x20000 PNG decodes to 1.6 GB).
+  const b = Buffer.from(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  if (b.length >= 24 && b.readUInt32BE(0) === 0x89504e47) {
+    const width = b.readUInt32BE(16), height = b.readUInt32BE(20);
+    if (width * height > 2 ** 25) throw new LimnError(`${what}: a ${width}x${height} image, over the 2^25 texels a map may have on the GPU (WebGPU's 128 MiB buffers); scale it down`, 'input');
+  }
   let png;
   try {
     const { PNG } = require('pngjs');

@@ -10,8 +10,8 @@ import { ShaderCache, loadShader as loadShaderText } from './shaders.mjs';
 import { buildTessellation } from './tessellation.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
-import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS } from './adaptive.mjs';
-import { textureWords, fixedDisplacementPlan, checkDisplacement, addDisplacementPasses } from './displacement.mjs';
+import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
+import { textureWords, fixedDisplacementPlan, checkDisplacement, checkMapSize, addComputeEvaluation, addDisplacementPasses, computeSeams } from './displacement.mjs';
 
 const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
 const MAX_GROUPS = 65535;
@@ -95,6 +95,17 @@ function checkTableSize(tables, face, stencil) {
   }
 }
 
+// subdivision_draw.cpp: the elements' outline segments, each once (an edge two elements share is
+// listed by both), in the order first seen.
+function wireLines(outline) {
+  const seen = new Set(), out = [];
+  for (let i = 0; i + 1 < outline.length; i += 2) {
+    const a = outline[i], b = outline[i + 1], key = Math.min(a, b) * 2 ** 32 + Math.max(a, b);
+    if (!seen.has(key)) { seen.add(key); out.push(a, b); }
+  }
+  return Uint32Array.from(out);
+}
+
 // The CPU-built tessellations of a loaded surface, kept with its tables (they are never written
 // after they are built): renderers of one surface with other views, sizes or shades share them.
 const builtFor = new WeakMap();
@@ -128,9 +139,10 @@ export class Renderer {
     if (!(s.shade in SHADES)) throw new LimnError(`--shade ${s.shade}: one of ${Object.keys(SHADES).join(', ')}`, 'usage');
     if (s.shade === 'uv' && !surface.uvs) throw new LimnError('--shade uv: the mesh has no texture coordinates (no FVUV chunk); use --shade lit or normal', 'input');
     if (s.shade === 'texture' && !s.texture) throw new LimnError('--shade texture needs --texture MAP', 'usage');
+    if (s.wire && s.wire !== 'triangles' && s.wire !== 'outlines') throw new LimnError(`wire '${s.wire}': 'outlines' (limn-render --wire) or 'triangles' (--wire-triangles)`, 'usage');
+    if (s.texture) checkMapSize('--texture', s.texture);
     if ((s.texture || s.displace) && !surface.uvs) throw new LimnError('--texture and --displace need texture coordinates; the mesh has none', 'input');
     if (s.displace) {
-      if (!surface.seams) throw new LimnError('--displace needs the seam UVs of a SEAM chunk: run limn-seams on the container first', 'input');
       if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
       checkDisplacement(s.displace);
     }
@@ -174,7 +186,8 @@ export class Renderer {
         vertex: { firstOut: L.first + L.facePoints + L.edgePoints, firstRow: stencil.firstRows[2 * (l - 1) + 1], count: L.vertexPoints },
       });
     }
-    this.adaptive = s.edgePixels > 0;
+    // renderer.cpp: the element outlines exist for the fixed grids only, so --wire draws those.
+    this.adaptive = s.edgePixels > 0 && s.wire !== 'outlines';
     let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
     if (this.adaptive) {
       const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables));
@@ -182,13 +195,14 @@ export class Renderer {
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
       const p = Math.max(s.maxError > 0 ? Math.min(s.edgePixels, 4) : s.edgePixels, 0.25); // as renderer.cpp
       const viewBudget = Math.max(Math.floor((32 * s.width * s.height) / (p * p)), 2 ** 20);
-      const samplePositions = s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
+      // renderer.cpp: no sample-based cull under a wireframe (its lines light pixels no triangle covers).
+      const samplePositions = s.wire ? [] : s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
       this.adaptiveOptions = {
         edgePixels: s.edgePixels, maxError: s.maxError, tess: s.tess, samplePositions,
         // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.
         // and with displacement: the compute passes read the whole capacity (zeroed slots included).
-        evaluated: !!s.meshOut || !!s.displace,
-        sharePoints: !s.meshOut && !s.displace && s.shade !== 'uv' && s.shade !== 'texture',
+        evaluated: !!s.meshOut || !!s.displace || !!s.wire,
+        sharePoints: !s.meshOut && !s.displace && !s.wire && s.shade !== 'uv' && s.shade !== 'texture',
         // Displacement moves the surface off its control points' hull: no culling then.
         cull: !s.displace,
         // With a displacement map, at least a segment per texel (up to one per 2 pixels).
@@ -248,10 +262,12 @@ export class Renderer {
     const vertexStage = s.displace ? 'surface_fetch' : 'surface';
     const vs = await shaders.module(perSample ? `${vertexStage}_per_sample.vert` : `${vertexStage}.vert`);
     const fs = await shaders.module(perSample ? 'surface_per_sample.frag' : 'surface.frag');
-    const drawLayout = device.createPipelineLayout({ bindGroupLayouts: [
+    const drawGroupLayouts = [
       groupLayout(device, (await loadShaderText(`${vertexStage}.vert`)) + (await loadShaderText('surface.frag')), 1 | 2),
       device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }),
-      device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 1 | 2, buffer: { type: 'uniform' } }] })] });
+      device.createBindGroupLayout({ entries: [{ binding: 0, visibility: 1 | 2, buffer: { type: 'uniform' } }] })];
+    const drawLayout = device.createPipelineLayout({ bindGroupLayouts: drawGroupLayouts });
+    drawLayout.groups = drawGroupLayouts;
     const drawPipeline = (cullMode) => device.createRenderPipelineAsync({
       label: `surface (cull ${cullMode})`, layout: drawLayout,
       vertex: { module: vs },
@@ -318,8 +334,11 @@ export class Renderer {
         if (this.passes.length > before) this.adaptivePasses.push({ name, pass: this.passes[this.passes.length - 1], count });
       }
     }
+    if (s.displace || s.wire) await addComputeEvaluation(this, compute, group);
     if (s.displace) {
-      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, surface.seams, s.displace.seamFix));
+      // The SEAM chunk's records, or the same computed here (limn-render does so too).
+      this.seams = surface.seams ?? cached(tables, 'seams', () => computeSeams(mesh, surface.uvs, tables));
+      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, this.seams, s.displace.seamFix));
       await addDisplacementPasses(this, compute, group, plan);
     }
     const drawPush = pushGroup(this.drawPipeline);
@@ -328,6 +347,29 @@ export class Renderer {
       ? [b.displaced, b.displacedNormals, b.tessVertices, b.triangles, b.triangleLevels, null, null, b.texture]
       : [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture];
     this.drawGroups = [group(this.drawPipeline, 0, drawBuffers), drawPush.group];
+    if (s.wire) {
+      // --wire-triangles: the edges of every triangle drawn; --wire: the elements' outlines, each
+      // segment once (subdivision_draw.cpp's wireLines); at the positions the draw read (evaluated
+      // or displaced), pulled towards the eye (wire*.vert); same push constants.
+      const outlines = s.wire === 'outlines', wireVert = outlines ? 'wire.vert' : 'wire_triangles.vert';
+      const wireLayout = groupLayout(device, await loadShaderText(wireVert), 1);
+      this.wirePipeline = await device.createRenderPipelineAsync({
+        label: `wire (${s.wire})`,
+        layout: device.createPipelineLayout({ bindGroupLayouts: [wireLayout, drawLayout.groups[1], drawLayout.groups[2], drawLayout.groups[3]] }),
+        vertex: { module: await shaders.module(wireVert) },
+        fragment: { module: await shaders.module('wire.frag'), targets: [{ format: 'rgba8unorm-srgb' }] },
+        primitive: { topology: 'line-list' },
+        depthStencil: { format: 'depth32float', depthWriteEnabled: false, depthCompare: 'less-equal' },
+        multisample: { count: s.samples },
+      });
+      const drawn = s.displace ? b.displaced : b.evalPositions;
+      this.wireGroup = device.createBindGroup({ layout: wireLayout, entries: (outlines ? [drawn] : [drawn, b.triangles]).map((buffer, binding) => ({ binding, resource: { buffer } })) });
+      if (outlines) {
+        const lines = cached(tables, `outline ${tess.key}`, () => wireLines(tess.outline));
+        this.wireLineCount = lines.length;
+        b.wireLines = this.buffer('wire lines', lines, INDEX);
+      }
+    }
 
     // Framing: the control points' box and sphere (boundsOf), the hull samples when auto-framed.
     const points = [];
@@ -422,7 +464,7 @@ export class Renderer {
     }
     if (this.adaptive) {
       const t = await this.readBuffer(this.buffers.totals, TOTALS_WORDS * 4, Uint32Array);
-      if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --edge-pixels or lower --tess', 'input');
+      if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --max-error or --edge-pixels, or lower --tess', 'input');
       vertices = t[17];
       triangles = await this.readBuffer(this.buffers.triangles, t[16] * 12, Uint32Array);
     }
@@ -535,6 +577,15 @@ export class Renderer {
     } else {
       rp.setIndexBuffer(this.buffers.triangles, 'uint32');
       rp.drawIndexed(count);
+    }
+    if (this.wirePipeline) {
+      rp.setPipeline(this.wirePipeline);
+      rp.setBindGroup(0, this.wireGroup);
+      rp.setBindGroup(3, this.drawGroups[1]);
+      if (this.wireLineCount !== undefined) {
+        rp.setIndexBuffer(this.buffers.wireLines, 'uint32');
+        rp.drawIndexed(this.wireLineCount);
+      } else if (this.adaptive) rp.drawIndirect(this.buffers.totals, WIRE_DRAW_ARGS); else rp.draw(2 * count);
     }
     rp.end();
     enc.copyTextureToBuffer({ texture: this.color }, { buffer: this.readback, bytesPerRow: this.rowBytes }, [s.width, s.height]);

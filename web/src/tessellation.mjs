@@ -235,7 +235,7 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
     for (let j = 0; j <= e.S; j++) for (let i = 0; i <= e.S; i++) vertexFor(ei, e.U0 + i * step, e.V0 + j * step, true);
   }
 
-  const indices = new Grow(Uint32Array, 1 << 14), triangleLevels = new Grow(Uint32Array);
+  const indices = new Grow(Uint32Array, 1 << 14), triangleLevels = new Grow(Uint32Array), outline = new Grow(Uint32Array);
   for (let ei = 0; ei < elements.length; ei++) {
     const e = elements[ei], S = e.S, step = e.W / S;
     const find = (U, V) => vertexFor(ei, U, V, false);
@@ -249,7 +249,10 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
       }
       return pts;
     };
-    const stitched = [0, 1, 2, 3].map((side) => edgePoints(side, 0, e.W).length !== S + 1);
+    const sides = [0, 1, 2, 3].map((side) => edgePoints(side, 0, e.W));
+    const stitched = sides.map((pts) => pts.length !== S + 1);
+    // The element's outline (limn-render --wire): consecutive points along each side.
+    for (const pts of sides) for (let k = 0; k + 1 < pts.length; k++) { outline.push(pts[k]); outline.push(pts[k + 1]); }
     const grid = (i, j) => find(e.U0 + i * step, e.V0 + j * step);
     const first = indices.n;
     const tri = (a, b, c) => { indices.push(a); indices.push(b); indices.push(c); };
@@ -291,5 +294,5 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
     vertices[4 * i + 1] = vST.a[i];
     if (withUV) { vf[4 * i + 2] = uvs.a[2 * i]; vf[4 * i + 3] = uvs.a[2 * i + 1]; }
   }
-  return { vertices, vertexCount: n, indices: indices.view().slice(), triangleLevels: triangleLevels.view().slice(), geometry: Array.from(geometry.view()) };
+  return { vertices, vertexCount: n, indices: indices.view().slice(), triangleLevels: triangleLevels.view().slice(), geometry: Array.from(geometry.view()), outline: outline.view() };
 }

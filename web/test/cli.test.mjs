@@ -12,7 +12,7 @@ const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
 
 test('usage errors exit 2', () => {
-  for (const args of [[], ['x.limn'], ['--frobnicate'], ['x.limn', '-o', 'y.png', '--samples', '3'], ['x.limn', '-o', 'y.jpg']]) {
+  for (const args of [[], ['x.limn'], ['--frobnicate'], ['x.limn', '-o', 'y.png', '--samples', '3'], ['x.limn', '-o', 'y.jpg'], ['x.limn', '-o', 'y.png', '--wire', '--wire-triangles']]) {
     const r = run(...args);
     assert.equal(r.status, 2, `${args.join(' ')}: ${r.stderr}`);
     assert.match(r.stderr, /^limn-web-render: error: /);
@@ -53,7 +53,7 @@ test('what is not supported here exits 3 and says so; maps it cannot use exit 1 
   const r = run(smooth, '-o', out, '--shade', 'uv');
   assert.equal(r.status, 3, r.stderr);
   assert.match(r.stderr, /smooth face-varying UVs .* not supported here/);
-  // --displace needs the seam records (limn-seams); a map that is not a PNG is named.
+  // A map that cannot be read or is not a PNG is named.
   const noMap = run(limn, '-o', out, '--displace', join(scratch, 'absent.png'));
   assert.equal(noMap.status, 1, noMap.stderr);
   assert.match(noMap.stderr, /--displace .*absent\.png: cannot read/);
@@ -62,11 +62,20 @@ test('what is not supported here exits 3 and says so; maps it cannot use exit 1 
   const bad = run(limn, '-o', out, '--texture', notPng);
   assert.equal(bad.status, 1, bad.stderr);
   assert.match(bad.stderr, /--texture .*not\.png: not a PNG/);
+  // A PNG too large for the GPU is refused from its header, before its pixels are decoded.
+  const big = join(scratch, 'big.png'), header = encodePng(1, 1, new Uint8Array(4));
+  header.writeUInt32BE(20000, 16);
+  header.writeUInt32BE(20000, 20);
+  writeFileSync(big, header);
+  const huge = run(limn, '-o', out, '--displace', big);
+  assert.equal(huge.status, 1, huge.stderr);
+  assert.match(huge.stderr, /big\.png: a 20000x20000 image, over the 2\^25 texels/);
   const map = join(scratch, 'map.png');
   writeFileSync(map, encodePng(2, 2, new Uint8Array(16).fill(128)));
-  const seamless = run(limn, '-o', out, '--displace', map);
-  assert.equal(seamless.status, 1, seamless.stderr);
-  assert.match(seamless.stderr, /run limn-seams/);
+  // Displacement needs UVs.
+  const noUVs = run(container('osd/catmark/catmark_pyramid_creases2.obj', { depth: 1 }), '-o', out, '--displace', map);
+  assert.equal(noUVs.status, 1, noUVs.stderr);
+  assert.match(noUVs.stderr, /need texture coordinates; the mesh has none/);
   assert.equal(run(limn, '-o', out, '--displace', map, '--displace-scale', 'x%').status, 2);
   assert.equal(existsSync(out), false);
 });

@@ -16,6 +16,7 @@ import { quadSphere as quadSphereInputs, scratch, tool } from './support.mjs';
 import { privateIcd, requestNodeDevice } from '../src/node_device.mjs';
 import { loadLimn } from '../src/chunks.mjs';
 import { Renderer } from '../src/renderer.mjs';
+import { computeSeams } from '../src/displacement.mjs';
 import { decodePng } from '../src/png.mjs';
 import { readImageFile, heightMap } from '../src/node_image.mjs';
 import { compareImages } from './compare.mjs';
@@ -43,15 +44,19 @@ async function webRenderer(settings) {
 
 const displaced = (map, seamFix = true) => ({ map: heightMap(readImageFile(map, '--displace')), scale: SCALE, mid: MID, seamFix });
 
-for (const [label, edgePixels, samples, shade] of [['fixed grids', 0, 4, 'lit'], ['view-adaptive', 4, 4, 'lit'], ['view-adaptive, levels', 4, 1, 'levels']]) {
+// Two renders cover lit and levels shading (both use the displaced normals), 4 and 1 samples,
+// both tessellations and both wireframes over the displaced surface (--wire: the elements'
+// outlines; --wire-triangles): each costs seconds of CPU.
+const cases = [['fixed grids, outlines', 0, 4, 'lit', 'outlines'], ['view-adaptive, levels, triangles\' wireframe', 4, 1, 'levels', 'triangles']];
+for (const [label, edgePixels, samples, shade, wire] of cases) {
   test(`displaced quad_sphere, seam fix on, ${label}: the image limn-render draws`, async () => {
     const { limn, height } = quadSphere();
     const name = `displaced-${edgePixels}-${samples}-${shade}`;
     const native = join(scratch, `${name}.png`);
     const args = ['--size', '320x240', '--samples', String(samples), '--shade', shade, '--edge-pixels', String(edgePixels),
-      '--displace', height, '--displace-scale', String(SCALE), '--displace-mid', String(MID)];
+      '--displace', height, '--displace-scale', String(SCALE), '--displace-mid', String(MID), ...({ outlines: ['--wire'], triangles: ['--wire-triangles'] }[wire] ?? [])];
     execFileSync(tool('limn-render'), ['-q', limn, '-o', native, ...args], { env, stdio: ['ignore', 'ignore', 'pipe'] });
-    const s = { width: 320, height: 240, samples, shade, edgePixels, tess: 64, view: {}, displace: displaced(height) };
+    const s = { width: 320, height: 240, samples, shade, edgePixels, tess: 64, view: {}, displace: displaced(height), wire };
     const { r, errors } = await webRenderer(s);
     r.frame();
     const rgba = await r.pixels();
@@ -84,10 +89,10 @@ function closedness({ positions, triangles }) {
   return { open, euler: ids.size - uses.size + triangles.length / 3 };
 }
 
-test('displaced quad_sphere: watertight with the seam fix, cracked without (fixed grids and view-adaptive)', async () => {
+test('displaced quad_sphere: watertight with the seam fix (fixed grids and view-adaptive), cracked without', async () => {
   const { noise } = quadSphere();
   for (const edgePixels of [0, 4]) {
-    for (const seamFix of [true, false]) {
+    for (const seamFix of edgePixels ? [true] : [true, false]) {
       const s = { width: 320, height: 240, samples: 1, shade: 'lit', edgePixels, tess: 64, view: {}, displace: displaced(noise, seamFix) };
       const { r, errors } = await webRenderer(s);
       const c = closedness(await r.drawnMesh());
@@ -102,4 +107,14 @@ test('displaced quad_sphere: watertight with the seam fix, cracked without (fixe
       }
     }
   }
+});
+
+// Without a SEAM chunk the renderer computes the seam records itself, as limn-render does: they
+// are limn-seams' own, bit for bit (the chunk written by limn-seams is the reference).
+test('seam records computed without a SEAM chunk are the ones limn-seams writes', () => {
+  const { surface } = quadSphere();
+  const c = computeSeams(surface.mesh, surface.uvs, surface.tables);
+  assert.equal(c.uvCount, surface.seams.uvCount);
+  assert.deepEqual(new Uint32Array(c.records.buffer, c.records.byteOffset, c.records.length), surface.seams.records);
+  assert.deepEqual(new Uint32Array(c.uvs.buffer), new Uint32Array(surface.seams.uvs.buffer, surface.seams.uvs.byteOffset, surface.seams.uvs.length));
 });

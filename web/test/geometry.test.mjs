@@ -34,7 +34,7 @@ const cases = [
   ['car depth 3, grids capped at 4', 'osd/catmark/catmark_car.obj', 3, ['--tess', '4']],
 ];
 
-// The view-adaptive tessellation of one view (limn-render's default, --edge-pixels 4).
+// The view-adaptive tessellation of one view (--edge-pixels 4 with the default --max-error 0.1).
 // An explicit camera: the auto-framing's hull is evaluated in double by limn-render and in float
 // here, and a camera a float step away changes some pieces' rates.
 // Both sides at 4 samples (limn-render's default): the cull drops a flat element's triangles

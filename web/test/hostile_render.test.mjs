@@ -51,3 +51,13 @@ test('tables over 128 MiB are refused, naming the buffer, before any GPU work', 
   await assert.rejects(Renderer.create(null, big, { width: 64, height: 48, edgePixels: 4, view: {} }),
     /GPU buffer 'patches' would need 1\d\d\.\d MiB, over WebGPU's 128 MiB storage-buffer limit/);
 });
+
+// A map whose GPU buffer would pass 128 MiB is refused by name, before any GPU work.
+test('maps over 128 MiB on the GPU are refused, naming the option', async () => {
+  const surface = loadLimn(read(container('quad/spot_quadrangulated.obj', { depth: 1 })));
+  const huge = { width: 6000, height: 6000 }; // only the size is read before the refusal
+  await assert.rejects(Renderer.create(null, surface, { width: 64, height: 48, view: {}, texture: huge }),
+    /--texture: a 6000x6000 map needs 137\.3 MiB on the GPU, over WebGPU's 128 MiB/);
+  await assert.rejects(Renderer.create(null, surface, { width: 64, height: 48, view: {}, displace: { map: huge, scale: 1, mid: 0, seamFix: true } }),
+    /--displace: a 6000x6000 map needs 137\.3 MiB/);
+});

@@ -3,7 +3,7 @@
 // more than 8/255. The fixed grids (--edge-pixels 0) and the view-adaptive tessellation, 1 and 4
 // samples, lit and --shade levels, on real models: spot (depths 1, 3, 6), a creased torus, a model
 // with face-varying UVs and tags, the paper's demo sphere in its camera, the paper-size car, and
-// colour textures (--texture, a glTF's MATL texture).
+// colour textures (--texture, a glTF's MATL texture) and the triangles' wireframe (--wire-triangles).
 //
 // The web side renders in this process through the library (one device, each container loaded
 // once, so its CPU tessellation is built once and Dawn compiles each pipeline once); limn-render
@@ -32,7 +32,7 @@ after(() => gpu?.device.destroy());
 
 // limn-web-render's settings for the options these tests use (its defaults otherwise).
 function settingsOf(args) {
-  const s = { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 4, tess: 64 };
+  const s = { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 32, maxError: 0.1, tess: 64 }; // limn-render's defaults
   const nums = (v) => v.split(',').map(Number);
   for (let i = 0; i < args.length; i++) {
     const v = args[i + 1];
@@ -41,6 +41,7 @@ function settingsOf(args) {
       case '--samples': s.samples = Number(v); i++; break;
       case '--shade': s.shade = v; i++; break;
       case '--edge-pixels': s.edgePixels = Number(v); i++; break;
+      case '--max-error': s.maxError = Number(v); i++; break;
       case '--tess': s.tess = Number(v); i++; break;
       case '--view': [s.view.azimuthDeg, s.view.elevationDeg] = nums(v); i++; break;
       case '--eye': s.view.eye = nums(v); i++; break;
@@ -48,6 +49,7 @@ function settingsOf(args) {
       case '--sample-shading': s.sampleShading = true; break;
       case '--texture': s.texture = readImageFile(v, '--texture'); i++; break;
       case '--color': s.color = nums(v); i++; break;
+      case '--wire-triangles': s.wire = 'triangles'; break;
       default: throw new Error(`settingsOf: ${args[i]} is not mapped here`);
     }
   }
@@ -86,7 +88,7 @@ const cases = [
   ['fixed: face-varying UVs and tags depth 2', () => container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), fixed, [1], ['lit', 'levels']],
   ['fixed: paper sphere depth 6 in its camera', sphere6, [...fixed, '--eye', '0,12,22', '--target', '0,0,0', '--tess', '16', '--size', '1280x720'], [4], ['lit']],
   ['fixed: car depth 3', () => container('osd/catmark/catmark_car.obj', { depth: 3 }), [...fixed, '--tess', '4'], [4], ['lit', 'levels']],
-  // The view-adaptive tessellation (limn-render's default, --edge-pixels 4).
+  // The view-adaptive tessellation (limn-render's default: --max-error 0.1, --edge-pixels 32).
   ['adaptive: spot depth 3', spot(3), [], [1, 4], ['lit', 'levels']],
   ['adaptive: spot depth 3, normals and per-sample shading', spot(3), ['--sample-shading'], [4], ['normal', 'lit']],
   ['adaptive: spot depth 6', spot(6), [], [4], ['lit']],
@@ -96,6 +98,9 @@ const cases = [
   // A colour texture (--texture; --color tints it), on both tessellations.
   ['fixed: spot depth 2 with its texture', spot(2), [...fixed, '--texture', spotTexture], [4], ['lit']],
   ['adaptive: spot depth 2 with its texture, tinted', spot(2), ['--texture', spotTexture, '--color', '1,0.6,0.4'], [1], ['lit']],
+  // The wireframe overlay of the triangles drawn (--wire-triangles).
+  ['fixed: spot depth 2 with its triangles\' wireframe', spot(2), [...fixed, '--wire-triangles'], [4], ['lit']],
+  ['adaptive: spot depth 2 with its triangles\' wireframe', spot(2), ['--wire-triangles'], [1], ['levels']],
 ];
 
 for (const [label, make, args, samplesList, shades] of cases) {

@@ -5,7 +5,7 @@
 /** Defaults: limn-render's where the runtime supports them (viewer.mjs turns off what it lacks). */
 export const DEFAULTS = Object.freeze({
   view: [-30, 20], eye: null, target: null, up: null, upAxis: 'y', fov: 35, light: [-40, 35],
-  shade: 'lit', samples: 4, sampleShading: false, edgePixels: 4, tess: 64, wire: false,
+  shade: 'lit', samples: 4, sampleShading: false, maxError: 0.1, edgePixels: 32, tess: 64, wire: false,
   size: null, color: null, background: [0.2, 0.2, 0.2],
   displaceScale: 1, displaceMid: 0, seamFix: true,
 });
@@ -65,6 +65,7 @@ export function parseQuery(query) {
   take('shade', (t) => { if (!SHADE_NAMES.includes(t)) throw new StateError(`shade=${t}: one of ${SHADE_NAMES.join(', ')}`); state.shade = t; });
   take('samples', (t) => { if (t !== '1' && t !== '4') throw new StateError(`samples=${t}: 1 or 4`); state.samples = +t; });
   take('sampleShading', (t) => { state.sampleShading = flag('sampleShading', t); });
+  take('maxError', (t) => { state.maxError = number('maxError', t, 0, 4096); });
   take('edgePixels', (t) => { state.edgePixels = number('edgePixels', t, 0, 4096); });
   take('tess', (t) => { state.tess = number('tess', t, 1, 4096, true); });
   take('wire', (t) => { state.wire = flag('wire', t); });
@@ -105,7 +106,7 @@ export function toQuery(state, { model, displace, texture } = {}) {
   } else {
     put('view', state.view.map(roundAngle).join(','));
   }
-  for (const k of ['upAxis', 'fov', 'light', 'shade', 'samples', 'sampleShading', 'edgePixels', 'tess', 'wire', 'color', 'background']) {
+  for (const k of ['upAxis', 'fov', 'light', 'shade', 'samples', 'sampleShading', 'maxError', 'edgePixels', 'tess', 'wire', 'color', 'background']) {
     if (state[k] !== null && !same(state[k], DEFAULTS[k])) put(k, typeof state[k] === 'boolean' ? (state[k] ? 1 : 0) : Array.isArray(state[k]) ? state[k].join(',') : state[k]);
   }
   if (state.size) put('size', `${state.size[0]}x${state.size[1]}`);
@@ -130,9 +131,12 @@ export function renderCommand(state, { modelName = 'MODEL.limn', width, height, 
   if (state.upAxis !== 'y') a.push('--up-axis', state.upAxis);
   if (state.fov !== DEFAULTS.fov) a.push('--fov', String(state.fov));
   if (!same(state.light, DEFAULTS.light)) a.push('--light', state.light.join(','));
-  a.push('--shade', state.shade, '--samples', String(state.samples), '--edge-pixels', String(state.edgePixels), '--tess', String(state.tess));
+  a.push('--shade', state.shade, '--samples', String(state.samples));
+  // --max-error only where it means something: the view-adaptive tessellation (edge pixels > 0).
+  if (state.edgePixels > 0) a.push('--max-error', String(state.maxError));
+  a.push('--edge-pixels', String(state.edgePixels), '--tess', String(state.tess));
   if (state.sampleShading) a.push('--sample-shading');
-  if (state.wire) a.push('--wire');
+  if (state.wire) a.push('--wire-triangles');
   if (state.color) a.push('--color', state.color.join(','));
   if (!same(state.background, DEFAULTS.background)) a.push('--background', state.background.join(','));
   if (displace) {

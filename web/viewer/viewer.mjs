@@ -15,7 +15,7 @@ const sources = { model: query.model, displace: query.displace, texture: query.t
 let gpu = null, timer = null, context = null;
 let model = null; // { surface, name }
 let renderer = null, rendererKey = '';
-let map = null; // { name, image: {width, height, rgb, values}, serial }
+let map = null; // { name, kind: 'displace' | 'texture', image: {width, height, rgb, values}, serial }
 let turntable = query.turntable;
 const stats = { frames: 0, fpsFrames: 0, fpsSince: 0 };
 // Parameters the link asked for: an unsupported one is an error shown, a default one is not.
@@ -43,7 +43,6 @@ function describe(e) {
 // --- what the runtime supports ------------------------------------------------------------------
 // The renderer's constructor refuses, in words, what the runtime cannot draw, before any GPU work:
 // a control is disabled with that reason rather than drawing something else.
-const WIRE_MISSING = 'the WebGPU runtime draws no wireframe overlay yet (limn-render --wire)';
 function refusal(overrides) {
   if (!gpu || !model) return null;
   try {
@@ -59,7 +58,8 @@ function refusal(overrides) {
 function rendererSettings(s) {
   const [width, height] = canvasSize();
   return {
-    width, height, samples: s.samples, sampleShading: s.sampleShading, shade: s.shade, edgePixels: s.edgePixels, tess: s.tess,
+    width, height, samples: s.samples, sampleShading: s.sampleShading, shade: s.shade, maxError: s.maxError, edgePixels: s.edgePixels, tess: s.tess,
+    wire: s.wire ? 'triangles' : undefined, // limn-render --wire-triangles: the edges of the triangles drawn
     view: viewSpec(s), color: s.color ?? undefined, background: s.background,
     lightAzimuthDeg: s.light[0], lightElevationDeg: s.light[1],
     ...mapSettings(s),
@@ -69,11 +69,11 @@ function rendererSettings(s) {
 // The dropped map as a displacement (scale, mid and the seam fix from the panel) or a colour
 // texture; without one, a glTF's base colour texture (MATL), as limn-render draws it.
 function mapSettings(s) {
-  if (map && sources.displace) {
+  if (map?.kind === 'displace') {
     const { width, height, values } = map.image;
     return { displace: { map: { width, height, values }, scale: s.displaceScale, mid: s.displaceMid, seamFix: s.seamFix } };
   }
-  if (map && sources.texture) return { texture: map.image };
+  if (map?.kind === 'texture') return { texture: map.image };
   if (model?.texture) return { texture: model.texture };
   return {};
 }
@@ -88,7 +88,6 @@ function supportedState(s) {
   };
   if (out.edgePixels > 0) { const why = refusal({ edgePixels: out.edgePixels }); if (why) fallback('edgePixels', 0, why); }
   if (out.shade !== 'lit') { const why = refusal({ shade: out.shade, ...textureSettings() }); if (why) fallback('shade', 'lit', why); }
-  if (out.wire) fallback('wire', false, WIRE_MISSING);
   return out;
 }
 
@@ -110,8 +109,8 @@ function layoutCanvas() {
 // (View-adaptive tessellation shares points across UV seams unless the shading needs the UVs.)
 // A displacement's scale, mid and seam fix are set up with the renderer (its framing, the fixed
 // grids' sample UVs), so changing them makes a new one.
-const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), model?.serial, map?.serial,
-  sources.displace && map ? [s.displaceScale, s.displaceMid, s.seamFix] : null]);
+const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.wire, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), model?.serial, map?.serial,
+  map?.kind === 'displace' ? [s.displaceScale, s.displaceMid, s.seamFix] : null]);
 
 async function ensureRenderer() {
   const s = supportedState(state);
@@ -231,7 +230,7 @@ function camera() { return renderer?.camera ?? { eye: [0, 0, 1], target: [0, 0, 
 function updateCameraText(s) {
   $('camera-text').textContent = s.eye ? `eye ${s.eye.join(', ')}  target ${(s.target ?? camera().target.map((x) => +x.toPrecision(6))).join(', ')}` : `view ${s.view.join(', ')} (framed)`;
   const [w, h] = canvasSize();
-  $('command').textContent = renderCommand(s, { modelName: model?.name ?? 'MODEL.limn', width: w, height: h, displace: sources.displace && map?.name, texture: sources.texture && map?.name });
+  $('command').textContent = renderCommand(s, { modelName: model?.name ?? 'MODEL.limn', width: w, height: h, displace: map?.kind === 'displace' && map.name, texture: map?.kind === 'texture' && map.name });
 }
 
 // --- loading ------------------------------------------------------------------------------------
@@ -292,7 +291,8 @@ async function fetchBytes(url, what) {
   return response.arrayBuffer();
 }
 
-async function openMap(blob, name, kind, url = name) {
+// url: where the map came from (it goes into the page's URL); null for a dropped file.
+async function openMap(blob, name, kind, url = null) {
   let image;
   try {
     const bitmap = await createImageBitmap(blob, { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
@@ -304,7 +304,7 @@ async function openMap(blob, name, kind, url = name) {
   }
   clearError('map');
   const previous = { map, displace: sources.displace, texture: sources.texture };
-  map = { name, image, serial: ++serial };
+  map = { name, kind, image, serial: ++serial };
   sources.displace = sources.texture = null;
   sources[kind] = url;
   $('map-name').textContent = `${name}: ${image.width}×${image.height}, as ${kind === 'displace' ? 'displacement' : 'colour'} map`;
@@ -353,6 +353,10 @@ function buildPanel() {
   $('wire').addEventListener('change', (e) => commit({ ...state, wire: e.target.checked }));
   $('mode-fixed').addEventListener('change', () => commit({ ...state, edgePixels: 0 }));
   $('mode-adaptive').addEventListener('change', () => commit({ ...state, edgePixels: lastEdgePixels }));
+  $('maxError').addEventListener('change', (e) => {
+    const v = +e.target.value;
+    if (Number.isFinite(v) && v >= 0 && v <= 4096) commit({ ...state, maxError: v });
+  });
   $('edgePixels').addEventListener('change', (e) => {
     const v = +e.target.value;
     if (Number.isFinite(v) && v > 0 && v <= 4096) { lastEdgePixels = v; commit({ ...state, edgePixels: v }); }
@@ -384,7 +388,6 @@ function syncPanel() {
   $('sampleShading').checked = s.sampleShading;
   setEnabled($('sampleShading'), s.samples === 1 ? 'with 4 samples only' : refusal({ sampleShading: true }));
   $('wire').checked = s.wire;
-  setEnabled($('wire'), WIRE_MISSING);
   if (s.edgePixels > 0) lastEdgePixels = s.edgePixels;
   $('mode-fixed').checked = s.edgePixels === 0;
   $('mode-adaptive').checked = s.edgePixels > 0;
@@ -392,12 +395,14 @@ function syncPanel() {
   setEnabled($('mode-adaptive'), adaptiveWhy);
   $('edgePixels').value = String(lastEdgePixels);
   setEnabled($('edgePixels'), adaptiveWhy);
+  $('maxError').value = String(s.maxError);
+  setEnabled($('maxError'), adaptiveWhy);
   if (![...$('tess').options].some((o) => +o.value === s.tess)) $('tess').append(new Option(String(s.tess), String(s.tess)));
   $('tess').value = String(s.tess);
   $('displaceScale').value = String(s.displaceScale);
   $('displaceMid').value = String(s.displaceMid);
   $('seamFix').checked = s.seamFix;
-  const displaceWhy = !map || !sources.displace ? 'drop a height map image on the page first' : null;
+  const displaceWhy = map?.kind !== 'displace' ? 'drop a height map image on the page first' : null;
   for (const k of ['displaceScale', 'displaceMid', 'seamFix']) setEnabled($(k), displaceWhy);
   $('turntable').checked = turntable;
   updateCameraText(s);
@@ -412,7 +417,7 @@ async function openFile(file) {
       writeUrl();
     }
   } else {
-    await openMap(file, file.name, state.shade === 'texture' ? 'texture' : 'displace');
+    await openMap(file, file.name, $('map-kind').value);
   }
 }
 
@@ -430,7 +435,7 @@ function attachFiles() {
     if (file) openFile(file);
   });
   $('open-model').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openFile(f); e.target.value = ''; });
-  $('open-map').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openMap(f, f.name, state.shade === 'texture' ? 'texture' : 'displace'); e.target.value = ''; });
+  $('open-map').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openMap(f, f.name, $('map-kind').value); e.target.value = ''; });
 }
 
 // --- ?bench=N: frame times of fixed grids and view-adaptive, one JSON line each ------------------

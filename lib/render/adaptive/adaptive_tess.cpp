@@ -97,11 +97,13 @@ AdaptiveOptions withDrawData(AdaptiveOptions options, const SubdivisionDraw& d, 
 AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const SubdivisionDraw& d, const SurfaceBuffers& surface,
                            AdaptiveOptions options, bool evaluated)
     : AdaptiveTess(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()), surface,
-                   withDrawData(std::move(options), d, evaluated), d.hasUVs) {}
+                   withDrawData(std::move(options), d, evaluated)) {
+    draw_ = &d;
+}
 
 AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t patchCount, const SurfaceBuffers& surface,
-                           const AdaptiveOptions& options, bool hasUVs)
-    : options_(options), hasUVs_(hasUVs), elementCount_(static_cast<uint32_t>(ep.elements.size())),
+                           const AdaptiveOptions& options)
+    : options_(options), elementCount_(static_cast<uint32_t>(ep.elements.size())),
       pieceCount_(static_cast<uint32_t>(ep.pieces.size())), patchCount_(patchCount) {
     if (options.tess < 1) throw Error(ErrorKind::Usage, "--tess must be at least 1");
     std::vector<GpuAdaptiveElement> elements;
@@ -345,7 +347,7 @@ std::string AdaptiveTess::shortfall(gpu::Context& ctx) const {
                 ? std::string()
                 : ", more than its buffers hold (" + std::to_string(capV_) + " vertices, " + std::to_string(capT_) +
                       " triangles)") +
-           "; nothing written: raise --edge-pixels or lower --tess";
+           "; nothing written: raise --max-error or --edge-pixels, or lower --tess";
 }
 
 size_t AdaptiveTess::drawnVertexCount(gpu::Context& ctx) const {
@@ -356,12 +358,13 @@ size_t AdaptiveTess::drawnVertexCount(gpu::Context& ctx) const {
 void AdaptiveTess::finishDrawnMesh(gpu::Context& ctx, DrawnMesh& out) const {
     // The vertices the passes emitted this frame: (element, s|t, own-chart UV).
     const size_t n = out.vertices.size();
-    if (hasUVs_) {
-        auto emitted = gpu::readbackArrayNow<glm::uvec4>(ctx, *tessVertices_, n);
-        for (size_t i = 0; i < n; ++i) {
+    auto emitted = gpu::readbackArrayNow<glm::uvec4>(ctx, *tessVertices_, n);
+    for (size_t i = 0; i < n; ++i) {
+        if (draw_->hasUVs) {
             std::memcpy(&out.vertices[i].s, &emitted[i].z, 4);
             std::memcpy(&out.vertices[i].t, &emitted[i].w, 4);
         }
+        out.vertices[i].approximate = drawnPointIsApproximate(*draw_, emitted[i].x, emitted[i].y);
     }
     out.triangles = gpu::readbackArrayNow<uint32_t>(ctx, *triangles_, size_t(lastTotals(ctx)->writtenTriangles) * 3);
 }

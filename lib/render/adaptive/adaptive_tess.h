@@ -178,12 +178,12 @@ class AdaptiveTess : public Tessellation {
 
   private:
     AdaptiveTess(gpu::Context& ctx, const EdgePieces& pieces, uint32_t patchCount, const SurfaceBuffers& surface,
-                 const AdaptiveOptions& options, bool hasUVs);
+                 const AdaptiveOptions& options);
     void recordPasses(gpu::CommandBuffer& cmd, TimedPasses& timed);
 
     AdaptiveOptions options_;
     AdaptiveView view_;
-    bool hasUVs_;
+    const SubdivisionDraw* draw_ = nullptr; // the pass's draw data, which outlives this
     uint32_t elementCount_, pieceCount_, pointBase_, patchCount_, capV_ = 0, capT_ = 0;
     uint32_t sharedPoints_ = 0; // points with shared vertex slots (the first ones), or 0
     uint32_t domainBase_ = 0, nodeBase_ = 0, recordBase_ = 0; // smooth UVs, in pieces_

@@ -183,16 +183,17 @@ SurfaceSample evaluateElement(uint element, uint st, uint patchCount) {
     return r;
 }
 
-// The positions of one element at five parameters (st as in evaluateElement), a patch's
-// control points read once (adaptive_rates.comp samples each edge piece five times: on
-// lavapipe the repeated reads were most of that pass). The same sums, in the same order, as
-// evaluateElement's positions.
-void elementPositions5(uint element, uint st[5], uint patchCount, out vec3 P[5]) {
+// The positions of one element at the first `count` of five parameters (st as in
+// evaluateElement), a patch's control points read once (adaptive_rates.comp samples each edge
+// piece three or five times: on lavapipe the repeated reads were most of that pass). The same
+// sums, in the same order, as evaluateElement's positions.
+void elementPositions5(uint element, uint st[5], uint count, uint patchCount, out vec3 P[5]) {
+    for (int q = 0; q < 5; ++q) P[q] = vec3(0.0);
     if (element < patchCount) {
         Patch pt = patches.p[element];
         vec3 c[16];
         for (int k = 0; k < 16; ++k) c[k] = vertices.p[pt.cv[k]].xyz;
-        for (int q = 0; q < 5; ++q) {
+        for (uint q = 0u; q < count; ++q) {
             float s = float(st[q] & 0xFFFFu) / 32768.0, t = float(st[q] >> 16) / 32768.0;
             float bu[4], du[4], bv[4], dv[4];
             patchBasis(pt, s, t, bu, du, bv, dv);
@@ -205,7 +206,7 @@ void elementPositions5(uint element, uint st[5], uint patchCount, out vec3 P[5])
             P[q] = p;
         }
     } else {
-        for (int q = 0; q < 5; ++q) {
+        for (uint q = 0u; q < count; ++q) {
             vec3 n;
             irregularPoint(element - patchCount, st[q], patchCount, P[q], n);
         }

@@ -71,3 +71,23 @@ test('a port in use is an error that says so (exit 1), and so is a file that is 
     assert.match(u.stderr, /^limn-view: error: /);
   }
 });
+
+test('--displace serves the map beside the model and opens the viewer displaced by it', async () => {
+  const limn = container('quad/spot_quadrangulated.obj', { depth: 1 });
+  const map = join(repo, 'tests/data/textures/spot_texture.png');
+  const view = await startView([limn, '--displace', map, '--displace-scale', '0.05', '--displace-mid', '0.5']);
+  try {
+    const url = new URL(view.url);
+    assert.equal(url.searchParams.get('displace'), '/map/spot_texture.png');
+    assert.equal(url.searchParams.get('displaceScale'), '0.05');
+    assert.equal(url.searchParams.get('displaceMid'), '0.5');
+    assert.deepEqual(Buffer.from(await (await fetch(new URL('/map/spot_texture.png', url))).arrayBuffer()), readFileSync(map));
+  } finally {
+    view.stop();
+  }
+  for (const args of [[limn, '--displace-scale', '2'], [limn, '--displace', map, '--texture', map], [limn, '--displace', map, '--displace-mid', 'x']]) {
+    const u = run(args);
+    assert.equal(u.status, 2, `${args.join(' ')}: ${u.stderr}`);
+  }
+  assert.equal(run([limn, '--texture', join(scratch, 'absent.png')]).status, 1);
+});

@@ -27,6 +27,13 @@ test('the limn-render command names the same options', () => {
   const q = parseQuery('eye=0,12,22&target=0,0,0&shade=levels&samples=1&edgePixels=0&tess=16');
   assert.equal(renderCommand(q.state, { modelName: 'sphere d6.limn', width: 1280, height: 720 }),
     "limn-render 'sphere d6.limn' -o view.png --size 1280x720 --eye 0,12,22 --target 0,0,0 --shade levels --samples 1 --edge-pixels 0 --tess 16");
+  // The view-adaptive default names limn-render's defaults, and a link's maxError is kept.
+  assert.match(renderCommand(DEFAULTS, { width: 64, height: 48 }), / --max-error 0\.1 --edge-pixels 32 --tess 64$/);
+  const e = parseQuery('maxError=0.5&edgePixels=8');
+  assert.deepEqual(e.errors, []);
+  assert.equal(toQuery(e.state), 'view=-30,20&maxError=0.5&edgePixels=8');
+  assert.match(renderCommand(e.state, { width: 64, height: 48 }), / --max-error 0\.5 --edge-pixels 8 /);
+  assert.deepEqual(parseQuery('maxError=-1').errors, ['maxError=-1: a number from 0 to 4096']);
 });
 
 test('orbit keeps a framed view framed; zoom makes it explicit; frame goes back from the same direction', () => {

@@ -3,7 +3,8 @@
 // levels, 1 and 4 samples; then interaction on the same page (a drag turns the view and the URL
 // follows; the URL reloaded draws the same bytes; a truncated container dropped on the page
 // shows the reader's error and the page goes on working), with no console error or warning.
-// Fixed grids and view-adaptive tessellation (limn-render's default) both.
+// Fixed grids and view-adaptive tessellation (limn-render's default) both. Maps: the README's
+// displaced quad_sphere (seam fix on and off, a dropped map, the wireframe) and spot's texture.
 //
 // What differs, and why: with 1 sample the two agree within the criterion (at most 1% of the
 // covered pixels off by more than 8/255; measured 17 of 14362 lit, 55 levels). With 4 samples
@@ -18,7 +19,7 @@ import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { container, quadSphere, scratch, tool } from '../../test/support.mjs';
+import { container, quadSphere, repo, scratch, tool } from '../../test/support.mjs';
 import { decodePng } from '../../src/png.mjs';
 import { loadLimn } from '../../src/chunks.mjs';
 import { launch, newPage, settled, frames, errorText, serveModels } from './browser.mjs';
@@ -33,7 +34,8 @@ before(async () => {
   // One origin for every page: Chromium keeps compiled pipelines per origin.
   server = await serveModels({
     'spot_d3.limn': spot, 'spot_d1.limn': container('quad/spot_quadrangulated.obj', { depth: 1 }),
-    'quad_sphere.limn': sphere.limn, 'quad_sphere.height.png': sphere.height,
+    'quad_sphere.limn': sphere.limn, 'quad_sphere.height.png': sphere.height, 'uv-noise.png': sphere.noise,
+    'spot_texture.png': join(repo, 'tests/data/textures/spot_texture.png'),
   });
   browser = await launch();
   page = await newPage(browser);
@@ -112,11 +114,11 @@ test('spot depth 3 from ?model=: lit and levels, 4 then 1 samples, as limn-rende
   n = await frames(page);
   await page.getByLabel('View-adaptive').check();
   await settled(page, n + 1);
-  t.diagnostic(check('spot lit, 1 sample, view-adaptive', compare(await shot(), native(spot, ['--view', '-30,20', '--samples', '1', '--edge-pixels', '4'], 'spot-adaptive-1')), 1));
+  t.diagnostic(check('spot lit, 1 sample, view-adaptive', compare(await shot(), native(spot, ['--view', '-30,20', '--samples', '1', '--edge-pixels', '32'], 'spot-adaptive-1')), 1));
   assert.doesNotMatch(await page.evaluate(() => location.search), /edgePixels/);
   // The command the panel prints is the one that drew the reference.
   assert.equal(await page.locator('#command').textContent(),
-    'limn-render spot_d3.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --edge-pixels 4 --tess 64');
+    'limn-render spot_d3.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --max-error 0.1 --edge-pixels 32 --tess 64');
 });
 
 test('a drag turns the view, the URL follows, and reloading it draws the same image', async (t) => {
@@ -137,7 +139,7 @@ test('a drag turns the view, the URL follows, and reloading it draws the same im
   const moved = compare(before, turned);
   assert.ok(moved.off > 0.2 * moved.covered, `the drag changed only ${moved.off} of ${moved.covered} pixels`);
   // The same view by limn-render from the URL's options (the check above, 1 sample).
-  t.diagnostic(check('spot after the drag', compare(turned, native(spot, ['--view', '-54,12', '--edge-pixels', '4', '--samples', '1'], 'spot-dragged')), 1));
+  t.diagnostic(check('spot after the drag', compare(turned, native(spot, ['--view', '-54,12', '--edge-pixels', '32', '--samples', '1'], 'spot-dragged')), 1));
   await page.reload();
   await settled(page);
   const again = await shot();
@@ -265,7 +267,7 @@ test('?bench=N prints one JSON line per tessellation on the console', async () =
 // The paper's Figure 14, live: the README's displaced quad_sphere (its height map from ?displace=,
 // scale and mid from the link), as limn-render draws it with the seam fix, then with the panel's
 // seam fix turned off, then view-adaptive; one page, 1 sample (see above for SwiftShader's 4).
-test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and view-adaptive, as limn-render draws it', async (t) => {
+test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and view-adaptive, wireframe, as limn-render draws it', async (t) => {
   const p = await newPage(browser);
   try {
     const shotOf = async () => decodePng(await p.locator('#view').screenshot());
@@ -284,9 +286,57 @@ test('the displaced quad_sphere from ?displace=: seam fix on and off, fixed and 
     await p.locator('#seamFix').check();
     await p.getByLabel('View-adaptive').check();
     await settled(p, n + 1);
-    t.diagnostic(check('displaced, seam fix, view-adaptive', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '4'], 'sphere-adaptive')), 1));
+    t.diagnostic(check('displaced, seam fix, view-adaptive', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '32'], 'sphere-adaptive')), 1));
     assert.equal(await p.locator('#command').textContent(),
-      `limn-render quad_sphere.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --edge-pixels 4 --tess 64 --displace quad_sphere.height.png --displace-scale 0.2 --displace-mid 0.5`);
+      `limn-render quad_sphere.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --max-error 0.1 --edge-pixels 32 --tess 64 --displace quad_sphere.height.png --displace-scale 0.2 --displace-mid 0.5`);
+    // The wireframe overlay: the triangles this view's rates chose (limn-render --wire-triangles).
+    n = await frames(p);
+    await p.locator('#wire').check();
+    await settled(p, n + 1);
+    assert.match(await p.locator('#command').textContent(), / --wire-triangles /);
+    t.diagnostic(check('displaced, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...args, '--edge-pixels', '32', '--wire-triangles'], 'sphere-wire')), 1));
+    // Another map dropped on the page replaces the first (a local file: not in the URL).
+    n = await frames(p);
+    await p.evaluate(async () => {
+      const b = await (await fetch('../models/uv-noise.png')).arrayBuffer();
+      const dt = new DataTransfer();
+      dt.items.add(new File([b], 'uv-noise.png', { type: 'image/png' }));
+      document.getElementById('stage').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    });
+    await settled(p, n + 1);
+    assert.doesNotMatch(await p.evaluate(() => location.search), /displace=/);
+    assert.match(await p.locator('#command').textContent(), / --displace uv-noise\.png /);
+    const noisy = args.map((a) => (a === sphere.height ? sphere.noise : a));
+    t.diagnostic(check('dropped UV-noise map, view-adaptive, wireframe', compare(await shotOf(), native(sphere.limn, [...noisy, '--edge-pixels', '32', '--wire-triangles'], 'sphere-noise')), 1));
+    assert.deepEqual(p.problems, []);
+  } finally {
+    await p.close();
+  }
+});
+
+// A colour map from ?texture= (decoded by the browser, read back through WebGPU): spot's own
+// texture, drawn as limn-render --texture draws it (shade texture, white base).
+test('spot with its texture from ?texture=, as limn-render --texture draws it', async (t) => {
+  const p = await newPage(browser);
+  try {
+    await p.goto(`${base()}/viewer/?model=../models/spot_d1.limn&texture=../models/spot_texture.png&size=${SIZE.join('x')}&samples=1&edgePixels=0`);
+    await settled(p);
+    assert.equal(await p.locator('#errors').textContent(), '');
+    assert.match(await p.evaluate(() => location.search), /shade=texture/);
+    const texture = join(repo, 'tests/data/textures/spot_texture.png');
+    const shotOf = decodePng(await p.locator('#view').screenshot());
+    t.diagnostic(check('spot textured', compare(shotOf, native(container('quad/spot_quadrangulated.obj', { depth: 1 }), ['--view', '-30,20', '--samples', '1', '--edge-pixels', '0', '--texture', texture], 'spot-texture')), 1));
+    // The panel says what a dropped image becomes: here a colour texture, replacing the linked one.
+    await p.selectOption('#map-kind', 'texture');
+    await p.evaluate(async () => {
+      const b = await (await fetch('../models/spot_texture.png')).arrayBuffer();
+      const dt = new DataTransfer();
+      dt.items.add(new File([b], 'dropped.png', { type: 'image/png' }));
+      document.getElementById('stage').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    });
+    await p.waitForFunction(() => /^dropped\.png: 1024×1024, as colour map$/.test(document.getElementById('map-name').textContent));
+    await settled(p);
+    assert.match(await p.locator('#command').textContent(), / --shade texture .*--texture dropped\.png$/);
     assert.deepEqual(p.problems, []);
   } finally {
     await p.close();

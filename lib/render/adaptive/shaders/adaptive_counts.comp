@@ -112,8 +112,9 @@ uint drawnFan(AdaptiveElement el, uint B) {
 // part of its triangles, leaving holes in close views at --tess 256 and more. So an element's
 // interior rates are lowered until its estimated loop count fits kEmitLoopBudget (with room for
 // the SIMD lanes running in step); one whose boundary alone does not fit is flagged in info.w,
-// and the scan reports the frame as an overflow (the host warns: raise --edge-pixels or lower
-// --tess). Other GPUs have no such limit; the cap keeps one invocation's work bounded there too.
+// and the scan reports the frame as an overflow (the host warns: raise --max-error or
+// --edge-pixels, or lower --tess). Other GPUs have no such limit; the cap keeps one invocation's
+// work bounded there too.
 const uint kEmitLoopBudget = 24576u;
 uint emitLoops(uint B, uint mu, uint mv) {
     uint grid = (mu - 1u) * (mv - 1u), cells = (mu - 2u) * (mv - 2u);

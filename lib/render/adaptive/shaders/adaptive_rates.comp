@@ -1,6 +1,6 @@
 // View-adaptive tessellation, pass 2 of 5 (issue 11): per edge piece, its segments this frame.
-// Decided once per piece from data both sides share: the piece owner's surface at five points of
-// the piece (ends, quarters, middle; the draw's own sums, surface_eval_impl.glsl's
+// Decided once per piece from data both sides share: the piece owner's surface at its ends and
+// middle, and with maxError > 0 its quarters too (the draw's own sums, surface_eval_impl.glsl's
 // elementPositions5), projected to pixels; so the two patches of an edge can never disagree
 // (OpenSubdiv PR #435). The rate is the fewest segments whose chords stay within maxError pixels
 // of the curve (see errorSegments below), at least ceil(length / edgePixels) (the longest segment
@@ -83,7 +83,8 @@ void pixelJacobian(vec3 P, out vec3 jx, out vec3 jy) {
 // (first order). Not a bound where the piece is not a cubic: irregular faces (a valence basis,
 // exact only away from their extraordinary corner) and across a semi-sharp crease (the crease
 // rules below handle those); and inside an element only the sides are measured (docs/adaptive.md).
-float errorSegments(vec3 P[5]) {
+float errorSegments(vec3 S[5]) {
+    vec3 P[5] = vec3[5](S[0], S[3], S[1], S[4], S[2]); // in order along the piece
     vec3 E[5];
     E[1] = 4.0 * (P[1] - 0.5 * (P[0] + P[2]));
     E[2] = P[2] - 0.5 * (P[0] + P[4]);
@@ -109,13 +110,15 @@ void main() {
     uint r = 1u, size = 1u;
     vec4 ends = vec4(ADAPTIVE_NO_ENDS);
     if (visible) {
+        // Start, middle, end, then the quarters (the error estimate's only).
         uint mid = midST(p0.y, p0.z);
-        uint st[5] = uint[5](p0.y, midST(p0.y, mid), mid, midST(mid, p0.z), p0.z);
+        uint st[5] = uint[5](p0.y, mid, p0.z, midST(p0.y, mid), midST(mid, p0.z));
+        uint count = pc.maxError > 0.0 ? 5u : 3u;
         vec2 px[5];
         uint behind = 0u, allOut = 63u;
         vec3 P[5];
-        elementPositions5(p0.x, st, pc.patchCount, P);
-        for (int k = 0; k < 5; ++k) {
+        elementPositions5(p0.x, st, count, pc.patchCount, P);
+        for (uint k = 0u; k < count; ++k) {
             vec4 c = pc.viewProj * vec4(P[k], 1.0);
             uint o = 0u;
             if (c.x < -c.w) o |= 1u;
@@ -128,11 +131,11 @@ void main() {
             if (!(c.w > 1e-6)) ++behind;
             px[k] = c.w > 1e-6 ? c.xy / c.w * pc.halfViewport : vec2(0.0);
         }
-        float len = pc.maxError > 0.0
-            ? distance(px[0], px[1]) + distance(px[1], px[2]) + distance(px[2], px[3]) + distance(px[3], px[4])
-            : distance(px[0], px[2]) + distance(px[2], px[4]);
-        if (behind == 0u) ends = vec4(px[0], px[4]) + pc.halfViewport.xyxy;
-        if (behind == 5u) {
+        float len = count == 5u
+            ? distance(px[0], px[3]) + distance(px[3], px[1]) + distance(px[1], px[4]) + distance(px[4], px[2])
+            : distance(px[0], px[1]) + distance(px[1], px[2]);
+        if (behind == 0u) ends = vec4(px[0], px[2]) + pc.halfViewport.xyxy;
+        if (behind == count) {
             r = 1u, size = 1u;
         } else if (behind != 0u || !(len < 1e9)) {
             r = cap, size = cap;
@@ -146,9 +149,9 @@ void main() {
             if (pc.maxError > 0.0) {
                 want = max(want, errorSegments(P));
             } else {
-                vec2 chord = px[4] - px[0];
+                vec2 chord = px[2] - px[0];
                 float cl = length(chord);
-                vec2 off = px[2] - 0.5 * (px[0] + px[4]);
+                vec2 off = px[1] - 0.5 * (px[0] + px[2]);
                 float d = cl > 1e-6 ? abs(chord.x * off.y - chord.y * off.x) / cl : length(off);
                 want = max(want, ceil(sqrt(d / (kChordPerEdgePixel * pc.edgePixels))));
             }
