@@ -2,6 +2,7 @@
 
 #include "base/error.h"
 #include "render/control_mesh.h"
+#include "render/fixed_grids.h"
 #include "render_shaders.h"
 
 #include <glm/vector_relational.hpp>
@@ -30,29 +31,6 @@ struct LimitPush { // subdiv_limit.comp
 struct EvalPush { // surface_eval.comp
     uint32_t patchCount;
 };
-struct DisplacePush { // displace.comp
-    float scale, mid;
-};
-struct AdaptiveDisplacePush { // adaptive_displace.comp
-    float scale, mid;
-    uint32_t seamFix, smoothUV;
-};
-struct AdaptiveNormalsPush { // adaptive_displaced_normals.comp
-    uint32_t patchCount;
-    float scale, mid;
-};
-
-// The displacement map for displace.comp: width, height, then channel 0 of each texel.
-std::vector<uint32_t> mapWords(const FloatImage& img) {
-    std::vector<uint32_t> w{img.width, img.height};
-    w.reserve(2 + size_t(img.width) * img.height);
-    for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
-        uint32_t bits;
-        std::memcpy(&bits, &img.values[i * img.channels], 4);
-        w.push_back(bits);
-    }
-    return w;
-}
 
 using gpu::uploadBufferNow; // absent tables get one zero element
 
@@ -60,8 +38,7 @@ using gpu::uploadBufferNow; // absent tables get one zero element
 
 struct SubdivisionPass::Gpu {
     Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate, const Displacement* disp,
-        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions,
-        gpu::TargetFormat target)
+        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions, gpu::TargetFormat target)
         : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
           faceStarts(uploadBufferNow(ctx, "face-point starts", d.faceStarts)),
           faceIndices(uploadBufferNow(ctx, "face-point indices", d.faceIndices)),
@@ -71,11 +48,12 @@ struct SubdivisionPass::Gpu {
           limits(ctx, {"limit points", uint64_t(std::max(d.limitCount, 1u)) * 32}),
           patches(uploadBufferNow(ctx, "patches", d.patchBuffer())),
           irregular(uploadBufferNow(ctx, "irregular faces", d.irregularBuffer())),
-          tessVertices(uploadBufferNow(ctx, "tessellation vertices", d.tessVertices)),
-          // Indices are also read by the vertex stage for --shade levels.
-          triangles(uploadBufferNow(ctx, "triangle indices", d.triangles, gpu::kIndex | gpu::kStorage)),
-          triangleLevels(uploadBufferNow(ctx, "triangle levels", d.triangleLevels)),
-          wireLines(uploadBufferNow(ctx, "wire lines", d.wireLines, gpu::kIndex)),
+          surfaceBuffers{vertices, patches, irregular, limits},
+          // The one choice between the tessellations (tessellation.h): view-adaptive passes
+          // that write it each frame, or the fixed grids uploaded once.
+          tess(adaptiveOptions ? std::unique_ptr<Tessellation>(std::make_unique<AdaptiveTess>(
+                                     ctx, d, surfaceBuffers, *adaptiveOptions, evaluate))
+                               : std::make_unique<FixedGrids>(ctx, d)),
           texture(uploadBufferNow(ctx, "colour texture", textureWords(colour))),
           facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
           stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
@@ -84,22 +62,9 @@ struct SubdivisionPass::Gpu {
           surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surfaceFragment(target), 8,
                              sizeof(DrawPush)},
                        target) {
-        // View-adaptive: the tessellation is written by compute passes each frame.
-        if (adaptiveOptions) {
-            AdaptiveOptions options = *adaptiveOptions;
-            options.evaluated = evaluate;
-            options.elementDomains = d.elementDomains;
-            options.fvarNodes = d.fvarNodes;
-            options.fvarRecords = d.fvarRecords;
-            options.fvarCell = d.fvarCell;
-            options.elementCrease.reserve(d.patches.size());
-            for (const GpuPatch& p : d.patches) options.elementCrease.push_back(uint8_t((p.levelBoundary >> 16) & 0xFu));
-            adaptive = std::make_unique<AdaptiveTess>(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()),
-                                                      vertices, patches, irregular, limits, options);
-        }
-        const gpu::Buffer& tv = adaptive ? adaptive->tessVertices() : tessVertices;
-        const gpu::Buffer& tris = adaptive ? adaptive->triangles() : triangles;
-        const gpu::Buffer& levels = adaptive ? adaptive->triangleLevels() : triangleLevels;
+        const gpu::Buffer& tv = tess->tessVertices();
+        const gpu::Buffer& tris = tess->triangles();
+        const gpu::Buffer& levels = tess->triangleLevels();
         faceBindings = facePass.bind({vertices, faceStarts, faceIndices});
         stencilBindings = stencilPass.bind({vertices, stencilStarts, stencilIndices, stencilWeights});
         for (LimitChunk& c : render::limitChunks(d, d.limitChunkBytes)) {
@@ -109,85 +74,44 @@ struct SubdivisionPass::Gpu {
             b.bindings = limitPass.bind({vertices, b.starts, b.indices, b.weights, limits});
             limitChunks.push_back(std::move(b));
         }
-        surfaceBindings = surface.bind(
-            {vertices, patches, irregular, limits, tv, tris, levels, texture});
-        if (evaluate) {
-            const uint64_t n = adaptive ? adaptive->vertexCapacity()
-                                        : std::max<uint64_t>(d.tessVertices.size(), 1);
-            evalPositions = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated positions", n * 16});
-            evalNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated normals", n * 16});
-            evalInfo = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated ptex", n * 16});
-            evalPass = std::make_unique<gpu::ComputePipeline>(
-                ctx, gpu::ComputePipelineDesc{"evaluate surface", surface_eval_comp_spv, 8, sizeof(EvalPush)});
-            evalBindings = evalPass->bind({vertices, patches, irregular, limits, tv,
-                                           *evalPositions, *evalNormals, *evalInfo});
-            wire = std::make_unique<gpu::GraphicsPipeline>(
-                ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
-                                               gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
-                target);
-            wireTriangles = std::make_unique<gpu::GraphicsPipeline>(
-                ctx, gpu::GraphicsPipelineDesc{"wire (triangles)", wire_triangles_vert_spv, wire_frag_spv, 2,
-                                               sizeof(DrawPush), gpu::Primitive::Lines,
-                                               gpu::DepthTest::LessOrEqual, false},
-                target);
-            drawnPositions = evalPositions.get();
-            drawnNormals = evalNormals.get();
-            if (disp && adaptive) {
-                // View-adaptive: samples from the owner's seam record, normals by
-                // differences of the displaced surface (adaptive_displace*.comp).
-                if (!d.seams) throw Error(ErrorKind::BadInput, "internal: displacement without seam data");
-                // Smooth UVs: the records of the smooth UVs instead of SEAM's linear ones.
-                const Seams& seams = d.smoothSeams.elements.empty() ? *d.seams : d.smoothSeams;
-                sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam elements", seams.elements));
-                sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "seam UVs", seams.uvs));
-                map = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement map", mapWords(*disp->map)));
-                displaced = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced positions", n * 16});
-                displacedNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced normals", n * 16});
-                displacePass = std::make_unique<gpu::ComputePipeline>(
-                    ctx, gpu::ComputePipelineDesc{"displace (adaptive)", adaptive_displace_comp_spv, 7,
-                                                  sizeof(AdaptiveDisplacePush)});
-                normalsPass = std::make_unique<gpu::ComputePipeline>(
-                    ctx, gpu::ComputePipelineDesc{"displaced normals (adaptive)", adaptive_displaced_normals_comp_spv,
-                                                  8, sizeof(AdaptiveNormalsPush)});
-                displaceBindings = displacePass->bind({*evalPositions, *evalNormals, tv, *sideUVs, *sideRanges,
-                                                       *map, *displaced});
-                normalsBindings = normalsPass->bind({vertices, patches, irregular, limits, tv,
-                                                     adaptive->elementsBuffer(), *map, *displacedNormals});
-                drawnPositions = displaced.get();
-                drawnNormals = displacedNormals.get();
-            } else if (disp) {
-                sideRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement sample ranges", d.sideRanges));
-                sideUVs = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement sample UVs", d.sideUVs));
-                map = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "displacement map", mapWords(*disp->map)));
-                displaced = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced positions", n * 16});
-                incidentRanges = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "incident ranges", d.incidentRanges));
-                incident = std::make_unique<gpu::Buffer>(uploadBufferNow(ctx, "incident triangles", d.incidentTriangles));
-                displacedNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"displaced normals", n * 16});
-                displacePass = std::make_unique<gpu::ComputePipeline>(
-                    ctx, gpu::ComputePipelineDesc{"displace", displace_comp_spv, 6, sizeof(DisplacePush)});
-                normalsPass = std::make_unique<gpu::ComputePipeline>(
-                    ctx, gpu::ComputePipelineDesc{"displaced normals", displaced_normals_comp_spv, 5, 0});
-                displaceBindings = displacePass->bind({*evalPositions, *evalNormals, *sideRanges, *sideUVs,
-                                                       *map, *displaced});
-                normalsBindings = normalsPass->bind({*displaced, triangles, *incidentRanges, *incident,
-                                                     *displacedNormals});
-                drawnPositions = displaced.get();
-                drawnNormals = displacedNormals.get();
-            }
-            wireBindings = wire->bind({*drawnPositions});
-            wireTriangleBindings = wireTriangles->bind({*drawnPositions, tris});
-            fetchBindings = surfaceFetch.bind({*drawnPositions, *drawnNormals, tv, tris, levels, tris,
-                                               tris, texture});
+        surfaceBindings = surface.bind({vertices, patches, irregular, limits, tv, tris, levels, texture});
+        if (!evaluate) return;
+        const uint64_t n = tess->vertexCapacity();
+        evalPositions = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated positions", n * 16});
+        evalNormals = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated normals", n * 16});
+        evalInfo = std::make_unique<gpu::Buffer>(ctx, gpu::BufferDesc{"evaluated ptex", n * 16});
+        evalPass = std::make_unique<gpu::ComputePipeline>(
+            ctx, gpu::ComputePipelineDesc{"evaluate surface", surface_eval_comp_spv, 8, sizeof(EvalPush)});
+        evalBindings = evalPass->bind({vertices, patches, irregular, limits, tv, *evalPositions, *evalNormals, *evalInfo});
+        wire = std::make_unique<gpu::GraphicsPipeline>(
+            ctx, gpu::GraphicsPipelineDesc{"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
+                                           gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
+            target);
+        wireTriangles = std::make_unique<gpu::GraphicsPipeline>(
+            ctx, gpu::GraphicsPipelineDesc{"wire (triangles)", wire_triangles_vert_spv, wire_frag_spv, 2,
+                                           sizeof(DrawPush), gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual,
+                                           false},
+            target);
+        drawnPositions = evalPositions.get();
+        drawnNormals = evalNormals.get();
+        if (disp) {
+            displacement = tess->makeDisplacement(
+                ctx, d, surfaceBuffers,
+                DisplacementInputs{*disp->map, disp->scale, disp->mid, *evalPositions, *evalNormals, n});
+            drawnPositions = &displacement->positions();
+            drawnNormals = &displacement->normals();
         }
+        wireBindings = wire->bind({*drawnPositions});
+        wireTriangleBindings = wireTriangles->bind({*drawnPositions, tris});
+        fetchBindings = surfaceFetch.bind({*drawnPositions, *drawnNormals, tv, tris, levels, tris, tris, texture});
     }
 
-    gpu::Buffer vertices, faceStarts, faceIndices, stencilStarts, stencilIndices, stencilWeights,
-        limits, patches, irregular, tessVertices, triangles,
-        triangleLevels, wireLines, texture;
-    std::unique_ptr<gpu::Buffer> sideRanges, sideUVs, map, displaced, incidentRanges, incident,
-        displacedNormals;
-    std::unique_ptr<gpu::ComputePipeline> displacePass, normalsPass;
-    gpu::BindGroup displaceBindings, normalsBindings;
+    gpu::Buffer vertices, faceStarts, faceIndices, stencilStarts, stencilIndices, stencilWeights, limits, patches,
+        irregular;
+    SurfaceBuffers surfaceBuffers;
+    std::unique_ptr<Tessellation> tess;
+    gpu::Buffer texture;
+    std::unique_ptr<DisplacementPasses> displacement;
     gpu::ComputePipeline facePass, stencilPass, limitPass;
     gpu::GraphicsPipeline surface, surfaceFetch;
     gpu::BindGroup faceBindings, stencilBindings, surfaceBindings, fetchBindings;
@@ -204,7 +128,6 @@ struct SubdivisionPass::Gpu {
     std::unique_ptr<gpu::ComputePipeline> evalPass;
     std::unique_ptr<gpu::GraphicsPipeline> wire, wireTriangles;
     gpu::BindGroup evalBindings, wireBindings, wireTriangleBindings;
-    std::unique_ptr<AdaptiveTess> adaptive;
     // The draw with back faces culled by the rasterizer (view-adaptive, closed surface seen from
     // outside; null otherwise).
     std::unique_ptr<gpu::GraphicsPipeline> culledDraw[2]; // [0] drops back faces, [1] front faces
@@ -216,17 +139,9 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
                                  gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
       levels_(levels), target_(target) {
-    if (displacement) {
-        if (eval != Eval::Compute)
-            throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
-                                          "come from a compute pass over the displaced vertices)");
-        if (!adaptive && draw_.sideRanges.size() != draw_.tessVertices.size())
-            throw Error(ErrorKind::BadInput, "internal: draw data prepared without a displacement plan");
-        displacement_ = *displacement;
-    }
-    if (adaptive && !draw_.adaptive)
-        throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data "
-                                         "prepared for it");
+    if (displacement && eval != Eval::Compute)
+        throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
+                                      "come from a compute pass over the displaced vertices)");
     gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target);
     mayCullBackFaces_ = adaptive && adaptive->backFaceCull && draw_.closed;
     if (mayCullBackFaces_) {
@@ -285,7 +200,6 @@ const gpu::Buffer& SubdivisionPass::vertexBuffer() const { return gpu_->vertices
 
 void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     auto& g = *gpu_;
-    totalsRead_ = false;
     const auto compute = gpu::Access::ComputeWrite, read = gpu::Access::ComputeRead;
     for (const LevelPasses& p : draw_.levels) {
         // Face points first: the edge and vertex points of the same level read them.
@@ -307,54 +221,15 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
     for (const auto& c : g.limitChunks)
         cmd.dispatch(g.limitPass, c.bindings, c.rows, LimitPush{c.rows, c.firstRow});
     cmd.endTimed();
-    if (g.adaptive) {
-        cmd.barrier(compute, read);
-        g.adaptive->setView(view_);
-        g.adaptive->record(cmd, timed);
-    }
+    g.tess->record(cmd, timed, view_);
     if (evaluate_) {
         cmd.barrier(compute, read);
         timed.begin(cmd, "evaluate surface", true);
-        if (g.adaptive)
-            cmd.dispatchIndirect(*g.evalPass, g.evalBindings, g.adaptive->totalsBuffer(),
-                                 AdaptiveTess::kDispatchArgs, g.adaptive->vertexCapacity(),
-                                 AdaptiveTess::kRowGroups,
-                                 EvalPush{static_cast<uint32_t>(draw_.patches.size())});
-        else
-            cmd.dispatch(*g.evalPass, g.evalBindings, static_cast<uint32_t>(draw_.tessVertices.size()),
-                         EvalPush{static_cast<uint32_t>(draw_.patches.size())});
+        g.tess->dispatchPerVertex(cmd, *g.evalPass, g.evalBindings,
+                                  gpu::CommandBuffer::asBytes(EvalPush{static_cast<uint32_t>(draw_.patches.size())}));
         cmd.endTimed();
     }
-    if (g.displacePass && g.adaptive) {
-        const auto& args = g.adaptive->totalsBuffer();
-        const uint32_t cap = g.adaptive->vertexCapacity();
-        cmd.barrier(compute, read);
-        timed.begin(cmd, "displace", true);
-        cmd.dispatchIndirect(*g.displacePass, g.displaceBindings, args, AdaptiveTess::kDispatchArgs, cap,
-                             AdaptiveTess::kRowGroups,
-                             AdaptiveDisplacePush{displacement_.scale, displacement_.mid,
-                                                  draw_.seamFix ? 1u : 0u,
-                                                  draw_.smoothSeams.elements.empty() ? 0u : 1u});
-        cmd.endTimed();
-        cmd.barrier(compute, read);
-        timed.begin(cmd, "displaced normals", true);
-        cmd.dispatchIndirect(*g.normalsPass, g.normalsBindings, args, AdaptiveTess::kDispatchArgs, cap,
-                             AdaptiveTess::kRowGroups,
-                             AdaptiveNormalsPush{static_cast<uint32_t>(draw_.patches.size()), displacement_.scale,
-                                                 displacement_.mid});
-        cmd.endTimed();
-    } else if (g.displacePass) {
-        const uint32_t n = static_cast<uint32_t>(draw_.tessVertices.size());
-        cmd.barrier(compute, read);
-        timed.begin(cmd, "displace", true);
-        cmd.dispatch(*g.displacePass, g.displaceBindings, n,
-                     DisplacePush{displacement_.scale, displacement_.mid});
-        cmd.endTimed();
-        cmd.barrier(compute, read);
-        timed.begin(cmd, "displaced normals", true);
-        cmd.dispatch(*g.normalsPass, g.normalsBindings, n);
-        cmd.endTimed();
-    }
+    if (g.displacement) g.displacement->record(cmd, timed);
     cmd.barrier(compute, gpu::Access::VertexRead | gpu::Access::TransferRead);
 }
 
@@ -365,59 +240,20 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wi
     // --back-faces shows back faces on purpose (crack counts): never culled then.
     const bool cull = mayCullBackFaces_ && view_.facing != 0 && !(push.flags & kDrawBackFaceKey);
     const auto& pipeline = cull ? culledPipeline(view_.facing) : eval_ == Eval::Compute ? g.surfaceFetch : g.surface;
-    if (g.adaptive) {
-        if (levels_) {
-            push.flags |= kDrawPullIndices;
-            cmd.drawIndirect(pipeline, bindings, g.adaptive->totalsBuffer(), AdaptiveTess::kDrawArgs,
-                             gpu::CommandBuffer::asBytes(push));
-        } else {
-            push.flags &= ~kDrawPullIndices;
-            cmd.drawIndexedIndirect(pipeline, bindings, g.adaptive->triangles(), g.adaptive->totalsBuffer(),
-                                    AdaptiveTess::kIndexedDrawArgs, gpu::CommandBuffer::asBytes(push));
-        }
-        // Outlines exist for the fixed grids only (the renderer picks them for Wire::Outlines).
-        if (wire == Wire::Triangles && g.wireTriangles)
-            cmd.drawIndirect(*g.wireTriangles, g.wireTriangleBindings, g.adaptive->totalsBuffer(),
-                             AdaptiveTess::kWireDrawArgs, gpu::CommandBuffer::asBytes(push));
-        return;
-    }
-    if (levels_) {
+    if (levels_)
         push.flags |= kDrawPullIndices;
-        cmd.draw(pipeline, bindings, static_cast<uint32_t>(draw_.triangles.size()), 1,
-                 gpu::CommandBuffer::asBytes(push));
-    } else {
+    else
         push.flags &= ~kDrawPullIndices;
-        cmd.drawIndexed(pipeline, bindings, g.triangles, static_cast<uint32_t>(draw_.triangles.size()),
-                        1, gpu::CommandBuffer::asBytes(push));
-    }
-    if (wire == Wire::Outlines && g.wire)
-        cmd.drawIndexed(*g.wire, g.wireBindings, g.wireLines, static_cast<uint32_t>(draw_.wireLines.size()),
-                        1, gpu::CommandBuffer::asBytes(push));
-    if (wire == Wire::Triangles && g.wireTriangles)
-        cmd.draw(*g.wireTriangles, g.wireTriangleBindings, static_cast<uint32_t>(2 * draw_.triangles.size()), 1,
-                 gpu::CommandBuffer::asBytes(push));
+    g.tess->drawTriangles(cmd, pipeline, bindings, gpu::CommandBuffer::asBytes(push), levels_);
+    if (wire != Wire::None && g.wire)
+        g.tess->drawWire(cmd, wire, {*g.wire, g.wireBindings, *g.wireTriangles, g.wireTriangleBindings},
+                         gpu::CommandBuffer::asBytes(push));
 }
 
-std::string SubdivisionPass::tessellationShortfall() const {
-    const AdaptiveTotals* t = lastTotals();
-    if (!t || !t->overflow) return {};
-    return "the view-adaptive tessellation of this view needs " + t->need() +
-           (t->overBudget || t->cutShort
-                ? std::string()
-                : ", more than its buffers hold (" + std::to_string(gpu_->adaptive->vertexCapacity()) +
-                      " vertices, " + std::to_string(gpu_->adaptive->triangleCapacity()) + " triangles)") +
-           "; nothing written: raise --max-error or --edge-pixels, or lower --tess";
-}
+std::string SubdivisionPass::tessellationShortfall() const { return gpu_->tess->shortfall(ctx_); }
 
 DrawnMesh SubdivisionPass::drawnMesh() {
-    size_t n = draw_.tessVertices.size();
-    AdaptiveTotals totals;
-    if (gpu_->adaptive) {
-        if (std::string shortfall = tessellationShortfall(); !shortfall.empty())
-            throw Error(ErrorKind::BadInput, "--mesh-out: " + shortfall);
-        totals = *lastTotals();
-        n = totals.writtenVertices;
-    }
+    const size_t n = gpu_->tess->drawnVertexCount(ctx_);
     DrawnMesh out = readDrawnVertices(ctx_, gpu_->drawnPositions, gpu_->drawnNormals, n);
     auto info = gpu::readbackArrayNow<glm::uvec4>(ctx_, *gpu_->evalInfo, n);
     for (size_t i = 0; i < n; ++i) {
@@ -425,68 +261,32 @@ DrawnMesh SubdivisionPass::drawnMesh() {
         v.ptex = static_cast<int32_t>(info[i].x);
         std::memcpy(&v.u, &info[i].y, 4);
         std::memcpy(&v.v, &info[i].z, 4);
-        if (draw_.hasUVs && !gpu_->adaptive)
-            v.s = draw_.tessVertices[i].u, v.t = draw_.tessVertices[i].v;
-        if (!gpu_->adaptive)
-            v.approximate = drawnPointIsApproximate(draw_, draw_.tessVertices[i].element, draw_.tessVertices[i].st);
     }
     out.hasTexCoords = draw_.hasUVs; // the tessellation split its vertices at UV seams
-    if (gpu_->adaptive) {
-        // The vertices the view-adaptive passes emitted this frame: (element, s|t, own-chart UV).
-        auto emitted = gpu::readbackArrayNow<glm::uvec4>(ctx_, gpu_->adaptive->tessVertices(), n);
-        for (size_t i = 0; i < n; ++i) {
-            if (draw_.hasUVs) {
-                std::memcpy(&out.vertices[i].s, &emitted[i].z, 4);
-                std::memcpy(&out.vertices[i].t, &emitted[i].w, 4);
-            }
-            out.vertices[i].approximate = drawnPointIsApproximate(draw_, emitted[i].x, emitted[i].y);
-        }
-        auto tris = gpu::readbackArrayNow<uint32_t>(ctx_, gpu_->adaptive->triangles(),
-                                                    size_t(totals.writtenTriangles) * 3);
-        out.triangles = std::move(tris);
-    } else {
-        out.triangles = draw_.triangles;
-    }
+    gpu_->tess->finishDrawnMesh(ctx_, out);
     return out;
 }
 
-const AdaptiveTotals* SubdivisionPass::lastTotals() const {
-    if (!gpu_->adaptive) return nullptr;
-    if (!totalsRead_) {
-        totals_ = gpu_->adaptive->readTotals(ctx_);
-        totalsRead_ = true;
-    }
-    return &totals_;
-}
+const AdaptiveTotals* SubdivisionPass::lastTotals() const { return gpu_->tess->lastTotals(ctx_); }
 
-uint64_t SubdivisionPass::triangleCount() const {
-    if (const AdaptiveTotals* t = lastTotals()) return t->drawnTriangles; // after culling and any overflow
-    return draw_.triangles.size() / 3;
-}
+uint64_t SubdivisionPass::triangleCount() const { return gpu_->tess->triangleCount(ctx_); }
 
 uint64_t SubdivisionPass::verticesEvaluated() const {
     // Table vertices computed by the passes, limit points, and tessellation vertices evaluated
     // by the vertex stage (at least once each; the draw may evaluate a shared one more often).
-    // View-adaptive: also the three points per edge piece that decide its rate.
-    const uint64_t tables = draw_.totalVertices - draw_.baseVertices + draw_.limitCount;
-    if (const AdaptiveTotals* t = lastTotals())
-        return tables + 3ull * gpu_->adaptive->pieceCount() + t->writtenVertices;
-    return tables + draw_.tessVertices.size();
+    return draw_.totalVertices - draw_.baseVertices + draw_.limitCount + gpu_->tess->verticesEvaluated(ctx_);
 }
 
 uint64_t SubdivisionPass::bufferBytes() const {
     auto& g = *gpu_;
-    uint64_t sum = 0;
-    for (const gpu::Buffer* b : {&g.vertices, &g.faceStarts, &g.faceIndices, &g.stencilStarts,
-                                 &g.stencilIndices, &g.stencilWeights, &g.limits, &g.patches, &g.irregular, &g.tessVertices,
-                                 &g.triangles, &g.triangleLevels, &g.wireLines, &g.texture})
+    uint64_t sum = g.tess->bufferBytes();
+    for (const gpu::Buffer* b : {&g.vertices, &g.faceStarts, &g.faceIndices, &g.stencilStarts, &g.stencilIndices,
+                                 &g.stencilWeights, &g.limits, &g.patches, &g.irregular, &g.texture})
         sum += b->size();
-    for (const auto* b : {g.evalPositions.get(), g.evalNormals.get(), g.evalInfo.get(), g.sideRanges.get(),
-                          g.sideUVs.get(), g.map.get(), g.displaced.get(), g.incidentRanges.get(),
-                          g.incident.get(), g.displacedNormals.get()})
+    for (const auto* b : {g.evalPositions.get(), g.evalNormals.get(), g.evalInfo.get()})
         if (b) sum += b->size();
+    if (g.displacement) sum += g.displacement->bufferBytes();
     for (const auto& c : g.limitChunks) sum += c.starts.size() + c.indices.size() + c.weights.size();
-    if (g.adaptive) sum += g.adaptive->bufferBytes();
     return sum;
 }
 

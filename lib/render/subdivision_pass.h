@@ -1,6 +1,7 @@
 // The subdivision surface's GPU frame (paper 000, 4.2-4.4): per level a face-point, an
 // edge-point and a vertex-point compute pass over the tables, a limit-point pass, then the draw
-// of the watertight tessellation whose vertices the vertex stage evaluates.
+// of the watertight tessellation whose vertices the vertex stage evaluates. Which tessellation
+// (fixed grids or view-adaptive) is behind render/tessellation.h: this pass never asks which.
 #pragma once
 
 #include "gpu/context.h"
@@ -8,6 +9,7 @@
 #include "render/adaptive/adaptive_tess.h"
 #include "render/frame_pass.h"
 #include "render/subdivision_draw.h"
+#include "render/tessellation.h"
 #include "image/texture_image.h"
 
 #include <future>
@@ -20,8 +22,9 @@ public:
     // Where the tessellation vertices are evaluated: in the vertex stage as the draw needs them
     // (paper 000, 4.3), or once each by a compute pass that the draw then reads.
     enum class Eval { Vertex, Compute };
-    // `adaptive`: view-adaptive tessellation (adaptive_tess.h) instead of the fixed
-    // grids of the draw data (which must then be prepared with adaptive = true).
+    // `adaptive`: view-adaptive tessellation (adaptive/adaptive_tess.h, options from
+    // adaptive/adaptive_options.h) instead of the fixed grids of the draw data (fixed_grids.h;
+    // the draw data must be prepared for the one chosen).
     // `keepEvaluated`: with Eval::Vertex, also evaluate every vertex into buffers (for --wire,
     // which draws lines through them, and --mesh-out).
     // Displacement (paper 000, 4.5): every drawn vertex moves along its limit normal by
@@ -58,13 +61,10 @@ private:
     SubdivisionDraw draw_;
     Eval eval_;
     bool evaluate_, levels_;
-    Displacement displacement_;
     AdaptiveView view_;
     float orientation_ = 0; // sign of the control mesh's volume where back faces may be culled
     bool mayCullBackFaces_ = false; // closed, and culling asked for
     gpu::TargetFormat target_; // what every draw pipeline, the lazily made culled ones too, targets
-    mutable AdaptiveTotals totals_;
-    mutable bool totalsRead_ = false;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
     // The culled draw the usual view needs, compiled on another thread during the set-up and

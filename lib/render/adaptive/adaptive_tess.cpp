@@ -1,5 +1,7 @@
 #include "render/adaptive/adaptive_tess.h"
 
+#include "render/adaptive/adaptive_displacement.h"
+
 #include "base/error.h"
 #include "render_shaders.h"
 
@@ -74,9 +76,32 @@ AdaptivePipelines::AdaptivePipelines(gpu::Context& ctx) {
     second.get();
 }
 
-AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t patchCount,
-                           const gpu::Buffer& vertices, const gpu::Buffer& patches,
-                           const gpu::Buffer& irregular, const gpu::Buffer& limits,
+namespace {
+
+// The draw data's per-element inputs of the emit pass: smooth UVs and crease sides.
+AdaptiveOptions withDrawData(AdaptiveOptions options, const SubdivisionDraw& d, bool evaluated) {
+    if (!d.adaptive)
+        throw Error(ErrorKind::BadInput, "internal: view-adaptive tessellation needs draw data prepared for it");
+    options.evaluated = evaluated;
+    options.elementDomains = d.elementDomains;
+    options.fvarNodes = d.fvarNodes;
+    options.fvarRecords = d.fvarRecords;
+    options.fvarCell = d.fvarCell;
+    options.elementCrease.reserve(d.patches.size());
+    for (const GpuPatch& p : d.patches) options.elementCrease.push_back(uint8_t((p.levelBoundary >> 16) & 0xFu));
+    return options;
+}
+
+} // namespace
+
+AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const SubdivisionDraw& d, const SurfaceBuffers& surface,
+                           AdaptiveOptions options, bool evaluated)
+    : AdaptiveTess(ctx, d.pieces, static_cast<uint32_t>(d.patches.size()), surface,
+                   withDrawData(std::move(options), d, evaluated)) {
+    draw_ = &d;
+}
+
+AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t patchCount, const SurfaceBuffers& surface,
                            const AdaptiveOptions& options)
     : options_(options), elementCount_(static_cast<uint32_t>(ep.elements.size())),
       pieceCount_(static_cast<uint32_t>(ep.pieces.size())), patchCount_(patchCount) {
@@ -179,6 +204,7 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
 
     passes_ = options.pipelines ? options.pipelines : std::make_shared<AdaptivePipelines>(ctx);
     options_.pipelines.reset();
+    const auto& [vertices, patches, irregular, limits] = surface;
     cullBind_ = passes_->cull->bind({vertices, patches, irregular, limits, *cull_});
     rateBind_ = passes_->rates->bind({vertices, patches, irregular, limits, *pieces_, *cull_, *rates_, *pieceEnds_});
     countBind_ = passes_->counts->bind({*elements_, *pieces_, *rates_, *cull_, *info_, *pieceEnds_});
@@ -189,7 +215,14 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
 
 AdaptiveTess::~AdaptiveTess() = default;
 
-void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed) {
+void AdaptiveTess::record(gpu::CommandBuffer& cmd, TimedPasses& timed, const AdaptiveView& view) {
+    totalsRead_ = false;
+    cmd.barrier(gpu::Access::ComputeWrite, gpu::Access::ComputeRead); // the limit points
+    view_ = view;
+    recordPasses(cmd, timed);
+}
+
+void AdaptiveTess::recordPasses(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     const auto write = gpu::Access::ComputeWrite, read = gpu::Access::ComputeRead;
     CullPush cp{};
     copyMatrix(view_.viewProj, cp.viewProj);
@@ -276,6 +309,79 @@ uint64_t AdaptiveTess::bufferBytes() const {
                           triangleLevels_.get()})
         sum += b->size();
     return sum;
+}
+
+const AdaptiveTotals* AdaptiveTess::lastTotals(gpu::Context& ctx) const {
+    if (!totalsRead_) {
+        lastTotals_ = readTotals(ctx);
+        totalsRead_ = true;
+    }
+    return &lastTotals_;
+}
+
+void AdaptiveTess::dispatchPerVertex(gpu::CommandBuffer& cmd, const gpu::ComputePipeline& pipeline,
+                                     const gpu::BindGroup& bindings, std::span<const uint8_t> push) const {
+    cmd.dispatchIndirect(pipeline, bindings, *totals_, kDispatchArgs, capV_, kRowGroups, push);
+}
+
+void AdaptiveTess::drawTriangles(gpu::CommandBuffer& cmd, const gpu::GraphicsPipeline& pipeline,
+                                 const gpu::BindGroup& bindings, std::span<const uint8_t> push,
+                                 bool pullIndices) const {
+    if (pullIndices)
+        cmd.drawIndirect(pipeline, bindings, *totals_, kDrawArgs, push);
+    else
+        cmd.drawIndexedIndirect(pipeline, bindings, *triangles_, *totals_, kIndexedDrawArgs, push);
+}
+
+void AdaptiveTess::drawWire(gpu::CommandBuffer& cmd, Wire wire, const WirePipelines& p,
+                            std::span<const uint8_t> push) const {
+    if (wire == Wire::Triangles)
+        cmd.drawIndirect(p.triangleEdges, p.triangleEdgeBindings, *totals_, kWireDrawArgs, push);
+}
+
+std::string AdaptiveTess::shortfall(gpu::Context& ctx) const {
+    const AdaptiveTotals* t = lastTotals(ctx);
+    if (!t->overflow) return {};
+    return "the view-adaptive tessellation of this view needs " + t->need() +
+           (t->overBudget || t->cutShort
+                ? std::string()
+                : ", more than its buffers hold (" + std::to_string(capV_) + " vertices, " + std::to_string(capT_) +
+                      " triangles)") +
+           "; nothing written: raise --max-error or --edge-pixels, or lower --tess";
+}
+
+size_t AdaptiveTess::drawnVertexCount(gpu::Context& ctx) const {
+    if (std::string s = shortfall(ctx); !s.empty()) throw Error(ErrorKind::BadInput, "--mesh-out: " + s);
+    return lastTotals(ctx)->writtenVertices;
+}
+
+void AdaptiveTess::finishDrawnMesh(gpu::Context& ctx, DrawnMesh& out) const {
+    // The vertices the passes emitted this frame: (element, s|t, own-chart UV).
+    const size_t n = out.vertices.size();
+    auto emitted = gpu::readbackArrayNow<glm::uvec4>(ctx, *tessVertices_, n);
+    for (size_t i = 0; i < n; ++i) {
+        if (draw_->hasUVs) {
+            std::memcpy(&out.vertices[i].s, &emitted[i].z, 4);
+            std::memcpy(&out.vertices[i].t, &emitted[i].w, 4);
+        }
+        out.vertices[i].approximate = drawnPointIsApproximate(*draw_, emitted[i].x, emitted[i].y);
+    }
+    out.triangles = gpu::readbackArrayNow<uint32_t>(ctx, *triangles_, size_t(lastTotals(ctx)->writtenTriangles) * 3);
+}
+
+uint64_t AdaptiveTess::triangleCount(gpu::Context& ctx) const {
+    return lastTotals(ctx)->drawnTriangles; // after culling and any overflow
+}
+
+uint64_t AdaptiveTess::verticesEvaluated(gpu::Context& ctx) const {
+    // Also the three points per edge piece that decide its rate.
+    return 3ull * pieceCount_ + lastTotals(ctx)->writtenVertices;
+}
+
+std::unique_ptr<DisplacementPasses> AdaptiveTess::makeDisplacement(gpu::Context& ctx, const SubdivisionDraw& draw,
+                                                                   const SurfaceBuffers& surface,
+                                                                   const DisplacementInputs& in) const {
+    return makeAdaptiveDisplacement(ctx, draw, surface, *this, in);
 }
 
 } // namespace limn::render

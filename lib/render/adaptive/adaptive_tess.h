@@ -27,6 +27,8 @@
 #include "gpu/context.h"
 #include "gpu/pipeline.h"
 #include "render/frame_pass.h"
+#include "render/subdivision_draw.h"
+#include "render/tessellation.h"
 #include "tess/edge_pieces.h"
 
 #include <glm/mat4x4.hpp>
@@ -123,38 +125,65 @@ struct AdaptiveTotals {
     std::string need() const;
 };
 
-class AdaptiveTess {
+// The view-adaptive tessellation behind SubdivisionPass's seam (render/tessellation.h): the
+// five passes above each frame, the evaluation and the draws sized by the scan's indirect
+// arguments, and its own displacement passes (adaptive_displacement.h). Its options come from
+// the render settings (adaptive_options.h).
+class AdaptiveTess : public Tessellation {
   public:
-    // The surface buffers are those of SubdivisionPass (table vertices, patches, irregular
-    // faces, limit points); they must outlive this.
-    AdaptiveTess(gpu::Context& ctx, const EdgePieces& pieces, uint32_t patchCount,
-                 const gpu::Buffer& vertices, const gpu::Buffer& patches, const gpu::Buffer& irregular,
-                 const gpu::Buffer& limits, const AdaptiveOptions& options);
-    ~AdaptiveTess();
+    // `draw` prepared with adaptive = true; the surface buffers must outlive this. `evaluated`:
+    // a compute pass evaluates every tessellation vertex (AdaptiveOptions::evaluated).
+    AdaptiveTess(gpu::Context& ctx, const SubdivisionDraw& draw, const SurfaceBuffers& surface,
+                 AdaptiveOptions options, bool evaluated);
+    ~AdaptiveTess() override;
 
-    void setView(const AdaptiveView& view) { view_ = view; }
-    // The five passes, each timed; ends with the barrier that the evaluation pass and the draw
-    // need.
-    void record(gpu::CommandBuffer& cmd, TimedPasses& timed);
+    // The five passes, each timed, after a barrier on the limit points; ends with the barrier
+    // that the evaluation pass and the draw need.
+    void record(gpu::CommandBuffer& cmd, TimedPasses& timed, const AdaptiveView& view) override;
 
-    const gpu::Buffer& tessVertices() const { return *tessVertices_; }
+    const gpu::Buffer& tessVertices() const override { return *tessVertices_; }
     const gpu::Buffer& elementsBuffer() const { return *elements_; }
-    const gpu::Buffer& triangles() const { return *triangles_; }
-    const gpu::Buffer& triangleLevels() const { return *triangleLevels_; }
+    const gpu::Buffer& triangles() const override { return *triangles_; }
+    const gpu::Buffer& triangleLevels() const override { return *triangleLevels_; }
     const gpu::Buffer& totalsBuffer() const { return *totals_; }
     // Offsets into totalsBuffer(): indexed draw, non-indexed draw, evaluation dispatch, the
     // non-indexed draw of the triangles' edges (--wire).
     static constexpr uint64_t kIndexedDrawArgs = 0, kDrawArgs = 20, kDispatchArgs = 36, kWireDrawArgs = 72;
     static constexpr uint32_t kRowGroups = 65535;
-    uint32_t vertexCapacity() const { return capV_; }
+    uint64_t vertexCapacity() const override { return capV_; }
     uint32_t triangleCapacity() const { return capT_; }
     AdaptiveTotals readTotals(gpu::Context& ctx) const;
-    uint64_t bufferBytes() const;
     uint32_t pieceCount() const { return pieceCount_; }
 
+    // Sized by the scan (indirect arguments in totalsBuffer()).
+    void dispatchPerVertex(gpu::CommandBuffer& cmd, const gpu::ComputePipeline& pipeline,
+                           const gpu::BindGroup& bindings, std::span<const uint8_t> push) const override;
+    void drawTriangles(gpu::CommandBuffer& cmd, const gpu::GraphicsPipeline& pipeline, const gpu::BindGroup& bindings,
+                       std::span<const uint8_t> push, bool pullIndices) const override;
+    // Triangle edges only: outlines exist for the fixed grids (the renderer picks them for
+    // Wire::Outlines).
+    void drawWire(gpu::CommandBuffer& cmd, Wire wire, const WirePipelines& pipelines,
+                  std::span<const uint8_t> push) const override;
+    std::unique_ptr<DisplacementPasses> makeDisplacement(gpu::Context& ctx, const SubdivisionDraw& draw,
+                                                         const SurfaceBuffers& surface,
+                                                         const DisplacementInputs& in) const override;
+
+    const AdaptiveTotals* lastTotals(gpu::Context& ctx) const override;
+    std::string shortfall(gpu::Context& ctx) const override;
+    size_t drawnVertexCount(gpu::Context& ctx) const override;
+    void finishDrawnMesh(gpu::Context& ctx, DrawnMesh& out) const override;
+    uint64_t triangleCount(gpu::Context& ctx) const override;
+    uint64_t verticesEvaluated(gpu::Context& ctx) const override;
+    uint64_t bufferBytes() const override;
+
   private:
+    AdaptiveTess(gpu::Context& ctx, const EdgePieces& pieces, uint32_t patchCount, const SurfaceBuffers& surface,
+                 const AdaptiveOptions& options);
+    void recordPasses(gpu::CommandBuffer& cmd, TimedPasses& timed);
+
     AdaptiveOptions options_;
     AdaptiveView view_;
+    const SubdivisionDraw* draw_ = nullptr; // the pass's draw data, which outlives this
     uint32_t elementCount_, pieceCount_, pointBase_, patchCount_, capV_ = 0, capT_ = 0;
     uint32_t sharedPoints_ = 0; // points with shared vertex slots (the first ones), or 0
     uint32_t domainBase_ = 0, nodeBase_ = 0, recordBase_ = 0; // smooth UVs, in pieces_
@@ -162,6 +191,9 @@ class AdaptiveTess {
         tessVertices_, triangles_, triangleLevels_;
     std::shared_ptr<AdaptivePipelines> passes_;
     gpu::BindGroup cullBind_, rateBind_, countBind_, scanBind_, emitBind_;
+    // The last frame's totals, read back on first use after record().
+    mutable AdaptiveTotals lastTotals_;
+    mutable bool totalsRead_ = false;
 };
 
 } // namespace limn::render
