@@ -89,7 +89,7 @@ struct AdaptiveOptions {
     // whole capacity, so unwritten slots must hold valid records); otherwise only what the
     // frame wrote is ever read, and the buffers are left as allocated.
     bool evaluated = false;
-    // Smooth face-varying UVs (issue 14; FaceVaryingSurface::gpu, shaders/fvar_eval.glsl): per
+    // Smooth face-varying UVs (FaceVaryingSurface::gpu, shaders/fvar_eval.glsl): per
     // element (patches, then irregular faces) its ptex face (uint bits) and (u0, v0, size), the
     // quadtree and records, and fvar_eval.glsl's nudge (2^-21). Empty: bilinear corner UVs.
     // The emit pass reads them from the edge-piece buffer, after the points.

@@ -1,4 +1,4 @@
-// Smooth face-varying UVs on the GPU (issue 14): the UV surface of lib/subdiv/fvar_surface.h
+// Smooth face-varying UVs on the GPU: the UV surface of lib/subdiv/fvar_surface.h
 // (FaceVaryingSurface::gpu) at (u, v) of a ptex face. A quadtree per ptex face finds the UV
 // element containing the point just inside the drawing element (toward `inside`, by `nudge`,
 // 2^-21: far below the finest UV element, 2^-16, so a point on an element's edge picks the

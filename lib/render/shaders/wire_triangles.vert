@@ -1,4 +1,4 @@
-// --wire in view-adaptive mode (issue 11): the edges of the triangles the frame drew, so the
+// --wire in view-adaptive mode: the edges of the triangles the frame drew, so the
 // rates chosen from the view can be seen. Non-indexed: vertex 6 t + 2 e + end is end `end` of
 // edge e of triangle t, pulled from the triangle index buffer the adaptive passes wrote (an
 // interior edge is drawn once per triangle on it; both draws cover the same pixels). The

@@ -1,4 +1,4 @@
-// View-adaptive tessellation, pass 3 of 5 (issue 11): per element, its interior rates mu along s
+// View-adaptive tessellation, pass 3 of 5: per element, its interior rates mu along s
 // and mv along t (the larger projected size of the two sides running that way, see
 // adaptive_rates.comp; 1 when culled, at most tess; at least 2 for the grid below) and how many
 // vertices and triangles it will emit (adaptive_emit.comp): B boundary points (every side's

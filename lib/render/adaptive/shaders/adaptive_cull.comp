@@ -1,4 +1,4 @@
-// View-adaptive tessellation, pass 1 of 5 (issue 11): per element, whether its triangles can
+// View-adaptive tessellation, pass 1 of 5: per element, whether its triangles can
 // be left out of the draw. Three conservative tests, each of which leaves out only what could
 // not have drawn a sample; a culled element is still emitted at its smallest rate for --mesh-out.
 //
@@ -22,7 +22,7 @@
 // the eye), so if their pixel-space bounding box holds no sample position the element's
 // triangles cover no sample and draw nothing (the box widened by 1/16 pixel: the rasterizer
 // snaps to 1/256 and the two evaluations round differently). Deep isolation around
-// extraordinary vertices makes many such sub-pixel elements (issue 11: the paper's sphere at
+// extraordinary vertices makes many such sub-pixel elements (the paper's sphere at
 // depth 6 has 2,240 elements for about 6,200 covered pixels), each at least two triangles.
 #version 450
 #extension GL_GOOGLE_include_directive : require

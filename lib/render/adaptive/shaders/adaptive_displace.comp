@@ -1,11 +1,11 @@
-// View-adaptive tessellation with displacement (issue 11; paper 000, 4.5): each emitted vertex
+// View-adaptive tessellation with displacement (paper 000, 4.5): each emitted vertex
 // moves along its limit normal by scale * (average sample - mid). With the seam fix the samples
 // are those of lib/render/subdivision_draw.cpp's sideUVsOf, taken from the seam record of the
 // vertex's *owner* element (corner: every face around it; edge: both sides' UVs interpolated
 // along the edge; interior: its own face), so the copies of a shared point that neighbouring
 // elements emit use the same inputs in the same order and stay bit-identical. Without it each
 // copy samples its own element's chart (and cracks open at UV seams, as in the paper's Fig. 4).
-// With smooth UVs (issue 14) the records hold the smooth UVs of the corners (edges interpolate
+// With smooth UVs the records hold the smooth UVs of the corners (edges interpolate
 // them linearly per side, as the paper's auxiliary UVs do) and interior points sample the smooth
 // UV the emit pass evaluated.
 #version 450
@@ -30,7 +30,7 @@ layout(push_constant) uniform Push {
     layout(offset = 16) float scale;
     float mid;
     uint seamFix;
-    uint smoothUV; // issue 14: records of smooth UVs; inside an element its emitted (smooth) UV
+    uint smoothUV; // records of smooth UVs; inside an element its emitted (smooth) UV
 } pc;
 
 #include "adaptive_sample.glsl"

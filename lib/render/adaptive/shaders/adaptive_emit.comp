@@ -1,4 +1,4 @@
-// View-adaptive tessellation, pass 5 of 5 (issue 11): each element writes its vertices and
+// View-adaptive tessellation, pass 5 of 5: each element writes its vertices and
 // triangles at the offsets of adaptive_scan.comp. The draw (and the evaluation pass) then read
 // them like the fixed tessellation of lib/tess: a vertex is (element, s, t, own-chart UV).
 //
@@ -34,7 +34,7 @@ layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
     layout(offset = 16) uint pointBase; // first point record in `pieces`
     uint triangleCapacity;
-    // Smooth UVs (issue 14): with smoothUV = 1, `pieces` also holds, from domainBase, per element
+    // Smooth UVs: with smoothUV = 1, `pieces` also holds, from domainBase, per element
     // (ptex, u0, v0, size) (floats as bits), from nodeBase the quadtree (4 words a record), from
     // recordBase the records of fvar_eval.glsl (WebGPU allows 8 storage buffers a pass: this
     // pass has them all). fvarCell: fvar_eval.glsl's nudge.

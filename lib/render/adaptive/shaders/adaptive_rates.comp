@@ -1,4 +1,4 @@
-// View-adaptive tessellation, pass 2 of 5 (issue 11): per edge piece, its segments this frame.
+// View-adaptive tessellation, pass 2 of 5: per edge piece, its segments this frame.
 // Decided once per piece from data both sides share: the piece owner's surface at its ends and
 // middle, and with maxError > 0 its quarters too (the draw's own sums, surface_eval_impl.glsl's
 // elementPositions5), projected to pixels; so the two patches of an edge can never disagree

@@ -1,4 +1,4 @@
-// View-adaptive tessellation, pass 4 of 5 (issue 11): one workgroup of 256 turns every element's
+// View-adaptive tessellation, pass 4 of 5: one workgroup of 256 turns every element's
 // vertex and triangle counts into offsets (an exclusive prefix sum: each invocation sums a
 // contiguous chunk, a Hillis-Steele scan of the chunk sums in shared memory, then each chunk is
 // walked again). Integer sums in a fixed order: the same offsets every run, no atomics. Visible

@@ -1,4 +1,4 @@
-// View-adaptive tessellation (issue 11; lib/render/adaptive_tess.h): the records that
+// View-adaptive tessellation (lib/render/adaptive/adaptive_tess.h, docs/adaptive.md): the records that
 // lib/tess/edge_pieces.h builds once from topology, as the compute passes read them. Mirrors
 // limn::render::GpuAdaptiveElement and the uvec4 layouts documented in adaptive_tess.h.
 #ifndef LIMN_ADAPTIVE_TESS_GLSL
