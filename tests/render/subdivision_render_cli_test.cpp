@@ -188,7 +188,7 @@ const Case kCases[] = {
     {"osd/catmark/catmark_tent_creases1.obj", 3, false, false},
     {"osd/catmark/catmark_fvar_bound4.obj", 3, false, false},
     {"osd/catmark/catmark_fvar_bound2.obj", 3, false, false, "compute", BoundaryRule::EdgeOnly},
-    // Issue 14: corners whose limit points were approximate at depth 3 (semi-sharp creases of
+    // Corners whose limit points were approximate at depth 3 (semi-sharp creases of
     // sharpness 6 on the car and the rook, Chaikin-free cube creases, cone points, corner
     // sectors), now compared like every other drawn vertex.
     {"osd/catmark/catmark_car.obj", 3, false, false},

@@ -235,7 +235,7 @@ TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
     EXPECT_LT(angles[14], osdAngle) << "the exact surface turns past OpenSubdiv's corner normal";
 }
 
-// Issue 14: regular faces along infinitely sharp creases are boundary patches, so a creased
+// OpenSubdiv parity: regular faces along infinitely sharp creases are boundary patches, so a creased
 // model no longer pays the deep levels along its creases. catmark_cube_creases2 at depth 5:
 // OpenSubdiv with useInfSharpPatch draws 96 patches (1,764 without); limn's elements (patches
 // plus irregular faces) were 1,764 before, as many as OpenSubdiv's, and are with the option off.
@@ -283,7 +283,7 @@ size_t interiorValence2(const Mesh& m) {
     return count;
 }
 
-// Issue 14: at depth 3 every limit point of every OpenSubdiv catmark shape limn accepts is exact
+// Exact limit points: at depth 3 every limit point of every OpenSubdiv catmark shape limn accepts is exact
 // (undecayed semi-sharp features isolated deeper, darts, cones and corners from the eigenvectors
 // of their local subdivision matrix), except the ones whose surface has no tangent plane:
 // valence-2 vertices (one each) and, in the two inf_crease shapes, two faces of a corner sector
@@ -340,7 +340,7 @@ const Case kCases[] = {
     {"osd/catmark/catmark_gregory_test3.obj", 3, false},
     {"osd/catmark/catmark_tent_creases1.obj", 3, false},
     {"osd/catmark/catmark_helmet.obj", 2, false},
-    // Issue 14: limit points that were approximate at depth 3 (undecayed semi-sharp creases of
+    // Limit points that were approximate at depth 3 (undecayed semi-sharp creases of
     // sharpness up to 6, uniform and Chaikin; darts; cone points; valence 2), now exact.
     {"osd/catmark/catmark_helmet.obj", 3, false},
     {"osd/catmark/catmark_car.obj", 3, false},
