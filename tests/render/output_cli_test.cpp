@@ -436,7 +436,7 @@ TEST_F(Output, ImageMemoryIsCheckedBeforeDrawing) {
 // --sample-shading: nothing changes with one sample (the pixel centre is the sample), the
 // shading of a curved surface does with four (each sample is shaded where it lies, not all four at
 // the pixel centre), and the bench JSON says which it was. (Its point, highlights on surfaces that
-// bend within a pixel, is checked on catmark_car in adaptive_tess_cli_test.cpp.)
+// bend within a pixel, is checked on catmark_car in adaptive_image_cli_test.cpp.)
 TEST_F(Output, SampleShadingShadesEachSample) {
     renderOk({spot, "--size", "128x96", "--samples", "1", "--validate", "-o", out("one.png")});
     renderOk({spot, "--size", "128x96", "--samples", "1", "--sample-shading", "--validate", "-o", out("one_ss.png")});
