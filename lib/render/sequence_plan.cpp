@@ -2,10 +2,8 @@
 
 #include "base/cli.h"
 #include "base/error.h"
-
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
+#include "base/io.h"
+#include "mesh/import.h"
 
 namespace limn::render {
 
@@ -27,9 +25,8 @@ bool planSequence(const SequenceRequest& request) {
 
 bool isAnimationFile(const std::string& frames) {
     if (hasFrameNumber(frames)) return false;
-    std::string ext = std::filesystem::path(frames).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".gltf" || ext == ".glb";
+    const limn::MeshFormat format = formatFromExtension(extensionOf(frames));
+    return format == limn::MeshFormat::Gltf || format == limn::MeshFormat::Glb;
 }
 
 double parseFps(const std::string& option, const std::string& text) {
