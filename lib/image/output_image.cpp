@@ -7,7 +7,7 @@
 #include <cstring>
 #include <limits>
 
-namespace limn::render {
+namespace limn {
 
 double linearToSrgb(double c) {
     c = std::clamp(c, 0.0, 1.0);
@@ -128,4 +128,4 @@ Image16 toSrgb16(const LinearImage& image, bool alpha, const std::vector<float>&
     return out;
 }
 
-} // namespace limn::render
+} // namespace limn

@@ -123,7 +123,7 @@ std::unique_ptr<DisplacementPasses> FixedGrids::makeDisplacement(gpu::Context& c
     return std::make_unique<FixedGridDisplacement>(ctx, draw, triangles_, in);
 }
 
-void FixedGrids::finishDrawnMesh(gpu::Context&, DrawnMesh& out) const {
+void FixedGrids::finishDrawnMesh(gpu::Context&, exporting::DrawnMesh& out) const {
     for (size_t i = 0; i < out.vertices.size(); ++i) {
         const GpuTessVertex& t = draw_.tessVertices[i];
         if (draw_.hasUVs) // the grids split their vertices at UV seams

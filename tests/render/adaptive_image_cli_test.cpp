@@ -58,7 +58,7 @@ TEST_P(AdaptiveImage, CloseToTheFixedGridsAndDeterministic) {
         args.insert(args.end(), extra.begin(), extra.end());
         auto r = run(args);
         if (r.exitCode != 0) throw std::runtime_error(r.err);
-        return render::decodePng(readBytes(dir / name));
+        return decodePng(readBytes(dir / name));
     };
     std::vector<std::string> fixed = {"--edge-pixels", "0"};
     fixed.insert(fixed.end(), c.fixedExtra.begin(), c.fixedExtra.end());
@@ -170,14 +170,14 @@ TEST_P(AdaptiveBackFaces, CullingThemChangesNoPixel) {
     EXPECT_EQ(culled, keyed);
     if (c.reversed) {
         // The same surface, its triangles wound the other way and split a little differently.
-        const auto a = render::decodePng(render("reversed.png", {}, reversed)), b = render::decodePng(culled);
+        const auto a = decodePng(render("reversed.png", {}, reversed)), b = decodePng(culled);
         ASSERT_EQ(a.pixels.size(), b.pixels.size());
         const auto [covered, differ] = coveredAndDiffering(a, b);
         EXPECT_GT(covered, 2000u);
         EXPECT_LE(double(differ), 0.005 * double(covered)) << differ << " of " << covered;
     }
     // And the image is not empty or all key colour: it has the surface's grey shades.
-    const auto img = render::decodePng(culled);
+    const auto img = decodePng(culled);
     size_t grey = 0;
     for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
         const uint8_t* p = &img.pixels[i * img.channels];
@@ -263,7 +263,7 @@ TEST_P(AdaptiveErrorRates, CloseToOnePixelSegments) {
         argv.insert(argv.end(), extra.begin(), extra.end());
         auto r = run(argv);
         if (r.exitCode != 0) throw std::runtime_error(r.err);
-        return render::decodePng(readBytes(dir / name));
+        return decodePng(readBytes(dir / name));
     };
     const auto a = render("default.png", {}), fine = render("fine.png", {"--edge-pixels", "1"});
     const auto [covered, differ] = coveredAndDiffering(a, fine);

@@ -36,9 +36,9 @@ RunResult render(std::vector<std::string> args, const std::string& input = {}) {
     return run(args, input);
 }
 
-render::Image readPng(const std::filesystem::path& path) {
+Image readPng(const std::filesystem::path& path) {
     auto bytes = readBytes(path);
-    return render::decodePng(bytes);
+    return decodePng(bytes);
 }
 
 bool samePixel(const uint8_t* a, std::initializer_list<int> b, int tolerance) {
