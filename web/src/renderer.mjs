@@ -11,6 +11,7 @@ import { buildTessellation } from './tessellation.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
 import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
+import { evaluateVertices, readBuffer, readDrawnMesh } from './drawn_mesh.mjs';
 import { textureWords, fixedDisplacementPlan, checkDisplacement, checkMapSize, addComputeEvaluation, addDisplacementPasses, computeSeams } from './displacement.mjs';
 
 const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
@@ -413,79 +414,19 @@ export class Renderer {
     return points;
   }
 
-  // The frame's compute passes, then surface_eval.comp (the vertex stage's evaluation, as a
-  // compute pass: limn-render's --eval compute and --mesh-out) over `n` tessellation vertices.
-  async evaluate(tvb, n, withLimits = false) {
-    const { device } = this;
-    const { tables } = this.surface;
-    const shaders = new ShaderCache(device);
-    this.evalPass ??= await device.createComputePipelineAsync({ layout: 'auto', compute: { module: await shaders.module('surface_eval.comp') } });
-    const evalPass = this.evalPass;
-    const b = this.buffers;
-    const pos = this.empty('evaluated positions', n * 16), nrm = this.empty('evaluated normals', n * 16), info = this.empty('evaluated ptex', n * 16);
-    const push = this.empty('evaluate push', 256, UNIFORM);
-    const groups = Math.ceil(Math.max(n, 1) / 64), y = Math.ceil(groups / MAX_GROUPS), x = Math.ceil(groups / y);
-    device.queue.writeBuffer(push, 0, new Uint32Array([n, x * 64, 0, 0, tables.patchCount]));
-    this.uploadControlPoints();
-    const enc = device.createCommandEncoder();
-    this.encodeCompute(enc, false);
-    if (n > 0) {
-      const cp = enc.beginComputePass();
-      cp.setPipeline(evalPass);
-      cp.setBindGroup(0, device.createBindGroup({ layout: evalPass.getBindGroupLayout(0), entries: [b.vertices, b.patches, b.irregular, b.limits, tvb, pos, nrm, info].map((buffer, binding) => ({ binding, resource: { buffer } })) }));
-      cp.setBindGroup(3, device.createBindGroup({ layout: evalPass.getBindGroupLayout(3), entries: [{ binding: 0, resource: { buffer: push } }] }));
-      cp.dispatchWorkgroups(x, y);
-      cp.end();
-    }
-    const L = withLimits ? tables.limitCount : 0;
-    const rb = device.createBuffer({ size: Math.max(n * 16 + L * 32, 16), usage: MAP_READ | COPY_DST });
-    if (n > 0) enc.copyBufferToBuffer(pos, 0, rb, 0, n * 16);
-    if (L > 0) enc.copyBufferToBuffer(b.limits, 0, rb, n * 16, L * 32);
-    device.queue.submit([enc.finish()]);
-    await rb.mapAsync(1);
-    const f = new Float32Array(rb.getMappedRange().slice(0));
-    rb.unmap();
-    for (const buf of [pos, nrm, info, push, rb]) buf.destroy();
-    return { positions: f.subarray(0, 4 * n), limits: f.subarray(4 * n) };
-  }
+  // The frame's compute passes, then surface_eval.comp over `n` tessellation vertices
+  // (drawn_mesh.mjs).
+  evaluate(tvb, n, withLimits = false) { return evaluateVertices(this, tvb, n, withLimits); }
 
   /**
-   * The drawn surface, as limn-render --mesh-out writes it: positions (4 floats each) and
+   * The drawn surface, as limn-render --mesh-out reads it back (drawn_mesh.mjs readDrawnMesh):
+   * positions and normals (4 floats each), info, tessellation vertices, approximate flags and
    * triangles. View-adaptive: this view's emitted tessellation (create with settings.meshOut).
    * Displaced: the displaced positions.
    */
-  async drawnMesh() {
-    let triangles = this.tess.indices, vertices = this.tess.vertexCount;
-    if (this.adaptive || this.s.displace) {
-      this.uploadControlPoints();
-      const enc = this.device.createCommandEncoder();
-      this.encodeCompute(enc, true);
-      this.device.queue.submit([enc.finish()]);
-    }
-    if (this.adaptive) {
-      const t = await this.readBuffer(this.buffers.totals, TOTALS_WORDS * 4, Uint32Array);
-      if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --max-error or --edge-pixels, or lower --tess', 'input');
-      vertices = t[17];
-      triangles = await this.readBuffer(this.buffers.triangles, t[16] * 12, Uint32Array);
-    }
-    // Displaced: what the frame's passes moved; else the tessellation evaluated again.
-    const positions = this.s.displace
-      ? await this.readBuffer(this.buffers.displaced, vertices * 16, Float32Array)
-      : (await this.evaluate(this.buffers.tessVertices, vertices)).positions;
-    return { positions, triangles };
-  }
+  drawnMesh() { return readDrawnMesh(this); }
 
-  async readBuffer(buffer, bytes, Type) {
-    const rb = this.device.createBuffer({ size: Math.max(bytes, 16), usage: MAP_READ | COPY_DST });
-    const enc = this.device.createCommandEncoder();
-    if (bytes) enc.copyBufferToBuffer(buffer, 0, rb, 0, bytes);
-    this.device.queue.submit([enc.finish()]);
-    await rb.mapAsync(1);
-    const out = new Type(rb.getMappedRange().slice(0, bytes));
-    rb.unmap();
-    rb.destroy();
-    return out;
-  }
+  readBuffer(buffer, bytes, Type) { return readBuffer(this.device, buffer, bytes, Type); }
 
   setView(view) {
     const s = this.s, aspect = s.width / s.height;
