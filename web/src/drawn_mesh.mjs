@@ -68,6 +68,23 @@ export async function evaluateVertices(r, tvb, n, withLimits = false) {
   return { positions: f.subarray(0, 4 * n), normals: f.subarray(4 * n, 8 * n), info: new Uint32Array(bytes, n * 32, 4 * n), limits: f.subarray(12 * n) };
 }
 
+// limn-render's framing hull (renderer.cpp surfaceSamples): each patch at (s, t) in {0, 1/2, 1}^2
+// and every limit point, here evaluated by the same passes on the GPU and read back.
+export async function framingSamples(r) {
+  const { tables } = r.surface;
+  const P = tables.patchCount, st = [0, 16384, 32768];
+  const tv = new Uint32Array(P * 9 * 4);
+  let n = 0;
+  for (let p = 0; p < P; p++) for (const t of st) for (const u of st) tv.set([p, u | (t << 16), 0, 0], 4 * n++);
+  const tvb = r.buffer('hull samples', tv);
+  const { positions, limits } = await evaluateVertices(r, tvb, n, true);
+  tvb.destroy();
+  const points = [];
+  for (let i = 0; i < n; i++) points.push([positions[4 * i], positions[4 * i + 1], positions[4 * i + 2]]);
+  for (let i = 0; i < tables.limitCount; i++) points.push([limits[8 * i], limits[8 * i + 1], limits[8 * i + 2]]);
+  return points;
+}
+
 /**
  * Whether a drawn point (element, s | t << 16 in 1/32768) is off the limit surface: drawn bilinear
  * within 2^-K of an extraordinary corner (docs/irregular.md), as subdivision_draw.cpp's
