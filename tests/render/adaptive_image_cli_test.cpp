@@ -343,9 +343,9 @@ struct OutlineDistance {
 
 // Mean distance between the outlines of two RGBA images' coverage (alpha), over the image and
 // the worst tile.
-OutlineDistance outlineDistance(const render::Image& a, const render::Image& reference) {
+OutlineDistance outlineDistance(const Image& a, const Image& reference) {
     const uint32_t w = reference.width, h = reference.height;
-    auto alpha = [&](const render::Image& img, uint32_t x, uint32_t y) { return img.at(x, y)[3] / 255.0; };
+    auto alpha = [&](const Image& img, uint32_t x, uint32_t y) { return img.at(x, y)[3] / 255.0; };
     const uint32_t tx = (w + kSilhouetteTile - 1) / kSilhouetteTile, ty = (h + kSilhouetteTile - 1) / kSilhouetteTile;
     std::vector<double> area(size_t(tx) * ty), length(size_t(tx) * ty);
     OutlineDistance d;
