@@ -7,6 +7,8 @@
 #include "subdiv/tables.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -24,30 +26,57 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
         if (T.vertexIsBoundary(v) || T.vertexIsNonManifold(v)) return false;
         const uint32_t n = T.vertexFaceCount(v);
         if (n == 4) continue;
-        if (ev >= 0 || n < 3) return false;
+        if (ev >= 0 || n < 3 || n > kMaxBasisValence) return false;
         ev = k;
         valence = n;
     }
     if (ev < 0) return false;
     corner = ev;
     support.clear();
+    // This runs once per irregular face of the last level (hundreds of thousands on a scanned
+    // mesh), so it avoids searching: the support's vertices go into a small open-addressing set
+    // (at most half full), and faces met a second time are skipped, as they add no vertex. Fan j
+    // (j >= 1) starts with f and then the face across edge (j-1, j), the last face of fan j-1;
+    // fan 3 ends with the face across edge (3, 0), the second of fan 0.
+    const size_t M = 2 * size_t(valence) + 8;
+    size_t slots = 16;
+    while (slots < 2 * M) slots *= 2;
+    std::array<uint32_t, 512> set; // 2 M <= 272 for valences up to kMaxBasisValence
+    std::fill_n(set.begin(), slots, kNone);
+    const int bits = std::countr_zero(slots);
+    auto insert = [&](uint32_t v) { // false if already there
+        for (size_t i = (v * 0x9E3779B1u) >> (32 - bits);; i = (i + 1) & (slots - 1)) {
+            if (set[i] == v) return false;
+            if (set[i] == kNone) {
+                set[i] = v;
+                return true;
+            }
+        }
+    };
     for (int j = 0; j < 4; ++j) {
         const uint32_t h0 = T.faceHalfedge(f) + (fr.rotation + ev + j) % 4;
         uint32_t h = h0;
-        do {
-            const uint32_t g = T.face(h);
-            if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
-            uint32_t x = h;
-            for (int c = 0; c < 4; ++c, x = T.next(x)) {
-                const uint32_t v = T.vertex(x);
-                if (L.vertexSharpness[v] != 0 || L.edgeSharpness[T.edge(x)] != 0) return false;
-                if (std::find(support.begin(), support.end(), v) == support.end()) support.push_back(v);
+        for (int step = 0;; ++step) {
+            const uint32_t hn = T.rotateCCW(h);
+            if (hn == kNone) return false;
+            const bool seen = (j > 0 && step < 2) || (j == 3 && hn == h0);
+            if (!seen) {
+                const uint32_t g = T.face(h);
+                if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
+                uint32_t x = h;
+                for (int c = 0; c < 4; ++c, x = T.next(x)) {
+                    if (L.edgeSharpness[T.edge(x)] != 0) return false;
+                    const uint32_t v = T.vertex(x);
+                    if (!insert(v)) continue;
+                    if (L.vertexSharpness[v] != 0 || support.size() == M) return false;
+                    support.push_back(v);
+                }
             }
-            h = T.rotateCCW(h);
-            if (h == kNone) return false;
-        } while (h != h0);
+            h = hn;
+            if (h == h0) break;
+        }
     }
-    return support.size() == 2 * size_t(valence) + 8;
+    return support.size() == M;
 }
 
 IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
@@ -73,6 +102,10 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
             }
     Warnings warnings;
     SchemeOptions options;
+    // Sharp rim corners: each rim corner (one face) is then a regular corner patch instead of an
+    // irregular face refined K levels deep like the centre. The rim's rules never reach face 0's
+    // sub-patches (the checks below would throw), so the weights are the same to the bit.
+    options.boundary = BoundaryRule::EdgeAndCorner;
     TablesOptions opts;
     opts.depth = static_cast<int>(K);
     opts.irregularLevels = 0;
@@ -92,14 +125,20 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     const size_t M = support.size();
     basis.weights.assign(size_t(K) * 3 * 16 * M, 0.0f);
     std::vector<uint8_t> filled(size_t(K) * 3, 0);
-    std::vector<uint8_t> inSupport(m.vertexCount(), 0);
-    for (uint32_t v : support) inSupport[v] = 1;
-    // The tables are linear in the control points: unit points (three at once, one per
-    // coordinate) give each control point's weights.
+    // The tables are linear in the control points, and each coordinate is evaluated on its own:
+    // unit points, three support points at a time (one per coordinate), give each support point's
+    // weights. A last pass puts 1 on every other point: Catmull-Clark's smooth rules have no
+    // negative weights, so a zero there means that none of them reaches face 0's sub-patches.
+    const size_t passes = (M + 2) / 3;
     std::vector<glm::dvec3> control(m.vertexCount());
-    for (size_t v0 = 0; v0 < m.vertexCount(); v0 += 3) {
+    for (size_t pass = 0; pass <= passes; ++pass) {
         std::fill(control.begin(), control.end(), glm::dvec3(0.0));
-        for (int c = 0; c < 3 && v0 + c < m.vertexCount(); ++c) control[v0 + c][c] = 1;
+        if (pass == passes) {
+            for (size_t v = 0; v < control.size(); ++v) control[v][0] = 1;
+            for (uint32_t v : support) control[v][0] = 0;
+        } else {
+            for (size_t c = 0; c < 3 && 3 * pass + c < M; ++c) control[support[3 * pass + c]][int(c)] = 1;
+        }
         const std::vector<glm::dvec3> V = evaluateVertices(t, control);
         for (const Patch& p : t.patches) {
             if (p.ptex != 0 || p.level < 1) continue;
@@ -112,18 +151,15 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
             filled[block] = 1;
             glm::dvec3 P[4][4];
             gatherControlPoints(p, V, P);
-            for (int c = 0; c < 3 && v0 + c < m.vertexCount(); ++c) {
-                const uint32_t v = uint32_t(v0 + c);
-                for (int j = 0; j < 16; ++j) {
-                    const double w = P[j % 4][j / 4][c];
-                    if (!inSupport[v]) {
-                        if (std::abs(w) > 1e-12)
-                            throw std::logic_error("irregular basis: support too small");
-                        continue;
-                    }
-                    const size_t i = size_t(std::find(support.begin(), support.end(), v) - support.begin());
-                    basis.weights[block * 16 * M + size_t(j) * M + i] = static_cast<float>(w);
+            for (int j = 0; j < 16; ++j) {
+                if (pass == passes) {
+                    if (std::abs(P[j % 4][j / 4][0]) > 1e-12)
+                        throw std::logic_error("irregular basis: support too small");
+                    continue;
                 }
+                for (size_t c = 0; c < 3 && 3 * pass + c < M; ++c)
+                    basis.weights[block * 16 * M + size_t(j) * M + 3 * pass + c] =
+                        static_cast<float>(P[j % 4][j / 4][int(c)]);
             }
         }
     }

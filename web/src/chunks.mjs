@@ -393,7 +393,7 @@ function decodeTables(chunk, mesh, tags) {
   return {
     depth, irregularLevels: extra, uniform: (flags & 1) === 1, options, totalVertices, levels, facePoints, edgePoints, vertexPoints,
     patchCount: P, patches, irregularCount: Q, irregular, limitCount: L, limitPosition, limitTangent1, limitTangent2,
-    limitVertex, limitFlags,
+    limitVertex, limitFlags, irregularNodeCount: surface.nodes.length / W,
   };
 }
 

@@ -57,6 +57,9 @@ export interface RenderSettings {
   /** 'triangles': limn-render --wire-triangles, the edges of every triangle drawn; 'outlines':
    *  --wire, the patches' and faces' outlines (drawn on the fixed grids). */
   wire?: 'triangles' | 'outlines';
+  /** --mesh-out: view-adaptive, every triangle of an element that draws some is emitted (no
+   *  shared slots), as limn-render evaluates them for its --mesh-out; then call drawnMesh(). */
+  meshOut?: boolean;
 }
 export interface ImageRGB { width: number; height: number; rgb: Float32Array }
 export interface Displacement {
@@ -91,7 +94,26 @@ export function viewMatrix(camera: Camera): number[];
 export function projectionMatrix(camera: Camera, aspect: number): number[];
 /** The generated WGSL of one of limn's shaders, by its GLSL name ('surface.vert'). */
 export function loadShader(name: string): Promise<string>;
-export interface Renderer {
-  /** The drawn surface as limn-render --mesh-out writes it: xyzw per vertex, 3 indices a triangle. */
-  drawnMesh(): Promise<{ positions: Float32Array; triangles: Uint32Array }>;
+/** The surface as drawn, read back (what limn-render --mesh-out writes). */
+export interface DrawnMesh {
+  /** xyzw per vertex (displaced when displaced). */
+  positions: Float32Array;
+  /** xyz_ per vertex. */
+  normals: Float32Array;
+  /** Per vertex: ptex face, then the bits of u and v in it (floats), one word unused. */
+  info: Uint32Array;
+  /** Per vertex: element, s | t << 16 (1/32768), the bits of the texture UV (floats). */
+  tessVertices: Uint32Array;
+  /** 1 where the vertex is not on the limit surface (drawn bilinear near an extraordinary corner). */
+  approximate: Uint8Array;
+  /** 3 indices a triangle. */
+  triangles: Uint32Array;
+  /** Whether the mesh has texture coordinates (the PLY's s t). */
+  hasTexCoords: boolean;
 }
+export interface Renderer {
+  /** The drawn surface as limn-render --mesh-out writes it (view-adaptive: create with settings.meshOut). */
+  drawnMesh(): Promise<DrawnMesh>;
+}
+/** limn-render's --mesh-out PLY, the same bytes: binary little-endian, or ASCII. */
+export function encodePly(mesh: DrawnMesh, ascii?: boolean): Uint8Array;

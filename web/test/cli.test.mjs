@@ -2,11 +2,12 @@
 // limn's format naming the file and chunk, no output file left behind, no hang (timeouts).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawnSync } from 'node:child_process';
-import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { execFileSync, spawnSync } from 'node:child_process';
+import { existsSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { container, scratch, repo } from './support.mjs';
+import { container, scratch, repo, tool } from './support.mjs';
 import { encodePng } from '../src/png.mjs';
+import { privateIcd } from '../src/node_device.mjs';
 
 const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
@@ -78,4 +79,49 @@ test('what is not supported here exits 3 and says so; maps it cannot use exit 1 
   assert.match(noUVs.stderr, /need texture coordinates; the mesh has none/);
   assert.equal(run(limn, '-o', out, '--displace', map, '--displace-scale', 'x%').status, 2);
   assert.equal(existsSync(out), false);
+});
+
+// --mesh-out against limn-render's on the same driver: the same bytes. The view-adaptive case has
+// irregular faces drawn bilinear (--irregular-levels 0: the `approximate` property) and writes
+// the image too; the fixed-grid case has texture coordinates (s t) and is ASCII (every float as
+// the shortest text, as C++'s to_chars writes it).
+test('--mesh-out writes the bytes limn-render --mesh-out writes', () => {
+  const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
+  const cases = [
+    [container('quad/spot_quadrangulated.obj', { depth: 2, tablesArgs: ['--irregular-levels', '0'], name: 'spot_bilinear.limn' }), 'mesh_adaptive.ply', ['--size', '320x240', '--edge-pixels', '4']],
+    [container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), 'mesh_fixed.ply', ['--size', '64x64', '--edge-pixels', '0', '--mesh-ascii']],
+  ];
+  for (const [limn, name, args] of cases) {
+    const native = join(scratch, `native_${name}`), web = join(scratch, `web_${name}`), png = join(scratch, `${name}.png`);
+    execFileSync(tool('limn-render'), [limn, '--mesh-out', native, ...args], { env, stdio: 'ignore' });
+    const r = spawnSync(process.execPath, [cli, limn, '--mesh-out', web, ...args, ...(args.includes('--mesh-ascii') ? [] : ['-o', png])], { encoding: 'utf8', timeout: 120000, env });
+    assert.equal(r.status, 0, r.stderr);
+    const want = readFileSync(native), got = readFileSync(web);
+    assert.equal(got.length, want.length, `${name}: ${got.length} bytes, limn-render wrote ${want.length}`);
+    assert.ok(got.equals(want), `${name}: the bytes differ from limn-render's`);
+    assert.equal(existsSync(png), !args.includes('--mesh-ascii'));
+  }
+  assert.match(readFileSync(join(scratch, 'web_mesh_adaptive.ply')).toString('latin1', 0, 600), /property uchar approximate\n/);
+  assert.match(readFileSync(join(scratch, 'web_mesh_fixed.ply')).toString('latin1', 0, 600), /format ascii 1\.0\n(.|\n)*property float s\n/);
+});
+
+test('--mesh-out: a bad extension exits 2, a format not written here exits 3, and no file is left', () => {
+  const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 });
+  const before = readdirSync(scratch).length;
+  for (const [args, status, message] of [
+    [['--mesh-out', join(scratch, 'm.stl')], 2, /unknown extension; limn-render writes \.ply, \.obj, \.gltf, \.glb/],
+    [['--mesh-out', join(scratch, 'noext')], 2, /unknown extension/],
+    [['--mesh-out', join(scratch, 'm.obj')], 3, /writes PLY only/],
+    [['-o', join(scratch, 'm.png'), '--mesh-ascii'], 2, /--mesh-ascii applies to a \.ply --mesh-out/],
+    [['--mesh-out', '-', '--bench', '1'], 2, /cannot share standard output/],
+  ]) {
+    const r = run(limn, ...args);
+    assert.equal(r.status, status, `${args.join(' ')}: ${r.stderr}`);
+    assert.match(r.stderr, message);
+  }
+  // A directory that does not exist: exit 1 naming the file, no temporary file left beside it.
+  const r = run(limn, '--size', '32x32', '--mesh-out', join(scratch, 'absent', 'm.ply'));
+  assert.equal(r.status, 1, r.stderr);
+  assert.match(r.stderr, /absent\/m\.ply: cannot write: ENOENT/);
+  assert.equal(readdirSync(scratch).length, before);
 });
