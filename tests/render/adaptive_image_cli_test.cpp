@@ -384,8 +384,8 @@ TEST_P(AdaptiveSilhouette, WithinMaxErrorOfTheReference) {
     for (int k = 0; k < c.views; ++k) {
         char suffix[16];
         std::snprintf(suffix, sizeof suffix, "_%04d.png", k);
-        const auto a = render::decodePng(readBytes(dir / ("default" + std::string(suffix))));
-        const auto fine = render::decodePng(readBytes(dir / ("fine" + std::string(suffix))));
+        const auto a = decodePng(readBytes(dir / ("default" + std::string(suffix))));
+        const auto fine = decodePng(readBytes(dir / ("fine" + std::string(suffix))));
         ASSERT_EQ(a.channels, 4u);
         ASSERT_EQ(fine.channels, 4u);
         const OutlineDistance d = outlineDistance(a, fine);
