@@ -36,8 +36,10 @@ export interface Surface {
   classification: object | null;
   tables: Tables;
   seams: { records: Uint32Array; uvs: Float32Array; uvCount: number } | null;
+  /** FVSF: the smooth face-varying UV surface (per-ptex quadtree nodes, 36 floats an element), or null. */
+  fvarSurface: { depth: number; ptexCount: number; nodes: Uint32Array; records: Float32Array; elementCount: number } | null;
 }
-/** Reads MESH, FVUV, TAGS, MATL, CLSF, TBLS (v1, v2) and SEAM, checking every count and index; BLND is refused. */
+/** Reads MESH, FVUV, TAGS, MATL, CLSF, TBLS (v1 to v4), SEAM and FVSF, checking every count and index; BLND is refused. */
 export function loadLimn(bytes: Uint8Array | ArrayBuffer): Surface;
 
 export type Shade = 'lit' | 'normal' | 'uv' | 'levels' | 'texture';

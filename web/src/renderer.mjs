@@ -57,12 +57,15 @@ export class Renderer {
     if (s.wire && s.wire !== 'triangles' && s.wire !== 'outlines') throw new LimnError(`wire '${s.wire}': 'outlines' (limn-render --wire) or 'triangles' (--wire-triangles)`, 'usage');
     if (s.texture) checkMapSize('--texture', s.texture);
     if ((s.texture || s.displace) && !surface.uvs) throw new LimnError('--texture and --displace need texture coordinates; the mesh has none', 'input');
+    // Smooth face-varying UVs (TAGS fvar other than "all") come from the FVSF chunk; without it
+    // the linear charts would be drawn where limn-render draws the smooth UVs.
+    this.smooth = surface.uvs && surface.tables.options.fvar !== 5 ? surface.fvarSurface : null;
     if (s.displace) {
       if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
       checkDisplacement(s.displace);
     }
-    if (surface.uvs && (s.shade === 'uv' || s.shade === 'texture') && surface.tables.options.fvar !== 5) {
-      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under --shade ${s.shade} are not supported here yet`, 'capability');
+    if (surface.uvs && surface.tables.options.fvar !== 5 && !this.smooth && (s.shade === 'uv' || s.shade === 'texture' || s.meshOut)) {
+      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under ${s.meshOut ? '--mesh-out' : `--shade ${s.shade}`} need their surface, the FVSF chunk, which this container lacks; re-run limn-tables on it`, 'input');
     }
     this.timings = { js: 0 };
   }
@@ -105,7 +108,7 @@ export class Renderer {
     this.adaptive = s.edgePixels > 0 && s.wire !== 'outlines';
     let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
     if (this.adaptive) {
-      const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables));
+      const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables, this.smooth));
       let minimum = 0;
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
       const p = Math.max(s.maxError > 0 ? Math.min(s.edgePixels, 4) : s.edgePixels, 0.25); // as renderer.cpp
@@ -123,6 +126,7 @@ export class Renderer {
         // With a displacement map, at least a segment per texel (up to one per 2 pixels).
         texelsPerUV: s.displace ? Math.max(s.displace.map.width, s.displace.map.height) : 0,
         maxVertices: minimum + ep.elements.length + viewBudget, maxTriangles: minimum + 2 * viewBudget,
+        smooth: this.smooth,
       };
       this.adaptiveData = adaptiveData(ep, tables, this.adaptiveOptions);
       this.closed = ep.pieces.length > 0 && ep.pieces.every((pc) => pc.users[1] !== 0xffffffff);
@@ -130,7 +134,7 @@ export class Renderer {
     } else {
       checkFixedSize(tables, s.tess);
       const cap = 2 ** Math.floor(Math.log2(Math.max(s.tess, 1)));
-      tess = cached(tables, `fixed ${cap}`, () => ({ ...buildTessellation({ ...mesh, uvs: surface.uvs }, tables, cap, !!surface.uvs), key: `fixed ${cap}` }));
+      tess = cached(tables, `fixed ${cap}`, () => ({ ...buildTessellation({ ...mesh, uvs: surface.uvs }, tables, cap, !!surface.uvs, this.smooth), key: `fixed ${cap}` }));
     }
     this.tess = tess;
     const b = this.buffers = {

@@ -8,6 +8,25 @@ import { join } from 'node:path';
 import { container, scratch, repo, tool } from './support.mjs';
 import { encodePng } from '../src/png.mjs';
 import { privateIcd } from '../src/node_device.mjs';
+import { parseContainer } from '../src/container.mjs';
+
+// A container of `chunks` (parseContainer's), framed as formats/limn.md section 2-3 says.
+function writeContainer(chunks) {
+  const size = 24 + chunks.reduce((n, c) => n + 16 + Math.ceil(c.payload.length / 8) * 8, 0);
+  const out = Buffer.alloc(size);
+  out.set([0x4c, 0x49, 0x4d, 0x4e, 0x0d, 0x0a, 0x1a, 0x0a]);
+  out.writeUInt32LE(1, 8);
+  out.writeBigUInt64LE(BigInt(size), 16);
+  let o = 24;
+  for (const c of chunks) {
+    out.write(c.type, o, 'latin1');
+    out.writeUInt32LE(c.version, o + 4);
+    out.writeBigUInt64LE(BigInt(c.payload.length), o + 8);
+    out.set(c.payload, o + 16);
+    o += 16 + Math.ceil(c.payload.length / 8) * 8;
+  }
+  return out;
+}
 
 const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
@@ -49,11 +68,21 @@ test('damaged containers exit 1 naming the chunk, and leave no output', () => {
 test('what is not supported here exits 3 and says so; maps it cannot use exit 1 naming them', () => {
   const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 });
   const out = join(scratch, 'x.png');
-  // Smooth face-varying UVs (an fvar rule other than "all").
+  // Displacement with smooth face-varying UVs (an fvar rule other than "all").
   const smooth = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_boundaries.limn' });
-  const r = run(smooth, '-o', out, '--shade', 'uv');
+  const flat = join(scratch, 'flat.png');
+  writeFileSync(flat, encodePng(2, 2, new Uint8Array(16).fill(128)));
+  const r = run(smooth, '-o', out, '--displace', flat);
   assert.equal(r.status, 3, r.stderr);
-  assert.match(r.stderr, /smooth face-varying UVs .* not supported here/);
+  assert.match(r.stderr, /--displace with smooth face-varying UVs .* not supported here/);
+  // Smooth UVs without their surface (the FVSF chunk removed, as from an older limn-tables).
+  const chunks = parseContainer(readFileSync(smooth)), kept = chunks.filter((c) => c.type !== 'FVSF');
+  assert.equal(kept.length, chunks.length - 1);
+  const older = join(scratch, 'no_fvsf.limn');
+  writeFileSync(older, writeContainer(kept));
+  const noSurface = run(older, '-o', out, '--shade', 'uv');
+  assert.equal(noSurface.status, 1, noSurface.stderr);
+  assert.match(noSurface.stderr, /need their surface, the FVSF chunk, which this container lacks; re-run limn-tables/);
   // A map that cannot be read or is not a PNG is named.
   const noMap = run(limn, '-o', out, '--displace', join(scratch, 'absent.png'));
   assert.equal(noMap.status, 1, noMap.stderr);
@@ -103,6 +132,46 @@ test('--mesh-out writes the bytes limn-render --mesh-out writes', () => {
   }
   assert.match(readFileSync(join(scratch, 'web_mesh_adaptive.ply')).toString('latin1', 0, 600), /property uchar approximate\n/);
   assert.match(readFileSync(join(scratch, 'web_mesh_fixed.ply')).toString('latin1', 0, 600), /format ascii 1\.0\n(.|\n)*property float s\n/);
+});
+
+// A binary --mesh-out PLY's vertices (11 floats: x y z nx ny nz, ptex bits, u v s t) and triangles.
+function readDrawnPly(bytes) {
+  const end = bytes.indexOf('end_header\n') + 'end_header\n'.length, header = bytes.toString('latin1', 0, end);
+  const V = Number(/element vertex (\d+)/.exec(header)[1]), F = Number(/element face (\d+)/.exec(header)[1]);
+  const stride = 44 + (header.includes('approximate') ? 1 : 0);
+  const vertices = Array.from({ length: V }, (_, i) => Array.from({ length: 11 }, (__, k) => bytes.readFloatLE(end + stride * i + 4 * k)));
+  const triangles = Array.from({ length: 3 * F }, (_, k) => bytes.readUInt32LE(end + stride * V + 13 * Math.floor(k / 3) + 1 + 4 * (k % 3)));
+  return { vertices, triangles };
+}
+
+// Smooth face-varying UVs from the FVSF chunk. View-adaptive: the emit pass evaluates them on the
+// GPU from the same records in both, the same bytes. Fixed grids: limn-render evaluates them on
+// the CPU from the UV surface's double-precision points, the web from the chunk's floats, so a
+// UV may differ in its last float bit (and a seam copy appear where the two faces' bits differ):
+// the same triangles, each corner at the same position and texture UV within 1e-6.
+test('--mesh-out with smooth UVs: limn-render\'s bytes (view-adaptive), its triangles and UVs (fixed grids)', () => {
+  const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
+  const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_boundaries.limn' });
+  for (const edgePixels of ['4', '0']) {
+    const native = join(scratch, `smooth_native_${edgePixels}.ply`), web = join(scratch, `smooth_web_${edgePixels}.ply`);
+    const args = ['--size', '160x120', '--edge-pixels', edgePixels, '--samples', '1'];
+    execFileSync(tool('limn-render'), [limn, '--mesh-out', native, ...args], { env, stdio: 'ignore' });
+    const r = spawnSync(process.execPath, [cli, limn, '--mesh-out', web, ...args], { encoding: 'utf8', timeout: 120000, env });
+    assert.equal(r.status, 0, r.stderr);
+    const want = readFileSync(native), got = readFileSync(web);
+    if (edgePixels !== '0') {
+      assert.ok(got.equals(want), 'view-adaptive: the bytes differ from limn-render\'s');
+      continue;
+    }
+    const a = readDrawnPly(want), b = readDrawnPly(got);
+    assert.equal(b.triangles.length, a.triangles.length, 'triangle count');
+    let worst = 0;
+    for (let k = 0; k < a.triangles.length; k++) {
+      const p = a.vertices[a.triangles[k]], q = b.vertices[b.triangles[k]];
+      for (const c of [0, 1, 2, 9, 10]) worst = Math.max(worst, Math.abs(p[c] - q[c]));
+    }
+    assert.ok(worst <= 1e-6, `fixed grids: a corner's position or texture UV is ${worst} away`);
+  }
 });
 
 test('--mesh-out: a bad extension exits 2, a format not written here exits 3, and no file is left', () => {
