@@ -60,12 +60,16 @@ export class Renderer {
     // Smooth face-varying UVs (TAGS fvar other than "all") come from the FVSF chunk; without it
     // the linear charts would be drawn where limn-render draws the smooth UVs.
     this.smooth = surface.uvs && surface.tables.options.fvar !== 5 ? surface.fvarSurface : null;
-    if (s.displace) {
-      if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
-      checkDisplacement(s.displace);
+    if (surface.uvs && surface.tables.options.fvar !== 5 && !this.smooth && (s.shade === 'uv' || s.shade === 'texture' || s.meshOut || s.displace)) {
+      const what = s.displace ? '--displace' : s.meshOut ? '--mesh-out' : `--shade ${s.shade}`;
+      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under ${what} need their surface, the FVSF chunk, which this container lacks; re-run limn-tables on it`, 'input');
     }
-    if (surface.uvs && surface.tables.options.fvar !== 5 && !this.smooth && (s.shade === 'uv' || s.shade === 'texture' || s.meshOut)) {
-      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under ${s.meshOut ? '--mesh-out' : `--shade ${s.shade}`} need their surface, the FVSF chunk, which this container lacks; re-run limn-tables on it`, 'input');
+    if (s.displace) {
+      // The view-adaptive displacement would need the smooth UVs' seam records (not ported yet).
+      if (this.smooth && s.edgePixels > 0 && s.wire !== 'outlines') {
+        throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is drawn here on the fixed grids only; give --edge-pixels 0', 'capability');
+      }
+      checkDisplacement(s.displace);
     }
     this.timings = { js: 0 };
   }
@@ -256,8 +260,9 @@ export class Renderer {
     if (s.displace || s.wire) await addComputeEvaluation(this, compute, group);
     if (s.displace) {
       // The SEAM chunk's records, or the same computed here (limn-render does so too).
-      this.seams = surface.seams ?? cached(tables, 'seams', () => computeSeams(mesh, surface.uvs, tables));
-      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, this.seams, s.displace.seamFix));
+      // Smooth UVs (fixed grids): the plan takes every face's smooth UV from the tessellation's charts.
+      this.seams = this.smooth ? null : surface.seams ?? cached(tables, 'seams', () => computeSeams(mesh, surface.uvs, tables));
+      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, this.seams, s.displace.seamFix, tables));
       await addDisplacementPasses(this, compute, group, plan);
     }
     const drawPush = pushGroup(this.drawPipeline);
