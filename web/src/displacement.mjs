@@ -251,7 +251,7 @@ export async function addDisplacementPasses(r, compute, group, plan) {
     b.seamElements = r.buffer('seam elements', seamGpuRecords(r.seams));
     b.seamUVs = r.buffer('seam UVs', r.seams.uvs);
     indirectPass(r, displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.tessVertices, b.seamElements, b.seamUVs, b.map, b.displaced]),
-      [f32(d.scale), f32(d.mid), d.seamFix ? 1 : 0, 0], 'displace');
+      [f32(d.scale), f32(d.mid), d.seamFix ? 1 : 0, r.smooth ? 1 : 0], 'displace'); // smooth: the emitted UV inside
     indirectPass(r, normalsPass, group(normalsPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.elements, b.map, b.displacedNormals]),
       [tables.patchCount, f32(d.scale), f32(d.mid)], 'displaced normals');
     return;

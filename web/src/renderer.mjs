@@ -7,7 +7,8 @@
 // The control points go straight into the level-0 range of the vertex buffer (queue.writeBuffer:
 // what limn-render's staging copy and copy_points.comp do on Vulkan).
 import { ShaderCache, groupLayout, loadShader as loadShaderText } from './shaders.mjs';
-import { buildTessellation } from './tessellation.mjs';
+import { PtexMap, buildTessellation } from './tessellation.mjs';
+import { SmoothChartUVs, smoothSeamRecords } from './smooth_uvs.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
 import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
@@ -64,13 +65,7 @@ export class Renderer {
       const what = s.displace ? '--displace' : s.meshOut ? '--mesh-out' : `--shade ${s.shade}`;
       throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under ${what} need their surface, the FVSF chunk, which this container lacks; re-run limn-tables on it`, 'input');
     }
-    if (s.displace) {
-      // The view-adaptive displacement would need the smooth UVs' seam records (not ported yet).
-      if (this.smooth && s.edgePixels > 0 && s.wire !== 'outlines') {
-        throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is drawn here on the fixed grids only; give --edge-pixels 0', 'capability');
-      }
-      checkDisplacement(s.displace);
-    }
+    if (s.displace) checkDisplacement(s.displace);
     this.timings = { js: 0 };
   }
 
@@ -112,7 +107,12 @@ export class Renderer {
     this.adaptive = s.edgePixels > 0 && s.wire !== 'outlines';
     let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
     if (this.adaptive) {
-      const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables, this.smooth));
+      // Smooth UVs: the elements' corners in their own chart and, displaced, the seam records of
+      // the smooth UVs, from one ChartUVs in element order (as subdivision_draw.cpp builds them).
+      const full = !!s.displace, smoothKey = this.smooth ? (full ? ' smooth seams' : ' smooth corners') : '';
+      this.smoothSeams = this.smooth ? cached(tables, `smooth seam records${smoothKey}`, () =>
+        smoothSeamRecords(tables, new SmoothChartUVs(this.smooth, new PtexMap({ ...mesh, uvs: surface.uvs }, 2 ** tables.depth)), full)) : null;
+      const ep = cached(tables, `edge pieces${smoothKey}`, () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables, this.smoothSeams?.own));
       let minimum = 0;
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
       const p = Math.max(s.maxError > 0 ? Math.min(s.edgePixels, 4) : s.edgePixels, 0.25); // as renderer.cpp
@@ -260,8 +260,9 @@ export class Renderer {
     if (s.displace || s.wire) await addComputeEvaluation(this, compute, group);
     if (s.displace) {
       // The SEAM chunk's records, or the same computed here (limn-render does so too).
-      // Smooth UVs (fixed grids): the plan takes every face's smooth UV from the tessellation's charts.
-      this.seams = this.smooth ? null : surface.seams ?? cached(tables, 'seams', () => computeSeams(mesh, surface.uvs, tables));
+      // Smooth UVs: view-adaptive, the seam records of the smooth UVs; fixed grids, the plan takes
+      // every face's smooth UV from the tessellation's charts.
+      this.seams = this.smooth ? this.smoothSeams : surface.seams ?? cached(tables, 'seams', () => computeSeams(mesh, surface.uvs, tables));
       const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, this.seams, s.displace.seamFix, tables));
       await addDisplacementPasses(this, compute, group, plan);
     }

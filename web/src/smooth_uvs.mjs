@@ -104,6 +104,24 @@ export class SmoothChartUVs {
     return out;
   }
 
+  /**
+   * For the element edge from (Ua, Va) to (Ub, Vb) (of R) of `ptex`: per base face along it (one
+   * inside a face or on the mesh boundary, two across a base edge; increasing face order), the
+   * UVs of its two ends in that face's chart, distinct pairs only.
+   */
+  edgeSides(ptex, Ua, Va, Ub, Vb) {
+    const out = [], ends = [this.locate(ptex, 2 * Ua, 2 * Va), this.locate(ptex, 2 * Ub, 2 * Vb)];
+    for (const side of this.locate(ptex, Ua + Ub, Va + Vb)) { // the midpoint: the faces along the edge
+      const pair = ends.map((list) => {
+        let uv = [0, 0];
+        for (const l of list) if (l.face === side.face) uv = this.ownQ(l.ptex, l.X, l.Y, 0.5 * this.Q, 0.5 * this.Q);
+        return uv;
+      });
+      if (!out.some((x) => x[0][0] === pair[0][0] && x[0][1] === pair[0][1] && x[1][0] === pair[1][0] && x[1][1] === pair[1][1])) out.push(pair);
+    }
+    return out;
+  }
+
   // Where the point at t (of 2Q) from base vertex a toward b lies in face f: its ptex face and (X, Y).
   inFace(f, a, b, t) {
     const fv = this.keys.faceVerts(f), n = fv.length, Q = this.Q, first = this.firstPtex[f];
@@ -137,4 +155,43 @@ export class SmoothChartUVs {
     else for (const g of keys.edgeFaces[keys.findEdge(a, b)].slice(0, 2)) out.push(this.inFace(g, a, b, t));
     return out.sort((x, y) => x.face - y.face);
   }
+}
+
+/**
+ * subdivision_draw.cpp's smoothSeamRecords: the seam records of SEAM's layout (displacement.mjs
+ * computeSeams: per element its corners' UVs in its own chart, each corner's distinct UVs in the
+ * faces around it, each edge's distinct end-UV pairs per face along it, in increasing face order)
+ * with the smooth UVs of `charts` (a SmoothChartUVs), in element order. Without `full`, the own
+ * corners only. Returns { records, uvs, uvCount, own: per element its 4 corner UVs }.
+ */
+export function smoothSeamRecords(tables, charts, full) {
+  const R = 2 ** tables.depth, E = tables.patchCount + tables.irregularCount;
+  const records = new Uint32Array(Math.max(E, 1) * 24), rf = new Float32Array(records.buffer), out = [], own = [];
+  const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
+  const qw = tables.irregular, qf = new Float32Array(qw.buffer, qw.byteOffset, qw.length);
+  const add = (e, ptex, u0, v0, size) => {
+    const base = 24 * e, U0 = Math.trunc(u0 * R), V0 = Math.trunc(v0 * R), W = Math.trunc(size * R);
+    const cu = [U0, U0 + W, U0 + W, U0], cv = [V0, V0, V0 + W, V0 + W];
+    own.push([]);
+    for (let k = 0; k < 4; k++) {
+      const uv = charts.own(ptex, cu[k], cv[k], U0 + 0.5 * W, V0 + 0.5 * W);
+      own[e].push(uv);
+      rf[base + 2 * k] = uv[0];
+      rf[base + 2 * k + 1] = uv[1];
+      if (!full) continue;
+      const list = charts.sides(ptex, cu[k], cv[k]);
+      records[base + 8 + 2 * k] = out.length;
+      records[base + 9 + 2 * k] = list.length;
+      out.push(...list);
+    }
+    for (let k = 0; full && k < 4; k++) {
+      const pairs = charts.edgeSides(ptex, cu[k], cv[k], cu[(k + 1) % 4], cv[(k + 1) % 4]);
+      records[base + 16 + 2 * k] = out.length;
+      records[base + 17 + 2 * k] = pairs.length;
+      for (const [a, b] of pairs) out.push(a, b);
+    }
+  };
+  for (let i = 0; i < tables.patchCount; i++) add(i, pw[24 * i + 16], pf[24 * i + 17], pf[24 * i + 18], pf[24 * i + 19]);
+  for (let i = 0; i < tables.irregularCount; i++) add(tables.patchCount + i, qw[8 * i + 4], qf[8 * i + 5], qf[8 * i + 6], qf[8 * i + 7]);
+  return { records: records.subarray(0, E * 24), uvs: Float32Array.from(out.flat()), uvCount: out.length, own };
 }

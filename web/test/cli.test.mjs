@@ -68,14 +68,9 @@ test('damaged containers exit 1 naming the chunk, and leave no output', () => {
 test('what is not supported here exits 3 and says so; maps it cannot use exit 1 naming them', () => {
   const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 });
   const out = join(scratch, 'x.png');
-  // Displacement with smooth face-varying UVs (an fvar rule other than "all"), view-adaptive.
+  // Smooth UVs (an fvar rule other than "all") without their surface (the FVSF chunk removed, as
+  // from an older limn-tables).
   const smooth = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_boundaries.limn' });
-  const flat = join(scratch, 'flat.png');
-  writeFileSync(flat, encodePng(2, 2, new Uint8Array(16).fill(128)));
-  const r = run(smooth, '-o', out, '--displace', flat);
-  assert.equal(r.status, 3, r.stderr);
-  assert.match(r.stderr, /--displace with smooth face-varying UVs .* is drawn here on the fixed grids only; give --edge-pixels 0/);
-  // Smooth UVs without their surface (the FVSF chunk removed, as from an older limn-tables).
   const chunks = parseContainer(readFileSync(smooth)), kept = chunks.filter((c) => c.type !== 'FVSF');
   assert.equal(kept.length, chunks.length - 1);
   const older = join(scratch, 'no_fvsf.limn');
