@@ -117,8 +117,9 @@ export class Renderer {
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
       const p = Math.max(s.maxError > 0 ? Math.min(s.edgePixels, 4) : s.edgePixels, 0.25); // as renderer.cpp
       const viewBudget = Math.max(Math.floor((32 * s.width * s.height) / (p * p)), 2 ** 20);
-      // renderer.cpp: no sample-based cull under a wireframe (its lines light pixels no triangle covers).
-      const samplePositions = s.wire ? [] : s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
+      // adaptive_options.cpp: the sample test only with the cull, which displacement turns off,
+      // and never under a wireframe (its lines light pixels no triangle covers).
+      const samplePositions = s.wire || s.displace ? [] : s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
       this.adaptiveOptions = {
         edgePixels: s.edgePixels, maxError: s.maxError, tess: s.tess, samplePositions,
         // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.

@@ -113,10 +113,8 @@ test('displaced quad_sphere: watertight with the seam fix (fixed grids and view-
 // by a checkerboard (8-texel squares: steps show where the UVs land; linear UVs put 2% of the
 // covered pixels off here): limn-render's image; the seam fix averages every face's smooth UV
 // around a point (ChartUVs sides), so the surface is closed with it and cracked without. The
-// view-adaptive tessellation takes the smooth UVs' seam records and is closed too (its image is
-// not compared: on spot with this map the web's view-adaptive displacement differs from
-// limn-render's in a few rates, with linear UVs alike).
-test('displaced spot with smooth UVs: limn-render\'s image (fixed grids), watertight with the seam fix (both tessellations)', async () => {
+// view-adaptive tessellation takes the smooth UVs' seam records and is closed too.
+test('displaced spot with smooth UVs: limn-render\'s image, watertight with the seam fix (both tessellations)', async () => {
   const limn = container('quad/spot_quadrangulated.obj', { depth: 2, classifyArgs: ['--fvar', 'corners-plus1'], name: 'spot_smooth_uvs_d2.limn' });
   const checker = join(scratch, 'checker-height.png'), n = 256, px = new Uint8Array(n * n * 4);
   for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) { const c = ((x >> 3) ^ (y >> 3)) & 1 ? 230 : 25; px.set([c, c, c, 255], 4 * (y * n + x)); }
@@ -133,18 +131,16 @@ test('displaced spot with smooth UVs: limn-render\'s image (fixed grids), watert
     const displace = { map: heightMap(readImageFile(checker, '--displace')), scale, mid: 0, seamFix };
     const r = await Renderer.create(gpu.device, surface, { width: 320, height: 240, samples: 1, shade: 'lit', edgePixels, tess: 64, view: {}, displace });
     const c = closedness(await r.drawnMesh());
-    if (edgePixels) {
+    if (seamFix) {
       // View-adaptive: the smooth UVs' seam records (smoothSeamRecords) weld every seam.
-      assert.equal(c.open, 0, `view-adaptive: ${c.open} edges are not shared by two triangles (cracks)`);
-    } else if (seamFix) {
-      assert.equal(c.open, 0, `${c.open} edges are not shared by two triangles (cracks)`);
+      assert.equal(c.open, 0, `edge pixels ${edgePixels}: ${c.open} edges are not shared by two triangles (cracks)`);
       r.frame();
       const rgba = await r.pixels();
-      const native = join(scratch, 'displaced-smooth.png');
-      execFileSync(tool('limn-render'), ['-q', limn, '-o', native, '--size', '320x240', '--samples', '1', '--edge-pixels', '0',
+      const native = join(scratch, `displaced-smooth-${edgePixels}.png`);
+      execFileSync(tool('limn-render'), ['-q', limn, '-o', native, '--size', '320x240', '--samples', '1', '--edge-pixels', String(edgePixels),
         '--displace', checker, '--displace-scale', '2%'], { env, stdio: ['ignore', 'ignore', 'pipe'] });
       const d = compareImages({ width: 320, height: 240, rgba }, decodePng(readFileSync(native)));
-      assert.ok(d.covered > 10000 && d.fraction <= 0.005, `${d.off} of ${d.covered} covered pixels differ by more than 8/255 (worst ${d.worst})`);
+      assert.ok(d.covered > 10000 && d.fraction <= 0.005, `edge pixels ${edgePixels}: ${d.off} of ${d.covered} covered pixels differ by more than 8/255 (worst ${d.worst})`);
     } else {
       assert.ok(c.open > 100, `seam fix off: the checkerboard should open the seams, found ${c.open} open edges`);
     }
