@@ -94,9 +94,12 @@ int main(int argc, char** argv) {
             opts.infSharpPatches = opts.singleCreasePatches = !noCreasePatches;
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
-            // Smooth face-varying UVs: their own surface, for runtimes that do not build it.
-            if (mesh.hasUVs() && c.options.fvar != FVarRule::All)
-                fvar = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(mesh, c.options, depth, warnings));
+            // Smooth face-varying UVs: their own surface, for runtimes that do not build it (its
+            // warnings are the mesh's, which the geometry's tables reported already).
+            if (mesh.hasUVs() && c.options.fvar != FVarRule::All) {
+                Warnings ignored;
+                fvar = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(mesh, c.options, depth, ignored));
+            }
         } catch (Error& e) {
             e.setFile(name);
             throw;

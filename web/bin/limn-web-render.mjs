@@ -59,9 +59,9 @@ what is not listed is not supported here.
                           this view chose)
   --bench N               render N frames, print limn-render's --bench JSON fields on stdout
   --help, --version
-Smooth face-varying UVs (TAGS fvar other than "all") are drawn from the container's FVSF chunk
-(limn-tables writes it). Not supported here yet: --displace with smooth face-varying UVs, BLND
-(blending surfaces); images other than PNG; --mesh-out other than PLY.
+Smooth face-varying UVs (TAGS fvar other than "all") are drawn, and displaced, from the
+container's FVSF chunk (limn-tables writes it). Not supported here yet: BLND (blending
+surfaces); images other than PNG; --mesh-out other than PLY.
 Exit codes: 0 ok, 1 bad input, 2 usage, 3 missing capability.
 `;
 

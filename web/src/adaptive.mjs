@@ -3,7 +3,6 @@
 // lib/render/adaptive_tess.cpp (the five compute passes per frame: cull, rates, counts, scan,
 // emit; the draw then reads the tessellation through one indirect draw).
 import { PtexMap, TESS_ONE } from './tessellation.mjs';
-import { SmoothChartUVs } from './smooth_uvs.mjs';
 import { LimnError } from './container.mjs';
 
 const NO_ELEMENT = 0xffffffff;
@@ -30,16 +29,15 @@ function sideST(d, k, x) {
 
 /**
  * buildEdgePieces: elements, side pieces, pieces and points, as lib/tess/edge_pieces.cpp. With
- * `smooth` (the FVSF surface), the elements' corner UVs are the smooth UVs in their own chart
- * (subdivision_draw.cpp's smoothSeamRecords `own`).
+ * `smoothOwn` (smooth_uvs.mjs smoothSeamRecords' `own`), the elements' corner UVs are the smooth
+ * UVs in their own chart, as subdivision_draw.cpp sets them.
  */
-export function buildEdgePieces(mesh, tables, smooth = null) {
+export function buildEdgePieces(mesh, tables, smoothOwn = null) {
   const N = tables.depth;
   if (N + 1 > 16) throw new Error(`view-adaptive tessellation supports tables up to depth 15, these have depth ${N}`);
   const R = 2 ** N;
   const keys = new PtexMap(mesh, R), halfKeys = new PtexMap(mesh, 2 * R);
   const withUV = !!mesh.uvs;
-  const charts = withUV && smooth ? new SmoothChartUVs(smooth, keys) : null;
   const domains = [], elements = [], points = [], pieces = [], sidePieces = [];
   const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
   const qw = tables.irregular, qf = new Float32Array(qw.buffer, qw.byteOffset, qw.length);
@@ -51,7 +49,7 @@ export function buildEdgePieces(mesh, tables, smooth = null) {
       const cu = [0, 1, 1, 0], cv = [0, 0, 1, 1];
       for (let c = 0; c < 4; c++) {
         const U = d.U0 + cu[c] * d.W, V = d.V0 + cv[c] * d.W;
-        e.cornerUV[c] = charts ? charts.own(ptex, U, V, d.U0 + 0.5 * d.W, d.V0 + 0.5 * d.W) : keys.ownUV(ptex, U / R, V / R).map(Math.fround);
+        e.cornerUV[c] = smoothOwn ? smoothOwn[elements.length][c] : keys.ownUV(ptex, U / R, V / R).map(Math.fround);
       }
     }
     elements.push(e);

@@ -166,14 +166,28 @@ export function seamGpuRecords(seams) {
 /**
  * The fixed grids' displacement plan (prepareSubdivision with a DisplacementPlan): per vertex
  * the range of UVs it samples, and the triangles around its point (all copies of a seam point
- * together, in index order) for the displaced normals.
+ * together, in index order) for the displaced normals. With smooth UVs (a tessellation built
+ * with the FVSF surface, `tables` given), the UVs around a point are its smooth UVs in every face
+ * containing it (subdivision_draw.cpp with ChartUVs::sides).
  */
-export function fixedDisplacementPlan(tess, seams, seamFix) {
+export function fixedDisplacementPlan(tess, seams, seamFix, tables = null) {
   const n = tess.vertexCount, v = tess.vertices, vf = new Float32Array(v.buffer, v.byteOffset, v.length);
   const sideRanges = new Uint32Array(Math.max(n, 1) * 2), uvs = [];
+  // Smooth UVs (the tessellation's smoothCharts): the point's smooth UV in every face around it.
+  const smoothSides = (i) => {
+    const e = v[4 * i], st = v[4 * i + 1], P = tables.patchCount;
+    const w = e < P ? tables.patches.subarray(24 * e + 16, 24 * e + 20) : tables.irregular.subarray(8 * (e - P) + 4, 8 * (e - P) + 8);
+    const f = new Float32Array(w.buffer, w.byteOffset, 4), R = 2 ** tables.depth;
+    const U = (f[1] + ((st & 0xffff) / 32768) * f[3]) * R, V = (f[2] + ((st >>> 16) / 32768) * f[3]) * R;
+    // An element's centre (a single cell's fan) lies inside one face: its own UV.
+    const sides = Number.isInteger(U) && Number.isInteger(V) ? tess.smoothCharts.sides(w[0], U, V) : [[vf[4 * i + 2], vf[4 * i + 3]]];
+    for (const uv of sides) uvs.push(uv[0], uv[1]);
+    return sides.length;
+  };
   for (let i = 0; i < n; i++) {
     const first = uvs.length / 2;
-    const count = seamFix ? sideUVsOf(seams, v[4 * i], v[4 * i + 1], uvs) : (uvs.push(vf[4 * i + 2], vf[4 * i + 3]), 1);
+    const count = seamFix && tess.smoothCharts ? smoothSides(i)
+      : seamFix ? sideUVsOf(seams, v[4 * i], v[4 * i + 1], uvs) : (uvs.push(vf[4 * i + 2], vf[4 * i + 3]), 1);
     sideRanges[2 * i] = first;
     sideRanges[2 * i + 1] = count;
   }
@@ -237,7 +251,7 @@ export async function addDisplacementPasses(r, compute, group, plan) {
     b.seamElements = r.buffer('seam elements', seamGpuRecords(r.seams));
     b.seamUVs = r.buffer('seam UVs', r.seams.uvs);
     indirectPass(r, displacePass, group(displacePass, 0, [b.evalPositions, b.evalNormals, b.tessVertices, b.seamElements, b.seamUVs, b.map, b.displaced]),
-      [f32(d.scale), f32(d.mid), d.seamFix ? 1 : 0, 0], 'displace');
+      [f32(d.scale), f32(d.mid), d.seamFix ? 1 : 0, r.smooth ? 1 : 0], 'displace'); // smooth: the emitted UV inside
     indirectPass(r, normalsPass, group(normalsPass, 0, [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.elements, b.map, b.displacedNormals]),
       [tables.patchCount, f32(d.scale), f32(d.mid)], 'displaced normals');
     return;

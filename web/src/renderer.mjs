@@ -7,7 +7,8 @@
 // The control points go straight into the level-0 range of the vertex buffer (queue.writeBuffer:
 // what limn-render's staging copy and copy_points.comp do on Vulkan).
 import { ShaderCache, groupLayout, loadShader as loadShaderText } from './shaders.mjs';
-import { buildTessellation } from './tessellation.mjs';
+import { PtexMap, buildTessellation } from './tessellation.mjs';
+import { SmoothChartUVs, smoothSeamRecords } from './smooth_uvs.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
 import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
@@ -60,13 +61,11 @@ export class Renderer {
     // Smooth face-varying UVs (TAGS fvar other than "all") come from the FVSF chunk; without it
     // the linear charts would be drawn where limn-render draws the smooth UVs.
     this.smooth = surface.uvs && surface.tables.options.fvar !== 5 ? surface.fvarSurface : null;
-    if (s.displace) {
-      if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
-      checkDisplacement(s.displace);
+    if (surface.uvs && surface.tables.options.fvar !== 5 && !this.smooth && (s.shade === 'uv' || s.shade === 'texture' || s.meshOut || s.displace)) {
+      const what = s.displace ? '--displace' : s.meshOut ? '--mesh-out' : `--shade ${s.shade}`;
+      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under ${what} need their surface, the FVSF chunk, which this container lacks; re-run limn-tables on it`, 'input');
     }
-    if (surface.uvs && surface.tables.options.fvar !== 5 && !this.smooth && (s.shade === 'uv' || s.shade === 'texture' || s.meshOut)) {
-      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under ${s.meshOut ? '--mesh-out' : `--shade ${s.shade}`} need their surface, the FVSF chunk, which this container lacks; re-run limn-tables on it`, 'input');
-    }
+    if (s.displace) checkDisplacement(s.displace);
     this.timings = { js: 0 };
   }
 
@@ -108,13 +107,19 @@ export class Renderer {
     this.adaptive = s.edgePixels > 0 && s.wire !== 'outlines';
     let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
     if (this.adaptive) {
-      const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables, this.smooth));
+      // Smooth UVs: the elements' corners in their own chart and, displaced, the seam records of
+      // the smooth UVs, from one ChartUVs in element order (as subdivision_draw.cpp builds them).
+      const full = !!s.displace, smoothKey = this.smooth ? (full ? ' smooth seams' : ' smooth corners') : '';
+      this.smoothSeams = this.smooth ? cached(tables, `smooth seam records${smoothKey}`, () =>
+        smoothSeamRecords(tables, new SmoothChartUVs(this.smooth, new PtexMap({ ...mesh, uvs: surface.uvs }, 2 ** tables.depth)), full)) : null;
+      const ep = cached(tables, `edge pieces${smoothKey}`, () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables, this.smoothSeams?.own));
       let minimum = 0;
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
       const p = Math.max(s.maxError > 0 ? Math.min(s.edgePixels, 4) : s.edgePixels, 0.25); // as renderer.cpp
       const viewBudget = Math.max(Math.floor((32 * s.width * s.height) / (p * p)), 2 ** 20);
-      // renderer.cpp: no sample-based cull under a wireframe (its lines light pixels no triangle covers).
-      const samplePositions = s.wire ? [] : s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
+      // adaptive_options.cpp: the sample test only with the cull, which displacement turns off,
+      // and never under a wireframe (its lines light pixels no triangle covers).
+      const samplePositions = s.wire || s.displace ? [] : s.samples === 1 ? [[0.5, 0.5]] : [[0.375, 0.875], [0.875, 0.625], [0.125, 0.375], [0.625, 0.125]];
       this.adaptiveOptions = {
         edgePixels: s.edgePixels, maxError: s.maxError, tess: s.tess, samplePositions,
         // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.
@@ -256,8 +261,10 @@ export class Renderer {
     if (s.displace || s.wire) await addComputeEvaluation(this, compute, group);
     if (s.displace) {
       // The SEAM chunk's records, or the same computed here (limn-render does so too).
-      this.seams = surface.seams ?? cached(tables, 'seams', () => computeSeams(mesh, surface.uvs, tables));
-      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, this.seams, s.displace.seamFix));
+      // Smooth UVs: view-adaptive, the seam records of the smooth UVs; fixed grids, the plan takes
+      // every face's smooth UV from the tessellation's charts.
+      this.seams = this.smooth ? this.smoothSeams : surface.seams ?? cached(tables, 'seams', () => computeSeams(mesh, surface.uvs, tables));
+      const plan = this.adaptive ? null : cached(tables, `displacement ${tess.key} ${!!s.displace.seamFix}`, () => fixedDisplacementPlan(tess, this.seams, s.displace.seamFix, tables));
       await addDisplacementPasses(this, compute, group, plan);
     }
     const drawPush = pushGroup(this.drawPipeline);

@@ -302,5 +302,5 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false, smoot
     vertices[4 * i + 1] = vST.a[i];
     if (withUV) { vf[4 * i + 2] = uvs.a[2 * i]; vf[4 * i + 3] = uvs.a[2 * i + 1]; }
   }
-  return { vertices, vertexCount: n, indices: indices.view().slice(), triangleLevels: triangleLevels.view().slice(), geometry: Array.from(geometry.view()), outline: outline.view() };
+  return { vertices, vertexCount: n, indices: indices.view().slice(), triangleLevels: triangleLevels.view().slice(), geometry: Array.from(geometry.view()), outline: outline.view(), smoothCharts: charts };
 }

@@ -68,14 +68,9 @@ test('damaged containers exit 1 naming the chunk, and leave no output', () => {
 test('what is not supported here exits 3 and says so; maps it cannot use exit 1 naming them', () => {
   const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 });
   const out = join(scratch, 'x.png');
-  // Displacement with smooth face-varying UVs (an fvar rule other than "all").
+  // Smooth UVs (an fvar rule other than "all") without their surface (the FVSF chunk removed, as
+  // from an older limn-tables).
   const smooth = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_boundaries.limn' });
-  const flat = join(scratch, 'flat.png');
-  writeFileSync(flat, encodePng(2, 2, new Uint8Array(16).fill(128)));
-  const r = run(smooth, '-o', out, '--displace', flat);
-  assert.equal(r.status, 3, r.stderr);
-  assert.match(r.stderr, /--displace with smooth face-varying UVs .* not supported here/);
-  // Smooth UVs without their surface (the FVSF chunk removed, as from an older limn-tables).
   const chunks = parseContainer(readFileSync(smooth)), kept = chunks.filter((c) => c.type !== 'FVSF');
   assert.equal(kept.length, chunks.length - 1);
   const older = join(scratch, 'no_fvsf.limn');
@@ -111,13 +106,18 @@ test('what is not supported here exits 3 and says so; maps it cannot use exit 1 
 });
 
 // --mesh-out against limn-render's on the same driver: the same bytes. The view-adaptive case has
-// irregular faces drawn bilinear (--irregular-levels 0: the `approximate` property) and writes
-// the image too; the fixed-grid case has texture coordinates (s t) and is ASCII (every float as
-// the shortest text, as C++'s to_chars writes it).
+// irregular faces drawn bilinear (--irregular-levels 0: the `approximate` property), is displaced
+// by a checkerboard (no sample test without the cull, as limn-render) and writes the image too;
+// the fixed-grid case has texture coordinates (s t) and is ASCII (every float as the shortest
+// text, as C++'s to_chars writes it).
 test('--mesh-out writes the bytes limn-render --mesh-out writes', () => {
   const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
+  const checker = join(scratch, 'checker.png'), n = 256, px = new Uint8Array(n * n * 4);
+  for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) { const c = ((x >> 3) ^ (y >> 3)) & 1 ? 230 : 25; px.set([c, c, c, 255], 4 * (y * n + x)); }
+  writeFileSync(checker, encodePng(n, n, px));
   const cases = [
-    [container('quad/spot_quadrangulated.obj', { depth: 2, tablesArgs: ['--irregular-levels', '0'], name: 'spot_bilinear.limn' }), 'mesh_adaptive.ply', ['--size', '320x240', '--edge-pixels', '4']],
+    [container('quad/spot_quadrangulated.obj', { depth: 2, tablesArgs: ['--irregular-levels', '0'], name: 'spot_bilinear.limn' }), 'mesh_adaptive.ply',
+      ['--size', '320x240', '--edge-pixels', '4', '--displace', checker, '--displace-scale', '2%']],
     [container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), 'mesh_fixed.ply', ['--size', '64x64', '--edge-pixels', '0', '--mesh-ascii']],
   ];
   for (const [limn, name, args] of cases) {

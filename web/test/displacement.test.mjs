@@ -10,14 +10,14 @@
 import { test, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { readFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { quadSphere as quadSphereInputs, scratch, tool } from './support.mjs';
+import { container, quadSphere as quadSphereInputs, scratch, tool } from './support.mjs';
 import { privateIcd, requestNodeDevice } from '../src/node_device.mjs';
 import { loadLimn } from '../src/chunks.mjs';
 import { Renderer } from '../src/renderer.mjs';
 import { computeSeams } from '../src/displacement.mjs';
-import { decodePng } from '../src/png.mjs';
+import { decodePng, encodePng } from '../src/png.mjs';
 import { readImageFile, heightMap } from '../src/node_image.mjs';
 import { compareImages } from './compare.mjs';
 
@@ -107,6 +107,46 @@ test('displaced quad_sphere: watertight with the seam fix (fixed grids and view-
       }
     }
   }
+});
+
+// Smooth face-varying UVs (spot, corners-plus1, from the FVSF chunk) on the fixed grids, displaced
+// by a checkerboard (8-texel squares: steps show where the UVs land; linear UVs put 2% of the
+// covered pixels off here): limn-render's image; the seam fix averages every face's smooth UV
+// around a point (ChartUVs sides), so the surface is closed with it and cracked without. The
+// view-adaptive tessellation takes the smooth UVs' seam records and is closed too.
+test('displaced spot with smooth UVs: limn-render\'s image, watertight with the seam fix (both tessellations)', async () => {
+  const limn = container('quad/spot_quadrangulated.obj', { depth: 2, classifyArgs: ['--fvar', 'corners-plus1'], name: 'spot_smooth_uvs_d2.limn' });
+  const checker = join(scratch, 'checker-height.png'), n = 256, px = new Uint8Array(n * n * 4);
+  for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) { const c = ((x >> 3) ^ (y >> 3)) & 1 ? 230 : 25; px.set([c, c, c, 255], 4 * (y * n + x)); }
+  writeFileSync(checker, encodePng(n, n, px));
+  const surface = loadLimn(new Uint8Array(readFileSync(limn)));
+  assert.ok(surface.fvarSurface, 'limn-tables wrote the FVSF chunk');
+  const P = surface.mesh.positions, lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < P.length; i++) { lo[i % 3] = Math.min(lo[i % 3], P[i]); hi[i % 3] = Math.max(hi[i % 3], P[i]); }
+  const scale = 0.02 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]); // --displace-scale 2%
+  gpu ??= await requestNodeDevice();
+  const errors = [];
+  gpu.device.onuncapturederror = (e) => errors.push(e.error.message);
+  for (const [edgePixels, seamFix] of [[0, true], [0, false], [4, true]]) {
+    const displace = { map: heightMap(readImageFile(checker, '--displace')), scale, mid: 0, seamFix };
+    const r = await Renderer.create(gpu.device, surface, { width: 320, height: 240, samples: 1, shade: 'lit', edgePixels, tess: 64, view: {}, displace });
+    const c = closedness(await r.drawnMesh());
+    if (seamFix) {
+      // View-adaptive: the smooth UVs' seam records (smoothSeamRecords) weld every seam.
+      assert.equal(c.open, 0, `edge pixels ${edgePixels}: ${c.open} edges are not shared by two triangles (cracks)`);
+      r.frame();
+      const rgba = await r.pixels();
+      const native = join(scratch, `displaced-smooth-${edgePixels}.png`);
+      execFileSync(tool('limn-render'), ['-q', limn, '-o', native, '--size', '320x240', '--samples', '1', '--edge-pixels', String(edgePixels),
+        '--displace', checker, '--displace-scale', '2%'], { env, stdio: ['ignore', 'ignore', 'pipe'] });
+      const d = compareImages({ width: 320, height: 240, rgba }, decodePng(readFileSync(native)));
+      assert.ok(d.covered > 10000 && d.fraction <= 0.005, `edge pixels ${edgePixels}: ${d.off} of ${d.covered} covered pixels differ by more than 8/255 (worst ${d.worst})`);
+    } else {
+      assert.ok(c.open > 100, `seam fix off: the checkerboard should open the seams, found ${c.open} open edges`);
+    }
+    r.destroy();
+  }
+  assert.deepEqual(errors, [], 'WebGPU errors');
 });
 
 // Without a SEAM chunk the renderer computes the seam records itself, as limn-render does: they
