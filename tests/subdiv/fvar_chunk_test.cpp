@@ -163,42 +163,4 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     }
 }
 
-Container parse(const std::string& bytes) {
-    return parseContainer({reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()});
-}
-
-// limn-tables writes it for smooth UVs only; limn-classify with another rule drops it with the
-// tables; limn-info checks it and calls one made for another mesh stale.
-TEST(FvarSurfaceChunk, ToolsWriteDropAndCheckIt) {
-    const std::string obj = test::modelPath("quad/osd_catmark_fvar_bound1.obj").string();
-    std::string smooth;
-    for (const char* rule : {"boundaries", "all"}) {
-        auto classified = test::run({test::tool("limn-classify").string(), "--fvar", rule, obj});
-        ASSERT_EQ(classified.exitCode, 0) << classified.err;
-        auto tables = test::run({test::tool("limn-tables").string(), "--depth", "1"}, classified.out);
-        ASSERT_EQ(tables.exitCode, 0) << tables.err;
-        EXPECT_EQ(parse(tables.out).find(kFvarSurfaceChunk) != nullptr, std::string(rule) != "all") << rule;
-        if (std::string(rule) != "all") smooth = tables.out;
-    }
-    auto again = test::run({test::tool("limn-classify").string(), "--fvar", "corners-only", "-"}, smooth);
-    ASSERT_EQ(again.exitCode, 0) << again.err;
-    EXPECT_FALSE(parse(again.out).has(kFvarSurfaceChunk));
-    EXPECT_FALSE(parse(again.out).has(FourCC{"TBLS"}));
-    auto info = test::run({test::tool("limn-info").string(), "-"}, smooth);
-    EXPECT_EQ(info.exitCode, 0) << info.err;
-    EXPECT_EQ(info.err.find("stale"), std::string::npos) << info.err;
-    // Its UVs moved after limn-tables: the chunk's UV hash no longer matches.
-    Container k = parse(smooth);
-    Warnings w;
-    Mesh m = importMeshFile(obj, w);
-    m.tags.fvar = FVarRule::Boundaries;
-    m.uvs[0].x += 0.5;
-    const SchemeOptions o = resolveSchemeOptions(m.tags, {});
-    k.set(encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 1, w)));
-    const std::vector<uint8_t> bytes = serializeContainer(k);
-    auto stale = test::run({test::tool("limn-info").string(), "-"}, std::string(bytes.begin(), bytes.end()));
-    EXPECT_EQ(stale.exitCode, 0) << stale.err;
-    EXPECT_NE(stale.err.find("the FVSF chunk was made from other tables, tags or UVs (stale)"), std::string::npos) << stale.err;
-}
-
 } // namespace
