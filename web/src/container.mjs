@@ -135,12 +135,23 @@ export function chunkReader(chunk, newest) {
   return new ByteReader(chunk.payload, `chunk ${chunk.type}`);
 }
 
-/** FNV-1a over bytes, as lib/container's hashBytes (64-bit, BigInt). */
-export function hashBytes(bytes, seed = 0xcbf29ce484222325n) {
-  let h = seed;
-  for (const b of bytes) {
-    h ^= BigInt(b);
-    h = (h * 0x100000001b3n) & 0xffffffffffffffffn;
+// 64-bit FNV-1a in two 32-bit halves (prime 2^40 + 0x1b3), as lib/container's hashBytes.
+export class Fnv64 {
+  constructor(hi = 0xcbf29ce4, lo = 0x84222325) { this.hi = hi >>> 0; this.lo = lo >>> 0; }
+  update(bytes) {
+    let { hi, lo } = this;
+    for (let i = 0; i < bytes.length; i++) {
+      lo = (lo ^ bytes[i]) >>> 0;
+      const t = lo * 0x1b3;
+      const nlo = t >>> 0;
+      hi = (hi * 0x1b3 + Math.floor(t / 4294967296) + ((lo << 8) >>> 0)) >>> 0;
+      lo = nlo;
+    }
+    this.hi = hi; this.lo = lo;
+    return this;
   }
-  return h;
+  get value() { return (BigInt(this.hi) << 32n) | BigInt(this.lo); }
 }
+
+// The bytes of a typed array, for hashing.
+export const bytesOf = (a) => new Uint8Array(a.buffer, a.byteOffset, a.byteLength);

@@ -161,7 +161,7 @@ class Grow {
 }
 
 /**
- * The fixed tessellation of tables (chunks.mjs's decodeTables) for `mesh`, capped at `cap`
+ * The fixed tessellation of tables (tables_chunk.mjs's decodeTables) for `mesh`, capped at `cap`
  * segments per side. Returns { vertices: Uint32Array (4 words a vertex: element, s | t << 16,
  * u bits, v bits), indices: Uint32Array, triangleLevels: Uint32Array, vertexCount }. `smooth`:
  * the FVSF surface (fvar_chunk.mjs) for smooth face-varying UVs instead of the faces' linear

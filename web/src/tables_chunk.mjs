@@ -1,0 +1,376 @@
+// The TBLS chunk (formats/limn.md, section 7; versions 1 to 4) as the WebGPU runtime reads it:
+// every count, index and stencil entry checked as lib/subdiv/tables_chunk.cpp checks it, so that
+// nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
+// them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
+import { Fnv64, LimnError, bytesOf, chunkReader } from './container.mjs';
+import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
+
+const MAX_DEPTH = 16;
+const INFINITE_SHARPNESS = 10;
+const MAX_STENCIL_VALENCE = 32767;
+// An irregular face's quadtree node codes (lib/subdiv/tables.h): the kind in the top two bits.
+const NODE_SUBPATCH = 0, NODE_CHILD = 1 << 30, NODE_LEAF = (2 << 30) >>> 0, NODE_BASIS = (3 << 30) >>> 0;
+const NODE_NONE = 0xffffffff, NODE_INDEX = (1 << 30) - 1;
+
+// The hash TBLS records (lib/subdiv/tables.cpp topologyHash).
+export function topologyHash(mesh, tags, options) {
+  const h = new Fnv64();
+  h.update(bytesOf(mesh.faceOffsets)).update(bytesOf(mesh.faceVertices));
+  h.update(new Uint8Array([options.boundary, options.creaseMethod, options.triangles, options.fvar]));
+  const w = new DataView(new ArrayBuffer(12));
+  for (const c of tags?.creases ?? []) {
+    w.setUint32(0, c.v0, true); w.setUint32(4, c.v1, true); w.setFloat32(8, c.sharpness, true);
+    h.update(new Uint8Array(w.buffer, 0, 12));
+  }
+  for (const c of tags?.corners ?? []) {
+    w.setUint32(0, c.vertex, true); w.setFloat32(4, c.sharpness, true);
+    h.update(new Uint8Array(w.buffer, 0, 8));
+  }
+  h.update(bytesOf(tags?.holes ?? new Uint32Array(0)));
+  w.setUint32(0, mesh.vertexCount, true);
+  h.update(new Uint8Array(w.buffer, 0, 4));
+  return h.value;
+}
+
+function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compact = false) {
+  const n = r.u32(), entries = r.u32(), hasWeights = r.u32();
+  const fourth = r.u32(); // version 4: the palette's size; before: reserved
+  if (!compact && fourth !== 0) r.fail(`${what}: reserved field is not zero`);
+  if (n !== rows) r.fail(`${what}: ${n} rows, expected ${rows}`);
+  if (hasWeights !== (weights ? 1 : 0)) r.fail(`${what}: weight flag is wrong`);
+  const { start, index, weight } = compact ? readCompactStencils(r, what, rows, entries, weights, fourth) : {
+    start: r.array(Uint32Array, rows + 1, `${what} starts`),
+    index: r.array(Uint32Array, entries, `${what} indices`),
+    weight: weights ? r.array(Float32Array, entries, `${what} weights`) : null,
+  };
+  if (start[0] !== 0 || start[rows] !== entries) r.fail(`${what}: row starts do not span the ${entries} entries`);
+  for (let i = 0; i < rows; i++) {
+    if (start[i + 1] < start[i] || start[i + 1] - start[i] > 65536) r.fail(`${what}: row ${i} has a bad length`);
+    if (!weights && start[i + 1] === start[i]) r.fail(`${what}: face point ${i} is empty`);
+  }
+  for (let i = 0; i < entries; i++) {
+    const x = index[i];
+    if (!((x >= lo0 && x < hi0) || (x >= lo1 && x < hi1))) r.fail(`${what}: entry ${i} reads vertex ${x} outside the levels it may read`);
+    if (weights && !(Math.abs(weight[i]) <= MAX_STENCIL_WEIGHT)) r.fail(`${what}: entry ${i} has weight ${weight[i]}; a stencil weight must be finite and within +-1e6`);
+  }
+  return { rows, start, index, weight };
+}
+
+export const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
+
+export function decodeTables(chunk, mesh, tags) {
+  if (chunk.version > 4) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 4); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 4);
+  const patchWords = chunk.version >= 2 ? 22 : 21;
+  const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
+  const depth = r.u32('depth');
+  if (depth > MAX_DEPTH) r.fail(`depth ${depth} is out of range`);
+  const flags = r.u32('flags');
+  if (flags > 1) r.fail('unknown flags');
+  const options = { boundary: r.u8(), creaseMethod: r.u8(), triangles: r.u8(), fvar: r.u8() };
+  if (options.boundary > 2 || options.creaseMethod > 1 || options.triangles > 1 || options.fvar > 5) r.fail('scheme option out of range');
+  // Version 3: the levels refined beyond depth under the irregular faces; before: reserved.
+  const extra = r.u32('irregular levels');
+  if (chunk.version < 3 && extra !== 0) r.fail('reserved field is not zero');
+  if (extra > MAX_DEPTH - depth || (extra && (flags & 1))) r.fail(`irregular levels ${extra} out of range`);
+  const D = depth + extra;
+  const hash = r.u64('topology hash');
+  if (hash !== topologyHash(mesh, tags, options)) {
+    throw new LimnError('the subdivision tables were built for a different mesh topology or tags; re-run limn-tables', 'chunk TBLS');
+  }
+  const totalVertices = r.u32(), P = r.u32('patch count'), Q = r.u32('irregular count'), L = r.u32('limit count');
+  const levels = [];
+  let sum = 0;
+  for (let l = 0; l <= D; l++) {
+    const lv = { first: r.u32(), facePoints: r.u32(), edgePoints: r.u32(), vertexPoints: r.u32(), regularPatches: r.u32(), irregularFaces: r.u32() };
+    if (lv.first !== sum) r.fail(`level ${l} does not start where the previous ends`);
+    lv.count = lv.facePoints + lv.edgePoints + lv.vertexPoints;
+    sum += lv.count;
+    if (sum > totalVertices) r.fail('level vertex counts exceed the total');
+    levels.push(lv);
+  }
+  if (sum !== totalVertices) r.fail('level vertex counts do not add up to the total');
+  if (levels[0].count !== mesh.vertexCount) r.fail(`level 0 has ${levels[0].count} vertices, the mesh ${mesh.vertexCount}`);
+  const facePoints = [], edgePoints = [], vertexPoints = [];
+  for (let l = 1; l <= D; l++) {
+    const p = levels[l - 1], c = levels[l];
+    const end = p.first + p.count, faceEnd = c.first + c.facePoints;
+    facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end, 0, 0, compact));
+    edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd, compact));
+    vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd, compact));
+  }
+  const ptex = ptexCount(mesh), R = 2 ** depth;
+  const squares = [];
+  const dyadic = (x, most) => Number.isFinite(x) && Number.isInteger(x * 2 ** most);
+  // Sub-patches and leaves (drawn = false) lie inside the irregular faces, down to level D.
+  const checkDomain = (p, u0, v0, size, what, drawn = true) => {
+    if (p >= ptex) r.fail(`${what} refers to ptex face ${p} that does not exist`);
+    const most = drawn ? depth : D;
+    if (!(size > 0) || !dyadic(size, most) || !dyadic(u0, most) || !dyadic(v0, most) || u0 < 0 || v0 < 0 || u0 + size > 1 || v0 + size > 1) {
+      r.fail(`${what} has a domain outside its ptex face or finer than the tables' depth`);
+    }
+    if (!drawn) return;
+    const W = size * R, U0 = u0 * R, V0 = v0 * R;
+    if ((W & (W - 1)) !== 0 || U0 % W !== 0 || V0 % W !== 0) r.fail(`${what} has a domain that is not a cell of its ptex face's quadtree`);
+    squares.push({ ptex: p, W, U0, V0 });
+  };
+  // GPU layout: 24 words a patch (surface_eval.glsl's Patch: cv[16], ptex, u0, v0, size, packed,
+  // sharpness, 2 words of padding).
+  const W = 24;
+  // Reads one patch record into w (24 words) / f (its float view).
+  // Version 4's records come from a stream (tables_chunk.cpp's writePatches): control points as
+  // differences from P11 (0 stays 0), P11 and ptex from the previous record's, the domain in
+  // units of 2^-16, the packed word, the sharpness only for single-crease patches.
+  let stream = null, lastCorner = 0, lastPtex = 0;
+  const readPatch = (w, f, what, drawn) => {
+    let packed, sharpness;
+    if (stream) {
+      w[5] = lastCorner = stream.after(lastCorner, 'a control point');
+      for (let k = 0; k < 16; k++) {
+        if (k === 5) continue;
+        const z = stream.varint();
+        const d = z - 1;
+        const x = z === 0 ? 0 : w[5] + (d % 2 === 1 ? -(d + 1) / 2 : d / 2);
+        if (x < 0 || x > 0xffffffff) stream.fail(`${what}: a control point out of range`);
+        w[k] = x;
+      }
+      w[16] = lastPtex = stream.after(lastPtex, 'a ptex face');
+      for (let k = 17; k < 20; k++) {
+        const u = stream.varint();
+        if (u > 65536) stream.fail(`${what}: a domain outside its ptex face`);
+        f[k] = u / 65536;
+      }
+      packed = stream.varint();
+      if (packed > 0xffffff) stream.fail(`${what}: bad level or boundary mask`);
+    } else {
+      for (let k = 0; k < 16; k++) w[k] = r.u32();
+      w[16] = r.u32(); f[17] = r.f32(); f[18] = r.f32(); f[19] = r.f32();
+      packed = r.u32();
+    }
+    w[20] = packed;
+    const level = packed & 0xff, boundary = (packed >>> 8) & 0xff, crease = (packed >>> 16) & 0xff;
+    if ((packed >>> 24) !== 0 || boundary > 15 || (drawn ? level > depth : level <= depth || level > D)) r.fail(`${what}: bad level or boundary mask`);
+    if (stream) sharpness = crease ? stream.rawFloat() : 0;
+    else sharpness = chunk.version >= 2 ? r.f32() : 0;
+
+    f[21] = sharpness;
+    const oneBit = crease !== 0 && (crease & (crease - 1)) === 0 && crease <= 8;
+    if (crease ? !(oneBit && boundary === 0 && sharpness > 0 && sharpness < INFINITE_SHARPNESS) : sharpness !== 0) {
+      r.fail(`${what}: bad crease edge or sharpness`);
+    }
+    const lv = levels[level];
+    for (let k = 0; k < 16; k++) {
+      const cv = w[k];
+      if (cv >= totalVertices || (cv !== 0 && (cv < lv.first || cv >= lv.first + lv.count))) r.fail(`${what} has a control point outside its level`);
+    }
+    checkDomain(w[16], f[17], f[18], f[19], what, drawn);
+  };
+  // Reads `count` patch records (24 GPU words each); at least 20 bytes a record in a stream.
+  const readPatches = (count, what, drawn) => {
+    if (compact) {
+      stream = new Stream(r, `${what}es`);
+      if (count > Math.floor(stream.size / 20)) r.fail(`${what} count ${count} is too large`);
+      lastCorner = lastPtex = 0;
+    } else if (count > Math.floor(r.remaining / (4 * patchWords))) {
+      r.fail(`${what} count ${count} is too large`);
+    }
+    const out = new Uint32Array(count * W);
+    for (let i = 0; i < count; i++) {
+      const w = out.subarray(W * i, W * i + W);
+      readPatch(w, new Float32Array(w.buffer, w.byteOffset, W), `${what} ${i}`, drawn);
+    }
+    if (stream) stream.finish();
+    stream = null;
+    return out;
+  };
+  const patchRecords = readPatches(P, 'patch', true);
+
+  const readFace = (q, qf, what, drawn) => {
+    for (let k = 0; k < 4; k++) {
+      const c = r.u32();
+      if (c >= L) r.fail(`${what} refers to a missing limit point`);
+      q[k] = c;
+    }
+    q[4] = r.u32(); qf[5] = r.f32(); qf[6] = r.f32(); qf[7] = r.f32();
+    checkDomain(q[4], qf[5], qf[6], qf[7], what, drawn);
+  };
+  const readFaces = (n, what, drawn) => {
+    const out = new Uint32Array(n * 8), of = new Float32Array(out.buffer);
+    for (let i = 0; i < n; i++) readFace(out.subarray(8 * i, 8 * i + 8), of.subarray(8 * i, 8 * i + 8), `${what} ${i}`, drawn);
+    return out;
+  };
+  if (Q > Math.floor(r.remaining / 32)) r.fail('irregular face count is too large');
+  const irregularFaces = readFaces(Q, 'irregular face', true);
+  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatches, readFaces, compact, depth, levels, Q }) : null;
+  // The domains tile every ptex face exactly once, or not at all (lib/subdiv/tables_chunk.cpp).
+  squares.sort((a, b) => a.ptex - b.ptex);
+  for (let first = 0, end = 0; first < squares.length; first = end) {
+    const p = squares[first].ptex;
+    const present = new Set();
+    let area = 0;
+    for (end = first; end < squares.length && squares[end].ptex === p; end++) {
+      const q = squares[end];
+      const key = `${q.W},${q.U0 / q.W},${q.V0 / q.W}`;
+      if (present.has(key)) r.fail(`two domains cover the same square of ptex face ${p}`);
+      present.add(key);
+      area += q.W * q.W;
+    }
+    for (let k = first; k < end; k++) {
+      for (let W = squares[k].W * 2; W <= R; W *= 2) {
+        if (present.has(`${W},${Math.floor(squares[k].U0 / W)},${Math.floor(squares[k].V0 / W)}`)) r.fail(`a domain lies inside another one of ptex face ${p}`);
+      }
+    }
+    if (area !== R * R) r.fail(`the domains do not cover ptex face ${p} exactly once`);
+  }
+  // Limit points read level N (the irregular faces' corners) or level D (the leaves').
+  const last = levels[depth], deepest = levels[D];
+  const lo = last.first, hi = last.first + last.count, lo1 = deepest.first, hi1 = deepest.first + deepest.count;
+  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi, lo1, hi1, compact);
+  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi, lo1, hi1, compact);
+  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi, lo1, hi1, compact);
+  const limitVertex = r.array(Uint32Array, L, 'limit vertices');
+  for (const v of limitVertex) if (!((v >= lo && v < hi) || (v >= lo1 && v < hi1))) r.fail("a limit point's vertex is not at the last level");
+  const limitFlags = r.array(Uint32Array, L, 'limit flags');
+  for (const f of limitFlags) if (f > 1) r.fail('unknown limit point flag');
+  r.requireEnd();
+  // The GPU buffers, as subdivision_draw.cpp's patchBuffer() and irregularBuffer(): the patches,
+  // then the irregular faces' quadtrees; the irregular faces, then the leaves.
+  const surface = packIrregularQuadtrees(P, Q, irregularFaces, v3);
+  const patches = new Uint32Array(Math.max(P * W + surface.nodes.length, W));
+  patches.set(patchRecords);
+  patches.set(surface.nodes, P * W);
+  const irregular = new Uint32Array(Math.max(Q * 8 + surface.leaves.length, 8));
+  irregular.set(irregularFaces);
+  irregular.set(surface.leaves, Q * 8);
+  return {
+    depth, irregularLevels: extra, uniform: (flags & 1) === 1, options, totalVertices, levels, facePoints, edgePoints, vertexPoints,
+    patchCount: P, patches, irregularCount: Q, irregular, limitCount: L, limitPosition, limitTangent1, limitTangent2,
+    limitVertex, limitFlags, irregularNodeCount: surface.nodes.length / W,
+  };
+}
+
+// TBLS version 3's irregular-face surface (lib/subdiv/tables_chunk.cpp): sub-patches, quadtree
+// nodes, leaves, per-valence bases, smooth faces and their points, with the C++ reader's checks.
+function readIrregularSurface(r, { readPatches, readFaces, compact, depth, levels, Q }) {
+  const subs = r.u32('sub-patch count');
+  const subPatches = readPatches(subs, 'sub-patch', false);
+  const nodes = r.u32('irregular node count');
+  if (nodes > Math.floor(r.remaining / 16)) r.fail('irregular node count is too large');
+  if (nodes && nodes < Q) r.fail('an irregular face has no quadtree');
+  const codes = r.array(Uint32Array, nodes * 4, 'irregular nodes');
+  const leafCount = r.u32('irregular leaf count');
+  if (leafCount > Math.floor(r.remaining / 32)) r.fail('irregular leaf count is too large');
+  for (let i = 0; i < nodes; i++) {
+    for (let q = 0; q < 4; q++) {
+      const c = codes[4 * i + q], x = c & NODE_INDEX, kind = (c & ~NODE_INDEX) >>> 0;
+      // Children come after their parent, so every walk ends.
+      const ok = c === NODE_NONE || kind === NODE_BASIS || (kind === NODE_SUBPATCH && x < subs) ||
+        (kind === NODE_CHILD && x > i && x < nodes) || (kind === NODE_LEAF && x < leafCount);
+      if (!ok) r.fail(`irregular node ${i} has a bad child`);
+    }
+  }
+  const leaves = readFaces(leafCount, 'irregular leaf', false);
+  const baseCount = r.u32('irregular basis count');
+  if (baseCount > Math.floor(r.remaining / 8)) r.fail('irregular basis count is too large');
+  const bases = [];
+  for (let i = 0; i < baseCount; i++) {
+    const valence = r.u32(), lv = r.u32();
+    if (valence < 3 || valence > MAX_STENCIL_VALENCE || lv < 1 || lv > MAX_DEPTH) r.fail(`irregular basis ${i} has a bad valence or level count`);
+    const support = 2 * valence + 8;
+    let weights;
+    if (compact) { // each control point names its row of weights; equal rows are stored once
+      const distinct = r.u32('irregular basis row count');
+      if (distinct === 0 || distinct > lv * 48) r.fail(`irregular basis ${i} has a bad row count`);
+      const pick = r.array(Uint16Array, lv * 48, 'irregular basis rows');
+      const rows = r.array(Float32Array, distinct * support, 'irregular basis weights');
+      weights = new Float32Array(lv * 48 * support);
+      pick.forEach((row, j) => {
+        if (row >= distinct) r.fail(`irregular basis ${i} names a missing row`);
+        weights.set(rows.subarray(row * support, (row + 1) * support), j * support);
+      });
+    } else {
+      weights = r.array(Float32Array, lv * 48 * support, 'irregular basis weights');
+    }
+    for (const x of weights) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`irregular basis ${i} has a bad weight`);
+    bases.push({ valence, levels: lv, support, weights });
+  }
+  const smoothCount = r.u32('smooth irregular face count');
+  if (smoothCount > Math.floor(r.remaining / 12)) r.fail('smooth irregular face count is too large');
+  const smooth = [];
+  for (let i = 0; i < smoothCount; i++) {
+    const f = { basis: r.u32(), corner: r.u32(), first: r.u32() };
+    if (f.basis >= baseCount || f.corner > 3) r.fail(`smooth irregular face ${i} is bad`);
+    smooth.push(f);
+  }
+  const points = r.u32('smooth irregular point count');
+  let smoothPoints;
+  if (compact) { // differences from the previous point
+    const s = new Stream(r, 'smooth irregular points');
+    if (points > s.size) s.fail(`count ${points} is too large`);
+    smoothPoints = new Uint32Array(points);
+    for (let i = 0, previous = 0; i < points; i++) smoothPoints[i] = previous = s.after(previous, 'a point');
+    s.finish();
+  } else {
+    smoothPoints = r.array(Uint32Array, points, 'smooth irregular points');
+  }
+  const LN = levels[depth];
+  for (const v of smoothPoints) if (v < LN.first || v >= LN.first + LN.count) r.fail('a smooth irregular point is not at the last level');
+  for (const f of smooth) if (f.first + bases[f.basis].support > points) r.fail("a smooth irregular face's points run past the end");
+  // Basis codes name a smooth face, and only roots hold them (all four alike).
+  for (let i = 0; i < nodes; i++) {
+    for (let q = 0; q < 4; q++) {
+      const c = codes[4 * i + q];
+      if (c !== NODE_NONE && ((c & ~NODE_INDEX) >>> 0) === NODE_BASIS &&
+        (i >= Q || (c & NODE_INDEX) >= smoothCount || codes[4 * i] !== c || codes[4 * i + 3] !== c)) r.fail(`irregular node ${i} has a bad basis code`);
+    }
+  }
+  return { subPatches, subs, codes, nodes, leaves, bases, smooth, smoothPoints };
+}
+
+// subdivision_draw.cpp's packIrregularQuadtrees: the quadtree codes made absolute indices into
+// the GPU buffers (surface_eval.glsl), 24 words a record as a Patch. Every irregular face gets a
+// root node, with no children where the tables have no quadtree.
+function packIrregularQuadtrees(P, Q, irregularFaces, v3) {
+  const W = 24;
+  if (!v3) v3 = { subPatches: new Uint32Array(0), subs: 0, codes: new Uint32Array(0), nodes: 0, leaves: new Uint32Array(0), bases: [], smooth: [], smoothPoints: new Uint32Array(0) };
+  const nodes = Math.max(Q, v3.nodes);
+  const header = [], basisFirst = [];
+  let next = P + nodes + v3.subs;
+  for (const f of v3.smooth) { header.push(next); next += 1 + Math.ceil(v3.bases[f.basis].support / 16); }
+  for (const b of v3.bases) { basisFirst.push(next); next += b.levels * 3 * b.support; }
+  const out = new Uint32Array((next - P) * W);
+  const faceOf = new Uint32Array(v3.smooth.length);
+  for (let i = 0; i < nodes; i++) {
+    const g = out.subarray(W * i, W * i + 16);
+    g.fill(NODE_NONE);
+    if (i >= v3.nodes) continue;
+    for (let q = 0; q < 4; q++) {
+      const c = v3.codes[4 * i + q], kind = (c & ~NODE_INDEX) >>> 0, x = c & NODE_INDEX;
+      if (c !== NODE_NONE && kind === NODE_BASIS) faceOf[x] = i;
+      g[q] = c === NODE_NONE ? NODE_NONE
+        : kind === NODE_BASIS ? (NODE_BASIS | header[x]) >>> 0
+          : kind === NODE_CHILD ? (NODE_CHILD | (P + x)) >>> 0
+            : kind === NODE_LEAF ? (NODE_LEAF | (Q + x)) >>> 0
+              : (NODE_SUBPATCH | (P + nodes + x)) >>> 0;
+    }
+  }
+  // Sub-patch records are already in the GPU layout (padding words zero).
+  out.set(v3.subPatches, W * nodes);
+  let at = nodes + v3.subs;
+  const of = new Float32Array(out.buffer);
+  v3.smooth.forEach((f, i) => {
+    const b = v3.bases[f.basis];
+    out.set([b.valence, f.corner, basisFirst[f.basis], b.levels, irregularFaces[8 * faceOf[i] + f.corner]], W * at++);
+    for (let k = 0; k < b.support; k += 16) {
+      for (let j = 0; j < 16 && k + j < b.support; j++) out[W * at + j] = v3.smoothPoints[f.first + k + j];
+      at++;
+    }
+  });
+  for (const b of v3.bases) {
+    const M = b.support;
+    for (let block = 0; block < b.levels * 3; block++) {
+      for (let i = 0; i < M; i++, at++) for (let j = 0; j < 16; j++) of[W * at + j] = b.weights[(block * 16 + j) * M + i];
+    }
+  }
+  return { nodes: out, leaves: v3.leaves };
+}
