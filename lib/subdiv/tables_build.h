@@ -15,7 +15,12 @@
 namespace limn {
 
 // Whether cv[i] of a patch with boundary mask `boundary` lies beyond a boundary (a phantom).
-bool isPhantom(uint8_t boundary, int i);
+// Inline: called 16 times per patch, twice, by both halves of the builder.
+inline bool isPhantom(uint8_t boundary, int i) {
+    const int u = i % 4, v = i / 4;
+    return ((boundary & kBoundaryU0) && u == 0) || ((boundary & kBoundaryU1) && u == 3) ||
+           ((boundary & kBoundaryV0) && v == 0) || ((boundary & kBoundaryV1) && v == 3);
+}
 
 // The regular patch of face f of level L: its 16 control points as levelBase + remap[vertex].
 // creaseEdge: the edge of a single-crease patch (kNone: none).

@@ -41,12 +41,6 @@ void requireManifold(const Topology& T) {
 
 } // namespace
 
-bool isPhantom(uint8_t boundary, int i) {
-    const int u = i % 4, v = i / 4;
-    return ((boundary & kBoundaryU0) && u == 0) || ((boundary & kBoundaryU1) && u == 3) ||
-           ((boundary & kBoundaryV0) && v == 0) || ((boundary & kBoundaryV1) && v == 3);
-}
-
 Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase, const std::vector<uint32_t>& remap,
                   uint32_t creaseEdge) {
     const Topology& T = L.topo;
