@@ -180,8 +180,16 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     // every other point (column M): Catmull-Clark's smooth rules have no negative weights, so a
     // zero there means that none of them reaches face 0's sub-patches. Each column is computed
     // as evaluateVertices computes the tables (the float weights, in the stencils' order).
+    // Each level's needed vertices get consecutive rows of M + 1 values (level 0: every vertex).
+    std::vector<std::vector<uint32_t>> row(r.D + 1);
     std::vector<std::vector<double>> V(r.D + 1);
-    V[0].assign(m.vertexCount() * W, 0.0);
+    for (uint32_t l = 0; l <= r.D; ++l) {
+        row[l].assign(needed[l].size(), kNone);
+        uint32_t rows = 0;
+        for (size_t v = 0; v < needed[l].size(); ++v)
+            if (l == 0 || needed[l][v]) row[l][v] = rows++;
+        V[l].assign(size_t(rows) * W, 0.0);
+    }
     for (size_t v = 0; v < m.vertexCount(); ++v) V[0][v * W + M] = 1;
     for (size_t i = 0; i < M; ++i) {
         V[0][support[i] * W + i] = 1;
@@ -192,12 +200,13 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
         const LevelStencils& st = r.stencils[l];
         const std::vector<double>& prev = V[l - 1];
         std::vector<double>& cur = V[l];
-        cur.assign(size_t(L.topo.vertexCount()) * W, 0.0);
         for (uint32_t i = 0; i < L.facePointCount; ++i) {
             if (!needed[l][i]) continue;
-            double* out = &cur[i * W];
-            for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k)
-                for (size_t c = 0; c < W; ++c) out[c] += prev[st.faceVertices[k] * W + c];
+            double* out = &cur[size_t(row[l][i]) * W];
+            for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) {
+                const double* in = &prev[size_t(row[l - 1][st.faceVertices[k]]) * W];
+                for (size_t c = 0; c < W; ++c) out[c] += in[c];
+            }
             const double count = double(st.faceStart[i + 1] - st.faceStart[i]);
             for (size_t c = 0; c < W; ++c) out[c] = out[c] / count;
         }
@@ -205,10 +214,12 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
                         const std::vector<StencilEntry>& entries) {
             for (uint32_t i = 0; i < count; ++i) {
                 if (!needed[l][first + i]) continue;
-                double* out = &cur[(first + i) * W];
+                double* out = &cur[size_t(row[l][first + i]) * W];
                 for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
-                    const double w = double(static_cast<float>(entries[k].weight));
-                    const double* in = &(entries[k].fromFacePoint ? cur : prev)[entries[k].index * W];
+                    const StencilEntry& e = entries[k];
+                    const double w = double(static_cast<float>(e.weight));
+                    const double* in = e.fromFacePoint ? &cur[size_t(row[l][e.index]) * W]
+                                                       : &prev[size_t(row[l - 1][e.index]) * W];
                     for (size_t c = 0; c < W; ++c) out[c] += w * in[c];
                 }
             }
@@ -218,7 +229,7 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     }
     for (const SubPatch& sp : subPatches)
         for (int j = 0; j < 16; ++j) {
-            const double* P = &V[sp.level][sp.patch.cv[j] * W];
+            const double* P = &V[sp.level][size_t(row[sp.level][sp.patch.cv[j]]) * W];
             if (std::abs(P[M]) > 1e-12) throw std::logic_error("irregular basis: support too small");
             for (size_t i = 0; i < M; ++i)
                 basis.weights[sp.block * 16 * M + size_t(j) * M + i] = static_cast<float>(P[i]);
