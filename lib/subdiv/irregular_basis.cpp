@@ -101,18 +101,42 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
                 m.faceOffsets.push_back(static_cast<uint32_t>(m.faceVertices.size()));
             }
     Warnings warnings;
-    SchemeOptions options;
-    // Sharp rim corners: each rim corner (one face) is then a regular corner patch instead of an
-    // irregular face refined K levels deep like the centre. The rim's rules never reach face 0's
-    // sub-patches (the checks below would throw), so the weights are the same to the bit.
-    options.boundary = BoundaryRule::EdgeAndCorner;
-    TablesOptions opts;
-    opts.depth = static_cast<int>(K);
-    opts.irregularLevels = 0;
-    // The tables' refinement alone: their limit points, pruning and numbering are not needed here.
-    const AdaptiveLevels r =
-        refineAdaptive(m, Topology(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices),
-                       options, opts, warnings);
+    const SchemeOptions options;
+    // The table builder's refinement, under face 0 only: each level refines the faces around its
+    // descendant at the extraordinary vertex (the builder's isolation, oneRing), whose three
+    // other children are the next band's sub-patches.
+    AdaptiveLevels r;
+    r.N = r.D = K;
+    {
+        Topology topo(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices);
+        Sharpness sharp = baseSharpness(topo, m.tags, options.boundary, warnings);
+        r.levels.push_back(makeBaseLevel(std::move(topo), std::move(sharp)));
+    }
+    r.stencils.resize(1);
+    r.patchSets.emplace_back(r.levels[0].topo.faceCount(), 0);
+    std::vector<uint32_t> ptexBase(r.levels[0].topo.faceCount());
+    for (uint32_t f = 0; f < ptexBase.size(); ++f) ptexBase[f] = r.levels[0].frames[f].ptex;
+    uint32_t centre = 0;
+    for (uint32_t l = 0; l < K; ++l) {
+        std::vector<uint8_t> T(r.levels[l].topo.faceCount(), 0);
+        T[centre] = 1;
+        LevelStencils st;
+        Level child = refineLevel(r.levels[l], oneRing(r.levels[l].topo, T), options, ptexBase, st);
+        std::vector<uint8_t> P(child.topo.faceCount(), 0);
+        uint32_t next = kNone;
+        for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) {
+            if (child.faceParent[cf] != centre) continue;
+            if (child.frames[cf].u0 == 0 && child.frames[cf].v0 == 0)
+                next = cf;
+            else
+                P[cf] = 1;
+        }
+        if (next == kNone) throw std::logic_error("irregular basis: no face at the extraordinary vertex");
+        r.levels.push_back(std::move(child));
+        r.stencils.push_back(std::move(st));
+        r.patchSets.push_back(std::move(P));
+        centre = next;
+    }
     int corner = -1;
     uint32_t valence = 0;
     std::vector<uint32_t> support;

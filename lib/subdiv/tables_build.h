@@ -1,8 +1,8 @@
 // The phases of buildTables (tables.h), internal to lib/subdiv: the input checks and the
 // feature-adaptive refinement, level by level, with the sets each level's faces fall into
 // (tables_refine.cpp); then the tables assembled from those levels (tables_assemble.cpp).
-// buildIrregularBasis (irregular_basis.cpp) reads its generated mesh's sub-patches from the
-// refinement alone.
+// buildIrregularBasis (irregular_basis.cpp) refines its generated mesh by the same rules and
+// reads the sub-patches from such levels, without the tables.
 #pragma once
 
 #include "subdiv/irregular_basis.h"
