@@ -222,7 +222,7 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
                 c.triangles = r.triangleCount();
                 c.vertices = r.verticesEvaluated();
                 c.bufferBytes = r.bufferBytes();
-                render::Image img = r.image();
+                Image img = r.image();
                 uint64_t covered = 0;
                 for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
                     const uint8_t* p = &img.pixels[i * img.channels];

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-namespace limn::render {
+namespace limn::blend {
 
 TrimLayout trimAtlasLayout(uint32_t faces, uint32_t tile) {
     faces = std::max(faces, 1u);
@@ -67,4 +67,4 @@ Image makeTrimAtlas(uint32_t faces, const TrimPattern& pattern) {
     return image;
 }
 
-} // namespace limn::render
+} // namespace limn::blend

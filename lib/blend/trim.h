@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace limn::render {
+namespace limn::blend {
 
 struct TrimLayout {
     uint32_t tilesX = 0, tilesY = 0;
@@ -50,4 +50,4 @@ struct TrimPattern {
 };
 Image makeTrimAtlas(uint32_t faces, const TrimPattern& pattern);
 
-} // namespace limn::render
+} // namespace limn::blend

@@ -15,7 +15,7 @@
 #include <map>
 #include <sstream>
 
-namespace limn::render {
+namespace limn::exporting {
 
 namespace {
 
@@ -94,18 +94,18 @@ std::string objApproximateComments(const DrawnMesh& mesh, const std::vector<std:
 
 } // namespace
 
-std::optional<MeshFormat> meshFormatFromPath(const std::string& path) {
-    if (path == "-") return MeshFormat::Ply;
+std::optional<ExportFormat> exportFormatFromPath(const std::string& path) {
+    if (path == "-") return ExportFormat::Ply;
     const auto slash = path.find_last_of('/');
     const auto dot = path.find_last_of('.');
     if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return std::nullopt;
     std::string ext = path.substr(dot + 1);
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : char(c); });
-    if (ext == "ply") return MeshFormat::Ply;
-    if (ext == "obj") return MeshFormat::Obj;
-    if (ext == "gltf") return MeshFormat::Gltf;
-    if (ext == "glb") return MeshFormat::Glb;
+    if (ext == "ply") return ExportFormat::Ply;
+    if (ext == "obj") return ExportFormat::Obj;
+    if (ext == "gltf") return ExportFormat::Gltf;
+    if (ext == "glb") return ExportFormat::Glb;
     return std::nullopt;
 }
 
@@ -221,7 +221,7 @@ std::vector<uint8_t> encodeGltf(const DrawnMesh& mesh, bool binary) {
     return {bytes.begin(), bytes.end()};
 }
 
-std::vector<uint8_t> encodeMesh(const DrawnMesh& mesh, MeshFormat format, bool plyAscii) {
+std::vector<uint8_t> encodeMesh(const DrawnMesh& mesh, ExportFormat format, bool plyAscii) {
     // Input within every reader's range can still overflow the GPU's float on the way (huge but
     // finite weights, displacement scales); a NaN in a mesh file is a lie (glTF's min/max would
     // be null), so the file is refused instead.
@@ -235,12 +235,12 @@ std::vector<uint8_t> encodeMesh(const DrawnMesh& mesh, MeshFormat format, bool p
                                 "float arithmetic; no mesh written");
     }
     switch (format) {
-    case MeshFormat::Ply: return encodePly(mesh, plyAscii);
-    case MeshFormat::Obj: return encodeObj(mesh);
-    case MeshFormat::Gltf: return encodeGltf(mesh, false);
-    case MeshFormat::Glb: return encodeGltf(mesh, true);
+    case ExportFormat::Ply: return encodePly(mesh, plyAscii);
+    case ExportFormat::Obj: return encodeObj(mesh);
+    case ExportFormat::Gltf: return encodeGltf(mesh, false);
+    case ExportFormat::Glb: return encodeGltf(mesh, true);
     }
     throw Error(ErrorKind::BadInput, "internal: unknown mesh format");
 }
 
-} // namespace limn::render
+} // namespace limn::exporting

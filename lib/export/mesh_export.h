@@ -28,22 +28,22 @@
 #include <string>
 #include <vector>
 
-namespace limn::render {
+namespace limn::exporting {
 
-enum class MeshFormat { Ply, Obj, Gltf, Glb };
+enum class ExportFormat { Ply, Obj, Gltf, Glb };
 
 // What --mesh-out accepts, for messages and help.
-inline constexpr const char* kMeshFormats = ".ply, .obj, .gltf, .glb";
+inline constexpr const char* kExportFormats = ".ply, .obj, .gltf, .glb";
 
 // The format of `path` by its extension (case-insensitive); "-" (standard output) is PLY. None
 // for any other extension.
-std::optional<MeshFormat> meshFormatFromPath(const std::string& path);
+std::optional<ExportFormat> exportFormatFromPath(const std::string& path);
 
 // Throws Error(BadInput) when a triangle names a vertex the mesh does not have.
 std::vector<uint8_t> encodeObj(const DrawnMesh& mesh);
 std::vector<uint8_t> encodeGltf(const DrawnMesh& mesh, bool binary);
 
 // `plyAscii` chooses ASCII PLY (ignored by the other formats).
-std::vector<uint8_t> encodeMesh(const DrawnMesh& mesh, MeshFormat format, bool plyAscii);
+std::vector<uint8_t> encodeMesh(const DrawnMesh& mesh, ExportFormat format, bool plyAscii);
 
-} // namespace limn::render
+} // namespace limn::exporting

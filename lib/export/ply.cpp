@@ -7,7 +7,7 @@
 #include <charconv>
 #include <cstring>
 
-namespace limn::render {
+namespace limn::exporting {
 
 std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
     const size_t triangles = mesh.triangles.size() / 3;
@@ -72,4 +72,4 @@ std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii) {
     return out;
 }
 
-} // namespace limn::render
+} // namespace limn::exporting

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace limn::render {
+namespace limn::exporting {
 
 struct DrawnVertex {
     float x = 0, y = 0, z = 0;
@@ -33,4 +33,4 @@ struct DrawnMesh {
 
 std::vector<uint8_t> encodePly(const DrawnMesh& mesh, bool ascii);
 
-} // namespace limn::render
+} // namespace limn::exporting

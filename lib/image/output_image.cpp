@@ -7,7 +7,7 @@
 #include <cstring>
 #include <limits>
 
-namespace limn::render {
+namespace limn {
 
 double linearToSrgb(double c) {
     c = std::clamp(c, 0.0, 1.0);
@@ -108,24 +108,26 @@ void encodeSamples(const LinearImage& image, bool alpha, const std::vector<float
     }
 }
 
+// The encoded image (Image or Image16), RGB or RGBA, whose samples are the member `samples`.
+template <typename Encoded, typename Sample>
+Encoded encodeImage(const LinearImage& image, bool alpha, const std::vector<float>& background,
+                    double maxValue, std::vector<Sample> Encoded::*samples) {
+    Encoded out;
+    out.width = image.width;
+    out.height = image.height;
+    out.channels = alpha ? 4 : 3;
+    encodeSamples(image, alpha, background, maxValue, out.channels, out.*samples);
+    return out;
+}
+
 } // namespace
 
 Image toSrgb8(const LinearImage& image, bool alpha, const std::vector<float>& background) {
-    Image out;
-    out.width = image.width;
-    out.height = image.height;
-    out.channels = alpha ? 4 : 3;
-    encodeSamples(image, alpha, background, 255.0, out.channels, out.pixels);
-    return out;
+    return encodeImage(image, alpha, background, 255.0, &Image::pixels);
 }
 
 Image16 toSrgb16(const LinearImage& image, bool alpha, const std::vector<float>& background) {
-    Image16 out;
-    out.width = image.width;
-    out.height = image.height;
-    out.channels = alpha ? 4 : 3;
-    encodeSamples(image, alpha, background, 65535.0, out.channels, out.samples);
-    return out;
+    return encodeImage(image, alpha, background, 65535.0, &Image16::samples);
 }
 
-} // namespace limn::render
+} // namespace limn

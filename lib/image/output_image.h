@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace limn::render {
+namespace limn {
 
 // Linear-light RGBA (premultiplied by alpha), rows top to bottom, and optionally the depth Z:
 // the distance from the eye along the view direction (camera-space depth, world units) of the
@@ -52,4 +52,4 @@ inline constexpr const char* kImageFormats = ".png (8- or 16-bit sRGB), .exr (li
 // IEEE 754 binary16 to float (the RGBA16F readback).
 float halfToFloat(uint16_t h);
 
-} // namespace limn::render
+} // namespace limn

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace limn::render {
+namespace limn {
 
 namespace {
 
@@ -54,4 +54,4 @@ Image readImageFile8(const std::string& path) {
     return toEightBit(limn::readImageFile(path), "the image");
 }
 
-} // namespace limn::render
+} // namespace limn

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace limn::render {
+namespace limn {
 
 struct Image {
     uint32_t width = 0, height = 0;
@@ -30,4 +30,4 @@ Image decodePng(std::span<const uint8_t> bytes);
 // Throws Error(BadInput) with OpenImageIO's reason.
 Image readImageFile8(const std::string& path);
 
-} // namespace limn::render
+} // namespace limn

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace limn::render {
+namespace limn {
 
 FloatImage loadImage(const std::string& path) {
     return readImageFile(path);
@@ -42,4 +42,4 @@ float sampleBilinear(const FloatImage& img, uint32_t channel, double u, double v
     return top + fy * (bottom - top);
 }
 
-} // namespace limn::render
+} // namespace limn

@@ -9,9 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace limn::render {
-
-using limn::FloatImage; // image/image_file.h
+namespace limn {
 
 // Throws Error(BadInput) naming the file when it cannot be read.
 FloatImage loadImage(const std::string& path);
@@ -23,4 +21,4 @@ std::vector<uint8_t> encodeGray16Png(uint32_t width, uint32_t height, std::span<
 // same arithmetic the GPU's displacement pass does (shaders/displace.comp).
 float sampleBilinear(const FloatImage& image, uint32_t channel, double u, double v);
 
-} // namespace limn::render
+} // namespace limn

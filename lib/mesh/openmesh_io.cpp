@@ -161,6 +161,20 @@ void appendXYZ(std::string& out, const T& p) {
     appendNumber(out, p.z);
 }
 
+// The vertex lines PLY and OFF both write: "x y z", one per vertex.
+void appendPositionLines(std::string& out, const Mesh& m) {
+    for (const auto& p : m.positions) {
+        appendXYZ(out, p);
+        out += '\n';
+    }
+}
+
+// A face's "n v0 v1 ..." of PLY's and OFF's face lines.
+void appendFaceVertices(std::string& out, std::span<const uint32_t> face) {
+    out += std::to_string(face.size());
+    for (uint32_t v : face) out += " " + std::to_string(v);
+}
+
 } // namespace
 
 Mesh readWithOpenMesh(std::span<const uint8_t> bytes, const std::string& extension,
@@ -219,14 +233,10 @@ std::string writePly(const Mesh& m) {
     out += "property list uchar int vertex_indices\n";
     if (m.hasUVs()) out += "property list uchar float texcoord\n";
     out += "end_header\n";
-    for (const auto& p : m.positions) {
-        appendXYZ(out, p);
-        out += '\n';
-    }
+    appendPositionLines(out, m);
     for (size_t f = 0; f < m.faceCount(); ++f) {
         auto face = m.face(f);
-        out += std::to_string(face.size());
-        for (uint32_t v : face) out += " " + std::to_string(v);
+        appendFaceVertices(out, face);
         if (m.hasUVs()) {
             out += " " + std::to_string(face.size() * 2);
             for (uint32_t t : m.faceUVs(f)) {
@@ -244,14 +254,9 @@ std::string writePly(const Mesh& m) {
 std::string writeOff(const Mesh& m) {
     std::string out =
         "OFF\n" + std::to_string(m.vertexCount()) + " " + std::to_string(m.faceCount()) + " 0\n";
-    for (const auto& p : m.positions) {
-        appendXYZ(out, p);
-        out += '\n';
-    }
+    appendPositionLines(out, m);
     for (size_t f = 0; f < m.faceCount(); ++f) {
-        auto face = m.face(f);
-        out += std::to_string(face.size());
-        for (uint32_t v : face) out += " " + std::to_string(v);
+        appendFaceVertices(out, m.face(f));
         out += '\n';
     }
     return out;

@@ -23,7 +23,7 @@ struct EvalPush { // blend_eval.comp
 using gpu::uploadBufferNow;
 
 // The DrawData buffer: its header, then the trim atlas packed four texels to a word.
-std::vector<uint32_t> drawData(const BlendDraw& d, const std::optional<TrimMask>& trim) {
+std::vector<uint32_t> drawData(const BlendDraw& d, const std::optional<blend::TrimMask>& trim) {
     BlendDrawData h{d.grid, static_cast<uint32_t>(d.weights), 0, 0, 0, d.hasUVs ? 1u : 0u, {0, 0}};
     std::vector<uint32_t> words(sizeof h / 4 + 1, 0);
     if (trim) {
@@ -41,8 +41,8 @@ std::vector<uint32_t> drawData(const BlendDraw& d, const std::optional<TrimMask>
 } // namespace
 
 struct BlendPass::Gpu {
-    Gpu(gpu::Context& ctx, const BlendDraw& d, bool evaluate, const std::optional<TrimMask>& trim,
-        gpu::TargetFormat target)
+    Gpu(gpu::Context& ctx, const BlendDraw& d, bool evaluate,
+        const std::optional<blend::TrimMask>& trim, gpu::TargetFormat target)
         : controlPoints(ctx, {"control points (unused by the blend draw)",
                               std::max<uint64_t>(d.vertices.size(), 1) * 16}),
           vertices(uploadBufferNow(ctx, "blend vertices", d.vertices)),
@@ -81,7 +81,7 @@ struct BlendPass::Gpu {
 };
 
 BlendPass::BlendPass(gpu::Context& ctx, BlendDraw draw, Eval eval, bool keepEvaluated,
-                     const std::optional<TrimMask>& trim, gpu::TargetFormat target)
+                     const std::optional<blend::TrimMask>& trim, gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval),
       evaluate_(keepEvaluated || eval == Eval::Compute),
       gpu_(std::make_unique<Gpu>(ctx, draw_, evaluate_, trim, target)) {}
@@ -116,11 +116,11 @@ void BlendPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) {
                         gpu::CommandBuffer::asBytes(push));
 }
 
-DrawnMesh BlendPass::drawnMesh() {
+exporting::DrawnMesh BlendPass::drawnMesh() {
     const size_t n = draw_.points.size();
-    DrawnMesh out = readDrawnVertices(ctx_, evaluate_ ? &gpu_->positions : nullptr, &gpu_->normals, n);
+    exporting::DrawnMesh out = readDrawnVertices(ctx_, evaluate_ ? &gpu_->positions : nullptr, &gpu_->normals, n);
     for (size_t i = 0; i < n; ++i) {
-        DrawnVertex& v = out.vertices[i];
+        exporting::DrawnVertex& v = out.vertices[i];
         v.ptex = static_cast<int32_t>(draw_.points[i].face); // a quad mesh: one Ptex face per face
         v.u = blendGridParam(draw_.points[i].ij & 0xFFFFu, draw_.grid);
         v.v = blendGridParam(draw_.points[i].ij >> 16, draw_.grid);

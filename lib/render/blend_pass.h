@@ -31,7 +31,7 @@ class BlendPass : public FramePass {
     // `keepEvaluated`: with Eval::Vertex, also evaluate every point into buffers (--wire draws
     // lines through them, --mesh-out reads them). `trim`: the atlas for the mesh's faces.
     BlendPass(gpu::Context& ctx, BlendDraw draw, Eval eval, bool keepEvaluated,
-              const std::optional<TrimMask>& trim, gpu::TargetFormat target = {});
+              const std::optional<blend::TrimMask>& trim, gpu::TargetFormat target = {});
     ~BlendPass() override;
 
     // The control points are copied here every frame like for every surface; the blending
@@ -41,7 +41,7 @@ class BlendPass : public FramePass {
     void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) override;
     // The surface points (ptex = face, (u, v) its owner's parameters) and the triangles of every
     // drawn face through them.
-    DrawnMesh drawnMesh() override;
+    exporting::DrawnMesh drawnMesh() override;
     uint64_t triangleCount() const override { return draw_.triangles.size() / 3; }
     uint64_t verticesEvaluated() const override;
     uint64_t bufferBytes() const override;

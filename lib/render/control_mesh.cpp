@@ -23,7 +23,10 @@ std::vector<uint32_t> textureWords(const FloatImage* img) {
     for (size_t i = 0; i < size_t(img->width) * img->height; ++i) {
         uint32_t c = 0;
         for (uint32_t k = 0; k < 3; ++k) {
-            float v = img->values[i * img->channels + std::min(k, img->channels - 1)];
+            // Grey (1 channel) and grey + alpha (2) are grey in R, G and B: channel 1 of a
+            // two-channel image is its alpha, not a colour.
+            const uint32_t source = img->channels < 3 ? 0 : k;
+            float v = img->values[i * img->channels + source];
             c |= uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)) << (8 * k);
         }
         w.push_back(c | 0xFF000000u);

@@ -76,13 +76,13 @@ void ControlMeshPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wi
                         static_cast<uint32_t>(draw_.edges.size()), 1, gpu::CommandBuffer::asBytes(push));
 }
 
-DrawnMesh ControlMeshPass::drawnMesh() {
+exporting::DrawnMesh ControlMeshPass::drawnMesh() {
     auto vertices = gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->vertices, draw_.controlPoints.size());
     auto normals = gpu::readbackArrayNow<glm::vec4>(ctx_, gpu_->faceNormals, draw_.faceOffsets.size() - 1);
-    DrawnMesh out;
+    exporting::DrawnMesh out;
     out.vertices.reserve(draw_.corners.size());
     for (const GpuCorner& c : draw_.corners) {
-        DrawnVertex v;
+        exporting::DrawnVertex v;
         const glm::vec4& p = vertices[c.vertex];
         const glm::vec4& n = normals[c.face];
         v.x = p.x, v.y = p.y, v.z = p.z;

@@ -20,7 +20,7 @@ public:
     const gpu::Buffer& vertexBuffer() const override;
     void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) override;
     void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) override;
-    DrawnMesh drawnMesh() override;
+    exporting::DrawnMesh drawnMesh() override;
     uint64_t triangleCount() const override { return draw_.triangles.size() / 3; }
     uint64_t verticesEvaluated() const override { return draw_.controlPoints.size(); }
     uint64_t bufferBytes() const override;

@@ -4,20 +4,8 @@
 #include "render_shaders.h"
 
 #include <algorithm>
-#include <cstring>
 
 namespace limn::render {
-
-std::vector<uint32_t> displacementMapWords(const FloatImage& img) {
-    std::vector<uint32_t> w{img.width, img.height};
-    w.reserve(2 + size_t(img.width) * img.height);
-    for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
-        uint32_t bits;
-        std::memcpy(&bits, &img.values[i * img.channels], 4);
-        w.push_back(bits);
-    }
-    return w;
-}
 
 namespace {
 
@@ -123,7 +111,7 @@ std::unique_ptr<DisplacementPasses> FixedGrids::makeDisplacement(gpu::Context& c
     return std::make_unique<FixedGridDisplacement>(ctx, draw, triangles_, in);
 }
 
-void FixedGrids::finishDrawnMesh(gpu::Context&, DrawnMesh& out) const {
+void FixedGrids::finishDrawnMesh(gpu::Context&, exporting::DrawnMesh& out) const {
     for (size_t i = 0; i < out.vertices.size(); ++i) {
         const GpuTessVertex& t = draw_.tessVertices[i];
         if (draw_.hasUVs) // the grids split their vertices at UV seams

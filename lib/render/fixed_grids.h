@@ -33,7 +33,7 @@ class FixedGrids : public Tessellation {
     const AdaptiveTotals* lastTotals(gpu::Context&) const override { return nullptr; }
     std::string shortfall(gpu::Context&) const override { return {}; }
     size_t drawnVertexCount(gpu::Context&) const override { return draw_.tessVertices.size(); }
-    void finishDrawnMesh(gpu::Context& ctx, DrawnMesh& out) const override;
+    void finishDrawnMesh(gpu::Context& ctx, exporting::DrawnMesh& out) const override;
     uint64_t triangleCount(gpu::Context&) const override { return draw_.triangles.size() / 3; }
     uint64_t verticesEvaluated(gpu::Context&) const override { return draw_.tessVertices.size(); }
     uint64_t bufferBytes() const override;

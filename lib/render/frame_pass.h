@@ -54,16 +54,16 @@ struct TimedPasses {
 
 // The positions and normals of `count` drawn vertices, read back from the vec4 buffers the
 // surface was evaluated into (null: it was not); the pass fills in ptex, u, v and the triangles.
-inline DrawnMesh readDrawnVertices(gpu::Context& ctx, const gpu::Buffer* positions,
+inline exporting::DrawnMesh readDrawnVertices(gpu::Context& ctx, const gpu::Buffer* positions,
                                    const gpu::Buffer* normals, size_t count) {
     if (!positions || !normals)
         throw Error(ErrorKind::BadInput, "internal: the surface was not evaluated into buffers");
     auto pos = gpu::readbackArrayNow<glm::vec4>(ctx, *positions, count);
     auto nrm = gpu::readbackArrayNow<glm::vec4>(ctx, *normals, count);
-    DrawnMesh out;
+    exporting::DrawnMesh out;
     out.vertices.resize(count);
     for (size_t i = 0; i < count; ++i) {
-        DrawnVertex& v = out.vertices[i];
+        exporting::DrawnVertex& v = out.vertices[i];
         v.x = pos[i].x, v.y = pos[i].y, v.z = pos[i].z;
         v.nx = nrm[i].x, v.ny = nrm[i].y, v.nz = nrm[i].z;
     }
@@ -86,7 +86,7 @@ public:
     // Inside beginRendering/endRendering.
     virtual void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) = 0;
     // The triangles as drawn, read back after a frame.
-    virtual DrawnMesh drawnMesh() = 0;
+    virtual exporting::DrawnMesh drawnMesh() = 0;
     virtual uint64_t triangleCount() const = 0;
     virtual uint64_t verticesEvaluated() const = 0; // per frame, compute and vertex stages
     virtual uint64_t bufferBytes() const = 0;

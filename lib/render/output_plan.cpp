@@ -4,8 +4,10 @@
 
 namespace limn::render {
 
-OutputFile::Kind meshFileKind(MeshFormat format, bool ascii) {
-    return ascii || format == MeshFormat::Obj || format == MeshFormat::Gltf ? OutputFile::Kind::Text
+using exporting::ExportFormat;
+
+OutputFile::Kind meshFileKind(ExportFormat format, bool ascii) {
+    return ascii || format == ExportFormat::Obj || format == ExportFormat::Gltf ? OutputFile::Kind::Text
                                                                             : OutputFile::Kind::Binary;
 }
 
@@ -55,12 +57,13 @@ OutputPlan planOutputs(const OutputRequest& request) {
     if (request.bench && isStdio(plan.image) && !plan.image.empty())
         throwUsage("--bench prints JSON on standard output; write the image with -o FILE");
     if (!plan.mesh.empty()) {
-        plan.meshFormat = meshFormatFromPath(plan.mesh);
+        plan.meshFormat = exporting::exportFormatFromPath(plan.mesh);
         if (!plan.meshFormat)
             throw Error(ErrorKind::Usage,
-                        std::string("--mesh-out: unknown extension; limn-render writes ") + kMeshFormats,
+                        std::string("--mesh-out: unknown extension; limn-render writes ") +
+                            exporting::kExportFormats,
                         plan.mesh);
-        if (plan.meshAscii && *plan.meshFormat != MeshFormat::Ply)
+        if (plan.meshAscii && *plan.meshFormat != ExportFormat::Ply)
             throwUsage("--mesh-ascii applies to a .ply --mesh-out, not " + plan.mesh);
     }
     if (plan.meshAscii && plan.mesh.empty())

@@ -34,7 +34,7 @@ struct OutputPlan {
     // By the name (a device or FIFO such as /dev/null, and standard output: PNG).
     ImageFormat imageFormat = ImageFormat::Png;
     std::string mesh; // empty: no --mesh-out
-    std::optional<MeshFormat> meshFormat;
+    std::optional<exporting::ExportFormat> meshFormat;
     bool meshAscii = false;
     // A sequence's -o and --mesh-out, with their frame number.
     std::optional<FramePattern> imagePattern, meshPattern;
@@ -67,6 +67,6 @@ struct FrameSize {
 uint64_t estimateFrameBytes(const OutputPlan& plan, const FrameSize& size);
 
 // A --mesh-out file's kind, as OutputPlan::meshFileKind.
-OutputFile::Kind meshFileKind(MeshFormat format, bool ascii);
+OutputFile::Kind meshFileKind(exporting::ExportFormat format, bool ascii);
 
 } // namespace limn::render

@@ -456,7 +456,7 @@ void Renderer::refuseTessellationShortfall(const std::string& where) const {
         throw Error(ErrorKind::BadInput, where + ": " + shortfall);
 }
 
-DrawnMesh Renderer::drawnMesh() {
+exporting::DrawnMesh Renderer::drawnMesh() {
     return pass_->drawnMesh();
 }
 

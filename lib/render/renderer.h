@@ -79,7 +79,7 @@ struct RenderSettings {
     // Limit tables are uploaded in chunks with at most this many bytes of indices each (WebGPU's
     // binding limit; tests lower it to run the chunked path on small meshes).
     uint64_t limitChunkBytes = uint64_t(128) << 20;
-    std::optional<TrimMask> trim;         // blending surface only (--trim)
+    std::optional<blend::TrimMask> trim;  // blending surface only (--trim)
     // Displacement of the subdivision surface (paper 000, 4.5) and a colour texture.
     const FloatImage* displacementMap = nullptr;
     double displaceScale = 1, displaceMid = 0;
@@ -148,7 +148,7 @@ class Renderer {
     // What the target takes (RenderTarget::estimateBytes plus the CPU-side float copies).
     uint64_t imageBytes() const { return imageBytes_; }
     // The last frame's triangles, read back from the GPU buffers the draw used.
-    DrawnMesh drawnMesh();
+    exporting::DrawnMesh drawnMesh();
     FrameTimes frameTimes() const;
 
     const Camera& camera() const { return camera_; }

@@ -25,8 +25,8 @@ bool planSequence(const SequenceRequest& request) {
 
 bool isAnimationFile(const std::string& frames) {
     if (hasFrameNumber(frames)) return false;
-    const limn::MeshFormat format = formatFromExtension(extensionOf(frames));
-    return format == limn::MeshFormat::Gltf || format == limn::MeshFormat::Glb;
+    const MeshFormat format = formatFromExtension(extensionOf(frames));
+    return format == MeshFormat::Gltf || format == MeshFormat::Glb;
 }
 
 double parseFps(const std::string& option, const std::string& text) {

@@ -252,12 +252,12 @@ void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wi
 
 std::string SubdivisionPass::tessellationShortfall() const { return gpu_->tess->shortfall(ctx_); }
 
-DrawnMesh SubdivisionPass::drawnMesh() {
+exporting::DrawnMesh SubdivisionPass::drawnMesh() {
     const size_t n = gpu_->tess->drawnVertexCount(ctx_);
-    DrawnMesh out = readDrawnVertices(ctx_, gpu_->drawnPositions, gpu_->drawnNormals, n);
+    exporting::DrawnMesh out = readDrawnVertices(ctx_, gpu_->drawnPositions, gpu_->drawnNormals, n);
     auto info = gpu::readbackArrayNow<glm::uvec4>(ctx_, *gpu_->evalInfo, n);
     for (size_t i = 0; i < n; ++i) {
-        DrawnVertex& v = out.vertices[i];
+        exporting::DrawnVertex& v = out.vertices[i];
         v.ptex = static_cast<int32_t>(info[i].x);
         std::memcpy(&v.u, &info[i].y, 4);
         std::memcpy(&v.v, &info[i].z, 4);

@@ -41,7 +41,7 @@ public:
     const gpu::Buffer& vertexBuffer() const override;
     void recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) override;
     void recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) override;
-    DrawnMesh drawnMesh() override;
+    exporting::DrawnMesh drawnMesh() override;
     void setView(const glm::mat4& viewProj, const glm::dvec3& eye, uint32_t width, uint32_t height) override;
     void setControlPoints(const Bounds& bounds, float orientation) override;
     // Drawn triangles of the last frame (view-adaptive: read back from the GPU, after culling).

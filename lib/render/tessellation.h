@@ -106,7 +106,7 @@ class Tessellation {
     // Vertices the drawn mesh holds (--mesh-out); throws on a shortfall.
     virtual size_t drawnVertexCount(gpu::Context& ctx) const = 0;
     // Fills in the drawn mesh's texture UVs (when the surface has them) and its triangles.
-    virtual void finishDrawnMesh(gpu::Context& ctx, DrawnMesh& out) const = 0;
+    virtual void finishDrawnMesh(gpu::Context& ctx, exporting::DrawnMesh& out) const = 0;
     // Triangles drawn in the last frame (view-adaptive: after culling).
     virtual uint64_t triangleCount(gpu::Context& ctx) const = 0;
     // Tessellation vertices evaluated, plus any points that decided the rates.

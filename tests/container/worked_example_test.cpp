@@ -1,48 +1,22 @@
 // formats/limn.md section 6: the 256 bytes limn-classify writes for a single triangle. The bytes
-// are pinned here, and the spec's hex dump is read back to make sure the two never drift apart.
+// are pinned in worked_example.h, and the spec's hex dump is read back to make sure the two never
+// drift apart; limn-classify's side is in worked_example_cli_test.cpp.
 #include "container/container.h"
 #include "mesh/mesh_chunks.h"
 #include "test_support.h"
 #include "topology/classification.h"
+#include "worked_example.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
+#include <sstream>
 
 using namespace limn;
+using namespace limn::test::worked_example;
 
 namespace {
-
-const char* const kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-
-// The 256 bytes of formats/limn.md section 6, one line per 16 bytes.
-const char* const kTriangleHex = "4c494d4e0d0a1a0a0100000000000000"
-                                 "00010000000000004d45534801000000"
-                                 "68000000000000000300000001000000"
-                                 "03000000000000000000000000000000"
-                                 "00000000000000000000000000000000"
-                                 "000000000000f03f0000000000000000"
-                                 "00000000000000000000000000000000"
-                                 "000000000000f03f0000000000000000"
-                                 "03000000000000000100000002000000"
-                                 "54414753010000001000000000000000"
-                                 "ffffffff000000000000000000000000"
-                                 "434c5346010000003c00000000000000"
-                                 "01000005030000000100000003000000"
-                                 "03000000000000000000000000000000"
-                                 "02000000020000000200000049020000"
-                                 "49020000490200001800000000000000";
-
-std::vector<uint8_t> fromHex(const std::string& hex) {
-    std::vector<uint8_t> out;
-    for (size_t i = 0; i + 1 < hex.size(); i += 2)
-        out.push_back(static_cast<uint8_t>(std::stoi(hex.substr(i, 2), nullptr, 16)));
-    return out;
-}
-
-std::vector<uint8_t> pinned() {
-    return fromHex(kTriangleHex);
-}
 
 // Reads the hex dump in section 6: "OFFSET: bytes...  comment", where a line that starts
 // mid-row leaves the columns before it blank, as xxd does.
@@ -98,29 +72,6 @@ TEST(WorkedExample, ParsesAndReserializesExactly) {
     EXPECT_EQ(cl.vertexFlags, (std::vector<uint32_t>{0x249, 0x249, 0x249}));
     EXPECT_EQ(cl.faceFlags, (std::vector<uint32_t>{0x18}));
     EXPECT_EQ(encodeClassificationChunk(cl).payload, c.find(kClassificationChunk)->payload);
-}
-
-TEST(WorkedExample, LimnClassifyWritesExactlyThem) {
-    auto bytes = pinned();
-    std::string expected(bytes.begin(), bytes.end());
-    // From a file and from standard input (format sniffed), to stdout and to a file.
-    test::ScratchDir dir;
-    test::writeFile(dir / "triangle.obj", kTriangleObj);
-    auto r = test::run({test::tool("limn-classify").string(), (dir / "triangle.obj").string()});
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(r.out, expected);
-    auto piped = test::run({test::tool("limn-classify").string()}, kTriangleObj);
-    ASSERT_EQ(piped.exitCode, 0) << piped.err;
-    EXPECT_EQ(piped.out, expected);
-    auto toFile = test::run({test::tool("limn-classify").string(), (dir / "triangle.obj").string(),
-                             "-o", (dir / "triangle.limn").string()});
-    ASSERT_EQ(toFile.exitCode, 0) << toFile.err;
-    EXPECT_EQ(toFile.out, "");
-    EXPECT_EQ(test::readFile(dir / "triangle.limn"), expected);
-    // Re-classifying the container reproduces it.
-    auto again = test::run({test::tool("limn-classify").string(), "-"}, expected);
-    ASSERT_EQ(again.exitCode, 0) << again.err;
-    EXPECT_EQ(again.out, expected);
 }
 
 } // namespace

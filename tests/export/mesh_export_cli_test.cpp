@@ -392,19 +392,19 @@ TEST(MeshExport, WithoutUVsThereAreNoTextureCoordinates) {
 }
 
 TEST(MeshExport, FormatsByExtensionAndEdgeCases) {
-    using limn::render::MeshFormat;
-    using limn::render::meshFormatFromPath;
-    EXPECT_EQ(meshFormatFromPath("a.ply"), MeshFormat::Ply);
-    EXPECT_EQ(meshFormatFromPath("-"), MeshFormat::Ply);
-    EXPECT_EQ(meshFormatFromPath("dir/A.OBJ"), MeshFormat::Obj);
-    EXPECT_EQ(meshFormatFromPath("x.y.gltf"), MeshFormat::Gltf);
-    EXPECT_EQ(meshFormatFromPath("x.Glb"), MeshFormat::Glb);
+    using limn::exporting::ExportFormat;
+    using limn::exporting::exportFormatFromPath;
+    EXPECT_EQ(exportFormatFromPath("a.ply"), ExportFormat::Ply);
+    EXPECT_EQ(exportFormatFromPath("-"), ExportFormat::Ply);
+    EXPECT_EQ(exportFormatFromPath("dir/A.OBJ"), ExportFormat::Obj);
+    EXPECT_EQ(exportFormatFromPath("x.y.gltf"), ExportFormat::Gltf);
+    EXPECT_EQ(exportFormatFromPath("x.Glb"), ExportFormat::Glb);
     for (const char* bad : {"x", "x.stl", "dir.glb/x", "x.glb.tmp", ".", "x."})
-        EXPECT_FALSE(meshFormatFromPath(bad).has_value()) << bad;
+        EXPECT_FALSE(exportFormatFromPath(bad).has_value()) << bad;
 
     // Nothing drawn: a glTF asset without scenes (accessors cannot be empty).
-    limn::render::DrawnMesh empty;
-    auto glb = limn::render::encodeGltf(empty, true);
+    limn::exporting::DrawnMesh empty;
+    auto glb = limn::exporting::encodeGltf(empty, true);
     tinygltf::TinyGLTF loader;
     tinygltf::Model m;
     std::string err, warn;
@@ -417,22 +417,22 @@ TEST(MeshExport, FormatsByExtensionAndEdgeCases) {
     writeFile(emptyGlb, std::string(glb.begin(), glb.end()));
     expectValid({emptyGlb});
     // A triangle naming a vertex that is not there is refused, not written.
-    limn::render::DrawnMesh bad;
+    limn::exporting::DrawnMesh bad;
     bad.vertices.resize(2);
     bad.triangles = {0, 1, 2};
-    EXPECT_THROW(limn::render::encodeObj(bad), std::exception);
-    EXPECT_THROW(limn::render::encodeGltf(bad, false), std::exception);
+    EXPECT_THROW(limn::exporting::encodeObj(bad), std::exception);
+    EXPECT_THROW(limn::exporting::encodeGltf(bad, false), std::exception);
     // A vertex the GPU's float overflowed (NaN or Inf) is refused in every format: a glTF's
     // POSITION min/max would be null, a PLY or OBJ would carry "nan".
-    limn::render::DrawnMesh overflowed;
+    limn::exporting::DrawnMesh overflowed;
     overflowed.vertices.resize(3);
     overflowed.vertices[1].y = std::numeric_limits<float>::quiet_NaN();
     overflowed.vertices[2].x = 1;
     overflowed.triangles = {0, 1, 2};
-    for (auto format : {MeshFormat::Ply, MeshFormat::Obj, MeshFormat::Gltf, MeshFormat::Glb})
+    for (auto format : {ExportFormat::Ply, ExportFormat::Obj, ExportFormat::Gltf, ExportFormat::Glb})
         for (bool ascii : {false, true}) {
             try {
-                limn::render::encodeMesh(overflowed, format, ascii);
+                limn::exporting::encodeMesh(overflowed, format, ascii);
                 ADD_FAILURE() << "a NaN vertex was encoded, format " << int(format);
             } catch (const limn::Error& e) {
                 EXPECT_NE(std::string(e.what()).find("drawn vertex 1 is not finite"), std::string::npos) << e.what();
@@ -440,9 +440,9 @@ TEST(MeshExport, FormatsByExtensionAndEdgeCases) {
         }
     overflowed.vertices[1].y = 0;
     overflowed.vertices[2].nz = -std::numeric_limits<float>::infinity();
-    EXPECT_THROW(limn::render::encodeMesh(overflowed, MeshFormat::Glb, false), limn::Error);
+    EXPECT_THROW(limn::exporting::encodeMesh(overflowed, ExportFormat::Glb, false), limn::Error);
     overflowed.vertices[2].nz = 1;
-    EXPECT_NO_THROW(limn::render::encodeMesh(overflowed, MeshFormat::Glb, false));
+    EXPECT_NO_THROW(limn::exporting::encodeMesh(overflowed, ExportFormat::Glb, false));
 }
 
 // PLY's `approximate` in the other formats: glTF's _APPROXIMATE attribute, per vertex; OBJ's

@@ -6,6 +6,7 @@
 #include "mesh/import.h"
 #include "osd_oracle.h"
 #include "test_support.h"
+#include "tri_mesh_models.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -18,11 +19,6 @@ using namespace limn;
 using namespace limn::loop;
 
 namespace {
-
-TriMesh load(const std::string& model) {
-    Warnings w;
-    return fromMesh(importMeshFile(test::modelPath(model).string(), w), {}, w);
-}
 
 struct Shape {
     int euler = 0, boundaryLoops = 0, boundaryEdges = 0;
@@ -84,7 +80,7 @@ class AdaptiveMesh : public ::testing::TestWithParam<Case> {};
 
 TEST_P(AdaptiveMesh, ConformingOrientedAndBoundaryPreserved) {
     const Case& c = GetParam();
-    TriMesh input = load(c.model);
+    TriMesh input = test::loadTriMesh(c.model);
     AdaptiveOptions o;
     o.levels = c.levels;
     o.epsilon = c.epsilon;
@@ -163,7 +159,7 @@ INSTANTIATE_TEST_SUITE_P(
 // OpenSubdiv in osd_uniform_test.cpp). A huge E splits nothing: the input comes back unchanged.
 TEST(AdaptiveLimits, ZeroEpsilonIsUniformAndHugeEpsilonIsIdentity) {
     for (const char* model : {"tri/cube_no_bottom.obj", "tri/spot_triangulated.obj", "osd/loop/loop_icos_infsharp.obj"}) {
-        TriMesh input = load(model);
+        TriMesh input = test::loadTriMesh(model);
         AdaptiveOptions u;
         u.uniform = true;
         u.levels = 2;

@@ -4,6 +4,7 @@
 #include "loop/measure.h"
 #include "mesh/import.h"
 #include "test_support.h"
+#include "tri_mesh_models.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -14,11 +15,6 @@ using namespace limn;
 using namespace limn::loop;
 
 namespace {
-
-TriMesh load(const std::string& model) {
-    Warnings w;
-    return fromMesh(importMeshFile(test::modelPath(model).string(), w), {}, w);
-}
 
 // Minimum over a fine barycentric grid: an upper bound within (edge length / n) of the truth.
 double sampledDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
@@ -52,7 +48,7 @@ TEST(Measure, PointTriangleDistanceMatchesSampling) {
 }
 
 TEST(Measure, BvhEqualsLinearScan) {
-    TriMesh m = load("tri/spot_triangulated.obj");
+    TriMesh m = test::loadTriMesh("tri/spot_triangulated.obj");
     TriangleBvh bvh(m.positions, m.triangles);
     std::mt19937_64 rng(9);
     std::uniform_real_distribution<double> u(-1.5, 1.5);
@@ -70,7 +66,7 @@ TEST(Measure, BvhEqualsLinearScan) {
 // The reference measured against itself is 0; shifted by t, the distance is at most |t| everywhere
 // (p + t lies on the shifted surface) and reaches it where the normal is parallel to t.
 TEST(Measure, KnownOffsets) {
-    TriMesh control = load("tri/sphere.obj");
+    TriMesh control = test::loadTriMesh("tri/sphere.obj");
     MeasureOptions options;
     options.referenceLevel = 3;
     options.maxSamples = 50000;
@@ -92,7 +88,7 @@ TEST(Measure, KnownOffsets) {
 
 // Uniform refinement converges to the limit surface: each level cuts the error by about 4.
 TEST(Measure, UniformLevelsConverge) {
-    TriMesh control = load("tri/sphere.obj");
+    TriMesh control = test::loadTriMesh("tri/sphere.obj");
     MeasureOptions options;
     options.referenceLevel = 4;
     options.maxSamples = 50000;
@@ -113,9 +109,10 @@ TEST(Measure, UniformLevelsConverge) {
 }
 
 TEST(Measure, DefaultReferenceLevel) {
-    TriMesh small = load("tri/osd_loop_tetrahedron.obj");
+    TriMesh small = test::loadTriMesh("tri/osd_loop_tetrahedron.obj");
     EXPECT_EQ(defaultReferenceLevel(small, 2), 4);
-    TriMesh cat = load("tri/cat_lowres.obj"); // 15894 triangles: 4^4 of them fit 5M, 4^5 do not
+    // 15894 triangles: 4^4 of them fit 5M, 4^5 do not
+    TriMesh cat = test::loadTriMesh("tri/cat_lowres.obj");
     EXPECT_EQ(defaultReferenceLevel(cat, 3), 4);
     EXPECT_EQ(defaultReferenceLevel(cat, 3, 1000), 1);
 }

@@ -62,7 +62,7 @@ std::string triple(const glm::dvec3& v) {
     return s;
 }
 
-std::pair<size_t, size_t> coveredAndDiffering(const render::Image& a, const render::Image& b) {
+std::pair<size_t, size_t> coveredAndDiffering(const Image& a, const Image& b) {
     const uint8_t* bg = a.pixels.data();
     size_t covered = 0, differ = 0;
     for (size_t i = 0; i < size_t(a.width) * a.height; ++i) {

@@ -27,6 +27,6 @@ std::string prepare(const std::string& obj, int depth, const ScratchDir& dir, st
 std::string triple(const glm::dvec3& v);
 // Pixels covered in either image (not the background colour of a's corner pixel, background in
 // every view here), and of those, how many differ by more than 8/255 in a channel.
-std::pair<size_t, size_t> coveredAndDiffering(const render::Image& a, const render::Image& b);
+std::pair<size_t, size_t> coveredAndDiffering(const Image& a, const Image& b);
 
 } // namespace limn::test

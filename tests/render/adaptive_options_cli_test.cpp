@@ -308,7 +308,7 @@ TEST(AdaptiveCli, WireTrianglesFollowTheRates) {
         args.insert(args.end(), extra.begin(), extra.end());
         auto r = run(args);
         if (r.exitCode != 0) throw std::runtime_error(r.err);
-        const auto img = render::decodePng(readBytes(dir / name));
+        const auto img = decodePng(readBytes(dir / name));
         size_t n = 0;
         for (size_t i = 0; i + 2 < img.pixels.size(); i += img.channels)
             n += img.pixels[i] == 18 && img.pixels[i + 1] == 18 && img.pixels[i + 2] == 18;

@@ -45,11 +45,11 @@ RunResult render(std::vector<std::string> args) {
     return run(args);
 }
 
-render::Image readPng(const std::filesystem::path& p) {
-    return render::decodePng(readBytes(p));
+Image readPng(const std::filesystem::path& p) {
+    return decodePng(readBytes(p));
 }
 
-bool isBackground(const render::Image& img, uint32_t x, uint32_t y, std::array<int, 3> bg) {
+bool isBackground(const Image& img, uint32_t x, uint32_t y, std::array<int, 3> bg) {
     const uint8_t* p = img.at(x, y);
     return p[0] == bg[0] && p[1] == bg[1] && p[2] == bg[2];
 }
@@ -219,10 +219,10 @@ TEST(BlendRenderCli, ErrorsAndNoPartialOutput) {
     ASSERT_EQ(run({bin("limn-classify"), obj, "-o", plain}).exitCode, 0);
     auto mask = (dir / "mask.png").string();
     ASSERT_EQ(run({bin("limn-trim"), limn, "--tile", "4", "-o", mask}).exitCode, 0);
-    render::Image wrong{6, 4, 1, std::vector<uint8_t>(24, 255)}; // 16 faces need 4x4 tiles
+    Image wrong{6, 4, 1, std::vector<uint8_t>(24, 255)}; // 16 faces need 4x4 tiles
     auto wrongMask = (dir / "wrong.png").string();
-    writeFile(wrongMask, std::string(reinterpret_cast<const char*>(render::encodePng(wrong).data()),
-                                     render::encodePng(wrong).size()));
+    writeFile(wrongMask, std::string(reinterpret_cast<const char*>(encodePng(wrong).data()),
+                                     encodePng(wrong).size()));
     const std::string out = (dir / "out.png").string();
     struct Bad {
         std::vector<std::string> args;
@@ -335,9 +335,9 @@ TEST(TrimCli, WritesTheAtlasForTheContainersFaces) {
     EXPECT_EQ(img.width, 28u * 6);
     EXPECT_EQ(img.height, 27u * 6);
     EXPECT_EQ(img.channels, 1u);
-    render::TrimLayout l = render::trimAtlasLayout(732, 6);
+    blend::TrimLayout l = blend::trimAtlasLayout(732, 6);
     auto at = [&](uint32_t f, double u, double v) {
-        auto t = render::trimTexel(l, f, u, v);
+        auto t = blend::trimTexel(l, f, u, v);
         return img.pixels[size_t(t.y) * img.width + t.x];
     };
     EXPECT_EQ(at(0, 0.9, 0.9), 0);   // removed

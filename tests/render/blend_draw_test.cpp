@@ -138,7 +138,7 @@ TEST(BlendDraw, GridLimits) {
 
 TEST(TrimAtlas, LayoutIsCeilSqrtTilesPerRow) {
     for (uint32_t F : {1u, 2u, 3u, 4u, 5u, 10u, 16u, 17u, 732u}) {
-        TrimLayout l = trimAtlasLayout(F, 8);
+        blend::TrimLayout l = blend::trimAtlasLayout(F, 8);
         uint32_t x = 1;
         while (x * x < F) ++x;
         EXPECT_EQ(l.tilesX, x) << F;
@@ -146,18 +146,18 @@ TEST(TrimAtlas, LayoutIsCeilSqrtTilesPerRow) {
         EXPECT_LT((l.tilesY - 1) * l.tilesX, F);
         EXPECT_EQ(l.width(), x * 8);
     }
-    EXPECT_EQ(trimAtlasLayout(732, 32).tilesY, 27u); // 28 × 27 tiles
+    EXPECT_EQ(blend::trimAtlasLayout(732, 32).tilesY, 27u); // 28 × 27 tiles
 }
 
 TEST(TrimAtlas, TexelAddressingVRunsUp) {
-    TrimLayout l = trimAtlasLayout(5, 4); // 3 × 2 tiles of 4 × 4
+    blend::TrimLayout l = blend::trimAtlasLayout(5, 4); // 3 × 2 tiles of 4 × 4
     // Face 0's (0,0) corner is the bottom-left texel of the top-left tile.
-    EXPECT_EQ(trimTexel(l, 0, 0, 0).x, 0u);
-    EXPECT_EQ(trimTexel(l, 0, 0, 0).y, 3u);
-    EXPECT_EQ(trimTexel(l, 0, 1, 1).x, 3u); // u = 1 and v = 1 clamp into the tile
-    EXPECT_EQ(trimTexel(l, 0, 1, 1).y, 0u);
-    EXPECT_EQ(trimTexel(l, 4, 0.3, 0.8).x, 4u + 1);     // face 4: tile (1, 1)
-    EXPECT_EQ(trimTexel(l, 4, 0.3, 0.8).y, 4u + 3 - 3); // floor(0.8 · 4) = 3 from the bottom
+    EXPECT_EQ(blend::trimTexel(l, 0, 0, 0).x, 0u);
+    EXPECT_EQ(blend::trimTexel(l, 0, 0, 0).y, 3u);
+    EXPECT_EQ(blend::trimTexel(l, 0, 1, 1).x, 3u); // u = 1 and v = 1 clamp into the tile
+    EXPECT_EQ(blend::trimTexel(l, 0, 1, 1).y, 0u);
+    EXPECT_EQ(blend::trimTexel(l, 4, 0.3, 0.8).x, 4u + 1);     // face 4: tile (1, 1)
+    EXPECT_EQ(blend::trimTexel(l, 4, 0.3, 0.8).y, 4u + 3 - 3); // floor(0.8 · 4) = 3 from the bottom
 }
 
 TEST(TrimAtlas, ImageSizeMustBeAnAtlasForTheFaces) {
@@ -171,7 +171,7 @@ TEST(TrimAtlas, ImageSizeMustBeAnAtlasForTheFaces) {
         img.width = w, img.height = h;
         img.pixels.assign(size_t(w) * h, 255);
         try {
-            TrimMask mask = trimMaskFromImage(img, 5); // 3 × 2 tiles
+            blend::TrimMask mask = blend::trimMaskFromImage(img, 5); // 3 × 2 tiles
             EXPECT_TRUE(ok) << w << "x" << h;
             EXPECT_EQ(mask.layout.tile, w / 3);
         } catch (const Error& e) {
@@ -182,18 +182,18 @@ TEST(TrimAtlas, ImageSizeMustBeAnAtlasForTheFaces) {
 }
 
 TEST(TrimAtlas, PatternHolesAndRemovedFaces) {
-    TrimPattern p;
+    blend::TrimPattern p;
     p.tile = 16;
     p.holeRadius = 0.25;
     p.every = 2;
     p.removed = {3};
-    Image img = makeTrimAtlas(5, p);
-    TrimLayout l = trimAtlasLayout(5, 16);
+    Image img = blend::makeTrimAtlas(5, p);
+    blend::TrimLayout l = blend::trimAtlasLayout(5, 16);
     ASSERT_EQ(img.width, l.width());
     ASSERT_EQ(img.height, l.height());
     ASSERT_EQ(img.channels, 1u);
     auto at = [&](uint32_t f, double u, double v) {
-        TrimTexel t = trimTexel(l, f, u, v);
+        blend::TrimTexel t = blend::trimTexel(l, f, u, v);
         return img.pixels[size_t(t.y) * img.width + t.x];
     };
     EXPECT_EQ(at(0, 0.5, 0.5), 0);   // hole (face 0 mod 2 = 0)

@@ -71,4 +71,31 @@ TEST(ControlMesh, FloatPositionsAndUVs) {
     EXPECT_EQ(d.uvs.size(), 1u); // a placeholder so the binding is never empty
 }
 
+// Colour textures are packed RGBA8 after a {width, height} header. Grey and grey + alpha images
+// are grey in R, G and B (the web runtime's pngjs path expands them the same way); the alpha
+// channel is never read as a colour.
+TEST(ControlMesh, TextureWordsGreyAndGreyAlphaAreGrey) {
+    FloatImage grey;
+    grey.width = 2;
+    grey.height = 1;
+    grey.channels = 1;
+    grey.values = {0.0f, 1.0f};
+    EXPECT_EQ(textureWords(&grey), (std::vector<uint32_t>{2, 1, 0xFF000000u, 0xFFFFFFFFu}));
+
+    FloatImage greyAlpha;
+    greyAlpha.width = 2;
+    greyAlpha.height = 1;
+    greyAlpha.channels = 2;
+    greyAlpha.values = {0.2f, 1.0f, 0.6f, 0.0f}; // (grey, alpha) per texel
+    // 0.2 * 255 = 51 = 0x33, 0.6 * 255 = 153 = 0x99.
+    EXPECT_EQ(textureWords(&greyAlpha), (std::vector<uint32_t>{2, 1, 0xFF333333u, 0xFF999999u}));
+
+    FloatImage rgba;
+    rgba.width = 1;
+    rgba.height = 1;
+    rgba.channels = 4;
+    rgba.values = {1.0f, 0.0f, 0.2f, 0.0f};
+    EXPECT_EQ(textureWords(&rgba), (std::vector<uint32_t>{1, 1, 0xFF3300FFu}));
+}
+
 } // namespace

@@ -7,7 +7,8 @@
 #include <cstring>
 #include <string>
 
-using namespace limn::render;
+using namespace limn;
+using namespace limn::exporting;
 
 namespace {
 

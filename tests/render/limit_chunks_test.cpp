@@ -81,7 +81,9 @@ TEST(LimitChunks, ChunkedRenderDrawsTheSameVertices) {
             ASSERT_EQ(whole.first.vertices.size(), cut.first.vertices.size());
             ASSERT_GT(whole.first.vertices.size(), 100u);
             for (size_t i = 0; i < whole.first.vertices.size(); ++i)
-                ASSERT_EQ(std::memcmp(&whole.first.vertices[i], &cut.first.vertices[i], sizeof(render::DrawnVertex)), 0)
+                ASSERT_EQ(std::memcmp(&whole.first.vertices[i], &cut.first.vertices[i],
+                                      sizeof(exporting::DrawnVertex)),
+                          0)
                     << "vertex " << i;
             EXPECT_EQ(whole.first.triangles, cut.first.triangles);
             EXPECT_EQ(whole.second.pixels, cut.second.pixels);

@@ -29,8 +29,8 @@ RunResult limnRender(std::vector<std::string> args, const std::string& input = {
     return run(args, input);
 }
 
-render::Image readPng(const std::filesystem::path& path) {
-    return render::decodePng(readBytes(path));
+Image readPng(const std::filesystem::path& path) {
+    return decodePng(readBytes(path));
 }
 
 // limn-classify MODEL [| limn-tables -d DEPTH] into DIR/NAME.limn.
@@ -55,7 +55,7 @@ struct Silhouette {
 };
 
 constexpr const char* kKey = "1,0,1"; // magenta: no lit grey surface is near it
-Silhouette silhouette(const render::Image& img) {
+Silhouette silhouette(const Image& img) {
     Silhouette s;
     for (uint32_t y = 0; y < img.height; ++y)
         for (uint32_t x = 0; x < img.width; ++x) {
@@ -69,12 +69,12 @@ Silhouette silhouette(const render::Image& img) {
 }
 
 // The larger silhouette extent over the frame's smaller side.
-double fill(const render::Image& img, const Silhouette& s) {
+double fill(const Image& img, const Silhouette& s) {
     return double(std::max(s.width(), s.height())) / double(std::min(img.width, img.height));
 }
 
 // Pixels whose channels differ by more than `tolerance` anywhere, as a fraction of all pixels.
-double differing(const render::Image& a, const render::Image& b, int tolerance) {
+double differing(const Image& a, const Image& b, int tolerance) {
     EXPECT_EQ(a.width, b.width);
     EXPECT_EQ(a.height, b.height);
     if (a.pixels.size() != b.pixels.size()) return 1.0;
@@ -122,7 +122,7 @@ TEST(Framing, FillsAboutEightyFivePercentOfTheSmallerSide) {
         args.insert(args.end(), c.options.begin(), c.options.end());
         auto r = limnRender(args);
         ASSERT_EQ(r.exitCode, 0) << r.err;
-        const render::Image img = readPng(dir / "f.png");
+        const Image img = readPng(dir / "f.png");
         const Silhouette s = silhouette(img);
         std::string what = c.input;
         for (const auto& o : c.options) what += " " + o;
@@ -146,7 +146,7 @@ TEST(Framing, SameAcrossAzimuthsForARoundModel) {
         r = limnRender({sphere, "--view", view, "--size", "160x120", "--background", kKey, "-o",
                     (dir / "s.png").string()});
         ASSERT_EQ(r.exitCode, 0) << r.err;
-        const render::Image img = readPng(dir / "s.png");
+        const Image img = readPng(dir / "s.png");
         const double f = fill(img, silhouette(img));
         lo = std::min(lo, f), hi = std::max(hi, f);
         EXPECT_GE(f, 0.80) << view;
@@ -248,7 +248,7 @@ TEST(LitRig, DeterministicAndControlledByTheOptions) {
     const auto lit = png("l.png", {"--light", "60,-20"});
     EXPECT_NE(plain, lit);
     // --color 0.9,0.5,0.2: every covered pixel reddish (R > G > B); the default is grey.
-    const render::Image tinted = render::decodePng(a), grey = render::decodePng(plain);
+    const Image tinted = decodePng(a), grey = decodePng(plain);
     const uint8_t* bg = grey.at(0, 0);
     size_t covered = 0, ordered = 0, neutral = 0;
     for (uint32_t y = 0; y < grey.height; ++y)
@@ -274,22 +274,22 @@ namespace {
 constexpr uint8_t kQuadrant[4][3] = {{200, 40, 40}, {40, 200, 40}, {40, 40, 200}, {200, 200, 40}};
 
 std::vector<uint8_t> quadrantTexture() {
-    render::Image t;
+    Image t;
     t.width = t.height = 64;
     t.channels = 3;
     t.pixels.resize(64 * 64 * 3);
     for (uint32_t y = 0; y < 64; ++y)
         for (uint32_t x = 0; x < 64; ++x)
             std::memcpy(&t.pixels[(y * 64 + x) * 3], kQuadrant[(y >= 32) * 2 + (x >= 32)], 3);
-    return render::encodePng(t);
+    return encodePng(t);
 }
 
 std::vector<uint8_t> solidTexture(uint8_t r, uint8_t g, uint8_t b) {
-    render::Image t;
+    Image t;
     t.width = t.height = 4;
     t.channels = 3;
     for (int i = 0; i < 16; ++i) t.pixels.insert(t.pixels.end(), {r, g, b});
-    return render::encodePng(t);
+    return encodePng(t);
 }
 
 std::string base64(const std::vector<uint8_t>& bytes) {
@@ -404,7 +404,7 @@ std::string writePlane(const ScratchDir& dir, const std::string& name, Storage s
 // quadrant lies well inside the texture's quadrant of the same place.
 const std::pair<uint32_t, uint32_t> kQuadrantPixel[4] = {{48, 48}, {112, 48}, {48, 112}, {112, 112}};
 
-render::Image renderPlane(const ScratchDir& dir, const std::string& input,
+Image renderPlane(const ScratchDir& dir, const std::string& input,
                           std::vector<std::string> options = {}, std::string* err = nullptr) {
     options.insert(options.begin(), input);
     options.insert(options.end(), {"--view", "0,0", "--size", "160x160", "-o", (dir / "plane.png").string()});
@@ -441,7 +441,7 @@ TEST(GltfMaterial, BaseColorTextureFromFileGlbAndDataUri) {
         const std::string name = storage == Storage::External ? "ext" : storage == Storage::Glb ? "glb" : "data";
         const std::string gltf = writePlane(dir, name, storage, tex);
         const std::string limn = prepare(dir, gltf, name, 2);
-        const render::Image img = renderPlane(dir, limn);
+        const Image img = renderPlane(dir, limn);
         for (int q = 0; q < 4; ++q) {
             const auto [x, y] = kQuadrantPixel[q];
             EXPECT_EQ(bright(img.at(x, y)), expectedBright(q)) << name << " quadrant " << q;
@@ -454,13 +454,13 @@ TEST(GltfMaterial, BaseColorTextureFromFileGlbAndDataUri) {
         ASSERT_EQ(t.exitCode, 0) << t.err;
         auto r = limnRender({"--view", "0,0", "--size", "160x160"}, t.out);
         ASSERT_EQ(r.exitCode, 0) << r.err;
-        EXPECT_EQ(readPng(dir / "plane.png").pixels, render::decodePng(std::vector<uint8_t>(r.out.begin(), r.out.end())).pixels);
+        EXPECT_EQ(readPng(dir / "plane.png").pixels, decodePng(std::vector<uint8_t>(r.out.begin(), r.out.end())).pixels);
     }
     EXPECT_EQ(images[0], images[1]);
     EXPECT_EQ(images[0], images[2]);
     // The same as giving the image with --texture (a white factor multiplies nothing).
     const std::string ext = (dir / "ext.limn").string();
-    const render::Image given = renderPlane(dir, ext, {"--texture", (dir / "tex.png").string()});
+    const Image given = renderPlane(dir, ext, {"--texture", (dir / "tex.png").string()});
     EXPECT_EQ(given.pixels, images[0]);
 }
 
@@ -483,9 +483,9 @@ TEST(GltfMaterial, TextureAndColorOptionsOverride) {
     const std::string limn = prepare(dir, writePlane(dir, "p", Storage::Glb, quadrantTexture()), "p", 2);
     const auto blue = solidTexture(30, 30, 220);
     writeFile(dir / "blue.png", std::string(blue.begin(), blue.end()));
-    const render::Image over = renderPlane(dir, limn, {"--texture", (dir / "blue.png").string()});
+    const Image over = renderPlane(dir, limn, {"--texture", (dir / "blue.png").string()});
     for (const auto& [x, y] : kQuadrantPixel) EXPECT_EQ(bright(over.at(x, y)), "B");
-    const render::Image red = renderPlane(dir, limn, {"--color", "1,0,0"});
+    const Image red = renderPlane(dir, limn, {"--color", "1,0,0"});
     for (int q = 0; q < 4; ++q) {
         const auto [x, y] = kQuadrantPixel[q];
         const uint8_t* p = red.at(x, y);
@@ -502,13 +502,13 @@ TEST(GltfMaterial, BaseColorFactorTintsAndColorOverrides) {
     ScratchDir dir;
     const std::string gltf = writePlane(dir, "f", Storage::Glb, {}, "0.8,0.2,0.05,1");
     for (const std::string& input : {gltf, prepare(dir, gltf, "f", 2), prepare(dir, gltf, "g", -1)}) {
-        const render::Image img = renderPlane(dir, input);
+        const Image img = renderPlane(dir, input);
         for (const auto& [x, y] : kQuadrantPixel) {
             const uint8_t* p = img.at(x, y);
             EXPECT_GT(int(p[0]), int(p[1]) + 40) << input;
             EXPECT_GT(int(p[1]), int(p[2])) << input;
         }
-        const render::Image blue = renderPlane(dir, input, {"--color", "0.1,0.1,0.9"});
+        const Image blue = renderPlane(dir, input, {"--color", "0.1,0.1,0.9"});
         for (const auto& [x, y] : kQuadrantPixel) EXPECT_EQ(bright(blue.at(x, y)), "B") << input;
     }
 }
@@ -520,7 +520,7 @@ TEST(GltfMaterial, ControlMeshOfATexturedMeshFileIsTextured) {
     ScratchDir dir;
     const std::string gltf = writePlane(dir, "straight", Storage::Glb, quadrantTexture());
     std::string err;
-    const render::Image img = renderPlane(dir, gltf, {}, &err);
+    const Image img = renderPlane(dir, gltf, {}, &err);
     for (int q = 0; q < 4; ++q) {
         const auto [x, y] = kQuadrantPixel[q];
         EXPECT_EQ(bright(img.at(x, y)), expectedBright(q)) << "quadrant " << q;
@@ -538,7 +538,7 @@ TEST(GltfMaterial, CorruptTextureWarnsAndDrawsTheFactor) {
     broken.resize(broken.size() / 2); // a PNG cut in half
     const std::string limn = prepare(dir, writePlane(dir, "b", Storage::Glb, broken, "0.02,0.9,0.02,1"), "b", 2);
     std::string err;
-    const render::Image img = renderPlane(dir, limn, {}, &err);
+    const Image img = renderPlane(dir, limn, {}, &err);
     EXPECT_NE(err.find("base colour texture cannot be read"), std::string::npos) << err;
     for (const auto& [x, y] : kQuadrantPixel) EXPECT_EQ(bright(img.at(x, y)), "G");
 }
@@ -550,7 +550,7 @@ TEST(GltfMaterial, BoxTexturedShowsItsTexture) {
     const std::string limn = prepare(dir, modelPath("gltf/BoxTextured/BoxTextured.glb").string(), "box", 2);
     auto r = limnRender({limn, "--size", "128x128", "--background", kKey, "-o", (dir / "box.png").string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const render::Image img = readPng(dir / "box.png");
+    const Image img = readPng(dir / "box.png");
     size_t covered = 0, coloured = 0;
     for (uint32_t y = 0; y < img.height; ++y)
         for (uint32_t x = 0; x < img.width; ++x) {
@@ -567,7 +567,7 @@ TEST(GltfMaterial, BoxTexturedShowsItsTexture) {
 // here by OpenImageIO): the quadrants keep their colours through the lossy coding.
 TEST(GltfMaterial, JpegTextureInAGlb) {
     ScratchDir dir;
-    const render::Image png = render::decodePng(quadrantTexture());
+    const Image png = decodePng(quadrantTexture());
     const std::string path = (dir / "q.jpg").string();
     auto out = OIIO::ImageOutput::create(path);
     ASSERT_TRUE(out);
@@ -577,7 +577,7 @@ TEST(GltfMaterial, JpegTextureInAGlb) {
     const std::vector<uint8_t> jpeg = readBytes(path);
     ASSERT_EQ(jpeg[0], 0xFF);
     const std::string limn = prepare(dir, writePlane(dir, "j", Storage::Glb, jpeg), "j", 2);
-    const render::Image img = renderPlane(dir, limn);
+    const Image img = renderPlane(dir, limn);
     for (int q = 0; q < 4; ++q) {
         const auto [x, y] = kQuadrantPixel[q];
         EXPECT_EQ(bright(img.at(x, y)), expectedBright(q)) << q;

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <limits>
 
-using namespace limn::render;
+using namespace limn;
 
 TEST(OutputImage, HalfFloatsDecodeExactly) {
     EXPECT_EQ(halfToFloat(0x0000), 0.0f);

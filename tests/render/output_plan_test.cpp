@@ -47,7 +47,7 @@ TEST(OutputPlan, FormatFollowsTheExtension) {
 TEST(OutputPlan, MeshOutAloneWritesNoImage) {
     const OutputPlan p = planOutputs({.mesh = "drawn.glb"});
     EXPECT_FALSE(p.writeImage);
-    EXPECT_EQ(p.meshFormat, MeshFormat::Glb);
+    EXPECT_EQ(p.meshFormat, exporting::ExportFormat::Glb);
     EXPECT_EQ(p.meshFileKind(), OutputFile::Kind::Binary);
     const OutputPlan both = planOutputs({.image = "a.png", .mesh = "drawn.obj"});
     EXPECT_TRUE(both.writeImage);
@@ -69,7 +69,7 @@ TEST(OutputPlan, StandardOutputIsNotShared) {
     EXPECT_EQ(usageMessage([] { planOutputs({.image = "-", .mesh = "-"}); }), shared);
     EXPECT_EQ(usageMessage([] { planOutputs({.mesh = "-", .bench = true}); }), shared);
     // The mesh alone on standard output is PLY.
-    EXPECT_EQ(planOutputs({.mesh = "-"}).meshFormat, MeshFormat::Ply);
+    EXPECT_EQ(planOutputs({.mesh = "-"}).meshFormat, exporting::ExportFormat::Ply);
 }
 
 TEST(OutputPlan, MeshOptionsRefused) {

@@ -1,5 +1,6 @@
 // limn-render as users run it (a subprocess, on lavapipe). Most runs use --sync-validation,
 // which makes any validation error fail the run: exit code 0 means the layer reported none.
+#include "drawn_ply.h"
 #include "image/srgb_image.h"
 #include "test_support.h"
 
@@ -36,9 +37,9 @@ RunResult render(std::vector<std::string> args, const std::string& input = {}) {
     return run(args, input);
 }
 
-render::Image readPng(const std::filesystem::path& path) {
+Image readPng(const std::filesystem::path& path) {
     auto bytes = readBytes(path);
-    return render::decodePng(bytes);
+    return decodePng(bytes);
 }
 
 bool samePixel(const uint8_t* a, std::initializer_list<int> b, int tolerance) {
@@ -60,47 +61,6 @@ const char* kGridObj = "v 0 0 0\nv 1.1 0 0\nv 2.2 0 0\nv 3.3 0 0\n"
                        "f 9 10 14 13\nf 10 11 15 14\nf 11 12 16 15\n"
                        "f 4 17 18 19 20\n"
                        "t hole 1/0/0 4\n";
-
-struct Ply {
-    struct Vertex {
-        float p[3], n[3];
-        int32_t ptex;
-        float uv[2];
-    };
-    std::vector<Vertex> vertices;
-    std::vector<std::array<int32_t, 3>> triangles;
-};
-
-Ply parseBinaryPly(const std::string& bytes) {
-    Ply ply;
-    auto end = bytes.find("end_header\n");
-    EXPECT_NE(end, std::string::npos);
-    std::istringstream header(bytes.substr(0, end));
-    std::string line;
-    size_t vertices = 0, faces = 0;
-    while (std::getline(header, line)) {
-        if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
-        if (line.rfind("element face ", 0) == 0) faces = std::stoul(line.substr(13));
-    }
-    const char* p = bytes.data() + end + 11;
-    EXPECT_EQ(bytes.size() - (end + 11), vertices * 36 + faces * 13);
-    ply.vertices.resize(vertices);
-    for (auto& v : ply.vertices) {
-        std::memcpy(v.p, p, 12);
-        std::memcpy(v.n, p + 12, 12);
-        std::memcpy(&v.ptex, p + 24, 4);
-        std::memcpy(v.uv, p + 28, 8);
-        p += 36;
-    }
-    for (size_t f = 0; f < faces; ++f) {
-        EXPECT_EQ(*p, 3);
-        std::array<int32_t, 3> t;
-        std::memcpy(t.data(), p + 1, 12);
-        ply.triangles.push_back(t);
-        p += 13;
-    }
-    return ply;
-}
 
 // ----------------------------------------------------------------------------------------------
 
@@ -216,7 +176,9 @@ TEST(RenderCli, MeshOutHoldsTheControlMeshAsDrawn) {
     auto r = render({limn, "--size", "32x32", "--sync-validation", "--mesh-out", plyPath.string(),
                      "-o", (dir / "grid.png").string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    Ply ply = parseBinaryPly(readFile(plyPath));
+    const Drawn ply = parsePly(readFile(plyPath)); // throws unless the size fits the header
+    EXPECT_FALSE(ply.hasST);          // no UVs, so no texture UVs: 36 bytes a vertex
+    EXPECT_FALSE(ply.hasApproximate); // a control mesh is exact
 
     // Independent expectation from the OBJ text: 8 quads (hole left out) and one pentagon.
     std::vector<std::array<double, 3>> positions;

@@ -78,8 +78,11 @@ script=$!
 # Part 1 of 4 is frames 60 to 119: it is cancelled once it has written its first. It is held
 # there (SIGSTOP to its limn-render, the batch step, which slurm-render.sh execs) so that it is
 # still mid-run however fast the machine renders; scancel sends SIGCONT before SIGTERM.
+# The waits are bounded in seconds, not in polls: under load one poll (squeue, scontrol) can take
+# a large part of a second, and a task can wait that long to be scheduled.
 job= pid=
-for _ in $(seq 600); do
+deadline=$((SECONDS + 180))
+while ((SECONDS < deadline)); do
   job=$(squeue -h -o %F | head -n 1)
   if [ -n "$job" ] && [ "$(squeue -h -j "${job}_1" -o %T 2>/dev/null)" = RUNNING ]; then
     pid=$(scontrol listpids "$(squeue -h -j "${job}_1" -o %A)" 2>/dev/null | awk '$3 == "batch" { print $1 }')
@@ -88,7 +91,8 @@ for _ in $(seq 600); do
   sleep 0.05
 done
 [ -n "$pid" ] || fail "task 1 did not start"
-for _ in $(seq 3000); do [ -f cancel/long_0060.png ] && break; sleep 0.01; done
+deadline=$((SECONDS + 180))
+while ((SECONDS < deadline)); do [ -f cancel/long_0060.png ] && break; sleep 0.01; done
 kill -STOP "$pid"
 [ -f cancel/long_0060.png ] || fail "task 1 did not write frame 60"
 [ ! -e cancel/long_0119.png ] || fail "task 1 had finished before it could be held"

@@ -1,4 +1,4 @@
-// Reads the binary PLY that `limn-render --mesh-out` writes (render/ply.cpp; layout in its
+// Reads the binary PLY that `limn-render --mesh-out` writes (export/ply.cpp; layout in its
 // --help): per vertex float x y z nx ny nz, int ptex, float u v, float s t when the header
 // declares them (meshes with UVs), uchar approximate when it declares it; per face a uchar 3 and three int indices. Written here from the documented layout, not with limn's encoder.
 #pragma once
@@ -57,6 +57,7 @@ inline Drawn parsePly(const std::string& bytes) {
         p += stride;
     }
     for (size_t f = 0; f < faces; ++f) {
+        if (*p != 3) throw std::runtime_error("PLY face without 3 corners");
         std::array<int32_t, 3> t;
         std::memcpy(t.data(), p + 1, 12);
         d.triangles.push_back(t);

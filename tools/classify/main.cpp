@@ -8,6 +8,7 @@
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "seams/seams.h"
+#include "subdiv/fvar_chunk.h"
 #include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
 #include "topology/quad_pairs.h"
@@ -149,6 +150,7 @@ int main(int argc, char** argv) {
                 const bool hadSeams = container.has(kSeamsChunk);
                 container.remove(kTablesChunk);
                 container.remove(kSeamsChunk);
+                container.remove(kFvarSurfaceChunk); // made with the tables, from the same options
                 cli::warn(displayName(input) + ": its tables" +
                           (hadSeams ? " and seams were" : " were") +
                           " made for other scheme options or tags; dropped: run limn-tables" +

@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
             e.setFile(displayName(input));
             throw;
         }
-        out.write(render::encodeGray16Png(o.size, o.size, values));
+        out.write(encodeGray16Png(o.size, o.size, values));
         depfile.setRule(common.output, inputs);
         depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
         out.commit();

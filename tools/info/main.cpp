@@ -9,6 +9,7 @@
 #include "mesh/mesh_chunks.h"
 #include "blend/blend_chunk.h"
 #include "seams/seams.h"
+#include "subdiv/fvar_chunk.h"
 #include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
 
@@ -142,7 +143,7 @@ int main(int argc, char** argv) {
         }
         // Every chunk summarised is validated as limn-render reads it, and a SEAM made from
         // other tables or UVs is reported stale (limn-render would refuse it).
-        bool seamsStale = false;
+        bool seamsStale = false, fvarStale = false;
         try {
             if (const Chunk* sm = container.find(kSeamsChunk)) {
                 const uint32_t elements =
@@ -150,6 +151,13 @@ int main(int argc, char** argv) {
                            : kNone;
                 const Seams seams = decodeSeamsChunk(*sm, elements, 0);
                 seamsStale = !tables || seams.sourceHash != seamsSourceHash(container);
+            }
+            if (const Chunk* fv = container.find(kFvarSurfaceChunk)) {
+                // Its structure is checked; made from other tables, options or UVs, it is stale.
+                const FvarSurfaceChunk f = decodeFvarSurfaceChunk(*fv, nullptr, nullptr);
+                fvarStale = !tables || !mesh.hasUVs() || f.depth != tables->depth ||
+                            f.ptexCount != ptexFaceCount(mesh) ||
+                            f.topologyHash != topologyHash(mesh, tables->options) || f.uvHash != fvarUVHash(mesh);
             }
             if (container.find(blend::kBlendChunk)) (void)blend::loadBlendSurface(container, mesh);
         } catch (Error& e) {
@@ -159,6 +167,9 @@ int main(int argc, char** argv) {
         if (seamsStale)
             cli::warn(displayName(input) +
                       ": the SEAM chunk was made from other tables or UVs (stale); re-run limn-seams");
+        if (fvarStale)
+            cli::warn(displayName(input) +
+                      ": the FVSF chunk was made from other tables, tags or UVs (stale); re-run limn-tables");
         cli::printWarnings(warnings, displayName(input));
         Summary s = summarize(mesh, c);
         // The bounding box, in the mesh's units: --displace-scale is in the same units.
@@ -214,6 +225,7 @@ int main(int argc, char** argv) {
                 j.beginObject();
                 j.field("type", ch.type.str()).field("version", ch.version).field("bytes", ch.payload.size());
                 if (ch.type == kSeamsChunk) j.field("stale", seamsStale);
+                if (ch.type == kFvarSurfaceChunk) j.field("stale", fvarStale);
                 j.endObject();
             }
             j.endArray();

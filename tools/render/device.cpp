@@ -114,7 +114,8 @@ EncodedOutputs renderOnDevice(const RenderJob& job, const RenderInput& in, std::
             if (in.blend && in.mesh.hasUVs())
                 cli::info("--mesh-out: a blending surface shares its vertices across faces; "
                           "no texture UVs written");
-            encoded.mesh = render::encodeMesh(renderer.drawnMesh(), *job.outputs.meshFormat, job.meshAscii);
+            encoded.mesh =
+                exporting::encodeMesh(renderer.drawnMesh(), *job.outputs.meshFormat, job.meshAscii);
         }
         // The renderer goes before the context it was made with.
         chosen.reset();

@@ -22,9 +22,9 @@ namespace limn::render_tool {
 namespace {
 
 // An image given to an option; errors say which option and what to do.
-render::FloatImage loadMap(const std::string& option, const std::string& path) {
+FloatImage loadMap(const std::string& option, const std::string& path) {
     try {
-        return render::loadImage(path);
+        return loadImage(path);
     } catch (const Error& e) {
         const std::string what = e.what();
         const bool missing = what.find("cannot open") != std::string::npos;
@@ -143,7 +143,7 @@ std::vector<SequenceFrame> animationFrames(RenderJob& job, const Mesh& mesh) {
 
 // The material's base colour texture, decoded; nullopt (with a warning) when it cannot be: the
 // geometry is still worth drawing, in the base colour factor.
-std::optional<render::FloatImage> materialTexture(const MeshMaterial& m, const std::string& input) {
+std::optional<FloatImage> materialTexture(const MeshMaterial& m, const std::string& input) {
     try {
         return readImageBytes(m.textureBytes, m.textureFormat);
     } catch (const Error& e) {
@@ -199,8 +199,8 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
                   "without --displace they do nothing");
     if (!job.trimPath.empty()) {
         try {
-            settings.trim = render::trimMaskFromImage(
-                render::readImageFile8(job.trimPath), static_cast<uint32_t>(in.mesh.faceCount()));
+            settings.trim = blend::trimMaskFromImage(
+                readImageFile8(job.trimPath), static_cast<uint32_t>(in.mesh.faceCount()));
         } catch (Error& e) {
             e.setFile(job.trimPath);
             throw;
@@ -236,7 +236,7 @@ void readRenderInput(RenderJob& job, RenderInput& in) {
         const glm::dvec4& f = in.material->baseColorFactor;
         if (!job.colorGiven)
             settings.baseColor =
-                glm::dvec3(render::linearToSrgb(f.r), render::linearToSrgb(f.g), render::linearToSrgb(f.b));
+                glm::dvec3(linearToSrgb(f.r), linearToSrgb(f.g), linearToSrgb(f.b));
         // Textures are drawn on the subdivision surface and the control mesh (as --texture is),
         // not on a blending surface; --shade normal and uv ask for something else.
         const bool shaded = shade == "lit" || shade == "texture";

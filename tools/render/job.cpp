@@ -112,8 +112,8 @@ void planJob(RenderJob& job) {
     mapSettings(job);
     const render::OutputPlan& out = job.outputs;
     render::RenderSettings& settings = job.settings;
-    settings.floatOutput = out.writeImage && (out.imageFormat == render::ImageFormat::Exr || job.bitDepth == 16);
-    settings.depth = out.writeImage && out.imageFormat == render::ImageFormat::Exr;
+    settings.floatOutput = out.writeImage && (out.imageFormat == ImageFormat::Exr || job.bitDepth == 16);
+    settings.depth = out.writeImage && out.imageFormat == ImageFormat::Exr;
     // Without the OpenImageIO plugin no .exr can be written: fail before any file exists.
     if (settings.depth) requireImageWriter();
     job.surface = job.surfaceName == "blend"         ? Surface::Blend

@@ -99,7 +99,7 @@ struct RenderInput {
     std::vector<std::string> filesRead; // a .gltf's buffers and images, --frames' .gltf ones
     std::optional<MeshMaterial> material; // a glTF's base colour, or the container's MATL
     std::vector<SequenceFrame> frames;
-    std::optional<render::FloatImage> displacementMap, textureMap;
+    std::optional<FloatImage> displacementMap, textureMap;
 
     RenderInput() = default;
     RenderInput(const RenderInput&) = delete;
@@ -145,8 +145,8 @@ void openOutputs(const RenderJob& job, OutputFiles& files);
 void refuseOversizedSequence(const RenderJob& job, const RenderInput* in);
 // The last frame's pixels as the image's format needs them, and their encoding.
 struct FramePixels {
-    render::Image image;        // 8-bit PNG
-    render::LinearImage linear; // 16-bit PNG, EXR
+    Image image;        // 8-bit PNG
+    LinearImage linear; // 16-bit PNG, EXR
 };
 FramePixels framePixels(const render::Renderer& renderer, const RenderJob& job);
 std::vector<uint8_t> encodeImage(const FramePixels& pixels, const RenderJob& job);

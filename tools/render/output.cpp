@@ -73,7 +73,7 @@ void openOutputs(const RenderJob& job, OutputFiles& files) {
 
 FramePixels framePixels(const render::Renderer& renderer, const RenderJob& job) {
     FramePixels p;
-    if (job.outputs.imageFormat == render::ImageFormat::Exr || job.bitDepth == 16)
+    if (job.outputs.imageFormat == ImageFormat::Exr || job.bitDepth == 16)
         p.linear = renderer.linearImage();
     else
         p.image = renderer.image();
@@ -83,8 +83,8 @@ FramePixels framePixels(const render::Renderer& renderer, const RenderJob& job) 
 // The image in the format its name asked for: 8- or 16-bit PNG, or EXR (linear RGBA and
 // camera-space Z).
 std::vector<uint8_t> encodeImage(const FramePixels& p, const RenderJob& job) {
-    if (job.outputs.imageFormat == render::ImageFormat::Exr) {
-        const render::LinearImage& li = p.linear;
+    if (job.outputs.imageFormat == ImageFormat::Exr) {
+        const LinearImage& li = p.linear;
         const size_t n = size_t(li.width) * li.height;
         std::vector<float> values(n * 5);
         for (size_t i = 0; i < n; ++i) {
@@ -95,10 +95,10 @@ std::vector<uint8_t> encodeImage(const FramePixels& p, const RenderJob& job) {
     }
     if (job.bitDepth == 16) {
         std::vector<float> background(3);
-        for (int i = 0; i < 3; ++i) background[i] = float(render::srgbToLinear(job.settings.background[i]));
-        return render::encodePng(render::toSrgb16(p.linear, job.settings.alpha, background));
+        for (int i = 0; i < 3; ++i) background[i] = float(srgbToLinear(job.settings.background[i]));
+        return encodePng(toSrgb16(p.linear, job.settings.alpha, background));
     }
-    return render::encodePng(p.image);
+    return encodePng(p.image);
 }
 
 void removeFrames(const std::vector<std::string>& paths) {

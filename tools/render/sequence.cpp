@@ -81,7 +81,7 @@ void renderSequence(render::Renderer& renderer, const RenderJob& job, const Rend
             if (i > 0) progress.done(i);
             if (plan.meshPattern) {
                 const std::string mesh = render::framePath(*plan.meshPattern, numbers[k]);
-                writeOutput(mesh, render::encodeMesh(renderer.drawnMesh(), *plan.meshFormat, plan.meshAscii),
+                writeOutput(mesh, exporting::encodeMesh(renderer.drawnMesh(), *plan.meshFormat, plan.meshAscii),
                             plan.meshFileKind());
                 markLandedForRemovalOnSignal(mesh);
                 written.push_back(mesh);

@@ -1,13 +1,17 @@
 // limn-tables: builds the feature-adaptive subdivision tables (paper 000, 4.1) of a classified
-// container, from topology alone, and adds them as the TBLS chunk.
+// container, from topology alone, and adds them as the TBLS chunk; with smooth face-varying UVs,
+// also their own surface as the FVSF chunk.
 #include "base/cli.h"
 #include "base/error.h"
 #include "base/io.h"
 #include "container/container.h"
 #include "container/container_output.h"
 #include "mesh/mesh_chunks.h"
+#include "subdiv/fvar_chunk.h"
 #include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
+
+#include <optional>
 
 using namespace limn;
 
@@ -25,7 +29,8 @@ int main(int argc, char** argv) {
             "features (feature-adaptive isolation), the regular B-spline patches found at each\n"
             "level, the faces left irregular at the last level and the limit stencils of their\n"
             "corners. Tables depend on topology only: re-run when faces or tags change, not when\n"
-            "positions move.",
+            "positions move. A mesh with smooth face-varying UVs (TAGS fvar other than \"all\")\n"
+            "also gets its UV surface (the FVSF chunk, for limn-web-render): re-run when UVs change.",
             common);
         parser.positional("INPUT", &input,
                           "container made by limn-classify, or a mesh (classified with the defaults)")
@@ -72,6 +77,7 @@ int main(int argc, char** argv) {
         ContainerOutput out(common.output, common.depfile, input);
         const std::string name = displayName(input);
         Tables tables;
+        std::optional<Chunk> fvar;
         Warnings warnings;
         std::vector<std::string> inputs = {input}; // and a .gltf's buffers and images
         Container container = loadOrClassify(input, warnings, &inputs);
@@ -88,6 +94,9 @@ int main(int argc, char** argv) {
             opts.infSharpPatches = opts.singleCreasePatches = !noCreasePatches;
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
+            // Smooth face-varying UVs: their own surface, for runtimes that do not build it.
+            if (mesh.hasUVs() && c.options.fvar != FVarRule::All)
+                fvar = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(mesh, c.options, depth, warnings));
         } catch (Error& e) {
             e.setFile(name);
             throw;
@@ -102,6 +111,10 @@ int main(int argc, char** argv) {
                       " limit points have an approximate normal (valence-2 vertices or corner "
                       "sectors, where the surface has no tangent plane)");
         container.set(encodeTablesChunk(tables));
+        if (fvar)
+            container.set(std::move(*fvar));
+        else
+            container.remove(kFvarSurfaceChunk);
         // Seams belong to the tables they were made from: new tables make them stale.
         if (container.find(FourCC{"SEAM"})) {
             container.remove(FourCC{"SEAM"});

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
                        "  1  bad input\n"
                        "  2  usage error (including binary output to a terminal)\n");
         if (!parser.parse(ac, av)) return 0;
-        render::TrimPattern pattern;
+        blend::TrimPattern pattern;
         pattern.tile = static_cast<uint32_t>(tile);
         pattern.holeRadius = hole;
         pattern.every = static_cast<uint32_t>(every);
@@ -94,15 +94,15 @@ int main(int argc, char** argv) {
             e.setFile(displayName(input));
             throw;
         }
-        render::TrimLayout l = render::trimAtlasLayout(static_cast<uint32_t>(faces), pattern.tile);
+        blend::TrimLayout l = blend::trimAtlasLayout(static_cast<uint32_t>(faces), pattern.tile);
         if (uint64_t(l.width()) * l.height() > (uint64_t(1) << 28))
             throw Error(ErrorKind::Usage,
                         "--tile " + std::to_string(tile) + " makes the atlas too large");
         cli::info(std::to_string(faces) + " faces: " + std::to_string(l.tilesX) + "x" +
                   std::to_string(l.tilesY) + " tiles of " + std::to_string(tile) + "x" +
                   std::to_string(tile));
-        render::Image atlas = render::makeTrimAtlas(static_cast<uint32_t>(faces), pattern);
-        out.write(render::encodePng(atlas));
+        Image atlas = blend::makeTrimAtlas(static_cast<uint32_t>(faces), pattern);
+        out.write(encodePng(atlas));
         depfile.setRule(common.output, inputs);
         depfile.prepare(); // a depfile that cannot be written fails the run before the output lands
         out.commit();

@@ -8,17 +8,22 @@ import { loadLimn } from '../src/chunks.mjs';
 import { LimnError } from '../src/container.mjs';
 import { Renderer, SHADES } from '../src/renderer.mjs';
 import { encodePng } from '../src/png.mjs';
+import { encodePly } from '../src/ply.mjs';
 import { requestNodeDevice } from '../src/node_device.mjs';
 import { readImageFile, decodePngImage, heightMap } from '../src/node_image.mjs';
 
 const TOOL = 'limn-web-render';
-const HELP = `usage: ${TOOL} [options] IN.limn -o OUT.png
+const HELP = `usage: ${TOOL} [options] IN.limn [-o OUT.png] [--mesh-out FILE.ply]
 Renders a .limn container (limn-classify | limn-tables [| limn-seams]) with limn's own passes on
 WebGPU: per level the face-, edge- and vertex-point compute passes, the limit points, the
 view-adaptive tessellation's passes (cull, rates, counts, scan, emit) or the fixed grids, and the
 draw that evaluates the surface in the vertex stage (paper 000). The options are limn-render's;
 what is not listed is not supported here.
   -o FILE                 the PNG to write (RGB, 8 bits)
+  --mesh-out FILE         write the triangles as drawn, as limn-render's --mesh-out writes them
+                          (PLY: positions, normals, ptex u v, the texture UV s t, and which
+                          vertices are approximate); - for standard output; without -o, no image
+  --mesh-ascii            write the --mesh-out PLY as ASCII (default binary little-endian)
   --size WxH              image size (default 1024x768)
   --view AZ,EL            auto-framed camera: azimuth, elevation in degrees (default -30,20)
   --eye X,Y,Z             explicit camera position (with --target, default the box centre,
@@ -54,8 +59,9 @@ what is not listed is not supported here.
                           this view chose)
   --bench N               render N frames, print limn-render's --bench JSON fields on stdout
   --help, --version
-Not supported here yet: --mesh-out, smooth face-varying UVs under --shade uv, --texture
-or --displace, BLND (blending surfaces); images other than PNG.
+Smooth face-varying UVs (TAGS fvar other than "all") are drawn from the container's FVSF chunk
+(limn-tables writes it). Not supported here yet: --displace with smooth face-varying UVs, BLND
+(blending surfaces); images other than PNG; --mesh-out other than PLY.
 Exit codes: 0 ok, 1 bad input, 2 usage, 3 missing capability.
 `;
 
@@ -80,6 +86,8 @@ function parseArgs(argv) {
       case '--help': case '-h': o.help = true; break;
       case '--version': o.version = true; break;
       case '-o': case '--output': o.output = value(); break;
+      case '--mesh-out': o.meshOut = value(); break;
+      case '--mesh-ascii': o.meshAscii = true; break;
       case '--size': {
         const m = /^(\d+)x(\d+)$/.exec(value());
         if (!m || +m[1] < 1 || +m[2] < 1 || +m[1] > 16384 || +m[2] > 16384) throw new Usage(`--size: '${argv[i]}' is not WIDTHxHEIGHT with each 1 to 16384`);
@@ -122,8 +130,17 @@ function parseArgs(argv) {
   }
   if (o.help || o.version) return o;
   if (!o.input) throw new Usage('no input file (see --help)');
-  if (!o.output && !o.bench) throw new Usage('no output: give -o OUT.png (or --bench N)');
+  if (!o.output && !o.bench && !o.meshOut) throw new Usage('no output: give -o OUT.png, --mesh-out FILE.ply or --bench N');
   if (o.output && !o.output.endsWith('.png')) throw new Usage(`-o ${o.output}: only PNG is written here (name it .png)`);
+  if (o.meshOut) {
+    // limn-render's meshFormatFromPath: the extension, case-insensitive; - is PLY.
+    const ext = o.meshOut === '-' ? 'ply' : /\.([^./]*)$/.exec(o.meshOut)?.[1].toLowerCase();
+    if (!['ply', 'obj', 'gltf', 'glb'].includes(ext)) throw new Usage(`${o.meshOut}: --mesh-out: unknown extension; limn-render writes .ply, .obj, .gltf, .glb`);
+    if (ext !== 'ply') throw new LimnError(`--mesh-out ${o.meshOut}: ${TOOL} writes PLY only (name it .ply); limn-render writes .${ext}`, 'capability');
+    if (o.meshOut === '-' && o.bench) throw new Usage('--mesh-out - and the --bench JSON cannot share standard output');
+    o.settings.meshOut = true;
+  }
+  if (o.meshAscii && !o.meshOut) throw new Usage('--mesh-ascii applies to a .ply --mesh-out; give --mesh-out FILE.ply');
   if (s.view.eye && o.viewGiven) throw new Usage('--view and --eye exclude each other');
   if (argv.includes('--wire') && argv.includes('--wire-triangles')) throw new Usage('--wire and --wire-triangles exclude each other');
   if ((s.view.target || s.view.up) && !s.view.eye) throw new Usage('--target and --up describe an explicit camera; give --eye too');
@@ -169,6 +186,18 @@ function applyMaps(o, surface) {
   }
 }
 
+// A temporary file beside the target, renamed over it: never a partial file under its name.
+function writeAtomically(path, bytes) {
+  const tmp = join(dirname(path), `.${basename(path)}.limn-tmp-${process.pid}`);
+  try {
+    writeFileSync(tmp, bytes);
+    renameSync(tmp, path);
+  } catch (e) {
+    rmSync(tmp, { force: true });
+    throw new LimnError(`${path}: cannot write: ${e.code ?? e.message}`, 'output');
+  }
+}
+
 async function main(argv) {
   const o = parseArgs(argv);
   if (o.help) { process.stdout.write(HELP); return 0; }
@@ -196,17 +225,12 @@ async function main(argv) {
     js.push(renderer.timings.js);
   }
   const pixels = await renderer.pixels();
+  // Everything is read back before anything is written: a failure leaves no file.
+  const ply = o.meshOut ? encodePly(await renderer.drawnMesh(), !!o.meshAscii) : null;
   if (lost) throw new Error(`the WebGPU device failed: ${lost.message}`);
-  if (o.output) {
-    const tmp = join(dirname(o.output), `.${basename(o.output)}.limn-tmp-${process.pid}`);
-    try {
-      writeFileSync(tmp, encodePng(o.settings.width, o.settings.height, pixels));
-      renameSync(tmp, o.output);
-    } catch (e) {
-      rmSync(tmp, { force: true });
-      throw new LimnError(`cannot write: ${e.code ?? e.message}`, 'output');
-    }
-  }
+  if (o.output) writeAtomically(o.output, encodePng(o.settings.width, o.settings.height, pixels));
+  if (ply && o.meshOut === '-') process.stdout.write(ply);
+  else if (ply) writeAtomically(o.meshOut, ply);
   if (o.bench) {
     // Medians over the frames after the first (pipeline compiles and first uploads).
     const median = (a) => { const b = a.slice(a.length > 1 ? 1 : 0).sort((x, y) => x - y); return b[b.length >> 1]; };

@@ -3,6 +3,8 @@
 // lib/render/adaptive_tess.cpp (the five compute passes per frame: cull, rates, counts, scan,
 // emit; the draw then reads the tessellation through one indirect draw).
 import { PtexMap, TESS_ONE } from './tessellation.mjs';
+import { SmoothChartUVs } from './smooth_uvs.mjs';
+import { LimnError } from './container.mjs';
 
 const NO_ELEMENT = 0xffffffff;
 const pack = (s, t) => (s | (t << 16)) >>> 0;
@@ -26,13 +28,18 @@ function sideST(d, k, x) {
   return pack(0, q);
 }
 
-/** buildEdgePieces: elements, side pieces, pieces and points, as lib/tess/edge_pieces.cpp. */
-export function buildEdgePieces(mesh, tables) {
+/**
+ * buildEdgePieces: elements, side pieces, pieces and points, as lib/tess/edge_pieces.cpp. With
+ * `smooth` (the FVSF surface), the elements' corner UVs are the smooth UVs in their own chart
+ * (subdivision_draw.cpp's smoothSeamRecords `own`).
+ */
+export function buildEdgePieces(mesh, tables, smooth = null) {
   const N = tables.depth;
   if (N + 1 > 16) throw new Error(`view-adaptive tessellation supports tables up to depth 15, these have depth ${N}`);
   const R = 2 ** N;
   const keys = new PtexMap(mesh, R), halfKeys = new PtexMap(mesh, 2 * R);
   const withUV = !!mesh.uvs;
+  const charts = withUV && smooth ? new SmoothChartUVs(smooth, keys) : null;
   const domains = [], elements = [], points = [], pieces = [], sidePieces = [];
   const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
   const qw = tables.irregular, qf = new Float32Array(qw.buffer, qw.byteOffset, qw.length);
@@ -42,7 +49,10 @@ export function buildEdgePieces(mesh, tables) {
     const e = { sideFirst: [0, 0, 0, 0], sideCount: [0, 0, 0, 0], cornerUV: [[0, 0], [0, 0], [0, 0], [0, 0]], level };
     if (withUV) {
       const cu = [0, 1, 1, 0], cv = [0, 0, 1, 1];
-      for (let c = 0; c < 4; c++) e.cornerUV[c] = keys.ownUV(ptex, (d.U0 + cu[c] * d.W) / R, (d.V0 + cv[c] * d.W) / R).map(Math.fround);
+      for (let c = 0; c < 4; c++) {
+        const U = d.U0 + cu[c] * d.W, V = d.V0 + cv[c] * d.W;
+        e.cornerUV[c] = charts ? charts.own(ptex, U, V, d.U0 + 0.5 * d.W, d.V0 + 0.5 * d.W) : keys.ownUV(ptex, U / R, V / R).map(Math.fround);
+      }
     }
     elements.push(e);
   };
@@ -134,10 +144,25 @@ export function adaptiveData(ep, tables, options) {
   for (const p of ep.pieces) words.push(p.owner, p.ownerStart, p.ownerEnd, p.span, p.users[0], p.users[1], bitsOf(p.uvLength), 0);
   const pointBase = words.length / 4;
   for (const q of ep.points) words.push(q.owner, q.st, 0, 0);
+  // Smooth UVs (options.smooth, the FVSF surface): per element its ptex domain, then the UV
+  // quadtree four nodes a word group, then the records, for the emit pass (adaptive_tess.cpp).
+  let domainBase = 0, nodeBase = 0, recordBase = 0;
+  if (options.smooth) {
+    domainBase = words.length / 4;
+    const pw = tables.patches, qw = tables.irregular;
+    for (let i = 0; i < tables.patchCount; i++) words.push(pw[24 * i + 16], pw[24 * i + 17], pw[24 * i + 18], pw[24 * i + 19]);
+    for (let i = 0; i < tables.irregularCount; i++) words.push(qw[8 * i + 4], qw[8 * i + 5], qw[8 * i + 6], qw[8 * i + 7]);
+    nodeBase = words.length / 4;
+    const { nodes, records } = options.smooth;
+    for (let i = 0; i < nodes.length; i += 4) for (let k = 0; k < 4; k++) words.push(i + k < nodes.length ? nodes[i + k] : 0xffffffff);
+    recordBase = words.length / 4;
+    for (const w of new Uint32Array(records.buffer, records.byteOffset, records.length)) words.push(w);
+  }
   const sideBase = words.length / 4;
   for (const s of ep.sidePieces) words.push(s.piece, s.startPoint, s.reversed, (s.from | (s.to << 16)) >>> 0);
   for (let i = 0; i < ep.elements.length; i++) for (let k = 0; k < 4; k++) elements[20 * i + k] += sideBase;
-  return { elements, pieces: Uint32Array.from(words), capV, capT, shared, pointBase, elementCount: ep.elements.length, pieceCount: ep.pieces.length };
+  if (words.length * 4 > MAX_BUFFER) throw new LimnError(`the view-adaptive tessellation's edge pieces would need ${(words.length / 2 ** 18).toFixed(1)} MiB, over WebGPU's 128 MiB storage-buffer limit`, 'input');
+  return { elements, pieces: Uint32Array.from(words), capV, capT, shared, pointBase, domainBase, nodeBase, recordBase, smooth: !!options.smooth, elementCount: ep.elements.length, pieceCount: ep.pieces.length };
 }
 
 /** The five passes' dispatches (name, element count, push words) for a view, as AdaptiveTess::record. */
@@ -153,9 +178,11 @@ export function adaptivePushes(data, tables, options, view) {
   const cull = [...vp, f32(view.eye[0]), f32(view.eye[1]), f32(view.eye[2]), f32(view.facing), tables.patchCount,
     ((options.cull ? 1 : 0) | (samples << 8)) >>> 0, f32(view.width), f32(view.height), packed[0], packed[1]];
   const rates = [...vp, f32(0.5 * view.width), f32(0.5 * view.height), f32(options.edgePixels), options.tess, tables.patchCount, f32(options.texelsPerUV ?? 0), f32(options.maxError ?? 0)];
-  const counts = [options.tess, 0, data.shared ? 1 : 0, samples, packed[0], packed[1], options.evaluated ? 0 : 1];
+  // Smooth UVs: the emit pass's quadtree walk per vertex (adaptive_tess.cpp kFvarLoopsPerVertex).
+  const counts = [options.tess, data.smooth ? 12 : 0, data.shared ? 1 : 0, samples, packed[0], packed[1], options.evaluated ? 0 : 1];
   const scan = [data.elementCount, data.capV, data.capT, ROW_GROUPS, EVAL_GROUP_SIZE, data.shared];
-  const emit = [data.pointBase, data.capT, 0, 0, 0, 0, 0, data.shared ? 1 : 0];
+  // fvarCell 2^-21: 1/32 of the finest cell at depth 16, above float's step at 1.
+  const emit = [data.pointBase, data.capT, data.smooth ? 1 : 0, data.smooth ? f32(2 ** -21) : 0, data.domainBase, data.nodeBase, data.recordBase, data.shared ? 1 : 0];
   return [
     ['adaptive_cull.comp', data.elementCount, cull],
     ['adaptive_rates.comp', data.pieceCount, rates],

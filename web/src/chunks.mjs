@@ -4,6 +4,7 @@
 // lib/subdiv/tables_chunk.cpp, lib/seams/seams.cpp), so that nothing out of range reaches the GPU.
 import { LimnError, chunkReader, parseContainer } from './container.mjs';
 import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
+import { decodeFvarSurface } from './fvar_chunk.mjs';
 
 const MAX_DEPTH = 16;
 const MAX_COORDINATE = 1e18; // lib/mesh: beyond it a float square overflows
@@ -393,7 +394,7 @@ function decodeTables(chunk, mesh, tags) {
   return {
     depth, irregularLevels: extra, uniform: (flags & 1) === 1, options, totalVertices, levels, facePoints, edgePoints, vertexPoints,
     patchCount: P, patches, irregularCount: Q, irregular, limitCount: L, limitPosition, limitTangent1, limitTangent2,
-    limitVertex, limitFlags,
+    limitVertex, limitFlags, irregularNodeCount: surface.nodes.length / W,
   };
 }
 
@@ -578,8 +579,15 @@ export function loadLimn(bytes) {
   const classification = byType.has('CLSF') ? decodeClassification(byType.get('CLSF'), mesh) : null;
   if (!byType.has('TBLS')) throw new LimnError('the container has no subdivision tables; run limn-tables --depth N on it', 'container');
   const tables = decodeTables(byType.get('TBLS'), mesh, tags);
+  // FVSF: only with UVs to smooth (FVUV present, TAGS fvar other than "all").
+  let fvarSurface = null;
+  if (byType.has('FVSF')) {
+    if (!uvs) throw new LimnError('the mesh has no UVs (no FVUV chunk) for its smooth UV surface', 'chunk FVSF');
+    const uvHash = new Fnv64().update(bytesOf(uvs.values)).update(bytesOf(uvs.indices)).value;
+    fvarSurface = decodeFvarSurface(byType.get('FVSF'), { depth: tables.depth, ptexCount: ptexCount(mesh), topologyHash: topologyHash(mesh, tags, tables.options), uvHash });
+  }
   const seams = byType.has('SEAM')
     ? decodeSeams(byType.get('SEAM'), tables.patchCount + tables.irregularCount, seamsSourceHash(byType))
     : null;
-  return { mesh, uvs, tags, material, classification, tables, seams };
+  return { mesh, uvs, tags, material, classification, tables, seams, fvarSurface };
 }

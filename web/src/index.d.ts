@@ -36,8 +36,10 @@ export interface Surface {
   classification: object | null;
   tables: Tables;
   seams: { records: Uint32Array; uvs: Float32Array; uvCount: number } | null;
+  /** FVSF: the smooth face-varying UV surface (per-ptex quadtree nodes, 36 floats an element), or null. */
+  fvarSurface: { depth: number; ptexCount: number; nodes: Uint32Array; records: Float32Array; elementCount: number } | null;
 }
-/** Reads MESH, FVUV, TAGS, MATL, CLSF, TBLS (v1, v2) and SEAM, checking every count and index; BLND is refused. */
+/** Reads MESH, FVUV, TAGS, MATL, CLSF, TBLS (v1 to v4), SEAM and FVSF, checking every count and index; BLND is refused. */
 export function loadLimn(bytes: Uint8Array | ArrayBuffer): Surface;
 
 export type Shade = 'lit' | 'normal' | 'uv' | 'levels' | 'texture';
@@ -57,6 +59,9 @@ export interface RenderSettings {
   /** 'triangles': limn-render --wire-triangles, the edges of every triangle drawn; 'outlines':
    *  --wire, the patches' and faces' outlines (drawn on the fixed grids). */
   wire?: 'triangles' | 'outlines';
+  /** --mesh-out: view-adaptive, every triangle of an element that draws some is emitted (no
+   *  shared slots), as limn-render evaluates them for its --mesh-out; then call drawnMesh(). */
+  meshOut?: boolean;
 }
 export interface ImageRGB { width: number; height: number; rgb: Float32Array }
 export interface Displacement {
@@ -91,7 +96,26 @@ export function viewMatrix(camera: Camera): number[];
 export function projectionMatrix(camera: Camera, aspect: number): number[];
 /** The generated WGSL of one of limn's shaders, by its GLSL name ('surface.vert'). */
 export function loadShader(name: string): Promise<string>;
-export interface Renderer {
-  /** The drawn surface as limn-render --mesh-out writes it: xyzw per vertex, 3 indices a triangle. */
-  drawnMesh(): Promise<{ positions: Float32Array; triangles: Uint32Array }>;
+/** The surface as drawn, read back (what limn-render --mesh-out writes). */
+export interface DrawnMesh {
+  /** xyzw per vertex (displaced when displaced). */
+  positions: Float32Array;
+  /** xyz_ per vertex. */
+  normals: Float32Array;
+  /** Per vertex: ptex face, then the bits of u and v in it (floats), one word unused. */
+  info: Uint32Array;
+  /** Per vertex: element, s | t << 16 (1/32768), the bits of the texture UV (floats). */
+  tessVertices: Uint32Array;
+  /** 1 where the vertex is not on the limit surface (drawn bilinear near an extraordinary corner). */
+  approximate: Uint8Array;
+  /** 3 indices a triangle. */
+  triangles: Uint32Array;
+  /** Whether the mesh has texture coordinates (the PLY's s t). */
+  hasTexCoords: boolean;
 }
+export interface Renderer {
+  /** The drawn surface as limn-render --mesh-out writes it (view-adaptive: create with settings.meshOut). */
+  drawnMesh(): Promise<DrawnMesh>;
+}
+/** limn-render's --mesh-out PLY, the same bytes: binary little-endian, or ASCII. */
+export function encodePly(mesh: DrawnMesh, ascii?: boolean): Uint8Array;

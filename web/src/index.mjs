@@ -4,6 +4,7 @@
 export { loadLimn } from './chunks.mjs';
 export { parseContainer, LimnError } from './container.mjs';
 export { Renderer, SHADES } from './renderer.mjs';
+export { encodePly } from './ply.mjs';
 export { buildTessellation } from './tessellation.mjs';
 export { frameCamera, viewMatrix, projectionMatrix } from './camera.mjs';
 export { loadShader } from './shaders.mjs';

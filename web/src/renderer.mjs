@@ -6,27 +6,20 @@
 //   their irregular face's limit points (4.3), into a 4x multisampled sRGB target.
 // The control points go straight into the level-0 range of the vertex buffer (queue.writeBuffer:
 // what limn-render's staging copy and copy_points.comp do on Vulkan).
-import { ShaderCache, loadShader as loadShaderText } from './shaders.mjs';
+import { ShaderCache, groupLayout, loadShader as loadShaderText } from './shaders.mjs';
 import { buildTessellation } from './tessellation.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
 import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
+import { evaluateVertices, framingSamples, readBuffer, readDrawnMesh } from './drawn_mesh.mjs';
+import { appendRows, cached, checkFixedSize, checkTableSize } from './table_buffers.mjs';
+import { addWirePass } from './wire.mjs';
 import { textureWords, fixedDisplacementPlan, checkDisplacement, checkMapSize, addComputeEvaluation, addDisplacementPasses, computeSeams } from './displacement.mjs';
 
 const PUSH_SLOT = 256; // WebGPU's minUniformBufferOffsetAlignment
 const MAX_GROUPS = 65535;
 const STORAGE = 0x80, COPY_DST = 0x08, COPY_SRC = 0x04, INDEX = 0x10, UNIFORM = 0x40, MAP_READ = 0x01;
 const RENDER_ATTACHMENT = 0x10, TEX_COPY_SRC = 0x01, INDIRECT = 0x100;
-
-// An explicit bind group layout for group 0 of a generated shader, from its declarations (an
-// 'auto' layout leaves out what the entry point does not use, and limn binds by position).
-function groupLayout(device, wgsl, visibility) {
-  const entries = [];
-  for (const m of wgsl.matchAll(/@group\(0\) @binding\((\d+)\)\s*\nvar<storage, (read|read_write)>/g)) {
-    entries.push({ binding: Number(m[1]), visibility, buffer: { type: m[2] === 'read' ? 'read-only-storage' : 'storage' } });
-  }
-  return device.createBindGroupLayout({ entries: entries.sort((a, b) => a.binding - b.binding) });
-}
 
 export const SHADES = { lit: 0, normal: 1, uv: 2, levels: 3, texture: 4 };
 const DEFAULT_BASE = 0.8;
@@ -36,84 +29,6 @@ function packSrgb8(c) {
   let packed = 0;
   for (let i = 0; i < 3; i++) packed |= Math.round(Math.min(Math.max(c[i], 0), 1) * 255) << (8 * i);
   return packed >>> 0;
-}
-
-// Concatenates stencil tables as subdivision_draw.cpp's appendRows: starts rebased, one row more
-// per table; returns the first row of each table.
-function appendRows(tables, withWeights) {
-  let rows = 0, entries = 0;
-  for (const t of tables) { rows += t.rows + 1; entries += t.index.length; }
-  const starts = new Uint32Array(Math.max(rows, 1)), index = new Uint32Array(Math.max(entries, 1));
-  const weight = withWeights ? new Float32Array(Math.max(entries, 1)) : null;
-  const firstRows = [];
-  let r = 0, e = 0;
-  for (const t of tables) {
-    firstRows.push(r);
-    for (let i = 0; i <= t.rows; i++) starts[r++] = e + t.start[i];
-    index.set(t.index, e);
-    if (withWeights) weight.set(t.weight, e);
-    e += t.index.length;
-  }
-  return { starts, index, weight, firstRows };
-}
-
-// subdivision_draw.cpp's checkFixedSize: refuses, before building it, a fixed tessellation
-// whose index or vertex buffer would pass WebGPU's 128 MiB storage-buffer limit.
-function checkFixedSize(tables, tessCap) {
-  const N = tables.depth, cap = 2 ** Math.floor(Math.log2(Math.max(tessCap, 1)));
-  let triangles = 0, points = 0;
-  const add = (size, level) => {
-    const W = size * 2 ** N, S = Math.min(Math.min(2 ** (N - level), cap), Math.max(W, 1));
-    triangles += 2 * S * S;
-    points += S * S;
-  };
-  const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
-  for (let i = 0; i < tables.patchCount; i++) add(pf[24 * i + 19], pw[24 * i + 20] & 0xff);
-  const qf = new Float32Array(tables.irregular.buffer);
-  for (let i = 0; i < tables.irregularCount; i++) add(qf[8 * i + 7], N);
-  const limit = 128 * 2 ** 20, indexBytes = triangles * 12, vertexBytes = points * 16;
-  if (indexBytes <= limit && vertexBytes <= limit) return;
-  throw new LimnError(`the fixed tessellation (--edge-pixels 0) would draw about ${triangles} triangles: GPU buffer ` +
-    `'${indexBytes > limit ? 'triangle indices' : 'tessellation vertices'}' would need about ${(Math.max(indexBytes, vertexBytes) / 2 ** 20).toFixed(1)} MiB, ` +
-    "over WebGPU's 128 MiB storage-buffer limit; use a lower --tess, or tables of lower depth (limn-tables --depth)", 'input');
-}
-
-// subdivision_draw.cpp's checkTableSize: refuses, before anything is built, tables whose own GPU
-// buffers would pass WebGPU's 128 MiB storage-buffer limit, whatever the tessellation. The
-// patches buffer is counted as uploaded: the regular patches and, after them, the irregular
-// faces' quadtree nodes, sub-patches, smooth faces and per-valence basis records (TBLS v3).
-function checkTableSize(tables, face, stencil) {
-  const limit = 128 * 2 ** 20;
-  const sized = [['table vertices', tables.totalVertices * 16], ['face-point indices', face.index.byteLength],
-    ['stencil indices', stencil.index.byteLength], ['limit points', tables.limitCount * 32],
-    ['patches', tables.patches.byteLength], ['irregular faces', tables.irregular.byteLength]];
-  for (const [name, bytes] of sized) {
-    if (bytes > limit) {
-      throw new LimnError(`GPU buffer '${name}' would need ${(bytes / 2 ** 20).toFixed(1)} MiB, over WebGPU's 128 MiB storage-buffer ` +
-        'limit, whatever the tessellation; use feature-adaptive tables (limn-tables without --uniform) or a lower --depth', 'input');
-    }
-  }
-}
-
-// subdivision_draw.cpp: the elements' outline segments, each once (an edge two elements share is
-// listed by both), in the order first seen.
-function wireLines(outline) {
-  const seen = new Set(), out = [];
-  for (let i = 0; i + 1 < outline.length; i += 2) {
-    const a = outline[i], b = outline[i + 1], key = Math.min(a, b) * 2 ** 32 + Math.max(a, b);
-    if (!seen.has(key)) { seen.add(key); out.push(a, b); }
-  }
-  return Uint32Array.from(out);
-}
-
-// The CPU-built tessellations of a loaded surface, kept with its tables (they are never written
-// after they are built): renderers of one surface with other views, sizes or shades share them.
-const builtFor = new WeakMap();
-function cached(tables, key, build) {
-  let m = builtFor.get(tables);
-  if (!m) builtFor.set(tables, (m = new Map()));
-  if (!m.has(key)) m.set(key, build());
-  return m.get(key);
 }
 
 /**
@@ -142,12 +57,15 @@ export class Renderer {
     if (s.wire && s.wire !== 'triangles' && s.wire !== 'outlines') throw new LimnError(`wire '${s.wire}': 'outlines' (limn-render --wire) or 'triangles' (--wire-triangles)`, 'usage');
     if (s.texture) checkMapSize('--texture', s.texture);
     if ((s.texture || s.displace) && !surface.uvs) throw new LimnError('--texture and --displace need texture coordinates; the mesh has none', 'input');
+    // Smooth face-varying UVs (TAGS fvar other than "all") come from the FVSF chunk; without it
+    // the linear charts would be drawn where limn-render draws the smooth UVs.
+    this.smooth = surface.uvs && surface.tables.options.fvar !== 5 ? surface.fvarSurface : null;
     if (s.displace) {
       if (surface.tables.options.fvar !== 5) throw new LimnError('--displace with smooth face-varying UVs (TAGS fvar other than "all") is not supported here yet', 'capability');
       checkDisplacement(s.displace);
     }
-    if (surface.uvs && (s.shade === 'uv' || s.shade === 'texture') && surface.tables.options.fvar !== 5) {
-      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under --shade ${s.shade} are not supported here yet`, 'capability');
+    if (surface.uvs && surface.tables.options.fvar !== 5 && !this.smooth && (s.shade === 'uv' || s.shade === 'texture' || s.meshOut)) {
+      throw new LimnError(`smooth face-varying UVs (TAGS fvar other than "all") under ${s.meshOut ? '--mesh-out' : `--shade ${s.shade}`} need their surface, the FVSF chunk, which this container lacks; re-run limn-tables on it`, 'input');
     }
     this.timings = { js: 0 };
   }
@@ -190,7 +108,7 @@ export class Renderer {
     this.adaptive = s.edgePixels > 0 && s.wire !== 'outlines';
     let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
     if (this.adaptive) {
-      const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables));
+      const ep = cached(tables, 'edge pieces', () => buildEdgePieces({ ...mesh, uvs: surface.uvs }, tables, this.smooth));
       let minimum = 0;
       for (const e of ep.elements) for (let k = 0; k < 4; k++) minimum += e.sideCount[k];
       const p = Math.max(s.maxError > 0 ? Math.min(s.edgePixels, 4) : s.edgePixels, 0.25); // as renderer.cpp
@@ -208,6 +126,7 @@ export class Renderer {
         // With a displacement map, at least a segment per texel (up to one per 2 pixels).
         texelsPerUV: s.displace ? Math.max(s.displace.map.width, s.displace.map.height) : 0,
         maxVertices: minimum + ep.elements.length + viewBudget, maxTriangles: minimum + 2 * viewBudget,
+        smooth: this.smooth,
       };
       this.adaptiveData = adaptiveData(ep, tables, this.adaptiveOptions);
       this.closed = ep.pieces.length > 0 && ep.pieces.every((pc) => pc.users[1] !== 0xffffffff);
@@ -215,7 +134,7 @@ export class Renderer {
     } else {
       checkFixedSize(tables, s.tess);
       const cap = 2 ** Math.floor(Math.log2(Math.max(s.tess, 1)));
-      tess = cached(tables, `fixed ${cap}`, () => ({ ...buildTessellation({ ...mesh, uvs: surface.uvs }, tables, cap, !!surface.uvs), key: `fixed ${cap}` }));
+      tess = cached(tables, `fixed ${cap}`, () => ({ ...buildTessellation({ ...mesh, uvs: surface.uvs }, tables, cap, !!surface.uvs, this.smooth), key: `fixed ${cap}` }));
     }
     this.tess = tess;
     const b = this.buffers = {
@@ -347,29 +266,7 @@ export class Renderer {
       ? [b.displaced, b.displacedNormals, b.tessVertices, b.triangles, b.triangleLevels, null, null, b.texture]
       : [b.vertices, b.patches, b.irregular, b.limits, b.tessVertices, b.triangles, b.triangleLevels, b.texture];
     this.drawGroups = [group(this.drawPipeline, 0, drawBuffers), drawPush.group];
-    if (s.wire) {
-      // --wire-triangles: the edges of every triangle drawn; --wire: the elements' outlines, each
-      // segment once (subdivision_draw.cpp's wireLines); at the positions the draw read (evaluated
-      // or displaced), pulled towards the eye (wire*.vert); same push constants.
-      const outlines = s.wire === 'outlines', wireVert = outlines ? 'wire.vert' : 'wire_triangles.vert';
-      const wireLayout = groupLayout(device, await loadShaderText(wireVert), 1);
-      this.wirePipeline = await device.createRenderPipelineAsync({
-        label: `wire (${s.wire})`,
-        layout: device.createPipelineLayout({ bindGroupLayouts: [wireLayout, drawLayout.groups[1], drawLayout.groups[2], drawLayout.groups[3]] }),
-        vertex: { module: await shaders.module(wireVert) },
-        fragment: { module: await shaders.module('wire.frag'), targets: [{ format: 'rgba8unorm-srgb' }] },
-        primitive: { topology: 'line-list' },
-        depthStencil: { format: 'depth32float', depthWriteEnabled: false, depthCompare: 'less-equal' },
-        multisample: { count: s.samples },
-      });
-      const drawn = s.displace ? b.displaced : b.evalPositions;
-      this.wireGroup = device.createBindGroup({ layout: wireLayout, entries: (outlines ? [drawn] : [drawn, b.triangles]).map((buffer, binding) => ({ binding, resource: { buffer } })) });
-      if (outlines) {
-        const lines = cached(tables, `outline ${tess.key}`, () => wireLines(tess.outline));
-        this.wireLineCount = lines.length;
-        b.wireLines = this.buffer('wire lines', lines, INDEX);
-      }
-    }
+    if (s.wire) await addWirePass(this, shaders, drawLayout);
 
     // Framing: the control points' box and sphere (boundsOf), the hull samples when auto-framed.
     const points = [];
@@ -384,7 +281,7 @@ export class Renderer {
       if (this.bounds.sphereRadius > 0) this.bounds.sphereRadius += pad;
       this.bounds.hull = [];
     } else {
-      this.bounds.hull = s.view.eye ? [] : await this.surfaceSamples();
+      this.bounds.hull = s.view.eye ? [] : await framingSamples(this);
     }
     this.setView(s.view);
 
@@ -396,96 +293,19 @@ export class Renderer {
     this.readback = device.createBuffer({ size: this.rowBytes * h, usage: MAP_READ | COPY_DST });
   }
 
-  // limn-render's framing hull (renderer.cpp surfaceSamples): each patch at (s, t) in {0, 1/2, 1}^2
-  // and every limit point, here evaluated by the same passes on the GPU and read back.
-  async surfaceSamples() {
-    const { tables } = this.surface;
-    const P = tables.patchCount, st = [0, 16384, 32768];
-    const tv = new Uint32Array(P * 9 * 4);
-    let n = 0;
-    for (let p = 0; p < P; p++) for (const t of st) for (const u of st) tv.set([p, u | (t << 16), 0, 0], 4 * n++);
-    const tvb = this.buffer('hull samples', tv);
-    const { positions, limits } = await this.evaluate(tvb, n, true);
-    tvb.destroy();
-    const points = [];
-    for (let i = 0; i < n; i++) points.push([positions[4 * i], positions[4 * i + 1], positions[4 * i + 2]]);
-    for (let i = 0; i < tables.limitCount; i++) points.push([limits[8 * i], limits[8 * i + 1], limits[8 * i + 2]]);
-    return points;
-  }
-
-  // The frame's compute passes, then surface_eval.comp (the vertex stage's evaluation, as a
-  // compute pass: limn-render's --eval compute and --mesh-out) over `n` tessellation vertices.
-  async evaluate(tvb, n, withLimits = false) {
-    const { device } = this;
-    const { tables } = this.surface;
-    const shaders = new ShaderCache(device);
-    this.evalPass ??= await device.createComputePipelineAsync({ layout: 'auto', compute: { module: await shaders.module('surface_eval.comp') } });
-    const evalPass = this.evalPass;
-    const b = this.buffers;
-    const pos = this.empty('evaluated positions', n * 16), nrm = this.empty('evaluated normals', n * 16), info = this.empty('evaluated ptex', n * 16);
-    const push = this.empty('evaluate push', 256, UNIFORM);
-    const groups = Math.ceil(Math.max(n, 1) / 64), y = Math.ceil(groups / MAX_GROUPS), x = Math.ceil(groups / y);
-    device.queue.writeBuffer(push, 0, new Uint32Array([n, x * 64, 0, 0, tables.patchCount]));
-    this.uploadControlPoints();
-    const enc = device.createCommandEncoder();
-    this.encodeCompute(enc, false);
-    if (n > 0) {
-      const cp = enc.beginComputePass();
-      cp.setPipeline(evalPass);
-      cp.setBindGroup(0, device.createBindGroup({ layout: evalPass.getBindGroupLayout(0), entries: [b.vertices, b.patches, b.irregular, b.limits, tvb, pos, nrm, info].map((buffer, binding) => ({ binding, resource: { buffer } })) }));
-      cp.setBindGroup(3, device.createBindGroup({ layout: evalPass.getBindGroupLayout(3), entries: [{ binding: 0, resource: { buffer: push } }] }));
-      cp.dispatchWorkgroups(x, y);
-      cp.end();
-    }
-    const L = withLimits ? tables.limitCount : 0;
-    const rb = device.createBuffer({ size: Math.max(n * 16 + L * 32, 16), usage: MAP_READ | COPY_DST });
-    if (n > 0) enc.copyBufferToBuffer(pos, 0, rb, 0, n * 16);
-    if (L > 0) enc.copyBufferToBuffer(b.limits, 0, rb, n * 16, L * 32);
-    device.queue.submit([enc.finish()]);
-    await rb.mapAsync(1);
-    const f = new Float32Array(rb.getMappedRange().slice(0));
-    rb.unmap();
-    for (const buf of [pos, nrm, info, push, rb]) buf.destroy();
-    return { positions: f.subarray(0, 4 * n), limits: f.subarray(4 * n) };
-  }
+  // The frame's compute passes, then surface_eval.comp over `n` tessellation vertices
+  // (drawn_mesh.mjs).
+  evaluate(tvb, n, withLimits = false) { return evaluateVertices(this, tvb, n, withLimits); }
 
   /**
-   * The drawn surface, as limn-render --mesh-out writes it: positions (4 floats each) and
+   * The drawn surface, as limn-render --mesh-out reads it back (drawn_mesh.mjs readDrawnMesh):
+   * positions and normals (4 floats each), info, tessellation vertices, approximate flags and
    * triangles. View-adaptive: this view's emitted tessellation (create with settings.meshOut).
    * Displaced: the displaced positions.
    */
-  async drawnMesh() {
-    let triangles = this.tess.indices, vertices = this.tess.vertexCount;
-    if (this.adaptive || this.s.displace) {
-      this.uploadControlPoints();
-      const enc = this.device.createCommandEncoder();
-      this.encodeCompute(enc, true);
-      this.device.queue.submit([enc.finish()]);
-    }
-    if (this.adaptive) {
-      const t = await this.readBuffer(this.buffers.totals, TOTALS_WORDS * 4, Uint32Array);
-      if (t[15] || t[22] || t[23]) throw new LimnError('the view-adaptive tessellation of this view overflowed its buffers; raise --max-error or --edge-pixels, or lower --tess', 'input');
-      vertices = t[17];
-      triangles = await this.readBuffer(this.buffers.triangles, t[16] * 12, Uint32Array);
-    }
-    // Displaced: what the frame's passes moved; else the tessellation evaluated again.
-    const positions = this.s.displace
-      ? await this.readBuffer(this.buffers.displaced, vertices * 16, Float32Array)
-      : (await this.evaluate(this.buffers.tessVertices, vertices)).positions;
-    return { positions, triangles };
-  }
+  drawnMesh() { return readDrawnMesh(this); }
 
-  async readBuffer(buffer, bytes, Type) {
-    const rb = this.device.createBuffer({ size: Math.max(bytes, 16), usage: MAP_READ | COPY_DST });
-    const enc = this.device.createCommandEncoder();
-    if (bytes) enc.copyBufferToBuffer(buffer, 0, rb, 0, bytes);
-    this.device.queue.submit([enc.finish()]);
-    await rb.mapAsync(1);
-    const out = new Type(rb.getMappedRange().slice(0, bytes));
-    rb.unmap();
-    rb.destroy();
-    return out;
-  }
+  readBuffer(buffer, bytes, Type) { return readBuffer(this.device, buffer, bytes, Type); }
 
   setView(view) {
     const s = this.s, aspect = s.width / s.height;
@@ -608,16 +428,7 @@ export class Renderer {
 
   /** Triangles the last frame drew (view-adaptive: read back from the scan's totals). */
   async drawnTriangles() {
-    if (!this.adaptive) return this.triangleCount();
-    const rb = this.device.createBuffer({ size: 16, usage: MAP_READ | COPY_DST });
-    const enc = this.device.createCommandEncoder();
-    enc.copyBufferToBuffer(this.buffers.totals, 0, rb, 0, 16);
-    this.device.queue.submit([enc.finish()]);
-    await rb.mapAsync(1);
-    const n = new Uint32Array(rb.getMappedRange())[0] / 3;
-    rb.unmap();
-    rb.destroy();
-    return n;
+    return this.adaptive ? (await this.readBuffer(this.buffers.totals, 16, Uint32Array))[0] / 3 : this.triangleCount();
   }
 
   destroy() {

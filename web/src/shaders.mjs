@@ -30,3 +30,13 @@ export class ShaderCache {
     return m;
   }
 }
+
+// An explicit bind group layout for group 0 of a generated shader, from its declarations (an
+// 'auto' layout leaves out what the entry point does not use, and limn binds by position).
+export function groupLayout(device, wgsl, visibility) {
+  const entries = [];
+  for (const m of wgsl.matchAll(/@group\(0\) @binding\((\d+)\)\s*\nvar<storage, (read|read_write)>/g)) {
+    entries.push({ binding: Number(m[1]), visibility, buffer: { type: m[2] === 'read' ? 'read-only-storage' : 'storage' } });
+  }
+  return device.createBindGroupLayout({ entries: entries.sort((a, b) => a.binding - b.binding) });
+}

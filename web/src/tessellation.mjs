@@ -7,6 +7,8 @@
 // point whose faces give it different UVs gets one vertex per UV, sharing the first's (element,
 // s, t) so that every copy evaluates to the same bits.
 
+import { SmoothChartUVs } from './smooth_uvs.mjs';
+
 export const TESS_ONE = 32768;
 const NONE = 0xffffffff;
 
@@ -161,9 +163,11 @@ class Grow {
 /**
  * The fixed tessellation of tables (chunks.mjs's decodeTables) for `mesh`, capped at `cap`
  * segments per side. Returns { vertices: Uint32Array (4 words a vertex: element, s | t << 16,
- * u bits, v bits), indices: Uint32Array, triangleLevels: Uint32Array, vertexCount }.
+ * u bits, v bits), indices: Uint32Array, triangleLevels: Uint32Array, vertexCount }. `smooth`:
+ * the FVSF surface (fvar_chunk.mjs) for smooth face-varying UVs instead of the faces' linear
+ * charts (tessellation.cpp with ChartUVs); the vertices split at the same UV seams.
  */
-export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
+export function buildTessellation(mesh, tables, cap, splitUVSeams = false, smooth = null) {
   cap = 2 ** Math.floor(Math.log2(Math.max(cap, 1)));
   const withUV = mesh.uvs !== null && mesh.uvs !== undefined;
   const N = tables.depth, R = 2 ** N;
@@ -181,7 +185,11 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
 
   const vElement = new Grow(Uint32Array), vST = new Grow(Uint32Array), uvs = new Grow(Float32Array), geometry = new Grow(Uint32Array);
   const owner = new Map(), onUVSeam = new Map(), copies = new Map();
-  const uvOf = (e, U, V) => { const q = keys.ownUV(e.ptex, U / R, V / R); q[0] = f32(q[0]); q[1] = f32(q[1]); return q; };
+  const charts = smooth ? new SmoothChartUVs(smooth, keys) : null;
+  const uvOf = (e, U, V) => {
+    if (charts) return charts.own(e.ptex, U, V, e.U0 + 0.5 * e.W, e.V0 + 0.5 * e.W);
+    const q = keys.ownUV(e.ptex, U / R, V / R); q[0] = f32(q[0]); q[1] = f32(q[1]); return q;
+  };
   const seamPoint = (e, U, V, k) => {
     let s = onUVSeam.get(k);
     if (s === undefined) {
@@ -273,7 +281,7 @@ export function buildTessellation(mesh, tables, cap, splitUVSeams = false) {
         if (i === 0) ring.push(...edgePoints(3, e.W - y1, e.W - y0).slice(0, -1)); else ring.push(grid(i, j + 1));
         if (S === 1) {
           const cu = (e.U0 + 0.5 * e.W) / R, cv = (e.V0 + 0.5 * e.W) / R;
-          const centre = push(ei, (TESS_ONE / 2) | ((TESS_ONE / 2) << 16), withUV ? keys.ownUV(e.ptex, cu, cv).map(f32) : null, vElement.n);
+          const centre = push(ei, (TESS_ONE / 2) | ((TESS_ONE / 2) << 16), withUV ? (charts ? charts.interior(e.ptex, cu, cv) : keys.ownUV(e.ptex, cu, cv).map(f32)) : null, vElement.n);
           for (let r = 0; r < ring.length; r++) tri(centre, ring[r], ring[(r + 1) % ring.length]);
           continue;
         }

@@ -2,11 +2,31 @@
 // limn's format naming the file and chunk, no output file left behind, no hang (timeouts).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawnSync } from 'node:child_process';
-import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { execFileSync, spawnSync } from 'node:child_process';
+import { existsSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { container, scratch, repo } from './support.mjs';
+import { container, scratch, repo, tool } from './support.mjs';
 import { encodePng } from '../src/png.mjs';
+import { privateIcd } from '../src/node_device.mjs';
+import { parseContainer } from '../src/container.mjs';
+
+// A container of `chunks` (parseContainer's), framed as formats/limn.md section 2-3 says.
+function writeContainer(chunks) {
+  const size = 24 + chunks.reduce((n, c) => n + 16 + Math.ceil(c.payload.length / 8) * 8, 0);
+  const out = Buffer.alloc(size);
+  out.set([0x4c, 0x49, 0x4d, 0x4e, 0x0d, 0x0a, 0x1a, 0x0a]);
+  out.writeUInt32LE(1, 8);
+  out.writeBigUInt64LE(BigInt(size), 16);
+  let o = 24;
+  for (const c of chunks) {
+    out.write(c.type, o, 'latin1');
+    out.writeUInt32LE(c.version, o + 4);
+    out.writeBigUInt64LE(BigInt(c.payload.length), o + 8);
+    out.set(c.payload, o + 16);
+    o += 16 + Math.ceil(c.payload.length / 8) * 8;
+  }
+  return out;
+}
 
 const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
@@ -48,11 +68,21 @@ test('damaged containers exit 1 naming the chunk, and leave no output', () => {
 test('what is not supported here exits 3 and says so; maps it cannot use exit 1 naming them', () => {
   const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 });
   const out = join(scratch, 'x.png');
-  // Smooth face-varying UVs (an fvar rule other than "all").
+  // Displacement with smooth face-varying UVs (an fvar rule other than "all").
   const smooth = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_boundaries.limn' });
-  const r = run(smooth, '-o', out, '--shade', 'uv');
+  const flat = join(scratch, 'flat.png');
+  writeFileSync(flat, encodePng(2, 2, new Uint8Array(16).fill(128)));
+  const r = run(smooth, '-o', out, '--displace', flat);
   assert.equal(r.status, 3, r.stderr);
-  assert.match(r.stderr, /smooth face-varying UVs .* not supported here/);
+  assert.match(r.stderr, /--displace with smooth face-varying UVs .* not supported here/);
+  // Smooth UVs without their surface (the FVSF chunk removed, as from an older limn-tables).
+  const chunks = parseContainer(readFileSync(smooth)), kept = chunks.filter((c) => c.type !== 'FVSF');
+  assert.equal(kept.length, chunks.length - 1);
+  const older = join(scratch, 'no_fvsf.limn');
+  writeFileSync(older, writeContainer(kept));
+  const noSurface = run(older, '-o', out, '--shade', 'uv');
+  assert.equal(noSurface.status, 1, noSurface.stderr);
+  assert.match(noSurface.stderr, /need their surface, the FVSF chunk, which this container lacks; re-run limn-tables/);
   // A map that cannot be read or is not a PNG is named.
   const noMap = run(limn, '-o', out, '--displace', join(scratch, 'absent.png'));
   assert.equal(noMap.status, 1, noMap.stderr);
@@ -78,4 +108,89 @@ test('what is not supported here exits 3 and says so; maps it cannot use exit 1 
   assert.match(noUVs.stderr, /need texture coordinates; the mesh has none/);
   assert.equal(run(limn, '-o', out, '--displace', map, '--displace-scale', 'x%').status, 2);
   assert.equal(existsSync(out), false);
+});
+
+// --mesh-out against limn-render's on the same driver: the same bytes. The view-adaptive case has
+// irregular faces drawn bilinear (--irregular-levels 0: the `approximate` property) and writes
+// the image too; the fixed-grid case has texture coordinates (s t) and is ASCII (every float as
+// the shortest text, as C++'s to_chars writes it).
+test('--mesh-out writes the bytes limn-render --mesh-out writes', () => {
+  const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
+  const cases = [
+    [container('quad/spot_quadrangulated.obj', { depth: 2, tablesArgs: ['--irregular-levels', '0'], name: 'spot_bilinear.limn' }), 'mesh_adaptive.ply', ['--size', '320x240', '--edge-pixels', '4']],
+    [container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), 'mesh_fixed.ply', ['--size', '64x64', '--edge-pixels', '0', '--mesh-ascii']],
+  ];
+  for (const [limn, name, args] of cases) {
+    const native = join(scratch, `native_${name}`), web = join(scratch, `web_${name}`), png = join(scratch, `${name}.png`);
+    execFileSync(tool('limn-render'), [limn, '--mesh-out', native, ...args], { env, stdio: 'ignore' });
+    const r = spawnSync(process.execPath, [cli, limn, '--mesh-out', web, ...args, ...(args.includes('--mesh-ascii') ? [] : ['-o', png])], { encoding: 'utf8', timeout: 120000, env });
+    assert.equal(r.status, 0, r.stderr);
+    const want = readFileSync(native), got = readFileSync(web);
+    assert.equal(got.length, want.length, `${name}: ${got.length} bytes, limn-render wrote ${want.length}`);
+    assert.ok(got.equals(want), `${name}: the bytes differ from limn-render's`);
+    assert.equal(existsSync(png), !args.includes('--mesh-ascii'));
+  }
+  assert.match(readFileSync(join(scratch, 'web_mesh_adaptive.ply')).toString('latin1', 0, 600), /property uchar approximate\n/);
+  assert.match(readFileSync(join(scratch, 'web_mesh_fixed.ply')).toString('latin1', 0, 600), /format ascii 1\.0\n(.|\n)*property float s\n/);
+});
+
+// A binary --mesh-out PLY's vertices (11 floats: x y z nx ny nz, ptex bits, u v s t) and triangles.
+function readDrawnPly(bytes) {
+  const end = bytes.indexOf('end_header\n') + 'end_header\n'.length, header = bytes.toString('latin1', 0, end);
+  const V = Number(/element vertex (\d+)/.exec(header)[1]), F = Number(/element face (\d+)/.exec(header)[1]);
+  const stride = 44 + (header.includes('approximate') ? 1 : 0);
+  const vertices = Array.from({ length: V }, (_, i) => Array.from({ length: 11 }, (__, k) => bytes.readFloatLE(end + stride * i + 4 * k)));
+  const triangles = Array.from({ length: 3 * F }, (_, k) => bytes.readUInt32LE(end + stride * V + 13 * Math.floor(k / 3) + 1 + 4 * (k % 3)));
+  return { vertices, triangles };
+}
+
+// Smooth face-varying UVs from the FVSF chunk. View-adaptive: the emit pass evaluates them on the
+// GPU from the same records in both, the same bytes. Fixed grids: limn-render evaluates them on
+// the CPU from the UV surface's double-precision points, the web from the chunk's floats, so a
+// UV may differ in its last float bit (and a seam copy appear where the two faces' bits differ):
+// the same triangles, each corner at the same position and texture UV within 1e-6.
+test('--mesh-out with smooth UVs: limn-render\'s bytes (view-adaptive), its triangles and UVs (fixed grids)', () => {
+  const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
+  const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_boundaries.limn' });
+  for (const edgePixels of ['4', '0']) {
+    const native = join(scratch, `smooth_native_${edgePixels}.ply`), web = join(scratch, `smooth_web_${edgePixels}.ply`);
+    const args = ['--size', '160x120', '--edge-pixels', edgePixels, '--samples', '1'];
+    execFileSync(tool('limn-render'), [limn, '--mesh-out', native, ...args], { env, stdio: 'ignore' });
+    const r = spawnSync(process.execPath, [cli, limn, '--mesh-out', web, ...args], { encoding: 'utf8', timeout: 120000, env });
+    assert.equal(r.status, 0, r.stderr);
+    const want = readFileSync(native), got = readFileSync(web);
+    if (edgePixels !== '0') {
+      assert.ok(got.equals(want), 'view-adaptive: the bytes differ from limn-render\'s');
+      continue;
+    }
+    const a = readDrawnPly(want), b = readDrawnPly(got);
+    assert.equal(b.triangles.length, a.triangles.length, 'triangle count');
+    let worst = 0;
+    for (let k = 0; k < a.triangles.length; k++) {
+      const p = a.vertices[a.triangles[k]], q = b.vertices[b.triangles[k]];
+      for (const c of [0, 1, 2, 9, 10]) worst = Math.max(worst, Math.abs(p[c] - q[c]));
+    }
+    assert.ok(worst <= 1e-6, `fixed grids: a corner's position or texture UV is ${worst} away`);
+  }
+});
+
+test('--mesh-out: a bad extension exits 2, a format not written here exits 3, and no file is left', () => {
+  const limn = container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 });
+  const before = readdirSync(scratch).length;
+  for (const [args, status, message] of [
+    [['--mesh-out', join(scratch, 'm.stl')], 2, /unknown extension; limn-render writes \.ply, \.obj, \.gltf, \.glb/],
+    [['--mesh-out', join(scratch, 'noext')], 2, /unknown extension/],
+    [['--mesh-out', join(scratch, 'm.obj')], 3, /writes PLY only/],
+    [['-o', join(scratch, 'm.png'), '--mesh-ascii'], 2, /--mesh-ascii applies to a \.ply --mesh-out/],
+    [['--mesh-out', '-', '--bench', '1'], 2, /cannot share standard output/],
+  ]) {
+    const r = run(limn, ...args);
+    assert.equal(r.status, status, `${args.join(' ')}: ${r.stderr}`);
+    assert.match(r.stderr, message);
+  }
+  // A directory that does not exist: exit 1 naming the file, no temporary file left beside it.
+  const r = run(limn, '--size', '32x32', '--mesh-out', join(scratch, 'absent', 'm.ply'));
+  assert.equal(r.status, 1, r.stderr);
+  assert.match(r.stderr, /absent\/m\.ply: cannot write: ENOENT/);
+  assert.equal(readdirSync(scratch).length, before);
 });

@@ -165,3 +165,34 @@ test('TBLS v4 and v3 of the same tables read the same', () => {
   assert.ok(v4.irregularLevels > 0 && v4.patches.length > (v4.patchCount + v4.irregularCount) * 24);
   assert.deepEqual(v4, v3);
 });
+
+// FVSF, the smooth UV surface limn-tables writes under a face-varying rule other than "all":
+// read, and refused naming it when cut short, stale (other UVs, other depth) or with a node
+// that would send a walk back up its quadtree.
+test('FVSF: read with smooth UVs, refused by name when cut, stale or cyclic', () => {
+  const bytes = read(container('quad/osd_catmark_fvar_bound1.obj', { depth: 1, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_smooth_d1.limn' }));
+  const s = loadLimn(bytes);
+  assert.ok(s.fvarSurface && s.fvarSurface.elementCount > 0 && s.fvarSurface.depth === 1);
+  assert.equal(s.fvarSurface.ptexCount, s.mesh.faceSizes.length); // all quads
+  assert.equal(loadLimn(small()).fvarSurface, null, 'linear UVs ("all") have none');
+  const chunks = parseContainer(bytes);
+  const fvsf = chunks.findIndex((c) => c.type === 'FVSF');
+  const withPayload = (payload) => build(chunks.map((c, j) => (j === fvsf ? { ...c, payload } : c)));
+  const p = chunks[fvsf].payload;
+  for (let n = 0; n < p.length; n += 5) expectLimnError(withPayload(p.subarray(0, n)), /^chunk FVSF/);
+  const patched = (offset, word) => {
+    const q = p.slice();
+    new DataView(q.buffer).setUint32(offset, word, true);
+    return withPayload(q);
+  };
+  expectLimnError(patched(0, 2), /chunk FVSF: made at depth 2, but the tables \(TBLS\) have depth 1/);
+  expectLimnError(patched(32, 0), /chunk FVSF: node 0 has a bad child index/);
+  expectLimnError(patched(32, 0x80000000 + s.fvarSurface.elementCount), /chunk FVSF: node 0 names a missing element/);
+  // The UVs changed after limn-tables: a value of FVUV moved (its first f64, 16 bytes in).
+  const fvuv = chunks.findIndex((c) => c.type === 'FVUV');
+  const moved = chunks[fvuv].payload.slice();
+  new DataView(moved.buffer).setFloat64(16, 0.125, true);
+  expectLimnError(build(chunks.map((c, j) => (j === fvuv ? { ...c, payload: moved } : c))), /chunk FVSF: the smooth UV surface was built from other UVs/);
+  // Without FVUV it is refused by name (a container whose UVs were removed by hand).
+  expectLimnError(build(chunks.filter((c) => c.type !== 'FVUV')), /chunk FVSF: the mesh has no UVs/);
+});

@@ -12,11 +12,11 @@
 import { test, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { readFileSync } from 'node:fs';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { container, paperSphereObj, scratch, tool, repo } from './support.mjs';
 import { privateIcd } from '../src/node_device.mjs';
-import { decodePng } from '../src/png.mjs';
+import { decodePng, encodePng } from '../src/png.mjs';
 import { requestNodeDevice } from '../src/node_device.mjs';
 import { loadLimn } from '../src/chunks.mjs';
 import { Renderer } from '../src/renderer.mjs';
@@ -79,6 +79,20 @@ const spot = (depth) => () => container('quad/spot_quadrangulated.obj', { depth 
 const sphere6 = () => container(paperSphereObj(), { depth: 6, name: 'paper_sphere_d6.limn' });
 const fixed = ['--edge-pixels', '0'];
 const spotTexture = join(repo, 'tests/data/textures/spot_texture.png');
+// Smooth face-varying UVs (corners-plus1: the UVs are smoothed across the faces, their seams
+// kept), drawn from the FVSF chunk, textured by a checkerboard of 8-texel squares: its edges show
+// where the UVs land. Linear and smooth UVs give images 4% of covered pixels apart here (the
+// test 'smooth UVs are not the linear ones' below), web and native none.
+const spotSmooth = () => container('quad/spot_quadrangulated.obj', { depth: 2, classifyArgs: ['--fvar', 'corners-plus1'], name: 'spot_smooth_uvs_d2.limn' });
+function checker() {
+  const path = join(scratch, 'checker.png');
+  if (existsSync(path)) return path;
+  const n = 256, px = new Uint8Array(n * n * 4);
+  for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) { const c = ((x >> 3) ^ (y >> 3)) & 1 ? 230 : 25; px.set([c, c, c, 255], 4 * (y * n + x)); }
+  writeFileSync(path, encodePng(n, n, px));
+  return path;
+}
+
 const cases = [
   // The fixed grids (--edge-pixels 0).
   ['fixed: spot depth 1', spot(1), fixed, [1, 4], ['lit', 'levels']],
@@ -99,6 +113,9 @@ const cases = [
   ['fixed: spot depth 2 with its texture', spot(2), [...fixed, '--texture', spotTexture], [4], ['lit']],
   ['adaptive: spot depth 2 with its texture, tinted', spot(2), ['--texture', spotTexture, '--color', '1,0.6,0.4'], [1], ['lit']],
   // The wireframe overlay of the triangles drawn (--wire-triangles).
+  ['fixed: spot depth 2, smooth UVs, checker texture', spotSmooth, [...fixed, '--texture', checker()], [4], ['lit']],
+  ['adaptive: spot depth 2, smooth UVs, checker texture', spotSmooth, ['--texture', checker()], [1], ['lit']],
+  ['fixed: spot depth 2, smooth UVs, shaded by UV', spotSmooth, fixed, [1], ['uv']],
   ['fixed: spot depth 2 with its triangles\' wireframe', spot(2), [...fixed, '--wire-triangles'], [4], ['lit']],
   ['adaptive: spot depth 2 with its triangles\' wireframe', spot(2), ['--wire-triangles'], [1], ['levels']],
 ];
@@ -117,6 +134,17 @@ for (const [label, make, args, samplesList, shades] of cases) {
     }
   });
 }
+
+test('smooth UVs are not the linear ones (the smooth-UV cases above can fail)', async () => {
+  const linear = container('quad/spot_quadrangulated.obj', { depth: 2 });
+  const render = (limn, name) => {
+    const out = join(scratch, `${name}.png`);
+    execFileSync(tool('limn-render'), [limn, '-o', out, '--size', '320x240', '--samples', '1', '--edge-pixels', '0', '--texture', checker()], { env, stdio: 'ignore' });
+    return decodePng(readFileSync(out));
+  };
+  const r = compareImages(render(linear, 'checker-linear'), render(spotSmooth(), 'checker-smooth'));
+  assert.ok(r.fraction > 0.02, `linear and smooth UVs differ in only ${r.off} of ${r.covered} covered pixels`);
+});
 
 test('the same command twice writes the same bytes', () => {
   const limn = container('quad/spot_quadrangulated.obj', { depth: 1 });

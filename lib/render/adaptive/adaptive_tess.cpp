@@ -355,7 +355,7 @@ size_t AdaptiveTess::drawnVertexCount(gpu::Context& ctx) const {
     return lastTotals(ctx)->writtenVertices;
 }
 
-void AdaptiveTess::finishDrawnMesh(gpu::Context& ctx, DrawnMesh& out) const {
+void AdaptiveTess::finishDrawnMesh(gpu::Context& ctx, exporting::DrawnMesh& out) const {
     // The vertices the passes emitted this frame: (element, s|t, own-chart UV).
     const size_t n = out.vertices.size();
     auto emitted = gpu::readbackArrayNow<glm::uvec4>(ctx, *tessVertices_, n);

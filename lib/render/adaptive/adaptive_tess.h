@@ -171,7 +171,7 @@ class AdaptiveTess : public Tessellation {
     const AdaptiveTotals* lastTotals(gpu::Context& ctx) const override;
     std::string shortfall(gpu::Context& ctx) const override;
     size_t drawnVertexCount(gpu::Context& ctx) const override;
-    void finishDrawnMesh(gpu::Context& ctx, DrawnMesh& out) const override;
+    void finishDrawnMesh(gpu::Context& ctx, exporting::DrawnMesh& out) const override;
     uint64_t triangleCount(gpu::Context& ctx) const override;
     uint64_t verticesEvaluated(gpu::Context& ctx) const override;
     uint64_t bufferBytes() const override;

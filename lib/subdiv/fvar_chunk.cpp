@@ -1,0 +1,96 @@
+#include "subdiv/fvar_chunk.h"
+
+#include "base/bytes.h"
+#include "base/error.h"
+#include "subdiv/tables.h"
+#include "subdiv/tables_chunk.h"
+
+#include <cmath>
+#include <string>
+
+namespace limn {
+
+uint64_t fvarUVHash(const Mesh& mesh) {
+    uint64_t h = hashBytes({reinterpret_cast<const uint8_t*>(mesh.uvs.data()), mesh.uvs.size() * sizeof(mesh.uvs[0])});
+    return hashBytes({reinterpret_cast<const uint8_t*>(mesh.uvIndices.data()), mesh.uvIndices.size() * 4}, h);
+}
+
+FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& options, uint32_t depth,
+                                      Warnings& warnings) {
+    FvarSurfaceChunk c;
+    c.depth = depth;
+    c.topologyHash = topologyHash(mesh, options);
+    c.uvHash = fvarUVHash(mesh);
+    c.ptexCount = ptexFaceCount(mesh);
+    c.surface = FaceVaryingSurface(mesh, options, depth, warnings).gpu();
+    c.elementCount = static_cast<uint32_t>(c.surface.records.size() / 9);
+    return c;
+}
+
+// Layout (formats/limn.md): u32 depth, u32 ptex count, u64 topology hash, u64 UV hash, u32 node
+// count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4].
+Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
+    ByteWriter w;
+    w.write<uint32_t>(c.depth);
+    w.write<uint32_t>(c.ptexCount);
+    w.write<uint64_t>(c.topologyHash);
+    w.write<uint64_t>(c.uvHash);
+    w.write<uint32_t>(static_cast<uint32_t>(c.surface.nodes.size()));
+    w.write<uint32_t>(static_cast<uint32_t>(c.surface.records.size() / 9));
+    w.writeArray(c.surface.nodes);
+    for (const glm::vec4& r : c.surface.records)
+        for (int k = 0; k < 4; ++k) w.write<float>(r[k]);
+    return Chunk{kFvarSurfaceChunk, kFvarSurfaceChunkVersion, w.take()};
+}
+
+FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, const SchemeOptions* options) {
+    if (chunk.version > kFvarSurfaceChunkVersion)
+        throwBadInput("version " + std::to_string(chunk.version) + " is newer than this reader (1)", "chunk FVSF");
+    ByteReader r(chunk.payload, "chunk FVSF");
+    FvarSurfaceChunk c;
+    c.depth = r.read<uint32_t>();
+    if (c.depth > uint32_t(kMaxDepth)) r.fail("depth " + std::to_string(c.depth) + " is out of range");
+    c.ptexCount = r.read<uint32_t>();
+    c.topologyHash = r.read<uint64_t>();
+    c.uvHash = r.read<uint64_t>();
+    const uint32_t nodes = r.read<uint32_t>();
+    c.elementCount = r.read<uint32_t>();
+    if (nodes < c.ptexCount) r.fail("fewer nodes than ptex faces");
+    c.surface.nodes = r.readArray<uint32_t>(nodes, "nodes");
+    if (c.elementCount > r.remaining() / (9 * 16)) r.fail("element count is too large");
+    const std::vector<float> f = r.readArray<float>(uint64_t(c.elementCount) * 36, "records");
+    if (!r.atEnd()) r.fail("trailing bytes");
+    for (uint32_t i = 0; i < nodes; ++i) {
+        const uint32_t v = c.surface.nodes[i];
+        if (v == 0xFFFFFFFFu) continue;
+        if (v & 0x80000000u) {
+            if ((v & 0x7FFFFFFFu) >= c.elementCount) r.fail("node " + std::to_string(i) + " names a missing element");
+        } else if (v <= i || v < c.ptexCount || uint64_t(v) + 4 > nodes) {
+            // Children after their parent: the quadtree has no cycle, and a walk ends.
+            r.fail("node " + std::to_string(i) + " has a bad child index");
+        }
+    }
+    for (float x : f)
+        if (!std::isfinite(x) || std::fabs(x) > 1e18f) r.fail("a record is not finite");
+    c.surface.records.resize(size_t(c.elementCount) * 9);
+    for (uint32_t e = 0; e < c.elementCount; ++e) {
+        const float* h = &f[size_t(36) * e];
+        if (!(h[2] > 0 && h[2] <= 1 && h[0] >= 0 && h[1] >= 0 && h[0] + h[2] <= 1 && h[1] + h[2] <= 1) ||
+            (h[3] != 0 && h[3] != 1))
+            r.fail("element " + std::to_string(e) + " has a bad domain");
+        for (uint32_t k = 0; k < 9; ++k)
+            c.surface.records[size_t(9) * e + k] = {f[36 * e + 4 * k], f[36 * e + 4 * k + 1], f[36 * e + 4 * k + 2], f[36 * e + 4 * k + 3]};
+    }
+    if (mesh) {
+        if (!mesh->hasUVs()) throwBadInput("the mesh has no UVs (no FVUV chunk) for its smooth UV surface", "chunk FVSF");
+        if (c.ptexCount != ptexFaceCount(*mesh)) r.fail("ptex face count differs from the mesh's");
+        if (options && c.topologyHash != topologyHash(*mesh, *options))
+            throwBadInput("the smooth UV surface was built for a different mesh topology or tags; re-run limn-tables",
+                          "chunk FVSF");
+        if (c.uvHash != fvarUVHash(*mesh))
+            throwBadInput("the smooth UV surface was built from other UVs; re-run limn-tables", "chunk FVSF");
+    }
+    return c;
+}
+
+} // namespace limn

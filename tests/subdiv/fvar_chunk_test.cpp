@@ -1,0 +1,204 @@
+// The FVSF chunk (smooth face-varying UV surface): what it stores is the UV surface (its records,
+// evaluated here by a B-spline written from formats/limn.md, match FaceVaryingSurface::uvAt),
+// lossless, bound to the mesh's topology and UVs, and hostile input is refused naming it.
+#include "base/error.h"
+#include "container/container.h"
+#include "mesh/import.h"
+#include "subdiv/fvar_chunk.h"
+#include "subdiv/tables_chunk.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+using namespace limn;
+
+namespace {
+
+Mesh loadSmooth(const std::string& model, SchemeOptions& options) {
+    Warnings w;
+    Mesh m = importMeshFile(test::modelPath(model).string(), w);
+    m.tags.fvar = FVarRule::Boundaries;
+    options = resolveSchemeOptions(m.tags, {});
+    return m;
+}
+
+// The uniform cubic B-spline basis at t (paper 000, eq. 1).
+void bspline(double t, double b[4]) {
+    const double s = 1 - t;
+    b[0] = s * s * s / 6, b[1] = (3 * t * t * t - 6 * t * t + 4) / 6;
+    b[2] = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6, b[3] = t * t * t / 6;
+}
+
+// The UV at (u, v) of ptex face `ptex` from the chunk's quadtree and records, probing just
+// inside toward the face's centre (formats/limn.md, FVSF).
+bool chunkUV(const FvarSurfaceChunk& c, uint32_t ptex, double u, double v, double out[2]) {
+    const double pu = u + 1e-6 * (0.5 - u), pv = v + 1e-6 * (0.5 - v);
+    double ou = 0, ov = 0, size = 1;
+    uint32_t node = c.surface.nodes[ptex];
+    while (node != 0xFFFFFFFFu && !(node & 0x80000000u)) {
+        size /= 2;
+        const uint32_t i = pu >= ou + size, j = pv >= ov + size;
+        ou += i * size, ov += j * size;
+        node = c.surface.nodes[node + i + 2 * j];
+    }
+    if (node == 0xFFFFFFFFu) return false;
+    const glm::vec4* r = &c.surface.records[9 * size_t(node & 0x7FFFFFFFu)];
+    const double s = (u - r[0].x) / r[0].z, t = (v - r[0].y) / r[0].z;
+    if (r[0].w != 0) { // an irregular face: the bilinear blend of its corners' limit UVs
+        for (int k = 0; k < 2; ++k)
+            out[k] = (1 - t) * ((1 - s) * r[1][k] + s * r[1][2 + k]) + t * ((1 - s) * r[2][2 + k] + s * r[2][k]);
+        return true;
+    }
+    double bu[4], bv[4];
+    bspline(s, bu), bspline(t, bv);
+    out[0] = out[1] = 0;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const glm::vec4& p = r[1 + (4 * j + i) / 2];
+            for (int k = 0; k < 2; ++k) out[k] += bv[j] * bu[i] * p[(i % 2) * 2 + k];
+        }
+    return true;
+}
+
+TEST(FvarSurfaceChunk, StoresTheUVSurfaceLosslessly) {
+    for (const char* model : {"quad/osd_catmark_fvar_bound1.obj", "osd/catmark/catmark_fvar_bound3.obj"}) {
+        SCOPED_TRACE(model);
+        SchemeOptions o;
+        const Mesh m = loadSmooth(model, o);
+        Warnings w;
+        const uint32_t depth = 2;
+        const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, depth, w));
+        const FvarSurfaceChunk d = decodeFvarSurfaceChunk(c, &m, &o);
+        EXPECT_EQ(encodeFvarSurfaceChunk(d).payload, c.payload);
+        EXPECT_EQ(d.ptexCount, ptexFaceCount(m));
+        // At every point of the depth-2 lattice of every ptex face (where the fixed grids draw).
+        const FaceVaryingSurface surface(m, o, depth, w);
+        double worst = 0;
+        for (uint32_t p = 0; p < d.ptexCount; ++p)
+            for (int i = 0; i <= 4; ++i)
+                for (int j = 0; j <= 4; ++j) {
+                    double uv[2];
+                    ASSERT_TRUE(chunkUV(d, p, i / 4.0, j / 4.0, uv));
+                    const glm::dvec2 want = surface.uvAt(p, i / 4.0, j / 4.0, 0.5, 0.5);
+                    worst = std::max({worst, std::fabs(uv[0] - want.x), std::fabs(uv[1] - want.y)});
+                }
+        EXPECT_LT(worst, 1e-5);
+    }
+}
+
+TEST(FvarSurfaceChunk, RefusesAnotherMeshOrOtherUVs) {
+    SchemeOptions o;
+    Mesh m = loadSmooth("quad/osd_catmark_fvar_bound1.obj", o);
+    Warnings w;
+    const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 2, w));
+    Mesh moved = m;
+    moved.uvs[3].x += 0.25;
+    EXPECT_THROW(
+        {
+            try {
+                decodeFvarSurfaceChunk(c, &moved, &o);
+            } catch (const Error& e) {
+                EXPECT_NE(std::string(e.what()).find("other UVs"), std::string::npos) << e.what();
+                throw;
+            }
+        },
+        Error);
+    SchemeOptions all = o;
+    all.fvar = FVarRule::CornersOnly;
+    EXPECT_THROW(decodeFvarSurfaceChunk(c, &m, &all), Error);
+    EXPECT_NO_THROW(decodeFvarSurfaceChunk(c, &m, &o));
+}
+
+TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
+    SchemeOptions o;
+    const Mesh m = loadSmooth("quad/osd_catmark_fvar_bound1.obj", o);
+    Warnings w;
+    const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 1, w));
+    auto refused = [&](const Chunk& bad, const char* what) {
+        try {
+            decodeFvarSurfaceChunk(bad, &m, &o);
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where().rfind("chunk FVSF", 0), 0u) << what << ": " << e.where() << ": " << e.what();
+            return true;
+        }
+        return false;
+    };
+    for (size_t n = 0; n < c.payload.size(); ++n) {
+        Chunk cut{c.type, c.version, {c.payload.begin(), c.payload.begin() + static_cast<long>(n)}};
+        EXPECT_TRUE(refused(cut, "truncated")) << "prefix of " << n << " bytes";
+    }
+    Chunk longer = c;
+    longer.payload.push_back(0);
+    EXPECT_TRUE(refused(longer, "trailing byte"));
+    Chunk newer = c;
+    newer.version = 2;
+    EXPECT_TRUE(refused(newer, "newer version"));
+    const size_t nodes = 32; // the payload offset of nodes[0]
+    auto word = [](Chunk& k, size_t at, uint32_t v) { std::memcpy(k.payload.data() + at, &v, 4); };
+    Chunk cycle = c;
+    word(cycle, nodes, 0); // a root whose children start at itself
+    EXPECT_TRUE(refused(cycle, "cycle"));
+    Chunk leaf = c;
+    word(leaf, nodes, 0x80000000u | 0x7FFFFFFEu);
+    EXPECT_TRUE(refused(leaf, "missing element"));
+    Chunk nan = c;
+    const uint32_t nodeCount = [&] { uint32_t v; std::memcpy(&v, c.payload.data() + 24, 4); return v; }();
+    word(nan, nodes + 4 * nodeCount + 16, 0x7FC00000u); // the first record's first control point
+    EXPECT_TRUE(refused(nan, "NaN"));
+    // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell).
+    std::mt19937 rng(5);
+    for (int trial = 0; trial < 500; ++trial) {
+        Chunk bad = c;
+        bad.payload[rng() % bad.payload.size()] ^= uint8_t(1u << (rng() % 8));
+        try {
+            const FvarSurfaceChunk d = decodeFvarSurfaceChunk(bad, &m, &o);
+            double uv[2];
+            for (uint32_t p = 0; p < d.ptexCount; ++p) chunkUV(d, p, 0.3, 0.7, uv);
+        } catch (const Error&) {
+        }
+    }
+}
+
+Container parse(const std::string& bytes) {
+    return parseContainer({reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()});
+}
+
+// limn-tables writes it for smooth UVs only; limn-classify with another rule drops it with the
+// tables; limn-info checks it and calls one made for another mesh stale.
+TEST(FvarSurfaceChunk, ToolsWriteDropAndCheckIt) {
+    const std::string obj = test::modelPath("quad/osd_catmark_fvar_bound1.obj").string();
+    std::string smooth;
+    for (const char* rule : {"boundaries", "all"}) {
+        auto classified = test::run({test::tool("limn-classify").string(), "--fvar", rule, obj});
+        ASSERT_EQ(classified.exitCode, 0) << classified.err;
+        auto tables = test::run({test::tool("limn-tables").string(), "--depth", "1"}, classified.out);
+        ASSERT_EQ(tables.exitCode, 0) << tables.err;
+        EXPECT_EQ(parse(tables.out).find(kFvarSurfaceChunk) != nullptr, std::string(rule) != "all") << rule;
+        if (std::string(rule) != "all") smooth = tables.out;
+    }
+    auto again = test::run({test::tool("limn-classify").string(), "--fvar", "corners-only", "-"}, smooth);
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_FALSE(parse(again.out).has(kFvarSurfaceChunk));
+    EXPECT_FALSE(parse(again.out).has(FourCC{"TBLS"}));
+    auto info = test::run({test::tool("limn-info").string(), "-"}, smooth);
+    EXPECT_EQ(info.exitCode, 0) << info.err;
+    EXPECT_EQ(info.err.find("stale"), std::string::npos) << info.err;
+    // Its UVs moved after limn-tables: the chunk's UV hash no longer matches.
+    Container k = parse(smooth);
+    Warnings w;
+    Mesh m = importMeshFile(obj, w);
+    m.tags.fvar = FVarRule::Boundaries;
+    m.uvs[0].x += 0.5;
+    const SchemeOptions o = resolveSchemeOptions(m.tags, {});
+    k.set(encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 1, w)));
+    const std::vector<uint8_t> bytes = serializeContainer(k);
+    auto stale = test::run({test::tool("limn-info").string(), "-"}, std::string(bytes.begin(), bytes.end()));
+    EXPECT_EQ(stale.exitCode, 0) << stale.err;
+    EXPECT_NE(stale.err.find("the FVSF chunk was made from other tables, tags or UVs (stale)"), std::string::npos) << stale.err;
+}
+
+} // namespace

@@ -1,0 +1,48 @@
+// The FVSF chunk (formats/limn.md, section 9): the smooth face-varying UV surface limn-tables
+// writes beside TBLS, as shaders/fvar_eval.glsl reads it: a quadtree per ptex face (nodes) and
+// per element a record of 9 vec4. Checked as lib/subdiv/fvar_chunk.cpp checks it, so that no
+// walk leaves the nodes and no record names what is not there.
+import { chunkReader } from './container.mjs';
+
+const MAX_DEPTH = 16;
+const HOLE = 0xffffffff, LEAF = 0x80000000;
+
+/**
+ * expected: { depth (TBLS's), ptexCount (the mesh's), topologyHash and uvHash (BigInt, the
+ * mesh's) }. Returns { depth, ptexCount, nodes: Uint32Array, records: Float32Array (36 floats
+ * an element), elementCount }.
+ */
+export function decodeFvarSurface(chunk, expected) {
+  const r = chunkReader(chunk, 1);
+  const depth = r.u32('depth');
+  if (depth > MAX_DEPTH) r.fail(`depth ${depth} is out of range`);
+  const ptexCount = r.u32('ptex count');
+  const topology = r.u64('topology hash'), uv = r.u64('UV hash');
+  const nodeCount = r.u32('node count'), elementCount = r.u32('element count');
+  if (nodeCount < ptexCount) r.fail('fewer nodes than ptex faces');
+  const nodes = r.array(Uint32Array, nodeCount, 'nodes');
+  if (elementCount > Math.floor(r.remaining / 144)) r.fail('element count is too large');
+  const records = r.array(Float32Array, elementCount * 36, 'records');
+  r.requireEnd();
+  for (let i = 0; i < nodeCount; i++) {
+    const v = nodes[i];
+    if (v === HOLE) continue;
+    if (v >= LEAF) {
+      if (v - LEAF >= elementCount) r.fail(`node ${i} names a missing element`);
+    } else if (v <= i || v < ptexCount || v + 4 > nodeCount) {
+      r.fail(`node ${i} has a bad child index`); // children after their parent: every walk ends
+    }
+  }
+  for (let i = 0; i < records.length; i++) if (!Number.isFinite(records[i]) || Math.abs(records[i]) > 1e18) r.fail('a record is not finite');
+  for (let e = 0; e < elementCount; e++) {
+    const [u0, v0, size, kind] = records.subarray(36 * e, 36 * e + 4);
+    if (!(size > 0 && size <= 1 && u0 >= 0 && v0 >= 0 && u0 + size <= 1 && v0 + size <= 1) || (kind !== 0 && kind !== 1)) {
+      r.fail(`element ${e} has a bad domain`);
+    }
+  }
+  if (ptexCount !== expected.ptexCount) r.fail("ptex face count differs from the mesh's");
+  if (depth !== expected.depth) r.fail(`made at depth ${depth}, but the tables (TBLS) have depth ${expected.depth}; re-run limn-tables`);
+  if (topology !== expected.topologyHash) r.fail('the smooth UV surface was built for a different mesh topology or tags; re-run limn-tables');
+  if (uv !== expected.uvHash) r.fail('the smooth UV surface was built from other UVs; re-run limn-tables');
+  return { depth, ptexCount, nodes, records, elementCount };
+}
