@@ -39,6 +39,46 @@ void requireManifold(const Topology& T) {
 }
 
 
+// The faces of T_N around one smooth interior extraordinary vertex: drawn from the per-valence
+// weights of their support (irregular_basis.h, built once per valence met), so taken out of T
+// (not refined further) and recorded in a.smooth; and the faces too crowded for either surface.
+void takeSmoothFaces(const Level& L, uint32_t basisLevels, std::vector<uint8_t>& T, AdaptiveLevels& a) {
+    int corner = 0;
+    uint32_t valence = 0;
+    std::vector<uint32_t> support;
+    const uint32_t F = L.topo.faceCount();
+    std::vector<uint32_t> facesAt(L.topo.vertexCount(), 0);
+    std::vector<int> basisOfValence; // -1: not tried, -2: failed
+    for (uint32_t f = 0; f < F; ++f)
+        for (uint32_t v : L.topo.faceVertices(f)) ++facesAt[v];
+    for (uint32_t f = 0; f < F; ++f) {
+        if (!T[f]) continue;
+        // Around a vertex of more than kMaxBasisValence faces (a huge n-gon's centre,
+        // a hostile fan) either way costs K levels of thousands of faces: a 32,767-gon
+        // at depth 2 took minutes. Such a face stays bilinear between its limit points,
+        // counted as such (irregularSurfaceCounts; limn-render and limn-info say so).
+        bool crowded = false;
+        for (uint32_t v : L.topo.faceVertices(f)) crowded |= facesAt[v] > kMaxBasisValence;
+        if (crowded) {
+            T[f] = 0;
+            continue;
+        }
+        if (!smoothSupport(L, f, corner, valence, support)) continue;
+        if (basisOfValence.size() <= valence) basisOfValence.resize(valence + 1, -1);
+        if (basisOfValence[valence] == -1) {
+            try {
+                a.bases.push_back(buildIrregularBasis(valence, basisLevels));
+                basisOfValence[valence] = static_cast<int>(a.bases.size() - 1);
+            } catch (const std::exception&) {
+                basisOfValence[valence] = -2; // refined like any other (never seen)
+            }
+        }
+        if (basisOfValence[valence] < 0) continue;
+        a.smooth.push_back({f, uint32_t(basisOfValence[valence]), uint32_t(corner), support});
+        T[f] = 0; // not refined further
+    }
+}
+
 } // namespace
 
 Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase, const std::vector<uint32_t>& remap,
@@ -154,9 +194,6 @@ AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeO
     auto& irregularSets = a.irregularSets;
     auto& patchSets = a.patchSets;
     auto& creaseEdges = a.creaseEdges;
-    auto& smooth = a.smooth;
-    auto& bases = a.bases;
-    std::vector<int> basisOfValence; // -1: not tried, -2: failed
     const uint32_t basisLevels = opts.uniform ? 0u : static_cast<uint32_t>(std::clamp(opts.irregularLevels, 0, kMaxDepth));
     for (uint32_t l = 0;; ++l) {
         Level& L = levels[l];
@@ -177,40 +214,7 @@ AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeO
         }
         irregularSets.push_back(T);
         patchSets.push_back(P);
-        if (l == N && basisLevels > 0) {
-            int corner = 0;
-            uint32_t valence = 0;
-            std::vector<uint32_t> support;
-            std::vector<uint32_t> facesAt(L.topo.vertexCount(), 0);
-            for (uint32_t f = 0; f < F; ++f)
-                for (uint32_t v : L.topo.faceVertices(f)) ++facesAt[v];
-            for (uint32_t f = 0; f < F; ++f) {
-                if (!T[f]) continue;
-                // Around a vertex of more than kMaxBasisValence faces (a huge n-gon's centre,
-                // a hostile fan) either way costs K levels of thousands of faces: a 32,767-gon
-                // at depth 2 took minutes. Such a face stays bilinear between its limit points,
-                // counted as such (irregularSurfaceCounts; limn-render and limn-info say so).
-                bool crowded = false;
-                for (uint32_t v : L.topo.faceVertices(f)) crowded |= facesAt[v] > kMaxBasisValence;
-                if (crowded) {
-                    T[f] = 0;
-                    continue;
-                }
-                if (!smoothSupport(L, f, corner, valence, support)) continue;
-                if (basisOfValence.size() <= valence) basisOfValence.resize(valence + 1, -1);
-                if (basisOfValence[valence] == -1) {
-                    try {
-                        bases.push_back(buildIrregularBasis(valence, basisLevels));
-                        basisOfValence[valence] = static_cast<int>(bases.size() - 1);
-                    } catch (const std::exception&) {
-                        basisOfValence[valence] = -2; // refined like any other (never seen)
-                    }
-                }
-                if (basisOfValence[valence] < 0) continue;
-                smooth.push_back({f, uint32_t(basisOfValence[valence]), uint32_t(corner), support});
-                T[f] = 0; // not refined further
-            }
-        }
+        if (l == N && basisLevels > 0) takeSmoothFaces(L, basisLevels, T, a);
         if (l == D) break;
         std::vector<uint8_t> S = opts.uniform ? std::vector<uint8_t>(F, 1) : oneRing(L.topo, T);
         if (std::find(S.begin(), S.end(), 1) == S.end()) {
