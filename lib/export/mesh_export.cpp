@@ -71,6 +71,27 @@ int addAccessor(tinygltf::Model& model, size_t offset, int target, int component
     return static_cast<int>(model.accessors.size() - 1);
 }
 
+// OBJ has no per-vertex attribute: the `v` of the vertices drawn where the surface is approximate
+// (DrawnVertex::approximate) are listed in comments, 1-based like OBJ's indices, ascending,
+// sixteen a line, after a line with their count. Nothing when no vertex is approximate.
+std::string objApproximateComments(const DrawnMesh& mesh, const std::vector<std::array<uint32_t, 3>>& ids) {
+    std::vector<uint32_t> approximate;
+    for (size_t i = 0; i < mesh.vertices.size(); ++i)
+        if (mesh.vertices[i].approximate) approximate.push_back(ids[i][0]);
+    if (approximate.empty()) return {};
+    std::sort(approximate.begin(), approximate.end());
+    approximate.erase(std::unique(approximate.begin(), approximate.end()), approximate.end());
+    std::string out = "# approximate: " + std::to_string(approximate.size()) +
+                      " positions are drawn where the surface is not the limit surface (bilinear within "
+                      "2^-K of an extraordinary corner; limn-tables --irregular-levels)\n";
+    for (size_t i = 0; i < approximate.size(); ++i) {
+        out += i % 16 == 0 ? "# approximate v" : "";
+        out += ' ' + std::to_string(approximate[i]);
+        if (i % 16 == 15 || i + 1 == approximate.size()) out += '\n';
+    }
+    return out;
+}
+
 } // namespace
 
 std::optional<ExportFormat> exportFormatFromPath(const std::string& path) {
@@ -111,6 +132,7 @@ std::vector<uint8_t> encodeObj(const DrawnMesh& mesh) {
         f += '\n';
     }
     std::string out = "# limn-render: the triangles as drawn\n";
+    out += objApproximateComments(mesh, ids);
     out += v;
     out += vt;
     out += vn;
@@ -128,7 +150,7 @@ std::vector<uint8_t> encodeGltf(const DrawnMesh& mesh, bool binary) {
     if (n > 0 && !mesh.triangles.empty()) {
         model.buffers.emplace_back();
         auto& data = model.buffers[0].data;
-        data.reserve(n * (mesh.hasTexCoords ? 32 : 24) + mesh.triangles.size() * 4);
+        data.reserve(n * (mesh.hasTexCoords ? 36 : 28) + mesh.triangles.size() * 4);
         tinygltf::Primitive prim;
         prim.mode = TINYGLTF_MODE_TRIANGLES;
 
@@ -163,6 +185,16 @@ std::vector<uint8_t> encodeGltf(const DrawnMesh& mesh, bool binary) {
             prim.attributes["TEXCOORD_0"] =
                 addAccessor(model, offset, TINYGLTF_TARGET_ARRAY_BUFFER,
                             TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, n);
+        }
+        // An application-specific attribute (glTF 2.0 3.7.2.1: names starting with "_"): 1 where
+        // the surface is approximate (DrawnVertex::approximate), only when some vertex is.
+        if (std::any_of(mesh.vertices.begin(), mesh.vertices.end(),
+                        [](const DrawnVertex& d) { return d.approximate != 0; })) {
+            offset = data.size();
+            for (const DrawnVertex& d : mesh.vertices) appendRaw(data, d.approximate ? 1.0f : 0.0f);
+            prim.attributes["_APPROXIMATE"] =
+                addAccessor(model, offset, TINYGLTF_TARGET_ARRAY_BUFFER,
+                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, n);
         }
         offset = data.size();
         for (uint32_t i : mesh.triangles) appendRaw(data, i);

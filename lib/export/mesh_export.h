@@ -8,11 +8,15 @@
 //   `f v/vt/vn` (1-based). Each attribute is written once per distinct value (bit-equal floats,
 //   in order of first use by the vertices), so seam copies share their `v` and the mesh is one
 //   connected piece where the drawn surface is; `vt` has v = 0 at the bottom of the image (OBJ's
-//   convention, the same as the mesh's UVs and PLY's s, t).
+//   convention, the same as the mesh's UVs and PLY's s, t). OBJ has no per-vertex attribute for
+//   PLY's `approximate`: when some vertex is, comment lines after the first give their count
+//   and list their `v` indices (`# approximate v 12 40 ...`).
 // glTF 2.0 (.glb binary, or .gltf JSON with the buffer embedded as a base64 data: URI, so one
 //   file is written and it stays atomic): one mesh, one indexed triangle primitive with
 //   POSITION (with min/max), NORMAL and, when the mesh has texture coordinates, TEXCOORD_0;
-//   indices UNSIGNED_INT. Vertices are the drawn ones, split where the texture UV differs.
+//   indices UNSIGNED_INT. Vertices are the drawn ones, split where the texture UV differs. When
+//   some vertex is approximate, the application-specific attribute _APPROXIMATE (FLOAT scalar,
+//   1 there, 0 elsewhere) carries PLY's `approximate`.
 //   TEXCOORD_0 uses glTF's top-left origin: (s, 1 - t) of OBJ's/PLY's (s, t), computed in float.
 //   asset.generator is "limn-render" (no version: the bytes must not change with it).
 #pragma once

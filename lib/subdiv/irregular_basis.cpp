@@ -4,7 +4,7 @@
 #include "base/warnings.h"
 #include "mesh/mesh.h"
 #include "subdiv/evaluate.h"
-#include "subdiv/tables.h"
+#include "subdiv/tables_build.h"
 
 #include <algorithm>
 #include <array>
@@ -101,22 +101,46 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
                 m.faceOffsets.push_back(static_cast<uint32_t>(m.faceVertices.size()));
             }
     Warnings warnings;
-    SchemeOptions options;
-    // Sharp rim corners: each rim corner (one face) is then a regular corner patch instead of an
-    // irregular face refined K levels deep like the centre. The rim's rules never reach face 0's
-    // sub-patches (the checks below would throw), so the weights are the same to the bit.
-    options.boundary = BoundaryRule::EdgeAndCorner;
-    TablesOptions opts;
-    opts.depth = static_cast<int>(K);
-    opts.irregularLevels = 0;
-    const Tables t = buildTables(m, options, opts, warnings);
-    Topology topo(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices);
-    Sharpness sharp = baseSharpness(topo, m.tags, options.boundary, warnings);
-    const Level L0 = makeBaseLevel(std::move(topo), std::move(sharp));
+    const SchemeOptions options;
+    // The table builder's refinement, under face 0 only: each level refines the faces around its
+    // descendant at the extraordinary vertex (the builder's isolation, oneRing), whose three
+    // other children are the next band's sub-patches.
+    AdaptiveLevels r;
+    r.N = r.D = K;
+    {
+        Topology topo(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices);
+        Sharpness sharp = baseSharpness(topo, m.tags, options.boundary, warnings);
+        r.levels.push_back(makeBaseLevel(std::move(topo), std::move(sharp)));
+    }
+    r.stencils.resize(1);
+    r.patchSets.emplace_back(r.levels[0].topo.faceCount(), 0);
+    std::vector<uint32_t> ptexBase(r.levels[0].topo.faceCount());
+    for (uint32_t f = 0; f < ptexBase.size(); ++f) ptexBase[f] = r.levels[0].frames[f].ptex;
+    uint32_t centre = 0;
+    for (uint32_t l = 0; l < K; ++l) {
+        std::vector<uint8_t> T(r.levels[l].topo.faceCount(), 0);
+        T[centre] = 1;
+        LevelStencils st;
+        Level child = refineLevel(r.levels[l], oneRing(r.levels[l].topo, T), options, ptexBase, st);
+        std::vector<uint8_t> P(child.topo.faceCount(), 0);
+        uint32_t next = kNone;
+        for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) {
+            if (child.faceParent[cf] != centre) continue;
+            if (child.frames[cf].u0 == 0 && child.frames[cf].v0 == 0)
+                next = cf;
+            else
+                P[cf] = 1;
+        }
+        if (next == kNone) throw std::logic_error("irregular basis: no face at the extraordinary vertex");
+        r.levels.push_back(std::move(child));
+        r.stencils.push_back(std::move(st));
+        r.patchSets.push_back(std::move(P));
+        centre = next;
+    }
     int corner = -1;
     uint32_t valence = 0;
     std::vector<uint32_t> support;
-    if (!smoothSupport(L0, 0, corner, valence, support) || corner != 0 || valence != n)
+    if (!smoothSupport(r.levels[0], 0, corner, valence, support) || corner != 0 || valence != n)
         throw std::logic_error("irregular basis: the generated valence-" + std::to_string(n) +
                                              " mesh has no smooth support");
     IrregularBasis basis;
@@ -125,44 +149,115 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     const size_t M = support.size();
     basis.weights.assign(size_t(K) * 3 * 16 * M, 0.0f);
     std::vector<uint8_t> filled(size_t(K) * 3, 0);
-    // The tables are linear in the control points, and each coordinate is evaluated on its own:
-    // unit points, three support points at a time (one per coordinate), give each support point's
-    // weights. A last pass puts 1 on every other point: Catmull-Clark's smooth rules have no
-    // negative weights, so a zero there means that none of them reaches face 0's sub-patches.
-    const size_t passes = (M + 2) / 3;
-    std::vector<glm::dvec3> control(m.vertexCount());
-    for (size_t pass = 0; pass <= passes; ++pass) {
-        std::fill(control.begin(), control.end(), glm::dvec3(0.0));
-        if (pass == passes) {
-            for (size_t v = 0; v < control.size(); ++v) control[v][0] = 1;
-            for (uint32_t v : support) control[v][0] = 0;
-        } else {
-            for (size_t c = 0; c < 3 && 3 * pass + c < M; ++c) control[support[3 * pass + c]][int(c)] = 1;
-        }
-        const std::vector<glm::dvec3> V = evaluateVertices(t, control);
-        for (const Patch& p : t.patches) {
-            if (p.ptex != 0 || p.level < 1) continue;
+    // The refinement is linear in the control points: every vertex is evaluated for M + 1 control
+    // meshes at once, unit points on each support point (giving its weights), and 1 on every
+    // other point (column M): Catmull-Clark's smooth rules have no negative weights, so a zero
+    // there means that none of them reaches face 0's sub-patches. Each column is computed as
+    // evaluateVertices computes the tables (the float weights, in the stencils' order).
+    const size_t W = M + 1;
+    // Face 0's sub-patches (level, quadrant, control points), and the vertices they read.
+    struct SubPatch {
+        uint32_t level;
+        size_t block;
+        Patch patch;
+    };
+    std::vector<SubPatch> subPatches;
+    std::vector<std::vector<uint8_t>> needed(r.D + 1);
+    for (uint32_t l = 0; l <= r.D; ++l) needed[l].assign(r.levels[l].topo.vertexCount(), 0);
+    for (uint32_t l = 1; l <= r.D; ++l) {
+        const Level& L = r.levels[l];
+        std::vector<uint32_t> identity(L.topo.vertexCount());
+        for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
+        for (uint32_t f = 0; f < r.patchSets[l].size(); ++f) {
+            if (!r.patchSets[l][f] || L.frames[f].ptex != 0) continue;
+            const Patch p = gatherPatch(L, f, 0, identity, kNone);
             const double size = std::ldexp(1.0, -int(p.level));
             const int q = (p.u0 > 0 ? 1 : 0) + (p.v0 > 0 ? 2 : 0); // 1, 3 or 2 (both)
             const int quadrant = q == 1 ? 1 : q == 3 ? 2 : 3;
-            if (q == 0 || p.size != size || (p.u0 != 0 && p.u0 != size) || (p.v0 != 0 && p.v0 != size))
+            if (q == 0 || p.size != size || (p.u0 != 0 && p.u0 != size) ||
+                (p.v0 != 0 && p.v0 != size) || p.boundary != 0)
                 throw std::logic_error("irregular basis: unexpected sub-patch");
             const size_t block = (size_t(p.level - 1) * 3 + size_t(quadrant - 1));
             filled[block] = 1;
-            glm::dvec3 P[4][4];
-            gatherControlPoints(p, V, P);
-            for (int j = 0; j < 16; ++j) {
-                if (pass == passes) {
-                    if (std::abs(P[j % 4][j / 4][0]) > 1e-12)
-                        throw std::logic_error("irregular basis: support too small");
-                    continue;
-                }
-                for (size_t c = 0; c < 3 && 3 * pass + c < M; ++c)
-                    basis.weights[block * 16 * M + size_t(j) * M + 3 * pass + c] =
-                        static_cast<float>(P[j % 4][j / 4][int(c)]);
-            }
+            subPatches.push_back({l, block, p});
+            for (uint32_t v : p.cv) needed[l][v] = 1;
         }
     }
+    for (uint32_t l = r.D; l >= 1; --l) {
+        const Level& L = r.levels[l];
+        const LevelStencils& st = r.stencils[l];
+        auto mark = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
+                        const std::vector<StencilEntry>& entries) {
+            for (uint32_t i = 0; i < count; ++i)
+                if (needed[l][first + i])
+                    for (uint32_t k = start[i]; k < start[i + 1]; ++k)
+                        (entries[k].fromFacePoint ? needed[l] : needed[l - 1])[entries[k].index] = 1;
+        };
+        mark(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+        mark(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+        for (uint32_t i = 0; i < L.facePointCount; ++i)
+            if (needed[l][i])
+                for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) needed[l - 1][st.faceVertices[k]] = 1;
+    }
+    // The refinement is linear in the control points: every needed vertex is evaluated for M + 1
+    // control meshes at once, unit points on each support point (giving its weights), and 1 on
+    // every other point (column M): Catmull-Clark's smooth rules have no negative weights, so a
+    // zero there means that none of them reaches face 0's sub-patches. Each column is computed
+    // as evaluateVertices computes the tables (the float weights, in the stencils' order).
+    // Each level's needed vertices get consecutive rows of M + 1 values (level 0: every vertex).
+    std::vector<std::vector<uint32_t>> row(r.D + 1);
+    std::vector<std::vector<double>> V(r.D + 1);
+    for (uint32_t l = 0; l <= r.D; ++l) {
+        row[l].assign(needed[l].size(), kNone);
+        uint32_t rows = 0;
+        for (size_t v = 0; v < needed[l].size(); ++v)
+            if (l == 0 || needed[l][v]) row[l][v] = rows++;
+        V[l].assign(size_t(rows) * W, 0.0);
+    }
+    for (size_t v = 0; v < m.vertexCount(); ++v) V[0][v * W + M] = 1;
+    for (size_t i = 0; i < M; ++i) {
+        V[0][support[i] * W + i] = 1;
+        V[0][support[i] * W + M] = 0;
+    }
+    for (uint32_t l = 1; l <= r.D; ++l) {
+        const Level& L = r.levels[l];
+        const LevelStencils& st = r.stencils[l];
+        const std::vector<double>& prev = V[l - 1];
+        std::vector<double>& cur = V[l];
+        for (uint32_t i = 0; i < L.facePointCount; ++i) {
+            if (!needed[l][i]) continue;
+            double* out = &cur[size_t(row[l][i]) * W];
+            for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) {
+                const double* in = &prev[size_t(row[l - 1][st.faceVertices[k]]) * W];
+                for (size_t c = 0; c < W; ++c) out[c] += in[c];
+            }
+            const double count = double(st.faceStart[i + 1] - st.faceStart[i]);
+            for (size_t c = 0; c < W; ++c) out[c] = out[c] / count;
+        }
+        auto rows = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
+                        const std::vector<StencilEntry>& entries) {
+            for (uint32_t i = 0; i < count; ++i) {
+                if (!needed[l][first + i]) continue;
+                double* out = &cur[size_t(row[l][first + i]) * W];
+                for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
+                    const StencilEntry& e = entries[k];
+                    const double w = double(static_cast<float>(e.weight));
+                    const double* in = e.fromFacePoint ? &cur[size_t(row[l][e.index]) * W]
+                                                       : &prev[size_t(row[l - 1][e.index]) * W];
+                    for (size_t c = 0; c < W; ++c) out[c] += w * in[c];
+                }
+            }
+        };
+        rows(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+        rows(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    }
+    for (const SubPatch& sp : subPatches)
+        for (int j = 0; j < 16; ++j) {
+            const double* P = &V[sp.level][size_t(row[sp.level][sp.patch.cv[j]]) * W];
+            if (std::abs(P[M]) > 1e-12) throw std::logic_error("irregular basis: support too small");
+            for (size_t i = 0; i < M; ++i)
+                basis.weights[sp.block * 16 * M + size_t(j) * M + i] = static_cast<float>(P[i]);
+        }
     if (std::find(filled.begin(), filled.end(), 0) != filled.end())
         throw std::logic_error("irregular basis: a sub-patch is missing");
     return basis;

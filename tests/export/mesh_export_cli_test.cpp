@@ -214,6 +214,12 @@ TEST(MeshExport, SpotRoundTripsInEveryFormatWithItsTextureUVs) {
     auto limn = prepare(dir, model, 2, "spot");
     Exported e = exportAll(dir, limn, "spot");
     ASSERT_TRUE(e.ply.hasST);
+    // Nothing approximate: no flag in any format.
+    EXPECT_FALSE(e.ply.hasApproximate);
+    EXPECT_TRUE(e.glb.approximate.empty());
+    EXPECT_TRUE(e.gltf.approximate.empty());
+    EXPECT_EQ(e.obj.approximateCount, 0u);
+    EXPECT_TRUE(e.obj.approximateV.empty());
     ASSERT_GT(e.ply.triangles.size(), 1000u);
     expectAllEqual(e);
 
@@ -437,6 +443,48 @@ TEST(MeshExport, FormatsByExtensionAndEdgeCases) {
     EXPECT_THROW(limn::exporting::encodeMesh(overflowed, ExportFormat::Glb, false), limn::Error);
     overflowed.vertices[2].nz = 1;
     EXPECT_NO_THROW(limn::exporting::encodeMesh(overflowed, ExportFormat::Glb, false));
+}
+
+// PLY's `approximate` in the other formats: glTF's _APPROXIMATE attribute, per vertex; OBJ's
+// comments, per `v` (OBJ has no per-vertex attribute). Tables of --irregular-levels 2 leave the
+// surface bilinear within 2^-2 of extraordinary corners, where these segments of a quarter pixel
+// land vertices (the default tables none, and then neither the attribute nor the comments:
+// SpotRoundTripsInEveryFormatWithItsTextureUVs).
+TEST(MeshExport, ApproximateVerticesAreFlaggedInEveryFormat) {
+    ScratchDir dir;
+    const std::string model = modelPath("osd/catmark/catmark_smoothtris0.obj").string();
+    const std::string limn = (dir / "k2.limn").string();
+    auto c = run({bin("limn-classify"), model});
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    auto t = run({bin("limn-tables"), "--depth", "2", "--irregular-levels", "2", "-o", limn}, c.out);
+    ASSERT_EQ(t.exitCode, 0) << t.err;
+    Exported e = exportAll(dir, limn, "k2", {"--edge-pixels", "0.25"});
+    ASSERT_TRUE(e.ply.hasApproximate);
+    expectAllEqual(e);
+    using Position = std::array<uint32_t, 3>;
+    auto key = [](const float* p) {
+        return Position{std::bit_cast<uint32_t>(p[0]), std::bit_cast<uint32_t>(p[1]), std::bit_cast<uint32_t>(p[2])};
+    };
+    std::set<Position> flagged;
+    for (const auto& v : e.ply.vertices)
+        if (v.approximate) flagged.insert(key(v.p));
+    EXPECT_GT(flagged.size(), 20u);
+    for (const GltfMesh* g : {&e.glb, &e.gltf}) {
+        ASSERT_EQ(g->approximate.size(), e.ply.vertices.size());
+        size_t differ = 0;
+        for (size_t i = 0; i < g->approximate.size(); ++i)
+            differ += g->approximate[i] != (e.ply.vertices[i].approximate ? 1.0f : 0.0f);
+        EXPECT_EQ(differ, 0u);
+    }
+    std::set<Position> listed;
+    for (int v : e.obj.approximateV) {
+        ASSERT_GE(v, 0);
+        ASSERT_LT(size_t(v), e.obj.v.size());
+        listed.insert(key(e.obj.v[size_t(v)].data()));
+    }
+    EXPECT_EQ(e.obj.approximateV.size(), e.obj.approximateCount);
+    EXPECT_EQ(listed, flagged);
+    expectValid({e.glbPath, e.gltfPath});
 }
 
 TEST(MeshExport, SameBytesTwice) {

@@ -5,6 +5,7 @@
 #include "mesh/import.h"
 #include "osd_oracle.h"
 #include "subdiv/evaluate.h"
+#include "subdiv/irregular_basis.h"
 #include "subdiv/tables.h"
 #include "test_support.h"
 #include "topology/features.h"
@@ -14,6 +15,7 @@
 
 #include <optional>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -311,6 +313,69 @@ TEST(ExactLimits, NoApproximateLimitPointsOnCatmarkShapes) {
         EXPECT_EQ(t.approximateLimitPoints, expected) << name;
     }
     EXPECT_GE(shapes, 75u);
+}
+
+// The per-valence weights of irregular_basis.h against the whole tables of the same mesh:
+// three rings of quads around a valence-n vertex (written here), built by buildTables with the
+// default boundary rule, evaluated by evaluateVertices for unit control points, and face 0's
+// sub-patches read from those tables (the way the weights were first computed).
+// buildIrregularBasis refines only around face 0 and evaluates only what its sub-patches read,
+// all columns at once: the two must agree to the bit (checked once for every valence 3 to 64 at
+// K = 16; four valences here).
+TEST(IrregularBasis, WeightsAreThoseOfTheWholeTables) {
+    for (uint32_t n : {3u, 5u, 6u, 9u}) {
+        SCOPED_TRACE("valence " + std::to_string(n));
+        const uint32_t K = 4;
+        Mesh m; // sector j: points a e_j + b e_{j+1}, 0 <= a, b <= 3
+        auto id = [&](uint32_t j, uint32_t a, uint32_t b) -> uint32_t {
+            if (a == 0 && b == 0) return 0;
+            if (a == 0) return 1 + ((j + 1) % n) * 12 + (b - 1) * 4;
+            return 1 + j * 12 + (a - 1) * 4 + b;
+        };
+        m.positions.assign(1 + 12 * size_t(n), glm::dvec3(0.0));
+        for (uint32_t j = 0; j < n; ++j)
+            for (uint32_t a = 0; a < 3; ++a)
+                for (uint32_t b = 0; b < 3; ++b) {
+                    for (uint32_t v : {id(j, a, b), id(j, a + 1, b), id(j, a + 1, b + 1), id(j, a, b + 1)})
+                        m.faceVertices.push_back(v);
+                    m.faceOffsets.push_back(static_cast<uint32_t>(m.faceVertices.size()));
+                }
+        Warnings w;
+        TablesOptions opts;
+        opts.depth = int(K);
+        opts.irregularLevels = 0;
+        const limn::Tables t = buildTables(m, SchemeOptions{}, opts, w);
+        const IrregularBasis basis = buildIrregularBasis(n, K);
+        // The support in smoothSupport's order (its order is the basis's convention).
+        Topology topo(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices);
+        Sharpness sharp = baseSharpness(topo, m.tags, BoundaryRule::EdgeOnly, w);
+        const Level L0 = makeBaseLevel(std::move(topo), std::move(sharp));
+        int corner = -1;
+        uint32_t valence = 0;
+        std::vector<uint32_t> support;
+        ASSERT_TRUE(smoothSupport(L0, 0, corner, valence, support));
+        ASSERT_EQ(corner, 0);
+        ASSERT_EQ(valence, n);
+        ASSERT_EQ(support.size(), basis.supportSize());
+        const size_t M = support.size();
+        size_t compared = 0, differ = 0;
+        for (size_t i = 0; i < M; ++i) {
+            std::vector<glm::dvec3> control(m.vertexCount(), glm::dvec3(0.0));
+            control[support[i]] = glm::dvec3(1.0);
+            const std::vector<glm::dvec3> V = evaluateVertices(t, control);
+            for (const Patch& p : t.patches) {
+                if (p.ptex != 0 || p.level < 1) continue;
+                const int q = (p.u0 > 0 ? 1 : 0) + (p.v0 > 0 ? 2 : 0); // 1, 3 or 2 (both)
+                const size_t block = size_t(p.level - 1) * 3 + size_t(q == 1 ? 0 : q == 3 ? 1 : 2);
+                glm::dvec3 P[4][4];
+                gatherControlPoints(p, V, P);
+                for (int j = 0; j < 16; ++j, ++compared)
+                    differ += basis.weights[block * 16 * M + size_t(j) * M + i] != static_cast<float>(P[j % 4][j / 4].x);
+            }
+        }
+        EXPECT_EQ(compared, size_t(K) * 3 * 16 * M);
+        EXPECT_EQ(differ, 0u);
+    }
 }
 
 const Case kCases[] = {

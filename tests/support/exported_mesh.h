@@ -27,6 +27,7 @@ struct GltfMesh {
     std::vector<std::array<float, 2>> uvs; // empty without TEXCOORD_0
     std::vector<uint32_t> indices;
     std::vector<double> min, max; // POSITION's
+    std::vector<float> approximate; // _APPROXIMATE, when the file has it
 };
 
 template <size_t N>
@@ -74,6 +75,9 @@ inline GltfMesh readGltf(const std::string& bytes, bool binary) {
     g.normals = floats<3>(m, prim.attributes.at("NORMAL"), TINYGLTF_TYPE_VEC3);
     if (prim.attributes.count("TEXCOORD_0"))
         g.uvs = floats<2>(m, prim.attributes.at("TEXCOORD_0"), TINYGLTF_TYPE_VEC2);
+    if (prim.attributes.count("_APPROXIMATE"))
+        for (const auto& a : floats<1>(m, prim.attributes.at("_APPROXIMATE"), TINYGLTF_TYPE_SCALAR))
+            g.approximate.push_back(a[0]);
     const auto& pa = m.accessors[size_t(prim.attributes.at("POSITION"))];
     g.min = pa.minValues;
     g.max = pa.maxValues;
@@ -96,6 +100,9 @@ struct ObjMesh {
     std::vector<std::array<float, 3>> v, vn;
     std::vector<std::array<float, 2>> vt;
     std::vector<std::array<ObjCorner, 3>> triangles;
+    // From the comments "# approximate: N positions ..." and "# approximate v i j ..." (0-based).
+    size_t approximateCount = 0;
+    std::vector<int> approximateV;
 };
 
 inline float parseFloat(const std::string& s) {
@@ -132,6 +139,13 @@ inline ObjMesh parseObj(const std::string& text) {
             std::string extra;
             EXPECT_FALSE(ls >> extra) << "not a triangle: " << line;
             o.triangles.push_back(t);
+        } else if (tag == "#" && line.rfind("# approximate: ", 0) == 0) {
+            o.approximateCount = std::stoul(line.substr(15));
+        } else if (tag == "#" && line.rfind("# approximate v ", 0) == 0) {
+            std::string word;
+            ls >> word; // "approximate"
+            ls >> word; // "v"
+            for (int i; ls >> i;) o.approximateV.push_back(i - 1);
         } else {
             EXPECT_TRUE(tag.empty() || tag[0] == '#') << line;
         }

@@ -1,0 +1,265 @@
+#include "subdiv/tables_build.h"
+
+#include "base/cli.h"
+#include "base/error.h"
+#include "subdiv/irregular_basis.h"
+#include "topology/orientation.h"
+
+#include <algorithm>
+#include <string>
+
+namespace limn {
+
+namespace {
+
+// Patch corner k's three outer control points (a, d, b) and the corner itself, as indices into
+// cv[16] = P_{i,j} at 4*j + i (see Patch): a lies beyond the corner away from corner k+1, b away
+// from corner k-1, d diagonally.
+constexpr int kCornerCV[4] = {5, 6, 10, 9};
+constexpr int kOuterCV[4][3] = {{4, 0, 1}, {2, 3, 7}, {11, 15, 14}, {13, 12, 8}};
+
+void requireManifold(const Topology& T) {
+    // Two faces that run their edge the same way: a fixable inconsistency, or (a Möbius strip)
+    // a surface without an orientation; the message says which.
+    if (const Orientation o = checkOrientation(T); o.misorientedEdges)
+        throwBadInput(describeMisorientation(T, o));
+    for (uint32_t e = 0; e < T.edgeCount(); ++e)
+        if (T.edgeIsNonManifold(e)) {
+            auto [a, b] = T.edgeVertices(e);
+            throwBadInput("edge (" + std::to_string(a) + "," + std::to_string(b) +
+                          ") is non-manifold (" + std::to_string(T.edgeFaceCount(e)) +
+                          " faces, or faces of opposite orientation); subdivision tables need a "
+                          "manifold, consistently oriented mesh");
+        }
+    for (uint32_t v = 0; v < T.vertexCount(); ++v)
+        if (T.vertexIsNonManifold(v))
+            throwBadInput("vertex " + std::to_string(v) +
+                          " is non-manifold (separate fans of faces meet there); subdivision "
+                          "tables need a manifold mesh");
+}
+
+
+// The faces of T_N around one smooth interior extraordinary vertex: drawn from the per-valence
+// weights of their support (irregular_basis.h, built once per valence met), so taken out of T
+// (not refined further) and recorded in a.smooth; and the faces too crowded for either surface.
+void takeSmoothFaces(const Level& L, uint32_t basisLevels, std::vector<uint8_t>& T, AdaptiveLevels& a) {
+    int corner = 0;
+    uint32_t valence = 0;
+    std::vector<uint32_t> support;
+    const uint32_t F = L.topo.faceCount();
+    std::vector<uint32_t> facesAt(L.topo.vertexCount(), 0);
+    std::vector<int> basisOfValence; // -1: not tried, -2: failed
+    for (uint32_t f = 0; f < F; ++f)
+        for (uint32_t v : L.topo.faceVertices(f)) ++facesAt[v];
+    for (uint32_t f = 0; f < F; ++f) {
+        if (!T[f]) continue;
+        // Around a vertex of more than kMaxBasisValence faces (a huge n-gon's centre,
+        // a hostile fan) either way costs K levels of thousands of faces: a 32,767-gon
+        // at depth 2 took minutes. Such a face stays bilinear between its limit points,
+        // counted as such (irregularSurfaceCounts; limn-render and limn-info say so).
+        bool crowded = false;
+        for (uint32_t v : L.topo.faceVertices(f)) crowded |= facesAt[v] > kMaxBasisValence;
+        if (crowded) {
+            T[f] = 0;
+            continue;
+        }
+        if (!smoothSupport(L, f, corner, valence, support)) continue;
+        if (basisOfValence.size() <= valence) basisOfValence.resize(valence + 1, -1);
+        if (basisOfValence[valence] == -1) {
+            try {
+                a.bases.push_back(buildIrregularBasis(valence, basisLevels));
+                basisOfValence[valence] = static_cast<int>(a.bases.size() - 1);
+            } catch (const std::exception&) {
+                basisOfValence[valence] = -2; // refined like any other (never seen)
+            }
+        }
+        if (basisOfValence[valence] < 0) continue;
+        a.smooth.push_back({f, uint32_t(basisOfValence[valence]), uint32_t(corner), support});
+        T[f] = 0; // not refined further
+    }
+}
+
+} // namespace
+
+Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase, const std::vector<uint32_t>& remap,
+                  uint32_t creaseEdge) {
+    const Topology& T = L.topo;
+    const FaceFrame& fr = L.frames[f];
+    Patch p{};
+    auto global = [&](uint32_t v) { return levelBase + remap[v]; };
+    for (int k = 0; k < 4; ++k) {
+        uint32_t e0 = T.faceHalfedge(f) + (fr.rotation + k) % 4;
+        p.cv[kCornerCV[k]] = global(T.vertex(e0));
+        // A boundary edge, or an infinitely sharp one (only regular patches along inf-sharp
+        // creases have those: the surface on this side ignores the points across it).
+        if (T.twin(e0) == kNone || L.edgeSharpness[T.edge(e0)] >= kInfiniteSharpness)
+            p.boundary |= static_cast<uint8_t>(1u << k);
+        if (T.edge(e0) == creaseEdge) {
+            p.crease = static_cast<uint8_t>(1u << k);
+            p.sharpness = L.edgeSharpness[creaseEdge];
+        }
+        uint32_t a = kNone, d = kNone, b = kNone;
+        uint32_t e1 = T.rotateCCW(e0);
+        if (e1 != kNone) {
+            a = T.vertex(T.prev(e1));
+            uint32_t e2 = T.rotateCCW(e1);
+            if (e2 != kNone) {
+                d = T.vertex(T.next(T.next(e2)));
+                b = T.vertex(T.prev(e2));
+            }
+        }
+        if (b == kNone) {
+            uint32_t e3 = T.rotateCW(e0);
+            if (e3 != kNone) b = T.destination(e3);
+        }
+        const uint32_t outer[3] = {a, d, b};
+        for (int i = 0; i < 3; ++i)
+            p.cv[kOuterCV[k][i]] = outer[i] == kNone ? 0 : global(outer[i]);
+    }
+    // Points replaced by phantoms are read with weight zero: store 0 as for a mesh boundary.
+    for (int i = 0; i < 16; ++i)
+        if (isPhantom(p.boundary, i)) p.cv[i] = 0;
+    p.ptex = fr.ptex;
+    p.u0 = static_cast<float>(fr.u0);
+    p.v0 = static_cast<float>(fr.v0);
+    p.size = static_cast<float>(fr.size);
+    p.level = static_cast<uint8_t>(L.depth);
+    return p;
+}
+
+void checkTablesOptions(const Mesh& mesh, const TablesOptions& opts) {
+    if (opts.depth < 0 || opts.depth > kMaxDepth)
+        throw Error(ErrorKind::Usage, "depth " + std::to_string(opts.depth) + " is outside 0.." +
+                                          std::to_string(kMaxDepth));
+    const uint32_t N = static_cast<uint32_t>(opts.depth);
+    if (opts.uniform && opts.maxMemoryBytes) {
+        const uint64_t need = uniformTableVertices(mesh, opts.depth) * kTableBytesPerVertex;
+        if (need > opts.maxMemoryBytes)
+            throwBadInput("uniform tables of depth " + std::to_string(N) + " need about " +
+                          cli::formatBytes(need) + " of memory (" +
+                          std::to_string(uniformTableVertices(mesh, opts.depth)) +
+                          " vertices), more than --max-memory " +
+                          cli::formatBytes(opts.maxMemoryBytes) +
+                          "; use a lower --depth, adaptive tables, or raise --max-memory");
+    }
+}
+
+void checkTablesTopology(const Topology& baseTopo, const TablesOptions& opts) {
+    requireManifold(baseTopo);
+    // A stencil row holds up to 2 k + 1 entries for a face of k sides or a vertex of k edges, and
+    // the TBLS format caps rows at 65,536 entries (formats/limn.md): refuse before the work what
+    // limn-info and limn-render would refuse after it.
+    for (uint32_t f = 0; f < baseTopo.faceCount(); ++f)
+        if (baseTopo.faceSize(f) > kMaxStencilValence)
+            throwBadInput("face " + std::to_string(f) + " has " +
+                          std::to_string(baseTopo.faceSize(f)) + " sides; subdivision tables " +
+                          "support up to " + std::to_string(kMaxStencilValence) +
+                          " (split the face first)");
+    for (uint32_t v = 0; v < baseTopo.vertexCount(); ++v)
+        if (baseTopo.vertexOutgoing(v).size() > kMaxStencilValence)
+            throwBadInput("vertex " + std::to_string(v) + " is shared by " +
+                          std::to_string(baseTopo.vertexOutgoing(v).size()) + " faces; " +
+                          "subdivision tables support up to " +
+                          std::to_string(kMaxStencilValence));
+    if (opts.depth == 0)
+        for (uint32_t f = 0; f < baseTopo.faceCount(); ++f)
+            if (baseTopo.faceSize(f) != 4)
+                throwBadInput("face " + std::to_string(f) + " has " +
+                              std::to_string(baseTopo.faceSize(f)) +
+                              " sides; depth 0 draws faces at their limit corners and needs an "
+                              "all-quad mesh (non-quads are split at the first level: use "
+                              "--depth 1 or more)");
+}
+
+AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeOptions& options,
+                              const TablesOptions& opts, Warnings& warnings) {
+    AdaptiveLevels a;
+    const uint32_t N = static_cast<uint32_t>(opts.depth);
+    // Levels beyond N under T_N only (docs/irregular.md); none for uniform tables.
+    const uint32_t K = opts.uniform ? 0u
+                                    : static_cast<uint32_t>(std::clamp(opts.irregularLevels, 0, kMaxDepth - opts.depth));
+    const uint32_t D = N + K;
+    Sharpness sharp = baseSharpness(baseTopo, mesh.tags, options.boundary, warnings);
+    a.N = N;
+    a.K = K;
+    a.D = D;
+    std::vector<Level>& levels = a.levels;
+    levels.push_back(makeBaseLevel(std::move(baseTopo), std::move(sharp)));
+    std::vector<uint32_t>& ptexBase = a.ptexBase;
+    ptexBase.resize(levels[0].topo.faceCount());
+    for (uint32_t f = 0; f < ptexBase.size(); ++f) ptexBase[f] = levels[0].frames[f].ptex;
+
+    std::vector<LevelStencils>& stencils = a.stencils;
+    stencils.resize(1);
+    auto& irregularSets = a.irregularSets;
+    auto& patchSets = a.patchSets;
+    auto& creaseEdges = a.creaseEdges;
+    const uint32_t basisLevels = opts.uniform ? 0u : static_cast<uint32_t>(std::clamp(opts.irregularLevels, 0, kMaxDepth));
+    for (uint32_t l = 0;; ++l) {
+        Level& L = levels[l];
+        const uint32_t F = L.topo.faceCount();
+        std::vector<uint8_t> regular(F, 0);
+        if (!opts.uniform) {
+            Regularity r = analyzeRegularity(L.topo, L.edgeSharpness, L.vertexSharpness, L.noLimit,
+                                             opts.infSharpPatches, opts.singleCreasePatches);
+            regular = std::move(r.faceRegular);
+            creaseEdges.push_back(std::move(r.faceCreaseEdge));
+        } else {
+            creaseEdges.emplace_back(F, kNone);
+        }
+        std::vector<uint8_t> T(F, 0), P(F, 0);
+        for (uint32_t f = 0; f < F; ++f) {
+            if (!L.complete[f] || L.noLimit[f]) continue;
+            (regular[f] ? P : T)[f] = 1;
+        }
+        irregularSets.push_back(T);
+        patchSets.push_back(P);
+        if (l == N && basisLevels > 0) takeSmoothFaces(L, basisLevels, T, a);
+        if (l == D) break;
+        std::vector<uint8_t> S = opts.uniform ? std::vector<uint8_t>(F, 1) : oneRing(L.topo, T);
+        if (std::find(S.begin(), S.end(), 1) == S.end()) {
+            // Nothing left to refine: the remaining levels are empty.
+            for (uint32_t m = l + 1; m <= D; ++m) {
+                Level empty;
+                empty.depth = m;
+                levels.push_back(std::move(empty));
+                stencils.emplace_back();
+                irregularSets.emplace_back();
+                patchSets.emplace_back();
+                creaseEdges.emplace_back();
+            }
+            break;
+        }
+        // Guard memory before refining: every selected face makes about 4 children per level.
+        uint64_t selected = std::count(S.begin(), S.end(), 1);
+        uint64_t estimate = selected * 4 * 2;
+        if (opts.maxMemoryBytes) {
+            // What is built, plus this level's estimate for it and every level still to come
+            // (adaptive refinement does not grow faster than that once it is local).
+            uint64_t built = 0;
+            for (const auto& lv : levels) built += lv.topo.vertexCount();
+            const uint64_t need = (built + estimate * (D - l)) * kTableBytesPerVertex;
+            if (need > opts.maxMemoryBytes)
+                throwBadInput("depth " + std::to_string(N) + " needs about " + cli::formatBytes(need) +
+                              " of memory (level " + std::to_string(l + 1) + " alone about " +
+                              std::to_string(estimate) + " vertices), more than --max-memory " +
+                              cli::formatBytes(opts.maxMemoryBytes) + "; use a lower --depth" +
+                              (opts.uniform ? " or adaptive tables" : "") +
+                              ", or raise --max-memory");
+        }
+        if (estimate > kMaxLevelVertices)
+            throwBadInput("level " + std::to_string(l + 1) + " would need about " +
+                          std::to_string(estimate) + " vertices (more than " +
+                          std::to_string(kMaxLevelVertices) + "); use a lower --depth" +
+                          (opts.uniform ? " or adaptive tables" : ""));
+        LevelStencils st;
+        Level child = refineLevel(L, S, options, ptexBase, st);
+        for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf)
+            child.complete[cf] = T[child.faceParent[cf]];
+        levels.push_back(std::move(child));
+        stencils.push_back(std::move(st));
+    }
+    return a;
+}
+
+} // namespace limn
