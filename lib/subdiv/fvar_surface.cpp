@@ -187,7 +187,9 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     vertices_ = evaluateVertices(tables_, uv.positions);
     limits_ = evaluateLimitPoints(tables_, vertices_);
     const uint32_t P = static_cast<uint32_t>(tables_.patches.size());
+    hasElements_.assign(ptexCount_, 0);
     auto add = [&](uint32_t e, uint32_t ptex, float u0, float v0, float size) {
+        if (ptex < ptexCount_) hasElements_[ptex] = 1;
         const uint32_t k = sizeExponent(size);
         const double scale = std::ldexp(1.0, int(k));
         cells_[cellKey(ptex, k, uint32_t(std::lround(u0 * scale)), uint32_t(std::lround(v0 * scale)))] = e;

@@ -41,6 +41,10 @@ class FaceVaryingSurface {
     // toward (towardU, towardV) (any element containing it gives the same limit; this picks one).
     glm::dvec2 uvAt(uint32_t ptex, double u, double v, double towardU, double towardV) const;
 
+    // Whether ptex face `ptex` has UV elements: not for a hole or a face without a limit
+    // surface (boundary rule none), which the geometry's tables do not draw either.
+    bool hasElements(uint32_t ptex) const { return ptex < hasElements_.size() && hasElements_[ptex]; }
+
     const Tables& tables() const { return tables_; }
 
     // The surface as the GPU reads it (shaders/fvar_eval.glsl): `nodes` is a quadtree per ptex
@@ -63,6 +67,7 @@ class FaceVaryingSurface {
     std::unordered_map<uint64_t, uint32_t> cells_;
     uint32_t depth_;
     uint32_t ptexCount_ = 0;
+    std::vector<uint8_t> hasElements_; // per ptex face
 };
 
 } // namespace limn

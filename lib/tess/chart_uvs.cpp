@@ -80,6 +80,9 @@ void ChartUVs::locate(uint32_t p, uint32_t X, uint32_t Y, std::vector<Located>& 
         for (uint32_t hh : {h, topo_.twin(h)})
             if (hh != kNone) out.push_back(inFace(topo_.face(hh), a, b, t));
     }
+    // A hole (or a face without a limit surface) has no UV surface and is not drawn: nothing
+    // there to sample or to agree with.
+    std::erase_if(out, [&](const Located& l) { return !surface_.hasElements(l.ptex); });
     std::sort(out.begin(), out.end(), [](const Located& x, const Located& y) { return x.face < y.face; });
 }
 

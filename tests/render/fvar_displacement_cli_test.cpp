@@ -110,6 +110,21 @@ std::string caseName(const ::testing::TestParamInfo<FVarCase>& p) {
 
 INSTANTIATE_TEST_SUITE_P(Models, FVarDisplaced, ::testing::ValuesIn(kCases), caseName);
 
+// A hole (and a face without a limit surface) has no UV surface: the seam fix samples the faces
+// around a point that are drawn. It asked the hole's own chart instead, and limn-render failed
+// ("no face-varying element contains ptex face 6") on a valid mesh with holes and smooth UVs.
+TEST(FVarDisplacedHoles, HoleFacesAreNotSampled) {
+    ScratchDir dir;
+    const std::string limn = prepareFVar(modelPath("osd/catmark/catmark_hole_test2.obj").string(), "boundaries", 2, dir);
+    const std::string map = heightmap(limn, "uv", dir);
+    const std::vector<std::string> displace = {"--displace", map, "--displace-scale", "0.05"};
+    const Drawn fixed = drawn(limn, displace, dir);
+    EXPECT_GT(fixed.triangles.size(), 0u);
+    std::vector<std::string> adaptive = {bin("limn-render"), limn, "--size", "64x48", "-o", (dir / "a.png").string()};
+    adaptive.insert(adaptive.end(), displace.begin(), displace.end());
+    runOk(adaptive);
+}
+
 // The view-adaptive tessellation evaluates the smooth UVs on the GPU (shaders/fvar_eval.glsl) at
 // the (ptex, u, v) of each vertex it emits: equal to the CPU's FaceVaryingSurface (in double)
 // to 1e-5 at every emitted vertex inside a ptex face (where the vertex's chart is that face's),

@@ -153,7 +153,9 @@ export class SmoothChartUVs {
     const out = [];
     if (t === 0) for (const g of keys.vertexFaces[a]) out.push(this.inFace(g, a, a, 0));
     else for (const g of keys.edgeFaces[keys.findEdge(a, b)].slice(0, 2)) out.push(this.inFace(g, a, b, t));
-    return out.sort((x, y) => x.face - y.face);
+    // A hole (or a face without a limit surface) has no UV element and is not drawn: nothing
+    // there to sample or to agree with (chart_uvs.cpp's locate).
+    return out.filter((l) => this.fvar.nodes[l.ptex] !== NONE).sort((x, y) => x.face - y.face);
   }
 }
 

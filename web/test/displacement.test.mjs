@@ -149,6 +149,32 @@ test('displaced spot with smooth UVs: limn-render\'s image, watertight with the 
   assert.deepEqual(errors, [], 'WebGPU errors');
 });
 
+// Holes with smooth UVs: a hole has no UV surface (its FVSF root is empty) and is not drawn, so
+// the seam fix samples only the drawn faces around a point (smooth_uvs.mjs locate), as
+// limn-render does. Both threw "no face-varying element contains ptex face 6" on this valid mesh.
+test('displaced holes with smooth UVs: limn-render\'s image (both tessellations)', async () => {
+  const limn = container('osd/catmark/catmark_hole_test2.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'holes_smooth_uvs_d2.limn' });
+  const surface = loadLimn(new Uint8Array(readFileSync(limn)));
+  assert.ok(surface.fvarSurface && surface.fvarSurface.nodes.some((v) => v === 0xffffffff), 'FVSF with hole roots');
+  const { height } = quadSphere();
+  gpu ??= await requestNodeDevice();
+  const errors = [];
+  gpu.device.onuncapturederror = (e) => errors.push(e.error.message);
+  for (const edgePixels of [0, 4]) {
+    const displace = { map: heightMap(readImageFile(height, '--displace')), scale: 0.05, mid: 0, seamFix: true };
+    const r = await Renderer.create(gpu.device, surface, { width: 160, height: 120, samples: 1, shade: 'lit', edgePixels, tess: 64, view: {}, displace });
+    r.frame();
+    const rgba = await r.pixels();
+    r.destroy();
+    const native = join(scratch, `displaced-holes-${edgePixels}.png`);
+    execFileSync(tool('limn-render'), ['-q', limn, '-o', native, '--size', '160x120', '--samples', '1', '--edge-pixels', String(edgePixels),
+      '--displace', height, '--displace-scale', '0.05'], { env, stdio: ['ignore', 'ignore', 'pipe'] });
+    const d = compareImages({ width: 160, height: 120, rgba }, decodePng(readFileSync(native)));
+    assert.ok(d.covered > 1000 && d.fraction <= 0.005, `edge pixels ${edgePixels}: ${d.off} of ${d.covered} covered pixels differ by more than 8/255 (worst ${d.worst})`);
+  }
+  assert.deepEqual(errors, [], 'WebGPU errors');
+});
+
 // Without a SEAM chunk the renderer computes the seam records itself, as limn-render does: they
 // are limn-seams' own, bit for bit (the chunk written by limn-seams is the reference).
 test('seam records computed without a SEAM chunk are the ones limn-seams writes', () => {
