@@ -31,6 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             for (uint32_t p = 0; p < f.ptexCount; ++p)
                 for (uint32_t v = f.surface.nodes[p]; v != 0xFFFFFFFFu && !(v & 0x80000000u);)
                     v = f.surface.nodes.at(v + 3);
+            if (f.depth == tables.depth) checkFvarSurfaceCoverage(f, tables);
         }
         buildTessellation(mesh, tables, 2, mesh.hasUVs());
     } catch (const Error& e) {

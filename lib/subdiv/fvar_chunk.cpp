@@ -93,4 +93,37 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
     return c;
 }
 
+void checkFvarSurfaceCoverage(const FvarSurfaceChunk& fvar, const Tables& tables) {
+    // Children follow their parent: one backward pass knows for every node whether a hole lies
+    // below it (a walk toward a drawn point would end there; shaders/fvar_eval.glsl gives (0, 0)).
+    const std::vector<uint32_t>& nodes = fvar.surface.nodes;
+    std::vector<uint8_t> holeBelow(nodes.size());
+    for (size_t i = nodes.size(); i-- > 0;) {
+        const uint32_t v = nodes[i];
+        holeBelow[i] = v == 0xFFFFFFFFu ? 1
+                       : (v & 0x80000000u) ? 0
+                                           : holeBelow[v] | holeBelow[v + 1] | holeBelow[v + 2] | holeBelow[v + 3];
+    }
+    auto check = [&](uint32_t ptex, float u0, float v0, float size) {
+        if (ptex >= fvar.ptexCount) throwBadInput("the tables draw ptex face " + std::to_string(ptex) + ", which it lacks", "chunk FVSF");
+        uint32_t node = ptex;
+        double ou = 0, ov = 0, s = 1;
+        for (;;) {
+            const uint32_t v = nodes[node];
+            if (v != 0xFFFFFFFFu && (v & 0x80000000u)) return;
+            if (v == 0xFFFFFFFFu || s <= size) {
+                if (holeBelow[node])
+                    throwBadInput("no UV element where the tables draw ptex face " + std::to_string(ptex), "chunk FVSF");
+                return;
+            }
+            s /= 2;
+            const uint32_t i = u0 >= ou + s ? 1 : 0, j = v0 >= ov + s ? 1 : 0;
+            ou += i * s, ov += j * s;
+            node = v + i + 2 * j;
+        }
+    };
+    for (const Patch& p : tables.patches) check(p.ptex, p.u0, p.v0, p.size);
+    for (const IrregularFace& f : tables.irregular) check(f.ptex, f.u0, f.v0, f.size);
+}
+
 } // namespace limn

@@ -41,4 +41,9 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& fvar);
 // Error(BadInput) naming chunk FVSF.
 FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, const SchemeOptions* options);
 
+// Checks that every point `tables` (the geometry's, the ones the chunk was made with) draws finds
+// a UV element: no walk toward a patch or irregular face's domain meets a hole. Throws
+// Error(BadInput) naming chunk FVSF.
+void checkFvarSurfaceCoverage(const FvarSurfaceChunk& fvar, const Tables& tables);
+
 } // namespace limn

@@ -50,4 +50,28 @@ TEST(FvarSurfaceChunk, ToolsWriteDropAndCheckIt) {
     EXPECT_NE(stale.err.find("the FVSF chunk was made from other tables, tags or UVs (stale)"), std::string::npos) << stale.err;
 }
 
+// A hole (0xFFFFFFFF) in place of a face's quadtree that the tables draw: structurally valid,
+// but a walk from a drawn point ends in it (limn-web-render's seam fix threw a bare Error from
+// there). limn-info refuses it naming the chunk, as limn-web-render does.
+TEST(FvarSurfaceChunk, LimnInfoRefusesAHoleWhereTheTablesDraw) {
+    const std::string obj = test::modelPath("quad/osd_catmark_fvar_bound1.obj").string();
+    auto classified = test::run({test::tool("limn-classify").string(), "--fvar", "boundaries", obj});
+    ASSERT_EQ(classified.exitCode, 0) << classified.err;
+    auto tables = test::run({test::tool("limn-tables").string(), "--depth", "1"}, classified.out);
+    ASSERT_EQ(tables.exitCode, 0) << tables.err;
+    Container k = parse(tables.out);
+    FvarSurfaceChunk f = decodeFvarSurfaceChunk(*k.find(kFvarSurfaceChunk), nullptr, nullptr);
+    for (uint32_t node : {0u, f.surface.nodes[0] + 3}) { // a root, then a child of the first root
+        SCOPED_TRACE(node);
+        FvarSurfaceChunk holed = f;
+        ASSERT_LT(node, holed.surface.nodes.size());
+        holed.surface.nodes[node] = 0xFFFFFFFFu;
+        k.set(encodeFvarSurfaceChunk(holed));
+        const std::vector<uint8_t> bytes = serializeContainer(k);
+        auto info = test::run({test::tool("limn-info").string(), "-"}, std::string(bytes.begin(), bytes.end()));
+        EXPECT_EQ(info.exitCode, 1) << info.err;
+        EXPECT_NE(info.err.find("chunk FVSF: no UV element where the tables draw ptex face 0"), std::string::npos) << info.err;
+    }
+}
+
 } // namespace

@@ -158,6 +158,7 @@ int main(int argc, char** argv) {
                 fvarStale = !tables || !mesh.hasUVs() || f.depth != tables->depth ||
                             f.ptexCount != ptexFaceCount(mesh) ||
                             f.topologyHash != topologyHash(mesh, tables->options) || f.uvHash != fvarUVHash(mesh);
+                if (!fvarStale) checkFvarSurfaceCoverage(f, *tables);
             }
             if (container.find(blend::kBlendChunk)) (void)blend::loadBlendSurface(container, mesh);
         } catch (Error& e) {

@@ -196,7 +196,12 @@ export function loadLimn(bytes) {
   if (byType.has('FVSF')) {
     if (!uvs) throw new LimnError('the mesh has no UVs (no FVUV chunk) for its smooth UV surface', 'chunk FVSF');
     const uvHash = new Fnv64().update(bytesOf(uvs.values)).update(bytesOf(uvs.indices)).value;
-    fvarSurface = decodeFvarSurface(byType.get('FVSF'), { depth: tables.depth, ptexCount: ptexCount(mesh), topologyHash: topologyHash(mesh, tags, tables.options), uvHash });
+    const pw = tables.patches, pf = new Float32Array(pw.buffer, pw.byteOffset, pw.length);
+    const qw = tables.irregular, qf = new Float32Array(qw.buffer, qw.byteOffset, qw.length);
+    const domains = [];
+    for (let i = 0; i < tables.patchCount; i++) domains.push([pw[24 * i + 16], pf[24 * i + 17], pf[24 * i + 18], pf[24 * i + 19]]);
+    for (let i = 0; i < tables.irregularCount; i++) domains.push([qw[8 * i + 4], qf[8 * i + 5], qf[8 * i + 6], qf[8 * i + 7]]);
+    fvarSurface = decodeFvarSurface(byType.get('FVSF'), { depth: tables.depth, ptexCount: ptexCount(mesh), topologyHash: topologyHash(mesh, tags, tables.options), uvHash, domains });
   }
   const seams = byType.has('SEAM')
     ? decodeSeams(byType.get('SEAM'), tables.patchCount + tables.irregularCount, seamsSourceHash(byType))

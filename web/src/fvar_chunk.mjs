@@ -9,7 +9,7 @@ const HOLE = 0xffffffff, LEAF = 0x80000000;
 
 /**
  * expected: { depth (TBLS's), ptexCount (the mesh's), topologyHash and uvHash (BigInt, the
- * mesh's) }. Returns { depth, ptexCount, nodes: Uint32Array, records: Float32Array (36 floats
+ * mesh's), domains (optional): TBLS's element domains, [ptex, u0, v0, size] each }. Returns { depth, ptexCount, nodes: Uint32Array, records: Float32Array (36 floats
  * an element), elementCount }.
  */
 export function decodeFvarSurface(chunk, expected) {
@@ -44,5 +44,33 @@ export function decodeFvarSurface(chunk, expected) {
   if (depth !== expected.depth) r.fail(`made at depth ${depth}, but the tables (TBLS) have depth ${expected.depth}; re-run limn-tables`);
   if (topology !== expected.topologyHash) r.fail('the smooth UV surface was built for a different mesh topology or tags; re-run limn-tables');
   if (uv !== expected.uvHash) r.fail('the smooth UV surface was built from other UVs; re-run limn-tables');
+  if (expected.domains) checkCoverage(r, nodes, expected.domains);
   return { depth, ptexCount, nodes, records, elementCount };
+}
+
+// Every point the tables draw finds a UV element: walking toward an element's domain meets no
+// hole, and below the node of its square there is none (a hole is a face the tables do not
+// draw). Else the seam fix's walks (smooth_uvs.mjs) would end in a hole. Children follow their
+// parent, so one backward pass knows for every node whether a hole lies below it.
+function checkCoverage(r, nodes, domains) {
+  const holeBelow = new Uint8Array(nodes.length);
+  for (let i = nodes.length - 1; i >= 0; i--) {
+    const v = nodes[i];
+    holeBelow[i] = v === HOLE ? 1 : v >= LEAF ? 0 : holeBelow[v] | holeBelow[v + 1] | holeBelow[v + 2] | holeBelow[v + 3];
+  }
+  for (const [ptex, u0, v0, size] of domains) {
+    let node = ptex, ou = 0, ov = 0, s = 1;
+    for (;;) {
+      const v = nodes[node];
+      if (v >= LEAF && v !== HOLE) break;
+      if (v === HOLE || s <= size) {
+        if (holeBelow[node]) r.fail(`no UV element where the tables draw ptex face ${ptex} at (${u0}, ${v0})`);
+        break;
+      }
+      s /= 2;
+      const i = u0 >= ou + s ? 1 : 0, j = v0 >= ov + s ? 1 : 0;
+      ou += i * s; ov += j * s;
+      node = v + i + 2 * j;
+    }
+  }
 }

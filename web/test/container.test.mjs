@@ -188,6 +188,11 @@ test('FVSF: read with smooth UVs, refused by name when cut, stale or cyclic', ()
   expectLimnError(patched(0, 2), /chunk FVSF: made at depth 2, but the tables \(TBLS\) have depth 1/);
   expectLimnError(patched(32, 0), /chunk FVSF: node 0 has a bad child index/);
   expectLimnError(patched(32, 0x80000000 + s.fvarSurface.elementCount), /chunk FVSF: node 0 names a missing element/);
+  // A hole (0xFFFFFFFF) where the tables draw: every walk from a drawn point must end in an
+  // element (the seam fix's walks threw a bare Error, with its stack, from smooth_uvs.mjs).
+  expectLimnError(patched(32, 0xffffffff), /chunk FVSF: no UV element where the tables draw ptex face 0/);
+  const inner = [...s.fvarSurface.nodes].findIndex((v) => v < 0x80000000);
+  if (inner >= 0) expectLimnError(patched(32 + 4 * (s.fvarSurface.nodes[inner] + 3), 0xffffffff), /chunk FVSF: no UV element where the tables draw/);
   // The UVs changed after limn-tables: a value of FVUV moved (its first f64, 16 bytes in).
   const fvuv = chunks.findIndex((c) => c.type === 'FVUV');
   const moved = chunks[fvuv].payload.slice();
