@@ -198,15 +198,20 @@ function writeAtomically(path, bytes) {
   }
 }
 
+// The input's name for messages about its contents: the parsed one (the first argument without
+// a dash may be an option's value, '--size 64x48 in.limn').
+let inputName = '';
+
 async function main(argv) {
   const o = parseArgs(argv);
+  inputName = o.input ?? '';
   if (o.help) { process.stdout.write(HELP); return 0; }
   if (o.version) { process.stdout.write(`${TOOL} 0.1.0\n`); return 0; }
   let bytes;
   try {
     bytes = readFileSync(o.input);
   } catch (e) {
-    throw new LimnError(`cannot read: ${e.code ?? e.message}`, 'input');
+    throw new LimnError(`${o.input}: cannot read: ${e.code ?? e.message}`, 'input');
   }
   const surface = loadLimn(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength));
   applyMaps(o, surface);
@@ -257,7 +262,7 @@ async function main(argv) {
 try {
   process.exitCode = await main(process.argv.slice(2));
 } catch (e) {
-  const file = e instanceof LimnError && !['usage', 'capability', 'output', 'input'].includes(e.where) ? `${process.argv.slice(2).find((a) => !a.startsWith('-')) ?? ''}: ` : '';
+  const file = e instanceof LimnError && !['usage', 'capability', 'output', 'input'].includes(e.where) ? `${inputName}: ` : '';
   if (e instanceof Usage) {
     process.stderr.write(`${TOOL}: error: ${e.message}\n`);
     process.exitCode = 2;

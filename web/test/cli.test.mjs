@@ -48,6 +48,14 @@ test('damaged containers exit 1 naming the chunk, and leave no output', () => {
   let r = run(cut, '-o', out);
   assert.equal(r.status, 1, r.stderr);
   assert.match(r.stderr, /^limn-web-render: error: .*cut\.limn: header: header says \d+ bytes/);
+  // The input named as parsed, not as the first argument without a dash (an option's value:
+  // the message said "64x48: header: ..."), and a missing input named too.
+  r = run('--size', '64x48', cut, '-o', out);
+  assert.equal(r.status, 1, r.stderr);
+  assert.match(r.stderr, /^limn-web-render: error: \S*cut\.limn: header: /);
+  r = run(join(scratch, 'absent.limn'), '-o', out);
+  assert.equal(r.status, 1, r.stderr);
+  assert.match(r.stderr, /^limn-web-render: error: \S*absent\.limn: cannot read: ENOENT/);
   // A TBLS count corrupted (the limit-point count, 36 bytes into its payload).
   const chunks = [];
   for (let o = 24; o < bytes.length;) {
