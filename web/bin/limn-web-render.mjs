@@ -2,7 +2,7 @@
 // limn-web-render: renders a .limn container with limn's passes on WebGPU (Dawn for Node), with
 // limn-render's option names for what it supports. Exit codes as limn's tools: 0 ok, 1 bad input,
 // 2 usage, 3 missing capability (no WebGPU adapter, or a feature not supported here).
-import { readFileSync, renameSync, rmSync, writeFileSync } from 'node:fs';
+import { readFileSync, renameSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { dirname, basename, join } from 'node:path';
 import { loadLimn } from '../src/chunks.mjs';
 import { LimnError } from '../src/container.mjs';
@@ -186,16 +186,49 @@ function applyMaps(o, surface) {
   }
 }
 
-// A temporary file beside the target, renamed over it: never a partial file under its name.
-function writeAtomically(path, bytes) {
-  const tmp = join(dirname(path), `.${basename(path)}.limn-tmp-${process.pid}`);
-  try {
-    writeFileSync(tmp, bytes);
-    renameSync(tmp, path);
-  } catch (e) {
-    rmSync(tmp, { force: true });
-    throw new LimnError(`${path}: cannot write: ${e.code ?? e.message}`, 'output');
+// An output that cannot be written is refused before the render, as limn-render refuses it: a
+// directory under its name, or binary bytes for a terminal.
+function checkOutput(path, binary) {
+  if (path === '-') {
+    if (binary && process.stdout.isTTY) throw new Usage('refusing to write binary output to a terminal; use --mesh-out FILE, a pipe or --mesh-ascii');
+    return;
   }
+  let st = null;
+  try { st = statSync(path); } catch { /* absent: written new */ }
+  if (st?.isDirectory()) throw new LimnError(`${path}: is a directory, not a file`, 'output');
+}
+
+// Each output goes to a temporary file beside its target, and only once every one is written
+// are they renamed over their targets: a failure leaves none of them, neither a partial file nor
+// one output of two (limn-render's OutputFile). The writes and renames are synchronous, so a
+// signal (handled below) is delivered before or after them, never between.
+function writeOutputs(outputs) {
+  const staged = [];
+  let current = '';
+  try {
+    for (const [path, bytes] of outputs) {
+      current = path;
+      const tmp = join(dirname(path), `.${basename(path)}.limn-tmp-${process.pid}`);
+      staged.push([tmp, path]);
+      writeFileSync(tmp, bytes);
+    }
+    for (const [tmp, path] of staged) { current = path; renameSync(tmp, path); }
+  } catch (e) {
+    for (const [tmp] of staged) rmSync(tmp, { force: true });
+    throw new LimnError(`${current}: cannot write: ${e.code ?? e.message}`, 'output');
+  }
+}
+
+// A reader of standard output that goes away (| head) is an error that names it, not Node's
+// unhandled 'error' event with its stack (limn-render dies of SIGPIPE, which Node ignores).
+process.stdout.on('error', (e) => {
+  process.stderr.write(`${TOOL}: error: <stdout>: cannot write: ${e.code ?? e.message}\n`);
+  process.exit(1);
+});
+// Stopped by a signal: Node's default would end the process at once; a handler lets the
+// synchronous writes above finish or not start, and the process still dies of the signal.
+for (const signal of ['SIGINT', 'SIGTERM', 'SIGHUP']) {
+  process.once(signal, () => process.kill(process.pid, signal));
 }
 
 // The input's name for messages about its contents: the parsed one (the first argument without
@@ -207,6 +240,8 @@ async function main(argv) {
   inputName = o.input ?? '';
   if (o.help) { process.stdout.write(HELP); return 0; }
   if (o.version) { process.stdout.write(`${TOOL} 0.1.0\n`); return 0; }
+  if (o.output) checkOutput(o.output, true);
+  if (o.meshOut) checkOutput(o.meshOut, !o.meshAscii);
   let bytes;
   try {
     bytes = readFileSync(o.input);
@@ -233,9 +268,11 @@ async function main(argv) {
   // Everything is read back before anything is written: a failure leaves no file.
   const ply = o.meshOut ? encodePly(await renderer.drawnMesh(), !!o.meshAscii) : null;
   if (lost) throw new Error(`the WebGPU device failed: ${lost.message}`);
-  if (o.output) writeAtomically(o.output, encodePng(o.settings.width, o.settings.height, pixels));
+  const files = [];
+  if (o.output) files.push([o.output, encodePng(o.settings.width, o.settings.height, pixels)]);
+  if (ply && o.meshOut !== '-') files.push([o.meshOut, ply]);
+  writeOutputs(files);
   if (ply && o.meshOut === '-') process.stdout.write(ply);
-  else if (ply) writeAtomically(o.meshOut, ply);
   if (o.bench) {
     // Medians over the frames after the first (pipeline compiles and first uploads).
     const median = (a) => { const b = a.slice(a.length > 1 ? 1 : 0).sort((x, y) => x - y); return b[b.length >> 1]; };

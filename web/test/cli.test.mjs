@@ -3,7 +3,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync, spawnSync } from 'node:child_process';
-import { existsSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { container, scratch, repo, tool } from './support.mjs';
 import { encodePng } from '../src/png.mjs';
@@ -197,8 +197,22 @@ test('--mesh-out: a bad extension exits 2, a format not written here exits 3, an
     assert.match(r.stderr, message);
   }
   // A directory that does not exist: exit 1 naming the file, no temporary file left beside it.
-  const r = run(limn, '--size', '32x32', '--mesh-out', join(scratch, 'absent', 'm.ply'));
+  // With -o too: the PNG was written before the PLY failed; now neither is (limn-render's way).
+  let r = run(limn, '--size', '32x32', '-o', join(scratch, 'both.png'), '--mesh-out', join(scratch, 'absent', 'm.ply'));
   assert.equal(r.status, 1, r.stderr);
   assert.match(r.stderr, /absent\/m\.ply: cannot write: ENOENT/);
   assert.equal(readdirSync(scratch).length, before);
+  // A directory under the PLY's name: refused before the render, no PNG either.
+  mkdirSync(join(scratch, 'dir.ply'));
+  r = run(limn, '--size', '32x32', '-o', join(scratch, 'both.png'), '--mesh-out', join(scratch, 'dir.ply'));
+  assert.equal(r.status, 1, r.stderr);
+  assert.match(r.stderr, /dir\.ply: is a directory, not a file/);
+  rmSync(join(scratch, 'dir.ply'), { recursive: true });
+  assert.equal(readdirSync(scratch).length, before);
+  // Standard output's reader gone before the PLY comes (| true): exit 1 naming it, not Node's
+  // unhandled 'error' event and its stack.
+  r = spawnSync('bash', ['-c', 'set -o pipefail; "$0" "$1" "$2" --size 32x32 --mesh-out - | true', process.execPath, cli, limn], { encoding: 'utf8', timeout: 120000 });
+  assert.equal(r.status, 1, r.stderr);
+  assert.match(r.stderr, /^limn-web-render: error: <stdout>: cannot write: EPIPE$/m);
+  assert.doesNotMatch(r.stderr, /node:events|Unhandled/);
 });
