@@ -187,7 +187,11 @@ uint64_t StreamReader::varint() {
 }
 
 uint32_t StreamReader::after(uint32_t previous, const char* what) {
-    const int64_t x = int64_t(previous) + unzigzag(varint());
+    const uint64_t z = varint();
+    // A difference beyond +-2^32 is out of range from any u32; refused before the sum, which
+    // for one near +-2^63 would overflow int64 (undefined behaviour).
+    if ((z >> 1) > 0xFFFFFFFFull) fail(std::string(what) + " out of range");
+    const int64_t x = int64_t(previous) + unzigzag(z);
     if (x < 0 || x > int64_t(0xFFFFFFFFu)) fail(std::string(what) + " out of range");
     return static_cast<uint32_t>(x);
 }

@@ -4,6 +4,7 @@
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "subdiv/tables_chunk.h"
+#include "subdiv/tables_stream.h"
 #include "tess/tessellation.h"
 #include "test_support.h"
 
@@ -222,6 +223,22 @@ TEST(TablesChunk, OutOfRangeIndexNamesTheTable) {
         FAIL() << "accepted an out-of-range index";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("edge points"), std::string::npos) << e.what();
+    }
+}
+
+// Version 4's source indices are zigzag differences: one of 2^63 - 1 (the ten-byte varint
+// FE FF .. FF 01) after a previous index of 5 overflowed the int64 sum (UBSan: signed integer
+// overflow) before the range check; refused as out of range, like every difference past 2^32.
+TEST(TablesChunk, HugeIndexDifferenceIsRefused) {
+    for (const std::vector<uint8_t>& varint : {std::vector<uint8_t>{0xFE, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x01},
+                                               std::vector<uint8_t>{0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x01},
+                                               std::vector<uint8_t>{0x80, 0x80, 0x80, 0x80, 0x20}}) { // 2^33: +2^32
+        std::vector<uint8_t> bytes = {uint8_t(varint.size()), 0, 0, 0};
+        bytes.insert(bytes.end(), varint.begin(), varint.end());
+        bytes.resize((bytes.size() + 3) / 4 * 4, 0);
+        ByteReader r(bytes, "test");
+        StreamReader in(r, "a table");
+        EXPECT_THROW(in.after(5, "a source index"), Error);
     }
 }
 
