@@ -131,7 +131,13 @@ function parseArgs(argv) {
   if (o.help || o.version) return o;
   if (!o.input) throw new Usage('no input file (see --help)');
   if (!o.output && !o.bench && !o.meshOut) throw new Usage('no output: give -o OUT.png, --mesh-out FILE.ply or --bench N');
-  if (o.output && !o.output.endsWith('.png')) throw new Usage(`-o ${o.output}: only PNG is written here (name it .png)`);
+  if (o.output) {
+    // As limn-render: the extension, case-insensitive (X.PNG is a PNG); EXR is limn-render's
+    // other image format, not written here (exit 3, as --mesh-out .obj); anything else is usage.
+    const ext = /\.([^./]*)$/.exec(o.output)?.[1].toLowerCase();
+    if (ext === 'exr') throw new LimnError(`-o ${o.output}: ${TOOL} writes PNG only (name it .png); limn-render writes .exr`, 'capability');
+    if (ext !== 'png') throw new Usage(`-o ${o.output}: only PNG is written here (name it .png)`);
+  }
   if (o.meshOut) {
     // limn-render's meshFormatFromPath: the extension, case-insensitive; - is PLY.
     const ext = o.meshOut === '-' ? 'ply' : /\.([^./]*)$/.exec(o.meshOut)?.[1].toLowerCase();

@@ -189,6 +189,7 @@ test('--mesh-out: a bad extension exits 2, a format not written here exits 3, an
     [['--mesh-out', join(scratch, 'm.stl')], 2, /unknown extension; limn-render writes \.ply, \.obj, \.gltf, \.glb/],
     [['--mesh-out', join(scratch, 'noext')], 2, /unknown extension/],
     [['--mesh-out', join(scratch, 'm.obj')], 3, /writes PLY only/],
+    [['-o', join(scratch, 'm.exr')], 3, /writes PNG only \(name it \.png\); limn-render writes \.exr/],
     [['-o', join(scratch, 'm.png'), '--mesh-ascii'], 2, /--mesh-ascii applies to a \.ply --mesh-out/],
     [['--mesh-out', '-', '--bench', '1'], 2, /cannot share standard output/],
   ]) {
@@ -196,6 +197,11 @@ test('--mesh-out: a bad extension exits 2, a format not written here exits 3, an
     assert.equal(r.status, status, `${args.join(' ')}: ${r.stderr}`);
     assert.match(r.stderr, message);
   }
+  // The extension is case-insensitive, as limn-render's: X.PNG is a PNG (it was a usage error).
+  const upper = run(limn, '--size', '32x32', '-o', join(scratch, 'UPPER.PNG'));
+  assert.equal(upper.status, 0, upper.stderr);
+  assert.ok(existsSync(join(scratch, 'UPPER.PNG')));
+  rmSync(join(scratch, 'UPPER.PNG'));
   // A directory that does not exist: exit 1 naming the file, no temporary file left beside it.
   // With -o too: the PNG was written before the PLY failed; now neither is (limn-render's way).
   let r = run(limn, '--size', '32x32', '-o', join(scratch, 'both.png'), '--mesh-out', join(scratch, 'absent', 'm.ply'));
