@@ -81,6 +81,33 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
         for (uint32_t k = 0; k < 9; ++k)
             c.surface.records[size_t(9) * e + k] = {f[36 * e + 4 * k], f[36 * e + 4 * k + 1], f[36 * e + 4 * k + 2], f[36 * e + 4 * k + 3]};
     }
+    // Each node's square of its ptex face, from its parent's (children follow their parent): a
+    // leaf's record must cover exactly its square, or a walk that ends there evaluates the
+    // element far outside its domain (a size of 1e-30 gave Inf UVs and NaN displaced points); a
+    // node reached twice or deeper than the GPU's walk (24 levels, fvar_eval.glsl) is refused.
+    struct Square {
+        uint32_t level = kNone, i = 0, j = 0;
+    };
+    std::vector<Square> squares(nodes);
+    for (uint32_t p = 0; p < c.ptexCount; ++p) squares[p] = {0, 0, 0};
+    for (uint32_t n = 0; n < nodes; ++n) {
+        const Square q = squares[n];
+        const uint32_t v = c.surface.nodes[n];
+        if (q.level == kNone || v == 0xFFFFFFFFu) continue; // unreached, or a hole
+        if (v & 0x80000000u) {
+            const glm::vec4 h = c.surface.records[size_t(9) * (v & 0x7FFFFFFFu)];
+            const float size = std::ldexp(1.0f, -int(q.level));
+            if (h.x != float(q.i) * size || h.y != float(q.j) * size || h.z != size)
+                r.fail("node " + std::to_string(n) + " names element " + std::to_string(v & 0x7FFFFFFFu) +
+                       ", whose domain is not the node's square");
+            continue;
+        }
+        if (q.level >= 24) r.fail("node " + std::to_string(n) + " is deeper than 24 levels");
+        for (uint32_t k = 0; k < 4; ++k) {
+            if (squares[v + k].level != kNone) r.fail("node " + std::to_string(v + k) + " has two parents");
+            squares[v + k] = {q.level + 1, 2 * q.i + (k & 1), 2 * q.j + (k >> 1)};
+        }
+    }
     if (mesh) {
         if (!mesh->hasUVs()) throwBadInput("the mesh has no UVs (no FVUV chunk) for its smooth UV surface", "chunk FVSF");
         if (c.ptexCount != ptexFaceCount(*mesh)) r.fail("ptex face count differs from the mesh's");

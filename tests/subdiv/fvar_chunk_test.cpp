@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -149,6 +151,33 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     const uint32_t nodeCount = [&] { uint32_t v; std::memcpy(&v, c.payload.data() + 24, 4); return v; }();
     word(nan, nodes + 4 * nodeCount + 16, 0x7FC00000u); // the first record's first control point
     EXPECT_TRUE(refused(nan, "NaN"));
+    // A record whose domain is not its leaf's square: finite, inside [0, 1], yet a walk ending
+    // there evaluated the element 1e30 sizes outside it (Inf UVs, NaN displaced points).
+    const size_t records = nodes + 4 * size_t(nodeCount);
+    Chunk tiny = c;
+    const float size = 1e-30f;
+    std::memcpy(tiny.payload.data() + records + 8, &size, 4);
+    EXPECT_TRUE(refused(tiny, "domain not the leaf's square"));
+    const FvarSurfaceChunk good = decodeFvarSurfaceChunk(c, &m, &o);
+    const auto leaf0 = std::find_if(good.surface.nodes.begin(), good.surface.nodes.end(),
+                                    [](uint32_t v) { return v != 0xFFFFFFFFu && (v & 0x80000000u); });
+    ASSERT_NE(leaf0, good.surface.nodes.end());
+    const auto leafOther = std::find_if(leaf0 + 1, good.surface.nodes.end(), [&](uint32_t v) {
+        return v != 0xFFFFFFFFu && (v & 0x80000000u) && good.surface.records[9 * (v & 0x7FFFFFFFu)] != good.surface.records[9 * (*leaf0 & 0x7FFFFFFFu)];
+    });
+    ASSERT_NE(leafOther, good.surface.nodes.end());
+    Chunk swapped = c; // a leaf naming an element of another square
+    word(swapped, nodes + 4 * size_t(leafOther - good.surface.nodes.begin()), *leaf0);
+    EXPECT_TRUE(refused(swapped, "element of another square"));
+    const auto inner = std::find_if(good.surface.nodes.begin(), good.surface.nodes.end(), [](uint32_t v) { return !(v & 0x80000000u); });
+    const auto inner2 = std::find_if(inner + 1, good.surface.nodes.end(), [](uint32_t v) { return !(v & 0x80000000u); });
+    if (inner2 != good.surface.nodes.end()) { // two parents of the same children (a DAG, not a tree)
+        Chunk shared = c;
+        word(shared, nodes + 4 * size_t(inner2 - good.surface.nodes.begin()), *inner);
+        if (*inner > size_t(inner2 - good.surface.nodes.begin())) {
+            EXPECT_TRUE(refused(shared, "two parents"));
+        }
+    }
     // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell).
     std::mt19937 rng(5);
     for (int trial = 0; trial < 500; ++trial) {

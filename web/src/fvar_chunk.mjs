@@ -40,6 +40,28 @@ export function decodeFvarSurface(chunk, expected) {
       r.fail(`element ${e} has a bad domain`);
     }
   }
+  // Each node's square of its ptex face, from its parent's (children follow their parent): a
+  // leaf's record must cover exactly its square, or a walk that ends there evaluates the element
+  // far outside its domain (a size of 1e-30 gave Inf UVs and NaN displaced points); a node
+  // reached twice or deeper than the GPU's walk (24 levels, fvar_eval.glsl) is refused.
+  const level = new Int32Array(nodeCount).fill(-1), ci = new Uint32Array(nodeCount), cj = new Uint32Array(nodeCount);
+  level.fill(0, 0, ptexCount);
+  for (let n = 0; n < nodeCount; n++) {
+    const v = nodes[n];
+    if (level[n] < 0 || v === HOLE) continue;
+    if (v >= LEAF) {
+      const o = 36 * (v - LEAF), size = 2 ** -level[n];
+      if (records[o] !== ci[n] * size || records[o + 1] !== cj[n] * size || records[o + 2] !== size) {
+        r.fail(`node ${n} names element ${v - LEAF}, whose domain is not the node's square`);
+      }
+      continue;
+    }
+    if (level[n] >= 24) r.fail(`node ${n} is deeper than 24 levels`);
+    for (let k = 0; k < 4; k++) {
+      if (level[v + k] >= 0) r.fail(`node ${v + k} has two parents`);
+      level[v + k] = level[n] + 1; ci[v + k] = 2 * ci[n] + (k & 1); cj[v + k] = 2 * cj[n] + (k >> 1);
+    }
+  }
   if (ptexCount !== expected.ptexCount) r.fail("ptex face count differs from the mesh's");
   if (depth !== expected.depth) r.fail(`made at depth ${depth}, but the tables (TBLS) have depth ${expected.depth}; re-run limn-tables`);
   if (topology !== expected.topologyHash) r.fail('the smooth UV surface was built for a different mesh topology or tags; re-run limn-tables');

@@ -191,6 +191,11 @@ test('FVSF: read with smooth UVs, refused by name when cut, stale or cyclic', ()
   // A hole (0xFFFFFFFF) where the tables draw: every walk from a drawn point must end in an
   // element (the seam fix's walks threw a bare Error, with its stack, from smooth_uvs.mjs).
   expectLimnError(patched(32, 0xffffffff), /chunk FVSF: no UV element where the tables draw ptex face 0/);
+  // A record's domain that is not its leaf's square (size 1e-30): finite and inside [0, 1], but
+  // a walk ending there evaluated the element far outside it (Inf UVs, NaN in --mesh-out).
+  const tinyRecord = p.slice();
+  new DataView(tinyRecord.buffer).setFloat32(32 + 4 * s.fvarSurface.nodes.length + 8, 1e-30, true);
+  expectLimnError(withPayload(tinyRecord), /chunk FVSF: node \d+ names element 0, whose domain is not the node's square/);
   const inner = [...s.fvarSurface.nodes].findIndex((v) => v < 0x80000000);
   if (inner >= 0) expectLimnError(patched(32 + 4 * (s.fvarSurface.nodes[inner] + 3), 0xffffffff), /chunk FVSF: no UV element where the tables draw/);
   // The UVs changed after limn-tables: a value of FVUV moved (its first f64, 16 bytes in).
