@@ -34,8 +34,10 @@ Mesh faceVaryingMesh(const Mesh& mesh, const SchemeOptions& options);
 
 class FaceVaryingSurface {
   public:
-    // `depth`: that of the geometry's tables, so their lattice of drawn points is this one's.
-    FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& options, uint32_t depth, Warnings& warnings);
+    // `depth`: that of the geometry's tables, so their lattice of drawn points is this one's;
+    // `irregularLevels`: their K, the levels of the irregular faces' surface (docs/irregular.md).
+    FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& options, uint32_t depth, uint32_t irregularLevels,
+                       Warnings& warnings);
 
     // The UV at (u, v) of ptex face `ptex`, from the element that contains the point just inside
     // toward (towardU, towardV) (any element containing it gives the same limit; this picks one).
@@ -46,9 +48,12 @@ class FaceVaryingSurface {
     // The surface as the GPU reads it (shaders/fvar_eval.glsl): `nodes` is a quadtree per ptex
     // face, nodes[p] the root of ptex face p; a node is a leaf 0x80000000 | element, 0xFFFFFFFF
     // (no element: a hole), or the index of its four children (i, j) = (0,0), (1,0), (0,1), (1,1).
-    // `records` holds 9 per element: (u0, v0, size, 0 for a patch / 1 for an irregular face), then
+    // `records` holds 9 per element: (u0, v0, size, 0 for a patch / 1 for a bilinear face), then
     // the patch's 16 UV control points P_ij at 4j + i, phantoms applied, as 8 (P, P) pairs, or
-    // the irregular face's 4 corner limit UVs in the first two.
+    // the bilinear face's 4 corner limit UVs in the first two. The elements are the patches, then
+    // each irregular face's surface as pieces: its sub-patches (quadtree or per-valence basis,
+    // control points summed once) and its leaves within 2^-K of an extraordinary corner, which
+    // are bilinear (docs/irregular.md); a face without a surface (K = 0) is one bilinear record.
     struct Gpu {
         std::vector<uint32_t> nodes;
         std::vector<glm::vec4> records;

@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
             tables = buildTables(mesh, c.options, opts, warnings);
             // Smooth face-varying UVs: their own surface, for runtimes that do not build it.
             if (mesh.hasUVs() && c.options.fvar != FVarRule::All)
-                fvar = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(mesh, c.options, depth, warnings));
+                fvar = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(mesh, c.options, depth, tables.irregularLevels, warnings));
         } catch (Error& e) {
             e.setFile(name);
             throw;
