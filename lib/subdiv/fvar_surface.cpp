@@ -174,7 +174,7 @@ uint32_t sizeExponent(float size) { return static_cast<uint32_t>(std::lround(-st
 } // namespace
 
 FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o, uint32_t depth,
-                                       uint32_t irregularLevels, Warnings& warnings)
+                                       uint32_t irregularLevels, Warnings& warnings, size_t maxGpuRecordBytes)
     : depth_(depth) {
     Mesh uv = faceVaryingMesh(mesh, o);
     for (size_t f = 0; f < mesh.faceCount(); ++f) ptexCount_ += mesh.faceSize(f) == 4 ? 1 : mesh.faceSize(f);
@@ -200,6 +200,38 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     for (uint32_t i = 0; i < P; ++i) add(i, tables_.patches[i].ptex, tables_.patches[i].u0, tables_.patches[i].v0, tables_.patches[i].size);
     for (uint32_t i = 0; i < tables_.irregular.size(); ++i)
         add(P + i, tables_.irregular[i].ptex, tables_.irregular[i].u0, tables_.irregular[i].v0, tables_.irregular[i].size);
+    // The GPU's pieces cost about 3 records a level per irregular face (19 at K = 6 instead of
+    // 1): on meshes where nearly every face is irregular (triangulated scans) that would
+    // overflow a storage buffer. Above maxGpuRecordBytes the pieces stop at fewer levels (their
+    // deepest squares bilinear in exact corners), and the warning says so.
+    gpuLevels_ = tables_.irregularLevels;
+    while (gpuLevels_ > 0 && gpuElementCount(gpuLevels_) * 144 > maxGpuRecordBytes) --gpuLevels_;
+    if (gpuLevels_ < tables_.irregularLevels)
+        warnings.add("the smooth UVs' irregular faces are drawn exact beyond 2^-" + std::to_string(gpuLevels_) +
+                     " of their extraordinary corners only (not 2^-" + std::to_string(tables_.irregularLevels) +
+                     "): their " + std::to_string(tables_.irregularLevels) + "-level surface would take more than " +
+                     std::to_string(maxGpuRecordBytes >> 20) + " MiB of GPU records");
+}
+
+size_t FaceVaryingSurface::gpuElementCount(uint32_t levels) const {
+    size_t n = tables_.patches.size();
+    auto count = [&](auto&& self, uint32_t node, uint32_t depth) -> size_t {
+        size_t c = 0;
+        for (uint32_t code : tables_.irregularNodes[node]) {
+            if (code == kNodeNone) continue;
+            const bool child = (code & ~kNodeIndexMask) == kNodeChild;
+            c += child && depth + 1 < levels ? self(self, code & kNodeIndexMask, depth + 1) : 1;
+        }
+        return c;
+    };
+    for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
+        const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
+        if (root == kNodeNone || levels == 0) ++n;
+        else if ((root & ~kNodeIndexMask) == kNodeBasis)
+            n += 3 * std::min(levels, tables_.irregularBases[tables_.smoothIrregular[root & kNodeIndexMask].basis].levels) + 1;
+        else n += count(count, q, 0);
+    }
+    return n;
 }
 
 namespace {
@@ -208,12 +240,12 @@ namespace {
 // sub-patches as patch(ptex, u0, v0, size, Q) and its leaf as bilinear(ptex, u0, v0, size, corners).
 template <class PatchFn, class BilinearFn>
 void smoothRecords(const Tables& tables_, std::span<const glm::dvec3> vertices_, std::span<const LimitPoint> limits_,
-                   uint32_t face, uint32_t smooth, PatchFn&& patch, BilinearFn&& bilinear) {
+                   uint32_t face, uint32_t smooth, uint32_t levels, PatchFn&& patch, BilinearFn&& bilinear) {
     // The bands of evaluateIrregular's per-valence basis, turned from the band's frame (a, c),
     // the extraordinary corner at (0, 0), to the ptex face's (s, t): a rotation by the corner.
     const IrregularFace& f = tables_.irregular[face];
     const Tables::SmoothIrregular& sm = tables_.smoothIrregular[smooth];
-    const uint32_t K = tables_.irregularBases[sm.basis].levels, corner = sm.corner;
+    const uint32_t K = std::min(levels, tables_.irregularBases[sm.basis].levels), corner = sm.corner;
     // The ptex-face square whose (a, c) square is [a0, a0 + h] x [c0, c0 + h], and which of its
     // band-frame control points P[i][j] is its ptex-frame Q[i'][j'] (B_i(1 - x) = B_{3-i}(x)).
     auto square = [&](double a0, double c0, double h, double& s0, double& t0) {
@@ -304,14 +336,24 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
         for (int k = 0; k < 4; ++k) c[k] = limits_[f.corner[k]].position;
     };
     // Quadtree node `node` covering [u0, u0 + size]^2 (plus v0) of ptex face `ptex`.
-    auto walk = [&](auto&& self, uint32_t node, uint32_t ptex, double u0, double v0, double size) -> void {
+    // (fs, ft, fh: the node's square in its face's (s, t), for the pieces cut at gpuLevels_.)
+    auto walk = [&](auto&& self, uint32_t face, uint32_t node, uint32_t depth, double u0, double v0, double size,
+                    double fs, double ft, double fh) -> void {
+        const uint32_t ptex = tables_.irregular[face].ptex;
         for (uint32_t c = 0; c < 4; ++c) {
             const uint32_t code = tables_.irregularNodes[node][c];
             const double h = size / 2, cu = u0 + (c & 1) * h, cv = v0 + (c >> 1) * h;
+            const double gh = fh / 2, gs = fs + (c & 1) * gh, gt = ft + (c >> 1) * gh;
             const uint32_t kind = code & ~kNodeIndexMask, index = code & kNodeIndexMask;
             if (code == kNodeNone) continue;
-            if (kind == kNodeChild) {
-                self(self, index, ptex, cu, cv, h);
+            if (kind == kNodeChild && depth + 1 >= gpuLevels_) { // cut: bilinear in its exact corners
+                glm::dvec3 corners[4];
+                const double cs[4] = {gs, gs + gh, gs + gh, gs}, ct[4] = {gt, gt, gt + gh, gt + gh};
+                for (int k = 0; k < 4; ++k)
+                    corners[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
+                bilinearRecord(ptex, cu, cv, h, corners);
+            } else if (kind == kNodeChild) {
+                self(self, face, index, depth + 1, cu, cv, h, gs, gt, gh);
             } else if (kind == kNodeSubPatch) {
                 glm::dvec3 C[4][4];
                 gatherControlPoints(tables_.subPatches[index], vertices_, C);
@@ -326,10 +368,10 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
     for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
         const IrregularFace& f = tables_.irregular[q];
         const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
-        if (root != kNodeNone && (root & ~kNodeIndexMask) == kNodeBasis) {
-            smoothRecords(tables_, vertices_, limits_, q, root & kNodeIndexMask, patchRecord, bilinearRecord);
-        } else if (root != kNodeNone) {
-            walk(walk, q, f.ptex, f.u0, f.v0, f.size);
+        if (root != kNodeNone && gpuLevels_ > 0 && (root & ~kNodeIndexMask) == kNodeBasis) {
+            smoothRecords(tables_, vertices_, limits_, q, root & kNodeIndexMask, gpuLevels_, patchRecord, bilinearRecord);
+        } else if (root != kNodeNone && gpuLevels_ > 0) {
+            walk(walk, q, q, 0, f.u0, f.v0, f.size, 0.0, 0.0, 1.0);
         } else { // tables without the irregular surface: the bilinear blend of its corners
             glm::dvec3 corners[4];
             limitsOf(f, corners);

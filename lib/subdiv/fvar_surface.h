@@ -34,10 +34,13 @@ Mesh faceVaryingMesh(const Mesh& mesh, const SchemeOptions& options);
 
 class FaceVaryingSurface {
   public:
+    static constexpr size_t kMaxGpuRecordBytes = size_t(64) << 20; // half a WebGPU storage buffer
+
     // `depth`: that of the geometry's tables, so their lattice of drawn points is this one's;
     // `irregularLevels`: their K, the levels of the irregular faces' surface (docs/irregular.md).
+    // `maxGpuRecordBytes`: see gpuLevels().
     FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& options, uint32_t depth, uint32_t irregularLevels,
-                       Warnings& warnings);
+                       Warnings& warnings, size_t maxGpuRecordBytes = kMaxGpuRecordBytes);
 
     // The UV at (u, v) of ptex face `ptex`, from the element that contains the point just inside
     // toward (towardU, towardV) (any element containing it gives the same limit; this picks one).
@@ -59,6 +62,10 @@ class FaceVaryingSurface {
         std::vector<glm::vec4> records;
     };
     Gpu gpu() const;
+    // The levels of the irregular faces' pieces in gpu(): the tables' K, fewer where that would
+    // take more than maxGpuRecordBytes (then the constructor warned; the deepest squares are
+    // bilinear in their exact corners).
+    uint32_t gpuLevels() const { return gpuLevels_; }
 
   private:
     Tables tables_;
@@ -68,6 +75,8 @@ class FaceVaryingSurface {
     std::unordered_map<uint64_t, uint32_t> cells_;
     uint32_t depth_;
     uint32_t ptexCount_ = 0;
+    uint32_t gpuLevels_ = 0;
+    size_t gpuElementCount(uint32_t levels) const;
 };
 
 } // namespace limn

@@ -98,6 +98,44 @@ TEST(FvarSurfaceChunk, StoresTheUVSurfaceLosslessly) {
     }
 }
 
+// Where the pieces of every irregular face would take too many GPU records, they stop at fewer
+// levels (and say so): still exact on the lattice of their deepest squares.
+TEST(FvarSurfaceChunk, FewerLevelsOverTheRecordBudgetStayExactAtTheirCorners) {
+    SchemeOptions o;
+    const Mesh m = loadSmooth("quad/spot_control_mesh.obj", o);
+    const uint32_t depth = 2;
+    Warnings none;
+    const FaceVaryingSurface full(m, o, depth, kLevels, none);
+    EXPECT_EQ(full.gpuLevels(), kLevels);
+    EXPECT_TRUE(none.empty());
+    uint32_t previous = kLevels;
+    for (size_t budget : {size_t(1) << 20, size_t(1) << 19, size_t(0)}) {
+        Warnings w;
+        const FaceVaryingSurface cut(m, o, depth, kLevels, w, budget);
+        const uint32_t L = cut.gpuLevels();
+        SCOPED_TRACE(L);
+        EXPECT_LE(L, previous);
+        previous = L;
+        EXPECT_LT(L, kLevels);
+        EXPECT_EQ(w.messages.size(), 1u);
+        FvarSurfaceChunk c;
+        c.surface = cut.gpu();
+        // Level-2 faces are 1/4 of a quad's ptex face, 1/2 of an n-gon's sub-face's.
+        const int n = 1 << (depth - 1 + L);
+        double worst = 0;
+        for (uint32_t p = 0; p < ptexFaceCount(m); ++p)
+            for (int i = 0; i <= n; ++i)
+                for (int j = 0; j <= n; ++j) {
+                    double uv[2];
+                    ASSERT_TRUE(chunkUV(c, p, double(i) / n, double(j) / n, uv));
+                    const glm::dvec2 want = full.uvAt(p, double(i) / n, double(j) / n, 0.5, 0.5);
+                    worst = std::max({worst, std::fabs(uv[0] - want.x), std::fabs(uv[1] - want.y)});
+                }
+        EXPECT_LT(worst, 1e-5);
+    }
+    EXPECT_EQ(previous, 0u);
+}
+
 TEST(FvarSurfaceChunk, RefusesAnotherMeshOrOtherUVs) {
     SchemeOptions o;
     Mesh m = loadSmooth("quad/osd_catmark_fvar_bound1.obj", o);
