@@ -5,12 +5,13 @@
 // span of faces around a base vertex, the same faces with UV corners, so UV seams are its
 // boundaries; the base mesh's creases, corners and holes carried over; and the UV boundary
 // values sharpened into corners exactly where OpenSubdiv's Vtr::FVarLevel sharpens them for the
-// mode (completeTopologyFromFaceValues, v3_6_0). limn's own feature-adaptive tables of that mesh
-// then give its limit surface: a B-spline where it is regular, limit points at the corners of
-// its level-N irregular faces. The mesh has the same faces in the same order as the base mesh,
-// so the ptex parameterization is shared and the UV at (ptex, u, v) is the UV surface's point
-// there. Drawn vertices lie on the level-N lattice, i.e. on patches or on the corners of level-N
-// faces, where this is the exact limit (as exact as limn's limit masks).
+// mode (completeTopologyFromFaceValues, v3_6_0). limn's own feature-adaptive tables of that mesh,
+// with the geometry's depth and irregular levels K, then give its limit surface: a B-spline
+// where it is regular, and on its level-N irregular faces the surface the geometry's evaluator
+// gives (evaluateIrregular: sub-patches of a quadtree or of a per-valence basis; bilinear only
+// within 2^-K of an extraordinary corner, docs/irregular.md). The mesh has the same faces in the
+// same order as the base mesh, so the ptex parameterization is shared and the UV at (ptex, u, v)
+// is the UV surface's point there.
 #pragma once
 
 #include "base/warnings.h"
