@@ -20,7 +20,8 @@ namespace {
 // texture shadings the variants without the other modes' code (why in surface_fragment.glsl).
 std::span<const uint32_t> surfaceFragment(const gpu::TargetFormat& target, Shade shade) {
     using Code = std::span<const uint32_t>;
-    if (shade == Shade::Lit) return target.sampleShading ? Code(surface_lit_per_sample_frag_spv) : Code(surface_lit_frag_spv);
+    if (shade == Shade::Lit)
+        return target.sampleShading ? Code(surface_lit_per_sample_frag_spv) : Code(surface_lit_frag_spv);
     if (shade == Shade::Texture)
         return target.sampleShading ? Code(surface_texture_per_sample_frag_spv) : Code(surface_texture_frag_spv);
     return target.sampleShading ? Code(surface_per_sample_frag_spv) : Code(surface_frag_spv);
