@@ -23,6 +23,9 @@ namespace limn::render {
 // shows the rates view-adaptive tessellation chose; --wire-triangles).
 enum class Wire : uint8_t { None, Outlines, Triangles };
 
+// The surfaces' shading (--shade); DrawPush::shade.
+enum class Shade : uint32_t { Lit = 0, Normal = 1, Uv = 2, Levels = 3, Texture = 4 }; // SHADE_*
+
 // Mirrors DrawPush in shaders/draw_common.glsl (std430 push-constant layout).
 struct DrawPush {
     float viewProj[16];

@@ -205,7 +205,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         pass_ = std::make_unique<SubdivisionPass>(
             ctx, std::move(draw),
             settings.evalInCompute ? SubdivisionPass::Eval::Compute : SubdivisionPass::Eval::Vertex,
-            settings.evaluateVertices || settings.wire != Wire::None, settings.shade == Shade::Levels,
+            settings.evaluateVertices || settings.wire != Wire::None, settings.shade,
             settings.displacementMap ? &displacement : nullptr, settings.texture,
             viewAdaptive_ ? &adaptive : nullptr, targetFormat_);
     } else {

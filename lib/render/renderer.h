@@ -43,8 +43,6 @@ struct BlendSurface;
 
 namespace limn::render {
 
-enum class Shade : uint32_t { Lit = 0, Normal = 1, Uv = 2, Levels = 3, Texture = 4 }; // SHADE_*
-
 // From the camera's upper left: it lights the faces turned up and to the left, shades the ones
 // turned right and down, and from 40 degrees off the view axis puts the terminator well inside
 // the silhouette, which is what shows the form.

@@ -329,7 +329,7 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
             // ptex domain, its corners' smooth UVs (the displaced normals' bilinear estimate) and,
             // with displacement, the seam records of the smooth UVs.
             Warnings ignored; // the geometry's tables already reported the mesh's warnings
-            const FaceVaryingSurface surface(mesh, t.options, t.depth, ignored);
+            const FaceVaryingSurface surface(mesh, t.options, t.depth, t.irregularLevels, ignored);
             FaceVaryingSurface::Gpu g = surface.gpu();
             d.fvarNodes = std::move(g.nodes);
             d.fvarRecords = std::move(g.records);
@@ -358,7 +358,7 @@ SubdivisionDraw prepareSubdivision(const Mesh& mesh, const Tables& t, uint32_t t
     std::unique_ptr<ChartUVs> chartUVs;
     if (d.hasUVs && t.options.fvar != FVarRule::All) {
         Warnings ignored; // the tables of the geometry already reported the mesh's warnings
-        fvar = std::make_unique<FaceVaryingSurface>(mesh, t.options, t.depth, ignored);
+        fvar = std::make_unique<FaceVaryingSurface>(mesh, t.options, t.depth, t.irregularLevels, ignored);
         chartUVs = std::make_unique<ChartUVs>(mesh, *fvar, 1u << t.depth);
     }
     Tessellation tess = buildTessellation(mesh, t, tessCap, d.hasUVs, chartUVs.get());

@@ -16,10 +16,15 @@ namespace limn::render {
 namespace {
 
 // The surface's fragment stage: each covered sample shaded on its own with --sample-shading
-// (surface_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN).
-std::span<const uint32_t> surfaceFragment(const gpu::TargetFormat& target) {
-    return target.sampleShading ? std::span<const uint32_t>(surface_per_sample_frag_spv)
-                                : std::span<const uint32_t>(surface_frag_spv);
+// (surface_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN), and for the lit and
+// texture shadings the variants without the other modes' code (why in surface_fragment.glsl).
+std::span<const uint32_t> surfaceFragment(const gpu::TargetFormat& target, Shade shade) {
+    using Code = std::span<const uint32_t>;
+    if (shade == Shade::Lit)
+        return target.sampleShading ? Code(surface_lit_per_sample_frag_spv) : Code(surface_lit_frag_spv);
+    if (shade == Shade::Texture)
+        return target.sampleShading ? Code(surface_texture_per_sample_frag_spv) : Code(surface_texture_frag_spv);
+    return target.sampleShading ? Code(surface_per_sample_frag_spv) : Code(surface_frag_spv);
 }
 
 struct LevelPush { // subdiv_face_points.comp, subdiv_stencils.comp
@@ -38,7 +43,7 @@ using gpu::uploadBufferNow; // absent tables get one zero element
 
 struct SubdivisionPass::Gpu {
     Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate, const Displacement* disp,
-        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions, gpu::TargetFormat target)
+        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions, gpu::TargetFormat target, Shade shade)
         : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
           faceStarts(uploadBufferNow(ctx, "face-point starts", d.faceStarts)),
           faceIndices(uploadBufferNow(ctx, "face-point indices", d.faceIndices)),
@@ -58,8 +63,8 @@ struct SubdivisionPass::Gpu {
           facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
           stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
           limitPass(ctx, {"limit points", subdiv_limit_comp_spv, 5, sizeof(LimitPush)}),
-          surface(ctx, {"surface", surface_vert_spv, surfaceFragment(target), 8, sizeof(DrawPush)}, target),
-          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surfaceFragment(target), 8,
+          surface(ctx, {"surface", surface_vert_spv, surfaceFragment(target, shade), 8, sizeof(DrawPush)}, target),
+          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surfaceFragment(target, shade), 8,
                              sizeof(DrawPush)},
                        target) {
         const gpu::Buffer& tv = tess->tessVertices();
@@ -134,15 +139,15 @@ struct SubdivisionPass::Gpu {
 };
 
 SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval,
-                                 bool keepEvaluated, bool levels, const Displacement* displacement,
+                                 bool keepEvaluated, Shade shade, const Displacement* displacement,
                                  const FloatImage* texture, const AdaptiveOptions* adaptive,
                                  gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
-      levels_(levels), target_(target) {
+      levels_(shade == Shade::Levels), shade_(shade), target_(target) {
     if (displacement && eval != Eval::Compute)
         throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
                                       "come from a compute pass over the displaced vertices)");
-    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target);
+    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target, shade);
     mayCullBackFaces_ = adaptive && adaptive->backFaceCull && draw_.closed;
     if (mayCullBackFaces_) {
         orientation_ = draw_.orientation;
@@ -172,7 +177,7 @@ const gpu::GraphicsPipeline& SubdivisionPass::culledPipeline(float facing) {
             ctx_, gpu::GraphicsPipelineDesc{"surface (back faces culled)",
                                             fetch ? std::span<const uint32_t>(surface_fetch_vert_spv)
                                                   : std::span<const uint32_t>(surface_vert_spv),
-                                            surfaceFragment(target_), 8, sizeof(DrawPush), gpu::Primitive::Triangles,
+                                            surfaceFragment(target_, shade_), 8, sizeof(DrawPush), gpu::Primitive::Triangles,
                                             gpu::DepthTest::Less, true, facing > 0 ? gpu::Cull::Back : gpu::Cull::Front},
             target_);
     }
@@ -235,6 +240,8 @@ void SubdivisionPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
 
 void SubdivisionPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) {
     auto& g = *gpu_;
+    if (push.shade != static_cast<uint32_t>(shade_))
+        throw Error(ErrorKind::BadInput, "internal: a subdivision draw shaded otherwise than its pass was built for");
     push.patchCount = static_cast<uint32_t>(draw_.patches.size());
     const auto& bindings = eval_ == Eval::Compute ? g.fetchBindings : g.surfaceBindings;
     // --back-faces shows back faces on purpose (crack counts): never culled then.

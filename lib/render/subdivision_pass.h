@@ -27,13 +27,14 @@ public:
     // the draw data must be prepared for the one chosen).
     // `keepEvaluated`: with Eval::Vertex, also evaluate every vertex into buffers (for --wire,
     // which draws lines through them, and --mesh-out).
+    // `shade`: the one shading every recordDraw pushes (its fragment stage is compiled for it).
     // Displacement (paper 000, 4.5): every drawn vertex moves along its limit normal by
     // scale * (sample - mid); needs Eval::Compute and draw data prepared with a plan.
     struct Displacement {
         const FloatImage* map = nullptr; // channel 0 is the height
         float scale = 1, mid = 0;
     };
-    SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval, bool keepEvaluated, bool levels,
+    SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval eval, bool keepEvaluated, Shade shade,
                     const Displacement* displacement = nullptr, const FloatImage* texture = nullptr,
                     const AdaptiveOptions* adaptive = nullptr, gpu::TargetFormat target = {});
     ~SubdivisionPass() override;
@@ -61,6 +62,7 @@ private:
     SubdivisionDraw draw_;
     Eval eval_;
     bool evaluate_, levels_;
+    Shade shade_;
     AdaptiveView view_;
     float orientation_ = 0; // sign of the control mesh's volume where back faces may be culled
     bool mayCullBackFaces_ = false; // closed, and culling asked for

@@ -179,19 +179,29 @@ std::vector<LimitPoint> evaluateLimitPoints(const Tables& t, std::span<const glm
 
 namespace {
 
-// A smooth irregular face's band-k sub-patch in quadrant q at its local (s, t): its control
-// points from the basis weights of the face's support (irregular_basis.h).
-SurfacePoint basisPatch(const Tables& t, const Tables::SmoothIrregular& f, std::span<const glm::dvec3> V,
-                        uint32_t k, uint32_t q, double s, double tt) {
+} // namespace
+
+void smoothSubPatchControlPoints(const Tables& t, uint32_t smooth, std::span<const glm::dvec3> V, uint32_t k,
+                                 uint32_t q, glm::dvec3 P[4][4]) {
+    const Tables::SmoothIrregular& f = t.smoothIrregular[smooth];
     const IrregularBasis& b = t.irregularBases[f.basis];
     const uint32_t M = b.supportSize();
     const float* w = b.weights.data() + (size_t(k - 1) * 3 + (q - 1)) * 16 * M;
-    glm::dvec3 P[4][4];
     for (int j = 0; j < 16; ++j) {
         glm::dvec3 c(0.0);
         for (uint32_t i = 0; i < M; ++i) c += double(w[size_t(j) * M + i]) * V[t.smoothPoints[f.first + i]];
         P[j % 4][j / 4] = c;
     }
+}
+
+namespace {
+
+// A smooth irregular face's band-k sub-patch in quadrant q at its local (s, t): its control
+// points from the basis weights of the face's support (irregular_basis.h).
+SurfacePoint basisPatch(const Tables& t, uint32_t smooth, std::span<const glm::dvec3> V,
+                        uint32_t k, uint32_t q, double s, double tt) {
+    glm::dvec3 P[4][4];
+    smoothSubPatchControlPoints(t, smooth, V, k, q, P);
     double bu[4], du[4], bv[4], dv[4];
     bsplineBasis(s, bu, du);
     bsplineBasis(tt, bv, dv);
@@ -233,11 +243,11 @@ SurfacePoint evaluateSmooth(const Tables& t, std::span<const glm::dvec3> V, std:
     if (std::max(a, c) >= 0.5) {
         const uint32_t qu = a >= 0.5 ? 1 : 0, qv = c >= 0.5 ? 1 : 0;
         const uint32_t q = qu && !qv ? 1 : qu && qv ? 2 : 3;
-        return basisPatch(t, f, V, k, q, 2 * a - qu, 2 * c - qv);
+        return basisPatch(t, smooth, V, k, q, 2 * a - qu, 2 * c - qv);
     }
     if (exact) *exact = false;
-    const SurfacePoint c1 = basisPatch(t, f, V, k, 1, 0, 0), c2 = basisPatch(t, f, V, k, 2, 0, 0),
-                       c3 = basisPatch(t, f, V, k, 3, 0, 0);
+    const SurfacePoint c1 = basisPatch(t, smooth, V, k, 1, 0, 0), c2 = basisPatch(t, smooth, V, k, 2, 0, 0),
+                       c3 = basisPatch(t, smooth, V, k, 3, 0, 0);
     const double x = 2 * a, y = 2 * c;
     const double w[4] = {(1 - x) * (1 - y), x * (1 - y), x * y, (1 - x) * y};
     r.position = w[0] * ev.position + w[1] * c1.position + w[2] * c2.position + w[3] * c3.position;

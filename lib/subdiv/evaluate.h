@@ -48,6 +48,13 @@ SurfacePoint evaluateIrregular(const Tables& tables, std::span<const glm::dvec3>
                                std::span<const LimitPoint> limits, uint32_t face, double s,
                                double t, bool* exact = nullptr);
 
+// The 16 control points P[i][j] (i along the band's first axis, away from the extraordinary
+// corner) of smooth irregular face `smooth`'s band-k sub-patch in quadrant q (irregular_basis.h:
+// per-valence weights of its support points), as evaluateIrregular sums them. For data that
+// does not change per frame (smooth face-varying UVs) they are worth computing once.
+void smoothSubPatchControlPoints(const Tables& tables, uint32_t smooth, std::span<const glm::dvec3> vertices,
+                                 uint32_t k, uint32_t q, glm::dvec3 P[4][4]);
+
 // Uniform cubic B-spline basis and its derivative at t in [0,1] (paper 000, section 3.2).
 void bsplineBasis(double t, double b[4], double d[4]);
 

@@ -16,13 +16,13 @@ uint64_t fvarUVHash(const Mesh& mesh) {
 }
 
 FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& options, uint32_t depth,
-                                      Warnings& warnings) {
+                                      uint32_t irregularLevels, Warnings& warnings) {
     FvarSurfaceChunk c;
     c.depth = depth;
     c.topologyHash = topologyHash(mesh, options);
     c.uvHash = fvarUVHash(mesh);
     c.ptexCount = ptexFaceCount(mesh);
-    c.surface = FaceVaryingSurface(mesh, options, depth, warnings).gpu();
+    c.surface = FaceVaryingSurface(mesh, options, depth, irregularLevels, warnings).gpu();
     c.elementCount = static_cast<uint32_t>(c.surface.records.size() / 9);
     return c;
 }

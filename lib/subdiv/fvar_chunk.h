@@ -29,9 +29,10 @@ struct FvarSurfaceChunk {
 // The hash of a mesh's UVs (values, then per-corner indices) that FVSF records.
 uint64_t fvarUVHash(const Mesh& mesh);
 
-// For `mesh` with UVs and `options.fvar` other than All: its UV surface at the tables' depth.
+// For `mesh` with UVs and `options.fvar` other than All: its UV surface at the tables' depth
+// and irregular levels K (their irregular faces' surface, docs/irregular.md).
 FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& options, uint32_t depth,
-                                      Warnings& warnings);
+                                      uint32_t irregularLevels, Warnings& warnings);
 
 Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& fvar);
 

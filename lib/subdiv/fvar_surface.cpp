@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <span>
 #include <string>
 
 namespace limn {
@@ -172,7 +173,8 @@ uint32_t sizeExponent(float size) { return static_cast<uint32_t>(std::lround(-st
 
 } // namespace
 
-FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o, uint32_t depth, Warnings& warnings)
+FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o, uint32_t depth,
+                                       uint32_t irregularLevels, Warnings& warnings, size_t maxGpuRecordBytes)
     : depth_(depth) {
     Mesh uv = faceVaryingMesh(mesh, o);
     for (size_t f = 0; f < mesh.faceCount(); ++f) ptexCount_ += mesh.faceSize(f) == 4 ? 1 : mesh.faceSize(f);
@@ -182,7 +184,10 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     uo.triangles = o.triangles;
     TablesOptions to;
     to.depth = static_cast<int>(depth);
-    to.irregularLevels = 0; // the UVs of irregular faces stay bilinear (docs/irregular.md)
+    // The geometry's K: the UV surface of an irregular face is exact wherever its position is
+    // (docs/irregular.md), from the same machinery (quadtrees, per-valence bases).
+    // Capped so that the finest UV element stays within the GPU's float walk (fvar_eval.glsl).
+    to.irregularLevels = static_cast<int>(std::min(irregularLevels, uint32_t(kMaxDepth) - std::min(depth, uint32_t(kMaxDepth))));
     tables_ = buildTables(uv, uo, to, warnings);
     vertices_ = evaluateVertices(tables_, uv.positions);
     limits_ = evaluateLimitPoints(tables_, vertices_);
@@ -197,7 +202,87 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     for (uint32_t i = 0; i < P; ++i) add(i, tables_.patches[i].ptex, tables_.patches[i].u0, tables_.patches[i].v0, tables_.patches[i].size);
     for (uint32_t i = 0; i < tables_.irregular.size(); ++i)
         add(P + i, tables_.irregular[i].ptex, tables_.irregular[i].u0, tables_.irregular[i].v0, tables_.irregular[i].size);
+    // The GPU's pieces cost about 3 records a level per irregular face (19 at K = 6 instead of
+    // 1): on meshes where nearly every face is irregular (triangulated scans) that would
+    // overflow a storage buffer. Above maxGpuRecordBytes the pieces stop at fewer levels (their
+    // deepest squares bilinear in exact corners), and the warning says so.
+    gpuLevels_ = tables_.irregularLevels;
+    while (gpuLevels_ > 0 && gpuElementCount(gpuLevels_) * 144 > maxGpuRecordBytes) --gpuLevels_;
+    if (gpuLevels_ < tables_.irregularLevels)
+        warnings.add("the smooth UVs' irregular faces are drawn exact beyond 2^-" + std::to_string(gpuLevels_) +
+                     " of their extraordinary corners only (not 2^-" + std::to_string(tables_.irregularLevels) +
+                     "): their " + std::to_string(tables_.irregularLevels) + "-level surface would take more than " +
+                     std::to_string(maxGpuRecordBytes >> 20) + " MiB of GPU records");
 }
+
+size_t FaceVaryingSurface::gpuElementCount(uint32_t levels) const {
+    size_t n = tables_.patches.size();
+    auto count = [&](auto&& self, uint32_t node, uint32_t depth) -> size_t {
+        size_t c = 0;
+        for (uint32_t code : tables_.irregularNodes[node]) {
+            if (code == kNodeNone) continue;
+            const bool child = (code & ~kNodeIndexMask) == kNodeChild;
+            c += child && depth + 1 < levels ? self(self, code & kNodeIndexMask, depth + 1) : 1;
+        }
+        return c;
+    };
+    for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
+        const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
+        if (root == kNodeNone || levels == 0) ++n;
+        else if ((root & ~kNodeIndexMask) == kNodeBasis)
+            n += 3 * std::min(levels, tables_.irregularBases[tables_.smoothIrregular[root & kNodeIndexMask].basis].levels) + 1;
+        else n += count(count, q, 0);
+    }
+    return n;
+}
+
+namespace {
+
+// The records of a smooth irregular face (`smooth` of tables.smoothIrregular): its band
+// sub-patches as patch(ptex, u0, v0, size, Q) and its leaf as bilinear(ptex, u0, v0, size, corners).
+template <class PatchFn, class BilinearFn>
+void smoothRecords(const Tables& tables_, std::span<const glm::dvec3> vertices_, std::span<const LimitPoint> limits_,
+                   uint32_t face, uint32_t smooth, uint32_t levels, PatchFn&& patch, BilinearFn&& bilinear) {
+    // The bands of evaluateIrregular's per-valence basis, turned from the band's frame (a, c),
+    // the extraordinary corner at (0, 0), to the ptex face's (s, t): a rotation by the corner.
+    const IrregularFace& f = tables_.irregular[face];
+    const Tables::SmoothIrregular& sm = tables_.smoothIrregular[smooth];
+    const uint32_t K = std::min(levels, tables_.irregularBases[sm.basis].levels), corner = sm.corner;
+    // The ptex-face square whose (a, c) square is [a0, a0 + h] x [c0, c0 + h], and which of its
+    // band-frame control points P[i][j] is its ptex-frame Q[i'][j'] (B_i(1 - x) = B_{3-i}(x)).
+    auto square = [&](double a0, double c0, double h, double& s0, double& t0) {
+        switch (corner) {
+        case 0: s0 = a0, t0 = c0; break;
+        case 1: s0 = 1 - c0 - h, t0 = a0; break;
+        case 2: s0 = 1 - a0 - h, t0 = 1 - c0 - h; break;
+        default: s0 = c0, t0 = 1 - a0 - h; break;
+        }
+    };
+    for (uint32_t k = 1; k <= K; ++k) {
+        const double h = std::ldexp(1.0, -int(k)); // the band's quadrants
+        for (uint32_t q = 1; q <= 3; ++q) {
+            const uint32_t qu = q == 3 ? 0 : 1, qv = q == 1 ? 0 : 1;
+            glm::dvec3 P[4][4], Q[4][4];
+            smoothSubPatchControlPoints(tables_, smooth, vertices_, k, q, P);
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; j < 4; ++j)
+                    Q[i][j] = corner == 0 ? P[i][j] : corner == 1 ? P[j][3 - i] : corner == 2 ? P[3 - i][3 - j] : P[3 - j][i];
+            double s0, t0;
+            square(qu * h, qv * h, h, s0, t0);
+            patch(f.ptex, f.u0 + s0 * f.size, f.v0 + t0 * f.size, h * f.size, Q);
+        }
+    }
+    // Within 2^-K of the corner: evaluateIrregular's bilinear leaf, its corners from it.
+    const double h = std::ldexp(1.0, -int(K));
+    double s0, t0;
+    square(0, 0, h, s0, t0);
+    glm::dvec3 c[4];
+    const double cs[4] = {s0, s0 + h, s0 + h, s0}, ct[4] = {t0, t0, t0 + h, t0 + h};
+    for (int k = 0; k < 4; ++k) c[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
+    bilinear(f.ptex, f.u0 + s0 * f.size, f.v0 + t0 * f.size, h * f.size, c);
+}
+
+} // namespace
 
 FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
     Gpu g;
@@ -229,15 +314,71 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
             g.records.push_back(glm::vec4(a.x, a.y, b.x, b.y));
         }
     }
-    for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
-        const IrregularFace& f = tables_.irregular[q];
-        insert(P + q, f.ptex, f.u0, f.v0, f.size);
-        g.records.push_back({f.u0, f.v0, f.size, 1.0f});
-        const glm::dvec3 c[4] = {limits_[f.corner[0]].position, limits_[f.corner[1]].position,
-                                 limits_[f.corner[2]].position, limits_[f.corner[3]].position};
+    // An irregular face is drawn from its surface's pieces (docs/irregular.md), each one record
+    // of its own: the sub-patches and leaves of its quadtree, or the band sub-patches of a
+    // per-valence basis with their control points summed here once (UVs do not change per
+    // frame). Elements are numbered in record order.
+    uint32_t next = P;
+    auto patchRecord = [&](uint32_t ptex, double u0, double v0, double size, const glm::dvec3 C[4][4]) {
+        insert(next++, ptex, float(u0), float(v0), float(size));
+        g.records.push_back({float(u0), float(v0), float(size), 0.0f});
+        for (int c = 0; c < 16; c += 2) {
+            const glm::dvec3 a = C[c % 4][c / 4], b = C[(c + 1) % 4][(c + 1) / 4];
+            g.records.push_back(glm::vec4(a.x, a.y, b.x, b.y));
+        }
+    };
+    auto bilinearRecord = [&](uint32_t ptex, double u0, double v0, double size, const glm::dvec3 c[4]) {
+        insert(next++, ptex, float(u0), float(v0), float(size));
+        g.records.push_back({float(u0), float(v0), float(size), 1.0f});
         g.records.push_back(glm::vec4(c[0].x, c[0].y, c[1].x, c[1].y));
         g.records.push_back(glm::vec4(c[2].x, c[2].y, c[3].x, c[3].y));
         g.records.insert(g.records.end(), 6, glm::vec4(0.0f));
+    };
+    auto limitsOf = [&](const IrregularFace& f, glm::dvec3 c[4]) {
+        for (int k = 0; k < 4; ++k) c[k] = limits_[f.corner[k]].position;
+    };
+    // Quadtree node `node` covering [u0, u0 + size]^2 (plus v0) of ptex face `ptex`.
+    // (fs, ft, fh: the node's square in its face's (s, t), for the pieces cut at gpuLevels_.)
+    auto walk = [&](auto&& self, uint32_t face, uint32_t node, uint32_t depth, double u0, double v0, double size,
+                    double fs, double ft, double fh) -> void {
+        const uint32_t ptex = tables_.irregular[face].ptex;
+        for (uint32_t c = 0; c < 4; ++c) {
+            const uint32_t code = tables_.irregularNodes[node][c];
+            const double h = size / 2, cu = u0 + (c & 1) * h, cv = v0 + (c >> 1) * h;
+            const double gh = fh / 2, gs = fs + (c & 1) * gh, gt = ft + (c >> 1) * gh;
+            const uint32_t kind = code & ~kNodeIndexMask, index = code & kNodeIndexMask;
+            if (code == kNodeNone) continue;
+            if (kind == kNodeChild && depth + 1 >= gpuLevels_) { // cut: bilinear in its exact corners
+                glm::dvec3 corners[4];
+                const double cs[4] = {gs, gs + gh, gs + gh, gs}, ct[4] = {gt, gt, gt + gh, gt + gh};
+                for (int k = 0; k < 4; ++k)
+                    corners[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
+                bilinearRecord(ptex, cu, cv, h, corners);
+            } else if (kind == kNodeChild) {
+                self(self, face, index, depth + 1, cu, cv, h, gs, gt, gh);
+            } else if (kind == kNodeSubPatch) {
+                glm::dvec3 C[4][4];
+                gatherControlPoints(tables_.subPatches[index], vertices_, C);
+                patchRecord(ptex, cu, cv, h, C);
+            } else if (kind == kNodeLeaf) {
+                glm::dvec3 corners[4];
+                limitsOf(tables_.irregularLeaves[index], corners);
+                bilinearRecord(ptex, cu, cv, h, corners);
+            }
+        }
+    };
+    for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
+        const IrregularFace& f = tables_.irregular[q];
+        const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
+        if (root != kNodeNone && gpuLevels_ > 0 && (root & ~kNodeIndexMask) == kNodeBasis) {
+            smoothRecords(tables_, vertices_, limits_, q, root & kNodeIndexMask, gpuLevels_, patchRecord, bilinearRecord);
+        } else if (root != kNodeNone && gpuLevels_ > 0) {
+            walk(walk, q, q, 0, f.u0, f.v0, f.size, 0.0, 0.0, 1.0);
+        } else { // tables without the irregular surface: the bilinear blend of its corners
+            glm::dvec3 corners[4];
+            limitsOf(f, corners);
+            bilinearRecord(f.ptex, f.u0, f.v0, f.size, corners);
+        }
     }
     return g;
 }
@@ -259,12 +400,8 @@ glm::dvec2 FaceVaryingSurface::uvAt(uint32_t ptex, double u, double v, double tu
             return {s.position.x, s.position.y};
         }
         const IrregularFace& q = tables_.irregular[e - P];
-        const double s = (u - q.u0) / q.size, t = (v - q.v0) / q.size;
-        const double w[4] = {(1 - s) * (1 - t), s * (1 - t), s * t, (1 - s) * t};
-        glm::dvec3 x(0.0);
-        for (int c = 0; c < 4; ++c)
-            if (w[c] != 0) x += w[c] * limits_[q.corner[c]].position;
-        return {x.x, x.y};
+        const SurfacePoint x = evaluateIrregular(tables_, vertices_, limits_, e - P, (u - q.u0) / q.size, (v - q.v0) / q.size);
+        return {x.position.x, x.position.y};
     }
     throw Error(ErrorKind::BadInput, "no face-varying element contains ptex face " + std::to_string(ptex) +
                                          " at (" + std::to_string(u) + ", " + std::to_string(v) + ")");

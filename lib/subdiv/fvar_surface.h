@@ -5,12 +5,13 @@
 // span of faces around a base vertex, the same faces with UV corners, so UV seams are its
 // boundaries; the base mesh's creases, corners and holes carried over; and the UV boundary
 // values sharpened into corners exactly where OpenSubdiv's Vtr::FVarLevel sharpens them for the
-// mode (completeTopologyFromFaceValues, v3_6_0). limn's own feature-adaptive tables of that mesh
-// then give its limit surface: a B-spline where it is regular, limit points at the corners of
-// its level-N irregular faces. The mesh has the same faces in the same order as the base mesh,
-// so the ptex parameterization is shared and the UV at (ptex, u, v) is the UV surface's point
-// there. Drawn vertices lie on the level-N lattice, i.e. on patches or on the corners of level-N
-// faces, where this is the exact limit (as exact as limn's limit masks).
+// mode (completeTopologyFromFaceValues, v3_6_0). limn's own feature-adaptive tables of that mesh,
+// with the geometry's depth and irregular levels K, then give its limit surface: a B-spline
+// where it is regular, and on its level-N irregular faces the surface the geometry's evaluator
+// gives (evaluateIrregular: sub-patches of a quadtree or of a per-valence basis; bilinear only
+// within 2^-K of an extraordinary corner, docs/irregular.md). The mesh has the same faces in the
+// same order as the base mesh, so the ptex parameterization is shared and the UV at (ptex, u, v)
+// is the UV surface's point there.
 #pragma once
 
 #include "base/warnings.h"
@@ -34,8 +35,13 @@ Mesh faceVaryingMesh(const Mesh& mesh, const SchemeOptions& options);
 
 class FaceVaryingSurface {
   public:
-    // `depth`: that of the geometry's tables, so their lattice of drawn points is this one's.
-    FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& options, uint32_t depth, Warnings& warnings);
+    static constexpr size_t kMaxGpuRecordBytes = size_t(64) << 20; // half a WebGPU storage buffer
+
+    // `depth`: that of the geometry's tables, so their lattice of drawn points is this one's;
+    // `irregularLevels`: their K, the levels of the irregular faces' surface (docs/irregular.md).
+    // `maxGpuRecordBytes`: see gpuLevels().
+    FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& options, uint32_t depth, uint32_t irregularLevels,
+                       Warnings& warnings, size_t maxGpuRecordBytes = kMaxGpuRecordBytes);
 
     // The UV at (u, v) of ptex face `ptex`, from the element that contains the point just inside
     // toward (towardU, towardV) (any element containing it gives the same limit; this picks one).
@@ -50,14 +56,21 @@ class FaceVaryingSurface {
     // The surface as the GPU reads it (shaders/fvar_eval.glsl): `nodes` is a quadtree per ptex
     // face, nodes[p] the root of ptex face p; a node is a leaf 0x80000000 | element, 0xFFFFFFFF
     // (no element: a hole), or the index of its four children (i, j) = (0,0), (1,0), (0,1), (1,1).
-    // `records` holds 9 per element: (u0, v0, size, 0 for a patch / 1 for an irregular face), then
+    // `records` holds 9 per element: (u0, v0, size, 0 for a patch / 1 for a bilinear face), then
     // the patch's 16 UV control points P_ij at 4j + i, phantoms applied, as 8 (P, P) pairs, or
-    // the irregular face's 4 corner limit UVs in the first two.
+    // the bilinear face's 4 corner limit UVs in the first two. The elements are the patches, then
+    // each irregular face's surface as pieces: its sub-patches (quadtree or per-valence basis,
+    // control points summed once) and its leaves within 2^-K of an extraordinary corner, which
+    // are bilinear (docs/irregular.md); a face without a surface (K = 0) is one bilinear record.
     struct Gpu {
         std::vector<uint32_t> nodes;
         std::vector<glm::vec4> records;
     };
     Gpu gpu() const;
+    // The levels of the irregular faces' pieces in gpu(): the tables' K, fewer where that would
+    // take more than maxGpuRecordBytes (then the constructor warned; the deepest squares are
+    // bilinear in their exact corners).
+    uint32_t gpuLevels() const { return gpuLevels_; }
 
   private:
     Tables tables_;
@@ -68,6 +81,8 @@ class FaceVaryingSurface {
     uint32_t depth_;
     uint32_t ptexCount_ = 0;
     std::vector<uint8_t> hasElements_; // per ptex face
+    uint32_t gpuLevels_ = 0;
+    size_t gpuElementCount(uint32_t levels) const;
 };
 
 } // namespace limn

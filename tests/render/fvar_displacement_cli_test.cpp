@@ -6,6 +6,7 @@
 // (and equal them on one-face islands whose corners the rule keeps sharp).
 #include "displacement_support.h"
 #include "mesh/import.h"
+#include "osd_fvar_oracle.h"
 #include "subdiv/fvar_surface.h"
 #include "subdiv/tables.h"
 
@@ -145,7 +146,7 @@ TEST(FVarAdaptive, GpuUVsMatchTheCpuSurface) {
         ASSERT_TRUE(d.hasST);
         SchemeOptions o = resolveSchemeOptions(mesh.tags, {});
         o.fvar = static_cast<FVarRule>(m);
-        FaceVaryingSurface surface(mesh, o, depth, w);
+        FaceVaryingSurface surface(mesh, o, depth, TablesOptions{}.irregularLevels, w);
         double worst = 0;
         size_t inside = 0;
         for (const auto& v : d.vertices) {
@@ -168,6 +169,79 @@ TEST(FVarAdaptive, GpuUVsMatchTheCpuSurface) {
                     inside, worst);
         EXPECT_GT(inside, 1000u);
         EXPECT_LE(worst, 1e-5);
+    }
+}
+
+// The view-adaptive tessellation draws points inside irregular faces (around extraordinary
+// vertices, n-gons and triangles, and where UV seams make the UV mesh irregular); their UVs are
+// the UV surface's there, evaluated as the geometry is (docs/irregular.md): every drawn vertex
+// inside a ptex face within 1e-6 (UVs span [0, 1]) of OpenSubdiv's face-varying limit at its
+// (ptex, u, v): the emit pass evaluates the UV at the point it draws (its parameter rounded to
+// 1/32768 of the element, as the position and the PLY's u, v are). With `limn-tables --irregular-levels 0` the UV surface's irregular faces are the
+// bilinear blend of their corners' limit UVs (as before they had a surface), and the same check
+// fails: the test can tell.
+TEST(FVarAdaptive, DrawnUVsOnIrregularFacesMatchOpenSubdiv) {
+    ScratchDir dir;
+    struct Shape {
+        const char* model;
+        const char* rule;
+        int depth;
+        bool bilinearToo; // also draw the tables without the irregular surface
+    };
+    const Shape shapes[] = {{"quad/spot_control_mesh.obj", "corners-only", 2, true},
+                            {"tri/cube_no_bottom.obj", "corners-plus1", 2, true},
+                            {"quad/osd_catmark_pyramid.obj", "none", 1, false},
+                            {"quad/blub_control_mesh.obj", "boundaries", 3, false}};
+    for (const Shape& sh : shapes) {
+        SCOPED_TRACE(sh.model);
+        const std::string obj = modelPath(sh.model).string();
+        Warnings w;
+        const Mesh mesh = importMeshFile(obj, w);
+        SchemeOptions o = resolveSchemeOptions(mesh.tags, {});
+        int rule = 0;
+        while (std::string(kModes[rule]) != sh.rule) ++rule;
+        o.fvar = static_cast<FVarRule>(rule);
+        const test::OsdFaceVarying osd(mesh, o, 8); // isolated deeper than limn's depth + K is exact
+        const std::string limn = (dir / "irregular.limn").string(), ply = (dir / "irregular.ply").string();
+        runOk({bin("limn-classify"), "-q", obj, "--fvar", sh.rule, "-o", limn});
+        auto worst = [&](const std::string& levels, size_t& inside) {
+            runOk({bin("limn-tables"), "-q", limn, "-o", (dir / "t.limn").string(), "--depth",
+                   std::to_string(sh.depth), "--irregular-levels", levels});
+            runOk({bin("limn-render"), (dir / "t.limn").string(), "--size", "160x120", "--view", "30,20",
+                   "--mesh-out", ply, "-o", (dir / "irregular.png").string()});
+            const Drawn d = parsePly(readFile(ply));
+            EXPECT_TRUE(d.hasST);
+            double most = 0;
+            inside = 0;
+            for (const auto& v : d.vertices) {
+                if (!(v.uv[0] > 0 && v.uv[0] < 1 && v.uv[1] > 0 && v.uv[1] < 1)) continue;
+                // The element that drew the vertex is not in the PLY: the nearest of OpenSubdiv's
+                // patches around the point (probes toward each corner of the ptex face). Inside
+                // a ptex face the limit surface is continuous, so they differ by rounding only.
+                double best = 1e9;
+                const double u = v.uv[0], vv = v.uv[1];
+                for (const auto& [tu, tv] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}}) {
+                    glm::dvec2 ref;
+                    if (!osd.evaluate(int(v.ptex), u, vv, u + 1e-7 * (tu - u), vv + 1e-7 * (tv - vv), ref)) continue;
+                    best = std::min(best, glm::length(ref - glm::dvec2(v.st[0], v.st[1])));
+                }
+                if (best >= 1e9) continue;
+                most = std::max(most, best);
+                ++inside;
+            }
+            return most;
+        };
+        size_t inside = 0, bilinearInside = 0;
+        const double exact = worst("6", inside);
+        std::printf("fvar adaptive %s --fvar %s depth %d: %zu vertices inside ptex faces, max |UV - OpenSubdiv| %.3g\n",
+                    sh.model, sh.rule, sh.depth, inside, exact);
+        EXPECT_GT(inside, 200u);
+        EXPECT_LE(exact, 1e-6); // measured at most 2.7e-7 (float records and arithmetic)
+        if (sh.bilinearToo) {
+            const double bilinear = worst("0", bilinearInside);
+            std::printf("  with --irregular-levels 0 (bilinear irregular faces): max %.3g\n", bilinear);
+            EXPECT_GT(bilinear, 1e-4) << "the check should see the bilinear irregular faces";
+        }
     }
 }
 

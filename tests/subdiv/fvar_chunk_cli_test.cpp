@@ -43,7 +43,7 @@ TEST(FvarSurfaceChunk, ToolsWriteDropAndCheckIt) {
     m.tags.fvar = FVarRule::Boundaries;
     m.uvs[0].x += 0.5;
     const SchemeOptions o = resolveSchemeOptions(m.tags, {});
-    k.set(encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 1, w)));
+    k.set(encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 1, /*irregular levels K, the default*/ 6, w)));
     const std::vector<uint8_t> bytes = serializeContainer(k);
     auto stale = test::run({test::tool("limn-info").string(), "-"}, std::string(bytes.begin(), bytes.end()));
     EXPECT_EQ(stale.exitCode, 0) << stale.err;

@@ -20,6 +20,8 @@ using namespace limn;
 
 namespace {
 
+const uint32_t kLevels = 6; // the tables' default irregular levels K
+
 Mesh loadSmooth(const std::string& model, SchemeOptions& options) {
     Warnings w;
     Mesh m = importMeshFile(test::modelPath(model).string(), w);
@@ -67,36 +69,80 @@ bool chunkUV(const FvarSurfaceChunk& c, uint32_t ptex, double u, double v, doubl
 }
 
 TEST(FvarSurfaceChunk, StoresTheUVSurfaceLosslessly) {
-    for (const char* model : {"quad/osd_catmark_fvar_bound1.obj", "osd/catmark/catmark_fvar_bound3.obj"}) {
+    // Spot and the triangulated cube have irregular faces of both kinds (per-valence bases
+    // around interior extraordinary vertices, quadtrees along UV seams), each stored as its
+    // pieces (the bases' sub-patches turned into the ptex frame).
+    for (const char* model : {"quad/osd_catmark_fvar_bound1.obj", "osd/catmark/catmark_fvar_bound3.obj",
+                              "quad/spot_control_mesh.obj", "tri/cube_no_bottom.obj"}) {
         SCOPED_TRACE(model);
         SchemeOptions o;
         const Mesh m = loadSmooth(model, o);
         Warnings w;
         const uint32_t depth = 2;
-        const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, depth, w));
+        const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, depth, kLevels, w));
         const FvarSurfaceChunk d = decodeFvarSurfaceChunk(c, &m, &o);
         EXPECT_EQ(encodeFvarSurfaceChunk(d).payload, c.payload);
         EXPECT_EQ(d.ptexCount, ptexFaceCount(m));
-        // At every point of the depth-2 lattice of every ptex face (where the fixed grids draw).
-        const FaceVaryingSurface surface(m, o, depth, w);
+        // At every point of a 1/64 lattice of every ptex face: the depth-2 lattice where the
+        // fixed grids draw, and the points inside irregular faces the view-adaptive
+        // tessellation draws (every band of the bases).
+        const FaceVaryingSurface surface(m, o, depth, kLevels, w);
         double worst = 0;
         for (uint32_t p = 0; p < d.ptexCount; ++p)
-            for (int i = 0; i <= 4; ++i)
-                for (int j = 0; j <= 4; ++j) {
+            for (int i = 0; i <= 64; ++i)
+                for (int j = 0; j <= 64; ++j) {
                     double uv[2];
-                    ASSERT_TRUE(chunkUV(d, p, i / 4.0, j / 4.0, uv));
-                    const glm::dvec2 want = surface.uvAt(p, i / 4.0, j / 4.0, 0.5, 0.5);
+                    ASSERT_TRUE(chunkUV(d, p, i / 64.0, j / 64.0, uv));
+                    const glm::dvec2 want = surface.uvAt(p, i / 64.0, j / 64.0, 0.5, 0.5);
                     worst = std::max({worst, std::fabs(uv[0] - want.x), std::fabs(uv[1] - want.y)});
                 }
         EXPECT_LT(worst, 1e-5);
     }
 }
 
+// Where the pieces of every irregular face would take too many GPU records, they stop at fewer
+// levels (and say so): still exact on the lattice of their deepest squares.
+TEST(FvarSurfaceChunk, FewerLevelsOverTheRecordBudgetStayExactAtTheirCorners) {
+    SchemeOptions o;
+    const Mesh m = loadSmooth("quad/spot_control_mesh.obj", o);
+    const uint32_t depth = 2;
+    Warnings none;
+    const FaceVaryingSurface full(m, o, depth, kLevels, none);
+    EXPECT_EQ(full.gpuLevels(), kLevels);
+    EXPECT_TRUE(none.empty());
+    uint32_t previous = kLevels;
+    for (size_t budget : {size_t(1) << 20, size_t(1) << 19, size_t(0)}) {
+        Warnings w;
+        const FaceVaryingSurface cut(m, o, depth, kLevels, w, budget);
+        const uint32_t L = cut.gpuLevels();
+        SCOPED_TRACE(L);
+        EXPECT_LE(L, previous);
+        previous = L;
+        EXPECT_LT(L, kLevels);
+        EXPECT_EQ(w.messages.size(), 1u);
+        FvarSurfaceChunk c;
+        c.surface = cut.gpu();
+        // Level-2 faces are 1/4 of a quad's ptex face, 1/2 of an n-gon's sub-face's.
+        const int n = 1 << (depth - 1 + L);
+        double worst = 0;
+        for (uint32_t p = 0; p < ptexFaceCount(m); ++p)
+            for (int i = 0; i <= n; ++i)
+                for (int j = 0; j <= n; ++j) {
+                    double uv[2];
+                    ASSERT_TRUE(chunkUV(c, p, double(i) / n, double(j) / n, uv));
+                    const glm::dvec2 want = full.uvAt(p, double(i) / n, double(j) / n, 0.5, 0.5);
+                    worst = std::max({worst, std::fabs(uv[0] - want.x), std::fabs(uv[1] - want.y)});
+                }
+        EXPECT_LT(worst, 1e-5);
+    }
+    EXPECT_EQ(previous, 0u);
+}
+
 TEST(FvarSurfaceChunk, RefusesAnotherMeshOrOtherUVs) {
     SchemeOptions o;
     Mesh m = loadSmooth("quad/osd_catmark_fvar_bound1.obj", o);
     Warnings w;
-    const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 2, w));
+    const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 2, kLevels, w));
     Mesh moved = m;
     moved.uvs[3].x += 0.25;
     EXPECT_THROW(
@@ -119,7 +165,7 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     SchemeOptions o;
     const Mesh m = loadSmooth("quad/osd_catmark_fvar_bound1.obj", o);
     Warnings w;
-    const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 1, w));
+    const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 1, kLevels, w));
     auto refused = [&](const Chunk& bad, const char* what) {
         try {
             decodeFvarSurfaceChunk(bad, &m, &o);

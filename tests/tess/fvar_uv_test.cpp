@@ -79,7 +79,7 @@ TEST_P(FVarUV, MatchesOpenSubdivAtEveryDrawnVertex) {
     const Errors before = compare(t, linear, osd);
     Errors after = before;
     if (c.rule != FVarRule::All) {
-        FaceVaryingSurface surface(mesh, o, t.depth, w);
+        FaceVaryingSurface surface(mesh, o, t.depth, t.irregularLevels, w);
         ChartUVs charts(mesh, surface, 1u << t.depth);
         Tessellation smooth = buildTessellation(mesh, t, 1u << 16, true, &charts);
         after = compare(t, smooth, osd);

@@ -11,6 +11,7 @@
 #include "subdiv/tables_chunk.h"
 #include "topology/classification.h"
 
+#include <algorithm>
 #include <optional>
 
 using namespace limn;
@@ -94,11 +95,16 @@ int main(int argc, char** argv) {
             opts.infSharpPatches = opts.singleCreasePatches = !noCreasePatches;
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
-            // Smooth face-varying UVs: their own surface, for runtimes that do not build it (its
-            // warnings are the mesh's, which the geometry's tables reported already).
+            // Smooth face-varying UVs: their own surface, for runtimes that do not build it. Its
+            // warnings about the mesh repeat what the geometry's tables reported; only the new
+            // ones (e.g. fewer levels over the record budget) are passed on.
             if (mesh.hasUVs() && c.options.fvar != FVarRule::All) {
-                Warnings ignored;
-                fvar = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(mesh, c.options, depth, ignored));
+                Warnings uvWarnings;
+                fvar = encodeFvarSurfaceChunk(
+                    makeFvarSurfaceChunk(mesh, c.options, depth, tables.irregularLevels, uvWarnings));
+                for (std::string& m : uvWarnings.messages)
+                    if (std::find(warnings.messages.begin(), warnings.messages.end(), m) == warnings.messages.end())
+                        warnings.add(std::move(m));
             }
         } catch (Error& e) {
             e.setFile(name);

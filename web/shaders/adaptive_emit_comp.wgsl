@@ -248,7 +248,38 @@ fn adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b(sideStart
     return _e81;
 }
 
-fn lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b(a_2: ptr<function, u32>, b_2: ptr<function, u32>, j: ptr<function, u32>, r: ptr<function, u32>) -> u32 {
+fn pieceFraction_u0028_vu4_u003b_u1_u003b(piece: ptr<function, vec4<u32>>, st: ptr<function, u32>) -> f32 {
+    var a_2: u32;
+    var b_2: u32;
+    var sh: u32;
+    var ca: i32;
+    var cb: i32;
+    var cx: i32;
+
+    let _e71 = (*piece)[1u];
+    a_2 = _e71;
+    let _e73 = (*piece)[2u];
+    b_2 = _e73;
+    let _e74 = a_2;
+    let _e76 = b_2;
+    sh = select(16u, 0u, ((_e74 & 65535u) != (_e76 & 65535u)));
+    let _e80 = a_2;
+    let _e81 = sh;
+    ca = bitcast<i32>(((_e80 >> bitcast<u32>(_e81)) & 65535u));
+    let _e86 = b_2;
+    let _e87 = sh;
+    cb = bitcast<i32>(((_e86 >> bitcast<u32>(_e87)) & 65535u));
+    let _e92 = (*st);
+    let _e93 = sh;
+    cx = bitcast<i32>(((_e92 >> bitcast<u32>(_e93)) & 65535u));
+    let _e98 = cx;
+    let _e99 = ca;
+    let _e102 = cb;
+    let _e103 = ca;
+    return (f32((_e98 - _e99)) / f32((_e102 - _e103)));
+}
+
+fn lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b(a_3: ptr<function, u32>, b_3: ptr<function, u32>, j: ptr<function, u32>, r: ptr<function, u32>) -> u32 {
     var sa: i32;
     var sb: i32;
     var ta: i32;
@@ -256,13 +287,13 @@ fn lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b(a_2: ptr<function, u32>, b_2
     var s: i32;
     var t: i32;
 
-    let _e72 = (*a_2);
+    let _e72 = (*a_3);
     sa = bitcast<i32>((_e72 & 65535u));
-    let _e75 = (*b_2);
+    let _e75 = (*b_3);
     sb = bitcast<i32>((_e75 & 65535u));
-    let _e78 = (*a_2);
+    let _e78 = (*a_3);
     ta = bitcast<i32>((_e78 >> bitcast<u32>(16i)));
-    let _e82 = (*b_2);
+    let _e82 = (*b_3);
     tb = bitcast<i32>((_e82 >> bitcast<u32>(16i)));
     let _e86 = sa;
     let _e87 = sb;
@@ -281,19 +312,19 @@ fn lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b(a_2: ptr<function, u32>, b_2
     return (bitcast<u32>(_e108) | (bitcast<u32>(_e110) << bitcast<u32>(16i)));
 }
 
-fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece: ptr<function, vec4<u32>>, j_1: ptr<function, u32>, r_1: ptr<function, u32>, along: ptr<function, f32>) -> u32 {
+fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece_1: ptr<function, vec4<u32>>, j_1: ptr<function, u32>, r_1: ptr<function, u32>, along: ptr<function, f32>) -> u32 {
     var c_4: u32;
-    var a_3: u32;
-    var b_3: u32;
+    var a_4: u32;
+    var b_4: u32;
     var runsS: bool;
     var param_9: u32;
     var param_10: u32;
     var param_11: u32;
     var param_12: u32;
     var param_13: u32;
-    var sh: u32;
-    var ca: u32;
-    var cb: u32;
+    var sh_1: u32;
+    var ca_1: u32;
+    var cb_1: u32;
     var D_1: u32;
     var fromA: bool;
     var param_14: u32;
@@ -308,34 +339,34 @@ fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece: ptr<function, vec4<
     var param_20: u32;
     var x_1: u32;
     var local_3: u32;
-    var phi_765_: bool;
+    var phi_770_: bool;
 
     (*along) = -1f;
-    let _e93 = (*piece)[0u];
+    let _e93 = (*piece_1)[0u];
     let _e97 = elements.e[_e93].crease;
     c_4 = _e97;
-    let _e99 = (*piece)[1u];
-    a_3 = _e99;
-    let _e101 = (*piece)[2u];
-    b_3 = _e101;
-    let _e102 = a_3;
-    let _e104 = b_3;
+    let _e99 = (*piece_1)[1u];
+    a_4 = _e99;
+    let _e101 = (*piece_1)[2u];
+    b_4 = _e101;
+    let _e102 = a_4;
+    let _e104 = b_4;
     runsS = ((_e102 & 65535u) != (_e104 & 65535u));
     let _e107 = c_4;
     let _e108 = (_e107 == 0u);
-    phi_765_ = _e108;
+    phi_770_ = _e108;
     if !(_e108) {
         let _e110 = runsS;
         let _e111 = c_4;
         param_9 = _e111;
         let _e112 = creaseAcrossS_u0028_u1_u003b((&param_9));
-        phi_765_ = (_e110 != _e112);
+        phi_770_ = (_e110 != _e112);
     }
-    let _e115 = phi_765_;
+    let _e115 = phi_770_;
     if _e115 {
-        let _e116 = a_3;
+        let _e116 = a_4;
         param_10 = _e116;
-        let _e117 = b_3;
+        let _e117 = b_4;
         param_11 = _e117;
         let _e118 = (*j_1);
         param_12 = _e118;
@@ -345,28 +376,28 @@ fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece: ptr<function, vec4<
         return _e120;
     }
     let _e121 = runsS;
-    sh = select(16u, 0u, _e121);
-    let _e123 = a_3;
-    let _e124 = sh;
-    ca = ((_e123 >> bitcast<u32>(_e124)) & 65535u);
-    let _e128 = b_3;
-    let _e129 = sh;
-    cb = ((_e128 >> bitcast<u32>(_e129)) & 65535u);
-    let _e133 = ca;
-    let _e134 = cb;
-    let _e136 = ca;
-    let _e137 = cb;
+    sh_1 = select(16u, 0u, _e121);
+    let _e123 = a_4;
+    let _e124 = sh_1;
+    ca_1 = ((_e123 >> bitcast<u32>(_e124)) & 65535u);
+    let _e128 = b_4;
+    let _e129 = sh_1;
+    cb_1 = ((_e128 >> bitcast<u32>(_e129)) & 65535u);
+    let _e133 = ca_1;
+    let _e134 = cb_1;
+    let _e136 = ca_1;
+    let _e137 = cb_1;
     D_1 = (max(_e133, _e134) - min(_e136, _e137));
     let _e140 = c_4;
     param_14 = _e140;
     let _e141 = creaseAtZero_u0028_u1_u003b((&param_14));
     if _e141 {
-        let _e142 = ca;
-        let _e143 = cb;
+        let _e142 = ca_1;
+        let _e143 = cb_1;
         local_1 = (_e142 < _e143);
     } else {
-        let _e145 = ca;
-        let _e146 = cb;
+        let _e145 = ca_1;
+        let _e146 = cb_1;
         local_1 = (_e145 > _e146);
     }
     let _e148 = local_1;
@@ -395,14 +426,14 @@ fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece: ptr<function, vec4<
     }
     let _e162 = local_2;
     off = _e162;
-    let _e163 = cb;
-    let _e164 = ca;
+    let _e163 = cb_1;
+    let _e164 = ca_1;
     if (_e163 > _e164) {
-        let _e166 = ca;
+        let _e166 = ca_1;
         let _e167 = off;
         local_3 = (_e166 + _e167);
     } else {
-        let _e169 = ca;
+        let _e169 = ca_1;
         let _e170 = off;
         local_3 = (_e169 - _e170);
     }
@@ -411,25 +442,25 @@ fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece: ptr<function, vec4<
     let _e173 = off;
     let _e175 = D_1;
     (*along) = (f32(_e173) / f32(_e175));
-    let _e178 = a_3;
-    let _e179 = sh;
+    let _e178 = a_4;
+    let _e179 = sh_1;
     let _e184 = x_1;
-    let _e185 = sh;
+    let _e185 = sh_1;
     return ((_e178 & ~((65535u << bitcast<u32>(_e179)))) | (_e184 << bitcast<u32>(_e185)));
 }
 
-fn vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b(local_4: ptr<function, u32>, element: ptr<function, u32>, st: ptr<function, u32>, uv: ptr<function, vec2<f32>>) {
+fn vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b(local_4: ptr<function, u32>, element: ptr<function, u32>, st_1: ptr<function, u32>, uv: ptr<function, vec2<f32>>) {
     let _e66 = vBase;
     let _e67 = (*local_4);
     let _e69 = (*element);
-    let _e70 = (*st);
+    let _e70 = (*st_1);
     let _e72 = (*uv)[0u];
     let _e75 = (*uv)[1u];
     tessVertices.v[(_e66 + _e67)] = vec4<u32>(_e69, _e70, bitcast<u32>(_e72), bitcast<u32>(_e75));
     return;
 }
 
-fn fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b(t_1: ptr<function, f32>, b_4: ptr<function, array<f32, 4>>) {
+fn fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b(t_1: ptr<function, f32>, b_5: ptr<function, array<f32, 4>>) {
     var s_1: f32;
     var t2_: f32;
     var t3_: f32;
@@ -445,16 +476,16 @@ fn fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b(t_1: ptr<function, f32>, b_4:
     let _e75 = s_1;
     let _e76 = s_1;
     let _e78 = s_1;
-    (*b_4)[0i] = (((_e75 * _e76) * _e78) / 6f);
+    (*b_5)[0i] = (((_e75 * _e76) * _e78) / 6f);
     let _e82 = t3_;
     let _e84 = t2_;
-    (*b_4)[1i] = ((((3f * _e82) - (6f * _e84)) + 4f) / 6f);
+    (*b_5)[1i] = ((((3f * _e82) - (6f * _e84)) + 4f) / 6f);
     let _e90 = t3_;
     let _e92 = t2_;
     let _e95 = (*t_1);
-    (*b_4)[2i] = (((((-3f * _e90) + (3f * _e92)) + (3f * _e95)) + 1f) / 6f);
+    (*b_5)[2i] = (((((-3f * _e90) + (3f * _e92)) + (3f * _e95)) + 1f) / 6f);
     let _e101 = t3_;
-    (*b_4)[3i] = (_e101 / 6f);
+    (*b_5)[3i] = (_e101 / 6f);
     return;
 }
 
@@ -487,9 +518,9 @@ fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, 
     var param_23: u32;
     var s_2: f32;
     var t_2: f32;
-    var a_4: vec4<f32>;
+    var a_5: vec4<f32>;
     var param_24: u32;
-    var b_5: vec4<f32>;
+    var b_6: vec4<f32>;
     var param_25: u32;
     var bu: array<f32, 4>;
     var param_26: f32;
@@ -502,8 +533,8 @@ fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, 
     var i_3: u32;
     var p: vec4<f32>;
     var param_30: u32;
-    var phi_328_: bool;
-    var phi_378_: bool;
+    var phi_333_: bool;
+    var phi_383_: bool;
 
     let _e94 = (*uv_1);
     let _e95 = (*inside);
@@ -521,12 +552,12 @@ fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, 
         let _e105 = depth;
         let _e107 = v;
         let _e109 = ((_e105 < 24i) && (_e107 != 4294967295u));
-        phi_328_ = _e109;
+        phi_333_ = _e109;
         if _e109 {
             let _e110 = v;
-            phi_328_ = ((_e110 & 2147483648u) == 0u);
+            phi_333_ = ((_e110 & 2147483648u) == 0u);
         }
-        let _e114 = phi_328_;
+        let _e114 = phi_333_;
         if _e114 {
             let _e115 = size;
             size = (_e115 * 0.5f);
@@ -558,12 +589,12 @@ fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, 
     }
     let _e151 = v;
     let _e152 = (_e151 == 4294967295u);
-    phi_378_ = _e152;
+    phi_383_ = _e152;
     if !(_e152) {
         let _e154 = v;
-        phi_378_ = ((_e154 & 2147483648u) == 0u);
+        phi_383_ = ((_e154 & 2147483648u) == 0u);
     }
-    let _e158 = phi_378_;
+    let _e158 = phi_383_;
     if _e158 {
         return vec2<f32>(0f, 0f);
     }
@@ -586,16 +617,16 @@ fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, 
         let _e183 = r_2;
         param_24 = (_e183 + 1u);
         let _e185 = fvarRecord_u0028_u1_u003b((&param_24));
-        a_4 = _e185;
+        a_5 = _e185;
         let _e186 = r_2;
         param_25 = (_e186 + 2u);
         let _e188 = fvarRecord_u0028_u1_u003b((&param_25));
-        b_5 = _e188;
-        let _e189 = a_4;
-        let _e191 = a_4;
+        b_6 = _e188;
+        let _e189 = a_5;
+        let _e191 = a_5;
         let _e193 = s_2;
-        let _e196 = b_5;
-        let _e198 = b_5;
+        let _e196 = b_6;
+        let _e198 = b_6;
         let _e200 = s_2;
         let _e203 = t_2;
         return mix(mix(_e189.xy, _e191.zw, vec2(_e193)), mix(_e196.zw, _e198.xy, vec2(_e200)), vec2(_e203));
@@ -746,7 +777,7 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var p_2: u32;
     var sp: vec4<u32>;
     var point: vec4<u32>;
-    var st_1: vec2<f32>;
+    var st_2: vec2<f32>;
     var param_36: u32;
     var param_37: f32;
     var uv_2: vec2<f32>;
@@ -761,11 +792,11 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var sp_1: vec4<u32>;
     var slots: array<u32, 8>;
     var r_3: u32;
-    var piece_1: vec4<u32>;
+    var piece_2: vec4<u32>;
     var point_1: vec4<u32>;
     var from_: f32;
     var to: f32;
-    var st_2: vec2<f32>;
+    var st_3: vec2<f32>;
     var param_40: u32;
     var param_41: f32;
     var param_42: f32;
@@ -783,67 +814,69 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var param_49: u32;
     var param_50: u32;
     var param_51: f32;
+    var param_52: vec4<u32>;
+    var param_53: u32;
     var f: f32;
     var local_6: f32;
     var local_7: f32;
-    var param_52: u32;
-    var param_53: f32;
-    var param_54: f32;
+    var param_54: u32;
     var param_55: f32;
-    var param_56: u32;
-    var param_57: u32;
+    var param_56: f32;
+    var param_57: f32;
     var param_58: u32;
-    var param_59: vec2<f32>;
+    var param_59: u32;
+    var param_60: u32;
+    var param_61: vec2<f32>;
     var sideTotal_1: array<u32, 4>;
     var apex_1: u32;
-    var param_60: array<u32, 4>;
-    var param_61: array<u32, 4>;
+    var param_62: array<u32, 4>;
+    var param_63: array<u32, 4>;
     var fan: u32;
     var i_6: u32;
-    var a_5: u32;
-    var b_6: u32;
+    var a_6: u32;
+    var b_7: u32;
     var c_6: u32;
-    var param_62: u32;
-    var param_63: u32;
     var param_64: u32;
     var param_65: u32;
     var param_66: u32;
     var param_67: u32;
-    var gradeS: bool;
     var param_68: u32;
+    var param_69: u32;
+    var gradeS: bool;
+    var param_70: u32;
     var gradeT: bool;
     var atZero_1: bool;
-    var param_69: u32;
+    var param_71: u32;
     var j_4: u32;
     var i_7: u32;
     var s_4: u32;
-    var param_70: u32;
-    var param_71: u32;
-    var param_72: bool;
-    var param_73: bool;
+    var param_72: u32;
+    var param_73: u32;
+    var param_74: bool;
+    var param_75: bool;
     var t_4: u32;
-    var param_74: u32;
-    var param_75: u32;
-    var param_76: bool;
-    var param_77: bool;
+    var param_76: u32;
+    var param_77: u32;
+    var param_78: bool;
+    var param_79: bool;
     var f_1: vec2<f32>;
     var local_8: f32;
     var local_9: f32;
-    var param_78: f32;
-    var param_79: f32;
-    var param_80: u32;
-    var param_81: u32;
+    var param_80: f32;
+    var param_81: f32;
     var param_82: u32;
-    var param_83: vec2<f32>;
+    var param_83: u32;
+    var param_84: u32;
+    var param_85: vec2<f32>;
     var j_5: u32;
     var i_8: u32;
-    var a_6: u32;
-    var param_84: u32;
-    var param_85: u32;
+    var a_7: u32;
     var param_86: u32;
     var param_87: u32;
     var param_88: u32;
     var param_89: u32;
+    var param_90: u32;
+    var param_91: u32;
     var k_6: u32;
     var na: u32;
     var nb: u32;
@@ -852,113 +885,114 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var jb: u32;
     var a0_: u32;
     var g0_: u32;
-    var param_90: u32;
-    var param_91: u32;
     var param_92: u32;
     var param_93: u32;
     var param_94: u32;
-    var g1_: u32;
     var param_95: u32;
     var param_96: u32;
+    var g1_: u32;
     var param_97: u32;
     var param_98: u32;
     var param_99: u32;
-    var advanceA: bool;
     var param_100: u32;
     var param_101: u32;
+    var advanceA: bool;
     var param_102: u32;
     var param_103: u32;
     var param_104: u32;
     var param_105: u32;
-    var phi_1122_: bool;
-    var phi_1468_: bool;
-    var phi_1732_: bool;
-    var phi_1733_: bool;
+    var param_106: u32;
+    var param_107: u32;
+    var phi_1169_: bool;
+    var phi_1373_: bool;
+    var phi_1530_: bool;
+    var phi_1806_: bool;
+    var phi_1807_: bool;
 
-    let _e198 = (*e);
-    let _e201 = info.v[_e198];
-    inf = _e201;
-    let _e203 = inf[0u];
-    param_35 = _e203;
-    let _e204 = adaptiveRates_u0028_u1_u003b((&param_35));
-    rates2_ = _e204;
-    let _e206 = rates2_[0u];
-    mu_1 = _e206;
-    let _e208 = rates2_[1u];
-    mv_1 = _e208;
-    let _e210 = inf[3u];
-    T = (_e210 & 2147483647u);
-    let _e213 = inf[1u];
-    vBase = _e213;
-    let _e215 = inf[2u];
-    tNext = _e215;
-    let _e217 = pc.sharePoints;
-    share = (_e217 != 0u);
-    let _e219 = share;
-    if _e219 {
-        let _e220 = (*e);
-        let _e223 = elements.e[_e220];
-        el.sideFirst = _e223.sideFirst;
-        el.sideCount = _e223.sideCount;
-        el.uv[0i] = _e223.uv[0];
-        el.uv[1i] = _e223.uv[1];
-        el.uv[2i] = _e223.uv[2];
-        el.uv[3i] = _e223.uv[3];
-        el.level = _e223.level;
-        el.crease = _e223.crease;
-        el.pad1_ = _e223.pad1_;
-        el.pad2_ = _e223.pad2_;
-        let _e246 = (*e);
-        elIndex = _e246;
+    let _e200 = (*e);
+    let _e203 = info.v[_e200];
+    inf = _e203;
+    let _e205 = inf[0u];
+    param_35 = _e205;
+    let _e206 = adaptiveRates_u0028_u1_u003b((&param_35));
+    rates2_ = _e206;
+    let _e208 = rates2_[0u];
+    mu_1 = _e208;
+    let _e210 = rates2_[1u];
+    mv_1 = _e210;
+    let _e212 = inf[3u];
+    T = (_e212 & 2147483647u);
+    let _e215 = inf[1u];
+    vBase = _e215;
+    let _e217 = inf[2u];
+    tNext = _e217;
+    let _e219 = pc.sharePoints;
+    share = (_e219 != 0u);
+    let _e221 = share;
+    if _e221 {
+        let _e222 = (*e);
+        let _e225 = elements.e[_e222];
+        el.sideFirst = _e225.sideFirst;
+        el.sideCount = _e225.sideCount;
+        el.uv[0i] = _e225.uv[0];
+        el.uv[1i] = _e225.uv[1];
+        el.uv[2i] = _e225.uv[2];
+        el.uv[3i] = _e225.uv[3];
+        el.level = _e225.level;
+        el.crease = _e225.crease;
+        el.pad1_ = _e225.pad1_;
+        el.pad2_ = _e225.pad2_;
+        let _e248 = (*e);
+        elIndex = _e248;
         k_4 = 0u;
         loop {
-            let _e247 = k_4;
-            if (_e247 < 4u) {
+            let _e249 = k_4;
+            if (_e249 < 4u) {
                 p_2 = 0u;
                 loop {
-                    let _e249 = p_2;
-                    let _e250 = k_4;
-                    let _e253 = el.sideCount[_e250];
-                    if (_e249 < _e253) {
-                        let _e255 = k_4;
-                        let _e258 = el.sideFirst[_e255];
-                        let _e259 = p_2;
-                        let _e263 = pieces.v[(_e258 + _e259)];
-                        sp = _e263;
-                        let _e265 = pc.pointBase;
-                        let _e267 = sp[1u];
-                        let _e271 = pieces.v[(_e265 + _e267)];
-                        point = _e271;
-                        let _e273 = point[0u];
-                        let _e274 = (*e);
-                        if (_e273 != _e274) {
+                    let _e251 = p_2;
+                    let _e252 = k_4;
+                    let _e255 = el.sideCount[_e252];
+                    if (_e251 < _e255) {
+                        let _e257 = k_4;
+                        let _e260 = el.sideFirst[_e257];
+                        let _e261 = p_2;
+                        let _e265 = pieces.v[(_e260 + _e261)];
+                        sp = _e265;
+                        let _e267 = pc.pointBase;
+                        let _e269 = sp[1u];
+                        let _e273 = pieces.v[(_e267 + _e269)];
+                        point = _e273;
+                        let _e275 = point[0u];
+                        let _e276 = (*e);
+                        if (_e275 != _e276) {
                             continue;
                         }
-                        let _e277 = sp[3u];
-                        let _e280 = k_4;
-                        param_36 = _e280;
-                        param_37 = f32((_e277 & 65535u));
-                        let _e281 = sideParam_u0028_u1_u003b_f1_u003b((&param_36), (&param_37));
-                        st_1 = _e281;
-                        let _e283 = st_1[0u];
-                        param_38 = _e283;
-                        let _e285 = st_1[1u];
-                        param_39 = _e285;
-                        let _e286 = uvAt_u0028_f1_u003b_f1_u003b((&param_38), (&param_39));
-                        uv_2 = _e286;
-                        let _e288 = sp[1u];
-                        let _e290 = point[0u];
-                        let _e292 = point[1u];
-                        let _e294 = uv_2[0u];
-                        let _e297 = uv_2[1u];
-                        tessVertices.v[_e288] = vec4<u32>(_e290, _e292, bitcast<u32>(_e294), bitcast<u32>(_e297));
+                        let _e279 = sp[3u];
+                        let _e282 = k_4;
+                        param_36 = _e282;
+                        param_37 = f32((_e279 & 65535u));
+                        let _e283 = sideParam_u0028_u1_u003b_f1_u003b((&param_36), (&param_37));
+                        st_2 = _e283;
+                        let _e285 = st_2[0u];
+                        param_38 = _e285;
+                        let _e287 = st_2[1u];
+                        param_39 = _e287;
+                        let _e288 = uvAt_u0028_f1_u003b_f1_u003b((&param_38), (&param_39));
+                        uv_2 = _e288;
+                        let _e290 = sp[1u];
+                        let _e292 = point[0u];
+                        let _e294 = point[1u];
+                        let _e296 = uv_2[0u];
+                        let _e299 = uv_2[1u];
+                        tessVertices.v[_e290] = vec4<u32>(_e292, _e294, bitcast<u32>(_e296), bitcast<u32>(_e299));
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e302 = p_2;
-                        p_2 = (_e302 + bitcast<u32>(1i));
+                        let _e304 = p_2;
+                        p_2 = (_e304 + bitcast<u32>(1i));
                     }
                 }
                 continue;
@@ -966,210 +1000,226 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
                 break;
             }
             continuing {
-                let _e305 = k_4;
-                k_4 = (_e305 + bitcast<u32>(1i));
+                let _e307 = k_4;
+                k_4 = (_e307 + bitcast<u32>(1i));
             }
         }
-        let _e309 = inf[0u];
-        if ((_e309 & 2147483648u) != 0u) {
+        let _e311 = inf[0u];
+        if ((_e311 & 2147483648u) != 0u) {
             return;
         }
     }
-    let _e313 = inf[3u];
-    if ((_e313 >> bitcast<u32>(31i)) == 0u) {
+    let _e315 = inf[3u];
+    if ((_e315 >> bitcast<u32>(31i)) == 0u) {
         i_4 = 0u;
         loop {
-            let _e317 = i_4;
-            let _e318 = T;
-            let _e319 = (_e317 < _e318);
-            phi_1122_ = _e319;
-            if _e319 {
-                let _e320 = tNext;
-                let _e321 = i_4;
-                let _e324 = pc.triangleCapacity;
-                phi_1122_ = ((_e320 + _e321) < _e324);
+            let _e319 = i_4;
+            let _e320 = T;
+            let _e321 = (_e319 < _e320);
+            phi_1169_ = _e321;
+            if _e321 {
+                let _e322 = tNext;
+                let _e323 = i_4;
+                let _e326 = pc.triangleCapacity;
+                phi_1169_ = ((_e322 + _e323) < _e326);
             }
-            let _e327 = phi_1122_;
-            if _e327 {
-                let _e328 = tNext;
-                let _e329 = i_4;
-                triangles.i[(3u * (_e328 + _e329))] = 0u;
-                let _e334 = tNext;
-                let _e335 = i_4;
-                triangles.i[((3u * (_e334 + _e335)) + 1u)] = 0u;
-                let _e341 = tNext;
-                let _e342 = i_4;
-                triangles.i[((3u * (_e341 + _e342)) + 2u)] = 0u;
-                let _e348 = tNext;
-                let _e349 = i_4;
-                triangleLevels.l[(_e348 + _e349)] = 0u;
+            let _e329 = phi_1169_;
+            if _e329 {
+                let _e330 = tNext;
+                let _e331 = i_4;
+                triangles.i[(3u * (_e330 + _e331))] = 0u;
+                let _e336 = tNext;
+                let _e337 = i_4;
+                triangles.i[((3u * (_e336 + _e337)) + 1u)] = 0u;
+                let _e343 = tNext;
+                let _e344 = i_4;
+                triangles.i[((3u * (_e343 + _e344)) + 2u)] = 0u;
+                let _e350 = tNext;
+                let _e351 = i_4;
+                triangleLevels.l[(_e350 + _e351)] = 0u;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e353 = i_4;
-                i_4 = (_e353 + bitcast<u32>(1i));
+                let _e355 = i_4;
+                i_4 = (_e355 + bitcast<u32>(1i));
             }
         }
         return;
     }
-    let _e356 = (*e);
-    let _e359 = elements.e[_e356];
-    el.sideFirst = _e359.sideFirst;
-    el.sideCount = _e359.sideCount;
-    el.uv[0i] = _e359.uv[0];
-    el.uv[1i] = _e359.uv[1];
-    el.uv[2i] = _e359.uv[2];
-    el.uv[3i] = _e359.uv[3];
-    el.level = _e359.level;
-    el.crease = _e359.crease;
-    el.pad1_ = _e359.pad1_;
-    el.pad2_ = _e359.pad2_;
-    let _e382 = (*e);
-    elIndex = _e382;
-    let _e384 = el.level;
-    level = _e384;
-    let _e385 = share;
-    let _e386 = mu_1;
-    sharedFlat = (_e385 && (_e386 == 1u));
+    let _e358 = (*e);
+    let _e361 = elements.e[_e358];
+    el.sideFirst = _e361.sideFirst;
+    el.sideCount = _e361.sideCount;
+    el.uv[0i] = _e361.uv[0];
+    el.uv[1i] = _e361.uv[1];
+    el.uv[2i] = _e361.uv[2];
+    el.uv[3i] = _e361.uv[3];
+    el.level = _e361.level;
+    el.crease = _e361.crease;
+    el.pad1_ = _e361.pad1_;
+    el.pad2_ = _e361.pad2_;
+    let _e384 = (*e);
+    elIndex = _e384;
+    let _e386 = el.level;
+    level = _e386;
+    let _e387 = share;
+    let _e388 = mu_1;
+    sharedFlat = (_e387 && (_e388 == 1u));
     B_1 = 0u;
     k_5 = 0u;
     loop {
-        let _e389 = k_5;
-        if (_e389 < 4u) {
-            let _e391 = k_5;
-            let _e392 = B_1;
-            sideStart_1[_e391] = _e392;
+        let _e391 = k_5;
+        if (_e391 < 4u) {
+            let _e393 = k_5;
+            let _e394 = B_1;
+            sideStart_1[_e393] = _e394;
             p_3 = 0u;
             loop {
-                let _e394 = p_3;
-                let _e395 = k_5;
-                let _e398 = el.sideCount[_e395];
-                if (_e394 < _e398) {
-                    let _e400 = k_5;
-                    let _e403 = el.sideFirst[_e400];
-                    let _e404 = p_3;
-                    let _e408 = pieces.v[(_e403 + _e404)];
-                    sp_1 = _e408;
-                    let _e409 = sharedFlat;
-                    if _e409 {
-                        let _e410 = B_1;
-                        let _e413 = sp_1[1u];
-                        slots[min(_e410, 7u)] = _e413;
-                        let _e415 = B_1;
-                        B_1 = (_e415 + bitcast<u32>(1i));
+                let _e396 = p_3;
+                let _e397 = k_5;
+                let _e400 = el.sideCount[_e397];
+                if (_e396 < _e400) {
+                    let _e402 = k_5;
+                    let _e405 = el.sideFirst[_e402];
+                    let _e406 = p_3;
+                    let _e410 = pieces.v[(_e405 + _e406)];
+                    sp_1 = _e410;
+                    let _e411 = sharedFlat;
+                    if _e411 {
+                        let _e412 = B_1;
+                        let _e415 = sp_1[1u];
+                        slots[min(_e412, 7u)] = _e415;
+                        let _e417 = B_1;
+                        B_1 = (_e417 + bitcast<u32>(1i));
                         continue;
                     }
-                    let _e419 = sp_1[0u];
-                    let _e422 = rates.r[_e419];
-                    r_3 = (_e422 & 65535u);
-                    let _e425 = sp_1[0u];
-                    let _e429 = pieces.v[(2u * _e425)];
-                    piece_1 = _e429;
-                    let _e431 = pc.pointBase;
-                    let _e433 = sp_1[1u];
-                    let _e437 = pieces.v[(_e431 + _e433)];
-                    point_1 = _e437;
-                    let _e439 = sp_1[3u];
-                    from_ = f32((_e439 & 65535u));
-                    let _e443 = sp_1[3u];
-                    to = f32((_e443 >> bitcast<u32>(16i)));
-                    let _e447 = k_5;
-                    param_40 = _e447;
-                    let _e448 = from_;
-                    param_41 = _e448;
-                    let _e449 = sideParam_u0028_u1_u003b_f1_u003b((&param_40), (&param_41));
-                    st_2 = _e449;
-                    let _e450 = B_1;
-                    B_1 = (_e450 + bitcast<u32>(1i));
-                    let _e454 = st_2[0u];
-                    param_42 = _e454;
-                    let _e456 = st_2[1u];
-                    param_43 = _e456;
-                    let _e457 = uvAt_u0028_f1_u003b_f1_u003b((&param_42), (&param_43));
-                    param_44 = _e450;
-                    let _e459 = point_1[0u];
-                    param_45 = _e459;
-                    let _e461 = point_1[1u];
-                    param_46 = _e461;
-                    param_47 = _e457;
+                    let _e421 = sp_1[0u];
+                    let _e424 = rates.r[_e421];
+                    r_3 = (_e424 & 65535u);
+                    let _e427 = sp_1[0u];
+                    let _e431 = pieces.v[(2u * _e427)];
+                    piece_2 = _e431;
+                    let _e433 = pc.pointBase;
+                    let _e435 = sp_1[1u];
+                    let _e439 = pieces.v[(_e433 + _e435)];
+                    point_1 = _e439;
+                    let _e441 = sp_1[3u];
+                    from_ = f32((_e441 & 65535u));
+                    let _e445 = sp_1[3u];
+                    to = f32((_e445 >> bitcast<u32>(16i)));
+                    let _e449 = k_5;
+                    param_40 = _e449;
+                    let _e450 = from_;
+                    param_41 = _e450;
+                    let _e451 = sideParam_u0028_u1_u003b_f1_u003b((&param_40), (&param_41));
+                    st_3 = _e451;
+                    let _e452 = B_1;
+                    B_1 = (_e452 + bitcast<u32>(1i));
+                    let _e456 = st_3[0u];
+                    param_42 = _e456;
+                    let _e458 = st_3[1u];
+                    param_43 = _e458;
+                    let _e459 = uvAt_u0028_f1_u003b_f1_u003b((&param_42), (&param_43));
+                    param_44 = _e452;
+                    let _e461 = point_1[0u];
+                    param_45 = _e461;
+                    let _e463 = point_1[1u];
+                    param_46 = _e463;
+                    param_47 = _e459;
                     vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_44), (&param_45), (&param_46), (&param_47));
                     i_5 = 1u;
                     loop {
-                        let _e462 = i_5;
-                        let _e463 = r_3;
-                        if (_e462 < _e463) {
-                            let _e466 = sp_1[2u];
-                            if (_e466 != 0u) {
-                                let _e468 = r_3;
-                                let _e469 = i_5;
-                                local_5 = (_e468 - _e469);
-                            } else {
+                        let _e464 = i_5;
+                        let _e465 = r_3;
+                        if (_e464 < _e465) {
+                            let _e468 = sp_1[2u];
+                            if (_e468 != 0u) {
+                                let _e470 = r_3;
                                 let _e471 = i_5;
-                                local_5 = _e471;
-                            }
-                            let _e472 = local_5;
-                            j_3 = _e472;
-                            let _e473 = piece_1;
-                            param_48 = _e473;
-                            let _e474 = j_3;
-                            param_49 = _e474;
-                            let _e475 = r_3;
-                            param_50 = _e475;
-                            let _e476 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_48), (&param_49), (&param_50), (&param_51));
-                            let _e477 = param_51;
-                            along_1 = _e477;
-                            ownerST = _e476;
-                            let _e478 = along_1;
-                            if (_e478 < 0f) {
-                                let _e480 = i_5;
-                                let _e482 = r_3;
-                                local_6 = (f32(_e480) / f32(_e482));
+                                local_5 = (_e470 - _e471);
                             } else {
-                                let _e486 = sp_1[2u];
-                                if (_e486 != 0u) {
-                                    let _e488 = along_1;
-                                    local_7 = (1f - _e488);
-                                } else {
-                                    let _e490 = along_1;
-                                    local_7 = _e490;
-                                }
-                                let _e491 = local_7;
-                                local_6 = _e491;
+                                let _e473 = i_5;
+                                local_5 = _e473;
                             }
-                            let _e492 = local_6;
-                            f = _e492;
-                            let _e493 = from_;
-                            let _e494 = to;
-                            let _e495 = from_;
-                            let _e497 = f;
-                            let _e500 = k_5;
-                            param_52 = _e500;
-                            param_53 = (_e493 + ((_e494 - _e495) * _e497));
-                            let _e501 = sideParam_u0028_u1_u003b_f1_u003b((&param_52), (&param_53));
-                            st_2 = _e501;
-                            let _e502 = B_1;
-                            B_1 = (_e502 + bitcast<u32>(1i));
-                            let _e506 = st_2[0u];
-                            param_54 = _e506;
-                            let _e508 = st_2[1u];
-                            param_55 = _e508;
-                            let _e509 = uvAt_u0028_f1_u003b_f1_u003b((&param_54), (&param_55));
-                            param_56 = _e502;
-                            let _e511 = piece_1[0u];
-                            param_57 = _e511;
-                            let _e512 = ownerST;
-                            param_58 = _e512;
-                            param_59 = _e509;
-                            vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_56), (&param_57), (&param_58), (&param_59));
+                            let _e474 = local_5;
+                            j_3 = _e474;
+                            let _e475 = piece_2;
+                            param_48 = _e475;
+                            let _e476 = j_3;
+                            param_49 = _e476;
+                            let _e477 = r_3;
+                            param_50 = _e477;
+                            let _e478 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_48), (&param_49), (&param_50), (&param_51));
+                            let _e479 = param_51;
+                            along_1 = _e479;
+                            ownerST = _e478;
+                            let _e480 = along_1;
+                            let _e481 = (_e480 < 0f);
+                            phi_1373_ = _e481;
+                            if _e481 {
+                                let _e483 = pc.smoothUV;
+                                phi_1373_ = (_e483 != 0u);
+                            }
+                            let _e486 = phi_1373_;
+                            if _e486 {
+                                let _e487 = piece_2;
+                                param_52 = _e487;
+                                let _e488 = ownerST;
+                                param_53 = _e488;
+                                let _e489 = pieceFraction_u0028_vu4_u003b_u1_u003b((&param_52), (&param_53));
+                                along_1 = _e489;
+                            }
+                            let _e490 = along_1;
+                            if (_e490 < 0f) {
+                                let _e492 = i_5;
+                                let _e494 = r_3;
+                                local_6 = (f32(_e492) / f32(_e494));
+                            } else {
+                                let _e498 = sp_1[2u];
+                                if (_e498 != 0u) {
+                                    let _e500 = along_1;
+                                    local_7 = (1f - _e500);
+                                } else {
+                                    let _e502 = along_1;
+                                    local_7 = _e502;
+                                }
+                                let _e503 = local_7;
+                                local_6 = _e503;
+                            }
+                            let _e504 = local_6;
+                            f = _e504;
+                            let _e505 = from_;
+                            let _e506 = to;
+                            let _e507 = from_;
+                            let _e509 = f;
+                            let _e512 = k_5;
+                            param_54 = _e512;
+                            param_55 = (_e505 + ((_e506 - _e507) * _e509));
+                            let _e513 = sideParam_u0028_u1_u003b_f1_u003b((&param_54), (&param_55));
+                            st_3 = _e513;
+                            let _e514 = B_1;
+                            B_1 = (_e514 + bitcast<u32>(1i));
+                            let _e518 = st_3[0u];
+                            param_56 = _e518;
+                            let _e520 = st_3[1u];
+                            param_57 = _e520;
+                            let _e521 = uvAt_u0028_f1_u003b_f1_u003b((&param_56), (&param_57));
+                            param_58 = _e514;
+                            let _e523 = piece_2[0u];
+                            param_59 = _e523;
+                            let _e524 = ownerST;
+                            param_60 = _e524;
+                            param_61 = _e521;
+                            vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_58), (&param_59), (&param_60), (&param_61));
                             continue;
                         } else {
                             break;
                         }
                         continuing {
-                            let _e513 = i_5;
-                            i_5 = (_e513 + bitcast<u32>(1i));
+                            let _e525 = i_5;
+                            i_5 = (_e525 + bitcast<u32>(1i));
                         }
                     }
                     continue;
@@ -1177,179 +1227,185 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
                     break;
                 }
                 continuing {
-                    let _e516 = p_3;
-                    p_3 = (_e516 + bitcast<u32>(1i));
+                    let _e528 = p_3;
+                    p_3 = (_e528 + bitcast<u32>(1i));
                 }
             }
-            let _e519 = k_5;
-            let _e520 = B_1;
-            let _e521 = k_5;
-            let _e523 = sideStart_1[_e521];
-            sideTotal_1[_e519] = (_e520 - _e523);
+            let _e531 = k_5;
+            let _e532 = B_1;
+            let _e533 = k_5;
+            let _e535 = sideStart_1[_e533];
+            sideTotal_1[_e531] = (_e532 - _e535);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e526 = k_5;
-            k_5 = (_e526 + bitcast<u32>(1i));
+            let _e538 = k_5;
+            k_5 = (_e538 + bitcast<u32>(1i));
         }
     }
-    let _e529 = mu_1;
-    if (_e529 == 1u) {
-        let _e531 = sideStart_1;
-        param_60 = _e531;
-        let _e532 = sideTotal_1;
-        param_61 = _e532;
-        let _e533 = adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b((&param_60), (&param_61));
-        apex_1 = _e533;
-        let _e534 = mv_1;
-        fan = _e534;
+    let _e541 = mu_1;
+    if (_e541 == 1u) {
+        let _e543 = sideStart_1;
+        param_62 = _e543;
+        let _e544 = sideTotal_1;
+        param_63 = _e544;
+        let _e545 = adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b((&param_62), (&param_63));
+        apex_1 = _e545;
+        let _e546 = mv_1;
+        fan = _e546;
         i_6 = 1u;
         loop {
-            let _e535 = i_6;
-            let _e537 = B_1;
-            if ((_e535 + 1u) < _e537) {
-                let _e539 = fan;
-                let _e540 = i_6;
-                if (((_e539 >> bitcast<u32>((_e540 - 1u))) & 1u) == 0u) {
+            let _e547 = i_6;
+            let _e549 = B_1;
+            if ((_e547 + 1u) < _e549) {
+                let _e551 = fan;
+                let _e552 = i_6;
+                if (((_e551 >> bitcast<u32>((_e552 - 1u))) & 1u) == 0u) {
                     continue;
                 }
-                let _e546 = apex_1;
-                a_5 = _e546;
-                let _e547 = apex_1;
-                let _e548 = i_6;
-                let _e550 = B_1;
-                b_6 = ((_e547 + _e548) % _e550);
-                let _e552 = apex_1;
-                let _e553 = i_6;
-                let _e556 = B_1;
-                c_6 = (((_e552 + _e553) + 1u) % _e556);
-                let _e558 = sharedFlat;
-                if _e558 {
-                    let _e559 = a_5;
-                    let _e560 = b_6;
-                    let _e561 = c_6;
-                    let _e563 = slots[_e559];
-                    param_62 = _e563;
-                    let _e565 = slots[_e560];
-                    param_63 = _e565;
-                    let _e567 = slots[_e561];
-                    param_64 = _e567;
-                    triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_62), (&param_63), (&param_64));
+                let _e558 = apex_1;
+                a_6 = _e558;
+                let _e559 = apex_1;
+                let _e560 = i_6;
+                let _e562 = B_1;
+                b_7 = ((_e559 + _e560) % _e562);
+                let _e564 = apex_1;
+                let _e565 = i_6;
+                let _e568 = B_1;
+                c_6 = (((_e564 + _e565) + 1u) % _e568);
+                let _e570 = sharedFlat;
+                if _e570 {
+                    let _e571 = a_6;
+                    let _e572 = b_7;
+                    let _e573 = c_6;
+                    let _e575 = slots[_e571];
+                    param_64 = _e575;
+                    let _e577 = slots[_e572];
+                    param_65 = _e577;
+                    let _e579 = slots[_e573];
+                    param_66 = _e579;
+                    triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_64), (&param_65), (&param_66));
                 } else {
-                    let _e568 = a_5;
-                    param_65 = _e568;
-                    let _e569 = b_6;
-                    param_66 = _e569;
-                    let _e570 = c_6;
-                    param_67 = _e570;
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_65), (&param_66), (&param_67));
+                    let _e580 = a_6;
+                    param_67 = _e580;
+                    let _e581 = b_7;
+                    param_68 = _e581;
+                    let _e582 = c_6;
+                    param_69 = _e582;
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_67), (&param_68), (&param_69));
                 }
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e571 = i_6;
-                i_6 = (_e571 + bitcast<u32>(1i));
+                let _e583 = i_6;
+                i_6 = (_e583 + bitcast<u32>(1i));
             }
         }
         return;
     }
-    let _e575 = el.crease;
-    let _e576 = (_e575 != 0u);
-    phi_1468_ = _e576;
-    if _e576 {
-        let _e578 = el.crease;
-        param_68 = _e578;
-        let _e579 = creaseAcrossS_u0028_u1_u003b((&param_68));
-        phi_1468_ = _e579;
+    let _e587 = el.crease;
+    let _e588 = (_e587 != 0u);
+    phi_1530_ = _e588;
+    if _e588 {
+        let _e590 = el.crease;
+        param_70 = _e590;
+        let _e591 = creaseAcrossS_u0028_u1_u003b((&param_70));
+        phi_1530_ = _e591;
     }
-    let _e581 = phi_1468_;
-    gradeS = _e581;
-    let _e583 = el.crease;
-    let _e585 = gradeS;
-    gradeT = ((_e583 != 0u) && !(_e585));
-    let _e589 = el.crease;
-    param_69 = _e589;
-    let _e590 = creaseAtZero_u0028_u1_u003b((&param_69));
-    atZero_1 = _e590;
+    let _e593 = phi_1530_;
+    gradeS = _e593;
+    let _e595 = el.crease;
+    let _e597 = gradeS;
+    gradeT = ((_e595 != 0u) && !(_e597));
+    let _e601 = el.crease;
+    param_71 = _e601;
+    let _e602 = creaseAtZero_u0028_u1_u003b((&param_71));
+    atZero_1 = _e602;
     j_4 = 1u;
     loop {
-        let _e591 = j_4;
-        let _e592 = mv_1;
-        if (_e591 < _e592) {
+        let _e603 = j_4;
+        let _e604 = mv_1;
+        if (_e603 < _e604) {
             i_7 = 1u;
             loop {
-                let _e594 = i_7;
-                let _e595 = mu_1;
-                if (_e594 < _e595) {
-                    let _e597 = i_7;
-                    param_70 = _e597;
-                    let _e598 = mu_1;
-                    param_71 = _e598;
-                    let _e599 = gradeS;
-                    param_72 = _e599;
-                    let _e600 = atZero_1;
-                    param_73 = _e600;
-                    let _e601 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_70), (&param_71), (&param_72), (&param_73));
-                    s_4 = _e601;
-                    let _e602 = j_4;
-                    param_74 = _e602;
-                    let _e603 = mv_1;
-                    param_75 = _e603;
-                    let _e604 = gradeT;
-                    param_76 = _e604;
-                    let _e605 = atZero_1;
-                    param_77 = _e605;
-                    let _e606 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_74), (&param_75), (&param_76), (&param_77));
-                    t_4 = _e606;
-                    let _e607 = gradeS;
-                    if _e607 {
-                        let _e608 = s_4;
-                        local_8 = (f32(_e608) / 32768f);
+                let _e606 = i_7;
+                let _e607 = mu_1;
+                if (_e606 < _e607) {
+                    let _e609 = i_7;
+                    param_72 = _e609;
+                    let _e610 = mu_1;
+                    param_73 = _e610;
+                    let _e611 = gradeS;
+                    param_74 = _e611;
+                    let _e612 = atZero_1;
+                    param_75 = _e612;
+                    let _e613 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_72), (&param_73), (&param_74), (&param_75));
+                    s_4 = _e613;
+                    let _e614 = j_4;
+                    param_76 = _e614;
+                    let _e615 = mv_1;
+                    param_77 = _e615;
+                    let _e616 = gradeT;
+                    param_78 = _e616;
+                    let _e617 = atZero_1;
+                    param_79 = _e617;
+                    let _e618 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_76), (&param_77), (&param_78), (&param_79));
+                    t_4 = _e618;
+                    let _e619 = gradeS;
+                    if _e619 {
+                        let _e620 = s_4;
+                        local_8 = (f32(_e620) / 32768f);
                     } else {
-                        let _e611 = i_7;
-                        let _e613 = mu_1;
-                        local_8 = (f32(_e611) / f32(_e613));
+                        let _e623 = i_7;
+                        let _e625 = mu_1;
+                        local_8 = (f32(_e623) / f32(_e625));
                     }
-                    let _e616 = local_8;
-                    let _e617 = gradeT;
-                    if _e617 {
-                        let _e618 = t_4;
-                        local_9 = (f32(_e618) / 32768f);
+                    let _e628 = local_8;
+                    let _e629 = gradeT;
+                    if _e629 {
+                        let _e630 = t_4;
+                        local_9 = (f32(_e630) / 32768f);
                     } else {
-                        let _e621 = j_4;
-                        let _e623 = mv_1;
-                        local_9 = (f32(_e621) / f32(_e623));
+                        let _e633 = j_4;
+                        let _e635 = mv_1;
+                        local_9 = (f32(_e633) / f32(_e635));
                     }
-                    let _e626 = local_9;
-                    f_1 = vec2<f32>(_e616, _e626);
-                    let _e628 = B_1;
-                    let _e629 = j_4;
-                    let _e631 = mu_1;
-                    let _e635 = i_7;
-                    let _e638 = s_4;
-                    let _e639 = t_4;
-                    let _e644 = f_1[0u];
-                    param_78 = _e644;
-                    let _e646 = f_1[1u];
-                    param_79 = _e646;
-                    let _e647 = uvAt_u0028_f1_u003b_f1_u003b((&param_78), (&param_79));
-                    param_80 = ((_e628 + ((_e629 - 1u) * (_e631 - 1u))) + (_e635 - 1u));
-                    let _e648 = (*e);
-                    param_81 = _e648;
-                    param_82 = (_e638 | (_e639 << bitcast<u32>(16i)));
-                    param_83 = _e647;
-                    vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_80), (&param_81), (&param_82), (&param_83));
+                    let _e638 = local_9;
+                    f_1 = vec2<f32>(_e628, _e638);
+                    let _e641 = pc.smoothUV;
+                    if (_e641 != 0u) {
+                        let _e643 = s_4;
+                        let _e645 = t_4;
+                        f_1 = (vec2<f32>(f32(_e643), f32(_e645)) / vec2(32768f));
+                    }
+                    let _e650 = B_1;
+                    let _e651 = j_4;
+                    let _e653 = mu_1;
+                    let _e657 = i_7;
+                    let _e660 = s_4;
+                    let _e661 = t_4;
+                    let _e666 = f_1[0u];
+                    param_80 = _e666;
+                    let _e668 = f_1[1u];
+                    param_81 = _e668;
+                    let _e669 = uvAt_u0028_f1_u003b_f1_u003b((&param_80), (&param_81));
+                    param_82 = ((_e650 + ((_e651 - 1u) * (_e653 - 1u))) + (_e657 - 1u));
+                    let _e670 = (*e);
+                    param_83 = _e670;
+                    param_84 = (_e660 | (_e661 << bitcast<u32>(16i)));
+                    param_85 = _e669;
+                    vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_82), (&param_83), (&param_84), (&param_85));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e649 = i_7;
-                    i_7 = (_e649 + bitcast<u32>(1i));
+                    let _e671 = i_7;
+                    i_7 = (_e671 + bitcast<u32>(1i));
                 }
             }
             continue;
@@ -1357,49 +1413,49 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e652 = j_4;
-            j_4 = (_e652 + bitcast<u32>(1i));
+            let _e674 = j_4;
+            j_4 = (_e674 + bitcast<u32>(1i));
         }
     }
     j_5 = 1u;
     loop {
-        let _e655 = j_5;
-        let _e657 = mv_1;
-        if ((_e655 + 1u) < _e657) {
+        let _e677 = j_5;
+        let _e679 = mv_1;
+        if ((_e677 + 1u) < _e679) {
             i_8 = 1u;
             loop {
-                let _e659 = i_8;
-                let _e661 = mu_1;
-                if ((_e659 + 1u) < _e661) {
-                    let _e663 = B_1;
-                    let _e664 = j_5;
-                    let _e666 = mu_1;
-                    let _e670 = i_8;
-                    a_6 = ((_e663 + ((_e664 - 1u) * (_e666 - 1u))) + (_e670 - 1u));
-                    let _e673 = a_6;
-                    let _e675 = a_6;
-                    let _e676 = mu_1;
-                    let _e678 = a_6;
-                    param_84 = _e678;
-                    param_85 = (_e673 + 1u);
-                    param_86 = (_e675 + _e676);
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_84), (&param_85), (&param_86));
-                    let _e679 = a_6;
-                    let _e680 = mu_1;
-                    let _e682 = a_6;
-                    let _e683 = mu_1;
-                    let _e686 = a_6;
-                    param_87 = _e686;
-                    param_88 = (_e679 + _e680);
-                    param_89 = ((_e682 + _e683) - 1u);
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_87), (&param_88), (&param_89));
+                let _e681 = i_8;
+                let _e683 = mu_1;
+                if ((_e681 + 1u) < _e683) {
+                    let _e685 = B_1;
+                    let _e686 = j_5;
+                    let _e688 = mu_1;
+                    let _e692 = i_8;
+                    a_7 = ((_e685 + ((_e686 - 1u) * (_e688 - 1u))) + (_e692 - 1u));
+                    let _e695 = a_7;
+                    let _e697 = a_7;
+                    let _e698 = mu_1;
+                    let _e700 = a_7;
+                    param_86 = _e700;
+                    param_87 = (_e695 + 1u);
+                    param_88 = (_e697 + _e698);
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_86), (&param_87), (&param_88));
+                    let _e701 = a_7;
+                    let _e702 = mu_1;
+                    let _e704 = a_7;
+                    let _e705 = mu_1;
+                    let _e708 = a_7;
+                    param_89 = _e708;
+                    param_90 = (_e701 + _e702);
+                    param_91 = ((_e704 + _e705) - 1u);
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_89), (&param_90), (&param_91));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e687 = i_8;
-                    i_8 = (_e687 + bitcast<u32>(1i));
+                    let _e709 = i_8;
+                    i_8 = (_e709 + bitcast<u32>(1i));
                 }
             }
             continue;
@@ -1407,109 +1463,109 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e690 = j_5;
-            j_5 = (_e690 + bitcast<u32>(1i));
+            let _e712 = j_5;
+            j_5 = (_e712 + bitcast<u32>(1i));
         }
     }
     k_6 = 0u;
     loop {
-        let _e693 = k_6;
-        if (_e693 < 4u) {
-            let _e695 = k_6;
-            let _e697 = sideTotal_1[_e695];
-            na = _e697;
-            let _e698 = k_6;
-            if ((_e698 & 1u) == 0u) {
-                let _e701 = mu_1;
-                local_10 = (_e701 - 2u);
+        let _e715 = k_6;
+        if (_e715 < 4u) {
+            let _e717 = k_6;
+            let _e719 = sideTotal_1[_e717];
+            na = _e719;
+            let _e720 = k_6;
+            if ((_e720 & 1u) == 0u) {
+                let _e723 = mu_1;
+                local_10 = (_e723 - 2u);
             } else {
-                let _e703 = mv_1;
-                local_10 = (_e703 - 2u);
+                let _e725 = mv_1;
+                local_10 = (_e725 - 2u);
             }
-            let _e705 = local_10;
-            nb = _e705;
+            let _e727 = local_10;
+            nb = _e727;
             ia = 0u;
             jb = 0u;
             loop {
-                let _e706 = ia;
-                let _e707 = na;
-                let _e709 = jb;
-                let _e710 = nb;
-                if ((_e706 < _e707) || (_e709 < _e710)) {
-                    let _e713 = k_6;
-                    let _e715 = sideStart_1[_e713];
-                    let _e716 = ia;
-                    let _e718 = B_1;
-                    a0_ = ((_e715 + _e716) % _e718);
-                    let _e720 = k_6;
-                    param_90 = _e720;
-                    let _e721 = jb;
-                    param_91 = _e721;
-                    let _e722 = mu_1;
-                    param_92 = _e722;
-                    let _e723 = mv_1;
-                    param_93 = _e723;
-                    let _e724 = B_1;
-                    param_94 = _e724;
-                    let _e725 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
-                    g0_ = _e725;
-                    let _e726 = jb;
-                    let _e728 = k_6;
-                    param_95 = _e728;
-                    param_96 = (_e726 + 1u);
-                    let _e729 = mu_1;
-                    param_97 = _e729;
-                    let _e730 = mv_1;
-                    param_98 = _e730;
-                    let _e731 = B_1;
-                    param_99 = _e731;
-                    let _e732 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_95), (&param_96), (&param_97), (&param_98), (&param_99));
-                    g1_ = _e732;
-                    let _e733 = jb;
-                    let _e734 = nb;
-                    let _e735 = (_e733 == _e734);
-                    phi_1733_ = _e735;
-                    if !(_e735) {
-                        let _e737 = ia;
-                        let _e738 = na;
-                        let _e739 = (_e737 < _e738);
-                        phi_1732_ = _e739;
-                        if _e739 {
-                            let _e740 = ia;
-                            let _e743 = nb;
-                            let _e745 = jb;
-                            let _e748 = na;
-                            phi_1732_ = ((((2u * _e740) + 1u) * _e743) <= (((2u * _e745) + 1u) * _e748));
-                        }
-                        let _e752 = phi_1732_;
-                        phi_1733_ = _e752;
-                    }
-                    let _e754 = phi_1733_;
-                    advanceA = _e754;
-                    let _e755 = advanceA;
-                    if _e755 {
-                        let _e756 = k_6;
-                        let _e758 = sideStart_1[_e756];
+                let _e728 = ia;
+                let _e729 = na;
+                let _e731 = jb;
+                let _e732 = nb;
+                if ((_e728 < _e729) || (_e731 < _e732)) {
+                    let _e735 = k_6;
+                    let _e737 = sideStart_1[_e735];
+                    let _e738 = ia;
+                    let _e740 = B_1;
+                    a0_ = ((_e737 + _e738) % _e740);
+                    let _e742 = k_6;
+                    param_92 = _e742;
+                    let _e743 = jb;
+                    param_93 = _e743;
+                    let _e744 = mu_1;
+                    param_94 = _e744;
+                    let _e745 = mv_1;
+                    param_95 = _e745;
+                    let _e746 = B_1;
+                    param_96 = _e746;
+                    let _e747 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_92), (&param_93), (&param_94), (&param_95), (&param_96));
+                    g0_ = _e747;
+                    let _e748 = jb;
+                    let _e750 = k_6;
+                    param_97 = _e750;
+                    param_98 = (_e748 + 1u);
+                    let _e751 = mu_1;
+                    param_99 = _e751;
+                    let _e752 = mv_1;
+                    param_100 = _e752;
+                    let _e753 = B_1;
+                    param_101 = _e753;
+                    let _e754 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_97), (&param_98), (&param_99), (&param_100), (&param_101));
+                    g1_ = _e754;
+                    let _e755 = jb;
+                    let _e756 = nb;
+                    let _e757 = (_e755 == _e756);
+                    phi_1807_ = _e757;
+                    if !(_e757) {
                         let _e759 = ia;
-                        let _e762 = B_1;
-                        let _e764 = a0_;
-                        param_100 = _e764;
-                        param_101 = (((_e758 + _e759) + 1u) % _e762);
-                        let _e765 = g0_;
-                        param_102 = _e765;
-                        tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_100), (&param_101), (&param_102));
-                        let _e766 = ia;
-                        ia = (_e766 + bitcast<u32>(1i));
+                        let _e760 = na;
+                        let _e761 = (_e759 < _e760);
+                        phi_1806_ = _e761;
+                        if _e761 {
+                            let _e762 = ia;
+                            let _e765 = nb;
+                            let _e767 = jb;
+                            let _e770 = na;
+                            phi_1806_ = ((((2u * _e762) + 1u) * _e765) <= (((2u * _e767) + 1u) * _e770));
+                        }
+                        let _e774 = phi_1806_;
+                        phi_1807_ = _e774;
+                    }
+                    let _e776 = phi_1807_;
+                    advanceA = _e776;
+                    let _e777 = advanceA;
+                    if _e777 {
+                        let _e778 = k_6;
+                        let _e780 = sideStart_1[_e778];
+                        let _e781 = ia;
+                        let _e784 = B_1;
+                        let _e786 = a0_;
+                        param_102 = _e786;
+                        param_103 = (((_e780 + _e781) + 1u) % _e784);
+                        let _e787 = g0_;
+                        param_104 = _e787;
+                        tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_102), (&param_103), (&param_104));
+                        let _e788 = ia;
+                        ia = (_e788 + bitcast<u32>(1i));
                     } else {
-                        let _e769 = a0_;
-                        param_103 = _e769;
-                        let _e770 = g1_;
-                        param_104 = _e770;
-                        let _e771 = g0_;
-                        param_105 = _e771;
-                        tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_103), (&param_104), (&param_105));
-                        let _e772 = jb;
-                        jb = (_e772 + bitcast<u32>(1i));
+                        let _e791 = a0_;
+                        param_105 = _e791;
+                        let _e792 = g1_;
+                        param_106 = _e792;
+                        let _e793 = g0_;
+                        param_107 = _e793;
+                        tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_105), (&param_106), (&param_107));
+                        let _e794 = jb;
+                        jb = (_e794 + bitcast<u32>(1i));
                     }
                     continue;
                 } else {
@@ -1521,8 +1577,8 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e775 = k_6;
-            k_6 = (_e775 + bitcast<u32>(1i));
+            let _e797 = k_6;
+            k_6 = (_e797 + bitcast<u32>(1i));
         }
     }
     return;
@@ -1537,14 +1593,14 @@ fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32
 
 fn main_1() {
     var e_1: u32;
-    var param_106: u32;
-    var param_107: u32;
+    var param_108: u32;
+    var param_109: u32;
     var inf_1: vec4<u32>;
-    var phi_1798_: bool;
+    var phi_1872_: bool;
 
     let _e67 = pc.limnRowInvocations;
-    param_106 = _e67;
-    let _e68 = limnInvocationIndex_u0028_u1_u003b((&param_106));
+    param_108 = _e67;
+    let _e68 = limnInvocationIndex_u0028_u1_u003b((&param_108));
     e_1 = _e68;
     let _e69 = e_1;
     let _e71 = pc.limnCount;
@@ -1552,21 +1608,21 @@ fn main_1() {
         return;
     }
     let _e73 = e_1;
-    param_107 = _e73;
-    emitElement_u0028_u1_u003b((&param_107));
+    param_109 = _e73;
+    emitElement_u0028_u1_u003b((&param_109));
     let _e74 = e_1;
     let _e77 = info.v[_e74];
     inf_1 = _e77;
     let _e79 = inf_1[3u];
     let _e82 = ((_e79 >> bitcast<u32>(31i)) != 0u);
-    phi_1798_ = _e82;
+    phi_1872_ = _e82;
     if _e82 {
         let _e83 = tNext;
         let _e85 = inf_1[2u];
         let _e87 = inf_1[3u];
-        phi_1798_ = (_e83 != (_e85 + (_e87 & 2147483647u)));
+        phi_1872_ = (_e83 != (_e85 + (_e87 & 2147483647u)));
     }
-    let _e92 = phi_1798_;
+    let _e92 = phi_1872_;
     if _e92 {
         let _e95 = atomicOr((&totals.t[23i]), 1u);
     }

@@ -185,7 +185,10 @@ export class Renderer {
     // Displaced: the vertices were evaluated and moved by compute passes; the draw fetches them.
     const vertexStage = s.displace ? 'surface_fetch' : 'surface';
     const vs = await shaders.module(perSample ? `${vertexStage}_per_sample.vert` : `${vertexStage}.vert`);
-    const fs = await shaders.module(perSample ? 'surface_per_sample.frag' : 'surface.frag');
+    // Lit and texture shading: the fragment stage without the other modes' code, as limn-render
+    // picks it (subdivision_pass.cpp surfaceFragment; why in surface_fragment.glsl).
+    const fragmentStage = s.shade === 'lit' || s.shade === 'texture' ? `surface_${s.shade}` : 'surface';
+    const fs = await shaders.module(perSample ? `${fragmentStage}_per_sample.frag` : `${fragmentStage}.frag`);
     const drawGroupLayouts = [
       groupLayout(device, (await loadShaderText(`${vertexStage}.vert`)) + (await loadShaderText('surface.frag')), 1 | 2),
       device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }),

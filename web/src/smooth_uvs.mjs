@@ -16,8 +16,8 @@ const bu = new Float64Array(4), bv = new Float64Array(4);
 /**
  * The UV at (u, v) of ptex face `ptex`, from the element that contains the point just inside
  * toward (towardU, towardV) (fvar_surface.cpp uvAt; shaders/fvar_eval.glsl walks the same
- * quadtree on the GPU). Patches: the bicubic B-spline of their 16 UV control points; irregular
- * faces: the bilinear blend of their corners' limit UVs. Evaluated in double, from the float
+ * quadtree on the GPU). Patches: the bicubic B-spline of their 16 UV control points; bilinear
+ * records (an irregular face's leaves): the blend of their corners' limit UVs. Evaluated in double, from the float
  * records the chunk holds.
  */
 export function fvarUV(fvar, ptex, u, v, towardU, towardV) {

@@ -4,9 +4,10 @@
 // 2^-21: far below the finest UV element, 2^-16, so a point on an element's edge picks the
 // element on the drawing side and a point inside stays in its own, up to an extrapolation of
 // at most 2^-21 across an edge where the pieces join C2); a patch is a bicubic B-spline of 16 UV control points (paper 000, eq. 1; phantoms baked
-// in), an irregular face the bilinear blend of its corners' limit UVs (exact at its corners,
-// which is where the fixed grids draw; inside, the view-adaptive tessellation gets an
-// approximation that converges with depth). The includer defines where the data lives:
+// in), a bilinear record the blend of its corners' limit UVs. An irregular face is stored as
+// the pieces of its surface (docs/irregular.md: sub-patches, and leaves within 2^-K of an
+// extraordinary corner, exact at their corners), so this walk reaches the sub-patch there.
+// The includer defines where the data lives:
 //   uint fvarNode(uint i);    // word i of FaceVaryingSurface::Gpu::nodes
 //   vec4 fvarRecord(uint i);  // records[i]
 #ifndef LIMN_FVAR_EVAL_GLSL

@@ -23,21 +23,35 @@ vec3 levelColour(uint level) {
     return palette[min(level, 7u)];
 }
 
+// The shading mode: the push constant's, or fixed when compiling with LIMN_SHADE (surface_lit*.frag,
+// surface_texture*.frag, which the host picks for those modes). Fixed, the other modes' code is
+// dead and the compiler drops it; from the push constant every mode's code runs for every
+// fragment on a SIMD rasterizer that executes both sides of a uniform branch under a mask, as
+// lavapipe's does (Mesa 22.3): there the texture filter's four fetches and the twenty-odd pow()
+// of the unused modes cost more than the lit shading itself (spot, 1920x1080, 4 samples: the
+// frame's CPU time 40% less with the lit variant, docs/adaptive.md "Where the frame's time goes").
+// Each mode's own code is the same in every variant, and so are its pixels.
+#ifdef LIMN_SHADE
+const uint kShade = LIMN_SHADE;
+#else
+#define kShade pc.shade
+#endif
+
 void main() {
     if (backFaceKey(outColor)) return;
     vec3 n = normalize(inNormal);
-    if (pc.shade == SHADE_NORMAL) {
+    if (kShade == SHADE_NORMAL) {
         outColor = vec4(srgbToLinear(n * 0.5 + 0.5), 1.0);
         return;
     }
-    if (pc.shade == SHADE_UV) {
+    if (kShade == SHADE_UV) {
         outColor = vec4(srgbToLinear(vec3(clamp(inUV, 0.0, 1.0), 0.0)), 1.0);
         return;
     }
-    if (pc.shade == SHADE_LEVELS) {
+    if (kShade == SHADE_LEVELS) {
         outColor = vec4(levelsLight(srgbToLinear(levelColour(inLevel)), n, inWorld), 1.0);
         return;
     }
-    vec3 albedo = pc.shade == SHADE_TEXTURE ? sampleTexture(inUV) * baseColour() : baseColour();
+    vec3 albedo = kShade == SHADE_TEXTURE ? sampleTexture(inUV) * baseColour() : baseColour();
     outColor = vec4(lightRig(albedo, n, inWorld), 1.0);
 }

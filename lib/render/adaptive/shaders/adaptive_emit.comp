@@ -115,6 +115,15 @@ uint pieceST(uvec4 piece, uint j, uint r, out float along) {
     return (a & ~(0xFFFFu << sh)) | (x << sh);
 }
 
+// Where st (a point of the piece, in its owner's 1/32768) lies along the piece from its first
+// end (0) to its second (1).
+float pieceFraction(uvec4 piece, uint st) {
+    uint a = piece.y, b = piece.z;
+    uint sh = (a & 0xFFFFu) != (b & 0xFFFFu) ? 0u : 16u;
+    int ca = int((a >> sh) & 0xFFFFu), cb = int((b >> sh) & 0xFFFFu), cx = int((st >> sh) & 0xFFFFu);
+    return float(cx - ca) / float(cb - ca);
+}
+
 // Interior grid coordinate i of m along one direction, graded towards a crease at 0 or at 1.
 uint gridCoord(uint i, uint m, bool graded, bool atZero) {
     if (!graded) return (i * 32768u) / m;
@@ -197,6 +206,10 @@ void emitElement(uint e) {
                 uint j = sp.z != 0u ? r - i : i;
                 float along;
                 uint ownerST = pieceST(piece, j, r, along);
+                // Smooth UVs at the point drawn: its fraction of the piece as rounded to the
+                // owner's 1/32768 (a surface, unlike rule "all"'s bilinear charts, would show the
+                // difference, up to 2^-15 of an element).
+                if (along < 0.0 && pc.smoothUV != 0u) along = pieceFraction(piece, ownerST);
                 float f = along < 0.0 ? float(i) / float(r) : (sp.z != 0u ? 1.0 - along : along);
                 st = sideParam(k, from + (to - from) * f);
                 vertex(B++, piece.x, ownerST, uvAt(st.x, st.y));
@@ -224,6 +237,7 @@ void emitElement(uint e) {
             uint s = gridCoord(i, mu, gradeS, atZero), t = gridCoord(j, mv, gradeT, atZero);
             vec2 f = vec2(gradeS ? float(s) / 32768.0 : float(i) / float(mu),
                           gradeT ? float(t) / 32768.0 : float(j) / float(mv));
+            if (pc.smoothUV != 0u) f = vec2(float(s), float(t)) / 32768.0; // the point drawn
             vertex(B + (j - 1u) * (mu - 1u) + (i - 1u), e, s | (t << 16), uvAt(f.x, f.y));
         }
     for (uint j = 1u; j + 1u < mv; ++j)
