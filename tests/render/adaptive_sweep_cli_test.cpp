@@ -134,6 +134,10 @@ const SweepCase kSweep[] = {
     // sharpness 5.9): in float, derivatives summed from absolute coordinates were 0.61 degrees
     // off in this view; relative to a control point, 0.44 (surface_eval_impl.glsl, patchPoint).
     {"osd/catmark/catmark_rook.obj", 3, "640x480", false, false},
+    // A valence-360 vertex: its stencil rows of 721 small terms summed in float drifted its limit
+    // point 2.0e-5 of the diagonal (subdiv_stencils.comp). The view-adaptive mesh flags the
+    // bilinear faces around it (more than 64 faces), so the fixed grids.
+    {"osd/catmark/catmark_pole360.obj", 3, "64x64", true, false},
 };
 
 INSTANTIATE_TEST_SUITE_P(Sweep, DefaultViews, ::testing::ValuesIn(kSweep), sweepName);
