@@ -115,7 +115,7 @@ TEST_P(DefaultViews, EveryDrawnVertexOnTheLimit) {
     EXPECT_EQ(views, c.closeUp ? 2u : 1u);
 }
 
-// Measured (a shared 2-core machine): 0.3 to 1.3 s a case (the rook 2 s), 6.3 s in all (3.7 s of CPU) before the rook; every
+// Measured (a shared 2-core machine): 0.3 to 1.3 s a case (the rook 2 s, pole360 0.6 s), 6.3 s in all (3.7 s of CPU) before those two; every
 // vertex within 3e-7 of the diagonal and 0.04 degrees. With tables of --irregular-levels 0
 // (bilinear irregular faces) every view-adaptive case fails, by 1.6e-4 (car) to 6.8e-3
 // (smoothtris0 d4) of the diagonal; the fixed grids draw only the irregular faces' corners and
