@@ -115,7 +115,7 @@ TEST_P(DefaultViews, EveryDrawnVertexOnTheLimit) {
     EXPECT_EQ(views, c.closeUp ? 2u : 1u);
 }
 
-// Measured (a shared 2-core machine): 0.3 to 1.3 s a case, 6.3 s in all (3.7 s of CPU); every
+// Measured (a shared 2-core machine): 0.3 to 1.3 s a case (the rook 2 s, pole360 0.6 s), 6.3 s in all (3.7 s of CPU) before those two; every
 // vertex within 3e-7 of the diagonal and 0.04 degrees. With tables of --irregular-levels 0
 // (bilinear irregular faces) every view-adaptive case fails, by 1.6e-4 (car) to 6.8e-3
 // (smoothtris0 d4) of the diagonal; the fixed grids draw only the irregular faces' corners and
@@ -130,6 +130,14 @@ const SweepCase kSweep[] = {
     // The default size, and the close-up along the surface.
     {"quad/spot_control_mesh.obj", 3, "1024x768", false, true},
     {"osd/catmark/catmark_smoothtris0.obj", 4, "1024x768", false, false},
+    // Small faces far from the origin with large derivative weights (single-crease patches of
+    // sharpness 5.9): in float, derivatives summed from absolute coordinates were 0.61 degrees
+    // off in this view; relative to a control point, 0.44 (surface_eval_impl.glsl, patchPoint).
+    {"osd/catmark/catmark_rook.obj", 3, "640x480", false, false},
+    // A valence-360 vertex: its stencil rows of 721 small terms summed in float drifted its limit
+    // point 2.0e-5 of the diagonal (subdiv_stencils.comp). The view-adaptive mesh flags the
+    // bilinear faces around it (more than 64 faces), so the fixed grids.
+    {"osd/catmark/catmark_pole360.obj", 3, "64x64", true, false},
 };
 
 INSTANTIATE_TEST_SUITE_P(Sweep, DefaultViews, ::testing::ValuesIn(kSweep), sweepName);

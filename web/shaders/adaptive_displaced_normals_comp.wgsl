@@ -667,93 +667,106 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_61: array<f32, 4>;
     var Du: vec3<f32>;
     var Dv: vec3<f32>;
+    var origin: vec3<f32>;
     var j: i32;
     var row: vec3<f32>;
+    var rowRel: vec3<f32>;
     var rowDu: vec3<f32>;
-    var rowDv: vec3<f32>;
     var i_2: i32;
     var c: vec3<f32>;
+    var r: vec3<f32>;
 
-    let _e96 = (*pt_1);
-    param_55 = _e96;
-    let _e97 = (*s_3);
-    param_56 = _e97;
-    let _e98 = (*t_3);
-    param_57 = _e98;
+    let _e98 = (*pt_1);
+    param_55 = _e98;
+    let _e99 = (*s_3);
+    param_56 = _e99;
+    let _e100 = (*t_3);
+    param_57 = _e100;
     patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_55), (&param_56), (&param_57), (&param_58), (&param_59), (&param_60), (&param_61));
-    let _e99 = param_58;
-    bu_1 = _e99;
-    let _e100 = param_59;
-    du_1 = _e100;
-    let _e101 = param_60;
-    bv_1 = _e101;
-    let _e102 = param_61;
-    dv_1 = _e102;
+    let _e101 = param_58;
+    bu_1 = _e101;
+    let _e102 = param_59;
+    du_1 = _e102;
+    let _e103 = param_60;
+    bv_1 = _e103;
+    let _e104 = param_61;
+    dv_1 = _e104;
     (*P) = vec3<f32>(0f, 0f, 0f);
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
+    let _e107 = (*pt_1).cv[5i];
+    let _e110 = vertices.p[_e107];
+    origin = _e110.xyz;
     j = 0i;
     loop {
-        let _e103 = j;
-        if (_e103 < 4i) {
+        let _e112 = j;
+        if (_e112 < 4i) {
             row = vec3<f32>(0f, 0f, 0f);
+            rowRel = vec3<f32>(0f, 0f, 0f);
             rowDu = vec3<f32>(0f, 0f, 0f);
-            rowDv = vec3<f32>(0f, 0f, 0f);
             i_2 = 0i;
             loop {
-                let _e105 = i_2;
-                if (_e105 < 4i) {
-                    let _e107 = j;
-                    let _e109 = i_2;
-                    let _e113 = (*pt_1).cv[((4i * _e107) + _e109)];
-                    let _e116 = vertices.p[_e113];
-                    c = _e116.xyz;
+                let _e114 = i_2;
+                if (_e114 < 4i) {
+                    let _e116 = j;
                     let _e118 = i_2;
-                    let _e120 = bu_1[_e118];
-                    let _e121 = c;
-                    let _e123 = row;
-                    row = (_e123 + (_e121 * _e120));
-                    let _e125 = i_2;
-                    let _e127 = du_1[_e125];
-                    let _e128 = c;
-                    let _e130 = rowDu;
-                    rowDu = (_e130 + (_e128 * _e127));
+                    let _e122 = (*pt_1).cv[((4i * _e116) + _e118)];
+                    let _e125 = vertices.p[_e122];
+                    c = _e125.xyz;
+                    let _e127 = c;
+                    let _e128 = origin;
+                    r = (_e127 - _e128);
+                    let _e130 = i_2;
+                    let _e132 = bu_1[_e130];
+                    let _e133 = c;
+                    let _e135 = row;
+                    row = (_e135 + (_e133 * _e132));
+                    let _e137 = i_2;
+                    let _e139 = bu_1[_e137];
+                    let _e140 = r;
+                    let _e142 = rowRel;
+                    rowRel = (_e142 + (_e140 * _e139));
+                    let _e144 = i_2;
+                    let _e146 = du_1[_e144];
+                    let _e147 = r;
+                    let _e149 = rowDu;
+                    rowDu = (_e149 + (_e147 * _e146));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e132 = i_2;
-                    i_2 = (_e132 + 1i);
+                    let _e151 = i_2;
+                    i_2 = (_e151 + 1i);
                 }
             }
-            let _e134 = j;
-            let _e136 = bv_1[_e134];
-            let _e137 = row;
-            let _e139 = (*P);
-            (*P) = (_e139 + (_e137 * _e136));
-            let _e141 = j;
-            let _e143 = bv_1[_e141];
-            let _e144 = rowDu;
-            let _e146 = Du;
-            Du = (_e146 + (_e144 * _e143));
-            let _e148 = j;
-            let _e150 = dv_1[_e148];
-            let _e151 = row;
-            let _e153 = Dv;
-            Dv = (_e153 + (_e151 * _e150));
+            let _e153 = j;
+            let _e155 = bv_1[_e153];
+            let _e156 = row;
+            let _e158 = (*P);
+            (*P) = (_e158 + (_e156 * _e155));
+            let _e160 = j;
+            let _e162 = bv_1[_e160];
+            let _e163 = rowDu;
+            let _e165 = Du;
+            Du = (_e165 + (_e163 * _e162));
+            let _e167 = j;
+            let _e169 = dv_1[_e167];
+            let _e170 = rowRel;
+            let _e172 = Dv;
+            Dv = (_e172 + (_e170 * _e169));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e155 = j;
-            j = (_e155 + 1i);
+            let _e174 = j;
+            j = (_e174 + 1i);
         }
     }
-    let _e157 = Du;
-    let _e158 = Dv;
-    (*n_1) = cross(_e157, _e158);
+    let _e176 = Du;
+    let _e177 = Dv;
+    (*n_1) = cross(_e176, _e177);
     return;
 }
 
@@ -763,10 +776,14 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var block: u32;
     var j_1: i32;
     var c_1: array<vec3<f32>, 16>;
+    var r_1: array<vec3<f32>, 16>;
+    var origin_1: vec3<f32>;
     var i_3: u32;
     var x_3: vec3<f32>;
+    var xr: vec3<f32>;
     var w_1: Patch;
     var j_2: i32;
+    var wj: f32;
     var bu_2: array<f32, 4>;
     var du_2: array<f32, 4>;
     var param_62: f32;
@@ -781,112 +798,129 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var Dv_1: vec3<f32>;
     var j_3: i32;
     var row_1: vec3<f32>;
+    var rowRel_1: vec3<f32>;
     var rowDu_1: vec3<f32>;
     var i_4: i32;
 
-    let _e104 = (*h);
-    let _e107 = patches.p[_e104];
-    hd.cv[0i] = _e107.cv[0];
-    hd.cv[1i] = _e107.cv[1];
-    hd.cv[2i] = _e107.cv[2];
-    hd.cv[3i] = _e107.cv[3];
-    hd.cv[4i] = _e107.cv[4];
-    hd.cv[5i] = _e107.cv[5];
-    hd.cv[6i] = _e107.cv[6];
-    hd.cv[7i] = _e107.cv[7];
-    hd.cv[8i] = _e107.cv[8];
-    hd.cv[9i] = _e107.cv[9];
-    hd.cv[10i] = _e107.cv[10];
-    hd.cv[11i] = _e107.cv[11];
-    hd.cv[12i] = _e107.cv[12];
-    hd.cv[13i] = _e107.cv[13];
-    hd.cv[14i] = _e107.cv[14];
-    hd.cv[15i] = _e107.cv[15];
-    hd.ptex = _e107.ptex;
-    hd.u0_ = _e107.u0_;
-    hd.v0_ = _e107.v0_;
-    hd.size = _e107.size;
-    hd.levelBoundary = _e107.levelBoundary;
-    hd.sharpness = _e107.sharpness;
-    hd.pad1_ = _e107.pad1_;
-    hd.pad2_ = _e107.pad2_;
-    let _e160 = hd.cv[0i];
-    M_1 = ((2u * _e160) + 8u);
-    let _e165 = hd.cv[2i];
-    let _e166 = (*k_3);
-    let _e169 = (*q);
-    let _e172 = M_1;
-    block = (_e165 + ((((_e166 - 1u) * 3u) + (_e169 - 1u)) * _e172));
+    let _e109 = (*h);
+    let _e112 = patches.p[_e109];
+    hd.cv[0i] = _e112.cv[0];
+    hd.cv[1i] = _e112.cv[1];
+    hd.cv[2i] = _e112.cv[2];
+    hd.cv[3i] = _e112.cv[3];
+    hd.cv[4i] = _e112.cv[4];
+    hd.cv[5i] = _e112.cv[5];
+    hd.cv[6i] = _e112.cv[6];
+    hd.cv[7i] = _e112.cv[7];
+    hd.cv[8i] = _e112.cv[8];
+    hd.cv[9i] = _e112.cv[9];
+    hd.cv[10i] = _e112.cv[10];
+    hd.cv[11i] = _e112.cv[11];
+    hd.cv[12i] = _e112.cv[12];
+    hd.cv[13i] = _e112.cv[13];
+    hd.cv[14i] = _e112.cv[14];
+    hd.cv[15i] = _e112.cv[15];
+    hd.ptex = _e112.ptex;
+    hd.u0_ = _e112.u0_;
+    hd.v0_ = _e112.v0_;
+    hd.size = _e112.size;
+    hd.levelBoundary = _e112.levelBoundary;
+    hd.sharpness = _e112.sharpness;
+    hd.pad1_ = _e112.pad1_;
+    hd.pad2_ = _e112.pad2_;
+    let _e165 = hd.cv[0i];
+    M_1 = ((2u * _e165) + 8u);
+    let _e170 = hd.cv[2i];
+    let _e171 = (*k_3);
+    let _e174 = (*q);
+    let _e177 = M_1;
+    block = (_e170 + ((((_e171 - 1u) * 3u) + (_e174 - 1u)) * _e177));
     j_1 = 0i;
     loop {
-        let _e175 = j_1;
-        if (_e175 < 16i) {
-            let _e177 = j_1;
-            c_1[_e177] = vec3<f32>(0f, 0f, 0f);
+        let _e180 = j_1;
+        if (_e180 < 16i) {
+            let _e182 = j_1;
+            c_1[_e182] = vec3<f32>(0f, 0f, 0f);
+            let _e184 = j_1;
+            r_1[_e184] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e179 = j_1;
-            j_1 = (_e179 + 1i);
+            let _e186 = j_1;
+            j_1 = (_e186 + 1i);
         }
     }
+    let _e188 = (*h);
+    let _e194 = patches.p[(_e188 + 1u)].cv[0i];
+    let _e197 = vertices.p[_e194];
+    origin_1 = _e197.xyz;
     i_3 = 0u;
     loop {
-        let _e181 = i_3;
-        let _e182 = M_1;
-        if (_e181 < _e182) {
-            let _e184 = (*h);
-            let _e186 = i_3;
-            let _e189 = i_3;
-            let _e195 = patches.p[((_e184 + 1u) + (_e186 / 16u))].cv[(_e189 % 16u)];
-            let _e198 = vertices.p[_e195];
-            x_3 = _e198.xyz;
-            let _e200 = block;
-            let _e201 = i_3;
-            let _e205 = patches.p[(_e200 + _e201)];
-            w_1.cv[0i] = _e205.cv[0];
-            w_1.cv[1i] = _e205.cv[1];
-            w_1.cv[2i] = _e205.cv[2];
-            w_1.cv[3i] = _e205.cv[3];
-            w_1.cv[4i] = _e205.cv[4];
-            w_1.cv[5i] = _e205.cv[5];
-            w_1.cv[6i] = _e205.cv[6];
-            w_1.cv[7i] = _e205.cv[7];
-            w_1.cv[8i] = _e205.cv[8];
-            w_1.cv[9i] = _e205.cv[9];
-            w_1.cv[10i] = _e205.cv[10];
-            w_1.cv[11i] = _e205.cv[11];
-            w_1.cv[12i] = _e205.cv[12];
-            w_1.cv[13i] = _e205.cv[13];
-            w_1.cv[14i] = _e205.cv[14];
-            w_1.cv[15i] = _e205.cv[15];
-            w_1.ptex = _e205.ptex;
-            w_1.u0_ = _e205.u0_;
-            w_1.v0_ = _e205.v0_;
-            w_1.size = _e205.size;
-            w_1.levelBoundary = _e205.levelBoundary;
-            w_1.sharpness = _e205.sharpness;
-            w_1.pad1_ = _e205.pad1_;
-            w_1.pad2_ = _e205.pad2_;
+        let _e199 = i_3;
+        let _e200 = M_1;
+        if (_e199 < _e200) {
+            let _e202 = (*h);
+            let _e204 = i_3;
+            let _e207 = i_3;
+            let _e213 = patches.p[((_e202 + 1u) + (_e204 / 16u))].cv[(_e207 % 16u)];
+            let _e216 = vertices.p[_e213];
+            x_3 = _e216.xyz;
+            let _e218 = x_3;
+            let _e219 = origin_1;
+            xr = (_e218 - _e219);
+            let _e221 = block;
+            let _e222 = i_3;
+            let _e226 = patches.p[(_e221 + _e222)];
+            w_1.cv[0i] = _e226.cv[0];
+            w_1.cv[1i] = _e226.cv[1];
+            w_1.cv[2i] = _e226.cv[2];
+            w_1.cv[3i] = _e226.cv[3];
+            w_1.cv[4i] = _e226.cv[4];
+            w_1.cv[5i] = _e226.cv[5];
+            w_1.cv[6i] = _e226.cv[6];
+            w_1.cv[7i] = _e226.cv[7];
+            w_1.cv[8i] = _e226.cv[8];
+            w_1.cv[9i] = _e226.cv[9];
+            w_1.cv[10i] = _e226.cv[10];
+            w_1.cv[11i] = _e226.cv[11];
+            w_1.cv[12i] = _e226.cv[12];
+            w_1.cv[13i] = _e226.cv[13];
+            w_1.cv[14i] = _e226.cv[14];
+            w_1.cv[15i] = _e226.cv[15];
+            w_1.ptex = _e226.ptex;
+            w_1.u0_ = _e226.u0_;
+            w_1.v0_ = _e226.v0_;
+            w_1.size = _e226.size;
+            w_1.levelBoundary = _e226.levelBoundary;
+            w_1.sharpness = _e226.sharpness;
+            w_1.pad1_ = _e226.pad1_;
+            w_1.pad2_ = _e226.pad2_;
             j_2 = 0i;
             loop {
-                let _e256 = j_2;
-                if (_e256 < 16i) {
-                    let _e258 = j_2;
-                    let _e259 = j_2;
-                    let _e262 = w_1.cv[_e259];
-                    let _e264 = x_3;
-                    let _e267 = c_1[_e258];
-                    c_1[_e258] = (_e267 + (_e264 * bitcast<f32>(_e262)));
+                let _e277 = j_2;
+                if (_e277 < 16i) {
+                    let _e279 = j_2;
+                    let _e282 = w_1.cv[_e279];
+                    wj = bitcast<f32>(_e282);
+                    let _e284 = j_2;
+                    let _e285 = wj;
+                    let _e286 = x_3;
+                    let _e289 = c_1[_e284];
+                    c_1[_e284] = (_e289 + (_e286 * _e285));
+                    let _e292 = j_2;
+                    let _e293 = wj;
+                    let _e294 = xr;
+                    let _e297 = r_1[_e292];
+                    r_1[_e292] = (_e297 + (_e294 * _e293));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e270 = j_2;
-                    j_2 = (_e270 + 1i);
+                    let _e300 = j_2;
+                    j_2 = (_e300 + 1i);
                 }
             }
             continue;
@@ -894,87 +928,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e272 = i_3;
-            i_3 = (_e272 + bitcast<u32>(1i));
+            let _e302 = i_3;
+            i_3 = (_e302 + bitcast<u32>(1i));
         }
     }
-    let _e275 = (*s_4);
-    param_62 = _e275;
+    let _e305 = (*s_4);
+    param_62 = _e305;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_62), (&param_63), (&param_64));
-    let _e276 = param_63;
-    bu_2 = _e276;
-    let _e277 = param_64;
-    du_2 = _e277;
-    let _e278 = (*t_4);
-    param_65 = _e278;
+    let _e306 = param_63;
+    bu_2 = _e306;
+    let _e307 = param_64;
+    du_2 = _e307;
+    let _e308 = (*t_4);
+    param_65 = _e308;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_65), (&param_66), (&param_67));
-    let _e279 = param_66;
-    bv_2 = _e279;
-    let _e280 = param_67;
-    dv_2 = _e280;
+    let _e309 = param_66;
+    bv_2 = _e309;
+    let _e310 = param_67;
+    dv_2 = _e310;
     (*P_1) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e281 = j_3;
-        if (_e281 < 4i) {
+        let _e311 = j_3;
+        if (_e311 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
+            rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_4 = 0i;
             loop {
-                let _e283 = i_4;
-                if (_e283 < 4i) {
-                    let _e285 = i_4;
-                    let _e287 = bu_2[_e285];
-                    let _e288 = j_3;
-                    let _e290 = i_4;
-                    let _e293 = c_1[((4i * _e288) + _e290)];
-                    let _e295 = row_1;
-                    row_1 = (_e295 + (_e293 * _e287));
-                    let _e297 = i_4;
-                    let _e299 = du_2[_e297];
-                    let _e300 = j_3;
-                    let _e302 = i_4;
-                    let _e305 = c_1[((4i * _e300) + _e302)];
-                    let _e307 = rowDu_1;
-                    rowDu_1 = (_e307 + (_e305 * _e299));
+                let _e313 = i_4;
+                if (_e313 < 4i) {
+                    let _e315 = i_4;
+                    let _e317 = bu_2[_e315];
+                    let _e318 = j_3;
+                    let _e320 = i_4;
+                    let _e323 = c_1[((4i * _e318) + _e320)];
+                    let _e325 = row_1;
+                    row_1 = (_e325 + (_e323 * _e317));
+                    let _e327 = i_4;
+                    let _e329 = bu_2[_e327];
+                    let _e330 = j_3;
+                    let _e332 = i_4;
+                    let _e335 = r_1[((4i * _e330) + _e332)];
+                    let _e337 = rowRel_1;
+                    rowRel_1 = (_e337 + (_e335 * _e329));
+                    let _e339 = i_4;
+                    let _e341 = du_2[_e339];
+                    let _e342 = j_3;
+                    let _e344 = i_4;
+                    let _e347 = r_1[((4i * _e342) + _e344)];
+                    let _e349 = rowDu_1;
+                    rowDu_1 = (_e349 + (_e347 * _e341));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e309 = i_4;
-                    i_4 = (_e309 + 1i);
+                    let _e351 = i_4;
+                    i_4 = (_e351 + 1i);
                 }
             }
-            let _e311 = j_3;
-            let _e313 = bv_2[_e311];
-            let _e314 = row_1;
-            let _e316 = (*P_1);
-            (*P_1) = (_e316 + (_e314 * _e313));
-            let _e318 = j_3;
-            let _e320 = bv_2[_e318];
-            let _e321 = rowDu_1;
-            let _e323 = Du_1;
-            Du_1 = (_e323 + (_e321 * _e320));
-            let _e325 = j_3;
-            let _e327 = dv_2[_e325];
-            let _e328 = row_1;
-            let _e330 = Dv_1;
-            Dv_1 = (_e330 + (_e328 * _e327));
+            let _e353 = j_3;
+            let _e355 = bv_2[_e353];
+            let _e356 = row_1;
+            let _e358 = (*P_1);
+            (*P_1) = (_e358 + (_e356 * _e355));
+            let _e360 = j_3;
+            let _e362 = bv_2[_e360];
+            let _e363 = rowDu_1;
+            let _e365 = Du_1;
+            Du_1 = (_e365 + (_e363 * _e362));
+            let _e367 = j_3;
+            let _e369 = dv_2[_e367];
+            let _e370 = rowRel_1;
+            let _e372 = Dv_1;
+            Dv_1 = (_e372 + (_e370 * _e369));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e332 = j_3;
-            j_3 = (_e332 + 1i);
+            let _e374 = j_3;
+            j_3 = (_e374 + 1i);
         }
     }
-    let _e334 = Du_1;
-    let _e335 = Dv_1;
-    (*n_2) = cross(_e334, _e335);
+    let _e376 = Du_1;
+    let _e377 = Dv_1;
+    (*n_2) = cross(_e376, _e377);
     return;
 }
 
@@ -1290,7 +1332,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_7: i32;
-    var phi_1388_: bool;
+    var phi_1443_: bool;
 
     let _e105 = (*st_1);
     S_1 = (_e105 & 65535u);
@@ -1299,13 +1341,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e110 = S_1;
     let _e112 = S_1;
     let _e114 = ((_e110 == 0u) || (_e112 == 32768u));
-    phi_1388_ = _e114;
+    phi_1443_ = _e114;
     if _e114 {
         let _e115 = T_1;
         let _e117 = T_1;
-        phi_1388_ = ((_e115 == 0u) || (_e117 == 32768u));
+        phi_1443_ = ((_e115 == 0u) || (_e117 == 32768u));
     }
-    let _e121 = phi_1388_;
+    let _e121 = phi_1443_;
     if _e121 {
         let _e122 = S_1;
         if (_e122 == 0u) {
@@ -1499,7 +1541,7 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_107: f32;
     var param_108: vec3<f32>;
     var param_109: vec3<f32>;
-    var r: SurfaceSample;
+    var r_2: SurfaceSample;
     var q_3: IrregularFace;
     var param_110: u32;
     var param_111: u32;
@@ -1553,15 +1595,15 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         let _e163 = param_109;
         n_5 = _e163;
         let _e165 = pt_2.ptex;
-        r.ptex = _e165;
+        r_2.ptex = _e165;
         let _e168 = pt_2.u0_;
         let _e170 = pt_2.v0_;
         let _e173 = pt_2.size;
         let _e174 = s_6;
         let _e175 = t_6;
-        r.uv = (vec2<f32>(_e168, _e170) + (vec2<f32>(_e174, _e175) * _e173));
+        r_2.uv = (vec2<f32>(_e168, _e170) + (vec2<f32>(_e174, _e175) * _e173));
         let _e181 = pt_2.levelBoundary;
-        r.level = (_e181 & 255u);
+        r_2.level = (_e181 & 255u);
     } else {
         let _e184 = (*element);
         let _e185 = (*patchCount_1);
@@ -1584,17 +1626,17 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         let _e206 = param_114;
         n_5 = _e206;
         let _e208 = q_3.ptex;
-        r.ptex = _e208;
+        r_2.ptex = _e208;
         let _e211 = q_3.u0_;
         let _e213 = q_3.v0_;
         let _e216 = q_3.size;
         let _e217 = s_6;
         let _e218 = t_6;
-        r.uv = (vec2<f32>(_e211, _e213) + (vec2<f32>(_e217, _e218) * _e216));
-        r.level = 255u;
+        r_2.uv = (vec2<f32>(_e211, _e213) + (vec2<f32>(_e217, _e218) * _e216));
+        r_2.level = 255u;
     }
     let _e224 = P_4;
-    r.position = _e224;
+    r_2.position = _e224;
     let _e226 = n_5;
     let _e227 = n_5;
     if (dot(_e226, _e227) > 0f) {
@@ -1604,8 +1646,8 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         local_13 = vec3<f32>(0f, 0f, 0f);
     }
     let _e232 = local_13;
-    r.normal = _e232;
-    let _e234 = r;
+    r_2.normal = _e232;
+    let _e234 = r_2;
     return _e234;
 }
 

@@ -618,93 +618,106 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_44: array<f32, 4>;
     var Du: vec3<f32>;
     var Dv: vec3<f32>;
+    var origin: vec3<f32>;
     var j: i32;
     var row: vec3<f32>;
+    var rowRel: vec3<f32>;
     var rowDu: vec3<f32>;
-    var rowDv: vec3<f32>;
     var i_1: i32;
     var c_1: vec3<f32>;
+    var r: vec3<f32>;
 
-    let _e100 = (*pt_1);
-    param_38 = _e100;
-    let _e101 = (*s_3);
-    param_39 = _e101;
-    let _e102 = (*t_3);
-    param_40 = _e102;
+    let _e102 = (*pt_1);
+    param_38 = _e102;
+    let _e103 = (*s_3);
+    param_39 = _e103;
+    let _e104 = (*t_3);
+    param_40 = _e104;
     patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_38), (&param_39), (&param_40), (&param_41), (&param_42), (&param_43), (&param_44));
-    let _e103 = param_41;
-    bu_1 = _e103;
-    let _e104 = param_42;
-    du_1 = _e104;
-    let _e105 = param_43;
-    bv_1 = _e105;
-    let _e106 = param_44;
-    dv_1 = _e106;
+    let _e105 = param_41;
+    bu_1 = _e105;
+    let _e106 = param_42;
+    du_1 = _e106;
+    let _e107 = param_43;
+    bv_1 = _e107;
+    let _e108 = param_44;
+    dv_1 = _e108;
     (*P_2) = vec3<f32>(0f, 0f, 0f);
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
+    let _e111 = (*pt_1).cv[5i];
+    let _e114 = vertices.p[_e111];
+    origin = _e114.xyz;
     j = 0i;
     loop {
-        let _e107 = j;
-        if (_e107 < 4i) {
+        let _e116 = j;
+        if (_e116 < 4i) {
             row = vec3<f32>(0f, 0f, 0f);
+            rowRel = vec3<f32>(0f, 0f, 0f);
             rowDu = vec3<f32>(0f, 0f, 0f);
-            rowDv = vec3<f32>(0f, 0f, 0f);
             i_1 = 0i;
             loop {
-                let _e109 = i_1;
-                if (_e109 < 4i) {
-                    let _e111 = j;
-                    let _e113 = i_1;
-                    let _e117 = (*pt_1).cv[((4i * _e111) + _e113)];
-                    let _e120 = vertices.p[_e117];
-                    c_1 = _e120.xyz;
+                let _e118 = i_1;
+                if (_e118 < 4i) {
+                    let _e120 = j;
                     let _e122 = i_1;
-                    let _e124 = bu_1[_e122];
-                    let _e125 = c_1;
-                    let _e127 = row;
-                    row = (_e127 + (_e125 * _e124));
-                    let _e129 = i_1;
-                    let _e131 = du_1[_e129];
-                    let _e132 = c_1;
-                    let _e134 = rowDu;
-                    rowDu = (_e134 + (_e132 * _e131));
+                    let _e126 = (*pt_1).cv[((4i * _e120) + _e122)];
+                    let _e129 = vertices.p[_e126];
+                    c_1 = _e129.xyz;
+                    let _e131 = c_1;
+                    let _e132 = origin;
+                    r = (_e131 - _e132);
+                    let _e134 = i_1;
+                    let _e136 = bu_1[_e134];
+                    let _e137 = c_1;
+                    let _e139 = row;
+                    row = (_e139 + (_e137 * _e136));
+                    let _e141 = i_1;
+                    let _e143 = bu_1[_e141];
+                    let _e144 = r;
+                    let _e146 = rowRel;
+                    rowRel = (_e146 + (_e144 * _e143));
+                    let _e148 = i_1;
+                    let _e150 = du_1[_e148];
+                    let _e151 = r;
+                    let _e153 = rowDu;
+                    rowDu = (_e153 + (_e151 * _e150));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e136 = i_1;
-                    i_1 = (_e136 + 1i);
+                    let _e155 = i_1;
+                    i_1 = (_e155 + 1i);
                 }
             }
-            let _e138 = j;
-            let _e140 = bv_1[_e138];
-            let _e141 = row;
-            let _e143 = (*P_2);
-            (*P_2) = (_e143 + (_e141 * _e140));
-            let _e145 = j;
-            let _e147 = bv_1[_e145];
-            let _e148 = rowDu;
-            let _e150 = Du;
-            Du = (_e150 + (_e148 * _e147));
-            let _e152 = j;
-            let _e154 = dv_1[_e152];
-            let _e155 = row;
-            let _e157 = Dv;
-            Dv = (_e157 + (_e155 * _e154));
+            let _e157 = j;
+            let _e159 = bv_1[_e157];
+            let _e160 = row;
+            let _e162 = (*P_2);
+            (*P_2) = (_e162 + (_e160 * _e159));
+            let _e164 = j;
+            let _e166 = bv_1[_e164];
+            let _e167 = rowDu;
+            let _e169 = Du;
+            Du = (_e169 + (_e167 * _e166));
+            let _e171 = j;
+            let _e173 = dv_1[_e171];
+            let _e174 = rowRel;
+            let _e176 = Dv;
+            Dv = (_e176 + (_e174 * _e173));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e159 = j;
-            j = (_e159 + 1i);
+            let _e178 = j;
+            j = (_e178 + 1i);
         }
     }
-    let _e161 = Du;
-    let _e162 = Dv;
-    (*n_1) = cross(_e161, _e162);
+    let _e180 = Du;
+    let _e181 = Dv;
+    (*n_1) = cross(_e180, _e181);
     return;
 }
 
@@ -714,10 +727,14 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var block: u32;
     var j_1: i32;
     var c_2: array<vec3<f32>, 16>;
+    var r_1: array<vec3<f32>, 16>;
+    var origin_1: vec3<f32>;
     var i_2: u32;
     var x_1: vec3<f32>;
+    var xr: vec3<f32>;
     var w_1: Patch;
     var j_2: i32;
+    var wj: f32;
     var bu_2: array<f32, 4>;
     var du_2: array<f32, 4>;
     var param_45: f32;
@@ -732,112 +749,129 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var Dv_1: vec3<f32>;
     var j_3: i32;
     var row_1: vec3<f32>;
+    var rowRel_1: vec3<f32>;
     var rowDu_1: vec3<f32>;
     var i_3: i32;
 
-    let _e108 = (*h);
-    let _e111 = patches.p[_e108];
-    hd.cv[0i] = _e111.cv[0];
-    hd.cv[1i] = _e111.cv[1];
-    hd.cv[2i] = _e111.cv[2];
-    hd.cv[3i] = _e111.cv[3];
-    hd.cv[4i] = _e111.cv[4];
-    hd.cv[5i] = _e111.cv[5];
-    hd.cv[6i] = _e111.cv[6];
-    hd.cv[7i] = _e111.cv[7];
-    hd.cv[8i] = _e111.cv[8];
-    hd.cv[9i] = _e111.cv[9];
-    hd.cv[10i] = _e111.cv[10];
-    hd.cv[11i] = _e111.cv[11];
-    hd.cv[12i] = _e111.cv[12];
-    hd.cv[13i] = _e111.cv[13];
-    hd.cv[14i] = _e111.cv[14];
-    hd.cv[15i] = _e111.cv[15];
-    hd.ptex = _e111.ptex;
-    hd.u0_ = _e111.u0_;
-    hd.v0_ = _e111.v0_;
-    hd.size = _e111.size;
-    hd.levelBoundary = _e111.levelBoundary;
-    hd.sharpness = _e111.sharpness;
-    hd.pad1_ = _e111.pad1_;
-    hd.pad2_ = _e111.pad2_;
-    let _e164 = hd.cv[0i];
-    M_2 = ((2u * _e164) + 8u);
-    let _e169 = hd.cv[2i];
-    let _e170 = (*k_3);
-    let _e173 = (*q);
-    let _e176 = M_2;
-    block = (_e169 + ((((_e170 - 1u) * 3u) + (_e173 - 1u)) * _e176));
+    let _e113 = (*h);
+    let _e116 = patches.p[_e113];
+    hd.cv[0i] = _e116.cv[0];
+    hd.cv[1i] = _e116.cv[1];
+    hd.cv[2i] = _e116.cv[2];
+    hd.cv[3i] = _e116.cv[3];
+    hd.cv[4i] = _e116.cv[4];
+    hd.cv[5i] = _e116.cv[5];
+    hd.cv[6i] = _e116.cv[6];
+    hd.cv[7i] = _e116.cv[7];
+    hd.cv[8i] = _e116.cv[8];
+    hd.cv[9i] = _e116.cv[9];
+    hd.cv[10i] = _e116.cv[10];
+    hd.cv[11i] = _e116.cv[11];
+    hd.cv[12i] = _e116.cv[12];
+    hd.cv[13i] = _e116.cv[13];
+    hd.cv[14i] = _e116.cv[14];
+    hd.cv[15i] = _e116.cv[15];
+    hd.ptex = _e116.ptex;
+    hd.u0_ = _e116.u0_;
+    hd.v0_ = _e116.v0_;
+    hd.size = _e116.size;
+    hd.levelBoundary = _e116.levelBoundary;
+    hd.sharpness = _e116.sharpness;
+    hd.pad1_ = _e116.pad1_;
+    hd.pad2_ = _e116.pad2_;
+    let _e169 = hd.cv[0i];
+    M_2 = ((2u * _e169) + 8u);
+    let _e174 = hd.cv[2i];
+    let _e175 = (*k_3);
+    let _e178 = (*q);
+    let _e181 = M_2;
+    block = (_e174 + ((((_e175 - 1u) * 3u) + (_e178 - 1u)) * _e181));
     j_1 = 0i;
     loop {
-        let _e179 = j_1;
-        if (_e179 < 16i) {
-            let _e181 = j_1;
-            c_2[_e181] = vec3<f32>(0f, 0f, 0f);
+        let _e184 = j_1;
+        if (_e184 < 16i) {
+            let _e186 = j_1;
+            c_2[_e186] = vec3<f32>(0f, 0f, 0f);
+            let _e188 = j_1;
+            r_1[_e188] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e183 = j_1;
-            j_1 = (_e183 + 1i);
+            let _e190 = j_1;
+            j_1 = (_e190 + 1i);
         }
     }
+    let _e192 = (*h);
+    let _e198 = patches.p[(_e192 + 1u)].cv[0i];
+    let _e201 = vertices.p[_e198];
+    origin_1 = _e201.xyz;
     i_2 = 0u;
     loop {
-        let _e185 = i_2;
-        let _e186 = M_2;
-        if (_e185 < _e186) {
-            let _e188 = (*h);
-            let _e190 = i_2;
-            let _e193 = i_2;
-            let _e199 = patches.p[((_e188 + 1u) + (_e190 / 16u))].cv[(_e193 % 16u)];
-            let _e202 = vertices.p[_e199];
-            x_1 = _e202.xyz;
-            let _e204 = block;
-            let _e205 = i_2;
-            let _e209 = patches.p[(_e204 + _e205)];
-            w_1.cv[0i] = _e209.cv[0];
-            w_1.cv[1i] = _e209.cv[1];
-            w_1.cv[2i] = _e209.cv[2];
-            w_1.cv[3i] = _e209.cv[3];
-            w_1.cv[4i] = _e209.cv[4];
-            w_1.cv[5i] = _e209.cv[5];
-            w_1.cv[6i] = _e209.cv[6];
-            w_1.cv[7i] = _e209.cv[7];
-            w_1.cv[8i] = _e209.cv[8];
-            w_1.cv[9i] = _e209.cv[9];
-            w_1.cv[10i] = _e209.cv[10];
-            w_1.cv[11i] = _e209.cv[11];
-            w_1.cv[12i] = _e209.cv[12];
-            w_1.cv[13i] = _e209.cv[13];
-            w_1.cv[14i] = _e209.cv[14];
-            w_1.cv[15i] = _e209.cv[15];
-            w_1.ptex = _e209.ptex;
-            w_1.u0_ = _e209.u0_;
-            w_1.v0_ = _e209.v0_;
-            w_1.size = _e209.size;
-            w_1.levelBoundary = _e209.levelBoundary;
-            w_1.sharpness = _e209.sharpness;
-            w_1.pad1_ = _e209.pad1_;
-            w_1.pad2_ = _e209.pad2_;
+        let _e203 = i_2;
+        let _e204 = M_2;
+        if (_e203 < _e204) {
+            let _e206 = (*h);
+            let _e208 = i_2;
+            let _e211 = i_2;
+            let _e217 = patches.p[((_e206 + 1u) + (_e208 / 16u))].cv[(_e211 % 16u)];
+            let _e220 = vertices.p[_e217];
+            x_1 = _e220.xyz;
+            let _e222 = x_1;
+            let _e223 = origin_1;
+            xr = (_e222 - _e223);
+            let _e225 = block;
+            let _e226 = i_2;
+            let _e230 = patches.p[(_e225 + _e226)];
+            w_1.cv[0i] = _e230.cv[0];
+            w_1.cv[1i] = _e230.cv[1];
+            w_1.cv[2i] = _e230.cv[2];
+            w_1.cv[3i] = _e230.cv[3];
+            w_1.cv[4i] = _e230.cv[4];
+            w_1.cv[5i] = _e230.cv[5];
+            w_1.cv[6i] = _e230.cv[6];
+            w_1.cv[7i] = _e230.cv[7];
+            w_1.cv[8i] = _e230.cv[8];
+            w_1.cv[9i] = _e230.cv[9];
+            w_1.cv[10i] = _e230.cv[10];
+            w_1.cv[11i] = _e230.cv[11];
+            w_1.cv[12i] = _e230.cv[12];
+            w_1.cv[13i] = _e230.cv[13];
+            w_1.cv[14i] = _e230.cv[14];
+            w_1.cv[15i] = _e230.cv[15];
+            w_1.ptex = _e230.ptex;
+            w_1.u0_ = _e230.u0_;
+            w_1.v0_ = _e230.v0_;
+            w_1.size = _e230.size;
+            w_1.levelBoundary = _e230.levelBoundary;
+            w_1.sharpness = _e230.sharpness;
+            w_1.pad1_ = _e230.pad1_;
+            w_1.pad2_ = _e230.pad2_;
             j_2 = 0i;
             loop {
-                let _e260 = j_2;
-                if (_e260 < 16i) {
-                    let _e262 = j_2;
-                    let _e263 = j_2;
-                    let _e266 = w_1.cv[_e263];
-                    let _e268 = x_1;
-                    let _e271 = c_2[_e262];
-                    c_2[_e262] = (_e271 + (_e268 * bitcast<f32>(_e266)));
+                let _e281 = j_2;
+                if (_e281 < 16i) {
+                    let _e283 = j_2;
+                    let _e286 = w_1.cv[_e283];
+                    wj = bitcast<f32>(_e286);
+                    let _e288 = j_2;
+                    let _e289 = wj;
+                    let _e290 = x_1;
+                    let _e293 = c_2[_e288];
+                    c_2[_e288] = (_e293 + (_e290 * _e289));
+                    let _e296 = j_2;
+                    let _e297 = wj;
+                    let _e298 = xr;
+                    let _e301 = r_1[_e296];
+                    r_1[_e296] = (_e301 + (_e298 * _e297));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e274 = j_2;
-                    j_2 = (_e274 + 1i);
+                    let _e304 = j_2;
+                    j_2 = (_e304 + 1i);
                 }
             }
             continue;
@@ -845,87 +879,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e276 = i_2;
-            i_2 = (_e276 + bitcast<u32>(1i));
+            let _e306 = i_2;
+            i_2 = (_e306 + bitcast<u32>(1i));
         }
     }
-    let _e279 = (*s_4);
-    param_45 = _e279;
+    let _e309 = (*s_4);
+    param_45 = _e309;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e280 = param_46;
-    bu_2 = _e280;
-    let _e281 = param_47;
-    du_2 = _e281;
-    let _e282 = (*t_4);
-    param_48 = _e282;
+    let _e310 = param_46;
+    bu_2 = _e310;
+    let _e311 = param_47;
+    du_2 = _e311;
+    let _e312 = (*t_4);
+    param_48 = _e312;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_48), (&param_49), (&param_50));
-    let _e283 = param_49;
-    bv_2 = _e283;
-    let _e284 = param_50;
-    dv_2 = _e284;
+    let _e313 = param_49;
+    bv_2 = _e313;
+    let _e314 = param_50;
+    dv_2 = _e314;
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e285 = j_3;
-        if (_e285 < 4i) {
+        let _e315 = j_3;
+        if (_e315 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
+            rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e287 = i_3;
-                if (_e287 < 4i) {
-                    let _e289 = i_3;
-                    let _e291 = bu_2[_e289];
-                    let _e292 = j_3;
-                    let _e294 = i_3;
-                    let _e297 = c_2[((4i * _e292) + _e294)];
-                    let _e299 = row_1;
-                    row_1 = (_e299 + (_e297 * _e291));
-                    let _e301 = i_3;
-                    let _e303 = du_2[_e301];
-                    let _e304 = j_3;
-                    let _e306 = i_3;
-                    let _e309 = c_2[((4i * _e304) + _e306)];
-                    let _e311 = rowDu_1;
-                    rowDu_1 = (_e311 + (_e309 * _e303));
+                let _e317 = i_3;
+                if (_e317 < 4i) {
+                    let _e319 = i_3;
+                    let _e321 = bu_2[_e319];
+                    let _e322 = j_3;
+                    let _e324 = i_3;
+                    let _e327 = c_2[((4i * _e322) + _e324)];
+                    let _e329 = row_1;
+                    row_1 = (_e329 + (_e327 * _e321));
+                    let _e331 = i_3;
+                    let _e333 = bu_2[_e331];
+                    let _e334 = j_3;
+                    let _e336 = i_3;
+                    let _e339 = r_1[((4i * _e334) + _e336)];
+                    let _e341 = rowRel_1;
+                    rowRel_1 = (_e341 + (_e339 * _e333));
+                    let _e343 = i_3;
+                    let _e345 = du_2[_e343];
+                    let _e346 = j_3;
+                    let _e348 = i_3;
+                    let _e351 = r_1[((4i * _e346) + _e348)];
+                    let _e353 = rowDu_1;
+                    rowDu_1 = (_e353 + (_e351 * _e345));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e313 = i_3;
-                    i_3 = (_e313 + 1i);
+                    let _e355 = i_3;
+                    i_3 = (_e355 + 1i);
                 }
             }
-            let _e315 = j_3;
-            let _e317 = bv_2[_e315];
-            let _e318 = row_1;
-            let _e320 = (*P_3);
-            (*P_3) = (_e320 + (_e318 * _e317));
-            let _e322 = j_3;
-            let _e324 = bv_2[_e322];
-            let _e325 = rowDu_1;
-            let _e327 = Du_1;
-            Du_1 = (_e327 + (_e325 * _e324));
-            let _e329 = j_3;
-            let _e331 = dv_2[_e329];
-            let _e332 = row_1;
-            let _e334 = Dv_1;
-            Dv_1 = (_e334 + (_e332 * _e331));
+            let _e357 = j_3;
+            let _e359 = bv_2[_e357];
+            let _e360 = row_1;
+            let _e362 = (*P_3);
+            (*P_3) = (_e362 + (_e360 * _e359));
+            let _e364 = j_3;
+            let _e366 = bv_2[_e364];
+            let _e367 = rowDu_1;
+            let _e369 = Du_1;
+            Du_1 = (_e369 + (_e367 * _e366));
+            let _e371 = j_3;
+            let _e373 = dv_2[_e371];
+            let _e374 = rowRel_1;
+            let _e376 = Dv_1;
+            Dv_1 = (_e376 + (_e374 * _e373));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e336 = j_3;
-            j_3 = (_e336 + 1i);
+            let _e378 = j_3;
+            j_3 = (_e378 + 1i);
         }
     }
-    let _e338 = Du_1;
-    let _e339 = Dv_1;
-    (*n_2) = cross(_e338, _e339);
+    let _e380 = Du_1;
+    let _e381 = Dv_1;
+    (*n_2) = cross(_e380, _e381);
     return;
 }
 
@@ -1241,7 +1283,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_7: i32;
-    var phi_1386_: bool;
+    var phi_1441_: bool;
 
     let _e109 = (*st_1);
     S_2 = (_e109 & 65535u);
@@ -1250,13 +1292,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e114 = S_2;
     let _e116 = S_2;
     let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
-    phi_1386_ = _e118;
+    phi_1441_ = _e118;
     if _e118 {
         let _e119 = T_1;
         let _e121 = T_1;
-        phi_1386_ = ((_e119 == 0u) || (_e121 == 32768u));
+        phi_1441_ = ((_e119 == 0u) || (_e121 == 32768u));
     }
-    let _e125 = phi_1386_;
+    let _e125 = phi_1441_;
     if _e125 {
         let _e126 = S_2;
         if (_e126 == 0u) {
@@ -1665,7 +1707,7 @@ fn main_1() {
     var p1_: vec4<u32>;
     var visible: bool;
     var cap: u32;
-    var r: u32;
+    var r_2: u32;
     var size: u32;
     var ends: vec4<f32>;
     var mid: u32;
@@ -1708,10 +1750,10 @@ fn main_1() {
     var creaseAlongS: bool;
     var most_1: f32;
     var local_16: f32;
-    var phi_2129_: bool;
-    var phi_2130_: bool;
-    var phi_2383_: bool;
-    var phi_2488_: bool;
+    var phi_2184_: bool;
+    var phi_2185_: bool;
+    var phi_2438_: bool;
+    var phi_2543_: bool;
 
     let _e126 = pc.limnRowInvocations;
     param_100 = _e126;
@@ -1731,25 +1773,25 @@ fn main_1() {
     let _e144 = p1_[0u];
     let _e147 = cull.c[_e144];
     let _e148 = (_e147 == 0u);
-    phi_2130_ = _e148;
+    phi_2185_ = _e148;
     if !(_e148) {
         let _e151 = p1_[1u];
         let _e152 = (_e151 != 4294967295u);
-        phi_2129_ = _e152;
+        phi_2184_ = _e152;
         if _e152 {
             let _e154 = p1_[1u];
             let _e157 = cull.c[_e154];
-            phi_2129_ = (_e157 == 0u);
+            phi_2184_ = (_e157 == 0u);
         }
-        let _e160 = phi_2129_;
-        phi_2130_ = _e160;
+        let _e160 = phi_2184_;
+        phi_2185_ = _e160;
     }
-    let _e162 = phi_2130_;
+    let _e162 = phi_2185_;
     visible = _e162;
     let _e164 = pc.tess;
     let _e166 = p0_[3u];
     cap = max(min(_e164, _e166), 1u);
-    r = 1u;
+    r_2 = 1u;
     size = 1u;
     ends = vec4<f32>(300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f);
     let _e169 = visible;
@@ -1893,20 +1935,20 @@ fn main_1() {
         let _e335 = behind;
         let _e336 = count_1;
         if (_e335 == _e336) {
-            r = 1u;
+            r_2 = 1u;
             size = 1u;
         } else {
             let _e338 = behind;
             let _e339 = (_e338 != 0u);
-            phi_2383_ = _e339;
+            phi_2438_ = _e339;
             if !(_e339) {
                 let _e341 = len;
-                phi_2383_ = !((_e341 < 1000000000f));
+                phi_2438_ = !((_e341 < 1000000000f));
             }
-            let _e345 = phi_2383_;
+            let _e345 = phi_2438_;
             if _e345 {
                 let _e346 = cap;
-                r = _e346;
+                r_2 = _e346;
                 let _e347 = cap;
                 size = _e347;
             } else {
@@ -1965,13 +2007,13 @@ fn main_1() {
                         e = _e412;
                         let _e413 = e;
                         let _e414 = (_e413 == 4294967295u);
-                        phi_2488_ = _e414;
+                        phi_2543_ = _e414;
                         if !(_e414) {
                             let _e416 = e;
                             let _e418 = pc.patchCount;
-                            phi_2488_ = (_e416 >= _e418);
+                            phi_2543_ = (_e416 >= _e418);
                         }
-                        let _e421 = phi_2488_;
+                        let _e421 = phi_2543_;
                         if _e421 {
                             continue;
                         }
@@ -2070,12 +2112,12 @@ fn main_1() {
                 size = u32(clamp(_e552, 1f, f32(_e553)));
                 let _e557 = allOut;
                 let _e559 = size;
-                r = select(_e559, 1u, (_e557 != 0u));
+                r_2 = select(_e559, 1u, (_e557 != 0u));
             }
         }
     }
     let _e561 = i_5;
-    let _e562 = r;
+    let _e562 = r_2;
     let _e563 = size;
     rates.r[_e561] = (_e562 | (_e563 << bitcast<u32>(16i)));
     let _e569 = i_5;

@@ -4,16 +4,16 @@ struct Starts {
     s: array<u32>,
 }
 
-struct Weights {
-    w: array<f32>,
-}
-
 struct Vertices {
     p: array<vec4<f32>>,
 }
 
 struct Indices {
     i: array<u32>,
+}
+
+struct Weights {
+    w: array<f32>,
 }
 
 struct Push {
@@ -32,60 +32,105 @@ struct Limits {
 var<private> gl_GlobalInvocationID_1: vec3<u32>;
 @group(0) @binding(1) 
 var<storage, read> starts: Starts;
-@group(0) @binding(3) 
-var<storage, read> weights: Weights;
 @group(0) @binding(0) 
 var<storage, read> vertices: Vertices;
 @group(0) @binding(2) 
 var<storage, read> indices: Indices;
+@group(0) @binding(3) 
+var<storage, read> weights: Weights;
 @group(3) @binding(0) var<uniform> pc: Push;
 @group(0) @binding(4) 
 var<storage, read_write> limits: Limits;
 
-fn gather_u0028_u1_u003b(row: ptr<function, u32>) -> vec3<f32> {
+fn gather_u0028_u1_u003b_b1_u003b(row: ptr<function, u32>, affine: ptr<function, bool>) -> vec3<f32> {
     var b: u32;
     var e: u32;
     var sum: vec3<f32>;
+    var origin: vec3<f32>;
     var k: u32;
+    var local: vec3<f32>;
+    var k_1: u32;
 
-    let _e24 = (*row);
-    let _e27 = starts.s[_e24];
-    b = _e27;
-    let _e28 = (*row);
-    let _e32 = starts.s[(_e28 + 1u)];
-    e = _e32;
+    let _e30 = (*row);
+    let _e33 = starts.s[_e30];
+    b = _e33;
+    let _e34 = (*row);
+    let _e38 = starts.s[(_e34 + 1u)];
+    e = _e38;
     sum = vec3<f32>(0f, 0f, 0f);
-    let _e33 = b;
-    k = _e33;
+    let _e39 = e;
+    let _e40 = b;
+    if ((_e39 - _e40) > 64u) {
+        let _e43 = b;
+        let _e46 = indices.i[_e43];
+        let _e49 = vertices.p[_e46];
+        origin = _e49.xyz;
+        let _e51 = b;
+        k = _e51;
+        loop {
+            let _e52 = k;
+            let _e53 = e;
+            if (_e52 < _e53) {
+                let _e55 = k;
+                let _e58 = weights.w[_e55];
+                let _e59 = k;
+                let _e62 = indices.i[_e59];
+                let _e65 = vertices.p[_e62];
+                let _e67 = origin;
+                let _e70 = sum;
+                sum = (_e70 + ((_e65.xyz - _e67) * _e58));
+                continue;
+            } else {
+                break;
+            }
+            continuing {
+                let _e72 = k;
+                k = (_e72 + bitcast<u32>(1i));
+            }
+        }
+        let _e75 = (*affine);
+        if _e75 {
+            let _e76 = sum;
+            let _e77 = origin;
+            local = (_e76 + _e77);
+        } else {
+            let _e79 = sum;
+            local = _e79;
+        }
+        let _e80 = local;
+        return _e80;
+    }
+    let _e81 = b;
+    k_1 = _e81;
     loop {
-        let _e34 = k;
-        let _e35 = e;
-        if (_e34 < _e35) {
-            let _e37 = k;
-            let _e40 = weights.w[_e37];
-            let _e41 = k;
-            let _e44 = indices.i[_e41];
-            let _e47 = vertices.p[_e44];
-            let _e50 = sum;
-            sum = (_e50 + (_e47.xyz * _e40));
+        let _e82 = k_1;
+        let _e83 = e;
+        if (_e82 < _e83) {
+            let _e85 = k_1;
+            let _e88 = weights.w[_e85];
+            let _e89 = k_1;
+            let _e92 = indices.i[_e89];
+            let _e95 = vertices.p[_e92];
+            let _e98 = sum;
+            sum = (_e98 + (_e95.xyz * _e88));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e52 = k;
-            k = (_e52 + bitcast<u32>(1i));
+            let _e100 = k_1;
+            k_1 = (_e100 + bitcast<u32>(1i));
         }
     }
-    let _e55 = sum;
-    return _e55;
+    let _e103 = sum;
+    return _e103;
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e21 = gl_GlobalInvocationID_1[1u];
-    let _e22 = (*rowInvocations);
-    let _e25 = gl_GlobalInvocationID_1[0u];
-    return ((_e21 * _e22) + _e25);
+    let _e23 = gl_GlobalInvocationID_1[1u];
+    let _e24 = (*rowInvocations);
+    let _e27 = gl_GlobalInvocationID_1[0u];
+    return ((_e23 * _e24) + _e27);
 }
 
 fn main_1() {
@@ -94,63 +139,69 @@ fn main_1() {
     var stride: u32;
     var position: vec3<f32>;
     var param_1: u32;
+    var param_2: bool;
     var t1_: vec3<f32>;
-    var param_2: u32;
-    var t2_: vec3<f32>;
     var param_3: u32;
+    var param_4: bool;
+    var t2_: vec3<f32>;
+    var param_5: u32;
+    var param_6: bool;
     var n: vec3<f32>;
     var len: f32;
     var o: u32;
-    var local: vec3<f32>;
+    var local_1: vec3<f32>;
 
-    let _e33 = pc.limnRowInvocations;
-    param = _e33;
-    let _e34 = limnInvocationIndex_u0028_u1_u003b((&param));
-    r = _e34;
-    let _e35 = r;
-    let _e37 = pc.limnCount;
-    if (_e35 >= _e37) {
+    let _e38 = pc.limnRowInvocations;
+    param = _e38;
+    let _e39 = limnInvocationIndex_u0028_u1_u003b((&param));
+    r = _e39;
+    let _e40 = r;
+    let _e42 = pc.limnCount;
+    if (_e40 >= _e42) {
         return;
     }
-    let _e40 = pc.rowsPerTable;
-    stride = (_e40 + 1u);
-    let _e42 = r;
-    param_1 = _e42;
-    let _e43 = gather_u0028_u1_u003b((&param_1));
-    position = _e43;
-    let _e44 = stride;
-    let _e45 = r;
-    param_2 = (_e44 + _e45);
-    let _e47 = gather_u0028_u1_u003b((&param_2));
-    t1_ = _e47;
-    let _e48 = stride;
+    let _e45 = pc.rowsPerTable;
+    stride = (_e45 + 1u);
+    let _e47 = r;
+    param_1 = _e47;
+    param_2 = true;
+    let _e48 = gather_u0028_u1_u003b_b1_u003b((&param_1), (&param_2));
+    position = _e48;
+    let _e49 = stride;
     let _e50 = r;
-    param_3 = ((2u * _e48) + _e50);
-    let _e52 = gather_u0028_u1_u003b((&param_3));
-    t2_ = _e52;
-    let _e53 = t1_;
-    let _e54 = t2_;
-    n = cross(_e53, _e54);
-    let _e56 = n;
-    len = length(_e56);
-    let _e59 = pc.firstRow;
-    let _e60 = r;
-    o = (_e59 + _e60);
-    let _e62 = o;
-    let _e64 = position;
-    limits.v[(2u * _e62)] = vec4<f32>(_e64.x, _e64.y, _e64.z, 1f);
-    let _e71 = o;
-    let _e74 = len;
-    if (_e74 > 0f) {
-        let _e76 = n;
-        let _e77 = len;
-        local = (_e76 / vec3(_e77));
+    param_3 = (_e49 + _e50);
+    param_4 = false;
+    let _e52 = gather_u0028_u1_u003b_b1_u003b((&param_3), (&param_4));
+    t1_ = _e52;
+    let _e53 = stride;
+    let _e55 = r;
+    param_5 = ((2u * _e53) + _e55);
+    param_6 = false;
+    let _e57 = gather_u0028_u1_u003b_b1_u003b((&param_5), (&param_6));
+    t2_ = _e57;
+    let _e58 = t1_;
+    let _e59 = t2_;
+    n = cross(_e58, _e59);
+    let _e61 = n;
+    len = length(_e61);
+    let _e64 = pc.firstRow;
+    let _e65 = r;
+    o = (_e64 + _e65);
+    let _e67 = o;
+    let _e69 = position;
+    limits.v[(2u * _e67)] = vec4<f32>(_e69.x, _e69.y, _e69.z, 1f);
+    let _e76 = o;
+    let _e79 = len;
+    if (_e79 > 0f) {
+        let _e81 = n;
+        let _e82 = len;
+        local_1 = (_e81 / vec3(_e82));
     } else {
-        local = vec3<f32>(0f, 0f, 0f);
+        local_1 = vec3<f32>(0f, 0f, 0f);
     }
-    let _e80 = local;
-    let _e81 = len;
-    limits.v[((2u * _e71) + 1u)] = vec4<f32>(_e80.x, _e80.y, _e80.z, select(0f, 1f, (_e81 > 0f)));
+    let _e85 = local_1;
+    let _e86 = len;
+    limits.v[((2u * _e76) + 1u)] = vec4<f32>(_e85.x, _e85.y, _e85.z, select(0f, 1f, (_e86 > 0f)));
     return;
 }
 

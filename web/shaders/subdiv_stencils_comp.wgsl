@@ -13,10 +13,6 @@ struct Starts {
     s: array<u32>,
 }
 
-struct Weights {
-    w: array<f32>,
-}
-
 struct Vertices {
     p: array<vec4<f32>>,
 }
@@ -25,16 +21,20 @@ struct Indices {
     i: array<u32>,
 }
 
+struct Weights {
+    w: array<f32>,
+}
+
 var<private> gl_GlobalInvocationID_1: vec3<u32>;
 @group(3) @binding(0) var<uniform> pc: Push;
 @group(0) @binding(1) 
 var<storage, read> starts: Starts;
-@group(0) @binding(3) 
-var<storage, read> weights: Weights;
 @group(0) @binding(0) 
 var<storage, read_write> vertices: Vertices;
 @group(0) @binding(2) 
 var<storage, read> indices: Indices;
+@group(0) @binding(3) 
+var<storage, read> weights: Weights;
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
     let _e19 = gl_GlobalInvocationID_1[1u];
@@ -49,52 +49,89 @@ fn main_1() {
     var b: u32;
     var e: u32;
     var sum: vec3<f32>;
+    var origin: vec3<f32>;
     var k: u32;
+    var k_1: u32;
 
-    let _e24 = pc.limnRowInvocations;
-    param = _e24;
-    let _e25 = limnInvocationIndex_u0028_u1_u003b((&param));
-    r = _e25;
-    let _e26 = r;
-    let _e28 = pc.limnCount;
-    if (_e26 >= _e28) {
+    let _e26 = pc.limnRowInvocations;
+    param = _e26;
+    let _e27 = limnInvocationIndex_u0028_u1_u003b((&param));
+    r = _e27;
+    let _e28 = r;
+    let _e30 = pc.limnCount;
+    if (_e28 >= _e30) {
         return;
     }
-    let _e31 = pc.firstRow;
-    let _e32 = r;
-    let _e36 = starts.s[(_e31 + _e32)];
-    b = _e36;
-    let _e38 = pc.firstRow;
-    let _e39 = r;
-    let _e44 = starts.s[((_e38 + _e39) + 1u)];
-    e = _e44;
+    let _e33 = pc.firstRow;
+    let _e34 = r;
+    let _e38 = starts.s[(_e33 + _e34)];
+    b = _e38;
+    let _e40 = pc.firstRow;
+    let _e41 = r;
+    let _e46 = starts.s[((_e40 + _e41) + 1u)];
+    e = _e46;
     sum = vec3<f32>(0f, 0f, 0f);
-    let _e45 = b;
-    k = _e45;
-    loop {
-        let _e46 = k;
-        let _e47 = e;
-        if (_e46 < _e47) {
-            let _e49 = k;
-            let _e52 = weights.w[_e49];
-            let _e53 = k;
-            let _e56 = indices.i[_e53];
-            let _e59 = vertices.p[_e56];
-            let _e62 = sum;
-            sum = (_e62 + (_e59.xyz * _e52));
-            continue;
-        } else {
-            break;
+    let _e47 = e;
+    let _e48 = b;
+    if ((_e47 - _e48) > 64u) {
+        let _e51 = b;
+        let _e54 = indices.i[_e51];
+        let _e57 = vertices.p[_e54];
+        origin = _e57.xyz;
+        let _e59 = b;
+        k = _e59;
+        loop {
+            let _e60 = k;
+            let _e61 = e;
+            if (_e60 < _e61) {
+                let _e63 = k;
+                let _e66 = weights.w[_e63];
+                let _e67 = k;
+                let _e70 = indices.i[_e67];
+                let _e73 = vertices.p[_e70];
+                let _e75 = origin;
+                let _e78 = sum;
+                sum = (_e78 + ((_e73.xyz - _e75) * _e66));
+                continue;
+            } else {
+                break;
+            }
+            continuing {
+                let _e80 = k;
+                k = (_e80 + bitcast<u32>(1i));
+            }
         }
-        continuing {
-            let _e64 = k;
-            k = (_e64 + bitcast<u32>(1i));
+        let _e83 = origin;
+        let _e84 = sum;
+        sum = (_e84 + _e83);
+    } else {
+        let _e86 = b;
+        k_1 = _e86;
+        loop {
+            let _e87 = k_1;
+            let _e88 = e;
+            if (_e87 < _e88) {
+                let _e90 = k_1;
+                let _e93 = weights.w[_e90];
+                let _e94 = k_1;
+                let _e97 = indices.i[_e94];
+                let _e100 = vertices.p[_e97];
+                let _e103 = sum;
+                sum = (_e103 + (_e100.xyz * _e93));
+                continue;
+            } else {
+                break;
+            }
+            continuing {
+                let _e105 = k_1;
+                k_1 = (_e105 + bitcast<u32>(1i));
+            }
         }
     }
-    let _e68 = pc.firstOut;
-    let _e69 = r;
-    let _e71 = sum;
-    vertices.p[(_e68 + _e69)] = vec4<f32>(_e71.x, _e71.y, _e71.z, 1f);
+    let _e109 = pc.firstOut;
+    let _e110 = r;
+    let _e112 = sum;
+    vertices.p[(_e109 + _e110)] = vec4<f32>(_e112.x, _e112.y, _e112.z, 1f);
     return;
 }
 

@@ -505,93 +505,106 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_41: array<f32, 4>;
     var Du: vec3<f32>;
     var Dv: vec3<f32>;
+    var origin: vec3<f32>;
     var j: i32;
     var row: vec3<f32>;
+    var rowRel: vec3<f32>;
     var rowDu: vec3<f32>;
-    var rowDv: vec3<f32>;
     var i_1: i32;
     var c: vec3<f32>;
+    var r: vec3<f32>;
 
-    let _e92 = (*pt_1);
-    param_35 = _e92;
-    let _e93 = (*s_3);
-    param_36 = _e93;
-    let _e94 = (*t_3);
-    param_37 = _e94;
+    let _e94 = (*pt_1);
+    param_35 = _e94;
+    let _e95 = (*s_3);
+    param_36 = _e95;
+    let _e96 = (*t_3);
+    param_37 = _e96;
     patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
-    let _e95 = param_38;
-    bu_1 = _e95;
-    let _e96 = param_39;
-    du_1 = _e96;
-    let _e97 = param_40;
-    bv_1 = _e97;
-    let _e98 = param_41;
-    dv_1 = _e98;
+    let _e97 = param_38;
+    bu_1 = _e97;
+    let _e98 = param_39;
+    du_1 = _e98;
+    let _e99 = param_40;
+    bv_1 = _e99;
+    let _e100 = param_41;
+    dv_1 = _e100;
     (*P) = vec3<f32>(0f, 0f, 0f);
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
+    let _e103 = (*pt_1).cv[5i];
+    let _e106 = vertices.p[_e103];
+    origin = _e106.xyz;
     j = 0i;
     loop {
-        let _e99 = j;
-        if (_e99 < 4i) {
+        let _e108 = j;
+        if (_e108 < 4i) {
             row = vec3<f32>(0f, 0f, 0f);
+            rowRel = vec3<f32>(0f, 0f, 0f);
             rowDu = vec3<f32>(0f, 0f, 0f);
-            rowDv = vec3<f32>(0f, 0f, 0f);
             i_1 = 0i;
             loop {
-                let _e101 = i_1;
-                if (_e101 < 4i) {
-                    let _e103 = j;
-                    let _e105 = i_1;
-                    let _e109 = (*pt_1).cv[((4i * _e103) + _e105)];
-                    let _e112 = vertices.p[_e109];
-                    c = _e112.xyz;
+                let _e110 = i_1;
+                if (_e110 < 4i) {
+                    let _e112 = j;
                     let _e114 = i_1;
-                    let _e116 = bu_1[_e114];
-                    let _e117 = c;
-                    let _e119 = row;
-                    row = (_e119 + (_e117 * _e116));
-                    let _e121 = i_1;
-                    let _e123 = du_1[_e121];
-                    let _e124 = c;
-                    let _e126 = rowDu;
-                    rowDu = (_e126 + (_e124 * _e123));
+                    let _e118 = (*pt_1).cv[((4i * _e112) + _e114)];
+                    let _e121 = vertices.p[_e118];
+                    c = _e121.xyz;
+                    let _e123 = c;
+                    let _e124 = origin;
+                    r = (_e123 - _e124);
+                    let _e126 = i_1;
+                    let _e128 = bu_1[_e126];
+                    let _e129 = c;
+                    let _e131 = row;
+                    row = (_e131 + (_e129 * _e128));
+                    let _e133 = i_1;
+                    let _e135 = bu_1[_e133];
+                    let _e136 = r;
+                    let _e138 = rowRel;
+                    rowRel = (_e138 + (_e136 * _e135));
+                    let _e140 = i_1;
+                    let _e142 = du_1[_e140];
+                    let _e143 = r;
+                    let _e145 = rowDu;
+                    rowDu = (_e145 + (_e143 * _e142));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e128 = i_1;
-                    i_1 = (_e128 + 1i);
+                    let _e147 = i_1;
+                    i_1 = (_e147 + 1i);
                 }
             }
-            let _e130 = j;
-            let _e132 = bv_1[_e130];
-            let _e133 = row;
-            let _e135 = (*P);
-            (*P) = (_e135 + (_e133 * _e132));
-            let _e137 = j;
-            let _e139 = bv_1[_e137];
-            let _e140 = rowDu;
-            let _e142 = Du;
-            Du = (_e142 + (_e140 * _e139));
-            let _e144 = j;
-            let _e146 = dv_1[_e144];
-            let _e147 = row;
-            let _e149 = Dv;
-            Dv = (_e149 + (_e147 * _e146));
+            let _e149 = j;
+            let _e151 = bv_1[_e149];
+            let _e152 = row;
+            let _e154 = (*P);
+            (*P) = (_e154 + (_e152 * _e151));
+            let _e156 = j;
+            let _e158 = bv_1[_e156];
+            let _e159 = rowDu;
+            let _e161 = Du;
+            Du = (_e161 + (_e159 * _e158));
+            let _e163 = j;
+            let _e165 = dv_1[_e163];
+            let _e166 = rowRel;
+            let _e168 = Dv;
+            Dv = (_e168 + (_e166 * _e165));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e151 = j;
-            j = (_e151 + 1i);
+            let _e170 = j;
+            j = (_e170 + 1i);
         }
     }
-    let _e153 = Du;
-    let _e154 = Dv;
-    (*n) = cross(_e153, _e154);
+    let _e172 = Du;
+    let _e173 = Dv;
+    (*n) = cross(_e172, _e173);
     return;
 }
 
@@ -601,10 +614,14 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var block: u32;
     var j_1: i32;
     var c_1: array<vec3<f32>, 16>;
+    var r_1: array<vec3<f32>, 16>;
+    var origin_1: vec3<f32>;
     var i_2: u32;
     var x_1: vec3<f32>;
+    var xr: vec3<f32>;
     var w_1: Patch;
     var j_2: i32;
+    var wj: f32;
     var bu_2: array<f32, 4>;
     var du_2: array<f32, 4>;
     var param_42: f32;
@@ -619,112 +636,129 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var Dv_1: vec3<f32>;
     var j_3: i32;
     var row_1: vec3<f32>;
+    var rowRel_1: vec3<f32>;
     var rowDu_1: vec3<f32>;
     var i_3: i32;
 
-    let _e100 = (*h);
-    let _e103 = patches.p[_e100];
-    hd.cv[0i] = _e103.cv[0];
-    hd.cv[1i] = _e103.cv[1];
-    hd.cv[2i] = _e103.cv[2];
-    hd.cv[3i] = _e103.cv[3];
-    hd.cv[4i] = _e103.cv[4];
-    hd.cv[5i] = _e103.cv[5];
-    hd.cv[6i] = _e103.cv[6];
-    hd.cv[7i] = _e103.cv[7];
-    hd.cv[8i] = _e103.cv[8];
-    hd.cv[9i] = _e103.cv[9];
-    hd.cv[10i] = _e103.cv[10];
-    hd.cv[11i] = _e103.cv[11];
-    hd.cv[12i] = _e103.cv[12];
-    hd.cv[13i] = _e103.cv[13];
-    hd.cv[14i] = _e103.cv[14];
-    hd.cv[15i] = _e103.cv[15];
-    hd.ptex = _e103.ptex;
-    hd.u0_ = _e103.u0_;
-    hd.v0_ = _e103.v0_;
-    hd.size = _e103.size;
-    hd.levelBoundary = _e103.levelBoundary;
-    hd.sharpness = _e103.sharpness;
-    hd.pad1_ = _e103.pad1_;
-    hd.pad2_ = _e103.pad2_;
-    let _e156 = hd.cv[0i];
-    M_1 = ((2u * _e156) + 8u);
-    let _e161 = hd.cv[2i];
-    let _e162 = (*k_2);
-    let _e165 = (*q);
-    let _e168 = M_1;
-    block = (_e161 + ((((_e162 - 1u) * 3u) + (_e165 - 1u)) * _e168));
+    let _e105 = (*h);
+    let _e108 = patches.p[_e105];
+    hd.cv[0i] = _e108.cv[0];
+    hd.cv[1i] = _e108.cv[1];
+    hd.cv[2i] = _e108.cv[2];
+    hd.cv[3i] = _e108.cv[3];
+    hd.cv[4i] = _e108.cv[4];
+    hd.cv[5i] = _e108.cv[5];
+    hd.cv[6i] = _e108.cv[6];
+    hd.cv[7i] = _e108.cv[7];
+    hd.cv[8i] = _e108.cv[8];
+    hd.cv[9i] = _e108.cv[9];
+    hd.cv[10i] = _e108.cv[10];
+    hd.cv[11i] = _e108.cv[11];
+    hd.cv[12i] = _e108.cv[12];
+    hd.cv[13i] = _e108.cv[13];
+    hd.cv[14i] = _e108.cv[14];
+    hd.cv[15i] = _e108.cv[15];
+    hd.ptex = _e108.ptex;
+    hd.u0_ = _e108.u0_;
+    hd.v0_ = _e108.v0_;
+    hd.size = _e108.size;
+    hd.levelBoundary = _e108.levelBoundary;
+    hd.sharpness = _e108.sharpness;
+    hd.pad1_ = _e108.pad1_;
+    hd.pad2_ = _e108.pad2_;
+    let _e161 = hd.cv[0i];
+    M_1 = ((2u * _e161) + 8u);
+    let _e166 = hd.cv[2i];
+    let _e167 = (*k_2);
+    let _e170 = (*q);
+    let _e173 = M_1;
+    block = (_e166 + ((((_e167 - 1u) * 3u) + (_e170 - 1u)) * _e173));
     j_1 = 0i;
     loop {
-        let _e171 = j_1;
-        if (_e171 < 16i) {
-            let _e173 = j_1;
-            c_1[_e173] = vec3<f32>(0f, 0f, 0f);
+        let _e176 = j_1;
+        if (_e176 < 16i) {
+            let _e178 = j_1;
+            c_1[_e178] = vec3<f32>(0f, 0f, 0f);
+            let _e180 = j_1;
+            r_1[_e180] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e175 = j_1;
-            j_1 = (_e175 + 1i);
+            let _e182 = j_1;
+            j_1 = (_e182 + 1i);
         }
     }
+    let _e184 = (*h);
+    let _e190 = patches.p[(_e184 + 1u)].cv[0i];
+    let _e193 = vertices.p[_e190];
+    origin_1 = _e193.xyz;
     i_2 = 0u;
     loop {
-        let _e177 = i_2;
-        let _e178 = M_1;
-        if (_e177 < _e178) {
-            let _e180 = (*h);
-            let _e182 = i_2;
-            let _e185 = i_2;
-            let _e191 = patches.p[((_e180 + 1u) + (_e182 / 16u))].cv[(_e185 % 16u)];
-            let _e194 = vertices.p[_e191];
-            x_1 = _e194.xyz;
-            let _e196 = block;
-            let _e197 = i_2;
-            let _e201 = patches.p[(_e196 + _e197)];
-            w_1.cv[0i] = _e201.cv[0];
-            w_1.cv[1i] = _e201.cv[1];
-            w_1.cv[2i] = _e201.cv[2];
-            w_1.cv[3i] = _e201.cv[3];
-            w_1.cv[4i] = _e201.cv[4];
-            w_1.cv[5i] = _e201.cv[5];
-            w_1.cv[6i] = _e201.cv[6];
-            w_1.cv[7i] = _e201.cv[7];
-            w_1.cv[8i] = _e201.cv[8];
-            w_1.cv[9i] = _e201.cv[9];
-            w_1.cv[10i] = _e201.cv[10];
-            w_1.cv[11i] = _e201.cv[11];
-            w_1.cv[12i] = _e201.cv[12];
-            w_1.cv[13i] = _e201.cv[13];
-            w_1.cv[14i] = _e201.cv[14];
-            w_1.cv[15i] = _e201.cv[15];
-            w_1.ptex = _e201.ptex;
-            w_1.u0_ = _e201.u0_;
-            w_1.v0_ = _e201.v0_;
-            w_1.size = _e201.size;
-            w_1.levelBoundary = _e201.levelBoundary;
-            w_1.sharpness = _e201.sharpness;
-            w_1.pad1_ = _e201.pad1_;
-            w_1.pad2_ = _e201.pad2_;
+        let _e195 = i_2;
+        let _e196 = M_1;
+        if (_e195 < _e196) {
+            let _e198 = (*h);
+            let _e200 = i_2;
+            let _e203 = i_2;
+            let _e209 = patches.p[((_e198 + 1u) + (_e200 / 16u))].cv[(_e203 % 16u)];
+            let _e212 = vertices.p[_e209];
+            x_1 = _e212.xyz;
+            let _e214 = x_1;
+            let _e215 = origin_1;
+            xr = (_e214 - _e215);
+            let _e217 = block;
+            let _e218 = i_2;
+            let _e222 = patches.p[(_e217 + _e218)];
+            w_1.cv[0i] = _e222.cv[0];
+            w_1.cv[1i] = _e222.cv[1];
+            w_1.cv[2i] = _e222.cv[2];
+            w_1.cv[3i] = _e222.cv[3];
+            w_1.cv[4i] = _e222.cv[4];
+            w_1.cv[5i] = _e222.cv[5];
+            w_1.cv[6i] = _e222.cv[6];
+            w_1.cv[7i] = _e222.cv[7];
+            w_1.cv[8i] = _e222.cv[8];
+            w_1.cv[9i] = _e222.cv[9];
+            w_1.cv[10i] = _e222.cv[10];
+            w_1.cv[11i] = _e222.cv[11];
+            w_1.cv[12i] = _e222.cv[12];
+            w_1.cv[13i] = _e222.cv[13];
+            w_1.cv[14i] = _e222.cv[14];
+            w_1.cv[15i] = _e222.cv[15];
+            w_1.ptex = _e222.ptex;
+            w_1.u0_ = _e222.u0_;
+            w_1.v0_ = _e222.v0_;
+            w_1.size = _e222.size;
+            w_1.levelBoundary = _e222.levelBoundary;
+            w_1.sharpness = _e222.sharpness;
+            w_1.pad1_ = _e222.pad1_;
+            w_1.pad2_ = _e222.pad2_;
             j_2 = 0i;
             loop {
-                let _e252 = j_2;
-                if (_e252 < 16i) {
-                    let _e254 = j_2;
-                    let _e255 = j_2;
-                    let _e258 = w_1.cv[_e255];
-                    let _e260 = x_1;
-                    let _e263 = c_1[_e254];
-                    c_1[_e254] = (_e263 + (_e260 * bitcast<f32>(_e258)));
+                let _e273 = j_2;
+                if (_e273 < 16i) {
+                    let _e275 = j_2;
+                    let _e278 = w_1.cv[_e275];
+                    wj = bitcast<f32>(_e278);
+                    let _e280 = j_2;
+                    let _e281 = wj;
+                    let _e282 = x_1;
+                    let _e285 = c_1[_e280];
+                    c_1[_e280] = (_e285 + (_e282 * _e281));
+                    let _e288 = j_2;
+                    let _e289 = wj;
+                    let _e290 = xr;
+                    let _e293 = r_1[_e288];
+                    r_1[_e288] = (_e293 + (_e290 * _e289));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e266 = j_2;
-                    j_2 = (_e266 + 1i);
+                    let _e296 = j_2;
+                    j_2 = (_e296 + 1i);
                 }
             }
             continue;
@@ -732,87 +766,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e268 = i_2;
-            i_2 = (_e268 + bitcast<u32>(1i));
+            let _e298 = i_2;
+            i_2 = (_e298 + bitcast<u32>(1i));
         }
     }
-    let _e271 = (*s_4);
-    param_42 = _e271;
+    let _e301 = (*s_4);
+    param_42 = _e301;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
-    let _e272 = param_43;
-    bu_2 = _e272;
-    let _e273 = param_44;
-    du_2 = _e273;
-    let _e274 = (*t_4);
-    param_45 = _e274;
+    let _e302 = param_43;
+    bu_2 = _e302;
+    let _e303 = param_44;
+    du_2 = _e303;
+    let _e304 = (*t_4);
+    param_45 = _e304;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e275 = param_46;
-    bv_2 = _e275;
-    let _e276 = param_47;
-    dv_2 = _e276;
+    let _e305 = param_46;
+    bv_2 = _e305;
+    let _e306 = param_47;
+    dv_2 = _e306;
     (*P_1) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e277 = j_3;
-        if (_e277 < 4i) {
+        let _e307 = j_3;
+        if (_e307 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
+            rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e279 = i_3;
-                if (_e279 < 4i) {
-                    let _e281 = i_3;
-                    let _e283 = bu_2[_e281];
-                    let _e284 = j_3;
-                    let _e286 = i_3;
-                    let _e289 = c_1[((4i * _e284) + _e286)];
-                    let _e291 = row_1;
-                    row_1 = (_e291 + (_e289 * _e283));
-                    let _e293 = i_3;
-                    let _e295 = du_2[_e293];
-                    let _e296 = j_3;
-                    let _e298 = i_3;
-                    let _e301 = c_1[((4i * _e296) + _e298)];
-                    let _e303 = rowDu_1;
-                    rowDu_1 = (_e303 + (_e301 * _e295));
+                let _e309 = i_3;
+                if (_e309 < 4i) {
+                    let _e311 = i_3;
+                    let _e313 = bu_2[_e311];
+                    let _e314 = j_3;
+                    let _e316 = i_3;
+                    let _e319 = c_1[((4i * _e314) + _e316)];
+                    let _e321 = row_1;
+                    row_1 = (_e321 + (_e319 * _e313));
+                    let _e323 = i_3;
+                    let _e325 = bu_2[_e323];
+                    let _e326 = j_3;
+                    let _e328 = i_3;
+                    let _e331 = r_1[((4i * _e326) + _e328)];
+                    let _e333 = rowRel_1;
+                    rowRel_1 = (_e333 + (_e331 * _e325));
+                    let _e335 = i_3;
+                    let _e337 = du_2[_e335];
+                    let _e338 = j_3;
+                    let _e340 = i_3;
+                    let _e343 = r_1[((4i * _e338) + _e340)];
+                    let _e345 = rowDu_1;
+                    rowDu_1 = (_e345 + (_e343 * _e337));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e305 = i_3;
-                    i_3 = (_e305 + 1i);
+                    let _e347 = i_3;
+                    i_3 = (_e347 + 1i);
                 }
             }
-            let _e307 = j_3;
-            let _e309 = bv_2[_e307];
-            let _e310 = row_1;
-            let _e312 = (*P_1);
-            (*P_1) = (_e312 + (_e310 * _e309));
-            let _e314 = j_3;
-            let _e316 = bv_2[_e314];
-            let _e317 = rowDu_1;
-            let _e319 = Du_1;
-            Du_1 = (_e319 + (_e317 * _e316));
-            let _e321 = j_3;
-            let _e323 = dv_2[_e321];
-            let _e324 = row_1;
-            let _e326 = Dv_1;
-            Dv_1 = (_e326 + (_e324 * _e323));
+            let _e349 = j_3;
+            let _e351 = bv_2[_e349];
+            let _e352 = row_1;
+            let _e354 = (*P_1);
+            (*P_1) = (_e354 + (_e352 * _e351));
+            let _e356 = j_3;
+            let _e358 = bv_2[_e356];
+            let _e359 = rowDu_1;
+            let _e361 = Du_1;
+            Du_1 = (_e361 + (_e359 * _e358));
+            let _e363 = j_3;
+            let _e365 = dv_2[_e363];
+            let _e366 = rowRel_1;
+            let _e368 = Dv_1;
+            Dv_1 = (_e368 + (_e366 * _e365));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e328 = j_3;
-            j_3 = (_e328 + 1i);
+            let _e370 = j_3;
+            j_3 = (_e370 + 1i);
         }
     }
-    let _e330 = Du_1;
-    let _e331 = Dv_1;
-    (*n_1) = cross(_e330, _e331);
+    let _e372 = Du_1;
+    let _e373 = Dv_1;
+    (*n_1) = cross(_e372, _e373);
     return;
 }
 
@@ -1128,7 +1170,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_6: i32;
-    var phi_1372_: bool;
+    var phi_1427_: bool;
 
     let _e101 = (*st_1);
     S_1 = (_e101 & 65535u);
@@ -1137,13 +1179,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e106 = S_1;
     let _e108 = S_1;
     let _e110 = ((_e106 == 0u) || (_e108 == 32768u));
-    phi_1372_ = _e110;
+    phi_1427_ = _e110;
     if _e110 {
         let _e111 = T_1;
         let _e113 = T_1;
-        phi_1372_ = ((_e111 == 0u) || (_e113 == 32768u));
+        phi_1427_ = ((_e111 == 0u) || (_e113 == 32768u));
     }
-    let _e117 = phi_1372_;
+    let _e117 = phi_1427_;
     if _e117 {
         let _e118 = S_1;
         if (_e118 == 0u) {
@@ -1337,7 +1379,7 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_87: f32;
     var param_88: vec3<f32>;
     var param_89: vec3<f32>;
-    var r: SurfaceSample;
+    var r_2: SurfaceSample;
     var q_3: IrregularFace;
     var param_90: u32;
     var param_91: u32;
@@ -1391,15 +1433,15 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         let _e159 = param_89;
         n_4 = _e159;
         let _e161 = pt_2.ptex;
-        r.ptex = _e161;
+        r_2.ptex = _e161;
         let _e164 = pt_2.u0_;
         let _e166 = pt_2.v0_;
         let _e169 = pt_2.size;
         let _e170 = s_6;
         let _e171 = t_6;
-        r.uv = (vec2<f32>(_e164, _e166) + (vec2<f32>(_e170, _e171) * _e169));
+        r_2.uv = (vec2<f32>(_e164, _e166) + (vec2<f32>(_e170, _e171) * _e169));
         let _e177 = pt_2.levelBoundary;
-        r.level = (_e177 & 255u);
+        r_2.level = (_e177 & 255u);
     } else {
         let _e180 = (*element);
         let _e181 = (*patchCount_1);
@@ -1422,17 +1464,17 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         let _e202 = param_94;
         n_4 = _e202;
         let _e204 = q_3.ptex;
-        r.ptex = _e204;
+        r_2.ptex = _e204;
         let _e207 = q_3.u0_;
         let _e209 = q_3.v0_;
         let _e212 = q_3.size;
         let _e213 = s_6;
         let _e214 = t_6;
-        r.uv = (vec2<f32>(_e207, _e209) + (vec2<f32>(_e213, _e214) * _e212));
-        r.level = 255u;
+        r_2.uv = (vec2<f32>(_e207, _e209) + (vec2<f32>(_e213, _e214) * _e212));
+        r_2.level = 255u;
     }
     let _e220 = P_4;
-    r.position = _e220;
+    r_2.position = _e220;
     let _e222 = n_4;
     let _e223 = n_4;
     if (dot(_e222, _e223) > 0f) {
@@ -1442,8 +1484,8 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         local_12 = vec3<f32>(0f, 0f, 0f);
     }
     let _e228 = local_12;
-    r.normal = _e228;
-    let _e230 = r;
+    r_2.normal = _e228;
+    let _e230 = r_2;
     return _e230;
 }
 

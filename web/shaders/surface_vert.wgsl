@@ -522,93 +522,106 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_41: array<f32, 4>;
     var Du: vec3<f32>;
     var Dv: vec3<f32>;
+    var origin: vec3<f32>;
     var j: i32;
     var row: vec3<f32>;
+    var rowRel: vec3<f32>;
     var rowDu: vec3<f32>;
-    var rowDv: vec3<f32>;
     var i_1: i32;
     var c: vec3<f32>;
+    var r: vec3<f32>;
 
-    let _e94 = (*pt_1);
-    param_35 = _e94;
-    let _e95 = (*s_3);
-    param_36 = _e95;
-    let _e96 = (*t_3);
-    param_37 = _e96;
+    let _e96 = (*pt_1);
+    param_35 = _e96;
+    let _e97 = (*s_3);
+    param_36 = _e97;
+    let _e98 = (*t_3);
+    param_37 = _e98;
     patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_35), (&param_36), (&param_37), (&param_38), (&param_39), (&param_40), (&param_41));
-    let _e97 = param_38;
-    bu_1 = _e97;
-    let _e98 = param_39;
-    du_1 = _e98;
-    let _e99 = param_40;
-    bv_1 = _e99;
-    let _e100 = param_41;
-    dv_1 = _e100;
+    let _e99 = param_38;
+    bu_1 = _e99;
+    let _e100 = param_39;
+    du_1 = _e100;
+    let _e101 = param_40;
+    bv_1 = _e101;
+    let _e102 = param_41;
+    dv_1 = _e102;
     (*P) = vec3<f32>(0f, 0f, 0f);
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
+    let _e105 = (*pt_1).cv[5i];
+    let _e108 = vertices.p[_e105];
+    origin = _e108.xyz;
     j = 0i;
     loop {
-        let _e101 = j;
-        if (_e101 < 4i) {
+        let _e110 = j;
+        if (_e110 < 4i) {
             row = vec3<f32>(0f, 0f, 0f);
+            rowRel = vec3<f32>(0f, 0f, 0f);
             rowDu = vec3<f32>(0f, 0f, 0f);
-            rowDv = vec3<f32>(0f, 0f, 0f);
             i_1 = 0i;
             loop {
-                let _e103 = i_1;
-                if (_e103 < 4i) {
-                    let _e105 = j;
-                    let _e107 = i_1;
-                    let _e111 = (*pt_1).cv[((4i * _e105) + _e107)];
-                    let _e114 = vertices.p[_e111];
-                    c = _e114.xyz;
+                let _e112 = i_1;
+                if (_e112 < 4i) {
+                    let _e114 = j;
                     let _e116 = i_1;
-                    let _e118 = bu_1[_e116];
-                    let _e119 = c;
-                    let _e121 = row;
-                    row = (_e121 + (_e119 * _e118));
-                    let _e123 = i_1;
-                    let _e125 = du_1[_e123];
-                    let _e126 = c;
-                    let _e128 = rowDu;
-                    rowDu = (_e128 + (_e126 * _e125));
+                    let _e120 = (*pt_1).cv[((4i * _e114) + _e116)];
+                    let _e123 = vertices.p[_e120];
+                    c = _e123.xyz;
+                    let _e125 = c;
+                    let _e126 = origin;
+                    r = (_e125 - _e126);
+                    let _e128 = i_1;
+                    let _e130 = bu_1[_e128];
+                    let _e131 = c;
+                    let _e133 = row;
+                    row = (_e133 + (_e131 * _e130));
+                    let _e135 = i_1;
+                    let _e137 = bu_1[_e135];
+                    let _e138 = r;
+                    let _e140 = rowRel;
+                    rowRel = (_e140 + (_e138 * _e137));
+                    let _e142 = i_1;
+                    let _e144 = du_1[_e142];
+                    let _e145 = r;
+                    let _e147 = rowDu;
+                    rowDu = (_e147 + (_e145 * _e144));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e130 = i_1;
-                    i_1 = (_e130 + 1i);
+                    let _e149 = i_1;
+                    i_1 = (_e149 + 1i);
                 }
             }
-            let _e132 = j;
-            let _e134 = bv_1[_e132];
-            let _e135 = row;
-            let _e137 = (*P);
-            (*P) = (_e137 + (_e135 * _e134));
-            let _e139 = j;
-            let _e141 = bv_1[_e139];
-            let _e142 = rowDu;
-            let _e144 = Du;
-            Du = (_e144 + (_e142 * _e141));
-            let _e146 = j;
-            let _e148 = dv_1[_e146];
-            let _e149 = row;
-            let _e151 = Dv;
-            Dv = (_e151 + (_e149 * _e148));
+            let _e151 = j;
+            let _e153 = bv_1[_e151];
+            let _e154 = row;
+            let _e156 = (*P);
+            (*P) = (_e156 + (_e154 * _e153));
+            let _e158 = j;
+            let _e160 = bv_1[_e158];
+            let _e161 = rowDu;
+            let _e163 = Du;
+            Du = (_e163 + (_e161 * _e160));
+            let _e165 = j;
+            let _e167 = dv_1[_e165];
+            let _e168 = rowRel;
+            let _e170 = Dv;
+            Dv = (_e170 + (_e168 * _e167));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e153 = j;
-            j = (_e153 + 1i);
+            let _e172 = j;
+            j = (_e172 + 1i);
         }
     }
-    let _e155 = Du;
-    let _e156 = Dv;
-    (*n) = cross(_e155, _e156);
+    let _e174 = Du;
+    let _e175 = Dv;
+    (*n) = cross(_e174, _e175);
     return;
 }
 
@@ -618,10 +631,14 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var block: u32;
     var j_1: i32;
     var c_1: array<vec3<f32>, 16>;
+    var r_1: array<vec3<f32>, 16>;
+    var origin_1: vec3<f32>;
     var i_2: u32;
     var x_1: vec3<f32>;
+    var xr: vec3<f32>;
     var w_1: Patch;
     var j_2: i32;
+    var wj: f32;
     var bu_2: array<f32, 4>;
     var du_2: array<f32, 4>;
     var param_42: f32;
@@ -636,112 +653,129 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var Dv_1: vec3<f32>;
     var j_3: i32;
     var row_1: vec3<f32>;
+    var rowRel_1: vec3<f32>;
     var rowDu_1: vec3<f32>;
     var i_3: i32;
 
-    let _e102 = (*h);
-    let _e105 = patches.p[_e102];
-    hd.cv[0i] = _e105.cv[0];
-    hd.cv[1i] = _e105.cv[1];
-    hd.cv[2i] = _e105.cv[2];
-    hd.cv[3i] = _e105.cv[3];
-    hd.cv[4i] = _e105.cv[4];
-    hd.cv[5i] = _e105.cv[5];
-    hd.cv[6i] = _e105.cv[6];
-    hd.cv[7i] = _e105.cv[7];
-    hd.cv[8i] = _e105.cv[8];
-    hd.cv[9i] = _e105.cv[9];
-    hd.cv[10i] = _e105.cv[10];
-    hd.cv[11i] = _e105.cv[11];
-    hd.cv[12i] = _e105.cv[12];
-    hd.cv[13i] = _e105.cv[13];
-    hd.cv[14i] = _e105.cv[14];
-    hd.cv[15i] = _e105.cv[15];
-    hd.ptex = _e105.ptex;
-    hd.u0_ = _e105.u0_;
-    hd.v0_ = _e105.v0_;
-    hd.size = _e105.size;
-    hd.levelBoundary = _e105.levelBoundary;
-    hd.sharpness = _e105.sharpness;
-    hd.pad1_ = _e105.pad1_;
-    hd.pad2_ = _e105.pad2_;
-    let _e158 = hd.cv[0i];
-    M_1 = ((2u * _e158) + 8u);
-    let _e163 = hd.cv[2i];
-    let _e164 = (*k_2);
-    let _e167 = (*q);
-    let _e170 = M_1;
-    block = (_e163 + ((((_e164 - 1u) * 3u) + (_e167 - 1u)) * _e170));
+    let _e107 = (*h);
+    let _e110 = patches.p[_e107];
+    hd.cv[0i] = _e110.cv[0];
+    hd.cv[1i] = _e110.cv[1];
+    hd.cv[2i] = _e110.cv[2];
+    hd.cv[3i] = _e110.cv[3];
+    hd.cv[4i] = _e110.cv[4];
+    hd.cv[5i] = _e110.cv[5];
+    hd.cv[6i] = _e110.cv[6];
+    hd.cv[7i] = _e110.cv[7];
+    hd.cv[8i] = _e110.cv[8];
+    hd.cv[9i] = _e110.cv[9];
+    hd.cv[10i] = _e110.cv[10];
+    hd.cv[11i] = _e110.cv[11];
+    hd.cv[12i] = _e110.cv[12];
+    hd.cv[13i] = _e110.cv[13];
+    hd.cv[14i] = _e110.cv[14];
+    hd.cv[15i] = _e110.cv[15];
+    hd.ptex = _e110.ptex;
+    hd.u0_ = _e110.u0_;
+    hd.v0_ = _e110.v0_;
+    hd.size = _e110.size;
+    hd.levelBoundary = _e110.levelBoundary;
+    hd.sharpness = _e110.sharpness;
+    hd.pad1_ = _e110.pad1_;
+    hd.pad2_ = _e110.pad2_;
+    let _e163 = hd.cv[0i];
+    M_1 = ((2u * _e163) + 8u);
+    let _e168 = hd.cv[2i];
+    let _e169 = (*k_2);
+    let _e172 = (*q);
+    let _e175 = M_1;
+    block = (_e168 + ((((_e169 - 1u) * 3u) + (_e172 - 1u)) * _e175));
     j_1 = 0i;
     loop {
-        let _e173 = j_1;
-        if (_e173 < 16i) {
-            let _e175 = j_1;
-            c_1[_e175] = vec3<f32>(0f, 0f, 0f);
+        let _e178 = j_1;
+        if (_e178 < 16i) {
+            let _e180 = j_1;
+            c_1[_e180] = vec3<f32>(0f, 0f, 0f);
+            let _e182 = j_1;
+            r_1[_e182] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e177 = j_1;
-            j_1 = (_e177 + 1i);
+            let _e184 = j_1;
+            j_1 = (_e184 + 1i);
         }
     }
+    let _e186 = (*h);
+    let _e192 = patches.p[(_e186 + 1u)].cv[0i];
+    let _e195 = vertices.p[_e192];
+    origin_1 = _e195.xyz;
     i_2 = 0u;
     loop {
-        let _e179 = i_2;
-        let _e180 = M_1;
-        if (_e179 < _e180) {
-            let _e182 = (*h);
-            let _e184 = i_2;
-            let _e187 = i_2;
-            let _e193 = patches.p[((_e182 + 1u) + (_e184 / 16u))].cv[(_e187 % 16u)];
-            let _e196 = vertices.p[_e193];
-            x_1 = _e196.xyz;
-            let _e198 = block;
-            let _e199 = i_2;
-            let _e203 = patches.p[(_e198 + _e199)];
-            w_1.cv[0i] = _e203.cv[0];
-            w_1.cv[1i] = _e203.cv[1];
-            w_1.cv[2i] = _e203.cv[2];
-            w_1.cv[3i] = _e203.cv[3];
-            w_1.cv[4i] = _e203.cv[4];
-            w_1.cv[5i] = _e203.cv[5];
-            w_1.cv[6i] = _e203.cv[6];
-            w_1.cv[7i] = _e203.cv[7];
-            w_1.cv[8i] = _e203.cv[8];
-            w_1.cv[9i] = _e203.cv[9];
-            w_1.cv[10i] = _e203.cv[10];
-            w_1.cv[11i] = _e203.cv[11];
-            w_1.cv[12i] = _e203.cv[12];
-            w_1.cv[13i] = _e203.cv[13];
-            w_1.cv[14i] = _e203.cv[14];
-            w_1.cv[15i] = _e203.cv[15];
-            w_1.ptex = _e203.ptex;
-            w_1.u0_ = _e203.u0_;
-            w_1.v0_ = _e203.v0_;
-            w_1.size = _e203.size;
-            w_1.levelBoundary = _e203.levelBoundary;
-            w_1.sharpness = _e203.sharpness;
-            w_1.pad1_ = _e203.pad1_;
-            w_1.pad2_ = _e203.pad2_;
+        let _e197 = i_2;
+        let _e198 = M_1;
+        if (_e197 < _e198) {
+            let _e200 = (*h);
+            let _e202 = i_2;
+            let _e205 = i_2;
+            let _e211 = patches.p[((_e200 + 1u) + (_e202 / 16u))].cv[(_e205 % 16u)];
+            let _e214 = vertices.p[_e211];
+            x_1 = _e214.xyz;
+            let _e216 = x_1;
+            let _e217 = origin_1;
+            xr = (_e216 - _e217);
+            let _e219 = block;
+            let _e220 = i_2;
+            let _e224 = patches.p[(_e219 + _e220)];
+            w_1.cv[0i] = _e224.cv[0];
+            w_1.cv[1i] = _e224.cv[1];
+            w_1.cv[2i] = _e224.cv[2];
+            w_1.cv[3i] = _e224.cv[3];
+            w_1.cv[4i] = _e224.cv[4];
+            w_1.cv[5i] = _e224.cv[5];
+            w_1.cv[6i] = _e224.cv[6];
+            w_1.cv[7i] = _e224.cv[7];
+            w_1.cv[8i] = _e224.cv[8];
+            w_1.cv[9i] = _e224.cv[9];
+            w_1.cv[10i] = _e224.cv[10];
+            w_1.cv[11i] = _e224.cv[11];
+            w_1.cv[12i] = _e224.cv[12];
+            w_1.cv[13i] = _e224.cv[13];
+            w_1.cv[14i] = _e224.cv[14];
+            w_1.cv[15i] = _e224.cv[15];
+            w_1.ptex = _e224.ptex;
+            w_1.u0_ = _e224.u0_;
+            w_1.v0_ = _e224.v0_;
+            w_1.size = _e224.size;
+            w_1.levelBoundary = _e224.levelBoundary;
+            w_1.sharpness = _e224.sharpness;
+            w_1.pad1_ = _e224.pad1_;
+            w_1.pad2_ = _e224.pad2_;
             j_2 = 0i;
             loop {
-                let _e254 = j_2;
-                if (_e254 < 16i) {
-                    let _e256 = j_2;
-                    let _e257 = j_2;
-                    let _e260 = w_1.cv[_e257];
-                    let _e262 = x_1;
-                    let _e265 = c_1[_e256];
-                    c_1[_e256] = (_e265 + (_e262 * bitcast<f32>(_e260)));
+                let _e275 = j_2;
+                if (_e275 < 16i) {
+                    let _e277 = j_2;
+                    let _e280 = w_1.cv[_e277];
+                    wj = bitcast<f32>(_e280);
+                    let _e282 = j_2;
+                    let _e283 = wj;
+                    let _e284 = x_1;
+                    let _e287 = c_1[_e282];
+                    c_1[_e282] = (_e287 + (_e284 * _e283));
+                    let _e290 = j_2;
+                    let _e291 = wj;
+                    let _e292 = xr;
+                    let _e295 = r_1[_e290];
+                    r_1[_e290] = (_e295 + (_e292 * _e291));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e268 = j_2;
-                    j_2 = (_e268 + 1i);
+                    let _e298 = j_2;
+                    j_2 = (_e298 + 1i);
                 }
             }
             continue;
@@ -749,87 +783,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e270 = i_2;
-            i_2 = (_e270 + bitcast<u32>(1i));
+            let _e300 = i_2;
+            i_2 = (_e300 + bitcast<u32>(1i));
         }
     }
-    let _e273 = (*s_4);
-    param_42 = _e273;
+    let _e303 = (*s_4);
+    param_42 = _e303;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
-    let _e274 = param_43;
-    bu_2 = _e274;
-    let _e275 = param_44;
-    du_2 = _e275;
-    let _e276 = (*t_4);
-    param_45 = _e276;
+    let _e304 = param_43;
+    bu_2 = _e304;
+    let _e305 = param_44;
+    du_2 = _e305;
+    let _e306 = (*t_4);
+    param_45 = _e306;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e277 = param_46;
-    bv_2 = _e277;
-    let _e278 = param_47;
-    dv_2 = _e278;
+    let _e307 = param_46;
+    bv_2 = _e307;
+    let _e308 = param_47;
+    dv_2 = _e308;
     (*P_1) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e279 = j_3;
-        if (_e279 < 4i) {
+        let _e309 = j_3;
+        if (_e309 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
+            rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e281 = i_3;
-                if (_e281 < 4i) {
-                    let _e283 = i_3;
-                    let _e285 = bu_2[_e283];
-                    let _e286 = j_3;
-                    let _e288 = i_3;
-                    let _e291 = c_1[((4i * _e286) + _e288)];
-                    let _e293 = row_1;
-                    row_1 = (_e293 + (_e291 * _e285));
-                    let _e295 = i_3;
-                    let _e297 = du_2[_e295];
-                    let _e298 = j_3;
-                    let _e300 = i_3;
-                    let _e303 = c_1[((4i * _e298) + _e300)];
-                    let _e305 = rowDu_1;
-                    rowDu_1 = (_e305 + (_e303 * _e297));
+                let _e311 = i_3;
+                if (_e311 < 4i) {
+                    let _e313 = i_3;
+                    let _e315 = bu_2[_e313];
+                    let _e316 = j_3;
+                    let _e318 = i_3;
+                    let _e321 = c_1[((4i * _e316) + _e318)];
+                    let _e323 = row_1;
+                    row_1 = (_e323 + (_e321 * _e315));
+                    let _e325 = i_3;
+                    let _e327 = bu_2[_e325];
+                    let _e328 = j_3;
+                    let _e330 = i_3;
+                    let _e333 = r_1[((4i * _e328) + _e330)];
+                    let _e335 = rowRel_1;
+                    rowRel_1 = (_e335 + (_e333 * _e327));
+                    let _e337 = i_3;
+                    let _e339 = du_2[_e337];
+                    let _e340 = j_3;
+                    let _e342 = i_3;
+                    let _e345 = r_1[((4i * _e340) + _e342)];
+                    let _e347 = rowDu_1;
+                    rowDu_1 = (_e347 + (_e345 * _e339));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e307 = i_3;
-                    i_3 = (_e307 + 1i);
+                    let _e349 = i_3;
+                    i_3 = (_e349 + 1i);
                 }
             }
-            let _e309 = j_3;
-            let _e311 = bv_2[_e309];
-            let _e312 = row_1;
-            let _e314 = (*P_1);
-            (*P_1) = (_e314 + (_e312 * _e311));
-            let _e316 = j_3;
-            let _e318 = bv_2[_e316];
-            let _e319 = rowDu_1;
-            let _e321 = Du_1;
-            Du_1 = (_e321 + (_e319 * _e318));
-            let _e323 = j_3;
-            let _e325 = dv_2[_e323];
-            let _e326 = row_1;
-            let _e328 = Dv_1;
-            Dv_1 = (_e328 + (_e326 * _e325));
+            let _e351 = j_3;
+            let _e353 = bv_2[_e351];
+            let _e354 = row_1;
+            let _e356 = (*P_1);
+            (*P_1) = (_e356 + (_e354 * _e353));
+            let _e358 = j_3;
+            let _e360 = bv_2[_e358];
+            let _e361 = rowDu_1;
+            let _e363 = Du_1;
+            Du_1 = (_e363 + (_e361 * _e360));
+            let _e365 = j_3;
+            let _e367 = dv_2[_e365];
+            let _e368 = rowRel_1;
+            let _e370 = Dv_1;
+            Dv_1 = (_e370 + (_e368 * _e367));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e330 = j_3;
-            j_3 = (_e330 + 1i);
+            let _e372 = j_3;
+            j_3 = (_e372 + 1i);
         }
     }
-    let _e332 = Du_1;
-    let _e333 = Dv_1;
-    (*n_1) = cross(_e332, _e333);
+    let _e374 = Du_1;
+    let _e375 = Dv_1;
+    (*n_1) = cross(_e374, _e375);
     return;
 }
 
@@ -1145,7 +1187,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_6: i32;
-    var phi_1355_: bool;
+    var phi_1410_: bool;
 
     let _e103 = (*st_1);
     S_1 = (_e103 & 65535u);
@@ -1154,13 +1196,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e108 = S_1;
     let _e110 = S_1;
     let _e112 = ((_e108 == 0u) || (_e110 == 32768u));
-    phi_1355_ = _e112;
+    phi_1410_ = _e112;
     if _e112 {
         let _e113 = T_1;
         let _e115 = T_1;
-        phi_1355_ = ((_e113 == 0u) || (_e115 == 32768u));
+        phi_1410_ = ((_e113 == 0u) || (_e115 == 32768u));
     }
-    let _e119 = phi_1355_;
+    let _e119 = phi_1410_;
     if _e119 {
         let _e120 = S_1;
         if (_e120 == 0u) {
@@ -1354,7 +1396,7 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_87: f32;
     var param_88: vec3<f32>;
     var param_89: vec3<f32>;
-    var r: SurfaceSample;
+    var r_2: SurfaceSample;
     var q_3: IrregularFace;
     var param_90: u32;
     var param_91: u32;
@@ -1408,15 +1450,15 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         let _e161 = param_89;
         n_4 = _e161;
         let _e163 = pt_2.ptex;
-        r.ptex = _e163;
+        r_2.ptex = _e163;
         let _e166 = pt_2.u0_;
         let _e168 = pt_2.v0_;
         let _e171 = pt_2.size;
         let _e172 = s_6;
         let _e173 = t_6;
-        r.uv = (vec2<f32>(_e166, _e168) + (vec2<f32>(_e172, _e173) * _e171));
+        r_2.uv = (vec2<f32>(_e166, _e168) + (vec2<f32>(_e172, _e173) * _e171));
         let _e179 = pt_2.levelBoundary;
-        r.level = (_e179 & 255u);
+        r_2.level = (_e179 & 255u);
     } else {
         let _e182 = (*element);
         let _e183 = (*patchCount_1);
@@ -1439,17 +1481,17 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         let _e204 = param_94;
         n_4 = _e204;
         let _e206 = q_3.ptex;
-        r.ptex = _e206;
+        r_2.ptex = _e206;
         let _e209 = q_3.u0_;
         let _e211 = q_3.v0_;
         let _e214 = q_3.size;
         let _e215 = s_6;
         let _e216 = t_6;
-        r.uv = (vec2<f32>(_e209, _e211) + (vec2<f32>(_e215, _e216) * _e214));
-        r.level = 255u;
+        r_2.uv = (vec2<f32>(_e209, _e211) + (vec2<f32>(_e215, _e216) * _e214));
+        r_2.level = 255u;
     }
     let _e222 = P_4;
-    r.position = _e222;
+    r_2.position = _e222;
     let _e224 = n_4;
     let _e225 = n_4;
     if (dot(_e224, _e225) > 0f) {
@@ -1459,8 +1501,8 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
         local_12 = vec3<f32>(0f, 0f, 0f);
     }
     let _e230 = local_12;
-    r.normal = _e230;
-    let _e232 = r;
+    r_2.normal = _e230;
+    let _e232 = r_2;
     return _e232;
 }
 

@@ -18,9 +18,16 @@ layout(push_constant) uniform Push {
     uint firstRow;     // the chunk's first limit point (tables over 128 MiB come in chunks)
 } pc;
 
-vec3 gather(uint row) {
+// affine: the row's weights sum to 1 (a position), else to 0 (a tangent). Rows of more than 64
+// entries are summed relative to their first point, as in subdiv_stencils.comp.
+vec3 gather(uint row, bool affine) {
     uint b = starts.s[row], e = starts.s[row + 1];
     vec3 sum = vec3(0.0);
+    if (e - b > 64u) {
+        vec3 origin = vertices.p[indices.i[b]].xyz;
+        for (uint k = b; k < e; ++k) sum += weights.w[k] * (vertices.p[indices.i[k]].xyz - origin);
+        return affine ? sum + origin : sum;
+    }
     for (uint k = b; k < e; ++k) sum += weights.w[k] * vertices.p[indices.i[k]].xyz;
     return sum;
 }
@@ -29,8 +36,8 @@ void main() {
     uint r = limnInvocationIndex(pc.limnRowInvocations);
     if (r >= pc.limnCount) return;
     uint stride = pc.rowsPerTable + 1;
-    vec3 position = gather(r);
-    vec3 t1 = gather(stride + r), t2 = gather(2 * stride + r);
+    vec3 position = gather(r, true);
+    vec3 t1 = gather(stride + r, false), t2 = gather(2 * stride + r, false);
     vec3 n = cross(t1, t2);
     float len = length(n);
     uint o = pc.firstRow + r;

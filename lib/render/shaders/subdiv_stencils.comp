@@ -23,6 +23,17 @@ void main() {
     if (r >= pc.limnCount) return;
     uint b = starts.s[pc.firstRow + r], e = starts.s[pc.firstRow + r + 1];
     vec3 sum = vec3(0.0);
-    for (uint k = b; k < e; ++k) sum += weights.w[k] * vertices.p[indices.i[k]].xyz;
+    if (e - b > 64u) {
+        // A vertex of more than 31 faces: hundreds of small terms added one by one to a sum near
+        // the point itself round the same way each time in float (catmark_pole360's valence-360
+        // vertex drifted 2e-5 a level). A row's weights sum to 1, so it is its first point plus
+        // the weighted differences from it, whose terms and sum are the ring's size. Shorter rows
+        // keep their sums (same bits).
+        vec3 origin = vertices.p[indices.i[b]].xyz;
+        for (uint k = b; k < e; ++k) sum += weights.w[k] * (vertices.p[indices.i[k]].xyz - origin);
+        sum += origin;
+    } else {
+        for (uint k = b; k < e; ++k) sum += weights.w[k] * vertices.p[indices.i[k]].xyz;
+    }
     vertices.p[pc.firstOut + r] = vec4(sum, 1.0);
 }
