@@ -39,6 +39,14 @@ function packSrgb8(c) {
  * segments of about edgePixels), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
  * eye, target, up}, color, background, sampleShading}.
  */
+/**
+ * The surface's fragment stage for a shading: lit and texture have their own, without the other
+ * modes' code (lavapipe runs both sides of every branch; why in surface_fragment.glsl), the rest
+ * share the general one. A renderer draws the shadings of the stage it was made with: a caller
+ * that changes `shade` on a renderer (the viewer) makes a new one when this changes.
+ */
+export const surfaceFragmentStage = (shade) => (shade === 'lit' || shade === 'texture' ? `surface_${shade}` : 'surface');
+
 export class Renderer {
   static async create(device, surface, settings) {
     const r = new Renderer(device, surface, settings);
@@ -187,7 +195,8 @@ export class Renderer {
     const vs = await shaders.module(perSample ? `${vertexStage}_per_sample.vert` : `${vertexStage}.vert`);
     // Lit and texture shading: the fragment stage without the other modes' code, as limn-render
     // picks it (subdivision_pass.cpp surfaceFragment; why in surface_fragment.glsl).
-    const fragmentStage = s.shade === 'lit' || s.shade === 'texture' ? `surface_${s.shade}` : 'surface';
+    const fragmentStage = surfaceFragmentStage(s.shade);
+    this.fragmentStage = fragmentStage;
     const fs = await shaders.module(perSample ? `${fragmentStage}_per_sample.frag` : `${fragmentStage}.frag`);
     const drawGroupLayouts = [
       groupLayout(device, (await loadShaderText(`${vertexStage}.vert`)) + (await loadShaderText('surface.frag')), 1 | 2),
@@ -338,6 +347,9 @@ export class Renderer {
     // renderer.cpp: a texture is drawn as it is (white base) unless a colour is given.
     const base = s.color ?? (s.texture ? [1, 1, 1] : [DEFAULT_BASE, DEFAULT_BASE, DEFAULT_BASE]);
     push.setUint32(76, packSrgb8(base), true);
+    if (surfaceFragmentStage(s.shade) !== this.fragmentStage) {
+      throw new Error(`internal: --shade ${s.shade} drawn by a renderer made for ${this.fragmentStage}; make a new renderer`);
+    }
     push.setUint32(112, SHADES[s.shade], true);
     push.setFloat32(116, 2e-3, true);
     push.setUint32(120, this.surface.tables.patchCount, true);

@@ -2,6 +2,7 @@
 // and shaders on WebGPU). State lives in the URL (state.mjs); it draws only when something
 // changed, or while the turntable turns; errors are shown in the panel, in words.
 import { loadLimn, Renderer, LimnError } from '../src/index.mjs';
+import { surfaceFragmentStage } from '../src/renderer.mjs';
 import { parseQuery, toQuery, renderCommand, DEFAULTS, SHADE_NAMES } from './state.mjs';
 import { orbit, zoom, pan, frame, viewSpec } from './orbit.mjs';
 import { attachControls } from './controls.mjs';
@@ -107,9 +108,10 @@ function layoutCanvas() {
 
 // What needs a new renderer (buffers, pipelines, targets); the rest is set on the one there.
 // (View-adaptive tessellation shares points across UV seams unless the shading needs the UVs.)
+// The shading's fragment stage is the renderer's (lit and texture have their own).
 // A displacement's scale, mid and seam fix are set up with the renderer (its framing, the fixed
 // grids' sample UVs), so changing them makes a new one.
-const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.wire, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), model?.serial, map?.serial,
+const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.wire, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), surfaceFragmentStage(s.shade), model?.serial, map?.serial,
   map?.kind === 'displace' ? [s.displaceScale, s.displaceMid, s.seamFix] : null]);
 
 async function ensureRenderer() {
