@@ -79,9 +79,7 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
     return support.size() == M;
 }
 
-IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
-    if (n < 3 || K < 1 || K > uint32_t(kMaxDepth))
-        throw std::logic_error("irregular basis: valence or levels out of range");
+Mesh irregularBasisMesh(uint32_t n) {
     // Three rings of quads around a valence-n vertex: sector j spans rays j and j+1, its point
     // (a, b) = a e_j + b e_{j+1}; the ray points (a, 0) belong to sector j. The rim (a boundary)
     // is two faces beyond face 0, whose sub-patches it therefore never reaches.
@@ -100,6 +98,13 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
                     m.faceVertices.push_back(v);
                 m.faceOffsets.push_back(static_cast<uint32_t>(m.faceVertices.size()));
             }
+    return m;
+}
+
+IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
+    if (n < 3 || K < 1 || K > uint32_t(kMaxDepth))
+        throw std::logic_error("irregular basis: valence or levels out of range");
+    const Mesh m = irregularBasisMesh(n);
     Warnings warnings;
     const SchemeOptions options;
     // The table builder's refinement, under face 0 only: each level refines the faces around its

@@ -7,6 +7,7 @@
 // (and OpenSubdiv's) Catmull-Clark exactly.
 #pragma once
 
+#include "mesh/mesh.h"
 #include "subdiv/level.h"
 
 #include <cstdint>
@@ -24,6 +25,10 @@ struct IrregularBasis {
     std::vector<float> weights;
     uint32_t supportSize() const { return 2 * valence + 8; }
 };
+
+// The mesh a basis is refined from: three rings of quads around a valence-n vertex (vertex 0),
+// face 0 one of the faces at it, the rim a boundary two faces beyond face 0.
+Mesh irregularBasisMesh(uint32_t valence);
 
 // Builds the basis of valence n (>= 3) for K levels (1..16). Throws Error on failure.
 IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);

@@ -326,20 +326,7 @@ TEST(IrregularBasis, WeightsAreThoseOfTheWholeTables) {
     for (uint32_t n : {3u, 5u, 6u, 9u}) {
         SCOPED_TRACE("valence " + std::to_string(n));
         const uint32_t K = 4;
-        Mesh m; // sector j: points a e_j + b e_{j+1}, 0 <= a, b <= 3
-        auto id = [&](uint32_t j, uint32_t a, uint32_t b) -> uint32_t {
-            if (a == 0 && b == 0) return 0;
-            if (a == 0) return 1 + ((j + 1) % n) * 12 + (b - 1) * 4;
-            return 1 + j * 12 + (a - 1) * 4 + b;
-        };
-        m.positions.assign(1 + 12 * size_t(n), glm::dvec3(0.0));
-        for (uint32_t j = 0; j < n; ++j)
-            for (uint32_t a = 0; a < 3; ++a)
-                for (uint32_t b = 0; b < 3; ++b) {
-                    for (uint32_t v : {id(j, a, b), id(j, a + 1, b), id(j, a + 1, b + 1), id(j, a, b + 1)})
-                        m.faceVertices.push_back(v);
-                    m.faceOffsets.push_back(static_cast<uint32_t>(m.faceVertices.size()));
-                }
+        const Mesh m = irregularBasisMesh(n); // the mesh the basis is refined from
         Warnings w;
         TablesOptions opts;
         opts.depth = int(K);
