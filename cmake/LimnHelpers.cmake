@@ -19,7 +19,8 @@ endfunction()
 function(limn_gtest name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE limn_warnings GTest::gtest_main limn_test_support ${ARG_DEPS})
+  target_link_libraries(${name} PRIVATE limn_warnings GTest::gtest_main limn_test_support limn_test_watchdog
+    ${ARG_DEPS})
   # Test sources at -O1 -g1 (after the build type's -O2 -g on the command line, so they win):
   # GoogleTest's macros make them the heaviest files to compile (a CLI test file 11.2 s of CPU at
   # -O2 -g, 5.2 s at -O1 -g1), while the work they test runs in limn's libraries and tools, which
@@ -30,7 +31,14 @@ function(limn_gtest name)
     LIMN_BIN_DIR="${CMAKE_BINARY_DIR}/bin"
     LIMN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   # One label per executable: CMake 3.25's gtest_discover_tests flattens a list of them.
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+  # A test that hangs fails at 600 s instead of holding CTest (and CI) forever; the watchdog
+  # (tests/support/test_watchdog.cpp) has printed where it hangs by then.
+  # (An empty LABELS would swallow the next property's name: it is left out when empty.)
+  set(properties TIMEOUT 600)
+  if(ARG_LABELS)
+    list(APPEND properties LABELS "${ARG_LABELS}")
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${properties})
   if(NOT ARG_LABELS MATCHES "^(render|heavy)$")
     set_property(GLOBAL APPEND PROPERTY LIMN_SANITIZED_TESTS ${name}) # limn_sanitizer_suite
   endif()

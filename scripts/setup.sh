@@ -38,6 +38,8 @@ if $tests; then
   # The browser viewer's tests (web/viewer/test): Debian's chromium, whose WebGPU runs headless
   # on SwiftShader; playwright-core (below) drives it, never downloading a browser of its own.
   packages+=(chromium)
+  # The tests' watchdog (tests/support/test_watchdog.cpp) prints a hung test's backtraces with gdb.
+  packages+=(gdb)
 fi
 
 # Test-only npm packages, pinned by tests/tools/package-lock.json, into tests/tools/node_modules
