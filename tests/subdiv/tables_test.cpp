@@ -237,6 +237,41 @@ TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
     EXPECT_LT(angles[14], osdAngle) << "the exact surface turns past OpenSubdiv's corner normal";
 }
 
+// Boundary rule None with both boundary edges of a one-face vertex tagged sharp
+// (catmark_edgenone's base vertex 51, ptex 29's corner (1, 0)) is the crease rule too: a smooth
+// corner, left out of the normal checks like the edge-only ones. There the surface does not turn:
+// the exact patches of a deep isolation beside the corner and OpenSubdiv's normal a billionth
+// inside both give limn's corner normal, while OpenSubdiv's du x dv exactly at the corner (what
+// bench_accuracy --ply compared before) is 25 degrees off.
+TEST(SmoothCorner, BoundaryNoneCornerHasTheSurfacesNormal) {
+    Warnings w;
+    Mesh m = importMeshFile(test::modelPath("osd/catmark/catmark_edgenone.obj").string(), w);
+    SchemeOptions o = resolveSchemeOptions(m.tags, {});
+    ASSERT_EQ(o.boundary, BoundaryRule::None);
+    ASSERT_EQ(test::baseVertexAt(m, 29, 1, 0), 51);
+    ASSERT_TRUE(test::smoothCorners(m, o)[51]);
+    TablesOptions opts;
+    opts.depth = 14;
+    auto t = buildTables(m, o, opts, w);
+    auto V = evaluateVertices(t, m.positions);
+    auto L = evaluateLimitPoints(t, V);
+    glm::dvec3 corner(0); // corner 1 of the irregular leaf at (1, 0) is at (u0 + size, v0)
+    for (const auto& q : t.irregular)
+        if (q.ptex == 29 && q.u0 + q.size == 1.0f && q.v0 == 0.0f) corner = L[q.corner[1]].normal;
+    ASSERT_NE(glm::length(corner), 0.0);
+    auto degrees = [&](const glm::dvec3& n) { return std::acos(std::min(1.0, glm::dot(n, corner))) * 180 / M_PI; };
+    double deep = -1; // the level-14 patch beside the leaf along v, at its point nearest the corner
+    for (const auto& p : t.patches)
+        if (p.ptex == 29 && p.level == 14 && p.u0 + p.size == 1.0f && p.v0 == p.size)
+            deep = degrees(evaluatePatch(p, V, 1, 0).normal);
+    ASSERT_GE(deep, 0) << "no level-14 patch beside the corner";
+    EXPECT_LT(deep, 1e-4);
+    test::OsdLimitSurface osd(m, o, 10);
+    glm::dvec3 P, N;
+    ASSERT_TRUE(osd.evaluate(29, 1 - 1e-9, 1e-9, P, N));
+    EXPECT_LT(degrees(N), 0.01);
+}
+
 // OpenSubdiv parity: regular faces along infinitely sharp creases are boundary patches, so a creased
 // model no longer pays the deep levels along its creases. catmark_cube_creases2 at depth 5:
 // OpenSubdiv with useInfSharpPatch draws 96 patches (1,764 without); limn's elements (patches

@@ -163,8 +163,10 @@ std::vector<uint8_t> smoothCorners(const Mesh& m, const SchemeOptions& o) {
     }
     for (size_t v = 0; v < m.vertexCount(); ++v) {
         // The crease rule needs exactly two sharp edges and no corner; edge-and-corner makes a
-        // boundary vertex of one face a corner.
-        const bool boundaryCorner = o.boundary != BoundaryRule::EdgeOnly && faceCount[v] == 1;
+        // boundary vertex of one face a corner. None does not: a face at the boundary is drawn only
+        // where tags sharpen its boundary edges (catmark_edgenone), and a vertex of one face
+        // with two of them follows the crease rule, as under edge-only.
+        const bool boundaryCorner = o.boundary == BoundaryRule::EdgeAndCorner && faceCount[v] == 1;
         if (sharpEdges[v] != 2 || cornerTag[v] || boundaryCorner) out[v] = 0;
     }
     return out;
