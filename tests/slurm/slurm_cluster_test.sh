@@ -33,6 +33,8 @@ cleanup() {
 }
 trap cleanup EXIT
 trap 'exit 130' INT TERM
+# A command that fails outside fail() (set -e) still says where.
+trap 'echo "slurm test: FAIL: line $LINENO: a command exited with $?" >&2' ERR
 local_cluster_start "$work" || fail "the cluster did not start"
 
 # --- inputs and the one-process runs -----------------------------------------------------------
@@ -80,12 +82,14 @@ script=$!
 # still mid-run however fast the machine renders; scancel sends SIGCONT before SIGTERM.
 # The waits are bounded in seconds, not in polls: under load one poll (squeue, scontrol) can take
 # a large part of a second, and a task can wait that long to be scheduled.
+# A poll that fails (a busy controller times out; set -e would end the test without a word) is
+# tried again, like slurm-render.sh's own.
 job= pid=
 deadline=$((SECONDS + 180))
 while ((SECONDS < deadline)); do
-  job=$(squeue -h -o %F | head -n 1)
+  job=$(squeue -h -o %F 2>/dev/null | head -n 1) || job=
   if [ -n "$job" ] && [ "$(squeue -h -j "${job}_1" -o %T 2>/dev/null)" = RUNNING ]; then
-    pid=$(scontrol listpids "$(squeue -h -j "${job}_1" -o %A)" 2>/dev/null | awk '$3 == "batch" { print $1 }')
+    pid=$(scontrol listpids "$(squeue -h -j "${job}_1" -o %A 2>/dev/null)" 2>/dev/null | awk '$3 == "batch" { print $1 }') || pid=
     [ -n "$pid" ] && break
   fi
   sleep 0.05
@@ -93,7 +97,7 @@ done
 [ -n "$pid" ] || fail "task 1 did not start"
 deadline=$((SECONDS + 180))
 while ((SECONDS < deadline)); do [ -f cancel/long_0060.png ] && break; sleep 0.01; done
-kill -STOP "$pid"
+kill -STOP "$pid" || fail "task 1's process $pid ended before it could be held"
 [ -f cancel/long_0060.png ] || fail "task 1 did not write frame 60"
 [ ! -e cancel/long_0119.png ] || fail "task 1 had finished before it could be held"
 scancel "${job}_1"
