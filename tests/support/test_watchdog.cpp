@@ -90,68 +90,75 @@ void printBacktraces(pid_t pid) {
     }
 }
 
+// What the listener tells the watching thread. Never freed: GoogleTest's UnitTest is a static
+// object that deletes its listeners at exit, while the detached thread may still wake.
+struct WatchState {
+    std::mutex mutex;
+    std::string name;
+    Clock::time_point start{};
+    std::chrono::seconds limit{300};
+    bool running = false;
+    bool reported = false;
+};
+
+void report(const std::string& name, std::chrono::seconds limit) {
+    std::fprintf(stderr, "watchdog: %s has run for over %ld s; where it is:\n", name.c_str(),
+                 static_cast<long>(limit.count()));
+    const std::vector<pid_t> children = descendantsOf(getpid());
+    for (pid_t pid : children) {
+        std::string cmdline = procFile(pid, "cmdline");
+        for (char& c : cmdline)
+            if (c == '\0') c = ' ';
+        std::fprintf(stderr, "watchdog: subprocess %d: %s\n", static_cast<int>(pid), cmdline.c_str());
+    }
+    std::fflush(stderr);
+    // gdb is our child, not our parent: let it attach where ptrace is limited to ancestors
+    // (Yama's ptrace_scope 1).
+    prctl(PR_SET_PTRACER, PR_SET_PTRACER_ANY, 0, 0, 0);
+    std::fprintf(stderr, "watchdog: backtraces of the test (%d)\n", static_cast<int>(getpid()));
+    printBacktraces(getpid());
+    for (pid_t pid : children) {
+        std::fprintf(stderr, "watchdog: backtraces of subprocess %d\n", static_cast<int>(pid));
+        printBacktraces(pid);
+    }
+    std::fflush(stderr);
+}
+
+void watch(WatchState* state) {
+    for (;;) {
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+        std::string name;
+        {
+            std::lock_guard lock(state->mutex);
+            if (!state->running || state->reported || Clock::now() - state->start < state->limit) continue;
+            state->reported = true;
+            name = state->name;
+        }
+        report(name, state->limit);
+    }
+}
+
 class Watchdog : public testing::EmptyTestEventListener {
 public:
-    Watchdog() {
+    Watchdog() : state_(new WatchState) {
         const char* limit = std::getenv("LIMN_TEST_WATCHDOG_S");
-        limit_ = std::chrono::seconds(limit && std::atoi(limit) > 0 ? std::atoi(limit) : 300);
-        std::thread([this] { watch(); }).detach();
+        if (limit && std::atoi(limit) > 0) state_->limit = std::chrono::seconds(std::atoi(limit));
+        std::thread(watch, state_).detach();
     }
     void OnTestStart(const testing::TestInfo& info) override {
-        std::lock_guard lock(mutex_);
-        name_ = std::string(info.test_suite_name()) + "." + info.name();
-        start_ = Clock::now();
-        running_ = true;
-        reported_ = false;
+        std::lock_guard lock(state_->mutex);
+        state_->name = std::string(info.test_suite_name()) + "." + info.name();
+        state_->start = Clock::now();
+        state_->running = true;
+        state_->reported = false;
     }
     void OnTestEnd(const testing::TestInfo&) override {
-        std::lock_guard lock(mutex_);
-        running_ = false;
+        std::lock_guard lock(state_->mutex);
+        state_->running = false;
     }
 
 private:
-    void watch() {
-        for (;;) {
-            std::this_thread::sleep_for(std::chrono::seconds(1));
-            std::string name;
-            {
-                std::lock_guard lock(mutex_);
-                if (!running_ || reported_ || Clock::now() - start_ < limit_) continue;
-                reported_ = true;
-                name = name_;
-            }
-            report(name);
-        }
-    }
-    void report(const std::string& name) {
-        const long seconds = static_cast<long>(limit_.count());
-        std::fprintf(stderr, "watchdog: %s has run for over %ld s; where it is:\n", name.c_str(), seconds);
-        const std::vector<pid_t> children = descendantsOf(getpid());
-        for (pid_t pid : children) {
-            std::string cmdline = procFile(pid, "cmdline");
-            for (char& c : cmdline)
-                if (c == '\0') c = ' ';
-            std::fprintf(stderr, "watchdog: subprocess %d: %s\n", static_cast<int>(pid), cmdline.c_str());
-        }
-        std::fflush(stderr);
-        // gdb is our child, not our parent: let it attach where ptrace is limited to ancestors
-        // (Yama's ptrace_scope 1).
-        prctl(PR_SET_PTRACER, PR_SET_PTRACER_ANY, 0, 0, 0);
-        std::fprintf(stderr, "watchdog: backtraces of the test (%d)\n", static_cast<int>(getpid()));
-        printBacktraces(getpid());
-        for (pid_t pid : children) {
-            std::fprintf(stderr, "watchdog: backtraces of subprocess %d\n", static_cast<int>(pid));
-            printBacktraces(pid);
-        }
-        std::fflush(stderr);
-    }
-
-    std::mutex mutex_;
-    std::string name_;
-    Clock::time_point start_{};
-    std::chrono::seconds limit_{300};
-    bool running_ = false;
-    bool reported_ = false;
+    WatchState* state_; // leaked on purpose (WatchState)
 };
 
 // Registered before main (GoogleTest's main, gtest_main) runs the tests; the listener list owns it.
