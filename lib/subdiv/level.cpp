@@ -89,8 +89,10 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
 
     // Which parent components get a child vertex.
     std::vector<uint8_t> edgeUsed(E, 0), vertexUsed(V, 0), faceCenter(F, 0);
+    uint32_t childFaces = 0; // counted first so that every per-face array is allocated once
     for (uint32_t f = 0; f < F; ++f) {
         if (!selected[f]) continue;
+        childFaces += T.faceSize(f);
         for (uint32_t h = T.faceHalfedge(f); h < T.faceHalfedge(f) + T.faceSize(f); ++h) {
             edgeUsed[T.edge(h)] = 1;
             vertexUsed[T.vertex(h)] = 1;
@@ -103,6 +105,11 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
     Level C;
     C.depth = P.depth + 1;
     std::vector<uint32_t> faceChild(F, kNone), edgeChild(E, kNone), vertexChild(V, kNone);
+    const size_t childVertices = size_t(std::count(faceCenter.begin(), faceCenter.end(), 1)) +
+                                 size_t(std::count(edgeUsed.begin(), edgeUsed.end(), 1)) +
+                                 size_t(std::count(vertexUsed.begin(), vertexUsed.end(), 1));
+    C.vertexOrigin.reserve(childVertices);
+    C.vertexParent.reserve(childVertices);
     uint32_t next = 0;
     for (uint32_t f = 0; f < F; ++f)
         if (faceCenter[f]) {
@@ -130,14 +137,20 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
     // Child faces: corner k of a parent face gives the quad (v_k, e_k, f, e_{k-1}) with child
     // corner 0 at the parent's corner k (OpenSubdiv's child and ptex sub-face convention).
     std::vector<uint32_t> offsets{0}, corners;
+    offsets.reserve(size_t(childFaces) + 1);
+    corners.reserve(4 * size_t(childFaces));
+    C.frames.reserve(childFaces);
+    C.noLimit.reserve(childFaces);
+    C.faceParent.reserve(childFaces);
     for (uint32_t f = 0; f < F; ++f) {
         if (!selected[f]) continue;
         const uint32_t n = T.faceSize(f), h0 = T.faceHalfedge(f);
         const FaceFrame& pf = P.frames[f];
         for (uint32_t k = 0; k < n; ++k) {
             uint32_t h = h0 + k;
-            corners.insert(corners.end(), {vertexChild[T.vertex(h)], edgeChild[T.edge(h)],
-                                           faceChild[f], edgeChild[T.edge(T.prev(h))]});
+            for (uint32_t c : {vertexChild[T.vertex(h)], edgeChild[T.edge(h)], faceChild[f],
+                               edgeChild[T.edge(T.prev(h))]})
+                corners.push_back(c);
             offsets.push_back(static_cast<uint32_t>(corners.size()));
             FaceFrame cf;
             if (P.depth == 0 && n != 4) { // a non-quad's sub-faces are ptex faces of their own
@@ -209,6 +222,8 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
     OpenSubdiv::Sdc::Scheme<OpenSubdiv::Sdc::SCHEME_CATMARK> scheme(toSdcOptions(options));
     // Rows are appended in child vertex order (face, edge, vertex points by parent index).
     st = LevelStencils{};
+    st.faceStart.reserve(C.facePointCount + 1);
+    st.faceVertices.reserve(4 * size_t(C.facePointCount)); // quads after the first level
     for (uint32_t f = 0; f < F; ++f)
         if (faceCenter[f]) {
             auto fv = T.faceVertices(f);
@@ -219,6 +234,12 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
     for (uint32_t v = 0; v < V; ++v) maxValence = std::max(maxValence, T.vertexEdgeCount(v));
     SdcMask mask(static_cast<int>(maxValence));
     st.edgeEntries.reserve(4 * C.edgePointCount);
+    st.edgeStart.reserve(C.edgePointCount + 1);
+    st.vertexStart.reserve(C.vertexPointCount + 1);
+    size_t vertexEntries = 0; // at most the vertex, its ring and its faces
+    for (uint32_t v = 0; v < V; ++v)
+        if (vertexUsed[v]) vertexEntries += 1 + 2 * size_t(T.vertexEdgeCount(v));
+    st.vertexEntries.reserve(vertexEntries);
     for (uint32_t e = 0; e < E; ++e) {
         if (!edgeUsed[e]) continue;
         uint32_t cv = edgeChild[e];

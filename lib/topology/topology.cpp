@@ -38,11 +38,13 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
     // pass over each bucket, so a vertex shared by many edges (an n-gon's centre after one
     // level) costs linear time, not its bucket size per edge.
     std::vector<uint32_t> nextInEdge(H, kNone), lastInEdge(H), slot(vertexCount_, kNone);
+    uint32_t edgeCount = 0; // counted here so that the edge arrays are allocated once
     for (uint32_t v = 0; v < vertexCount_; ++v) {
         for (uint32_t i = bucketStart[v]; i < bucketStart[v + 1]; ++i) {
             const uint32_t h = bucket[i];
             uint32_t& first = slot[other[h]];
             if (first == kNone) {
+                ++edgeCount;
                 first = h;
                 lastInEdge[h] = h;
             } else {
@@ -54,6 +56,10 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
     }
     heEdge_.assign(H, kNone);
     heTwin_.assign(H, kNone);
+    edgeHalfedge_.reserve(edgeCount);
+    edgeVertices_.reserve(edgeCount);
+    edgeFaceCount_.reserve(edgeCount);
+    edgeNonManifold_.reserve(edgeCount);
     uint32_t group[64];
     for (uint32_t h0 = 0; h0 < H; ++h0) {
         if (heEdge_[h0] != kNone) continue; // h0 is the first half-edge of a new edge

@@ -354,13 +354,14 @@ TEST(ExactLimits, NoApproximateLimitPointsOnCatmarkShapes) {
 // three rings of quads around a valence-n vertex (written here), built by buildTables with the
 // default boundary rule, evaluated by evaluateVertices for unit control points, and face 0's
 // sub-patches read from those tables (the way the weights were first computed).
-// buildIrregularBasis refines only around face 0 and evaluates only what its sub-patches read,
-// all columns at once: the two must agree to the bit (checked once for every valence 3 to 64 at
-// K = 16; four valences here).
+// buildIrregularBasis refines one level around face 0, evaluates only what its sub-patches read,
+// all columns at once, and runs that level's rows again for the deeper bands: the two must agree
+// to the bit (checked once for every valence 3 to 64 at K = 16; five valences here at K = 6,
+// bands 2 to 6 from the rerun rows).
 TEST(IrregularBasis, WeightsAreThoseOfTheWholeTables) {
-    for (uint32_t n : {3u, 5u, 6u, 9u}) {
+    for (uint32_t n : {3u, 5u, 6u, 9u, 20u}) {
         SCOPED_TRACE("valence " + std::to_string(n));
-        const uint32_t K = 4;
+        const uint32_t K = 6;
         const Mesh m = irregularBasisMesh(n); // the mesh the basis is refined from
         Warnings w;
         TablesOptions opts;
