@@ -1,6 +1,7 @@
 // Shared points (AdaptiveOptions::sharePoints, adaptive_emit.comp): where the draw reads no
-// own-chart UV, flat elements draw their corners from one vertex slot per point, written by the
-// point's owner, instead of a copy each. The slot holds the owner's (element, s, t), which every
+// own-chart UV, elements draw their corners from one vertex slot per point, and the points inside
+// each edge piece from one slot each, written by the point's or the piece's owner, instead of a
+// copy each. The slot holds the owner's (element, s, t), which every
 // element's own copy held before, so the vertex stage computes the same bits: the image must be
 // the same bytes with and without sharing, with 1 and 4 samples, for --shade levels too (its
 // per-triangle level stays the emitting element's), in far (mostly flat, sub-pixel elements),
