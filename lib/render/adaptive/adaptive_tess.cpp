@@ -130,9 +130,9 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     const uint64_t limitV = gpu::kMaxStorageBufferBytes / 16, limitT = gpu::kMaxStorageBufferBytes / 12;
     // Shared points: the first slots are the points', so that elements draw their corners
     // from one vertex each instead of four copies (the vertex stage evaluates each slot once
-    // per batch of triangles); only where nothing reads a vertex's own-chart UV (which differs
-    // across a UV seam) or the whole surface.
-    if (options.sharePoints && !options.evaluated && ep.points.size() < limitV / 2) {
+    // per batch of triangles, the compute evaluation once); only where nothing reads a
+    // vertex's own-chart UV (which differs across a UV seam) or the whole surface.
+    if (options.sharePoints && ep.points.size() < limitV / 2) {
         sharedPoints_ = static_cast<uint32_t>(ep.points.size());
         maxV += sharedPoints_;
     }
@@ -264,7 +264,7 @@ void AdaptiveTess::recordPasses(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     cmd.endTimed();
     cmd.barrier(write, read);
     CountPush np{options_.tess, options_.fvarNodes.empty() ? 0u : kFvarLoopsPerVertex, sharedPoints_ ? 1u : 0u,
-                 samples, {cp.samples[0], cp.samples[1]}, options_.evaluated ? 0u : 1u};
+                 samples, {cp.samples[0], cp.samples[1]}, options_.evaluated && !sharedPoints_ ? 0u : 1u};
     timed.begin(cmd, "adaptive counts", true);
     cmd.dispatch(*passes_->counts, countBind_, elementCount_, np);
     cmd.endTimed();
