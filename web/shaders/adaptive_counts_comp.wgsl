@@ -39,12 +39,12 @@ struct Rates {
     r: array<u32>,
 }
 
-struct Cull {
-    c: array<u32>,
-}
-
 struct Info {
     v: array<vec4<u32>>,
+}
+
+struct Cull {
+    c: array<u32>,
 }
 
 var<private> gl_GlobalInvocationID_1: vec3<u32>;
@@ -57,10 +57,10 @@ var<storage, read> pieceEnds: PieceEnds;
 var<storage, read> elements: Elements;
 @group(0) @binding(2) 
 var<storage, read> rates: Rates;
-@group(0) @binding(3) 
-var<storage, read> cull: Cull;
 @group(0) @binding(4) 
 var<storage, read_write> info: Info;
+@group(0) @binding(3) 
+var<storage, read> cull: Cull;
 
 fn adaptivePackRates_u0028_u1_u003b_u1_u003b(mu: ptr<function, u32>, mv: ptr<function, u32>) -> u32 {
     let _e49 = (*mu);
@@ -331,7 +331,7 @@ fn drawnFan_u0028_struct_u002d_AdaptiveElement_u002d_vu4_u002d_vu4_u002d_vf2_u00
     var param_8: vec2<f32>;
     var param_9: vec2<f32>;
     var param_10: vec2<f32>;
-    var phi_497_: bool;
+    var phi_498_: bool;
 
     let _e69 = (*B_1);
     param_5 = _e69;
@@ -368,108 +368,108 @@ fn drawnFan_u0028_struct_u002d_AdaptiveElement_u002d_vu4_u002d_vu4_u002d_vf2_u00
                     let _e103 = n;
                     n = (_e103 + bitcast<u32>(1i));
                     let _e107 = sp[2u];
-                    if (_e107 != 0u) {
-                        let _e109 = ends;
-                        local_1 = _e109.zw;
+                    if ((_e107 & 1u) != 0u) {
+                        let _e110 = ends;
+                        local_1 = _e110.zw;
                     } else {
-                        let _e111 = ends;
-                        local_1 = _e111.xy;
+                        let _e112 = ends;
+                        local_1 = _e112.xy;
                     }
-                    let _e113 = local_1;
-                    px[_e103] = _e113;
+                    let _e114 = local_1;
+                    px[_e103] = _e114;
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e115 = p_1;
-                    p_1 = (_e115 + bitcast<u32>(1i));
+                    let _e116 = p_1;
+                    p_1 = (_e116 + bitcast<u32>(1i));
                 }
             }
-            let _e118 = k_2;
-            let _e119 = n;
-            let _e120 = k_2;
-            let _e122 = sideStart_1[_e120];
-            sideTotal_1[_e118] = (_e119 - _e122);
+            let _e119 = k_2;
+            let _e120 = n;
+            let _e121 = k_2;
+            let _e123 = sideStart_1[_e121];
+            sideTotal_1[_e119] = (_e120 - _e123);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e125 = k_2;
-            k_2 = (_e125 + bitcast<u32>(1i));
+            let _e126 = k_2;
+            k_2 = (_e126 + bitcast<u32>(1i));
         }
     }
     i = 0u;
     loop {
-        let _e128 = i;
-        let _e129 = n;
-        if (_e128 < _e129) {
-            let _e131 = i;
-            let _e134 = px[_e131][0u];
-            let _e136 = (abs(_e134) < 1000000f);
-            phi_497_ = _e136;
-            if _e136 {
-                let _e137 = i;
-                let _e140 = px[_e137][1u];
-                phi_497_ = (abs(_e140) < 1000000f);
+        let _e129 = i;
+        let _e130 = n;
+        if (_e129 < _e130) {
+            let _e132 = i;
+            let _e135 = px[_e132][0u];
+            let _e137 = (abs(_e135) < 1000000f);
+            phi_498_ = _e137;
+            if _e137 {
+                let _e138 = i;
+                let _e141 = px[_e138][1u];
+                phi_498_ = (abs(_e141) < 1000000f);
             }
-            let _e144 = phi_497_;
-            if !(_e144) {
-                let _e146 = all_;
-                return _e146;
+            let _e145 = phi_498_;
+            if !(_e145) {
+                let _e147 = all_;
+                return _e147;
             }
             continue;
         } else {
             break;
         }
         continuing {
-            let _e147 = i;
-            i = (_e147 + bitcast<u32>(1i));
+            let _e148 = i;
+            i = (_e148 + bitcast<u32>(1i));
         }
     }
-    let _e150 = sideStart_1;
-    param_6 = _e150;
-    let _e151 = sideTotal_1;
-    param_7 = _e151;
-    let _e152 = adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b((&param_6), (&param_7));
-    apex_1 = _e152;
+    let _e151 = sideStart_1;
+    param_6 = _e151;
+    let _e152 = sideTotal_1;
+    param_7 = _e152;
+    let _e153 = adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b((&param_6), (&param_7));
+    apex_1 = _e153;
     fan = 0u;
     i_1 = 0u;
     loop {
-        let _e153 = i_1;
-        let _e155 = (*B_1);
-        if ((_e153 + 2u) < _e155) {
-            let _e157 = apex_1;
+        let _e154 = i_1;
+        let _e156 = (*B_1);
+        if ((_e154 + 2u) < _e156) {
             let _e158 = apex_1;
-            let _e159 = i_1;
-            let _e162 = (*B_1);
-            let _e164 = apex_1;
-            let _e165 = i_1;
-            let _e168 = (*B_1);
-            let _e171 = px[_e157];
-            param_8 = _e171;
-            let _e173 = px[(((_e158 + _e159) + 1u) % _e162)];
-            param_9 = _e173;
-            let _e175 = px[(((_e164 + _e165) + 2u) % _e168)];
-            param_10 = _e175;
-            let _e176 = holdsSample_u0028_vf2_u003b_vf2_u003b_vf2_u003b((&param_8), (&param_9), (&param_10));
-            if _e176 {
-                let _e177 = i_1;
-                let _e180 = fan;
-                fan = (_e180 | (1u << bitcast<u32>(_e177)));
+            let _e159 = apex_1;
+            let _e160 = i_1;
+            let _e163 = (*B_1);
+            let _e165 = apex_1;
+            let _e166 = i_1;
+            let _e169 = (*B_1);
+            let _e172 = px[_e158];
+            param_8 = _e172;
+            let _e174 = px[(((_e159 + _e160) + 1u) % _e163)];
+            param_9 = _e174;
+            let _e176 = px[(((_e165 + _e166) + 2u) % _e169)];
+            param_10 = _e176;
+            let _e177 = holdsSample_u0028_vf2_u003b_vf2_u003b_vf2_u003b((&param_8), (&param_9), (&param_10));
+            if _e177 {
+                let _e178 = i_1;
+                let _e181 = fan;
+                fan = (_e181 | (1u << bitcast<u32>(_e178)));
             }
             continue;
         } else {
             break;
         }
         continuing {
-            let _e182 = i_1;
-            i_1 = (_e182 + bitcast<u32>(1i));
+            let _e183 = i_1;
+            i_1 = (_e183 + bitcast<u32>(1i));
         }
     }
-    let _e185 = fan;
-    return _e185;
+    let _e186 = fan;
+    return _e186;
 }
 
 fn emitLoops_u0028_u1_u003b_u1_u003b_u1_u003b(B_2: ptr<function, u32>, mu_1: ptr<function, u32>, mv_1: ptr<function, u32>) -> u32 {
@@ -507,10 +507,12 @@ fn main_1() {
     var most: array<u32, 2>;
     var flatSides: bool;
     var singleSide: array<bool, 2>;
+    var owned: u32;
     var k_3: i32;
     var side: u32;
     var size: u32;
     var p_2: u32;
+    var sp_1: vec4<u32>;
     var r: u32;
     var culled: bool;
     var cap: u32;
@@ -536,301 +538,331 @@ fn main_1() {
     var local_4: u32;
     var T: u32;
     var local_5: u32;
-    var packed_1: u32;
     var local_6: u32;
+    var packed_1: u32;
+    var local_7: u32;
     var param_22: u32;
     var param_23: u32;
     var param_24: u32;
-    var phi_728_: bool;
-    var phi_737_: bool;
-    var phi_797_: bool;
-    var phi_805_: bool;
-    var phi_858_: bool;
+    var phi_700_: bool;
+    var phi_765_: bool;
+    var phi_774_: bool;
+    var phi_834_: bool;
+    var phi_842_: bool;
+    var phi_895_: bool;
 
-    let _e89 = pc.limnRowInvocations;
-    param_11 = _e89;
-    let _e90 = limnInvocationIndex_u0028_u1_u003b((&param_11));
-    e = _e90;
-    let _e91 = e;
-    let _e93 = pc.limnCount;
-    if (_e91 >= _e93) {
+    let _e92 = pc.limnRowInvocations;
+    param_11 = _e92;
+    let _e93 = limnInvocationIndex_u0028_u1_u003b((&param_11));
+    e = _e93;
+    let _e94 = e;
+    let _e96 = pc.limnCount;
+    if (_e94 >= _e96) {
         return;
     }
-    let _e95 = e;
-    let _e98 = elements.e[_e95];
-    el_1.sideFirst = _e98.sideFirst;
-    el_1.sideCount = _e98.sideCount;
-    el_1.uv[0i] = _e98.uv[0];
-    el_1.uv[1i] = _e98.uv[1];
-    el_1.uv[2i] = _e98.uv[2];
-    el_1.uv[3i] = _e98.uv[3];
-    el_1.level = _e98.level;
-    el_1.crease = _e98.crease;
-    el_1.pad1_ = _e98.pad1_;
-    el_1.pad2_ = _e98.pad2_;
+    let _e98 = e;
+    let _e101 = elements.e[_e98];
+    el_1.sideFirst = _e101.sideFirst;
+    el_1.sideCount = _e101.sideCount;
+    el_1.uv[0i] = _e101.uv[0];
+    el_1.uv[1i] = _e101.uv[1];
+    el_1.uv[2i] = _e101.uv[2];
+    el_1.uv[3i] = _e101.uv[3];
+    el_1.level = _e101.level;
+    el_1.crease = _e101.crease;
+    el_1.pad1_ = _e101.pad1_;
+    el_1.pad2_ = _e101.pad2_;
     B_3 = 0u;
     most = array<u32, 2>(1u, 1u);
     flatSides = true;
     singleSide = array<bool, 2>(false, false);
+    owned = 0u;
     k_3 = 0i;
     loop {
-        let _e121 = k_3;
-        if (_e121 < 4i) {
+        let _e124 = k_3;
+        if (_e124 < 4i) {
             side = 0u;
             size = 0u;
             p_2 = 0u;
             loop {
-                let _e123 = p_2;
-                let _e124 = k_3;
-                let _e127 = el_1.sideCount[_e124];
-                if (_e123 < _e127) {
-                    let _e129 = k_3;
-                    let _e132 = el_1.sideFirst[_e129];
-                    let _e133 = p_2;
-                    let _e138 = pieces.v[(_e132 + _e133)][0u];
-                    let _e141 = rates.r[_e138];
-                    r = _e141;
-                    let _e142 = r;
-                    let _e144 = side;
-                    side = (_e144 + (_e142 & 65535u));
-                    let _e146 = r;
-                    let _e149 = size;
-                    size = (_e149 + (_e146 >> bitcast<u32>(16i)));
-                    let _e151 = flatSides;
-                    let _e152 = r;
-                    flatSides = (_e151 && (_e152 == 65537u));
+                let _e126 = p_2;
+                let _e127 = k_3;
+                let _e130 = el_1.sideCount[_e127];
+                if (_e126 < _e130) {
+                    let _e132 = k_3;
+                    let _e135 = el_1.sideFirst[_e132];
+                    let _e136 = p_2;
+                    let _e140 = pieces.v[(_e135 + _e136)];
+                    sp_1 = _e140;
+                    let _e142 = sp_1[0u];
+                    let _e145 = rates.r[_e142];
+                    r = _e145;
+                    let _e147 = pc.sharePoints;
+                    let _e148 = (_e147 != 0u);
+                    phi_700_ = _e148;
+                    if _e148 {
+                        let _e150 = sp_1[2u];
+                        phi_700_ = ((_e150 & 2u) != 0u);
+                    }
+                    let _e154 = phi_700_;
+                    if _e154 {
+                        let _e156 = pc.limnCount;
+                        let _e158 = sp_1[0u];
+                        let _e162 = sp_1[0u];
+                        let _e164 = owned;
+                        info.v[(_e156 + (_e158 / 4u))][(_e162 % 4u)] = _e164;
+                        let _e168 = r;
+                        let _e171 = owned;
+                        owned = (_e171 + ((_e168 & 65535u) - 1u));
+                    }
+                    let _e173 = r;
+                    let _e175 = side;
+                    side = (_e175 + (_e173 & 65535u));
+                    let _e177 = r;
+                    let _e180 = size;
+                    size = (_e180 + (_e177 >> bitcast<u32>(16i)));
+                    let _e182 = flatSides;
+                    let _e183 = r;
+                    flatSides = (_e182 && (_e183 == 65537u));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e155 = p_2;
-                    p_2 = (_e155 + bitcast<u32>(1i));
+                    let _e186 = p_2;
+                    p_2 = (_e186 + bitcast<u32>(1i));
                 }
             }
-            let _e158 = side;
-            let _e159 = B_3;
-            B_3 = (_e159 + _e158);
-            let _e161 = k_3;
-            let _e163 = k_3;
-            let _e166 = most[(_e163 & 1i)];
-            let _e167 = size;
-            most[(_e161 & 1i)] = max(_e166, _e167);
-            let _e170 = k_3;
-            let _e172 = k_3;
-            let _e175 = singleSide[(_e172 & 1i)];
-            phi_728_ = _e175;
-            if !(_e175) {
-                let _e177 = k_3;
-                let _e180 = el_1.sideCount[_e177];
-                phi_728_ = (_e180 == 1u);
+            let _e189 = side;
+            let _e190 = B_3;
+            B_3 = (_e190 + _e189);
+            let _e192 = k_3;
+            let _e194 = k_3;
+            let _e197 = most[(_e194 & 1i)];
+            let _e198 = size;
+            most[(_e192 & 1i)] = max(_e197, _e198);
+            let _e201 = k_3;
+            let _e203 = k_3;
+            let _e206 = singleSide[(_e203 & 1i)];
+            phi_765_ = _e206;
+            if !(_e206) {
+                let _e208 = k_3;
+                let _e211 = el_1.sideCount[_e208];
+                phi_765_ = (_e211 == 1u);
             }
-            let _e183 = phi_728_;
-            singleSide[(_e170 & 1i)] = _e183;
-            let _e185 = flatSides;
-            phi_737_ = _e185;
-            if _e185 {
-                let _e186 = k_3;
-                let _e189 = el_1.sideCount[_e186];
-                phi_737_ = (_e189 <= 2u);
+            let _e214 = phi_765_;
+            singleSide[(_e201 & 1i)] = _e214;
+            let _e216 = flatSides;
+            phi_774_ = _e216;
+            if _e216 {
+                let _e217 = k_3;
+                let _e220 = el_1.sideCount[_e217];
+                phi_774_ = (_e220 <= 2u);
             }
-            let _e192 = phi_737_;
-            flatSides = _e192;
+            let _e223 = phi_774_;
+            flatSides = _e223;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e193 = k_3;
-            k_3 = (_e193 + 1i);
+            let _e224 = k_3;
+            k_3 = (_e224 + 1i);
         }
     }
-    let _e195 = e;
-    let _e198 = cull.c[_e195];
-    culled = (_e198 != 0u);
-    let _e201 = pc.tess;
-    cap = max(_e201, 1u);
-    let _e203 = culled;
-    if _e203 {
+    let _e226 = e;
+    let _e229 = cull.c[_e226];
+    culled = (_e229 != 0u);
+    let _e232 = pc.tess;
+    cap = max(_e232, 1u);
+    let _e234 = culled;
+    if _e234 {
         local_2 = 2u;
     } else {
-        let _e205 = most[0i];
-        let _e206 = cap;
-        local_2 = clamp(_e205, 2u, max(_e206, 2u));
+        let _e236 = most[0i];
+        let _e237 = cap;
+        local_2 = clamp(_e236, 2u, max(_e237, 2u));
     }
-    let _e209 = local_2;
-    mu_2 = _e209;
-    let _e210 = culled;
-    if _e210 {
+    let _e240 = local_2;
+    mu_2 = _e240;
+    let _e241 = culled;
+    if _e241 {
         local_3 = 2u;
     } else {
-        let _e212 = most[1i];
-        let _e213 = cap;
-        local_3 = clamp(_e212, 2u, max(_e213, 2u));
+        let _e243 = most[1i];
+        let _e244 = cap;
+        local_3 = clamp(_e243, 2u, max(_e244, 2u));
     }
-    let _e216 = local_3;
-    mv_2 = _e216;
+    let _e247 = local_3;
+    mv_2 = _e247;
     k_4 = 0u;
     loop {
-        let _e217 = k_4;
-        let _e218 = (_e217 < 64u);
-        phi_797_ = _e218;
-        if _e218 {
-            let _e219 = B_3;
-            param_12 = _e219;
-            let _e220 = mu_2;
-            param_13 = _e220;
-            let _e221 = mv_2;
-            param_14 = _e221;
-            let _e222 = emitLoops_u0028_u1_u003b_u1_u003b_u1_u003b((&param_12), (&param_13), (&param_14));
-            phi_797_ = (_e222 > 24576u);
+        let _e248 = k_4;
+        let _e249 = (_e248 < 64u);
+        phi_834_ = _e249;
+        if _e249 {
+            let _e250 = B_3;
+            param_12 = _e250;
+            let _e251 = mu_2;
+            param_13 = _e251;
+            let _e252 = mv_2;
+            param_14 = _e252;
+            let _e253 = emitLoops_u0028_u1_u003b_u1_u003b_u1_u003b((&param_12), (&param_13), (&param_14));
+            phi_834_ = (_e253 > 24576u);
         }
-        let _e225 = phi_797_;
-        phi_805_ = _e225;
-        if _e225 {
-            let _e226 = mu_2;
-            let _e228 = mv_2;
-            phi_805_ = ((_e226 > 2u) || (_e228 > 2u));
+        let _e256 = phi_834_;
+        phi_842_ = _e256;
+        if _e256 {
+            let _e257 = mu_2;
+            let _e259 = mv_2;
+            phi_842_ = ((_e257 > 2u) || (_e259 > 2u));
         }
-        let _e232 = phi_805_;
-        if _e232 {
-            let _e233 = mu_2;
-            let _e234 = mv_2;
-            if (_e233 >= _e234) {
-                let _e236 = mu_2;
-                let _e237 = mu_2;
-                mu_2 = max(2u, (_e236 - max(1u, (_e237 / 4u))));
+        let _e263 = phi_842_;
+        if _e263 {
+            let _e264 = mu_2;
+            let _e265 = mv_2;
+            if (_e264 >= _e265) {
+                let _e267 = mu_2;
+                let _e268 = mu_2;
+                mu_2 = max(2u, (_e267 - max(1u, (_e268 / 4u))));
             } else {
-                let _e242 = mv_2;
-                let _e243 = mv_2;
-                mv_2 = max(2u, (_e242 - max(1u, (_e243 / 4u))));
+                let _e273 = mv_2;
+                let _e274 = mv_2;
+                mv_2 = max(2u, (_e273 - max(1u, (_e274 / 4u))));
             }
             continue;
         } else {
             break;
         }
         continuing {
-            let _e248 = k_4;
-            k_4 = (_e248 + bitcast<u32>(1i));
+            let _e279 = k_4;
+            k_4 = (_e279 + bitcast<u32>(1i));
         }
     }
-    let _e251 = B_3;
-    param_15 = _e251;
-    let _e252 = mu_2;
-    param_16 = _e252;
-    let _e253 = mv_2;
-    param_17 = _e253;
-    let _e254 = emitLoops_u0028_u1_u003b_u1_u003b_u1_u003b((&param_15), (&param_16), (&param_17));
-    overBudget = select(0u, 1u, (_e254 > 24576u));
-    let _e257 = B_3;
-    let _e259 = mu_2;
-    let _e262 = mv_2;
-    let _e264 = (((_e257 == 4u) && (_e259 == 2u)) && (_e262 == 2u));
-    phi_858_ = _e264;
-    if !(_e264) {
-        let _e266 = culled;
-        let _e268 = flatSides;
-        let _e271 = singleSide[0i];
-        let _e274 = singleSide[1i];
-        phi_858_ = (((!(_e266) && _e268) && _e271) && _e274);
+    let _e282 = B_3;
+    param_15 = _e282;
+    let _e283 = mu_2;
+    param_16 = _e283;
+    let _e284 = mv_2;
+    param_17 = _e284;
+    let _e285 = emitLoops_u0028_u1_u003b_u1_u003b_u1_u003b((&param_15), (&param_16), (&param_17));
+    overBudget = select(0u, 1u, (_e285 > 24576u));
+    let _e288 = B_3;
+    let _e290 = mu_2;
+    let _e293 = mv_2;
+    let _e295 = (((_e288 == 4u) && (_e290 == 2u)) && (_e293 == 2u));
+    phi_895_ = _e295;
+    if !(_e295) {
+        let _e297 = culled;
+        let _e299 = flatSides;
+        let _e302 = singleSide[0i];
+        let _e305 = singleSide[1i];
+        phi_895_ = (((!(_e297) && _e299) && _e302) && _e305);
     }
-    let _e277 = phi_858_;
-    flatElement = _e277;
+    let _e308 = phi_895_;
+    flatElement = _e308;
     fan_1 = 0u;
-    let _e278 = flatElement;
-    let _e279 = culled;
-    if (_e278 && !(_e279)) {
-        let _e282 = el_1;
-        param_18 = _e282;
-        let _e283 = B_3;
-        param_19 = _e283;
-        let _e284 = drawnFan_u0028_struct_u002d_AdaptiveElement_u002d_vu4_u002d_vu4_u002d_vf2_u005b_4_u005d_u002d_u1_u002d_u1_u002d_u1_u002d_u11_u003b_u1_u003b((&param_18), (&param_19));
-        fan_1 = _e284;
-        let _e285 = fan_1;
-        if (_e285 == 0u) {
+    let _e309 = flatElement;
+    let _e310 = culled;
+    if (_e309 && !(_e310)) {
+        let _e313 = el_1;
+        param_18 = _e313;
+        let _e314 = B_3;
+        param_19 = _e314;
+        let _e315 = drawnFan_u0028_struct_u002d_AdaptiveElement_u002d_vu4_u002d_vu4_u002d_vf2_u005b_4_u005d_u002d_u1_u002d_u1_u002d_u1_u002d_u11_u003b_u1_u003b((&param_18), (&param_19));
+        fan_1 = _e315;
+        let _e316 = fan_1;
+        if (_e316 == 0u) {
             culled = true;
             mu_2 = 2u;
             mv_2 = 2u;
-            let _e287 = B_3;
-            flatElement = (_e287 == 4u);
+            let _e318 = B_3;
+            flatElement = (_e318 == 4u);
         } else {
-            let _e290 = pc.partialFans;
-            if (_e290 == 0u) {
-                let _e292 = B_3;
-                param_20 = _e292;
-                let _e293 = adaptiveWholeFan_u0028_u1_u003b((&param_20));
-                fan_1 = _e293;
+            let _e321 = pc.partialFans;
+            if (_e321 == 0u) {
+                let _e323 = B_3;
+                param_20 = _e323;
+                let _e324 = adaptiveWholeFan_u0028_u1_u003b((&param_20));
+                fan_1 = _e324;
             }
         }
     }
-    let _e294 = flatElement;
-    let _e295 = culled;
-    if (_e294 && _e295) {
-        let _e297 = B_3;
-        param_21 = _e297;
-        let _e298 = adaptiveWholeFan_u0028_u1_u003b((&param_21));
-        fan_1 = _e298;
+    let _e325 = flatElement;
+    let _e326 = culled;
+    if (_e325 && _e326) {
+        let _e328 = B_3;
+        param_21 = _e328;
+        let _e329 = adaptiveWholeFan_u0028_u1_u003b((&param_21));
+        fan_1 = _e329;
     }
-    let _e299 = B_3;
-    let _e300 = flatElement;
-    if _e300 {
+    let _e330 = B_3;
+    let _e331 = flatElement;
+    if _e331 {
         local_4 = 0u;
     } else {
-        let _e301 = mu_2;
-        let _e303 = mv_2;
-        local_4 = ((_e301 - 1u) * (_e303 - 1u));
+        let _e332 = mu_2;
+        let _e334 = mv_2;
+        local_4 = ((_e332 - 1u) * (_e334 - 1u));
     }
-    let _e306 = local_4;
-    V = (_e299 + _e306);
-    let _e308 = flatElement;
-    if _e308 {
-        let _e309 = fan_1;
-        local_5 = bitcast<u32>(countOneBits(_e309));
+    let _e337 = local_4;
+    V = (_e330 + _e337);
+    let _e339 = flatElement;
+    if _e339 {
+        let _e340 = fan_1;
+        local_5 = bitcast<u32>(countOneBits(_e340));
     } else {
-        let _e312 = mu_2;
-        let _e315 = mv_2;
-        let _e318 = B_3;
-        let _e320 = mu_2;
-        let _e324 = mv_2;
-        local_5 = (((((2u * (_e312 - 2u)) * (_e315 - 2u)) + _e318) + (2u * (_e320 - 2u))) + (2u * (_e324 - 2u)));
+        let _e343 = mu_2;
+        let _e346 = mv_2;
+        let _e349 = B_3;
+        let _e351 = mu_2;
+        let _e355 = mv_2;
+        local_5 = (((((2u * (_e343 - 2u)) * (_e346 - 2u)) + _e349) + (2u * (_e351 - 2u))) + (2u * (_e355 - 2u)));
     }
-    let _e328 = local_5;
-    T = _e328;
-    let _e330 = pc.sharePoints;
-    if (_e330 != 0u) {
-        let _e332 = flatElement;
-        if _e332 {
-            V = 0u;
+    let _e359 = local_5;
+    T = _e359;
+    let _e361 = pc.sharePoints;
+    if (_e361 != 0u) {
+        let _e363 = owned;
+        let _e364 = flatElement;
+        let _e365 = culled;
+        if (_e364 || _e365) {
+            local_6 = 0u;
+        } else {
+            let _e367 = mu_2;
+            let _e369 = mv_2;
+            local_6 = ((_e367 - 1u) * (_e369 - 1u));
         }
-        let _e333 = culled;
-        if _e333 {
-            V = 0u;
+        let _e372 = local_6;
+        V = (_e363 + _e372);
+        let _e374 = culled;
+        if _e374 {
             T = 0u;
         }
     }
-    let _e334 = flatElement;
-    if _e334 {
-        let _e335 = fan_1;
-        param_22 = _e335;
-        let _e336 = adaptivePackFlat_u0028_u1_u003b((&param_22));
-        local_6 = _e336;
+    let _e375 = flatElement;
+    if _e375 {
+        let _e376 = fan_1;
+        param_22 = _e376;
+        let _e377 = adaptivePackFlat_u0028_u1_u003b((&param_22));
+        local_7 = _e377;
     } else {
-        let _e337 = mu_2;
-        param_23 = _e337;
-        let _e338 = mv_2;
-        param_24 = _e338;
-        let _e339 = adaptivePackRates_u0028_u1_u003b_u1_u003b((&param_23), (&param_24));
-        local_6 = _e339;
+        let _e378 = mu_2;
+        param_23 = _e378;
+        let _e379 = mv_2;
+        param_24 = _e379;
+        let _e380 = adaptivePackRates_u0028_u1_u003b_u1_u003b((&param_23), (&param_24));
+        local_7 = _e380;
     }
-    let _e340 = local_6;
-    packed_1 = _e340;
-    let _e341 = e;
-    let _e342 = packed_1;
-    let _e343 = culled;
-    let _e346 = V;
-    let _e347 = T;
-    let _e348 = overBudget;
-    info.v[_e341] = vec4<u32>((_e342 | select(0u, 2147483648u, _e343)), _e346, _e347, _e348);
+    let _e381 = local_7;
+    packed_1 = _e381;
+    let _e382 = e;
+    let _e383 = packed_1;
+    let _e384 = culled;
+    let _e387 = V;
+    let _e388 = T;
+    let _e389 = overBudget;
+    info.v[_e382] = vec4<u32>((_e383 | select(0u, 2147483648u, _e384)), _e387, _e388, _e389);
     return;
 }
 

@@ -17,6 +17,7 @@ struct Push {
     nodeBase: u32,
     recordBase: u32,
     sharePoints: u32,
+    vertexCapacity: u32,
 }
 
 struct AdaptiveElement {
@@ -45,12 +46,12 @@ struct Elements {
     e: array<AdaptiveElement>,
 }
 
-struct Info {
-    v: array<vec4<u32>>,
-}
-
 struct Rates {
     r: array<u32>,
+}
+
+struct Info {
+    v: array<vec4<u32>>,
 }
 
 struct Totals {
@@ -78,177 +79,275 @@ var<storage, read_write> triangleLevels: TriangleLevels;
 var<private> level: u32;
 @group(0) @binding(0) 
 var<storage, read> elements: Elements;
-@group(0) @binding(4) 
-var<storage, read> info: Info;
+var<private> curSide: vec4<u32>;
+var<private> curPiece: u32;
+var<private> curRate: u32;
 @group(0) @binding(3) 
 var<storage, read> rates: Rates;
+var<private> curBase: u32;
+@group(0) @binding(4) 
+var<storage, read> info: Info;
+var<private> curStart: u32;
 @group(0) @binding(1) 
 var<storage, read_write> totals: Totals_1;
 
-fn ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b(k: ptr<function, u32>, x: ptr<function, u32>, mu: ptr<function, u32>, mv: ptr<function, u32>, B: ptr<function, u32>) -> u32 {
+fn ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b(k: ptr<function, u32>, x: ptr<function, u32>, mu: ptr<function, u32>, mv: ptr<function, u32>, grid: ptr<function, u32>) -> u32 {
     var gi: u32;
     var gj: u32;
 
-    let _e69 = (*k);
-    if (_e69 == 0u) {
-        let _e71 = (*x);
-        gi = (1u + _e71);
+    let _e75 = (*k);
+    if (_e75 == 0u) {
+        let _e77 = (*x);
+        gi = (1u + _e77);
         gj = 1u;
     } else {
-        let _e73 = (*k);
-        if (_e73 == 1u) {
-            let _e75 = (*mu);
-            gi = (_e75 - 1u);
-            let _e77 = (*x);
-            gj = (1u + _e77);
+        let _e79 = (*k);
+        if (_e79 == 1u) {
+            let _e81 = (*mu);
+            gi = (_e81 - 1u);
+            let _e83 = (*x);
+            gj = (1u + _e83);
         } else {
-            let _e79 = (*k);
-            if (_e79 == 2u) {
-                let _e81 = (*mu);
-                let _e83 = (*x);
-                gi = ((_e81 - 1u) - _e83);
-                let _e85 = (*mv);
-                gj = (_e85 - 1u);
+            let _e85 = (*k);
+            if (_e85 == 2u) {
+                let _e87 = (*mu);
+                let _e89 = (*x);
+                gi = ((_e87 - 1u) - _e89);
+                let _e91 = (*mv);
+                gj = (_e91 - 1u);
             } else {
                 gi = 1u;
-                let _e87 = (*mv);
-                let _e89 = (*x);
-                gj = ((_e87 - 1u) - _e89);
+                let _e93 = (*mv);
+                let _e95 = (*x);
+                gj = ((_e93 - 1u) - _e95);
             }
         }
     }
-    let _e91 = (*B);
-    let _e92 = gj;
-    let _e94 = (*mu);
-    let _e98 = gi;
-    return ((_e91 + ((_e92 - 1u) * (_e94 - 1u))) + (_e98 - 1u));
+    let _e97 = (*grid);
+    let _e98 = gj;
+    let _e100 = (*mu);
+    let _e104 = gi;
+    return ((_e97 + ((_e98 - 1u) * (_e100 - 1u))) + (_e104 - 1u));
 }
 
-fn gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b(D: ptr<function, u32>, k_1: ptr<function, u32>, n: ptr<function, u32>) -> u32 {
-    let _e65 = (*k_1);
-    let _e66 = (*D);
-    let _e67 = (*n);
-    let _e69 = (*k_1);
-    let _e71 = (*n);
-    let _e73 = (*k_1);
-    let _e75 = (*n);
-    return (_e65 + (((((_e66 - _e67) * _e69) / _e71) * _e73) / _e75));
+fn loadSidePiece_u0028_u1_u003b(k_1: ptr<function, u32>) {
+    var owner: u32;
+
+    let _e70 = (*k_1);
+    let _e73 = el.sideFirst[_e70];
+    let _e74 = curPiece;
+    let _e78 = pieces.v[(_e73 + _e74)];
+    curSide = _e78;
+    let _e80 = curSide[0u];
+    let _e83 = rates.r[_e80];
+    curRate = (_e83 & 65535u);
+    let _e86 = curSide[0u];
+    let _e91 = pieces.v[(2u * _e86)][0u];
+    owner = _e91;
+    let _e92 = owner;
+    let _e96 = info.v[_e92][1u];
+    let _e98 = pc.limnCount;
+    let _e100 = curSide[0u];
+    let _e104 = curSide[0u];
+    let _e109 = info.v[(_e98 + (_e100 / 4u))][(_e104 % 4u)];
+    curBase = (_e96 + _e109);
+    return;
 }
 
-fn gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b(i: ptr<function, u32>, m: ptr<function, u32>, graded: ptr<function, bool>, atZero: ptr<function, bool>) -> u32 {
-    var local: u32;
+fn sharedSlot_u0028_u1_u003b_u1_u003b_u1_u003b(k_2: ptr<function, u32>, x_1: ptr<function, u32>, total: ptr<function, u32>) -> u32 {
     var param: u32;
     var param_1: u32;
+    var i: u32;
+    var local: u32;
+
+    let _e75 = (*x_1);
+    let _e76 = (*total);
+    if (_e75 == _e76) {
+        let _e78 = (*k_2);
+        let _e83 = el.sideFirst[((_e78 + 1u) & 3u)];
+        let _e87 = pieces.v[_e83][1u];
+        return _e87;
+    }
+    let _e88 = (*x_1);
+    if (_e88 == 0u) {
+        curPiece = 0u;
+        curStart = 0u;
+        let _e90 = (*k_2);
+        param = _e90;
+        loadSidePiece_u0028_u1_u003b((&param));
+    } else {
+        let _e91 = (*x_1);
+        let _e92 = curStart;
+        let _e93 = curRate;
+        if (_e91 >= (_e92 + _e93)) {
+            let _e96 = curRate;
+            let _e97 = curStart;
+            curStart = (_e97 + _e96);
+            let _e99 = curPiece;
+            curPiece = (_e99 + bitcast<u32>(1i));
+            let _e102 = (*k_2);
+            param_1 = _e102;
+            loadSidePiece_u0028_u1_u003b((&param_1));
+        }
+    }
+    let _e103 = (*x_1);
+    let _e104 = curStart;
+    i = (_e103 - _e104);
+    let _e106 = i;
+    if (_e106 == 0u) {
+        let _e109 = curSide[1u];
+        return _e109;
+    }
+    let _e110 = curBase;
+    let _e112 = curSide[2u];
+    if ((_e112 & 1u) != 0u) {
+        let _e115 = curRate;
+        let _e116 = i;
+        local = (_e115 - _e116);
+    } else {
+        let _e118 = i;
+        local = _e118;
+    }
+    let _e119 = local;
+    return ((_e110 + _e119) - 1u);
+}
+
+fn gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b(D: ptr<function, u32>, k_3: ptr<function, u32>, n: ptr<function, u32>) -> u32 {
+    let _e71 = (*k_3);
+    let _e72 = (*D);
+    let _e73 = (*n);
+    let _e75 = (*k_3);
+    let _e77 = (*n);
+    let _e79 = (*k_3);
+    let _e81 = (*n);
+    return (_e71 + (((((_e72 - _e73) * _e75) / _e77) * _e79) / _e81));
+}
+
+fn gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b(i_1: ptr<function, u32>, m: ptr<function, u32>, graded: ptr<function, bool>, atZero: ptr<function, bool>) -> u32 {
+    var local_1: u32;
     var param_2: u32;
     var param_3: u32;
     var param_4: u32;
     var param_5: u32;
+    var param_6: u32;
+    var param_7: u32;
 
-    let _e73 = (*graded);
-    if !(_e73) {
-        let _e75 = (*i);
-        let _e77 = (*m);
-        return ((_e75 * 32768u) / _e77);
-    }
-    let _e79 = (*atZero);
-    if _e79 {
-        param = 32768u;
-        let _e80 = (*i);
-        param_1 = _e80;
-        let _e81 = (*m);
-        param_2 = _e81;
-        let _e82 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param), (&param_1), (&param_2));
-        local = _e82;
-    } else {
+    let _e79 = (*graded);
+    if !(_e79) {
+        let _e81 = (*i_1);
         let _e83 = (*m);
-        let _e84 = (*i);
-        param_3 = 32768u;
-        param_4 = (_e83 - _e84);
-        let _e86 = (*m);
-        param_5 = _e86;
-        let _e87 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_3), (&param_4), (&param_5));
-        local = (32768u - _e87);
+        return ((_e81 * 32768u) / _e83);
     }
-    let _e89 = local;
-    return _e89;
+    let _e85 = (*atZero);
+    if _e85 {
+        param_2 = 32768u;
+        let _e86 = (*i_1);
+        param_3 = _e86;
+        let _e87 = (*m);
+        param_4 = _e87;
+        let _e88 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_2), (&param_3), (&param_4));
+        local_1 = _e88;
+    } else {
+        let _e89 = (*m);
+        let _e90 = (*i_1);
+        param_5 = 32768u;
+        param_6 = (_e89 - _e90);
+        let _e92 = (*m);
+        param_7 = _e92;
+        let _e93 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_5), (&param_6), (&param_7));
+        local_1 = (32768u - _e93);
+    }
+    let _e95 = local_1;
+    return _e95;
 }
 
 fn creaseAtZero_u0028_u1_u003b(c: ptr<function, u32>) -> bool {
-    let _e63 = (*c);
-    return ((_e63 & 9u) != 0u);
+    let _e69 = (*c);
+    return ((_e69 & 9u) != 0u);
 }
 
 fn creaseAcrossS_u0028_u1_u003b(c_1: ptr<function, u32>) -> bool {
-    let _e63 = (*c_1);
-    return ((_e63 & 10u) != 0u);
+    let _e69 = (*c_1);
+    return ((_e69 & 10u) != 0u);
 }
 
 fn triSlots_u0028_u1_u003b_u1_u003b_u1_u003b(a: ptr<function, u32>, b: ptr<function, u32>, c_2: ptr<function, u32>) {
-    let _e65 = tNext;
-    let _e67 = (*a);
-    triangles.i[(3u * _e65)] = _e67;
-    let _e70 = tNext;
-    let _e73 = (*b);
-    triangles.i[((3u * _e70) + 1u)] = _e73;
+    let _e71 = tNext;
+    let _e73 = (*a);
+    triangles.i[(3u * _e71)] = _e73;
     let _e76 = tNext;
-    let _e79 = (*c_2);
-    triangles.i[((3u * _e76) + 2u)] = _e79;
+    let _e79 = (*b);
+    triangles.i[((3u * _e76) + 1u)] = _e79;
     let _e82 = tNext;
-    let _e83 = level;
-    triangleLevels.l[_e82] = _e83;
-    let _e86 = tNext;
-    tNext = (_e86 + bitcast<u32>(1i));
+    let _e85 = (*c_2);
+    triangles.i[((3u * _e82) + 2u)] = _e85;
+    let _e88 = tNext;
+    let _e89 = level;
+    triangleLevels.l[_e88] = _e89;
+    let _e92 = tNext;
+    tNext = (_e92 + bitcast<u32>(1i));
     return;
 }
 
 fn tri_u0028_u1_u003b_u1_u003b_u1_u003b(a_1: ptr<function, u32>, b_1: ptr<function, u32>, c_3: ptr<function, u32>) {
-    var param_6: u32;
-    var param_7: u32;
     var param_8: u32;
+    var param_9: u32;
+    var param_10: u32;
 
-    let _e68 = vBase;
-    let _e69 = (*a_1);
-    let _e71 = vBase;
-    let _e72 = (*b_1);
     let _e74 = vBase;
-    let _e75 = (*c_3);
-    param_6 = (_e68 + _e69);
-    param_7 = (_e71 + _e72);
+    let _e75 = (*a_1);
+    let _e77 = vBase;
+    let _e78 = (*b_1);
+    let _e80 = vBase;
+    let _e81 = (*c_3);
     param_8 = (_e74 + _e75);
-    triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_6), (&param_7), (&param_8));
+    param_9 = (_e77 + _e78);
+    param_10 = (_e80 + _e81);
+    triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_8), (&param_9), (&param_10));
     return;
 }
 
 fn adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b(sideStart: ptr<function, array<u32, 4>>, sideTotal: ptr<function, array<u32, 4>>) -> u32 {
     var apex: u32;
-    var k_2: u32;
+    var k_4: u32;
 
     apex = 0u;
-    k_2 = 4u;
+    k_4 = 4u;
     loop {
-        let _e66 = k_2;
-        if (_e66 > 0u) {
-            let _e68 = k_2;
-            let _e71 = (*sideTotal)[(_e68 - 1u)];
-            if (_e71 > 1u) {
-                let _e73 = k_2;
-                let _e76 = (*sideStart)[(_e73 - 1u)];
-                apex = (_e76 + 1u);
+        let _e72 = k_4;
+        if (_e72 > 0u) {
+            let _e74 = k_4;
+            let _e77 = (*sideTotal)[(_e74 - 1u)];
+            if (_e77 > 1u) {
+                let _e79 = k_4;
+                let _e82 = (*sideStart)[(_e79 - 1u)];
+                apex = (_e82 + 1u);
             }
             continue;
         } else {
             break;
         }
         continuing {
-            let _e78 = k_2;
-            k_2 = (_e78 - bitcast<u32>(1i));
+            let _e84 = k_4;
+            k_4 = (_e84 - bitcast<u32>(1i));
         }
     }
-    let _e81 = apex;
-    return _e81;
+    let _e87 = apex;
+    return _e87;
 }
 
-fn pieceFraction_u0028_vu4_u003b_u1_u003b(piece: ptr<function, vec4<u32>>, st: ptr<function, u32>) -> f32 {
+fn vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b(local_2: ptr<function, u32>, element: ptr<function, u32>, st: ptr<function, u32>, uv: ptr<function, vec2<f32>>) {
+    let _e72 = vBase;
+    let _e73 = (*local_2);
+    let _e75 = (*element);
+    let _e76 = (*st);
+    let _e78 = (*uv)[0u];
+    let _e81 = (*uv)[1u];
+    tessVertices.v[(_e72 + _e73)] = vec4<u32>(_e75, _e76, bitcast<u32>(_e78), bitcast<u32>(_e81));
+    return;
+}
+
+fn pieceFraction_u0028_vu4_u003b_u1_u003b(piece: ptr<function, vec4<u32>>, st_1: ptr<function, u32>) -> f32 {
     var a_2: u32;
     var b_2: u32;
     var sh: u32;
@@ -256,27 +355,27 @@ fn pieceFraction_u0028_vu4_u003b_u1_u003b(piece: ptr<function, vec4<u32>>, st: p
     var cb: i32;
     var cx: i32;
 
-    let _e71 = (*piece)[1u];
-    a_2 = _e71;
-    let _e73 = (*piece)[2u];
-    b_2 = _e73;
-    let _e74 = a_2;
-    let _e76 = b_2;
-    sh = select(16u, 0u, ((_e74 & 65535u) != (_e76 & 65535u)));
+    let _e77 = (*piece)[1u];
+    a_2 = _e77;
+    let _e79 = (*piece)[2u];
+    b_2 = _e79;
     let _e80 = a_2;
-    let _e81 = sh;
-    ca = bitcast<i32>(((_e80 >> bitcast<u32>(_e81)) & 65535u));
-    let _e86 = b_2;
+    let _e82 = b_2;
+    sh = select(16u, 0u, ((_e80 & 65535u) != (_e82 & 65535u)));
+    let _e86 = a_2;
     let _e87 = sh;
-    cb = bitcast<i32>(((_e86 >> bitcast<u32>(_e87)) & 65535u));
-    let _e92 = (*st);
+    ca = bitcast<i32>(((_e86 >> bitcast<u32>(_e87)) & 65535u));
+    let _e92 = b_2;
     let _e93 = sh;
-    cx = bitcast<i32>(((_e92 >> bitcast<u32>(_e93)) & 65535u));
-    let _e98 = cx;
-    let _e99 = ca;
-    let _e102 = cb;
-    let _e103 = ca;
-    return (f32((_e98 - _e99)) / f32((_e102 - _e103)));
+    cb = bitcast<i32>(((_e92 >> bitcast<u32>(_e93)) & 65535u));
+    let _e98 = (*st_1);
+    let _e99 = sh;
+    cx = bitcast<i32>(((_e98 >> bitcast<u32>(_e99)) & 65535u));
+    let _e104 = cx;
+    let _e105 = ca;
+    let _e108 = cb;
+    let _e109 = ca;
+    return (f32((_e104 - _e105)) / f32((_e108 - _e109)));
 }
 
 fn lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b(a_3: ptr<function, u32>, b_3: ptr<function, u32>, j: ptr<function, u32>, r: ptr<function, u32>) -> u32 {
@@ -287,29 +386,29 @@ fn lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b(a_3: ptr<function, u32>, b_3
     var s: i32;
     var t: i32;
 
-    let _e72 = (*a_3);
-    sa = bitcast<i32>((_e72 & 65535u));
-    let _e75 = (*b_3);
-    sb = bitcast<i32>((_e75 & 65535u));
     let _e78 = (*a_3);
-    ta = bitcast<i32>((_e78 >> bitcast<u32>(16i)));
-    let _e82 = (*b_3);
-    tb = bitcast<i32>((_e82 >> bitcast<u32>(16i)));
-    let _e86 = sa;
-    let _e87 = sb;
-    let _e88 = sa;
-    let _e90 = (*j);
-    let _e93 = (*r);
-    s = (_e86 + (((_e87 - _e88) * bitcast<i32>(_e90)) / bitcast<i32>(_e93)));
-    let _e97 = ta;
-    let _e98 = tb;
-    let _e99 = ta;
-    let _e101 = (*j);
-    let _e104 = (*r);
-    t = (_e97 + (((_e98 - _e99) * bitcast<i32>(_e101)) / bitcast<i32>(_e104)));
-    let _e108 = s;
-    let _e110 = t;
-    return (bitcast<u32>(_e108) | (bitcast<u32>(_e110) << bitcast<u32>(16i)));
+    sa = bitcast<i32>((_e78 & 65535u));
+    let _e81 = (*b_3);
+    sb = bitcast<i32>((_e81 & 65535u));
+    let _e84 = (*a_3);
+    ta = bitcast<i32>((_e84 >> bitcast<u32>(16i)));
+    let _e88 = (*b_3);
+    tb = bitcast<i32>((_e88 >> bitcast<u32>(16i)));
+    let _e92 = sa;
+    let _e93 = sb;
+    let _e94 = sa;
+    let _e96 = (*j);
+    let _e99 = (*r);
+    s = (_e92 + (((_e93 - _e94) * bitcast<i32>(_e96)) / bitcast<i32>(_e99)));
+    let _e103 = ta;
+    let _e104 = tb;
+    let _e105 = ta;
+    let _e107 = (*j);
+    let _e110 = (*r);
+    t = (_e103 + (((_e104 - _e105) * bitcast<i32>(_e107)) / bitcast<i32>(_e110)));
+    let _e114 = s;
+    let _e116 = t;
+    return (bitcast<u32>(_e114) | (bitcast<u32>(_e116) << bitcast<u32>(16i)));
 }
 
 fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece_1: ptr<function, vec4<u32>>, j_1: ptr<function, u32>, r_1: ptr<function, u32>, along: ptr<function, f32>) -> u32 {
@@ -317,147 +416,136 @@ fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece_1: ptr<function, vec
     var a_4: u32;
     var b_4: u32;
     var runsS: bool;
-    var param_9: u32;
-    var param_10: u32;
     var param_11: u32;
     var param_12: u32;
     var param_13: u32;
+    var param_14: u32;
+    var param_15: u32;
     var sh_1: u32;
     var ca_1: u32;
     var cb_1: u32;
     var D_1: u32;
     var fromA: bool;
-    var param_14: u32;
-    var local_1: bool;
-    var off: u32;
-    var local_2: u32;
-    var param_15: u32;
     var param_16: u32;
+    var local_3: bool;
+    var off: u32;
+    var local_4: u32;
     var param_17: u32;
     var param_18: u32;
     var param_19: u32;
     var param_20: u32;
-    var x_1: u32;
-    var local_3: u32;
-    var phi_770_: bool;
+    var param_21: u32;
+    var param_22: u32;
+    var x_2: u32;
+    var local_5: u32;
+    var phi_778_: bool;
 
     (*along) = -1f;
-    let _e93 = (*piece_1)[0u];
-    let _e97 = elements.e[_e93].crease;
-    c_4 = _e97;
-    let _e99 = (*piece_1)[1u];
-    a_4 = _e99;
-    let _e101 = (*piece_1)[2u];
-    b_4 = _e101;
-    let _e102 = a_4;
-    let _e104 = b_4;
-    runsS = ((_e102 & 65535u) != (_e104 & 65535u));
-    let _e107 = c_4;
-    let _e108 = (_e107 == 0u);
-    phi_770_ = _e108;
-    if !(_e108) {
-        let _e110 = runsS;
-        let _e111 = c_4;
-        param_9 = _e111;
-        let _e112 = creaseAcrossS_u0028_u1_u003b((&param_9));
-        phi_770_ = (_e110 != _e112);
-    }
-    let _e115 = phi_770_;
-    if _e115 {
-        let _e116 = a_4;
-        param_10 = _e116;
-        let _e117 = b_4;
+    let _e99 = (*piece_1)[0u];
+    let _e103 = elements.e[_e99].crease;
+    c_4 = _e103;
+    let _e105 = (*piece_1)[1u];
+    a_4 = _e105;
+    let _e107 = (*piece_1)[2u];
+    b_4 = _e107;
+    let _e108 = a_4;
+    let _e110 = b_4;
+    runsS = ((_e108 & 65535u) != (_e110 & 65535u));
+    let _e113 = c_4;
+    let _e114 = (_e113 == 0u);
+    phi_778_ = _e114;
+    if !(_e114) {
+        let _e116 = runsS;
+        let _e117 = c_4;
         param_11 = _e117;
-        let _e118 = (*j_1);
-        param_12 = _e118;
-        let _e119 = (*r_1);
-        param_13 = _e119;
-        let _e120 = lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_10), (&param_11), (&param_12), (&param_13));
-        return _e120;
+        let _e118 = creaseAcrossS_u0028_u1_u003b((&param_11));
+        phi_778_ = (_e116 != _e118);
     }
-    let _e121 = runsS;
-    sh_1 = select(16u, 0u, _e121);
-    let _e123 = a_4;
-    let _e124 = sh_1;
-    ca_1 = ((_e123 >> bitcast<u32>(_e124)) & 65535u);
-    let _e128 = b_4;
-    let _e129 = sh_1;
-    cb_1 = ((_e128 >> bitcast<u32>(_e129)) & 65535u);
-    let _e133 = ca_1;
-    let _e134 = cb_1;
-    let _e136 = ca_1;
-    let _e137 = cb_1;
-    D_1 = (max(_e133, _e134) - min(_e136, _e137));
-    let _e140 = c_4;
-    param_14 = _e140;
-    let _e141 = creaseAtZero_u0028_u1_u003b((&param_14));
-    if _e141 {
-        let _e142 = ca_1;
-        let _e143 = cb_1;
-        local_1 = (_e142 < _e143);
+    let _e121 = phi_778_;
+    if _e121 {
+        let _e122 = a_4;
+        param_12 = _e122;
+        let _e123 = b_4;
+        param_13 = _e123;
+        let _e124 = (*j_1);
+        param_14 = _e124;
+        let _e125 = (*r_1);
+        param_15 = _e125;
+        let _e126 = lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_12), (&param_13), (&param_14), (&param_15));
+        return _e126;
+    }
+    let _e127 = runsS;
+    sh_1 = select(16u, 0u, _e127);
+    let _e129 = a_4;
+    let _e130 = sh_1;
+    ca_1 = ((_e129 >> bitcast<u32>(_e130)) & 65535u);
+    let _e134 = b_4;
+    let _e135 = sh_1;
+    cb_1 = ((_e134 >> bitcast<u32>(_e135)) & 65535u);
+    let _e139 = ca_1;
+    let _e140 = cb_1;
+    let _e142 = ca_1;
+    let _e143 = cb_1;
+    D_1 = (max(_e139, _e140) - min(_e142, _e143));
+    let _e146 = c_4;
+    param_16 = _e146;
+    let _e147 = creaseAtZero_u0028_u1_u003b((&param_16));
+    if _e147 {
+        let _e148 = ca_1;
+        let _e149 = cb_1;
+        local_3 = (_e148 < _e149);
     } else {
-        let _e145 = ca_1;
-        let _e146 = cb_1;
-        local_1 = (_e145 > _e146);
+        let _e151 = ca_1;
+        let _e152 = cb_1;
+        local_3 = (_e151 > _e152);
     }
-    let _e148 = local_1;
-    fromA = _e148;
-    let _e149 = fromA;
-    if _e149 {
-        let _e150 = D_1;
-        param_15 = _e150;
-        let _e151 = (*j_1);
-        param_16 = _e151;
-        let _e152 = (*r_1);
-        param_17 = _e152;
-        let _e153 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_15), (&param_16), (&param_17));
-        local_2 = _e153;
+    let _e154 = local_3;
+    fromA = _e154;
+    let _e155 = fromA;
+    if _e155 {
+        let _e156 = D_1;
+        param_17 = _e156;
+        let _e157 = (*j_1);
+        param_18 = _e157;
+        let _e158 = (*r_1);
+        param_19 = _e158;
+        let _e159 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_17), (&param_18), (&param_19));
+        local_4 = _e159;
     } else {
-        let _e154 = D_1;
-        let _e155 = (*r_1);
-        let _e156 = (*j_1);
-        let _e158 = D_1;
-        param_18 = _e158;
-        param_19 = (_e155 - _e156);
-        let _e159 = (*r_1);
-        param_20 = _e159;
-        let _e160 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_18), (&param_19), (&param_20));
-        local_2 = (_e154 - _e160);
+        let _e160 = D_1;
+        let _e161 = (*r_1);
+        let _e162 = (*j_1);
+        let _e164 = D_1;
+        param_20 = _e164;
+        param_21 = (_e161 - _e162);
+        let _e165 = (*r_1);
+        param_22 = _e165;
+        let _e166 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_20), (&param_21), (&param_22));
+        local_4 = (_e160 - _e166);
     }
-    let _e162 = local_2;
-    off = _e162;
-    let _e163 = cb_1;
-    let _e164 = ca_1;
-    if (_e163 > _e164) {
-        let _e166 = ca_1;
-        let _e167 = off;
-        local_3 = (_e166 + _e167);
+    let _e168 = local_4;
+    off = _e168;
+    let _e169 = cb_1;
+    let _e170 = ca_1;
+    if (_e169 > _e170) {
+        let _e172 = ca_1;
+        let _e173 = off;
+        local_5 = (_e172 + _e173);
     } else {
-        let _e169 = ca_1;
-        let _e170 = off;
-        local_3 = (_e169 - _e170);
+        let _e175 = ca_1;
+        let _e176 = off;
+        local_5 = (_e175 - _e176);
     }
-    let _e172 = local_3;
-    x_1 = _e172;
-    let _e173 = off;
-    let _e175 = D_1;
-    (*along) = (f32(_e173) / f32(_e175));
-    let _e178 = a_4;
-    let _e179 = sh_1;
-    let _e184 = x_1;
+    let _e178 = local_5;
+    x_2 = _e178;
+    let _e179 = off;
+    let _e181 = D_1;
+    (*along) = (f32(_e179) / f32(_e181));
+    let _e184 = a_4;
     let _e185 = sh_1;
-    return ((_e178 & ~((65535u << bitcast<u32>(_e179)))) | (_e184 << bitcast<u32>(_e185)));
-}
-
-fn vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b(local_4: ptr<function, u32>, element: ptr<function, u32>, st_1: ptr<function, u32>, uv: ptr<function, vec2<f32>>) {
-    let _e66 = vBase;
-    let _e67 = (*local_4);
-    let _e69 = (*element);
-    let _e70 = (*st_1);
-    let _e72 = (*uv)[0u];
-    let _e75 = (*uv)[1u];
-    tessVertices.v[(_e66 + _e67)] = vec4<u32>(_e69, _e70, bitcast<u32>(_e72), bitcast<u32>(_e75));
-    return;
+    let _e190 = x_2;
+    let _e191 = sh_1;
+    return ((_e184 & ~((65535u << bitcast<u32>(_e185)))) | (_e190 << bitcast<u32>(_e191)));
 }
 
 fn fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b(t_1: ptr<function, f32>, b_5: ptr<function, array<f32, 4>>) {
@@ -465,43 +553,43 @@ fn fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b(t_1: ptr<function, f32>, b_5:
     var t2_: f32;
     var t3_: f32;
 
-    let _e67 = (*t_1);
-    s_1 = (1f - _e67);
-    let _e69 = (*t_1);
-    let _e70 = (*t_1);
-    t2_ = (_e69 * _e70);
-    let _e72 = t2_;
     let _e73 = (*t_1);
-    t3_ = (_e72 * _e73);
-    let _e75 = s_1;
-    let _e76 = s_1;
-    let _e78 = s_1;
-    (*b_5)[0i] = (((_e75 * _e76) * _e78) / 6f);
-    let _e82 = t3_;
-    let _e84 = t2_;
-    (*b_5)[1i] = ((((3f * _e82) - (6f * _e84)) + 4f) / 6f);
-    let _e90 = t3_;
-    let _e92 = t2_;
-    let _e95 = (*t_1);
-    (*b_5)[2i] = (((((-3f * _e90) + (3f * _e92)) + (3f * _e95)) + 1f) / 6f);
-    let _e101 = t3_;
-    (*b_5)[3i] = (_e101 / 6f);
+    s_1 = (1f - _e73);
+    let _e75 = (*t_1);
+    let _e76 = (*t_1);
+    t2_ = (_e75 * _e76);
+    let _e78 = t2_;
+    let _e79 = (*t_1);
+    t3_ = (_e78 * _e79);
+    let _e81 = s_1;
+    let _e82 = s_1;
+    let _e84 = s_1;
+    (*b_5)[0i] = (((_e81 * _e82) * _e84) / 6f);
+    let _e88 = t3_;
+    let _e90 = t2_;
+    (*b_5)[1i] = ((((3f * _e88) - (6f * _e90)) + 4f) / 6f);
+    let _e96 = t3_;
+    let _e98 = t2_;
+    let _e101 = (*t_1);
+    (*b_5)[2i] = (((((-3f * _e96) + (3f * _e98)) + (3f * _e101)) + 1f) / 6f);
+    let _e107 = t3_;
+    (*b_5)[3i] = (_e107 / 6f);
     return;
 }
 
-fn fvarRecord_u0028_u1_u003b(i_1: ptr<function, u32>) -> vec4<f32> {
-    let _e64 = pc.recordBase;
-    let _e65 = (*i_1);
-    let _e69 = pieces.v[(_e64 + _e65)];
-    return bitcast<vec4<f32>>(_e69);
+fn fvarRecord_u0028_u1_u003b(i_2: ptr<function, u32>) -> vec4<f32> {
+    let _e70 = pc.recordBase;
+    let _e71 = (*i_2);
+    let _e75 = pieces.v[(_e70 + _e71)];
+    return bitcast<vec4<f32>>(_e75);
 }
 
-fn fvarNode_u0028_u1_u003b(i_2: ptr<function, u32>) -> u32 {
-    let _e64 = pc.nodeBase;
-    let _e65 = (*i_2);
-    let _e68 = (*i_2);
-    let _e73 = pieces.v[(_e64 + (_e65 / 4u))][(_e68 % 4u)];
-    return _e73;
+fn fvarNode_u0028_u1_u003b(i_3: ptr<function, u32>) -> u32 {
+    let _e70 = pc.nodeBase;
+    let _e71 = (*i_3);
+    let _e74 = (*i_3);
+    let _e79 = pieces.v[(_e70 + (_e71 / 4u))][(_e74 % 4u)];
+    return _e79;
 }
 
 fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, uv_1: ptr<function, vec2<f32>>, inside: ptr<function, vec2<f32>>, nudge: ptr<function, f32>) -> vec2<f32> {
@@ -509,170 +597,170 @@ fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, 
     var o: vec2<f32>;
     var size: f32;
     var v: u32;
-    var param_21: u32;
+    var param_23: u32;
     var depth: i32;
     var c_5: vec2<u32>;
-    var param_22: u32;
+    var param_24: u32;
     var r_2: u32;
     var h: vec4<f32>;
-    var param_23: u32;
+    var param_25: u32;
     var s_2: f32;
     var t_2: f32;
     var a_5: vec4<f32>;
-    var param_24: u32;
+    var param_26: u32;
     var b_6: vec4<f32>;
-    var param_25: u32;
+    var param_27: u32;
     var bu: array<f32, 4>;
-    var param_26: f32;
-    var param_27: array<f32, 4>;
-    var bv: array<f32, 4>;
     var param_28: f32;
     var param_29: array<f32, 4>;
-    var x_2: vec2<f32>;
+    var bv: array<f32, 4>;
+    var param_30: f32;
+    var param_31: array<f32, 4>;
+    var x_3: vec2<f32>;
     var j_2: u32;
-    var i_3: u32;
+    var i_4: u32;
     var p: vec4<f32>;
-    var param_30: u32;
-    var phi_333_: bool;
-    var phi_383_: bool;
+    var param_32: u32;
+    var phi_341_: bool;
+    var phi_391_: bool;
 
-    let _e94 = (*uv_1);
-    let _e95 = (*inside);
-    let _e96 = (*uv_1);
-    let _e99 = (*nudge);
-    probe = clamp((_e94 + (sign((_e95 - _e96)) * _e99)), vec2<f32>(0f, 0f), vec2<f32>(1f, 1f));
+    let _e100 = (*uv_1);
+    let _e101 = (*inside);
+    let _e102 = (*uv_1);
+    let _e105 = (*nudge);
+    probe = clamp((_e100 + (sign((_e101 - _e102)) * _e105)), vec2<f32>(0f, 0f), vec2<f32>(1f, 1f));
     o = vec2<f32>(0f, 0f);
     size = 1f;
-    let _e103 = (*ptex);
-    param_21 = _e103;
-    let _e104 = fvarNode_u0028_u1_u003b((&param_21));
-    v = _e104;
+    let _e109 = (*ptex);
+    param_23 = _e109;
+    let _e110 = fvarNode_u0028_u1_u003b((&param_23));
+    v = _e110;
     depth = 0i;
     loop {
-        let _e105 = depth;
-        let _e107 = v;
-        let _e109 = ((_e105 < 24i) && (_e107 != 4294967295u));
-        phi_333_ = _e109;
-        if _e109 {
-            let _e110 = v;
-            phi_333_ = ((_e110 & 2147483648u) == 0u);
+        let _e111 = depth;
+        let _e113 = v;
+        let _e115 = ((_e111 < 24i) && (_e113 != 4294967295u));
+        phi_341_ = _e115;
+        if _e115 {
+            let _e116 = v;
+            phi_341_ = ((_e116 & 2147483648u) == 0u);
         }
-        let _e114 = phi_333_;
-        if _e114 {
-            let _e115 = size;
-            size = (_e115 * 0.5f);
-            let _e118 = probe[0u];
-            let _e120 = o[0u];
+        let _e120 = phi_341_;
+        if _e120 {
             let _e121 = size;
-            let _e126 = probe[1u];
-            let _e128 = o[1u];
-            let _e129 = size;
-            c_5 = vec2<u32>(select(0u, 1u, (_e118 >= (_e120 + _e121))), select(0u, 1u, (_e126 >= (_e128 + _e129))));
-            let _e134 = c_5;
-            let _e136 = size;
-            let _e138 = o;
-            o = (_e138 + (vec2<f32>(_e134) * _e136));
-            let _e140 = v;
-            let _e142 = c_5[0u];
-            let _e145 = c_5[1u];
-            param_22 = ((_e140 + _e142) + (2u * _e145));
-            let _e148 = fvarNode_u0028_u1_u003b((&param_22));
-            v = _e148;
+            size = (_e121 * 0.5f);
+            let _e124 = probe[0u];
+            let _e126 = o[0u];
+            let _e127 = size;
+            let _e132 = probe[1u];
+            let _e134 = o[1u];
+            let _e135 = size;
+            c_5 = vec2<u32>(select(0u, 1u, (_e124 >= (_e126 + _e127))), select(0u, 1u, (_e132 >= (_e134 + _e135))));
+            let _e140 = c_5;
+            let _e142 = size;
+            let _e144 = o;
+            o = (_e144 + (vec2<f32>(_e140) * _e142));
+            let _e146 = v;
+            let _e148 = c_5[0u];
+            let _e151 = c_5[1u];
+            param_24 = ((_e146 + _e148) + (2u * _e151));
+            let _e154 = fvarNode_u0028_u1_u003b((&param_24));
+            v = _e154;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e149 = depth;
-            depth = (_e149 + 1i);
+            let _e155 = depth;
+            depth = (_e155 + 1i);
         }
     }
-    let _e151 = v;
-    let _e152 = (_e151 == 4294967295u);
-    phi_383_ = _e152;
-    if !(_e152) {
-        let _e154 = v;
-        phi_383_ = ((_e154 & 2147483648u) == 0u);
+    let _e157 = v;
+    let _e158 = (_e157 == 4294967295u);
+    phi_391_ = _e158;
+    if !(_e158) {
+        let _e160 = v;
+        phi_391_ = ((_e160 & 2147483648u) == 0u);
     }
-    let _e158 = phi_383_;
-    if _e158 {
+    let _e164 = phi_391_;
+    if _e164 {
         return vec2<f32>(0f, 0f);
     }
-    let _e159 = v;
-    r_2 = (9u * (_e159 & 2147483647u));
-    let _e162 = r_2;
-    param_23 = _e162;
-    let _e163 = fvarRecord_u0028_u1_u003b((&param_23));
-    h = _e163;
-    let _e165 = (*uv_1)[0u];
-    let _e167 = h[0u];
-    let _e170 = h[2u];
-    s_2 = ((_e165 - _e167) / _e170);
-    let _e173 = (*uv_1)[1u];
-    let _e175 = h[1u];
-    let _e178 = h[2u];
-    t_2 = ((_e173 - _e175) / _e178);
-    let _e181 = h[3u];
-    if (_e181 != 0f) {
-        let _e183 = r_2;
-        param_24 = (_e183 + 1u);
-        let _e185 = fvarRecord_u0028_u1_u003b((&param_24));
-        a_5 = _e185;
-        let _e186 = r_2;
-        param_25 = (_e186 + 2u);
-        let _e188 = fvarRecord_u0028_u1_u003b((&param_25));
-        b_6 = _e188;
-        let _e189 = a_5;
-        let _e191 = a_5;
-        let _e193 = s_2;
-        let _e196 = b_6;
-        let _e198 = b_6;
-        let _e200 = s_2;
-        let _e203 = t_2;
-        return mix(mix(_e189.xy, _e191.zw, vec2(_e193)), mix(_e196.zw, _e198.xy, vec2(_e200)), vec2(_e203));
+    let _e165 = v;
+    r_2 = (9u * (_e165 & 2147483647u));
+    let _e168 = r_2;
+    param_25 = _e168;
+    let _e169 = fvarRecord_u0028_u1_u003b((&param_25));
+    h = _e169;
+    let _e171 = (*uv_1)[0u];
+    let _e173 = h[0u];
+    let _e176 = h[2u];
+    s_2 = ((_e171 - _e173) / _e176);
+    let _e179 = (*uv_1)[1u];
+    let _e181 = h[1u];
+    let _e184 = h[2u];
+    t_2 = ((_e179 - _e181) / _e184);
+    let _e187 = h[3u];
+    if (_e187 != 0f) {
+        let _e189 = r_2;
+        param_26 = (_e189 + 1u);
+        let _e191 = fvarRecord_u0028_u1_u003b((&param_26));
+        a_5 = _e191;
+        let _e192 = r_2;
+        param_27 = (_e192 + 2u);
+        let _e194 = fvarRecord_u0028_u1_u003b((&param_27));
+        b_6 = _e194;
+        let _e195 = a_5;
+        let _e197 = a_5;
+        let _e199 = s_2;
+        let _e202 = b_6;
+        let _e204 = b_6;
+        let _e206 = s_2;
+        let _e209 = t_2;
+        return mix(mix(_e195.xy, _e197.zw, vec2(_e199)), mix(_e202.zw, _e204.xy, vec2(_e206)), vec2(_e209));
     }
-    let _e206 = s_2;
-    param_26 = _e206;
-    fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b((&param_26), (&param_27));
-    let _e207 = param_27;
-    bu = _e207;
-    let _e208 = t_2;
-    param_28 = _e208;
+    let _e212 = s_2;
+    param_28 = _e212;
     fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b((&param_28), (&param_29));
-    let _e209 = param_29;
-    bv = _e209;
-    x_2 = vec2<f32>(0f, 0f);
+    let _e213 = param_29;
+    bu = _e213;
+    let _e214 = t_2;
+    param_30 = _e214;
+    fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b((&param_30), (&param_31));
+    let _e215 = param_31;
+    bv = _e215;
+    x_3 = vec2<f32>(0f, 0f);
     j_2 = 0u;
     loop {
-        let _e210 = j_2;
-        if (_e210 < 4u) {
-            i_3 = 0u;
+        let _e216 = j_2;
+        if (_e216 < 4u) {
+            i_4 = 0u;
             loop {
-                let _e212 = i_3;
-                if (_e212 < 4u) {
-                    let _e214 = r_2;
-                    let _e216 = j_2;
-                    let _e218 = i_3;
-                    param_30 = ((_e214 + 1u) + (((4u * _e216) + _e218) / 2u));
-                    let _e222 = fvarRecord_u0028_u1_u003b((&param_30));
-                    p = _e222;
-                    let _e223 = j_2;
-                    let _e225 = bv[_e223];
-                    let _e226 = i_3;
-                    let _e228 = bu[_e226];
-                    let _e229 = p;
-                    let _e232 = i_3;
-                    let _e235 = bu[(_e232 + 1u)];
-                    let _e236 = p;
-                    let _e241 = x_2;
-                    x_2 = (_e241 + (((_e229.xy * _e228) + (_e236.zw * _e235)) * _e225));
+                let _e218 = i_4;
+                if (_e218 < 4u) {
+                    let _e220 = r_2;
+                    let _e222 = j_2;
+                    let _e224 = i_4;
+                    param_32 = ((_e220 + 1u) + (((4u * _e222) + _e224) / 2u));
+                    let _e228 = fvarRecord_u0028_u1_u003b((&param_32));
+                    p = _e228;
+                    let _e229 = j_2;
+                    let _e231 = bv[_e229];
+                    let _e232 = i_4;
+                    let _e234 = bu[_e232];
+                    let _e235 = p;
+                    let _e238 = i_4;
+                    let _e241 = bu[(_e238 + 1u)];
+                    let _e242 = p;
+                    let _e247 = x_3;
+                    x_3 = (_e247 + (((_e235.xy * _e234) + (_e242.zw * _e241)) * _e231));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e243 = i_3;
-                    i_3 = (_e243 + 2u);
+                    let _e249 = i_4;
+                    i_4 = (_e249 + 2u);
                 }
             }
             continue;
@@ -680,12 +768,12 @@ fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, 
             break;
         }
         continuing {
-            let _e245 = j_2;
-            j_2 = (_e245 + bitcast<u32>(1i));
+            let _e251 = j_2;
+            j_2 = (_e251 + bitcast<u32>(1i));
         }
     }
-    let _e248 = x_2;
-    return _e248;
+    let _e254 = x_3;
+    return _e254;
 }
 
 fn uvAt_u0028_f1_u003b_f1_u003b(s_3: ptr<function, f32>, t_3: ptr<function, f32>) -> vec2<f32> {
@@ -693,306 +781,434 @@ fn uvAt_u0028_f1_u003b_f1_u003b(s_3: ptr<function, f32>, t_3: ptr<function, f32>
     var d: vec3<f32>;
     var at: vec2<f32>;
     var centre: vec2<f32>;
-    var param_31: u32;
-    var param_32: vec2<f32>;
-    var param_33: vec2<f32>;
-    var param_34: f32;
+    var param_33: u32;
+    var param_34: vec2<f32>;
+    var param_35: vec2<f32>;
+    var param_36: f32;
 
-    let _e73 = pc.smoothUV;
-    if (_e73 != 0u) {
-        let _e76 = pc.domainBase;
-        let _e77 = elIndex;
-        let _e81 = pieces.v[(_e76 + _e77)];
-        q = _e81;
-        let _e82 = q;
-        d = bitcast<vec3<f32>>(_e82.yzw);
-        let _e85 = d;
-        let _e87 = (*s_3);
-        let _e88 = (*t_3);
-        let _e91 = d[2u];
-        at = (_e85.xy + (vec2<f32>(_e87, _e88) * _e91));
-        let _e94 = d;
+    let _e79 = pc.smoothUV;
+    if (_e79 != 0u) {
+        let _e82 = pc.domainBase;
+        let _e83 = elIndex;
+        let _e87 = pieces.v[(_e82 + _e83)];
+        q = _e87;
+        let _e88 = q;
+        d = bitcast<vec3<f32>>(_e88.yzw);
+        let _e91 = d;
+        let _e93 = (*s_3);
+        let _e94 = (*t_3);
         let _e97 = d[2u];
-        centre = (_e94.xy + vec2((0.5f * _e97)));
-        let _e102 = q[0u];
-        param_31 = _e102;
-        let _e103 = at;
-        param_32 = _e103;
-        let _e104 = centre;
-        param_33 = _e104;
-        let _e106 = pc.fvarCell;
-        param_34 = _e106;
-        let _e107 = fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b((&param_31), (&param_32), (&param_33), (&param_34));
-        return _e107;
+        at = (_e91.xy + (vec2<f32>(_e93, _e94) * _e97));
+        let _e100 = d;
+        let _e103 = d[2u];
+        centre = (_e100.xy + vec2((0.5f * _e103)));
+        let _e108 = q[0u];
+        param_33 = _e108;
+        let _e109 = at;
+        param_34 = _e109;
+        let _e110 = centre;
+        param_35 = _e110;
+        let _e112 = pc.fvarCell;
+        param_36 = _e112;
+        let _e113 = fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b((&param_33), (&param_34), (&param_35), (&param_36));
+        return _e113;
     }
-    let _e110 = el.uv[0i];
-    let _e113 = el.uv[1i];
-    let _e114 = (*s_3);
-    let _e119 = el.uv[3i];
-    let _e122 = el.uv[2i];
-    let _e123 = (*s_3);
-    let _e126 = (*t_3);
-    return mix(mix(_e110, _e113, vec2(_e114)), mix(_e119, _e122, vec2(_e123)), vec2(_e126));
+    let _e116 = el.uv[0i];
+    let _e119 = el.uv[1i];
+    let _e120 = (*s_3);
+    let _e125 = el.uv[3i];
+    let _e128 = el.uv[2i];
+    let _e129 = (*s_3);
+    let _e132 = (*t_3);
+    return mix(mix(_e116, _e119, vec2(_e120)), mix(_e125, _e128, vec2(_e129)), vec2(_e132));
 }
 
-fn sideParam_u0028_u1_u003b_f1_u003b(k_3: ptr<function, u32>, x_3: ptr<function, f32>) -> vec2<f32> {
+fn sideParam_u0028_u1_u003b_f1_u003b(k_5: ptr<function, u32>, x_4: ptr<function, f32>) -> vec2<f32> {
     var p_1: f32;
 
-    let _e65 = (*x_3);
-    p_1 = (_e65 / 32768f);
-    let _e67 = (*k_3);
-    if (_e67 == 0u) {
-        let _e69 = p_1;
-        return vec2<f32>(_e69, 0f);
+    let _e71 = (*x_4);
+    p_1 = (_e71 / 32768f);
+    let _e73 = (*k_5);
+    if (_e73 == 0u) {
+        let _e75 = p_1;
+        return vec2<f32>(_e75, 0f);
     }
-    let _e71 = (*k_3);
-    if (_e71 == 1u) {
-        let _e73 = p_1;
-        return vec2<f32>(1f, _e73);
+    let _e77 = (*k_5);
+    if (_e77 == 1u) {
+        let _e79 = p_1;
+        return vec2<f32>(1f, _e79);
     }
-    let _e75 = (*k_3);
-    if (_e75 == 2u) {
-        let _e77 = p_1;
-        return vec2<f32>((1f - _e77), 1f);
+    let _e81 = (*k_5);
+    if (_e81 == 2u) {
+        let _e83 = p_1;
+        return vec2<f32>((1f - _e83), 1f);
     }
-    let _e80 = p_1;
-    return vec2<f32>(0f, (1f - _e80));
+    let _e86 = p_1;
+    return vec2<f32>(0f, (1f - _e86));
 }
 
 fn adaptiveRates_u0028_u1_u003b(packed: ptr<function, u32>) -> vec2<u32> {
-    let _e63 = (*packed);
-    let _e65 = (*packed);
-    return vec2<u32>((_e63 & 32767u), ((_e65 >> bitcast<u32>(15i)) & 32767u));
+    let _e69 = (*packed);
+    let _e71 = (*packed);
+    return vec2<u32>((_e69 & 32767u), ((_e71 >> bitcast<u32>(15i)) & 32767u));
 }
 
 fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var inf: vec4<u32>;
     var rates2_: vec2<u32>;
-    var param_35: u32;
+    var param_37: u32;
     var mu_1: u32;
     var mv_1: u32;
     var T: u32;
     var share: bool;
-    var k_4: u32;
+    var owned: u32;
+    var k_6: u32;
     var p_2: u32;
     var sp: vec4<u32>;
     var point: vec4<u32>;
+    var from_: f32;
+    var to: f32;
     var st_2: vec2<f32>;
-    var param_36: u32;
-    var param_37: f32;
-    var uv_2: vec2<f32>;
-    var param_38: f32;
+    var param_38: u32;
     var param_39: f32;
-    var i_4: u32;
+    var uv_2: vec2<f32>;
+    var param_40: f32;
+    var param_41: f32;
+    var r_3: u32;
+    var piece_2: vec4<u32>;
+    var i_5: u32;
+    var ownerST: u32;
+    var along_1: f32;
+    var param_42: vec4<u32>;
+    var param_43: u32;
+    var param_44: u32;
+    var param_45: f32;
+    var param_46: vec4<u32>;
+    var param_47: u32;
+    var st_3: vec2<f32>;
+    var local_6: f32;
+    var param_48: u32;
+    var param_49: f32;
+    var uv_3: vec2<f32>;
+    var param_50: f32;
+    var param_51: f32;
+    var i_6: u32;
     var sharedFlat: bool;
-    var B_1: u32;
-    var k_5: u32;
+    var B: u32;
+    var k_7: u32;
     var sideStart_1: array<u32, 4>;
     var p_3: u32;
     var sp_1: vec4<u32>;
     var slots: array<u32, 8>;
-    var r_3: u32;
-    var piece_2: vec4<u32>;
+    var r_4: u32;
+    var piece_3: vec4<u32>;
     var point_1: vec4<u32>;
-    var from_: f32;
-    var to: f32;
-    var st_3: vec2<f32>;
-    var param_40: u32;
-    var param_41: f32;
-    var param_42: f32;
-    var param_43: f32;
-    var param_44: u32;
-    var param_45: u32;
-    var param_46: u32;
-    var param_47: vec2<f32>;
-    var i_5: u32;
-    var j_3: u32;
-    var local_5: u32;
-    var ownerST: u32;
-    var along_1: f32;
-    var param_48: vec4<u32>;
-    var param_49: u32;
-    var param_50: u32;
-    var param_51: f32;
-    var param_52: vec4<u32>;
-    var param_53: u32;
-    var f: f32;
-    var local_6: f32;
-    var local_7: f32;
-    var param_54: u32;
+    var from_1: f32;
+    var to_1: f32;
+    var st_4: vec2<f32>;
+    var param_52: u32;
+    var param_53: f32;
+    var param_54: f32;
     var param_55: f32;
-    var param_56: f32;
-    var param_57: f32;
+    var param_56: u32;
+    var param_57: u32;
     var param_58: u32;
-    var param_59: u32;
-    var param_60: u32;
-    var param_61: vec2<f32>;
+    var param_59: vec2<f32>;
+    var i_7: u32;
+    var j_3: u32;
+    var local_7: u32;
+    var ownerST_1: u32;
+    var along_2: f32;
+    var param_60: vec4<u32>;
+    var param_61: u32;
+    var param_62: u32;
+    var param_63: f32;
+    var param_64: vec4<u32>;
+    var param_65: u32;
+    var f: f32;
+    var local_8: f32;
+    var local_9: f32;
+    var param_66: u32;
+    var param_67: f32;
+    var param_68: f32;
+    var param_69: f32;
+    var param_70: u32;
+    var param_71: u32;
+    var param_72: u32;
+    var param_73: vec2<f32>;
     var sideTotal_1: array<u32, 4>;
     var apex_1: u32;
-    var param_62: array<u32, 4>;
-    var param_63: array<u32, 4>;
+    var param_74: array<u32, 4>;
+    var param_75: array<u32, 4>;
     var fan: u32;
-    var i_6: u32;
+    var i_8: u32;
     var a_6: u32;
     var b_7: u32;
     var c_6: u32;
-    var param_64: u32;
-    var param_65: u32;
-    var param_66: u32;
-    var param_67: u32;
-    var param_68: u32;
-    var param_69: u32;
-    var gradeS: bool;
-    var param_70: u32;
-    var gradeT: bool;
-    var atZero_1: bool;
-    var param_71: u32;
-    var j_4: u32;
-    var i_7: u32;
-    var s_4: u32;
-    var param_72: u32;
-    var param_73: u32;
-    var param_74: bool;
-    var param_75: bool;
-    var t_4: u32;
     var param_76: u32;
     var param_77: u32;
-    var param_78: bool;
-    var param_79: bool;
-    var f_1: vec2<f32>;
-    var local_8: f32;
-    var local_9: f32;
-    var param_80: f32;
-    var param_81: f32;
+    var param_78: u32;
+    var param_79: u32;
+    var param_80: u32;
+    var param_81: u32;
+    var grid_1: u32;
+    var gradeS: bool;
     var param_82: u32;
+    var gradeT: bool;
+    var atZero_1: bool;
     var param_83: u32;
+    var j_4: u32;
+    var i_9: u32;
+    var s_4: u32;
     var param_84: u32;
-    var param_85: vec2<f32>;
-    var j_5: u32;
-    var i_8: u32;
-    var a_7: u32;
-    var param_86: u32;
-    var param_87: u32;
+    var param_85: u32;
+    var param_86: bool;
+    var param_87: bool;
+    var t_4: u32;
     var param_88: u32;
     var param_89: u32;
-    var param_90: u32;
-    var param_91: u32;
-    var k_6: u32;
-    var na: u32;
-    var nb: u32;
-    var local_10: u32;
-    var ia: u32;
-    var jb: u32;
-    var a0_: u32;
-    var g0_: u32;
-    var param_92: u32;
-    var param_93: u32;
+    var param_90: bool;
+    var param_91: bool;
+    var f_1: vec2<f32>;
+    var local_10: f32;
+    var local_11: f32;
+    var param_92: f32;
+    var param_93: f32;
     var param_94: u32;
     var param_95: u32;
     var param_96: u32;
-    var g1_: u32;
-    var param_97: u32;
+    var param_97: vec2<f32>;
+    var j_5: u32;
+    var i_10: u32;
+    var a_7: u32;
     var param_98: u32;
     var param_99: u32;
     var param_100: u32;
     var param_101: u32;
-    var advanceA: bool;
     var param_102: u32;
     var param_103: u32;
+    var k_8: u32;
+    var na: u32;
+    var nb: u32;
+    var local_12: u32;
+    var ia: u32;
+    var jb: u32;
+    var a0_: u32;
+    var local_13: u32;
     var param_104: u32;
     var param_105: u32;
     var param_106: u32;
+    var g0_: u32;
     var param_107: u32;
-    var phi_1169_: bool;
-    var phi_1373_: bool;
-    var phi_1530_: bool;
-    var phi_1806_: bool;
-    var phi_1807_: bool;
+    var param_108: u32;
+    var param_109: u32;
+    var param_110: u32;
+    var param_111: u32;
+    var g1_: u32;
+    var param_112: u32;
+    var param_113: u32;
+    var param_114: u32;
+    var param_115: u32;
+    var param_116: u32;
+    var advanceA: bool;
+    var a1_: u32;
+    var local_14: u32;
+    var param_117: u32;
+    var param_118: u32;
+    var param_119: u32;
+    var param_120: u32;
+    var param_121: u32;
+    var param_122: u32;
+    var param_123: u32;
+    var param_124: u32;
+    var param_125: u32;
+    var phi_1315_: bool;
+    var phi_1412_: bool;
+    var phi_1620_: bool;
+    var phi_1783_: bool;
+    var phi_2073_: bool;
+    var phi_2074_: bool;
 
-    let _e200 = (*e);
-    let _e203 = info.v[_e200];
-    inf = _e203;
-    let _e205 = inf[0u];
-    param_35 = _e205;
-    let _e206 = adaptiveRates_u0028_u1_u003b((&param_35));
-    rates2_ = _e206;
-    let _e208 = rates2_[0u];
-    mu_1 = _e208;
-    let _e210 = rates2_[1u];
-    mv_1 = _e210;
-    let _e212 = inf[3u];
-    T = (_e212 & 2147483647u);
-    let _e215 = inf[1u];
-    vBase = _e215;
-    let _e217 = inf[2u];
-    tNext = _e217;
-    let _e219 = pc.sharePoints;
-    share = (_e219 != 0u);
-    let _e221 = share;
-    if _e221 {
-        let _e222 = (*e);
-        let _e225 = elements.e[_e222];
-        el.sideFirst = _e225.sideFirst;
-        el.sideCount = _e225.sideCount;
-        el.uv[0i] = _e225.uv[0];
-        el.uv[1i] = _e225.uv[1];
-        el.uv[2i] = _e225.uv[2];
-        el.uv[3i] = _e225.uv[3];
-        el.level = _e225.level;
-        el.crease = _e225.crease;
-        el.pad1_ = _e225.pad1_;
-        el.pad2_ = _e225.pad2_;
-        let _e248 = (*e);
-        elIndex = _e248;
-        k_4 = 0u;
+    let _e237 = (*e);
+    let _e240 = info.v[_e237];
+    inf = _e240;
+    let _e242 = inf[0u];
+    param_37 = _e242;
+    let _e243 = adaptiveRates_u0028_u1_u003b((&param_37));
+    rates2_ = _e243;
+    let _e245 = rates2_[0u];
+    mu_1 = _e245;
+    let _e247 = rates2_[1u];
+    mv_1 = _e247;
+    let _e249 = inf[3u];
+    T = (_e249 & 2147483647u);
+    let _e252 = inf[1u];
+    vBase = _e252;
+    let _e254 = inf[2u];
+    tNext = _e254;
+    let _e256 = pc.sharePoints;
+    share = (_e256 != 0u);
+    owned = 0u;
+    let _e258 = share;
+    if _e258 {
+        let _e259 = (*e);
+        let _e262 = elements.e[_e259];
+        el.sideFirst = _e262.sideFirst;
+        el.sideCount = _e262.sideCount;
+        el.uv[0i] = _e262.uv[0];
+        el.uv[1i] = _e262.uv[1];
+        el.uv[2i] = _e262.uv[2];
+        el.uv[3i] = _e262.uv[3];
+        el.level = _e262.level;
+        el.crease = _e262.crease;
+        el.pad1_ = _e262.pad1_;
+        el.pad2_ = _e262.pad2_;
+        let _e285 = (*e);
+        elIndex = _e285;
+        k_6 = 0u;
         loop {
-            let _e249 = k_4;
-            if (_e249 < 4u) {
+            let _e286 = k_6;
+            if (_e286 < 4u) {
                 p_2 = 0u;
                 loop {
-                    let _e251 = p_2;
-                    let _e252 = k_4;
-                    let _e255 = el.sideCount[_e252];
-                    if (_e251 < _e255) {
-                        let _e257 = k_4;
-                        let _e260 = el.sideFirst[_e257];
-                        let _e261 = p_2;
-                        let _e265 = pieces.v[(_e260 + _e261)];
-                        sp = _e265;
-                        let _e267 = pc.pointBase;
-                        let _e269 = sp[1u];
-                        let _e273 = pieces.v[(_e267 + _e269)];
-                        point = _e273;
-                        let _e275 = point[0u];
-                        let _e276 = (*e);
-                        if (_e275 != _e276) {
+                    let _e288 = p_2;
+                    let _e289 = k_6;
+                    let _e292 = el.sideCount[_e289];
+                    if (_e288 < _e292) {
+                        let _e294 = k_6;
+                        let _e297 = el.sideFirst[_e294];
+                        let _e298 = p_2;
+                        let _e302 = pieces.v[(_e297 + _e298)];
+                        sp = _e302;
+                        let _e304 = pc.pointBase;
+                        let _e306 = sp[1u];
+                        let _e310 = pieces.v[(_e304 + _e306)];
+                        point = _e310;
+                        let _e312 = sp[3u];
+                        from_ = f32((_e312 & 65535u));
+                        let _e316 = sp[3u];
+                        to = f32((_e316 >> bitcast<u32>(16i)));
+                        let _e321 = point[0u];
+                        let _e322 = (*e);
+                        if (_e321 == _e322) {
+                            let _e324 = k_6;
+                            param_38 = _e324;
+                            let _e325 = from_;
+                            param_39 = _e325;
+                            let _e326 = sideParam_u0028_u1_u003b_f1_u003b((&param_38), (&param_39));
+                            st_2 = _e326;
+                            let _e328 = st_2[0u];
+                            param_40 = _e328;
+                            let _e330 = st_2[1u];
+                            param_41 = _e330;
+                            let _e331 = uvAt_u0028_f1_u003b_f1_u003b((&param_40), (&param_41));
+                            uv_2 = _e331;
+                            let _e333 = sp[1u];
+                            let _e335 = point[0u];
+                            let _e337 = point[1u];
+                            let _e339 = uv_2[0u];
+                            let _e342 = uv_2[1u];
+                            tessVertices.v[_e333] = vec4<u32>(_e335, _e337, bitcast<u32>(_e339), bitcast<u32>(_e342));
+                        }
+                        let _e348 = sp[2u];
+                        if ((_e348 & 2u) == 0u) {
                             continue;
                         }
-                        let _e279 = sp[3u];
-                        let _e282 = k_4;
-                        param_36 = _e282;
-                        param_37 = f32((_e279 & 65535u));
-                        let _e283 = sideParam_u0028_u1_u003b_f1_u003b((&param_36), (&param_37));
-                        st_2 = _e283;
-                        let _e285 = st_2[0u];
-                        param_38 = _e285;
-                        let _e287 = st_2[1u];
-                        param_39 = _e287;
-                        let _e288 = uvAt_u0028_f1_u003b_f1_u003b((&param_38), (&param_39));
-                        uv_2 = _e288;
-                        let _e290 = sp[1u];
-                        let _e292 = point[0u];
-                        let _e294 = point[1u];
-                        let _e296 = uv_2[0u];
-                        let _e299 = uv_2[1u];
-                        tessVertices.v[_e290] = vec4<u32>(_e292, _e294, bitcast<u32>(_e296), bitcast<u32>(_e299));
+                        let _e352 = sp[0u];
+                        let _e355 = rates.r[_e352];
+                        r_3 = (_e355 & 65535u);
+                        let _e357 = vBase;
+                        let _e358 = owned;
+                        let _e360 = r_3;
+                        let _e364 = pc.vertexCapacity;
+                        if ((((_e357 + _e358) + _e360) - 1u) > _e364) {
+                            break;
+                        }
+                        let _e367 = sp[0u];
+                        let _e371 = pieces.v[(2u * _e367)];
+                        piece_2 = _e371;
+                        i_5 = 1u;
+                        loop {
+                            let _e372 = i_5;
+                            let _e373 = r_3;
+                            if (_e372 < _e373) {
+                                let _e375 = piece_2;
+                                param_42 = _e375;
+                                let _e376 = i_5;
+                                param_43 = _e376;
+                                let _e377 = r_3;
+                                param_44 = _e377;
+                                let _e378 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_42), (&param_43), (&param_44), (&param_45));
+                                let _e379 = param_45;
+                                along_1 = _e379;
+                                ownerST = _e378;
+                                let _e380 = along_1;
+                                let _e381 = (_e380 < 0f);
+                                phi_1315_ = _e381;
+                                if _e381 {
+                                    let _e383 = pc.smoothUV;
+                                    phi_1315_ = (_e383 != 0u);
+                                }
+                                let _e386 = phi_1315_;
+                                if _e386 {
+                                    let _e387 = piece_2;
+                                    param_46 = _e387;
+                                    let _e388 = ownerST;
+                                    param_47 = _e388;
+                                    let _e389 = pieceFraction_u0028_vu4_u003b_u1_u003b((&param_46), (&param_47));
+                                    along_1 = _e389;
+                                }
+                                let _e390 = from_;
+                                let _e391 = to;
+                                let _e392 = from_;
+                                let _e394 = along_1;
+                                if (_e394 < 0f) {
+                                    let _e396 = i_5;
+                                    let _e398 = r_3;
+                                    local_6 = (f32(_e396) / f32(_e398));
+                                } else {
+                                    let _e401 = along_1;
+                                    local_6 = _e401;
+                                }
+                                let _e402 = local_6;
+                                let _e405 = k_6;
+                                param_48 = _e405;
+                                param_49 = (_e390 + ((_e391 - _e392) * _e402));
+                                let _e406 = sideParam_u0028_u1_u003b_f1_u003b((&param_48), (&param_49));
+                                st_3 = _e406;
+                                let _e408 = st_3[0u];
+                                param_50 = _e408;
+                                let _e410 = st_3[1u];
+                                param_51 = _e410;
+                                let _e411 = uvAt_u0028_f1_u003b_f1_u003b((&param_50), (&param_51));
+                                uv_3 = _e411;
+                                let _e412 = vBase;
+                                let _e413 = owned;
+                                let _e415 = i_5;
+                                let _e418 = (*e);
+                                let _e419 = ownerST;
+                                let _e421 = uv_3[0u];
+                                let _e424 = uv_3[1u];
+                                tessVertices.v[(((_e412 + _e413) + _e415) - 1u)] = vec4<u32>(_e418, _e419, bitcast<u32>(_e421), bitcast<u32>(_e424));
+                                continue;
+                            } else {
+                                break;
+                            }
+                            continuing {
+                                let _e429 = i_5;
+                                i_5 = (_e429 + bitcast<u32>(1i));
+                            }
+                        }
+                        let _e432 = r_3;
+                        let _e434 = owned;
+                        owned = (_e434 + (_e432 - 1u));
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e304 = p_2;
-                        p_2 = (_e304 + bitcast<u32>(1i));
+                        let _e436 = p_2;
+                        p_2 = (_e436 + bitcast<u32>(1i));
                     }
                 }
                 continue;
@@ -1000,226 +1216,233 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
                 break;
             }
             continuing {
-                let _e307 = k_4;
-                k_4 = (_e307 + bitcast<u32>(1i));
+                let _e439 = k_6;
+                k_6 = (_e439 + bitcast<u32>(1i));
             }
         }
-        let _e311 = inf[0u];
-        if ((_e311 & 2147483648u) != 0u) {
+        let _e443 = inf[0u];
+        if ((_e443 & 2147483648u) != 0u) {
             return;
         }
     }
-    let _e315 = inf[3u];
-    if ((_e315 >> bitcast<u32>(31i)) == 0u) {
-        i_4 = 0u;
+    let _e447 = inf[3u];
+    if ((_e447 >> bitcast<u32>(31i)) == 0u) {
+        i_6 = 0u;
         loop {
-            let _e319 = i_4;
-            let _e320 = T;
-            let _e321 = (_e319 < _e320);
-            phi_1169_ = _e321;
-            if _e321 {
-                let _e322 = tNext;
-                let _e323 = i_4;
-                let _e326 = pc.triangleCapacity;
-                phi_1169_ = ((_e322 + _e323) < _e326);
+            let _e451 = i_6;
+            let _e452 = T;
+            let _e453 = (_e451 < _e452);
+            phi_1412_ = _e453;
+            if _e453 {
+                let _e454 = tNext;
+                let _e455 = i_6;
+                let _e458 = pc.triangleCapacity;
+                phi_1412_ = ((_e454 + _e455) < _e458);
             }
-            let _e329 = phi_1169_;
-            if _e329 {
-                let _e330 = tNext;
-                let _e331 = i_4;
-                triangles.i[(3u * (_e330 + _e331))] = 0u;
-                let _e336 = tNext;
-                let _e337 = i_4;
-                triangles.i[((3u * (_e336 + _e337)) + 1u)] = 0u;
-                let _e343 = tNext;
-                let _e344 = i_4;
-                triangles.i[((3u * (_e343 + _e344)) + 2u)] = 0u;
-                let _e350 = tNext;
-                let _e351 = i_4;
-                triangleLevels.l[(_e350 + _e351)] = 0u;
+            let _e461 = phi_1412_;
+            if _e461 {
+                let _e462 = tNext;
+                let _e463 = i_6;
+                triangles.i[(3u * (_e462 + _e463))] = 0u;
+                let _e468 = tNext;
+                let _e469 = i_6;
+                triangles.i[((3u * (_e468 + _e469)) + 1u)] = 0u;
+                let _e475 = tNext;
+                let _e476 = i_6;
+                triangles.i[((3u * (_e475 + _e476)) + 2u)] = 0u;
+                let _e482 = tNext;
+                let _e483 = i_6;
+                triangleLevels.l[(_e482 + _e483)] = 0u;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e355 = i_4;
-                i_4 = (_e355 + bitcast<u32>(1i));
+                let _e487 = i_6;
+                i_6 = (_e487 + bitcast<u32>(1i));
             }
         }
         return;
     }
-    let _e358 = (*e);
-    let _e361 = elements.e[_e358];
-    el.sideFirst = _e361.sideFirst;
-    el.sideCount = _e361.sideCount;
-    el.uv[0i] = _e361.uv[0];
-    el.uv[1i] = _e361.uv[1];
-    el.uv[2i] = _e361.uv[2];
-    el.uv[3i] = _e361.uv[3];
-    el.level = _e361.level;
-    el.crease = _e361.crease;
-    el.pad1_ = _e361.pad1_;
-    el.pad2_ = _e361.pad2_;
-    let _e384 = (*e);
-    elIndex = _e384;
-    let _e386 = el.level;
-    level = _e386;
-    let _e387 = share;
-    let _e388 = mu_1;
-    sharedFlat = (_e387 && (_e388 == 1u));
-    B_1 = 0u;
-    k_5 = 0u;
+    let _e490 = (*e);
+    let _e493 = elements.e[_e490];
+    el.sideFirst = _e493.sideFirst;
+    el.sideCount = _e493.sideCount;
+    el.uv[0i] = _e493.uv[0];
+    el.uv[1i] = _e493.uv[1];
+    el.uv[2i] = _e493.uv[2];
+    el.uv[3i] = _e493.uv[3];
+    el.level = _e493.level;
+    el.crease = _e493.crease;
+    el.pad1_ = _e493.pad1_;
+    el.pad2_ = _e493.pad2_;
+    let _e516 = (*e);
+    elIndex = _e516;
+    let _e518 = el.level;
+    level = _e518;
+    let _e519 = share;
+    let _e520 = mu_1;
+    sharedFlat = (_e519 && (_e520 == 1u));
+    B = 0u;
+    k_7 = 0u;
     loop {
-        let _e391 = k_5;
-        if (_e391 < 4u) {
-            let _e393 = k_5;
-            let _e394 = B_1;
-            sideStart_1[_e393] = _e394;
+        let _e523 = k_7;
+        if (_e523 < 4u) {
+            let _e525 = k_7;
+            let _e526 = B;
+            sideStart_1[_e525] = _e526;
             p_3 = 0u;
             loop {
-                let _e396 = p_3;
-                let _e397 = k_5;
-                let _e400 = el.sideCount[_e397];
-                if (_e396 < _e400) {
-                    let _e402 = k_5;
-                    let _e405 = el.sideFirst[_e402];
-                    let _e406 = p_3;
-                    let _e410 = pieces.v[(_e405 + _e406)];
-                    sp_1 = _e410;
-                    let _e411 = sharedFlat;
-                    if _e411 {
-                        let _e412 = B_1;
-                        let _e415 = sp_1[1u];
-                        slots[min(_e412, 7u)] = _e415;
-                        let _e417 = B_1;
-                        B_1 = (_e417 + bitcast<u32>(1i));
+                let _e528 = p_3;
+                let _e529 = k_7;
+                let _e532 = el.sideCount[_e529];
+                if (_e528 < _e532) {
+                    let _e534 = k_7;
+                    let _e537 = el.sideFirst[_e534];
+                    let _e538 = p_3;
+                    let _e542 = pieces.v[(_e537 + _e538)];
+                    sp_1 = _e542;
+                    let _e543 = sharedFlat;
+                    if _e543 {
+                        let _e544 = B;
+                        let _e547 = sp_1[1u];
+                        slots[min(_e544, 7u)] = _e547;
+                        let _e549 = B;
+                        B = (_e549 + bitcast<u32>(1i));
                         continue;
                     }
-                    let _e421 = sp_1[0u];
-                    let _e424 = rates.r[_e421];
-                    r_3 = (_e424 & 65535u);
-                    let _e427 = sp_1[0u];
-                    let _e431 = pieces.v[(2u * _e427)];
-                    piece_2 = _e431;
-                    let _e433 = pc.pointBase;
-                    let _e435 = sp_1[1u];
-                    let _e439 = pieces.v[(_e433 + _e435)];
-                    point_1 = _e439;
-                    let _e441 = sp_1[3u];
-                    from_ = f32((_e441 & 65535u));
-                    let _e445 = sp_1[3u];
-                    to = f32((_e445 >> bitcast<u32>(16i)));
-                    let _e449 = k_5;
-                    param_40 = _e449;
-                    let _e450 = from_;
-                    param_41 = _e450;
-                    let _e451 = sideParam_u0028_u1_u003b_f1_u003b((&param_40), (&param_41));
-                    st_3 = _e451;
-                    let _e452 = B_1;
-                    B_1 = (_e452 + bitcast<u32>(1i));
-                    let _e456 = st_3[0u];
-                    param_42 = _e456;
-                    let _e458 = st_3[1u];
-                    param_43 = _e458;
-                    let _e459 = uvAt_u0028_f1_u003b_f1_u003b((&param_42), (&param_43));
-                    param_44 = _e452;
-                    let _e461 = point_1[0u];
-                    param_45 = _e461;
-                    let _e463 = point_1[1u];
-                    param_46 = _e463;
-                    param_47 = _e459;
-                    vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_44), (&param_45), (&param_46), (&param_47));
-                    i_5 = 1u;
+                    let _e553 = sp_1[0u];
+                    let _e556 = rates.r[_e553];
+                    r_4 = (_e556 & 65535u);
+                    let _e558 = share;
+                    if _e558 {
+                        let _e559 = r_4;
+                        let _e560 = B;
+                        B = (_e560 + _e559);
+                        continue;
+                    }
+                    let _e563 = sp_1[0u];
+                    let _e567 = pieces.v[(2u * _e563)];
+                    piece_3 = _e567;
+                    let _e569 = pc.pointBase;
+                    let _e571 = sp_1[1u];
+                    let _e575 = pieces.v[(_e569 + _e571)];
+                    point_1 = _e575;
+                    let _e577 = sp_1[3u];
+                    from_1 = f32((_e577 & 65535u));
+                    let _e581 = sp_1[3u];
+                    to_1 = f32((_e581 >> bitcast<u32>(16i)));
+                    let _e585 = k_7;
+                    param_52 = _e585;
+                    let _e586 = from_1;
+                    param_53 = _e586;
+                    let _e587 = sideParam_u0028_u1_u003b_f1_u003b((&param_52), (&param_53));
+                    st_4 = _e587;
+                    let _e588 = B;
+                    B = (_e588 + bitcast<u32>(1i));
+                    let _e592 = st_4[0u];
+                    param_54 = _e592;
+                    let _e594 = st_4[1u];
+                    param_55 = _e594;
+                    let _e595 = uvAt_u0028_f1_u003b_f1_u003b((&param_54), (&param_55));
+                    param_56 = _e588;
+                    let _e597 = point_1[0u];
+                    param_57 = _e597;
+                    let _e599 = point_1[1u];
+                    param_58 = _e599;
+                    param_59 = _e595;
+                    vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_56), (&param_57), (&param_58), (&param_59));
+                    i_7 = 1u;
                     loop {
-                        let _e464 = i_5;
-                        let _e465 = r_3;
-                        if (_e464 < _e465) {
-                            let _e468 = sp_1[2u];
-                            if (_e468 != 0u) {
-                                let _e470 = r_3;
-                                let _e471 = i_5;
-                                local_5 = (_e470 - _e471);
+                        let _e600 = i_7;
+                        let _e601 = r_4;
+                        if (_e600 < _e601) {
+                            let _e604 = sp_1[2u];
+                            if ((_e604 & 1u) != 0u) {
+                                let _e607 = r_4;
+                                let _e608 = i_7;
+                                local_7 = (_e607 - _e608);
                             } else {
-                                let _e473 = i_5;
-                                local_5 = _e473;
+                                let _e610 = i_7;
+                                local_7 = _e610;
                             }
-                            let _e474 = local_5;
-                            j_3 = _e474;
-                            let _e475 = piece_2;
-                            param_48 = _e475;
-                            let _e476 = j_3;
-                            param_49 = _e476;
-                            let _e477 = r_3;
-                            param_50 = _e477;
-                            let _e478 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_48), (&param_49), (&param_50), (&param_51));
-                            let _e479 = param_51;
-                            along_1 = _e479;
-                            ownerST = _e478;
-                            let _e480 = along_1;
-                            let _e481 = (_e480 < 0f);
-                            phi_1373_ = _e481;
-                            if _e481 {
-                                let _e483 = pc.smoothUV;
-                                phi_1373_ = (_e483 != 0u);
+                            let _e611 = local_7;
+                            j_3 = _e611;
+                            let _e612 = piece_3;
+                            param_60 = _e612;
+                            let _e613 = j_3;
+                            param_61 = _e613;
+                            let _e614 = r_4;
+                            param_62 = _e614;
+                            let _e615 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_60), (&param_61), (&param_62), (&param_63));
+                            let _e616 = param_63;
+                            along_2 = _e616;
+                            ownerST_1 = _e615;
+                            let _e617 = along_2;
+                            let _e618 = (_e617 < 0f);
+                            phi_1620_ = _e618;
+                            if _e618 {
+                                let _e620 = pc.smoothUV;
+                                phi_1620_ = (_e620 != 0u);
                             }
-                            let _e486 = phi_1373_;
-                            if _e486 {
-                                let _e487 = piece_2;
-                                param_52 = _e487;
-                                let _e488 = ownerST;
-                                param_53 = _e488;
-                                let _e489 = pieceFraction_u0028_vu4_u003b_u1_u003b((&param_52), (&param_53));
-                                along_1 = _e489;
+                            let _e623 = phi_1620_;
+                            if _e623 {
+                                let _e624 = piece_3;
+                                param_64 = _e624;
+                                let _e625 = ownerST_1;
+                                param_65 = _e625;
+                                let _e626 = pieceFraction_u0028_vu4_u003b_u1_u003b((&param_64), (&param_65));
+                                along_2 = _e626;
                             }
-                            let _e490 = along_1;
-                            if (_e490 < 0f) {
-                                let _e492 = i_5;
-                                let _e494 = r_3;
-                                local_6 = (f32(_e492) / f32(_e494));
+                            let _e627 = along_2;
+                            if (_e627 < 0f) {
+                                let _e629 = i_7;
+                                let _e631 = r_4;
+                                local_8 = (f32(_e629) / f32(_e631));
                             } else {
-                                let _e498 = sp_1[2u];
-                                if (_e498 != 0u) {
-                                    let _e500 = along_1;
-                                    local_7 = (1f - _e500);
+                                let _e635 = sp_1[2u];
+                                if ((_e635 & 1u) != 0u) {
+                                    let _e638 = along_2;
+                                    local_9 = (1f - _e638);
                                 } else {
-                                    let _e502 = along_1;
-                                    local_7 = _e502;
+                                    let _e640 = along_2;
+                                    local_9 = _e640;
                                 }
-                                let _e503 = local_7;
-                                local_6 = _e503;
+                                let _e641 = local_9;
+                                local_8 = _e641;
                             }
-                            let _e504 = local_6;
-                            f = _e504;
-                            let _e505 = from_;
-                            let _e506 = to;
-                            let _e507 = from_;
-                            let _e509 = f;
-                            let _e512 = k_5;
-                            param_54 = _e512;
-                            param_55 = (_e505 + ((_e506 - _e507) * _e509));
-                            let _e513 = sideParam_u0028_u1_u003b_f1_u003b((&param_54), (&param_55));
-                            st_3 = _e513;
-                            let _e514 = B_1;
-                            B_1 = (_e514 + bitcast<u32>(1i));
-                            let _e518 = st_3[0u];
-                            param_56 = _e518;
-                            let _e520 = st_3[1u];
-                            param_57 = _e520;
-                            let _e521 = uvAt_u0028_f1_u003b_f1_u003b((&param_56), (&param_57));
-                            param_58 = _e514;
-                            let _e523 = piece_2[0u];
-                            param_59 = _e523;
-                            let _e524 = ownerST;
-                            param_60 = _e524;
-                            param_61 = _e521;
-                            vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_58), (&param_59), (&param_60), (&param_61));
+                            let _e642 = local_8;
+                            f = _e642;
+                            let _e643 = from_1;
+                            let _e644 = to_1;
+                            let _e645 = from_1;
+                            let _e647 = f;
+                            let _e650 = k_7;
+                            param_66 = _e650;
+                            param_67 = (_e643 + ((_e644 - _e645) * _e647));
+                            let _e651 = sideParam_u0028_u1_u003b_f1_u003b((&param_66), (&param_67));
+                            st_4 = _e651;
+                            let _e652 = B;
+                            B = (_e652 + bitcast<u32>(1i));
+                            let _e656 = st_4[0u];
+                            param_68 = _e656;
+                            let _e658 = st_4[1u];
+                            param_69 = _e658;
+                            let _e659 = uvAt_u0028_f1_u003b_f1_u003b((&param_68), (&param_69));
+                            param_70 = _e652;
+                            let _e661 = piece_3[0u];
+                            param_71 = _e661;
+                            let _e662 = ownerST_1;
+                            param_72 = _e662;
+                            param_73 = _e659;
+                            vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_70), (&param_71), (&param_72), (&param_73));
                             continue;
                         } else {
                             break;
                         }
                         continuing {
-                            let _e525 = i_5;
-                            i_5 = (_e525 + bitcast<u32>(1i));
+                            let _e663 = i_7;
+                            i_7 = (_e663 + bitcast<u32>(1i));
                         }
                     }
                     continue;
@@ -1227,185 +1450,189 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
                     break;
                 }
                 continuing {
-                    let _e528 = p_3;
-                    p_3 = (_e528 + bitcast<u32>(1i));
+                    let _e666 = p_3;
+                    p_3 = (_e666 + bitcast<u32>(1i));
                 }
             }
-            let _e531 = k_5;
-            let _e532 = B_1;
-            let _e533 = k_5;
-            let _e535 = sideStart_1[_e533];
-            sideTotal_1[_e531] = (_e532 - _e535);
+            let _e669 = k_7;
+            let _e670 = B;
+            let _e671 = k_7;
+            let _e673 = sideStart_1[_e671];
+            sideTotal_1[_e669] = (_e670 - _e673);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e538 = k_5;
-            k_5 = (_e538 + bitcast<u32>(1i));
+            let _e676 = k_7;
+            k_7 = (_e676 + bitcast<u32>(1i));
         }
     }
-    let _e541 = mu_1;
-    if (_e541 == 1u) {
-        let _e543 = sideStart_1;
-        param_62 = _e543;
-        let _e544 = sideTotal_1;
-        param_63 = _e544;
-        let _e545 = adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b((&param_62), (&param_63));
-        apex_1 = _e545;
-        let _e546 = mv_1;
-        fan = _e546;
-        i_6 = 1u;
+    let _e679 = mu_1;
+    if (_e679 == 1u) {
+        let _e681 = sideStart_1;
+        param_74 = _e681;
+        let _e682 = sideTotal_1;
+        param_75 = _e682;
+        let _e683 = adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b((&param_74), (&param_75));
+        apex_1 = _e683;
+        let _e684 = mv_1;
+        fan = _e684;
+        i_8 = 1u;
         loop {
-            let _e547 = i_6;
-            let _e549 = B_1;
-            if ((_e547 + 1u) < _e549) {
-                let _e551 = fan;
-                let _e552 = i_6;
-                if (((_e551 >> bitcast<u32>((_e552 - 1u))) & 1u) == 0u) {
+            let _e685 = i_8;
+            let _e687 = B;
+            if ((_e685 + 1u) < _e687) {
+                let _e689 = fan;
+                let _e690 = i_8;
+                if (((_e689 >> bitcast<u32>((_e690 - 1u))) & 1u) == 0u) {
                     continue;
                 }
-                let _e558 = apex_1;
-                a_6 = _e558;
-                let _e559 = apex_1;
-                let _e560 = i_6;
-                let _e562 = B_1;
-                b_7 = ((_e559 + _e560) % _e562);
-                let _e564 = apex_1;
-                let _e565 = i_6;
-                let _e568 = B_1;
-                c_6 = (((_e564 + _e565) + 1u) % _e568);
-                let _e570 = sharedFlat;
-                if _e570 {
-                    let _e571 = a_6;
-                    let _e572 = b_7;
-                    let _e573 = c_6;
-                    let _e575 = slots[_e571];
-                    param_64 = _e575;
-                    let _e577 = slots[_e572];
-                    param_65 = _e577;
-                    let _e579 = slots[_e573];
-                    param_66 = _e579;
-                    triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_64), (&param_65), (&param_66));
+                let _e696 = apex_1;
+                a_6 = _e696;
+                let _e697 = apex_1;
+                let _e698 = i_8;
+                let _e700 = B;
+                b_7 = ((_e697 + _e698) % _e700);
+                let _e702 = apex_1;
+                let _e703 = i_8;
+                let _e706 = B;
+                c_6 = (((_e702 + _e703) + 1u) % _e706);
+                let _e708 = sharedFlat;
+                if _e708 {
+                    let _e709 = a_6;
+                    let _e710 = b_7;
+                    let _e711 = c_6;
+                    let _e713 = slots[_e709];
+                    param_76 = _e713;
+                    let _e715 = slots[_e710];
+                    param_77 = _e715;
+                    let _e717 = slots[_e711];
+                    param_78 = _e717;
+                    triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_76), (&param_77), (&param_78));
                 } else {
-                    let _e580 = a_6;
-                    param_67 = _e580;
-                    let _e581 = b_7;
-                    param_68 = _e581;
-                    let _e582 = c_6;
-                    param_69 = _e582;
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_67), (&param_68), (&param_69));
+                    let _e718 = a_6;
+                    param_79 = _e718;
+                    let _e719 = b_7;
+                    param_80 = _e719;
+                    let _e720 = c_6;
+                    param_81 = _e720;
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_79), (&param_80), (&param_81));
                 }
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e583 = i_6;
-                i_6 = (_e583 + bitcast<u32>(1i));
+                let _e721 = i_8;
+                i_8 = (_e721 + bitcast<u32>(1i));
             }
         }
         return;
     }
-    let _e587 = el.crease;
-    let _e588 = (_e587 != 0u);
-    phi_1530_ = _e588;
-    if _e588 {
-        let _e590 = el.crease;
-        param_70 = _e590;
-        let _e591 = creaseAcrossS_u0028_u1_u003b((&param_70));
-        phi_1530_ = _e591;
+    let _e724 = share;
+    let _e725 = owned;
+    let _e726 = B;
+    grid_1 = select(_e726, _e725, _e724);
+    let _e729 = el.crease;
+    let _e730 = (_e729 != 0u);
+    phi_1783_ = _e730;
+    if _e730 {
+        let _e732 = el.crease;
+        param_82 = _e732;
+        let _e733 = creaseAcrossS_u0028_u1_u003b((&param_82));
+        phi_1783_ = _e733;
     }
-    let _e593 = phi_1530_;
-    gradeS = _e593;
-    let _e595 = el.crease;
-    let _e597 = gradeS;
-    gradeT = ((_e595 != 0u) && !(_e597));
-    let _e601 = el.crease;
-    param_71 = _e601;
-    let _e602 = creaseAtZero_u0028_u1_u003b((&param_71));
-    atZero_1 = _e602;
+    let _e735 = phi_1783_;
+    gradeS = _e735;
+    let _e737 = el.crease;
+    let _e739 = gradeS;
+    gradeT = ((_e737 != 0u) && !(_e739));
+    let _e743 = el.crease;
+    param_83 = _e743;
+    let _e744 = creaseAtZero_u0028_u1_u003b((&param_83));
+    atZero_1 = _e744;
     j_4 = 1u;
     loop {
-        let _e603 = j_4;
-        let _e604 = mv_1;
-        if (_e603 < _e604) {
-            i_7 = 1u;
+        let _e745 = j_4;
+        let _e746 = mv_1;
+        if (_e745 < _e746) {
+            i_9 = 1u;
             loop {
-                let _e606 = i_7;
-                let _e607 = mu_1;
-                if (_e606 < _e607) {
-                    let _e609 = i_7;
-                    param_72 = _e609;
-                    let _e610 = mu_1;
-                    param_73 = _e610;
-                    let _e611 = gradeS;
-                    param_74 = _e611;
-                    let _e612 = atZero_1;
-                    param_75 = _e612;
-                    let _e613 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_72), (&param_73), (&param_74), (&param_75));
-                    s_4 = _e613;
-                    let _e614 = j_4;
-                    param_76 = _e614;
-                    let _e615 = mv_1;
-                    param_77 = _e615;
-                    let _e616 = gradeT;
-                    param_78 = _e616;
-                    let _e617 = atZero_1;
-                    param_79 = _e617;
-                    let _e618 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_76), (&param_77), (&param_78), (&param_79));
-                    t_4 = _e618;
-                    let _e619 = gradeS;
-                    if _e619 {
-                        let _e620 = s_4;
-                        local_8 = (f32(_e620) / 32768f);
+                let _e748 = i_9;
+                let _e749 = mu_1;
+                if (_e748 < _e749) {
+                    let _e751 = i_9;
+                    param_84 = _e751;
+                    let _e752 = mu_1;
+                    param_85 = _e752;
+                    let _e753 = gradeS;
+                    param_86 = _e753;
+                    let _e754 = atZero_1;
+                    param_87 = _e754;
+                    let _e755 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_84), (&param_85), (&param_86), (&param_87));
+                    s_4 = _e755;
+                    let _e756 = j_4;
+                    param_88 = _e756;
+                    let _e757 = mv_1;
+                    param_89 = _e757;
+                    let _e758 = gradeT;
+                    param_90 = _e758;
+                    let _e759 = atZero_1;
+                    param_91 = _e759;
+                    let _e760 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_88), (&param_89), (&param_90), (&param_91));
+                    t_4 = _e760;
+                    let _e761 = gradeS;
+                    if _e761 {
+                        let _e762 = s_4;
+                        local_10 = (f32(_e762) / 32768f);
                     } else {
-                        let _e623 = i_7;
-                        let _e625 = mu_1;
-                        local_8 = (f32(_e623) / f32(_e625));
+                        let _e765 = i_9;
+                        let _e767 = mu_1;
+                        local_10 = (f32(_e765) / f32(_e767));
                     }
-                    let _e628 = local_8;
-                    let _e629 = gradeT;
-                    if _e629 {
-                        let _e630 = t_4;
-                        local_9 = (f32(_e630) / 32768f);
+                    let _e770 = local_10;
+                    let _e771 = gradeT;
+                    if _e771 {
+                        let _e772 = t_4;
+                        local_11 = (f32(_e772) / 32768f);
                     } else {
-                        let _e633 = j_4;
-                        let _e635 = mv_1;
-                        local_9 = (f32(_e633) / f32(_e635));
+                        let _e775 = j_4;
+                        let _e777 = mv_1;
+                        local_11 = (f32(_e775) / f32(_e777));
                     }
-                    let _e638 = local_9;
-                    f_1 = vec2<f32>(_e628, _e638);
-                    let _e641 = pc.smoothUV;
-                    if (_e641 != 0u) {
-                        let _e643 = s_4;
-                        let _e645 = t_4;
-                        f_1 = (vec2<f32>(f32(_e643), f32(_e645)) / vec2(32768f));
+                    let _e780 = local_11;
+                    f_1 = vec2<f32>(_e770, _e780);
+                    let _e783 = pc.smoothUV;
+                    if (_e783 != 0u) {
+                        let _e785 = s_4;
+                        let _e787 = t_4;
+                        f_1 = (vec2<f32>(f32(_e785), f32(_e787)) / vec2(32768f));
                     }
-                    let _e650 = B_1;
-                    let _e651 = j_4;
-                    let _e653 = mu_1;
-                    let _e657 = i_7;
-                    let _e660 = s_4;
-                    let _e661 = t_4;
-                    let _e666 = f_1[0u];
-                    param_80 = _e666;
-                    let _e668 = f_1[1u];
-                    param_81 = _e668;
-                    let _e669 = uvAt_u0028_f1_u003b_f1_u003b((&param_80), (&param_81));
-                    param_82 = ((_e650 + ((_e651 - 1u) * (_e653 - 1u))) + (_e657 - 1u));
-                    let _e670 = (*e);
-                    param_83 = _e670;
-                    param_84 = (_e660 | (_e661 << bitcast<u32>(16i)));
-                    param_85 = _e669;
-                    vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_82), (&param_83), (&param_84), (&param_85));
+                    let _e792 = grid_1;
+                    let _e793 = j_4;
+                    let _e795 = mu_1;
+                    let _e799 = i_9;
+                    let _e802 = s_4;
+                    let _e803 = t_4;
+                    let _e808 = f_1[0u];
+                    param_92 = _e808;
+                    let _e810 = f_1[1u];
+                    param_93 = _e810;
+                    let _e811 = uvAt_u0028_f1_u003b_f1_u003b((&param_92), (&param_93));
+                    param_94 = ((_e792 + ((_e793 - 1u) * (_e795 - 1u))) + (_e799 - 1u));
+                    let _e812 = (*e);
+                    param_95 = _e812;
+                    param_96 = (_e802 | (_e803 << bitcast<u32>(16i)));
+                    param_97 = _e811;
+                    vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_94), (&param_95), (&param_96), (&param_97));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e671 = i_7;
-                    i_7 = (_e671 + bitcast<u32>(1i));
+                    let _e813 = i_9;
+                    i_9 = (_e813 + bitcast<u32>(1i));
                 }
             }
             continue;
@@ -1413,49 +1640,49 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e674 = j_4;
-            j_4 = (_e674 + bitcast<u32>(1i));
+            let _e816 = j_4;
+            j_4 = (_e816 + bitcast<u32>(1i));
         }
     }
     j_5 = 1u;
     loop {
-        let _e677 = j_5;
-        let _e679 = mv_1;
-        if ((_e677 + 1u) < _e679) {
-            i_8 = 1u;
+        let _e819 = j_5;
+        let _e821 = mv_1;
+        if ((_e819 + 1u) < _e821) {
+            i_10 = 1u;
             loop {
-                let _e681 = i_8;
-                let _e683 = mu_1;
-                if ((_e681 + 1u) < _e683) {
-                    let _e685 = B_1;
-                    let _e686 = j_5;
-                    let _e688 = mu_1;
-                    let _e692 = i_8;
-                    a_7 = ((_e685 + ((_e686 - 1u) * (_e688 - 1u))) + (_e692 - 1u));
-                    let _e695 = a_7;
-                    let _e697 = a_7;
-                    let _e698 = mu_1;
-                    let _e700 = a_7;
-                    param_86 = _e700;
-                    param_87 = (_e695 + 1u);
-                    param_88 = (_e697 + _e698);
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_86), (&param_87), (&param_88));
-                    let _e701 = a_7;
-                    let _e702 = mu_1;
-                    let _e704 = a_7;
-                    let _e705 = mu_1;
-                    let _e708 = a_7;
-                    param_89 = _e708;
-                    param_90 = (_e701 + _e702);
-                    param_91 = ((_e704 + _e705) - 1u);
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_89), (&param_90), (&param_91));
+                let _e823 = i_10;
+                let _e825 = mu_1;
+                if ((_e823 + 1u) < _e825) {
+                    let _e827 = grid_1;
+                    let _e828 = j_5;
+                    let _e830 = mu_1;
+                    let _e834 = i_10;
+                    a_7 = ((_e827 + ((_e828 - 1u) * (_e830 - 1u))) + (_e834 - 1u));
+                    let _e837 = a_7;
+                    let _e839 = a_7;
+                    let _e840 = mu_1;
+                    let _e842 = a_7;
+                    param_98 = _e842;
+                    param_99 = (_e837 + 1u);
+                    param_100 = (_e839 + _e840);
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_98), (&param_99), (&param_100));
+                    let _e843 = a_7;
+                    let _e844 = mu_1;
+                    let _e846 = a_7;
+                    let _e847 = mu_1;
+                    let _e850 = a_7;
+                    param_101 = _e850;
+                    param_102 = (_e843 + _e844);
+                    param_103 = ((_e846 + _e847) - 1u);
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_101), (&param_102), (&param_103));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e709 = i_8;
-                    i_8 = (_e709 + bitcast<u32>(1i));
+                    let _e851 = i_10;
+                    i_10 = (_e851 + bitcast<u32>(1i));
                 }
             }
             continue;
@@ -1463,109 +1690,142 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e712 = j_5;
-            j_5 = (_e712 + bitcast<u32>(1i));
+            let _e854 = j_5;
+            j_5 = (_e854 + bitcast<u32>(1i));
         }
     }
-    k_6 = 0u;
+    k_8 = 0u;
     loop {
-        let _e715 = k_6;
-        if (_e715 < 4u) {
-            let _e717 = k_6;
-            let _e719 = sideTotal_1[_e717];
-            na = _e719;
-            let _e720 = k_6;
-            if ((_e720 & 1u) == 0u) {
-                let _e723 = mu_1;
-                local_10 = (_e723 - 2u);
+        let _e857 = k_8;
+        if (_e857 < 4u) {
+            let _e859 = k_8;
+            let _e861 = sideTotal_1[_e859];
+            na = _e861;
+            let _e862 = k_8;
+            if ((_e862 & 1u) == 0u) {
+                let _e865 = mu_1;
+                local_12 = (_e865 - 2u);
             } else {
-                let _e725 = mv_1;
-                local_10 = (_e725 - 2u);
+                let _e867 = mv_1;
+                local_12 = (_e867 - 2u);
             }
-            let _e727 = local_10;
-            nb = _e727;
+            let _e869 = local_12;
+            nb = _e869;
             ia = 0u;
             jb = 0u;
+            let _e870 = share;
+            if _e870 {
+                let _e871 = k_8;
+                param_104 = _e871;
+                param_105 = 0u;
+                let _e872 = na;
+                param_106 = _e872;
+                let _e873 = sharedSlot_u0028_u1_u003b_u1_u003b_u1_u003b((&param_104), (&param_105), (&param_106));
+                local_13 = _e873;
+            } else {
+                let _e874 = vBase;
+                let _e875 = k_8;
+                let _e877 = sideStart_1[_e875];
+                local_13 = (_e874 + _e877);
+            }
+            let _e879 = local_13;
+            a0_ = _e879;
             loop {
-                let _e728 = ia;
-                let _e729 = na;
-                let _e731 = jb;
-                let _e732 = nb;
-                if ((_e728 < _e729) || (_e731 < _e732)) {
-                    let _e735 = k_6;
-                    let _e737 = sideStart_1[_e735];
-                    let _e738 = ia;
-                    let _e740 = B_1;
-                    a0_ = ((_e737 + _e738) % _e740);
-                    let _e742 = k_6;
-                    param_92 = _e742;
-                    let _e743 = jb;
-                    param_93 = _e743;
-                    let _e744 = mu_1;
-                    param_94 = _e744;
-                    let _e745 = mv_1;
-                    param_95 = _e745;
-                    let _e746 = B_1;
-                    param_96 = _e746;
-                    let _e747 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_92), (&param_93), (&param_94), (&param_95), (&param_96));
-                    g0_ = _e747;
-                    let _e748 = jb;
-                    let _e750 = k_6;
-                    param_97 = _e750;
-                    param_98 = (_e748 + 1u);
-                    let _e751 = mu_1;
-                    param_99 = _e751;
-                    let _e752 = mv_1;
-                    param_100 = _e752;
-                    let _e753 = B_1;
-                    param_101 = _e753;
-                    let _e754 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_97), (&param_98), (&param_99), (&param_100), (&param_101));
-                    g1_ = _e754;
-                    let _e755 = jb;
-                    let _e756 = nb;
-                    let _e757 = (_e755 == _e756);
-                    phi_1807_ = _e757;
-                    if !(_e757) {
-                        let _e759 = ia;
-                        let _e760 = na;
-                        let _e761 = (_e759 < _e760);
-                        phi_1806_ = _e761;
-                        if _e761 {
-                            let _e762 = ia;
-                            let _e765 = nb;
-                            let _e767 = jb;
-                            let _e770 = na;
-                            phi_1806_ = ((((2u * _e762) + 1u) * _e765) <= (((2u * _e767) + 1u) * _e770));
+                let _e880 = ia;
+                let _e881 = na;
+                let _e883 = jb;
+                let _e884 = nb;
+                if ((_e880 < _e881) || (_e883 < _e884)) {
+                    let _e887 = vBase;
+                    let _e888 = k_8;
+                    param_107 = _e888;
+                    let _e889 = jb;
+                    param_108 = _e889;
+                    let _e890 = mu_1;
+                    param_109 = _e890;
+                    let _e891 = mv_1;
+                    param_110 = _e891;
+                    let _e892 = grid_1;
+                    param_111 = _e892;
+                    let _e893 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111));
+                    g0_ = (_e887 + _e893);
+                    let _e895 = vBase;
+                    let _e896 = jb;
+                    let _e898 = k_8;
+                    param_112 = _e898;
+                    param_113 = (_e896 + 1u);
+                    let _e899 = mu_1;
+                    param_114 = _e899;
+                    let _e900 = mv_1;
+                    param_115 = _e900;
+                    let _e901 = grid_1;
+                    param_116 = _e901;
+                    let _e902 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_112), (&param_113), (&param_114), (&param_115), (&param_116));
+                    g1_ = (_e895 + _e902);
+                    let _e904 = jb;
+                    let _e905 = nb;
+                    let _e906 = (_e904 == _e905);
+                    phi_2074_ = _e906;
+                    if !(_e906) {
+                        let _e908 = ia;
+                        let _e909 = na;
+                        let _e910 = (_e908 < _e909);
+                        phi_2073_ = _e910;
+                        if _e910 {
+                            let _e911 = ia;
+                            let _e914 = nb;
+                            let _e916 = jb;
+                            let _e919 = na;
+                            phi_2073_ = ((((2u * _e911) + 1u) * _e914) <= (((2u * _e916) + 1u) * _e919));
                         }
-                        let _e774 = phi_1806_;
-                        phi_1807_ = _e774;
+                        let _e923 = phi_2073_;
+                        phi_2074_ = _e923;
                     }
-                    let _e776 = phi_1807_;
-                    advanceA = _e776;
-                    let _e777 = advanceA;
-                    if _e777 {
-                        let _e778 = k_6;
-                        let _e780 = sideStart_1[_e778];
-                        let _e781 = ia;
-                        let _e784 = B_1;
-                        let _e786 = a0_;
-                        param_102 = _e786;
-                        param_103 = (((_e780 + _e781) + 1u) % _e784);
-                        let _e787 = g0_;
-                        param_104 = _e787;
-                        tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_102), (&param_103), (&param_104));
-                        let _e788 = ia;
-                        ia = (_e788 + bitcast<u32>(1i));
+                    let _e925 = phi_2074_;
+                    advanceA = _e925;
+                    let _e926 = advanceA;
+                    if _e926 {
+                        let _e927 = share;
+                        if _e927 {
+                            let _e928 = ia;
+                            let _e930 = k_8;
+                            param_117 = _e930;
+                            param_118 = (_e928 + 1u);
+                            let _e931 = na;
+                            param_119 = _e931;
+                            let _e932 = sharedSlot_u0028_u1_u003b_u1_u003b_u1_u003b((&param_117), (&param_118), (&param_119));
+                            local_14 = _e932;
+                        } else {
+                            let _e933 = vBase;
+                            let _e934 = k_8;
+                            let _e936 = sideStart_1[_e934];
+                            let _e937 = ia;
+                            let _e940 = B;
+                            local_14 = (_e933 + (((_e936 + _e937) + 1u) % _e940));
+                        }
+                        let _e943 = local_14;
+                        a1_ = _e943;
+                        let _e944 = a0_;
+                        param_120 = _e944;
+                        let _e945 = a1_;
+                        param_121 = _e945;
+                        let _e946 = g0_;
+                        param_122 = _e946;
+                        triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_120), (&param_121), (&param_122));
+                        let _e947 = a1_;
+                        a0_ = _e947;
+                        let _e948 = ia;
+                        ia = (_e948 + bitcast<u32>(1i));
                     } else {
-                        let _e791 = a0_;
-                        param_105 = _e791;
-                        let _e792 = g1_;
-                        param_106 = _e792;
-                        let _e793 = g0_;
-                        param_107 = _e793;
-                        tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_105), (&param_106), (&param_107));
-                        let _e794 = jb;
-                        jb = (_e794 + bitcast<u32>(1i));
+                        let _e951 = a0_;
+                        param_123 = _e951;
+                        let _e952 = g1_;
+                        param_124 = _e952;
+                        let _e953 = g0_;
+                        param_125 = _e953;
+                        triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_123), (&param_124), (&param_125));
+                        let _e954 = jb;
+                        jb = (_e954 + bitcast<u32>(1i));
                     }
                     continue;
                 } else {
@@ -1577,54 +1837,54 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e797 = k_6;
-            k_6 = (_e797 + bitcast<u32>(1i));
+            let _e957 = k_8;
+            k_8 = (_e957 + bitcast<u32>(1i));
         }
     }
     return;
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e64 = gl_GlobalInvocationID_1[1u];
-    let _e65 = (*rowInvocations);
-    let _e68 = gl_GlobalInvocationID_1[0u];
-    return ((_e64 * _e65) + _e68);
+    let _e70 = gl_GlobalInvocationID_1[1u];
+    let _e71 = (*rowInvocations);
+    let _e74 = gl_GlobalInvocationID_1[0u];
+    return ((_e70 * _e71) + _e74);
 }
 
 fn main_1() {
     var e_1: u32;
-    var param_108: u32;
-    var param_109: u32;
+    var param_126: u32;
+    var param_127: u32;
     var inf_1: vec4<u32>;
-    var phi_1872_: bool;
+    var phi_2158_: bool;
 
-    let _e67 = pc.limnRowInvocations;
-    param_108 = _e67;
-    let _e68 = limnInvocationIndex_u0028_u1_u003b((&param_108));
-    e_1 = _e68;
-    let _e69 = e_1;
-    let _e71 = pc.limnCount;
-    if (_e69 >= _e71) {
+    let _e73 = pc.limnRowInvocations;
+    param_126 = _e73;
+    let _e74 = limnInvocationIndex_u0028_u1_u003b((&param_126));
+    e_1 = _e74;
+    let _e75 = e_1;
+    let _e77 = pc.limnCount;
+    if (_e75 >= _e77) {
         return;
     }
-    let _e73 = e_1;
-    param_109 = _e73;
-    emitElement_u0028_u1_u003b((&param_109));
-    let _e74 = e_1;
-    let _e77 = info.v[_e74];
-    inf_1 = _e77;
-    let _e79 = inf_1[3u];
-    let _e82 = ((_e79 >> bitcast<u32>(31i)) != 0u);
-    phi_1872_ = _e82;
-    if _e82 {
-        let _e83 = tNext;
-        let _e85 = inf_1[2u];
-        let _e87 = inf_1[3u];
-        phi_1872_ = (_e83 != (_e85 + (_e87 & 2147483647u)));
+    let _e79 = e_1;
+    param_127 = _e79;
+    emitElement_u0028_u1_u003b((&param_127));
+    let _e80 = e_1;
+    let _e83 = info.v[_e80];
+    inf_1 = _e83;
+    let _e85 = inf_1[3u];
+    let _e88 = ((_e85 >> bitcast<u32>(31i)) != 0u);
+    phi_2158_ = _e88;
+    if _e88 {
+        let _e89 = tNext;
+        let _e91 = inf_1[2u];
+        let _e93 = inf_1[3u];
+        phi_2158_ = (_e89 != (_e91 + (_e93 & 2147483647u)));
     }
-    let _e92 = phi_1872_;
-    if _e92 {
-        let _e95 = atomicOr((&totals.t[23i]), 1u);
+    let _e98 = phi_2158_;
+    if _e98 {
+        let _e101 = atomicOr((&totals.t[23i]), 1u);
     }
     return;
 }

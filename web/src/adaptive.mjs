@@ -157,7 +157,13 @@ export function adaptiveData(ep, tables, options) {
     for (const w of new Uint32Array(records.buffer, records.byteOffset, records.length)) words.push(w);
   }
   const sideBase = words.length / 4;
-  for (const s of ep.sidePieces) words.push(s.piece, s.startPoint, s.reversed, (s.from | (s.to << 16)) >>> 0);
+  // z: bit 0 reversed, bit 1 the piece owner's side (the first naming the piece), which writes the
+  // piece's shared points (adaptive_tess.cpp).
+  const registered = new Uint8Array(ep.pieces.length);
+  for (const s of ep.sidePieces) {
+    words.push(s.piece, s.startPoint, s.reversed | (registered[s.piece] ? 0 : 2), (s.from | (s.to << 16)) >>> 0);
+    registered[s.piece] = 1;
+  }
   for (let i = 0; i < ep.elements.length; i++) for (let k = 0; k < 4; k++) elements[20 * i + k] += sideBase;
   if (words.length * 4 > MAX_BUFFER) throw new LimnError(`the view-adaptive tessellation's edge pieces would need ${(words.length / 2 ** 18).toFixed(1)} MiB, over WebGPU's 128 MiB storage-buffer limit`, 'input');
   return { elements, pieces: Uint32Array.from(words), capV, capT, shared, pointBase, domainBase, nodeBase, recordBase, smooth: !!options.smooth, elementCount: ep.elements.length, pieceCount: ep.pieces.length };
@@ -180,7 +186,7 @@ export function adaptivePushes(data, tables, options, view) {
   const counts = [options.tess, data.smooth ? 12 : 0, data.shared ? 1 : 0, samples, packed[0], packed[1], options.evaluated ? 0 : 1];
   const scan = [data.elementCount, data.capV, data.capT, ROW_GROUPS, EVAL_GROUP_SIZE, data.shared];
   // fvarCell 2^-21: 1/32 of the finest cell at depth 16, above float's step at 1.
-  const emit = [data.pointBase, data.capT, data.smooth ? 1 : 0, data.smooth ? f32(2 ** -21) : 0, data.domainBase, data.nodeBase, data.recordBase, data.shared ? 1 : 0];
+  const emit = [data.pointBase, data.capT, data.smooth ? 1 : 0, data.smooth ? f32(2 ** -21) : 0, data.domainBase, data.nodeBase, data.recordBase, data.shared ? 1 : 0, data.capV];
   return [
     ['adaptive_cull.comp', data.elementCount, cull],
     ['adaptive_rates.comp', data.pieceCount, rates],

@@ -177,7 +177,8 @@ export class Renderer {
         cull: this.empty('adaptive cull flags', d.elementCount * 4),
         rates: this.empty('adaptive edge rates', d.pieceCount * 4),
         pieceEnds: this.empty('adaptive piece ends', d.pieceCount * 16),
-        info: this.empty('adaptive element offsets', d.elementCount * 16),
+        // Per element, then (shared points) per edge piece, four a record (adaptive_tess.cpp).
+        info: this.empty('adaptive element offsets', d.elementCount * 16 + Math.ceil(d.pieceCount / 4) * 16),
         totals: this.empty('adaptive totals', TOTALS_WORDS * 4, STORAGE | INDIRECT),
         tessVertices: this.empty('adaptive tessellation vertices', d.capV * 16),
         triangles: this.empty('adaptive triangle indices', d.capT * 12, STORAGE | INDEX),

@@ -23,7 +23,8 @@ AdaptiveOptions adaptiveOptions(const RenderSettings& settings, const Subdivisio
         else if (settings.samples == 4 && standardSampleLocations)
             adaptive.samplePositions = {{0.375f, 0.875f}, {0.875f, 0.625f}, {0.125f, 0.375f}, {0.625f, 0.125f}};
     }
-    adaptive.sharePoints = settings.sharePoints && settings.shade != Shade::Uv && settings.shade != Shade::Texture;
+    adaptive.sharePoints = settings.sharePoints && settings.shade != Shade::Uv && settings.shade != Shade::Texture &&
+                           !settings.evaluateVertices && settings.wire == Wire::None && !settings.displacementMap;
     if (settings.displacementMap) // at least a segment per texel, up to one per 2 pixels
         adaptive.texelsPerUV = float(std::max(settings.displacementMap->width, settings.displacementMap->height));
     // Per-frame buffers: every element at its smallest (whole-surface --mesh-out), plus

@@ -49,7 +49,7 @@ struct ScanPush { // adaptive_scan.comp
 struct EmitPush { // adaptive_emit.comp
     uint32_t pointBase, triangleCapacity, smoothUV;
     float fvarCell;
-    uint32_t domainBase, nodeBase, recordBase, sharePoints;
+    uint32_t domainBase, nodeBase, recordBase, sharePoints, vertexCapacity;
 };
 
 constexpr uint32_t kTotalsWords = 24;
@@ -128,11 +128,11 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
         maxT += m <= 2 ? B : 2 * (m - 2) * (m - 2) + B + 4 * (m - 2);
     }
     const uint64_t limitV = gpu::kMaxStorageBufferBytes / 16, limitT = gpu::kMaxStorageBufferBytes / 12;
-    // Shared points: the first slots are the points', so that flat elements (most of a fine
-    // mesh's, seen from afar) draw their corners from one vertex each instead of four copies
-    // (the vertex stage evaluates each slot once per batch of triangles); only where nothing
-    // reads a vertex's own-chart UV (which differs across a UV seam) or the whole surface.
-    if (options.sharePoints && !options.evaluated && ep.points.size() < limitV / 2) {
+    // Shared points: the first slots are the points', so that elements draw their corners
+    // from one vertex each instead of four copies (the vertex stage evaluates each slot once
+    // per batch of triangles, the compute evaluation once); only where nothing reads a
+    // vertex's own-chart UV (which differs across a UV seam) or the whole surface.
+    if (options.sharePoints && ep.points.size() < limitV / 2) {
         sharedPoints_ = static_cast<uint32_t>(ep.points.size());
         maxV += sharedPoints_;
     }
@@ -171,8 +171,16 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     // The side pieces last, the elements' sideFirst made indices into this buffer: the counts
     // and emit passes read them from it, which leaves the emit pass (at WebGPU's 8 storage
     // buffers) a binding for the totals, where it reports an element it could not finish.
+    // z: bit 0 the side runs against the piece owner's direction, bit 1 it is the owner's side
+    // (the first side piece naming the piece, buildEdgePieces's registration), which writes the
+    // piece's shared points (adaptive_emit.comp).
     const auto sideBase = static_cast<uint32_t>(pieces.size());
-    for (const SidePiece& s : ep.sidePieces) pieces.push_back({s.piece, s.startPoint, s.reversed, s.from | s.to << 16});
+    std::vector<bool> registered(ep.pieces.size(), false);
+    for (const SidePiece& s : ep.sidePieces) {
+        const uint32_t owns = registered[s.piece] ? 0u : 2u;
+        registered[s.piece] = true;
+        pieces.push_back({s.piece, s.startPoint, s.reversed | owns, s.from | s.to << 16});
+    }
     for (GpuAdaptiveElement& g : elements)
         for (uint32_t& first : g.sideFirst) first += sideBase;
 
@@ -185,7 +193,8 @@ AdaptiveTess::AdaptiveTess(gpu::Context& ctx, const EdgePieces& ep, uint32_t pat
     cull_ = make("adaptive cull flags", uint64_t(elementCount_) * 4);
     rates_ = make("adaptive edge rates", uint64_t(pieceCount_) * 4);
     pieceEnds_ = make("adaptive piece ends", uint64_t(pieceCount_) * 16);
-    info_ = make("adaptive element offsets", uint64_t(elementCount_) * 16);
+    // Per element, then (shared points) per edge piece, four a record (adaptive_counts.comp).
+    info_ = make("adaptive element offsets", uint64_t(elementCount_) * 16 + (uint64_t(pieceCount_) + 3) / 4 * 16);
     totals_ = make("adaptive totals", kTotalsWords * 4, gpu::kStorage | gpu::kIndirect);
     tessVertices_ = make("adaptive tessellation vertices", uint64_t(capV_) * 16);
     triangles_ = make("adaptive triangle indices", uint64_t(capT_) * 12, gpu::kStorage | gpu::kIndex);
@@ -255,7 +264,7 @@ void AdaptiveTess::recordPasses(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     cmd.endTimed();
     cmd.barrier(write, read);
     CountPush np{options_.tess, options_.fvarNodes.empty() ? 0u : kFvarLoopsPerVertex, sharedPoints_ ? 1u : 0u,
-                 samples, {cp.samples[0], cp.samples[1]}, options_.evaluated ? 0u : 1u};
+                 samples, {cp.samples[0], cp.samples[1]}, options_.evaluated && !sharedPoints_ ? 0u : 1u};
     timed.begin(cmd, "adaptive counts", true);
     cmd.dispatch(*passes_->counts, countBind_, elementCount_, np);
     cmd.endTimed();
@@ -270,7 +279,7 @@ void AdaptiveTess::recordPasses(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     timed.begin(cmd, "adaptive emit", true);
     cmd.dispatch(*passes_->emit, emitBind_, elementCount_,
                  EmitPush{pointBase_, capT_, options_.fvarNodes.empty() ? 0u : 1u, options_.fvarCell, domainBase_,
-                          nodeBase_, recordBase_, sharedPoints_ ? 1u : 0u});
+                          nodeBase_, recordBase_, sharedPoints_ ? 1u : 0u, capV_});
     cmd.endTimed();
     cmd.barrier(write, read | gpu::Access::VertexRead | gpu::Access::IndexRead | gpu::Access::IndirectRead);
 }

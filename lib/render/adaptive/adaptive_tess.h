@@ -100,8 +100,10 @@ struct AdaptiveOptions {
     // crease bit of GpuPatch::levelBoundary), 0 otherwise; the emit pass grades the segments
     // across a crease towards it. Missing entries are 0.
     std::vector<uint8_t> elementCrease;
-    // Whether vertices may be shared between elements at points (corners and piece ends): the
-    // draw reads no own-chart UV (no --texture, no --shade uv). Off when `evaluated`.
+    // Whether vertices may be shared between elements at points (corners and piece ends) and
+    // along edge pieces: the draw reads no own-chart UV (no --texture, no --shade uv), and
+    // nothing reads the whole surface or each element's own vertices (no --mesh-out, --wire,
+    // displacement). With `evaluated`, the compute pass then evaluates each point once.
     bool sharePoints = false;
     // Built ahead (see AdaptivePipelines); null: AdaptiveTess builds them itself.
     std::shared_ptr<AdaptivePipelines> pipelines;

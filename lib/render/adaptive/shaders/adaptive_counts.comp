@@ -34,14 +34,16 @@ layout(std430, binding = 0) readonly buffer Elements { AdaptiveElement e[]; } el
 layout(std430, binding = 1) readonly buffer Pieces { uvec4 v[]; } pieces; // side pieces at el.sideFirst
 layout(std430, binding = 2) readonly buffer Rates { uint r[]; } rates;
 layout(std430, binding = 3) readonly buffer Cull { uint c[]; } cull;
-layout(std430, binding = 4) writeonly buffer Info { uvec4 v[]; } info; // m | culled, V, T, over budget
+// Per element: m | culled, V, T, over budget; with shared points, after the elements, per edge
+// piece (four a record) where its interior points start among its owner's vertices.
+layout(std430, binding = 4) writeonly buffer Info { uvec4 v[]; } info;
 layout(std430, binding = 5) readonly buffer PieceEnds { vec4 v[]; } pieceEnds; // pixels (adaptive_rates.comp)
 
 layout(push_constant) uniform Push {
     LIMN_DISPATCH_HEADER
     layout(offset = 16) uint tess;
     uint vertexLoops; // the emit pass's loop iterations per vertex beyond its own (smooth UVs)
-    uint sharePoints; // adaptive_emit.comp's shared points: flat elements own no vertices, culled ones nothing
+    uint sharePoints; // adaptive_emit.comp's shared points: an element's vertices are its pieces' and its grid
     uint sampleCount; // the sample positions of the image (0: no test), as adaptive_cull.comp's
     uvec2 samples;
     // Whether a flat element may leave out some of its fan triangles; not where the whole
@@ -94,7 +96,7 @@ uint drawnFan(AdaptiveElement el, uint B) {
         for (uint p = 0u; p < el.sideCount[k] && n < 8u; ++p) {
             uvec4 sp = pieces.v[el.sideFirst[k] + p];
             vec4 ends = pieceEnds.v[sp.x];
-            px[n++] = sp.z != 0u ? ends.zw : ends.xy; // where this side's piece starts
+            px[n++] = (sp.z & 1u) != 0u ? ends.zw : ends.xy; // where this side's piece starts
         }
         sideTotal[k] = n - sideStart[k];
     }
@@ -127,10 +129,16 @@ void main() {
     AdaptiveElement el = elements.e[e];
     uint B = 0u, most[2] = uint[2](1u, 1u); // along s (sides 0, 2), along t (sides 1, 3)
     bool flatSides = true, singleSide[2] = bool[2](false, false);
+    uint owned = 0u; // shared points: the interior points of the pieces this element owns
     for (int k = 0; k < 4; ++k) {
         uint side = 0u, size = 0u;
         for (uint p = 0u; p < el.sideCount[k]; ++p) {
-            uint r = rates.r[pieces.v[el.sideFirst[k] + p].x];
+            uvec4 sp = pieces.v[el.sideFirst[k] + p];
+            uint r = rates.r[sp.x];
+            if (pc.sharePoints != 0u && (sp.z & 2u) != 0u) { // the owner's side of the piece
+                info.v[pc.limnCount + sp.x / 4u][sp.x % 4u] = owned;
+                owned += (r & 0xFFFFu) - 1u;
+            }
             side += r & 0xFFFFu;
             size += r >> 16;
             flatSides = flatSides && r == (1u | (1u << 16));
@@ -161,8 +169,11 @@ void main() {
     uint V = B + (flatElement ? 0u : (mu - 1u) * (mv - 1u));
     uint T = flatElement ? uint(bitCount(fan)) : 2u * (mu - 2u) * (mv - 2u) + B + 2u * (mu - 2u) + 2u * (mv - 2u);
     if (pc.sharePoints != 0u) {
-        if (flatElement) V = 0u;    // its boundary is points only, drawn from their shared slots
-        if (culled) V = 0u, T = 0u; // drawn by nobody, and nothing reads the whole surface
+        // Its boundary is drawn from shared slots: the points', and each piece's interior
+        // points written once, by the piece's owner (adaptive_emit.comp), also when the owner
+        // itself is culled or flat (a piece next to a drawn element has a rate above 1).
+        V = owned + (flatElement || culled ? 0u : (mu - 1u) * (mv - 1u));
+        if (culled) T = 0u; // drawn by nobody, and nothing reads the whole surface
     }
     uint packed = flatElement ? adaptivePackFlat(fan) : adaptivePackRates(mu, mv);
     info.v[e] = uvec4(packed | (culled ? ADAPTIVE_CULLED : 0u), V, T, overBudget);

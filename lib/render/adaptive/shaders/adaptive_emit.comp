@@ -7,7 +7,8 @@
 // piece's rate, named by the *piece owner's* element and parameters (computed from the owner's
 // two end parameters and the point's index in the owner's direction). Both sides of a piece so
 // write the same (element, s, t) for each shared point, and the evaluation turns those into the
-// same bits: watertight to the bit without sharing indices across elements. A coarse side next
+// same bits: watertight to the bit without sharing indices across elements (and with shared
+// points, pc.sharePoints, both draw the one slot the owner wrote). A coarse side next
 // to two finer patches has two pieces, so level transitions meet point to point (no T-junction).
 // Interior (rates mu along s, mv along t, each >= 2): two triangles when both are 2 and the
 // boundary is the four corners; otherwise the (mu-1)(mv-1) grid points (i/mu, j/mv) (one centre
@@ -25,7 +26,7 @@ layout(std430, binding = 0) readonly buffer Elements { AdaptiveElement e[]; } el
 layout(std430, binding = 1) buffer Totals { uint t[]; } totals; // [23]: an element cut short
 layout(std430, binding = 2) readonly buffer Pieces { uvec4 v[]; } pieces; // pieces, then points
 layout(std430, binding = 3) readonly buffer Rates { uint r[]; } rates;
-layout(std430, binding = 4) readonly buffer Info { uvec4 v[]; } info;
+layout(std430, binding = 4) readonly buffer Info { uvec4 v[]; } info; // + per piece, shared points
 layout(std430, binding = 5) writeonly buffer TessVertices { uvec4 v[]; } tessVertices;
 layout(std430, binding = 6) writeonly buffer Triangles { uint i[]; } triangles;
 layout(std430, binding = 7) writeonly buffer TriangleLevels { uint l[]; } triangleLevels;
@@ -42,9 +43,12 @@ layout(push_constant) uniform Push {
     float fvarCell;
     uint domainBase, nodeBase, recordBase;
     // Shared points (AdaptiveOptions::sharePoints): vertex slot i < the number of points is point
-    // i, written by its owner; flat elements draw their boundary (points only) from those slots,
-    // culled ones emit nothing but the points they own.
+    // i, written by its owner; a piece's interior points are written once, by the piece's owner,
+    // first among its own vertices (at the offset adaptive_counts.comp put after the elements'
+    // records in `info`). Every element draws its boundary from those slots; culled ones emit
+    // nothing but the points and piece points they own.
     uint sharePoints;
+    uint vertexCapacity;
 } pc;
 
 uint fvarNode(uint i) { return pieces.v[pc.nodeBase + i / 4u][i % 4u]; }
@@ -133,13 +137,33 @@ uint gridCoord(uint i, uint m, bool graded, bool atZero) {
 // Ring point x along side k of the interior grid (the zipper strips' other side), as a local
 // vertex. Not a loop over the two a zipper step needs: every loop iteration counts against
 // lavapipe's limit (adaptive_counts.comp's budget).
-uint ringPoint(uint k, uint x, uint mu, uint mv, uint B) {
+uint ringPoint(uint k, uint x, uint mu, uint mv, uint grid) {
     uint gi, gj;
     if (k == 0u) gi = 1u + x, gj = 1u;
     else if (k == 1u) gi = mu - 1u, gj = 1u + x;
     else if (k == 2u) gi = mu - 1u - x, gj = mv - 1u;
     else gi = 1u, gj = mv - 1u - x;
-    return B + (gj - 1u) * (mu - 1u) + (gi - 1u);
+    return grid + (gj - 1u) * (mu - 1u) + (gi - 1u);
+}
+
+// Shared points: the vertex slot of boundary point x of side k (x = the side's point count: the
+// next side's first point), for x = 0, 1, 2, ... in turn. A point's own slot, or one of a piece's
+// interior points in its owner's vertices; the side's current piece is kept across calls.
+uint curPiece, curStart, curRate, curBase;
+uvec4 curSide;
+void loadSidePiece(uint k) {
+    curSide = pieces.v[el.sideFirst[k] + curPiece];
+    curRate = rates.r[curSide.x] & 0xFFFFu;
+    uint owner = pieces.v[2u * curSide.x].x;
+    curBase = info.v[owner].y + info.v[pc.limnCount + curSide.x / 4u][curSide.x % 4u];
+}
+uint sharedSlot(uint k, uint x, uint total) {
+    if (x == total) return pieces.v[el.sideFirst[(k + 1u) & 3u]].y;
+    if (x == 0u) curPiece = 0u, curStart = 0u, loadSidePiece(k);
+    else if (x >= curStart + curRate) curStart += curRate, ++curPiece, loadSidePiece(k);
+    uint i = x - curStart;
+    if (i == 0u) return curSide.y;
+    return curBase + ((curSide.z & 1u) != 0u ? curRate - i : i) - 1u;
 }
 
 void emitElement(uint e) {
@@ -150,19 +174,36 @@ void emitElement(uint e) {
     vBase = inf.y;
     tNext = inf.z;
     bool share = pc.sharePoints != 0u;
+    uint owned = 0u; // shared points: this element's vertices that are its pieces' points
     if (share) {
-        // The points this element owns, into their slots (before the capacity test: the slots
-        // are always there, and other elements draw them).
+        // The points and the pieces' interior points this element owns, into their slots
+        // (before the capacity test: other elements draw them; an owner comes before every
+        // other user of its pieces, so their vertices fit where the owner's do).
         el = elements.e[e];
         elIndex = e;
         for (uint k = 0u; k < 4u; ++k)
             for (uint p = 0u; p < el.sideCount[k]; ++p) {
                 uvec4 sp = pieces.v[el.sideFirst[k] + p];
                 uvec4 point = pieces.v[pc.pointBase + sp.y];
-                if (point.x != e) continue;
-                vec2 st = sideParam(k, float(sp.w & 0xFFFFu));
-                vec2 uv = uvAt(st.x, st.y);
-                tessVertices.v[sp.y] = uvec4(point.x, point.y, floatBitsToUint(uv.x), floatBitsToUint(uv.y));
+                float from = float(sp.w & 0xFFFFu), to = float(sp.w >> 16);
+                if (point.x == e) {
+                    vec2 st = sideParam(k, from);
+                    vec2 uv = uvAt(st.x, st.y);
+                    tessVertices.v[sp.y] = uvec4(point.x, point.y, floatBitsToUint(uv.x), floatBitsToUint(uv.y));
+                }
+                if ((sp.z & 2u) == 0u) continue; // not the piece's owner side
+                uint r = rates.r[sp.x] & 0xFFFFu;
+                if (vBase + owned + r - 1u > pc.vertexCapacity) break; // an overflow (the host warns)
+                uvec4 piece = pieces.v[2u * sp.x];
+                for (uint i = 1u; i < r; ++i) {
+                    float along;
+                    uint ownerST = pieceST(piece, i, r, along);
+                    if (along < 0.0 && pc.smoothUV != 0u) along = pieceFraction(piece, ownerST);
+                    vec2 st = sideParam(k, from + (to - from) * (along < 0.0 ? float(i) / float(r) : along));
+                    vec2 uv = uvAt(st.x, st.y);
+                    tessVertices.v[vBase + owned + i - 1u] = uvec4(e, ownerST, floatBitsToUint(uv.x), floatBitsToUint(uv.y));
+                }
+                owned += r - 1u;
             }
         if ((inf.x & ADAPTIVE_CULLED) != 0u) return;
     }
@@ -181,8 +222,8 @@ void emitElement(uint e) {
     elIndex = e;
     level = el.level;
 
-    // The boundary loop. A flat element with shared points keeps its points' slots (at most 8:
-    // two pieces of one segment a side).
+    // The boundary loop. With shared points only its length (the slots are the owners'); a
+    // flat element keeps its points' slots (at most 8: two pieces of one segment a side).
     bool sharedFlat = share && mu == 1u;
     uint slots[8];
     uint sideStart[4], sideTotal[4];
@@ -197,20 +238,24 @@ void emitElement(uint e) {
                 continue;
             }
             uint r = rates.r[sp.x] & 0xFFFFu;
+            if (share) {
+                B += r;
+                continue;
+            }
             uvec4 piece = pieces.v[2u * sp.x];
             uvec4 point = pieces.v[pc.pointBase + sp.y];
             float from = float(sp.w & 0xFFFFu), to = float(sp.w >> 16);
             vec2 st = sideParam(k, from);
             vertex(B++, point.x, point.y, uvAt(st.x, st.y));
             for (uint i = 1u; i < r; ++i) {
-                uint j = sp.z != 0u ? r - i : i;
+                uint j = (sp.z & 1u) != 0u ? r - i : i;
                 float along;
                 uint ownerST = pieceST(piece, j, r, along);
                 // Smooth UVs at the point drawn: its fraction of the piece as rounded to the
                 // owner's 1/32768 (a surface, unlike rule "all"'s bilinear charts, would show the
                 // difference, up to 2^-15 of an element).
                 if (along < 0.0 && pc.smoothUV != 0u) along = pieceFraction(piece, ownerST);
-                float f = along < 0.0 ? float(i) / float(r) : (sp.z != 0u ? 1.0 - along : along);
+                float f = along < 0.0 ? float(i) / float(r) : ((sp.z & 1u) != 0u ? 1.0 - along : along);
                 st = sideParam(k, from + (to - from) * f);
                 vertex(B++, piece.x, ownerST, uvAt(st.x, st.y));
             }
@@ -228,8 +273,10 @@ void emitElement(uint e) {
         }
         return;
     }
-    // Interior grid points (i, j), 1 <= i <= mu-1, 1 <= j <= mv-1, at B + (j-1)(mu-1) + (i-1).
-    // Across a single-crease patch's crease the grid is graded towards it, like its sides.
+    // Interior grid points (i, j), 1 <= i <= mu-1, 1 <= j <= mv-1, at grid + (j-1)(mu-1) + (i-1)
+    // (after the boundary, or with shared points after the owned pieces' points). Across a
+    // single-crease patch's crease the grid is graded towards it, like its sides.
+    uint grid = share ? owned : B;
     bool gradeS = el.crease != 0u && creaseAcrossS(el.crease), gradeT = el.crease != 0u && !gradeS;
     bool atZero = creaseAtZero(el.crease);
     for (uint j = 1u; j < mv; ++j)
@@ -238,11 +285,11 @@ void emitElement(uint e) {
             vec2 f = vec2(gradeS ? float(s) / 32768.0 : float(i) / float(mu),
                           gradeT ? float(t) / 32768.0 : float(j) / float(mv));
             if (pc.smoothUV != 0u) f = vec2(float(s), float(t)) / 32768.0; // the point drawn
-            vertex(B + (j - 1u) * (mu - 1u) + (i - 1u), e, s | (t << 16), uvAt(f.x, f.y));
+            vertex(grid + (j - 1u) * (mu - 1u) + (i - 1u), e, s | (t << 16), uvAt(f.x, f.y));
         }
     for (uint j = 1u; j + 1u < mv; ++j)
         for (uint i = 1u; i + 1u < mu; ++i) {
-            uint a = B + (j - 1u) * (mu - 1u) + (i - 1u);
+            uint a = grid + (j - 1u) * (mu - 1u) + (i - 1u);
             tri(a, a + 1u, a + mu);
             tri(a, a + mu, a + mu - 1u);
         }
@@ -250,15 +297,17 @@ void emitElement(uint e) {
     // 0 and 2 run along s, mu - 2 ring steps; sides 1 and 3 along t, mv - 2).
     for (uint k = 0u; k < 4u; ++k) {
         uint na = sideTotal[k], nb = (k & 1u) == 0u ? mu - 2u : mv - 2u, ia = 0u, jb = 0u;
+        uint a0 = share ? sharedSlot(k, 0u, na) : vBase + sideStart[k];
         while (ia < na || jb < nb) {
-            uint a0 = (sideStart[k] + ia) % B;
-            uint g0 = ringPoint(k, jb, mu, mv, B), g1 = ringPoint(k, jb + 1u, mu, mv, B);
+            uint g0 = vBase + ringPoint(k, jb, mu, mv, grid), g1 = vBase + ringPoint(k, jb + 1u, mu, mv, grid);
             bool advanceA = jb == nb || (ia < na && (2u * ia + 1u) * nb <= (2u * jb + 1u) * na);
             if (advanceA) {
-                tri(a0, (sideStart[k] + ia + 1u) % B, g0);
+                uint a1 = share ? sharedSlot(k, ia + 1u, na) : vBase + (sideStart[k] + ia + 1u) % B;
+                triSlots(a0, a1, g0);
+                a0 = a1;
                 ++ia;
             } else {
-                tri(a0, g1, g0);
+                triSlots(a0, g1, g0);
                 ++jb;
             }
         }
