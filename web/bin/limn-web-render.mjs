@@ -78,6 +78,7 @@ function parseArgs(argv) {
   const o = { settings: { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 32, maxError: 0.1, tess: 64 }, bench: 0 };
   const s = o.settings;
   let onlyPositionals = false;
+  const given = new Set();
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     // As limn-render's: after --, every argument is a file ('-- -x.limn'); - alone is standard
@@ -91,6 +92,10 @@ function parseArgs(argv) {
     }
     const value = () => {
       if (i + 1 >= argv.length) throw new Usage(`${a} needs a value`);
+      // As limn-render's: an option given twice is a mistake, not "the last one wins" (-o a -o b).
+      const name = a === '-o' ? '--output' : a;
+      if (given.has(name)) throw new Usage(`${name} given more than once (see --help)`);
+      given.add(name);
       return argv[++i];
     };
     switch (a) {

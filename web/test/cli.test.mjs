@@ -32,7 +32,7 @@ const cli = join(repo, 'web/bin/limn-web-render.mjs');
 const run = (...args) => spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000 });
 
 test('usage errors exit 2', () => {
-  for (const args of [['--frobnicate'], ['-o', '-', '--bench', '1', 'x.limn'], ['--', '-', '--size', '8x8'], ['x.limn', '-o', 'y.png', '--samples', '3'], ['x.limn', '-o', 'y.jpg'], ['x.limn', '-o', 'y.png', '--wire', '--wire-triangles']]) {
+  for (const args of [['--frobnicate'], ['-o', '-', '--bench', '1', 'x.limn'], ['--', '-', '--size', '8x8'], ['x.limn', '-o', 'a.png', '--output', 'b.png'], ['x.limn', '-o', 'y.png', '--samples', '3'], ['x.limn', '-o', 'y.jpg'], ['x.limn', '-o', 'y.png', '--wire', '--wire-triangles']]) {
     const r = run(...args);
     assert.equal(r.status, 2, `${args.join(' ')}: ${r.stderr}`);
     assert.match(r.stderr, /^limn-web-render: error: /);
