@@ -71,33 +71,43 @@ function directionBasis(crease, sharpness, x, lowBit, highBit) {
   return atEnd ? [cb[3], cb[2], cb[1], cb[0]] : cb;
 }
 
-/** The framing hull's points ([x, y, z] each) of a container's surface, as limn-render's. */
-export function surfaceSamples(mesh, tables) {
+// Per loaded surface: a renderer made again for the same surface (the viewer's new size or
+// tessellation) does not evaluate it again (the car at depth 6 takes 0.25 s).
+const hulls = new WeakMap();
+
+/** The framing hull's points ([x, y, z] each) of a loaded surface ({mesh, tables}), as limn-render's. */
+export function surfaceSamples(surface) {
+  if (!hulls.has(surface)) hulls.set(surface, evaluateSamples(surface.mesh, surface.tables));
+  return hulls.get(surface);
+}
+
+function evaluateSamples(mesh, tables) {
   const V = evaluateVertices(tables, mesh.positions);
   const words = tables.patches, floats = new Float32Array(words.buffer, words.byteOffset, words.length);
-  const points = [], params = [0, 0.5, 1];
-  const P = Array.from({ length: 4 }, () => Array.from({ length: 4 }, () => [0, 0, 0]));
+  const points = [], params = [0, 0.5, 1], uniform = params.map(bsplineBasis);
+  const P = new Float64Array(48); // P[i][j] at 3 (4 j + i)
+  // gatherControlPoints' phantom point: 2 a - b, into P[at].
+  const mirror = (at, a, b) => { for (let c = 0; c < 3; c++) P[3 * at + c] = 2 * P[3 * a + c] - P[3 * b + c]; };
   for (let p = 0; p < tables.patchCount; p++) {
     const base = PATCH_WORDS * p, packed = words[base + 20];
     const boundary = (packed >>> 8) & 0xff, crease = (packed >>> 16) & 0xff, sharpness = floats[base + 21];
     // gatherControlPoints: phantom columns, then phantom rows over all columns.
-    for (let j = 0; j < 4; j++) for (let i = 0; i < 4; i++) { const v = 3 * words[base + 4 * j + i]; P[i][j] = [V[v], V[v + 1], V[v + 2]]; }
-    const mirror = (a, b) => [2 * a[0] - b[0], 2 * a[1] - b[1], 2 * a[2] - b[2]];
+    for (let k = 0; k < 16; k++) { const v = 3 * words[base + k]; P[3 * k] = V[v]; P[3 * k + 1] = V[v + 1]; P[3 * k + 2] = V[v + 2]; }
     for (let j = 0; j < 4; j++) {
-      if (boundary & BOUNDARY_U0) P[0][j] = mirror(P[1][j], P[2][j]);
-      if (boundary & BOUNDARY_U1) P[3][j] = mirror(P[2][j], P[1][j]);
+      if (boundary & BOUNDARY_U0) mirror(4 * j, 4 * j + 1, 4 * j + 2);
+      if (boundary & BOUNDARY_U1) mirror(4 * j + 3, 4 * j + 2, 4 * j + 1);
     }
     for (let i = 0; i < 4; i++) {
-      if (boundary & BOUNDARY_V0) P[i][0] = mirror(P[i][1], P[i][2]);
-      if (boundary & BOUNDARY_V1) P[i][3] = mirror(P[i][2], P[i][1]);
+      if (boundary & BOUNDARY_V0) mirror(i, 4 + i, 8 + i);
+      if (boundary & BOUNDARY_V1) mirror(12 + i, 8 + i, 4 + i);
     }
-    for (const s of params) {
-      const bu = directionBasis(crease, sharpness, s, BOUNDARY_U0, BOUNDARY_U1);
-      for (const t of params) {
-        const bv = directionBasis(crease, sharpness, t, BOUNDARY_V0, BOUNDARY_V1);
+    const bases = (lowBit, highBit) => (crease & (lowBit | highBit)) ? params.map((x) => directionBasis(crease, sharpness, x, lowBit, highBit)) : uniform;
+    const bus = bases(BOUNDARY_U0, BOUNDARY_U1), bvs = bases(BOUNDARY_V0, BOUNDARY_V1);
+    for (const bu of bus) {
+      for (const bv of bvs) {
         let x = 0, y = 0, z = 0;
         for (let j = 0; j < 4; j++) {
-          for (let i = 0; i < 4; i++) { const w = bu[i] * bv[j], q = P[i][j]; x += w * q[0]; y += w * q[1]; z += w * q[2]; }
+          for (let i = 0; i < 4; i++) { const w = bu[i] * bv[j], q = 3 * (4 * j + i); x += w * P[q]; y += w * P[q + 1]; z += w * P[q + 2]; }
         }
         points.push([x, y, z]);
       }

@@ -301,7 +301,7 @@ export class Renderer {
       if (this.bounds.sphereRadius > 0) this.bounds.sphereRadius += pad;
       this.bounds.hull = [];
     } else {
-      this.bounds.hull = s.view.eye ? [] : surfaceSamples(mesh, this.surface.tables);
+      this.bounds.hull = s.view.eye ? [] : surfaceSamples(this.surface);
     }
     this.setView(s.view);
 
