@@ -85,7 +85,14 @@ web_tools() {
     fi
   fi
   local m="$dir/.mesa" lib="usr/lib/x86_64-linux-gnu/libvulkan_lvp.so"
-  [ -f "$m/icd.json" ] && [ -f "$m/root/$lib" ] && return 0
+  # The ICD file names the library by absolute path: a checkout moved or copied elsewhere (a
+  # worktree made from another's folder) kept one naming the old place, and Dawn found no driver.
+  if [ -f "$m/root/$lib" ]; then
+    grep -qF "\"$m/root/$lib\"" "$m/icd.json" 2>/dev/null && return 0
+    printf '{"file_format_version":"1.0.1","ICD":{"library_path":"%s","api_version":"1.4.305"}}\n' \
+      "$m/root/$lib" > "$m/icd.json"
+    return 0
+  fi
   echo "setup: Mesa 25 lavapipe from bookworm-backports into web/.mesa (private)" >&2
   rm -rf "$m" && mkdir -p "$m/lists/partial" "$m/debs"
   local mirror

@@ -1,22 +1,17 @@
+// limn::cli::Parser: the tools' options (flags, values with ranges, choices, positionals),
+// parsed as limn's tools share them; and the value formats they share (sizes, number lists).
 #include "base/cli.h"
 
 #include "base/error.h"
-#include "base/io.h"
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cstring>
 #include <set>
 #include <charconv>
-#include <clocale>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
-#include <new>
 #include <sstream>
-#include <fcntl.h>
 #include <unistd.h>
 
 #ifndef LIMN_VERSION
@@ -32,10 +27,6 @@ const char* const kDefaultExitCodes = "Exit codes:\n"
                                       "  3  missing capability (for example no Vulkan device)\n";
 
 namespace {
-
-std::string g_tool = "limn";
-bool g_quiet = false;
-bool g_verbose = false;
 
 [[noreturn]] void usageError(const std::string& message) {
     throw Error(ErrorKind::Usage, message + " (see --help)");
@@ -197,101 +188,6 @@ const Parser::Option* Parser::find(const std::string& name) const {
     return nullptr;
 }
 
-namespace {
-
-// Option texts are reflowed into the column after the option names (28) up to 100 characters:
-// tools write them as prose, line breaks in them are only hints.
-std::string wrapped(const std::string& text) {
-    constexpr size_t kIndent = 28, kWidth = 100;
-    std::istringstream words(text);
-    std::string out, line;
-    for (std::string w; words >> w;) {
-        if (!line.empty() && kIndent + line.size() + 1 + w.size() > kWidth) {
-            out += line + "\n" + std::string(kIndent, ' ');
-            line.clear();
-        }
-        line += (line.empty() ? "" : " ") + w;
-    }
-    out += line;
-    std::replace(out.begin(), out.end(), '\x01', ' ');
-    return out;
-}
-
-} // namespace
-
-std::string Parser::help() const {
-    std::ostringstream out;
-    out << "Usage: " << tool_ << " " << synopsis_ << "\n\n" << summary_ << "\n";
-    if (!positionals_.empty()) {
-        out << "\nArguments:\n";
-        for (size_t i = 0; i < positionals_.size(); ++i) {
-            std::string left = "  " + positionals_[i].first;
-            out << left << std::string(left.size() < 28 ? 28 - left.size() : 1, ' ')
-                << positionalHelp_[i] << " [default: -]\n";
-        }
-    }
-    out << "\nOptions:\n";
-    for (const auto& o : options_) {
-        std::string left = "  ";
-        left += o.shortName.empty() ? "    " : o.shortName + ", ";
-        left += o.longName;
-        if (!o.metavar.empty()) left += " " + o.metavar;
-        out << left;
-        if (left.size() + 2 > 28) // keep two spaces between an option and its text
-            out << "\n" << std::string(28, ' ');
-        else
-            out << std::string(28 - left.size(), ' ');
-        // Every option that takes a value shows its default (--help lists them all); one whose
-        // help text already explains its default says so itself.
-        std::string text = o.help;
-        if (o.set && !o.defaultText.empty())
-            text += " [default:\x01" + o.defaultText + "]"; // \x01: a space not to break at
-        else if (o.set && o.help.find("[default:") == std::string::npos)
-            text += " [default:\x01none]";
-        out << wrapped(text) << "\n";
-    }
-    if (!notes_.empty()) out << "\n" << notes_;
-    if (!notes_.empty() && notes_.back() != '\n') out << "\n";
-    out << "\n" << exitCodes_;
-    return out.str();
-}
-
-namespace {
-
-size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diagonal = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-            diagonal = up;
-        }
-    }
-    return row[b.size()];
-}
-
-} // namespace
-
-// "; did you mean --wire?" for the closest long option: one that the unknown name starts with
-// or that starts with it (--wireframe, --sha), else the nearest within 3 edits; "" when none is.
-std::string Parser::suggest(const std::string& unknown) const {
-    std::string word = unknown;
-    while (!word.empty() && word[0] == '-') word.erase(0, 1);
-    std::string best;
-    size_t bestDistance = 4;
-    for (const Option& o : options_) {
-        if (o.longName.empty()) continue;
-        const std::string name = o.longName.substr(2);
-        size_t d = editDistance(word, name);
-        if (word.size() >= 3 && (word.rfind(name, 0) == 0 || name.rfind(word, 0) == 0)) d = 1;
-        if (d < bestDistance) bestDistance = d, best = o.longName;
-    }
-    return best.empty() ? "" : "; did you mean " + best + "?";
-}
-
 bool Parser::parse(int argc, char** argv) {
     size_t nextPositional = 0;
     std::set<const Option*> seen;
@@ -409,115 +305,6 @@ std::vector<double> parseNumberList(const std::string& option, const std::string
         usageError(option + ": expected " + std::to_string(count) +
                    " comma-separated numbers, got '" + value + "'");
     return out;
-}
-
-void setTool(const std::string& tool) { g_tool = tool; }
-void setVerbosity(bool quiet, bool verbose) {
-    g_quiet = quiet;
-    g_verbose = verbose;
-}
-
-void warn(const std::string& message) {
-    if (!g_quiet) std::fprintf(stderr, "%s: warning: %s\n", g_tool.c_str(), message.c_str());
-}
-
-void info(const std::string& message) {
-    if (g_verbose) std::fprintf(stderr, "%s: %s\n", g_tool.c_str(), message.c_str());
-}
-
-void printWarnings(const Warnings& warnings, const std::string& file) {
-    for (const auto& w : warnings.messages) warn((file.empty() ? "" : file + ": ") + w);
-}
-
-namespace {
-
-// Large allocations on transparent huge pages: glibc's malloc does so with the tunable
-// glibc.malloc.hugetlb=1, which it reads once, at process start; so a tool starts itself again,
-// once, with the tunable added to GLIBC_TUNABLES. On the 2-core virtual machines this project
-// is built and tested on, a page fault costs microseconds, and the tools touch hundreds of MB of
-// fresh memory (the GPU buffers are host memory on lavapipe): limn-tables on the 100,800-face car
-// took 0.34x as long with the tunable, limn-render of it 0.67x, a 6-face cube the same, for about
-// 2-4% more peak memory. Not again where GLIBC_TUNABLES already names the tunable (the restarted
-// process; or a user's own setting, hugetlb=0 included), not under the sanitizers (their malloc
-// is not glibc's), and nothing happens when /proc/self/exe cannot be read or the exec fails.
-#if defined(__SANITIZE_ADDRESS__)
-#define LIMN_SANITIZED_MALLOC 1 // gcc's -fsanitize=address (and clang's)
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define LIMN_SANITIZED_MALLOC 1
-#endif
-#endif
-void preferHugePages([[maybe_unused]] char** argv) {
-#ifndef LIMN_SANITIZED_MALLOC
-    const char* current = std::getenv("GLIBC_TUNABLES");
-    if (current && std::strstr(current, "glibc.malloc.hugetlb")) return;
-    char exe[4096];
-    const ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n <= 0) return;
-    exe[n] = '\0';
-    const std::string before = current ? current : "";
-    const std::string value = (before.empty() ? "" : before + ":") + "glibc.malloc.hugetlb=1";
-    if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
-    execv(exe, argv);
-    if (current) setenv("GLIBC_TUNABLES", before.c_str(), 1); // the exec failed: carry on as we are
-    else unsetenv("GLIBC_TUNABLES");
-#endif
-}
-
-} // namespace
-
-namespace {
-
-// A standard stream the caller closed (`2>&-`, `>&-`) leaves its descriptor free, and the first
-// file the tool opens takes it: warnings, -v lines or --bench's JSON then landed inside the
-// output image or container, with exit 0. Each closed slot is filled first: standard input and
-// error with /dev/null, standard output with /dev/full, so that what a tool writes there fails
-// the run (exit 1) instead of going anywhere.
-void fillClosedStandardStreams() {
-    for (int fd = 0; fd <= 2; ++fd) {
-        if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
-        const int opened = ::open(fd == 1 ? "/dev/full" : "/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
-        if (opened >= 0 && opened != fd) {
-            ::dup2(opened, fd);
-            ::close(opened);
-        }
-    }
-}
-
-} // namespace
-
-int run(const std::string& tool, int argc, char** argv,
-        const std::function<int(int, char**)>& body) {
-    fillClosedStandardStreams();
-    preferHugePages(argv);
-    std::setlocale(LC_ALL, "C");
-    std::locale::global(std::locale::classic());
-    setTool(tool);
-    installOutputCleanupOnSignals();
-    try {
-        const int status = body(argc, argv);
-        // What went to standard output through stdio (JSON, --help, --list) must have arrived:
-        // a full disk or a closed pipe is a failed run, not exit 0.
-        std::cout.flush();
-        if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
-            std::fprintf(stderr, "%s: error: <stdout>: cannot write: %s\n", tool.c_str(),
-                         std::strerror(errno ? errno : EIO));
-            return 1;
-        }
-        return status;
-    } catch (const Error& e) {
-        std::string where;
-        if (!e.file().empty()) where += displayName(e.file()) + ": ";
-        if (!e.where().empty()) where += e.where() + ": ";
-        std::fprintf(stderr, "%s: error: %s%s\n", tool.c_str(), where.c_str(), e.what());
-        return static_cast<int>(e.kind());
-    } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "%s: error: out of memory\n", tool.c_str());
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s: error: internal error: %s\n", tool.c_str(), e.what());
-        return 1;
-    }
 }
 
 } // namespace limn::cli

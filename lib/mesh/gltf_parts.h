@@ -2,11 +2,12 @@
 // extensions and prepares compressed files for tinygltf (gltf_prepass.cpp), accessors with
 // sparse substitution and zeros (gltf_accessor.cpp), the two compression extensions decoded
 // through their own libraries (gltf_draco.cpp, gltf_meshopt.cpp), and the node graph
-// (gltf_scene.cpp).
+// (gltf_scene.cpp), and the welding of primitives into one mesh (gltf_weld.cpp).
 #pragma once
 
 #include "base/warnings.h"
 #include "mesh/gltf.h"
+#include "mesh/mesh.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -14,6 +15,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <array>
 #include <map>
 #include <optional>
 #include <span>
@@ -109,6 +111,27 @@ struct Loaded {
 // `baseDir` nullptr: no file is read (readGltfEmbedded).
 Loaded load(std::span<const uint8_t> bytes, bool binary, const std::string* baseDir, Warnings& warnings,
             std::vector<std::string>* filesRead, std::map<int, std::vector<uint8_t>>* images);
+// One mesh welded from glTF primitives (gltf_weld.cpp): positions and texture coordinates
+// equal to the bit are one vertex, so that faces meet along shared edges.
+struct Welder {
+    Mesh mesh;
+    std::map<std::array<double, 3>, uint32_t> positionIndex;
+    std::map<std::array<double, 2>, uint32_t> uvIndex;
+    bool anyUV = false, anyWithoutUV = false;
+    size_t degenerate = 0, skippedPrimitives = 0, mirrored = 0, ngons = 0;
+    bool rebuildNgons = false;
+    int material = -1;           // the first triangle primitive's material
+    bool otherMaterials = false; // a later primitive has another one
+
+    uint32_t weldPosition(const glm::dvec3& p);
+    uint32_t weldUV(const glm::dvec2& uv);
+    // Adds a triangle primitive's faces (strips and fans as triangles; FB_ngon_encoding's fans
+    // as their polygons with rebuildNgons), placed by `transform`; other modes are skipped.
+    void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const Prepass& pre,
+                      std::pair<int, int> key, const std::vector<double>& weights,
+                      const glm::dmat4& transform, const std::string& what);
+};
+
 // readGltf, or with `baseDir` nullptr readGltfEmbedded.
 Mesh readFrom(std::span<const uint8_t> bytes, bool binary, const std::string* baseDir, Warnings& warnings,
               std::vector<std::string>* filesRead, std::optional<MeshMaterial>* material, GltfPolygons* polygons);

@@ -2,24 +2,25 @@
 // limn-web-render: renders a .limn container with limn's passes on WebGPU (Dawn for Node), with
 // limn-render's option names for what it supports. Exit codes as limn's tools: 0 ok, 1 bad input,
 // 2 usage, 3 missing capability (no WebGPU adapter, or a feature not supported here).
-import { readFileSync, renameSync, rmSync, statSync, writeFileSync } from 'node:fs';
-import { dirname, basename, join } from 'node:path';
 import { loadLimn } from '../src/chunks.mjs';
 import { LimnError } from '../src/container.mjs';
 import { Renderer, SHADES } from '../src/renderer.mjs';
 import { encodePng } from '../src/png.mjs';
 import { encodePly } from '../src/ply.mjs';
-import { requestNodeDevice } from '../src/node_device.mjs';
+import { requestNodeDevice, watchDevice } from '../src/node_device.mjs';
+import { displayName, isStreamPath, planOutput, readInput, removeOutputsOnSignals, writeOutputs, writeStdout } from '../src/node_io.mjs';
 import { readImageFile, decodePngImage, heightMap } from '../src/node_image.mjs';
 
 const TOOL = 'limn-web-render';
-const HELP = `usage: ${TOOL} [options] IN.limn [-o OUT.png] [--mesh-out FILE.ply]
+const HELP = `usage: ${TOOL} [options] [IN.limn] [-o OUT.png] [--mesh-out FILE.ply]
 Renders a .limn container (limn-classify | limn-tables [| limn-seams]) with limn's own passes on
 WebGPU: per level the face-, edge- and vertex-point compute passes, the limit points, the
 view-adaptive tessellation's passes (cull, rates, counts, scan, emit) or the fixed grids, and the
 draw that evaluates the surface in the vertex stage (paper 000). The options are limn-render's;
-what is not listed is not supported here.
-  -o FILE                 the PNG to write (RGB, 8 bits)
+what is not listed is not supported here. IN.limn: - (the default) is standard input.
+  -o FILE                 the PNG to write (RGB, 8 bits); - (the default without --bench or
+                          --mesh-out) for standard output; a device or pipe is written in
+                          place, a symbolic link through to the file it names
   --mesh-out FILE         write the triangles as drawn, as limn-render's --mesh-out writes them
                           (PLY: positions, normals, ptex u v, the texture UV s t, and which
                           vertices are approximate); - for standard output; without -o, no image
@@ -76,10 +77,25 @@ function numbers(opt, v, n) {
 function parseArgs(argv) {
   const o = { settings: { view: {}, samples: 4, width: 1024, height: 768, shade: 'lit', edgePixels: 32, maxError: 0.1, tess: 64 }, bench: 0 };
   const s = o.settings;
+  let onlyPositionals = false;
+  const given = new Set();
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
+    // As limn-render's: after --, every argument is a file ('-- -x.limn'); - alone is standard
+    // input, a file named - is ./-.
+    if (!onlyPositionals && a === '--') { onlyPositionals = true; continue; }
+    if (onlyPositionals || a === '-' || !a.startsWith('-')) {
+      if (a === '') throw new Usage('an empty argument where IN.limn goes (use - for standard input)');
+      if (o.input !== undefined) throw new Usage(`unexpected argument '${a}' (see --help)`);
+      o.input = a;
+      continue;
+    }
     const value = () => {
       if (i + 1 >= argv.length) throw new Usage(`${a} needs a value`);
+      // As limn-render's: an option given twice is a mistake, not "the last one wins" (-o a -o b).
+      const name = a === '-o' ? '--output' : a;
+      if (given.has(name)) throw new Usage(`${name} given more than once (see --help)`);
+      given.add(name);
       return argv[++i];
     };
     switch (a) {
@@ -123,18 +139,20 @@ function parseArgs(argv) {
       case '--wire': s.wire = 'outlines'; break;
       case '--wire-triangles': s.wire = 'triangles'; break;
       default:
-        if (a.startsWith('-') && a !== '-') throw new Usage(`unknown option ${a} (see --help)`);
-        if (o.input) throw new Usage(`one input file, not '${o.input}' and '${a}'`);
-        o.input = a;
+        throw new Usage(`unknown option ${a} (see --help)`);
     }
   }
   if (o.help || o.version) return o;
-  if (!o.input) throw new Usage('no input file (see --help)');
-  if (!o.output && !o.bench && !o.meshOut) throw new Usage('no output: give -o OUT.png, --mesh-out FILE.ply or --bench N');
+  o.input ??= '-';
+  // As limn-render's: the image goes to standard output unless --bench or --mesh-out is the
+  // output asked for.
+  if (!o.output && !o.bench && !o.meshOut) o.output = '-';
+  if (o.output === '-' && o.bench) throw new Usage('--bench prints JSON on standard output; write the image with -o FILE');
   if (o.output) {
     // As limn-render: the extension, case-insensitive (X.PNG is a PNG); EXR is limn-render's
     // other image format, not written here (exit 3, as --mesh-out .obj); anything else is usage.
-    const ext = /\.([^./]*)$/.exec(o.output)?.[1].toLowerCase();
+    // Standard output, a device or a pipe (-o /dev/null) is PNG whatever its name.
+    const ext = o.output === '-' || isStreamPath(o.output) ? 'png' : /\.([^./]*)$/.exec(o.output)?.[1].toLowerCase();
     if (ext === 'exr') throw new LimnError(`-o ${o.output}: ${TOOL} writes PNG only (name it .png); limn-render writes .exr`, 'capability');
     if (ext !== 'png') throw new Usage(`-o ${o.output}: only PNG is written here (name it .png)`);
   }
@@ -143,7 +161,7 @@ function parseArgs(argv) {
     const ext = o.meshOut === '-' ? 'ply' : /\.([^./]*)$/.exec(o.meshOut)?.[1].toLowerCase();
     if (!['ply', 'obj', 'gltf', 'glb'].includes(ext)) throw new Usage(`${o.meshOut}: --mesh-out: unknown extension; limn-render writes .ply, .obj, .gltf, .glb`);
     if (ext !== 'ply') throw new LimnError(`--mesh-out ${o.meshOut}: ${TOOL} writes PLY only (name it .ply); limn-render writes .${ext}`, 'capability');
-    if (o.meshOut === '-' && o.bench) throw new Usage('--mesh-out - and the --bench JSON cannot share standard output');
+    if (o.meshOut === '-' && (o.bench || o.output === '-')) throw new Usage('--mesh-out - and the image (or --bench JSON) cannot share standard output');
     o.settings.meshOut = true;
   }
   if (o.meshAscii && !o.meshOut) throw new Usage('--mesh-ascii applies to a .ply --mesh-out; give --mesh-out FILE.ply');
@@ -186,56 +204,14 @@ function applyMaps(o, surface) {
         s.texture = decodePngImage(m.texture, 'the MATL base colour texture');
         s.shade = 'texture';
       } catch (e) {
-        process.stderr.write(`${TOOL}: warning: ${o.input}: the base colour texture cannot be read (${e.detail ?? e.message}); drawing the base colour factor instead\n`);
+        process.stderr.write(`${TOOL}: warning: ${inputName}: the base colour texture cannot be read (${e.detail ?? e.message}); drawing the base colour factor instead\n`);
       }
     }
   }
 }
 
-// An output that cannot be written is refused before the render, as limn-render refuses it: a
-// directory under its name, or binary bytes for a terminal.
-function checkOutput(path, binary) {
-  if (path === '-') {
-    if (binary && process.stdout.isTTY) throw new Usage('refusing to write binary output to a terminal; use --mesh-out FILE, a pipe or --mesh-ascii');
-    return;
-  }
-  let st = null;
-  try { st = statSync(path); } catch { /* absent: written new */ }
-  if (st?.isDirectory()) throw new LimnError(`${path}: is a directory, not a file`, 'output');
-}
-
-// Each output goes to a temporary file beside its target, and only once every one is written
-// are they renamed over their targets: a failure leaves none of them, neither a partial file nor
-// one output of two (limn-render's OutputFile). The writes and renames are synchronous, so a
-// signal (handled below) is delivered before or after them, never between.
-function writeOutputs(outputs) {
-  const staged = [];
-  let current = '';
-  try {
-    for (const [path, bytes] of outputs) {
-      current = path;
-      const tmp = join(dirname(path), `.${basename(path)}.limn-tmp-${process.pid}`);
-      staged.push([tmp, path]);
-      writeFileSync(tmp, bytes);
-    }
-    for (const [tmp, path] of staged) { current = path; renameSync(tmp, path); }
-  } catch (e) {
-    for (const [tmp] of staged) rmSync(tmp, { force: true });
-    throw new LimnError(`${current}: cannot write: ${e.code ?? e.message}`, 'output');
-  }
-}
-
-// A reader of standard output that goes away (| head) is an error that names it, not Node's
-// unhandled 'error' event with its stack (limn-render dies of SIGPIPE, which Node ignores).
-process.stdout.on('error', (e) => {
-  process.stderr.write(`${TOOL}: error: <stdout>: cannot write: ${e.code ?? e.message}\n`);
-  process.exit(1);
-});
-// Stopped by a signal: Node's default would end the process at once; a handler lets the
-// synchronous writes above finish or not start, and the process still dies of the signal.
-for (const signal of ['SIGINT', 'SIGTERM', 'SIGHUP']) {
-  process.once(signal, () => process.kill(process.pid, signal));
-}
+// Stopped by SIGINT, SIGTERM or SIGHUP: no temporary file is left, and the process dies of it.
+removeOutputsOnSignals();
 
 // The input's name for messages about its contents: the parsed one (the first argument without
 // a dash may be an option's value, '--size 64x48 in.limn').
@@ -243,23 +219,26 @@ let inputName = '';
 
 async function main(argv) {
   const o = parseArgs(argv);
-  inputName = o.input ?? '';
-  if (o.help) { process.stdout.write(HELP); return 0; }
-  if (o.version) { process.stdout.write(`${TOOL} 0.1.0\n`); return 0; }
-  if (o.output) checkOutput(o.output, true);
-  if (o.meshOut) checkOutput(o.meshOut, !o.meshAscii);
-  let bytes;
-  try {
-    bytes = readFileSync(o.input);
-  } catch (e) {
-    throw new LimnError(`${o.input}: cannot read: ${e.code ?? e.message}`, 'input');
-  }
-  const surface = loadLimn(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength));
+  inputName = displayName(o.input ?? '');
+  if (o.help) { await writeStdout(HELP); return 0; }
+  if (o.version) { await writeStdout(`${TOOL} 0.1.0\n`); return 0; }
+  // Outputs that cannot be written are refused before the render, as limn-render opens them.
+  const image = o.output ? planOutput(o.output, true) : null;
+  const mesh = o.meshOut ? planOutput(o.meshOut, !o.meshAscii) : null;
+  const surface = loadLimn(await readInput(o.input));
   applyMaps(o, surface);
-  const { device, adapter } = await requestNodeDevice();
-  let lost = null;
-  device.lost.then((info) => { lost = info; });
-  device.onuncapturederror = (e) => { lost ??= { message: e.error.message }; };
+  const s = o.settings;
+  const { device, adapter } = await requestNodeDevice({ limits: { maxTextureDimension2D: Math.max(s.width, s.height) } });
+  if (Math.max(s.width, s.height) > device.limits.maxTextureDimension2D) {
+    throw new LimnError(`--size ${s.width}x${s.height}: this WebGPU device draws images of at most ${device.limits.maxTextureDimension2D} pixels a side`, 'capability');
+  }
+  // A lost device or a WebGPU error is the run's error, in one line (watchDevice).
+  const gpu = watchDevice(device);
+  await gpu.guard(render(o, surface, { device, adapter, gpu, image, mesh }));
+  return 0;
+}
+
+async function render(o, surface, { device, adapter, gpu, image, mesh }) {
   const renderer = await Renderer.create(device, surface, o.settings);
   const frames = Math.max(o.bench, 1);
   const times = [], js = [];
@@ -273,12 +252,11 @@ async function main(argv) {
   const pixels = await renderer.pixels();
   // Everything is read back before anything is written: a failure leaves no file.
   const ply = o.meshOut ? encodePly(await renderer.drawnMesh(), !!o.meshAscii) : null;
-  if (lost) throw new Error(`the WebGPU device failed: ${lost.message}`);
+  gpu.check();
   const files = [];
-  if (o.output) files.push([o.output, encodePng(o.settings.width, o.settings.height, pixels)]);
-  if (ply && o.meshOut !== '-') files.push([o.meshOut, ply]);
-  writeOutputs(files);
-  if (ply && o.meshOut === '-') process.stdout.write(ply);
+  if (image) files.push([image, encodePng(o.settings.width, o.settings.height, pixels)]);
+  if (ply) files.push([mesh, ply]);
+  await writeOutputs(files);
   if (o.bench) {
     // Medians over the frames after the first (pipeline compiles and first uploads).
     const median = (a) => { const b = a.slice(a.length > 1 ? 1 : 0).sort((x, y) => x - y); return b[b.length >> 1]; };
@@ -295,29 +273,30 @@ async function main(argv) {
       peak_rss_mb: +(process.resourceUsage().maxRSS / 1024).toFixed(1),
       device: adapter.info.description || adapter.info.device,
     };
-    process.stdout.write(`${JSON.stringify(report)}\n`);
+    gpu.check();
+    await writeStdout(`${JSON.stringify(report)}\n`);
   }
   renderer.destroy();
-  device.destroy();
-  return 0;
+  gpu.destroy();
 }
 
 try {
   process.exitCode = await main(process.argv.slice(2));
 } catch (e) {
-  const file = e instanceof LimnError && !['usage', 'capability', 'output', 'input'].includes(e.where) ? `${inputName}: ` : '';
+  const file = e instanceof LimnError && !['usage', 'capability', 'output', 'input', 'gpu'].includes(e.where) ? `${inputName}: ` : '';
   if (e instanceof Usage) {
     process.stderr.write(`${TOOL}: error: ${e.message}\n`);
     process.exitCode = 2;
   } else if (e instanceof LimnError) {
-    const what = ['usage', 'capability', 'output', 'input'].includes(e.where) ? e.detail : e.message;
+    const what = ['usage', 'capability', 'output', 'input', 'gpu'].includes(e.where) ? e.detail : e.message;
     process.stderr.write(`${TOOL}: error: ${file}${what}\n`);
     process.exitCode = e.where === 'usage' ? 2 : e.where === 'capability' || e.capability ? 3 : 1;
   } else if (e.capability) {
     process.stderr.write(`${TOOL}: error: ${e.message}\n`);
     process.exitCode = 3;
   } else {
-    process.stderr.write(`${TOOL}: error: ${e.stack ?? e.message}\n`);
+    // As limn-render's: a failure not foreseen is one line, not a stack.
+    process.stderr.write(`${TOOL}: error: internal error: ${String(e?.message ?? e).split('\n')[0]}\n`);
     process.exitCode = 1;
   }
 }

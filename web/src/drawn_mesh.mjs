@@ -1,6 +1,6 @@
 // The surface as drawn, read back from the GPU: what limn-render's --mesh-out writes
 // (subdivision_pass.cpp drawnMesh, fixed_grids.cpp and adaptive_tess.cpp finishDrawnMesh), and the
-// compute evaluation of tessellation vertices it and the framing hull use.
+// compute evaluation of tessellation vertices it uses.
 import { ShaderCache } from './shaders.mjs';
 import { LimnError } from './container.mjs';
 import { TOTALS_WORDS } from './adaptive.mjs';
@@ -66,23 +66,6 @@ export async function evaluateVertices(r, tvb, n, withLimits = false) {
   for (const buf of [pos, nrm, info, push, rb]) buf.destroy();
   const f = new Float32Array(bytes);
   return { positions: f.subarray(0, 4 * n), normals: f.subarray(4 * n, 8 * n), info: new Uint32Array(bytes, n * 32, 4 * n), limits: f.subarray(12 * n) };
-}
-
-// limn-render's framing hull (renderer.cpp surfaceSamples): each patch at (s, t) in {0, 1/2, 1}^2
-// and every limit point, here evaluated by the same passes on the GPU and read back.
-export async function framingSamples(r) {
-  const { tables } = r.surface;
-  const P = tables.patchCount, st = [0, 16384, 32768];
-  const tv = new Uint32Array(P * 9 * 4);
-  let n = 0;
-  for (let p = 0; p < P; p++) for (const t of st) for (const u of st) tv.set([p, u | (t << 16), 0, 0], 4 * n++);
-  const tvb = r.buffer('hull samples', tv);
-  const { positions, limits } = await evaluateVertices(r, tvb, n, true);
-  tvb.destroy();
-  const points = [];
-  for (let i = 0; i < n; i++) points.push([positions[4 * i], positions[4 * i + 1], positions[4 * i + 2]]);
-  for (let i = 0; i < tables.limitCount; i++) points.push([limits[8 * i], limits[8 * i + 1], limits[8 * i + 2]]);
-  return points;
 }
 
 /**

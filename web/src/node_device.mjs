@@ -5,6 +5,7 @@
 import { existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { create, globals } from 'webgpu';
+import { LimnError } from './container.mjs';
 
 export const privateIcd = fileURLToPath(new URL('../.mesa/icd.json', import.meta.url));
 
@@ -32,4 +33,41 @@ export async function requestNodeDevice({ backend = 'vulkan', limits = {} } = {}
   for (const [k, v] of Object.entries(limits)) required[k] = Math.min(v, adapter.limits[k]);
   const device = await adapter.requestDevice({ requiredLimits: required });
   return { device, adapter };
+}
+
+/**
+ * Watches a device for what ends a run: a loss (not by destroy() here) or an uncaptured WebGPU
+ * error (the first one; the rest follow from it). Both become a LimnError of one line
+ * (where 'gpu'), and Dawn does not print the error itself. check() throws it; guard(promise)
+ * awaits a promise and throws it instead of what the promise did, also while a wait that a lost
+ * device never ends is pending; destroy() destroys the device without it counting as a loss.
+ */
+export function watchDevice(device) {
+  let failure = null, destroying = false, fail;
+  const failed = new Promise((resolve, reject) => { fail = reject; });
+  failed.catch(() => {});
+  const record = (message) => {
+    if (failure) return;
+    failure = new LimnError(message.split('\n')[0].trim(), 'gpu');
+    fail(failure);
+  };
+  device.lost.then((info) => {
+    if (!destroying) record(`the WebGPU device was lost (${info.reason}): ${info.message || 'no reason given'}`);
+  });
+  device.onuncapturederror = (e) => {
+    e.preventDefault?.();
+    record(`WebGPU ${e.error.constructor?.name === 'GPUOutOfMemoryError' ? 'ran out of memory' : 'error'}: ${e.error.message}`);
+  };
+  return {
+    check() { if (failure) throw failure; },
+    async guard(promise) {
+      try {
+        await Promise.race([promise, failed]);
+      } catch (e) {
+        throw failure ?? e;
+      }
+      if (failure) throw failure;
+    },
+    destroy() { destroying = true; device.destroy(); },
+  };
 }

@@ -12,7 +12,8 @@ import { SmoothChartUVs, smoothSeamRecords } from './smooth_uvs.mjs';
 import { boundsOf, frameCamera, viewMatrix, projectionMatrix, multiply, normalize, mul, add } from './camera.mjs';
 import { LimnError } from './container.mjs';
 import { buildEdgePieces, adaptiveData, adaptivePushes, surfaceOrientation, TOTALS_WORDS, INDEXED_DRAW_ARGS, DRAW_ARGS, DISPATCH_ARGS, WIRE_DRAW_ARGS } from './adaptive.mjs';
-import { evaluateVertices, framingSamples, readBuffer, readDrawnMesh } from './drawn_mesh.mjs';
+import { evaluateVertices, readBuffer, readDrawnMesh } from './drawn_mesh.mjs';
+import { surfaceSamples } from './framing.mjs';
 import { appendRows, cached, checkFixedSize, checkTableSize } from './table_buffers.mjs';
 import { addWirePass } from './wire.mjs';
 import { textureWords, fixedDisplacementPlan, checkDisplacement, checkMapSize, addComputeEvaluation, addDisplacementPasses, computeSeams } from './displacement.mjs';
@@ -301,7 +302,7 @@ export class Renderer {
       if (this.bounds.sphereRadius > 0) this.bounds.sphereRadius += pad;
       this.bounds.hull = [];
     } else {
-      this.bounds.hull = s.view.eye ? [] : await framingSamples(this);
+      this.bounds.hull = s.view.eye ? [] : surfaceSamples(this.surface);
     }
     this.setView(s.view);
 

@@ -34,16 +34,18 @@ const cases = [
   ['car depth 3, grids capped at 4', 'osd/catmark/catmark_car.obj', 3, ['--tess', '4']],
 ];
 
-// The view-adaptive tessellation of one view (--edge-pixels 4 with the default --max-error 0.1).
-// An explicit camera: the auto-framing's hull is evaluated in double by limn-render and in float
-// here, and a camera a float step away changes some pieces' rates.
+// The view-adaptive tessellation of one view (--edge-pixels 4 with the default --max-error 0.1),
+// mostly from explicit cameras. One is auto-framed: the framing hull is evaluated in double as
+// limn-render evaluates it (framing.mjs), so the camera is the same to the bit; evaluated on the
+// GPU in float, the camera moved by a float step and the car at depth 6 drew another triangle.
 // Both sides at 4 samples (limn-render's default): the cull drops a flat element's triangles
 // that cover no sample, so the sample pattern decides which triangles are emitted.
 const view = (eye, target) => ['--size', '320x240', '--samples', '4', '--eye', eye, '--target', target];
 cases.push(['view-adaptive: spot depth 3', 'quad/spot_quadrangulated.obj', 3, view('1.5,1.2,2.5', '0,0.1,0.2')],
   ['view-adaptive: creased torus depth 3', 'osd/catmark/catmark_torus_creases0.obj', 3, ['--size', '320x240', '--samples', '1']],
   ['view-adaptive: spot depth 1, one sample', 'quad/spot_quadrangulated.obj', 1, ['--size', '320x240', '--samples', '1', '--eye', '1.5,1.2,2.5', '--target', '0,0.1,0.2']],
-  ['view-adaptive: car depth 4', 'osd/catmark/catmark_car.obj', 4, view('4,-1,2.5', '0.6,-1.9,0.3')]);
+  ['view-adaptive: car depth 4', 'osd/catmark/catmark_car.obj', 4, view('4,-1,2.5', '0.6,-1.9,0.3')],
+  ['view-adaptive: car depth 6, auto-framed', 'osd/catmark/catmark_car.obj', 6, ['--size', '320x240', '--samples', '4']]);
 
 function optionView(args) {
   const at = (o) => (args.includes(o) ? args[args.indexOf(o) + 1].split(',').map(Number) : undefined);

@@ -1,11 +1,15 @@
 // The limn viewer: a .limn container drawn in the page by the web/ runtime (limn-render's passes
 // and shaders on WebGPU). State lives in the URL (state.mjs); it draws only when something
 // changed, or while the turntable turns; errors are shown in the panel, in words.
-import { loadLimn, Renderer, LimnError } from '../src/index.mjs';
+import { loadLimn, Renderer } from '../src/index.mjs';
 import { surfaceFragmentStage } from '../src/renderer.mjs';
-import { parseQuery, toQuery, renderCommand, DEFAULTS, SHADE_NAMES } from './state.mjs';
+import { parseQuery, toQuery, renderCommand, DEFAULTS } from './state.mjs';
 import { orbit, zoom, pan, frame, viewSpec } from './orbit.mjs';
 import { attachControls } from './controls.mjs';
+import { showError, clearError, clearErrors, describe } from './errors.mjs';
+import { buildPanel, syncPanel as syncPanelOf } from './panel.mjs';
+import { attachFiles } from './files.mjs';
+import { bench } from './viewer_bench.mjs';
 import { requestDevice, GpuTimer, ViewerError, imagePixels } from './gpu.mjs';
 
 const $ = (id) => document.getElementById(id);
@@ -21,25 +25,6 @@ let turntable = query.turntable;
 const stats = { frames: 0, fpsFrames: 0, fpsSince: 0 };
 // Parameters the link asked for: an unsupported one is an error shown, a default one is not.
 const asked = new Set(new URLSearchParams(location.search).keys());
-
-// --- errors ---------------------------------------------------------------------------------
-const errors = new Map();
-function showError(key, message) {
-  errors.set(key, message);
-  renderErrors();
-}
-function clearError(key) { if (errors.delete(key)) renderErrors(); }
-function renderErrors() {
-  const box = $('errors');
-  box.replaceChildren(...[...errors.values()].map((m) => Object.assign(document.createElement('div'), { className: 'error', textContent: m })));
-  document.body.dataset.errors = errors.size;
-}
-// A LimnError names the chunk it is about ('chunk TBLS: ...'); its other kinds say only what.
-const GENERIC = ['capability', 'usage', 'input', 'output'];
-function describe(e) {
-  if (e instanceof LimnError) return GENERIC.includes(e.where) ? e.detail : e.message;
-  return e instanceof ViewerError ? e.message : `${e.name ?? 'Error'}: ${e.message ?? e}`;
-}
 
 // --- what the runtime supports ------------------------------------------------------------------
 // The renderer's constructor refuses, in words, what the runtime cannot draw, before any GPU work:
@@ -246,7 +231,7 @@ async function openModel(bytes, name) {
     return false;
   }
   clearError('model');
-  for (const k of [...errors.keys()]) if (k.startsWith('fallback-')) clearError(k);
+  clearErrors('fallback-');
   const previous = model;
   model = { surface, name, serial: ++serial, texture: await materialTexture(surface, name) };
   if (surface.material && !state.color && !asked.has('color')) {
@@ -326,53 +311,6 @@ async function openMap(blob, name, kind, url = null) {
 
 const baseName = (url) => decodeURIComponent(url.split(/[?#]/)[0].split('/').pop() || url);
 
-// --- the panel ----------------------------------------------------------------------------------
-function setEnabled(input, why) {
-  input.disabled = !!why;
-  const label = input.closest('label');
-  if (!label) return;
-  label.classList.toggle('disabled', !!why);
-  label.title = why ?? '';
-  let note = label.querySelector('.why');
-  if (why && !note) note = label.appendChild(Object.assign(document.createElement('span'), { className: 'why' }));
-  if (note) note.textContent = why ?? '';
-  if (note && !why) note.remove();
-}
-
-function buildPanel() {
-  const shade = $('shade');
-  for (const name of SHADE_NAMES) {
-    const label = document.createElement('label');
-    label.className = 'opt';
-    label.innerHTML = `<input type="radio" name="shade" value="${name}"> ${name}`;
-    shade.append(label);
-    label.firstChild.addEventListener('change', () => commit({ ...state, shade: name }));
-  }
-  for (const t of [1, 2, 4, 8, 16, 32, 64, 128, 256]) $('tess').append(new Option(String(t), String(t)));
-  $('tess').addEventListener('change', (e) => commit({ ...state, tess: +e.target.value }));
-  $('samples').addEventListener('change', (e) => commit({ ...state, samples: +e.target.value }));
-  $('sampleShading').addEventListener('change', (e) => commit({ ...state, sampleShading: e.target.checked }));
-  $('wire').addEventListener('change', (e) => commit({ ...state, wire: e.target.checked }));
-  $('mode-fixed').addEventListener('change', () => commit({ ...state, edgePixels: 0 }));
-  $('mode-adaptive').addEventListener('change', () => commit({ ...state, edgePixels: lastEdgePixels }));
-  $('maxError').addEventListener('change', (e) => {
-    const v = +e.target.value;
-    if (Number.isFinite(v) && v >= 0 && v <= 4096) commit({ ...state, maxError: v });
-  });
-  $('edgePixels').addEventListener('change', (e) => {
-    const v = +e.target.value;
-    if (Number.isFinite(v) && v > 0 && v <= 4096) { lastEdgePixels = v; commit({ ...state, edgePixels: v }); }
-  });
-  for (const k of ['displaceScale', 'displaceMid']) {
-    $(k).addEventListener('change', (e) => { const v = +e.target.value; if (Number.isFinite(v)) commit({ ...state, [k]: v }); });
-  }
-  $('seamFix').addEventListener('change', (e) => commit({ ...state, seamFix: e.target.checked }));
-  $('reset').addEventListener('click', () => commit({ ...state, view: [...DEFAULTS.view], eye: null, target: null, up: null }, { immediate: true }));
-  $('frame').addEventListener('click', () => commit(frame(state, camera()), { immediate: true }));
-  $('turntable').addEventListener('change', (e) => setTurntable(e.target.checked));
-}
-let lastEdgePixels = DEFAULTS.edgePixels;
-
 function setTurntable(on) {
   turntable = on;
   $('turntable').checked = on;
@@ -380,37 +318,7 @@ function setTurntable(on) {
   if (on) requestDraw();
 }
 
-function syncPanel() {
-  const s = supportedState(state);
-  for (const input of $('shade').querySelectorAll('input')) {
-    input.checked = input.value === s.shade;
-    setEnabled(input, input.value === 'lit' ? null : refusal({ shade: input.value, ...textureSettings() }));
-  }
-  $('samples').value = String(s.samples);
-  $('sampleShading').checked = s.sampleShading;
-  setEnabled($('sampleShading'), s.samples === 1 ? 'with 4 samples only' : refusal({ sampleShading: true }));
-  $('wire').checked = s.wire;
-  if (s.edgePixels > 0) lastEdgePixels = s.edgePixels;
-  $('mode-fixed').checked = s.edgePixels === 0;
-  $('mode-adaptive').checked = s.edgePixels > 0;
-  const adaptiveWhy = refusal({ edgePixels: lastEdgePixels });
-  setEnabled($('mode-adaptive'), adaptiveWhy);
-  $('edgePixels').value = String(lastEdgePixels);
-  setEnabled($('edgePixels'), adaptiveWhy);
-  $('maxError').value = String(s.maxError);
-  setEnabled($('maxError'), adaptiveWhy);
-  if (![...$('tess').options].some((o) => +o.value === s.tess)) $('tess').append(new Option(String(s.tess), String(s.tess)));
-  $('tess').value = String(s.tess);
-  $('displaceScale').value = String(s.displaceScale);
-  $('displaceMid').value = String(s.displaceMid);
-  $('seamFix').checked = s.seamFix;
-  const displaceWhy = map?.kind !== 'displace' ? 'drop a height map image on the page first' : null;
-  for (const k of ['displaceScale', 'displaceMid', 'seamFix']) setEnabled($(k), displaceWhy);
-  $('turntable').checked = turntable;
-  updateCameraText(s);
-}
-
-// --- files: drop anywhere, or the pickers ---------------------------------------------------------
+// --- files: drop anywhere, or the pickers (files.mjs) ---------------------------------------------
 async function openFile(file) {
   if (/\.limn$/i.test(file.name) || !file.type.startsWith('image/')) {
     const bytes = await file.arrayBuffer();
@@ -423,53 +331,25 @@ async function openFile(file) {
   }
 }
 
-function attachFiles() {
-  let depth = 0;
-  const hint = $('drop-hint');
-  document.addEventListener('dragenter', (e) => { e.preventDefault(); depth++; hint.hidden = false; });
-  document.addEventListener('dragleave', () => { if (--depth <= 0) { depth = 0; hint.hidden = true; } });
-  document.addEventListener('dragover', (e) => e.preventDefault());
-  document.addEventListener('drop', (e) => {
-    e.preventDefault();
-    depth = 0;
-    hint.hidden = true;
-    const file = e.dataTransfer?.files?.[0];
-    if (file) openFile(file);
-  });
-  $('open-model').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openFile(f); e.target.value = ''; });
-  $('open-map').addEventListener('change', (e) => { const f = e.target.files[0]; if (f) openMap(f, f.name, $('map-kind').value); e.target.value = ''; });
-}
 
-// --- ?bench=N: frame times of fixed grids and view-adaptive, one JSON line each ------------------
-async function bench(frames) {
-  const median = (a) => { const b = [...a].sort((x, y) => x - y); return b.length ? b[b.length >> 1] : null; };
-  const configs = [{ tessellation: 'fixed', edgePixels: 0 }, { tessellation: 'adaptive', edgePixels: state.edgePixels > 0 ? state.edgePixels : DEFAULTS.edgePixels }];
-  for (const c of configs) {
-    const line = { bench: 'limn-viewer', model: model.name, depth: model.surface.tables.depth, tessellation: c.tessellation, edge_pixels: c.edgePixels, max_error: c.edgePixels > 0 ? state.maxError : null, tess: state.tess, samples: state.samples, size: canvasSize(), frames };
-    const why = refusal({ edgePixels: c.edgePixels });
-    if (why) { console.log(JSON.stringify({ ...line, unsupported: why })); continue; }
-    state = { ...state, edgePixels: c.edgePixels };
-    await exclusive(ensureRenderer);
-    await exclusive(drawOnce); // pipelines and first uploads
-    const t = { gpu: [], js: [], wall: [] };
-    for (let f = 0; f < frames; f++) {
-      const r = await exclusive(drawOnce);
-      if (r.gpuMs !== null) t.gpu.push(r.gpuMs);
-      t.js.push(r.js);
-      t.wall.push(r.wall);
-      t.triangles = r.triangles;
-    }
-    const fix = (x) => (x === null ? null : +x.toFixed(3));
-    console.log(JSON.stringify({ ...line, triangles: t.triangles, gpu_ms: fix(median(t.gpu)), js_ms: fix(median(t.js)), wall_ms: fix(median(t.wall)), adapter: gpu.description }));
-  }
-  console.log('limn-viewer bench: done');
-}
+// What the panel (panel.mjs) and ?bench (viewer_bench.mjs) see of the viewer and may change.
+const app = {
+  get state() { return state; },
+  set state(s) { state = s; },
+  get model() { return model; },
+  get map() { return map; },
+  get gpu() { return gpu; },
+  get turntable() { return turntable; },
+  commit, refusal, supportedState, textureSettings, camera, setTurntable, updateCameraText, canvasSize,
+  exclusive, ensureRenderer, drawOnce,
+};
+const syncPanel = () => syncPanelOf(app);
 
 // --- start ---------------------------------------------------------------------------------------
 async function start() {
   $('boot')?.remove();
-  buildPanel();
-  attachFiles();
+  buildPanel(app);
+  attachFiles(openFile, openMap);
   for (const e of query.errors) showError(`url-${e}`, `in the link: ${e}`);
   try {
     gpu = await requestDevice();
@@ -514,7 +394,7 @@ async function start() {
     }
   }
   document.body.dataset.ready = '1';
-  if (query.bench && model) await bench(query.bench);
+  if (query.bench && model) await bench(app, query.bench);
 }
 
 start();
