@@ -83,7 +83,13 @@ web_tools() {
     fi
   fi
   local m="$dir/.mesa" lib="usr/lib/x86_64-linux-gnu/libvulkan_lvp.so"
-  [ -f "$m/icd.json" ] && [ -f "$m/root/$lib" ] && return 0
+  # The ICD file names the library by absolute path: rewritten each time, so that a moved or
+  # copied checkout does not point Vulkan at another checkout's (possibly deleted) Mesa.
+  if [ -f "$m/root/$lib" ]; then
+    printf '{"file_format_version":"1.0.1","ICD":{"library_path":"%s","api_version":"1.4.305"}}\n' \
+      "$m/root/$lib" > "$m/icd.json"
+    return 0
+  fi
   echo "setup: Mesa 25 lavapipe from bookworm-backports into web/.mesa (private)" >&2
   rm -rf "$m" && mkdir -p "$m/lists/partial" "$m/debs"
   local mirror
