@@ -9,7 +9,8 @@ import { LimnError } from '../src/container.mjs';
 import { Renderer, SHADES } from '../src/renderer.mjs';
 import { encodePng } from '../src/png.mjs';
 import { encodePly } from '../src/ply.mjs';
-import { requestNodeDevice } from '../src/node_device.mjs';
+import { requestNodeDevice, settle } from '../src/node_device.mjs';
+import { GpuTimer } from '../src/gpu_timer.mjs';
 import { readImageFile, decodePngImage, heightMap } from '../src/node_image.mjs';
 
 const TOOL = 'limn-web-render';
@@ -57,7 +58,10 @@ what is not listed is not supported here.
   --wire                  overlay the patch and face outlines (drawn on the fixed grids)
   --wire-triangles        overlay the edges of every triangle drawn (view-adaptive: the rates
                           this view chose)
-  --bench N               render N frames, print limn-render's --bench JSON fields on stdout
+  --bench N               render N frames after 3 warm-up ones, print limn-render's --bench
+                          JSON fields on stdout (gpu_ms.total from timestamp queries, null
+                          without them; cpu_ms the host's frame: record, submit, wait) and
+                          js_ms, the JavaScript of the frame's recording and submission
   --help, --version
 Smooth face-varying UVs (TAGS fvar other than "all") are drawn, and displaced, from the
 container's FVSF chunk (limn-tables writes it). Not supported here yet: BLND (blending
@@ -256,23 +260,32 @@ async function main(argv) {
   }
   const surface = loadLimn(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength));
   applyMaps(o, surface);
-  const { device, adapter } = await requestNodeDevice();
+  const { device, adapter } = await requestNodeDevice({ features: o.bench ? ['timestamp-query'] : [] });
   let lost = null;
   device.lost.then((info) => { lost = info; });
   device.onuncapturederror = (e) => { lost ??= { message: e.error.message }; };
-  const renderer = await Renderer.create(device, surface, o.settings);
-  const frames = Math.max(o.bench, 1);
-  const times = [], js = [];
-  for (let f = 0; f < frames; f++) {
+  const renderer = await settle(Renderer.create(device, surface, o.settings));
+  // --bench as limn-render's: 3 warm-up frames (pipeline compiles, first uploads), then per
+  // measured frame the GPU time from timestamps, the host time (record, submit, wait) and, of
+  // that, the JavaScript that records and submits.
+  const warmup = o.bench ? 3 : 0, frames = Math.max(o.bench, 1);
+  const timer = o.bench ? new GpuTimer(device) : null;
+  const gpu = [], wall = [], js = [];
+  for (let f = -warmup; f < frames; f++) {
     const t0 = performance.now();
+    timer?.begin();
     renderer.frame();
-    await device.queue.onSubmittedWorkDone();
-    times.push(performance.now() - t0);
+    timer?.end();
+    await settle(device.queue.onSubmittedWorkDone());
+    const ms = performance.now() - t0, gpuMs = timer ? await settle(timer.read()) : null;
+    if (f < 0) continue;
+    wall.push(ms);
     js.push(renderer.timings.js);
+    gpu.push(gpuMs);
   }
-  const pixels = await renderer.pixels();
+  const pixels = await settle(renderer.pixels());
   // Everything is read back before anything is written: a failure leaves no file.
-  const ply = o.meshOut ? encodePly(await renderer.drawnMesh(), !!o.meshAscii) : null;
+  const ply = o.meshOut ? encodePly(await settle(renderer.drawnMesh()), !!o.meshAscii) : null;
   if (lost) throw new Error(`the WebGPU device failed: ${lost.message}`);
   const files = [];
   if (o.output) files.push([o.output, encodePng(o.settings.width, o.settings.height, pixels)]);
@@ -280,16 +293,17 @@ async function main(argv) {
   writeOutputs(files);
   if (ply && o.meshOut === '-') process.stdout.write(ply);
   if (o.bench) {
-    // Medians over the frames after the first (pipeline compiles and first uploads).
-    const median = (a) => { const b = a.slice(a.length > 1 ? 1 : 0).sort((x, y) => x - y); return b[b.length >> 1]; };
+    const median = (a) => { const b = [...a].sort((x, y) => x - y), n = b.length; return n % 2 ? b[n >> 1] : (b[n / 2 - 1] + b[n / 2]) / 2; };
+    const ms = (a) => (a.includes(null) ? null : +median(a).toFixed(3));
     const s = o.settings;
     const report = {
       frames: o.bench, samples: s.samples, sample_shading: !!s.sampleShading, supersample: 1,
       size: `${s.width}x${s.height}`,
-      gpu_ms: { compute: null, draw: null, total: +median(times).toFixed(3) },
+      gpu_ms: { compute: null, draw: null, total: ms(gpu) },
       passes: {},
-      cpu_ms: +median(js).toFixed(3),
-      triangles: await renderer.drawnTriangles(),
+      cpu_ms: ms(wall),
+      js_ms: ms(js),
+      triangles: await settle(renderer.drawnTriangles()),
       vertices_evaluated: surface.tables.totalVertices - surface.tables.levels[0].count + surface.tables.limitCount + renderer.tess.vertexCount,
       buffer_bytes: Object.values(renderer.buffers).reduce((n, b) => n + b.size, 0),
       peak_rss_mb: +(process.resourceUsage().maxRSS / 1024).toFixed(1),

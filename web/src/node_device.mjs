@@ -15,8 +15,9 @@ const navigators = [];
 /**
  * Returns { device, adapter } or throws an Error whose `capability` is true when no adapter or
  * device is there (limn's exit code 3). `backend`: 'vulkan' (default) or 'null' (validation only).
+ * `features`: the optional ones wanted (e.g. 'timestamp-query'), requested where the adapter has them.
  */
-export async function requestNodeDevice({ backend = 'vulkan', limits = {} } = {}) {
+export async function requestNodeDevice({ backend = 'vulkan', limits = {}, features = [] } = {}) {
   if (!process.env.VK_ICD_FILENAMES && existsSync(privateIcd)) process.env.VK_ICD_FILENAMES = privateIcd;
   process.env.XDG_RUNTIME_DIR ??= '/tmp';
   Object.assign(globalThis, globals);
@@ -30,6 +31,28 @@ export async function requestNodeDevice({ backend = 'vulkan', limits = {} } = {}
   }
   const required = {};
   for (const [k, v] of Object.entries(limits)) required[k] = Math.min(v, adapter.limits[k]);
-  const device = await adapter.requestDevice({ requiredLimits: required });
+  const requiredFeatures = features.filter((f) => adapter.features.has(f));
+  const device = await adapter.requestDevice({ requiredLimits: required, requiredFeatures });
   return { device, adapter };
+}
+
+/**
+ * Awaits `promise` without keeping a core busy. dawn.node settles its promises (mapAsync,
+ * onSubmittedWorkDone, create*PipelineAsync) by calling wgpuInstanceProcessEvents from
+ * setImmediate for as long as one is pending, so the event loop spins; on a CPU device
+ * (lavapipe) the spin takes a core from the rasterizer's threads, and on 2 cores a frame took
+ * 1.4-2.2x limn-render's. Here every turn of the event loop first sleeps `pollMs`: Dawn still
+ * polls once a turn, the thread is idle in between, and a settled promise is seen at most about
+ * `pollMs` later. Node only (a browser's main thread may not block; its GPU runs elsewhere).
+ */
+export async function settle(promise, pollMs = 0.2) {
+  let pending = true;
+  const done = () => { pending = false; };
+  promise.then(done, done);
+  const cell = new Int32Array(new SharedArrayBuffer(4));
+  while (pending) {
+    Atomics.wait(cell, 0, 0, pollMs);
+    await new Promise(setImmediate);
+  }
+  return promise;
 }
