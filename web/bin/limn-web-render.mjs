@@ -9,7 +9,7 @@ import { LimnError } from '../src/container.mjs';
 import { Renderer, SHADES } from '../src/renderer.mjs';
 import { encodePng } from '../src/png.mjs';
 import { encodePly } from '../src/ply.mjs';
-import { requestNodeDevice, settle } from '../src/node_device.mjs';
+import { requestNodeDevice } from '../src/node_device.mjs';
 import { GpuTimer } from '../src/gpu_timer.mjs';
 import { readImageFile, decodePngImage, heightMap } from '../src/node_image.mjs';
 
@@ -264,7 +264,7 @@ async function main(argv) {
   let lost = null;
   device.lost.then((info) => { lost = info; });
   device.onuncapturederror = (e) => { lost ??= { message: e.error.message }; };
-  const renderer = await settle(Renderer.create(device, surface, o.settings));
+  const renderer = await Renderer.create(device, surface, o.settings);
   // --bench as limn-render's: 3 warm-up frames (pipeline compiles, first uploads), then per
   // measured frame the GPU time from timestamps, the host time (record, submit, wait) and, of
   // that, the JavaScript that records and submits.
@@ -276,16 +276,16 @@ async function main(argv) {
     timer?.begin();
     renderer.frame();
     timer?.end();
-    await settle(device.queue.onSubmittedWorkDone());
-    const ms = performance.now() - t0, gpuMs = timer ? await settle(timer.read()) : null;
+    await device.queue.onSubmittedWorkDone();
+    const ms = performance.now() - t0, gpuMs = timer ? await timer.read() : null;
     if (f < 0) continue;
     wall.push(ms);
     js.push(renderer.timings.js);
     gpu.push(gpuMs);
   }
-  const pixels = await settle(renderer.pixels());
+  const pixels = await renderer.pixels();
   // Everything is read back before anything is written: a failure leaves no file.
-  const ply = o.meshOut ? encodePly(await settle(renderer.drawnMesh()), !!o.meshAscii) : null;
+  const ply = o.meshOut ? encodePly(await renderer.drawnMesh(), !!o.meshAscii) : null;
   if (lost) throw new Error(`the WebGPU device failed: ${lost.message}`);
   const files = [];
   if (o.output) files.push([o.output, encodePng(o.settings.width, o.settings.height, pixels)]);
@@ -303,7 +303,7 @@ async function main(argv) {
       passes: {},
       cpu_ms: ms(wall),
       js_ms: ms(js),
-      triangles: await settle(renderer.drawnTriangles()),
+      triangles: await renderer.drawnTriangles(),
       vertices_evaluated: surface.tables.totalVertices - surface.tables.levels[0].count + surface.tables.limitCount + renderer.tess.vertexCount,
       buffer_bytes: Object.values(renderer.buffers).reduce((n, b) => n + b.size, 0),
       peak_rss_mb: +(process.resourceUsage().maxRSS / 1024).toFixed(1),

@@ -21,6 +21,7 @@ export async function requestNodeDevice({ backend = 'vulkan', limits = {}, featu
   if (!process.env.VK_ICD_FILENAMES && existsSync(privateIcd)) process.env.VK_ICD_FILENAMES = privateIcd;
   process.env.XDG_RUNTIME_DIR ??= '/tmp';
   Object.assign(globalThis, globals);
+  pollQuietly();
   const gpu = create([backend === 'null' ? 'backend=null' : 'backend=vulkan', ...(process.env.LIMN_WEB_DAWN_FLAGS ? process.env.LIMN_WEB_DAWN_FLAGS.split(' ') : [])]);
   navigators.push(gpu);
   const adapter = await gpu.requestAdapter();
@@ -37,22 +38,23 @@ export async function requestNodeDevice({ backend = 'vulkan', limits = {}, featu
 }
 
 /**
- * Awaits `promise` without keeping a core busy. dawn.node settles its promises (mapAsync,
- * onSubmittedWorkDone, create*PipelineAsync) by calling wgpuInstanceProcessEvents from
- * setImmediate for as long as one is pending, so the event loop spins; on a CPU device
- * (lavapipe) the spin takes a core from the rasterizer's threads, and on 2 cores a frame took
- * 1.4-2.2x limn-render's. Here every turn of the event loop first sleeps `pollMs`: Dawn still
- * polls once a turn, the thread is idle in between, and a settled promise is seen at most about
- * `pollMs` later. Node only (a browser's main thread may not block; its GPU runs elsewhere).
+ * dawn.node settles its promises (mapAsync, onSubmittedWorkDone, create*PipelineAsync) by calling
+ * wgpuInstanceProcessEvents from setImmediate for as long as one is pending, so the event loop
+ * spins while the GPU works. On a CPU device (lavapipe) that spin takes a core from the
+ * rasterizer's threads: on 2 cores a frame took 1.4-2.2x limn-render's (docs/benchmarks.md). From
+ * the first device on, every turn of the event loop first sleeps `pollMs` here: Dawn still polls
+ * once a turn, the thread is idle in between, and a settled promise is seen at most about
+ * `pollMs` later. The immediate is unref'd: it keeps nothing alive, and while the loop blocks on
+ * anything else (timers, I/O) it runs once a wake-up. Node only (a browser's GPU runs elsewhere).
  */
-export async function settle(promise, pollMs = 0.2) {
-  let pending = true;
-  const done = () => { pending = false; };
-  promise.then(done, done);
+let quietPolling = false;
+function pollQuietly(pollMs = 0.2) {
+  if (quietPolling) return;
+  quietPolling = true;
   const cell = new Int32Array(new SharedArrayBuffer(4));
-  while (pending) {
+  const turn = () => {
     Atomics.wait(cell, 0, 0, pollMs);
-    await new Promise(setImmediate);
-  }
-  return promise;
+    setImmediate(turn).unref();
+  };
+  setImmediate(turn).unref();
 }
