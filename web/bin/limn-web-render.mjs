@@ -9,6 +9,7 @@ import { encodePng } from '../src/png.mjs';
 import { encodePly } from '../src/ply.mjs';
 import { requestNodeDevice, watchDevice } from '../src/node_device.mjs';
 import { displayName, isStreamPath, planOutput, readInput, removeOutputsOnSignals, writeOutputs, writeStdout } from '../src/node_io.mjs';
+import { GpuTimer } from '../src/gpu_timer.mjs';
 import { readImageFile, decodePngImage, heightMap } from '../src/node_image.mjs';
 
 const TOOL = 'limn-web-render';
@@ -58,7 +59,10 @@ what is not listed is not supported here. IN.limn: - (the default) is standard i
   --wire                  overlay the patch and face outlines (drawn on the fixed grids)
   --wire-triangles        overlay the edges of every triangle drawn (view-adaptive: the rates
                           this view chose)
-  --bench N               render N frames, print limn-render's --bench JSON fields on stdout
+  --bench N               render N frames after 3 warm-up ones, print limn-render's --bench
+                          JSON fields on stdout (gpu_ms.total from timestamp queries, null
+                          without them; cpu_ms the host's frame: record, submit, wait) and
+                          js_ms, the JavaScript of the frame's recording and submission
   --help, --version
 Smooth face-varying UVs (TAGS fvar other than "all") are drawn, and displaced, from the
 container's FVSF chunk (limn-tables writes it). Not supported here yet: BLND (blending
@@ -228,7 +232,10 @@ async function main(argv) {
   const surface = loadLimn(await readInput(o.input));
   applyMaps(o, surface);
   const s = o.settings;
-  const { device, adapter } = await requestNodeDevice({ limits: { maxTextureDimension2D: Math.max(s.width, s.height) } });
+  const { device, adapter } = await requestNodeDevice({
+    limits: { maxTextureDimension2D: Math.max(s.width, s.height) },
+    features: o.bench ? ['timestamp-query'] : [],
+  });
   if (Math.max(s.width, s.height) > device.limits.maxTextureDimension2D) {
     throw new LimnError(`--size ${s.width}x${s.height}: this WebGPU device draws images of at most ${device.limits.maxTextureDimension2D} pixels a side`, 'capability');
   }
@@ -240,14 +247,23 @@ async function main(argv) {
 
 async function render(o, surface, { device, adapter, gpu, image, mesh }) {
   const renderer = await Renderer.create(device, surface, o.settings);
-  const frames = Math.max(o.bench, 1);
-  const times = [], js = [];
-  for (let f = 0; f < frames; f++) {
+  // --bench as limn-render's: 3 warm-up frames (pipeline compiles, first uploads), then per
+  // measured frame the GPU time from timestamps, the host time (record, submit, wait) and, of
+  // that, the JavaScript that records and submits.
+  const warmup = o.bench ? 3 : 0, frames = Math.max(o.bench, 1);
+  const timer = o.bench ? new GpuTimer(device) : null;
+  const gpuMs = [], wall = [], js = [];
+  for (let f = -warmup; f < frames; f++) {
     const t0 = performance.now();
+    timer?.begin();
     renderer.frame();
+    timer?.end();
     await device.queue.onSubmittedWorkDone();
-    times.push(performance.now() - t0);
+    const ms = performance.now() - t0, frameGpuMs = timer ? await timer.read() : null;
+    if (f < 0) continue;
+    wall.push(ms);
     js.push(renderer.timings.js);
+    gpuMs.push(frameGpuMs);
   }
   const pixels = await renderer.pixels();
   // Everything is read back before anything is written: a failure leaves no file.
@@ -258,15 +274,16 @@ async function render(o, surface, { device, adapter, gpu, image, mesh }) {
   if (ply) files.push([mesh, ply]);
   await writeOutputs(files);
   if (o.bench) {
-    // Medians over the frames after the first (pipeline compiles and first uploads).
-    const median = (a) => { const b = a.slice(a.length > 1 ? 1 : 0).sort((x, y) => x - y); return b[b.length >> 1]; };
+    const median = (a) => { const b = [...a].sort((x, y) => x - y), n = b.length; return n % 2 ? b[n >> 1] : (b[n / 2 - 1] + b[n / 2]) / 2; };
+    const ms = (a) => (a.includes(null) ? null : +median(a).toFixed(3));
     const s = o.settings;
     const report = {
       frames: o.bench, samples: s.samples, sample_shading: !!s.sampleShading, supersample: 1,
       size: `${s.width}x${s.height}`,
-      gpu_ms: { compute: null, draw: null, total: +median(times).toFixed(3) },
+      gpu_ms: { compute: null, draw: null, total: ms(gpuMs) },
       passes: {},
-      cpu_ms: +median(js).toFixed(3),
+      cpu_ms: ms(wall),
+      js_ms: ms(js),
       triangles: await renderer.drawnTriangles(),
       vertices_evaluated: surface.tables.totalVertices - surface.tables.levels[0].count + surface.tables.limitCount + renderer.tess.vertexCount,
       buffer_bytes: Object.values(renderer.buffers).reduce((n, b) => n + b.size, 0),

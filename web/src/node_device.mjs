@@ -16,11 +16,13 @@ const navigators = [];
 /**
  * Returns { device, adapter } or throws an Error whose `capability` is true when no adapter or
  * device is there (limn's exit code 3). `backend`: 'vulkan' (default) or 'null' (validation only).
+ * `features`: the optional ones wanted (e.g. 'timestamp-query'), requested where the adapter has them.
  */
-export async function requestNodeDevice({ backend = 'vulkan', limits = {} } = {}) {
+export async function requestNodeDevice({ backend = 'vulkan', limits = {}, features = [] } = {}) {
   if (!process.env.VK_ICD_FILENAMES && existsSync(privateIcd)) process.env.VK_ICD_FILENAMES = privateIcd;
   process.env.XDG_RUNTIME_DIR ??= '/tmp';
   Object.assign(globalThis, globals);
+  pollQuietly();
   const gpu = create([backend === 'null' ? 'backend=null' : 'backend=vulkan', ...(process.env.LIMN_WEB_DAWN_FLAGS ? process.env.LIMN_WEB_DAWN_FLAGS.split(' ') : [])]);
   navigators.push(gpu);
   const adapter = await gpu.requestAdapter();
@@ -31,7 +33,8 @@ export async function requestNodeDevice({ backend = 'vulkan', limits = {} } = {}
   }
   const required = {};
   for (const [k, v] of Object.entries(limits)) required[k] = Math.min(v, adapter.limits[k]);
-  const device = await adapter.requestDevice({ requiredLimits: required });
+  const requiredFeatures = features.filter((f) => adapter.features.has(f));
+  const device = await adapter.requestDevice({ requiredLimits: required, requiredFeatures });
   return { device, adapter };
 }
 
@@ -70,4 +73,33 @@ export function watchDevice(device) {
     },
     destroy() { destroying = true; device.destroy(); },
   };
+}
+
+/**
+ * dawn.node settles its promises (mapAsync, onSubmittedWorkDone, create*PipelineAsync) by calling
+ * wgpuInstanceProcessEvents from setImmediate for as long as one is pending, so the event loop
+ * spins while the GPU works. On a CPU device (lavapipe) that spin takes a core from the
+ * rasterizer's threads: on 2 cores a frame took 1.4-2.2x limn-render's (docs/benchmarks.md). From
+ * the first device on, every turn of the event loop first sleeps here: Dawn still polls once a
+ * turn, and the thread is idle in between. The sleep grows with the wait, a twentieth of it so far
+ * (0.1 to 1 ms): a settled promise is seen at most about 5% (or 1 ms) late, with few wake-ups on
+ * long frames (a fixed 0.2 ms cost the car's 150 ms frame about 10% more CPU than 1 ms). A wait
+ * starts when anything else ran between two turns. The immediate is unref'd: it keeps nothing
+ * alive, and while the loop blocks on anything else (timers, I/O) it runs once a wake-up. Node
+ * only (in a browser the GPU runs in another process).
+ */
+let quietPolling = false;
+function pollQuietly() {
+  if (quietPolling) return;
+  quietPolling = true;
+  const cell = new Int32Array(new SharedArrayBuffer(4));
+  let since = 0, last = 0;
+  const turn = () => {
+    const now = performance.now();
+    if (now - last > 0.1) since = now;
+    Atomics.wait(cell, 0, 0, Math.min(Math.max((now - since) / 20, 0.1), 1));
+    last = performance.now();
+    setImmediate(turn).unref();
+  };
+  setImmediate(turn).unref();
 }

@@ -216,3 +216,19 @@ test('--mesh-out: a bad extension exits 2, a format not written here exits 3, an
   rmSync(join(scratch, 'dir.ply'), { recursive: true });
   assert.equal(readdirSync(scratch).length, before);
 });
+
+test('--bench prints limn-render\'s JSON fields: GPU ms from timestamps, the host\'s frame, the JS of it', () => {
+  const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
+  const args = [container('quad/spot_quadrangulated.obj', { depth: 1 }), '--size', '64x48', '--samples', '1', '--bench', '2'];
+  const native = JSON.parse(execFileSync(tool('limn-render'), args, { env, stdio: ['ignore', 'pipe', 'ignore'] }).toString());
+  const r = spawnSync(process.execPath, [cli, ...args], { encoding: 'utf8', timeout: 120000, env });
+  assert.equal(r.status, 0, r.stderr);
+  const web = JSON.parse(r.stdout);
+  for (const k of Object.keys(native)) assert.ok(k in web, `limn-render's field ${k} is missing: ${r.stdout}`);
+  assert.deepEqual(Object.keys(web.gpu_ms), Object.keys(native.gpu_ms));
+  assert.equal(web.frames, 2);
+  assert.equal(web.triangles, native.triangles);
+  // The adapter has timestamp queries (Mesa 25 lavapipe): the GPU total is measured, not null.
+  assert.ok(web.gpu_ms.total > 0 && web.gpu_ms.total < web.cpu_ms + 1, r.stdout);
+  assert.ok(web.js_ms > 0 && web.js_ms <= web.cpu_ms, r.stdout);
+});
