@@ -38,6 +38,8 @@ if $tests; then
   # The browser viewer's tests (web/viewer/test): Debian's chromium, whose WebGPU runs headless
   # on SwiftShader; playwright-core (below) drives it, never downloading a browser of its own.
   packages+=(chromium)
+  # The tests' watchdog (tests/support/test_watchdog.cpp) prints a hung test's backtraces with gdb.
+  packages+=(gdb)
 fi
 
 # Test-only npm packages, pinned by tests/tools/package-lock.json, into tests/tools/node_modules
@@ -83,9 +85,10 @@ web_tools() {
     fi
   fi
   local m="$dir/.mesa" lib="usr/lib/x86_64-linux-gnu/libvulkan_lvp.so"
-  # The ICD file names the library by absolute path: rewritten each time, so that a moved or
-  # copied checkout does not point Vulkan at another checkout's (possibly deleted) Mesa.
+  # The ICD file names the library by absolute path: a checkout moved or copied elsewhere (a
+  # worktree made from another's folder) kept one naming the old place, and Dawn found no driver.
   if [ -f "$m/root/$lib" ]; then
+    grep -qF "\"$m/root/$lib\"" "$m/icd.json" 2>/dev/null && return 0
     printf '{"file_format_version":"1.0.1","ICD":{"library_path":"%s","api_version":"1.4.305"}}\n' \
       "$m/root/$lib" > "$m/icd.json"
     return 0
