@@ -1,5 +1,7 @@
 #include "subdiv/exact_limits.h"
 
+#include "subdiv/tables.h"
+
 #include <opensubdiv/sdc/crease.h>
 
 #include <algorithm>
@@ -308,8 +310,12 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
         gatherNeighborhood(L.topo, tr.vertex, hood);
         const auto rule = static_cast<VertexRule>(L.vertexRule[tr.vertex]);
         const auto sectors = vertexSectors(hood, rule, L.edgeSharpness);
-        const bool local = next && M.build(*next, hood);
         const uint32_t k = static_cast<uint32_t>(hood.faces.size());
+        // S is dense, (2k + 1)^2 doubles, and a cone point iterates it for each of its k faces:
+        // O(k^3) per iteration. A hostile dart of 16,383 faces asked for 8.6 GB; a cone of 300
+        // ran past a minute. Beyond kMaxBasisValence faces (where irregular faces are drawn
+        // bilinear anyway) the closed-form masks stay, flagged approximate and counted.
+        const bool local = next && k <= kMaxBasisValence && M.build(*next, hood);
         // Limit point of each ring face (its sector's, or its own where split per face).
         std::vector<uint8_t> pointOf(k, 0);
         vl.sectors.clear();
