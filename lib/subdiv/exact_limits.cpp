@@ -325,11 +325,13 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
         const auto rule = static_cast<VertexRule>(L.vertexRule[tr.vertex]);
         const auto sectors = vertexSectors(hood, rule, L.edgeSharpness);
         const uint32_t k = static_cast<uint32_t>(hood.faces.size());
-        // S is dense, (2k + 1)^2 doubles, and a cone point iterates it for each of its k faces:
-        // O(k^3) per iteration. A hostile dart of 16,383 faces asked for 8.6 GB; a cone of 300
-        // ran past a minute. Beyond kMaxBasisValence faces (where irregular faces are drawn
-        // bilinear anyway) the closed-form masks stay, flagged approximate and counted.
-        const bool local = next && k <= kMaxBasisValence && M.build(*next, hood);
+        // S is dense, (2k + 1)^2 doubles, and a cone point iterates it for each of its k faces,
+        // each face's point a mask over the whole ring: O(k^2) memory. A hostile dart of 16,383
+        // faces asked for 8.6 GB, a cone of 16,383 for 25 GB; a cone of 300 ran past a minute.
+        // Beyond kMaxBasisValence faces (where irregular faces are drawn bilinear anyway) the
+        // closed-form masks stay, one point per sector, flagged approximate and counted.
+        const bool crowded = k > kMaxBasisValence;
+        const bool local = next && !crowded && M.build(*next, hood);
         // Limit point of each ring face (its sector's, or its own where split per face).
         std::vector<uint8_t> pointOf(k, 0);
         vl.sectors.clear();
@@ -345,7 +347,8 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
         for (uint32_t si = 0; si < sectors.size(); ++si) {
             const Sector& sector = sectors[si];
             limitMasks(hood, rule, sector, L.edgeSharpness, L.vertexSharpness[tr.vertex], masks);
-            if (next && splitPerFace(rule, sector)) {
+            if (next && splitPerFace(rule, sector) && crowded) masks.exact = false;
+            if (next && splitPerFace(rule, sector) && !crowded) {
                 const LimitMasks closedForm = masks;
                 for (uint32_t i = 0; i < sector.faceCount; ++i) {
                     const uint32_t f = (sector.firstFace + i) % k;
