@@ -1,10 +1,13 @@
 #include "subdiv/exact_limits.h"
 
+#include "subdiv/tables.h"
+
 #include <opensubdiv/sdc/crease.h>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 namespace limn {
 
@@ -91,6 +94,8 @@ struct LocalMatrix {
     std::vector<uint32_t> list;
     std::map<uint32_t, size_t> column;
     std::vector<double> S;
+    std::vector<size_t> rowStart;                    // S's nonzero entries, row by row
+    std::vector<std::pair<size_t, double>> entries;  // (column, value)
     size_t n = 0;
 
     // False where the one-ring is degenerate (a vertex repeated in it) or not closed.
@@ -119,13 +124,24 @@ struct LocalMatrix {
                 S[r * n + it->second] += w;
             }
         }
+        // S's rows are stencils (a face point reads 4 values, an edge point about 6): products
+        // go over the nonzero entries only, in the same order, so every sum is the dense one
+        // less its exact zeros. A cone point of 64 faces iterates 64 times; dense, that was 9 s.
+        rowStart.assign(1, 0);
+        entries.clear();
+        for (size_t r = 0; r < n; ++r) {
+            for (size_t c = 0; c < n; ++c)
+                if (S[r * n + c] != 0) entries.push_back({c, S[r * n + c]});
+            rowStart.push_back(entries.size());
+        }
         return true;
     }
     std::vector<double> times(const std::vector<double>& x) const { // x S
         std::vector<double> y(n, 0.0);
         for (size_t r = 0; r < n; ++r)
             if (x[r] != 0)
-                for (size_t c = 0; c < n; ++c) y[c] += x[r] * S[r * n + c];
+                for (size_t k = rowStart[r]; k < rowStart[r + 1]; ++k)
+                    y[entries[k].first] += x[r] * entries[k].second;
         return y;
     }
     bool toLocal(const std::vector<WeightedPoint>& wp, std::vector<double>& x) const {
@@ -308,8 +324,14 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
         gatherNeighborhood(L.topo, tr.vertex, hood);
         const auto rule = static_cast<VertexRule>(L.vertexRule[tr.vertex]);
         const auto sectors = vertexSectors(hood, rule, L.edgeSharpness);
-        const bool local = next && M.build(*next, hood);
         const uint32_t k = static_cast<uint32_t>(hood.faces.size());
+        // S is dense, (2k + 1)^2 doubles, and a cone point iterates it for each of its k faces,
+        // each face's point a mask over the whole ring: O(k^2) memory. A hostile dart of 16,383
+        // faces asked for 8.6 GB, a cone of 16,383 for 25 GB; a cone of 300 ran past a minute.
+        // Beyond kMaxBasisValence faces (where irregular faces are drawn bilinear anyway) the
+        // closed-form masks stay, one point per sector, flagged approximate and counted.
+        const bool crowded = k > kMaxBasisValence;
+        const bool local = next && !crowded && M.build(*next, hood);
         // Limit point of each ring face (its sector's, or its own where split per face).
         std::vector<uint8_t> pointOf(k, 0);
         vl.sectors.clear();
@@ -325,7 +347,8 @@ std::vector<VertexLimits> exactVertexLimits(const Level& LN, const std::vector<u
         for (uint32_t si = 0; si < sectors.size(); ++si) {
             const Sector& sector = sectors[si];
             limitMasks(hood, rule, sector, L.edgeSharpness, L.vertexSharpness[tr.vertex], masks);
-            if (next && splitPerFace(rule, sector)) {
+            if (next && splitPerFace(rule, sector) && crowded) masks.exact = false;
+            if (next && splitPerFace(rule, sector) && !crowded) {
                 const LimitMasks closedForm = masks;
                 for (uint32_t i = 0; i < sector.faceCount; ++i) {
                     const uint32_t f = (sector.firstFace + i) % k;

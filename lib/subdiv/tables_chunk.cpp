@@ -366,6 +366,18 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
                 r.fail("irregular basis " + std::to_string(i) + " has a bad valence or level count");
             const uint64_t M = basis.supportSize(), count = uint64_t(basis.levels) * 48;
             if (compact) {
+                // Compact rows are stored once and copied per use, up to 768 times: a basis of
+                // valence 32,767 would take 200 MB from 260 KB of file, and a file could hold
+                // hundreds. Version 4 came after limn-tables stopped building bases above
+                // kMaxBasisValence, and it builds one per valence: anything else is damage.
+                if (basis.valence > kMaxBasisValence)
+                    r.fail("irregular basis " + std::to_string(i) + " has valence " +
+                           std::to_string(basis.valence) + "; version 4 bases go up to " +
+                           std::to_string(kMaxBasisValence));
+                for (const IrregularBasis& other : t.irregularBases)
+                    if (other.valence == basis.valence)
+                        r.fail("irregular basis " + std::to_string(i) + " repeats valence " +
+                               std::to_string(basis.valence));
                 const uint32_t distinct = r.read<uint32_t>();
                 if (distinct == 0 || distinct > count)
                     r.fail("irregular basis " + std::to_string(i) + " has a bad row count");

@@ -230,9 +230,13 @@ AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeO
             }
             break;
         }
-        // Guard memory before refining: every selected face makes about 4 children per level.
-        uint64_t selected = std::count(S.begin(), S.end(), 1);
-        uint64_t estimate = selected * 4 * 2;
+        // Guard memory before refining: a selected face of n sides makes n children (counted
+        // as at least 4, a quad's, as before), a vertex and an edge point each about. Counting
+        // 4 per face let 16 faces of 32,767 sides pass --max-memory 400M and use 1.2 GB.
+        uint64_t children = 0;
+        for (uint32_t f = 0; f < F; ++f)
+            if (S[f]) children += std::max<uint64_t>(4, L.topo.faceSize(f));
+        const uint64_t estimate = children * 2;
         if (opts.maxMemoryBytes) {
             // What is built, plus this level's estimate for it and every level still to come
             // (adaptive refinement does not grow faster than that once it is local).

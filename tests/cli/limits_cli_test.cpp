@@ -156,6 +156,17 @@ TEST(Limits, ExplodingRefinementIsRefusedFromTheCounts) {
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "l.obj"));
+    // A face of n sides makes n children, not 4: two 32,767-gons glued into a pillow make
+    // 131,068 level-1 vertices (2 x 65,534 sub-faces), about 120 MiB by the estimate (158 MB
+    // peak measured); counted as quads they passed --max-memory 64M.
+    std::string pillow = ngonObj(32767) + "f";
+    for (uint32_t i = 32767; i >= 1; --i) pillow += " " + std::to_string(i);
+    test::writeFile(dir / "pillow.obj", pillow + "\n");
+    r = test::run({bin("limn-tables"), "-d", "1", "--irregular-levels", "0", (dir / "pillow.obj").string(),
+                   "-o", (dir / "p.limn").string(), "--max-memory", "64M"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("about 131068 vertices"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "p.limn"));
     for (const char* bad : {"0", "-5G", "lots", "5X", "0.5"}) {
         r = test::run({bin("limn-tables"), sphere, "-o", out, "--max-memory", bad});
         EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;

@@ -245,6 +245,34 @@ TEST(TablesChunk, HugeIndexDifferenceIsRefused) {
 // A finite but huge weight (3e38) read back from a damaged file would make the GPU's float sums
 // NaN; the reader refuses it, naming the table. Real tables, with extraordinary vertices,
 // boundaries, corners and creases, stay well inside the bound.
+// Version 4 stores each distinct basis row once and copies it per use (up to 768 times): a
+// basis of a valence limn-tables never builds one for, or one valence twice, would let a small
+// file decode to gigabytes. The reader refuses both, naming the basis.
+TEST(TablesChunk, BasisOfTooHighOrRepeatedValenceIsRefused) {
+    Mesh m = load("quad/osd_catmark_pyramid.obj");
+    const Tables good = build(m, 3);
+    ASSERT_FALSE(good.irregularBases.empty());
+    EXPECT_NO_THROW(decodeTablesChunk(encodeTablesChunk(good), &m));
+    for (int which = 0; which < 2; ++which) {
+        Tables t = good;
+        if (which == 0) {
+            IrregularBasis& b = t.irregularBases[0];
+            b.valence = kMaxBasisValence + 1;
+            b.weights.assign(size_t(b.levels) * 48 * b.supportSize(), 0.0f);
+        } else {
+            t.irregularBases.push_back(t.irregularBases[0]);
+        }
+        try {
+            decodeTablesChunk(encodeTablesChunk(t), &m);
+            ADD_FAILURE() << "accepted basis case " << which;
+        } catch (const Error& e) {
+            const std::string want = which == 0 ? "has valence " + std::to_string(kMaxBasisValence + 1)
+                                                : "repeats valence";
+            EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+        }
+    }
+}
+
 TEST(TablesChunk, HugeWeightIsRefused) {
     Mesh m = load("quad/osd_catmark_pyramid.obj");
     for (int which = 0; which < 3; ++which) {

@@ -65,7 +65,8 @@ int main(int argc, char** argv) {
                    "its limit points are composed back onto level-N vertices: what is drawn stays\n"
                    "N levels deep and the stored levels are the same, only the limit stencils are\n"
                    "exact. Darts, cone points and corners use the eigenvectors of\n"
-                   "their local subdivision matrix. Valence-2 vertices and corner sectors whose\n"
+                   "their local subdivision matrix (up to 64 faces; more are counted approximate).\n"
+                   "Valence-2 vertices and corner sectors whose\n"
                    "normals converge like 1/level have no tangent plane: their limit points keep\n"
                    "the exact position and are counted approximate (limn-info reports how many).\n"
                    "Infinitely sharp creases act as boundaries: a regular face along one (each\n"
@@ -118,7 +119,8 @@ int main(int argc, char** argv) {
         if (tables.approximateLimitPoints)
             cli::warn(name + ": " + std::to_string(tables.approximateLimitPoints) +
                       " limit points have an approximate normal (valence-2 vertices or corner "
-                      "sectors, where the surface has no tangent plane)");
+                      "sectors, where the surface has no tangent plane, or darts and cone points "
+                      "of more than " + std::to_string(kMaxBasisValence) + " faces)");
         container.set(encodeTablesChunk(tables));
         if (fvar)
             container.set(std::move(*fvar));

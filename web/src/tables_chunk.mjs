@@ -8,6 +8,7 @@ import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream
 const MAX_DEPTH = 16;
 const INFINITE_SHARPNESS = 10;
 const MAX_STENCIL_VALENCE = 32767;
+const MAX_BASIS_VALENCE = 64; // kMaxBasisValence: version 4 bases go no higher (lib/subdiv/tables.h)
 // An irregular face's quadtree node codes (lib/subdiv/tables.h): the kind in the top two bits.
 const NODE_SUBPATCH = 0, NODE_CHILD = 1 << 30, NODE_LEAF = (2 << 30) >>> 0, NODE_BASIS = (3 << 30) >>> 0;
 const NODE_NONE = 0xffffffff, NODE_INDEX = (1 << 30) - 1;
@@ -279,6 +280,10 @@ function readIrregularSurface(r, { readPatches, readFaces, compact, depth, level
     const support = 2 * valence + 8;
     let weights;
     if (compact) { // each control point names its row of weights; equal rows are stored once
+      // Rows are copied per use (up to 768 times): a high or repeated valence would let a few
+      // bytes decode to gigabytes; limn-tables writes neither (formats/limn.md).
+      if (valence > MAX_BASIS_VALENCE) r.fail(`irregular basis ${i} has valence ${valence}; version 4 bases go up to ${MAX_BASIS_VALENCE}`);
+      if (bases.some((b) => b.valence === valence)) r.fail(`irregular basis ${i} repeats valence ${valence}`);
       const distinct = r.u32('irregular basis row count');
       if (distinct === 0 || distinct > lv * 48) r.fail(`irregular basis ${i} has a bad row count`);
       const pick = r.array(Uint16Array, lv * 48, 'irregular basis rows');

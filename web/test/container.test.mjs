@@ -166,6 +166,30 @@ test('TBLS v4 and v3 of the same tables read the same', () => {
   assert.deepEqual(v4, v3);
 });
 
+// A v4 basis's rows are stored once and copied per use: a valence limn-tables never builds a
+// basis for (over 64) would let a few bytes decode to gigabytes; the reader refuses it by name.
+test('TBLS v4: a basis of valence over 64 is refused', () => {
+  const bytes = read(join(repo, 'fuzz/corpus/render_input/pentagon_tower_d1_irregular_v4.limn'));
+  const chunks = parseContainer(bytes);
+  const tbls = chunks.find((c) => c.type === 'TBLS').payload;
+  const v = new DataView(tbls.buffer, tbls.byteOffset, tbls.byteLength);
+  // A basis header (valence 3..64, its levels, its row count) followed by row numbers all below
+  // that count: found by its own fields, as the sections before it have no fixed size.
+  let at = -1;
+  for (let o = 0; o + 12 <= tbls.length && at < 0; o += 4) {
+    const n = v.getUint32(o, true), k = v.getUint32(o + 4, true), d = v.getUint32(o + 8, true);
+    if (n < 3 || n > 64 || k < 1 || k > 16 || d === 0 || d > 48 * k || o + 12 + 96 * k > tbls.length) continue;
+    let ok = true;
+    for (let j = 0; j < 48 * k && ok; j++) ok = v.getUint16(o + 12 + 2 * j, true) < d;
+    if (ok) at = o;
+  }
+  assert.ok(at >= 0, 'no basis found');
+  const payload = tbls.slice();
+  new DataView(payload.buffer).setUint32(at, 65, true);
+  expectLimnError(build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c))),
+    /chunk TBLS: .*irregular basis \d+ has valence 65; version 4 bases go up to 64/);
+});
+
 // FVSF, the smooth UV surface limn-tables writes under a face-varying rule other than "all":
 // read, and refused naming it when cut short, stale (other UVs, other depth) or with a node
 // that would send a walk back up its quadtree.
