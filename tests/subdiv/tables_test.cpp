@@ -205,15 +205,29 @@ TEST_P(Tables, LimitPointsMatchOpenSubdiv) {
 // it converge like 1/level. The exact B-spline patches of a deep isolation approach the corner;
 // their normals must keep turning toward limn's corner normal, past OpenSubdiv's value (which
 // freezes at its end-cap level).
-TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
+// A model's tables at depth 14 (patches close to its smooth corners), their vertices and limits.
+struct DeepTables {
+    Mesh m;
+    SchemeOptions o;
+    limn::Tables t;
+    std::vector<glm::dvec3> V;
+    std::vector<LimitPoint> L;
+};
+DeepTables deepTables(const std::string& model) {
+    DeepTables d;
     Warnings w;
-    Mesh m = importMeshFile(test::modelPath("quad/osd_catmark_fvar_bound2.obj").string(), w);
-    SchemeOptions o = resolveSchemeOptions(m.tags, {});
+    d.m = importMeshFile(test::modelPath(model).string(), w);
+    d.o = resolveSchemeOptions(d.m.tags, {});
     TablesOptions opts;
     opts.depth = 14;
-    auto t = buildTables(m, o, opts, w);
-    auto V = evaluateVertices(t, m.positions);
-    auto L = evaluateLimitPoints(t, V);
+    d.t = buildTables(d.m, d.o, opts, w);
+    d.V = evaluateVertices(d.t, d.m.positions);
+    d.L = evaluateLimitPoints(d.t, d.V);
+    return d;
+}
+
+TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
+    const auto [m, o, t, V, L] = deepTables("quad/osd_catmark_fvar_bound2.obj");
     // The corner (0,0) of ptex 0 is base vertex 0, a smooth corner.
     ASSERT_EQ(test::baseVertexAt(m, 0, 0, 0), 0);
     ASSERT_TRUE(test::smoothCorners(m, o)[0]);
@@ -244,17 +258,10 @@ TEST(SmoothCorner, DeepPatchNormalsConvergeToLimnsCornerNormal) {
 // inside both give limn's corner normal, while OpenSubdiv's du x dv exactly at the corner (what
 // bench_accuracy --ply compared before) is 25 degrees off.
 TEST(SmoothCorner, BoundaryNoneCornerHasTheSurfacesNormal) {
-    Warnings w;
-    Mesh m = importMeshFile(test::modelPath("osd/catmark/catmark_edgenone.obj").string(), w);
-    SchemeOptions o = resolveSchemeOptions(m.tags, {});
+    const auto [m, o, t, V, L] = deepTables("osd/catmark/catmark_edgenone.obj");
     ASSERT_EQ(o.boundary, BoundaryRule::None);
     ASSERT_EQ(test::baseVertexAt(m, 29, 1, 0), 51);
     ASSERT_TRUE(test::smoothCorners(m, o)[51]);
-    TablesOptions opts;
-    opts.depth = 14;
-    auto t = buildTables(m, o, opts, w);
-    auto V = evaluateVertices(t, m.positions);
-    auto L = evaluateLimitPoints(t, V);
     glm::dvec3 corner(0); // corner 1 of the irregular leaf at (1, 0) is at (u0 + size, v0)
     for (const auto& q : t.irregular)
         if (q.ptex == 29 && q.u0 + q.size == 1.0f && q.v0 == 0.0f) corner = L[q.corner[1]].normal;
