@@ -3,6 +3,8 @@
 // camera is limn-render's to the bit. Each patch at (s, t) in {0, 1/2, 1}^2, then every limit
 // point. (The GPU's float evaluation moved the camera by a float step; on the car at depth 6 that
 // turned one flat element's sample test and drew a triangle more than limn-render.)
+import { bsplineBasis } from './bspline.mjs';
+
 const PATCH_WORDS = 24;
 const BOUNDARY_V0 = 1, BOUNDARY_U1 = 2, BOUNDARY_V1 = 4, BOUNDARY_U0 = 8; // lib/subdiv/tables.h PatchBoundary
 
@@ -35,11 +37,6 @@ function apply(table, row, V, out, at) {
     x += w * V[v]; y += w * V[v + 1]; z += w * V[v + 2];
   }
   out[at] = x; out[at + 1] = y; out[at + 2] = z;
-}
-
-function bsplineBasis(t) {
-  const t2 = t * t, t3 = t2 * t, s = 1 - t;
-  return [(s * s * s) / 6, (3 * t3 - 6 * t2 + 4) / 6, (-3 * t3 + 3 * t2 + 3 * t + 1) / 6, t3 / 6];
 }
 
 // evaluate.cpp's creaseBasis (positions only): the crease curve's rules applied until the segment
@@ -84,7 +81,7 @@ export function surfaceSamples(surface) {
 function evaluateSamples(mesh, tables) {
   const V = evaluateVertices(tables, mesh.positions);
   const words = tables.patches, floats = new Float32Array(words.buffer, words.byteOffset, words.length);
-  const points = [], params = [0, 0.5, 1], uniform = params.map(bsplineBasis);
+  const points = [], params = [0, 0.5, 1], uniform = params.map((t) => bsplineBasis(t));
   const P = new Float64Array(48); // P[i][j] at 3 (4 j + i)
   // gatherControlPoints' phantom point: 2 a - b, into P[at].
   const mirror = (at, a, b) => { for (let c = 0; c < 3; c++) P[3 * at + c] = 2 * P[3 * a + c] - P[3 * b + c]; };

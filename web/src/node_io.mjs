@@ -79,18 +79,17 @@ export async function readInput(path) {
 // with standard output closed writes into /dev/null and exits 0, where limn-render fails
 // (it puts /dev/full there). Telling the two apart is not possible: a parent that discards the
 // output hands over /dev/null opened read-write too (Python's DEVNULL, Node's 'ignore'), and
-// that must keep working.
-const standardOutput = () => 1;
+// that must keep working. So descriptor 1 is written as it is.
+const STDOUT = 1;
 
-export const stdoutIsTerminal = () => tty.isatty(standardOutput());
+export const stdoutIsTerminal = () => tty.isatty(STDOUT);
 
 /** Writes bytes to standard output; a reader gone (EPIPE) ends the process by SIGPIPE, as limn-render's. */
 export async function writeStdout(bytes) {
-  const fd = standardOutput();
   const data = Buffer.isBuffer(bytes) ? bytes : Buffer.from(bytes);
   for (let at = 0; at < data.length;) {
     try {
-      at += (await write(fd, data, at, data.length - at)).bytesWritten;
+      at += (await write(STDOUT, data, at, data.length - at)).bytesWritten;
     } catch (e) {
       if (e.code === 'EAGAIN') { await new Promise((r) => setTimeout(r, 5)); continue; }
       if (e.code === 'EPIPE') dieOf('SIGPIPE');

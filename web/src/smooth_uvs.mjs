@@ -3,14 +3,7 @@
 // lib/tess/chart_uvs.cpp's ChartUVs keeps it (computed on first use, from the first element
 // that asks, so that every element drawing the point in a face gets the same bits).
 
-// The uniform cubic B-spline basis at t (paper 000, eq. 1).
-function basis(t, b) {
-  const s = 1 - t, t2 = t * t, t3 = t2 * t;
-  b[0] = (s * s * s) / 6;
-  b[1] = (3 * t3 - 6 * t2 + 4) / 6;
-  b[2] = (-3 * t3 + 3 * t2 + 3 * t + 1) / 6;
-  b[3] = t3 / 6;
-}
+import { bsplineBasis } from './bspline.mjs';
 const bu = new Float64Array(4), bv = new Float64Array(4);
 
 /**
@@ -39,8 +32,8 @@ export function fvarUV(fvar, ptex, u, v, towardU, towardV) {
     for (let c = 0; c < 4; c++) if (w[c] !== 0) { x += w[c] * r[o + 4 + 2 * c]; y += w[c] * r[o + 5 + 2 * c]; }
     return [x, y];
   }
-  basis(s, bu);
-  basis(t, bv);
+  bsplineBasis(s, bu);
+  bsplineBasis(t, bv);
   let x = 0, y = 0;
   for (let j = 0; j < 4; j++) {
     for (let i = 0; i < 4; i++) {
