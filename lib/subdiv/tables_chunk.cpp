@@ -9,9 +9,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -112,34 +112,22 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
             continue;
         }
         const size_t M = b.supportSize(), count = size_t(b.levels) * 48;
-        // Rows are numbered in the order first met; equal means equal bits. They are found
-        // through an open-addressing table on a hash of their bits (at most half full), not a
-        // tree of row copies: this runs for every basis of every table.
-        size_t slots = 64;
-        while (slots < 2 * count) slots *= 2;
-        std::vector<uint16_t> slot(slots, 0xFFFF), pick(count);
+        // Rows are numbered in the order first met; equal means equal bits: the key is the
+        // row's bytes, viewed in place in the basis's weights.
+        std::unordered_map<std::string_view, uint16_t> rowOf;
+        rowOf.reserve(count);
+        std::vector<uint16_t> pick(count);
         std::vector<float> rows;
-        uint16_t distinct = 0;
         for (size_t j = 0; j < count; ++j) {
             const float* row = b.weights.data() + j * M;
-            uint64_t h = 0x9E3779B97F4A7C15ull;
-            for (size_t i = 0; i < M; ++i) h = (h ^ std::bit_cast<uint32_t>(row[i])) * 0x100000001B3ull;
-            for (size_t s = (h ^ (h >> 29)) & (slots - 1);; s = (s + 1) & (slots - 1)) {
-                if (slot[s] == 0xFFFF) {
-                    slot[s] = distinct++;
-                    rows.insert(rows.end(), row, row + M);
-                    pick[j] = slot[s];
-                    break;
-                }
-                if (std::memcmp(rows.data() + size_t(slot[s]) * M, row, M * sizeof(float)) == 0) {
-                    pick[j] = slot[s];
-                    break;
-                }
-            }
+            const std::string_view bytes(reinterpret_cast<const char*>(row), M * sizeof(float));
+            const auto [it, added] = rowOf.try_emplace(bytes, static_cast<uint16_t>(rowOf.size()));
+            if (added) rows.insert(rows.end(), row, row + M);
+            pick[j] = it->second;
         }
         w.write<uint32_t>(b.valence);
         w.write<uint32_t>(b.levels);
-        w.write<uint32_t>(distinct);
+        w.write<uint32_t>(static_cast<uint32_t>(rowOf.size()));
         w.writeArray(pick);
         w.writeArray(rows);
     }
