@@ -157,6 +157,14 @@ int main(int argc, char** argv) {
         else
             meshes.push_back(argv[i]);
     }
+    // OpenSubdiv's patch parameters hold a patch's (u, v) index in 10 bits (Far::PatchParam), so
+    // its patch tables locate points correctly only up to isolation 10: deeper, every point but a
+    // ptex face's (0, 0) corner is looked up in the wrong patch.
+    if (refIso < 1 || refIso > 10 || (osdIso != -1 && (osdIso < 1 || osdIso > 10)) || depth < 0 || depth > 10) {
+        std::fprintf(stderr, "bench_accuracy: --reference-isolation and --osd-isolation take 1 to 10 "
+                             "(OpenSubdiv's PatchParam holds 10 levels), --depth 0 to 10\n");
+        return 2;
+    }
     if (!ply.empty()) {
         if (meshes.size() != 1) {
             std::fprintf(stderr, "bench_accuracy: --ply needs exactly one MESH\n");
@@ -164,7 +172,12 @@ int main(int argc, char** argv) {
         }
         std::fprintf(stderr, "%-28s %9s %8s %9s %8s %6s %9s %8s %9s\n", "mesh", "vertices", ">1e-5",
                      "max dP", "max dN", "flip", "triangles", ">1e-5", "centroid");
-        return comparePly(ply, meshes[0], refIso);
+        try {
+            return comparePly(ply, meshes[0], refIso);
+        } catch (const std::exception& e) { // a missing or damaged file, a mesh limn refuses
+            std::fprintf(stderr, "bench_accuracy: %s\n", e.what());
+            return 1;
+        }
     }
     std::fprintf(stderr, "%-28s %6s %7s %9s %8s %9s %9s %9s %8s %9s %8s\n", "mesh", "approx",
                  "limits", "bytes", "elements", "drawn", "limn dP", "limn dN", "flipped",
