@@ -10,10 +10,13 @@ namespace limn::render {
 namespace {
 
 // The blending surface's fragment stage: each covered sample shaded (and trimmed) on its own with
-// --sample-shading (blend_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN).
-std::span<const uint32_t> blendFragment(const gpu::TargetFormat& target) {
-    return target.sampleShading ? std::span<const uint32_t>(blend_per_sample_frag_spv)
-                                : std::span<const uint32_t>(blend_frag_spv);
+// --sample-shading (blend_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN), and for the
+// lit shading the variant without the other modes' code (why in blend_fragment.glsl).
+std::span<const uint32_t> blendFragment(const gpu::TargetFormat& target, Shade shade) {
+    using Code = std::span<const uint32_t>;
+    if (shade == Shade::Lit)
+        return target.sampleShading ? Code(blend_lit_per_sample_frag_spv) : Code(blend_lit_frag_spv);
+    return target.sampleShading ? Code(blend_per_sample_frag_spv) : Code(blend_frag_spv);
 }
 
 struct EvalPush { // blend_eval.comp
@@ -42,7 +45,7 @@ std::vector<uint32_t> drawData(const BlendDraw& d, const std::optional<blend::Tr
 
 struct BlendPass::Gpu {
     Gpu(gpu::Context& ctx, const BlendDraw& d, bool evaluate,
-        const std::optional<blend::TrimMask>& trim, gpu::TargetFormat target)
+        const std::optional<blend::TrimMask>& trim, gpu::TargetFormat target, Shade shade)
         : controlPoints(ctx, {"control points (unused by the blend draw)",
                               std::max<uint64_t>(d.vertices.size(), 1) * 16}),
           vertices(uploadBufferNow(ctx, "blend vertices", d.vertices)),
@@ -57,8 +60,8 @@ struct BlendPass::Gpu {
           normals(ctx, {"evaluated normals",
                         evaluate ? std::max<uint64_t>(d.points.size(), 1) * 16 : 16}),
           evalPass(ctx, {"evaluate blend surface", blend_eval_comp_spv, 5, sizeof(EvalPush)}),
-          drawEval(ctx, {"blend surface", blend_vert_spv, blendFragment(target), 7, sizeof(DrawPush)}, target),
-          drawFetch(ctx, {"blend surface (evaluated)", blend_fetch_vert_spv, blendFragment(target), 7,
+          drawEval(ctx, {"blend surface", blend_vert_spv, blendFragment(target, shade), 7, sizeof(DrawPush)}, target),
+          drawFetch(ctx, {"blend surface (evaluated)", blend_fetch_vert_spv, blendFragment(target, shade), 7,
                           sizeof(DrawPush)},
                     target),
           wire(ctx, {"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
@@ -81,10 +84,10 @@ struct BlendPass::Gpu {
 };
 
 BlendPass::BlendPass(gpu::Context& ctx, BlendDraw draw, Eval eval, bool keepEvaluated,
-                     const std::optional<blend::TrimMask>& trim, gpu::TargetFormat target)
+                     const std::optional<blend::TrimMask>& trim, Shade shade, gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval),
-      evaluate_(keepEvaluated || eval == Eval::Compute),
-      gpu_(std::make_unique<Gpu>(ctx, draw_, evaluate_, trim, target)) {}
+      evaluate_(keepEvaluated || eval == Eval::Compute), shade_(shade),
+      gpu_(std::make_unique<Gpu>(ctx, draw_, evaluate_, trim, target, shade)) {}
 
 BlendPass::~BlendPass() = default;
 
@@ -105,6 +108,8 @@ void BlendPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed) {
 
 void BlendPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) {
     auto& g = *gpu_;
+    if (push.shade != static_cast<uint32_t>(shade_))
+        throw Error(ErrorKind::BadInput, "internal: a blend draw shaded otherwise than its pass was built for");
     push.flags = 0;
     const bool fetch = eval_ == Eval::Compute;
     cmd.drawIndexed(fetch ? g.drawFetch : g.drawEval, fetch ? g.fetchBindings : g.drawBindings,

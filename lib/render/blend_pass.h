@@ -29,9 +29,10 @@ class BlendPass : public FramePass {
   public:
     enum class Eval { Vertex, Compute };
     // `keepEvaluated`: with Eval::Vertex, also evaluate every point into buffers (--wire draws
-    // lines through them, --mesh-out reads them). `trim`: the atlas for the mesh's faces.
+    // lines through them, --mesh-out reads them). `trim`: the atlas for the mesh's faces. `shade`:
+    // the shading every draw will ask for (its fragment stage is picked for it).
     BlendPass(gpu::Context& ctx, BlendDraw draw, Eval eval, bool keepEvaluated,
-              const std::optional<blend::TrimMask>& trim, gpu::TargetFormat target = {});
+              const std::optional<blend::TrimMask>& trim, Shade shade, gpu::TargetFormat target = {});
     ~BlendPass() override;
 
     // The control points are copied here every frame like for every surface; the blending
@@ -51,6 +52,7 @@ class BlendPass : public FramePass {
     BlendDraw draw_;
     Eval eval_;
     bool evaluate_;
+    Shade shade_;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
 };

@@ -1,5 +1,6 @@
 #include "render/control_mesh_pass.h"
 
+#include "base/error.h"
 #include "render_shaders.h"
 
 namespace limn::render {
@@ -18,7 +19,8 @@ uint64_t bytes(const std::vector<T>& v) {
 } // namespace
 
 struct ControlMeshPass::Gpu {
-    Gpu(gpu::Context& ctx, const ControlMeshDraw& d, const FloatImage* colour, gpu::TargetFormat target)
+    Gpu(gpu::Context& ctx, const ControlMeshDraw& d, const FloatImage* colour, gpu::TargetFormat target,
+        Shade shade)
         : vertices(ctx, {"vertices", bytes(d.controlPoints)}),
           faceOffsets(ctx, {"face offsets", bytes(d.faceOffsets)}),
           faceVertices(ctx, {"face vertices", bytes(d.faceVertices)}),
@@ -28,7 +30,12 @@ struct ControlMeshPass::Gpu {
           edges(ctx, {"edge indices", bytes(d.edges), gpu::kIndex}),
           texture(gpu::uploadBufferNow(ctx, "colour texture", textureWords(colour))),
           faceNormalsPass(ctx, {"face normals", face_normals_comp_spv, 4, sizeof(VertexPush)}),
-          meshPipeline(ctx, {"mesh", mesh_vert_spv, mesh_frag_spv, 5, sizeof(DrawPush)}, target),
+          // Lit shading: the fragment stage without the other modes' code (why in mesh_fragment.glsl).
+          meshPipeline(ctx, {"mesh", mesh_vert_spv,
+                             shade == Shade::Lit ? std::span<const uint32_t>(mesh_lit_frag_spv)
+                                                 : std::span<const uint32_t>(mesh_frag_spv),
+                             5, sizeof(DrawPush)},
+                       target),
           wirePipeline(ctx, {"wire", wire_vert_spv, wire_frag_spv, 1, sizeof(DrawPush),
                              gpu::Primitive::Lines, gpu::DepthTest::LessOrEqual, false},
                        target) {
@@ -51,8 +58,9 @@ struct ControlMeshPass::Gpu {
 };
 
 ControlMeshPass::ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, const FloatImage* texture,
-                                 gpu::TargetFormat target)
-    : ctx_(ctx), draw_(std::move(draw)), gpu_(std::make_unique<Gpu>(ctx, draw_, texture, target)) {}
+                                 Shade shade, gpu::TargetFormat target)
+    : ctx_(ctx), draw_(std::move(draw)), shade_(shade),
+      gpu_(std::make_unique<Gpu>(ctx, draw_, texture, target, shade)) {}
 
 ControlMeshPass::~ControlMeshPass() = default;
 
@@ -69,6 +77,8 @@ void ControlMeshPass::recordCompute(gpu::CommandBuffer& cmd, TimedPasses& timed)
 
 void ControlMeshPass::recordDraw(gpu::CommandBuffer& cmd, DrawPush push, Wire wire) {
     auto& g = *gpu_;
+    if (push.shade != static_cast<uint32_t>(shade_))
+        throw Error(ErrorKind::BadInput, "internal: a control mesh draw shaded otherwise than its pass was built for");
     cmd.drawIndexed(g.meshPipeline, g.meshBindings, g.triangles,
                     static_cast<uint32_t>(draw_.triangles.size()), 1, gpu::CommandBuffer::asBytes(push));
     if (wire != Wire::None)

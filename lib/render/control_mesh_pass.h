@@ -12,8 +12,9 @@ namespace limn::render {
 
 class ControlMeshPass : public FramePass {
 public:
-    // `texture` (optional): the colour texture drawn with Shade::Texture.
-    ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, const FloatImage* texture = nullptr,
+    // `texture` (optional): the colour texture drawn with Shade::Texture. `shade`: the shading
+    // every draw will ask for (its fragment stage is picked for it).
+    ControlMeshPass(gpu::Context& ctx, ControlMeshDraw draw, const FloatImage* texture, Shade shade,
                     gpu::TargetFormat target = {});
     ~ControlMeshPass() override;
 
@@ -28,6 +29,7 @@ public:
 private:
     gpu::Context& ctx_;
     ControlMeshDraw draw_;
+    Shade shade_;
     struct Gpu;
     std::unique_ptr<Gpu> gpu_;
 };

@@ -215,7 +215,8 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
                         "file has no tables (run limn-tables first), or use --wire for the mesh edges");
         ControlMeshDraw draw = prepareControlMesh(mesh);
         bounds = draw.bounds;
-        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw), settings.texture, targetFormat_);
+        pass_ = std::make_unique<ControlMeshPass>(ctx, std::move(draw), settings.texture, settings.shade,
+                                                 targetFormat_);
     }
     finishSetup(mesh, bounds);
 }
@@ -240,7 +241,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurfac
                                         settings.evalInCompute ? BlendPass::Eval::Compute
                                                                : BlendPass::Eval::Vertex,
                                         settings.evaluateVertices || settings.wire != Wire::None, settings.trim,
-                                        targetFormat_);
+                                        settings.shade, targetFormat_);
     finishSetup(mesh, bounds);
 }
 

@@ -18,6 +18,16 @@ layout(location = 3) LIMN_SMOOTH_IN vec2 inFaceUV;
 layout(location = 4) flat in uint inFace;
 layout(location = 0) out vec4 outColor;
 
+// The shading mode: the push constant's, or fixed when compiling with LIMN_SHADE (blend_lit*.frag,
+// which the host picks for --shade lit): the other modes' code is then dead and dropped, which a
+// rasterizer that runs both sides of a uniform branch (lavapipe, why in surface_fragment.glsl)
+// would otherwise pay for every fragment.
+#ifdef LIMN_SHADE
+const uint kShade = LIMN_SHADE;
+#else
+#define kShade pc.shade
+#endif
+
 bool trimmedAway(uint face, vec2 uv) {
     uint R = drawData.trimTile;
     if (R == 0u) return false;
@@ -48,15 +58,15 @@ void main() {
     if (trimmedAway(inFace, inFaceUV)) discard;
     if (backFaceKey(outColor)) return;
     vec3 n = normalize(inNormal);
-    if (pc.shade == SHADE_NORMAL) {
+    if (kShade == SHADE_NORMAL) {
         outColor = vec4(srgbToLinear(n * 0.5 + 0.5), 1.0);
         return;
     }
-    if (pc.shade == SHADE_UV) {
+    if (kShade == SHADE_UV) {
         outColor = vec4(srgbToLinear(vec3(clamp(inUV, 0.0, 1.0), 0.0)), 1.0);
         return;
     }
-    if (pc.shade == SHADE_LEVELS) {
+    if (kShade == SHADE_LEVELS) {
         outColor = vec4(levelsLight(srgbToLinear(valenceColour(inFace, inFaceUV)), n, inWorld), 1.0);
         return;
     }
