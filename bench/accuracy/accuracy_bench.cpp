@@ -12,6 +12,8 @@
 //        bench_accuracy --ply DRAWN.ply MESH: what limn-render --mesh-out drew (any tessellation,
 //        the view-adaptive one included): every vertex, and the centroid of every triangle whose
 //        corners share a ptex face (at the interpolated (ptex, u, v)), against isolation 10.
+//        bench_accuracy [--depth N] --at PTEX U V MESH: limn's CPU evaluation of every element
+//        holding that point (double: what the GPU should draw) against OpenSubdiv's limit there.
 #include "base/error.h"
 #include "drawn_ply.h"
 #include "mesh/import.h"
@@ -131,6 +133,50 @@ int comparePly(const std::string& plyPath, const std::string& meshPath, int refI
     return 0;
 }
 
+// The --at mode: which side is off at one drawn point. limn's CPU evaluation (double, the
+// reference of what the GPU draws) of the element holding (ptex, u, v), next to OpenSubdiv's
+// limit there; the normal is taken a hundred-thousandth towards the element's centre, as above.
+int compareAt(const std::string& meshPath, int depth, int refIso, int ptex, double u, double v) {
+    Warnings w;
+    Mesh mesh = importMeshFile(meshPath, w);
+    SchemeOptions so = resolveSchemeOptions(mesh.tags, {});
+    TablesOptions to;
+    to.depth = depth;
+    const Tables t = buildTables(mesh, so, to, w);
+    auto V = evaluateVertices(t, mesh.positions);
+    auto L = evaluateLimitPoints(t, V);
+    test::OsdLimitSurface ref(mesh, so, refIso);
+    const uint32_t P = uint32_t(t.patches.size());
+    int found = 0;
+    for (uint32_t e = 0; e < P + t.irregular.size(); ++e) {
+        const bool patch = e < P;
+        const uint32_t ep = patch ? t.patches[e].ptex : t.irregular[e - P].ptex;
+        const double u0 = patch ? t.patches[e].u0 : t.irregular[e - P].u0;
+        const double v0 = patch ? t.patches[e].v0 : t.irregular[e - P].v0;
+        const double size = patch ? t.patches[e].size : t.irregular[e - P].size;
+        if (int(ep) != ptex || u < u0 || u > u0 + size || v < v0 || v > v0 + size) continue;
+        const double s = (u - u0) / size, tt = (v - v0) / size;
+        bool exact = true;
+        const SurfacePoint p = patch ? evaluatePatch(t.patches[e], V, s, tt)
+                                     : evaluateIrregular(t, V, L, e - P, s, tt, &exact);
+        const double iu = u + (u0 + size / 2 - u) * 1e-5, iv = v + (v0 + size / 2 - v) * 1e-5;
+        glm::dvec3 rp, rn;
+        if (!ref.evaluate(ptex, u, v, iu, iv, rp, rn)) continue;
+        std::printf("{\"element\":%u,\"kind\":\"%s\",\"level\":%d,\"s\":%.9g,\"t\":%.9g,"
+                    "\"exact\":%s,\"limn_position\":[%.9g,%.9g,%.9g],\"limn_normal\":[%.9g,%.9g,%.9g],"
+                    "\"osd_position\":[%.9g,%.9g,%.9g],\"osd_normal\":[%.9g,%.9g,%.9g],"
+                    "\"distance\":%.3e,\"normal_degrees\":%.4g,\"du\":%.4g,\"dv\":%.4g}\n",
+                    e, patch ? (t.patches[e].crease ? "crease patch" : "patch") : "irregular face",
+                    patch ? int(t.patches[e].level) : -1, s, tt, exact ? "true" : "false",
+                    p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z, rp.x, rp.y,
+                    rp.z, rn.x, rn.y, rn.z, glm::length(p.position - rp), angleDeg(p.normal, rn),
+                    glm::length(p.du), glm::length(p.dv));
+        ++found;
+    }
+    if (!found) std::fprintf(stderr, "bench_accuracy: no element holds ptex %d (%g, %g)\n", ptex, u, v);
+    return found ? 0 : 1;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -140,6 +186,8 @@ int main(int argc, char** argv) {
     int refIso = 10; // the reference's isolation (OpenSubdiv's maximum)
     bool verbose = false;
     std::string ply;
+    int atPtex = -1;
+    double atU = 0, atV = 0;
     std::vector<std::string> meshes;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--depth") && i + 1 < argc)
@@ -150,6 +198,8 @@ int main(int argc, char** argv) {
             refIso = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--ply") && i + 1 < argc)
             ply = argv[++i];
+        else if (!std::strcmp(argv[i], "--at") && i + 3 < argc)
+            atPtex = std::atoi(argv[i + 1]), atU = std::atof(argv[i + 2]), atV = std::atof(argv[i + 3]), i += 3;
         else if (!std::strcmp(argv[i], "-v"))
             verbose = true;
         else if (!std::strcmp(argv[i], "--uniform"))
@@ -164,6 +214,18 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bench_accuracy: --reference-isolation and --osd-isolation take 1 to 10 "
                              "(OpenSubdiv's PatchParam holds 10 levels), --depth 0 to 10\n");
         return 2;
+    }
+    if (atPtex >= 0) {
+        if (meshes.size() != 1) {
+            std::fprintf(stderr, "bench_accuracy: --at needs exactly one MESH\n");
+            return 2;
+        }
+        try {
+            return compareAt(meshes[0], depth, refIso, atPtex, atU, atV);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "bench_accuracy: %s\n", e.what());
+            return 1;
+        }
     }
     if (!ply.empty()) {
         if (meshes.size() != 1) {

@@ -136,9 +136,27 @@ void Renderer::checkImageSize(const gpu::Context& ctx) {
                         " allowed (--max-memory); lower --size, --samples or --supersample");
 }
 
+namespace {
+
+// Where the GPU's coordinates are centred: the middle of the control points' box. Float carries
+// 24 bits of a coordinate, so a small face far from the origin loses its small differences
+// (the rook sits 3.4 from the origin with a diagonal of 0.87: its normals were up to 0.44 degrees
+// off in float, where limn's double evaluation is on OpenSubdiv's to the last digit; a model a
+// thousand units out had its points 3e-5 of its diagonal off). Relative to the box's middle the
+// coordinates are at most half the diagonal. The same expression as the web runtime's, so both
+// upload the same bits.
+glm::dvec3 renderOrigin(const Mesh& mesh) {
+    if (mesh.positions.empty()) return glm::dvec3(0.0);
+    glm::dvec3 lo = mesh.positions[0], hi = mesh.positions[0];
+    for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    return (lo + hi) * 0.5;
+}
+
+} // namespace
+
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
                    const RenderSettings& settings)
-    : ctx_(ctx), settings_(settings) {
+    : ctx_(ctx), settings_(settings), origin_(renderOrigin(mesh)) {
     checkImageSize(ctx);
     checkUvShade(mesh, settings);
     if (settings.shade == Shade::Levels && !tables)
@@ -181,6 +199,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
         if (viewAdaptive_)
             adaptive = adaptiveOptions(settings, draw, drawWidth_, drawHeight_, ctx.limits().standardSampleLocations);
         bounds = draw.bounds;
+        draw.bounds.min -= origin_, draw.bounds.max -= origin_; // the pass sees the GPU's coordinates
         if (hull.valid()) bounds.hull = hull.get();
         if (settings.displacementMap) {
             // An EXR may hold any finite value: 3e38 times --displace-scale 10 is Inf on the GPU,
@@ -221,6 +240,8 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
     finishSetup(mesh, bounds);
 }
 
+// The blending surface keeps the origin at 0: its draw reads the local surfaces limn-blend fitted
+// in the model's coordinates, not the control points.
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurface& surface,
                    const RenderSettings& settings)
     : ctx_(ctx), settings_(settings) {
@@ -247,7 +268,7 @@ Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const blend::BlendSurfac
 
 void Renderer::finishSetup(const Mesh& mesh, const Bounds& bounds) {
     controlPoints_.reserve(mesh.vertexCount());
-    for (const auto& p : mesh.positions) controlPoints_.emplace_back(glm::vec3(p), 1.0f);
+    for (const auto& p : mesh.positions) controlPoints_.emplace_back(glm::vec3(p - origin_), 1.0f);
     framing_ = bounds;
     faces_.faceOffsets = mesh.faceOffsets;
     faces_.faceVertices = mesh.faceVertices;
@@ -283,10 +304,11 @@ void Renderer::setControlPoints(const std::vector<glm::dvec3>& positions) {
                       std::to_string(controlPoints_.size()));
     Bounds box{positions.empty() ? glm::dvec3(0.0) : positions[0], positions.empty() ? glm::dvec3(0.0) : positions[0]};
     for (size_t i = 0; i < positions.size(); ++i) {
-        controlPoints_[i] = glm::vec4(glm::vec3(positions[i]), 1.0f);
+        controlPoints_[i] = glm::vec4(glm::vec3(positions[i] - origin_), 1.0f);
         box.min = glm::min(box.min, positions[i]);
         box.max = glm::max(box.max, positions[i]);
     }
+    box.min -= origin_, box.max -= origin_; // the first frame's origin: the GPU's coordinates stay put
     pass_->setControlPoints(box, surfaceOrientation(faces_, positions));
 }
 
@@ -302,11 +324,20 @@ void Renderer::recordUpload() {
     g.cmd.barrier(gpu::Access::TransferWrite, gpu::Access::ComputeRead);
 }
 
+glm::dmat4 Renderer::gpuViewProjection(double aspect) const {
+    // viewProjection * translate(origin_), written out term by term in the order the web
+    // runtime's renderer.mjs uses, so that both round the same doubles to float.
+    glm::dmat4 vp = camera_.viewProjection(aspect);
+    for (int r = 0; r < 4; ++r)
+        vp[3][r] = ((vp[3][r] + vp[0][r] * origin_.x) + vp[1][r] * origin_.y) + vp[2][r] * origin_.z;
+    return vp;
+}
+
 void Renderer::recordCompute() {
     auto& g = *gpu_;
-    const glm::mat4 vp(camera_.viewProjection(double(settings_.width) / settings_.height));
+    const glm::mat4 vp(gpuViewProjection(double(settings_.width) / settings_.height));
     // The view-adaptive tessellation sizes its segments in drawn (supersampled) pixels.
-    pass_->setView(vp, camera_.eye, drawWidth_, drawHeight_);
+    pass_->setView(vp, camera_.eye - origin_, drawWidth_, drawHeight_);
     timed_.begin(g.cmd, "copy control points", true);
     g.cmd.dispatch(g.copyPoints, g.copyBindings, static_cast<uint32_t>(controlPoints_.size()),
                    VertexPush{0});
@@ -318,7 +349,7 @@ void Renderer::recordCompute() {
 void Renderer::recordDraw() {
     auto& g = *gpu_;
     const double aspect = double(settings_.width) / settings_.height;
-    const glm::dmat4 vp = camera_.viewProjection(aspect);
+    const glm::dmat4 vp = gpuViewProjection(aspect);
     DrawPush push{};
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) push.viewProj[c * 4 + r] = static_cast<float>(vp[c][r]);
@@ -338,7 +369,7 @@ void Renderer::recordDraw() {
             : glm::normalize(std::cos(el) * std::cos(az) * -forward +
                              std::cos(el) * std::sin(az) * right + std::sin(el) * up);
     for (int i = 0; i < 3; ++i) {
-        push.eye[i] = static_cast<float>(camera_.eye[i]);
+        push.eye[i] = static_cast<float>(camera_.eye[i] - origin_[i]);
         push.light[i] = static_cast<float>(light[i]);
     }
     const glm::dvec3 base = settings_.baseColor.value_or(
@@ -458,7 +489,14 @@ void Renderer::refuseTessellationShortfall(const std::string& where) const {
 }
 
 exporting::DrawnMesh Renderer::drawnMesh() {
-    return pass_->drawnMesh();
+    exporting::DrawnMesh m = pass_->drawnMesh();
+    if (origin_ != glm::dvec3(0.0))
+        for (exporting::DrawnVertex& v : m.vertices) { // back to the model's coordinates
+            v.x = float(double(v.x) + origin_.x);
+            v.y = float(double(v.y) + origin_.y);
+            v.z = float(double(v.z) + origin_.z);
+        }
+    return m;
 }
 
 FrameTimes Renderer::frameTimes() const {

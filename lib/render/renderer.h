@@ -176,6 +176,8 @@ class Renderer {
   private:
     void checkImageSize(const gpu::Context& ctx);
     void finishSetup(const Mesh& mesh, const Bounds& bounds);
+    // The view-projection of the GPU's coordinates (world minus origin_) at this aspect.
+    glm::dmat4 gpuViewProjection(double aspect) const;
     LinearImage drawnLinear() const; // before the supersample filter
     void recordUpload();
     void recordCompute();
@@ -184,6 +186,9 @@ class Renderer {
     gpu::Context& ctx_;
     RenderSettings settings_;
     std::vector<glm::vec4> controlPoints_;
+    // The GPU works relative to this point (renderOrigin): control points, eye and view are
+    // uploaded minus it, and the drawn mesh read back plus it.
+    glm::dvec3 origin_{0.0};
     Camera camera_;
     Bounds framing_;       // what cameraFor frames
     glm::dvec3 framingPad_{0.0}; // added around every box (displacement)

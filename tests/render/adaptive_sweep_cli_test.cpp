@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 using namespace limn;
 using namespace limn::test;
@@ -31,9 +32,11 @@ struct SweepCase {
     const char* size;
     bool fixedGrids;
     bool closeUp; // the close-up view too
+    double offset = 0; // the model moved this far along x (a copy of the OBJ), 0: as it is
 };
 void PrintTo(const SweepCase& c, std::ostream* os) {
     *os << c.model << " depth " << c.depth << " " << c.size << (c.fixedGrids ? " fixed" : " adaptive");
+    if (c.offset != 0) *os << " moved " << c.offset;
 }
 std::string sweepName(const ::testing::TestParamInfo<SweepCase>& info) {
     std::string s = info.param.model;
@@ -41,7 +44,27 @@ std::string sweepName(const ::testing::TestParamInfo<SweepCase>& info) {
     s = s.substr(0, s.find('.'));
     std::string size = info.param.size;
     std::replace(size.begin(), size.end(), 'x', '_');
-    return s + "_d" + std::to_string(info.param.depth) + "_" + size + (info.param.fixedGrids ? "_fixed" : "");
+    return s + "_d" + std::to_string(info.param.depth) + "_" + size + (info.param.fixedGrids ? "_fixed" : "") +
+           (info.param.offset != 0 ? "_moved" + std::to_string(int(info.param.offset)) : "");
+}
+
+// A copy of an OBJ with every vertex moved `dx` along x (the other lines as they are).
+std::string movedCopy(const std::string& obj, double dx, const ScratchDir& dir) {
+    std::ifstream in(obj);
+    const std::string out = (dir / "moved.obj").string();
+    std::ofstream f(out);
+    f.precision(17);
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("v ", 0) == 0) {
+            std::istringstream s(line.substr(2));
+            double x, y, z;
+            s >> x >> y >> z;
+            f << "v " << x + dx << " " << y << " " << z << "\n";
+        } else {
+            f << line << "\n";
+        }
+    }
+    return out;
 }
 
 class DefaultViews : public ::testing::TestWithParam<SweepCase> {};
@@ -51,7 +74,8 @@ class DefaultViews : public ::testing::TestWithParam<SweepCase> {};
 TEST_P(DefaultViews, EveryDrawnVertexOnTheLimit) {
     const SweepCase& c = GetParam();
     ScratchDir dir;
-    const std::string obj = modelPath(c.model).string();
+    const std::string obj = c.offset != 0 ? movedCopy(modelPath(c.model).string(), c.offset, dir)
+                                          : modelPath(c.model).string();
     const std::string limn = prepare(obj, c.depth, dir);
     Warnings w;
     const Mesh mesh = importMeshFile(obj, w);
@@ -132,12 +156,21 @@ const SweepCase kSweep[] = {
     {"osd/catmark/catmark_smoothtris0.obj", 4, "1024x768", false, false},
     // Small faces far from the origin with large derivative weights (single-crease patches of
     // sharpness 5.9): in float, derivatives summed from absolute coordinates were 0.61 degrees
-    // off in this view; relative to a control point, 0.44 (surface_eval_impl.glsl, patchPoint).
+    // off in this view; relative to a control point, 0.44 (surface_eval_impl.glsl, patchPoint);
+    // with the GPU's coordinates relative to the middle of the box (the rook sits 3.4 from the
+    // origin, diagonal 0.87), 0.032 degrees and 2.0e-7 of the diagonal (was 1.3e-6).
     {"osd/catmark/catmark_rook.obj", 3, "640x480", false, false},
     // A valence-360 vertex: its stencil rows of 721 small terms summed in float drifted its limit
     // point 2.0e-5 of the diagonal (subdiv_stencils.comp). The view-adaptive mesh flags the
     // bilinear faces around it (more than 64 faces), so the fixed grids.
     {"osd/catmark/catmark_pole360.obj", 3, "64x64", true, false},
+    // A model far from the origin (scenes exported with their placement baked in): float keeps
+    // 24 bits of a coordinate near 300, so the GPU works relative to the middle of the control
+    // points' box (renderer.cpp, renderOrigin). In model coordinates (this view, 320x240, d2),
+    // 3,767 vertices were off, up to 3.1e-5 of the diagonal and 0.15 degrees; relative to the
+    // middle, 5.6e-6 (the PLY's own float at 300) and 0.0005 degrees. (At 1000 the PLY's float
+    // alone is 1.1e-5 of spot's diagonal, past the 1e-5 asked.)
+    {"quad/spot_control_mesh.obj", 2, "320x240", false, true, 300.0},
 };
 
 INSTANTIATE_TEST_SUITE_P(Sweep, DefaultViews, ::testing::ValuesIn(kSweep), sweepName);

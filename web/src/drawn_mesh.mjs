@@ -65,7 +65,21 @@ export async function evaluateVertices(r, tvb, n, withLimits = false) {
   rb.unmap();
   for (const buf of [pos, nrm, info, push, rb]) buf.destroy();
   const f = new Float32Array(bytes);
-  return { positions: f.subarray(0, 4 * n), normals: f.subarray(4 * n, 8 * n), info: new Uint32Array(bytes, n * 32, 4 * n), limits: f.subarray(12 * n) };
+  const out = { positions: f.subarray(0, 4 * n), normals: f.subarray(4 * n, 8 * n), info: new Uint32Array(bytes, n * 32, 4 * n), limits: f.subarray(12 * n) };
+  toModel(r.origin, out.positions, 4);
+  toModel(r.origin, out.limits, 8);
+  return out;
+}
+
+/**
+ * Points read back from the GPU (its coordinates are the model's minus renderer.origin) back in
+ * the model's: each xyz plus the origin in double, rounded to float as renderer.cpp's drawnMesh.
+ */
+function toModel(origin, values, stride) {
+  if (!origin || (origin[0] === 0 && origin[1] === 0 && origin[2] === 0)) return;
+  for (let i = 0; i + 2 < values.length; i += stride) {
+    for (let k = 0; k < 3; k++) values[i + k] += origin[k];
+  }
 }
 
 /**
@@ -138,6 +152,7 @@ export async function readDrawnMesh(r) {
       normals: await readBuffer(device, b.displacedNormals, n * 16, Float32Array),
       info: await readBuffer(device, b.evalInfo, n * 16, Uint32Array),
     };
+    toModel(r.origin, drawn.positions, 4);
   } else {
     drawn = await evaluateVertices(r, b.tessVertices, n);
   }

@@ -27,6 +27,34 @@ export const SHADES = { lit: 0, normal: 1, uv: 2, levels: 3, texture: 4 };
 const DEFAULT_BASE = 0.8;
 
 const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4));
+/**
+ * Where the GPU's coordinates are centred: the middle of the control points' box, as
+ * renderer.cpp's renderOrigin (why there: float keeps 24 bits of a coordinate, and a small face
+ * far from the origin lost its small differences). The same expression, so both upload the same
+ * bits.
+ */
+export function renderOrigin(positions) {
+  if (positions.length < 3) return [0, 0, 0];
+  const lo = [positions[0], positions[1], positions[2]], hi = [...lo];
+  for (let i = 0; i < positions.length; i += 3) {
+    for (let k = 0; k < 3; k++) {
+      lo[k] = Math.min(lo[k], positions[i + k]);
+      hi[k] = Math.max(hi[k], positions[i + k]);
+    }
+  }
+  return [0, 1, 2].map((k) => (lo[k] + hi[k]) * 0.5);
+}
+
+/**
+ * viewProj * translate(origin), column-major: term by term in renderer.cpp's gpuViewProjection
+ * order, so both round the same doubles to float.
+ */
+function translated(vp, o) {
+  const out = [...vp];
+  for (let r = 0; r < 4; r++) out[12 + r] = ((vp[12 + r] + vp[r] * o[0]) + vp[4 + r] * o[1]) + vp[8 + r] * o[2];
+  return out;
+}
+
 function packSrgb8(c) {
   let packed = 0;
   for (let i = 0; i < 3; i++) packed |= Math.round(Math.min(Math.max(c[i], 0), 1) * 255) << (8 * i);
@@ -186,9 +214,13 @@ export class Renderer {
         triangleLevels: this.empty('adaptive triangle levels', d.capT * 4),
       });
     }
+    // The GPU works relative to the box's middle (renderOrigin): the control points, eye and view
+    // go up minus it, the drawn mesh comes back plus it (drawn_mesh.mjs).
+    const o = renderOrigin(mesh.positions);
+    this.origin = o;
     this.controlPoints = new Float32Array(mesh.vertexCount * 4);
     for (let i = 0; i < mesh.vertexCount; i++) {
-      this.controlPoints.set([mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2], 1], 4 * i);
+      this.controlPoints.set([mesh.positions[3 * i] - o[0], mesh.positions[3 * i + 1] - o[1], mesh.positions[3 * i + 2] - o[2], 1], 4 * i);
     }
     const [facePass, stencilPass, limitPass] = await Promise.all(['subdiv_face_points.comp', 'subdiv_stencils.comp', 'subdiv_limit.comp'].map(compute));
     const perSample = s.sampleShading && s.samples > 1;
@@ -333,7 +365,8 @@ export class Renderer {
     const cam = frameCamera(view, this.bounds, aspect);
     this.camera = cam;
     const v = viewMatrix(cam);
-    const vp = multiply(projectionMatrix(cam, aspect), v);
+    const vp = translated(multiply(projectionMatrix(cam, aspect), v), this.origin);
+    const eye = [0, 1, 2].map((i) => cam.eye[i] - this.origin[i]); // the GPU's coordinates
     const right = [v[0], v[4], v[8]], up = [v[1], v[5], v[9]], forward = [-v[2], -v[6], -v[10]];
     const az = ((s.lightAzimuthDeg ?? -40) * Math.PI) / 180, el = ((s.lightElevationDeg ?? 35) * Math.PI) / 180;
     const light = s.shade === 'levels'
@@ -342,7 +375,7 @@ export class Renderer {
     const push = new DataView(new ArrayBuffer(128));
     for (let i = 0; i < 16; i++) push.setFloat32(4 * i, vp[i], true);
     for (let i = 0; i < 3; i++) {
-      push.setFloat32(64 + 4 * i, cam.eye[i], true);
+      push.setFloat32(64 + 4 * i, eye[i], true);
       push.setFloat32(80 + 4 * i, light[i], true);
       push.setFloat32(96 + 4 * i, 0.006, true);
     }
@@ -364,7 +397,7 @@ export class Renderer {
       const facing = outside ? this.orientation : 0;
       this.facing = facing;
       const pushes = adaptivePushes(this.adaptiveData, this.surface.tables, this.adaptiveOptions,
-        { viewProj: vp, eye: cam.eye, facing, width: s.width, height: s.height });
+        { viewProj: vp, eye, facing, width: s.width, height: s.height });
       for (const { name, pass } of this.adaptivePasses) {
         const words = pushes.find((q) => q[0] === name)[2];
         // The dispatch header (count, row invocations) stays; the pass's own fields follow at 16.
