@@ -70,128 +70,89 @@ fn adaptiveSamplePosition_u0028_vu2_u003b_u1_u003b(packed: ptr<function, vec2<u3
     var b: u32;
     var local: u32;
 
-    let _e62 = (*s);
-    if (_e62 < 2u) {
-        let _e65 = (*packed)[0u];
-        local = _e65;
-    } else {
-        let _e67 = (*packed)[1u];
+    let _e64 = (*s);
+    if (_e64 < 2u) {
+        let _e67 = (*packed)[0u];
         local = _e67;
+    } else {
+        let _e69 = (*packed)[1u];
+        local = _e69;
     }
-    let _e68 = local;
-    let _e69 = (*s);
-    b = (_e68 >> bitcast<u32>((16u * (_e69 & 1u))));
-    let _e74 = b;
-    let _e77 = b;
-    return (vec2<f32>(f32((_e74 & 255u)), f32(((_e77 >> bitcast<u32>(8i)) & 255u))) / vec2(256f));
+    let _e70 = local;
+    let _e71 = (*s);
+    b = (_e70 >> bitcast<u32>((16u * (_e71 & 1u))));
+    let _e76 = b;
+    let _e79 = b;
+    return (vec2<f32>(f32((_e76 & 255u)), f32(((_e79 >> bitcast<u32>(8i)) & 255u))) / vec2(256f));
 }
 
 fn samplePosition_u0028_u1_u003b(s_1: ptr<function, u32>) -> vec2<f32> {
     var param: vec2<u32>;
     var param_1: u32;
 
-    let _e62 = pc.samples;
-    param = _e62;
-    let _e63 = (*s_1);
-    param_1 = _e63;
-    let _e64 = adaptiveSamplePosition_u0028_vu2_u003b_u1_u003b((&param), (&param_1));
-    return _e64;
+    let _e64 = pc.samples;
+    param = _e64;
+    let _e65 = (*s_1);
+    param_1 = _e65;
+    let _e66 = adaptiveSamplePosition_u0028_vu2_u003b_u1_u003b((&param), (&param_1));
+    return _e66;
 }
 
-fn betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b(P: ptr<function, array<vec3<f32>, 16>>, np: ptr<function, u32>) -> bool {
+fn boxBetweenSamples_u0028_vf2_u003b_vf2_u003b(lo: ptr<function, vec2<f32>>, hi: ptr<function, vec2<f32>>) -> bool {
     var sampleCount: u32;
-    var lo: vec2<f32>;
-    var hi: vec2<f32>;
-    var k: u32;
-    var c: vec4<f32>;
-    var px: vec2<f32>;
     var s_2: u32;
     var first: vec2<f32>;
     var param_2: u32;
     var last: vec2<f32>;
     var param_3: u32;
-    var phi_325_: bool;
-    var phi_370_: bool;
+    var phi_320_: bool;
+    var phi_365_: bool;
 
-    let _e72 = pc.enabled;
-    sampleCount = min(((_e72 >> bitcast<u32>(8i)) & 255u), 4u);
-    let _e77 = sampleCount;
-    if (_e77 == 0u) {
+    let _e69 = pc.enabled;
+    sampleCount = min(((_e69 >> bitcast<u32>(8i)) & 255u), 4u);
+    let _e74 = sampleCount;
+    if (_e74 == 0u) {
         return false;
     }
-    lo = vec2<f32>(1000000000000000000000000000000f, 1000000000000000000000000000000f);
-    hi = vec2<f32>(-1000000000000000000000000000000f, -1000000000000000000000000000000f);
-    k = 0u;
-    loop {
-        let _e79 = k;
-        let _e80 = (*np);
-        if (_e79 < _e80) {
-            let _e83 = pc.viewProj;
-            let _e84 = k;
-            let _e86 = (*P)[_e84];
-            c = (_e83 * vec4<f32>(_e86.x, _e86.y, _e86.z, 1f));
-            let _e93 = c[3u];
-            if !((_e93 > 0.000001f)) {
-                return false;
-            }
-            let _e96 = c;
-            let _e99 = c[3u];
-            let _e106 = pc.viewport;
-            px = ((((_e96.xy / vec2(_e99)) * 0.5f) + vec2(0.5f)) * _e106);
-            let _e108 = lo;
-            let _e109 = px;
-            lo = min(_e108, _e109);
-            let _e111 = hi;
-            let _e112 = px;
-            hi = max(_e111, _e112);
-            continue;
-        } else {
-            break;
-        }
-        continuing {
-            let _e114 = k;
-            k = (_e114 + bitcast<u32>(1i));
-        }
+    let _e77 = (*hi)[0u];
+    let _e79 = (*lo)[0u];
+    let _e81 = ((_e77 - _e79) < 1000000f);
+    phi_320_ = _e81;
+    if _e81 {
+        let _e83 = (*hi)[1u];
+        let _e85 = (*lo)[1u];
+        phi_320_ = ((_e83 - _e85) < 1000000f);
     }
-    let _e118 = hi[0u];
-    let _e120 = lo[0u];
-    let _e122 = ((_e118 - _e120) < 1000000f);
-    phi_325_ = _e122;
-    if _e122 {
-        let _e124 = hi[1u];
-        let _e126 = lo[1u];
-        phi_325_ = ((_e124 - _e126) < 1000000f);
-    }
-    let _e130 = phi_325_;
-    if !(_e130) {
+    let _e89 = phi_320_;
+    if !(_e89) {
         return false;
     }
     s_2 = 0u;
     loop {
-        let _e132 = s_2;
-        let _e133 = sampleCount;
-        if (_e132 < _e133) {
-            let _e135 = lo;
-            let _e138 = s_2;
-            param_2 = _e138;
-            let _e139 = samplePosition_u0028_u1_u003b((&param_2));
-            first = ceil(((_e135 - vec2(0.0625f)) - _e139));
-            let _e142 = hi;
-            let _e145 = s_2;
-            param_3 = _e145;
-            let _e146 = samplePosition_u0028_u1_u003b((&param_3));
-            last = floor(((_e142 + vec2(0.0625f)) - _e146));
-            let _e150 = first[0u];
-            let _e152 = last[0u];
-            let _e153 = (_e150 <= _e152);
-            phi_370_ = _e153;
-            if _e153 {
-                let _e155 = first[1u];
-                let _e157 = last[1u];
-                phi_370_ = (_e155 <= _e157);
+        let _e91 = s_2;
+        let _e92 = sampleCount;
+        if (_e91 < _e92) {
+            let _e94 = (*lo);
+            let _e97 = s_2;
+            param_2 = _e97;
+            let _e98 = samplePosition_u0028_u1_u003b((&param_2));
+            first = ceil(((_e94 - vec2(0.0625f)) - _e98));
+            let _e101 = (*hi);
+            let _e104 = s_2;
+            param_3 = _e104;
+            let _e105 = samplePosition_u0028_u1_u003b((&param_3));
+            last = floor(((_e101 + vec2(0.0625f)) - _e105));
+            let _e109 = first[0u];
+            let _e111 = last[0u];
+            let _e112 = (_e109 <= _e111);
+            phi_365_ = _e112;
+            if _e112 {
+                let _e114 = first[1u];
+                let _e116 = last[1u];
+                phi_365_ = (_e114 <= _e116);
             }
-            let _e160 = phi_370_;
-            if _e160 {
+            let _e119 = phi_365_;
+            if _e119 {
                 return false;
             }
             continue;
@@ -199,11 +160,88 @@ fn betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b(P: ptr<function, array
             break;
         }
         continuing {
-            let _e161 = s_2;
-            s_2 = (_e161 + bitcast<u32>(1i));
+            let _e120 = s_2;
+            s_2 = (_e120 + bitcast<u32>(1i));
         }
     }
     return true;
+}
+
+fn growProjectedBox_u0028_vf3_u003b_vf2_u003b_vf2_u003b(p: ptr<function, vec3<f32>>, lo_1: ptr<function, vec2<f32>>, hi_1: ptr<function, vec2<f32>>) -> bool {
+    var c: vec4<f32>;
+    var px: vec2<f32>;
+
+    let _e66 = pc.viewProj;
+    let _e67 = (*p);
+    c = (_e66 * vec4<f32>(_e67.x, _e67.y, _e67.z, 1f));
+    let _e74 = c[3u];
+    if !((_e74 > 0.000001f)) {
+        return false;
+    }
+    let _e77 = c;
+    let _e80 = c[3u];
+    let _e87 = pc.viewport;
+    px = ((((_e77.xy / vec2(_e80)) * 0.5f) + vec2(0.5f)) * _e87);
+    let _e89 = (*lo_1);
+    let _e90 = px;
+    (*lo_1) = min(_e89, _e90);
+    let _e92 = (*hi_1);
+    let _e93 = px;
+    (*hi_1) = max(_e92, _e93);
+    return true;
+}
+
+fn betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b(P: ptr<function, array<vec3<f32>, 16>>, np: ptr<function, u32>) -> bool {
+    var lo_2: vec2<f32>;
+    var hi_2: vec2<f32>;
+    var k: u32;
+    var param_4: vec3<f32>;
+    var param_5: vec2<f32>;
+    var param_6: vec2<f32>;
+    var param_7: vec2<f32>;
+    var param_8: vec2<f32>;
+
+    let _e71 = pc.enabled;
+    if (((_e71 >> bitcast<u32>(8i)) & 255u) == 0u) {
+        return false;
+    }
+    lo_2 = vec2<f32>(1000000000000000000000000000000f, 1000000000000000000000000000000f);
+    hi_2 = vec2<f32>(-1000000000000000000000000000000f, -1000000000000000000000000000000f);
+    k = 0u;
+    loop {
+        let _e76 = k;
+        let _e77 = (*np);
+        if (_e76 < _e77) {
+            let _e79 = k;
+            let _e81 = (*P)[_e79];
+            param_4 = _e81;
+            let _e82 = lo_2;
+            param_5 = _e82;
+            let _e83 = hi_2;
+            param_6 = _e83;
+            let _e84 = growProjectedBox_u0028_vf3_u003b_vf2_u003b_vf2_u003b((&param_4), (&param_5), (&param_6));
+            let _e85 = param_5;
+            lo_2 = _e85;
+            let _e86 = param_6;
+            hi_2 = _e86;
+            if !(_e84) {
+                return false;
+            }
+            continue;
+        } else {
+            break;
+        }
+        continuing {
+            let _e88 = k;
+            k = (_e88 + bitcast<u32>(1i));
+        }
+    }
+    let _e91 = lo_2;
+    param_7 = _e91;
+    let _e92 = hi_2;
+    param_8 = _e92;
+    let _e93 = boxBetweenSamples_u0028_vf2_u003b_vf2_u003b((&param_7), (&param_8));
+    return _e93;
 }
 
 fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b(P_1: ptr<function, array<vec3<f32>, 16>>, np_1: ptr<function, u32>, U: ptr<function, array<vec3<f32>, 12>>, nu: ptr<function, u32>, V: ptr<function, array<vec3<f32>, 12>>, nv: ptr<function, u32>) -> bool {
@@ -214,30 +252,30 @@ fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1
 
     a = 0u;
     loop {
-        let _e68 = a;
-        let _e69 = (*nu);
-        if (_e68 < _e69) {
+        let _e70 = a;
+        let _e71 = (*nu);
+        if (_e70 < _e71) {
             b_1 = 0u;
             loop {
-                let _e71 = b_1;
-                let _e72 = (*nv);
-                if (_e71 < _e72) {
-                    let _e74 = a;
-                    let _e76 = (*U)[_e74];
-                    let _e77 = b_1;
-                    let _e79 = (*V)[_e77];
-                    let _e83 = pc.eye[3u];
-                    C = (cross(_e76, _e79) * _e83);
+                let _e73 = b_1;
+                let _e74 = (*nv);
+                if (_e73 < _e74) {
+                    let _e76 = a;
+                    let _e78 = (*U)[_e76];
+                    let _e79 = b_1;
+                    let _e81 = (*V)[_e79];
+                    let _e85 = pc.eye[3u];
+                    C = (cross(_e78, _e81) * _e85);
                     k_1 = 0u;
                     loop {
-                        let _e85 = k_1;
-                        let _e86 = (*np_1);
-                        if (_e85 < _e86) {
-                            let _e88 = k_1;
-                            let _e90 = (*P_1)[_e88];
-                            let _e92 = pc.eye;
-                            let _e95 = C;
-                            if !((dot((_e90 - _e92.xyz), _e95) > 0f)) {
+                        let _e87 = k_1;
+                        let _e88 = (*np_1);
+                        if (_e87 < _e88) {
+                            let _e90 = k_1;
+                            let _e92 = (*P_1)[_e90];
+                            let _e94 = pc.eye;
+                            let _e97 = C;
+                            if !((dot((_e92 - _e94.xyz), _e97) > 0f)) {
                                 return false;
                             }
                             continue;
@@ -245,8 +283,8 @@ fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1
                             break;
                         }
                         continuing {
-                            let _e99 = k_1;
-                            k_1 = (_e99 + bitcast<u32>(1i));
+                            let _e101 = k_1;
+                            k_1 = (_e101 + bitcast<u32>(1i));
                         }
                     }
                     continue;
@@ -254,8 +292,8 @@ fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1
                     break;
                 }
                 continuing {
-                    let _e102 = b_1;
-                    b_1 = (_e102 + bitcast<u32>(1i));
+                    let _e104 = b_1;
+                    b_1 = (_e104 + bitcast<u32>(1i));
                 }
             }
             continue;
@@ -263,58 +301,58 @@ fn facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1
             break;
         }
         continuing {
-            let _e105 = a;
-            a = (_e105 + bitcast<u32>(1i));
+            let _e107 = a;
+            a = (_e107 + bitcast<u32>(1i));
         }
     }
     return true;
 }
 
-fn outside_u0028_vf3_u003b(p: ptr<function, vec3<f32>>) -> u32 {
+fn outside_u0028_vf3_u003b(p_1: ptr<function, vec3<f32>>) -> u32 {
     var c_1: vec4<f32>;
     var m: u32;
 
-    let _e62 = pc.viewProj;
-    let _e63 = (*p);
-    c_1 = (_e62 * vec4<f32>(_e63.x, _e63.y, _e63.z, 1f));
+    let _e64 = pc.viewProj;
+    let _e65 = (*p_1);
+    c_1 = (_e64 * vec4<f32>(_e65.x, _e65.y, _e65.z, 1f));
     m = 0u;
-    let _e70 = c_1[0u];
-    let _e72 = c_1[3u];
-    if (_e70 < -(_e72)) {
-        let _e75 = m;
-        m = (_e75 | 1u);
+    let _e72 = c_1[0u];
+    let _e74 = c_1[3u];
+    if (_e72 < -(_e74)) {
+        let _e77 = m;
+        m = (_e77 | 1u);
     }
-    let _e78 = c_1[0u];
-    let _e80 = c_1[3u];
-    if (_e78 > _e80) {
-        let _e82 = m;
-        m = (_e82 | 2u);
+    let _e80 = c_1[0u];
+    let _e82 = c_1[3u];
+    if (_e80 > _e82) {
+        let _e84 = m;
+        m = (_e84 | 2u);
     }
-    let _e85 = c_1[1u];
-    let _e87 = c_1[3u];
-    if (_e85 < -(_e87)) {
-        let _e90 = m;
-        m = (_e90 | 4u);
+    let _e87 = c_1[1u];
+    let _e89 = c_1[3u];
+    if (_e87 < -(_e89)) {
+        let _e92 = m;
+        m = (_e92 | 4u);
     }
-    let _e93 = c_1[1u];
-    let _e95 = c_1[3u];
-    if (_e93 > _e95) {
-        let _e97 = m;
-        m = (_e97 | 8u);
+    let _e95 = c_1[1u];
+    let _e97 = c_1[3u];
+    if (_e95 > _e97) {
+        let _e99 = m;
+        m = (_e99 | 8u);
     }
-    let _e100 = c_1[2u];
-    if (_e100 < 0f) {
-        let _e102 = m;
-        m = (_e102 | 16u);
+    let _e102 = c_1[2u];
+    if (_e102 < 0f) {
+        let _e104 = m;
+        m = (_e104 | 16u);
     }
-    let _e105 = c_1[2u];
-    let _e107 = c_1[3u];
-    if (_e105 > _e107) {
-        let _e109 = m;
-        m = (_e109 | 32u);
+    let _e107 = c_1[2u];
+    let _e109 = c_1[3u];
+    if (_e107 > _e109) {
+        let _e111 = m;
+        m = (_e111 | 32u);
     }
-    let _e111 = m;
-    return _e111;
+    let _e113 = m;
+    return _e113;
 }
 
 fn bezierPoints_u0028_vf3_u005b_16_u005d_u003b(P_2: ptr<function, array<vec3<f32>, 16>>) {
@@ -330,67 +368,67 @@ fn bezierPoints_u0028_vf3_u005b_16_u005d_u003b(P_2: ptr<function, array<vec3<f32
 
     pass_ = 0i;
     loop {
-        let _e68 = pass_;
-        if (_e68 < 2i) {
+        let _e70 = pass_;
+        if (_e70 < 2i) {
             r = 0i;
             loop {
-                let _e70 = r;
-                if (_e70 < 4i) {
-                    let _e72 = pass_;
-                    if (_e72 == 0i) {
-                        let _e74 = r;
-                        local_1 = (4i * _e74);
-                    } else {
+                let _e72 = r;
+                if (_e72 < 4i) {
+                    let _e74 = pass_;
+                    if (_e74 == 0i) {
                         let _e76 = r;
-                        local_1 = _e76;
+                        local_1 = (4i * _e76);
+                    } else {
+                        let _e78 = r;
+                        local_1 = _e78;
                     }
-                    let _e77 = local_1;
-                    s0_ = _e77;
-                    let _e78 = pass_;
-                    st = select(4i, 1i, (_e78 == 0i));
-                    let _e81 = s0_;
-                    let _e83 = (*P_2)[_e81];
-                    a_1 = _e83;
-                    let _e84 = s0_;
-                    let _e85 = st;
-                    let _e88 = (*P_2)[(_e84 + _e85)];
-                    b_2 = _e88;
-                    let _e89 = s0_;
-                    let _e90 = st;
-                    let _e94 = (*P_2)[(_e89 + (2i * _e90))];
-                    c_2 = _e94;
-                    let _e95 = s0_;
-                    let _e96 = st;
-                    let _e100 = (*P_2)[(_e95 + (3i * _e96))];
-                    d = _e100;
-                    let _e101 = s0_;
-                    let _e102 = a_1;
-                    let _e103 = b_2;
-                    let _e106 = c_2;
-                    (*P_2)[_e101] = (((_e102 + (_e103 * 4f)) + _e106) / vec3(6f));
-                    let _e111 = s0_;
-                    let _e112 = st;
-                    let _e114 = b_2;
-                    let _e116 = c_2;
-                    (*P_2)[(_e111 + _e112)] = (((_e114 * 2f) + _e116) / vec3(3f));
-                    let _e121 = s0_;
-                    let _e122 = st;
-                    let _e125 = b_2;
-                    let _e126 = c_2;
-                    (*P_2)[(_e121 + (2i * _e122))] = ((_e125 + (_e126 * 2f)) / vec3(3f));
-                    let _e132 = s0_;
-                    let _e133 = st;
-                    let _e136 = b_2;
-                    let _e137 = c_2;
-                    let _e140 = d;
-                    (*P_2)[(_e132 + (3i * _e133))] = (((_e136 + (_e137 * 4f)) + _e140) / vec3(6f));
+                    let _e79 = local_1;
+                    s0_ = _e79;
+                    let _e80 = pass_;
+                    st = select(4i, 1i, (_e80 == 0i));
+                    let _e83 = s0_;
+                    let _e85 = (*P_2)[_e83];
+                    a_1 = _e85;
+                    let _e86 = s0_;
+                    let _e87 = st;
+                    let _e90 = (*P_2)[(_e86 + _e87)];
+                    b_2 = _e90;
+                    let _e91 = s0_;
+                    let _e92 = st;
+                    let _e96 = (*P_2)[(_e91 + (2i * _e92))];
+                    c_2 = _e96;
+                    let _e97 = s0_;
+                    let _e98 = st;
+                    let _e102 = (*P_2)[(_e97 + (3i * _e98))];
+                    d = _e102;
+                    let _e103 = s0_;
+                    let _e104 = a_1;
+                    let _e105 = b_2;
+                    let _e108 = c_2;
+                    (*P_2)[_e103] = (((_e104 + (_e105 * 4f)) + _e108) / vec3(6f));
+                    let _e113 = s0_;
+                    let _e114 = st;
+                    let _e116 = b_2;
+                    let _e118 = c_2;
+                    (*P_2)[(_e113 + _e114)] = (((_e116 * 2f) + _e118) / vec3(3f));
+                    let _e123 = s0_;
+                    let _e124 = st;
+                    let _e127 = b_2;
+                    let _e128 = c_2;
+                    (*P_2)[(_e123 + (2i * _e124))] = ((_e127 + (_e128 * 2f)) / vec3(3f));
+                    let _e134 = s0_;
+                    let _e135 = st;
+                    let _e138 = b_2;
+                    let _e139 = c_2;
+                    let _e142 = d;
+                    (*P_2)[(_e134 + (3i * _e135))] = (((_e138 + (_e139 * 4f)) + _e142) / vec3(6f));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e145 = r;
-                    r = (_e145 + 1i);
+                    let _e147 = r;
+                    r = (_e147 + 1i);
                 }
             }
             continue;
@@ -398,192 +436,207 @@ fn bezierPoints_u0028_vf3_u005b_16_u005d_u003b(P_2: ptr<function, array<vec3<f32
             break;
         }
         continuing {
-            let _e147 = pass_;
-            pass_ = (_e147 + 1i);
+            let _e149 = pass_;
+            pass_ = (_e149 + 1i);
         }
     }
     return;
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e60 = gl_GlobalInvocationID_1[1u];
-    let _e61 = (*rowInvocations);
-    let _e64 = gl_GlobalInvocationID_1[0u];
-    return ((_e60 * _e61) + _e64);
+    let _e62 = gl_GlobalInvocationID_1[1u];
+    let _e63 = (*rowInvocations);
+    let _e66 = gl_GlobalInvocationID_1[0u];
+    return ((_e62 * _e63) + _e66);
 }
 
 fn main_1() {
     var e: u32;
-    var param_4: u32;
+    var param_9: u32;
     var all_: u32;
     var pt: Patch;
     var k_2: i32;
     var P_3: array<vec3<f32>, 16>;
-    var param_5: array<vec3<f32>, 16>;
+    var param_10: array<vec3<f32>, 16>;
     var k_3: i32;
-    var param_6: vec3<f32>;
+    var param_11: vec3<f32>;
     var j: i32;
     var i: i32;
     var U_1: array<vec3<f32>, 12>;
     var V_1: array<vec3<f32>, 12>;
-    var param_7: array<vec3<f32>, 16>;
-    var param_8: u32;
-    var param_9: array<vec3<f32>, 12>;
-    var param_10: u32;
-    var param_11: array<vec3<f32>, 12>;
-    var param_12: u32;
-    var param_13: array<vec3<f32>, 16>;
-    var param_14: u32;
+    var param_12: array<vec3<f32>, 16>;
+    var param_13: u32;
+    var param_14: array<vec3<f32>, 12>;
+    var param_15: u32;
+    var param_16: array<vec3<f32>, 12>;
+    var param_17: u32;
+    var param_18: array<vec3<f32>, 16>;
+    var param_19: u32;
+    var h: u32;
+    var M: u32;
+    var lo_3: vec2<f32>;
+    var hi_3: vec2<f32>;
+    var boxed: bool;
+    var i_1: u32;
+    var x: vec3<f32>;
+    var param_20: vec3<f32>;
+    var param_21: vec3<f32>;
+    var param_22: vec2<f32>;
+    var param_23: vec2<f32>;
+    var param_24: vec2<f32>;
+    var param_25: vec2<f32>;
     var q: IrregularFace;
     var k_4: i32;
     var P_4: array<vec3<f32>, 16>;
-    var param_15: vec3<f32>;
+    var param_26: vec3<f32>;
     var U_2: array<vec3<f32>, 12>;
     var V_2: array<vec3<f32>, 12>;
-    var param_16: array<vec3<f32>, 16>;
-    var param_17: u32;
-    var param_18: array<vec3<f32>, 12>;
-    var param_19: u32;
-    var param_20: array<vec3<f32>, 12>;
-    var param_21: u32;
-    var param_22: array<vec3<f32>, 16>;
-    var param_23: u32;
-    var phi_673_: bool;
-    var phi_757_: bool;
-    var phi_845_: bool;
-    var phi_894_: bool;
+    var param_27: array<vec3<f32>, 16>;
+    var param_28: u32;
+    var param_29: array<vec3<f32>, 12>;
+    var param_30: u32;
+    var param_31: array<vec3<f32>, 12>;
+    var param_32: u32;
+    var param_33: array<vec3<f32>, 16>;
+    var param_34: u32;
+    var phi_714_: bool;
+    var phi_798_: bool;
+    var phi_817_: bool;
+    var phi_893_: bool;
+    var phi_978_: bool;
+    var phi_1027_: bool;
 
-    let _e94 = pc.limnRowInvocations;
-    param_4 = _e94;
-    let _e95 = limnInvocationIndex_u0028_u1_u003b((&param_4));
-    e = _e95;
-    let _e96 = e;
-    let _e98 = pc.limnCount;
-    if (_e96 >= _e98) {
+    let _e109 = pc.limnRowInvocations;
+    param_9 = _e109;
+    let _e110 = limnInvocationIndex_u0028_u1_u003b((&param_9));
+    e = _e110;
+    let _e111 = e;
+    let _e113 = pc.limnCount;
+    if (_e111 >= _e113) {
         return;
     }
     all_ = 63u;
-    let _e101 = pc.enabled;
-    if ((_e101 & 1u) == 0u) {
+    let _e116 = pc.enabled;
+    if ((_e116 & 1u) == 0u) {
         all_ = 0u;
     } else {
-        let _e104 = e;
-        let _e106 = pc.patchCount;
-        if (_e104 < _e106) {
-            let _e108 = e;
-            let _e111 = patches.p[_e108];
-            pt.cv[0i] = _e111.cv[0];
-            pt.cv[1i] = _e111.cv[1];
-            pt.cv[2i] = _e111.cv[2];
-            pt.cv[3i] = _e111.cv[3];
-            pt.cv[4i] = _e111.cv[4];
-            pt.cv[5i] = _e111.cv[5];
-            pt.cv[6i] = _e111.cv[6];
-            pt.cv[7i] = _e111.cv[7];
-            pt.cv[8i] = _e111.cv[8];
-            pt.cv[9i] = _e111.cv[9];
-            pt.cv[10i] = _e111.cv[10];
-            pt.cv[11i] = _e111.cv[11];
-            pt.cv[12i] = _e111.cv[12];
-            pt.cv[13i] = _e111.cv[13];
-            pt.cv[14i] = _e111.cv[14];
-            pt.cv[15i] = _e111.cv[15];
-            pt.ptex = _e111.ptex;
-            pt.u0_ = _e111.u0_;
-            pt.v0_ = _e111.v0_;
-            pt.size = _e111.size;
-            pt.levelBoundary = _e111.levelBoundary;
-            pt.sharpness = _e111.sharpness;
-            pt.pad1_ = _e111.pad1_;
-            pt.pad2_ = _e111.pad2_;
-            let _e163 = pt.levelBoundary;
-            if (((_e163 >> bitcast<u32>(8i)) & 3855u) != 0u) {
+        let _e119 = e;
+        let _e121 = pc.patchCount;
+        if (_e119 < _e121) {
+            let _e123 = e;
+            let _e126 = patches.p[_e123];
+            pt.cv[0i] = _e126.cv[0];
+            pt.cv[1i] = _e126.cv[1];
+            pt.cv[2i] = _e126.cv[2];
+            pt.cv[3i] = _e126.cv[3];
+            pt.cv[4i] = _e126.cv[4];
+            pt.cv[5i] = _e126.cv[5];
+            pt.cv[6i] = _e126.cv[6];
+            pt.cv[7i] = _e126.cv[7];
+            pt.cv[8i] = _e126.cv[8];
+            pt.cv[9i] = _e126.cv[9];
+            pt.cv[10i] = _e126.cv[10];
+            pt.cv[11i] = _e126.cv[11];
+            pt.cv[12i] = _e126.cv[12];
+            pt.cv[13i] = _e126.cv[13];
+            pt.cv[14i] = _e126.cv[14];
+            pt.cv[15i] = _e126.cv[15];
+            pt.ptex = _e126.ptex;
+            pt.u0_ = _e126.u0_;
+            pt.v0_ = _e126.v0_;
+            pt.size = _e126.size;
+            pt.levelBoundary = _e126.levelBoundary;
+            pt.sharpness = _e126.sharpness;
+            pt.pad1_ = _e126.pad1_;
+            pt.pad2_ = _e126.pad2_;
+            let _e178 = pt.levelBoundary;
+            if (((_e178 >> bitcast<u32>(8i)) & 3855u) != 0u) {
                 all_ = 0u;
             } else {
                 k_2 = 0i;
                 loop {
-                    let _e168 = k_2;
-                    if (_e168 < 16i) {
-                        let _e170 = k_2;
-                        let _e171 = k_2;
-                        let _e174 = pt.cv[_e171];
-                        let _e177 = vertices.p[_e174];
-                        P_3[_e170] = _e177.xyz;
+                    let _e183 = k_2;
+                    if (_e183 < 16i) {
+                        let _e185 = k_2;
+                        let _e186 = k_2;
+                        let _e189 = pt.cv[_e186];
+                        let _e192 = vertices.p[_e189];
+                        P_3[_e185] = _e192.xyz;
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e180 = k_2;
-                        k_2 = (_e180 + 1i);
+                        let _e195 = k_2;
+                        k_2 = (_e195 + 1i);
                     }
                 }
-                let _e182 = P_3;
-                param_5 = _e182;
-                bezierPoints_u0028_vf3_u005b_16_u005d_u003b((&param_5));
-                let _e183 = param_5;
-                P_3 = _e183;
+                let _e197 = P_3;
+                param_10 = _e197;
+                bezierPoints_u0028_vf3_u005b_16_u005d_u003b((&param_10));
+                let _e198 = param_10;
+                P_3 = _e198;
                 k_3 = 0i;
                 loop {
-                    let _e184 = k_3;
-                    if (_e184 < 16i) {
-                        let _e186 = k_3;
-                        let _e188 = P_3[_e186];
-                        param_6 = _e188;
-                        let _e189 = outside_u0028_vf3_u003b((&param_6));
-                        let _e190 = all_;
-                        all_ = (_e190 & _e189);
+                    let _e199 = k_3;
+                    if (_e199 < 16i) {
+                        let _e201 = k_3;
+                        let _e203 = P_3[_e201];
+                        param_11 = _e203;
+                        let _e204 = outside_u0028_vf3_u003b((&param_11));
+                        let _e205 = all_;
+                        all_ = (_e205 & _e204);
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e192 = k_3;
-                        k_3 = (_e192 + 1i);
+                        let _e207 = k_3;
+                        k_3 = (_e207 + 1i);
                     }
                 }
-                let _e194 = all_;
-                let _e195 = (_e194 == 0u);
-                phi_673_ = _e195;
-                if _e195 {
-                    let _e198 = pc.eye[3u];
-                    phi_673_ = (_e198 != 0f);
+                let _e209 = all_;
+                let _e210 = (_e209 == 0u);
+                phi_714_ = _e210;
+                if _e210 {
+                    let _e213 = pc.eye[3u];
+                    phi_714_ = (_e213 != 0f);
                 }
-                let _e201 = phi_673_;
-                if _e201 {
+                let _e216 = phi_714_;
+                if _e216 {
                     j = 0i;
                     loop {
-                        let _e202 = j;
-                        if (_e202 < 4i) {
+                        let _e217 = j;
+                        if (_e217 < 4i) {
                             i = 0i;
                             loop {
-                                let _e204 = i;
-                                if (_e204 < 3i) {
-                                    let _e206 = j;
-                                    let _e208 = i;
-                                    let _e210 = j;
-                                    let _e212 = i;
-                                    let _e216 = P_3[(((4i * _e210) + _e212) + 1i)];
-                                    let _e217 = j;
-                                    let _e219 = i;
-                                    let _e222 = P_3[((4i * _e217) + _e219)];
-                                    U_1[((3i * _e206) + _e208)] = (_e216 - _e222);
-                                    let _e225 = i;
-                                    let _e227 = j;
-                                    let _e229 = i;
+                                let _e219 = i;
+                                if (_e219 < 3i) {
+                                    let _e221 = j;
+                                    let _e223 = i;
+                                    let _e225 = j;
+                                    let _e227 = i;
+                                    let _e231 = P_3[(((4i * _e225) + _e227) + 1i)];
                                     let _e232 = j;
-                                    let _e235 = P_3[((4i * (_e229 + 1i)) + _e232)];
-                                    let _e236 = i;
-                                    let _e238 = j;
-                                    let _e241 = P_3[((4i * _e236) + _e238)];
-                                    V_1[((4i * _e225) + _e227)] = (_e235 - _e241);
+                                    let _e234 = i;
+                                    let _e237 = P_3[((4i * _e232) + _e234)];
+                                    U_1[((3i * _e221) + _e223)] = (_e231 - _e237);
+                                    let _e240 = i;
+                                    let _e242 = j;
+                                    let _e244 = i;
+                                    let _e247 = j;
+                                    let _e250 = P_3[((4i * (_e244 + 1i)) + _e247)];
+                                    let _e251 = i;
+                                    let _e253 = j;
+                                    let _e256 = P_3[((4i * _e251) + _e253)];
+                                    V_1[((4i * _e240) + _e242)] = (_e250 - _e256);
                                     continue;
                                 } else {
                                     break;
                                 }
                                 continuing {
-                                    let _e244 = i;
-                                    i = (_e244 + 1i);
+                                    let _e259 = i;
+                                    i = (_e259 + 1i);
                                 }
                             }
                             continue;
@@ -591,135 +644,214 @@ fn main_1() {
                             break;
                         }
                         continuing {
-                            let _e246 = j;
-                            j = (_e246 + 1i);
+                            let _e261 = j;
+                            j = (_e261 + 1i);
                         }
                     }
-                    let _e248 = P_3;
-                    param_7 = _e248;
-                    param_8 = 16u;
-                    let _e249 = U_1;
-                    param_9 = _e249;
-                    param_10 = 12u;
-                    let _e250 = V_1;
-                    param_11 = _e250;
-                    param_12 = 12u;
-                    let _e251 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_7), (&param_8), (&param_9), (&param_10), (&param_11), (&param_12));
-                    if _e251 {
+                    let _e263 = P_3;
+                    param_12 = _e263;
+                    param_13 = 16u;
+                    let _e264 = U_1;
+                    param_14 = _e264;
+                    param_15 = 12u;
+                    let _e265 = V_1;
+                    param_16 = _e265;
+                    param_17 = 12u;
+                    let _e266 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_12), (&param_13), (&param_14), (&param_15), (&param_16), (&param_17));
+                    if _e266 {
                         all_ = 64u;
                     }
                 }
-                let _e252 = all_;
-                let _e253 = (_e252 == 0u);
-                phi_757_ = _e253;
-                if _e253 {
-                    let _e254 = P_3;
-                    param_13 = _e254;
-                    param_14 = 16u;
-                    let _e255 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_13), (&param_14));
-                    phi_757_ = _e255;
+                let _e267 = all_;
+                let _e268 = (_e267 == 0u);
+                phi_798_ = _e268;
+                if _e268 {
+                    let _e269 = P_3;
+                    param_18 = _e269;
+                    param_19 = 16u;
+                    let _e270 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_18), (&param_19));
+                    phi_798_ = _e270;
                 }
-                let _e257 = phi_757_;
-                if _e257 {
+                let _e272 = phi_798_;
+                if _e272 {
                     all_ = 128u;
                 }
             }
         } else {
-            let _e258 = e;
-            let _e263 = patches.p[_e258].cv[0i];
-            if (_e263 != 4294967295u) {
-                all_ = 0u;
-            } else {
-                let _e265 = e;
-                let _e267 = pc.patchCount;
-                let _e271 = irregulars.f[(_e265 - _e267)];
-                q.corner[0i] = _e271.corner[0];
-                q.corner[1i] = _e271.corner[1];
-                q.corner[2i] = _e271.corner[2];
-                q.corner[3i] = _e271.corner[3];
-                q.ptex = _e271.ptex;
-                q.u0_ = _e271.u0_;
-                q.v0_ = _e271.v0_;
-                q.size = _e271.size;
-                k_4 = 0i;
+            let _e273 = e;
+            let _e278 = patches.p[_e273].cv[0i];
+            let _e280 = ((_e278 & 3221225472u) == 3221225472u);
+            phi_817_ = _e280;
+            if _e280 {
+                let _e281 = e;
+                let _e286 = patches.p[_e281].cv[0i];
+                phi_817_ = (_e286 != 4294967295u);
+            }
+            let _e289 = phi_817_;
+            if _e289 {
+                let _e290 = e;
+                let _e295 = patches.p[_e290].cv[0i];
+                h = (_e295 & 1073741823u);
+                let _e297 = h;
+                let _e302 = patches.p[_e297].cv[0i];
+                M = ((2u * _e302) + 8u);
+                lo_3 = vec2<f32>(1000000000000000000000000000000f, 1000000000000000000000000000000f);
+                hi_3 = vec2<f32>(-1000000000000000000000000000000f, -1000000000000000000000000000000f);
+                let _e306 = pc.enabled;
+                boxed = (((_e306 >> bitcast<u32>(8i)) & 255u) != 0u);
+                i_1 = 0u;
                 loop {
-                    let _e290 = k_4;
-                    if (_e290 < 4i) {
-                        let _e292 = k_4;
-                        let _e293 = k_4;
-                        let _e296 = q.corner[_e293];
-                        let _e300 = limits.v[(2u * _e296)];
-                        P_4[_e292] = _e300.xyz;
-                        let _e303 = k_4;
-                        let _e305 = P_4[_e303];
-                        param_15 = _e305;
-                        let _e306 = outside_u0028_vf3_u003b((&param_15));
-                        let _e307 = all_;
-                        all_ = (_e307 & _e306);
+                    let _e311 = i_1;
+                    let _e312 = M;
+                    if (_e311 < _e312) {
+                        let _e314 = h;
+                        let _e316 = i_1;
+                        let _e319 = i_1;
+                        let _e325 = patches.p[((_e314 + 1u) + (_e316 / 16u))].cv[(_e319 % 16u)];
+                        let _e328 = vertices.p[_e325];
+                        x = _e328.xyz;
+                        let _e330 = x;
+                        param_20 = _e330;
+                        let _e331 = outside_u0028_vf3_u003b((&param_20));
+                        let _e332 = all_;
+                        all_ = (_e332 & _e331);
+                        let _e334 = boxed;
+                        if _e334 {
+                            let _e335 = x;
+                            param_21 = _e335;
+                            let _e336 = lo_3;
+                            param_22 = _e336;
+                            let _e337 = hi_3;
+                            param_23 = _e337;
+                            let _e338 = growProjectedBox_u0028_vf3_u003b_vf2_u003b_vf2_u003b((&param_21), (&param_22), (&param_23));
+                            let _e339 = param_22;
+                            lo_3 = _e339;
+                            let _e340 = param_23;
+                            hi_3 = _e340;
+                            boxed = _e338;
+                        }
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e309 = k_4;
-                        k_4 = (_e309 + 1i);
+                        let _e341 = i_1;
+                        i_1 = (_e341 + bitcast<u32>(1i));
                     }
                 }
-                let _e311 = all_;
-                let _e312 = (_e311 == 0u);
-                phi_845_ = _e312;
-                if _e312 {
-                    let _e315 = pc.eye[3u];
-                    phi_845_ = (_e315 != 0f);
+                let _e344 = all_;
+                let _e346 = boxed;
+                let _e347 = ((_e344 == 0u) && _e346);
+                phi_893_ = _e347;
+                if _e347 {
+                    let _e348 = lo_3;
+                    param_24 = _e348;
+                    let _e349 = hi_3;
+                    param_25 = _e349;
+                    let _e350 = boxBetweenSamples_u0028_vf2_u003b_vf2_u003b((&param_24), (&param_25));
+                    phi_893_ = _e350;
                 }
-                let _e318 = phi_845_;
-                if _e318 {
-                    let _e320 = P_4[1i];
-                    let _e322 = P_4[0i];
-                    U_2[0i] = (_e320 - _e322);
-                    let _e326 = P_4[2i];
-                    let _e328 = P_4[3i];
-                    U_2[1i] = (_e326 - _e328);
-                    let _e332 = P_4[3i];
-                    let _e334 = P_4[0i];
-                    V_2[0i] = (_e332 - _e334);
-                    let _e338 = P_4[2i];
-                    let _e340 = P_4[1i];
-                    V_2[1i] = (_e338 - _e340);
-                    let _e343 = P_4;
-                    param_16 = _e343;
-                    param_17 = 4u;
-                    let _e344 = U_2;
-                    param_18 = _e344;
-                    param_19 = 2u;
-                    let _e345 = V_2;
-                    param_20 = _e345;
-                    param_21 = 2u;
-                    let _e346 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_16), (&param_17), (&param_18), (&param_19), (&param_20), (&param_21));
-                    if _e346 {
-                        all_ = 64u;
-                    }
-                }
-                let _e347 = all_;
-                let _e348 = (_e347 == 0u);
-                phi_894_ = _e348;
-                if _e348 {
-                    let _e349 = P_4;
-                    param_22 = _e349;
-                    param_23 = 4u;
-                    let _e350 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_22), (&param_23));
-                    phi_894_ = _e350;
-                }
-                let _e352 = phi_894_;
+                let _e352 = phi_893_;
                 if _e352 {
                     all_ = 128u;
+                }
+            } else {
+                let _e353 = e;
+                let _e358 = patches.p[_e353].cv[0i];
+                if (_e358 != 4294967295u) {
+                    all_ = 0u;
+                } else {
+                    let _e360 = e;
+                    let _e362 = pc.patchCount;
+                    let _e366 = irregulars.f[(_e360 - _e362)];
+                    q.corner[0i] = _e366.corner[0];
+                    q.corner[1i] = _e366.corner[1];
+                    q.corner[2i] = _e366.corner[2];
+                    q.corner[3i] = _e366.corner[3];
+                    q.ptex = _e366.ptex;
+                    q.u0_ = _e366.u0_;
+                    q.v0_ = _e366.v0_;
+                    q.size = _e366.size;
+                    k_4 = 0i;
+                    loop {
+                        let _e385 = k_4;
+                        if (_e385 < 4i) {
+                            let _e387 = k_4;
+                            let _e388 = k_4;
+                            let _e391 = q.corner[_e388];
+                            let _e395 = limits.v[(2u * _e391)];
+                            P_4[_e387] = _e395.xyz;
+                            let _e398 = k_4;
+                            let _e400 = P_4[_e398];
+                            param_26 = _e400;
+                            let _e401 = outside_u0028_vf3_u003b((&param_26));
+                            let _e402 = all_;
+                            all_ = (_e402 & _e401);
+                            continue;
+                        } else {
+                            break;
+                        }
+                        continuing {
+                            let _e404 = k_4;
+                            k_4 = (_e404 + 1i);
+                        }
+                    }
+                    let _e406 = all_;
+                    let _e407 = (_e406 == 0u);
+                    phi_978_ = _e407;
+                    if _e407 {
+                        let _e410 = pc.eye[3u];
+                        phi_978_ = (_e410 != 0f);
+                    }
+                    let _e413 = phi_978_;
+                    if _e413 {
+                        let _e415 = P_4[1i];
+                        let _e417 = P_4[0i];
+                        U_2[0i] = (_e415 - _e417);
+                        let _e421 = P_4[2i];
+                        let _e423 = P_4[3i];
+                        U_2[1i] = (_e421 - _e423);
+                        let _e427 = P_4[3i];
+                        let _e429 = P_4[0i];
+                        V_2[0i] = (_e427 - _e429);
+                        let _e433 = P_4[2i];
+                        let _e435 = P_4[1i];
+                        V_2[1i] = (_e433 - _e435);
+                        let _e438 = P_4;
+                        param_27 = _e438;
+                        param_28 = 4u;
+                        let _e439 = U_2;
+                        param_29 = _e439;
+                        param_30 = 2u;
+                        let _e440 = V_2;
+                        param_31 = _e440;
+                        param_32 = 2u;
+                        let _e441 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_27), (&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
+                        if _e441 {
+                            all_ = 64u;
+                        }
+                    }
+                    let _e442 = all_;
+                    let _e443 = (_e442 == 0u);
+                    phi_1027_ = _e443;
+                    if _e443 {
+                        let _e444 = P_4;
+                        param_33 = _e444;
+                        param_34 = 4u;
+                        let _e445 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_33), (&param_34));
+                        phi_1027_ = _e445;
+                    }
+                    let _e447 = phi_1027_;
+                    if _e447 {
+                        all_ = 128u;
+                    }
                 }
             }
         }
     }
-    let _e353 = e;
-    let _e354 = all_;
-    cull.c[_e353] = select(0u, 1u, (_e354 != 0u));
+    let _e448 = e;
+    let _e449 = all_;
+    cull.c[_e448] = select(0u, 1u, (_e449 != 0u));
     return;
 }
 

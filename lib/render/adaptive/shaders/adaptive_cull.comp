@@ -4,9 +4,12 @@
 //
 // Outside the view frustum: a regular patch lies in the convex hull of its 16 Bezier control
 // points (converted from its B-spline ones, paper 000, eq. 1), an irregular face drawn bilinear
-// (tables without its sub-patches) in that of its four limit points; the element is culled when all of them are outside one clip
-// plane. Patches on a mesh boundary (whose phantom points are not among the control points) and
-// single-crease patches are never culled.
+// (tables without its sub-patches) in that of its four limit points, a face on a per-valence
+// basis (docs/irregular.md) in that of its 2n + 8 support points (every point of its surface is
+// a limit of Catmull-Clark's smooth rules, whose weights are not negative, over them); the element
+// is culled when all of them are outside one clip plane. Patches on a mesh boundary (whose phantom
+// points are not among the control points), single-crease patches and the faces on quadtrees of
+// sub-patches (their hulls would be those of their sub-patches) are never culled.
 //
 // Facing away (only for a closed surface seen from outside its control points' bounding box, so
 // that every back face is hidden behind a front face; the host decides, eye.w != 0, with the
@@ -65,18 +68,21 @@ void bezierPoints(inout vec3 P[16]) {
         }
 }
 
-// Whether the pixel-space box of the projected points holds none of the sample positions
+// Grows the pixel-space box [lo, hi] by the projection of p; false where p is not in front of the
+// eye (then no box bounds the projection).
+bool growProjectedBox(vec3 p, inout vec2 lo, inout vec2 hi) {
+    vec4 c = pc.viewProj * vec4(p, 1.0);
+    if (!(c.w > 1e-6)) return false;
+    vec2 px = (c.xy / c.w * 0.5 + 0.5) * pc.viewport;
+    lo = min(lo, px), hi = max(hi, px);
+    return true;
+}
+
+// Whether the pixel-space box [lo, hi] of projected points holds none of the sample positions
 // (pixel + offset, for each of the pattern's offsets).
-bool betweenSamples(vec3 P[16], uint np) {
+bool boxBetweenSamples(vec2 lo, vec2 hi) {
     uint sampleCount = min((pc.enabled >> 8) & 0xFFu, 4u);
     if (sampleCount == 0u) return false;
-    vec2 lo = vec2(1e30), hi = vec2(-1e30);
-    for (uint k = 0u; k < np; ++k) {
-        vec4 c = pc.viewProj * vec4(P[k], 1.0);
-        if (!(c.w > 1e-6)) return false;
-        vec2 px = (c.xy / c.w * 0.5 + 0.5) * pc.viewport;
-        lo = min(lo, px), hi = max(hi, px);
-    }
     if (!(hi.x - lo.x < 1e6 && hi.y - lo.y < 1e6)) return false; // huge or not finite
     const float slack = 1.0 / 16.0;
     for (uint s = 0u; s < sampleCount; ++s) {
@@ -84,6 +90,14 @@ bool betweenSamples(vec3 P[16], uint np) {
         if (first.x <= last.x && first.y <= last.y) return false;
     }
     return true;
+}
+
+bool betweenSamples(vec3 P[16], uint np) {
+    if (((pc.enabled >> 8) & 0xFFu) == 0u) return false;
+    vec2 lo = vec2(1e30), hi = vec2(-1e30);
+    for (uint k = 0u; k < np; ++k)
+        if (!growProjectedBox(P[k], lo, hi)) return false;
+    return boxBetweenSamples(lo, hi);
 }
 
 // Whether sign * (P_k - eye) . (U_a x V_b) > 0 for all given points and vectors.
@@ -138,6 +152,19 @@ void main() {
             }
             if (all == 0u && betweenSamples(P, 16u)) all = 128u;
         }
+    } else if ((patches.p[e].cv[0] & IRREGULAR_KIND) == IRREGULAR_BASIS && patches.p[e].cv[0] != IRREGULAR_NONE) {
+        // A face on a per-valence basis: the hull of its support (the header's cv[0] is the
+        // valence n, the support's 2n + 8 indices follow it, surface_eval_impl.glsl
+        // basisPatchPoint). The facing test would need its sub-patches' derivative cones: not made.
+        uint h = patches.p[e].cv[0] & ~IRREGULAR_KIND, M = 2u * patches.p[h].cv[0] + 8u;
+        vec2 lo = vec2(1e30), hi = vec2(-1e30);
+        bool boxed = ((pc.enabled >> 8) & 0xFFu) != 0u;
+        for (uint i = 0u; i < M; ++i) {
+            vec3 x = vertices.p[patches.p[h + 1u + i / 16u].cv[i % 16u]].xyz;
+            all &= outside(x);
+            if (boxed) boxed = growProjectedBox(x, lo, hi);
+        }
+        if (all == 0u && boxed && boxBetweenSamples(lo, hi)) all = 128u;
     } else if (patches.p[e].cv[0] != IRREGULAR_NONE) {
         // An irregular face on its sub-patches (docs/irregular.md) is not in the hull of its
         // corners: never culled (there are few; their hulls would be those of their sub-patches).
