@@ -144,7 +144,9 @@ namespace {
 // off in float, where limn's double evaluation is on OpenSubdiv's to the last digit; a model a
 // thousand units out had its points 3e-5 of its diagonal off). Relative to the box's middle the
 // coordinates are at most half the diagonal. The same expression as the web runtime's, so both
-// upload the same bits.
+// upload the same bits. Only for the subdivision surface: the control mesh is drawn flat at its
+// own points, which --mesh-out gives back exactly (a shifted point plus the shift is not always
+// the point in float).
 glm::dvec3 renderOrigin(const Mesh& mesh) {
     if (mesh.positions.empty()) return glm::dvec3(0.0);
     glm::dvec3 lo = mesh.positions[0], hi = mesh.positions[0];
@@ -156,7 +158,7 @@ glm::dvec3 renderOrigin(const Mesh& mesh) {
 
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
                    const RenderSettings& settings)
-    : ctx_(ctx), settings_(settings), origin_(renderOrigin(mesh)) {
+    : ctx_(ctx), settings_(settings), origin_(tables ? renderOrigin(mesh) : glm::dvec3(0.0)) {
     checkImageSize(ctx);
     checkUvShade(mesh, settings);
     if (settings.shade == Shade::Levels && !tables)
