@@ -22,13 +22,15 @@ FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& opt
     c.topologyHash = topologyHash(mesh, options);
     c.uvHash = fvarUVHash(mesh);
     c.ptexCount = ptexFaceCount(mesh);
-    c.surface = FaceVaryingSurface(mesh, options, depth, irregularLevels, warnings).gpu();
+    c.surface = FaceVaryingSurface(mesh, options, depth, irregularLevels, warnings).compactGpu();
     c.elementCount = static_cast<uint32_t>(c.surface.records.size() / 9);
     return c;
 }
 
 // Layout (formats/limn.md): u32 depth, u32 ptex count, u64 topology hash, u64 UV hash, u32 node
-// count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4].
+// count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4]; version
+// 2: u32 smooth faces, {u32 corner | valence << 2, u32 first point, f32 limit u, v}[smooth
+// faces], u32 points, f32 points[2 * points], u32 bases, {u32 n, u32 k, f32 weights}[bases].
 Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     ByteWriter w;
     w.write<uint32_t>(c.depth);
@@ -40,12 +42,82 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     w.writeArray(c.surface.nodes);
     for (const glm::vec4& r : c.surface.records)
         for (int k = 0; k < 4; ++k) w.write<float>(r[k]);
+    w.write<uint32_t>(static_cast<uint32_t>(c.surface.smoothFaces.size()));
+    for (const FaceVaryingSurface::SmoothFace& f : c.surface.smoothFaces) {
+        w.write<uint32_t>(f.corner | f.valence << 2);
+        w.write<uint32_t>(f.firstPoint);
+        w.write<float>(f.limit.x);
+        w.write<float>(f.limit.y);
+    }
+    w.write<uint32_t>(static_cast<uint32_t>(c.surface.points.size()));
+    for (const glm::vec2& p : c.surface.points) w.write<float>(p.x), w.write<float>(p.y);
+    w.write<uint32_t>(static_cast<uint32_t>(c.surface.bases.size()));
+    for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
+        w.write<uint32_t>(b.valence);
+        w.write<uint32_t>(b.levels);
+        w.writeArray(b.weights);
+    }
     return Chunk{kFvarSurfaceChunk, kFvarSurfaceChunkVersion, w.take()};
 }
 
+namespace {
+
+uint32_t basisLevels(const FaceVaryingSurface::Gpu& g, uint32_t valence) {
+    for (const FaceVaryingSurface::Basis& b : g.bases)
+        if (b.valence == valence) return b.levels;
+    return 0;
+}
+
+// Version 2's smooth faces, their support UVs and the per-valence weights, each count checked
+// against the bytes left before anything is allocated.
+void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
+    const uint32_t faces = r.read<uint32_t>();
+    if (faces > r.remaining() / 16) r.fail("smooth face count is too large");
+    g.smoothFaces.resize(faces);
+    for (FaceVaryingSurface::SmoothFace& f : g.smoothFaces) {
+        const uint32_t packed = r.read<uint32_t>();
+        f.corner = packed & 3u, f.valence = packed >> 2;
+        f.firstPoint = r.read<uint32_t>();
+        f.limit.x = r.read<float>(), f.limit.y = r.read<float>();
+    }
+    const uint32_t points = r.read<uint32_t>();
+    const std::vector<float> p = r.readArray<float>(uint64_t(points) * 2, "points");
+    g.points.resize(points);
+    for (uint32_t i = 0; i < points; ++i) g.points[i] = {p[2 * i], p[2 * i + 1]};
+    const uint32_t bases = r.read<uint32_t>();
+    if (bases > r.remaining() / 8) r.fail("basis count is too large");
+    for (uint32_t b = 0; b < bases; ++b) {
+        FaceVaryingSurface::Basis x;
+        x.valence = r.read<uint32_t>(), x.levels = r.read<uint32_t>();
+        // limn-tables builds no basis beyond valence 64 (kMaxBasisValence) nor deeper than 16.
+        if (x.valence < 3 || x.valence > 64 || x.valence == 4 || x.levels < 1 || x.levels > 16)
+            r.fail("basis " + std::to_string(b) + " has valence " + std::to_string(x.valence) + " and " +
+                   std::to_string(x.levels) + " levels");
+        if (basisLevels(g, x.valence)) r.fail("two bases of valence " + std::to_string(x.valence));
+        x.weights = r.readArray<float>(uint64_t(x.levels) * 48 * (2 * x.valence + 8), "basis weights");
+        // Catmull-Clark's smooth weights are convex (irregular_basis.h).
+        for (float w : x.weights)
+            if (!(w >= 0 && w <= 1)) r.fail("basis " + std::to_string(b) + " has a weight outside [0, 1]");
+        g.bases.push_back(std::move(x));
+    }
+    for (uint32_t i = 0; i < faces; ++i) {
+        const FaceVaryingSurface::SmoothFace& f = g.smoothFaces[i];
+        if (!basisLevels(g, f.valence)) r.fail("smooth face " + std::to_string(i) + " has no basis of its valence");
+        if (uint64_t(f.firstPoint) + 2 * f.valence + 8 > points)
+            r.fail("smooth face " + std::to_string(i) + "'s support is beyond the points");
+        if (!std::isfinite(f.limit.x) || !std::isfinite(f.limit.y) || std::fabs(f.limit.x) > 1e18f ||
+            std::fabs(f.limit.y) > 1e18f)
+            r.fail("smooth face " + std::to_string(i) + "'s limit is not finite");
+    }
+    for (float x : p)
+        if (!std::isfinite(x) || std::fabs(x) > 1e18f) r.fail("a point is not finite");
+}
+
+} // namespace
+
 FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, const SchemeOptions* options) {
     if (chunk.version > kFvarSurfaceChunkVersion)
-        throwBadInput("version " + std::to_string(chunk.version) + " is newer than this reader (1)", "chunk FVSF");
+        throwBadInput("version " + std::to_string(chunk.version) + " is newer than this reader (2)", "chunk FVSF");
     ByteReader r(chunk.payload, "chunk FVSF");
     FvarSurfaceChunk c;
     c.depth = r.read<uint32_t>();
@@ -59,12 +131,14 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
     c.surface.nodes = r.readArray<uint32_t>(nodes, "nodes");
     if (c.elementCount > r.remaining() / (9 * 16)) r.fail("element count is too large");
     const std::vector<float> f = r.readArray<float>(uint64_t(c.elementCount) * 36, "records");
+    if (chunk.version >= 2) readSmoothFaces(r, c.surface);
     if (!r.atEnd()) r.fail("trailing bytes");
+    const uint64_t named = uint64_t(c.elementCount) + c.surface.smoothFaces.size();
     for (uint32_t i = 0; i < nodes; ++i) {
         const uint32_t v = c.surface.nodes[i];
         if (v == 0xFFFFFFFFu) continue;
         if (v & 0x80000000u) {
-            if ((v & 0x7FFFFFFFu) >= c.elementCount) r.fail("node " + std::to_string(i) + " names a missing element");
+            if ((v & 0x7FFFFFFFu) >= named) r.fail("node " + std::to_string(i) + " names a missing element");
         } else if (v <= i || v < c.ptexCount || uint64_t(v) + 4 > nodes) {
             // Children after their parent: the quadtree has no cycle, and a walk ends.
             r.fail("node " + std::to_string(i) + " has a bad child index");
@@ -94,6 +168,16 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
         const Square q = squares[n];
         const uint32_t v = c.surface.nodes[n];
         if (q.level == kNone || v == 0xFFFFFFFFu) continue; // unreached, or a hole
+        if ((v & 0x7FFFFFFFu) >= c.elementCount && (v & 0x80000000u)) { // a smooth face
+            FaceVaryingSurface::SmoothFace& sf = c.surface.smoothFaces[(v & 0x7FFFFFFFu) - c.elementCount];
+            if (sf.size != 0) r.fail("node " + std::to_string(n) + " names a smooth face named before");
+            const uint32_t levels = basisLevels(c.surface, sf.valence);
+            if (q.level + levels > 24) r.fail("node " + std::to_string(n) + "'s smooth face is deeper than 24 levels");
+            sf.node = n;
+            sf.size = std::ldexp(1.0f, -int(q.level));
+            sf.u0 = float(q.i) * sf.size, sf.v0 = float(q.j) * sf.size;
+            continue;
+        }
         if (v & 0x80000000u) {
             const glm::vec4 h = c.surface.records[size_t(9) * (v & 0x7FFFFFFFu)];
             const float size = std::ldexp(1.0f, -int(q.level));
@@ -108,6 +192,8 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
             squares[v + k] = {q.level + 1, 2 * q.i + (k & 1), 2 * q.j + (k >> 1)};
         }
     }
+    for (const FaceVaryingSurface::SmoothFace& sf : c.surface.smoothFaces)
+        if (sf.size == 0) r.fail("a smooth face is named by no node");
     if (mesh) {
         if (!mesh->hasUVs()) throwBadInput("the mesh has no UVs (no FVUV chunk) for its smooth UV surface", "chunk FVSF");
         if (c.ptexCount != ptexFaceCount(*mesh)) r.fail("ptex face count differs from the mesh's");
