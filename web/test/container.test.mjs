@@ -230,3 +230,36 @@ test('FVSF: read with smooth UVs, refused by name when cut, stale or cyclic', ()
   // Without FVUV it is refused by name (a container whose UVs were removed by hand).
   expectLimnError(build(chunks.filter((c) => c.type !== 'FVUV')), /chunk FVSF: the mesh has no UVs/);
 });
+
+// FVSF version 2's smooth faces (support UVs, per-valence weights; lib/subdiv/fvar_chunk.cpp
+// checks the same): each count and index checked before anything is allocated or expanded.
+test('FVSF: smooth faces with a count, valence, support or weight out of bounds are refused by name', () => {
+  const bytes = read(container('tri/cube_no_bottom.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_cube_d2.limn' }));
+  const chunks = parseContainer(bytes), fvsf = chunks.findIndex((c) => c.type === 'FVSF');
+  assert.equal(chunks[fvsf].version, 2);
+  const p = chunks[fvsf].payload, view = new DataView(p.buffer, p.byteOffset, p.byteLength);
+  const nodeCount = view.getUint32(24, true), elements = view.getUint32(28, true);
+  const faces = 32 + 4 * nodeCount + 144 * elements + 4, S = view.getUint32(faces - 4, true);
+  assert.ok(S > 0, 'the cube has smooth faces');
+  const points = faces + 16 * S, P = view.getUint32(points, true), bases = points + 4 + 8 * P;
+  const s = loadLimn(bytes); // expanded to pieces: more elements than the chunk stores
+  assert.ok(s.fvarSurface.elementCount > elements);
+  const patched = (offset, word) => {
+    const q = p.slice();
+    new DataView(q.buffer).setUint32(offset, word, true);
+    return build(chunks.map((c, j) => (j === fvsf ? { ...c, payload: q } : c)));
+  };
+  const packed = view.getUint32(faces, true);
+  for (const [offset, word, message] of [
+    [faces - 4, 0xffffffff, /smooth face count is too large/],
+    [points, 0x40000000, /points: /],
+    [bases, 0x10000000, /basis count is too large/],
+    [bases + 4, 65, /basis 0 has valence 65/],
+    [bases + 8, 17, /basis 0 has valence \d+ and 17 levels/],
+    [faces, packed + 4, /smooth face 0 has no basis of its valence/],
+    [faces + 4, P - 5, /smooth face 0's support is beyond the points/],
+    [bases + 12, 0x40000000, /basis 0 has a weight outside \[0, 1\]/],
+    [faces + 8, 0x7f800000, /smooth face 0's limit is not finite/],
+    [points + 4, 0x7fc00000, /a point is not finite/],
+  ]) expectLimnError(patched(offset, word), new RegExp(`^chunk FVSF: ${message.source}`));
+});
