@@ -6,6 +6,7 @@
 #include "subdiv/tables_chunk.h"
 
 #include <cmath>
+#include <map>
 #include <string>
 
 namespace limn {
@@ -30,7 +31,8 @@ FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& opt
 // Layout (formats/limn.md): u32 depth, u32 ptex count, u64 topology hash, u64 UV hash, u32 node
 // count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4]; version
 // 2: u32 smooth faces, {u32 corner | valence << 2, u32 first point, f32 limit u, v}[smooth
-// faces], u32 points, f32 points[2 * points], u32 bases, {u32 n, u32 k, f32 weights}[bases].
+// faces], u32 points, f32 points[2 * points], u32 bases, {u32 n, u32 k, u32 R, u16 row[k * 48],
+// f32 weights[R * (2n + 8)]}[bases].
 Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     ByteWriter w;
     w.write<uint32_t>(c.depth);
@@ -53,9 +55,23 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     for (const glm::vec2& p : c.surface.points) w.write<float>(p.x), w.write<float>(p.y);
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.bases.size()));
     for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
+        // The three sub-patches of a band share half their control points: each distinct row
+        // of 2n + 8 weights once (as TBLS version 4 stores its bases), in order of appearance.
+        const size_t M = 2 * size_t(b.valence) + 8, rows = b.weights.size() / M;
+        std::map<std::vector<float>, uint16_t> index;
+        std::vector<uint16_t> pick(rows);
+        std::vector<float> distinct;
+        for (size_t j = 0; j < rows; ++j) {
+            std::vector<float> row(b.weights.begin() + long(j * M), b.weights.begin() + long((j + 1) * M));
+            auto [it, added] = index.emplace(std::move(row), uint16_t(index.size()));
+            if (added) distinct.insert(distinct.end(), b.weights.begin() + long(j * M), b.weights.begin() + long((j + 1) * M));
+            pick[j] = it->second;
+        }
         w.write<uint32_t>(b.valence);
         w.write<uint32_t>(b.levels);
-        w.writeArray(b.weights);
+        w.write<uint32_t>(static_cast<uint32_t>(index.size()));
+        w.writeArray(pick);
+        w.writeArray(distinct);
     }
     return Chunk{kFvarSurfaceChunk, kFvarSurfaceChunkVersion, w.take()};
 }
@@ -94,10 +110,18 @@ void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
             r.fail("basis " + std::to_string(b) + " has valence " + std::to_string(x.valence) + " and " +
                    std::to_string(x.levels) + " levels");
         if (basisLevels(g, x.valence)) r.fail("two bases of valence " + std::to_string(x.valence));
-        x.weights = r.readArray<float>(uint64_t(x.levels) * 48 * (2 * x.valence + 8), "basis weights");
+        const uint32_t M = 2 * x.valence + 8, distinct = r.read<uint32_t>();
+        if (distinct == 0 || distinct > x.levels * 48) r.fail("basis " + std::to_string(b) + " has a bad row count");
+        const std::vector<uint16_t> pick = r.readArray<uint16_t>(uint64_t(x.levels) * 48, "basis rows");
+        const std::vector<float> rows = r.readArray<float>(uint64_t(distinct) * M, "basis weights");
         // Catmull-Clark's smooth weights are convex (irregular_basis.h).
-        for (float w : x.weights)
+        for (float w : rows)
             if (!(w >= 0 && w <= 1)) r.fail("basis " + std::to_string(b) + " has a weight outside [0, 1]");
+        x.weights.reserve(pick.size() * M);
+        for (uint16_t j : pick) {
+            if (j >= distinct) r.fail("basis " + std::to_string(b) + " names a missing row");
+            x.weights.insert(x.weights.end(), rows.begin() + long(size_t(j) * M), rows.begin() + long(size_t(j + 1) * M));
+        }
         g.bases.push_back(std::move(x));
     }
     for (uint32_t i = 0; i < faces; ++i) {

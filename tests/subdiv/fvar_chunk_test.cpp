@@ -279,6 +279,7 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
     const size_t S = good.surface.smoothFaces.size(), P = good.surface.points.size();
     const size_t faces = 32 + 4 * good.surface.nodes.size() + 144 * good.surface.records.size() / 9 + 4;
     const size_t points = faces + 16 * S, bases = points + 4 + 8 * P;
+    const uint32_t levels0 = good.surface.bases[0].levels, rows = uint32_t(bases + 16 + 96 * levels0);
     const uint32_t packed0 = good.surface.smoothFaces[0].corner | good.surface.smoothFaces[0].valence << 2;
     const std::pair<size_t, uint32_t> cases[] = {
         {faces - 4, 0xFFFFFFFFu},                  // smooth face count
@@ -289,8 +290,11 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
         {faces, packed0 + (1u << 2)},              // a valence without a basis (or 4)
         {faces + 4, uint32_t(P - 5)},              // a support beyond the points
         {faces + 4, 0xFFFFFFF0u},                  // ... far beyond (no overflow)
-        {bases + 12, 0x40000000u},                 // a weight of 2
-        {bases + 12, 0xBF800000u},                 // a weight of -1
+        {bases + 12, 0},                           // no distinct rows
+        {bases + 12, 0xFFFFFFFFu},                 // more rows than control points
+        {bases + 16, 0xFFFFFFFFu},                 // a missing row
+        {rows, 0x40000000u},                       // a weight of 2
+        {rows, 0xBF800000u},                       // a weight of -1
         {faces + 8, 0x7F800000u},                  // an infinite limit UV
         {points + 4, 0x7FC00000u},                 // a NaN support UV
     };

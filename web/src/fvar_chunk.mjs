@@ -104,8 +104,18 @@ function readSmoothFaces(r) {
     // limn-tables builds no basis beyond valence 64 nor deeper than 16.
     if (valence < 3 || valence > 64 || valence === 4 || levels < 1 || levels > 16) r.fail(`basis ${b} has valence ${valence} and ${levels} levels`);
     if (bases.has(valence)) r.fail(`two bases of valence ${valence}`);
-    const weights = r.array(Float32Array, levels * 48 * (2 * valence + 8), 'basis weights');
-    for (const w of weights) if (!(w >= 0 && w <= 1)) r.fail(`basis ${b} has a weight outside [0, 1]`); // convex (irregular_basis.h)
+    // Each distinct row of 2n + 8 weights once, and per control point of each band's
+    // sub-patches the row it has.
+    const M = 2 * valence + 8, distinct = r.u32('basis row count');
+    if (distinct === 0 || distinct > levels * 48) r.fail(`basis ${b} has a bad row count`);
+    const pick = r.array(Uint16Array, levels * 48, 'basis rows');
+    const rows = r.array(Float32Array, distinct * M, 'basis weights');
+    for (const w of rows) if (!(w >= 0 && w <= 1)) r.fail(`basis ${b} has a weight outside [0, 1]`); // convex (irregular_basis.h)
+    const weights = new Float32Array(levels * 48 * M);
+    pick.forEach((j, at) => {
+      if (j >= distinct) r.fail(`basis ${b} names a missing row`);
+      weights.set(rows.subarray(j * M, (j + 1) * M), at * M);
+    });
     bases.set(valence, { levels, weights });
   }
   faces.forEach((f, i) => {

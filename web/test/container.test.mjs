@@ -258,7 +258,9 @@ test('FVSF: smooth faces with a count, valence, support or weight out of bounds 
     [bases + 8, 17, /basis 0 has valence \d+ and 17 levels/],
     [faces, packed + 4, /smooth face 0 has no basis of its valence/],
     [faces + 4, P - 5, /smooth face 0's support is beyond the points/],
-    [bases + 12, 0x40000000, /basis 0 has a weight outside \[0, 1\]/],
+    [bases + 12, 0, /basis 0 has a bad row count/],
+    [bases + 16, 0xffffffff, /basis 0 names a missing row/],
+    [bases + 16 + 96 * view.getUint32(bases + 8, true), 0x40000000, /basis 0 has a weight outside \[0, 1\]/],
     [faces + 8, 0x7f800000, /smooth face 0's limit is not finite/],
     [points + 4, 0x7fc00000, /a point is not finite/],
   ]) expectLimnError(patched(offset, word), new RegExp(`^chunk FVSF: ${message.source}`));
