@@ -4,8 +4,10 @@
 #include "base/error.h"
 #include "subdiv/tables.h"
 #include "subdiv/tables_chunk.h"
+#include "subdiv/tables_stream.h"
 
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <string>
 
@@ -30,9 +32,9 @@ FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& opt
 
 // Layout (formats/limn.md): u32 depth, u32 ptex count, u64 topology hash, u64 UV hash, u32 node
 // count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4]; version
-// 2: u32 smooth faces, {u32 corner | valence << 2, u32 first point, f32 limit u, v}[smooth
-// faces], u32 points, f32 points[2 * points], u32 bases, {u32 n, u32 k, u32 R, u16 row[k * 48],
-// f32 weights[R * (2n + 8)]}[bases].
+// 2: u32 bases, {u32 n, u32 k, u32 R, u16 row[k * 48], f32 weights[R * (2n + 8)]}[bases], u32
+// values, f32 values[2 * values], u32 smooth faces, a stream of their corners, valences and
+// value indices.
 Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     ByteWriter w;
     w.write<uint32_t>(c.depth);
@@ -44,15 +46,6 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     w.writeArray(c.surface.nodes);
     for (const glm::vec4& r : c.surface.records)
         for (int k = 0; k < 4; ++k) w.write<float>(r[k]);
-    w.write<uint32_t>(static_cast<uint32_t>(c.surface.smoothFaces.size()));
-    for (const FaceVaryingSurface::SmoothFace& f : c.surface.smoothFaces) {
-        w.write<uint32_t>(f.corner | f.valence << 2);
-        w.write<uint32_t>(f.firstPoint);
-        w.write<float>(f.limit.x);
-        w.write<float>(f.limit.y);
-    }
-    w.write<uint32_t>(static_cast<uint32_t>(c.surface.points.size()));
-    for (const glm::vec2& p : c.surface.points) w.write<float>(p.x), w.write<float>(p.y);
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.bases.size()));
     for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
         // The three sub-patches of a band share half their control points: each distinct row
@@ -73,6 +66,34 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
         w.writeArray(pick);
         w.writeArray(distinct);
     }
+    // The support UVs and limit UVs, each distinct value once (the n faces around a vertex
+    // share most of theirs), and per smooth face in a stream its corner and valence, then its
+    // limit's and its 2n + 8 support points' values as differences from the previous value.
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> valueOf;
+    std::vector<float> values;
+    auto value = [&](glm::vec2 x) {
+        std::pair<uint32_t, uint32_t> bits;
+        std::memcpy(&bits.first, &x.x, 4), std::memcpy(&bits.second, &x.y, 4);
+        auto [it, added] = valueOf.emplace(bits, uint32_t(valueOf.size()));
+        if (added) values.push_back(x.x), values.push_back(x.y);
+        return it->second;
+    };
+    std::vector<uint8_t> stream;
+    uint32_t previous = 0;
+    auto index = [&](glm::vec2 x) {
+        const uint32_t v = value(x);
+        writeVarint(stream, zigzag(int64_t(v) - int64_t(previous)));
+        previous = v;
+    };
+    for (const FaceVaryingSurface::SmoothFace& f : c.surface.smoothFaces) {
+        writeVarint(stream, f.corner | uint64_t(f.valence) << 2);
+        index(f.limit);
+        for (uint32_t i = 0; i < 2 * f.valence + 8; ++i) index(c.surface.points[f.firstPoint + i]);
+    }
+    w.write<uint32_t>(static_cast<uint32_t>(values.size() / 2));
+    w.writeArray(values);
+    w.write<uint32_t>(static_cast<uint32_t>(c.surface.smoothFaces.size()));
+    writeStream(w, stream);
     return Chunk{kFvarSurfaceChunk, kFvarSurfaceChunkVersion, w.take()};
 }
 
@@ -87,19 +108,6 @@ uint32_t basisLevels(const FaceVaryingSurface::Gpu& g, uint32_t valence) {
 // Version 2's smooth faces, their support UVs and the per-valence weights, each count checked
 // against the bytes left before anything is allocated.
 void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
-    const uint32_t faces = r.read<uint32_t>();
-    if (faces > r.remaining() / 16) r.fail("smooth face count is too large");
-    g.smoothFaces.resize(faces);
-    for (FaceVaryingSurface::SmoothFace& f : g.smoothFaces) {
-        const uint32_t packed = r.read<uint32_t>();
-        f.corner = packed & 3u, f.valence = packed >> 2;
-        f.firstPoint = r.read<uint32_t>();
-        f.limit.x = r.read<float>(), f.limit.y = r.read<float>();
-    }
-    const uint32_t points = r.read<uint32_t>();
-    const std::vector<float> p = r.readArray<float>(uint64_t(points) * 2, "points");
-    g.points.resize(points);
-    for (uint32_t i = 0; i < points; ++i) g.points[i] = {p[2 * i], p[2 * i + 1]};
     const uint32_t bases = r.read<uint32_t>();
     if (bases > r.remaining() / 8) r.fail("basis count is too large");
     for (uint32_t b = 0; b < bases; ++b) {
@@ -124,17 +132,32 @@ void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
         }
         g.bases.push_back(std::move(x));
     }
+    const uint32_t valueCount = r.read<uint32_t>();
+    const std::vector<float> values = r.readArray<float>(uint64_t(valueCount) * 2, "values");
+    for (float x : values)
+        if (!std::isfinite(x) || std::fabs(x) > 1e18f) r.fail("a value is not finite");
+    const uint32_t faces = r.read<uint32_t>();
+    StreamReader s(r, "smooth faces");
+    // Each face takes at least 2n + 10 >= 16 bytes of the stream, and gives 8 bytes a point.
+    if (faces > s.size() / 16) r.fail("smooth face count is too large");
+    g.smoothFaces.resize(faces);
+    uint32_t previous = 0;
+    auto next = [&](uint32_t face) {
+        previous = s.after(previous, "a value index");
+        if (previous >= valueCount) r.fail("smooth face " + std::to_string(face) + " names a missing value");
+        return glm::vec2(values[2 * size_t(previous)], values[2 * size_t(previous) + 1]);
+    };
     for (uint32_t i = 0; i < faces; ++i) {
-        const FaceVaryingSurface::SmoothFace& f = g.smoothFaces[i];
+        FaceVaryingSurface::SmoothFace& f = g.smoothFaces[i];
+        const uint64_t packed = s.varint();
+        f.corner = uint32_t(packed & 3u);
+        f.valence = packed >> 2 <= 64 ? uint32_t(packed >> 2) : 0;
         if (!basisLevels(g, f.valence)) r.fail("smooth face " + std::to_string(i) + " has no basis of its valence");
-        if (uint64_t(f.firstPoint) + 2 * f.valence + 8 > points)
-            r.fail("smooth face " + std::to_string(i) + "'s support is beyond the points");
-        if (!std::isfinite(f.limit.x) || !std::isfinite(f.limit.y) || std::fabs(f.limit.x) > 1e18f ||
-            std::fabs(f.limit.y) > 1e18f)
-            r.fail("smooth face " + std::to_string(i) + "'s limit is not finite");
+        f.firstPoint = static_cast<uint32_t>(g.points.size());
+        f.limit = next(i);
+        for (uint32_t k = 0; k < 2 * f.valence + 8; ++k) g.points.push_back(next(i));
     }
-    for (float x : p)
-        if (!std::isfinite(x) || std::fabs(x) > 1e18f) r.fail("a point is not finite");
+    s.finish();
 }
 
 } // namespace

@@ -235,11 +235,11 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
             EXPECT_TRUE(refused(shared, "two parents"));
         }
     }
-    // Version 1 (no smooth faces: its tail of three zero counts removed) is still read.
+    // Version 1 (no smooth faces: its tail of zero counts and an empty stream removed) is still read.
     ASSERT_TRUE(good.surface.smoothFaces.empty());
     Chunk first = c;
     first.version = 1;
-    first.payload.resize(first.payload.size() - 12);
+    first.payload.resize(first.payload.size() - 16);
     EXPECT_NO_THROW(decodeFvarSurfaceChunk(first, &m, &o));
     EXPECT_TRUE(refused(Chunk{c.type, 1, c.payload}, "version 1 with a version-2 tail"));
     // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell).
@@ -276,32 +276,41 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
         return false;
     };
     auto word = [](Chunk& k, size_t at, uint32_t v) { std::memcpy(k.payload.data() + at, &v, 4); };
-    const size_t S = good.surface.smoothFaces.size(), P = good.surface.points.size();
-    const size_t faces = 32 + 4 * good.surface.nodes.size() + 144 * good.surface.records.size() / 9 + 4;
-    const size_t points = faces + 16 * S, bases = points + 4 + 8 * P;
-    const uint32_t levels0 = good.surface.bases[0].levels, rows = uint32_t(bases + 16 + 96 * levels0);
-    const uint32_t packed0 = good.surface.smoothFaces[0].corner | good.surface.smoothFaces[0].valence << 2;
-    const std::pair<size_t, uint32_t> cases[] = {
-        {faces - 4, 0xFFFFFFFFu},                  // smooth face count
-        {points, 0x40000000u},                     // point count
-        {bases, 0x10000000u},                      // basis count
-        {bases + 4, 65},                           // a valence over 64
-        {bases + 8, 17},                           // deeper than 16 levels
-        {faces, packed0 + (1u << 2)},              // a valence without a basis (or 4)
-        {faces + 4, uint32_t(P - 5)},              // a support beyond the points
-        {faces + 4, 0xFFFFFFF0u},                  // ... far beyond (no overflow)
-        {bases + 12, 0},                           // no distinct rows
-        {bases + 12, 0xFFFFFFFFu},                 // more rows than control points
-        {bases + 16, 0xFFFFFFFFu},                 // a missing row
-        {rows, 0x40000000u},                       // a weight of 2
-        {rows, 0xBF800000u},                       // a weight of -1
-        {faces + 8, 0x7F800000u},                  // an infinite limit UV
-        {points + 4, 0x7FC00000u},                 // a NaN support UV
+    auto at = [&](size_t offset) {
+        uint32_t v = 0;
+        if (offset + 4 <= c.payload.size()) std::memcpy(&v, c.payload.data() + offset, 4);
+        return v;
     };
-    for (const auto& [at, v] : cases) {
+    const size_t S = good.surface.smoothFaces.size();
+    // After the records: the bases (u32 n, k, R, u16 rows[k * 48], f32 weights[R * (2n + 8)]),
+    // the values, the smooth faces' count and stream.
+    const size_t bases = 32 + 4 * good.surface.nodes.size() + 144 * good.surface.records.size() / 9;
+    size_t values = bases + 4;
+    for (uint32_t b = 0; b < at(bases); ++b)
+        values += 12 + 96 * size_t(at(values + 4)) + 4 * size_t(at(values + 8)) * (2 * at(values) + 8);
+    const size_t rows = bases + 16 + 96 * size_t(at(bases + 8));
+    const size_t faces = values + 4 + 8 * size_t(at(values));
+    ASSERT_EQ(at(faces), S);
+    const std::pair<size_t, uint32_t> cases[] = {
+        {bases, 0x10000000u},       // basis count
+        {bases + 4, 65},            // a valence over 64
+        {bases + 8, 17},            // deeper than 16 levels
+        {bases + 12, 0},            // no distinct rows
+        {bases + 12, 0xFFFFFFFFu},  // more rows than control points
+        {bases + 16, 0xFFFFFFFFu},  // a missing row
+        {rows, 0x40000000u},        // a weight of 2
+        {rows, 0xBF800000u},        // a weight of -1
+        {values, 0x40000000u},      // value count
+        {values + 4, 0x7F800000u},  // an infinite value
+        {values + 8, 0x7FC00000u},  // a NaN value
+        {faces, 0xFFFFFFFFu},       // smooth face count
+        {faces + 8, 0x10101010u},   // a valence without a basis (4) in the stream
+        {faces + 8, 0xFFFFFF00u | (at(faces + 8) & 0xFFu)}, // a value index beyond the values
+    };
+    for (const auto& [offset, v] : cases) {
         Chunk bad = c;
-        word(bad, at, v);
-        EXPECT_TRUE(refused(bad)) << "offset " << at << " value " << v;
+        word(bad, offset, v);
+        EXPECT_TRUE(refused(bad)) << "offset " << offset << " value " << v;
     }
     // Two nodes naming one smooth face (it would be expanded twice), and so none naming another.
     std::vector<size_t> named;
@@ -313,11 +322,11 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
     Chunk twice = c;
     word(twice, 32 + 4 * named[1], good.surface.nodes[named[0]]);
     EXPECT_TRUE(refused(twice));
-    // Random corruption of the smooth faces, points and bases: refused, or expanded in bounds.
+    // Random corruption of the bases, values and smooth faces: refused, or expanded in bounds.
     std::mt19937 rng(7);
     for (int trial = 0; trial < 300; ++trial) {
         Chunk bad = c;
-        bad.payload[faces - 4 + rng() % (bad.payload.size() - faces + 4)] ^= uint8_t(1u << (rng() % 8));
+        bad.payload[bases + rng() % (bad.payload.size() - bases)] ^= uint8_t(1u << (rng() % 8));
         try {
             FvarSurfaceChunk d = decodeFvarSurfaceChunk(bad, &m, &o);
             d.surface = expandSmoothFaces(d.surface);

@@ -6,6 +6,7 @@
 // into the pieces the GPU draws with the same arithmetic as lib/subdiv/fvar_expand.cpp (the
 // same bits).
 import { chunkReader } from './container.mjs';
+import { Stream } from './tables_stream.mjs';
 
 const MAX_DEPTH = 16;
 const HOLE = 0xffffffff, LEAF = 0x80000000;
@@ -84,18 +85,10 @@ export function decodeFvarSurface(chunk, expected) {
   return { depth, ptexCount, nodes: expanded.nodes, records: expanded.records, elementCount: expanded.records.length / 36 };
 }
 
-// Version 2's smooth faces, support UVs and per-valence weights (fvar_chunk.cpp's
-// readSmoothFaces), each count checked against the bytes left before anything is allocated.
+// Version 2's per-valence weights, the distinct support and limit UVs, and the smooth faces
+// (fvar_chunk.cpp's readSmoothFaces), each count checked against the bytes left before anything
+// is allocated.
 function readSmoothFaces(r) {
-  const count = r.u32('smooth face count');
-  if (count > Math.floor(r.remaining / 16)) r.fail('smooth face count is too large');
-  const faces = [];
-  for (let i = 0; i < count; i++) {
-    const packed = r.u32('smooth face');
-    faces.push({ corner: packed & 3, valence: packed >>> 2, firstPoint: r.u32('first point'), limit: [r.f32('limit u'), r.f32('limit v')], node: 0, u0: 0, v0: 0, size: 0 });
-  }
-  const pointCount = r.u32('point count');
-  const points = r.array(Float32Array, pointCount * 2, 'points');
   const basisCount = r.u32('basis count');
   if (basisCount > Math.floor(r.remaining / 8)) r.fail('basis count is too large');
   const bases = new Map();
@@ -118,13 +111,29 @@ function readSmoothFaces(r) {
     });
     bases.set(valence, { levels, weights });
   }
-  faces.forEach((f, i) => {
-    if (!bases.has(f.valence)) r.fail(`smooth face ${i} has no basis of its valence`);
-    if (f.firstPoint + 2 * f.valence + 8 > pointCount) r.fail(`smooth face ${i}'s support is beyond the points`);
-    if (!f.limit.every((x) => Number.isFinite(x) && Math.abs(x) <= 1e18)) r.fail(`smooth face ${i}'s limit is not finite`);
-  });
-  for (const x of points) if (!Number.isFinite(x) || Math.abs(x) > 1e18) r.fail('a point is not finite');
-  return { faces, points, bases };
+  const valueCount = r.u32('value count');
+  const values = r.array(Float32Array, valueCount * 2, 'values');
+  for (const x of values) if (!Number.isFinite(x) || Math.abs(x) > 1e18) r.fail('a value is not finite');
+  const count = r.u32('smooth face count');
+  const s = new Stream(r, 'smooth faces');
+  // Each face takes at least 2n + 10 >= 16 bytes of the stream, and gives 8 bytes a point.
+  if (count > Math.floor(s.size / 16)) r.fail('smooth face count is too large');
+  const faces = [], points = [];
+  let previous = 0;
+  const next = (i) => {
+    previous = s.after(previous, 'a value index');
+    if (previous >= valueCount) r.fail(`smooth face ${i} names a missing value`);
+    return [values[2 * previous], values[2 * previous + 1]];
+  };
+  for (let i = 0; i < count; i++) {
+    const packed = s.varint(), valence = Math.floor(packed / 4);
+    if (!bases.has(valence)) r.fail(`smooth face ${i} has no basis of its valence`);
+    const f = { corner: packed % 4, valence, firstPoint: points.length / 2, limit: next(i), node: 0, u0: 0, v0: 0, size: 0 };
+    for (let k = 0; k < 2 * valence + 8; k++) points.push(...next(i));
+    faces.push(f);
+  }
+  s.finish();
+  return { faces, points: Float32Array.from(points), bases };
 }
 
 // The band frame (a, c) has the extraordinary corner at (0, 0); the face-local square whose band

@@ -238,10 +238,14 @@ test('FVSF: smooth faces with a count, valence, support or weight out of bounds 
   const chunks = parseContainer(bytes), fvsf = chunks.findIndex((c) => c.type === 'FVSF');
   assert.equal(chunks[fvsf].version, 2);
   const p = chunks[fvsf].payload, view = new DataView(p.buffer, p.byteOffset, p.byteLength);
-  const nodeCount = view.getUint32(24, true), elements = view.getUint32(28, true);
-  const faces = 32 + 4 * nodeCount + 144 * elements + 4, S = view.getUint32(faces - 4, true);
-  assert.ok(S > 0, 'the cube has smooth faces');
-  const points = faces + 16 * S, P = view.getUint32(points, true), bases = points + 4 + 8 * P;
+  const nodeCount = view.getUint32(24, true), elements = view.getUint32(28, true), at = (o) => view.getUint32(o, true);
+  // After the records: the bases (u32 n, k, R, u16 rows[k * 48], f32 weights[R * (2n + 8)]), the
+  // values, the smooth faces' count and stream.
+  const bases = 32 + 4 * nodeCount + 144 * elements;
+  let values = bases + 4;
+  for (let b = 0; b < at(bases); b++) values += 12 + 96 * at(values + 4) + 4 * at(values + 8) * (2 * at(values) + 8);
+  const faces = values + 4 + 8 * at(values);
+  assert.ok(at(faces) > 0, 'the cube has smooth faces');
   const s = loadLimn(bytes); // expanded to pieces: more elements than the chunk stores
   assert.ok(s.fvarSurface.elementCount > elements);
   const patched = (offset, word) => {
@@ -249,19 +253,16 @@ test('FVSF: smooth faces with a count, valence, support or weight out of bounds 
     new DataView(q.buffer).setUint32(offset, word, true);
     return build(chunks.map((c, j) => (j === fvsf ? { ...c, payload: q } : c)));
   };
-  const packed = view.getUint32(faces, true);
   for (const [offset, word, message] of [
-    [faces - 4, 0xffffffff, /smooth face count is too large/],
-    [points, 0x40000000, /points: /],
     [bases, 0x10000000, /basis count is too large/],
     [bases + 4, 65, /basis 0 has valence 65/],
     [bases + 8, 17, /basis 0 has valence \d+ and 17 levels/],
-    [faces, packed + 4, /smooth face 0 has no basis of its valence/],
-    [faces + 4, P - 5, /smooth face 0's support is beyond the points/],
     [bases + 12, 0, /basis 0 has a bad row count/],
     [bases + 16, 0xffffffff, /basis 0 names a missing row/],
-    [bases + 16 + 96 * view.getUint32(bases + 8, true), 0x40000000, /basis 0 has a weight outside \[0, 1\]/],
-    [faces + 8, 0x7f800000, /smooth face 0's limit is not finite/],
-    [points + 4, 0x7fc00000, /a point is not finite/],
+    [bases + 16 + 96 * at(bases + 8), 0x40000000, /basis 0 has a weight outside \[0, 1\]/],
+    [values, 0x40000000, /values: /],
+    [values + 8, 0x7fc00000, /a value is not finite/],
+    [faces, 0xffffffff, /smooth face count is too large/],
+    [faces + 8, 0x10101010, /smooth face 0 has no basis of its valence/],
   ]) expectLimnError(patched(offset, word), new RegExp(`^chunk FVSF: ${message.source}`));
 });
