@@ -37,6 +37,7 @@ FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& opt
 // value indices.
 Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     ByteWriter w;
+    w.reserve(40 + 4 * c.surface.nodes.size() + 16 * c.surface.records.size());
     w.write<uint32_t>(c.depth);
     w.write<uint32_t>(c.ptexCount);
     w.write<uint64_t>(c.topologyHash);
@@ -44,8 +45,8 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.nodes.size()));
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.records.size() / 9));
     w.writeArray(c.surface.nodes);
-    for (const glm::vec4& r : c.surface.records)
-        for (int k = 0; k < 4; ++k) w.write<float>(r[k]);
+    static_assert(sizeof(glm::vec4) == 16);
+    w.writeArray(c.surface.records); // four f32 each, little-endian like every field here
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.bases.size()));
     for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
         // The three sub-patches of a band share half their control points: each distinct row
