@@ -8,7 +8,8 @@
 
 #include <cmath>
 #include <cstring>
-#include <map>
+#include <string_view>
+#include <unordered_map>
 #include <string>
 
 namespace limn {
@@ -51,14 +52,17 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
         // The three sub-patches of a band share half their control points: each distinct row
         // of 2n + 8 weights once (as TBLS version 4 stores its bases), in order of appearance.
+        // (Rows equal as bytes: the same weights, bit for bit.)
         const size_t M = 2 * size_t(b.valence) + 8, rows = b.weights.size() / M;
-        std::map<std::vector<float>, uint16_t> index;
+        std::unordered_map<std::string_view, uint16_t> index;
+        index.reserve(rows);
         std::vector<uint16_t> pick(rows);
         std::vector<float> distinct;
         for (size_t j = 0; j < rows; ++j) {
-            std::vector<float> row(b.weights.begin() + long(j * M), b.weights.begin() + long((j + 1) * M));
-            auto [it, added] = index.emplace(std::move(row), uint16_t(index.size()));
-            if (added) distinct.insert(distinct.end(), b.weights.begin() + long(j * M), b.weights.begin() + long((j + 1) * M));
+            const float* row = b.weights.data() + j * M;
+            auto [it, added] = index.emplace(std::string_view(reinterpret_cast<const char*>(row), M * sizeof(float)),
+                                             uint16_t(index.size()));
+            if (added) distinct.insert(distinct.end(), row, row + M);
             pick[j] = it->second;
         }
         w.write<uint32_t>(b.valence);
@@ -70,11 +74,12 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     // The support UVs and limit UVs, each distinct value once (the n faces around a vertex
     // share most of theirs), and per smooth face in a stream its corner and valence, then its
     // limit's and its 2n + 8 support points' values as differences from the previous value.
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> valueOf;
+    std::unordered_map<uint64_t, uint32_t> valueOf; // the value's bits
+    valueOf.reserve(c.surface.points.size() / 2);
     std::vector<float> values;
     auto value = [&](glm::vec2 x) {
-        std::pair<uint32_t, uint32_t> bits;
-        std::memcpy(&bits.first, &x.x, 4), std::memcpy(&bits.second, &x.y, 4);
+        uint64_t bits;
+        std::memcpy(&bits, &x, 8);
         auto [it, added] = valueOf.emplace(bits, uint32_t(valueOf.size()));
         if (added) values.push_back(x.x), values.push_back(x.y);
         return it->second;
