@@ -89,7 +89,8 @@ TEST(FvarSurfaceChunk, StoresTheUVSurfaceLosslessly) {
             EXPECT_FALSE(d.surface.smoothFaces.empty());
         }
         d.surface = expandSmoothFaces(d.surface);
-        const FaceVaryingSurface::Gpu drawn = FaceVaryingSurface(m, o, depth, kLevels, w).gpu();
+        const FaceVaryingSurface surface(m, o, depth, kLevels, w);
+        const FaceVaryingSurface::Gpu drawn = surface.gpu();
         EXPECT_EQ(d.surface.nodes, drawn.nodes);
         EXPECT_EQ(0, std::memcmp(d.surface.records.data(), drawn.records.data(),
                                  std::min(d.surface.records.size(), drawn.records.size()) * 16));
@@ -97,7 +98,6 @@ TEST(FvarSurfaceChunk, StoresTheUVSurfaceLosslessly) {
         // At every point of a 1/64 lattice of every ptex face: the depth-2 lattice where the
         // fixed grids draw, and the points inside irregular faces the view-adaptive
         // tessellation draws (every band of the bases).
-        const FaceVaryingSurface surface(m, o, depth, kLevels, w);
         double worst = 0;
         for (uint32_t p = 0; p < d.ptexCount; ++p)
             for (int i = 0; i <= 64; ++i)
