@@ -32,6 +32,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 for (uint32_t v = f.surface.nodes[p]; v != 0xFFFFFFFFu && !(v & 0x80000000u);)
                     v = f.surface.nodes.at(v + 3);
             if (f.depth == tables.depth) checkFvarSurfaceCoverage(f, tables);
+            // Its smooth faces expand into the records the GPU reads, every leaf naming one.
+            const FaceVaryingSurface::Gpu g = expandSmoothFaces(f.surface);
+            for (uint32_t v : g.nodes)
+                if (v != 0xFFFFFFFFu && (v & 0x80000000u) && size_t(v & 0x7FFFFFFFu) * 9 >= g.records.size()) std::abort();
         }
         buildTessellation(mesh, tables, 2, mesh.hasUVs());
     } catch (const Error& e) {

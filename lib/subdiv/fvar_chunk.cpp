@@ -4,8 +4,12 @@
 #include "base/error.h"
 #include "subdiv/tables.h"
 #include "subdiv/tables_chunk.h"
+#include "subdiv/tables_stream.h"
 
 #include <cmath>
+#include <cstring>
+#include <string_view>
+#include <unordered_map>
 #include <string>
 
 namespace limn {
@@ -22,15 +26,19 @@ FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& opt
     c.topologyHash = topologyHash(mesh, options);
     c.uvHash = fvarUVHash(mesh);
     c.ptexCount = ptexFaceCount(mesh);
-    c.surface = FaceVaryingSurface(mesh, options, depth, irregularLevels, warnings).gpu();
+    c.surface = FaceVaryingSurface(mesh, options, depth, irregularLevels, warnings).compactGpu();
     c.elementCount = static_cast<uint32_t>(c.surface.records.size() / 9);
     return c;
 }
 
 // Layout (formats/limn.md): u32 depth, u32 ptex count, u64 topology hash, u64 UV hash, u32 node
-// count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4].
+// count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4]; version
+// 2: u32 bases, {u32 n, u32 k, u32 R, u16 row[k * 48], f32 weights[R * (2n + 8)]}[bases], u32
+// values, f32 values[2 * values], u32 smooth faces, a stream of their corners, valences and
+// value indices.
 Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     ByteWriter w;
+    w.reserve(40 + 4 * c.surface.nodes.size() + 16 * c.surface.records.size());
     w.write<uint32_t>(c.depth);
     w.write<uint32_t>(c.ptexCount);
     w.write<uint64_t>(c.topologyHash);
@@ -38,14 +46,131 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.nodes.size()));
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.records.size() / 9));
     w.writeArray(c.surface.nodes);
-    for (const glm::vec4& r : c.surface.records)
-        for (int k = 0; k < 4; ++k) w.write<float>(r[k]);
+    static_assert(sizeof(glm::vec4) == 16);
+    w.writeArray(c.surface.records); // four f32 each, little-endian like every field here
+    w.write<uint32_t>(static_cast<uint32_t>(c.surface.bases.size()));
+    for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
+        // The three sub-patches of a band share half their control points: each distinct row
+        // of 2n + 8 weights once (as TBLS version 4 stores its bases), in order of appearance.
+        // (Rows equal as bytes: the same weights, bit for bit.)
+        const size_t M = 2 * size_t(b.valence) + 8, rows = b.weights.size() / M;
+        std::unordered_map<std::string_view, uint16_t> index;
+        index.reserve(rows);
+        std::vector<uint16_t> pick(rows);
+        std::vector<float> distinct;
+        for (size_t j = 0; j < rows; ++j) {
+            const float* row = b.weights.data() + j * M;
+            auto [it, added] = index.emplace(std::string_view(reinterpret_cast<const char*>(row), M * sizeof(float)),
+                                             uint16_t(index.size()));
+            if (added) distinct.insert(distinct.end(), row, row + M);
+            pick[j] = it->second;
+        }
+        w.write<uint32_t>(b.valence);
+        w.write<uint32_t>(b.levels);
+        w.write<uint32_t>(static_cast<uint32_t>(index.size()));
+        w.writeArray(pick);
+        w.writeArray(distinct);
+    }
+    // The support UVs and limit UVs, each distinct value once (the n faces around a vertex
+    // share most of theirs), and per smooth face in a stream its corner and valence, then its
+    // limit's and its 2n + 8 support points' values as differences from the previous value.
+    std::unordered_map<uint64_t, uint32_t> valueOf; // the value's bits
+    valueOf.reserve(c.surface.points.size() / 2);
+    std::vector<float> values;
+    auto value = [&](glm::vec2 x) {
+        uint64_t bits;
+        std::memcpy(&bits, &x, 8);
+        auto [it, added] = valueOf.emplace(bits, uint32_t(valueOf.size()));
+        if (added) values.push_back(x.x), values.push_back(x.y);
+        return it->second;
+    };
+    std::vector<uint8_t> stream;
+    uint32_t previous = 0;
+    auto index = [&](glm::vec2 x) {
+        const uint32_t v = value(x);
+        writeVarint(stream, zigzag(int64_t(v) - int64_t(previous)));
+        previous = v;
+    };
+    for (const FaceVaryingSurface::SmoothFace& f : c.surface.smoothFaces) {
+        writeVarint(stream, f.corner | uint64_t(f.valence) << 2);
+        index(f.limit);
+        for (uint32_t i = 0; i < 2 * f.valence + 8; ++i) index(c.surface.points[f.firstPoint + i]);
+    }
+    w.write<uint32_t>(static_cast<uint32_t>(values.size() / 2));
+    w.writeArray(values);
+    w.write<uint32_t>(static_cast<uint32_t>(c.surface.smoothFaces.size()));
+    writeStream(w, stream);
     return Chunk{kFvarSurfaceChunk, kFvarSurfaceChunkVersion, w.take()};
 }
 
+namespace {
+
+uint32_t basisLevels(const FaceVaryingSurface::Gpu& g, uint32_t valence) {
+    for (const FaceVaryingSurface::Basis& b : g.bases)
+        if (b.valence == valence) return b.levels;
+    return 0;
+}
+
+// Version 2's smooth faces, their support UVs and the per-valence weights, each count checked
+// against the bytes left before anything is allocated.
+void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
+    const uint32_t bases = r.read<uint32_t>();
+    if (bases > r.remaining() / 8) r.fail("basis count is too large");
+    for (uint32_t b = 0; b < bases; ++b) {
+        FaceVaryingSurface::Basis x;
+        x.valence = r.read<uint32_t>(), x.levels = r.read<uint32_t>();
+        // limn-tables builds no basis beyond valence 64 (kMaxBasisValence) nor deeper than 16.
+        if (x.valence < 3 || x.valence > 64 || x.valence == 4 || x.levels < 1 || x.levels > 16)
+            r.fail("basis " + std::to_string(b) + " has valence " + std::to_string(x.valence) + " and " +
+                   std::to_string(x.levels) + " levels");
+        if (basisLevels(g, x.valence)) r.fail("two bases of valence " + std::to_string(x.valence));
+        const uint32_t M = 2 * x.valence + 8, distinct = r.read<uint32_t>();
+        if (distinct == 0 || distinct > x.levels * 48) r.fail("basis " + std::to_string(b) + " has a bad row count");
+        const std::vector<uint16_t> pick = r.readArray<uint16_t>(uint64_t(x.levels) * 48, "basis rows");
+        const std::vector<float> rows = r.readArray<float>(uint64_t(distinct) * M, "basis weights");
+        // Catmull-Clark's smooth weights are convex (irregular_basis.h).
+        for (float w : rows)
+            if (!(w >= 0 && w <= 1)) r.fail("basis " + std::to_string(b) + " has a weight outside [0, 1]");
+        x.weights.reserve(pick.size() * M);
+        for (uint16_t j : pick) {
+            if (j >= distinct) r.fail("basis " + std::to_string(b) + " names a missing row");
+            x.weights.insert(x.weights.end(), rows.begin() + long(size_t(j) * M), rows.begin() + long(size_t(j + 1) * M));
+        }
+        g.bases.push_back(std::move(x));
+    }
+    const uint32_t valueCount = r.read<uint32_t>();
+    const std::vector<float> values = r.readArray<float>(uint64_t(valueCount) * 2, "values");
+    for (float x : values)
+        if (!std::isfinite(x) || std::fabs(x) > 1e18f) r.fail("a value is not finite");
+    const uint32_t faces = r.read<uint32_t>();
+    StreamReader s(r, "smooth faces");
+    // Each face takes at least 2n + 10 >= 16 bytes of the stream, and gives 8 bytes a point.
+    if (faces > s.size() / 16) r.fail("smooth face count is too large");
+    g.smoothFaces.resize(faces);
+    uint32_t previous = 0;
+    auto next = [&](uint32_t face) {
+        previous = s.after(previous, "a value index");
+        if (previous >= valueCount) r.fail("smooth face " + std::to_string(face) + " names a missing value");
+        return glm::vec2(values[2 * size_t(previous)], values[2 * size_t(previous) + 1]);
+    };
+    for (uint32_t i = 0; i < faces; ++i) {
+        FaceVaryingSurface::SmoothFace& f = g.smoothFaces[i];
+        const uint64_t packed = s.varint();
+        f.corner = uint32_t(packed & 3u);
+        f.valence = packed >> 2 <= 64 ? uint32_t(packed >> 2) : 0;
+        if (!basisLevels(g, f.valence)) r.fail("smooth face " + std::to_string(i) + " has no basis of its valence");
+        f.firstPoint = static_cast<uint32_t>(g.points.size());
+        f.limit = next(i);
+        for (uint32_t k = 0; k < 2 * f.valence + 8; ++k) g.points.push_back(next(i));
+    }
+    s.finish();
+}
+
+} // namespace
+
 FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, const SchemeOptions* options) {
     if (chunk.version > kFvarSurfaceChunkVersion)
-        throwBadInput("version " + std::to_string(chunk.version) + " is newer than this reader (1)", "chunk FVSF");
+        throwBadInput("version " + std::to_string(chunk.version) + " is newer than this reader (2)", "chunk FVSF");
     ByteReader r(chunk.payload, "chunk FVSF");
     FvarSurfaceChunk c;
     c.depth = r.read<uint32_t>();
@@ -59,12 +184,14 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
     c.surface.nodes = r.readArray<uint32_t>(nodes, "nodes");
     if (c.elementCount > r.remaining() / (9 * 16)) r.fail("element count is too large");
     const std::vector<float> f = r.readArray<float>(uint64_t(c.elementCount) * 36, "records");
+    if (chunk.version >= 2) readSmoothFaces(r, c.surface);
     if (!r.atEnd()) r.fail("trailing bytes");
+    const uint64_t named = uint64_t(c.elementCount) + c.surface.smoothFaces.size();
     for (uint32_t i = 0; i < nodes; ++i) {
         const uint32_t v = c.surface.nodes[i];
         if (v == 0xFFFFFFFFu) continue;
         if (v & 0x80000000u) {
-            if ((v & 0x7FFFFFFFu) >= c.elementCount) r.fail("node " + std::to_string(i) + " names a missing element");
+            if ((v & 0x7FFFFFFFu) >= named) r.fail("node " + std::to_string(i) + " names a missing element");
         } else if (v <= i || v < c.ptexCount || uint64_t(v) + 4 > nodes) {
             // Children after their parent: the quadtree has no cycle, and a walk ends.
             r.fail("node " + std::to_string(i) + " has a bad child index");
@@ -94,6 +221,16 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
         const Square q = squares[n];
         const uint32_t v = c.surface.nodes[n];
         if (q.level == kNone || v == 0xFFFFFFFFu) continue; // unreached, or a hole
+        if ((v & 0x7FFFFFFFu) >= c.elementCount && (v & 0x80000000u)) { // a smooth face
+            FaceVaryingSurface::SmoothFace& sf = c.surface.smoothFaces[(v & 0x7FFFFFFFu) - c.elementCount];
+            if (sf.size != 0) r.fail("node " + std::to_string(n) + " names a smooth face named before");
+            const uint32_t levels = basisLevels(c.surface, sf.valence);
+            if (q.level + levels > 24) r.fail("node " + std::to_string(n) + "'s smooth face is deeper than 24 levels");
+            sf.node = n;
+            sf.size = std::ldexp(1.0f, -int(q.level));
+            sf.u0 = float(q.i) * sf.size, sf.v0 = float(q.j) * sf.size;
+            continue;
+        }
         if (v & 0x80000000u) {
             const glm::vec4 h = c.surface.records[size_t(9) * (v & 0x7FFFFFFFu)];
             const float size = std::ldexp(1.0f, -int(q.level));
@@ -108,6 +245,8 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
             squares[v + k] = {q.level + 1, 2 * q.i + (k & 1), 2 * q.j + (k >> 1)};
         }
     }
+    for (const FaceVaryingSurface::SmoothFace& sf : c.surface.smoothFaces)
+        if (sf.size == 0) r.fail("a smooth face is named by no node");
     if (mesh) {
         if (!mesh->hasUVs()) throwBadInput("the mesh has no UVs (no FVUV chunk) for its smooth UV surface", "chunk FVSF");
         if (c.ptexCount != ptexFaceCount(*mesh)) r.fail("ptex face count differs from the mesh's");

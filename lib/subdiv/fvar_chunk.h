@@ -15,7 +15,7 @@
 namespace limn {
 
 inline constexpr FourCC kFvarSurfaceChunk{"FVSF"};
-inline constexpr uint32_t kFvarSurfaceChunkVersion = 1;
+inline constexpr uint32_t kFvarSurfaceChunkVersion = 2;
 
 struct FvarSurfaceChunk {
     uint32_t depth = 0;         // of the geometry's tables (TBLS): the same lattice of drawn points
@@ -23,6 +23,8 @@ struct FvarSurfaceChunk {
     uint64_t uvHash = 0;        // fvarUVHash(mesh): the UV values and their indices
     uint32_t ptexCount = 0;     // nodes[0, ptexCount) are the roots, one per ptex face
     uint32_t elementCount = 0;  // records.size() / 9
+    // Compact (FaceVaryingSurface::compactGpu): faces with a per-valence basis are smooth faces;
+    // expandSmoothFaces(surface) gives the records the GPU draws. Version 1 has none.
     FaceVaryingSurface::Gpu surface;
 };
 

@@ -236,59 +236,11 @@ size_t FaceVaryingSurface::gpuElementCount(uint32_t levels) const {
     return n;
 }
 
-namespace {
-
-// The records of a smooth irregular face (`smooth` of tables.smoothIrregular): its band
-// sub-patches as patch(ptex, u0, v0, size, Q) and its leaf as bilinear(ptex, u0, v0, size, corners).
-template <class PatchFn, class BilinearFn>
-void smoothRecords(const Tables& tables_, std::span<const glm::dvec3> vertices_, std::span<const LimitPoint> limits_,
-                   uint32_t face, uint32_t smooth, uint32_t levels, PatchFn&& patch, BilinearFn&& bilinear) {
-    // The bands of evaluateIrregular's per-valence basis, turned from the band's frame (a, c),
-    // the extraordinary corner at (0, 0), to the ptex face's (s, t): a rotation by the corner.
-    const IrregularFace& f = tables_.irregular[face];
-    const Tables::SmoothIrregular& sm = tables_.smoothIrregular[smooth];
-    const uint32_t K = std::min(levels, tables_.irregularBases[sm.basis].levels), corner = sm.corner;
-    // The ptex-face square whose (a, c) square is [a0, a0 + h] x [c0, c0 + h], and which of its
-    // band-frame control points P[i][j] is its ptex-frame Q[i'][j'] (B_i(1 - x) = B_{3-i}(x)).
-    auto square = [&](double a0, double c0, double h, double& s0, double& t0) {
-        switch (corner) {
-        case 0: s0 = a0, t0 = c0; break;
-        case 1: s0 = 1 - c0 - h, t0 = a0; break;
-        case 2: s0 = 1 - a0 - h, t0 = 1 - c0 - h; break;
-        default: s0 = c0, t0 = 1 - a0 - h; break;
-        }
-    };
-    for (uint32_t k = 1; k <= K; ++k) {
-        const double h = std::ldexp(1.0, -int(k)); // the band's quadrants
-        for (uint32_t q = 1; q <= 3; ++q) {
-            const uint32_t qu = q == 3 ? 0 : 1, qv = q == 1 ? 0 : 1;
-            glm::dvec3 P[4][4], Q[4][4];
-            smoothSubPatchControlPoints(tables_, smooth, vertices_, k, q, P);
-            for (int i = 0; i < 4; ++i)
-                for (int j = 0; j < 4; ++j)
-                    Q[i][j] = corner == 0 ? P[i][j] : corner == 1 ? P[j][3 - i] : corner == 2 ? P[3 - i][3 - j] : P[3 - j][i];
-            double s0, t0;
-            square(qu * h, qv * h, h, s0, t0);
-            patch(f.ptex, f.u0 + s0 * f.size, f.v0 + t0 * f.size, h * f.size, Q);
-        }
-    }
-    // Within 2^-K of the corner: evaluateIrregular's bilinear leaf, its corners from it.
-    const double h = std::ldexp(1.0, -int(K));
-    double s0, t0;
-    square(0, 0, h, s0, t0);
-    glm::dvec3 c[4];
-    const double cs[4] = {s0, s0 + h, s0 + h, s0}, ct[4] = {t0, t0, t0 + h, t0 + h};
-    for (int k = 0; k < 4; ++k) c[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
-    bilinear(f.ptex, f.u0 + s0 * f.size, f.v0 + t0 * f.size, h * f.size, c);
-}
-
-} // namespace
-
-FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
+FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
     Gpu g;
     g.nodes.assign(ptexCount_, 0xFFFFFFFFu);
     const uint32_t P = static_cast<uint32_t>(tables_.patches.size());
-    auto insert = [&](uint32_t e, uint32_t ptex, float u0, float v0, float size) {
+    auto insert = [&](uint32_t e, uint32_t ptex, float u0, float v0, float size) -> uint32_t {
         const uint32_t k = sizeExponent(size);
         const uint32_t i = uint32_t(std::lround(u0 * std::ldexp(1.0, int(k))));
         const uint32_t j = uint32_t(std::lround(v0 * std::ldexp(1.0, int(k))));
@@ -302,6 +254,7 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
             node = g.nodes[node] + ((i >> shift) & 1u) + 2 * ((j >> shift) & 1u);
         }
         g.nodes[node] = 0x80000000u | e;
+        return node;
     };
     for (uint32_t e = 0; e < P; ++e) {
         const Patch& p = tables_.patches[e];
@@ -315,9 +268,10 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
         }
     }
     // An irregular face is drawn from its surface's pieces (docs/irregular.md), each one record
-    // of its own: the sub-patches and leaves of its quadtree, or the band sub-patches of a
-    // per-valence basis with their control points summed here once (UVs do not change per
-    // frame). Elements are numbered in record order.
+    // of its own: the sub-patches and leaves of its quadtree. A face with a per-valence basis is
+    // a smooth face (its support's UVs, the weights once per valence), which expandSmoothFaces
+    // turns into its band sub-patches and leaf where the GPU needs them: a fraction of the bytes
+    // in the file. Elements are numbered in record order, smooth faces after them.
     uint32_t next = P;
     auto patchRecord = [&](uint32_t ptex, double u0, double v0, double size, const glm::dvec3 C[4][4]) {
         insert(next++, ptex, float(u0), float(v0), float(size));
@@ -371,7 +325,28 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
         const IrregularFace& f = tables_.irregular[q];
         const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
         if (root != kNodeNone && gpuLevels_ > 0 && (root & ~kNodeIndexMask) == kNodeBasis) {
-            smoothRecords(tables_, vertices_, limits_, q, root & kNodeIndexMask, gpuLevels_, patchRecord, bilinearRecord);
+            const Tables::SmoothIrregular& sm = tables_.smoothIrregular[root & kNodeIndexMask];
+            const IrregularBasis& b = tables_.irregularBases[sm.basis];
+            const uint32_t levels = std::min(gpuLevels_, b.levels);
+            auto basis = std::find_if(g.bases.begin(), g.bases.end(), [&](const Basis& x) { return x.valence == b.valence; });
+            if (basis == g.bases.end()) {
+                Basis x{b.valence, levels, {}};
+                x.weights.assign(b.weights.begin(), b.weights.begin() + size_t(levels) * 48 * b.supportSize());
+                g.bases.push_back(std::move(x));
+            }
+            SmoothFace face;
+            face.corner = sm.corner;
+            face.valence = b.valence;
+            face.firstPoint = static_cast<uint32_t>(g.points.size());
+            for (uint32_t i = 0; i < b.supportSize(); ++i) {
+                const glm::dvec3& x = vertices_[tables_.smoothPoints[sm.first + i]];
+                g.points.emplace_back(float(x.x), float(x.y));
+            }
+            const glm::dvec3& limit = limits_[f.corner[sm.corner]].position;
+            face.limit = glm::vec2(float(limit.x), float(limit.y));
+            face.u0 = f.u0, face.v0 = f.v0, face.size = f.size;
+            face.node = insert(0, f.ptex, f.u0, f.v0, f.size); // named below, after the elements
+            g.smoothFaces.push_back(face);
         } else if (root != kNodeNone && gpuLevels_ > 0) {
             walk(walk, q, q, 0, f.u0, f.v0, f.size, 0.0, 0.0, 1.0);
         } else { // tables without the irregular surface: the bilinear blend of its corners
@@ -380,8 +355,12 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
             bilinearRecord(f.ptex, f.u0, f.v0, f.size, corners);
         }
     }
+    const uint32_t elements = static_cast<uint32_t>(g.records.size() / 9);
+    for (uint32_t i = 0; i < g.smoothFaces.size(); ++i) g.nodes[g.smoothFaces[i].node] = 0x80000000u | (elements + i);
     return g;
 }
+
+FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const { return expandSmoothFaces(compactGpu()); }
 
 glm::dvec2 FaceVaryingSurface::uvAt(uint32_t ptex, double u, double v, double tu, double tv) const {
     // A probe just inside the element asked about, so exactly one cell of each size contains it.

@@ -62,11 +62,33 @@ class FaceVaryingSurface {
     // each irregular face's surface as pieces: its sub-patches (quadtree or per-valence basis,
     // control points summed once) and its leaves within 2^-K of an extraordinary corner, which
     // are bilinear (docs/irregular.md); a face without a surface (K = 0) is one bilinear record.
+    //
+    // Compact (FVSF version 2, compactGpu()): a face with a per-valence basis is not pieces but
+    // a smooth face, named by a leaf 0x80000000 | (elements + s): its extraordinary corner, its
+    // 2n + 8 support UVs (float, in `points`) and that corner's limit UV; the weights once per
+    // valence in `bases`. expandSmoothFaces() turns that into the pieces above, the same bits
+    // wherever it runs (web/src/fvar_chunk.mjs mirrors it).
+    struct SmoothFace {
+        uint32_t corner = 0;     // ptex order, 0..3
+        uint32_t valence = 0;    // a basis of `bases` has it
+        uint32_t firstPoint = 0; // its 2n + 8 support UVs: points[firstPoint ...]
+        glm::vec2 limit{0.0f};   // the limit UV at the extraordinary corner
+        uint32_t node = 0;       // not stored: the node naming it
+        float u0 = 0, v0 = 0, size = 0; // not stored: that node's square of its ptex face
+    };
+    struct Basis {
+        uint32_t valence = 0, levels = 0;
+        std::vector<float> weights; // IrregularBasis::weights of `levels` bands
+    };
     struct Gpu {
         std::vector<uint32_t> nodes;
         std::vector<glm::vec4> records;
+        std::vector<SmoothFace> smoothFaces;
+        std::vector<glm::vec2> points;
+        std::vector<Basis> bases;
     };
-    Gpu gpu() const;
+    Gpu gpu() const; // expandSmoothFaces(compactGpu())
+    Gpu compactGpu() const;
     // The levels of the irregular faces' pieces in gpu(): the tables' K, fewer where that would
     // take more than maxGpuRecordBytes (then the constructor warned; the deepest squares are
     // bilinear in their exact corners).
@@ -84,5 +106,12 @@ class FaceVaryingSurface {
     uint32_t gpuLevels_ = 0;
     size_t gpuElementCount(uint32_t levels) const;
 };
+
+// The surface of `compact` with its smooth faces as pieces: per smooth face, in order, its band
+// sub-patches k = 1..K (quadrants 1, 2, 3), control point j = sum over the support i, in order,
+// of double(weight) * double(point), and its leaf within 2^-K of the corner (bilinear: the
+// limit UV and the three band-K sub-patches' corner points), appended as elements and as
+// children of the smooth face's node. Every smooth face must be named by its node.
+FaceVaryingSurface::Gpu expandSmoothFaces(FaceVaryingSurface::Gpu compact);
 
 } // namespace limn

@@ -80,13 +80,24 @@ TEST(FvarSurfaceChunk, StoresTheUVSurfaceLosslessly) {
         Warnings w;
         const uint32_t depth = 2;
         const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, depth, kLevels, w));
-        const FvarSurfaceChunk d = decodeFvarSurfaceChunk(c, &m, &o);
+        FvarSurfaceChunk d = decodeFvarSurfaceChunk(c, &m, &o);
         EXPECT_EQ(encodeFvarSurfaceChunk(d).payload, c.payload);
         EXPECT_EQ(d.ptexCount, ptexFaceCount(m));
+        // Faces with a per-valence basis are stored as smooth faces (version 2) and expanded
+        // to the pieces limn-render draws: the same nodes and record bits.
+        if (std::string(model).find("spot") != std::string::npos || std::string(model).find("cube") != std::string::npos) {
+            EXPECT_FALSE(d.surface.smoothFaces.empty());
+        }
+        d.surface = expandSmoothFaces(d.surface);
+        const FaceVaryingSurface surface(m, o, depth, kLevels, w);
+        const FaceVaryingSurface::Gpu drawn = surface.gpu();
+        EXPECT_EQ(d.surface.nodes, drawn.nodes);
+        EXPECT_EQ(0, std::memcmp(d.surface.records.data(), drawn.records.data(),
+                                 std::min(d.surface.records.size(), drawn.records.size()) * 16));
+        EXPECT_EQ(d.surface.records.size(), drawn.records.size());
         // At every point of a 1/64 lattice of every ptex face: the depth-2 lattice where the
         // fixed grids draw, and the points inside irregular faces the view-adaptive
         // tessellation draws (every band of the bases).
-        const FaceVaryingSurface surface(m, o, depth, kLevels, w);
         double worst = 0;
         for (uint32_t p = 0; p < d.ptexCount; ++p)
             for (int i = 0; i <= 64; ++i)
@@ -183,7 +194,7 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     longer.payload.push_back(0);
     EXPECT_TRUE(refused(longer, "trailing byte"));
     Chunk newer = c;
-    newer.version = 2;
+    newer.version = 3;
     EXPECT_TRUE(refused(newer, "newer version"));
     const size_t nodes = 32; // the payload offset of nodes[0]
     auto word = [](Chunk& k, size_t at, uint32_t v) { std::memcpy(k.payload.data() + at, &v, 4); };
@@ -224,6 +235,13 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
             EXPECT_TRUE(refused(shared, "two parents"));
         }
     }
+    // Version 1 (no smooth faces: its tail of zero counts and an empty stream removed) is still read.
+    ASSERT_TRUE(good.surface.smoothFaces.empty());
+    Chunk first = c;
+    first.version = 1;
+    first.payload.resize(first.payload.size() - 16);
+    EXPECT_NO_THROW(decodeFvarSurfaceChunk(first, &m, &o));
+    EXPECT_TRUE(refused(Chunk{c.type, 1, c.payload}, "version 1 with a version-2 tail"));
     // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell).
     std::mt19937 rng(5);
     for (int trial = 0; trial < 500; ++trial) {
@@ -231,6 +249,87 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
         bad.payload[rng() % bad.payload.size()] ^= uint8_t(1u << (rng() % 8));
         try {
             const FvarSurfaceChunk d = decodeFvarSurfaceChunk(bad, &m, &o);
+            double uv[2];
+            for (uint32_t p = 0; p < d.ptexCount; ++p) chunkUV(d, p, 0.3, 0.7, uv);
+        } catch (const Error&) {
+        }
+    }
+}
+
+// Version 2's smooth faces (support UVs, per-valence weights): every count and index is checked
+// before anything is allocated or expanded (a valence over 64, a support beyond the points, a
+// face without its basis, a weight outside [0, 1], a face named twice or by no node).
+TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
+    SchemeOptions o;
+    const Mesh m = loadSmooth("tri/cube_no_bottom.obj", o);
+    Warnings w;
+    const Chunk c = encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, 2, 2, w));
+    const FvarSurfaceChunk good = decodeFvarSurfaceChunk(c, &m, &o);
+    ASSERT_GE(good.surface.smoothFaces.size(), 2u);
+    auto refused = [&](const Chunk& bad) {
+        try {
+            decodeFvarSurfaceChunk(bad, &m, &o);
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where().rfind("chunk FVSF", 0), 0u) << e.what();
+            return true;
+        }
+        return false;
+    };
+    auto word = [](Chunk& k, size_t at, uint32_t v) { std::memcpy(k.payload.data() + at, &v, 4); };
+    auto at = [&](size_t offset) {
+        uint32_t v = 0;
+        if (offset + 4 <= c.payload.size()) std::memcpy(&v, c.payload.data() + offset, 4);
+        return v;
+    };
+    const size_t S = good.surface.smoothFaces.size();
+    // After the records: the bases (u32 n, k, R, u16 rows[k * 48], f32 weights[R * (2n + 8)]),
+    // the values, the smooth faces' count and stream.
+    const size_t bases = 32 + 4 * good.surface.nodes.size() + 144 * good.surface.records.size() / 9;
+    size_t values = bases + 4;
+    for (uint32_t b = 0; b < at(bases); ++b)
+        values += 12 + 96 * size_t(at(values + 4)) + 4 * size_t(at(values + 8)) * (2 * at(values) + 8);
+    const size_t rows = bases + 16 + 96 * size_t(at(bases + 8));
+    const size_t faces = values + 4 + 8 * size_t(at(values));
+    ASSERT_EQ(at(faces), S);
+    const std::pair<size_t, uint32_t> cases[] = {
+        {bases, 0x10000000u},       // basis count
+        {bases + 4, 65},            // a valence over 64
+        {bases + 8, 17},            // deeper than 16 levels
+        {bases + 12, 0},            // no distinct rows
+        {bases + 12, 0xFFFFFFFFu},  // more rows than control points
+        {bases + 16, 0xFFFFFFFFu},  // a missing row
+        {rows, 0x40000000u},        // a weight of 2
+        {rows, 0xBF800000u},        // a weight of -1
+        {values, 0x40000000u},      // value count
+        {values + 4, 0x7F800000u},  // an infinite value
+        {values + 8, 0x7FC00000u},  // a NaN value
+        {faces, 0xFFFFFFFFu},       // smooth face count
+        {faces + 8, 0x10101010u},   // a valence without a basis (4) in the stream
+        {faces + 8, 0xFFFFFF00u | (at(faces + 8) & 0xFFu)}, // a value index beyond the values
+    };
+    for (const auto& [offset, v] : cases) {
+        Chunk bad = c;
+        word(bad, offset, v);
+        EXPECT_TRUE(refused(bad)) << "offset " << offset << " value " << v;
+    }
+    // Two nodes naming one smooth face (it would be expanded twice), and so none naming another.
+    std::vector<size_t> named;
+    for (size_t i = 0; i < good.surface.nodes.size(); ++i)
+        if (good.surface.nodes[i] != 0xFFFFFFFFu && (good.surface.nodes[i] & 0x80000000u) &&
+            (good.surface.nodes[i] & 0x7FFFFFFFu) >= good.surface.records.size() / 9)
+            named.push_back(i);
+    ASSERT_EQ(named.size(), S);
+    Chunk twice = c;
+    word(twice, 32 + 4 * named[1], good.surface.nodes[named[0]]);
+    EXPECT_TRUE(refused(twice));
+    // Random corruption of the bases, values and smooth faces: refused, or expanded in bounds.
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 300; ++trial) {
+        Chunk bad = c;
+        bad.payload[bases + rng() % (bad.payload.size() - bases)] ^= uint8_t(1u << (rng() % 8));
+        try {
+            FvarSurfaceChunk d = decodeFvarSurfaceChunk(bad, &m, &o);
+            d.surface = expandSmoothFaces(d.surface);
             double uv[2];
             for (uint32_t p = 0; p < d.ptexCount; ++p) chunkUV(d, p, 0.3, 0.7, uv);
         } catch (const Error&) {

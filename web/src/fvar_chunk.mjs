@@ -1,8 +1,12 @@
 // The FVSF chunk (formats/limn.md, section 9): the smooth face-varying UV surface limn-tables
 // writes beside TBLS, as shaders/fvar_eval.glsl reads it: a quadtree per ptex face (nodes) and
 // per element a record of 9 vec4. Checked as lib/subdiv/fvar_chunk.cpp checks it, so that no
-// walk leaves the nodes and no record names what is not there.
+// walk leaves the nodes and no record names what is not there. Version 2 stores a face with a
+// per-valence basis as a smooth face (support UVs, the weights once per valence), expanded here
+// into the pieces the GPU draws with the same arithmetic as lib/subdiv/fvar_expand.cpp (the
+// same bits).
 import { chunkReader } from './container.mjs';
+import { Stream } from './tables_stream.mjs';
 
 const MAX_DEPTH = 16;
 const HOLE = 0xffffffff, LEAF = 0x80000000;
@@ -13,7 +17,7 @@ const HOLE = 0xffffffff, LEAF = 0x80000000;
  * an element), elementCount }.
  */
 export function decodeFvarSurface(chunk, expected) {
-  const r = chunkReader(chunk, 1);
+  const r = chunkReader(chunk, 2);
   const depth = r.u32('depth');
   if (depth > MAX_DEPTH) r.fail(`depth ${depth} is out of range`);
   const ptexCount = r.u32('ptex count');
@@ -23,12 +27,14 @@ export function decodeFvarSurface(chunk, expected) {
   const nodes = r.array(Uint32Array, nodeCount, 'nodes');
   if (elementCount > Math.floor(r.remaining / 144)) r.fail('element count is too large');
   const records = r.array(Float32Array, elementCount * 36, 'records');
+  const smooth = chunk.version >= 2 ? readSmoothFaces(r) : { faces: [], points: new Float32Array(0), bases: new Map() };
   r.requireEnd();
+  const named = elementCount + smooth.faces.length;
   for (let i = 0; i < nodeCount; i++) {
     const v = nodes[i];
     if (v === HOLE) continue;
     if (v >= LEAF) {
-      if (v - LEAF >= elementCount) r.fail(`node ${i} names a missing element`);
+      if (v - LEAF >= named) r.fail(`node ${i} names a missing element`);
     } else if (v <= i || v < ptexCount || v + 4 > nodeCount) {
       r.fail(`node ${i} has a bad child index`); // children after their parent: every walk ends
     }
@@ -49,6 +55,13 @@ export function decodeFvarSurface(chunk, expected) {
   for (let n = 0; n < nodeCount; n++) {
     const v = nodes[n];
     if (level[n] < 0 || v === HOLE) continue;
+    if (v >= LEAF && v - LEAF >= elementCount) { // a smooth face
+      const f = smooth.faces[v - LEAF - elementCount];
+      if (f.size !== 0) r.fail(`node ${n} names a smooth face named before`);
+      if (level[n] + smooth.bases.get(f.valence).levels > 24) r.fail(`node ${n}'s smooth face is deeper than 24 levels`);
+      f.node = n; f.size = Math.fround(2 ** -level[n]); f.u0 = Math.fround(ci[n] * f.size); f.v0 = Math.fround(cj[n] * f.size);
+      continue;
+    }
     if (v >= LEAF) {
       const o = 36 * (v - LEAF), size = 2 ** -level[n];
       if (records[o] !== ci[n] * size || records[o + 1] !== cj[n] * size || records[o + 2] !== size) {
@@ -62,12 +75,145 @@ export function decodeFvarSurface(chunk, expected) {
       level[v + k] = level[n] + 1; ci[v + k] = 2 * ci[n] + (k & 1); cj[v + k] = 2 * cj[n] + (k >> 1);
     }
   }
+  for (const f of smooth.faces) if (f.size === 0) r.fail('a smooth face is named by no node');
   if (ptexCount !== expected.ptexCount) r.fail("ptex face count differs from the mesh's");
   if (depth !== expected.depth) r.fail(`made at depth ${depth}, but the tables (TBLS) have depth ${expected.depth}; re-run limn-tables`);
   if (topology !== expected.topologyHash) r.fail('the smooth UV surface was built for a different mesh topology or tags; re-run limn-tables');
   if (uv !== expected.uvHash) r.fail('the smooth UV surface was built from other UVs; re-run limn-tables');
   if (expected.domains) checkCoverage(r, nodes, expected.domains);
-  return { depth, ptexCount, nodes, records, elementCount };
+  const expanded = expandSmoothFaces(nodes, records, smooth);
+  return { depth, ptexCount, nodes: expanded.nodes, records: expanded.records, elementCount: expanded.records.length / 36 };
+}
+
+// Version 2's per-valence weights, the distinct support and limit UVs, and the smooth faces
+// (fvar_chunk.cpp's readSmoothFaces), each count checked against the bytes left before anything
+// is allocated.
+function readSmoothFaces(r) {
+  const basisCount = r.u32('basis count');
+  if (basisCount > Math.floor(r.remaining / 8)) r.fail('basis count is too large');
+  const bases = new Map();
+  for (let b = 0; b < basisCount; b++) {
+    const valence = r.u32('valence'), levels = r.u32('levels');
+    // limn-tables builds no basis beyond valence 64 nor deeper than 16.
+    if (valence < 3 || valence > 64 || valence === 4 || levels < 1 || levels > 16) r.fail(`basis ${b} has valence ${valence} and ${levels} levels`);
+    if (bases.has(valence)) r.fail(`two bases of valence ${valence}`);
+    // Each distinct row of 2n + 8 weights once, and per control point of each band's
+    // sub-patches the row it has.
+    const M = 2 * valence + 8, distinct = r.u32('basis row count');
+    if (distinct === 0 || distinct > levels * 48) r.fail(`basis ${b} has a bad row count`);
+    const pick = r.array(Uint16Array, levels * 48, 'basis rows');
+    const rows = r.array(Float32Array, distinct * M, 'basis weights');
+    for (const w of rows) if (!(w >= 0 && w <= 1)) r.fail(`basis ${b} has a weight outside [0, 1]`); // convex (irregular_basis.h)
+    const weights = new Float32Array(levels * 48 * M);
+    pick.forEach((j, at) => {
+      if (j >= distinct) r.fail(`basis ${b} names a missing row`);
+      weights.set(rows.subarray(j * M, (j + 1) * M), at * M);
+    });
+    bases.set(valence, { levels, weights });
+  }
+  const valueCount = r.u32('value count');
+  const values = r.array(Float32Array, valueCount * 2, 'values');
+  for (const x of values) if (!Number.isFinite(x) || Math.abs(x) > 1e18) r.fail('a value is not finite');
+  const count = r.u32('smooth face count');
+  const s = new Stream(r, 'smooth faces');
+  // Each face takes at least 2n + 10 >= 16 bytes of the stream, and gives 8 bytes a point.
+  if (count > Math.floor(s.size / 16)) r.fail('smooth face count is too large');
+  const faces = [], points = [];
+  let previous = 0;
+  const next = (i) => {
+    previous = s.after(previous, 'a value index');
+    if (previous >= valueCount) r.fail(`smooth face ${i} names a missing value`);
+    return [values[2 * previous], values[2 * previous + 1]];
+  };
+  for (let i = 0; i < count; i++) {
+    const packed = s.varint(), valence = Math.floor(packed / 4);
+    if (!bases.has(valence)) r.fail(`smooth face ${i} has no basis of its valence`);
+    const f = { corner: packed % 4, valence, firstPoint: points.length / 2, limit: next(i), node: 0, u0: 0, v0: 0, size: 0 };
+    for (let k = 0; k < 2 * valence + 8; k++) points.push(...next(i));
+    faces.push(f);
+  }
+  s.finish();
+  return { faces, points: Float32Array.from(points), bases };
+}
+
+// The band frame (a, c) has the extraordinary corner at (0, 0); the face-local square whose band
+// square is [a0, a0 + h] x [c0, c0 + h] (fvar_expand.cpp's bandSquareToFace).
+function bandSquareToFace(corner, a0, c0, h) {
+  if (corner === 0) return [a0, c0];
+  if (corner === 1) return [1 - c0 - h, a0];
+  if (corner === 2) return [1 - a0 - h, 1 - c0 - h];
+  return [c0, 1 - a0 - h];
+}
+
+// lib/subdiv/fvar_expand.cpp's expandSmoothFaces, step for step (double sums in the same order,
+// rounded to float once): each smooth face's band sub-patches and leaf, appended as elements and
+// as children of its node.
+function expandSmoothFaces(nodesIn, recordsIn, { faces, points, bases }) {
+  if (faces.length === 0) return { nodes: nodesIn, records: recordsIn };
+  const nodes = Array.from(nodesIn), out = Array.from(recordsIn);
+  let next = recordsIn.length / 36;
+  const insert = (start, level, s0, t0, e) => {
+    const i = Math.round(s0 * 2 ** level), j = Math.round(t0 * 2 ** level);
+    let node = start;
+    for (let l = 0; l < level; l++) {
+      if (nodes[node] === HOLE) { nodes[node] = nodes.length; nodes.push(HOLE, HOLE, HOLE, HOLE); }
+      const shift = level - 1 - l;
+      node = nodes[node] + ((i >>> shift) & 1) + 2 * ((j >>> shift) & 1);
+    }
+    nodes[node] = (LEAF | e) >>> 0;
+  };
+  for (const f of faces) {
+    const { levels: K, weights } = bases.get(f.valence), M = 2 * f.valence + 8, first = 2 * f.firstPoint;
+    nodes[f.node] = HOLE;
+    const control = (k, q) => { // P[i][j] of band k's quadrant q, [x, y] each
+      const base = ((k - 1) * 3 + (q - 1)) * 16 * M, P = [[], [], [], []];
+      for (let j = 0; j < 16; j++) {
+        let x = 0, y = 0;
+        for (let i = 0; i < M; i++) {
+          const w = weights[base + j * M + i];
+          x += w * points[first + 2 * i];
+          y += w * points[first + 2 * i + 1];
+        }
+        P[j % 4][j >> 2] = [x, y];
+      }
+      return P;
+    };
+    const record = (s0, t0, h, kind) => out.push(Math.fround(f.u0 + s0 * f.size), Math.fround(f.v0 + t0 * f.size), Math.fround(h * f.size), kind);
+    const corners = [null, null, null, null];
+    for (let k = 1; k <= K; k++) {
+      const h = 2 ** -k;
+      for (let q = 1; q <= 3; q++) {
+        const P = control(k, q);
+        const Q = (i, j) => (f.corner === 0 ? P[i][j] : f.corner === 1 ? P[j][3 - i] : f.corner === 2 ? P[3 - i][3 - j] : P[3 - j][i]);
+        const [s0, t0] = bandSquareToFace(f.corner, q === 3 ? 0 : h, q === 1 ? 0 : h, h);
+        insert(f.node, k, s0, t0, next++);
+        record(s0, t0, h, 0);
+        for (let c = 0; c < 16; c++) out.push(...Q(c % 4, c >> 2));
+        if (k === K) { // the B-spline at (0, 0): (1, 4, 1)/6 in each direction
+          const b = [1 / 6, 4 / 6, 1 / 6];
+          let vx = 0, vy = 0;
+          for (let j = 0; j < 3; j++) {
+            let rx = 0, ry = 0;
+            for (let i = 0; i < 3; i++) { rx += b[i] * P[i][j][0]; ry += b[i] * P[i][j][1]; }
+            vx += b[j] * rx; vy += b[j] * ry;
+          }
+          corners[q] = [vx, vy];
+        }
+      }
+    }
+    corners[0] = f.limit;
+    const h = 2 ** -K, [s0, t0] = bandSquareToFace(f.corner, 0, 0, h);
+    insert(f.node, K, s0, t0, next++);
+    record(s0, t0, h, 1);
+    const ds = [0, 1, 1, 0], dt = [0, 0, 1, 1];
+    for (let p = 0; p < 4; p++) {
+      const da = f.corner === 0 ? ds[p] : f.corner === 1 ? dt[p] : f.corner === 2 ? 1 - ds[p] : 1 - dt[p];
+      const dc = f.corner === 0 ? dt[p] : f.corner === 1 ? 1 - ds[p] : f.corner === 2 ? 1 - dt[p] : ds[p];
+      out.push(...corners[da === 0 ? (dc === 0 ? 0 : 3) : (dc === 0 ? 1 : 2)]);
+    }
+    for (let z = 0; z < 24; z++) out.push(0);
+  }
+  return { nodes: Uint32Array.from(nodes), records: Float32Array.from(out) };
 }
 
 // Every point the tables draw finds a UV element: walking toward an element's domain meets no

@@ -180,6 +180,15 @@ test('--mesh-out with smooth UVs: limn-render\'s bytes (view-adaptive), its tria
     }
     assert.ok(worst <= 1e-6, `fixed grids: a corner's position or texture UV is ${worst} away`);
   }
+  // Spot's UV mesh has 302 faces with a per-valence basis at depth 2, which FVSF stores as smooth
+  // faces: fvar_chunk.mjs expands them into the records limn-render draws, to the same bits.
+  const spot = container('quad/spot_quadrangulated.obj', { depth: 2, classifyArgs: ['--fvar', 'corners-plus1'], name: 'spot_smooth_uvs_d2.limn' });
+  const native = join(scratch, 'smooth_spot_native.ply'), web = join(scratch, 'smooth_spot_web.ply');
+  const args = ['--size', '64x48', '--samples', '1'];
+  execFileSync(tool('limn-render'), [spot, '--mesh-out', native, ...args], { env, stdio: 'ignore' });
+  const r = spawnSync(process.execPath, [cli, spot, '--mesh-out', web, ...args], { encoding: 'utf8', timeout: 120000, env });
+  assert.equal(r.status, 0, r.stderr);
+  assert.ok(readFileSync(web).equals(readFileSync(native)), 'view-adaptive smooth faces: the bytes differ from limn-render\'s');
 });
 
 test('--mesh-out: a bad extension exits 2, a format not written here exits 3, and no file is left', () => {
