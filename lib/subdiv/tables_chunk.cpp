@@ -147,6 +147,7 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         for (const auto& f : t.smoothIrregular)
             for (uint32_t x : {f.basis, f.corner, f.first}) w.write<uint32_t>(x);
     w.write<uint32_t>(static_cast<uint32_t>(t.smoothPoints.size()));
+    if (programs) writeSmoothPoints(w, t);
     if (!compact) w.writeArray(t.smoothPoints);
     std::vector<uint8_t> points; // version 4: differences from the previous point
     uint32_t previous = 0;
@@ -154,7 +155,7 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         writeVarint(points, zigzag(int64_t(v) - previous));
         previous = v;
     }
-    if (compact) writeStream(w, points);
+    if (compact && !programs) writeStream(w, points);
     writeStencilTable(w, t.limitPosition, true, compact);
     writeStencilTable(w, t.limitTangent1, true, compact);
     writeStencilTable(w, t.limitTangent2, true, compact);
@@ -415,7 +416,9 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
             t.smoothIrregular.push_back(f);
         }
         const uint32_t points = r.read<uint32_t>();
-        if (compact) {
+        if (programs) {
+            t.smoothPoints = readSmoothPoints(r, points, t.levels[t.depth]);
+        } else if (compact) {
             StreamReader pts(r, "smooth irregular points");
             if (points > pts.size()) pts.fail("count " + std::to_string(points) + " is too large");
             t.smoothPoints.reserve(points);

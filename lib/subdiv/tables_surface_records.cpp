@@ -191,4 +191,44 @@ std::vector<Tables::SmoothIrregular> readSmoothFaces(ByteReader& r, uint32_t cou
     return faces;
 }
 
+namespace {
+
+// The start of each class of level N: face points, edge points, vertex points, and the end.
+std::array<uint32_t, 4> pointClasses(const LevelInfo& L) {
+    return {L.first, L.first + L.facePoints, L.first + L.facePoints + L.edgePoints, L.first + L.count()};
+}
+
+} // namespace
+
+void writeSmoothPoints(ByteWriter& w, const Tables& t) {
+    const std::array<uint32_t, 4> range = pointClasses(t.levels[t.depth]);
+    uint32_t last[3] = {range[0], range[1], range[2]};
+    std::vector<uint8_t> s;
+    s.reserve(t.smoothPoints.size() * 2);
+    for (uint32_t v : t.smoothPoints) {
+        const int c = v < range[1] ? 0 : v < range[2] ? 1 : 2;
+        if (v < range[0] || v >= range[3]) throw std::logic_error("TBLS: a smooth point is not at the last level");
+        writeVarint(s, uint64_t(c) + 3 * zigzag(int64_t(v) - last[c]));
+        last[c] = v;
+    }
+    writeStream(w, s);
+}
+
+std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const LevelInfo& levelN) {
+    StreamReader in(r, "smooth irregular points");
+    if (count > in.size()) in.fail("count " + std::to_string(count) + " is too large"); // a byte a point
+    const std::array<uint32_t, 4> range = pointClasses(levelN);
+    uint32_t last[3] = {range[0], range[1], range[2]};
+    std::vector<uint32_t> points(count);
+    for (uint32_t& v : points) {
+        const uint64_t z = in.varint();
+        const uint64_t c = z % 3;
+        const int64_t x = int64_t(last[c]) + unzigzag(std::min<uint64_t>(z / 3, uint64_t(1) << 40));
+        if (x < int64_t(range[c]) || x >= int64_t(range[c + 1])) in.fail("a point is not at the last level");
+        v = last[c] = static_cast<uint32_t>(x);
+    }
+    in.finish();
+    return points;
+}
+
 } // namespace limn

@@ -34,4 +34,11 @@ void writeSmoothFaces(ByteWriter& w, const Tables& t);
 std::vector<Tables::SmoothIrregular> readSmoothFaces(ByteReader& r, uint32_t count,
                                                      const std::vector<IrregularBasis>& bases);
 
+// The smooth points (after their count): each a varint `c + 3 * zigzag(v - last[c])`, c its class
+// at level N (0: face points, 1: edge points, 2: vertex points) and last[c] the previous point of
+// that class (the class's first vertex at first): a support's points alternate between the three
+// ranges, and are neighbours within each.
+void writeSmoothPoints(ByteWriter& w, const Tables& t);
+std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const LevelInfo& levelN);
+
 } // namespace limn

@@ -4,7 +4,7 @@
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
 import { Fnv64, LimnError, bytesOf, chunkReader } from './container.mjs';
 import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
-import { readBasisProgram, readNodeStream, readSmoothFaces } from './tables_surface_records.mjs';
+import { readBasisProgram, readNodeStream, readSmoothFaces, readSmoothPoints } from './tables_surface_records.mjs';
 
 const MAX_DEPTH = 16;
 const INFINITE_SHARPNESS = 10;
@@ -312,7 +312,9 @@ function readIrregularSurface(r, { readPatches, readFaces, compact, programs, de
   }
   const points = r.u32('smooth irregular point count');
   let smoothPoints;
-  if (compact) { // differences from the previous point
+  if (programs) {
+    smoothPoints = readSmoothPoints(r, points, levels[depth]);
+  } else if (compact) { // differences from the previous point
     const s = new Stream(r, 'smooth irregular points');
     if (points > s.size) s.fail(`count ${points} is too large`);
     smoothPoints = new Uint32Array(points);

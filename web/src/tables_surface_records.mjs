@@ -134,3 +134,21 @@ export function readSmoothFaces(r, count, bases) {
   s.finish();
   return faces;
 }
+
+// The smooth points: each a varint c + 3 * zigzag(v - last[c]), c its class at level N (face,
+// edge or vertex points) and last[c] the previous point of that class (the class's first at first).
+export function readSmoothPoints(r, count, levelN) {
+  const s = new Stream(r, 'smooth irregular points');
+  if (count > s.size) s.fail(`count ${count} is too large`);
+  const range = [levelN.first, levelN.first + levelN.facePoints, levelN.first + levelN.facePoints + levelN.edgePoints, levelN.first + levelN.count];
+  const last = range.slice(0, 3);
+  const points = new Uint32Array(count);
+  for (let i = 0; i < count; i++) {
+    const z = s.varint(), c = z % 3, d = Math.floor(z / 3);
+    const x = last[c] + (d % 2 === 1 ? -(d + 1) / 2 : d / 2);
+    if (!(x >= range[c] && x < range[c + 1])) s.fail('a point is not at the last level');
+    points[i] = last[c] = x;
+  }
+  s.finish();
+  return points;
+}
