@@ -149,13 +149,15 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     w.write<uint32_t>(static_cast<uint32_t>(t.smoothPoints.size()));
     if (programs) writeSmoothPoints(w, t);
     if (!compact) w.writeArray(t.smoothPoints);
-    std::vector<uint8_t> points; // version 4: differences from the previous point
-    uint32_t previous = 0;
-    for (uint32_t v : t.smoothPoints) {
-        writeVarint(points, zigzag(int64_t(v) - previous));
-        previous = v;
+    if (compact && !programs) { // version 4: differences from the previous point
+        std::vector<uint8_t> points;
+        uint32_t previous = 0;
+        for (uint32_t v : t.smoothPoints) {
+            writeVarint(points, zigzag(int64_t(v) - previous));
+            previous = v;
+        }
+        writeStream(w, points);
     }
-    if (compact && !programs) writeStream(w, points);
     writeStencilTable(w, t.limitPosition, true, compact);
     writeStencilTable(w, t.limitTangent1, true, compact);
     writeStencilTable(w, t.limitTangent2, true, compact);
