@@ -48,6 +48,7 @@ struct Push {
     patchCount: u32,
     texels: f32,
     maxError: f32,
+    interiorError: f32,
 }
 
 struct Pieces {
@@ -92,112 +93,157 @@ fn pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b(P: ptr<function, vec3<f32>>
     var ry: vec3<f32>;
     var rw: vec3<f32>;
 
-    let _e85 = pc.viewProj;
-    M = _e85;
-    let _e86 = M;
-    let _e87 = (*P);
-    c = (_e86 * vec4<f32>(_e87.x, _e87.y, _e87.z, 1f));
-    let _e95 = M[0][0u];
-    let _e98 = M[1][0u];
-    let _e101 = M[2][0u];
-    rx = vec3<f32>(_e95, _e98, _e101);
-    let _e105 = M[0][1u];
-    let _e108 = M[1][1u];
-    let _e111 = M[2][1u];
-    ry = vec3<f32>(_e105, _e108, _e111);
-    let _e115 = M[0][3u];
-    let _e118 = M[1][3u];
-    let _e121 = M[2][3u];
-    rw = vec3<f32>(_e115, _e118, _e121);
-    let _e125 = pc.halfViewport[0u];
-    let _e126 = rx;
-    let _e128 = c[0u];
-    let _e130 = c[3u];
-    let _e132 = rw;
-    let _e137 = c[3u];
-    (*jx) = (((_e126 - (_e132 * (_e128 / _e130))) * _e125) / vec3(_e137));
-    let _e142 = pc.halfViewport[1u];
-    let _e143 = ry;
-    let _e145 = c[1u];
-    let _e147 = c[3u];
-    let _e149 = rw;
-    let _e154 = c[3u];
-    (*jy) = (((_e143 - (_e149 * (_e145 / _e147))) * _e142) / vec3(_e154));
+    let _e86 = pc.viewProj;
+    M = _e86;
+    let _e87 = M;
+    let _e88 = (*P);
+    c = (_e87 * vec4<f32>(_e88.x, _e88.y, _e88.z, 1f));
+    let _e96 = M[0][0u];
+    let _e99 = M[1][0u];
+    let _e102 = M[2][0u];
+    rx = vec3<f32>(_e96, _e99, _e102);
+    let _e106 = M[0][1u];
+    let _e109 = M[1][1u];
+    let _e112 = M[2][1u];
+    ry = vec3<f32>(_e106, _e109, _e112);
+    let _e116 = M[0][3u];
+    let _e119 = M[1][3u];
+    let _e122 = M[2][3u];
+    rw = vec3<f32>(_e116, _e119, _e122);
+    let _e126 = pc.halfViewport[0u];
+    let _e127 = rx;
+    let _e129 = c[0u];
+    let _e131 = c[3u];
+    let _e133 = rw;
+    let _e138 = c[3u];
+    (*jx) = (((_e127 - (_e133 * (_e129 / _e131))) * _e126) / vec3(_e138));
+    let _e143 = pc.halfViewport[1u];
+    let _e144 = ry;
+    let _e146 = c[1u];
+    let _e148 = c[3u];
+    let _e150 = rw;
+    let _e155 = c[3u];
+    (*jy) = (((_e144 - (_e150 * (_e146 / _e148))) * _e143) / vec3(_e155));
     return;
 }
 
-fn errorSegments_u0028_vf3_u005b_5_u005d_u003b(S: ptr<function, array<vec3<f32>, 5>>) -> f32 {
+fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(S: ptr<function, array<vec3<f32>, 5>>, SN: ptr<function, array<vec3<f32>, 5>>, mayLoosen: ptr<function, bool>) -> f32 {
     var P_1: array<vec3<f32>, 5>;
     var E: array<vec3<f32>, 5>;
+    var N: array<vec3<f32>, 5>;
     var most: f32;
+    var facing: bool;
     var k: i32;
     var jx_1: vec3<f32>;
     var jy_1: vec3<f32>;
     var param: vec3<f32>;
     var param_1: vec3<f32>;
     var param_2: vec3<f32>;
+    var ray: vec3<f32>;
     var n: f32;
+    var local: f32;
+    var phi_2142_: bool;
+    var phi_2198_: bool;
 
-    let _e88 = (*S)[0i];
-    let _e90 = (*S)[3i];
-    let _e92 = (*S)[1i];
-    let _e94 = (*S)[4i];
-    let _e96 = (*S)[2i];
-    P_1 = array<vec3<f32>, 5>(_e88, _e90, _e92, _e94, _e96);
-    let _e99 = P_1[1i];
-    let _e101 = P_1[0i];
-    let _e103 = P_1[2i];
-    E[1i] = ((_e99 - ((_e101 + _e103) * 0.5f)) * 4f);
+    let _e95 = (*S)[0i];
+    let _e97 = (*S)[3i];
+    let _e99 = (*S)[1i];
+    let _e101 = (*S)[4i];
+    let _e103 = (*S)[2i];
+    P_1 = array<vec3<f32>, 5>(_e95, _e97, _e99, _e101, _e103);
+    let _e106 = P_1[1i];
+    let _e108 = P_1[0i];
     let _e110 = P_1[2i];
-    let _e112 = P_1[0i];
-    let _e114 = P_1[4i];
-    E[2i] = (_e110 - ((_e112 + _e114) * 0.5f));
-    let _e120 = P_1[3i];
-    let _e122 = P_1[2i];
-    let _e124 = P_1[4i];
-    E[3i] = ((_e120 - ((_e122 + _e124) * 0.5f)) * 4f);
-    let _e131 = E[1i];
-    let _e134 = E[2i];
-    E[0i] = ((_e131 * 2f) - _e134);
-    let _e138 = E[3i];
+    E[1i] = ((_e106 - ((_e108 + _e110) * 0.5f)) * 4f);
+    let _e117 = P_1[2i];
+    let _e119 = P_1[0i];
+    let _e121 = P_1[4i];
+    E[2i] = (_e117 - ((_e119 + _e121) * 0.5f));
+    let _e127 = P_1[3i];
+    let _e129 = P_1[2i];
+    let _e131 = P_1[4i];
+    E[3i] = ((_e127 - ((_e129 + _e131) * 0.5f)) * 4f);
+    let _e138 = E[1i];
     let _e141 = E[2i];
-    E[4i] = ((_e138 * 2f) - _e141);
+    E[0i] = ((_e138 * 2f) - _e141);
+    let _e145 = E[3i];
+    let _e148 = E[2i];
+    E[4i] = ((_e145 * 2f) - _e148);
+    let _e152 = (*SN)[0i];
+    let _e154 = (*SN)[3i];
+    let _e156 = (*SN)[1i];
+    let _e158 = (*SN)[4i];
+    let _e160 = (*SN)[2i];
+    N = array<vec3<f32>, 5>(_e152, _e154, _e156, _e158, _e160);
     most = 0f;
+    let _e162 = (*mayLoosen);
+    phi_2142_ = _e162;
+    if _e162 {
+        let _e164 = pc.interiorError;
+        let _e166 = pc.maxError;
+        phi_2142_ = (_e164 > _e166);
+    }
+    let _e169 = phi_2142_;
+    facing = _e169;
     k = 0i;
     loop {
-        let _e144 = k;
-        if (_e144 < 5i) {
-            let _e146 = k;
-            let _e148 = P_1[_e146];
-            param = _e148;
+        let _e170 = k;
+        if (_e170 < 5i) {
+            let _e172 = k;
+            let _e174 = P_1[_e172];
+            param = _e174;
             pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param), (&param_1), (&param_2));
-            let _e149 = param_1;
-            jx_1 = _e149;
-            let _e150 = param_2;
-            jy_1 = _e150;
-            let _e151 = most;
-            let _e152 = jx_1;
-            let _e153 = k;
-            let _e155 = E[_e153];
-            let _e157 = jy_1;
-            let _e158 = k;
-            let _e160 = E[_e158];
-            most = max(_e151, length(vec2<f32>(dot(_e152, _e155), dot(_e157, _e160))));
+            let _e175 = param_1;
+            jx_1 = _e175;
+            let _e176 = param_2;
+            jy_1 = _e176;
+            let _e177 = most;
+            let _e178 = jx_1;
+            let _e179 = k;
+            let _e181 = E[_e179];
+            let _e183 = jy_1;
+            let _e184 = k;
+            let _e186 = E[_e184];
+            most = max(_e177, length(vec2<f32>(dot(_e178, _e181), dot(_e183, _e186))));
+            let _e191 = jx_1;
+            let _e192 = jy_1;
+            ray = cross(_e191, _e192);
+            let _e194 = facing;
+            phi_2198_ = _e194;
+            if _e194 {
+                let _e195 = k;
+                let _e197 = N[_e195];
+                let _e198 = ray;
+                let _e201 = k;
+                let _e203 = N[_e201];
+                let _e206 = ray;
+                phi_2198_ = (abs(dot(_e197, _e198)) >= ((0.5f * length(_e203)) * length(_e206)));
+            }
+            let _e211 = phi_2198_;
+            facing = _e211;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e165 = k;
-            k = (_e165 + 1i);
+            let _e212 = k;
+            k = (_e212 + 1i);
         }
     }
-    let _e167 = most;
-    let _e169 = pc.maxError;
-    n = ceil(sqrt((_e167 / _e169)));
-    let _e173 = n;
-    let _e175 = n;
-    return select(1000000000f, _e175, (_e173 < 1000000000f));
+    let _e214 = most;
+    let _e215 = facing;
+    if _e215 {
+        let _e217 = pc.interiorError;
+        local = _e217;
+    } else {
+        let _e219 = pc.maxError;
+        local = _e219;
+    }
+    let _e220 = local;
+    n = ceil(sqrt((_e214 / _e220)));
+    let _e224 = n;
+    let _e226 = n;
+    return select(1000000000f, _e226, (_e224 < 1000000000f));
 }
 
 fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<function, f32>, b: ptr<function, array<f32, 4>>, d: ptr<function, array<f32, 4>>) {
@@ -205,38 +251,38 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
     var t3_: f32;
     var s: f32;
 
-    let _e82 = (*t);
     let _e83 = (*t);
-    t2_ = (_e82 * _e83);
-    let _e85 = t2_;
-    let _e86 = (*t);
-    t3_ = (_e85 * _e86);
-    let _e88 = (*t);
-    s = (1f - _e88);
-    let _e90 = s;
+    let _e84 = (*t);
+    t2_ = (_e83 * _e84);
+    let _e86 = t2_;
+    let _e87 = (*t);
+    t3_ = (_e86 * _e87);
+    let _e89 = (*t);
+    s = (1f - _e89);
     let _e91 = s;
-    let _e93 = s;
-    (*b)[0i] = (((_e90 * _e91) * _e93) / 6f);
-    let _e97 = t3_;
-    let _e99 = t2_;
-    (*b)[1i] = ((((3f * _e97) - (6f * _e99)) + 4f) / 6f);
-    let _e105 = t3_;
-    let _e107 = t2_;
-    let _e110 = (*t);
-    (*b)[2i] = (((((-3f * _e105) + (3f * _e107)) + (3f * _e110)) + 1f) / 6f);
-    let _e116 = t3_;
-    (*b)[3i] = (_e116 / 6f);
-    let _e119 = s;
-    let _e121 = s;
-    (*d)[0i] = ((-(_e119) * _e121) / 2f);
-    let _e125 = t2_;
-    let _e127 = (*t);
-    (*d)[1i] = (((9f * _e125) - (12f * _e127)) / 6f);
-    let _e132 = t2_;
-    let _e134 = (*t);
-    (*d)[2i] = ((((-9f * _e132) + (6f * _e134)) + 3f) / 6f);
-    let _e140 = t2_;
-    (*d)[3i] = (_e140 / 2f);
+    let _e92 = s;
+    let _e94 = s;
+    (*b)[0i] = (((_e91 * _e92) * _e94) / 6f);
+    let _e98 = t3_;
+    let _e100 = t2_;
+    (*b)[1i] = ((((3f * _e98) - (6f * _e100)) + 4f) / 6f);
+    let _e106 = t3_;
+    let _e108 = t2_;
+    let _e111 = (*t);
+    (*b)[2i] = (((((-3f * _e106) + (3f * _e108)) + (3f * _e111)) + 1f) / 6f);
+    let _e117 = t3_;
+    (*b)[3i] = (_e117 / 6f);
+    let _e120 = s;
+    let _e122 = s;
+    (*d)[0i] = ((-(_e120) * _e122) / 2f);
+    let _e126 = t2_;
+    let _e128 = (*t);
+    (*d)[1i] = (((9f * _e126) - (12f * _e128)) / 6f);
+    let _e133 = t2_;
+    let _e135 = (*t);
+    (*d)[2i] = ((((-9f * _e133) + (6f * _e135)) + 3f) / 6f);
+    let _e141 = t2_;
+    (*d)[3i] = (_e141 / 2f);
     return;
 }
 
@@ -252,7 +298,7 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var e23_: vec4<f32>;
     var crease: vec4<f32>;
     var v2_: vec4<f32>;
-    var local: f32;
+    var local_1: f32;
     var bt: array<f32, 4>;
     var dt: array<f32, 4>;
     var param_3: f32;
@@ -263,74 +309,74 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var k_1: i32;
 
     M_1 = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
-    let _e100 = (*sharpness);
-    s_1 = _e100;
+    let _e101 = (*sharpness);
+    s_1 = _e101;
     scale = 1f;
     i = 0i;
     loop {
-        let _e101 = i;
-        let _e103 = s_1;
-        if ((_e101 < 12i) && (_e103 > 0f)) {
-            let _e106 = (*t_1);
-            left = (_e106 < 0.5f);
-            let _e108 = s_1;
-            w = min(_e108, 1f);
-            let _e111 = M_1[0i];
-            let _e113 = M_1[1i];
-            e01_ = ((_e111 + _e113) * 0.5f);
-            let _e117 = M_1[1i];
-            let _e119 = M_1[2i];
-            e12_ = ((_e117 + _e119) * 0.5f);
-            let _e123 = M_1[2i];
-            let _e125 = M_1[3i];
-            e23_ = ((_e123 + _e125) * 0.5f);
-            let _e128 = w;
-            let _e130 = M_1[1i];
-            let _e132 = w;
-            let _e135 = M_1[0i];
-            let _e137 = M_1[1i];
-            let _e141 = M_1[2i];
-            crease = ((_e130 * _e128) + ((((_e135 + (_e137 * 6f)) + _e141) * (1f - _e132)) / vec4(8f)));
-            let _e148 = M_1[1i];
-            let _e150 = M_1[2i];
-            let _e154 = M_1[3i];
-            v2_ = (((_e148 + (_e150 * 6f)) + _e154) / vec4(8f));
-            let _e158 = left;
-            if _e158 {
-                let _e159 = e01_;
-                M_1[0i] = _e159;
-                let _e161 = crease;
-                M_1[1i] = _e161;
-                let _e163 = e12_;
-                M_1[2i] = _e163;
-                let _e165 = v2_;
-                M_1[3i] = _e165;
+        let _e102 = i;
+        let _e104 = s_1;
+        if ((_e102 < 12i) && (_e104 > 0f)) {
+            let _e107 = (*t_1);
+            left = (_e107 < 0.5f);
+            let _e109 = s_1;
+            w = min(_e109, 1f);
+            let _e112 = M_1[0i];
+            let _e114 = M_1[1i];
+            e01_ = ((_e112 + _e114) * 0.5f);
+            let _e118 = M_1[1i];
+            let _e120 = M_1[2i];
+            e12_ = ((_e118 + _e120) * 0.5f);
+            let _e124 = M_1[2i];
+            let _e126 = M_1[3i];
+            e23_ = ((_e124 + _e126) * 0.5f);
+            let _e129 = w;
+            let _e131 = M_1[1i];
+            let _e133 = w;
+            let _e136 = M_1[0i];
+            let _e138 = M_1[1i];
+            let _e142 = M_1[2i];
+            crease = ((_e131 * _e129) + ((((_e136 + (_e138 * 6f)) + _e142) * (1f - _e133)) / vec4(8f)));
+            let _e149 = M_1[1i];
+            let _e151 = M_1[2i];
+            let _e155 = M_1[3i];
+            v2_ = (((_e149 + (_e151 * 6f)) + _e155) / vec4(8f));
+            let _e159 = left;
+            if _e159 {
+                let _e160 = e01_;
+                M_1[0i] = _e160;
+                let _e162 = crease;
+                M_1[1i] = _e162;
+                let _e164 = e12_;
+                M_1[2i] = _e164;
+                let _e166 = v2_;
+                M_1[3i] = _e166;
             } else {
-                let _e167 = crease;
-                M_1[0i] = _e167;
-                let _e169 = e12_;
-                M_1[1i] = _e169;
-                let _e171 = v2_;
-                M_1[2i] = _e171;
-                let _e173 = e23_;
-                M_1[3i] = _e173;
+                let _e168 = crease;
+                M_1[0i] = _e168;
+                let _e170 = e12_;
+                M_1[1i] = _e170;
+                let _e172 = v2_;
+                M_1[2i] = _e172;
+                let _e174 = e23_;
+                M_1[3i] = _e174;
             }
-            let _e175 = s_1;
-            s_1 = (_e175 - 1f);
-            let _e177 = scale;
-            scale = (_e177 * 2f);
-            let _e179 = left;
-            if _e179 {
-                let _e180 = (*t_1);
-                local = (2f * _e180);
+            let _e176 = s_1;
+            s_1 = (_e176 - 1f);
+            let _e178 = scale;
+            scale = (_e178 * 2f);
+            let _e180 = left;
+            if _e180 {
+                let _e181 = (*t_1);
+                local_1 = (2f * _e181);
             } else {
-                let _e182 = (*t_1);
-                local = ((2f * _e182) - 1f);
+                let _e183 = (*t_1);
+                local_1 = ((2f * _e183) - 1f);
             }
-            let _e185 = local;
-            (*t_1) = _e185;
-            let _e186 = left;
-            if !(_e186) {
+            let _e186 = local_1;
+            (*t_1) = _e186;
+            let _e187 = left;
+            if !(_e187) {
                 break;
             }
             continue;
@@ -338,62 +384,62 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             break;
         }
         continuing {
-            let _e188 = i;
-            i = (_e188 + 1i);
+            let _e189 = i;
+            i = (_e189 + 1i);
         }
     }
-    let _e190 = (*t_1);
-    param_3 = _e190;
+    let _e191 = (*t_1);
+    param_3 = _e191;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_3), (&param_4), (&param_5));
-    let _e191 = param_4;
-    bt = _e191;
-    let _e192 = param_5;
-    dt = _e192;
-    let _e194 = bt[0i];
-    let _e196 = M_1[0i];
-    let _e199 = bt[1i];
-    let _e201 = M_1[1i];
-    let _e205 = bt[2i];
-    let _e207 = M_1[2i];
-    let _e211 = bt[3i];
-    let _e213 = M_1[3i];
-    B = ((((_e196 * _e194) + (_e201 * _e199)) + (_e207 * _e205)) + (_e213 * _e211));
-    let _e216 = scale;
-    let _e218 = dt[0i];
-    let _e220 = M_1[0i];
-    let _e223 = dt[1i];
-    let _e225 = M_1[1i];
-    let _e229 = dt[2i];
-    let _e231 = M_1[2i];
-    let _e235 = dt[3i];
-    let _e237 = M_1[3i];
-    D = (((((_e220 * _e218) + (_e225 * _e223)) + (_e231 * _e229)) + (_e237 * _e235)) * _e216);
+    let _e192 = param_4;
+    bt = _e192;
+    let _e193 = param_5;
+    dt = _e193;
+    let _e195 = bt[0i];
+    let _e197 = M_1[0i];
+    let _e200 = bt[1i];
+    let _e202 = M_1[1i];
+    let _e206 = bt[2i];
+    let _e208 = M_1[2i];
+    let _e212 = bt[3i];
+    let _e214 = M_1[3i];
+    B = ((((_e197 * _e195) + (_e202 * _e200)) + (_e208 * _e206)) + (_e214 * _e212));
+    let _e217 = scale;
+    let _e219 = dt[0i];
+    let _e221 = M_1[0i];
+    let _e224 = dt[1i];
+    let _e226 = M_1[1i];
+    let _e230 = dt[2i];
+    let _e232 = M_1[2i];
+    let _e236 = dt[3i];
+    let _e238 = M_1[3i];
+    D = (((((_e221 * _e219) + (_e226 * _e224)) + (_e232 * _e230)) + (_e238 * _e236)) * _e217);
     k_1 = 0i;
     loop {
-        let _e241 = k_1;
-        if (_e241 < 4i) {
-            let _e243 = k_1;
+        let _e242 = k_1;
+        if (_e242 < 4i) {
             let _e244 = k_1;
-            let _e246 = B[_e244];
-            (*b_1)[_e243] = _e246;
-            let _e248 = k_1;
+            let _e245 = k_1;
+            let _e247 = B[_e245];
+            (*b_1)[_e244] = _e247;
             let _e249 = k_1;
-            let _e251 = D[_e249];
-            (*d_1)[_e248] = _e251;
+            let _e250 = k_1;
+            let _e252 = D[_e250];
+            (*d_1)[_e249] = _e252;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e253 = k_1;
-            k_1 = (_e253 + 1i);
+            let _e254 = k_1;
+            k_1 = (_e254 + 1i);
         }
     }
     return;
 }
 
 fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(x: ptr<function, f32>, atEnd: ptr<function, bool>, sharpness_1: ptr<function, f32>, b_2: ptr<function, array<f32, 4>>, d_2: ptr<function, array<f32, 4>>) {
-    var local_1: f32;
+    var local_2: f32;
     var cb: array<f32, 4>;
     var cd: array<f32, 4>;
     var param_6: f32;
@@ -401,87 +447,87 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
     var param_8: array<f32, 4>;
     var param_9: array<f32, 4>;
     var k_2: i32;
-    var local_2: f32;
     var local_3: f32;
+    var local_4: f32;
 
-    let _e91 = (*atEnd);
-    if _e91 {
-        let _e92 = (*x);
-        local_1 = (1f - _e92);
+    let _e92 = (*atEnd);
+    if _e92 {
+        let _e93 = (*x);
+        local_2 = (1f - _e93);
     } else {
-        let _e94 = (*x);
-        local_1 = _e94;
+        let _e95 = (*x);
+        local_2 = _e95;
     }
-    let _e95 = local_1;
-    param_6 = _e95;
-    let _e96 = (*sharpness_1);
-    param_7 = _e96;
+    let _e96 = local_2;
+    param_6 = _e96;
+    let _e97 = (*sharpness_1);
+    param_7 = _e97;
     creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_6), (&param_7), (&param_8), (&param_9));
-    let _e97 = param_8;
-    cb = _e97;
-    let _e98 = param_9;
-    cd = _e98;
+    let _e98 = param_8;
+    cb = _e98;
+    let _e99 = param_9;
+    cd = _e99;
     k_2 = 0i;
     loop {
-        let _e99 = k_2;
-        if (_e99 < 4i) {
-            let _e101 = k_2;
-            let _e102 = (*atEnd);
-            if _e102 {
-                let _e103 = k_2;
-                let _e106 = cb[(3i - _e103)];
-                local_2 = _e106;
+        let _e100 = k_2;
+        if (_e100 < 4i) {
+            let _e102 = k_2;
+            let _e103 = (*atEnd);
+            if _e103 {
+                let _e104 = k_2;
+                let _e107 = cb[(3i - _e104)];
+                local_3 = _e107;
             } else {
-                let _e107 = k_2;
-                let _e109 = cb[_e107];
-                local_2 = _e109;
+                let _e108 = k_2;
+                let _e110 = cb[_e108];
+                local_3 = _e110;
             }
-            let _e110 = local_2;
-            (*b_2)[_e101] = _e110;
-            let _e112 = k_2;
-            let _e113 = (*atEnd);
-            if _e113 {
-                let _e114 = k_2;
-                let _e117 = cd[(3i - _e114)];
-                local_3 = -(_e117);
+            let _e111 = local_3;
+            (*b_2)[_e102] = _e111;
+            let _e113 = k_2;
+            let _e114 = (*atEnd);
+            if _e114 {
+                let _e115 = k_2;
+                let _e118 = cd[(3i - _e115)];
+                local_4 = -(_e118);
             } else {
-                let _e119 = k_2;
-                let _e121 = cd[_e119];
-                local_3 = _e121;
+                let _e120 = k_2;
+                let _e122 = cd[_e120];
+                local_4 = _e122;
             }
-            let _e122 = local_3;
-            (*d_2)[_e112] = _e122;
+            let _e123 = local_4;
+            (*d_2)[_e113] = _e123;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e124 = k_2;
-            k_2 = (_e124 + 1i);
+            let _e125 = k_2;
+            k_2 = (_e125 + 1i);
         }
     }
     return;
 }
 
 fn foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b(b_3: ptr<function, array<f32, 4>>, atStart: ptr<function, bool>, atEnd_1: ptr<function, bool>) {
-    let _e79 = (*atStart);
-    if _e79 {
-        let _e81 = (*b_3)[0i];
-        let _e84 = (*b_3)[1i];
-        (*b_3)[1i] = (_e84 + (2f * _e81));
-        let _e88 = (*b_3)[0i];
-        let _e90 = (*b_3)[2i];
-        (*b_3)[2i] = (_e90 - _e88);
+    let _e80 = (*atStart);
+    if _e80 {
+        let _e82 = (*b_3)[0i];
+        let _e85 = (*b_3)[1i];
+        (*b_3)[1i] = (_e85 + (2f * _e82));
+        let _e89 = (*b_3)[0i];
+        let _e91 = (*b_3)[2i];
+        (*b_3)[2i] = (_e91 - _e89);
         (*b_3)[0i] = 0f;
     }
-    let _e94 = (*atEnd_1);
-    if _e94 {
-        let _e96 = (*b_3)[3i];
-        let _e99 = (*b_3)[2i];
-        (*b_3)[2i] = (_e99 + (2f * _e96));
-        let _e103 = (*b_3)[3i];
-        let _e105 = (*b_3)[1i];
-        (*b_3)[1i] = (_e105 - _e103);
+    let _e95 = (*atEnd_1);
+    if _e95 {
+        let _e97 = (*b_3)[3i];
+        let _e100 = (*b_3)[2i];
+        (*b_3)[2i] = (_e100 + (2f * _e97));
+        let _e104 = (*b_3)[3i];
+        let _e106 = (*b_3)[1i];
+        (*b_3)[1i] = (_e106 - _e104);
         (*b_3)[3i] = 0f;
     }
     return;
@@ -519,87 +565,87 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_36: array<f32, 4>;
     var param_37: array<f32, 4>;
 
-    let _e114 = (*pt).levelBoundary;
-    mask = ((_e114 >> bitcast<u32>(8i)) & 15u);
-    let _e118 = (*s_2);
-    param_10 = _e118;
+    let _e115 = (*pt).levelBoundary;
+    mask = ((_e115 >> bitcast<u32>(8i)) & 15u);
+    let _e119 = (*s_2);
+    param_10 = _e119;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_10), (&param_11), (&param_12));
-    let _e119 = param_11;
-    (*bu) = _e119;
-    let _e120 = param_12;
-    (*du) = _e120;
-    let _e121 = (*t_2);
-    param_13 = _e121;
+    let _e120 = param_11;
+    (*bu) = _e120;
+    let _e121 = param_12;
+    (*du) = _e121;
+    let _e122 = (*t_2);
+    param_13 = _e122;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_13), (&param_14), (&param_15));
-    let _e122 = param_14;
-    (*bv) = _e122;
-    let _e123 = param_15;
-    (*dv) = _e123;
-    let _e124 = mask;
-    let _e127 = mask;
-    let _e130 = (*bu);
-    param_16 = _e130;
-    param_17 = ((_e124 & 8u) != 0u);
-    param_18 = ((_e127 & 2u) != 0u);
+    let _e123 = param_14;
+    (*bv) = _e123;
+    let _e124 = param_15;
+    (*dv) = _e124;
+    let _e125 = mask;
+    let _e128 = mask;
+    let _e131 = (*bu);
+    param_16 = _e131;
+    param_17 = ((_e125 & 8u) != 0u);
+    param_18 = ((_e128 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
-    let _e131 = param_16;
-    (*bu) = _e131;
-    let _e132 = mask;
-    let _e135 = mask;
-    let _e138 = (*du);
-    param_19 = _e138;
-    param_20 = ((_e132 & 8u) != 0u);
-    param_21 = ((_e135 & 2u) != 0u);
+    let _e132 = param_16;
+    (*bu) = _e132;
+    let _e133 = mask;
+    let _e136 = mask;
+    let _e139 = (*du);
+    param_19 = _e139;
+    param_20 = ((_e133 & 8u) != 0u);
+    param_21 = ((_e136 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
-    let _e139 = param_19;
-    (*du) = _e139;
-    let _e140 = mask;
-    let _e143 = mask;
-    let _e146 = (*bv);
-    param_22 = _e146;
-    param_23 = ((_e140 & 1u) != 0u);
-    param_24 = ((_e143 & 4u) != 0u);
+    let _e140 = param_19;
+    (*du) = _e140;
+    let _e141 = mask;
+    let _e144 = mask;
+    let _e147 = (*bv);
+    param_22 = _e147;
+    param_23 = ((_e141 & 1u) != 0u);
+    param_24 = ((_e144 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_22), (&param_23), (&param_24));
-    let _e147 = param_22;
-    (*bv) = _e147;
-    let _e148 = mask;
-    let _e151 = mask;
-    let _e154 = (*dv);
-    param_25 = _e154;
-    param_26 = ((_e148 & 1u) != 0u);
-    param_27 = ((_e151 & 4u) != 0u);
+    let _e148 = param_22;
+    (*bv) = _e148;
+    let _e149 = mask;
+    let _e152 = mask;
+    let _e155 = (*dv);
+    param_25 = _e155;
+    param_26 = ((_e149 & 1u) != 0u);
+    param_27 = ((_e152 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_25), (&param_26), (&param_27));
-    let _e155 = param_25;
-    (*dv) = _e155;
-    let _e157 = (*pt).levelBoundary;
-    crease_1 = ((_e157 >> bitcast<u32>(16i)) & 15u);
-    let _e161 = crease_1;
-    if ((_e161 & 5u) != 0u) {
-        let _e164 = crease_1;
-        let _e167 = (*t_2);
-        param_28 = _e167;
-        param_29 = ((_e164 & 4u) != 0u);
-        let _e169 = (*pt).sharpness;
-        param_30 = _e169;
+    let _e156 = param_25;
+    (*dv) = _e156;
+    let _e158 = (*pt).levelBoundary;
+    crease_1 = ((_e158 >> bitcast<u32>(16i)) & 15u);
+    let _e162 = crease_1;
+    if ((_e162 & 5u) != 0u) {
+        let _e165 = crease_1;
+        let _e168 = (*t_2);
+        param_28 = _e168;
+        param_29 = ((_e165 & 4u) != 0u);
+        let _e170 = (*pt).sharpness;
+        param_30 = _e170;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
-        let _e170 = param_31;
-        (*bv) = _e170;
-        let _e171 = param_32;
-        (*dv) = _e171;
+        let _e171 = param_31;
+        (*bv) = _e171;
+        let _e172 = param_32;
+        (*dv) = _e172;
     }
-    let _e172 = crease_1;
-    if ((_e172 & 10u) != 0u) {
-        let _e175 = crease_1;
-        let _e178 = (*s_2);
-        param_33 = _e178;
-        param_34 = ((_e175 & 2u) != 0u);
-        let _e180 = (*pt).sharpness;
-        param_35 = _e180;
+    let _e173 = crease_1;
+    if ((_e173 & 10u) != 0u) {
+        let _e176 = crease_1;
+        let _e179 = (*s_2);
+        param_33 = _e179;
+        param_34 = ((_e176 & 2u) != 0u);
+        let _e181 = (*pt).sharpness;
+        param_35 = _e181;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_33), (&param_34), (&param_35), (&param_36), (&param_37));
-        let _e181 = param_36;
-        (*bu) = _e181;
-        let _e182 = param_37;
-        (*du) = _e182;
+        let _e182 = param_36;
+        (*bu) = _e182;
+        let _e183 = param_37;
+        (*du) = _e183;
     }
     return;
 }
@@ -627,97 +673,97 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var c_1: vec3<f32>;
     var r: vec3<f32>;
 
-    let _e102 = (*pt_1);
-    param_38 = _e102;
-    let _e103 = (*s_3);
-    param_39 = _e103;
-    let _e104 = (*t_3);
-    param_40 = _e104;
+    let _e103 = (*pt_1);
+    param_38 = _e103;
+    let _e104 = (*s_3);
+    param_39 = _e104;
+    let _e105 = (*t_3);
+    param_40 = _e105;
     patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_38), (&param_39), (&param_40), (&param_41), (&param_42), (&param_43), (&param_44));
-    let _e105 = param_41;
-    bu_1 = _e105;
-    let _e106 = param_42;
-    du_1 = _e106;
-    let _e107 = param_43;
-    bv_1 = _e107;
-    let _e108 = param_44;
-    dv_1 = _e108;
+    let _e106 = param_41;
+    bu_1 = _e106;
+    let _e107 = param_42;
+    du_1 = _e107;
+    let _e108 = param_43;
+    bv_1 = _e108;
+    let _e109 = param_44;
+    dv_1 = _e109;
     (*P_2) = vec3<f32>(0f, 0f, 0f);
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
-    let _e111 = (*pt_1).cv[5i];
-    let _e114 = vertices.p[_e111];
-    origin = _e114.xyz;
+    let _e112 = (*pt_1).cv[5i];
+    let _e115 = vertices.p[_e112];
+    origin = _e115.xyz;
     j = 0i;
     loop {
-        let _e116 = j;
-        if (_e116 < 4i) {
+        let _e117 = j;
+        if (_e117 < 4i) {
             row = vec3<f32>(0f, 0f, 0f);
             rowRel = vec3<f32>(0f, 0f, 0f);
             rowDu = vec3<f32>(0f, 0f, 0f);
             i_1 = 0i;
             loop {
-                let _e118 = i_1;
-                if (_e118 < 4i) {
-                    let _e120 = j;
-                    let _e122 = i_1;
-                    let _e126 = (*pt_1).cv[((4i * _e120) + _e122)];
-                    let _e129 = vertices.p[_e126];
-                    c_1 = _e129.xyz;
-                    let _e131 = c_1;
-                    let _e132 = origin;
-                    r = (_e131 - _e132);
-                    let _e134 = i_1;
-                    let _e136 = bu_1[_e134];
-                    let _e137 = c_1;
-                    let _e139 = row;
-                    row = (_e139 + (_e137 * _e136));
-                    let _e141 = i_1;
-                    let _e143 = bu_1[_e141];
-                    let _e144 = r;
-                    let _e146 = rowRel;
-                    rowRel = (_e146 + (_e144 * _e143));
-                    let _e148 = i_1;
-                    let _e150 = du_1[_e148];
-                    let _e151 = r;
-                    let _e153 = rowDu;
-                    rowDu = (_e153 + (_e151 * _e150));
+                let _e119 = i_1;
+                if (_e119 < 4i) {
+                    let _e121 = j;
+                    let _e123 = i_1;
+                    let _e127 = (*pt_1).cv[((4i * _e121) + _e123)];
+                    let _e130 = vertices.p[_e127];
+                    c_1 = _e130.xyz;
+                    let _e132 = c_1;
+                    let _e133 = origin;
+                    r = (_e132 - _e133);
+                    let _e135 = i_1;
+                    let _e137 = bu_1[_e135];
+                    let _e138 = c_1;
+                    let _e140 = row;
+                    row = (_e140 + (_e138 * _e137));
+                    let _e142 = i_1;
+                    let _e144 = bu_1[_e142];
+                    let _e145 = r;
+                    let _e147 = rowRel;
+                    rowRel = (_e147 + (_e145 * _e144));
+                    let _e149 = i_1;
+                    let _e151 = du_1[_e149];
+                    let _e152 = r;
+                    let _e154 = rowDu;
+                    rowDu = (_e154 + (_e152 * _e151));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e155 = i_1;
-                    i_1 = (_e155 + 1i);
+                    let _e156 = i_1;
+                    i_1 = (_e156 + 1i);
                 }
             }
-            let _e157 = j;
-            let _e159 = bv_1[_e157];
-            let _e160 = row;
-            let _e162 = (*P_2);
-            (*P_2) = (_e162 + (_e160 * _e159));
-            let _e164 = j;
-            let _e166 = bv_1[_e164];
-            let _e167 = rowDu;
-            let _e169 = Du;
-            Du = (_e169 + (_e167 * _e166));
-            let _e171 = j;
-            let _e173 = dv_1[_e171];
-            let _e174 = rowRel;
-            let _e176 = Dv;
-            Dv = (_e176 + (_e174 * _e173));
+            let _e158 = j;
+            let _e160 = bv_1[_e158];
+            let _e161 = row;
+            let _e163 = (*P_2);
+            (*P_2) = (_e163 + (_e161 * _e160));
+            let _e165 = j;
+            let _e167 = bv_1[_e165];
+            let _e168 = rowDu;
+            let _e170 = Du;
+            Du = (_e170 + (_e168 * _e167));
+            let _e172 = j;
+            let _e174 = dv_1[_e172];
+            let _e175 = rowRel;
+            let _e177 = Dv;
+            Dv = (_e177 + (_e175 * _e174));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e178 = j;
-            j = (_e178 + 1i);
+            let _e179 = j;
+            j = (_e179 + 1i);
         }
     }
-    let _e180 = Du;
-    let _e181 = Dv;
-    (*n_1) = cross(_e180, _e181);
+    let _e181 = Du;
+    let _e182 = Dv;
+    (*n_1) = cross(_e181, _e182);
     return;
 }
 
@@ -753,125 +799,125 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var rowDu_1: vec3<f32>;
     var i_3: i32;
 
-    let _e113 = (*h);
-    let _e116 = patches.p[_e113];
-    hd.cv[0i] = _e116.cv[0];
-    hd.cv[1i] = _e116.cv[1];
-    hd.cv[2i] = _e116.cv[2];
-    hd.cv[3i] = _e116.cv[3];
-    hd.cv[4i] = _e116.cv[4];
-    hd.cv[5i] = _e116.cv[5];
-    hd.cv[6i] = _e116.cv[6];
-    hd.cv[7i] = _e116.cv[7];
-    hd.cv[8i] = _e116.cv[8];
-    hd.cv[9i] = _e116.cv[9];
-    hd.cv[10i] = _e116.cv[10];
-    hd.cv[11i] = _e116.cv[11];
-    hd.cv[12i] = _e116.cv[12];
-    hd.cv[13i] = _e116.cv[13];
-    hd.cv[14i] = _e116.cv[14];
-    hd.cv[15i] = _e116.cv[15];
-    hd.ptex = _e116.ptex;
-    hd.u0_ = _e116.u0_;
-    hd.v0_ = _e116.v0_;
-    hd.size = _e116.size;
-    hd.levelBoundary = _e116.levelBoundary;
-    hd.sharpness = _e116.sharpness;
-    hd.pad1_ = _e116.pad1_;
-    hd.pad2_ = _e116.pad2_;
-    let _e169 = hd.cv[0i];
-    M_2 = ((2u * _e169) + 8u);
-    let _e174 = hd.cv[2i];
-    let _e175 = (*k_3);
-    let _e178 = (*q);
-    let _e181 = M_2;
-    block = (_e174 + ((((_e175 - 1u) * 3u) + (_e178 - 1u)) * _e181));
+    let _e114 = (*h);
+    let _e117 = patches.p[_e114];
+    hd.cv[0i] = _e117.cv[0];
+    hd.cv[1i] = _e117.cv[1];
+    hd.cv[2i] = _e117.cv[2];
+    hd.cv[3i] = _e117.cv[3];
+    hd.cv[4i] = _e117.cv[4];
+    hd.cv[5i] = _e117.cv[5];
+    hd.cv[6i] = _e117.cv[6];
+    hd.cv[7i] = _e117.cv[7];
+    hd.cv[8i] = _e117.cv[8];
+    hd.cv[9i] = _e117.cv[9];
+    hd.cv[10i] = _e117.cv[10];
+    hd.cv[11i] = _e117.cv[11];
+    hd.cv[12i] = _e117.cv[12];
+    hd.cv[13i] = _e117.cv[13];
+    hd.cv[14i] = _e117.cv[14];
+    hd.cv[15i] = _e117.cv[15];
+    hd.ptex = _e117.ptex;
+    hd.u0_ = _e117.u0_;
+    hd.v0_ = _e117.v0_;
+    hd.size = _e117.size;
+    hd.levelBoundary = _e117.levelBoundary;
+    hd.sharpness = _e117.sharpness;
+    hd.pad1_ = _e117.pad1_;
+    hd.pad2_ = _e117.pad2_;
+    let _e170 = hd.cv[0i];
+    M_2 = ((2u * _e170) + 8u);
+    let _e175 = hd.cv[2i];
+    let _e176 = (*k_3);
+    let _e179 = (*q);
+    let _e182 = M_2;
+    block = (_e175 + ((((_e176 - 1u) * 3u) + (_e179 - 1u)) * _e182));
     j_1 = 0i;
     loop {
-        let _e184 = j_1;
-        if (_e184 < 16i) {
-            let _e186 = j_1;
-            c_2[_e186] = vec3<f32>(0f, 0f, 0f);
-            let _e188 = j_1;
-            r_1[_e188] = vec3<f32>(0f, 0f, 0f);
+        let _e185 = j_1;
+        if (_e185 < 16i) {
+            let _e187 = j_1;
+            c_2[_e187] = vec3<f32>(0f, 0f, 0f);
+            let _e189 = j_1;
+            r_1[_e189] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e190 = j_1;
-            j_1 = (_e190 + 1i);
+            let _e191 = j_1;
+            j_1 = (_e191 + 1i);
         }
     }
-    let _e192 = (*h);
-    let _e198 = patches.p[(_e192 + 1u)].cv[0i];
-    let _e201 = vertices.p[_e198];
-    origin_1 = _e201.xyz;
+    let _e193 = (*h);
+    let _e199 = patches.p[(_e193 + 1u)].cv[0i];
+    let _e202 = vertices.p[_e199];
+    origin_1 = _e202.xyz;
     i_2 = 0u;
     loop {
-        let _e203 = i_2;
-        let _e204 = M_2;
-        if (_e203 < _e204) {
-            let _e206 = (*h);
-            let _e208 = i_2;
-            let _e211 = i_2;
-            let _e217 = patches.p[((_e206 + 1u) + (_e208 / 16u))].cv[(_e211 % 16u)];
-            let _e220 = vertices.p[_e217];
-            x_1 = _e220.xyz;
-            let _e222 = x_1;
-            let _e223 = origin_1;
-            xr = (_e222 - _e223);
-            let _e225 = block;
-            let _e226 = i_2;
-            let _e230 = patches.p[(_e225 + _e226)];
-            w_1.cv[0i] = _e230.cv[0];
-            w_1.cv[1i] = _e230.cv[1];
-            w_1.cv[2i] = _e230.cv[2];
-            w_1.cv[3i] = _e230.cv[3];
-            w_1.cv[4i] = _e230.cv[4];
-            w_1.cv[5i] = _e230.cv[5];
-            w_1.cv[6i] = _e230.cv[6];
-            w_1.cv[7i] = _e230.cv[7];
-            w_1.cv[8i] = _e230.cv[8];
-            w_1.cv[9i] = _e230.cv[9];
-            w_1.cv[10i] = _e230.cv[10];
-            w_1.cv[11i] = _e230.cv[11];
-            w_1.cv[12i] = _e230.cv[12];
-            w_1.cv[13i] = _e230.cv[13];
-            w_1.cv[14i] = _e230.cv[14];
-            w_1.cv[15i] = _e230.cv[15];
-            w_1.ptex = _e230.ptex;
-            w_1.u0_ = _e230.u0_;
-            w_1.v0_ = _e230.v0_;
-            w_1.size = _e230.size;
-            w_1.levelBoundary = _e230.levelBoundary;
-            w_1.sharpness = _e230.sharpness;
-            w_1.pad1_ = _e230.pad1_;
-            w_1.pad2_ = _e230.pad2_;
+        let _e204 = i_2;
+        let _e205 = M_2;
+        if (_e204 < _e205) {
+            let _e207 = (*h);
+            let _e209 = i_2;
+            let _e212 = i_2;
+            let _e218 = patches.p[((_e207 + 1u) + (_e209 / 16u))].cv[(_e212 % 16u)];
+            let _e221 = vertices.p[_e218];
+            x_1 = _e221.xyz;
+            let _e223 = x_1;
+            let _e224 = origin_1;
+            xr = (_e223 - _e224);
+            let _e226 = block;
+            let _e227 = i_2;
+            let _e231 = patches.p[(_e226 + _e227)];
+            w_1.cv[0i] = _e231.cv[0];
+            w_1.cv[1i] = _e231.cv[1];
+            w_1.cv[2i] = _e231.cv[2];
+            w_1.cv[3i] = _e231.cv[3];
+            w_1.cv[4i] = _e231.cv[4];
+            w_1.cv[5i] = _e231.cv[5];
+            w_1.cv[6i] = _e231.cv[6];
+            w_1.cv[7i] = _e231.cv[7];
+            w_1.cv[8i] = _e231.cv[8];
+            w_1.cv[9i] = _e231.cv[9];
+            w_1.cv[10i] = _e231.cv[10];
+            w_1.cv[11i] = _e231.cv[11];
+            w_1.cv[12i] = _e231.cv[12];
+            w_1.cv[13i] = _e231.cv[13];
+            w_1.cv[14i] = _e231.cv[14];
+            w_1.cv[15i] = _e231.cv[15];
+            w_1.ptex = _e231.ptex;
+            w_1.u0_ = _e231.u0_;
+            w_1.v0_ = _e231.v0_;
+            w_1.size = _e231.size;
+            w_1.levelBoundary = _e231.levelBoundary;
+            w_1.sharpness = _e231.sharpness;
+            w_1.pad1_ = _e231.pad1_;
+            w_1.pad2_ = _e231.pad2_;
             j_2 = 0i;
             loop {
-                let _e281 = j_2;
-                if (_e281 < 16i) {
-                    let _e283 = j_2;
-                    let _e286 = w_1.cv[_e283];
-                    wj = bitcast<f32>(_e286);
-                    let _e288 = j_2;
-                    let _e289 = wj;
-                    let _e290 = x_1;
-                    let _e293 = c_2[_e288];
-                    c_2[_e288] = (_e293 + (_e290 * _e289));
-                    let _e296 = j_2;
-                    let _e297 = wj;
-                    let _e298 = xr;
-                    let _e301 = r_1[_e296];
-                    r_1[_e296] = (_e301 + (_e298 * _e297));
+                let _e282 = j_2;
+                if (_e282 < 16i) {
+                    let _e284 = j_2;
+                    let _e287 = w_1.cv[_e284];
+                    wj = bitcast<f32>(_e287);
+                    let _e289 = j_2;
+                    let _e290 = wj;
+                    let _e291 = x_1;
+                    let _e294 = c_2[_e289];
+                    c_2[_e289] = (_e294 + (_e291 * _e290));
+                    let _e297 = j_2;
+                    let _e298 = wj;
+                    let _e299 = xr;
+                    let _e302 = r_1[_e297];
+                    r_1[_e297] = (_e302 + (_e299 * _e298));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e304 = j_2;
-                    j_2 = (_e304 + 1i);
+                    let _e305 = j_2;
+                    j_2 = (_e305 + 1i);
                 }
             }
             continue;
@@ -879,95 +925,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e306 = i_2;
-            i_2 = (_e306 + bitcast<u32>(1i));
+            let _e307 = i_2;
+            i_2 = (_e307 + bitcast<u32>(1i));
         }
     }
-    let _e309 = (*s_4);
-    param_45 = _e309;
+    let _e310 = (*s_4);
+    param_45 = _e310;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e310 = param_46;
-    bu_2 = _e310;
-    let _e311 = param_47;
-    du_2 = _e311;
-    let _e312 = (*t_4);
-    param_48 = _e312;
+    let _e311 = param_46;
+    bu_2 = _e311;
+    let _e312 = param_47;
+    du_2 = _e312;
+    let _e313 = (*t_4);
+    param_48 = _e313;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_48), (&param_49), (&param_50));
-    let _e313 = param_49;
-    bv_2 = _e313;
-    let _e314 = param_50;
-    dv_2 = _e314;
+    let _e314 = param_49;
+    bv_2 = _e314;
+    let _e315 = param_50;
+    dv_2 = _e315;
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e315 = j_3;
-        if (_e315 < 4i) {
+        let _e316 = j_3;
+        if (_e316 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e317 = i_3;
-                if (_e317 < 4i) {
-                    let _e319 = i_3;
-                    let _e321 = bu_2[_e319];
-                    let _e322 = j_3;
-                    let _e324 = i_3;
-                    let _e327 = c_2[((4i * _e322) + _e324)];
-                    let _e329 = row_1;
-                    row_1 = (_e329 + (_e327 * _e321));
-                    let _e331 = i_3;
-                    let _e333 = bu_2[_e331];
-                    let _e334 = j_3;
-                    let _e336 = i_3;
-                    let _e339 = r_1[((4i * _e334) + _e336)];
-                    let _e341 = rowRel_1;
-                    rowRel_1 = (_e341 + (_e339 * _e333));
-                    let _e343 = i_3;
-                    let _e345 = du_2[_e343];
-                    let _e346 = j_3;
-                    let _e348 = i_3;
-                    let _e351 = r_1[((4i * _e346) + _e348)];
-                    let _e353 = rowDu_1;
-                    rowDu_1 = (_e353 + (_e351 * _e345));
+                let _e318 = i_3;
+                if (_e318 < 4i) {
+                    let _e320 = i_3;
+                    let _e322 = bu_2[_e320];
+                    let _e323 = j_3;
+                    let _e325 = i_3;
+                    let _e328 = c_2[((4i * _e323) + _e325)];
+                    let _e330 = row_1;
+                    row_1 = (_e330 + (_e328 * _e322));
+                    let _e332 = i_3;
+                    let _e334 = bu_2[_e332];
+                    let _e335 = j_3;
+                    let _e337 = i_3;
+                    let _e340 = r_1[((4i * _e335) + _e337)];
+                    let _e342 = rowRel_1;
+                    rowRel_1 = (_e342 + (_e340 * _e334));
+                    let _e344 = i_3;
+                    let _e346 = du_2[_e344];
+                    let _e347 = j_3;
+                    let _e349 = i_3;
+                    let _e352 = r_1[((4i * _e347) + _e349)];
+                    let _e354 = rowDu_1;
+                    rowDu_1 = (_e354 + (_e352 * _e346));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e355 = i_3;
-                    i_3 = (_e355 + 1i);
+                    let _e356 = i_3;
+                    i_3 = (_e356 + 1i);
                 }
             }
-            let _e357 = j_3;
-            let _e359 = bv_2[_e357];
-            let _e360 = row_1;
-            let _e362 = (*P_3);
-            (*P_3) = (_e362 + (_e360 * _e359));
-            let _e364 = j_3;
-            let _e366 = bv_2[_e364];
-            let _e367 = rowDu_1;
-            let _e369 = Du_1;
-            Du_1 = (_e369 + (_e367 * _e366));
-            let _e371 = j_3;
-            let _e373 = dv_2[_e371];
-            let _e374 = rowRel_1;
-            let _e376 = Dv_1;
-            Dv_1 = (_e376 + (_e374 * _e373));
+            let _e358 = j_3;
+            let _e360 = bv_2[_e358];
+            let _e361 = row_1;
+            let _e363 = (*P_3);
+            (*P_3) = (_e363 + (_e361 * _e360));
+            let _e365 = j_3;
+            let _e367 = bv_2[_e365];
+            let _e368 = rowDu_1;
+            let _e370 = Du_1;
+            Du_1 = (_e370 + (_e368 * _e367));
+            let _e372 = j_3;
+            let _e374 = dv_2[_e372];
+            let _e375 = rowRel_1;
+            let _e377 = Dv_1;
+            Dv_1 = (_e377 + (_e375 * _e374));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e378 = j_3;
-            j_3 = (_e378 + 1i);
+            let _e379 = j_3;
+            j_3 = (_e379 + 1i);
         }
     }
-    let _e380 = Du_1;
-    let _e381 = Dv_1;
-    (*n_2) = cross(_e380, _e381);
+    let _e381 = Du_1;
+    let _e382 = Dv_1;
+    (*n_2) = cross(_e381, _e382);
     return;
 }
 
@@ -978,20 +1024,20 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     var corner: u32;
     var K: u32;
     var a: u32;
-    var local_4: u32;
     var local_5: u32;
     var local_6: u32;
-    var c_3: u32;
     var local_7: u32;
+    var c_3: u32;
     var local_8: u32;
     var local_9: u32;
+    var local_10: u32;
     var evP: vec3<f32>;
     var evN: vec3<f32>;
     var k_4: u32;
     var qu: u32;
     var qv: u32;
     var q_1: u32;
-    var local_10: u32;
+    var local_11: u32;
     var param_51: u32;
     var param_52: u32;
     var param_53: u32;
@@ -1030,227 +1076,227 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     var y: f32;
     var w_2: array<f32, 4>;
 
-    let _e137 = (*h_1);
-    let _e140 = patches.p[_e137];
-    hd_1.cv[0i] = _e140.cv[0];
-    hd_1.cv[1i] = _e140.cv[1];
-    hd_1.cv[2i] = _e140.cv[2];
-    hd_1.cv[3i] = _e140.cv[3];
-    hd_1.cv[4i] = _e140.cv[4];
-    hd_1.cv[5i] = _e140.cv[5];
-    hd_1.cv[6i] = _e140.cv[6];
-    hd_1.cv[7i] = _e140.cv[7];
-    hd_1.cv[8i] = _e140.cv[8];
-    hd_1.cv[9i] = _e140.cv[9];
-    hd_1.cv[10i] = _e140.cv[10];
-    hd_1.cv[11i] = _e140.cv[11];
-    hd_1.cv[12i] = _e140.cv[12];
-    hd_1.cv[13i] = _e140.cv[13];
-    hd_1.cv[14i] = _e140.cv[14];
-    hd_1.cv[15i] = _e140.cv[15];
-    hd_1.ptex = _e140.ptex;
-    hd_1.u0_ = _e140.u0_;
-    hd_1.v0_ = _e140.v0_;
-    hd_1.size = _e140.size;
-    hd_1.levelBoundary = _e140.levelBoundary;
-    hd_1.sharpness = _e140.sharpness;
-    hd_1.pad1_ = _e140.pad1_;
-    hd_1.pad2_ = _e140.pad2_;
-    let _e191 = (*st);
-    S_1 = (_e191 & 65535u);
-    let _e193 = (*st);
-    T = (_e193 >> bitcast<u32>(16i));
-    let _e198 = hd_1.cv[1i];
-    corner = _e198;
-    let _e201 = hd_1.cv[3i];
-    K = _e201;
-    let _e202 = corner;
-    if (_e202 == 0u) {
-        let _e204 = S_1;
-        local_4 = _e204;
+    let _e138 = (*h_1);
+    let _e141 = patches.p[_e138];
+    hd_1.cv[0i] = _e141.cv[0];
+    hd_1.cv[1i] = _e141.cv[1];
+    hd_1.cv[2i] = _e141.cv[2];
+    hd_1.cv[3i] = _e141.cv[3];
+    hd_1.cv[4i] = _e141.cv[4];
+    hd_1.cv[5i] = _e141.cv[5];
+    hd_1.cv[6i] = _e141.cv[6];
+    hd_1.cv[7i] = _e141.cv[7];
+    hd_1.cv[8i] = _e141.cv[8];
+    hd_1.cv[9i] = _e141.cv[9];
+    hd_1.cv[10i] = _e141.cv[10];
+    hd_1.cv[11i] = _e141.cv[11];
+    hd_1.cv[12i] = _e141.cv[12];
+    hd_1.cv[13i] = _e141.cv[13];
+    hd_1.cv[14i] = _e141.cv[14];
+    hd_1.cv[15i] = _e141.cv[15];
+    hd_1.ptex = _e141.ptex;
+    hd_1.u0_ = _e141.u0_;
+    hd_1.v0_ = _e141.v0_;
+    hd_1.size = _e141.size;
+    hd_1.levelBoundary = _e141.levelBoundary;
+    hd_1.sharpness = _e141.sharpness;
+    hd_1.pad1_ = _e141.pad1_;
+    hd_1.pad2_ = _e141.pad2_;
+    let _e192 = (*st);
+    S_1 = (_e192 & 65535u);
+    let _e194 = (*st);
+    T = (_e194 >> bitcast<u32>(16i));
+    let _e199 = hd_1.cv[1i];
+    corner = _e199;
+    let _e202 = hd_1.cv[3i];
+    K = _e202;
+    let _e203 = corner;
+    if (_e203 == 0u) {
+        let _e205 = S_1;
+        local_5 = _e205;
     } else {
-        let _e205 = corner;
-        if (_e205 == 1u) {
-            let _e207 = T;
-            local_5 = _e207;
+        let _e206 = corner;
+        if (_e206 == 1u) {
+            let _e208 = T;
+            local_6 = _e208;
         } else {
-            let _e208 = corner;
-            if (_e208 == 2u) {
-                let _e210 = S_1;
-                local_6 = (32768u - _e210);
+            let _e209 = corner;
+            if (_e209 == 2u) {
+                let _e211 = S_1;
+                local_7 = (32768u - _e211);
             } else {
-                let _e212 = T;
-                local_6 = (32768u - _e212);
+                let _e213 = T;
+                local_7 = (32768u - _e213);
             }
-            let _e214 = local_6;
-            local_5 = _e214;
+            let _e215 = local_7;
+            local_6 = _e215;
         }
-        let _e215 = local_5;
-        local_4 = _e215;
+        let _e216 = local_6;
+        local_5 = _e216;
     }
-    let _e216 = local_4;
-    a = _e216;
-    let _e217 = corner;
-    if (_e217 == 0u) {
-        let _e219 = T;
-        local_7 = _e219;
+    let _e217 = local_5;
+    a = _e217;
+    let _e218 = corner;
+    if (_e218 == 0u) {
+        let _e220 = T;
+        local_8 = _e220;
     } else {
-        let _e220 = corner;
-        if (_e220 == 1u) {
-            let _e222 = S_1;
-            local_8 = (32768u - _e222);
+        let _e221 = corner;
+        if (_e221 == 1u) {
+            let _e223 = S_1;
+            local_9 = (32768u - _e223);
         } else {
-            let _e224 = corner;
-            if (_e224 == 2u) {
-                let _e226 = T;
-                local_9 = (32768u - _e226);
+            let _e225 = corner;
+            if (_e225 == 2u) {
+                let _e227 = T;
+                local_10 = (32768u - _e227);
             } else {
-                let _e228 = S_1;
-                local_9 = _e228;
+                let _e229 = S_1;
+                local_10 = _e229;
             }
-            let _e229 = local_9;
-            local_8 = _e229;
+            let _e230 = local_10;
+            local_9 = _e230;
         }
-        let _e230 = local_8;
-        local_7 = _e230;
+        let _e231 = local_9;
+        local_8 = _e231;
     }
-    let _e231 = local_7;
-    c_3 = _e231;
-    let _e234 = hd_1.cv[4i];
-    let _e238 = limits.v[(2u * _e234)];
-    evP = _e238.xyz;
-    let _e242 = hd_1.cv[4i];
-    let _e247 = limits.v[((2u * _e242) + 1u)];
-    evN = _e247.xyz;
-    let _e249 = a;
-    let _e251 = c_3;
-    if ((_e249 == 0u) && (_e251 == 0u)) {
-        let _e254 = evP;
-        (*P_4) = _e254;
-        let _e255 = evN;
-        (*n_3) = _e255;
+    let _e232 = local_8;
+    c_3 = _e232;
+    let _e235 = hd_1.cv[4i];
+    let _e239 = limits.v[(2u * _e235)];
+    evP = _e239.xyz;
+    let _e243 = hd_1.cv[4i];
+    let _e248 = limits.v[((2u * _e243) + 1u)];
+    evN = _e248.xyz;
+    let _e250 = a;
+    let _e252 = c_3;
+    if ((_e250 == 0u) && (_e252 == 0u)) {
+        let _e255 = evP;
+        (*P_4) = _e255;
+        let _e256 = evN;
+        (*n_3) = _e256;
         return;
     }
     k_4 = 1u;
     loop {
-        let _e256 = a;
-        let _e257 = c_3;
-        let _e260 = k_4;
-        let _e261 = K;
-        if ((max(_e256, _e257) < 16384u) && (_e260 < _e261)) {
-            let _e264 = a;
-            a = (_e264 * 2u);
-            let _e266 = c_3;
-            c_3 = (_e266 * 2u);
-            let _e268 = k_4;
-            k_4 = (_e268 + bitcast<u32>(1i));
+        let _e257 = a;
+        let _e258 = c_3;
+        let _e261 = k_4;
+        let _e262 = K;
+        if ((max(_e257, _e258) < 16384u) && (_e261 < _e262)) {
+            let _e265 = a;
+            a = (_e265 * 2u);
+            let _e267 = c_3;
+            c_3 = (_e267 * 2u);
+            let _e269 = k_4;
+            k_4 = (_e269 + bitcast<u32>(1i));
             continue;
         } else {
             break;
         }
     }
-    let _e271 = a;
-    let _e272 = c_3;
-    if (max(_e271, _e272) >= 16384u) {
-        let _e275 = a;
-        qu = select(0u, 1u, (_e275 >= 16384u));
-        let _e278 = c_3;
-        qv = select(0u, 1u, (_e278 >= 16384u));
-        let _e281 = qv;
-        if (_e281 == 0u) {
-            local_10 = 1u;
+    let _e272 = a;
+    let _e273 = c_3;
+    if (max(_e272, _e273) >= 16384u) {
+        let _e276 = a;
+        qu = select(0u, 1u, (_e276 >= 16384u));
+        let _e279 = c_3;
+        qv = select(0u, 1u, (_e279 >= 16384u));
+        let _e282 = qv;
+        if (_e282 == 0u) {
+            local_11 = 1u;
         } else {
-            let _e283 = qu;
-            local_10 = select(3u, 2u, (_e283 == 1u));
+            let _e284 = qu;
+            local_11 = select(3u, 2u, (_e284 == 1u));
         }
-        let _e286 = local_10;
-        q_1 = _e286;
-        let _e287 = a;
-        let _e289 = qu;
-        let _e294 = c_3;
-        let _e296 = qv;
-        let _e301 = (*h_1);
-        param_51 = _e301;
-        let _e302 = k_4;
-        param_52 = _e302;
-        let _e303 = q_1;
-        param_53 = _e303;
-        param_54 = (f32(((2u * _e287) - (_e289 * 32768u))) / 32768f);
-        param_55 = (f32(((2u * _e294) - (_e296 * 32768u))) / 32768f);
+        let _e287 = local_11;
+        q_1 = _e287;
+        let _e288 = a;
+        let _e290 = qu;
+        let _e295 = c_3;
+        let _e297 = qv;
+        let _e302 = (*h_1);
+        param_51 = _e302;
+        let _e303 = k_4;
+        param_52 = _e303;
+        let _e304 = q_1;
+        param_53 = _e304;
+        param_54 = (f32(((2u * _e288) - (_e290 * 32768u))) / 32768f);
+        param_55 = (f32(((2u * _e295) - (_e297 * 32768u))) / 32768f);
         basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_51), (&param_52), (&param_53), (&param_54), (&param_55), (&param_56), (&param_57));
-        let _e304 = param_56;
-        (*P_4) = _e304;
-        let _e305 = param_57;
-        (*n_3) = _e305;
+        let _e305 = param_56;
+        (*P_4) = _e305;
+        let _e306 = param_57;
+        (*n_3) = _e306;
         return;
     }
-    let _e306 = (*h_1);
-    param_58 = _e306;
-    let _e307 = k_4;
-    param_59 = _e307;
+    let _e307 = (*h_1);
+    param_58 = _e307;
+    let _e308 = k_4;
+    param_59 = _e308;
     param_60 = 1u;
     param_61 = 0f;
     param_62 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_58), (&param_59), (&param_60), (&param_61), (&param_62), (&param_63), (&param_64));
-    let _e308 = param_63;
-    P1_ = _e308;
-    let _e309 = param_64;
-    n1_ = _e309;
-    let _e310 = (*h_1);
-    param_65 = _e310;
-    let _e311 = k_4;
-    param_66 = _e311;
+    let _e309 = param_63;
+    P1_ = _e309;
+    let _e310 = param_64;
+    n1_ = _e310;
+    let _e311 = (*h_1);
+    param_65 = _e311;
+    let _e312 = k_4;
+    param_66 = _e312;
     param_67 = 2u;
     param_68 = 0f;
     param_69 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_65), (&param_66), (&param_67), (&param_68), (&param_69), (&param_70), (&param_71));
-    let _e312 = param_70;
-    P2_ = _e312;
-    let _e313 = param_71;
-    n2_ = _e313;
-    let _e314 = (*h_1);
-    param_72 = _e314;
-    let _e315 = k_4;
-    param_73 = _e315;
+    let _e313 = param_70;
+    P2_ = _e313;
+    let _e314 = param_71;
+    n2_ = _e314;
+    let _e315 = (*h_1);
+    param_72 = _e315;
+    let _e316 = k_4;
+    param_73 = _e316;
     param_74 = 3u;
     param_75 = 0f;
     param_76 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_72), (&param_73), (&param_74), (&param_75), (&param_76), (&param_77), (&param_78));
-    let _e316 = param_77;
-    P3_ = _e316;
-    let _e317 = param_78;
-    n3_ = _e317;
-    let _e318 = a;
-    x_2 = (f32(_e318) / 16384f);
-    let _e321 = c_3;
-    y = (f32(_e321) / 16384f);
-    let _e324 = x_2;
-    let _e326 = y;
-    let _e329 = x_2;
-    let _e330 = y;
-    let _e333 = x_2;
-    let _e334 = y;
-    let _e336 = x_2;
-    let _e338 = y;
-    w_2 = array<f32, 4>(((1f - _e324) * (1f - _e326)), (_e329 * (1f - _e330)), (_e333 * _e334), ((1f - _e336) * _e338));
-    let _e342 = w_2[0i];
-    let _e343 = evP;
-    let _e346 = w_2[1i];
-    let _e347 = P1_;
-    let _e351 = w_2[2i];
-    let _e352 = P2_;
-    let _e356 = w_2[3i];
-    let _e357 = P3_;
-    (*P_4) = ((((_e343 * _e342) + (_e347 * _e346)) + (_e352 * _e351)) + (_e357 * _e356));
-    let _e361 = w_2[0i];
-    let _e362 = evN;
-    let _e365 = w_2[1i];
-    let _e366 = n1_;
-    let _e371 = w_2[2i];
-    let _e372 = n2_;
-    let _e377 = w_2[3i];
-    let _e378 = n3_;
-    (*n_3) = ((((_e362 * _e361) + (normalize(_e366) * _e365)) + (normalize(_e372) * _e371)) + (normalize(_e378) * _e377));
+    let _e317 = param_77;
+    P3_ = _e317;
+    let _e318 = param_78;
+    n3_ = _e318;
+    let _e319 = a;
+    x_2 = (f32(_e319) / 16384f);
+    let _e322 = c_3;
+    y = (f32(_e322) / 16384f);
+    let _e325 = x_2;
+    let _e327 = y;
+    let _e330 = x_2;
+    let _e331 = y;
+    let _e334 = x_2;
+    let _e335 = y;
+    let _e337 = x_2;
+    let _e339 = y;
+    w_2 = array<f32, 4>(((1f - _e325) * (1f - _e327)), (_e330 * (1f - _e331)), (_e334 * _e335), ((1f - _e337) * _e339));
+    let _e343 = w_2[0i];
+    let _e344 = evP;
+    let _e347 = w_2[1i];
+    let _e348 = P1_;
+    let _e352 = w_2[2i];
+    let _e353 = P2_;
+    let _e357 = w_2[3i];
+    let _e358 = P3_;
+    (*P_4) = ((((_e344 * _e343) + (_e348 * _e347)) + (_e353 * _e352)) + (_e358 * _e357));
+    let _e362 = w_2[0i];
+    let _e363 = evN;
+    let _e366 = w_2[1i];
+    let _e367 = n1_;
+    let _e372 = w_2[2i];
+    let _e373 = n2_;
+    let _e378 = w_2[3i];
+    let _e379 = n3_;
+    (*n_3) = ((((_e363 * _e362) + (normalize(_e367) * _e366)) + (normalize(_e373) * _e372)) + (normalize(_e379) * _e378));
     return;
 }
 
@@ -1258,7 +1304,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var S_2: u32;
     var T_1: u32;
     var k_5: u32;
-    var local_11: u32;
+    var local_12: u32;
     var c_4: u32;
     var node: u32;
     var leaf: u32;
@@ -1283,205 +1329,205 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_7: i32;
-    var phi_1441_: bool;
+    var phi_1444_: bool;
 
-    let _e109 = (*st_1);
-    S_2 = (_e109 & 65535u);
-    let _e111 = (*st_1);
-    T_1 = (_e111 >> bitcast<u32>(16i));
-    let _e114 = S_2;
-    let _e116 = S_2;
-    let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
-    phi_1441_ = _e118;
-    if _e118 {
-        let _e119 = T_1;
-        let _e121 = T_1;
-        phi_1441_ = ((_e119 == 0u) || (_e121 == 32768u));
+    let _e110 = (*st_1);
+    S_2 = (_e110 & 65535u);
+    let _e112 = (*st_1);
+    T_1 = (_e112 >> bitcast<u32>(16i));
+    let _e115 = S_2;
+    let _e117 = S_2;
+    let _e119 = ((_e115 == 0u) || (_e117 == 32768u));
+    phi_1444_ = _e119;
+    if _e119 {
+        let _e120 = T_1;
+        let _e122 = T_1;
+        phi_1444_ = ((_e120 == 0u) || (_e122 == 32768u));
     }
-    let _e125 = phi_1441_;
-    if _e125 {
-        let _e126 = S_2;
-        if (_e126 == 0u) {
-            let _e128 = T_1;
-            local_11 = select(3u, 0u, (_e128 == 0u));
+    let _e126 = phi_1444_;
+    if _e126 {
+        let _e127 = S_2;
+        if (_e127 == 0u) {
+            let _e129 = T_1;
+            local_12 = select(3u, 0u, (_e129 == 0u));
         } else {
-            let _e131 = T_1;
-            local_11 = select(2u, 1u, (_e131 == 0u));
+            let _e132 = T_1;
+            local_12 = select(2u, 1u, (_e132 == 0u));
         }
-        let _e134 = local_11;
-        k_5 = _e134;
-        let _e135 = (*face);
-        let _e136 = k_5;
-        let _e141 = irregulars.f[_e135].corner[_e136];
-        c_4 = _e141;
-        let _e142 = c_4;
-        let _e146 = limits.v[(2u * _e142)];
-        (*P_5) = _e146.xyz;
-        let _e148 = c_4;
-        let _e153 = limits.v[((2u * _e148) + 1u)];
-        (*n_4) = _e153.xyz;
+        let _e135 = local_12;
+        k_5 = _e135;
+        let _e136 = (*face);
+        let _e137 = k_5;
+        let _e142 = irregulars.f[_e136].corner[_e137];
+        c_4 = _e142;
+        let _e143 = c_4;
+        let _e147 = limits.v[(2u * _e143)];
+        (*P_5) = _e147.xyz;
+        let _e149 = c_4;
+        let _e154 = limits.v[((2u * _e149) + 1u)];
+        (*n_4) = _e154.xyz;
         return;
     }
-    let _e155 = (*patchCount);
-    let _e156 = (*face);
-    node = (_e155 + _e156);
-    let _e158 = (*face);
-    leaf = _e158;
-    let _e159 = S_2;
-    ls = _e159;
-    let _e160 = T_1;
-    lt = _e160;
+    let _e156 = (*patchCount);
+    let _e157 = (*face);
+    node = (_e156 + _e157);
+    let _e159 = (*face);
+    leaf = _e159;
+    let _e160 = S_2;
+    ls = _e160;
+    let _e161 = T_1;
+    lt = _e161;
     k_6 = 0i;
     loop {
-        let _e161 = k_6;
-        if (_e161 < 17i) {
-            let _e163 = S_2;
-            let _e166 = T_1;
-            c_5 = (select(0u, 1u, (_e163 >= 16384u)) | select(0u, 2u, (_e166 >= 16384u)));
-            let _e170 = node;
-            let _e171 = c_5;
-            let _e176 = patches.p[_e170].cv[_e171];
-            code = _e176;
-            let _e177 = code;
-            if (_e177 == 4294967295u) {
+        let _e162 = k_6;
+        if (_e162 < 17i) {
+            let _e164 = S_2;
+            let _e167 = T_1;
+            c_5 = (select(0u, 1u, (_e164 >= 16384u)) | select(0u, 2u, (_e167 >= 16384u)));
+            let _e171 = node;
+            let _e172 = c_5;
+            let _e177 = patches.p[_e171].cv[_e172];
+            code = _e177;
+            let _e178 = code;
+            if (_e178 == 4294967295u) {
                 break;
             }
-            let _e179 = code;
-            if ((_e179 & 3221225472u) == 3221225472u) {
-                let _e182 = code;
-                param_79 = (_e182 & 1073741823u);
-                let _e184 = (*st_1);
-                param_80 = _e184;
+            let _e180 = code;
+            if ((_e180 & 3221225472u) == 3221225472u) {
+                let _e183 = code;
+                param_79 = (_e183 & 1073741823u);
+                let _e185 = (*st_1);
+                param_80 = _e185;
                 smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_79), (&param_80), (&param_81), (&param_82));
-                let _e185 = param_81;
-                (*P_5) = _e185;
-                let _e186 = param_82;
-                (*n_4) = _e186;
+                let _e186 = param_81;
+                (*P_5) = _e186;
+                let _e187 = param_82;
+                (*n_4) = _e187;
                 return;
             }
-            let _e187 = S_2;
-            let _e189 = c_5;
-            S_2 = ((2u * _e187) - select(0u, 32768u, ((_e189 & 1u) != 0u)));
-            let _e194 = T_1;
-            let _e196 = c_5;
-            T_1 = ((2u * _e194) - select(0u, 32768u, ((_e196 & 2u) != 0u)));
-            let _e201 = code;
-            kind = (_e201 & 3221225472u);
-            let _e203 = code;
-            index = (_e203 & 1073741823u);
-            let _e205 = kind;
-            if (_e205 == 0u) {
-                let _e207 = index;
-                let _e208 = S_2;
-                let _e211 = T_1;
-                let _e216 = patches.p[_e207];
-                param_83.cv[0i] = _e216.cv[0];
-                param_83.cv[1i] = _e216.cv[1];
-                param_83.cv[2i] = _e216.cv[2];
-                param_83.cv[3i] = _e216.cv[3];
-                param_83.cv[4i] = _e216.cv[4];
-                param_83.cv[5i] = _e216.cv[5];
-                param_83.cv[6i] = _e216.cv[6];
-                param_83.cv[7i] = _e216.cv[7];
-                param_83.cv[8i] = _e216.cv[8];
-                param_83.cv[9i] = _e216.cv[9];
-                param_83.cv[10i] = _e216.cv[10];
-                param_83.cv[11i] = _e216.cv[11];
-                param_83.cv[12i] = _e216.cv[12];
-                param_83.cv[13i] = _e216.cv[13];
-                param_83.cv[14i] = _e216.cv[14];
-                param_83.cv[15i] = _e216.cv[15];
-                param_83.ptex = _e216.ptex;
-                param_83.u0_ = _e216.u0_;
-                param_83.v0_ = _e216.v0_;
-                param_83.size = _e216.size;
-                param_83.levelBoundary = _e216.levelBoundary;
-                param_83.sharpness = _e216.sharpness;
-                param_83.pad1_ = _e216.pad1_;
-                param_83.pad2_ = _e216.pad2_;
-                param_84 = (f32(_e208) / 32768f);
-                param_85 = (f32(_e211) / 32768f);
+            let _e188 = S_2;
+            let _e190 = c_5;
+            S_2 = ((2u * _e188) - select(0u, 32768u, ((_e190 & 1u) != 0u)));
+            let _e195 = T_1;
+            let _e197 = c_5;
+            T_1 = ((2u * _e195) - select(0u, 32768u, ((_e197 & 2u) != 0u)));
+            let _e202 = code;
+            kind = (_e202 & 3221225472u);
+            let _e204 = code;
+            index = (_e204 & 1073741823u);
+            let _e206 = kind;
+            if (_e206 == 0u) {
+                let _e208 = index;
+                let _e209 = S_2;
+                let _e212 = T_1;
+                let _e217 = patches.p[_e208];
+                param_83.cv[0i] = _e217.cv[0];
+                param_83.cv[1i] = _e217.cv[1];
+                param_83.cv[2i] = _e217.cv[2];
+                param_83.cv[3i] = _e217.cv[3];
+                param_83.cv[4i] = _e217.cv[4];
+                param_83.cv[5i] = _e217.cv[5];
+                param_83.cv[6i] = _e217.cv[6];
+                param_83.cv[7i] = _e217.cv[7];
+                param_83.cv[8i] = _e217.cv[8];
+                param_83.cv[9i] = _e217.cv[9];
+                param_83.cv[10i] = _e217.cv[10];
+                param_83.cv[11i] = _e217.cv[11];
+                param_83.cv[12i] = _e217.cv[12];
+                param_83.cv[13i] = _e217.cv[13];
+                param_83.cv[14i] = _e217.cv[14];
+                param_83.cv[15i] = _e217.cv[15];
+                param_83.ptex = _e217.ptex;
+                param_83.u0_ = _e217.u0_;
+                param_83.v0_ = _e217.v0_;
+                param_83.size = _e217.size;
+                param_83.levelBoundary = _e217.levelBoundary;
+                param_83.sharpness = _e217.sharpness;
+                param_83.pad1_ = _e217.pad1_;
+                param_83.pad2_ = _e217.pad2_;
+                param_84 = (f32(_e209) / 32768f);
+                param_85 = (f32(_e212) / 32768f);
                 patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_83), (&param_84), (&param_85), (&param_86), (&param_87));
-                let _e267 = param_86;
-                (*P_5) = _e267;
-                let _e268 = param_87;
-                (*n_4) = _e268;
+                let _e268 = param_86;
+                (*P_5) = _e268;
+                let _e269 = param_87;
+                (*n_4) = _e269;
                 return;
             }
-            let _e269 = kind;
-            if (_e269 == 2147483648u) {
-                let _e271 = index;
-                leaf = _e271;
-                let _e272 = S_2;
-                ls = _e272;
-                let _e273 = T_1;
-                lt = _e273;
+            let _e270 = kind;
+            if (_e270 == 2147483648u) {
+                let _e272 = index;
+                leaf = _e272;
+                let _e273 = S_2;
+                ls = _e273;
+                let _e274 = T_1;
+                lt = _e274;
                 break;
             }
-            let _e274 = index;
-            node = _e274;
+            let _e275 = index;
+            node = _e275;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e275 = k_6;
-            k_6 = (_e275 + 1i);
+            let _e276 = k_6;
+            k_6 = (_e276 + 1i);
         }
     }
-    let _e277 = leaf;
-    let _e280 = irregulars.f[_e277];
-    q_2.corner = _e280.corner;
-    q_2.ptex = _e280.ptex;
-    q_2.u0_ = _e280.u0_;
-    q_2.v0_ = _e280.v0_;
-    q_2.size = _e280.size;
-    let _e291 = ls;
-    s_5 = (f32(_e291) / 32768f);
-    let _e294 = lt;
-    t_5 = (f32(_e294) / 32768f);
-    let _e297 = s_5;
-    let _e299 = t_5;
-    let _e302 = s_5;
-    let _e303 = t_5;
-    let _e306 = s_5;
-    let _e307 = t_5;
-    let _e309 = s_5;
-    let _e311 = t_5;
-    w_3 = array<f32, 4>(((1f - _e297) * (1f - _e299)), (_e302 * (1f - _e303)), (_e306 * _e307), ((1f - _e309) * _e311));
+    let _e278 = leaf;
+    let _e281 = irregulars.f[_e278];
+    q_2.corner = _e281.corner;
+    q_2.ptex = _e281.ptex;
+    q_2.u0_ = _e281.u0_;
+    q_2.v0_ = _e281.v0_;
+    q_2.size = _e281.size;
+    let _e292 = ls;
+    s_5 = (f32(_e292) / 32768f);
+    let _e295 = lt;
+    t_5 = (f32(_e295) / 32768f);
+    let _e298 = s_5;
+    let _e300 = t_5;
+    let _e303 = s_5;
+    let _e304 = t_5;
+    let _e307 = s_5;
+    let _e308 = t_5;
+    let _e310 = s_5;
+    let _e312 = t_5;
+    w_3 = array<f32, 4>(((1f - _e298) * (1f - _e300)), (_e303 * (1f - _e304)), (_e307 * _e308), ((1f - _e310) * _e312));
     (*P_5) = vec3<f32>(0f, 0f, 0f);
     (*n_4) = vec3<f32>(0f, 0f, 0f);
     k_7 = 0i;
     loop {
-        let _e314 = k_7;
-        if (_e314 < 4i) {
-            let _e316 = k_7;
-            let _e318 = w_3[_e316];
-            let _e319 = k_7;
-            let _e322 = q_2.corner[_e319];
-            let _e326 = limits.v[(2u * _e322)];
-            let _e329 = (*P_5);
-            (*P_5) = (_e329 + (_e326.xyz * _e318));
-            let _e331 = k_7;
-            let _e333 = w_3[_e331];
-            let _e334 = k_7;
-            let _e337 = q_2.corner[_e334];
-            let _e342 = limits.v[((2u * _e337) + 1u)];
-            let _e345 = (*n_4);
-            (*n_4) = (_e345 + (_e342.xyz * _e333));
+        let _e315 = k_7;
+        if (_e315 < 4i) {
+            let _e317 = k_7;
+            let _e319 = w_3[_e317];
+            let _e320 = k_7;
+            let _e323 = q_2.corner[_e320];
+            let _e327 = limits.v[(2u * _e323)];
+            let _e330 = (*P_5);
+            (*P_5) = (_e330 + (_e327.xyz * _e319));
+            let _e332 = k_7;
+            let _e334 = w_3[_e332];
+            let _e335 = k_7;
+            let _e338 = q_2.corner[_e335];
+            let _e343 = limits.v[((2u * _e338) + 1u)];
+            let _e346 = (*n_4);
+            (*n_4) = (_e346 + (_e343.xyz * _e334));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e347 = k_7;
-            k_7 = (_e347 + 1i);
+            let _e348 = k_7;
+            k_7 = (_e348 + 1i);
         }
     }
     return;
 }
 
-fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 5>>, count: ptr<function, u32>, patchCount_1: ptr<function, u32>, P_6: ptr<function, array<vec3<f32>, 5>>) {
+fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 5>>, count: ptr<function, u32>, patchCount_1: ptr<function, u32>, P_6: ptr<function, array<vec3<f32>, 5>>, N_1: ptr<function, array<vec3<f32>, 5>>) {
     var q_3: i32;
     var pt_2: Patch;
     var k_8: i32;
@@ -1501,11 +1547,13 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
     var param_93: array<f32, 4>;
     var param_94: array<f32, 4>;
     var p: vec3<f32>;
+    var Du_2: vec3<f32>;
+    var Dv_2: vec3<f32>;
     var j_4: i32;
     var row_2: vec3<f32>;
+    var rowDu_2: vec3<f32>;
     var i_4: i32;
     var q_5: u32;
-    var n_5: vec3<f32>;
     var param_95: u32;
     var param_96: u32;
     var param_97: u32;
@@ -1514,171 +1562,198 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
 
     q_3 = 0i;
     loop {
-        let _e110 = q_3;
-        if (_e110 < 5i) {
-            let _e112 = q_3;
-            (*P_6)[_e112] = vec3<f32>(0f, 0f, 0f);
+        let _e114 = q_3;
+        if (_e114 < 5i) {
+            let _e116 = q_3;
+            (*P_6)[_e116] = vec3<f32>(0f, 0f, 0f);
+            let _e118 = q_3;
+            (*N_1)[_e118] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e114 = q_3;
-            q_3 = (_e114 + 1i);
+            let _e120 = q_3;
+            q_3 = (_e120 + 1i);
         }
     }
-    let _e116 = (*element);
-    let _e117 = (*patchCount_1);
-    if (_e116 < _e117) {
-        let _e119 = (*element);
-        let _e122 = patches.p[_e119];
-        pt_2.cv[0i] = _e122.cv[0];
-        pt_2.cv[1i] = _e122.cv[1];
-        pt_2.cv[2i] = _e122.cv[2];
-        pt_2.cv[3i] = _e122.cv[3];
-        pt_2.cv[4i] = _e122.cv[4];
-        pt_2.cv[5i] = _e122.cv[5];
-        pt_2.cv[6i] = _e122.cv[6];
-        pt_2.cv[7i] = _e122.cv[7];
-        pt_2.cv[8i] = _e122.cv[8];
-        pt_2.cv[9i] = _e122.cv[9];
-        pt_2.cv[10i] = _e122.cv[10];
-        pt_2.cv[11i] = _e122.cv[11];
-        pt_2.cv[12i] = _e122.cv[12];
-        pt_2.cv[13i] = _e122.cv[13];
-        pt_2.cv[14i] = _e122.cv[14];
-        pt_2.cv[15i] = _e122.cv[15];
-        pt_2.ptex = _e122.ptex;
-        pt_2.u0_ = _e122.u0_;
-        pt_2.v0_ = _e122.v0_;
-        pt_2.size = _e122.size;
-        pt_2.levelBoundary = _e122.levelBoundary;
-        pt_2.sharpness = _e122.sharpness;
-        pt_2.pad1_ = _e122.pad1_;
-        pt_2.pad2_ = _e122.pad2_;
+    let _e122 = (*element);
+    let _e123 = (*patchCount_1);
+    if (_e122 < _e123) {
+        let _e125 = (*element);
+        let _e128 = patches.p[_e125];
+        pt_2.cv[0i] = _e128.cv[0];
+        pt_2.cv[1i] = _e128.cv[1];
+        pt_2.cv[2i] = _e128.cv[2];
+        pt_2.cv[3i] = _e128.cv[3];
+        pt_2.cv[4i] = _e128.cv[4];
+        pt_2.cv[5i] = _e128.cv[5];
+        pt_2.cv[6i] = _e128.cv[6];
+        pt_2.cv[7i] = _e128.cv[7];
+        pt_2.cv[8i] = _e128.cv[8];
+        pt_2.cv[9i] = _e128.cv[9];
+        pt_2.cv[10i] = _e128.cv[10];
+        pt_2.cv[11i] = _e128.cv[11];
+        pt_2.cv[12i] = _e128.cv[12];
+        pt_2.cv[13i] = _e128.cv[13];
+        pt_2.cv[14i] = _e128.cv[14];
+        pt_2.cv[15i] = _e128.cv[15];
+        pt_2.ptex = _e128.ptex;
+        pt_2.u0_ = _e128.u0_;
+        pt_2.v0_ = _e128.v0_;
+        pt_2.size = _e128.size;
+        pt_2.levelBoundary = _e128.levelBoundary;
+        pt_2.sharpness = _e128.sharpness;
+        pt_2.pad1_ = _e128.pad1_;
+        pt_2.pad2_ = _e128.pad2_;
         k_8 = 0i;
         loop {
-            let _e173 = k_8;
-            if (_e173 < 16i) {
-                let _e175 = k_8;
-                let _e176 = k_8;
-                let _e179 = pt_2.cv[_e176];
-                let _e182 = vertices.p[_e179];
-                c_6[_e175] = _e182.xyz;
+            let _e179 = k_8;
+            if (_e179 < 16i) {
+                let _e181 = k_8;
+                let _e182 = k_8;
+                let _e185 = pt_2.cv[_e182];
+                let _e188 = vertices.p[_e185];
+                c_6[_e181] = _e188.xyz;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e185 = k_8;
-                k_8 = (_e185 + 1i);
+                let _e191 = k_8;
+                k_8 = (_e191 + 1i);
             }
         }
         q_4 = 0u;
         loop {
-            let _e187 = q_4;
-            let _e188 = (*count);
-            if (_e187 < _e188) {
-                let _e190 = q_4;
-                let _e192 = (*st_2)[_e190];
-                s_6 = (f32((_e192 & 65535u)) / 32768f);
+            let _e193 = q_4;
+            let _e194 = (*count);
+            if (_e193 < _e194) {
                 let _e196 = q_4;
                 let _e198 = (*st_2)[_e196];
-                t_6 = (f32((_e198 >> bitcast<u32>(16i))) / 32768f);
-                let _e203 = pt_2;
-                param_88 = _e203;
-                let _e204 = s_6;
-                param_89 = _e204;
-                let _e205 = t_6;
-                param_90 = _e205;
+                s_6 = (f32((_e198 & 65535u)) / 32768f);
+                let _e202 = q_4;
+                let _e204 = (*st_2)[_e202];
+                t_6 = (f32((_e204 >> bitcast<u32>(16i))) / 32768f);
+                let _e209 = pt_2;
+                param_88 = _e209;
+                let _e210 = s_6;
+                param_89 = _e210;
+                let _e211 = t_6;
+                param_90 = _e211;
                 patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_88), (&param_89), (&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
-                let _e206 = param_91;
-                bu_3 = _e206;
-                let _e207 = param_92;
-                du_3 = _e207;
-                let _e208 = param_93;
-                bv_3 = _e208;
-                let _e209 = param_94;
-                dv_3 = _e209;
+                let _e212 = param_91;
+                bu_3 = _e212;
+                let _e213 = param_92;
+                du_3 = _e213;
+                let _e214 = param_93;
+                bv_3 = _e214;
+                let _e215 = param_94;
+                dv_3 = _e215;
                 p = vec3<f32>(0f, 0f, 0f);
+                Du_2 = vec3<f32>(0f, 0f, 0f);
+                Dv_2 = vec3<f32>(0f, 0f, 0f);
                 j_4 = 0i;
                 loop {
-                    let _e210 = j_4;
-                    if (_e210 < 4i) {
+                    let _e216 = j_4;
+                    if (_e216 < 4i) {
                         row_2 = vec3<f32>(0f, 0f, 0f);
+                        rowDu_2 = vec3<f32>(0f, 0f, 0f);
                         i_4 = 0i;
                         loop {
-                            let _e212 = i_4;
-                            if (_e212 < 4i) {
-                                let _e214 = i_4;
-                                let _e216 = bu_3[_e214];
-                                let _e217 = j_4;
-                                let _e219 = i_4;
-                                let _e222 = c_6[((4i * _e217) + _e219)];
-                                let _e224 = row_2;
-                                row_2 = (_e224 + (_e222 * _e216));
+                            let _e218 = i_4;
+                            if (_e218 < 4i) {
+                                let _e220 = i_4;
+                                let _e222 = bu_3[_e220];
+                                let _e223 = j_4;
+                                let _e225 = i_4;
+                                let _e228 = c_6[((4i * _e223) + _e225)];
+                                let _e230 = row_2;
+                                row_2 = (_e230 + (_e228 * _e222));
+                                let _e232 = i_4;
+                                let _e234 = du_3[_e232];
+                                let _e235 = j_4;
+                                let _e237 = i_4;
+                                let _e240 = c_6[((4i * _e235) + _e237)];
+                                let _e242 = rowDu_2;
+                                rowDu_2 = (_e242 + (_e240 * _e234));
                                 continue;
                             } else {
                                 break;
                             }
                             continuing {
-                                let _e226 = i_4;
-                                i_4 = (_e226 + 1i);
+                                let _e244 = i_4;
+                                i_4 = (_e244 + 1i);
                             }
                         }
-                        let _e228 = j_4;
-                        let _e230 = bv_3[_e228];
-                        let _e231 = row_2;
-                        let _e233 = p;
-                        p = (_e233 + (_e231 * _e230));
+                        let _e246 = j_4;
+                        let _e248 = bv_3[_e246];
+                        let _e249 = row_2;
+                        let _e251 = p;
+                        p = (_e251 + (_e249 * _e248));
+                        let _e253 = j_4;
+                        let _e255 = bv_3[_e253];
+                        let _e256 = rowDu_2;
+                        let _e258 = Du_2;
+                        Du_2 = (_e258 + (_e256 * _e255));
+                        let _e260 = j_4;
+                        let _e262 = dv_3[_e260];
+                        let _e263 = row_2;
+                        let _e265 = Dv_2;
+                        Dv_2 = (_e265 + (_e263 * _e262));
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e235 = j_4;
-                        j_4 = (_e235 + 1i);
+                        let _e267 = j_4;
+                        j_4 = (_e267 + 1i);
                     }
                 }
-                let _e237 = q_4;
-                let _e238 = p;
-                (*P_6)[_e237] = _e238;
+                let _e269 = q_4;
+                let _e270 = p;
+                (*P_6)[_e269] = _e270;
+                let _e272 = q_4;
+                let _e273 = Du_2;
+                let _e274 = Dv_2;
+                (*N_1)[_e272] = cross(_e273, _e274);
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e240 = q_4;
-                q_4 = (_e240 + bitcast<u32>(1i));
+                let _e277 = q_4;
+                q_4 = (_e277 + bitcast<u32>(1i));
             }
         }
     } else {
         q_5 = 0u;
         loop {
-            let _e243 = q_5;
-            let _e244 = (*count);
-            if (_e243 < _e244) {
-                let _e246 = (*element);
-                let _e247 = (*patchCount_1);
-                let _e249 = q_5;
-                let _e250 = q_5;
-                param_95 = (_e246 - _e247);
-                let _e252 = (*st_2)[_e249];
-                param_96 = _e252;
-                let _e253 = (*patchCount_1);
-                param_97 = _e253;
+            let _e280 = q_5;
+            let _e281 = (*count);
+            if (_e280 < _e281) {
+                let _e283 = (*element);
+                let _e284 = (*patchCount_1);
+                let _e286 = q_5;
+                let _e287 = q_5;
+                let _e288 = q_5;
+                param_95 = (_e283 - _e284);
+                let _e290 = (*st_2)[_e286];
+                param_96 = _e290;
+                let _e291 = (*patchCount_1);
+                param_97 = _e291;
                 irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_95), (&param_96), (&param_97), (&param_98), (&param_99));
-                let _e254 = param_98;
-                (*P_6)[_e250] = _e254;
-                let _e256 = param_99;
-                n_5 = _e256;
+                let _e292 = param_98;
+                (*P_6)[_e287] = _e292;
+                let _e294 = param_99;
+                (*N_1)[_e288] = _e294;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e257 = q_5;
-                q_5 = (_e257 + bitcast<u32>(1i));
+                let _e296 = q_5;
+                q_5 = (_e296 + bitcast<u32>(1i));
             }
         }
     }
@@ -1686,18 +1761,18 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
 }
 
 fn midST_u0028_u1_u003b_u1_u003b(a_1: ptr<function, u32>, b_4: ptr<function, u32>) -> u32 {
-    let _e78 = (*a_1);
-    let _e80 = (*b_4);
-    let _e84 = (*a_1);
-    let _e87 = (*b_4);
-    return ((((_e78 & 65535u) + (_e80 & 65535u)) / 2u) | ((((_e84 >> bitcast<u32>(16i)) + (_e87 >> bitcast<u32>(16i))) / 2u) << bitcast<u32>(16i)));
+    let _e79 = (*a_1);
+    let _e81 = (*b_4);
+    let _e85 = (*a_1);
+    let _e88 = (*b_4);
+    return ((((_e79 & 65535u) + (_e81 & 65535u)) / 2u) | ((((_e85 >> bitcast<u32>(16i)) + (_e88 >> bitcast<u32>(16i))) / 2u) << bitcast<u32>(16i)));
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e78 = gl_GlobalInvocationID_1[1u];
-    let _e79 = (*rowInvocations);
-    let _e82 = gl_GlobalInvocationID_1[0u];
-    return ((_e78 * _e79) + _e82);
+    let _e79 = gl_GlobalInvocationID_1[1u];
+    let _e80 = (*rowInvocations);
+    let _e83 = gl_GlobalInvocationID_1[0u];
+    return ((_e79 * _e80) + _e83);
 }
 
 fn main_1() {
@@ -1722,407 +1797,467 @@ fn main_1() {
     var behind: u32;
     var allOut: u32;
     var P_7: array<vec3<f32>, 5>;
+    var N_2: array<vec3<f32>, 5>;
     var param_107: u32;
     var param_108: array<u32, 5>;
     var param_109: u32;
     var param_110: u32;
     var param_111: array<vec3<f32>, 5>;
+    var param_112: array<vec3<f32>, 5>;
     var k_9: u32;
     var c_7: vec4<f32>;
     var o: u32;
     var px: array<vec2<f32>, 5>;
-    var local_12: vec2<f32>;
+    var local_13: vec2<f32>;
     var len: f32;
-    var local_13: f32;
+    var local_14: f32;
     var want: f32;
-    var param_112: array<vec3<f32>, 5>;
+    var smoothBoth: bool;
+    var k_10: i32;
+    var e: u32;
+    var local_15: u32;
+    var param_113: array<vec3<f32>, 5>;
+    var param_114: array<vec3<f32>, 5>;
+    var param_115: bool;
     var chord: vec2<f32>;
     var cl: f32;
     var off: vec2<f32>;
     var d_3: f32;
-    var local_14: f32;
-    var k_10: i32;
-    var e: u32;
-    var local_15: u32;
+    var local_16: f32;
+    var k_11: i32;
+    var e_1: u32;
+    var local_17: u32;
     var pt_3: Patch;
     var crease_2: u32;
     var alongS: bool;
     var creaseAlongS: bool;
     var most_1: f32;
-    var local_16: f32;
-    var phi_2184_: bool;
-    var phi_2185_: bool;
-    var phi_2438_: bool;
-    var phi_2543_: bool;
+    var local_18: f32;
+    var phi_2277_: bool;
+    var phi_2278_: bool;
+    var phi_2534_: bool;
+    var phi_2585_: bool;
+    var phi_2594_: bool;
+    var phi_2689_: bool;
 
-    let _e126 = pc.limnRowInvocations;
-    param_100 = _e126;
-    let _e127 = limnInvocationIndex_u0028_u1_u003b((&param_100));
-    i_5 = _e127;
-    let _e128 = i_5;
-    let _e130 = pc.limnCount;
-    if (_e128 >= _e130) {
+    let _e135 = pc.limnRowInvocations;
+    param_100 = _e135;
+    let _e136 = limnInvocationIndex_u0028_u1_u003b((&param_100));
+    i_5 = _e136;
+    let _e137 = i_5;
+    let _e139 = pc.limnCount;
+    if (_e137 >= _e139) {
         return;
     }
-    let _e132 = i_5;
-    let _e136 = pieces.v[(2u * _e132)];
-    p0_ = _e136;
-    let _e137 = i_5;
-    let _e142 = pieces.v[((2u * _e137) + 1u)];
-    p1_ = _e142;
-    let _e144 = p1_[0u];
-    let _e147 = cull.c[_e144];
-    let _e148 = (_e147 == 0u);
-    phi_2185_ = _e148;
-    if !(_e148) {
-        let _e151 = p1_[1u];
-        let _e152 = (_e151 != 4294967295u);
-        phi_2184_ = _e152;
-        if _e152 {
-            let _e154 = p1_[1u];
-            let _e157 = cull.c[_e154];
-            phi_2184_ = (_e157 == 0u);
+    let _e141 = i_5;
+    let _e145 = pieces.v[(2u * _e141)];
+    p0_ = _e145;
+    let _e146 = i_5;
+    let _e151 = pieces.v[((2u * _e146) + 1u)];
+    p1_ = _e151;
+    let _e153 = p1_[0u];
+    let _e156 = cull.c[_e153];
+    let _e157 = (_e156 == 0u);
+    phi_2278_ = _e157;
+    if !(_e157) {
+        let _e160 = p1_[1u];
+        let _e161 = (_e160 != 4294967295u);
+        phi_2277_ = _e161;
+        if _e161 {
+            let _e163 = p1_[1u];
+            let _e166 = cull.c[_e163];
+            phi_2277_ = (_e166 == 0u);
         }
-        let _e160 = phi_2184_;
-        phi_2185_ = _e160;
+        let _e169 = phi_2277_;
+        phi_2278_ = _e169;
     }
-    let _e162 = phi_2185_;
-    visible = _e162;
-    let _e164 = pc.tess;
-    let _e166 = p0_[3u];
-    cap = max(min(_e164, _e166), 1u);
+    let _e171 = phi_2278_;
+    visible = _e171;
+    let _e173 = pc.tess;
+    let _e175 = p0_[3u];
+    cap = max(min(_e173, _e175), 1u);
     r_2 = 1u;
     size = 1u;
     ends = vec4<f32>(300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f);
-    let _e169 = visible;
-    if _e169 {
-        let _e171 = p0_[1u];
-        param_101 = _e171;
-        let _e173 = p0_[2u];
-        param_102 = _e173;
-        let _e174 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
-        mid = _e174;
-        let _e176 = p0_[1u];
-        let _e177 = mid;
-        let _e179 = p0_[2u];
-        let _e181 = p0_[1u];
-        param_103 = _e181;
-        let _e182 = mid;
-        param_104 = _e182;
-        let _e183 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
-        let _e184 = mid;
-        param_105 = _e184;
-        let _e186 = p0_[2u];
-        param_106 = _e186;
-        let _e187 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
-        st_3 = array<u32, 5>(_e176, _e177, _e179, _e183, _e187);
-        let _e190 = pc.maxError;
-        count_1 = select(3u, 5u, (_e190 > 0f));
+    let _e178 = visible;
+    if _e178 {
+        let _e180 = p0_[1u];
+        param_101 = _e180;
+        let _e182 = p0_[2u];
+        param_102 = _e182;
+        let _e183 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
+        mid = _e183;
+        let _e185 = p0_[1u];
+        let _e186 = mid;
+        let _e188 = p0_[2u];
+        let _e190 = p0_[1u];
+        param_103 = _e190;
+        let _e191 = mid;
+        param_104 = _e191;
+        let _e192 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
+        let _e193 = mid;
+        param_105 = _e193;
+        let _e195 = p0_[2u];
+        param_106 = _e195;
+        let _e196 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
+        st_3 = array<u32, 5>(_e185, _e186, _e188, _e192, _e196);
+        let _e199 = pc.maxError;
+        count_1 = select(3u, 5u, (_e199 > 0f));
         behind = 0u;
         allOut = 63u;
-        let _e194 = p0_[0u];
-        param_107 = _e194;
-        let _e195 = st_3;
-        param_108 = _e195;
-        let _e196 = count_1;
-        param_109 = _e196;
-        let _e198 = pc.patchCount;
-        param_110 = _e198;
-        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111));
-        let _e199 = param_111;
-        P_7 = _e199;
+        let _e203 = p0_[0u];
+        param_107 = _e203;
+        let _e204 = st_3;
+        param_108 = _e204;
+        let _e205 = count_1;
+        param_109 = _e205;
+        let _e207 = pc.patchCount;
+        param_110 = _e207;
+        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111), (&param_112));
+        let _e208 = param_111;
+        P_7 = _e208;
+        let _e209 = param_112;
+        N_2 = _e209;
         k_9 = 0u;
         loop {
-            let _e200 = k_9;
-            let _e201 = count_1;
-            if (_e200 < _e201) {
-                let _e204 = pc.viewProj;
-                let _e205 = k_9;
-                let _e207 = P_7[_e205];
-                c_7 = (_e204 * vec4<f32>(_e207.x, _e207.y, _e207.z, 1f));
+            let _e210 = k_9;
+            let _e211 = count_1;
+            if (_e210 < _e211) {
+                let _e214 = pc.viewProj;
+                let _e215 = k_9;
+                let _e217 = P_7[_e215];
+                c_7 = (_e214 * vec4<f32>(_e217.x, _e217.y, _e217.z, 1f));
                 o = 0u;
-                let _e214 = c_7[0u];
-                let _e216 = c_7[3u];
-                if (_e214 < -(_e216)) {
-                    let _e219 = o;
-                    o = (_e219 | 1u);
+                let _e224 = c_7[0u];
+                let _e226 = c_7[3u];
+                if (_e224 < -(_e226)) {
+                    let _e229 = o;
+                    o = (_e229 | 1u);
                 }
-                let _e222 = c_7[0u];
-                let _e224 = c_7[3u];
-                if (_e222 > _e224) {
-                    let _e226 = o;
-                    o = (_e226 | 2u);
+                let _e232 = c_7[0u];
+                let _e234 = c_7[3u];
+                if (_e232 > _e234) {
+                    let _e236 = o;
+                    o = (_e236 | 2u);
                 }
-                let _e229 = c_7[1u];
-                let _e231 = c_7[3u];
-                if (_e229 < -(_e231)) {
-                    let _e234 = o;
-                    o = (_e234 | 4u);
+                let _e239 = c_7[1u];
+                let _e241 = c_7[3u];
+                if (_e239 < -(_e241)) {
+                    let _e244 = o;
+                    o = (_e244 | 4u);
                 }
-                let _e237 = c_7[1u];
-                let _e239 = c_7[3u];
-                if (_e237 > _e239) {
-                    let _e241 = o;
-                    o = (_e241 | 8u);
+                let _e247 = c_7[1u];
+                let _e249 = c_7[3u];
+                if (_e247 > _e249) {
+                    let _e251 = o;
+                    o = (_e251 | 8u);
                 }
-                let _e244 = c_7[2u];
-                if (_e244 < 0f) {
-                    let _e246 = o;
-                    o = (_e246 | 16u);
+                let _e254 = c_7[2u];
+                if (_e254 < 0f) {
+                    let _e256 = o;
+                    o = (_e256 | 16u);
                 }
-                let _e249 = c_7[2u];
-                let _e251 = c_7[3u];
-                if (_e249 > _e251) {
-                    let _e253 = o;
-                    o = (_e253 | 32u);
+                let _e259 = c_7[2u];
+                let _e261 = c_7[3u];
+                if (_e259 > _e261) {
+                    let _e263 = o;
+                    o = (_e263 | 32u);
                 }
-                let _e255 = o;
-                let _e256 = allOut;
-                allOut = (_e256 & _e255);
-                let _e259 = c_7[3u];
-                if !((_e259 > 0.000001f)) {
-                    let _e262 = behind;
-                    behind = (_e262 + bitcast<u32>(1i));
+                let _e265 = o;
+                let _e266 = allOut;
+                allOut = (_e266 & _e265);
+                let _e269 = c_7[3u];
+                if !((_e269 > 0.000001f)) {
+                    let _e272 = behind;
+                    behind = (_e272 + bitcast<u32>(1i));
                 }
-                let _e265 = k_9;
-                let _e267 = c_7[3u];
-                if (_e267 > 0.000001f) {
-                    let _e269 = c_7;
-                    let _e272 = c_7[3u];
-                    let _e276 = pc.halfViewport;
-                    local_12 = ((_e269.xy / vec2(_e272)) * _e276);
+                let _e275 = k_9;
+                let _e277 = c_7[3u];
+                if (_e277 > 0.000001f) {
+                    let _e279 = c_7;
+                    let _e282 = c_7[3u];
+                    let _e286 = pc.halfViewport;
+                    local_13 = ((_e279.xy / vec2(_e282)) * _e286);
                 } else {
-                    local_12 = vec2<f32>(0f, 0f);
+                    local_13 = vec2<f32>(0f, 0f);
                 }
-                let _e278 = local_12;
-                px[_e265] = _e278;
+                let _e288 = local_13;
+                px[_e275] = _e288;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e280 = k_9;
-                k_9 = (_e280 + bitcast<u32>(1i));
+                let _e290 = k_9;
+                k_9 = (_e290 + bitcast<u32>(1i));
             }
         }
-        let _e283 = count_1;
-        if (_e283 == 5u) {
-            let _e286 = px[0i];
-            let _e288 = px[3i];
-            let _e291 = px[3i];
-            let _e293 = px[1i];
-            let _e297 = px[1i];
-            let _e299 = px[4i];
-            let _e303 = px[4i];
-            let _e305 = px[2i];
-            local_13 = (((distance(_e286, _e288) + distance(_e291, _e293)) + distance(_e297, _e299)) + distance(_e303, _e305));
+        let _e293 = count_1;
+        if (_e293 == 5u) {
+            let _e296 = px[0i];
+            let _e298 = px[3i];
+            let _e301 = px[3i];
+            let _e303 = px[1i];
+            let _e307 = px[1i];
+            let _e309 = px[4i];
+            let _e313 = px[4i];
+            let _e315 = px[2i];
+            local_14 = (((distance(_e296, _e298) + distance(_e301, _e303)) + distance(_e307, _e309)) + distance(_e313, _e315));
         } else {
-            let _e309 = px[0i];
-            let _e311 = px[1i];
-            let _e314 = px[1i];
-            let _e316 = px[2i];
-            local_13 = (distance(_e309, _e311) + distance(_e314, _e316));
+            let _e319 = px[0i];
+            let _e321 = px[1i];
+            let _e324 = px[1i];
+            let _e326 = px[2i];
+            local_14 = (distance(_e319, _e321) + distance(_e324, _e326));
         }
-        let _e319 = local_13;
-        len = _e319;
-        let _e320 = behind;
-        if (_e320 == 0u) {
-            let _e323 = px[0i];
-            let _e325 = px[2i];
-            let _e332 = pc.halfViewport;
-            ends = (vec4<f32>(_e323.x, _e323.y, _e325.x, _e325.y) + _e332.xyxy);
+        let _e329 = local_14;
+        len = _e329;
+        let _e330 = behind;
+        if (_e330 == 0u) {
+            let _e333 = px[0i];
+            let _e335 = px[2i];
+            let _e342 = pc.halfViewport;
+            ends = (vec4<f32>(_e333.x, _e333.y, _e335.x, _e335.y) + _e342.xyxy);
         }
-        let _e335 = behind;
-        let _e336 = count_1;
-        if (_e335 == _e336) {
+        let _e345 = behind;
+        let _e346 = count_1;
+        if (_e345 == _e346) {
             r_2 = 1u;
             size = 1u;
         } else {
-            let _e338 = behind;
-            let _e339 = (_e338 != 0u);
-            phi_2438_ = _e339;
-            if !(_e339) {
-                let _e341 = len;
-                phi_2438_ = !((_e341 < 1000000000f));
+            let _e348 = behind;
+            let _e349 = (_e348 != 0u);
+            phi_2534_ = _e349;
+            if !(_e349) {
+                let _e351 = len;
+                phi_2534_ = !((_e351 < 1000000000f));
             }
-            let _e345 = phi_2438_;
-            if _e345 {
-                let _e346 = cap;
-                r_2 = _e346;
-                let _e347 = cap;
-                size = _e347;
+            let _e355 = phi_2534_;
+            if _e355 {
+                let _e356 = cap;
+                r_2 = _e356;
+                let _e357 = cap;
+                size = _e357;
             } else {
-                let _e348 = len;
-                let _e350 = pc.edgePixels;
-                want = ceil((_e348 / _e350));
-                let _e354 = pc.maxError;
-                if (_e354 > 0f) {
-                    let _e356 = want;
-                    let _e357 = P_7;
-                    param_112 = _e357;
-                    let _e358 = errorSegments_u0028_vf3_u005b_5_u005d_u003b((&param_112));
-                    want = max(_e356, _e358);
-                } else {
-                    let _e361 = px[2i];
-                    let _e363 = px[0i];
-                    chord = (_e361 - _e363);
-                    let _e365 = chord;
-                    cl = length(_e365);
-                    let _e368 = px[1i];
-                    let _e370 = px[0i];
-                    let _e372 = px[2i];
-                    off = (_e368 - ((_e370 + _e372) * 0.5f));
-                    let _e376 = cl;
-                    if (_e376 > 0.000001f) {
-                        let _e379 = chord[0u];
-                        let _e381 = off[1u];
-                        let _e384 = chord[1u];
-                        let _e386 = off[0u];
-                        let _e390 = cl;
-                        local_14 = (abs(((_e379 * _e381) - (_e384 * _e386))) / _e390);
-                    } else {
-                        let _e392 = off;
-                        local_14 = length(_e392);
-                    }
-                    let _e394 = local_14;
-                    d_3 = _e394;
-                    let _e395 = want;
-                    let _e396 = d_3;
-                    let _e398 = pc.edgePixels;
-                    want = max(_e395, ceil(sqrt((_e396 / (0.025f * _e398)))));
-                }
-                k_10 = 0i;
-                loop {
-                    let _e404 = k_10;
-                    if (_e404 < 2i) {
-                        let _e406 = k_10;
-                        if (_e406 == 0i) {
-                            let _e409 = p1_[0u];
-                            local_15 = _e409;
+                let _e358 = len;
+                let _e360 = pc.edgePixels;
+                want = ceil((_e358 / _e360));
+                let _e364 = pc.maxError;
+                if (_e364 > 0f) {
+                    smoothBoth = true;
+                    k_10 = 0i;
+                    loop {
+                        let _e366 = k_10;
+                        if (_e366 < 2i) {
+                            let _e368 = k_10;
+                            if (_e368 == 0i) {
+                                let _e371 = p1_[0u];
+                                local_15 = _e371;
+                            } else {
+                                let _e373 = p1_[1u];
+                                local_15 = _e373;
+                            }
+                            let _e374 = local_15;
+                            e = _e374;
+                            let _e375 = e;
+                            if (_e375 == 4294967295u) {
+                                continue;
+                            }
+                            let _e377 = smoothBoth;
+                            phi_2585_ = _e377;
+                            if _e377 {
+                                let _e378 = e;
+                                let _e380 = pc.patchCount;
+                                phi_2585_ = (_e378 < _e380);
+                            }
+                            let _e383 = phi_2585_;
+                            phi_2594_ = _e383;
+                            if _e383 {
+                                let _e384 = e;
+                                let _e388 = patches.p[_e384].levelBoundary;
+                                phi_2594_ = (((_e388 >> bitcast<u32>(16i)) & 15u) == 0u);
+                            }
+                            let _e394 = phi_2594_;
+                            smoothBoth = _e394;
+                            continue;
                         } else {
-                            let _e411 = p1_[1u];
-                            local_15 = _e411;
+                            break;
                         }
-                        let _e412 = local_15;
-                        e = _e412;
-                        let _e413 = e;
-                        let _e414 = (_e413 == 4294967295u);
-                        phi_2543_ = _e414;
-                        if !(_e414) {
-                            let _e416 = e;
-                            let _e418 = pc.patchCount;
-                            phi_2543_ = (_e416 >= _e418);
+                        continuing {
+                            let _e395 = k_10;
+                            k_10 = (_e395 + 1i);
                         }
-                        let _e421 = phi_2543_;
-                        if _e421 {
+                    }
+                    let _e397 = want;
+                    let _e398 = P_7;
+                    param_113 = _e398;
+                    let _e399 = N_2;
+                    param_114 = _e399;
+                    let _e400 = smoothBoth;
+                    param_115 = _e400;
+                    let _e401 = errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b((&param_113), (&param_114), (&param_115));
+                    want = max(_e397, _e401);
+                } else {
+                    let _e404 = px[2i];
+                    let _e406 = px[0i];
+                    chord = (_e404 - _e406);
+                    let _e408 = chord;
+                    cl = length(_e408);
+                    let _e411 = px[1i];
+                    let _e413 = px[0i];
+                    let _e415 = px[2i];
+                    off = (_e411 - ((_e413 + _e415) * 0.5f));
+                    let _e419 = cl;
+                    if (_e419 > 0.000001f) {
+                        let _e422 = chord[0u];
+                        let _e424 = off[1u];
+                        let _e427 = chord[1u];
+                        let _e429 = off[0u];
+                        let _e433 = cl;
+                        local_16 = (abs(((_e422 * _e424) - (_e427 * _e429))) / _e433);
+                    } else {
+                        let _e435 = off;
+                        local_16 = length(_e435);
+                    }
+                    let _e437 = local_16;
+                    d_3 = _e437;
+                    let _e438 = want;
+                    let _e439 = d_3;
+                    let _e441 = pc.edgePixels;
+                    want = max(_e438, ceil(sqrt((_e439 / (0.025f * _e441)))));
+                }
+                k_11 = 0i;
+                loop {
+                    let _e447 = k_11;
+                    if (_e447 < 2i) {
+                        let _e449 = k_11;
+                        if (_e449 == 0i) {
+                            let _e452 = p1_[0u];
+                            local_17 = _e452;
+                        } else {
+                            let _e454 = p1_[1u];
+                            local_17 = _e454;
+                        }
+                        let _e455 = local_17;
+                        e_1 = _e455;
+                        let _e456 = e_1;
+                        let _e457 = (_e456 == 4294967295u);
+                        phi_2689_ = _e457;
+                        if !(_e457) {
+                            let _e459 = e_1;
+                            let _e461 = pc.patchCount;
+                            phi_2689_ = (_e459 >= _e461);
+                        }
+                        let _e464 = phi_2689_;
+                        if _e464 {
                             continue;
                         }
-                        let _e422 = e;
-                        let _e425 = patches.p[_e422];
-                        pt_3.cv[0i] = _e425.cv[0];
-                        pt_3.cv[1i] = _e425.cv[1];
-                        pt_3.cv[2i] = _e425.cv[2];
-                        pt_3.cv[3i] = _e425.cv[3];
-                        pt_3.cv[4i] = _e425.cv[4];
-                        pt_3.cv[5i] = _e425.cv[5];
-                        pt_3.cv[6i] = _e425.cv[6];
-                        pt_3.cv[7i] = _e425.cv[7];
-                        pt_3.cv[8i] = _e425.cv[8];
-                        pt_3.cv[9i] = _e425.cv[9];
-                        pt_3.cv[10i] = _e425.cv[10];
-                        pt_3.cv[11i] = _e425.cv[11];
-                        pt_3.cv[12i] = _e425.cv[12];
-                        pt_3.cv[13i] = _e425.cv[13];
-                        pt_3.cv[14i] = _e425.cv[14];
-                        pt_3.cv[15i] = _e425.cv[15];
-                        pt_3.ptex = _e425.ptex;
-                        pt_3.u0_ = _e425.u0_;
-                        pt_3.v0_ = _e425.v0_;
-                        pt_3.size = _e425.size;
-                        pt_3.levelBoundary = _e425.levelBoundary;
-                        pt_3.sharpness = _e425.sharpness;
-                        pt_3.pad1_ = _e425.pad1_;
-                        pt_3.pad2_ = _e425.pad2_;
-                        let _e477 = pt_3.levelBoundary;
-                        crease_2 = ((_e477 >> bitcast<u32>(16i)) & 15u);
-                        let _e481 = crease_2;
-                        if (_e481 == 0u) {
-                            let _e483 = k_10;
-                            if (_e483 == 0i) {
+                        let _e465 = e_1;
+                        let _e468 = patches.p[_e465];
+                        pt_3.cv[0i] = _e468.cv[0];
+                        pt_3.cv[1i] = _e468.cv[1];
+                        pt_3.cv[2i] = _e468.cv[2];
+                        pt_3.cv[3i] = _e468.cv[3];
+                        pt_3.cv[4i] = _e468.cv[4];
+                        pt_3.cv[5i] = _e468.cv[5];
+                        pt_3.cv[6i] = _e468.cv[6];
+                        pt_3.cv[7i] = _e468.cv[7];
+                        pt_3.cv[8i] = _e468.cv[8];
+                        pt_3.cv[9i] = _e468.cv[9];
+                        pt_3.cv[10i] = _e468.cv[10];
+                        pt_3.cv[11i] = _e468.cv[11];
+                        pt_3.cv[12i] = _e468.cv[12];
+                        pt_3.cv[13i] = _e468.cv[13];
+                        pt_3.cv[14i] = _e468.cv[14];
+                        pt_3.cv[15i] = _e468.cv[15];
+                        pt_3.ptex = _e468.ptex;
+                        pt_3.u0_ = _e468.u0_;
+                        pt_3.v0_ = _e468.v0_;
+                        pt_3.size = _e468.size;
+                        pt_3.levelBoundary = _e468.levelBoundary;
+                        pt_3.sharpness = _e468.sharpness;
+                        pt_3.pad1_ = _e468.pad1_;
+                        pt_3.pad2_ = _e468.pad2_;
+                        let _e520 = pt_3.levelBoundary;
+                        crease_2 = ((_e520 >> bitcast<u32>(16i)) & 15u);
+                        let _e524 = crease_2;
+                        if (_e524 == 0u) {
+                            let _e526 = k_11;
+                            if (_e526 == 0i) {
                                 continue;
                             }
                             break;
                         }
-                        let _e485 = k_10;
-                        if (_e485 == 0i) {
-                            let _e488 = p0_[1u];
-                            let _e491 = p0_[2u];
-                            alongS = ((_e488 & 65535u) != (_e491 & 65535u));
-                            let _e494 = crease_2;
-                            creaseAlongS = ((_e494 & 5u) != 0u);
-                            let _e497 = alongS;
-                            let _e498 = creaseAlongS;
-                            if (_e497 == _e498) {
+                        let _e528 = k_11;
+                        if (_e528 == 0i) {
+                            let _e531 = p0_[1u];
+                            let _e534 = p0_[2u];
+                            alongS = ((_e531 & 65535u) != (_e534 & 65535u));
+                            let _e537 = crease_2;
+                            creaseAlongS = ((_e537 & 5u) != 0u);
+                            let _e540 = alongS;
+                            let _e541 = creaseAlongS;
+                            if (_e540 == _e541) {
                                 break;
                             }
                         }
-                        let _e501 = pt_3.sharpness;
-                        most_1 = exp2(ceil(_e501));
-                        let _e504 = k_10;
-                        if (_e504 == 0i) {
-                            let _e506 = want;
-                            let _e508 = pc.maxError;
-                            if (_e508 > 0f) {
-                                let _e510 = want;
-                                local_16 = (2f * _e510);
+                        let _e544 = pt_3.sharpness;
+                        most_1 = exp2(ceil(_e544));
+                        let _e547 = k_11;
+                        if (_e547 == 0i) {
+                            let _e549 = want;
+                            let _e551 = pc.maxError;
+                            if (_e551 > 0f) {
+                                let _e553 = want;
+                                local_18 = (2f * _e553);
                             } else {
-                                let _e512 = len;
-                                let _e515 = pc.edgePixels;
-                                local_16 = ceil(((2f * _e512) / _e515));
+                                let _e555 = len;
+                                let _e558 = pc.edgePixels;
+                                local_18 = ceil(((2f * _e555) / _e558));
                             }
-                            let _e518 = local_16;
-                            let _e519 = most_1;
-                            let _e520 = len;
-                            want = max(_e506, max(_e518, min(_e519, ceil(sqrt((_e520 / 0.25f))))));
+                            let _e561 = local_18;
+                            let _e562 = most_1;
+                            let _e563 = len;
+                            want = max(_e549, max(_e561, min(_e562, ceil(sqrt((_e563 / 0.25f))))));
                         } else {
-                            let _e527 = want;
-                            let _e528 = most_1;
-                            let _e529 = len;
-                            want = max(_e527, min(_e528, ceil((_e529 / 1f))));
+                            let _e570 = want;
+                            let _e571 = most_1;
+                            let _e572 = len;
+                            want = max(_e570, min(_e571, ceil((_e572 / 1f))));
                         }
                         break;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e534 = k_10;
-                        k_10 = (_e534 + 1i);
+                        let _e577 = k_11;
+                        k_11 = (_e577 + 1i);
                     }
                 }
-                let _e537 = pc.texels;
-                if (_e537 > 0f) {
-                    let _e539 = want;
-                    let _e541 = p1_[2u];
-                    let _e544 = pc.texels;
-                    let _e547 = len;
-                    want = max(_e539, min(ceil((bitcast<f32>(_e541) * _e544)), ceil((0.5f * _e547))));
+                let _e580 = pc.texels;
+                if (_e580 > 0f) {
+                    let _e582 = want;
+                    let _e584 = p1_[2u];
+                    let _e587 = pc.texels;
+                    let _e590 = len;
+                    want = max(_e582, min(ceil((bitcast<f32>(_e584) * _e587)), ceil((0.5f * _e590))));
                 }
-                let _e552 = want;
-                let _e553 = cap;
-                size = u32(clamp(_e552, 1f, f32(_e553)));
-                let _e557 = allOut;
-                let _e559 = size;
-                r_2 = select(_e559, 1u, (_e557 != 0u));
+                let _e595 = want;
+                let _e596 = cap;
+                size = u32(clamp(_e595, 1f, f32(_e596)));
+                let _e600 = allOut;
+                let _e602 = size;
+                r_2 = select(_e602, 1u, (_e600 != 0u));
             }
         }
     }
-    let _e561 = i_5;
-    let _e562 = r_2;
-    let _e563 = size;
-    rates.r[_e561] = (_e562 | (_e563 << bitcast<u32>(16i)));
-    let _e569 = i_5;
-    let _e570 = ends;
-    pieceEnds.v[_e569] = _e570;
+    let _e604 = i_5;
+    let _e605 = r_2;
+    let _e606 = size;
+    rates.r[_e604] = (_e605 | (_e606 << bitcast<u32>(16i)));
+    let _e612 = i_5;
+    let _e613 = ends;
+    pieceEnds.v[_e612] = _e613;
     return;
 }
 
