@@ -76,7 +76,7 @@ struct RenderSettings {
     // pixelNormals; not with --eval compute, wires, displacement or --mesh-out).
     bool pixelNormals = false;
     // ... and the on-screen error allowed where a piece faces the eye (every sample's normal within
-    // 60 degrees of the view ray; AdaptiveOptions::interiorError); 0: maxError everywhere.
+    // 70 degrees of the view ray; AdaptiveOptions::interiorError); 0: maxError everywhere.
     double interiorError = 0;
     uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)
     bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)

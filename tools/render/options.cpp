@@ -230,7 +230,7 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
               "                            segments of about --edge-pixels (chord tolerance P/40)")
         .real("--interior-error", "PX", &settings.interiorError, 0, 4096,
               "view-adaptive tessellation: the --max-error allowed where an edge faces the\n"
-              "                            eye (every sample's normal within 60 degrees of the\n"
+              "                            eye (every sample's normal within 70 degrees of the\n"
               "                            view ray), where the error moves no outline, only where\n"
               "                            the shading lands; 0: --max-error everywhere\n"
               "                            (docs/adaptive.md, per-pixel normals)")

@@ -93,37 +93,37 @@ fn pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b(P: ptr<function, vec3<f32>>
     var ry: vec3<f32>;
     var rw: vec3<f32>;
 
-    let _e86 = pc.viewProj;
-    M = _e86;
-    let _e87 = M;
-    let _e88 = (*P);
-    c = (_e87 * vec4<f32>(_e88.x, _e88.y, _e88.z, 1f));
-    let _e96 = M[0][0u];
-    let _e99 = M[1][0u];
-    let _e102 = M[2][0u];
-    rx = vec3<f32>(_e96, _e99, _e102);
-    let _e106 = M[0][1u];
-    let _e109 = M[1][1u];
-    let _e112 = M[2][1u];
-    ry = vec3<f32>(_e106, _e109, _e112);
-    let _e116 = M[0][3u];
-    let _e119 = M[1][3u];
-    let _e122 = M[2][3u];
-    rw = vec3<f32>(_e116, _e119, _e122);
-    let _e126 = pc.halfViewport[0u];
-    let _e127 = rx;
-    let _e129 = c[0u];
-    let _e131 = c[3u];
-    let _e133 = rw;
-    let _e138 = c[3u];
-    (*jx) = (((_e127 - (_e133 * (_e129 / _e131))) * _e126) / vec3(_e138));
-    let _e143 = pc.halfViewport[1u];
-    let _e144 = ry;
-    let _e146 = c[1u];
-    let _e148 = c[3u];
-    let _e150 = rw;
-    let _e155 = c[3u];
-    (*jy) = (((_e144 - (_e150 * (_e146 / _e148))) * _e143) / vec3(_e155));
+    let _e87 = pc.viewProj;
+    M = _e87;
+    let _e88 = M;
+    let _e89 = (*P);
+    c = (_e88 * vec4<f32>(_e89.x, _e89.y, _e89.z, 1f));
+    let _e97 = M[0][0u];
+    let _e100 = M[1][0u];
+    let _e103 = M[2][0u];
+    rx = vec3<f32>(_e97, _e100, _e103);
+    let _e107 = M[0][1u];
+    let _e110 = M[1][1u];
+    let _e113 = M[2][1u];
+    ry = vec3<f32>(_e107, _e110, _e113);
+    let _e117 = M[0][3u];
+    let _e120 = M[1][3u];
+    let _e123 = M[2][3u];
+    rw = vec3<f32>(_e117, _e120, _e123);
+    let _e127 = pc.halfViewport[0u];
+    let _e128 = rx;
+    let _e130 = c[0u];
+    let _e132 = c[3u];
+    let _e134 = rw;
+    let _e139 = c[3u];
+    (*jx) = (((_e128 - (_e134 * (_e130 / _e132))) * _e127) / vec3(_e139));
+    let _e144 = pc.halfViewport[1u];
+    let _e145 = ry;
+    let _e147 = c[1u];
+    let _e149 = c[3u];
+    let _e151 = rw;
+    let _e156 = c[3u];
+    (*jy) = (((_e145 - (_e151 * (_e147 / _e149))) * _e144) / vec3(_e156));
     return;
 }
 
@@ -132,6 +132,7 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
     var E: array<vec3<f32>, 5>;
     var N: array<vec3<f32>, 5>;
     var most: f32;
+    var side: f32;
     var facing: bool;
     var k: i32;
     var jx_1: vec3<f32>;
@@ -140,110 +141,124 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
     var param_1: vec3<f32>;
     var param_2: vec3<f32>;
     var ray: vec3<f32>;
+    var c_1: f32;
     var n: f32;
     var local: f32;
-    var phi_2142_: bool;
-    var phi_2198_: bool;
+    var phi_2143_: bool;
+    var phi_2202_: bool;
+    var phi_2209_: bool;
 
-    let _e95 = (*S)[0i];
-    let _e97 = (*S)[3i];
-    let _e99 = (*S)[1i];
-    let _e101 = (*S)[4i];
-    let _e103 = (*S)[2i];
-    P_1 = array<vec3<f32>, 5>(_e95, _e97, _e99, _e101, _e103);
-    let _e106 = P_1[1i];
-    let _e108 = P_1[0i];
-    let _e110 = P_1[2i];
-    E[1i] = ((_e106 - ((_e108 + _e110) * 0.5f)) * 4f);
-    let _e117 = P_1[2i];
-    let _e119 = P_1[0i];
-    let _e121 = P_1[4i];
-    E[2i] = (_e117 - ((_e119 + _e121) * 0.5f));
-    let _e127 = P_1[3i];
-    let _e129 = P_1[2i];
-    let _e131 = P_1[4i];
-    E[3i] = ((_e127 - ((_e129 + _e131) * 0.5f)) * 4f);
-    let _e138 = E[1i];
-    let _e141 = E[2i];
-    E[0i] = ((_e138 * 2f) - _e141);
-    let _e145 = E[3i];
-    let _e148 = E[2i];
-    E[4i] = ((_e145 * 2f) - _e148);
-    let _e152 = (*SN)[0i];
-    let _e154 = (*SN)[3i];
-    let _e156 = (*SN)[1i];
-    let _e158 = (*SN)[4i];
-    let _e160 = (*SN)[2i];
-    N = array<vec3<f32>, 5>(_e152, _e154, _e156, _e158, _e160);
+    let _e98 = (*S)[0i];
+    let _e100 = (*S)[3i];
+    let _e102 = (*S)[1i];
+    let _e104 = (*S)[4i];
+    let _e106 = (*S)[2i];
+    P_1 = array<vec3<f32>, 5>(_e98, _e100, _e102, _e104, _e106);
+    let _e109 = P_1[1i];
+    let _e111 = P_1[0i];
+    let _e113 = P_1[2i];
+    E[1i] = ((_e109 - ((_e111 + _e113) * 0.5f)) * 4f);
+    let _e120 = P_1[2i];
+    let _e122 = P_1[0i];
+    let _e124 = P_1[4i];
+    E[2i] = (_e120 - ((_e122 + _e124) * 0.5f));
+    let _e130 = P_1[3i];
+    let _e132 = P_1[2i];
+    let _e134 = P_1[4i];
+    E[3i] = ((_e130 - ((_e132 + _e134) * 0.5f)) * 4f);
+    let _e141 = E[1i];
+    let _e144 = E[2i];
+    E[0i] = ((_e141 * 2f) - _e144);
+    let _e148 = E[3i];
+    let _e151 = E[2i];
+    E[4i] = ((_e148 * 2f) - _e151);
+    let _e155 = (*SN)[0i];
+    let _e157 = (*SN)[3i];
+    let _e159 = (*SN)[1i];
+    let _e161 = (*SN)[4i];
+    let _e163 = (*SN)[2i];
+    N = array<vec3<f32>, 5>(_e155, _e157, _e159, _e161, _e163);
     most = 0f;
-    let _e162 = (*mayLoosen);
-    phi_2142_ = _e162;
-    if _e162 {
-        let _e164 = pc.interiorError;
-        let _e166 = pc.maxError;
-        phi_2142_ = (_e164 > _e166);
+    side = 0f;
+    let _e165 = (*mayLoosen);
+    phi_2143_ = _e165;
+    if _e165 {
+        let _e167 = pc.interiorError;
+        let _e169 = pc.maxError;
+        phi_2143_ = (_e167 > _e169);
     }
-    let _e169 = phi_2142_;
-    facing = _e169;
+    let _e172 = phi_2143_;
+    facing = _e172;
     k = 0i;
     loop {
-        let _e170 = k;
-        if (_e170 < 5i) {
-            let _e172 = k;
-            let _e174 = P_1[_e172];
-            param = _e174;
+        let _e173 = k;
+        if (_e173 < 5i) {
+            let _e175 = k;
+            let _e177 = P_1[_e175];
+            param = _e177;
             pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param), (&param_1), (&param_2));
-            let _e175 = param_1;
-            jx_1 = _e175;
-            let _e176 = param_2;
-            jy_1 = _e176;
-            let _e177 = most;
-            let _e178 = jx_1;
-            let _e179 = k;
-            let _e181 = E[_e179];
-            let _e183 = jy_1;
-            let _e184 = k;
-            let _e186 = E[_e184];
-            most = max(_e177, length(vec2<f32>(dot(_e178, _e181), dot(_e183, _e186))));
-            let _e191 = jx_1;
-            let _e192 = jy_1;
-            ray = cross(_e191, _e192);
-            let _e194 = facing;
-            phi_2198_ = _e194;
-            if _e194 {
-                let _e195 = k;
-                let _e197 = N[_e195];
-                let _e198 = ray;
-                let _e201 = k;
-                let _e203 = N[_e201];
-                let _e206 = ray;
-                phi_2198_ = (abs(dot(_e197, _e198)) >= ((0.5f * length(_e203)) * length(_e206)));
+            let _e178 = param_1;
+            jx_1 = _e178;
+            let _e179 = param_2;
+            jy_1 = _e179;
+            let _e180 = most;
+            let _e181 = jx_1;
+            let _e182 = k;
+            let _e184 = E[_e182];
+            let _e186 = jy_1;
+            let _e187 = k;
+            let _e189 = E[_e187];
+            most = max(_e180, length(vec2<f32>(dot(_e181, _e184), dot(_e186, _e189))));
+            let _e194 = jx_1;
+            let _e195 = jy_1;
+            ray = cross(_e194, _e195);
+            let _e197 = k;
+            let _e199 = N[_e197];
+            let _e200 = ray;
+            c_1 = dot(_e199, _e200);
+            let _e202 = facing;
+            phi_2202_ = _e202;
+            if _e202 {
+                let _e203 = c_1;
+                let _e205 = k;
+                let _e207 = N[_e205];
+                let _e210 = ray;
+                phi_2202_ = (abs(_e203) > ((0.35f * length(_e207)) * length(_e210)));
             }
-            let _e211 = phi_2198_;
-            facing = _e211;
+            let _e215 = phi_2202_;
+            phi_2209_ = _e215;
+            if _e215 {
+                let _e216 = c_1;
+                let _e217 = side;
+                phi_2209_ = ((_e216 * _e217) >= 0f);
+            }
+            let _e221 = phi_2209_;
+            facing = _e221;
+            let _e222 = c_1;
+            side = _e222;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e212 = k;
-            k = (_e212 + 1i);
+            let _e223 = k;
+            k = (_e223 + 1i);
         }
     }
-    let _e214 = most;
-    let _e215 = facing;
-    if _e215 {
-        let _e217 = pc.interiorError;
-        local = _e217;
+    let _e225 = most;
+    let _e226 = facing;
+    if _e226 {
+        let _e228 = pc.interiorError;
+        local = _e228;
     } else {
-        let _e219 = pc.maxError;
-        local = _e219;
+        let _e230 = pc.maxError;
+        local = _e230;
     }
-    let _e220 = local;
-    n = ceil(sqrt((_e214 / _e220)));
-    let _e224 = n;
-    let _e226 = n;
-    return select(1000000000f, _e226, (_e224 < 1000000000f));
+    let _e231 = local;
+    n = ceil(sqrt((_e225 / _e231)));
+    let _e235 = n;
+    let _e237 = n;
+    return select(1000000000f, _e237, (_e235 < 1000000000f));
 }
 
 fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<function, f32>, b: ptr<function, array<f32, 4>>, d: ptr<function, array<f32, 4>>) {
@@ -251,38 +266,38 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
     var t3_: f32;
     var s: f32;
 
-    let _e83 = (*t);
     let _e84 = (*t);
-    t2_ = (_e83 * _e84);
-    let _e86 = t2_;
-    let _e87 = (*t);
-    t3_ = (_e86 * _e87);
-    let _e89 = (*t);
-    s = (1f - _e89);
-    let _e91 = s;
+    let _e85 = (*t);
+    t2_ = (_e84 * _e85);
+    let _e87 = t2_;
+    let _e88 = (*t);
+    t3_ = (_e87 * _e88);
+    let _e90 = (*t);
+    s = (1f - _e90);
     let _e92 = s;
-    let _e94 = s;
-    (*b)[0i] = (((_e91 * _e92) * _e94) / 6f);
-    let _e98 = t3_;
-    let _e100 = t2_;
-    (*b)[1i] = ((((3f * _e98) - (6f * _e100)) + 4f) / 6f);
-    let _e106 = t3_;
-    let _e108 = t2_;
-    let _e111 = (*t);
-    (*b)[2i] = (((((-3f * _e106) + (3f * _e108)) + (3f * _e111)) + 1f) / 6f);
-    let _e117 = t3_;
-    (*b)[3i] = (_e117 / 6f);
-    let _e120 = s;
-    let _e122 = s;
-    (*d)[0i] = ((-(_e120) * _e122) / 2f);
-    let _e126 = t2_;
-    let _e128 = (*t);
-    (*d)[1i] = (((9f * _e126) - (12f * _e128)) / 6f);
-    let _e133 = t2_;
-    let _e135 = (*t);
-    (*d)[2i] = ((((-9f * _e133) + (6f * _e135)) + 3f) / 6f);
-    let _e141 = t2_;
-    (*d)[3i] = (_e141 / 2f);
+    let _e93 = s;
+    let _e95 = s;
+    (*b)[0i] = (((_e92 * _e93) * _e95) / 6f);
+    let _e99 = t3_;
+    let _e101 = t2_;
+    (*b)[1i] = ((((3f * _e99) - (6f * _e101)) + 4f) / 6f);
+    let _e107 = t3_;
+    let _e109 = t2_;
+    let _e112 = (*t);
+    (*b)[2i] = (((((-3f * _e107) + (3f * _e109)) + (3f * _e112)) + 1f) / 6f);
+    let _e118 = t3_;
+    (*b)[3i] = (_e118 / 6f);
+    let _e121 = s;
+    let _e123 = s;
+    (*d)[0i] = ((-(_e121) * _e123) / 2f);
+    let _e127 = t2_;
+    let _e129 = (*t);
+    (*d)[1i] = (((9f * _e127) - (12f * _e129)) / 6f);
+    let _e134 = t2_;
+    let _e136 = (*t);
+    (*d)[2i] = ((((-9f * _e134) + (6f * _e136)) + 3f) / 6f);
+    let _e142 = t2_;
+    (*d)[3i] = (_e142 / 2f);
     return;
 }
 
@@ -309,74 +324,74 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var k_1: i32;
 
     M_1 = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
-    let _e101 = (*sharpness);
-    s_1 = _e101;
+    let _e102 = (*sharpness);
+    s_1 = _e102;
     scale = 1f;
     i = 0i;
     loop {
-        let _e102 = i;
-        let _e104 = s_1;
-        if ((_e102 < 12i) && (_e104 > 0f)) {
-            let _e107 = (*t_1);
-            left = (_e107 < 0.5f);
-            let _e109 = s_1;
-            w = min(_e109, 1f);
-            let _e112 = M_1[0i];
-            let _e114 = M_1[1i];
-            e01_ = ((_e112 + _e114) * 0.5f);
-            let _e118 = M_1[1i];
-            let _e120 = M_1[2i];
-            e12_ = ((_e118 + _e120) * 0.5f);
-            let _e124 = M_1[2i];
-            let _e126 = M_1[3i];
-            e23_ = ((_e124 + _e126) * 0.5f);
-            let _e129 = w;
-            let _e131 = M_1[1i];
-            let _e133 = w;
-            let _e136 = M_1[0i];
-            let _e138 = M_1[1i];
-            let _e142 = M_1[2i];
-            crease = ((_e131 * _e129) + ((((_e136 + (_e138 * 6f)) + _e142) * (1f - _e133)) / vec4(8f)));
-            let _e149 = M_1[1i];
-            let _e151 = M_1[2i];
-            let _e155 = M_1[3i];
-            v2_ = (((_e149 + (_e151 * 6f)) + _e155) / vec4(8f));
-            let _e159 = left;
-            if _e159 {
-                let _e160 = e01_;
-                M_1[0i] = _e160;
-                let _e162 = crease;
-                M_1[1i] = _e162;
-                let _e164 = e12_;
-                M_1[2i] = _e164;
-                let _e166 = v2_;
-                M_1[3i] = _e166;
+        let _e103 = i;
+        let _e105 = s_1;
+        if ((_e103 < 12i) && (_e105 > 0f)) {
+            let _e108 = (*t_1);
+            left = (_e108 < 0.5f);
+            let _e110 = s_1;
+            w = min(_e110, 1f);
+            let _e113 = M_1[0i];
+            let _e115 = M_1[1i];
+            e01_ = ((_e113 + _e115) * 0.5f);
+            let _e119 = M_1[1i];
+            let _e121 = M_1[2i];
+            e12_ = ((_e119 + _e121) * 0.5f);
+            let _e125 = M_1[2i];
+            let _e127 = M_1[3i];
+            e23_ = ((_e125 + _e127) * 0.5f);
+            let _e130 = w;
+            let _e132 = M_1[1i];
+            let _e134 = w;
+            let _e137 = M_1[0i];
+            let _e139 = M_1[1i];
+            let _e143 = M_1[2i];
+            crease = ((_e132 * _e130) + ((((_e137 + (_e139 * 6f)) + _e143) * (1f - _e134)) / vec4(8f)));
+            let _e150 = M_1[1i];
+            let _e152 = M_1[2i];
+            let _e156 = M_1[3i];
+            v2_ = (((_e150 + (_e152 * 6f)) + _e156) / vec4(8f));
+            let _e160 = left;
+            if _e160 {
+                let _e161 = e01_;
+                M_1[0i] = _e161;
+                let _e163 = crease;
+                M_1[1i] = _e163;
+                let _e165 = e12_;
+                M_1[2i] = _e165;
+                let _e167 = v2_;
+                M_1[3i] = _e167;
             } else {
-                let _e168 = crease;
-                M_1[0i] = _e168;
-                let _e170 = e12_;
-                M_1[1i] = _e170;
-                let _e172 = v2_;
-                M_1[2i] = _e172;
-                let _e174 = e23_;
-                M_1[3i] = _e174;
+                let _e169 = crease;
+                M_1[0i] = _e169;
+                let _e171 = e12_;
+                M_1[1i] = _e171;
+                let _e173 = v2_;
+                M_1[2i] = _e173;
+                let _e175 = e23_;
+                M_1[3i] = _e175;
             }
-            let _e176 = s_1;
-            s_1 = (_e176 - 1f);
-            let _e178 = scale;
-            scale = (_e178 * 2f);
-            let _e180 = left;
-            if _e180 {
-                let _e181 = (*t_1);
-                local_1 = (2f * _e181);
+            let _e177 = s_1;
+            s_1 = (_e177 - 1f);
+            let _e179 = scale;
+            scale = (_e179 * 2f);
+            let _e181 = left;
+            if _e181 {
+                let _e182 = (*t_1);
+                local_1 = (2f * _e182);
             } else {
-                let _e183 = (*t_1);
-                local_1 = ((2f * _e183) - 1f);
+                let _e184 = (*t_1);
+                local_1 = ((2f * _e184) - 1f);
             }
-            let _e186 = local_1;
-            (*t_1) = _e186;
-            let _e187 = left;
-            if !(_e187) {
+            let _e187 = local_1;
+            (*t_1) = _e187;
+            let _e188 = left;
+            if !(_e188) {
                 break;
             }
             continue;
@@ -384,55 +399,55 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             break;
         }
         continuing {
-            let _e189 = i;
-            i = (_e189 + 1i);
+            let _e190 = i;
+            i = (_e190 + 1i);
         }
     }
-    let _e191 = (*t_1);
-    param_3 = _e191;
+    let _e192 = (*t_1);
+    param_3 = _e192;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_3), (&param_4), (&param_5));
-    let _e192 = param_4;
-    bt = _e192;
-    let _e193 = param_5;
-    dt = _e193;
-    let _e195 = bt[0i];
-    let _e197 = M_1[0i];
-    let _e200 = bt[1i];
-    let _e202 = M_1[1i];
-    let _e206 = bt[2i];
-    let _e208 = M_1[2i];
-    let _e212 = bt[3i];
-    let _e214 = M_1[3i];
-    B = ((((_e197 * _e195) + (_e202 * _e200)) + (_e208 * _e206)) + (_e214 * _e212));
-    let _e217 = scale;
-    let _e219 = dt[0i];
-    let _e221 = M_1[0i];
-    let _e224 = dt[1i];
-    let _e226 = M_1[1i];
-    let _e230 = dt[2i];
-    let _e232 = M_1[2i];
-    let _e236 = dt[3i];
-    let _e238 = M_1[3i];
-    D = (((((_e221 * _e219) + (_e226 * _e224)) + (_e232 * _e230)) + (_e238 * _e236)) * _e217);
+    let _e193 = param_4;
+    bt = _e193;
+    let _e194 = param_5;
+    dt = _e194;
+    let _e196 = bt[0i];
+    let _e198 = M_1[0i];
+    let _e201 = bt[1i];
+    let _e203 = M_1[1i];
+    let _e207 = bt[2i];
+    let _e209 = M_1[2i];
+    let _e213 = bt[3i];
+    let _e215 = M_1[3i];
+    B = ((((_e198 * _e196) + (_e203 * _e201)) + (_e209 * _e207)) + (_e215 * _e213));
+    let _e218 = scale;
+    let _e220 = dt[0i];
+    let _e222 = M_1[0i];
+    let _e225 = dt[1i];
+    let _e227 = M_1[1i];
+    let _e231 = dt[2i];
+    let _e233 = M_1[2i];
+    let _e237 = dt[3i];
+    let _e239 = M_1[3i];
+    D = (((((_e222 * _e220) + (_e227 * _e225)) + (_e233 * _e231)) + (_e239 * _e237)) * _e218);
     k_1 = 0i;
     loop {
-        let _e242 = k_1;
-        if (_e242 < 4i) {
-            let _e244 = k_1;
+        let _e243 = k_1;
+        if (_e243 < 4i) {
             let _e245 = k_1;
-            let _e247 = B[_e245];
-            (*b_1)[_e244] = _e247;
-            let _e249 = k_1;
+            let _e246 = k_1;
+            let _e248 = B[_e246];
+            (*b_1)[_e245] = _e248;
             let _e250 = k_1;
-            let _e252 = D[_e250];
-            (*d_1)[_e249] = _e252;
+            let _e251 = k_1;
+            let _e253 = D[_e251];
+            (*d_1)[_e250] = _e253;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e254 = k_1;
-            k_1 = (_e254 + 1i);
+            let _e255 = k_1;
+            k_1 = (_e255 + 1i);
         }
     }
     return;
@@ -450,84 +465,84 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
     var local_3: f32;
     var local_4: f32;
 
-    let _e92 = (*atEnd);
-    if _e92 {
-        let _e93 = (*x);
-        local_2 = (1f - _e93);
+    let _e93 = (*atEnd);
+    if _e93 {
+        let _e94 = (*x);
+        local_2 = (1f - _e94);
     } else {
-        let _e95 = (*x);
-        local_2 = _e95;
+        let _e96 = (*x);
+        local_2 = _e96;
     }
-    let _e96 = local_2;
-    param_6 = _e96;
-    let _e97 = (*sharpness_1);
-    param_7 = _e97;
+    let _e97 = local_2;
+    param_6 = _e97;
+    let _e98 = (*sharpness_1);
+    param_7 = _e98;
     creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_6), (&param_7), (&param_8), (&param_9));
-    let _e98 = param_8;
-    cb = _e98;
-    let _e99 = param_9;
-    cd = _e99;
+    let _e99 = param_8;
+    cb = _e99;
+    let _e100 = param_9;
+    cd = _e100;
     k_2 = 0i;
     loop {
-        let _e100 = k_2;
-        if (_e100 < 4i) {
-            let _e102 = k_2;
-            let _e103 = (*atEnd);
-            if _e103 {
-                let _e104 = k_2;
-                let _e107 = cb[(3i - _e104)];
-                local_3 = _e107;
+        let _e101 = k_2;
+        if (_e101 < 4i) {
+            let _e103 = k_2;
+            let _e104 = (*atEnd);
+            if _e104 {
+                let _e105 = k_2;
+                let _e108 = cb[(3i - _e105)];
+                local_3 = _e108;
             } else {
-                let _e108 = k_2;
-                let _e110 = cb[_e108];
-                local_3 = _e110;
+                let _e109 = k_2;
+                let _e111 = cb[_e109];
+                local_3 = _e111;
             }
-            let _e111 = local_3;
-            (*b_2)[_e102] = _e111;
-            let _e113 = k_2;
-            let _e114 = (*atEnd);
-            if _e114 {
-                let _e115 = k_2;
-                let _e118 = cd[(3i - _e115)];
-                local_4 = -(_e118);
+            let _e112 = local_3;
+            (*b_2)[_e103] = _e112;
+            let _e114 = k_2;
+            let _e115 = (*atEnd);
+            if _e115 {
+                let _e116 = k_2;
+                let _e119 = cd[(3i - _e116)];
+                local_4 = -(_e119);
             } else {
-                let _e120 = k_2;
-                let _e122 = cd[_e120];
-                local_4 = _e122;
+                let _e121 = k_2;
+                let _e123 = cd[_e121];
+                local_4 = _e123;
             }
-            let _e123 = local_4;
-            (*d_2)[_e113] = _e123;
+            let _e124 = local_4;
+            (*d_2)[_e114] = _e124;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e125 = k_2;
-            k_2 = (_e125 + 1i);
+            let _e126 = k_2;
+            k_2 = (_e126 + 1i);
         }
     }
     return;
 }
 
 fn foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b(b_3: ptr<function, array<f32, 4>>, atStart: ptr<function, bool>, atEnd_1: ptr<function, bool>) {
-    let _e80 = (*atStart);
-    if _e80 {
-        let _e82 = (*b_3)[0i];
-        let _e85 = (*b_3)[1i];
-        (*b_3)[1i] = (_e85 + (2f * _e82));
-        let _e89 = (*b_3)[0i];
-        let _e91 = (*b_3)[2i];
-        (*b_3)[2i] = (_e91 - _e89);
+    let _e81 = (*atStart);
+    if _e81 {
+        let _e83 = (*b_3)[0i];
+        let _e86 = (*b_3)[1i];
+        (*b_3)[1i] = (_e86 + (2f * _e83));
+        let _e90 = (*b_3)[0i];
+        let _e92 = (*b_3)[2i];
+        (*b_3)[2i] = (_e92 - _e90);
         (*b_3)[0i] = 0f;
     }
-    let _e95 = (*atEnd_1);
-    if _e95 {
-        let _e97 = (*b_3)[3i];
-        let _e100 = (*b_3)[2i];
-        (*b_3)[2i] = (_e100 + (2f * _e97));
-        let _e104 = (*b_3)[3i];
-        let _e106 = (*b_3)[1i];
-        (*b_3)[1i] = (_e106 - _e104);
+    let _e96 = (*atEnd_1);
+    if _e96 {
+        let _e98 = (*b_3)[3i];
+        let _e101 = (*b_3)[2i];
+        (*b_3)[2i] = (_e101 + (2f * _e98));
+        let _e105 = (*b_3)[3i];
+        let _e107 = (*b_3)[1i];
+        (*b_3)[1i] = (_e107 - _e105);
         (*b_3)[3i] = 0f;
     }
     return;
@@ -565,87 +580,87 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_36: array<f32, 4>;
     var param_37: array<f32, 4>;
 
-    let _e115 = (*pt).levelBoundary;
-    mask = ((_e115 >> bitcast<u32>(8i)) & 15u);
-    let _e119 = (*s_2);
-    param_10 = _e119;
+    let _e116 = (*pt).levelBoundary;
+    mask = ((_e116 >> bitcast<u32>(8i)) & 15u);
+    let _e120 = (*s_2);
+    param_10 = _e120;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_10), (&param_11), (&param_12));
-    let _e120 = param_11;
-    (*bu) = _e120;
-    let _e121 = param_12;
-    (*du) = _e121;
-    let _e122 = (*t_2);
-    param_13 = _e122;
+    let _e121 = param_11;
+    (*bu) = _e121;
+    let _e122 = param_12;
+    (*du) = _e122;
+    let _e123 = (*t_2);
+    param_13 = _e123;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_13), (&param_14), (&param_15));
-    let _e123 = param_14;
-    (*bv) = _e123;
-    let _e124 = param_15;
-    (*dv) = _e124;
-    let _e125 = mask;
-    let _e128 = mask;
-    let _e131 = (*bu);
-    param_16 = _e131;
-    param_17 = ((_e125 & 8u) != 0u);
-    param_18 = ((_e128 & 2u) != 0u);
+    let _e124 = param_14;
+    (*bv) = _e124;
+    let _e125 = param_15;
+    (*dv) = _e125;
+    let _e126 = mask;
+    let _e129 = mask;
+    let _e132 = (*bu);
+    param_16 = _e132;
+    param_17 = ((_e126 & 8u) != 0u);
+    param_18 = ((_e129 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
-    let _e132 = param_16;
-    (*bu) = _e132;
-    let _e133 = mask;
-    let _e136 = mask;
-    let _e139 = (*du);
-    param_19 = _e139;
-    param_20 = ((_e133 & 8u) != 0u);
-    param_21 = ((_e136 & 2u) != 0u);
+    let _e133 = param_16;
+    (*bu) = _e133;
+    let _e134 = mask;
+    let _e137 = mask;
+    let _e140 = (*du);
+    param_19 = _e140;
+    param_20 = ((_e134 & 8u) != 0u);
+    param_21 = ((_e137 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
-    let _e140 = param_19;
-    (*du) = _e140;
-    let _e141 = mask;
-    let _e144 = mask;
-    let _e147 = (*bv);
-    param_22 = _e147;
-    param_23 = ((_e141 & 1u) != 0u);
-    param_24 = ((_e144 & 4u) != 0u);
+    let _e141 = param_19;
+    (*du) = _e141;
+    let _e142 = mask;
+    let _e145 = mask;
+    let _e148 = (*bv);
+    param_22 = _e148;
+    param_23 = ((_e142 & 1u) != 0u);
+    param_24 = ((_e145 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_22), (&param_23), (&param_24));
-    let _e148 = param_22;
-    (*bv) = _e148;
-    let _e149 = mask;
-    let _e152 = mask;
-    let _e155 = (*dv);
-    param_25 = _e155;
-    param_26 = ((_e149 & 1u) != 0u);
-    param_27 = ((_e152 & 4u) != 0u);
+    let _e149 = param_22;
+    (*bv) = _e149;
+    let _e150 = mask;
+    let _e153 = mask;
+    let _e156 = (*dv);
+    param_25 = _e156;
+    param_26 = ((_e150 & 1u) != 0u);
+    param_27 = ((_e153 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_25), (&param_26), (&param_27));
-    let _e156 = param_25;
-    (*dv) = _e156;
-    let _e158 = (*pt).levelBoundary;
-    crease_1 = ((_e158 >> bitcast<u32>(16i)) & 15u);
-    let _e162 = crease_1;
-    if ((_e162 & 5u) != 0u) {
-        let _e165 = crease_1;
-        let _e168 = (*t_2);
-        param_28 = _e168;
-        param_29 = ((_e165 & 4u) != 0u);
-        let _e170 = (*pt).sharpness;
-        param_30 = _e170;
+    let _e157 = param_25;
+    (*dv) = _e157;
+    let _e159 = (*pt).levelBoundary;
+    crease_1 = ((_e159 >> bitcast<u32>(16i)) & 15u);
+    let _e163 = crease_1;
+    if ((_e163 & 5u) != 0u) {
+        let _e166 = crease_1;
+        let _e169 = (*t_2);
+        param_28 = _e169;
+        param_29 = ((_e166 & 4u) != 0u);
+        let _e171 = (*pt).sharpness;
+        param_30 = _e171;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
-        let _e171 = param_31;
-        (*bv) = _e171;
-        let _e172 = param_32;
-        (*dv) = _e172;
+        let _e172 = param_31;
+        (*bv) = _e172;
+        let _e173 = param_32;
+        (*dv) = _e173;
     }
-    let _e173 = crease_1;
-    if ((_e173 & 10u) != 0u) {
-        let _e176 = crease_1;
-        let _e179 = (*s_2);
-        param_33 = _e179;
-        param_34 = ((_e176 & 2u) != 0u);
-        let _e181 = (*pt).sharpness;
-        param_35 = _e181;
+    let _e174 = crease_1;
+    if ((_e174 & 10u) != 0u) {
+        let _e177 = crease_1;
+        let _e180 = (*s_2);
+        param_33 = _e180;
+        param_34 = ((_e177 & 2u) != 0u);
+        let _e182 = (*pt).sharpness;
+        param_35 = _e182;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_33), (&param_34), (&param_35), (&param_36), (&param_37));
-        let _e182 = param_36;
-        (*bu) = _e182;
-        let _e183 = param_37;
-        (*du) = _e183;
+        let _e183 = param_36;
+        (*bu) = _e183;
+        let _e184 = param_37;
+        (*du) = _e184;
     }
     return;
 }
@@ -670,100 +685,100 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var rowRel: vec3<f32>;
     var rowDu: vec3<f32>;
     var i_1: i32;
-    var c_1: vec3<f32>;
+    var c_2: vec3<f32>;
     var r: vec3<f32>;
 
-    let _e103 = (*pt_1);
-    param_38 = _e103;
-    let _e104 = (*s_3);
-    param_39 = _e104;
-    let _e105 = (*t_3);
-    param_40 = _e105;
+    let _e104 = (*pt_1);
+    param_38 = _e104;
+    let _e105 = (*s_3);
+    param_39 = _e105;
+    let _e106 = (*t_3);
+    param_40 = _e106;
     patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_38), (&param_39), (&param_40), (&param_41), (&param_42), (&param_43), (&param_44));
-    let _e106 = param_41;
-    bu_1 = _e106;
-    let _e107 = param_42;
-    du_1 = _e107;
-    let _e108 = param_43;
-    bv_1 = _e108;
-    let _e109 = param_44;
-    dv_1 = _e109;
+    let _e107 = param_41;
+    bu_1 = _e107;
+    let _e108 = param_42;
+    du_1 = _e108;
+    let _e109 = param_43;
+    bv_1 = _e109;
+    let _e110 = param_44;
+    dv_1 = _e110;
     (*P_2) = vec3<f32>(0f, 0f, 0f);
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
-    let _e112 = (*pt_1).cv[5i];
-    let _e115 = vertices.p[_e112];
-    origin = _e115.xyz;
+    let _e113 = (*pt_1).cv[5i];
+    let _e116 = vertices.p[_e113];
+    origin = _e116.xyz;
     j = 0i;
     loop {
-        let _e117 = j;
-        if (_e117 < 4i) {
+        let _e118 = j;
+        if (_e118 < 4i) {
             row = vec3<f32>(0f, 0f, 0f);
             rowRel = vec3<f32>(0f, 0f, 0f);
             rowDu = vec3<f32>(0f, 0f, 0f);
             i_1 = 0i;
             loop {
-                let _e119 = i_1;
-                if (_e119 < 4i) {
-                    let _e121 = j;
-                    let _e123 = i_1;
-                    let _e127 = (*pt_1).cv[((4i * _e121) + _e123)];
-                    let _e130 = vertices.p[_e127];
-                    c_1 = _e130.xyz;
-                    let _e132 = c_1;
-                    let _e133 = origin;
-                    r = (_e132 - _e133);
-                    let _e135 = i_1;
-                    let _e137 = bu_1[_e135];
-                    let _e138 = c_1;
-                    let _e140 = row;
-                    row = (_e140 + (_e138 * _e137));
-                    let _e142 = i_1;
-                    let _e144 = bu_1[_e142];
-                    let _e145 = r;
-                    let _e147 = rowRel;
-                    rowRel = (_e147 + (_e145 * _e144));
-                    let _e149 = i_1;
-                    let _e151 = du_1[_e149];
-                    let _e152 = r;
-                    let _e154 = rowDu;
-                    rowDu = (_e154 + (_e152 * _e151));
+                let _e120 = i_1;
+                if (_e120 < 4i) {
+                    let _e122 = j;
+                    let _e124 = i_1;
+                    let _e128 = (*pt_1).cv[((4i * _e122) + _e124)];
+                    let _e131 = vertices.p[_e128];
+                    c_2 = _e131.xyz;
+                    let _e133 = c_2;
+                    let _e134 = origin;
+                    r = (_e133 - _e134);
+                    let _e136 = i_1;
+                    let _e138 = bu_1[_e136];
+                    let _e139 = c_2;
+                    let _e141 = row;
+                    row = (_e141 + (_e139 * _e138));
+                    let _e143 = i_1;
+                    let _e145 = bu_1[_e143];
+                    let _e146 = r;
+                    let _e148 = rowRel;
+                    rowRel = (_e148 + (_e146 * _e145));
+                    let _e150 = i_1;
+                    let _e152 = du_1[_e150];
+                    let _e153 = r;
+                    let _e155 = rowDu;
+                    rowDu = (_e155 + (_e153 * _e152));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e156 = i_1;
-                    i_1 = (_e156 + 1i);
+                    let _e157 = i_1;
+                    i_1 = (_e157 + 1i);
                 }
             }
-            let _e158 = j;
-            let _e160 = bv_1[_e158];
-            let _e161 = row;
-            let _e163 = (*P_2);
-            (*P_2) = (_e163 + (_e161 * _e160));
-            let _e165 = j;
-            let _e167 = bv_1[_e165];
-            let _e168 = rowDu;
-            let _e170 = Du;
-            Du = (_e170 + (_e168 * _e167));
-            let _e172 = j;
-            let _e174 = dv_1[_e172];
-            let _e175 = rowRel;
-            let _e177 = Dv;
-            Dv = (_e177 + (_e175 * _e174));
+            let _e159 = j;
+            let _e161 = bv_1[_e159];
+            let _e162 = row;
+            let _e164 = (*P_2);
+            (*P_2) = (_e164 + (_e162 * _e161));
+            let _e166 = j;
+            let _e168 = bv_1[_e166];
+            let _e169 = rowDu;
+            let _e171 = Du;
+            Du = (_e171 + (_e169 * _e168));
+            let _e173 = j;
+            let _e175 = dv_1[_e173];
+            let _e176 = rowRel;
+            let _e178 = Dv;
+            Dv = (_e178 + (_e176 * _e175));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e179 = j;
-            j = (_e179 + 1i);
+            let _e180 = j;
+            j = (_e180 + 1i);
         }
     }
-    let _e181 = Du;
-    let _e182 = Dv;
-    (*n_1) = cross(_e181, _e182);
+    let _e182 = Du;
+    let _e183 = Dv;
+    (*n_1) = cross(_e182, _e183);
     return;
 }
 
@@ -772,7 +787,7 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var M_2: u32;
     var block: u32;
     var j_1: i32;
-    var c_2: array<vec3<f32>, 16>;
+    var c_3: array<vec3<f32>, 16>;
     var r_1: array<vec3<f32>, 16>;
     var origin_1: vec3<f32>;
     var i_2: u32;
@@ -799,125 +814,125 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var rowDu_1: vec3<f32>;
     var i_3: i32;
 
-    let _e114 = (*h);
-    let _e117 = patches.p[_e114];
-    hd.cv[0i] = _e117.cv[0];
-    hd.cv[1i] = _e117.cv[1];
-    hd.cv[2i] = _e117.cv[2];
-    hd.cv[3i] = _e117.cv[3];
-    hd.cv[4i] = _e117.cv[4];
-    hd.cv[5i] = _e117.cv[5];
-    hd.cv[6i] = _e117.cv[6];
-    hd.cv[7i] = _e117.cv[7];
-    hd.cv[8i] = _e117.cv[8];
-    hd.cv[9i] = _e117.cv[9];
-    hd.cv[10i] = _e117.cv[10];
-    hd.cv[11i] = _e117.cv[11];
-    hd.cv[12i] = _e117.cv[12];
-    hd.cv[13i] = _e117.cv[13];
-    hd.cv[14i] = _e117.cv[14];
-    hd.cv[15i] = _e117.cv[15];
-    hd.ptex = _e117.ptex;
-    hd.u0_ = _e117.u0_;
-    hd.v0_ = _e117.v0_;
-    hd.size = _e117.size;
-    hd.levelBoundary = _e117.levelBoundary;
-    hd.sharpness = _e117.sharpness;
-    hd.pad1_ = _e117.pad1_;
-    hd.pad2_ = _e117.pad2_;
-    let _e170 = hd.cv[0i];
-    M_2 = ((2u * _e170) + 8u);
-    let _e175 = hd.cv[2i];
-    let _e176 = (*k_3);
-    let _e179 = (*q);
-    let _e182 = M_2;
-    block = (_e175 + ((((_e176 - 1u) * 3u) + (_e179 - 1u)) * _e182));
+    let _e115 = (*h);
+    let _e118 = patches.p[_e115];
+    hd.cv[0i] = _e118.cv[0];
+    hd.cv[1i] = _e118.cv[1];
+    hd.cv[2i] = _e118.cv[2];
+    hd.cv[3i] = _e118.cv[3];
+    hd.cv[4i] = _e118.cv[4];
+    hd.cv[5i] = _e118.cv[5];
+    hd.cv[6i] = _e118.cv[6];
+    hd.cv[7i] = _e118.cv[7];
+    hd.cv[8i] = _e118.cv[8];
+    hd.cv[9i] = _e118.cv[9];
+    hd.cv[10i] = _e118.cv[10];
+    hd.cv[11i] = _e118.cv[11];
+    hd.cv[12i] = _e118.cv[12];
+    hd.cv[13i] = _e118.cv[13];
+    hd.cv[14i] = _e118.cv[14];
+    hd.cv[15i] = _e118.cv[15];
+    hd.ptex = _e118.ptex;
+    hd.u0_ = _e118.u0_;
+    hd.v0_ = _e118.v0_;
+    hd.size = _e118.size;
+    hd.levelBoundary = _e118.levelBoundary;
+    hd.sharpness = _e118.sharpness;
+    hd.pad1_ = _e118.pad1_;
+    hd.pad2_ = _e118.pad2_;
+    let _e171 = hd.cv[0i];
+    M_2 = ((2u * _e171) + 8u);
+    let _e176 = hd.cv[2i];
+    let _e177 = (*k_3);
+    let _e180 = (*q);
+    let _e183 = M_2;
+    block = (_e176 + ((((_e177 - 1u) * 3u) + (_e180 - 1u)) * _e183));
     j_1 = 0i;
     loop {
-        let _e185 = j_1;
-        if (_e185 < 16i) {
-            let _e187 = j_1;
-            c_2[_e187] = vec3<f32>(0f, 0f, 0f);
-            let _e189 = j_1;
-            r_1[_e189] = vec3<f32>(0f, 0f, 0f);
+        let _e186 = j_1;
+        if (_e186 < 16i) {
+            let _e188 = j_1;
+            c_3[_e188] = vec3<f32>(0f, 0f, 0f);
+            let _e190 = j_1;
+            r_1[_e190] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e191 = j_1;
-            j_1 = (_e191 + 1i);
+            let _e192 = j_1;
+            j_1 = (_e192 + 1i);
         }
     }
-    let _e193 = (*h);
-    let _e199 = patches.p[(_e193 + 1u)].cv[0i];
-    let _e202 = vertices.p[_e199];
-    origin_1 = _e202.xyz;
+    let _e194 = (*h);
+    let _e200 = patches.p[(_e194 + 1u)].cv[0i];
+    let _e203 = vertices.p[_e200];
+    origin_1 = _e203.xyz;
     i_2 = 0u;
     loop {
-        let _e204 = i_2;
-        let _e205 = M_2;
-        if (_e204 < _e205) {
-            let _e207 = (*h);
-            let _e209 = i_2;
-            let _e212 = i_2;
-            let _e218 = patches.p[((_e207 + 1u) + (_e209 / 16u))].cv[(_e212 % 16u)];
-            let _e221 = vertices.p[_e218];
-            x_1 = _e221.xyz;
-            let _e223 = x_1;
-            let _e224 = origin_1;
-            xr = (_e223 - _e224);
-            let _e226 = block;
-            let _e227 = i_2;
-            let _e231 = patches.p[(_e226 + _e227)];
-            w_1.cv[0i] = _e231.cv[0];
-            w_1.cv[1i] = _e231.cv[1];
-            w_1.cv[2i] = _e231.cv[2];
-            w_1.cv[3i] = _e231.cv[3];
-            w_1.cv[4i] = _e231.cv[4];
-            w_1.cv[5i] = _e231.cv[5];
-            w_1.cv[6i] = _e231.cv[6];
-            w_1.cv[7i] = _e231.cv[7];
-            w_1.cv[8i] = _e231.cv[8];
-            w_1.cv[9i] = _e231.cv[9];
-            w_1.cv[10i] = _e231.cv[10];
-            w_1.cv[11i] = _e231.cv[11];
-            w_1.cv[12i] = _e231.cv[12];
-            w_1.cv[13i] = _e231.cv[13];
-            w_1.cv[14i] = _e231.cv[14];
-            w_1.cv[15i] = _e231.cv[15];
-            w_1.ptex = _e231.ptex;
-            w_1.u0_ = _e231.u0_;
-            w_1.v0_ = _e231.v0_;
-            w_1.size = _e231.size;
-            w_1.levelBoundary = _e231.levelBoundary;
-            w_1.sharpness = _e231.sharpness;
-            w_1.pad1_ = _e231.pad1_;
-            w_1.pad2_ = _e231.pad2_;
+        let _e205 = i_2;
+        let _e206 = M_2;
+        if (_e205 < _e206) {
+            let _e208 = (*h);
+            let _e210 = i_2;
+            let _e213 = i_2;
+            let _e219 = patches.p[((_e208 + 1u) + (_e210 / 16u))].cv[(_e213 % 16u)];
+            let _e222 = vertices.p[_e219];
+            x_1 = _e222.xyz;
+            let _e224 = x_1;
+            let _e225 = origin_1;
+            xr = (_e224 - _e225);
+            let _e227 = block;
+            let _e228 = i_2;
+            let _e232 = patches.p[(_e227 + _e228)];
+            w_1.cv[0i] = _e232.cv[0];
+            w_1.cv[1i] = _e232.cv[1];
+            w_1.cv[2i] = _e232.cv[2];
+            w_1.cv[3i] = _e232.cv[3];
+            w_1.cv[4i] = _e232.cv[4];
+            w_1.cv[5i] = _e232.cv[5];
+            w_1.cv[6i] = _e232.cv[6];
+            w_1.cv[7i] = _e232.cv[7];
+            w_1.cv[8i] = _e232.cv[8];
+            w_1.cv[9i] = _e232.cv[9];
+            w_1.cv[10i] = _e232.cv[10];
+            w_1.cv[11i] = _e232.cv[11];
+            w_1.cv[12i] = _e232.cv[12];
+            w_1.cv[13i] = _e232.cv[13];
+            w_1.cv[14i] = _e232.cv[14];
+            w_1.cv[15i] = _e232.cv[15];
+            w_1.ptex = _e232.ptex;
+            w_1.u0_ = _e232.u0_;
+            w_1.v0_ = _e232.v0_;
+            w_1.size = _e232.size;
+            w_1.levelBoundary = _e232.levelBoundary;
+            w_1.sharpness = _e232.sharpness;
+            w_1.pad1_ = _e232.pad1_;
+            w_1.pad2_ = _e232.pad2_;
             j_2 = 0i;
             loop {
-                let _e282 = j_2;
-                if (_e282 < 16i) {
-                    let _e284 = j_2;
-                    let _e287 = w_1.cv[_e284];
-                    wj = bitcast<f32>(_e287);
-                    let _e289 = j_2;
-                    let _e290 = wj;
-                    let _e291 = x_1;
-                    let _e294 = c_2[_e289];
-                    c_2[_e289] = (_e294 + (_e291 * _e290));
-                    let _e297 = j_2;
-                    let _e298 = wj;
-                    let _e299 = xr;
-                    let _e302 = r_1[_e297];
-                    r_1[_e297] = (_e302 + (_e299 * _e298));
+                let _e283 = j_2;
+                if (_e283 < 16i) {
+                    let _e285 = j_2;
+                    let _e288 = w_1.cv[_e285];
+                    wj = bitcast<f32>(_e288);
+                    let _e290 = j_2;
+                    let _e291 = wj;
+                    let _e292 = x_1;
+                    let _e295 = c_3[_e290];
+                    c_3[_e290] = (_e295 + (_e292 * _e291));
+                    let _e298 = j_2;
+                    let _e299 = wj;
+                    let _e300 = xr;
+                    let _e303 = r_1[_e298];
+                    r_1[_e298] = (_e303 + (_e300 * _e299));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e305 = j_2;
-                    j_2 = (_e305 + 1i);
+                    let _e306 = j_2;
+                    j_2 = (_e306 + 1i);
                 }
             }
             continue;
@@ -925,95 +940,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e307 = i_2;
-            i_2 = (_e307 + bitcast<u32>(1i));
+            let _e308 = i_2;
+            i_2 = (_e308 + bitcast<u32>(1i));
         }
     }
-    let _e310 = (*s_4);
-    param_45 = _e310;
+    let _e311 = (*s_4);
+    param_45 = _e311;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e311 = param_46;
-    bu_2 = _e311;
-    let _e312 = param_47;
-    du_2 = _e312;
-    let _e313 = (*t_4);
-    param_48 = _e313;
+    let _e312 = param_46;
+    bu_2 = _e312;
+    let _e313 = param_47;
+    du_2 = _e313;
+    let _e314 = (*t_4);
+    param_48 = _e314;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_48), (&param_49), (&param_50));
-    let _e314 = param_49;
-    bv_2 = _e314;
-    let _e315 = param_50;
-    dv_2 = _e315;
+    let _e315 = param_49;
+    bv_2 = _e315;
+    let _e316 = param_50;
+    dv_2 = _e316;
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e316 = j_3;
-        if (_e316 < 4i) {
+        let _e317 = j_3;
+        if (_e317 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e318 = i_3;
-                if (_e318 < 4i) {
-                    let _e320 = i_3;
-                    let _e322 = bu_2[_e320];
-                    let _e323 = j_3;
-                    let _e325 = i_3;
-                    let _e328 = c_2[((4i * _e323) + _e325)];
-                    let _e330 = row_1;
-                    row_1 = (_e330 + (_e328 * _e322));
-                    let _e332 = i_3;
-                    let _e334 = bu_2[_e332];
-                    let _e335 = j_3;
-                    let _e337 = i_3;
-                    let _e340 = r_1[((4i * _e335) + _e337)];
-                    let _e342 = rowRel_1;
-                    rowRel_1 = (_e342 + (_e340 * _e334));
-                    let _e344 = i_3;
-                    let _e346 = du_2[_e344];
-                    let _e347 = j_3;
-                    let _e349 = i_3;
-                    let _e352 = r_1[((4i * _e347) + _e349)];
-                    let _e354 = rowDu_1;
-                    rowDu_1 = (_e354 + (_e352 * _e346));
+                let _e319 = i_3;
+                if (_e319 < 4i) {
+                    let _e321 = i_3;
+                    let _e323 = bu_2[_e321];
+                    let _e324 = j_3;
+                    let _e326 = i_3;
+                    let _e329 = c_3[((4i * _e324) + _e326)];
+                    let _e331 = row_1;
+                    row_1 = (_e331 + (_e329 * _e323));
+                    let _e333 = i_3;
+                    let _e335 = bu_2[_e333];
+                    let _e336 = j_3;
+                    let _e338 = i_3;
+                    let _e341 = r_1[((4i * _e336) + _e338)];
+                    let _e343 = rowRel_1;
+                    rowRel_1 = (_e343 + (_e341 * _e335));
+                    let _e345 = i_3;
+                    let _e347 = du_2[_e345];
+                    let _e348 = j_3;
+                    let _e350 = i_3;
+                    let _e353 = r_1[((4i * _e348) + _e350)];
+                    let _e355 = rowDu_1;
+                    rowDu_1 = (_e355 + (_e353 * _e347));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e356 = i_3;
-                    i_3 = (_e356 + 1i);
+                    let _e357 = i_3;
+                    i_3 = (_e357 + 1i);
                 }
             }
-            let _e358 = j_3;
-            let _e360 = bv_2[_e358];
-            let _e361 = row_1;
-            let _e363 = (*P_3);
-            (*P_3) = (_e363 + (_e361 * _e360));
-            let _e365 = j_3;
-            let _e367 = bv_2[_e365];
-            let _e368 = rowDu_1;
-            let _e370 = Du_1;
-            Du_1 = (_e370 + (_e368 * _e367));
-            let _e372 = j_3;
-            let _e374 = dv_2[_e372];
-            let _e375 = rowRel_1;
-            let _e377 = Dv_1;
-            Dv_1 = (_e377 + (_e375 * _e374));
+            let _e359 = j_3;
+            let _e361 = bv_2[_e359];
+            let _e362 = row_1;
+            let _e364 = (*P_3);
+            (*P_3) = (_e364 + (_e362 * _e361));
+            let _e366 = j_3;
+            let _e368 = bv_2[_e366];
+            let _e369 = rowDu_1;
+            let _e371 = Du_1;
+            Du_1 = (_e371 + (_e369 * _e368));
+            let _e373 = j_3;
+            let _e375 = dv_2[_e373];
+            let _e376 = rowRel_1;
+            let _e378 = Dv_1;
+            Dv_1 = (_e378 + (_e376 * _e375));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e379 = j_3;
-            j_3 = (_e379 + 1i);
+            let _e380 = j_3;
+            j_3 = (_e380 + 1i);
         }
     }
-    let _e381 = Du_1;
-    let _e382 = Dv_1;
-    (*n_2) = cross(_e381, _e382);
+    let _e382 = Du_1;
+    let _e383 = Dv_1;
+    (*n_2) = cross(_e382, _e383);
     return;
 }
 
@@ -1027,7 +1042,7 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     var local_5: u32;
     var local_6: u32;
     var local_7: u32;
-    var c_3: u32;
+    var c_4: u32;
     var local_8: u32;
     var local_9: u32;
     var local_10: u32;
@@ -1076,227 +1091,227 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     var y: f32;
     var w_2: array<f32, 4>;
 
-    let _e138 = (*h_1);
-    let _e141 = patches.p[_e138];
-    hd_1.cv[0i] = _e141.cv[0];
-    hd_1.cv[1i] = _e141.cv[1];
-    hd_1.cv[2i] = _e141.cv[2];
-    hd_1.cv[3i] = _e141.cv[3];
-    hd_1.cv[4i] = _e141.cv[4];
-    hd_1.cv[5i] = _e141.cv[5];
-    hd_1.cv[6i] = _e141.cv[6];
-    hd_1.cv[7i] = _e141.cv[7];
-    hd_1.cv[8i] = _e141.cv[8];
-    hd_1.cv[9i] = _e141.cv[9];
-    hd_1.cv[10i] = _e141.cv[10];
-    hd_1.cv[11i] = _e141.cv[11];
-    hd_1.cv[12i] = _e141.cv[12];
-    hd_1.cv[13i] = _e141.cv[13];
-    hd_1.cv[14i] = _e141.cv[14];
-    hd_1.cv[15i] = _e141.cv[15];
-    hd_1.ptex = _e141.ptex;
-    hd_1.u0_ = _e141.u0_;
-    hd_1.v0_ = _e141.v0_;
-    hd_1.size = _e141.size;
-    hd_1.levelBoundary = _e141.levelBoundary;
-    hd_1.sharpness = _e141.sharpness;
-    hd_1.pad1_ = _e141.pad1_;
-    hd_1.pad2_ = _e141.pad2_;
-    let _e192 = (*st);
-    S_1 = (_e192 & 65535u);
-    let _e194 = (*st);
-    T = (_e194 >> bitcast<u32>(16i));
-    let _e199 = hd_1.cv[1i];
-    corner = _e199;
-    let _e202 = hd_1.cv[3i];
-    K = _e202;
-    let _e203 = corner;
-    if (_e203 == 0u) {
-        let _e205 = S_1;
-        local_5 = _e205;
+    let _e139 = (*h_1);
+    let _e142 = patches.p[_e139];
+    hd_1.cv[0i] = _e142.cv[0];
+    hd_1.cv[1i] = _e142.cv[1];
+    hd_1.cv[2i] = _e142.cv[2];
+    hd_1.cv[3i] = _e142.cv[3];
+    hd_1.cv[4i] = _e142.cv[4];
+    hd_1.cv[5i] = _e142.cv[5];
+    hd_1.cv[6i] = _e142.cv[6];
+    hd_1.cv[7i] = _e142.cv[7];
+    hd_1.cv[8i] = _e142.cv[8];
+    hd_1.cv[9i] = _e142.cv[9];
+    hd_1.cv[10i] = _e142.cv[10];
+    hd_1.cv[11i] = _e142.cv[11];
+    hd_1.cv[12i] = _e142.cv[12];
+    hd_1.cv[13i] = _e142.cv[13];
+    hd_1.cv[14i] = _e142.cv[14];
+    hd_1.cv[15i] = _e142.cv[15];
+    hd_1.ptex = _e142.ptex;
+    hd_1.u0_ = _e142.u0_;
+    hd_1.v0_ = _e142.v0_;
+    hd_1.size = _e142.size;
+    hd_1.levelBoundary = _e142.levelBoundary;
+    hd_1.sharpness = _e142.sharpness;
+    hd_1.pad1_ = _e142.pad1_;
+    hd_1.pad2_ = _e142.pad2_;
+    let _e193 = (*st);
+    S_1 = (_e193 & 65535u);
+    let _e195 = (*st);
+    T = (_e195 >> bitcast<u32>(16i));
+    let _e200 = hd_1.cv[1i];
+    corner = _e200;
+    let _e203 = hd_1.cv[3i];
+    K = _e203;
+    let _e204 = corner;
+    if (_e204 == 0u) {
+        let _e206 = S_1;
+        local_5 = _e206;
     } else {
-        let _e206 = corner;
-        if (_e206 == 1u) {
-            let _e208 = T;
-            local_6 = _e208;
+        let _e207 = corner;
+        if (_e207 == 1u) {
+            let _e209 = T;
+            local_6 = _e209;
         } else {
-            let _e209 = corner;
-            if (_e209 == 2u) {
-                let _e211 = S_1;
-                local_7 = (32768u - _e211);
+            let _e210 = corner;
+            if (_e210 == 2u) {
+                let _e212 = S_1;
+                local_7 = (32768u - _e212);
             } else {
-                let _e213 = T;
-                local_7 = (32768u - _e213);
+                let _e214 = T;
+                local_7 = (32768u - _e214);
             }
-            let _e215 = local_7;
-            local_6 = _e215;
+            let _e216 = local_7;
+            local_6 = _e216;
         }
-        let _e216 = local_6;
-        local_5 = _e216;
+        let _e217 = local_6;
+        local_5 = _e217;
     }
-    let _e217 = local_5;
-    a = _e217;
-    let _e218 = corner;
-    if (_e218 == 0u) {
-        let _e220 = T;
-        local_8 = _e220;
+    let _e218 = local_5;
+    a = _e218;
+    let _e219 = corner;
+    if (_e219 == 0u) {
+        let _e221 = T;
+        local_8 = _e221;
     } else {
-        let _e221 = corner;
-        if (_e221 == 1u) {
-            let _e223 = S_1;
-            local_9 = (32768u - _e223);
+        let _e222 = corner;
+        if (_e222 == 1u) {
+            let _e224 = S_1;
+            local_9 = (32768u - _e224);
         } else {
-            let _e225 = corner;
-            if (_e225 == 2u) {
-                let _e227 = T;
-                local_10 = (32768u - _e227);
+            let _e226 = corner;
+            if (_e226 == 2u) {
+                let _e228 = T;
+                local_10 = (32768u - _e228);
             } else {
-                let _e229 = S_1;
-                local_10 = _e229;
+                let _e230 = S_1;
+                local_10 = _e230;
             }
-            let _e230 = local_10;
-            local_9 = _e230;
+            let _e231 = local_10;
+            local_9 = _e231;
         }
-        let _e231 = local_9;
-        local_8 = _e231;
+        let _e232 = local_9;
+        local_8 = _e232;
     }
-    let _e232 = local_8;
-    c_3 = _e232;
-    let _e235 = hd_1.cv[4i];
-    let _e239 = limits.v[(2u * _e235)];
-    evP = _e239.xyz;
-    let _e243 = hd_1.cv[4i];
-    let _e248 = limits.v[((2u * _e243) + 1u)];
-    evN = _e248.xyz;
-    let _e250 = a;
-    let _e252 = c_3;
-    if ((_e250 == 0u) && (_e252 == 0u)) {
-        let _e255 = evP;
-        (*P_4) = _e255;
-        let _e256 = evN;
-        (*n_3) = _e256;
+    let _e233 = local_8;
+    c_4 = _e233;
+    let _e236 = hd_1.cv[4i];
+    let _e240 = limits.v[(2u * _e236)];
+    evP = _e240.xyz;
+    let _e244 = hd_1.cv[4i];
+    let _e249 = limits.v[((2u * _e244) + 1u)];
+    evN = _e249.xyz;
+    let _e251 = a;
+    let _e253 = c_4;
+    if ((_e251 == 0u) && (_e253 == 0u)) {
+        let _e256 = evP;
+        (*P_4) = _e256;
+        let _e257 = evN;
+        (*n_3) = _e257;
         return;
     }
     k_4 = 1u;
     loop {
-        let _e257 = a;
-        let _e258 = c_3;
-        let _e261 = k_4;
-        let _e262 = K;
-        if ((max(_e257, _e258) < 16384u) && (_e261 < _e262)) {
-            let _e265 = a;
-            a = (_e265 * 2u);
-            let _e267 = c_3;
-            c_3 = (_e267 * 2u);
-            let _e269 = k_4;
-            k_4 = (_e269 + bitcast<u32>(1i));
+        let _e258 = a;
+        let _e259 = c_4;
+        let _e262 = k_4;
+        let _e263 = K;
+        if ((max(_e258, _e259) < 16384u) && (_e262 < _e263)) {
+            let _e266 = a;
+            a = (_e266 * 2u);
+            let _e268 = c_4;
+            c_4 = (_e268 * 2u);
+            let _e270 = k_4;
+            k_4 = (_e270 + bitcast<u32>(1i));
             continue;
         } else {
             break;
         }
     }
-    let _e272 = a;
-    let _e273 = c_3;
-    if (max(_e272, _e273) >= 16384u) {
-        let _e276 = a;
-        qu = select(0u, 1u, (_e276 >= 16384u));
-        let _e279 = c_3;
-        qv = select(0u, 1u, (_e279 >= 16384u));
-        let _e282 = qv;
-        if (_e282 == 0u) {
+    let _e273 = a;
+    let _e274 = c_4;
+    if (max(_e273, _e274) >= 16384u) {
+        let _e277 = a;
+        qu = select(0u, 1u, (_e277 >= 16384u));
+        let _e280 = c_4;
+        qv = select(0u, 1u, (_e280 >= 16384u));
+        let _e283 = qv;
+        if (_e283 == 0u) {
             local_11 = 1u;
         } else {
-            let _e284 = qu;
-            local_11 = select(3u, 2u, (_e284 == 1u));
+            let _e285 = qu;
+            local_11 = select(3u, 2u, (_e285 == 1u));
         }
-        let _e287 = local_11;
-        q_1 = _e287;
-        let _e288 = a;
-        let _e290 = qu;
-        let _e295 = c_3;
-        let _e297 = qv;
-        let _e302 = (*h_1);
-        param_51 = _e302;
-        let _e303 = k_4;
-        param_52 = _e303;
-        let _e304 = q_1;
-        param_53 = _e304;
-        param_54 = (f32(((2u * _e288) - (_e290 * 32768u))) / 32768f);
-        param_55 = (f32(((2u * _e295) - (_e297 * 32768u))) / 32768f);
+        let _e288 = local_11;
+        q_1 = _e288;
+        let _e289 = a;
+        let _e291 = qu;
+        let _e296 = c_4;
+        let _e298 = qv;
+        let _e303 = (*h_1);
+        param_51 = _e303;
+        let _e304 = k_4;
+        param_52 = _e304;
+        let _e305 = q_1;
+        param_53 = _e305;
+        param_54 = (f32(((2u * _e289) - (_e291 * 32768u))) / 32768f);
+        param_55 = (f32(((2u * _e296) - (_e298 * 32768u))) / 32768f);
         basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_51), (&param_52), (&param_53), (&param_54), (&param_55), (&param_56), (&param_57));
-        let _e305 = param_56;
-        (*P_4) = _e305;
-        let _e306 = param_57;
-        (*n_3) = _e306;
+        let _e306 = param_56;
+        (*P_4) = _e306;
+        let _e307 = param_57;
+        (*n_3) = _e307;
         return;
     }
-    let _e307 = (*h_1);
-    param_58 = _e307;
-    let _e308 = k_4;
-    param_59 = _e308;
+    let _e308 = (*h_1);
+    param_58 = _e308;
+    let _e309 = k_4;
+    param_59 = _e309;
     param_60 = 1u;
     param_61 = 0f;
     param_62 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_58), (&param_59), (&param_60), (&param_61), (&param_62), (&param_63), (&param_64));
-    let _e309 = param_63;
-    P1_ = _e309;
-    let _e310 = param_64;
-    n1_ = _e310;
-    let _e311 = (*h_1);
-    param_65 = _e311;
-    let _e312 = k_4;
-    param_66 = _e312;
+    let _e310 = param_63;
+    P1_ = _e310;
+    let _e311 = param_64;
+    n1_ = _e311;
+    let _e312 = (*h_1);
+    param_65 = _e312;
+    let _e313 = k_4;
+    param_66 = _e313;
     param_67 = 2u;
     param_68 = 0f;
     param_69 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_65), (&param_66), (&param_67), (&param_68), (&param_69), (&param_70), (&param_71));
-    let _e313 = param_70;
-    P2_ = _e313;
-    let _e314 = param_71;
-    n2_ = _e314;
-    let _e315 = (*h_1);
-    param_72 = _e315;
-    let _e316 = k_4;
-    param_73 = _e316;
+    let _e314 = param_70;
+    P2_ = _e314;
+    let _e315 = param_71;
+    n2_ = _e315;
+    let _e316 = (*h_1);
+    param_72 = _e316;
+    let _e317 = k_4;
+    param_73 = _e317;
     param_74 = 3u;
     param_75 = 0f;
     param_76 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_72), (&param_73), (&param_74), (&param_75), (&param_76), (&param_77), (&param_78));
-    let _e317 = param_77;
-    P3_ = _e317;
-    let _e318 = param_78;
-    n3_ = _e318;
-    let _e319 = a;
-    x_2 = (f32(_e319) / 16384f);
-    let _e322 = c_3;
-    y = (f32(_e322) / 16384f);
-    let _e325 = x_2;
-    let _e327 = y;
-    let _e330 = x_2;
-    let _e331 = y;
-    let _e334 = x_2;
-    let _e335 = y;
-    let _e337 = x_2;
-    let _e339 = y;
-    w_2 = array<f32, 4>(((1f - _e325) * (1f - _e327)), (_e330 * (1f - _e331)), (_e334 * _e335), ((1f - _e337) * _e339));
-    let _e343 = w_2[0i];
-    let _e344 = evP;
-    let _e347 = w_2[1i];
-    let _e348 = P1_;
-    let _e352 = w_2[2i];
-    let _e353 = P2_;
-    let _e357 = w_2[3i];
-    let _e358 = P3_;
-    (*P_4) = ((((_e344 * _e343) + (_e348 * _e347)) + (_e353 * _e352)) + (_e358 * _e357));
-    let _e362 = w_2[0i];
-    let _e363 = evN;
-    let _e366 = w_2[1i];
-    let _e367 = n1_;
-    let _e372 = w_2[2i];
-    let _e373 = n2_;
-    let _e378 = w_2[3i];
-    let _e379 = n3_;
-    (*n_3) = ((((_e363 * _e362) + (normalize(_e367) * _e366)) + (normalize(_e373) * _e372)) + (normalize(_e379) * _e378));
+    let _e318 = param_77;
+    P3_ = _e318;
+    let _e319 = param_78;
+    n3_ = _e319;
+    let _e320 = a;
+    x_2 = (f32(_e320) / 16384f);
+    let _e323 = c_4;
+    y = (f32(_e323) / 16384f);
+    let _e326 = x_2;
+    let _e328 = y;
+    let _e331 = x_2;
+    let _e332 = y;
+    let _e335 = x_2;
+    let _e336 = y;
+    let _e338 = x_2;
+    let _e340 = y;
+    w_2 = array<f32, 4>(((1f - _e326) * (1f - _e328)), (_e331 * (1f - _e332)), (_e335 * _e336), ((1f - _e338) * _e340));
+    let _e344 = w_2[0i];
+    let _e345 = evP;
+    let _e348 = w_2[1i];
+    let _e349 = P1_;
+    let _e353 = w_2[2i];
+    let _e354 = P2_;
+    let _e358 = w_2[3i];
+    let _e359 = P3_;
+    (*P_4) = ((((_e345 * _e344) + (_e349 * _e348)) + (_e354 * _e353)) + (_e359 * _e358));
+    let _e363 = w_2[0i];
+    let _e364 = evN;
+    let _e367 = w_2[1i];
+    let _e368 = n1_;
+    let _e373 = w_2[2i];
+    let _e374 = n2_;
+    let _e379 = w_2[3i];
+    let _e380 = n3_;
+    (*n_3) = ((((_e364 * _e363) + (normalize(_e368) * _e367)) + (normalize(_e374) * _e373)) + (normalize(_e380) * _e379));
     return;
 }
 
@@ -1305,13 +1320,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var T_1: u32;
     var k_5: u32;
     var local_12: u32;
-    var c_4: u32;
+    var c_5: u32;
     var node: u32;
     var leaf: u32;
     var ls: u32;
     var lt: u32;
     var k_6: i32;
-    var c_5: u32;
+    var c_6: u32;
     var code: u32;
     var param_79: u32;
     var param_80: u32;
@@ -1331,197 +1346,197 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_7: i32;
     var phi_1444_: bool;
 
-    let _e110 = (*st_1);
-    S_2 = (_e110 & 65535u);
-    let _e112 = (*st_1);
-    T_1 = (_e112 >> bitcast<u32>(16i));
-    let _e115 = S_2;
-    let _e117 = S_2;
-    let _e119 = ((_e115 == 0u) || (_e117 == 32768u));
-    phi_1444_ = _e119;
-    if _e119 {
-        let _e120 = T_1;
-        let _e122 = T_1;
-        phi_1444_ = ((_e120 == 0u) || (_e122 == 32768u));
+    let _e111 = (*st_1);
+    S_2 = (_e111 & 65535u);
+    let _e113 = (*st_1);
+    T_1 = (_e113 >> bitcast<u32>(16i));
+    let _e116 = S_2;
+    let _e118 = S_2;
+    let _e120 = ((_e116 == 0u) || (_e118 == 32768u));
+    phi_1444_ = _e120;
+    if _e120 {
+        let _e121 = T_1;
+        let _e123 = T_1;
+        phi_1444_ = ((_e121 == 0u) || (_e123 == 32768u));
     }
-    let _e126 = phi_1444_;
-    if _e126 {
-        let _e127 = S_2;
-        if (_e127 == 0u) {
-            let _e129 = T_1;
-            local_12 = select(3u, 0u, (_e129 == 0u));
+    let _e127 = phi_1444_;
+    if _e127 {
+        let _e128 = S_2;
+        if (_e128 == 0u) {
+            let _e130 = T_1;
+            local_12 = select(3u, 0u, (_e130 == 0u));
         } else {
-            let _e132 = T_1;
-            local_12 = select(2u, 1u, (_e132 == 0u));
+            let _e133 = T_1;
+            local_12 = select(2u, 1u, (_e133 == 0u));
         }
-        let _e135 = local_12;
-        k_5 = _e135;
-        let _e136 = (*face);
-        let _e137 = k_5;
-        let _e142 = irregulars.f[_e136].corner[_e137];
-        c_4 = _e142;
-        let _e143 = c_4;
-        let _e147 = limits.v[(2u * _e143)];
-        (*P_5) = _e147.xyz;
-        let _e149 = c_4;
-        let _e154 = limits.v[((2u * _e149) + 1u)];
-        (*n_4) = _e154.xyz;
+        let _e136 = local_12;
+        k_5 = _e136;
+        let _e137 = (*face);
+        let _e138 = k_5;
+        let _e143 = irregulars.f[_e137].corner[_e138];
+        c_5 = _e143;
+        let _e144 = c_5;
+        let _e148 = limits.v[(2u * _e144)];
+        (*P_5) = _e148.xyz;
+        let _e150 = c_5;
+        let _e155 = limits.v[((2u * _e150) + 1u)];
+        (*n_4) = _e155.xyz;
         return;
     }
-    let _e156 = (*patchCount);
-    let _e157 = (*face);
-    node = (_e156 + _e157);
-    let _e159 = (*face);
-    leaf = _e159;
-    let _e160 = S_2;
-    ls = _e160;
-    let _e161 = T_1;
-    lt = _e161;
+    let _e157 = (*patchCount);
+    let _e158 = (*face);
+    node = (_e157 + _e158);
+    let _e160 = (*face);
+    leaf = _e160;
+    let _e161 = S_2;
+    ls = _e161;
+    let _e162 = T_1;
+    lt = _e162;
     k_6 = 0i;
     loop {
-        let _e162 = k_6;
-        if (_e162 < 17i) {
-            let _e164 = S_2;
-            let _e167 = T_1;
-            c_5 = (select(0u, 1u, (_e164 >= 16384u)) | select(0u, 2u, (_e167 >= 16384u)));
-            let _e171 = node;
-            let _e172 = c_5;
-            let _e177 = patches.p[_e171].cv[_e172];
-            code = _e177;
-            let _e178 = code;
-            if (_e178 == 4294967295u) {
+        let _e163 = k_6;
+        if (_e163 < 17i) {
+            let _e165 = S_2;
+            let _e168 = T_1;
+            c_6 = (select(0u, 1u, (_e165 >= 16384u)) | select(0u, 2u, (_e168 >= 16384u)));
+            let _e172 = node;
+            let _e173 = c_6;
+            let _e178 = patches.p[_e172].cv[_e173];
+            code = _e178;
+            let _e179 = code;
+            if (_e179 == 4294967295u) {
                 break;
             }
-            let _e180 = code;
-            if ((_e180 & 3221225472u) == 3221225472u) {
-                let _e183 = code;
-                param_79 = (_e183 & 1073741823u);
-                let _e185 = (*st_1);
-                param_80 = _e185;
+            let _e181 = code;
+            if ((_e181 & 3221225472u) == 3221225472u) {
+                let _e184 = code;
+                param_79 = (_e184 & 1073741823u);
+                let _e186 = (*st_1);
+                param_80 = _e186;
                 smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_79), (&param_80), (&param_81), (&param_82));
-                let _e186 = param_81;
-                (*P_5) = _e186;
-                let _e187 = param_82;
-                (*n_4) = _e187;
+                let _e187 = param_81;
+                (*P_5) = _e187;
+                let _e188 = param_82;
+                (*n_4) = _e188;
                 return;
             }
-            let _e188 = S_2;
-            let _e190 = c_5;
-            S_2 = ((2u * _e188) - select(0u, 32768u, ((_e190 & 1u) != 0u)));
-            let _e195 = T_1;
-            let _e197 = c_5;
-            T_1 = ((2u * _e195) - select(0u, 32768u, ((_e197 & 2u) != 0u)));
-            let _e202 = code;
-            kind = (_e202 & 3221225472u);
-            let _e204 = code;
-            index = (_e204 & 1073741823u);
-            let _e206 = kind;
-            if (_e206 == 0u) {
-                let _e208 = index;
-                let _e209 = S_2;
-                let _e212 = T_1;
-                let _e217 = patches.p[_e208];
-                param_83.cv[0i] = _e217.cv[0];
-                param_83.cv[1i] = _e217.cv[1];
-                param_83.cv[2i] = _e217.cv[2];
-                param_83.cv[3i] = _e217.cv[3];
-                param_83.cv[4i] = _e217.cv[4];
-                param_83.cv[5i] = _e217.cv[5];
-                param_83.cv[6i] = _e217.cv[6];
-                param_83.cv[7i] = _e217.cv[7];
-                param_83.cv[8i] = _e217.cv[8];
-                param_83.cv[9i] = _e217.cv[9];
-                param_83.cv[10i] = _e217.cv[10];
-                param_83.cv[11i] = _e217.cv[11];
-                param_83.cv[12i] = _e217.cv[12];
-                param_83.cv[13i] = _e217.cv[13];
-                param_83.cv[14i] = _e217.cv[14];
-                param_83.cv[15i] = _e217.cv[15];
-                param_83.ptex = _e217.ptex;
-                param_83.u0_ = _e217.u0_;
-                param_83.v0_ = _e217.v0_;
-                param_83.size = _e217.size;
-                param_83.levelBoundary = _e217.levelBoundary;
-                param_83.sharpness = _e217.sharpness;
-                param_83.pad1_ = _e217.pad1_;
-                param_83.pad2_ = _e217.pad2_;
-                param_84 = (f32(_e209) / 32768f);
-                param_85 = (f32(_e212) / 32768f);
+            let _e189 = S_2;
+            let _e191 = c_6;
+            S_2 = ((2u * _e189) - select(0u, 32768u, ((_e191 & 1u) != 0u)));
+            let _e196 = T_1;
+            let _e198 = c_6;
+            T_1 = ((2u * _e196) - select(0u, 32768u, ((_e198 & 2u) != 0u)));
+            let _e203 = code;
+            kind = (_e203 & 3221225472u);
+            let _e205 = code;
+            index = (_e205 & 1073741823u);
+            let _e207 = kind;
+            if (_e207 == 0u) {
+                let _e209 = index;
+                let _e210 = S_2;
+                let _e213 = T_1;
+                let _e218 = patches.p[_e209];
+                param_83.cv[0i] = _e218.cv[0];
+                param_83.cv[1i] = _e218.cv[1];
+                param_83.cv[2i] = _e218.cv[2];
+                param_83.cv[3i] = _e218.cv[3];
+                param_83.cv[4i] = _e218.cv[4];
+                param_83.cv[5i] = _e218.cv[5];
+                param_83.cv[6i] = _e218.cv[6];
+                param_83.cv[7i] = _e218.cv[7];
+                param_83.cv[8i] = _e218.cv[8];
+                param_83.cv[9i] = _e218.cv[9];
+                param_83.cv[10i] = _e218.cv[10];
+                param_83.cv[11i] = _e218.cv[11];
+                param_83.cv[12i] = _e218.cv[12];
+                param_83.cv[13i] = _e218.cv[13];
+                param_83.cv[14i] = _e218.cv[14];
+                param_83.cv[15i] = _e218.cv[15];
+                param_83.ptex = _e218.ptex;
+                param_83.u0_ = _e218.u0_;
+                param_83.v0_ = _e218.v0_;
+                param_83.size = _e218.size;
+                param_83.levelBoundary = _e218.levelBoundary;
+                param_83.sharpness = _e218.sharpness;
+                param_83.pad1_ = _e218.pad1_;
+                param_83.pad2_ = _e218.pad2_;
+                param_84 = (f32(_e210) / 32768f);
+                param_85 = (f32(_e213) / 32768f);
                 patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_83), (&param_84), (&param_85), (&param_86), (&param_87));
-                let _e268 = param_86;
-                (*P_5) = _e268;
-                let _e269 = param_87;
-                (*n_4) = _e269;
+                let _e269 = param_86;
+                (*P_5) = _e269;
+                let _e270 = param_87;
+                (*n_4) = _e270;
                 return;
             }
-            let _e270 = kind;
-            if (_e270 == 2147483648u) {
-                let _e272 = index;
-                leaf = _e272;
-                let _e273 = S_2;
-                ls = _e273;
-                let _e274 = T_1;
-                lt = _e274;
+            let _e271 = kind;
+            if (_e271 == 2147483648u) {
+                let _e273 = index;
+                leaf = _e273;
+                let _e274 = S_2;
+                ls = _e274;
+                let _e275 = T_1;
+                lt = _e275;
                 break;
             }
-            let _e275 = index;
-            node = _e275;
+            let _e276 = index;
+            node = _e276;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e276 = k_6;
-            k_6 = (_e276 + 1i);
+            let _e277 = k_6;
+            k_6 = (_e277 + 1i);
         }
     }
-    let _e278 = leaf;
-    let _e281 = irregulars.f[_e278];
-    q_2.corner = _e281.corner;
-    q_2.ptex = _e281.ptex;
-    q_2.u0_ = _e281.u0_;
-    q_2.v0_ = _e281.v0_;
-    q_2.size = _e281.size;
-    let _e292 = ls;
-    s_5 = (f32(_e292) / 32768f);
-    let _e295 = lt;
-    t_5 = (f32(_e295) / 32768f);
-    let _e298 = s_5;
-    let _e300 = t_5;
-    let _e303 = s_5;
-    let _e304 = t_5;
-    let _e307 = s_5;
-    let _e308 = t_5;
-    let _e310 = s_5;
-    let _e312 = t_5;
-    w_3 = array<f32, 4>(((1f - _e298) * (1f - _e300)), (_e303 * (1f - _e304)), (_e307 * _e308), ((1f - _e310) * _e312));
+    let _e279 = leaf;
+    let _e282 = irregulars.f[_e279];
+    q_2.corner = _e282.corner;
+    q_2.ptex = _e282.ptex;
+    q_2.u0_ = _e282.u0_;
+    q_2.v0_ = _e282.v0_;
+    q_2.size = _e282.size;
+    let _e293 = ls;
+    s_5 = (f32(_e293) / 32768f);
+    let _e296 = lt;
+    t_5 = (f32(_e296) / 32768f);
+    let _e299 = s_5;
+    let _e301 = t_5;
+    let _e304 = s_5;
+    let _e305 = t_5;
+    let _e308 = s_5;
+    let _e309 = t_5;
+    let _e311 = s_5;
+    let _e313 = t_5;
+    w_3 = array<f32, 4>(((1f - _e299) * (1f - _e301)), (_e304 * (1f - _e305)), (_e308 * _e309), ((1f - _e311) * _e313));
     (*P_5) = vec3<f32>(0f, 0f, 0f);
     (*n_4) = vec3<f32>(0f, 0f, 0f);
     k_7 = 0i;
     loop {
-        let _e315 = k_7;
-        if (_e315 < 4i) {
-            let _e317 = k_7;
-            let _e319 = w_3[_e317];
-            let _e320 = k_7;
-            let _e323 = q_2.corner[_e320];
-            let _e327 = limits.v[(2u * _e323)];
-            let _e330 = (*P_5);
-            (*P_5) = (_e330 + (_e327.xyz * _e319));
-            let _e332 = k_7;
-            let _e334 = w_3[_e332];
-            let _e335 = k_7;
-            let _e338 = q_2.corner[_e335];
-            let _e343 = limits.v[((2u * _e338) + 1u)];
-            let _e346 = (*n_4);
-            (*n_4) = (_e346 + (_e343.xyz * _e334));
+        let _e316 = k_7;
+        if (_e316 < 4i) {
+            let _e318 = k_7;
+            let _e320 = w_3[_e318];
+            let _e321 = k_7;
+            let _e324 = q_2.corner[_e321];
+            let _e328 = limits.v[(2u * _e324)];
+            let _e331 = (*P_5);
+            (*P_5) = (_e331 + (_e328.xyz * _e320));
+            let _e333 = k_7;
+            let _e335 = w_3[_e333];
+            let _e336 = k_7;
+            let _e339 = q_2.corner[_e336];
+            let _e344 = limits.v[((2u * _e339) + 1u)];
+            let _e347 = (*n_4);
+            (*n_4) = (_e347 + (_e344.xyz * _e335));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e348 = k_7;
-            k_7 = (_e348 + 1i);
+            let _e349 = k_7;
+            k_7 = (_e349 + 1i);
         }
     }
     return;
@@ -1531,7 +1546,7 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
     var q_3: i32;
     var pt_2: Patch;
     var k_8: i32;
-    var c_6: array<vec3<f32>, 16>;
+    var c_7: array<vec3<f32>, 16>;
     var q_4: u32;
     var s_6: f32;
     var t_6: f32;
@@ -1562,198 +1577,198 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
 
     q_3 = 0i;
     loop {
-        let _e114 = q_3;
-        if (_e114 < 5i) {
-            let _e116 = q_3;
-            (*P_6)[_e116] = vec3<f32>(0f, 0f, 0f);
-            let _e118 = q_3;
-            (*N_1)[_e118] = vec3<f32>(0f, 0f, 0f);
+        let _e115 = q_3;
+        if (_e115 < 5i) {
+            let _e117 = q_3;
+            (*P_6)[_e117] = vec3<f32>(0f, 0f, 0f);
+            let _e119 = q_3;
+            (*N_1)[_e119] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e120 = q_3;
-            q_3 = (_e120 + 1i);
+            let _e121 = q_3;
+            q_3 = (_e121 + 1i);
         }
     }
-    let _e122 = (*element);
-    let _e123 = (*patchCount_1);
-    if (_e122 < _e123) {
-        let _e125 = (*element);
-        let _e128 = patches.p[_e125];
-        pt_2.cv[0i] = _e128.cv[0];
-        pt_2.cv[1i] = _e128.cv[1];
-        pt_2.cv[2i] = _e128.cv[2];
-        pt_2.cv[3i] = _e128.cv[3];
-        pt_2.cv[4i] = _e128.cv[4];
-        pt_2.cv[5i] = _e128.cv[5];
-        pt_2.cv[6i] = _e128.cv[6];
-        pt_2.cv[7i] = _e128.cv[7];
-        pt_2.cv[8i] = _e128.cv[8];
-        pt_2.cv[9i] = _e128.cv[9];
-        pt_2.cv[10i] = _e128.cv[10];
-        pt_2.cv[11i] = _e128.cv[11];
-        pt_2.cv[12i] = _e128.cv[12];
-        pt_2.cv[13i] = _e128.cv[13];
-        pt_2.cv[14i] = _e128.cv[14];
-        pt_2.cv[15i] = _e128.cv[15];
-        pt_2.ptex = _e128.ptex;
-        pt_2.u0_ = _e128.u0_;
-        pt_2.v0_ = _e128.v0_;
-        pt_2.size = _e128.size;
-        pt_2.levelBoundary = _e128.levelBoundary;
-        pt_2.sharpness = _e128.sharpness;
-        pt_2.pad1_ = _e128.pad1_;
-        pt_2.pad2_ = _e128.pad2_;
+    let _e123 = (*element);
+    let _e124 = (*patchCount_1);
+    if (_e123 < _e124) {
+        let _e126 = (*element);
+        let _e129 = patches.p[_e126];
+        pt_2.cv[0i] = _e129.cv[0];
+        pt_2.cv[1i] = _e129.cv[1];
+        pt_2.cv[2i] = _e129.cv[2];
+        pt_2.cv[3i] = _e129.cv[3];
+        pt_2.cv[4i] = _e129.cv[4];
+        pt_2.cv[5i] = _e129.cv[5];
+        pt_2.cv[6i] = _e129.cv[6];
+        pt_2.cv[7i] = _e129.cv[7];
+        pt_2.cv[8i] = _e129.cv[8];
+        pt_2.cv[9i] = _e129.cv[9];
+        pt_2.cv[10i] = _e129.cv[10];
+        pt_2.cv[11i] = _e129.cv[11];
+        pt_2.cv[12i] = _e129.cv[12];
+        pt_2.cv[13i] = _e129.cv[13];
+        pt_2.cv[14i] = _e129.cv[14];
+        pt_2.cv[15i] = _e129.cv[15];
+        pt_2.ptex = _e129.ptex;
+        pt_2.u0_ = _e129.u0_;
+        pt_2.v0_ = _e129.v0_;
+        pt_2.size = _e129.size;
+        pt_2.levelBoundary = _e129.levelBoundary;
+        pt_2.sharpness = _e129.sharpness;
+        pt_2.pad1_ = _e129.pad1_;
+        pt_2.pad2_ = _e129.pad2_;
         k_8 = 0i;
         loop {
-            let _e179 = k_8;
-            if (_e179 < 16i) {
-                let _e181 = k_8;
+            let _e180 = k_8;
+            if (_e180 < 16i) {
                 let _e182 = k_8;
-                let _e185 = pt_2.cv[_e182];
-                let _e188 = vertices.p[_e185];
-                c_6[_e181] = _e188.xyz;
+                let _e183 = k_8;
+                let _e186 = pt_2.cv[_e183];
+                let _e189 = vertices.p[_e186];
+                c_7[_e182] = _e189.xyz;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e191 = k_8;
-                k_8 = (_e191 + 1i);
+                let _e192 = k_8;
+                k_8 = (_e192 + 1i);
             }
         }
         q_4 = 0u;
         loop {
-            let _e193 = q_4;
-            let _e194 = (*count);
-            if (_e193 < _e194) {
-                let _e196 = q_4;
-                let _e198 = (*st_2)[_e196];
-                s_6 = (f32((_e198 & 65535u)) / 32768f);
-                let _e202 = q_4;
-                let _e204 = (*st_2)[_e202];
-                t_6 = (f32((_e204 >> bitcast<u32>(16i))) / 32768f);
-                let _e209 = pt_2;
-                param_88 = _e209;
-                let _e210 = s_6;
-                param_89 = _e210;
-                let _e211 = t_6;
-                param_90 = _e211;
+            let _e194 = q_4;
+            let _e195 = (*count);
+            if (_e194 < _e195) {
+                let _e197 = q_4;
+                let _e199 = (*st_2)[_e197];
+                s_6 = (f32((_e199 & 65535u)) / 32768f);
+                let _e203 = q_4;
+                let _e205 = (*st_2)[_e203];
+                t_6 = (f32((_e205 >> bitcast<u32>(16i))) / 32768f);
+                let _e210 = pt_2;
+                param_88 = _e210;
+                let _e211 = s_6;
+                param_89 = _e211;
+                let _e212 = t_6;
+                param_90 = _e212;
                 patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_88), (&param_89), (&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
-                let _e212 = param_91;
-                bu_3 = _e212;
-                let _e213 = param_92;
-                du_3 = _e213;
-                let _e214 = param_93;
-                bv_3 = _e214;
-                let _e215 = param_94;
-                dv_3 = _e215;
+                let _e213 = param_91;
+                bu_3 = _e213;
+                let _e214 = param_92;
+                du_3 = _e214;
+                let _e215 = param_93;
+                bv_3 = _e215;
+                let _e216 = param_94;
+                dv_3 = _e216;
                 p = vec3<f32>(0f, 0f, 0f);
                 Du_2 = vec3<f32>(0f, 0f, 0f);
                 Dv_2 = vec3<f32>(0f, 0f, 0f);
                 j_4 = 0i;
                 loop {
-                    let _e216 = j_4;
-                    if (_e216 < 4i) {
+                    let _e217 = j_4;
+                    if (_e217 < 4i) {
                         row_2 = vec3<f32>(0f, 0f, 0f);
                         rowDu_2 = vec3<f32>(0f, 0f, 0f);
                         i_4 = 0i;
                         loop {
-                            let _e218 = i_4;
-                            if (_e218 < 4i) {
-                                let _e220 = i_4;
-                                let _e222 = bu_3[_e220];
-                                let _e223 = j_4;
-                                let _e225 = i_4;
-                                let _e228 = c_6[((4i * _e223) + _e225)];
-                                let _e230 = row_2;
-                                row_2 = (_e230 + (_e228 * _e222));
-                                let _e232 = i_4;
-                                let _e234 = du_3[_e232];
-                                let _e235 = j_4;
-                                let _e237 = i_4;
-                                let _e240 = c_6[((4i * _e235) + _e237)];
-                                let _e242 = rowDu_2;
-                                rowDu_2 = (_e242 + (_e240 * _e234));
+                            let _e219 = i_4;
+                            if (_e219 < 4i) {
+                                let _e221 = i_4;
+                                let _e223 = bu_3[_e221];
+                                let _e224 = j_4;
+                                let _e226 = i_4;
+                                let _e229 = c_7[((4i * _e224) + _e226)];
+                                let _e231 = row_2;
+                                row_2 = (_e231 + (_e229 * _e223));
+                                let _e233 = i_4;
+                                let _e235 = du_3[_e233];
+                                let _e236 = j_4;
+                                let _e238 = i_4;
+                                let _e241 = c_7[((4i * _e236) + _e238)];
+                                let _e243 = rowDu_2;
+                                rowDu_2 = (_e243 + (_e241 * _e235));
                                 continue;
                             } else {
                                 break;
                             }
                             continuing {
-                                let _e244 = i_4;
-                                i_4 = (_e244 + 1i);
+                                let _e245 = i_4;
+                                i_4 = (_e245 + 1i);
                             }
                         }
-                        let _e246 = j_4;
-                        let _e248 = bv_3[_e246];
-                        let _e249 = row_2;
-                        let _e251 = p;
-                        p = (_e251 + (_e249 * _e248));
-                        let _e253 = j_4;
-                        let _e255 = bv_3[_e253];
-                        let _e256 = rowDu_2;
-                        let _e258 = Du_2;
-                        Du_2 = (_e258 + (_e256 * _e255));
-                        let _e260 = j_4;
-                        let _e262 = dv_3[_e260];
-                        let _e263 = row_2;
-                        let _e265 = Dv_2;
-                        Dv_2 = (_e265 + (_e263 * _e262));
+                        let _e247 = j_4;
+                        let _e249 = bv_3[_e247];
+                        let _e250 = row_2;
+                        let _e252 = p;
+                        p = (_e252 + (_e250 * _e249));
+                        let _e254 = j_4;
+                        let _e256 = bv_3[_e254];
+                        let _e257 = rowDu_2;
+                        let _e259 = Du_2;
+                        Du_2 = (_e259 + (_e257 * _e256));
+                        let _e261 = j_4;
+                        let _e263 = dv_3[_e261];
+                        let _e264 = row_2;
+                        let _e266 = Dv_2;
+                        Dv_2 = (_e266 + (_e264 * _e263));
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e267 = j_4;
-                        j_4 = (_e267 + 1i);
+                        let _e268 = j_4;
+                        j_4 = (_e268 + 1i);
                     }
                 }
-                let _e269 = q_4;
-                let _e270 = p;
-                (*P_6)[_e269] = _e270;
-                let _e272 = q_4;
-                let _e273 = Du_2;
-                let _e274 = Dv_2;
-                (*N_1)[_e272] = cross(_e273, _e274);
+                let _e270 = q_4;
+                let _e271 = p;
+                (*P_6)[_e270] = _e271;
+                let _e273 = q_4;
+                let _e274 = Du_2;
+                let _e275 = Dv_2;
+                (*N_1)[_e273] = cross(_e274, _e275);
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e277 = q_4;
-                q_4 = (_e277 + bitcast<u32>(1i));
+                let _e278 = q_4;
+                q_4 = (_e278 + bitcast<u32>(1i));
             }
         }
     } else {
         q_5 = 0u;
         loop {
-            let _e280 = q_5;
-            let _e281 = (*count);
-            if (_e280 < _e281) {
-                let _e283 = (*element);
-                let _e284 = (*patchCount_1);
-                let _e286 = q_5;
+            let _e281 = q_5;
+            let _e282 = (*count);
+            if (_e281 < _e282) {
+                let _e284 = (*element);
+                let _e285 = (*patchCount_1);
                 let _e287 = q_5;
                 let _e288 = q_5;
-                param_95 = (_e283 - _e284);
-                let _e290 = (*st_2)[_e286];
-                param_96 = _e290;
-                let _e291 = (*patchCount_1);
-                param_97 = _e291;
+                let _e289 = q_5;
+                param_95 = (_e284 - _e285);
+                let _e291 = (*st_2)[_e287];
+                param_96 = _e291;
+                let _e292 = (*patchCount_1);
+                param_97 = _e292;
                 irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_95), (&param_96), (&param_97), (&param_98), (&param_99));
-                let _e292 = param_98;
-                (*P_6)[_e287] = _e292;
-                let _e294 = param_99;
-                (*N_1)[_e288] = _e294;
+                let _e293 = param_98;
+                (*P_6)[_e288] = _e293;
+                let _e295 = param_99;
+                (*N_1)[_e289] = _e295;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e296 = q_5;
-                q_5 = (_e296 + bitcast<u32>(1i));
+                let _e297 = q_5;
+                q_5 = (_e297 + bitcast<u32>(1i));
             }
         }
     }
@@ -1761,18 +1776,18 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
 }
 
 fn midST_u0028_u1_u003b_u1_u003b(a_1: ptr<function, u32>, b_4: ptr<function, u32>) -> u32 {
-    let _e79 = (*a_1);
-    let _e81 = (*b_4);
-    let _e85 = (*a_1);
-    let _e88 = (*b_4);
-    return ((((_e79 & 65535u) + (_e81 & 65535u)) / 2u) | ((((_e85 >> bitcast<u32>(16i)) + (_e88 >> bitcast<u32>(16i))) / 2u) << bitcast<u32>(16i)));
+    let _e80 = (*a_1);
+    let _e82 = (*b_4);
+    let _e86 = (*a_1);
+    let _e89 = (*b_4);
+    return ((((_e80 & 65535u) + (_e82 & 65535u)) / 2u) | ((((_e86 >> bitcast<u32>(16i)) + (_e89 >> bitcast<u32>(16i))) / 2u) << bitcast<u32>(16i)));
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e79 = gl_GlobalInvocationID_1[1u];
-    let _e80 = (*rowInvocations);
-    let _e83 = gl_GlobalInvocationID_1[0u];
-    return ((_e79 * _e80) + _e83);
+    let _e80 = gl_GlobalInvocationID_1[1u];
+    let _e81 = (*rowInvocations);
+    let _e84 = gl_GlobalInvocationID_1[0u];
+    return ((_e80 * _e81) + _e84);
 }
 
 fn main_1() {
@@ -1805,7 +1820,7 @@ fn main_1() {
     var param_111: array<vec3<f32>, 5>;
     var param_112: array<vec3<f32>, 5>;
     var k_9: u32;
-    var c_7: vec4<f32>;
+    var c_8: vec4<f32>;
     var o: u32;
     var px: array<vec2<f32>, 5>;
     var local_13: vec2<f32>;
@@ -1833,431 +1848,431 @@ fn main_1() {
     var creaseAlongS: bool;
     var most_1: f32;
     var local_18: f32;
-    var phi_2277_: bool;
-    var phi_2278_: bool;
-    var phi_2534_: bool;
-    var phi_2585_: bool;
-    var phi_2594_: bool;
-    var phi_2689_: bool;
+    var phi_2289_: bool;
+    var phi_2290_: bool;
+    var phi_2546_: bool;
+    var phi_2597_: bool;
+    var phi_2606_: bool;
+    var phi_2701_: bool;
 
-    let _e135 = pc.limnRowInvocations;
-    param_100 = _e135;
-    let _e136 = limnInvocationIndex_u0028_u1_u003b((&param_100));
-    i_5 = _e136;
-    let _e137 = i_5;
-    let _e139 = pc.limnCount;
-    if (_e137 >= _e139) {
+    let _e136 = pc.limnRowInvocations;
+    param_100 = _e136;
+    let _e137 = limnInvocationIndex_u0028_u1_u003b((&param_100));
+    i_5 = _e137;
+    let _e138 = i_5;
+    let _e140 = pc.limnCount;
+    if (_e138 >= _e140) {
         return;
     }
-    let _e141 = i_5;
-    let _e145 = pieces.v[(2u * _e141)];
-    p0_ = _e145;
-    let _e146 = i_5;
-    let _e151 = pieces.v[((2u * _e146) + 1u)];
-    p1_ = _e151;
-    let _e153 = p1_[0u];
-    let _e156 = cull.c[_e153];
-    let _e157 = (_e156 == 0u);
-    phi_2278_ = _e157;
-    if !(_e157) {
-        let _e160 = p1_[1u];
-        let _e161 = (_e160 != 4294967295u);
-        phi_2277_ = _e161;
-        if _e161 {
-            let _e163 = p1_[1u];
-            let _e166 = cull.c[_e163];
-            phi_2277_ = (_e166 == 0u);
+    let _e142 = i_5;
+    let _e146 = pieces.v[(2u * _e142)];
+    p0_ = _e146;
+    let _e147 = i_5;
+    let _e152 = pieces.v[((2u * _e147) + 1u)];
+    p1_ = _e152;
+    let _e154 = p1_[0u];
+    let _e157 = cull.c[_e154];
+    let _e158 = (_e157 == 0u);
+    phi_2290_ = _e158;
+    if !(_e158) {
+        let _e161 = p1_[1u];
+        let _e162 = (_e161 != 4294967295u);
+        phi_2289_ = _e162;
+        if _e162 {
+            let _e164 = p1_[1u];
+            let _e167 = cull.c[_e164];
+            phi_2289_ = (_e167 == 0u);
         }
-        let _e169 = phi_2277_;
-        phi_2278_ = _e169;
+        let _e170 = phi_2289_;
+        phi_2290_ = _e170;
     }
-    let _e171 = phi_2278_;
-    visible = _e171;
-    let _e173 = pc.tess;
-    let _e175 = p0_[3u];
-    cap = max(min(_e173, _e175), 1u);
+    let _e172 = phi_2290_;
+    visible = _e172;
+    let _e174 = pc.tess;
+    let _e176 = p0_[3u];
+    cap = max(min(_e174, _e176), 1u);
     r_2 = 1u;
     size = 1u;
     ends = vec4<f32>(300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f);
-    let _e178 = visible;
-    if _e178 {
-        let _e180 = p0_[1u];
-        param_101 = _e180;
-        let _e182 = p0_[2u];
-        param_102 = _e182;
-        let _e183 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
-        mid = _e183;
-        let _e185 = p0_[1u];
-        let _e186 = mid;
-        let _e188 = p0_[2u];
-        let _e190 = p0_[1u];
-        param_103 = _e190;
-        let _e191 = mid;
-        param_104 = _e191;
-        let _e192 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
-        let _e193 = mid;
-        param_105 = _e193;
-        let _e195 = p0_[2u];
-        param_106 = _e195;
-        let _e196 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
-        st_3 = array<u32, 5>(_e185, _e186, _e188, _e192, _e196);
-        let _e199 = pc.maxError;
-        count_1 = select(3u, 5u, (_e199 > 0f));
+    let _e179 = visible;
+    if _e179 {
+        let _e181 = p0_[1u];
+        param_101 = _e181;
+        let _e183 = p0_[2u];
+        param_102 = _e183;
+        let _e184 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
+        mid = _e184;
+        let _e186 = p0_[1u];
+        let _e187 = mid;
+        let _e189 = p0_[2u];
+        let _e191 = p0_[1u];
+        param_103 = _e191;
+        let _e192 = mid;
+        param_104 = _e192;
+        let _e193 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
+        let _e194 = mid;
+        param_105 = _e194;
+        let _e196 = p0_[2u];
+        param_106 = _e196;
+        let _e197 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
+        st_3 = array<u32, 5>(_e186, _e187, _e189, _e193, _e197);
+        let _e200 = pc.maxError;
+        count_1 = select(3u, 5u, (_e200 > 0f));
         behind = 0u;
         allOut = 63u;
-        let _e203 = p0_[0u];
-        param_107 = _e203;
-        let _e204 = st_3;
-        param_108 = _e204;
-        let _e205 = count_1;
-        param_109 = _e205;
-        let _e207 = pc.patchCount;
-        param_110 = _e207;
+        let _e204 = p0_[0u];
+        param_107 = _e204;
+        let _e205 = st_3;
+        param_108 = _e205;
+        let _e206 = count_1;
+        param_109 = _e206;
+        let _e208 = pc.patchCount;
+        param_110 = _e208;
         elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111), (&param_112));
-        let _e208 = param_111;
-        P_7 = _e208;
-        let _e209 = param_112;
-        N_2 = _e209;
+        let _e209 = param_111;
+        P_7 = _e209;
+        let _e210 = param_112;
+        N_2 = _e210;
         k_9 = 0u;
         loop {
-            let _e210 = k_9;
-            let _e211 = count_1;
-            if (_e210 < _e211) {
-                let _e214 = pc.viewProj;
-                let _e215 = k_9;
-                let _e217 = P_7[_e215];
-                c_7 = (_e214 * vec4<f32>(_e217.x, _e217.y, _e217.z, 1f));
+            let _e211 = k_9;
+            let _e212 = count_1;
+            if (_e211 < _e212) {
+                let _e215 = pc.viewProj;
+                let _e216 = k_9;
+                let _e218 = P_7[_e216];
+                c_8 = (_e215 * vec4<f32>(_e218.x, _e218.y, _e218.z, 1f));
                 o = 0u;
-                let _e224 = c_7[0u];
-                let _e226 = c_7[3u];
-                if (_e224 < -(_e226)) {
-                    let _e229 = o;
-                    o = (_e229 | 1u);
+                let _e225 = c_8[0u];
+                let _e227 = c_8[3u];
+                if (_e225 < -(_e227)) {
+                    let _e230 = o;
+                    o = (_e230 | 1u);
                 }
-                let _e232 = c_7[0u];
-                let _e234 = c_7[3u];
-                if (_e232 > _e234) {
-                    let _e236 = o;
-                    o = (_e236 | 2u);
+                let _e233 = c_8[0u];
+                let _e235 = c_8[3u];
+                if (_e233 > _e235) {
+                    let _e237 = o;
+                    o = (_e237 | 2u);
                 }
-                let _e239 = c_7[1u];
-                let _e241 = c_7[3u];
-                if (_e239 < -(_e241)) {
-                    let _e244 = o;
-                    o = (_e244 | 4u);
+                let _e240 = c_8[1u];
+                let _e242 = c_8[3u];
+                if (_e240 < -(_e242)) {
+                    let _e245 = o;
+                    o = (_e245 | 4u);
                 }
-                let _e247 = c_7[1u];
-                let _e249 = c_7[3u];
-                if (_e247 > _e249) {
-                    let _e251 = o;
-                    o = (_e251 | 8u);
+                let _e248 = c_8[1u];
+                let _e250 = c_8[3u];
+                if (_e248 > _e250) {
+                    let _e252 = o;
+                    o = (_e252 | 8u);
                 }
-                let _e254 = c_7[2u];
-                if (_e254 < 0f) {
-                    let _e256 = o;
-                    o = (_e256 | 16u);
+                let _e255 = c_8[2u];
+                if (_e255 < 0f) {
+                    let _e257 = o;
+                    o = (_e257 | 16u);
                 }
-                let _e259 = c_7[2u];
-                let _e261 = c_7[3u];
-                if (_e259 > _e261) {
-                    let _e263 = o;
-                    o = (_e263 | 32u);
+                let _e260 = c_8[2u];
+                let _e262 = c_8[3u];
+                if (_e260 > _e262) {
+                    let _e264 = o;
+                    o = (_e264 | 32u);
                 }
-                let _e265 = o;
-                let _e266 = allOut;
-                allOut = (_e266 & _e265);
-                let _e269 = c_7[3u];
-                if !((_e269 > 0.000001f)) {
-                    let _e272 = behind;
-                    behind = (_e272 + bitcast<u32>(1i));
+                let _e266 = o;
+                let _e267 = allOut;
+                allOut = (_e267 & _e266);
+                let _e270 = c_8[3u];
+                if !((_e270 > 0.000001f)) {
+                    let _e273 = behind;
+                    behind = (_e273 + bitcast<u32>(1i));
                 }
-                let _e275 = k_9;
-                let _e277 = c_7[3u];
-                if (_e277 > 0.000001f) {
-                    let _e279 = c_7;
-                    let _e282 = c_7[3u];
-                    let _e286 = pc.halfViewport;
-                    local_13 = ((_e279.xy / vec2(_e282)) * _e286);
+                let _e276 = k_9;
+                let _e278 = c_8[3u];
+                if (_e278 > 0.000001f) {
+                    let _e280 = c_8;
+                    let _e283 = c_8[3u];
+                    let _e287 = pc.halfViewport;
+                    local_13 = ((_e280.xy / vec2(_e283)) * _e287);
                 } else {
                     local_13 = vec2<f32>(0f, 0f);
                 }
-                let _e288 = local_13;
-                px[_e275] = _e288;
+                let _e289 = local_13;
+                px[_e276] = _e289;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e290 = k_9;
-                k_9 = (_e290 + bitcast<u32>(1i));
+                let _e291 = k_9;
+                k_9 = (_e291 + bitcast<u32>(1i));
             }
         }
-        let _e293 = count_1;
-        if (_e293 == 5u) {
-            let _e296 = px[0i];
-            let _e298 = px[3i];
-            let _e301 = px[3i];
-            let _e303 = px[1i];
-            let _e307 = px[1i];
-            let _e309 = px[4i];
-            let _e313 = px[4i];
-            let _e315 = px[2i];
-            local_14 = (((distance(_e296, _e298) + distance(_e301, _e303)) + distance(_e307, _e309)) + distance(_e313, _e315));
+        let _e294 = count_1;
+        if (_e294 == 5u) {
+            let _e297 = px[0i];
+            let _e299 = px[3i];
+            let _e302 = px[3i];
+            let _e304 = px[1i];
+            let _e308 = px[1i];
+            let _e310 = px[4i];
+            let _e314 = px[4i];
+            let _e316 = px[2i];
+            local_14 = (((distance(_e297, _e299) + distance(_e302, _e304)) + distance(_e308, _e310)) + distance(_e314, _e316));
         } else {
-            let _e319 = px[0i];
-            let _e321 = px[1i];
-            let _e324 = px[1i];
-            let _e326 = px[2i];
-            local_14 = (distance(_e319, _e321) + distance(_e324, _e326));
+            let _e320 = px[0i];
+            let _e322 = px[1i];
+            let _e325 = px[1i];
+            let _e327 = px[2i];
+            local_14 = (distance(_e320, _e322) + distance(_e325, _e327));
         }
-        let _e329 = local_14;
-        len = _e329;
-        let _e330 = behind;
-        if (_e330 == 0u) {
-            let _e333 = px[0i];
-            let _e335 = px[2i];
-            let _e342 = pc.halfViewport;
-            ends = (vec4<f32>(_e333.x, _e333.y, _e335.x, _e335.y) + _e342.xyxy);
+        let _e330 = local_14;
+        len = _e330;
+        let _e331 = behind;
+        if (_e331 == 0u) {
+            let _e334 = px[0i];
+            let _e336 = px[2i];
+            let _e343 = pc.halfViewport;
+            ends = (vec4<f32>(_e334.x, _e334.y, _e336.x, _e336.y) + _e343.xyxy);
         }
-        let _e345 = behind;
-        let _e346 = count_1;
-        if (_e345 == _e346) {
+        let _e346 = behind;
+        let _e347 = count_1;
+        if (_e346 == _e347) {
             r_2 = 1u;
             size = 1u;
         } else {
-            let _e348 = behind;
-            let _e349 = (_e348 != 0u);
-            phi_2534_ = _e349;
-            if !(_e349) {
-                let _e351 = len;
-                phi_2534_ = !((_e351 < 1000000000f));
+            let _e349 = behind;
+            let _e350 = (_e349 != 0u);
+            phi_2546_ = _e350;
+            if !(_e350) {
+                let _e352 = len;
+                phi_2546_ = !((_e352 < 1000000000f));
             }
-            let _e355 = phi_2534_;
-            if _e355 {
-                let _e356 = cap;
-                r_2 = _e356;
+            let _e356 = phi_2546_;
+            if _e356 {
                 let _e357 = cap;
-                size = _e357;
+                r_2 = _e357;
+                let _e358 = cap;
+                size = _e358;
             } else {
-                let _e358 = len;
-                let _e360 = pc.edgePixels;
-                want = ceil((_e358 / _e360));
-                let _e364 = pc.maxError;
-                if (_e364 > 0f) {
+                let _e359 = len;
+                let _e361 = pc.edgePixels;
+                want = ceil((_e359 / _e361));
+                let _e365 = pc.maxError;
+                if (_e365 > 0f) {
                     smoothBoth = true;
                     k_10 = 0i;
                     loop {
-                        let _e366 = k_10;
-                        if (_e366 < 2i) {
-                            let _e368 = k_10;
-                            if (_e368 == 0i) {
-                                let _e371 = p1_[0u];
-                                local_15 = _e371;
+                        let _e367 = k_10;
+                        if (_e367 < 2i) {
+                            let _e369 = k_10;
+                            if (_e369 == 0i) {
+                                let _e372 = p1_[0u];
+                                local_15 = _e372;
                             } else {
-                                let _e373 = p1_[1u];
-                                local_15 = _e373;
+                                let _e374 = p1_[1u];
+                                local_15 = _e374;
                             }
-                            let _e374 = local_15;
-                            e = _e374;
-                            let _e375 = e;
-                            if (_e375 == 4294967295u) {
+                            let _e375 = local_15;
+                            e = _e375;
+                            let _e376 = e;
+                            if (_e376 == 4294967295u) {
                                 continue;
                             }
-                            let _e377 = smoothBoth;
-                            phi_2585_ = _e377;
-                            if _e377 {
-                                let _e378 = e;
-                                let _e380 = pc.patchCount;
-                                phi_2585_ = (_e378 < _e380);
+                            let _e378 = smoothBoth;
+                            phi_2597_ = _e378;
+                            if _e378 {
+                                let _e379 = e;
+                                let _e381 = pc.patchCount;
+                                phi_2597_ = (_e379 < _e381);
                             }
-                            let _e383 = phi_2585_;
-                            phi_2594_ = _e383;
-                            if _e383 {
-                                let _e384 = e;
-                                let _e388 = patches.p[_e384].levelBoundary;
-                                phi_2594_ = (((_e388 >> bitcast<u32>(16i)) & 15u) == 0u);
+                            let _e384 = phi_2597_;
+                            phi_2606_ = _e384;
+                            if _e384 {
+                                let _e385 = e;
+                                let _e389 = patches.p[_e385].levelBoundary;
+                                phi_2606_ = (((_e389 >> bitcast<u32>(16i)) & 15u) == 0u);
                             }
-                            let _e394 = phi_2594_;
-                            smoothBoth = _e394;
+                            let _e395 = phi_2606_;
+                            smoothBoth = _e395;
                             continue;
                         } else {
                             break;
                         }
                         continuing {
-                            let _e395 = k_10;
-                            k_10 = (_e395 + 1i);
+                            let _e396 = k_10;
+                            k_10 = (_e396 + 1i);
                         }
                     }
-                    let _e397 = want;
-                    let _e398 = P_7;
-                    param_113 = _e398;
-                    let _e399 = N_2;
-                    param_114 = _e399;
-                    let _e400 = smoothBoth;
-                    param_115 = _e400;
-                    let _e401 = errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b((&param_113), (&param_114), (&param_115));
-                    want = max(_e397, _e401);
+                    let _e398 = want;
+                    let _e399 = P_7;
+                    param_113 = _e399;
+                    let _e400 = N_2;
+                    param_114 = _e400;
+                    let _e401 = smoothBoth;
+                    param_115 = _e401;
+                    let _e402 = errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b((&param_113), (&param_114), (&param_115));
+                    want = max(_e398, _e402);
                 } else {
-                    let _e404 = px[2i];
-                    let _e406 = px[0i];
-                    chord = (_e404 - _e406);
-                    let _e408 = chord;
-                    cl = length(_e408);
-                    let _e411 = px[1i];
-                    let _e413 = px[0i];
-                    let _e415 = px[2i];
-                    off = (_e411 - ((_e413 + _e415) * 0.5f));
-                    let _e419 = cl;
-                    if (_e419 > 0.000001f) {
-                        let _e422 = chord[0u];
-                        let _e424 = off[1u];
-                        let _e427 = chord[1u];
-                        let _e429 = off[0u];
-                        let _e433 = cl;
-                        local_16 = (abs(((_e422 * _e424) - (_e427 * _e429))) / _e433);
+                    let _e405 = px[2i];
+                    let _e407 = px[0i];
+                    chord = (_e405 - _e407);
+                    let _e409 = chord;
+                    cl = length(_e409);
+                    let _e412 = px[1i];
+                    let _e414 = px[0i];
+                    let _e416 = px[2i];
+                    off = (_e412 - ((_e414 + _e416) * 0.5f));
+                    let _e420 = cl;
+                    if (_e420 > 0.000001f) {
+                        let _e423 = chord[0u];
+                        let _e425 = off[1u];
+                        let _e428 = chord[1u];
+                        let _e430 = off[0u];
+                        let _e434 = cl;
+                        local_16 = (abs(((_e423 * _e425) - (_e428 * _e430))) / _e434);
                     } else {
-                        let _e435 = off;
-                        local_16 = length(_e435);
+                        let _e436 = off;
+                        local_16 = length(_e436);
                     }
-                    let _e437 = local_16;
-                    d_3 = _e437;
-                    let _e438 = want;
-                    let _e439 = d_3;
-                    let _e441 = pc.edgePixels;
-                    want = max(_e438, ceil(sqrt((_e439 / (0.025f * _e441)))));
+                    let _e438 = local_16;
+                    d_3 = _e438;
+                    let _e439 = want;
+                    let _e440 = d_3;
+                    let _e442 = pc.edgePixels;
+                    want = max(_e439, ceil(sqrt((_e440 / (0.025f * _e442)))));
                 }
                 k_11 = 0i;
                 loop {
-                    let _e447 = k_11;
-                    if (_e447 < 2i) {
-                        let _e449 = k_11;
-                        if (_e449 == 0i) {
-                            let _e452 = p1_[0u];
-                            local_17 = _e452;
+                    let _e448 = k_11;
+                    if (_e448 < 2i) {
+                        let _e450 = k_11;
+                        if (_e450 == 0i) {
+                            let _e453 = p1_[0u];
+                            local_17 = _e453;
                         } else {
-                            let _e454 = p1_[1u];
-                            local_17 = _e454;
+                            let _e455 = p1_[1u];
+                            local_17 = _e455;
                         }
-                        let _e455 = local_17;
-                        e_1 = _e455;
-                        let _e456 = e_1;
-                        let _e457 = (_e456 == 4294967295u);
-                        phi_2689_ = _e457;
-                        if !(_e457) {
-                            let _e459 = e_1;
-                            let _e461 = pc.patchCount;
-                            phi_2689_ = (_e459 >= _e461);
+                        let _e456 = local_17;
+                        e_1 = _e456;
+                        let _e457 = e_1;
+                        let _e458 = (_e457 == 4294967295u);
+                        phi_2701_ = _e458;
+                        if !(_e458) {
+                            let _e460 = e_1;
+                            let _e462 = pc.patchCount;
+                            phi_2701_ = (_e460 >= _e462);
                         }
-                        let _e464 = phi_2689_;
-                        if _e464 {
+                        let _e465 = phi_2701_;
+                        if _e465 {
                             continue;
                         }
-                        let _e465 = e_1;
-                        let _e468 = patches.p[_e465];
-                        pt_3.cv[0i] = _e468.cv[0];
-                        pt_3.cv[1i] = _e468.cv[1];
-                        pt_3.cv[2i] = _e468.cv[2];
-                        pt_3.cv[3i] = _e468.cv[3];
-                        pt_3.cv[4i] = _e468.cv[4];
-                        pt_3.cv[5i] = _e468.cv[5];
-                        pt_3.cv[6i] = _e468.cv[6];
-                        pt_3.cv[7i] = _e468.cv[7];
-                        pt_3.cv[8i] = _e468.cv[8];
-                        pt_3.cv[9i] = _e468.cv[9];
-                        pt_3.cv[10i] = _e468.cv[10];
-                        pt_3.cv[11i] = _e468.cv[11];
-                        pt_3.cv[12i] = _e468.cv[12];
-                        pt_3.cv[13i] = _e468.cv[13];
-                        pt_3.cv[14i] = _e468.cv[14];
-                        pt_3.cv[15i] = _e468.cv[15];
-                        pt_3.ptex = _e468.ptex;
-                        pt_3.u0_ = _e468.u0_;
-                        pt_3.v0_ = _e468.v0_;
-                        pt_3.size = _e468.size;
-                        pt_3.levelBoundary = _e468.levelBoundary;
-                        pt_3.sharpness = _e468.sharpness;
-                        pt_3.pad1_ = _e468.pad1_;
-                        pt_3.pad2_ = _e468.pad2_;
-                        let _e520 = pt_3.levelBoundary;
-                        crease_2 = ((_e520 >> bitcast<u32>(16i)) & 15u);
-                        let _e524 = crease_2;
-                        if (_e524 == 0u) {
-                            let _e526 = k_11;
-                            if (_e526 == 0i) {
+                        let _e466 = e_1;
+                        let _e469 = patches.p[_e466];
+                        pt_3.cv[0i] = _e469.cv[0];
+                        pt_3.cv[1i] = _e469.cv[1];
+                        pt_3.cv[2i] = _e469.cv[2];
+                        pt_3.cv[3i] = _e469.cv[3];
+                        pt_3.cv[4i] = _e469.cv[4];
+                        pt_3.cv[5i] = _e469.cv[5];
+                        pt_3.cv[6i] = _e469.cv[6];
+                        pt_3.cv[7i] = _e469.cv[7];
+                        pt_3.cv[8i] = _e469.cv[8];
+                        pt_3.cv[9i] = _e469.cv[9];
+                        pt_3.cv[10i] = _e469.cv[10];
+                        pt_3.cv[11i] = _e469.cv[11];
+                        pt_3.cv[12i] = _e469.cv[12];
+                        pt_3.cv[13i] = _e469.cv[13];
+                        pt_3.cv[14i] = _e469.cv[14];
+                        pt_3.cv[15i] = _e469.cv[15];
+                        pt_3.ptex = _e469.ptex;
+                        pt_3.u0_ = _e469.u0_;
+                        pt_3.v0_ = _e469.v0_;
+                        pt_3.size = _e469.size;
+                        pt_3.levelBoundary = _e469.levelBoundary;
+                        pt_3.sharpness = _e469.sharpness;
+                        pt_3.pad1_ = _e469.pad1_;
+                        pt_3.pad2_ = _e469.pad2_;
+                        let _e521 = pt_3.levelBoundary;
+                        crease_2 = ((_e521 >> bitcast<u32>(16i)) & 15u);
+                        let _e525 = crease_2;
+                        if (_e525 == 0u) {
+                            let _e527 = k_11;
+                            if (_e527 == 0i) {
                                 continue;
                             }
                             break;
                         }
-                        let _e528 = k_11;
-                        if (_e528 == 0i) {
-                            let _e531 = p0_[1u];
-                            let _e534 = p0_[2u];
-                            alongS = ((_e531 & 65535u) != (_e534 & 65535u));
-                            let _e537 = crease_2;
-                            creaseAlongS = ((_e537 & 5u) != 0u);
-                            let _e540 = alongS;
-                            let _e541 = creaseAlongS;
-                            if (_e540 == _e541) {
+                        let _e529 = k_11;
+                        if (_e529 == 0i) {
+                            let _e532 = p0_[1u];
+                            let _e535 = p0_[2u];
+                            alongS = ((_e532 & 65535u) != (_e535 & 65535u));
+                            let _e538 = crease_2;
+                            creaseAlongS = ((_e538 & 5u) != 0u);
+                            let _e541 = alongS;
+                            let _e542 = creaseAlongS;
+                            if (_e541 == _e542) {
                                 break;
                             }
                         }
-                        let _e544 = pt_3.sharpness;
-                        most_1 = exp2(ceil(_e544));
-                        let _e547 = k_11;
-                        if (_e547 == 0i) {
-                            let _e549 = want;
-                            let _e551 = pc.maxError;
-                            if (_e551 > 0f) {
-                                let _e553 = want;
-                                local_18 = (2f * _e553);
+                        let _e545 = pt_3.sharpness;
+                        most_1 = exp2(ceil(_e545));
+                        let _e548 = k_11;
+                        if (_e548 == 0i) {
+                            let _e550 = want;
+                            let _e552 = pc.maxError;
+                            if (_e552 > 0f) {
+                                let _e554 = want;
+                                local_18 = (2f * _e554);
                             } else {
-                                let _e555 = len;
-                                let _e558 = pc.edgePixels;
-                                local_18 = ceil(((2f * _e555) / _e558));
+                                let _e556 = len;
+                                let _e559 = pc.edgePixels;
+                                local_18 = ceil(((2f * _e556) / _e559));
                             }
-                            let _e561 = local_18;
-                            let _e562 = most_1;
-                            let _e563 = len;
-                            want = max(_e549, max(_e561, min(_e562, ceil(sqrt((_e563 / 0.25f))))));
+                            let _e562 = local_18;
+                            let _e563 = most_1;
+                            let _e564 = len;
+                            want = max(_e550, max(_e562, min(_e563, ceil(sqrt((_e564 / 0.25f))))));
                         } else {
-                            let _e570 = want;
-                            let _e571 = most_1;
-                            let _e572 = len;
-                            want = max(_e570, min(_e571, ceil((_e572 / 1f))));
+                            let _e571 = want;
+                            let _e572 = most_1;
+                            let _e573 = len;
+                            want = max(_e571, min(_e572, ceil((_e573 / 1f))));
                         }
                         break;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e577 = k_11;
-                        k_11 = (_e577 + 1i);
+                        let _e578 = k_11;
+                        k_11 = (_e578 + 1i);
                     }
                 }
-                let _e580 = pc.texels;
-                if (_e580 > 0f) {
-                    let _e582 = want;
-                    let _e584 = p1_[2u];
-                    let _e587 = pc.texels;
-                    let _e590 = len;
-                    want = max(_e582, min(ceil((bitcast<f32>(_e584) * _e587)), ceil((0.5f * _e590))));
+                let _e581 = pc.texels;
+                if (_e581 > 0f) {
+                    let _e583 = want;
+                    let _e585 = p1_[2u];
+                    let _e588 = pc.texels;
+                    let _e591 = len;
+                    want = max(_e583, min(ceil((bitcast<f32>(_e585) * _e588)), ceil((0.5f * _e591))));
                 }
-                let _e595 = want;
-                let _e596 = cap;
-                size = u32(clamp(_e595, 1f, f32(_e596)));
-                let _e600 = allOut;
-                let _e602 = size;
-                r_2 = select(_e602, 1u, (_e600 != 0u));
+                let _e596 = want;
+                let _e597 = cap;
+                size = u32(clamp(_e596, 1f, f32(_e597)));
+                let _e601 = allOut;
+                let _e603 = size;
+                r_2 = select(_e603, 1u, (_e601 != 0u));
             }
         }
     }
-    let _e604 = i_5;
-    let _e605 = r_2;
-    let _e606 = size;
-    rates.r[_e604] = (_e605 | (_e606 << bitcast<u32>(16i)));
-    let _e612 = i_5;
-    let _e613 = ends;
-    pieceEnds.v[_e612] = _e613;
+    let _e605 = i_5;
+    let _e606 = r_2;
+    let _e607 = size;
+    rates.r[_e605] = (_e606 | (_e607 << bitcast<u32>(16i)));
+    let _e613 = i_5;
+    let _e614 = ends;
+    pieceEnds.v[_e613] = _e614;
     return;
 }
 

@@ -110,7 +110,7 @@ struct AdaptiveOptions {
     // the lit fragment stage evaluates the limit normal at (surface_lit_pixel.frag).
     bool pixelNormals = false;
     // The error allowed, in pixels, for a piece whose every sample faces the eye (normal within
-    // 60 degrees of the view ray, adaptive_rates.comp): there the chords' error moves no outline,
+    // 70 degrees of the view ray, adaptive_rates.comp): there the chords' error moves no outline,
     // only where the shading lands. 0: maxError everywhere.
     float interiorError = 0;
     // Built ahead (see AdaptivePipelines); null: AdaptiveTess builds them itself.

@@ -40,7 +40,7 @@ layout(push_constant) uniform Push {
     uint patchCount;
     float texels;       // displacement map texels per unit of UV (0: none)
     float maxError;     // pixels between a chord and the surface, at most (0: the length rule)
-    // ... where every sample faces the eye (normal within 60 degrees of the view ray): there the
+    // ... where every sample faces the eye (normal within 70 degrees of the view ray): there the
     // chords' error moves no outline, only where the shading lands (0: maxError everywhere).
     float interiorError;
 } pc;
@@ -55,9 +55,12 @@ const float kChordPerEdgePixel = 0.025;
 // target); a piece another element owns is even, segments of about kCreasePixels.
 const float kCreaseFirstPixels = 0.25;
 const float kCreasePixels = 1.0;
-// A piece faces the eye (interiorError) where every sample's normal is within 60 degrees of
-// its view ray: nearer the outline, the chords' error moves it.
-const float kFacingCos = 0.5;
+// A piece faces the eye (interiorError) where every sample's normal is within about 70 degrees
+// of its view ray (cos 0.35), all on one side: nearer the outline, the chords' error moves it.
+// Measured with --pixel-normals --interior-error 1 at 640x480 against --edge-pixels 1: within
+// 60 degrees (cos 0.5) spot drew 18,773 triangles, 0.48% of its pixels off; at cos 0.35
+// 17,235, 0.48%; at cos 0.25 16,275, 0.52% (over the criterion's 0.5%).
+const float kFacingCos = 0.35;
 
 #define LIMN_NO_TESS_VERTICES
 #include "surface_eval_impl.glsl"
@@ -98,15 +101,19 @@ float errorSegments(vec3 S[5], vec3 SN[5], bool mayLoosen) {
     E[0] = 2.0 * E[1] - E[2];
     E[4] = 2.0 * E[3] - E[2];
     vec3 N[5] = vec3[5](SN[0], SN[3], SN[1], SN[4], SN[2]);
-    float most = 0.0;
+    float most = 0.0, side = 0.0;
     bool facing = mayLoosen && pc.interiorError > pc.maxError;
     for (int k = 0; k < 5; ++k) {
         vec3 jx, jy;
         pixelJacobian(P[k], jx, jy);
         most = max(most, length(vec2(dot(jx, E[k]), dot(jy, E[k]))));
-        // The view ray at P is the kernel of the Jacobian, jx x jy.
+        // The view ray at P is the kernel of the Jacobian, jx x jy. Every sample on the same
+        // side (a piece across the outline turns from facing to facing away between two), none
+        // degenerate.
         vec3 ray = cross(jx, jy);
-        facing = facing && abs(dot(N[k], ray)) >= kFacingCos * length(N[k]) * length(ray);
+        float c = dot(N[k], ray);
+        facing = facing && abs(c) > kFacingCos * length(N[k]) * length(ray) && c * side >= 0.0;
+        side = c;
     }
     float n = ceil(sqrt(most / (facing ? pc.interiorError : pc.maxError)));
     return n < 1e9 ? n : 1e9; // not finite: as fine as the piece may be
