@@ -71,6 +71,13 @@ struct RenderSettings {
     // ... and flat elements draw their corners from one shared vertex per point (the same
     // image; only where no own-chart UV is drawn, see AdaptiveOptions::sharePoints)
     bool sharePoints = true;
+    // ... and --shade lit evaluates the limit normal at each pixel (the triangle's element at its
+    // interpolated (s, t)) instead of interpolating the vertices' normals (AdaptiveOptions::
+    // pixelNormals; not with --eval compute, wires, displacement or --mesh-out).
+    bool pixelNormals = false;
+    // ... and the on-screen error allowed where a piece faces the eye (every sample's normal within
+    // 70 degrees of the view ray; AdaptiveOptions::interiorError); 0: maxError everywhere.
+    double interiorError = 0;
     uint32_t blendGrid = 16;              // cells per face side (blending surface, --grid)
     bool evaluateVertices = false;        // keep the drawn vertices in buffers (--mesh-out)
     bool evalInCompute = true;            // surface vertices: compute pass (else vertex stage)

@@ -18,13 +18,22 @@ namespace {
 // The surface's fragment stage: each covered sample shaded on its own with --sample-shading
 // (surface_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN), and for the lit and
 // texture shadings the variants without the other modes' code (why in surface_fragment.glsl).
-std::span<const uint32_t> surfaceFragment(const gpu::TargetFormat& target, Shade shade) {
+std::span<const uint32_t> surfaceFragment(const gpu::TargetFormat& target, Shade shade, bool pixelNormals) {
     using Code = std::span<const uint32_t>;
+    if (shade == Shade::Lit && pixelNormals)
+        return target.sampleShading ? Code(surface_lit_pixel_per_sample_frag_spv) : Code(surface_lit_pixel_frag_spv);
     if (shade == Shade::Lit)
         return target.sampleShading ? Code(surface_lit_per_sample_frag_spv) : Code(surface_lit_frag_spv);
     if (shade == Shade::Texture)
         return target.sampleShading ? Code(surface_texture_per_sample_frag_spv) : Code(surface_texture_frag_spv);
     return target.sampleShading ? Code(surface_per_sample_frag_spv) : Code(surface_frag_spv);
+}
+
+// The surface's vertex stage: with per-pixel normals it also hands the fragment stage each
+// triangle's element parameters and control net (surface_vertex.glsl).
+std::span<const uint32_t> surfaceVertex(bool pixelNormals) {
+    using Code = std::span<const uint32_t>;
+    return pixelNormals ? Code(surface_pixel_vert_spv) : Code(surface_vert_spv);
 }
 
 struct LevelPush { // subdiv_face_points.comp, subdiv_stencils.comp
@@ -43,7 +52,8 @@ using gpu::uploadBufferNow; // absent tables get one zero element
 
 struct SubdivisionPass::Gpu {
     Gpu(gpu::Context& ctx, const SubdivisionDraw& d, bool evaluate, const Displacement* disp,
-        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions, gpu::TargetFormat target, Shade shade)
+        const FloatImage* colour, const AdaptiveOptions* adaptiveOptions, gpu::TargetFormat target, Shade shade,
+        bool pixelNormals)
         : vertices(ctx, {"table vertices", uint64_t(d.totalVertices) * 16}),
           faceStarts(uploadBufferNow(ctx, "face-point starts", d.faceStarts)),
           faceIndices(uploadBufferNow(ctx, "face-point indices", d.faceIndices)),
@@ -63,8 +73,10 @@ struct SubdivisionPass::Gpu {
           facePass(ctx, {"face points", subdiv_face_points_comp_spv, 3, sizeof(LevelPush)}),
           stencilPass(ctx, {"stencils", subdiv_stencils_comp_spv, 4, sizeof(LevelPush)}),
           limitPass(ctx, {"limit points", subdiv_limit_comp_spv, 5, sizeof(LimitPush)}),
-          surface(ctx, {"surface", surface_vert_spv, surfaceFragment(target, shade), 8, sizeof(DrawPush)}, target),
-          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surfaceFragment(target, shade), 8,
+          surface(ctx, {"surface", surfaceVertex(pixelNormals), surfaceFragment(target, shade, pixelNormals), 8,
+                        sizeof(DrawPush)},
+                  target),
+          surfaceFetch(ctx, {"surface (evaluated)", surface_fetch_vert_spv, surfaceFragment(target, shade, false), 8,
                              sizeof(DrawPush)},
                        target) {
         const gpu::Buffer& tv = tess->tessVertices();
@@ -143,11 +155,13 @@ SubdivisionPass::SubdivisionPass(gpu::Context& ctx, SubdivisionDraw draw, Eval e
                                  const FloatImage* texture, const AdaptiveOptions* adaptive,
                                  gpu::TargetFormat target)
     : ctx_(ctx), draw_(std::move(draw)), eval_(eval), evaluate_(keepEvaluated || eval == Eval::Compute),
-      levels_(shade == Shade::Levels), shade_(shade), target_(target) {
+      levels_(shade == Shade::Levels),
+      pixelNormals_(adaptive && adaptive->pixelNormals && eval == Eval::Vertex && shade == Shade::Lit), shade_(shade),
+      target_(target) {
     if (displacement && eval != Eval::Compute)
         throw Error(ErrorKind::Usage, "--displace needs --eval compute (the displaced normals "
                                       "come from a compute pass over the displaced vertices)");
-    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target, shade);
+    gpu_ = std::make_unique<Gpu>(ctx, draw_, evaluate_, displacement, texture, adaptive, target, shade, pixelNormals_);
     mayCullBackFaces_ = adaptive && adaptive->backFaceCull && draw_.closed;
     if (mayCullBackFaces_) {
         orientation_ = draw_.orientation;
@@ -176,8 +190,8 @@ const gpu::GraphicsPipeline& SubdivisionPass::culledPipeline(float facing) {
         slot = std::make_unique<gpu::GraphicsPipeline>(
             ctx_, gpu::GraphicsPipelineDesc{"surface (back faces culled)",
                                             fetch ? std::span<const uint32_t>(surface_fetch_vert_spv)
-                                                  : std::span<const uint32_t>(surface_vert_spv),
-                                            surfaceFragment(target_, shade_), 8, sizeof(DrawPush), gpu::Primitive::Triangles,
+                                                  : surfaceVertex(pixelNormals_),
+                                            surfaceFragment(target_, shade_, pixelNormals_), 8, sizeof(DrawPush), gpu::Primitive::Triangles,
                                             gpu::DepthTest::Less, true, facing > 0 ? gpu::Cull::Back : gpu::Cull::Front},
             target_);
     }

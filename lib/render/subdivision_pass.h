@@ -62,6 +62,7 @@ private:
     SubdivisionDraw draw_;
     Eval eval_;
     bool evaluate_, levels_;
+    bool pixelNormals_; // lit, per-pixel limit normals (AdaptiveOptions::pixelNormals)
     Shade shade_;
     AdaptiveView view_;
     float orientation_ = 0; // sign of the control mesh's volume where back faces may be culled

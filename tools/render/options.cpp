@@ -228,6 +228,18 @@ bool parseOptions(int ac, char** av, RenderJob& job) {
               "                            on screen (estimated from the surface's second\n"
               "                            differences along the edge, docs/adaptive.md); 0:\n"
               "                            segments of about --edge-pixels (chord tolerance P/40)")
+        .real("--interior-error", "PX", &settings.interiorError, 0, 4096,
+              "view-adaptive tessellation: the --max-error allowed where an edge faces the\n"
+              "                            eye (every sample's normal within 70 degrees of the\n"
+              "                            view ray), where the error moves no outline, only where\n"
+              "                            the shading lands; 0: --max-error everywhere\n"
+              "                            (docs/adaptive.md, per-pixel normals)")
+        .flag("--pixel-normals", &settings.pixelNormals,
+              "view-adaptive, --shade lit: shade with the limit surface's normal at each\n"
+              "                            pixel (evaluated at the triangle's interpolated\n"
+              "                            parameters) instead of normals interpolated across the\n"
+              "                            triangle; not with --eval compute, --wire, --displace\n"
+              "                            or --mesh-out (those draw as without)")
         .real("--edge-pixels", "P", &edgePixels, 0, 4096,
               "view-adaptive tessellation: no segment longer than P pixels on screen,\n"
               "                            decided per frame on the GPU\n"

@@ -18,6 +18,7 @@ struct Push {
     recordBase: u32,
     sharePoints: u32,
     vertexCapacity: u32,
+    pixelNormals: u32,
 }
 
 struct AdaptiveElement {
@@ -95,62 +96,62 @@ fn ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b(k: ptr<function,
     var gi: u32;
     var gj: u32;
 
-    let _e75 = (*k);
-    if (_e75 == 0u) {
-        let _e77 = (*x);
-        gi = (1u + _e77);
+    let _e76 = (*k);
+    if (_e76 == 0u) {
+        let _e78 = (*x);
+        gi = (1u + _e78);
         gj = 1u;
     } else {
-        let _e79 = (*k);
-        if (_e79 == 1u) {
-            let _e81 = (*mu);
-            gi = (_e81 - 1u);
-            let _e83 = (*x);
-            gj = (1u + _e83);
+        let _e80 = (*k);
+        if (_e80 == 1u) {
+            let _e82 = (*mu);
+            gi = (_e82 - 1u);
+            let _e84 = (*x);
+            gj = (1u + _e84);
         } else {
-            let _e85 = (*k);
-            if (_e85 == 2u) {
-                let _e87 = (*mu);
-                let _e89 = (*x);
-                gi = ((_e87 - 1u) - _e89);
-                let _e91 = (*mv);
-                gj = (_e91 - 1u);
+            let _e86 = (*k);
+            if (_e86 == 2u) {
+                let _e88 = (*mu);
+                let _e90 = (*x);
+                gi = ((_e88 - 1u) - _e90);
+                let _e92 = (*mv);
+                gj = (_e92 - 1u);
             } else {
                 gi = 1u;
-                let _e93 = (*mv);
-                let _e95 = (*x);
-                gj = ((_e93 - 1u) - _e95);
+                let _e94 = (*mv);
+                let _e96 = (*x);
+                gj = ((_e94 - 1u) - _e96);
             }
         }
     }
-    let _e97 = (*grid);
-    let _e98 = gj;
-    let _e100 = (*mu);
-    let _e104 = gi;
-    return ((_e97 + ((_e98 - 1u) * (_e100 - 1u))) + (_e104 - 1u));
+    let _e98 = (*grid);
+    let _e99 = gj;
+    let _e101 = (*mu);
+    let _e105 = gi;
+    return ((_e98 + ((_e99 - 1u) * (_e101 - 1u))) + (_e105 - 1u));
 }
 
 fn loadSidePiece_u0028_u1_u003b(k_1: ptr<function, u32>) {
     var owner: u32;
 
-    let _e70 = (*k_1);
-    let _e73 = el.sideFirst[_e70];
-    let _e74 = curPiece;
-    let _e78 = pieces.v[(_e73 + _e74)];
-    curSide = _e78;
-    let _e80 = curSide[0u];
-    let _e83 = rates.r[_e80];
-    curRate = (_e83 & 65535u);
-    let _e86 = curSide[0u];
-    let _e91 = pieces.v[(2u * _e86)][0u];
-    owner = _e91;
-    let _e92 = owner;
-    let _e96 = info.v[_e92][1u];
-    let _e98 = pc.limnCount;
-    let _e100 = curSide[0u];
-    let _e104 = curSide[0u];
-    let _e109 = info.v[(_e98 + (_e100 / 4u))][(_e104 % 4u)];
-    curBase = (_e96 + _e109);
+    let _e71 = (*k_1);
+    let _e74 = el.sideFirst[_e71];
+    let _e75 = curPiece;
+    let _e79 = pieces.v[(_e74 + _e75)];
+    curSide = _e79;
+    let _e81 = curSide[0u];
+    let _e84 = rates.r[_e81];
+    curRate = (_e84 & 65535u);
+    let _e87 = curSide[0u];
+    let _e92 = pieces.v[(2u * _e87)][0u];
+    owner = _e92;
+    let _e93 = owner;
+    let _e97 = info.v[_e93][1u];
+    let _e99 = pc.limnCount;
+    let _e101 = curSide[0u];
+    let _e105 = curSide[0u];
+    let _e110 = info.v[(_e99 + (_e101 / 4u))][(_e105 % 4u)];
+    curBase = (_e97 + _e110);
     return;
 }
 
@@ -160,67 +161,67 @@ fn sharedSlot_u0028_u1_u003b_u1_u003b_u1_u003b(k_2: ptr<function, u32>, x_1: ptr
     var i: u32;
     var local: u32;
 
-    let _e75 = (*x_1);
-    let _e76 = (*total);
-    if (_e75 == _e76) {
-        let _e78 = (*k_2);
-        let _e83 = el.sideFirst[((_e78 + 1u) & 3u)];
-        let _e87 = pieces.v[_e83][1u];
-        return _e87;
+    let _e76 = (*x_1);
+    let _e77 = (*total);
+    if (_e76 == _e77) {
+        let _e79 = (*k_2);
+        let _e84 = el.sideFirst[((_e79 + 1u) & 3u)];
+        let _e88 = pieces.v[_e84][1u];
+        return _e88;
     }
-    let _e88 = (*x_1);
-    if (_e88 == 0u) {
+    let _e89 = (*x_1);
+    if (_e89 == 0u) {
         curPiece = 0u;
         curStart = 0u;
-        let _e90 = (*k_2);
-        param = _e90;
+        let _e91 = (*k_2);
+        param = _e91;
         loadSidePiece_u0028_u1_u003b((&param));
     } else {
-        let _e91 = (*x_1);
-        let _e92 = curStart;
-        let _e93 = curRate;
-        if (_e91 >= (_e92 + _e93)) {
-            let _e96 = curRate;
-            let _e97 = curStart;
-            curStart = (_e97 + _e96);
-            let _e99 = curPiece;
-            curPiece = (_e99 + bitcast<u32>(1i));
-            let _e102 = (*k_2);
-            param_1 = _e102;
+        let _e92 = (*x_1);
+        let _e93 = curStart;
+        let _e94 = curRate;
+        if (_e92 >= (_e93 + _e94)) {
+            let _e97 = curRate;
+            let _e98 = curStart;
+            curStart = (_e98 + _e97);
+            let _e100 = curPiece;
+            curPiece = (_e100 + bitcast<u32>(1i));
+            let _e103 = (*k_2);
+            param_1 = _e103;
             loadSidePiece_u0028_u1_u003b((&param_1));
         }
     }
-    let _e103 = (*x_1);
-    let _e104 = curStart;
-    i = (_e103 - _e104);
-    let _e106 = i;
-    if (_e106 == 0u) {
-        let _e109 = curSide[1u];
-        return _e109;
+    let _e104 = (*x_1);
+    let _e105 = curStart;
+    i = (_e104 - _e105);
+    let _e107 = i;
+    if (_e107 == 0u) {
+        let _e110 = curSide[1u];
+        return _e110;
     }
-    let _e110 = curBase;
-    let _e112 = curSide[2u];
-    if ((_e112 & 1u) != 0u) {
-        let _e115 = curRate;
-        let _e116 = i;
-        local = (_e115 - _e116);
+    let _e111 = curBase;
+    let _e113 = curSide[2u];
+    if ((_e113 & 1u) != 0u) {
+        let _e116 = curRate;
+        let _e117 = i;
+        local = (_e116 - _e117);
     } else {
-        let _e118 = i;
-        local = _e118;
+        let _e119 = i;
+        local = _e119;
     }
-    let _e119 = local;
-    return ((_e110 + _e119) - 1u);
+    let _e120 = local;
+    return ((_e111 + _e120) - 1u);
 }
 
 fn gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b(D: ptr<function, u32>, k_3: ptr<function, u32>, n: ptr<function, u32>) -> u32 {
-    let _e71 = (*k_3);
-    let _e72 = (*D);
-    let _e73 = (*n);
-    let _e75 = (*k_3);
-    let _e77 = (*n);
-    let _e79 = (*k_3);
-    let _e81 = (*n);
-    return (_e71 + (((((_e72 - _e73) * _e75) / _e77) * _e79) / _e81));
+    let _e72 = (*k_3);
+    let _e73 = (*D);
+    let _e74 = (*n);
+    let _e76 = (*k_3);
+    let _e78 = (*n);
+    let _e80 = (*k_3);
+    let _e82 = (*n);
+    return (_e72 + (((((_e73 - _e74) * _e76) / _e78) * _e80) / _e82));
 }
 
 fn gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b(i_1: ptr<function, u32>, m: ptr<function, u32>, graded: ptr<function, bool>, atZero: ptr<function, bool>) -> u32 {
@@ -232,60 +233,60 @@ fn gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b(i_1: ptr<function, u32>, 
     var param_6: u32;
     var param_7: u32;
 
-    let _e79 = (*graded);
-    if !(_e79) {
-        let _e81 = (*i_1);
-        let _e83 = (*m);
-        return ((_e81 * 32768u) / _e83);
+    let _e80 = (*graded);
+    if !(_e80) {
+        let _e82 = (*i_1);
+        let _e84 = (*m);
+        return ((_e82 * 32768u) / _e84);
     }
-    let _e85 = (*atZero);
-    if _e85 {
+    let _e86 = (*atZero);
+    if _e86 {
         param_2 = 32768u;
-        let _e86 = (*i_1);
-        param_3 = _e86;
-        let _e87 = (*m);
-        param_4 = _e87;
-        let _e88 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_2), (&param_3), (&param_4));
-        local_1 = _e88;
+        let _e87 = (*i_1);
+        param_3 = _e87;
+        let _e88 = (*m);
+        param_4 = _e88;
+        let _e89 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_2), (&param_3), (&param_4));
+        local_1 = _e89;
     } else {
-        let _e89 = (*m);
-        let _e90 = (*i_1);
+        let _e90 = (*m);
+        let _e91 = (*i_1);
         param_5 = 32768u;
-        param_6 = (_e89 - _e90);
-        let _e92 = (*m);
-        param_7 = _e92;
-        let _e93 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_5), (&param_6), (&param_7));
-        local_1 = (32768u - _e93);
+        param_6 = (_e90 - _e91);
+        let _e93 = (*m);
+        param_7 = _e93;
+        let _e94 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_5), (&param_6), (&param_7));
+        local_1 = (32768u - _e94);
     }
-    let _e95 = local_1;
-    return _e95;
+    let _e96 = local_1;
+    return _e96;
 }
 
 fn creaseAtZero_u0028_u1_u003b(c: ptr<function, u32>) -> bool {
-    let _e69 = (*c);
-    return ((_e69 & 9u) != 0u);
+    let _e70 = (*c);
+    return ((_e70 & 9u) != 0u);
 }
 
 fn creaseAcrossS_u0028_u1_u003b(c_1: ptr<function, u32>) -> bool {
-    let _e69 = (*c_1);
-    return ((_e69 & 10u) != 0u);
+    let _e70 = (*c_1);
+    return ((_e70 & 10u) != 0u);
 }
 
 fn triSlots_u0028_u1_u003b_u1_u003b_u1_u003b(a: ptr<function, u32>, b: ptr<function, u32>, c_2: ptr<function, u32>) {
-    let _e71 = tNext;
-    let _e73 = (*a);
-    triangles.i[(3u * _e71)] = _e73;
-    let _e76 = tNext;
-    let _e79 = (*b);
-    triangles.i[((3u * _e76) + 1u)] = _e79;
-    let _e82 = tNext;
-    let _e85 = (*c_2);
-    triangles.i[((3u * _e82) + 2u)] = _e85;
-    let _e88 = tNext;
-    let _e89 = level;
-    triangleLevels.l[_e88] = _e89;
-    let _e92 = tNext;
-    tNext = (_e92 + bitcast<u32>(1i));
+    let _e72 = tNext;
+    let _e74 = (*a);
+    triangles.i[(3u * _e72)] = _e74;
+    let _e77 = tNext;
+    let _e80 = (*b);
+    triangles.i[((3u * _e77) + 1u)] = _e80;
+    let _e83 = tNext;
+    let _e86 = (*c_2);
+    triangles.i[((3u * _e83) + 2u)] = _e86;
+    let _e89 = tNext;
+    let _e90 = level;
+    triangleLevels.l[_e89] = _e90;
+    let _e93 = tNext;
+    tNext = (_e93 + bitcast<u32>(1i));
     return;
 }
 
@@ -294,15 +295,15 @@ fn tri_u0028_u1_u003b_u1_u003b_u1_u003b(a_1: ptr<function, u32>, b_1: ptr<functi
     var param_9: u32;
     var param_10: u32;
 
-    let _e74 = vBase;
-    let _e75 = (*a_1);
-    let _e77 = vBase;
-    let _e78 = (*b_1);
-    let _e80 = vBase;
-    let _e81 = (*c_3);
-    param_8 = (_e74 + _e75);
-    param_9 = (_e77 + _e78);
-    param_10 = (_e80 + _e81);
+    let _e75 = vBase;
+    let _e76 = (*a_1);
+    let _e78 = vBase;
+    let _e79 = (*b_1);
+    let _e81 = vBase;
+    let _e82 = (*c_3);
+    param_8 = (_e75 + _e76);
+    param_9 = (_e78 + _e79);
+    param_10 = (_e81 + _e82);
     triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_8), (&param_9), (&param_10));
     return;
 }
@@ -314,453 +315,241 @@ fn adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b(sideStart
     apex = 0u;
     k_4 = 4u;
     loop {
-        let _e72 = k_4;
-        if (_e72 > 0u) {
-            let _e74 = k_4;
-            let _e77 = (*sideTotal)[(_e74 - 1u)];
-            if (_e77 > 1u) {
-                let _e79 = k_4;
-                let _e82 = (*sideStart)[(_e79 - 1u)];
-                apex = (_e82 + 1u);
+        let _e73 = k_4;
+        if (_e73 > 0u) {
+            let _e75 = k_4;
+            let _e78 = (*sideTotal)[(_e75 - 1u)];
+            if (_e78 > 1u) {
+                let _e80 = k_4;
+                let _e83 = (*sideStart)[(_e80 - 1u)];
+                apex = (_e83 + 1u);
             }
             continue;
         } else {
             break;
         }
         continuing {
-            let _e84 = k_4;
-            k_4 = (_e84 - bitcast<u32>(1i));
+            let _e85 = k_4;
+            k_4 = (_e85 - bitcast<u32>(1i));
         }
     }
-    let _e87 = apex;
-    return _e87;
+    let _e88 = apex;
+    return _e88;
 }
 
-fn vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b(local_2: ptr<function, u32>, element: ptr<function, u32>, st: ptr<function, u32>, uv: ptr<function, vec2<f32>>) {
-    let _e72 = vBase;
-    let _e73 = (*local_2);
-    let _e75 = (*element);
-    let _e76 = (*st);
-    let _e78 = (*uv)[0u];
-    let _e81 = (*uv)[1u];
-    tessVertices.v[(_e72 + _e73)] = vec4<u32>(_e75, _e76, bitcast<u32>(_e78), bitcast<u32>(_e81));
-    return;
-}
-
-fn pieceFraction_u0028_vu4_u003b_u1_u003b(piece: ptr<function, vec4<u32>>, st_1: ptr<function, u32>) -> f32 {
-    var a_2: u32;
-    var b_2: u32;
-    var sh: u32;
-    var ca: i32;
-    var cb: i32;
-    var cx: i32;
-
-    let _e77 = (*piece)[1u];
-    a_2 = _e77;
-    let _e79 = (*piece)[2u];
-    b_2 = _e79;
-    let _e80 = a_2;
-    let _e82 = b_2;
-    sh = select(16u, 0u, ((_e80 & 65535u) != (_e82 & 65535u)));
-    let _e86 = a_2;
-    let _e87 = sh;
-    ca = bitcast<i32>(((_e86 >> bitcast<u32>(_e87)) & 65535u));
-    let _e92 = b_2;
-    let _e93 = sh;
-    cb = bitcast<i32>(((_e92 >> bitcast<u32>(_e93)) & 65535u));
-    let _e98 = (*st_1);
-    let _e99 = sh;
-    cx = bitcast<i32>(((_e98 >> bitcast<u32>(_e99)) & 65535u));
-    let _e104 = cx;
-    let _e105 = ca;
-    let _e108 = cb;
-    let _e109 = ca;
-    return (f32((_e104 - _e105)) / f32((_e108 - _e109)));
-}
-
-fn lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b(a_3: ptr<function, u32>, b_3: ptr<function, u32>, j: ptr<function, u32>, r: ptr<function, u32>) -> u32 {
-    var sa: i32;
-    var sb: i32;
-    var ta: i32;
-    var tb: i32;
-    var s: i32;
-    var t: i32;
-
-    let _e78 = (*a_3);
-    sa = bitcast<i32>((_e78 & 65535u));
-    let _e81 = (*b_3);
-    sb = bitcast<i32>((_e81 & 65535u));
-    let _e84 = (*a_3);
-    ta = bitcast<i32>((_e84 >> bitcast<u32>(16i)));
-    let _e88 = (*b_3);
-    tb = bitcast<i32>((_e88 >> bitcast<u32>(16i)));
-    let _e92 = sa;
-    let _e93 = sb;
-    let _e94 = sa;
-    let _e96 = (*j);
-    let _e99 = (*r);
-    s = (_e92 + (((_e93 - _e94) * bitcast<i32>(_e96)) / bitcast<i32>(_e99)));
-    let _e103 = ta;
-    let _e104 = tb;
-    let _e105 = ta;
-    let _e107 = (*j);
-    let _e110 = (*r);
-    t = (_e103 + (((_e104 - _e105) * bitcast<i32>(_e107)) / bitcast<i32>(_e110)));
-    let _e114 = s;
-    let _e116 = t;
-    return (bitcast<u32>(_e114) | (bitcast<u32>(_e116) << bitcast<u32>(16i)));
-}
-
-fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece_1: ptr<function, vec4<u32>>, j_1: ptr<function, u32>, r_1: ptr<function, u32>, along: ptr<function, f32>) -> u32 {
-    var c_4: u32;
-    var a_4: u32;
-    var b_4: u32;
-    var runsS: bool;
-    var param_11: u32;
-    var param_12: u32;
-    var param_13: u32;
-    var param_14: u32;
-    var param_15: u32;
-    var sh_1: u32;
-    var ca_1: u32;
-    var cb_1: u32;
-    var D_1: u32;
-    var fromA: bool;
-    var param_16: u32;
-    var local_3: bool;
-    var off: u32;
-    var local_4: u32;
-    var param_17: u32;
-    var param_18: u32;
-    var param_19: u32;
-    var param_20: u32;
-    var param_21: u32;
-    var param_22: u32;
-    var x_2: u32;
-    var local_5: u32;
-    var phi_778_: bool;
-
-    (*along) = -1f;
-    let _e99 = (*piece_1)[0u];
-    let _e103 = elements.e[_e99].crease;
-    c_4 = _e103;
-    let _e105 = (*piece_1)[1u];
-    a_4 = _e105;
-    let _e107 = (*piece_1)[2u];
-    b_4 = _e107;
-    let _e108 = a_4;
-    let _e110 = b_4;
-    runsS = ((_e108 & 65535u) != (_e110 & 65535u));
-    let _e113 = c_4;
-    let _e114 = (_e113 == 0u);
-    phi_778_ = _e114;
-    if !(_e114) {
-        let _e116 = runsS;
-        let _e117 = c_4;
-        param_11 = _e117;
-        let _e118 = creaseAcrossS_u0028_u1_u003b((&param_11));
-        phi_778_ = (_e116 != _e118);
-    }
-    let _e121 = phi_778_;
-    if _e121 {
-        let _e122 = a_4;
-        param_12 = _e122;
-        let _e123 = b_4;
-        param_13 = _e123;
-        let _e124 = (*j_1);
-        param_14 = _e124;
-        let _e125 = (*r_1);
-        param_15 = _e125;
-        let _e126 = lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_12), (&param_13), (&param_14), (&param_15));
-        return _e126;
-    }
-    let _e127 = runsS;
-    sh_1 = select(16u, 0u, _e127);
-    let _e129 = a_4;
-    let _e130 = sh_1;
-    ca_1 = ((_e129 >> bitcast<u32>(_e130)) & 65535u);
-    let _e134 = b_4;
-    let _e135 = sh_1;
-    cb_1 = ((_e134 >> bitcast<u32>(_e135)) & 65535u);
-    let _e139 = ca_1;
-    let _e140 = cb_1;
-    let _e142 = ca_1;
-    let _e143 = cb_1;
-    D_1 = (max(_e139, _e140) - min(_e142, _e143));
-    let _e146 = c_4;
-    param_16 = _e146;
-    let _e147 = creaseAtZero_u0028_u1_u003b((&param_16));
-    if _e147 {
-        let _e148 = ca_1;
-        let _e149 = cb_1;
-        local_3 = (_e148 < _e149);
-    } else {
-        let _e151 = ca_1;
-        let _e152 = cb_1;
-        local_3 = (_e151 > _e152);
-    }
-    let _e154 = local_3;
-    fromA = _e154;
-    let _e155 = fromA;
-    if _e155 {
-        let _e156 = D_1;
-        param_17 = _e156;
-        let _e157 = (*j_1);
-        param_18 = _e157;
-        let _e158 = (*r_1);
-        param_19 = _e158;
-        let _e159 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_17), (&param_18), (&param_19));
-        local_4 = _e159;
-    } else {
-        let _e160 = D_1;
-        let _e161 = (*r_1);
-        let _e162 = (*j_1);
-        let _e164 = D_1;
-        param_20 = _e164;
-        param_21 = (_e161 - _e162);
-        let _e165 = (*r_1);
-        param_22 = _e165;
-        let _e166 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_20), (&param_21), (&param_22));
-        local_4 = (_e160 - _e166);
-    }
-    let _e168 = local_4;
-    off = _e168;
-    let _e169 = cb_1;
-    let _e170 = ca_1;
-    if (_e169 > _e170) {
-        let _e172 = ca_1;
-        let _e173 = off;
-        local_5 = (_e172 + _e173);
-    } else {
-        let _e175 = ca_1;
-        let _e176 = off;
-        local_5 = (_e175 - _e176);
-    }
-    let _e178 = local_5;
-    x_2 = _e178;
-    let _e179 = off;
-    let _e181 = D_1;
-    (*along) = (f32(_e179) / f32(_e181));
-    let _e184 = a_4;
-    let _e185 = sh_1;
-    let _e190 = x_2;
-    let _e191 = sh_1;
-    return ((_e184 & ~((65535u << bitcast<u32>(_e185)))) | (_e190 << bitcast<u32>(_e191)));
-}
-
-fn fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b(t_1: ptr<function, f32>, b_5: ptr<function, array<f32, 4>>) {
-    var s_1: f32;
+fn fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b(t: ptr<function, f32>, b_2: ptr<function, array<f32, 4>>) {
+    var s: f32;
     var t2_: f32;
     var t3_: f32;
 
-    let _e73 = (*t_1);
-    s_1 = (1f - _e73);
-    let _e75 = (*t_1);
-    let _e76 = (*t_1);
-    t2_ = (_e75 * _e76);
-    let _e78 = t2_;
-    let _e79 = (*t_1);
-    t3_ = (_e78 * _e79);
-    let _e81 = s_1;
-    let _e82 = s_1;
-    let _e84 = s_1;
-    (*b_5)[0i] = (((_e81 * _e82) * _e84) / 6f);
-    let _e88 = t3_;
-    let _e90 = t2_;
-    (*b_5)[1i] = ((((3f * _e88) - (6f * _e90)) + 4f) / 6f);
-    let _e96 = t3_;
-    let _e98 = t2_;
-    let _e101 = (*t_1);
-    (*b_5)[2i] = (((((-3f * _e96) + (3f * _e98)) + (3f * _e101)) + 1f) / 6f);
-    let _e107 = t3_;
-    (*b_5)[3i] = (_e107 / 6f);
+    let _e74 = (*t);
+    s = (1f - _e74);
+    let _e76 = (*t);
+    let _e77 = (*t);
+    t2_ = (_e76 * _e77);
+    let _e79 = t2_;
+    let _e80 = (*t);
+    t3_ = (_e79 * _e80);
+    let _e82 = s;
+    let _e83 = s;
+    let _e85 = s;
+    (*b_2)[0i] = (((_e82 * _e83) * _e85) / 6f);
+    let _e89 = t3_;
+    let _e91 = t2_;
+    (*b_2)[1i] = ((((3f * _e89) - (6f * _e91)) + 4f) / 6f);
+    let _e97 = t3_;
+    let _e99 = t2_;
+    let _e102 = (*t);
+    (*b_2)[2i] = (((((-3f * _e97) + (3f * _e99)) + (3f * _e102)) + 1f) / 6f);
+    let _e108 = t3_;
+    (*b_2)[3i] = (_e108 / 6f);
     return;
 }
 
 fn fvarRecord_u0028_u1_u003b(i_2: ptr<function, u32>) -> vec4<f32> {
-    let _e70 = pc.recordBase;
-    let _e71 = (*i_2);
-    let _e75 = pieces.v[(_e70 + _e71)];
-    return bitcast<vec4<f32>>(_e75);
+    let _e71 = pc.recordBase;
+    let _e72 = (*i_2);
+    let _e76 = pieces.v[(_e71 + _e72)];
+    return bitcast<vec4<f32>>(_e76);
 }
 
 fn fvarNode_u0028_u1_u003b(i_3: ptr<function, u32>) -> u32 {
-    let _e70 = pc.nodeBase;
-    let _e71 = (*i_3);
-    let _e74 = (*i_3);
-    let _e79 = pieces.v[(_e70 + (_e71 / 4u))][(_e74 % 4u)];
-    return _e79;
+    let _e71 = pc.nodeBase;
+    let _e72 = (*i_3);
+    let _e75 = (*i_3);
+    let _e80 = pieces.v[(_e71 + (_e72 / 4u))][(_e75 % 4u)];
+    return _e80;
 }
 
-fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, uv_1: ptr<function, vec2<f32>>, inside: ptr<function, vec2<f32>>, nudge: ptr<function, f32>) -> vec2<f32> {
+fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, uv: ptr<function, vec2<f32>>, inside: ptr<function, vec2<f32>>, nudge: ptr<function, f32>) -> vec2<f32> {
     var probe: vec2<f32>;
     var o: vec2<f32>;
     var size: f32;
     var v: u32;
-    var param_23: u32;
+    var param_11: u32;
     var depth: i32;
-    var c_5: vec2<u32>;
-    var param_24: u32;
-    var r_2: u32;
+    var c_4: vec2<u32>;
+    var param_12: u32;
+    var r: u32;
     var h: vec4<f32>;
-    var param_25: u32;
-    var s_2: f32;
-    var t_2: f32;
-    var a_5: vec4<f32>;
-    var param_26: u32;
-    var b_6: vec4<f32>;
-    var param_27: u32;
+    var param_13: u32;
+    var s_1: f32;
+    var t_1: f32;
+    var a_2: vec4<f32>;
+    var param_14: u32;
+    var b_3: vec4<f32>;
+    var param_15: u32;
     var bu: array<f32, 4>;
-    var param_28: f32;
-    var param_29: array<f32, 4>;
+    var param_16: f32;
+    var param_17: array<f32, 4>;
     var bv: array<f32, 4>;
-    var param_30: f32;
-    var param_31: array<f32, 4>;
-    var x_3: vec2<f32>;
-    var j_2: u32;
+    var param_18: f32;
+    var param_19: array<f32, 4>;
+    var x_2: vec2<f32>;
+    var j: u32;
     var i_4: u32;
     var p: vec4<f32>;
-    var param_32: u32;
+    var param_20: u32;
     var phi_341_: bool;
     var phi_391_: bool;
 
-    let _e100 = (*uv_1);
-    let _e101 = (*inside);
-    let _e102 = (*uv_1);
-    let _e105 = (*nudge);
-    probe = clamp((_e100 + (sign((_e101 - _e102)) * _e105)), vec2<f32>(0f, 0f), vec2<f32>(1f, 1f));
+    let _e101 = (*uv);
+    let _e102 = (*inside);
+    let _e103 = (*uv);
+    let _e106 = (*nudge);
+    probe = clamp((_e101 + (sign((_e102 - _e103)) * _e106)), vec2<f32>(0f, 0f), vec2<f32>(1f, 1f));
     o = vec2<f32>(0f, 0f);
     size = 1f;
-    let _e109 = (*ptex);
-    param_23 = _e109;
-    let _e110 = fvarNode_u0028_u1_u003b((&param_23));
-    v = _e110;
+    let _e110 = (*ptex);
+    param_11 = _e110;
+    let _e111 = fvarNode_u0028_u1_u003b((&param_11));
+    v = _e111;
     depth = 0i;
     loop {
-        let _e111 = depth;
-        let _e113 = v;
-        let _e115 = ((_e111 < 24i) && (_e113 != 4294967295u));
-        phi_341_ = _e115;
-        if _e115 {
-            let _e116 = v;
-            phi_341_ = ((_e116 & 2147483648u) == 0u);
+        let _e112 = depth;
+        let _e114 = v;
+        let _e116 = ((_e112 < 24i) && (_e114 != 4294967295u));
+        phi_341_ = _e116;
+        if _e116 {
+            let _e117 = v;
+            phi_341_ = ((_e117 & 2147483648u) == 0u);
         }
-        let _e120 = phi_341_;
-        if _e120 {
-            let _e121 = size;
-            size = (_e121 * 0.5f);
-            let _e124 = probe[0u];
-            let _e126 = o[0u];
-            let _e127 = size;
-            let _e132 = probe[1u];
-            let _e134 = o[1u];
-            let _e135 = size;
-            c_5 = vec2<u32>(select(0u, 1u, (_e124 >= (_e126 + _e127))), select(0u, 1u, (_e132 >= (_e134 + _e135))));
-            let _e140 = c_5;
-            let _e142 = size;
-            let _e144 = o;
-            o = (_e144 + (vec2<f32>(_e140) * _e142));
-            let _e146 = v;
-            let _e148 = c_5[0u];
-            let _e151 = c_5[1u];
-            param_24 = ((_e146 + _e148) + (2u * _e151));
-            let _e154 = fvarNode_u0028_u1_u003b((&param_24));
-            v = _e154;
+        let _e121 = phi_341_;
+        if _e121 {
+            let _e122 = size;
+            size = (_e122 * 0.5f);
+            let _e125 = probe[0u];
+            let _e127 = o[0u];
+            let _e128 = size;
+            let _e133 = probe[1u];
+            let _e135 = o[1u];
+            let _e136 = size;
+            c_4 = vec2<u32>(select(0u, 1u, (_e125 >= (_e127 + _e128))), select(0u, 1u, (_e133 >= (_e135 + _e136))));
+            let _e141 = c_4;
+            let _e143 = size;
+            let _e145 = o;
+            o = (_e145 + (vec2<f32>(_e141) * _e143));
+            let _e147 = v;
+            let _e149 = c_4[0u];
+            let _e152 = c_4[1u];
+            param_12 = ((_e147 + _e149) + (2u * _e152));
+            let _e155 = fvarNode_u0028_u1_u003b((&param_12));
+            v = _e155;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e155 = depth;
-            depth = (_e155 + 1i);
+            let _e156 = depth;
+            depth = (_e156 + 1i);
         }
     }
-    let _e157 = v;
-    let _e158 = (_e157 == 4294967295u);
-    phi_391_ = _e158;
-    if !(_e158) {
-        let _e160 = v;
-        phi_391_ = ((_e160 & 2147483648u) == 0u);
+    let _e158 = v;
+    let _e159 = (_e158 == 4294967295u);
+    phi_391_ = _e159;
+    if !(_e159) {
+        let _e161 = v;
+        phi_391_ = ((_e161 & 2147483648u) == 0u);
     }
-    let _e164 = phi_391_;
-    if _e164 {
+    let _e165 = phi_391_;
+    if _e165 {
         return vec2<f32>(0f, 0f);
     }
-    let _e165 = v;
-    r_2 = (9u * (_e165 & 2147483647u));
-    let _e168 = r_2;
-    param_25 = _e168;
-    let _e169 = fvarRecord_u0028_u1_u003b((&param_25));
-    h = _e169;
-    let _e171 = (*uv_1)[0u];
-    let _e173 = h[0u];
-    let _e176 = h[2u];
-    s_2 = ((_e171 - _e173) / _e176);
-    let _e179 = (*uv_1)[1u];
-    let _e181 = h[1u];
-    let _e184 = h[2u];
-    t_2 = ((_e179 - _e181) / _e184);
-    let _e187 = h[3u];
-    if (_e187 != 0f) {
-        let _e189 = r_2;
-        param_26 = (_e189 + 1u);
-        let _e191 = fvarRecord_u0028_u1_u003b((&param_26));
-        a_5 = _e191;
-        let _e192 = r_2;
-        param_27 = (_e192 + 2u);
-        let _e194 = fvarRecord_u0028_u1_u003b((&param_27));
-        b_6 = _e194;
-        let _e195 = a_5;
-        let _e197 = a_5;
-        let _e199 = s_2;
-        let _e202 = b_6;
-        let _e204 = b_6;
-        let _e206 = s_2;
-        let _e209 = t_2;
-        return mix(mix(_e195.xy, _e197.zw, vec2(_e199)), mix(_e202.zw, _e204.xy, vec2(_e206)), vec2(_e209));
+    let _e166 = v;
+    r = (9u * (_e166 & 2147483647u));
+    let _e169 = r;
+    param_13 = _e169;
+    let _e170 = fvarRecord_u0028_u1_u003b((&param_13));
+    h = _e170;
+    let _e172 = (*uv)[0u];
+    let _e174 = h[0u];
+    let _e177 = h[2u];
+    s_1 = ((_e172 - _e174) / _e177);
+    let _e180 = (*uv)[1u];
+    let _e182 = h[1u];
+    let _e185 = h[2u];
+    t_1 = ((_e180 - _e182) / _e185);
+    let _e188 = h[3u];
+    if (_e188 != 0f) {
+        let _e190 = r;
+        param_14 = (_e190 + 1u);
+        let _e192 = fvarRecord_u0028_u1_u003b((&param_14));
+        a_2 = _e192;
+        let _e193 = r;
+        param_15 = (_e193 + 2u);
+        let _e195 = fvarRecord_u0028_u1_u003b((&param_15));
+        b_3 = _e195;
+        let _e196 = a_2;
+        let _e198 = a_2;
+        let _e200 = s_1;
+        let _e203 = b_3;
+        let _e205 = b_3;
+        let _e207 = s_1;
+        let _e210 = t_1;
+        return mix(mix(_e196.xy, _e198.zw, vec2(_e200)), mix(_e203.zw, _e205.xy, vec2(_e207)), vec2(_e210));
     }
-    let _e212 = s_2;
-    param_28 = _e212;
-    fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b((&param_28), (&param_29));
-    let _e213 = param_29;
-    bu = _e213;
-    let _e214 = t_2;
-    param_30 = _e214;
-    fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b((&param_30), (&param_31));
-    let _e215 = param_31;
-    bv = _e215;
-    x_3 = vec2<f32>(0f, 0f);
-    j_2 = 0u;
+    let _e213 = s_1;
+    param_16 = _e213;
+    fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b((&param_16), (&param_17));
+    let _e214 = param_17;
+    bu = _e214;
+    let _e215 = t_1;
+    param_18 = _e215;
+    fvarBasis_u0028_f1_u003b_f1_u005b_4_u005d_u003b((&param_18), (&param_19));
+    let _e216 = param_19;
+    bv = _e216;
+    x_2 = vec2<f32>(0f, 0f);
+    j = 0u;
     loop {
-        let _e216 = j_2;
-        if (_e216 < 4u) {
+        let _e217 = j;
+        if (_e217 < 4u) {
             i_4 = 0u;
             loop {
-                let _e218 = i_4;
-                if (_e218 < 4u) {
-                    let _e220 = r_2;
-                    let _e222 = j_2;
-                    let _e224 = i_4;
-                    param_32 = ((_e220 + 1u) + (((4u * _e222) + _e224) / 2u));
-                    let _e228 = fvarRecord_u0028_u1_u003b((&param_32));
-                    p = _e228;
-                    let _e229 = j_2;
-                    let _e231 = bv[_e229];
-                    let _e232 = i_4;
-                    let _e234 = bu[_e232];
-                    let _e235 = p;
-                    let _e238 = i_4;
-                    let _e241 = bu[(_e238 + 1u)];
-                    let _e242 = p;
-                    let _e247 = x_3;
-                    x_3 = (_e247 + (((_e235.xy * _e234) + (_e242.zw * _e241)) * _e231));
+                let _e219 = i_4;
+                if (_e219 < 4u) {
+                    let _e221 = r;
+                    let _e223 = j;
+                    let _e225 = i_4;
+                    param_20 = ((_e221 + 1u) + (((4u * _e223) + _e225) / 2u));
+                    let _e229 = fvarRecord_u0028_u1_u003b((&param_20));
+                    p = _e229;
+                    let _e230 = j;
+                    let _e232 = bv[_e230];
+                    let _e233 = i_4;
+                    let _e235 = bu[_e233];
+                    let _e236 = p;
+                    let _e239 = i_4;
+                    let _e242 = bu[(_e239 + 1u)];
+                    let _e243 = p;
+                    let _e248 = x_2;
+                    x_2 = (_e248 + (((_e236.xy * _e235) + (_e243.zw * _e242)) * _e232));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e249 = i_4;
-                    i_4 = (_e249 + 2u);
+                    let _e250 = i_4;
+                    i_4 = (_e250 + 2u);
                 }
             }
             continue;
@@ -768,95 +557,327 @@ fn fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b(ptex: ptr<function, u32>, 
             break;
         }
         continuing {
-            let _e251 = j_2;
-            j_2 = (_e251 + bitcast<u32>(1i));
+            let _e252 = j;
+            j = (_e252 + bitcast<u32>(1i));
         }
     }
-    let _e254 = x_3;
-    return _e254;
+    let _e255 = x_2;
+    return _e255;
 }
 
-fn uvAt_u0028_f1_u003b_f1_u003b(s_3: ptr<function, f32>, t_3: ptr<function, f32>) -> vec2<f32> {
+fn uvAt_u0028_f1_u003b_f1_u003b(s_2: ptr<function, f32>, t_2: ptr<function, f32>) -> vec2<f32> {
     var q: vec4<u32>;
     var d: vec3<f32>;
     var at: vec2<f32>;
     var centre: vec2<f32>;
-    var param_33: u32;
-    var param_34: vec2<f32>;
-    var param_35: vec2<f32>;
-    var param_36: f32;
+    var param_21: u32;
+    var param_22: vec2<f32>;
+    var param_23: vec2<f32>;
+    var param_24: f32;
 
-    let _e79 = pc.smoothUV;
-    if (_e79 != 0u) {
-        let _e82 = pc.domainBase;
-        let _e83 = elIndex;
-        let _e87 = pieces.v[(_e82 + _e83)];
-        q = _e87;
-        let _e88 = q;
-        d = bitcast<vec3<f32>>(_e88.yzw);
-        let _e91 = d;
-        let _e93 = (*s_3);
-        let _e94 = (*t_3);
-        let _e97 = d[2u];
-        at = (_e91.xy + (vec2<f32>(_e93, _e94) * _e97));
-        let _e100 = d;
-        let _e103 = d[2u];
-        centre = (_e100.xy + vec2((0.5f * _e103)));
-        let _e108 = q[0u];
-        param_33 = _e108;
-        let _e109 = at;
-        param_34 = _e109;
-        let _e110 = centre;
-        param_35 = _e110;
-        let _e112 = pc.fvarCell;
-        param_36 = _e112;
-        let _e113 = fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b((&param_33), (&param_34), (&param_35), (&param_36));
-        return _e113;
+    let _e80 = pc.smoothUV;
+    if (_e80 != 0u) {
+        let _e83 = pc.domainBase;
+        let _e84 = elIndex;
+        let _e88 = pieces.v[(_e83 + _e84)];
+        q = _e88;
+        let _e89 = q;
+        d = bitcast<vec3<f32>>(_e89.yzw);
+        let _e92 = d;
+        let _e94 = (*s_2);
+        let _e95 = (*t_2);
+        let _e98 = d[2u];
+        at = (_e92.xy + (vec2<f32>(_e94, _e95) * _e98));
+        let _e101 = d;
+        let _e104 = d[2u];
+        centre = (_e101.xy + vec2((0.5f * _e104)));
+        let _e109 = q[0u];
+        param_21 = _e109;
+        let _e110 = at;
+        param_22 = _e110;
+        let _e111 = centre;
+        param_23 = _e111;
+        let _e113 = pc.fvarCell;
+        param_24 = _e113;
+        let _e114 = fvarUV_u0028_u1_u003b_vf2_u003b_vf2_u003b_f1_u003b((&param_21), (&param_22), (&param_23), (&param_24));
+        return _e114;
     }
-    let _e116 = el.uv[0i];
-    let _e119 = el.uv[1i];
-    let _e120 = (*s_3);
-    let _e125 = el.uv[3i];
-    let _e128 = el.uv[2i];
-    let _e129 = (*s_3);
-    let _e132 = (*t_3);
-    return mix(mix(_e116, _e119, vec2(_e120)), mix(_e125, _e128, vec2(_e129)), vec2(_e132));
+    let _e117 = el.uv[0i];
+    let _e120 = el.uv[1i];
+    let _e121 = (*s_2);
+    let _e126 = el.uv[3i];
+    let _e129 = el.uv[2i];
+    let _e130 = (*s_2);
+    let _e133 = (*t_2);
+    return mix(mix(_e117, _e120, vec2(_e121)), mix(_e126, _e129, vec2(_e130)), vec2(_e133));
+}
+
+fn vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b(local_2: ptr<function, u32>, element: ptr<function, u32>, st: ptr<function, u32>, own: ptr<function, vec2<f32>>) {
+    var q_1: vec2<u32>;
+    var extra: vec2<u32>;
+    var param_25: f32;
+    var param_26: f32;
+
+    let _e78 = pc.pixelNormals;
+    if (_e78 != 0u) {
+        let _e80 = (*own);
+        q_1 = vec2<u32>(((clamp(_e80, vec2(0f), vec2(1f)) * 32768f) + vec2(0.5f)));
+        let _e88 = elIndex;
+        let _e90 = q_1[0u];
+        let _e92 = q_1[1u];
+        extra = vec2<u32>(_e88, (_e90 | (_e92 << bitcast<u32>(16i))));
+    } else {
+        let _e98 = (*own)[0u];
+        param_25 = _e98;
+        let _e100 = (*own)[1u];
+        param_26 = _e100;
+        let _e101 = uvAt_u0028_f1_u003b_f1_u003b((&param_25), (&param_26));
+        extra = bitcast<vec2<u32>>(_e101);
+    }
+    let _e103 = vBase;
+    let _e104 = (*local_2);
+    let _e106 = (*element);
+    let _e107 = (*st);
+    let _e108 = extra;
+    tessVertices.v[(_e103 + _e104)] = vec4<u32>(_e106, _e107, _e108.x, _e108.y);
+    return;
+}
+
+fn pieceFraction_u0028_vu4_u003b_u1_u003b(piece: ptr<function, vec4<u32>>, st_1: ptr<function, u32>) -> f32 {
+    var a_3: u32;
+    var b_4: u32;
+    var sh: u32;
+    var ca: i32;
+    var cb: i32;
+    var cx: i32;
+
+    let _e78 = (*piece)[1u];
+    a_3 = _e78;
+    let _e80 = (*piece)[2u];
+    b_4 = _e80;
+    let _e81 = a_3;
+    let _e83 = b_4;
+    sh = select(16u, 0u, ((_e81 & 65535u) != (_e83 & 65535u)));
+    let _e87 = a_3;
+    let _e88 = sh;
+    ca = bitcast<i32>(((_e87 >> bitcast<u32>(_e88)) & 65535u));
+    let _e93 = b_4;
+    let _e94 = sh;
+    cb = bitcast<i32>(((_e93 >> bitcast<u32>(_e94)) & 65535u));
+    let _e99 = (*st_1);
+    let _e100 = sh;
+    cx = bitcast<i32>(((_e99 >> bitcast<u32>(_e100)) & 65535u));
+    let _e105 = cx;
+    let _e106 = ca;
+    let _e109 = cb;
+    let _e110 = ca;
+    return (f32((_e105 - _e106)) / f32((_e109 - _e110)));
+}
+
+fn lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b(a_4: ptr<function, u32>, b_5: ptr<function, u32>, j_1: ptr<function, u32>, r_1: ptr<function, u32>) -> u32 {
+    var sa: i32;
+    var sb: i32;
+    var ta: i32;
+    var tb: i32;
+    var s_3: i32;
+    var t_3: i32;
+
+    let _e79 = (*a_4);
+    sa = bitcast<i32>((_e79 & 65535u));
+    let _e82 = (*b_5);
+    sb = bitcast<i32>((_e82 & 65535u));
+    let _e85 = (*a_4);
+    ta = bitcast<i32>((_e85 >> bitcast<u32>(16i)));
+    let _e89 = (*b_5);
+    tb = bitcast<i32>((_e89 >> bitcast<u32>(16i)));
+    let _e93 = sa;
+    let _e94 = sb;
+    let _e95 = sa;
+    let _e97 = (*j_1);
+    let _e100 = (*r_1);
+    s_3 = (_e93 + (((_e94 - _e95) * bitcast<i32>(_e97)) / bitcast<i32>(_e100)));
+    let _e104 = ta;
+    let _e105 = tb;
+    let _e106 = ta;
+    let _e108 = (*j_1);
+    let _e111 = (*r_1);
+    t_3 = (_e104 + (((_e105 - _e106) * bitcast<i32>(_e108)) / bitcast<i32>(_e111)));
+    let _e115 = s_3;
+    let _e117 = t_3;
+    return (bitcast<u32>(_e115) | (bitcast<u32>(_e117) << bitcast<u32>(16i)));
+}
+
+fn pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b(piece_1: ptr<function, vec4<u32>>, j_2: ptr<function, u32>, r_2: ptr<function, u32>, along: ptr<function, f32>) -> u32 {
+    var c_5: u32;
+    var a_5: u32;
+    var b_6: u32;
+    var runsS: bool;
+    var param_27: u32;
+    var param_28: u32;
+    var param_29: u32;
+    var param_30: u32;
+    var param_31: u32;
+    var sh_1: u32;
+    var ca_1: u32;
+    var cb_1: u32;
+    var D_1: u32;
+    var fromA: bool;
+    var param_32: u32;
+    var local_3: bool;
+    var off: u32;
+    var local_4: u32;
+    var param_33: u32;
+    var param_34: u32;
+    var param_35: u32;
+    var param_36: u32;
+    var param_37: u32;
+    var param_38: u32;
+    var x_3: u32;
+    var local_5: u32;
+    var phi_808_: bool;
+
+    (*along) = -1f;
+    let _e100 = (*piece_1)[0u];
+    let _e104 = elements.e[_e100].crease;
+    c_5 = _e104;
+    let _e106 = (*piece_1)[1u];
+    a_5 = _e106;
+    let _e108 = (*piece_1)[2u];
+    b_6 = _e108;
+    let _e109 = a_5;
+    let _e111 = b_6;
+    runsS = ((_e109 & 65535u) != (_e111 & 65535u));
+    let _e114 = c_5;
+    let _e115 = (_e114 == 0u);
+    phi_808_ = _e115;
+    if !(_e115) {
+        let _e117 = runsS;
+        let _e118 = c_5;
+        param_27 = _e118;
+        let _e119 = creaseAcrossS_u0028_u1_u003b((&param_27));
+        phi_808_ = (_e117 != _e119);
+    }
+    let _e122 = phi_808_;
+    if _e122 {
+        let _e123 = a_5;
+        param_28 = _e123;
+        let _e124 = b_6;
+        param_29 = _e124;
+        let _e125 = (*j_2);
+        param_30 = _e125;
+        let _e126 = (*r_2);
+        param_31 = _e126;
+        let _e127 = lerpST_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_28), (&param_29), (&param_30), (&param_31));
+        return _e127;
+    }
+    let _e128 = runsS;
+    sh_1 = select(16u, 0u, _e128);
+    let _e130 = a_5;
+    let _e131 = sh_1;
+    ca_1 = ((_e130 >> bitcast<u32>(_e131)) & 65535u);
+    let _e135 = b_6;
+    let _e136 = sh_1;
+    cb_1 = ((_e135 >> bitcast<u32>(_e136)) & 65535u);
+    let _e140 = ca_1;
+    let _e141 = cb_1;
+    let _e143 = ca_1;
+    let _e144 = cb_1;
+    D_1 = (max(_e140, _e141) - min(_e143, _e144));
+    let _e147 = c_5;
+    param_32 = _e147;
+    let _e148 = creaseAtZero_u0028_u1_u003b((&param_32));
+    if _e148 {
+        let _e149 = ca_1;
+        let _e150 = cb_1;
+        local_3 = (_e149 < _e150);
+    } else {
+        let _e152 = ca_1;
+        let _e153 = cb_1;
+        local_3 = (_e152 > _e153);
+    }
+    let _e155 = local_3;
+    fromA = _e155;
+    let _e156 = fromA;
+    if _e156 {
+        let _e157 = D_1;
+        param_33 = _e157;
+        let _e158 = (*j_2);
+        param_34 = _e158;
+        let _e159 = (*r_2);
+        param_35 = _e159;
+        let _e160 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_33), (&param_34), (&param_35));
+        local_4 = _e160;
+    } else {
+        let _e161 = D_1;
+        let _e162 = (*r_2);
+        let _e163 = (*j_2);
+        let _e165 = D_1;
+        param_36 = _e165;
+        param_37 = (_e162 - _e163);
+        let _e166 = (*r_2);
+        param_38 = _e166;
+        let _e167 = gradedOffset_u0028_u1_u003b_u1_u003b_u1_u003b((&param_36), (&param_37), (&param_38));
+        local_4 = (_e161 - _e167);
+    }
+    let _e169 = local_4;
+    off = _e169;
+    let _e170 = cb_1;
+    let _e171 = ca_1;
+    if (_e170 > _e171) {
+        let _e173 = ca_1;
+        let _e174 = off;
+        local_5 = (_e173 + _e174);
+    } else {
+        let _e176 = ca_1;
+        let _e177 = off;
+        local_5 = (_e176 - _e177);
+    }
+    let _e179 = local_5;
+    x_3 = _e179;
+    let _e180 = off;
+    let _e182 = D_1;
+    (*along) = (f32(_e180) / f32(_e182));
+    let _e185 = a_5;
+    let _e186 = sh_1;
+    let _e191 = x_3;
+    let _e192 = sh_1;
+    return ((_e185 & ~((65535u << bitcast<u32>(_e186)))) | (_e191 << bitcast<u32>(_e192)));
 }
 
 fn sideParam_u0028_u1_u003b_f1_u003b(k_5: ptr<function, u32>, x_4: ptr<function, f32>) -> vec2<f32> {
     var p_1: f32;
 
-    let _e71 = (*x_4);
-    p_1 = (_e71 / 32768f);
-    let _e73 = (*k_5);
-    if (_e73 == 0u) {
-        let _e75 = p_1;
-        return vec2<f32>(_e75, 0f);
+    let _e72 = (*x_4);
+    p_1 = (_e72 / 32768f);
+    let _e74 = (*k_5);
+    if (_e74 == 0u) {
+        let _e76 = p_1;
+        return vec2<f32>(_e76, 0f);
     }
-    let _e77 = (*k_5);
-    if (_e77 == 1u) {
-        let _e79 = p_1;
-        return vec2<f32>(1f, _e79);
+    let _e78 = (*k_5);
+    if (_e78 == 1u) {
+        let _e80 = p_1;
+        return vec2<f32>(1f, _e80);
     }
-    let _e81 = (*k_5);
-    if (_e81 == 2u) {
-        let _e83 = p_1;
-        return vec2<f32>((1f - _e83), 1f);
+    let _e82 = (*k_5);
+    if (_e82 == 2u) {
+        let _e84 = p_1;
+        return vec2<f32>((1f - _e84), 1f);
     }
-    let _e86 = p_1;
-    return vec2<f32>(0f, (1f - _e86));
+    let _e87 = p_1;
+    return vec2<f32>(0f, (1f - _e87));
 }
 
 fn adaptiveRates_u0028_u1_u003b(packed: ptr<function, u32>) -> vec2<u32> {
-    let _e69 = (*packed);
-    let _e71 = (*packed);
-    return vec2<u32>((_e69 & 32767u), ((_e71 >> bitcast<u32>(15i)) & 32767u));
+    let _e70 = (*packed);
+    let _e72 = (*packed);
+    return vec2<u32>((_e70 & 32767u), ((_e72 >> bitcast<u32>(15i)) & 32767u));
 }
 
 fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var inf: vec4<u32>;
     var rates2_: vec2<u32>;
-    var param_37: u32;
+    var param_39: u32;
     var mu_1: u32;
     var mv_1: u32;
     var T: u32;
@@ -869,29 +890,29 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var from_: f32;
     var to: f32;
     var st_2: vec2<f32>;
-    var param_38: u32;
-    var param_39: f32;
-    var uv_2: vec2<f32>;
-    var param_40: f32;
+    var param_40: u32;
     var param_41: f32;
+    var uv_1: vec2<f32>;
+    var param_42: f32;
+    var param_43: f32;
     var r_3: u32;
     var piece_2: vec4<u32>;
     var i_5: u32;
     var ownerST: u32;
     var along_1: f32;
-    var param_42: vec4<u32>;
-    var param_43: u32;
-    var param_44: u32;
-    var param_45: f32;
-    var param_46: vec4<u32>;
-    var param_47: u32;
+    var param_44: vec4<u32>;
+    var param_45: u32;
+    var param_46: u32;
+    var param_47: f32;
+    var param_48: vec4<u32>;
+    var param_49: u32;
     var st_3: vec2<f32>;
     var local_6: f32;
-    var param_48: u32;
-    var param_49: f32;
-    var uv_3: vec2<f32>;
-    var param_50: f32;
+    var param_50: u32;
     var param_51: f32;
+    var uv_2: vec2<f32>;
+    var param_52: f32;
+    var param_53: f32;
     var i_6: u32;
     var sharedFlat: bool;
     var B: u32;
@@ -906,9 +927,7 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var from_1: f32;
     var to_1: f32;
     var st_4: vec2<f32>;
-    var param_52: u32;
-    var param_53: f32;
-    var param_54: f32;
+    var param_54: u32;
     var param_55: f32;
     var param_56: u32;
     var param_57: u32;
@@ -930,63 +949,59 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var local_9: f32;
     var param_66: u32;
     var param_67: f32;
-    var param_68: f32;
-    var param_69: f32;
+    var param_68: u32;
+    var param_69: u32;
     var param_70: u32;
-    var param_71: u32;
-    var param_72: u32;
-    var param_73: vec2<f32>;
+    var param_71: vec2<f32>;
     var sideTotal_1: array<u32, 4>;
     var apex_1: u32;
-    var param_74: array<u32, 4>;
-    var param_75: array<u32, 4>;
+    var param_72: array<u32, 4>;
+    var param_73: array<u32, 4>;
     var fan: u32;
     var i_8: u32;
     var a_6: u32;
     var b_7: u32;
     var c_6: u32;
+    var param_74: u32;
+    var param_75: u32;
     var param_76: u32;
     var param_77: u32;
     var param_78: u32;
     var param_79: u32;
-    var param_80: u32;
-    var param_81: u32;
     var grid_1: u32;
     var gradeS: bool;
-    var param_82: u32;
+    var param_80: u32;
     var gradeT: bool;
     var atZero_1: bool;
-    var param_83: u32;
+    var param_81: u32;
     var j_4: u32;
     var i_9: u32;
     var s_4: u32;
-    var param_84: u32;
-    var param_85: u32;
-    var param_86: bool;
-    var param_87: bool;
+    var param_82: u32;
+    var param_83: u32;
+    var param_84: bool;
+    var param_85: bool;
     var t_4: u32;
-    var param_88: u32;
-    var param_89: u32;
-    var param_90: bool;
-    var param_91: bool;
+    var param_86: u32;
+    var param_87: u32;
+    var param_88: bool;
+    var param_89: bool;
     var f_1: vec2<f32>;
     var local_10: f32;
     var local_11: f32;
-    var param_92: f32;
-    var param_93: f32;
-    var param_94: u32;
-    var param_95: u32;
-    var param_96: u32;
-    var param_97: vec2<f32>;
+    var param_90: u32;
+    var param_91: u32;
+    var param_92: u32;
+    var param_93: vec2<f32>;
     var j_5: u32;
     var i_10: u32;
     var a_7: u32;
+    var param_94: u32;
+    var param_95: u32;
+    var param_96: u32;
+    var param_97: u32;
     var param_98: u32;
     var param_99: u32;
-    var param_100: u32;
-    var param_101: u32;
-    var param_102: u32;
-    var param_103: u32;
     var k_8: u32;
     var na: u32;
     var nb: u32;
@@ -995,220 +1010,220 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
     var jb: u32;
     var a0_: u32;
     var local_13: u32;
+    var param_100: u32;
+    var param_101: u32;
+    var param_102: u32;
+    var g0_: u32;
+    var param_103: u32;
     var param_104: u32;
     var param_105: u32;
     var param_106: u32;
-    var g0_: u32;
     var param_107: u32;
+    var g1_: u32;
     var param_108: u32;
     var param_109: u32;
     var param_110: u32;
     var param_111: u32;
-    var g1_: u32;
     var param_112: u32;
+    var advanceA: bool;
+    var a1_: u32;
+    var local_14: u32;
     var param_113: u32;
     var param_114: u32;
     var param_115: u32;
     var param_116: u32;
-    var advanceA: bool;
-    var a1_: u32;
-    var local_14: u32;
     var param_117: u32;
     var param_118: u32;
     var param_119: u32;
     var param_120: u32;
     var param_121: u32;
-    var param_122: u32;
-    var param_123: u32;
-    var param_124: u32;
-    var param_125: u32;
-    var phi_1315_: bool;
-    var phi_1412_: bool;
-    var phi_1620_: bool;
-    var phi_1783_: bool;
-    var phi_2073_: bool;
-    var phi_2074_: bool;
+    var phi_1345_: bool;
+    var phi_1442_: bool;
+    var phi_1644_: bool;
+    var phi_1801_: bool;
+    var phi_2085_: bool;
+    var phi_2086_: bool;
 
-    let _e237 = (*e);
-    let _e240 = info.v[_e237];
-    inf = _e240;
-    let _e242 = inf[0u];
-    param_37 = _e242;
-    let _e243 = adaptiveRates_u0028_u1_u003b((&param_37));
-    rates2_ = _e243;
-    let _e245 = rates2_[0u];
-    mu_1 = _e245;
-    let _e247 = rates2_[1u];
-    mv_1 = _e247;
-    let _e249 = inf[3u];
-    T = (_e249 & 2147483647u);
-    let _e252 = inf[1u];
-    vBase = _e252;
-    let _e254 = inf[2u];
-    tNext = _e254;
-    let _e256 = pc.sharePoints;
-    share = (_e256 != 0u);
+    let _e232 = (*e);
+    let _e235 = info.v[_e232];
+    inf = _e235;
+    let _e237 = inf[0u];
+    param_39 = _e237;
+    let _e238 = adaptiveRates_u0028_u1_u003b((&param_39));
+    rates2_ = _e238;
+    let _e240 = rates2_[0u];
+    mu_1 = _e240;
+    let _e242 = rates2_[1u];
+    mv_1 = _e242;
+    let _e244 = inf[3u];
+    T = (_e244 & 2147483647u);
+    let _e247 = inf[1u];
+    vBase = _e247;
+    let _e249 = inf[2u];
+    tNext = _e249;
+    let _e251 = pc.sharePoints;
+    share = (_e251 != 0u);
     owned = 0u;
-    let _e258 = share;
-    if _e258 {
-        let _e259 = (*e);
-        let _e262 = elements.e[_e259];
-        el.sideFirst = _e262.sideFirst;
-        el.sideCount = _e262.sideCount;
-        el.uv[0i] = _e262.uv[0];
-        el.uv[1i] = _e262.uv[1];
-        el.uv[2i] = _e262.uv[2];
-        el.uv[3i] = _e262.uv[3];
-        el.level = _e262.level;
-        el.crease = _e262.crease;
-        el.pad1_ = _e262.pad1_;
-        el.pad2_ = _e262.pad2_;
-        let _e285 = (*e);
-        elIndex = _e285;
+    let _e253 = share;
+    if _e253 {
+        let _e254 = (*e);
+        let _e257 = elements.e[_e254];
+        el.sideFirst = _e257.sideFirst;
+        el.sideCount = _e257.sideCount;
+        el.uv[0i] = _e257.uv[0];
+        el.uv[1i] = _e257.uv[1];
+        el.uv[2i] = _e257.uv[2];
+        el.uv[3i] = _e257.uv[3];
+        el.level = _e257.level;
+        el.crease = _e257.crease;
+        el.pad1_ = _e257.pad1_;
+        el.pad2_ = _e257.pad2_;
+        let _e280 = (*e);
+        elIndex = _e280;
         k_6 = 0u;
         loop {
-            let _e286 = k_6;
-            if (_e286 < 4u) {
+            let _e281 = k_6;
+            if (_e281 < 4u) {
                 p_2 = 0u;
                 loop {
-                    let _e288 = p_2;
-                    let _e289 = k_6;
-                    let _e292 = el.sideCount[_e289];
-                    if (_e288 < _e292) {
-                        let _e294 = k_6;
-                        let _e297 = el.sideFirst[_e294];
-                        let _e298 = p_2;
-                        let _e302 = pieces.v[(_e297 + _e298)];
-                        sp = _e302;
-                        let _e304 = pc.pointBase;
-                        let _e306 = sp[1u];
-                        let _e310 = pieces.v[(_e304 + _e306)];
-                        point = _e310;
-                        let _e312 = sp[3u];
-                        from_ = f32((_e312 & 65535u));
-                        let _e316 = sp[3u];
-                        to = f32((_e316 >> bitcast<u32>(16i)));
-                        let _e321 = point[0u];
-                        let _e322 = (*e);
-                        if (_e321 == _e322) {
-                            let _e324 = k_6;
-                            param_38 = _e324;
-                            let _e325 = from_;
-                            param_39 = _e325;
-                            let _e326 = sideParam_u0028_u1_u003b_f1_u003b((&param_38), (&param_39));
-                            st_2 = _e326;
-                            let _e328 = st_2[0u];
-                            param_40 = _e328;
-                            let _e330 = st_2[1u];
-                            param_41 = _e330;
-                            let _e331 = uvAt_u0028_f1_u003b_f1_u003b((&param_40), (&param_41));
-                            uv_2 = _e331;
-                            let _e333 = sp[1u];
-                            let _e335 = point[0u];
-                            let _e337 = point[1u];
-                            let _e339 = uv_2[0u];
-                            let _e342 = uv_2[1u];
-                            tessVertices.v[_e333] = vec4<u32>(_e335, _e337, bitcast<u32>(_e339), bitcast<u32>(_e342));
+                    let _e283 = p_2;
+                    let _e284 = k_6;
+                    let _e287 = el.sideCount[_e284];
+                    if (_e283 < _e287) {
+                        let _e289 = k_6;
+                        let _e292 = el.sideFirst[_e289];
+                        let _e293 = p_2;
+                        let _e297 = pieces.v[(_e292 + _e293)];
+                        sp = _e297;
+                        let _e299 = pc.pointBase;
+                        let _e301 = sp[1u];
+                        let _e305 = pieces.v[(_e299 + _e301)];
+                        point = _e305;
+                        let _e307 = sp[3u];
+                        from_ = f32((_e307 & 65535u));
+                        let _e311 = sp[3u];
+                        to = f32((_e311 >> bitcast<u32>(16i)));
+                        let _e316 = point[0u];
+                        let _e317 = (*e);
+                        if (_e316 == _e317) {
+                            let _e319 = k_6;
+                            param_40 = _e319;
+                            let _e320 = from_;
+                            param_41 = _e320;
+                            let _e321 = sideParam_u0028_u1_u003b_f1_u003b((&param_40), (&param_41));
+                            st_2 = _e321;
+                            let _e323 = st_2[0u];
+                            param_42 = _e323;
+                            let _e325 = st_2[1u];
+                            param_43 = _e325;
+                            let _e326 = uvAt_u0028_f1_u003b_f1_u003b((&param_42), (&param_43));
+                            uv_1 = _e326;
+                            let _e328 = sp[1u];
+                            let _e330 = point[0u];
+                            let _e332 = point[1u];
+                            let _e334 = uv_1[0u];
+                            let _e337 = uv_1[1u];
+                            tessVertices.v[_e328] = vec4<u32>(_e330, _e332, bitcast<u32>(_e334), bitcast<u32>(_e337));
                         }
-                        let _e348 = sp[2u];
-                        if ((_e348 & 2u) == 0u) {
+                        let _e343 = sp[2u];
+                        if ((_e343 & 2u) == 0u) {
                             continue;
                         }
-                        let _e352 = sp[0u];
-                        let _e355 = rates.r[_e352];
-                        r_3 = (_e355 & 65535u);
-                        let _e357 = vBase;
-                        let _e358 = owned;
-                        let _e360 = r_3;
-                        let _e364 = pc.vertexCapacity;
-                        if ((((_e357 + _e358) + _e360) - 1u) > _e364) {
+                        let _e347 = sp[0u];
+                        let _e350 = rates.r[_e347];
+                        r_3 = (_e350 & 65535u);
+                        let _e352 = vBase;
+                        let _e353 = owned;
+                        let _e355 = r_3;
+                        let _e359 = pc.vertexCapacity;
+                        if ((((_e352 + _e353) + _e355) - 1u) > _e359) {
                             break;
                         }
-                        let _e367 = sp[0u];
-                        let _e371 = pieces.v[(2u * _e367)];
-                        piece_2 = _e371;
+                        let _e362 = sp[0u];
+                        let _e366 = pieces.v[(2u * _e362)];
+                        piece_2 = _e366;
                         i_5 = 1u;
                         loop {
-                            let _e372 = i_5;
-                            let _e373 = r_3;
-                            if (_e372 < _e373) {
-                                let _e375 = piece_2;
-                                param_42 = _e375;
-                                let _e376 = i_5;
-                                param_43 = _e376;
-                                let _e377 = r_3;
-                                param_44 = _e377;
-                                let _e378 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_42), (&param_43), (&param_44), (&param_45));
-                                let _e379 = param_45;
-                                along_1 = _e379;
-                                ownerST = _e378;
-                                let _e380 = along_1;
-                                let _e381 = (_e380 < 0f);
-                                phi_1315_ = _e381;
+                            let _e367 = i_5;
+                            let _e368 = r_3;
+                            if (_e367 < _e368) {
+                                let _e370 = piece_2;
+                                param_44 = _e370;
+                                let _e371 = i_5;
+                                param_45 = _e371;
+                                let _e372 = r_3;
+                                param_46 = _e372;
+                                let _e373 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_44), (&param_45), (&param_46), (&param_47));
+                                let _e374 = param_47;
+                                along_1 = _e374;
+                                ownerST = _e373;
+                                let _e375 = along_1;
+                                let _e376 = (_e375 < 0f);
+                                phi_1345_ = _e376;
+                                if _e376 {
+                                    let _e378 = pc.smoothUV;
+                                    phi_1345_ = (_e378 != 0u);
+                                }
+                                let _e381 = phi_1345_;
                                 if _e381 {
-                                    let _e383 = pc.smoothUV;
-                                    phi_1315_ = (_e383 != 0u);
+                                    let _e382 = piece_2;
+                                    param_48 = _e382;
+                                    let _e383 = ownerST;
+                                    param_49 = _e383;
+                                    let _e384 = pieceFraction_u0028_vu4_u003b_u1_u003b((&param_48), (&param_49));
+                                    along_1 = _e384;
                                 }
-                                let _e386 = phi_1315_;
-                                if _e386 {
-                                    let _e387 = piece_2;
-                                    param_46 = _e387;
-                                    let _e388 = ownerST;
-                                    param_47 = _e388;
-                                    let _e389 = pieceFraction_u0028_vu4_u003b_u1_u003b((&param_46), (&param_47));
-                                    along_1 = _e389;
-                                }
-                                let _e390 = from_;
-                                let _e391 = to;
-                                let _e392 = from_;
-                                let _e394 = along_1;
-                                if (_e394 < 0f) {
-                                    let _e396 = i_5;
-                                    let _e398 = r_3;
-                                    local_6 = (f32(_e396) / f32(_e398));
+                                let _e385 = from_;
+                                let _e386 = to;
+                                let _e387 = from_;
+                                let _e389 = along_1;
+                                if (_e389 < 0f) {
+                                    let _e391 = i_5;
+                                    let _e393 = r_3;
+                                    local_6 = (f32(_e391) / f32(_e393));
                                 } else {
-                                    let _e401 = along_1;
-                                    local_6 = _e401;
+                                    let _e396 = along_1;
+                                    local_6 = _e396;
                                 }
-                                let _e402 = local_6;
-                                let _e405 = k_6;
-                                param_48 = _e405;
-                                param_49 = (_e390 + ((_e391 - _e392) * _e402));
-                                let _e406 = sideParam_u0028_u1_u003b_f1_u003b((&param_48), (&param_49));
-                                st_3 = _e406;
-                                let _e408 = st_3[0u];
-                                param_50 = _e408;
-                                let _e410 = st_3[1u];
-                                param_51 = _e410;
-                                let _e411 = uvAt_u0028_f1_u003b_f1_u003b((&param_50), (&param_51));
-                                uv_3 = _e411;
-                                let _e412 = vBase;
-                                let _e413 = owned;
-                                let _e415 = i_5;
-                                let _e418 = (*e);
-                                let _e419 = ownerST;
-                                let _e421 = uv_3[0u];
-                                let _e424 = uv_3[1u];
-                                tessVertices.v[(((_e412 + _e413) + _e415) - 1u)] = vec4<u32>(_e418, _e419, bitcast<u32>(_e421), bitcast<u32>(_e424));
+                                let _e397 = local_6;
+                                let _e400 = k_6;
+                                param_50 = _e400;
+                                param_51 = (_e385 + ((_e386 - _e387) * _e397));
+                                let _e401 = sideParam_u0028_u1_u003b_f1_u003b((&param_50), (&param_51));
+                                st_3 = _e401;
+                                let _e403 = st_3[0u];
+                                param_52 = _e403;
+                                let _e405 = st_3[1u];
+                                param_53 = _e405;
+                                let _e406 = uvAt_u0028_f1_u003b_f1_u003b((&param_52), (&param_53));
+                                uv_2 = _e406;
+                                let _e407 = vBase;
+                                let _e408 = owned;
+                                let _e410 = i_5;
+                                let _e413 = (*e);
+                                let _e414 = ownerST;
+                                let _e416 = uv_2[0u];
+                                let _e419 = uv_2[1u];
+                                tessVertices.v[(((_e407 + _e408) + _e410) - 1u)] = vec4<u32>(_e413, _e414, bitcast<u32>(_e416), bitcast<u32>(_e419));
                                 continue;
                             } else {
                                 break;
                             }
                             continuing {
-                                let _e429 = i_5;
-                                i_5 = (_e429 + bitcast<u32>(1i));
+                                let _e424 = i_5;
+                                i_5 = (_e424 + bitcast<u32>(1i));
                             }
                         }
-                        let _e432 = r_3;
-                        let _e434 = owned;
-                        owned = (_e434 + (_e432 - 1u));
+                        let _e427 = r_3;
+                        let _e429 = owned;
+                        owned = (_e429 + (_e427 - 1u));
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e436 = p_2;
-                        p_2 = (_e436 + bitcast<u32>(1i));
+                        let _e431 = p_2;
+                        p_2 = (_e431 + bitcast<u32>(1i));
                     }
                 }
                 continue;
@@ -1216,233 +1231,225 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
                 break;
             }
             continuing {
-                let _e439 = k_6;
-                k_6 = (_e439 + bitcast<u32>(1i));
+                let _e434 = k_6;
+                k_6 = (_e434 + bitcast<u32>(1i));
             }
         }
-        let _e443 = inf[0u];
-        if ((_e443 & 2147483648u) != 0u) {
+        let _e438 = inf[0u];
+        if ((_e438 & 2147483648u) != 0u) {
             return;
         }
     }
-    let _e447 = inf[3u];
-    if ((_e447 >> bitcast<u32>(31i)) == 0u) {
+    let _e442 = inf[3u];
+    if ((_e442 >> bitcast<u32>(31i)) == 0u) {
         i_6 = 0u;
         loop {
-            let _e451 = i_6;
-            let _e452 = T;
-            let _e453 = (_e451 < _e452);
-            phi_1412_ = _e453;
-            if _e453 {
-                let _e454 = tNext;
-                let _e455 = i_6;
-                let _e458 = pc.triangleCapacity;
-                phi_1412_ = ((_e454 + _e455) < _e458);
+            let _e446 = i_6;
+            let _e447 = T;
+            let _e448 = (_e446 < _e447);
+            phi_1442_ = _e448;
+            if _e448 {
+                let _e449 = tNext;
+                let _e450 = i_6;
+                let _e453 = pc.triangleCapacity;
+                phi_1442_ = ((_e449 + _e450) < _e453);
             }
-            let _e461 = phi_1412_;
-            if _e461 {
-                let _e462 = tNext;
-                let _e463 = i_6;
-                triangles.i[(3u * (_e462 + _e463))] = 0u;
-                let _e468 = tNext;
-                let _e469 = i_6;
-                triangles.i[((3u * (_e468 + _e469)) + 1u)] = 0u;
-                let _e475 = tNext;
-                let _e476 = i_6;
-                triangles.i[((3u * (_e475 + _e476)) + 2u)] = 0u;
-                let _e482 = tNext;
-                let _e483 = i_6;
-                triangleLevels.l[(_e482 + _e483)] = 0u;
+            let _e456 = phi_1442_;
+            if _e456 {
+                let _e457 = tNext;
+                let _e458 = i_6;
+                triangles.i[(3u * (_e457 + _e458))] = 0u;
+                let _e463 = tNext;
+                let _e464 = i_6;
+                triangles.i[((3u * (_e463 + _e464)) + 1u)] = 0u;
+                let _e470 = tNext;
+                let _e471 = i_6;
+                triangles.i[((3u * (_e470 + _e471)) + 2u)] = 0u;
+                let _e477 = tNext;
+                let _e478 = i_6;
+                triangleLevels.l[(_e477 + _e478)] = 0u;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e487 = i_6;
-                i_6 = (_e487 + bitcast<u32>(1i));
+                let _e482 = i_6;
+                i_6 = (_e482 + bitcast<u32>(1i));
             }
         }
         return;
     }
-    let _e490 = (*e);
-    let _e493 = elements.e[_e490];
-    el.sideFirst = _e493.sideFirst;
-    el.sideCount = _e493.sideCount;
-    el.uv[0i] = _e493.uv[0];
-    el.uv[1i] = _e493.uv[1];
-    el.uv[2i] = _e493.uv[2];
-    el.uv[3i] = _e493.uv[3];
-    el.level = _e493.level;
-    el.crease = _e493.crease;
-    el.pad1_ = _e493.pad1_;
-    el.pad2_ = _e493.pad2_;
-    let _e516 = (*e);
-    elIndex = _e516;
-    let _e518 = el.level;
-    level = _e518;
-    let _e519 = share;
-    let _e520 = mu_1;
-    sharedFlat = (_e519 && (_e520 == 1u));
+    let _e485 = (*e);
+    let _e488 = elements.e[_e485];
+    el.sideFirst = _e488.sideFirst;
+    el.sideCount = _e488.sideCount;
+    el.uv[0i] = _e488.uv[0];
+    el.uv[1i] = _e488.uv[1];
+    el.uv[2i] = _e488.uv[2];
+    el.uv[3i] = _e488.uv[3];
+    el.level = _e488.level;
+    el.crease = _e488.crease;
+    el.pad1_ = _e488.pad1_;
+    el.pad2_ = _e488.pad2_;
+    let _e511 = (*e);
+    elIndex = _e511;
+    let _e513 = el.level;
+    level = _e513;
+    let _e514 = share;
+    let _e515 = mu_1;
+    sharedFlat = (_e514 && (_e515 == 1u));
     B = 0u;
     k_7 = 0u;
     loop {
-        let _e523 = k_7;
-        if (_e523 < 4u) {
-            let _e525 = k_7;
-            let _e526 = B;
-            sideStart_1[_e525] = _e526;
+        let _e518 = k_7;
+        if (_e518 < 4u) {
+            let _e520 = k_7;
+            let _e521 = B;
+            sideStart_1[_e520] = _e521;
             p_3 = 0u;
             loop {
-                let _e528 = p_3;
-                let _e529 = k_7;
-                let _e532 = el.sideCount[_e529];
-                if (_e528 < _e532) {
-                    let _e534 = k_7;
-                    let _e537 = el.sideFirst[_e534];
-                    let _e538 = p_3;
-                    let _e542 = pieces.v[(_e537 + _e538)];
-                    sp_1 = _e542;
-                    let _e543 = sharedFlat;
-                    if _e543 {
+                let _e523 = p_3;
+                let _e524 = k_7;
+                let _e527 = el.sideCount[_e524];
+                if (_e523 < _e527) {
+                    let _e529 = k_7;
+                    let _e532 = el.sideFirst[_e529];
+                    let _e533 = p_3;
+                    let _e537 = pieces.v[(_e532 + _e533)];
+                    sp_1 = _e537;
+                    let _e538 = sharedFlat;
+                    if _e538 {
+                        let _e539 = B;
+                        let _e542 = sp_1[1u];
+                        slots[min(_e539, 7u)] = _e542;
                         let _e544 = B;
-                        let _e547 = sp_1[1u];
-                        slots[min(_e544, 7u)] = _e547;
-                        let _e549 = B;
-                        B = (_e549 + bitcast<u32>(1i));
+                        B = (_e544 + bitcast<u32>(1i));
                         continue;
                     }
-                    let _e553 = sp_1[0u];
-                    let _e556 = rates.r[_e553];
-                    r_4 = (_e556 & 65535u);
-                    let _e558 = share;
-                    if _e558 {
-                        let _e559 = r_4;
-                        let _e560 = B;
-                        B = (_e560 + _e559);
+                    let _e548 = sp_1[0u];
+                    let _e551 = rates.r[_e548];
+                    r_4 = (_e551 & 65535u);
+                    let _e553 = share;
+                    if _e553 {
+                        let _e554 = r_4;
+                        let _e555 = B;
+                        B = (_e555 + _e554);
                         continue;
                     }
-                    let _e563 = sp_1[0u];
-                    let _e567 = pieces.v[(2u * _e563)];
-                    piece_3 = _e567;
-                    let _e569 = pc.pointBase;
-                    let _e571 = sp_1[1u];
-                    let _e575 = pieces.v[(_e569 + _e571)];
-                    point_1 = _e575;
-                    let _e577 = sp_1[3u];
-                    from_1 = f32((_e577 & 65535u));
-                    let _e581 = sp_1[3u];
-                    to_1 = f32((_e581 >> bitcast<u32>(16i)));
-                    let _e585 = k_7;
-                    param_52 = _e585;
-                    let _e586 = from_1;
-                    param_53 = _e586;
-                    let _e587 = sideParam_u0028_u1_u003b_f1_u003b((&param_52), (&param_53));
-                    st_4 = _e587;
-                    let _e588 = B;
-                    B = (_e588 + bitcast<u32>(1i));
-                    let _e592 = st_4[0u];
-                    param_54 = _e592;
-                    let _e594 = st_4[1u];
-                    param_55 = _e594;
-                    let _e595 = uvAt_u0028_f1_u003b_f1_u003b((&param_54), (&param_55));
-                    param_56 = _e588;
-                    let _e597 = point_1[0u];
-                    param_57 = _e597;
-                    let _e599 = point_1[1u];
-                    param_58 = _e599;
-                    param_59 = _e595;
+                    let _e558 = sp_1[0u];
+                    let _e562 = pieces.v[(2u * _e558)];
+                    piece_3 = _e562;
+                    let _e564 = pc.pointBase;
+                    let _e566 = sp_1[1u];
+                    let _e570 = pieces.v[(_e564 + _e566)];
+                    point_1 = _e570;
+                    let _e572 = sp_1[3u];
+                    from_1 = f32((_e572 & 65535u));
+                    let _e576 = sp_1[3u];
+                    to_1 = f32((_e576 >> bitcast<u32>(16i)));
+                    let _e580 = k_7;
+                    param_54 = _e580;
+                    let _e581 = from_1;
+                    param_55 = _e581;
+                    let _e582 = sideParam_u0028_u1_u003b_f1_u003b((&param_54), (&param_55));
+                    st_4 = _e582;
+                    let _e583 = B;
+                    B = (_e583 + bitcast<u32>(1i));
+                    param_56 = _e583;
+                    let _e587 = point_1[0u];
+                    param_57 = _e587;
+                    let _e589 = point_1[1u];
+                    param_58 = _e589;
+                    let _e590 = st_4;
+                    param_59 = _e590;
                     vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_56), (&param_57), (&param_58), (&param_59));
                     i_7 = 1u;
                     loop {
-                        let _e600 = i_7;
-                        let _e601 = r_4;
-                        if (_e600 < _e601) {
-                            let _e604 = sp_1[2u];
-                            if ((_e604 & 1u) != 0u) {
-                                let _e607 = r_4;
-                                let _e608 = i_7;
-                                local_7 = (_e607 - _e608);
+                        let _e591 = i_7;
+                        let _e592 = r_4;
+                        if (_e591 < _e592) {
+                            let _e595 = sp_1[2u];
+                            if ((_e595 & 1u) != 0u) {
+                                let _e598 = r_4;
+                                let _e599 = i_7;
+                                local_7 = (_e598 - _e599);
                             } else {
-                                let _e610 = i_7;
-                                local_7 = _e610;
+                                let _e601 = i_7;
+                                local_7 = _e601;
                             }
-                            let _e611 = local_7;
-                            j_3 = _e611;
-                            let _e612 = piece_3;
-                            param_60 = _e612;
-                            let _e613 = j_3;
-                            param_61 = _e613;
-                            let _e614 = r_4;
-                            param_62 = _e614;
-                            let _e615 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_60), (&param_61), (&param_62), (&param_63));
-                            let _e616 = param_63;
-                            along_2 = _e616;
-                            ownerST_1 = _e615;
-                            let _e617 = along_2;
-                            let _e618 = (_e617 < 0f);
-                            phi_1620_ = _e618;
-                            if _e618 {
-                                let _e620 = pc.smoothUV;
-                                phi_1620_ = (_e620 != 0u);
+                            let _e602 = local_7;
+                            j_3 = _e602;
+                            let _e603 = piece_3;
+                            param_60 = _e603;
+                            let _e604 = j_3;
+                            param_61 = _e604;
+                            let _e605 = r_4;
+                            param_62 = _e605;
+                            let _e606 = pieceST_u0028_vu4_u003b_u1_u003b_u1_u003b_f1_u003b((&param_60), (&param_61), (&param_62), (&param_63));
+                            let _e607 = param_63;
+                            along_2 = _e607;
+                            ownerST_1 = _e606;
+                            let _e608 = along_2;
+                            let _e609 = (_e608 < 0f);
+                            phi_1644_ = _e609;
+                            if _e609 {
+                                let _e611 = pc.smoothUV;
+                                phi_1644_ = (_e611 != 0u);
                             }
-                            let _e623 = phi_1620_;
-                            if _e623 {
-                                let _e624 = piece_3;
-                                param_64 = _e624;
-                                let _e625 = ownerST_1;
-                                param_65 = _e625;
-                                let _e626 = pieceFraction_u0028_vu4_u003b_u1_u003b((&param_64), (&param_65));
-                                along_2 = _e626;
+                            let _e614 = phi_1644_;
+                            if _e614 {
+                                let _e615 = piece_3;
+                                param_64 = _e615;
+                                let _e616 = ownerST_1;
+                                param_65 = _e616;
+                                let _e617 = pieceFraction_u0028_vu4_u003b_u1_u003b((&param_64), (&param_65));
+                                along_2 = _e617;
                             }
-                            let _e627 = along_2;
-                            if (_e627 < 0f) {
-                                let _e629 = i_7;
-                                let _e631 = r_4;
-                                local_8 = (f32(_e629) / f32(_e631));
+                            let _e618 = along_2;
+                            if (_e618 < 0f) {
+                                let _e620 = i_7;
+                                let _e622 = r_4;
+                                local_8 = (f32(_e620) / f32(_e622));
                             } else {
-                                let _e635 = sp_1[2u];
-                                if ((_e635 & 1u) != 0u) {
-                                    let _e638 = along_2;
-                                    local_9 = (1f - _e638);
+                                let _e626 = sp_1[2u];
+                                if ((_e626 & 1u) != 0u) {
+                                    let _e629 = along_2;
+                                    local_9 = (1f - _e629);
                                 } else {
-                                    let _e640 = along_2;
-                                    local_9 = _e640;
+                                    let _e631 = along_2;
+                                    local_9 = _e631;
                                 }
-                                let _e641 = local_9;
-                                local_8 = _e641;
+                                let _e632 = local_9;
+                                local_8 = _e632;
                             }
-                            let _e642 = local_8;
-                            f = _e642;
-                            let _e643 = from_1;
-                            let _e644 = to_1;
-                            let _e645 = from_1;
-                            let _e647 = f;
-                            let _e650 = k_7;
-                            param_66 = _e650;
-                            param_67 = (_e643 + ((_e644 - _e645) * _e647));
-                            let _e651 = sideParam_u0028_u1_u003b_f1_u003b((&param_66), (&param_67));
-                            st_4 = _e651;
-                            let _e652 = B;
-                            B = (_e652 + bitcast<u32>(1i));
-                            let _e656 = st_4[0u];
-                            param_68 = _e656;
-                            let _e658 = st_4[1u];
-                            param_69 = _e658;
-                            let _e659 = uvAt_u0028_f1_u003b_f1_u003b((&param_68), (&param_69));
-                            param_70 = _e652;
-                            let _e661 = piece_3[0u];
-                            param_71 = _e661;
-                            let _e662 = ownerST_1;
-                            param_72 = _e662;
-                            param_73 = _e659;
-                            vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_70), (&param_71), (&param_72), (&param_73));
+                            let _e633 = local_8;
+                            f = _e633;
+                            let _e634 = from_1;
+                            let _e635 = to_1;
+                            let _e636 = from_1;
+                            let _e638 = f;
+                            let _e641 = k_7;
+                            param_66 = _e641;
+                            param_67 = (_e634 + ((_e635 - _e636) * _e638));
+                            let _e642 = sideParam_u0028_u1_u003b_f1_u003b((&param_66), (&param_67));
+                            st_4 = _e642;
+                            let _e643 = B;
+                            B = (_e643 + bitcast<u32>(1i));
+                            param_68 = _e643;
+                            let _e647 = piece_3[0u];
+                            param_69 = _e647;
+                            let _e648 = ownerST_1;
+                            param_70 = _e648;
+                            let _e649 = st_4;
+                            param_71 = _e649;
+                            vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_68), (&param_69), (&param_70), (&param_71));
                             continue;
                         } else {
                             break;
                         }
                         continuing {
-                            let _e663 = i_7;
-                            i_7 = (_e663 + bitcast<u32>(1i));
+                            let _e650 = i_7;
+                            i_7 = (_e650 + bitcast<u32>(1i));
                         }
                     }
                     continue;
@@ -1450,189 +1457,185 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
                     break;
                 }
                 continuing {
-                    let _e666 = p_3;
-                    p_3 = (_e666 + bitcast<u32>(1i));
+                    let _e653 = p_3;
+                    p_3 = (_e653 + bitcast<u32>(1i));
                 }
             }
-            let _e669 = k_7;
-            let _e670 = B;
-            let _e671 = k_7;
-            let _e673 = sideStart_1[_e671];
-            sideTotal_1[_e669] = (_e670 - _e673);
+            let _e656 = k_7;
+            let _e657 = B;
+            let _e658 = k_7;
+            let _e660 = sideStart_1[_e658];
+            sideTotal_1[_e656] = (_e657 - _e660);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e676 = k_7;
-            k_7 = (_e676 + bitcast<u32>(1i));
+            let _e663 = k_7;
+            k_7 = (_e663 + bitcast<u32>(1i));
         }
     }
-    let _e679 = mu_1;
-    if (_e679 == 1u) {
-        let _e681 = sideStart_1;
-        param_74 = _e681;
-        let _e682 = sideTotal_1;
-        param_75 = _e682;
-        let _e683 = adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b((&param_74), (&param_75));
-        apex_1 = _e683;
-        let _e684 = mv_1;
-        fan = _e684;
+    let _e666 = mu_1;
+    if (_e666 == 1u) {
+        let _e668 = sideStart_1;
+        param_72 = _e668;
+        let _e669 = sideTotal_1;
+        param_73 = _e669;
+        let _e670 = adaptiveFanApex_u0028_u1_u005b_4_u005d_u003b_u1_u005b_4_u005d_u003b((&param_72), (&param_73));
+        apex_1 = _e670;
+        let _e671 = mv_1;
+        fan = _e671;
         i_8 = 1u;
         loop {
-            let _e685 = i_8;
-            let _e687 = B;
-            if ((_e685 + 1u) < _e687) {
-                let _e689 = fan;
-                let _e690 = i_8;
-                if (((_e689 >> bitcast<u32>((_e690 - 1u))) & 1u) == 0u) {
+            let _e672 = i_8;
+            let _e674 = B;
+            if ((_e672 + 1u) < _e674) {
+                let _e676 = fan;
+                let _e677 = i_8;
+                if (((_e676 >> bitcast<u32>((_e677 - 1u))) & 1u) == 0u) {
                     continue;
                 }
-                let _e696 = apex_1;
-                a_6 = _e696;
-                let _e697 = apex_1;
-                let _e698 = i_8;
-                let _e700 = B;
-                b_7 = ((_e697 + _e698) % _e700);
-                let _e702 = apex_1;
-                let _e703 = i_8;
-                let _e706 = B;
-                c_6 = (((_e702 + _e703) + 1u) % _e706);
-                let _e708 = sharedFlat;
-                if _e708 {
-                    let _e709 = a_6;
-                    let _e710 = b_7;
-                    let _e711 = c_6;
-                    let _e713 = slots[_e709];
-                    param_76 = _e713;
-                    let _e715 = slots[_e710];
-                    param_77 = _e715;
-                    let _e717 = slots[_e711];
-                    param_78 = _e717;
-                    triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_76), (&param_77), (&param_78));
+                let _e683 = apex_1;
+                a_6 = _e683;
+                let _e684 = apex_1;
+                let _e685 = i_8;
+                let _e687 = B;
+                b_7 = ((_e684 + _e685) % _e687);
+                let _e689 = apex_1;
+                let _e690 = i_8;
+                let _e693 = B;
+                c_6 = (((_e689 + _e690) + 1u) % _e693);
+                let _e695 = sharedFlat;
+                if _e695 {
+                    let _e696 = a_6;
+                    let _e697 = b_7;
+                    let _e698 = c_6;
+                    let _e700 = slots[_e696];
+                    param_74 = _e700;
+                    let _e702 = slots[_e697];
+                    param_75 = _e702;
+                    let _e704 = slots[_e698];
+                    param_76 = _e704;
+                    triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_74), (&param_75), (&param_76));
                 } else {
-                    let _e718 = a_6;
-                    param_79 = _e718;
-                    let _e719 = b_7;
-                    param_80 = _e719;
-                    let _e720 = c_6;
-                    param_81 = _e720;
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_79), (&param_80), (&param_81));
+                    let _e705 = a_6;
+                    param_77 = _e705;
+                    let _e706 = b_7;
+                    param_78 = _e706;
+                    let _e707 = c_6;
+                    param_79 = _e707;
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_77), (&param_78), (&param_79));
                 }
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e721 = i_8;
-                i_8 = (_e721 + bitcast<u32>(1i));
+                let _e708 = i_8;
+                i_8 = (_e708 + bitcast<u32>(1i));
             }
         }
         return;
     }
-    let _e724 = share;
-    let _e725 = owned;
-    let _e726 = B;
-    grid_1 = select(_e726, _e725, _e724);
-    let _e729 = el.crease;
-    let _e730 = (_e729 != 0u);
-    phi_1783_ = _e730;
-    if _e730 {
-        let _e732 = el.crease;
-        param_82 = _e732;
-        let _e733 = creaseAcrossS_u0028_u1_u003b((&param_82));
-        phi_1783_ = _e733;
+    let _e711 = share;
+    let _e712 = owned;
+    let _e713 = B;
+    grid_1 = select(_e713, _e712, _e711);
+    let _e716 = el.crease;
+    let _e717 = (_e716 != 0u);
+    phi_1801_ = _e717;
+    if _e717 {
+        let _e719 = el.crease;
+        param_80 = _e719;
+        let _e720 = creaseAcrossS_u0028_u1_u003b((&param_80));
+        phi_1801_ = _e720;
     }
-    let _e735 = phi_1783_;
-    gradeS = _e735;
-    let _e737 = el.crease;
-    let _e739 = gradeS;
-    gradeT = ((_e737 != 0u) && !(_e739));
-    let _e743 = el.crease;
-    param_83 = _e743;
-    let _e744 = creaseAtZero_u0028_u1_u003b((&param_83));
-    atZero_1 = _e744;
+    let _e722 = phi_1801_;
+    gradeS = _e722;
+    let _e724 = el.crease;
+    let _e726 = gradeS;
+    gradeT = ((_e724 != 0u) && !(_e726));
+    let _e730 = el.crease;
+    param_81 = _e730;
+    let _e731 = creaseAtZero_u0028_u1_u003b((&param_81));
+    atZero_1 = _e731;
     j_4 = 1u;
     loop {
-        let _e745 = j_4;
-        let _e746 = mv_1;
-        if (_e745 < _e746) {
+        let _e732 = j_4;
+        let _e733 = mv_1;
+        if (_e732 < _e733) {
             i_9 = 1u;
             loop {
-                let _e748 = i_9;
-                let _e749 = mu_1;
-                if (_e748 < _e749) {
-                    let _e751 = i_9;
-                    param_84 = _e751;
-                    let _e752 = mu_1;
-                    param_85 = _e752;
-                    let _e753 = gradeS;
-                    param_86 = _e753;
-                    let _e754 = atZero_1;
-                    param_87 = _e754;
-                    let _e755 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_84), (&param_85), (&param_86), (&param_87));
-                    s_4 = _e755;
-                    let _e756 = j_4;
-                    param_88 = _e756;
-                    let _e757 = mv_1;
-                    param_89 = _e757;
+                let _e735 = i_9;
+                let _e736 = mu_1;
+                if (_e735 < _e736) {
+                    let _e738 = i_9;
+                    param_82 = _e738;
+                    let _e739 = mu_1;
+                    param_83 = _e739;
+                    let _e740 = gradeS;
+                    param_84 = _e740;
+                    let _e741 = atZero_1;
+                    param_85 = _e741;
+                    let _e742 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_82), (&param_83), (&param_84), (&param_85));
+                    s_4 = _e742;
+                    let _e743 = j_4;
+                    param_86 = _e743;
+                    let _e744 = mv_1;
+                    param_87 = _e744;
+                    let _e745 = gradeT;
+                    param_88 = _e745;
+                    let _e746 = atZero_1;
+                    param_89 = _e746;
+                    let _e747 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_86), (&param_87), (&param_88), (&param_89));
+                    t_4 = _e747;
+                    let _e748 = gradeS;
+                    if _e748 {
+                        let _e749 = s_4;
+                        local_10 = (f32(_e749) / 32768f);
+                    } else {
+                        let _e752 = i_9;
+                        let _e754 = mu_1;
+                        local_10 = (f32(_e752) / f32(_e754));
+                    }
+                    let _e757 = local_10;
                     let _e758 = gradeT;
-                    param_90 = _e758;
-                    let _e759 = atZero_1;
-                    param_91 = _e759;
-                    let _e760 = gridCoord_u0028_u1_u003b_u1_u003b_b1_u003b_b1_u003b((&param_88), (&param_89), (&param_90), (&param_91));
-                    t_4 = _e760;
-                    let _e761 = gradeS;
-                    if _e761 {
-                        let _e762 = s_4;
-                        local_10 = (f32(_e762) / 32768f);
+                    if _e758 {
+                        let _e759 = t_4;
+                        local_11 = (f32(_e759) / 32768f);
                     } else {
-                        let _e765 = i_9;
-                        let _e767 = mu_1;
-                        local_10 = (f32(_e765) / f32(_e767));
+                        let _e762 = j_4;
+                        let _e764 = mv_1;
+                        local_11 = (f32(_e762) / f32(_e764));
                     }
-                    let _e770 = local_10;
-                    let _e771 = gradeT;
-                    if _e771 {
-                        let _e772 = t_4;
-                        local_11 = (f32(_e772) / 32768f);
-                    } else {
-                        let _e775 = j_4;
-                        let _e777 = mv_1;
-                        local_11 = (f32(_e775) / f32(_e777));
+                    let _e767 = local_11;
+                    f_1 = vec2<f32>(_e757, _e767);
+                    let _e770 = pc.smoothUV;
+                    if (_e770 != 0u) {
+                        let _e772 = s_4;
+                        let _e774 = t_4;
+                        f_1 = (vec2<f32>(f32(_e772), f32(_e774)) / vec2(32768f));
                     }
-                    let _e780 = local_11;
-                    f_1 = vec2<f32>(_e770, _e780);
-                    let _e783 = pc.smoothUV;
-                    if (_e783 != 0u) {
-                        let _e785 = s_4;
-                        let _e787 = t_4;
-                        f_1 = (vec2<f32>(f32(_e785), f32(_e787)) / vec2(32768f));
-                    }
-                    let _e792 = grid_1;
-                    let _e793 = j_4;
-                    let _e795 = mu_1;
-                    let _e799 = i_9;
-                    let _e802 = s_4;
-                    let _e803 = t_4;
-                    let _e808 = f_1[0u];
-                    param_92 = _e808;
-                    let _e810 = f_1[1u];
-                    param_93 = _e810;
-                    let _e811 = uvAt_u0028_f1_u003b_f1_u003b((&param_92), (&param_93));
-                    param_94 = ((_e792 + ((_e793 - 1u) * (_e795 - 1u))) + (_e799 - 1u));
-                    let _e812 = (*e);
-                    param_95 = _e812;
-                    param_96 = (_e802 | (_e803 << bitcast<u32>(16i)));
-                    param_97 = _e811;
-                    vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_94), (&param_95), (&param_96), (&param_97));
+                    let _e779 = grid_1;
+                    let _e780 = j_4;
+                    let _e782 = mu_1;
+                    let _e786 = i_9;
+                    let _e789 = s_4;
+                    let _e790 = t_4;
+                    param_90 = ((_e779 + ((_e780 - 1u) * (_e782 - 1u))) + (_e786 - 1u));
+                    let _e794 = (*e);
+                    param_91 = _e794;
+                    param_92 = (_e789 | (_e790 << bitcast<u32>(16i)));
+                    let _e795 = f_1;
+                    param_93 = _e795;
+                    vertex_u0028_u1_u003b_u1_u003b_u1_u003b_vf2_u003b((&param_90), (&param_91), (&param_92), (&param_93));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e813 = i_9;
-                    i_9 = (_e813 + bitcast<u32>(1i));
+                    let _e796 = i_9;
+                    i_9 = (_e796 + bitcast<u32>(1i));
                 }
             }
             continue;
@@ -1640,49 +1643,49 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e816 = j_4;
-            j_4 = (_e816 + bitcast<u32>(1i));
+            let _e799 = j_4;
+            j_4 = (_e799 + bitcast<u32>(1i));
         }
     }
     j_5 = 1u;
     loop {
-        let _e819 = j_5;
-        let _e821 = mv_1;
-        if ((_e819 + 1u) < _e821) {
+        let _e802 = j_5;
+        let _e804 = mv_1;
+        if ((_e802 + 1u) < _e804) {
             i_10 = 1u;
             loop {
-                let _e823 = i_10;
-                let _e825 = mu_1;
-                if ((_e823 + 1u) < _e825) {
-                    let _e827 = grid_1;
-                    let _e828 = j_5;
+                let _e806 = i_10;
+                let _e808 = mu_1;
+                if ((_e806 + 1u) < _e808) {
+                    let _e810 = grid_1;
+                    let _e811 = j_5;
+                    let _e813 = mu_1;
+                    let _e817 = i_10;
+                    a_7 = ((_e810 + ((_e811 - 1u) * (_e813 - 1u))) + (_e817 - 1u));
+                    let _e820 = a_7;
+                    let _e822 = a_7;
+                    let _e823 = mu_1;
+                    let _e825 = a_7;
+                    param_94 = _e825;
+                    param_95 = (_e820 + 1u);
+                    param_96 = (_e822 + _e823);
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_94), (&param_95), (&param_96));
+                    let _e826 = a_7;
+                    let _e827 = mu_1;
+                    let _e829 = a_7;
                     let _e830 = mu_1;
-                    let _e834 = i_10;
-                    a_7 = ((_e827 + ((_e828 - 1u) * (_e830 - 1u))) + (_e834 - 1u));
-                    let _e837 = a_7;
-                    let _e839 = a_7;
-                    let _e840 = mu_1;
-                    let _e842 = a_7;
-                    param_98 = _e842;
-                    param_99 = (_e837 + 1u);
-                    param_100 = (_e839 + _e840);
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_98), (&param_99), (&param_100));
-                    let _e843 = a_7;
-                    let _e844 = mu_1;
-                    let _e846 = a_7;
-                    let _e847 = mu_1;
-                    let _e850 = a_7;
-                    param_101 = _e850;
-                    param_102 = (_e843 + _e844);
-                    param_103 = ((_e846 + _e847) - 1u);
-                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_101), (&param_102), (&param_103));
+                    let _e833 = a_7;
+                    param_97 = _e833;
+                    param_98 = (_e826 + _e827);
+                    param_99 = ((_e829 + _e830) - 1u);
+                    tri_u0028_u1_u003b_u1_u003b_u1_u003b((&param_97), (&param_98), (&param_99));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e851 = i_10;
-                    i_10 = (_e851 + bitcast<u32>(1i));
+                    let _e834 = i_10;
+                    i_10 = (_e834 + bitcast<u32>(1i));
                 }
             }
             continue;
@@ -1690,142 +1693,142 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e854 = j_5;
-            j_5 = (_e854 + bitcast<u32>(1i));
+            let _e837 = j_5;
+            j_5 = (_e837 + bitcast<u32>(1i));
         }
     }
     k_8 = 0u;
     loop {
-        let _e857 = k_8;
-        if (_e857 < 4u) {
-            let _e859 = k_8;
-            let _e861 = sideTotal_1[_e859];
-            na = _e861;
-            let _e862 = k_8;
-            if ((_e862 & 1u) == 0u) {
-                let _e865 = mu_1;
-                local_12 = (_e865 - 2u);
+        let _e840 = k_8;
+        if (_e840 < 4u) {
+            let _e842 = k_8;
+            let _e844 = sideTotal_1[_e842];
+            na = _e844;
+            let _e845 = k_8;
+            if ((_e845 & 1u) == 0u) {
+                let _e848 = mu_1;
+                local_12 = (_e848 - 2u);
             } else {
-                let _e867 = mv_1;
-                local_12 = (_e867 - 2u);
+                let _e850 = mv_1;
+                local_12 = (_e850 - 2u);
             }
-            let _e869 = local_12;
-            nb = _e869;
+            let _e852 = local_12;
+            nb = _e852;
             ia = 0u;
             jb = 0u;
-            let _e870 = share;
-            if _e870 {
-                let _e871 = k_8;
-                param_104 = _e871;
-                param_105 = 0u;
-                let _e872 = na;
-                param_106 = _e872;
-                let _e873 = sharedSlot_u0028_u1_u003b_u1_u003b_u1_u003b((&param_104), (&param_105), (&param_106));
-                local_13 = _e873;
+            let _e853 = share;
+            if _e853 {
+                let _e854 = k_8;
+                param_100 = _e854;
+                param_101 = 0u;
+                let _e855 = na;
+                param_102 = _e855;
+                let _e856 = sharedSlot_u0028_u1_u003b_u1_u003b_u1_u003b((&param_100), (&param_101), (&param_102));
+                local_13 = _e856;
             } else {
-                let _e874 = vBase;
-                let _e875 = k_8;
-                let _e877 = sideStart_1[_e875];
-                local_13 = (_e874 + _e877);
+                let _e857 = vBase;
+                let _e858 = k_8;
+                let _e860 = sideStart_1[_e858];
+                local_13 = (_e857 + _e860);
             }
-            let _e879 = local_13;
-            a0_ = _e879;
+            let _e862 = local_13;
+            a0_ = _e862;
             loop {
-                let _e880 = ia;
-                let _e881 = na;
-                let _e883 = jb;
-                let _e884 = nb;
-                if ((_e880 < _e881) || (_e883 < _e884)) {
-                    let _e887 = vBase;
-                    let _e888 = k_8;
-                    param_107 = _e888;
-                    let _e889 = jb;
-                    param_108 = _e889;
-                    let _e890 = mu_1;
-                    param_109 = _e890;
-                    let _e891 = mv_1;
-                    param_110 = _e891;
-                    let _e892 = grid_1;
-                    param_111 = _e892;
-                    let _e893 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111));
-                    g0_ = (_e887 + _e893);
-                    let _e895 = vBase;
-                    let _e896 = jb;
-                    let _e898 = k_8;
-                    param_112 = _e898;
-                    param_113 = (_e896 + 1u);
-                    let _e899 = mu_1;
-                    param_114 = _e899;
-                    let _e900 = mv_1;
-                    param_115 = _e900;
-                    let _e901 = grid_1;
-                    param_116 = _e901;
-                    let _e902 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_112), (&param_113), (&param_114), (&param_115), (&param_116));
-                    g1_ = (_e895 + _e902);
-                    let _e904 = jb;
-                    let _e905 = nb;
-                    let _e906 = (_e904 == _e905);
-                    phi_2074_ = _e906;
-                    if !(_e906) {
-                        let _e908 = ia;
-                        let _e909 = na;
-                        let _e910 = (_e908 < _e909);
-                        phi_2073_ = _e910;
+                let _e863 = ia;
+                let _e864 = na;
+                let _e866 = jb;
+                let _e867 = nb;
+                if ((_e863 < _e864) || (_e866 < _e867)) {
+                    let _e870 = vBase;
+                    let _e871 = k_8;
+                    param_103 = _e871;
+                    let _e872 = jb;
+                    param_104 = _e872;
+                    let _e873 = mu_1;
+                    param_105 = _e873;
+                    let _e874 = mv_1;
+                    param_106 = _e874;
+                    let _e875 = grid_1;
+                    param_107 = _e875;
+                    let _e876 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_103), (&param_104), (&param_105), (&param_106), (&param_107));
+                    g0_ = (_e870 + _e876);
+                    let _e878 = vBase;
+                    let _e879 = jb;
+                    let _e881 = k_8;
+                    param_108 = _e881;
+                    param_109 = (_e879 + 1u);
+                    let _e882 = mu_1;
+                    param_110 = _e882;
+                    let _e883 = mv_1;
+                    param_111 = _e883;
+                    let _e884 = grid_1;
+                    param_112 = _e884;
+                    let _e885 = ringPoint_u0028_u1_u003b_u1_u003b_u1_u003b_u1_u003b_u1_u003b((&param_108), (&param_109), (&param_110), (&param_111), (&param_112));
+                    g1_ = (_e878 + _e885);
+                    let _e887 = jb;
+                    let _e888 = nb;
+                    let _e889 = (_e887 == _e888);
+                    phi_2086_ = _e889;
+                    if !(_e889) {
+                        let _e891 = ia;
+                        let _e892 = na;
+                        let _e893 = (_e891 < _e892);
+                        phi_2085_ = _e893;
+                        if _e893 {
+                            let _e894 = ia;
+                            let _e897 = nb;
+                            let _e899 = jb;
+                            let _e902 = na;
+                            phi_2085_ = ((((2u * _e894) + 1u) * _e897) <= (((2u * _e899) + 1u) * _e902));
+                        }
+                        let _e906 = phi_2085_;
+                        phi_2086_ = _e906;
+                    }
+                    let _e908 = phi_2086_;
+                    advanceA = _e908;
+                    let _e909 = advanceA;
+                    if _e909 {
+                        let _e910 = share;
                         if _e910 {
                             let _e911 = ia;
-                            let _e914 = nb;
-                            let _e916 = jb;
-                            let _e919 = na;
-                            phi_2073_ = ((((2u * _e911) + 1u) * _e914) <= (((2u * _e916) + 1u) * _e919));
-                        }
-                        let _e923 = phi_2073_;
-                        phi_2074_ = _e923;
-                    }
-                    let _e925 = phi_2074_;
-                    advanceA = _e925;
-                    let _e926 = advanceA;
-                    if _e926 {
-                        let _e927 = share;
-                        if _e927 {
-                            let _e928 = ia;
-                            let _e930 = k_8;
-                            param_117 = _e930;
-                            param_118 = (_e928 + 1u);
-                            let _e931 = na;
-                            param_119 = _e931;
-                            let _e932 = sharedSlot_u0028_u1_u003b_u1_u003b_u1_u003b((&param_117), (&param_118), (&param_119));
-                            local_14 = _e932;
+                            let _e913 = k_8;
+                            param_113 = _e913;
+                            param_114 = (_e911 + 1u);
+                            let _e914 = na;
+                            param_115 = _e914;
+                            let _e915 = sharedSlot_u0028_u1_u003b_u1_u003b_u1_u003b((&param_113), (&param_114), (&param_115));
+                            local_14 = _e915;
                         } else {
-                            let _e933 = vBase;
-                            let _e934 = k_8;
-                            let _e936 = sideStart_1[_e934];
-                            let _e937 = ia;
-                            let _e940 = B;
-                            local_14 = (_e933 + (((_e936 + _e937) + 1u) % _e940));
+                            let _e916 = vBase;
+                            let _e917 = k_8;
+                            let _e919 = sideStart_1[_e917];
+                            let _e920 = ia;
+                            let _e923 = B;
+                            local_14 = (_e916 + (((_e919 + _e920) + 1u) % _e923));
                         }
-                        let _e943 = local_14;
-                        a1_ = _e943;
-                        let _e944 = a0_;
-                        param_120 = _e944;
-                        let _e945 = a1_;
-                        param_121 = _e945;
-                        let _e946 = g0_;
-                        param_122 = _e946;
-                        triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_120), (&param_121), (&param_122));
-                        let _e947 = a1_;
-                        a0_ = _e947;
-                        let _e948 = ia;
-                        ia = (_e948 + bitcast<u32>(1i));
+                        let _e926 = local_14;
+                        a1_ = _e926;
+                        let _e927 = a0_;
+                        param_116 = _e927;
+                        let _e928 = a1_;
+                        param_117 = _e928;
+                        let _e929 = g0_;
+                        param_118 = _e929;
+                        triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_116), (&param_117), (&param_118));
+                        let _e930 = a1_;
+                        a0_ = _e930;
+                        let _e931 = ia;
+                        ia = (_e931 + bitcast<u32>(1i));
                     } else {
-                        let _e951 = a0_;
-                        param_123 = _e951;
-                        let _e952 = g1_;
-                        param_124 = _e952;
-                        let _e953 = g0_;
-                        param_125 = _e953;
-                        triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_123), (&param_124), (&param_125));
-                        let _e954 = jb;
-                        jb = (_e954 + bitcast<u32>(1i));
+                        let _e934 = a0_;
+                        param_119 = _e934;
+                        let _e935 = g1_;
+                        param_120 = _e935;
+                        let _e936 = g0_;
+                        param_121 = _e936;
+                        triSlots_u0028_u1_u003b_u1_u003b_u1_u003b((&param_119), (&param_120), (&param_121));
+                        let _e937 = jb;
+                        jb = (_e937 + bitcast<u32>(1i));
                     }
                     continue;
                 } else {
@@ -1837,54 +1840,54 @@ fn emitElement_u0028_u1_u003b(e: ptr<function, u32>) {
             break;
         }
         continuing {
-            let _e957 = k_8;
-            k_8 = (_e957 + bitcast<u32>(1i));
+            let _e940 = k_8;
+            k_8 = (_e940 + bitcast<u32>(1i));
         }
     }
     return;
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e70 = gl_GlobalInvocationID_1[1u];
-    let _e71 = (*rowInvocations);
-    let _e74 = gl_GlobalInvocationID_1[0u];
-    return ((_e70 * _e71) + _e74);
+    let _e71 = gl_GlobalInvocationID_1[1u];
+    let _e72 = (*rowInvocations);
+    let _e75 = gl_GlobalInvocationID_1[0u];
+    return ((_e71 * _e72) + _e75);
 }
 
 fn main_1() {
     var e_1: u32;
-    var param_126: u32;
-    var param_127: u32;
+    var param_122: u32;
+    var param_123: u32;
     var inf_1: vec4<u32>;
-    var phi_2158_: bool;
+    var phi_2170_: bool;
 
-    let _e73 = pc.limnRowInvocations;
-    param_126 = _e73;
-    let _e74 = limnInvocationIndex_u0028_u1_u003b((&param_126));
-    e_1 = _e74;
-    let _e75 = e_1;
-    let _e77 = pc.limnCount;
-    if (_e75 >= _e77) {
+    let _e74 = pc.limnRowInvocations;
+    param_122 = _e74;
+    let _e75 = limnInvocationIndex_u0028_u1_u003b((&param_122));
+    e_1 = _e75;
+    let _e76 = e_1;
+    let _e78 = pc.limnCount;
+    if (_e76 >= _e78) {
         return;
     }
-    let _e79 = e_1;
-    param_127 = _e79;
-    emitElement_u0028_u1_u003b((&param_127));
     let _e80 = e_1;
-    let _e83 = info.v[_e80];
-    inf_1 = _e83;
-    let _e85 = inf_1[3u];
-    let _e88 = ((_e85 >> bitcast<u32>(31i)) != 0u);
-    phi_2158_ = _e88;
-    if _e88 {
-        let _e89 = tNext;
-        let _e91 = inf_1[2u];
-        let _e93 = inf_1[3u];
-        phi_2158_ = (_e89 != (_e91 + (_e93 & 2147483647u)));
+    param_123 = _e80;
+    emitElement_u0028_u1_u003b((&param_123));
+    let _e81 = e_1;
+    let _e84 = info.v[_e81];
+    inf_1 = _e84;
+    let _e86 = inf_1[3u];
+    let _e89 = ((_e86 >> bitcast<u32>(31i)) != 0u);
+    phi_2170_ = _e89;
+    if _e89 {
+        let _e90 = tNext;
+        let _e92 = inf_1[2u];
+        let _e94 = inf_1[3u];
+        phi_2170_ = (_e90 != (_e92 + (_e94 & 2147483647u)));
     }
-    let _e98 = phi_2158_;
-    if _e98 {
-        let _e101 = atomicOr((&totals.t[23i]), 1u);
+    let _e99 = phi_2170_;
+    if _e99 {
+        let _e102 = atomicOr((&totals.t[23i]), 1u);
     }
     return;
 }

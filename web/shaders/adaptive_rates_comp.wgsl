@@ -48,6 +48,7 @@ struct Push {
     patchCount: u32,
     texels: f32,
     maxError: f32,
+    interiorError: f32,
 }
 
 struct Pieces {
@@ -92,112 +93,172 @@ fn pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b(P: ptr<function, vec3<f32>>
     var ry: vec3<f32>;
     var rw: vec3<f32>;
 
-    let _e85 = pc.viewProj;
-    M = _e85;
-    let _e86 = M;
-    let _e87 = (*P);
-    c = (_e86 * vec4<f32>(_e87.x, _e87.y, _e87.z, 1f));
-    let _e95 = M[0][0u];
-    let _e98 = M[1][0u];
-    let _e101 = M[2][0u];
-    rx = vec3<f32>(_e95, _e98, _e101);
-    let _e105 = M[0][1u];
-    let _e108 = M[1][1u];
-    let _e111 = M[2][1u];
-    ry = vec3<f32>(_e105, _e108, _e111);
-    let _e115 = M[0][3u];
-    let _e118 = M[1][3u];
-    let _e121 = M[2][3u];
-    rw = vec3<f32>(_e115, _e118, _e121);
-    let _e125 = pc.halfViewport[0u];
-    let _e126 = rx;
-    let _e128 = c[0u];
-    let _e130 = c[3u];
-    let _e132 = rw;
-    let _e137 = c[3u];
-    (*jx) = (((_e126 - (_e132 * (_e128 / _e130))) * _e125) / vec3(_e137));
-    let _e142 = pc.halfViewport[1u];
-    let _e143 = ry;
-    let _e145 = c[1u];
-    let _e147 = c[3u];
-    let _e149 = rw;
-    let _e154 = c[3u];
-    (*jy) = (((_e143 - (_e149 * (_e145 / _e147))) * _e142) / vec3(_e154));
+    let _e87 = pc.viewProj;
+    M = _e87;
+    let _e88 = M;
+    let _e89 = (*P);
+    c = (_e88 * vec4<f32>(_e89.x, _e89.y, _e89.z, 1f));
+    let _e97 = M[0][0u];
+    let _e100 = M[1][0u];
+    let _e103 = M[2][0u];
+    rx = vec3<f32>(_e97, _e100, _e103);
+    let _e107 = M[0][1u];
+    let _e110 = M[1][1u];
+    let _e113 = M[2][1u];
+    ry = vec3<f32>(_e107, _e110, _e113);
+    let _e117 = M[0][3u];
+    let _e120 = M[1][3u];
+    let _e123 = M[2][3u];
+    rw = vec3<f32>(_e117, _e120, _e123);
+    let _e127 = pc.halfViewport[0u];
+    let _e128 = rx;
+    let _e130 = c[0u];
+    let _e132 = c[3u];
+    let _e134 = rw;
+    let _e139 = c[3u];
+    (*jx) = (((_e128 - (_e134 * (_e130 / _e132))) * _e127) / vec3(_e139));
+    let _e144 = pc.halfViewport[1u];
+    let _e145 = ry;
+    let _e147 = c[1u];
+    let _e149 = c[3u];
+    let _e151 = rw;
+    let _e156 = c[3u];
+    (*jy) = (((_e145 - (_e151 * (_e147 / _e149))) * _e144) / vec3(_e156));
     return;
 }
 
-fn errorSegments_u0028_vf3_u005b_5_u005d_u003b(S: ptr<function, array<vec3<f32>, 5>>) -> f32 {
+fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(S: ptr<function, array<vec3<f32>, 5>>, SN: ptr<function, array<vec3<f32>, 5>>, mayLoosen: ptr<function, bool>) -> f32 {
     var P_1: array<vec3<f32>, 5>;
     var E: array<vec3<f32>, 5>;
+    var N: array<vec3<f32>, 5>;
     var most: f32;
+    var side: f32;
+    var facing: bool;
     var k: i32;
     var jx_1: vec3<f32>;
     var jy_1: vec3<f32>;
     var param: vec3<f32>;
     var param_1: vec3<f32>;
     var param_2: vec3<f32>;
+    var ray: vec3<f32>;
+    var c_1: f32;
     var n: f32;
+    var local: f32;
+    var phi_2143_: bool;
+    var phi_2202_: bool;
+    var phi_2209_: bool;
 
-    let _e88 = (*S)[0i];
-    let _e90 = (*S)[3i];
-    let _e92 = (*S)[1i];
-    let _e94 = (*S)[4i];
-    let _e96 = (*S)[2i];
-    P_1 = array<vec3<f32>, 5>(_e88, _e90, _e92, _e94, _e96);
-    let _e99 = P_1[1i];
-    let _e101 = P_1[0i];
-    let _e103 = P_1[2i];
-    E[1i] = ((_e99 - ((_e101 + _e103) * 0.5f)) * 4f);
-    let _e110 = P_1[2i];
-    let _e112 = P_1[0i];
-    let _e114 = P_1[4i];
-    E[2i] = (_e110 - ((_e112 + _e114) * 0.5f));
-    let _e120 = P_1[3i];
-    let _e122 = P_1[2i];
+    let _e98 = (*S)[0i];
+    let _e100 = (*S)[3i];
+    let _e102 = (*S)[1i];
+    let _e104 = (*S)[4i];
+    let _e106 = (*S)[2i];
+    P_1 = array<vec3<f32>, 5>(_e98, _e100, _e102, _e104, _e106);
+    let _e109 = P_1[1i];
+    let _e111 = P_1[0i];
+    let _e113 = P_1[2i];
+    E[1i] = ((_e109 - ((_e111 + _e113) * 0.5f)) * 4f);
+    let _e120 = P_1[2i];
+    let _e122 = P_1[0i];
     let _e124 = P_1[4i];
-    E[3i] = ((_e120 - ((_e122 + _e124) * 0.5f)) * 4f);
-    let _e131 = E[1i];
-    let _e134 = E[2i];
-    E[0i] = ((_e131 * 2f) - _e134);
-    let _e138 = E[3i];
-    let _e141 = E[2i];
-    E[4i] = ((_e138 * 2f) - _e141);
+    E[2i] = (_e120 - ((_e122 + _e124) * 0.5f));
+    let _e130 = P_1[3i];
+    let _e132 = P_1[2i];
+    let _e134 = P_1[4i];
+    E[3i] = ((_e130 - ((_e132 + _e134) * 0.5f)) * 4f);
+    let _e141 = E[1i];
+    let _e144 = E[2i];
+    E[0i] = ((_e141 * 2f) - _e144);
+    let _e148 = E[3i];
+    let _e151 = E[2i];
+    E[4i] = ((_e148 * 2f) - _e151);
+    let _e155 = (*SN)[0i];
+    let _e157 = (*SN)[3i];
+    let _e159 = (*SN)[1i];
+    let _e161 = (*SN)[4i];
+    let _e163 = (*SN)[2i];
+    N = array<vec3<f32>, 5>(_e155, _e157, _e159, _e161, _e163);
     most = 0f;
+    side = 0f;
+    let _e165 = (*mayLoosen);
+    phi_2143_ = _e165;
+    if _e165 {
+        let _e167 = pc.interiorError;
+        let _e169 = pc.maxError;
+        phi_2143_ = (_e167 > _e169);
+    }
+    let _e172 = phi_2143_;
+    facing = _e172;
     k = 0i;
     loop {
-        let _e144 = k;
-        if (_e144 < 5i) {
-            let _e146 = k;
-            let _e148 = P_1[_e146];
-            param = _e148;
+        let _e173 = k;
+        if (_e173 < 5i) {
+            let _e175 = k;
+            let _e177 = P_1[_e175];
+            param = _e177;
             pixelJacobian_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param), (&param_1), (&param_2));
-            let _e149 = param_1;
-            jx_1 = _e149;
-            let _e150 = param_2;
-            jy_1 = _e150;
-            let _e151 = most;
-            let _e152 = jx_1;
-            let _e153 = k;
-            let _e155 = E[_e153];
-            let _e157 = jy_1;
-            let _e158 = k;
-            let _e160 = E[_e158];
-            most = max(_e151, length(vec2<f32>(dot(_e152, _e155), dot(_e157, _e160))));
+            let _e178 = param_1;
+            jx_1 = _e178;
+            let _e179 = param_2;
+            jy_1 = _e179;
+            let _e180 = most;
+            let _e181 = jx_1;
+            let _e182 = k;
+            let _e184 = E[_e182];
+            let _e186 = jy_1;
+            let _e187 = k;
+            let _e189 = E[_e187];
+            most = max(_e180, length(vec2<f32>(dot(_e181, _e184), dot(_e186, _e189))));
+            let _e194 = jx_1;
+            let _e195 = jy_1;
+            ray = cross(_e194, _e195);
+            let _e197 = k;
+            let _e199 = N[_e197];
+            let _e200 = ray;
+            c_1 = dot(_e199, _e200);
+            let _e202 = facing;
+            phi_2202_ = _e202;
+            if _e202 {
+                let _e203 = c_1;
+                let _e205 = k;
+                let _e207 = N[_e205];
+                let _e210 = ray;
+                phi_2202_ = (abs(_e203) > ((0.35f * length(_e207)) * length(_e210)));
+            }
+            let _e215 = phi_2202_;
+            phi_2209_ = _e215;
+            if _e215 {
+                let _e216 = c_1;
+                let _e217 = side;
+                phi_2209_ = ((_e216 * _e217) >= 0f);
+            }
+            let _e221 = phi_2209_;
+            facing = _e221;
+            let _e222 = c_1;
+            side = _e222;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e165 = k;
-            k = (_e165 + 1i);
+            let _e223 = k;
+            k = (_e223 + 1i);
         }
     }
-    let _e167 = most;
-    let _e169 = pc.maxError;
-    n = ceil(sqrt((_e167 / _e169)));
-    let _e173 = n;
-    let _e175 = n;
-    return select(1000000000f, _e175, (_e173 < 1000000000f));
+    let _e225 = most;
+    let _e226 = facing;
+    if _e226 {
+        let _e228 = pc.interiorError;
+        local = _e228;
+    } else {
+        let _e230 = pc.maxError;
+        local = _e230;
+    }
+    let _e231 = local;
+    n = ceil(sqrt((_e225 / _e231)));
+    let _e235 = n;
+    let _e237 = n;
+    return select(1000000000f, _e237, (_e235 < 1000000000f));
 }
 
 fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<function, f32>, b: ptr<function, array<f32, 4>>, d: ptr<function, array<f32, 4>>) {
@@ -205,38 +266,38 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
     var t3_: f32;
     var s: f32;
 
-    let _e82 = (*t);
-    let _e83 = (*t);
-    t2_ = (_e82 * _e83);
-    let _e85 = t2_;
-    let _e86 = (*t);
-    t3_ = (_e85 * _e86);
+    let _e84 = (*t);
+    let _e85 = (*t);
+    t2_ = (_e84 * _e85);
+    let _e87 = t2_;
     let _e88 = (*t);
-    s = (1f - _e88);
-    let _e90 = s;
-    let _e91 = s;
+    t3_ = (_e87 * _e88);
+    let _e90 = (*t);
+    s = (1f - _e90);
+    let _e92 = s;
     let _e93 = s;
-    (*b)[0i] = (((_e90 * _e91) * _e93) / 6f);
-    let _e97 = t3_;
-    let _e99 = t2_;
-    (*b)[1i] = ((((3f * _e97) - (6f * _e99)) + 4f) / 6f);
-    let _e105 = t3_;
-    let _e107 = t2_;
-    let _e110 = (*t);
-    (*b)[2i] = (((((-3f * _e105) + (3f * _e107)) + (3f * _e110)) + 1f) / 6f);
-    let _e116 = t3_;
-    (*b)[3i] = (_e116 / 6f);
-    let _e119 = s;
+    let _e95 = s;
+    (*b)[0i] = (((_e92 * _e93) * _e95) / 6f);
+    let _e99 = t3_;
+    let _e101 = t2_;
+    (*b)[1i] = ((((3f * _e99) - (6f * _e101)) + 4f) / 6f);
+    let _e107 = t3_;
+    let _e109 = t2_;
+    let _e112 = (*t);
+    (*b)[2i] = (((((-3f * _e107) + (3f * _e109)) + (3f * _e112)) + 1f) / 6f);
+    let _e118 = t3_;
+    (*b)[3i] = (_e118 / 6f);
     let _e121 = s;
-    (*d)[0i] = ((-(_e119) * _e121) / 2f);
-    let _e125 = t2_;
-    let _e127 = (*t);
-    (*d)[1i] = (((9f * _e125) - (12f * _e127)) / 6f);
-    let _e132 = t2_;
-    let _e134 = (*t);
-    (*d)[2i] = ((((-9f * _e132) + (6f * _e134)) + 3f) / 6f);
-    let _e140 = t2_;
-    (*d)[3i] = (_e140 / 2f);
+    let _e123 = s;
+    (*d)[0i] = ((-(_e121) * _e123) / 2f);
+    let _e127 = t2_;
+    let _e129 = (*t);
+    (*d)[1i] = (((9f * _e127) - (12f * _e129)) / 6f);
+    let _e134 = t2_;
+    let _e136 = (*t);
+    (*d)[2i] = ((((-9f * _e134) + (6f * _e136)) + 3f) / 6f);
+    let _e142 = t2_;
+    (*d)[3i] = (_e142 / 2f);
     return;
 }
 
@@ -252,7 +313,7 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var e23_: vec4<f32>;
     var crease: vec4<f32>;
     var v2_: vec4<f32>;
-    var local: f32;
+    var local_1: f32;
     var bt: array<f32, 4>;
     var dt: array<f32, 4>;
     var param_3: f32;
@@ -263,74 +324,74 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
     var k_1: i32;
 
     M_1 = array<vec4<f32>, 4>(vec4<f32>(1f, 0f, 0f, 0f), vec4<f32>(0f, 1f, 0f, 0f), vec4<f32>(0f, 0f, 1f, 0f), vec4<f32>(0f, 0f, 0f, 1f));
-    let _e100 = (*sharpness);
-    s_1 = _e100;
+    let _e102 = (*sharpness);
+    s_1 = _e102;
     scale = 1f;
     i = 0i;
     loop {
-        let _e101 = i;
-        let _e103 = s_1;
-        if ((_e101 < 12i) && (_e103 > 0f)) {
-            let _e106 = (*t_1);
-            left = (_e106 < 0.5f);
-            let _e108 = s_1;
-            w = min(_e108, 1f);
-            let _e111 = M_1[0i];
-            let _e113 = M_1[1i];
-            e01_ = ((_e111 + _e113) * 0.5f);
-            let _e117 = M_1[1i];
-            let _e119 = M_1[2i];
-            e12_ = ((_e117 + _e119) * 0.5f);
-            let _e123 = M_1[2i];
-            let _e125 = M_1[3i];
-            e23_ = ((_e123 + _e125) * 0.5f);
-            let _e128 = w;
-            let _e130 = M_1[1i];
-            let _e132 = w;
-            let _e135 = M_1[0i];
-            let _e137 = M_1[1i];
-            let _e141 = M_1[2i];
-            crease = ((_e130 * _e128) + ((((_e135 + (_e137 * 6f)) + _e141) * (1f - _e132)) / vec4(8f)));
-            let _e148 = M_1[1i];
-            let _e150 = M_1[2i];
-            let _e154 = M_1[3i];
-            v2_ = (((_e148 + (_e150 * 6f)) + _e154) / vec4(8f));
-            let _e158 = left;
-            if _e158 {
-                let _e159 = e01_;
-                M_1[0i] = _e159;
-                let _e161 = crease;
-                M_1[1i] = _e161;
-                let _e163 = e12_;
-                M_1[2i] = _e163;
-                let _e165 = v2_;
-                M_1[3i] = _e165;
+        let _e103 = i;
+        let _e105 = s_1;
+        if ((_e103 < 12i) && (_e105 > 0f)) {
+            let _e108 = (*t_1);
+            left = (_e108 < 0.5f);
+            let _e110 = s_1;
+            w = min(_e110, 1f);
+            let _e113 = M_1[0i];
+            let _e115 = M_1[1i];
+            e01_ = ((_e113 + _e115) * 0.5f);
+            let _e119 = M_1[1i];
+            let _e121 = M_1[2i];
+            e12_ = ((_e119 + _e121) * 0.5f);
+            let _e125 = M_1[2i];
+            let _e127 = M_1[3i];
+            e23_ = ((_e125 + _e127) * 0.5f);
+            let _e130 = w;
+            let _e132 = M_1[1i];
+            let _e134 = w;
+            let _e137 = M_1[0i];
+            let _e139 = M_1[1i];
+            let _e143 = M_1[2i];
+            crease = ((_e132 * _e130) + ((((_e137 + (_e139 * 6f)) + _e143) * (1f - _e134)) / vec4(8f)));
+            let _e150 = M_1[1i];
+            let _e152 = M_1[2i];
+            let _e156 = M_1[3i];
+            v2_ = (((_e150 + (_e152 * 6f)) + _e156) / vec4(8f));
+            let _e160 = left;
+            if _e160 {
+                let _e161 = e01_;
+                M_1[0i] = _e161;
+                let _e163 = crease;
+                M_1[1i] = _e163;
+                let _e165 = e12_;
+                M_1[2i] = _e165;
+                let _e167 = v2_;
+                M_1[3i] = _e167;
             } else {
-                let _e167 = crease;
-                M_1[0i] = _e167;
-                let _e169 = e12_;
-                M_1[1i] = _e169;
-                let _e171 = v2_;
-                M_1[2i] = _e171;
-                let _e173 = e23_;
-                M_1[3i] = _e173;
+                let _e169 = crease;
+                M_1[0i] = _e169;
+                let _e171 = e12_;
+                M_1[1i] = _e171;
+                let _e173 = v2_;
+                M_1[2i] = _e173;
+                let _e175 = e23_;
+                M_1[3i] = _e175;
             }
-            let _e175 = s_1;
-            s_1 = (_e175 - 1f);
-            let _e177 = scale;
-            scale = (_e177 * 2f);
-            let _e179 = left;
-            if _e179 {
-                let _e180 = (*t_1);
-                local = (2f * _e180);
-            } else {
+            let _e177 = s_1;
+            s_1 = (_e177 - 1f);
+            let _e179 = scale;
+            scale = (_e179 * 2f);
+            let _e181 = left;
+            if _e181 {
                 let _e182 = (*t_1);
-                local = ((2f * _e182) - 1f);
+                local_1 = (2f * _e182);
+            } else {
+                let _e184 = (*t_1);
+                local_1 = ((2f * _e184) - 1f);
             }
-            let _e185 = local;
-            (*t_1) = _e185;
-            let _e186 = left;
-            if !(_e186) {
+            let _e187 = local_1;
+            (*t_1) = _e187;
+            let _e188 = left;
+            if !(_e188) {
                 break;
             }
             continue;
@@ -338,62 +399,62 @@ fn creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u
             break;
         }
         continuing {
-            let _e188 = i;
-            i = (_e188 + 1i);
+            let _e190 = i;
+            i = (_e190 + 1i);
         }
     }
-    let _e190 = (*t_1);
-    param_3 = _e190;
+    let _e192 = (*t_1);
+    param_3 = _e192;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_3), (&param_4), (&param_5));
-    let _e191 = param_4;
-    bt = _e191;
-    let _e192 = param_5;
-    dt = _e192;
-    let _e194 = bt[0i];
-    let _e196 = M_1[0i];
-    let _e199 = bt[1i];
-    let _e201 = M_1[1i];
-    let _e205 = bt[2i];
-    let _e207 = M_1[2i];
-    let _e211 = bt[3i];
-    let _e213 = M_1[3i];
-    B = ((((_e196 * _e194) + (_e201 * _e199)) + (_e207 * _e205)) + (_e213 * _e211));
-    let _e216 = scale;
-    let _e218 = dt[0i];
-    let _e220 = M_1[0i];
-    let _e223 = dt[1i];
-    let _e225 = M_1[1i];
-    let _e229 = dt[2i];
-    let _e231 = M_1[2i];
-    let _e235 = dt[3i];
-    let _e237 = M_1[3i];
-    D = (((((_e220 * _e218) + (_e225 * _e223)) + (_e231 * _e229)) + (_e237 * _e235)) * _e216);
+    let _e193 = param_4;
+    bt = _e193;
+    let _e194 = param_5;
+    dt = _e194;
+    let _e196 = bt[0i];
+    let _e198 = M_1[0i];
+    let _e201 = bt[1i];
+    let _e203 = M_1[1i];
+    let _e207 = bt[2i];
+    let _e209 = M_1[2i];
+    let _e213 = bt[3i];
+    let _e215 = M_1[3i];
+    B = ((((_e198 * _e196) + (_e203 * _e201)) + (_e209 * _e207)) + (_e215 * _e213));
+    let _e218 = scale;
+    let _e220 = dt[0i];
+    let _e222 = M_1[0i];
+    let _e225 = dt[1i];
+    let _e227 = M_1[1i];
+    let _e231 = dt[2i];
+    let _e233 = M_1[2i];
+    let _e237 = dt[3i];
+    let _e239 = M_1[3i];
+    D = (((((_e222 * _e220) + (_e227 * _e225)) + (_e233 * _e231)) + (_e239 * _e237)) * _e218);
     k_1 = 0i;
     loop {
-        let _e241 = k_1;
-        if (_e241 < 4i) {
-            let _e243 = k_1;
-            let _e244 = k_1;
-            let _e246 = B[_e244];
-            (*b_1)[_e243] = _e246;
-            let _e248 = k_1;
-            let _e249 = k_1;
-            let _e251 = D[_e249];
-            (*d_1)[_e248] = _e251;
+        let _e243 = k_1;
+        if (_e243 < 4i) {
+            let _e245 = k_1;
+            let _e246 = k_1;
+            let _e248 = B[_e246];
+            (*b_1)[_e245] = _e248;
+            let _e250 = k_1;
+            let _e251 = k_1;
+            let _e253 = D[_e251];
+            (*d_1)[_e250] = _e253;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e253 = k_1;
-            k_1 = (_e253 + 1i);
+            let _e255 = k_1;
+            k_1 = (_e255 + 1i);
         }
     }
     return;
 }
 
 fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(x: ptr<function, f32>, atEnd: ptr<function, bool>, sharpness_1: ptr<function, f32>, b_2: ptr<function, array<f32, 4>>, d_2: ptr<function, array<f32, 4>>) {
-    var local_1: f32;
+    var local_2: f32;
     var cb: array<f32, 4>;
     var cd: array<f32, 4>;
     var param_6: f32;
@@ -401,87 +462,87 @@ fn creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_
     var param_8: array<f32, 4>;
     var param_9: array<f32, 4>;
     var k_2: i32;
-    var local_2: f32;
     var local_3: f32;
+    var local_4: f32;
 
-    let _e91 = (*atEnd);
-    if _e91 {
-        let _e92 = (*x);
-        local_1 = (1f - _e92);
-    } else {
+    let _e93 = (*atEnd);
+    if _e93 {
         let _e94 = (*x);
-        local_1 = _e94;
+        local_2 = (1f - _e94);
+    } else {
+        let _e96 = (*x);
+        local_2 = _e96;
     }
-    let _e95 = local_1;
-    param_6 = _e95;
-    let _e96 = (*sharpness_1);
-    param_7 = _e96;
+    let _e97 = local_2;
+    param_6 = _e97;
+    let _e98 = (*sharpness_1);
+    param_7 = _e98;
     creaseBasis_u0028_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_6), (&param_7), (&param_8), (&param_9));
-    let _e97 = param_8;
-    cb = _e97;
-    let _e98 = param_9;
-    cd = _e98;
+    let _e99 = param_8;
+    cb = _e99;
+    let _e100 = param_9;
+    cd = _e100;
     k_2 = 0i;
     loop {
-        let _e99 = k_2;
-        if (_e99 < 4i) {
-            let _e101 = k_2;
-            let _e102 = (*atEnd);
-            if _e102 {
-                let _e103 = k_2;
-                let _e106 = cb[(3i - _e103)];
-                local_2 = _e106;
+        let _e101 = k_2;
+        if (_e101 < 4i) {
+            let _e103 = k_2;
+            let _e104 = (*atEnd);
+            if _e104 {
+                let _e105 = k_2;
+                let _e108 = cb[(3i - _e105)];
+                local_3 = _e108;
             } else {
-                let _e107 = k_2;
-                let _e109 = cb[_e107];
-                local_2 = _e109;
+                let _e109 = k_2;
+                let _e111 = cb[_e109];
+                local_3 = _e111;
             }
-            let _e110 = local_2;
-            (*b_2)[_e101] = _e110;
-            let _e112 = k_2;
-            let _e113 = (*atEnd);
-            if _e113 {
-                let _e114 = k_2;
-                let _e117 = cd[(3i - _e114)];
-                local_3 = -(_e117);
+            let _e112 = local_3;
+            (*b_2)[_e103] = _e112;
+            let _e114 = k_2;
+            let _e115 = (*atEnd);
+            if _e115 {
+                let _e116 = k_2;
+                let _e119 = cd[(3i - _e116)];
+                local_4 = -(_e119);
             } else {
-                let _e119 = k_2;
-                let _e121 = cd[_e119];
-                local_3 = _e121;
+                let _e121 = k_2;
+                let _e123 = cd[_e121];
+                local_4 = _e123;
             }
-            let _e122 = local_3;
-            (*d_2)[_e112] = _e122;
+            let _e124 = local_4;
+            (*d_2)[_e114] = _e124;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e124 = k_2;
-            k_2 = (_e124 + 1i);
+            let _e126 = k_2;
+            k_2 = (_e126 + 1i);
         }
     }
     return;
 }
 
 fn foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b(b_3: ptr<function, array<f32, 4>>, atStart: ptr<function, bool>, atEnd_1: ptr<function, bool>) {
-    let _e79 = (*atStart);
-    if _e79 {
-        let _e81 = (*b_3)[0i];
-        let _e84 = (*b_3)[1i];
-        (*b_3)[1i] = (_e84 + (2f * _e81));
-        let _e88 = (*b_3)[0i];
-        let _e90 = (*b_3)[2i];
-        (*b_3)[2i] = (_e90 - _e88);
+    let _e81 = (*atStart);
+    if _e81 {
+        let _e83 = (*b_3)[0i];
+        let _e86 = (*b_3)[1i];
+        (*b_3)[1i] = (_e86 + (2f * _e83));
+        let _e90 = (*b_3)[0i];
+        let _e92 = (*b_3)[2i];
+        (*b_3)[2i] = (_e92 - _e90);
         (*b_3)[0i] = 0f;
     }
-    let _e94 = (*atEnd_1);
-    if _e94 {
-        let _e96 = (*b_3)[3i];
-        let _e99 = (*b_3)[2i];
-        (*b_3)[2i] = (_e99 + (2f * _e96));
-        let _e103 = (*b_3)[3i];
-        let _e105 = (*b_3)[1i];
-        (*b_3)[1i] = (_e105 - _e103);
+    let _e96 = (*atEnd_1);
+    if _e96 {
+        let _e98 = (*b_3)[3i];
+        let _e101 = (*b_3)[2i];
+        (*b_3)[2i] = (_e101 + (2f * _e98));
+        let _e105 = (*b_3)[3i];
+        let _e107 = (*b_3)[1i];
+        (*b_3)[1i] = (_e107 - _e105);
         (*b_3)[3i] = 0f;
     }
     return;
@@ -519,87 +580,87 @@ fn patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var param_36: array<f32, 4>;
     var param_37: array<f32, 4>;
 
-    let _e114 = (*pt).levelBoundary;
-    mask = ((_e114 >> bitcast<u32>(8i)) & 15u);
-    let _e118 = (*s_2);
-    param_10 = _e118;
+    let _e116 = (*pt).levelBoundary;
+    mask = ((_e116 >> bitcast<u32>(8i)) & 15u);
+    let _e120 = (*s_2);
+    param_10 = _e120;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_10), (&param_11), (&param_12));
-    let _e119 = param_11;
-    (*bu) = _e119;
-    let _e120 = param_12;
-    (*du) = _e120;
-    let _e121 = (*t_2);
-    param_13 = _e121;
+    let _e121 = param_11;
+    (*bu) = _e121;
+    let _e122 = param_12;
+    (*du) = _e122;
+    let _e123 = (*t_2);
+    param_13 = _e123;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_13), (&param_14), (&param_15));
-    let _e122 = param_14;
-    (*bv) = _e122;
-    let _e123 = param_15;
-    (*dv) = _e123;
-    let _e124 = mask;
-    let _e127 = mask;
-    let _e130 = (*bu);
-    param_16 = _e130;
-    param_17 = ((_e124 & 8u) != 0u);
-    param_18 = ((_e127 & 2u) != 0u);
+    let _e124 = param_14;
+    (*bv) = _e124;
+    let _e125 = param_15;
+    (*dv) = _e125;
+    let _e126 = mask;
+    let _e129 = mask;
+    let _e132 = (*bu);
+    param_16 = _e132;
+    param_17 = ((_e126 & 8u) != 0u);
+    param_18 = ((_e129 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_16), (&param_17), (&param_18));
-    let _e131 = param_16;
-    (*bu) = _e131;
-    let _e132 = mask;
-    let _e135 = mask;
-    let _e138 = (*du);
-    param_19 = _e138;
-    param_20 = ((_e132 & 8u) != 0u);
-    param_21 = ((_e135 & 2u) != 0u);
+    let _e133 = param_16;
+    (*bu) = _e133;
+    let _e134 = mask;
+    let _e137 = mask;
+    let _e140 = (*du);
+    param_19 = _e140;
+    param_20 = ((_e134 & 8u) != 0u);
+    param_21 = ((_e137 & 2u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_19), (&param_20), (&param_21));
-    let _e139 = param_19;
-    (*du) = _e139;
-    let _e140 = mask;
-    let _e143 = mask;
-    let _e146 = (*bv);
-    param_22 = _e146;
-    param_23 = ((_e140 & 1u) != 0u);
-    param_24 = ((_e143 & 4u) != 0u);
+    let _e141 = param_19;
+    (*du) = _e141;
+    let _e142 = mask;
+    let _e145 = mask;
+    let _e148 = (*bv);
+    param_22 = _e148;
+    param_23 = ((_e142 & 1u) != 0u);
+    param_24 = ((_e145 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_22), (&param_23), (&param_24));
-    let _e147 = param_22;
-    (*bv) = _e147;
-    let _e148 = mask;
-    let _e151 = mask;
-    let _e154 = (*dv);
-    param_25 = _e154;
-    param_26 = ((_e148 & 1u) != 0u);
-    param_27 = ((_e151 & 4u) != 0u);
+    let _e149 = param_22;
+    (*bv) = _e149;
+    let _e150 = mask;
+    let _e153 = mask;
+    let _e156 = (*dv);
+    param_25 = _e156;
+    param_26 = ((_e150 & 1u) != 0u);
+    param_27 = ((_e153 & 4u) != 0u);
     foldPhantom_u0028_f1_u005b_4_u005d_u003b_b1_u003b_b1_u003b((&param_25), (&param_26), (&param_27));
-    let _e155 = param_25;
-    (*dv) = _e155;
-    let _e157 = (*pt).levelBoundary;
-    crease_1 = ((_e157 >> bitcast<u32>(16i)) & 15u);
-    let _e161 = crease_1;
-    if ((_e161 & 5u) != 0u) {
-        let _e164 = crease_1;
-        let _e167 = (*t_2);
-        param_28 = _e167;
-        param_29 = ((_e164 & 4u) != 0u);
-        let _e169 = (*pt).sharpness;
-        param_30 = _e169;
+    let _e157 = param_25;
+    (*dv) = _e157;
+    let _e159 = (*pt).levelBoundary;
+    crease_1 = ((_e159 >> bitcast<u32>(16i)) & 15u);
+    let _e163 = crease_1;
+    if ((_e163 & 5u) != 0u) {
+        let _e166 = crease_1;
+        let _e169 = (*t_2);
+        param_28 = _e169;
+        param_29 = ((_e166 & 4u) != 0u);
+        let _e171 = (*pt).sharpness;
+        param_30 = _e171;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
-        let _e170 = param_31;
-        (*bv) = _e170;
-        let _e171 = param_32;
-        (*dv) = _e171;
+        let _e172 = param_31;
+        (*bv) = _e172;
+        let _e173 = param_32;
+        (*dv) = _e173;
     }
-    let _e172 = crease_1;
-    if ((_e172 & 10u) != 0u) {
-        let _e175 = crease_1;
-        let _e178 = (*s_2);
-        param_33 = _e178;
-        param_34 = ((_e175 & 2u) != 0u);
-        let _e180 = (*pt).sharpness;
-        param_35 = _e180;
+    let _e174 = crease_1;
+    if ((_e174 & 10u) != 0u) {
+        let _e177 = crease_1;
+        let _e180 = (*s_2);
+        param_33 = _e180;
+        param_34 = ((_e177 & 2u) != 0u);
+        let _e182 = (*pt).sharpness;
+        param_35 = _e182;
         creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_33), (&param_34), (&param_35), (&param_36), (&param_37));
-        let _e181 = param_36;
-        (*bu) = _e181;
-        let _e182 = param_37;
-        (*du) = _e182;
+        let _e183 = param_36;
+        (*bu) = _e183;
+        let _e184 = param_37;
+        (*du) = _e184;
     }
     return;
 }
@@ -624,100 +685,100 @@ fn patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1
     var rowRel: vec3<f32>;
     var rowDu: vec3<f32>;
     var i_1: i32;
-    var c_1: vec3<f32>;
+    var c_2: vec3<f32>;
     var r: vec3<f32>;
 
-    let _e102 = (*pt_1);
-    param_38 = _e102;
-    let _e103 = (*s_3);
-    param_39 = _e103;
-    let _e104 = (*t_3);
-    param_40 = _e104;
+    let _e104 = (*pt_1);
+    param_38 = _e104;
+    let _e105 = (*s_3);
+    param_39 = _e105;
+    let _e106 = (*t_3);
+    param_40 = _e106;
     patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_38), (&param_39), (&param_40), (&param_41), (&param_42), (&param_43), (&param_44));
-    let _e105 = param_41;
-    bu_1 = _e105;
-    let _e106 = param_42;
-    du_1 = _e106;
-    let _e107 = param_43;
-    bv_1 = _e107;
-    let _e108 = param_44;
-    dv_1 = _e108;
+    let _e107 = param_41;
+    bu_1 = _e107;
+    let _e108 = param_42;
+    du_1 = _e108;
+    let _e109 = param_43;
+    bv_1 = _e109;
+    let _e110 = param_44;
+    dv_1 = _e110;
     (*P_2) = vec3<f32>(0f, 0f, 0f);
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
-    let _e111 = (*pt_1).cv[5i];
-    let _e114 = vertices.p[_e111];
-    origin = _e114.xyz;
+    let _e113 = (*pt_1).cv[5i];
+    let _e116 = vertices.p[_e113];
+    origin = _e116.xyz;
     j = 0i;
     loop {
-        let _e116 = j;
-        if (_e116 < 4i) {
+        let _e118 = j;
+        if (_e118 < 4i) {
             row = vec3<f32>(0f, 0f, 0f);
             rowRel = vec3<f32>(0f, 0f, 0f);
             rowDu = vec3<f32>(0f, 0f, 0f);
             i_1 = 0i;
             loop {
-                let _e118 = i_1;
-                if (_e118 < 4i) {
-                    let _e120 = j;
-                    let _e122 = i_1;
-                    let _e126 = (*pt_1).cv[((4i * _e120) + _e122)];
-                    let _e129 = vertices.p[_e126];
-                    c_1 = _e129.xyz;
-                    let _e131 = c_1;
-                    let _e132 = origin;
-                    r = (_e131 - _e132);
-                    let _e134 = i_1;
-                    let _e136 = bu_1[_e134];
-                    let _e137 = c_1;
-                    let _e139 = row;
-                    row = (_e139 + (_e137 * _e136));
-                    let _e141 = i_1;
-                    let _e143 = bu_1[_e141];
-                    let _e144 = r;
-                    let _e146 = rowRel;
-                    rowRel = (_e146 + (_e144 * _e143));
-                    let _e148 = i_1;
-                    let _e150 = du_1[_e148];
-                    let _e151 = r;
-                    let _e153 = rowDu;
-                    rowDu = (_e153 + (_e151 * _e150));
+                let _e120 = i_1;
+                if (_e120 < 4i) {
+                    let _e122 = j;
+                    let _e124 = i_1;
+                    let _e128 = (*pt_1).cv[((4i * _e122) + _e124)];
+                    let _e131 = vertices.p[_e128];
+                    c_2 = _e131.xyz;
+                    let _e133 = c_2;
+                    let _e134 = origin;
+                    r = (_e133 - _e134);
+                    let _e136 = i_1;
+                    let _e138 = bu_1[_e136];
+                    let _e139 = c_2;
+                    let _e141 = row;
+                    row = (_e141 + (_e139 * _e138));
+                    let _e143 = i_1;
+                    let _e145 = bu_1[_e143];
+                    let _e146 = r;
+                    let _e148 = rowRel;
+                    rowRel = (_e148 + (_e146 * _e145));
+                    let _e150 = i_1;
+                    let _e152 = du_1[_e150];
+                    let _e153 = r;
+                    let _e155 = rowDu;
+                    rowDu = (_e155 + (_e153 * _e152));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e155 = i_1;
-                    i_1 = (_e155 + 1i);
+                    let _e157 = i_1;
+                    i_1 = (_e157 + 1i);
                 }
             }
-            let _e157 = j;
-            let _e159 = bv_1[_e157];
-            let _e160 = row;
-            let _e162 = (*P_2);
-            (*P_2) = (_e162 + (_e160 * _e159));
-            let _e164 = j;
-            let _e166 = bv_1[_e164];
-            let _e167 = rowDu;
-            let _e169 = Du;
-            Du = (_e169 + (_e167 * _e166));
-            let _e171 = j;
-            let _e173 = dv_1[_e171];
-            let _e174 = rowRel;
-            let _e176 = Dv;
-            Dv = (_e176 + (_e174 * _e173));
+            let _e159 = j;
+            let _e161 = bv_1[_e159];
+            let _e162 = row;
+            let _e164 = (*P_2);
+            (*P_2) = (_e164 + (_e162 * _e161));
+            let _e166 = j;
+            let _e168 = bv_1[_e166];
+            let _e169 = rowDu;
+            let _e171 = Du;
+            Du = (_e171 + (_e169 * _e168));
+            let _e173 = j;
+            let _e175 = dv_1[_e173];
+            let _e176 = rowRel;
+            let _e178 = Dv;
+            Dv = (_e178 + (_e176 * _e175));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e178 = j;
-            j = (_e178 + 1i);
+            let _e180 = j;
+            j = (_e180 + 1i);
         }
     }
-    let _e180 = Du;
-    let _e181 = Dv;
-    (*n_1) = cross(_e180, _e181);
+    let _e182 = Du;
+    let _e183 = Dv;
+    (*n_1) = cross(_e182, _e183);
     return;
 }
 
@@ -726,7 +787,7 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var M_2: u32;
     var block: u32;
     var j_1: i32;
-    var c_2: array<vec3<f32>, 16>;
+    var c_3: array<vec3<f32>, 16>;
     var r_1: array<vec3<f32>, 16>;
     var origin_1: vec3<f32>;
     var i_2: u32;
@@ -753,125 +814,125 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var rowDu_1: vec3<f32>;
     var i_3: i32;
 
-    let _e113 = (*h);
-    let _e116 = patches.p[_e113];
-    hd.cv[0i] = _e116.cv[0];
-    hd.cv[1i] = _e116.cv[1];
-    hd.cv[2i] = _e116.cv[2];
-    hd.cv[3i] = _e116.cv[3];
-    hd.cv[4i] = _e116.cv[4];
-    hd.cv[5i] = _e116.cv[5];
-    hd.cv[6i] = _e116.cv[6];
-    hd.cv[7i] = _e116.cv[7];
-    hd.cv[8i] = _e116.cv[8];
-    hd.cv[9i] = _e116.cv[9];
-    hd.cv[10i] = _e116.cv[10];
-    hd.cv[11i] = _e116.cv[11];
-    hd.cv[12i] = _e116.cv[12];
-    hd.cv[13i] = _e116.cv[13];
-    hd.cv[14i] = _e116.cv[14];
-    hd.cv[15i] = _e116.cv[15];
-    hd.ptex = _e116.ptex;
-    hd.u0_ = _e116.u0_;
-    hd.v0_ = _e116.v0_;
-    hd.size = _e116.size;
-    hd.levelBoundary = _e116.levelBoundary;
-    hd.sharpness = _e116.sharpness;
-    hd.pad1_ = _e116.pad1_;
-    hd.pad2_ = _e116.pad2_;
-    let _e169 = hd.cv[0i];
-    M_2 = ((2u * _e169) + 8u);
-    let _e174 = hd.cv[2i];
-    let _e175 = (*k_3);
-    let _e178 = (*q);
-    let _e181 = M_2;
-    block = (_e174 + ((((_e175 - 1u) * 3u) + (_e178 - 1u)) * _e181));
+    let _e115 = (*h);
+    let _e118 = patches.p[_e115];
+    hd.cv[0i] = _e118.cv[0];
+    hd.cv[1i] = _e118.cv[1];
+    hd.cv[2i] = _e118.cv[2];
+    hd.cv[3i] = _e118.cv[3];
+    hd.cv[4i] = _e118.cv[4];
+    hd.cv[5i] = _e118.cv[5];
+    hd.cv[6i] = _e118.cv[6];
+    hd.cv[7i] = _e118.cv[7];
+    hd.cv[8i] = _e118.cv[8];
+    hd.cv[9i] = _e118.cv[9];
+    hd.cv[10i] = _e118.cv[10];
+    hd.cv[11i] = _e118.cv[11];
+    hd.cv[12i] = _e118.cv[12];
+    hd.cv[13i] = _e118.cv[13];
+    hd.cv[14i] = _e118.cv[14];
+    hd.cv[15i] = _e118.cv[15];
+    hd.ptex = _e118.ptex;
+    hd.u0_ = _e118.u0_;
+    hd.v0_ = _e118.v0_;
+    hd.size = _e118.size;
+    hd.levelBoundary = _e118.levelBoundary;
+    hd.sharpness = _e118.sharpness;
+    hd.pad1_ = _e118.pad1_;
+    hd.pad2_ = _e118.pad2_;
+    let _e171 = hd.cv[0i];
+    M_2 = ((2u * _e171) + 8u);
+    let _e176 = hd.cv[2i];
+    let _e177 = (*k_3);
+    let _e180 = (*q);
+    let _e183 = M_2;
+    block = (_e176 + ((((_e177 - 1u) * 3u) + (_e180 - 1u)) * _e183));
     j_1 = 0i;
     loop {
-        let _e184 = j_1;
-        if (_e184 < 16i) {
-            let _e186 = j_1;
-            c_2[_e186] = vec3<f32>(0f, 0f, 0f);
+        let _e186 = j_1;
+        if (_e186 < 16i) {
             let _e188 = j_1;
-            r_1[_e188] = vec3<f32>(0f, 0f, 0f);
+            c_3[_e188] = vec3<f32>(0f, 0f, 0f);
+            let _e190 = j_1;
+            r_1[_e190] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e190 = j_1;
-            j_1 = (_e190 + 1i);
+            let _e192 = j_1;
+            j_1 = (_e192 + 1i);
         }
     }
-    let _e192 = (*h);
-    let _e198 = patches.p[(_e192 + 1u)].cv[0i];
-    let _e201 = vertices.p[_e198];
-    origin_1 = _e201.xyz;
+    let _e194 = (*h);
+    let _e200 = patches.p[(_e194 + 1u)].cv[0i];
+    let _e203 = vertices.p[_e200];
+    origin_1 = _e203.xyz;
     i_2 = 0u;
     loop {
-        let _e203 = i_2;
-        let _e204 = M_2;
-        if (_e203 < _e204) {
-            let _e206 = (*h);
-            let _e208 = i_2;
-            let _e211 = i_2;
-            let _e217 = patches.p[((_e206 + 1u) + (_e208 / 16u))].cv[(_e211 % 16u)];
-            let _e220 = vertices.p[_e217];
-            x_1 = _e220.xyz;
-            let _e222 = x_1;
-            let _e223 = origin_1;
-            xr = (_e222 - _e223);
-            let _e225 = block;
-            let _e226 = i_2;
-            let _e230 = patches.p[(_e225 + _e226)];
-            w_1.cv[0i] = _e230.cv[0];
-            w_1.cv[1i] = _e230.cv[1];
-            w_1.cv[2i] = _e230.cv[2];
-            w_1.cv[3i] = _e230.cv[3];
-            w_1.cv[4i] = _e230.cv[4];
-            w_1.cv[5i] = _e230.cv[5];
-            w_1.cv[6i] = _e230.cv[6];
-            w_1.cv[7i] = _e230.cv[7];
-            w_1.cv[8i] = _e230.cv[8];
-            w_1.cv[9i] = _e230.cv[9];
-            w_1.cv[10i] = _e230.cv[10];
-            w_1.cv[11i] = _e230.cv[11];
-            w_1.cv[12i] = _e230.cv[12];
-            w_1.cv[13i] = _e230.cv[13];
-            w_1.cv[14i] = _e230.cv[14];
-            w_1.cv[15i] = _e230.cv[15];
-            w_1.ptex = _e230.ptex;
-            w_1.u0_ = _e230.u0_;
-            w_1.v0_ = _e230.v0_;
-            w_1.size = _e230.size;
-            w_1.levelBoundary = _e230.levelBoundary;
-            w_1.sharpness = _e230.sharpness;
-            w_1.pad1_ = _e230.pad1_;
-            w_1.pad2_ = _e230.pad2_;
+        let _e205 = i_2;
+        let _e206 = M_2;
+        if (_e205 < _e206) {
+            let _e208 = (*h);
+            let _e210 = i_2;
+            let _e213 = i_2;
+            let _e219 = patches.p[((_e208 + 1u) + (_e210 / 16u))].cv[(_e213 % 16u)];
+            let _e222 = vertices.p[_e219];
+            x_1 = _e222.xyz;
+            let _e224 = x_1;
+            let _e225 = origin_1;
+            xr = (_e224 - _e225);
+            let _e227 = block;
+            let _e228 = i_2;
+            let _e232 = patches.p[(_e227 + _e228)];
+            w_1.cv[0i] = _e232.cv[0];
+            w_1.cv[1i] = _e232.cv[1];
+            w_1.cv[2i] = _e232.cv[2];
+            w_1.cv[3i] = _e232.cv[3];
+            w_1.cv[4i] = _e232.cv[4];
+            w_1.cv[5i] = _e232.cv[5];
+            w_1.cv[6i] = _e232.cv[6];
+            w_1.cv[7i] = _e232.cv[7];
+            w_1.cv[8i] = _e232.cv[8];
+            w_1.cv[9i] = _e232.cv[9];
+            w_1.cv[10i] = _e232.cv[10];
+            w_1.cv[11i] = _e232.cv[11];
+            w_1.cv[12i] = _e232.cv[12];
+            w_1.cv[13i] = _e232.cv[13];
+            w_1.cv[14i] = _e232.cv[14];
+            w_1.cv[15i] = _e232.cv[15];
+            w_1.ptex = _e232.ptex;
+            w_1.u0_ = _e232.u0_;
+            w_1.v0_ = _e232.v0_;
+            w_1.size = _e232.size;
+            w_1.levelBoundary = _e232.levelBoundary;
+            w_1.sharpness = _e232.sharpness;
+            w_1.pad1_ = _e232.pad1_;
+            w_1.pad2_ = _e232.pad2_;
             j_2 = 0i;
             loop {
-                let _e281 = j_2;
-                if (_e281 < 16i) {
-                    let _e283 = j_2;
-                    let _e286 = w_1.cv[_e283];
-                    wj = bitcast<f32>(_e286);
-                    let _e288 = j_2;
-                    let _e289 = wj;
-                    let _e290 = x_1;
-                    let _e293 = c_2[_e288];
-                    c_2[_e288] = (_e293 + (_e290 * _e289));
-                    let _e296 = j_2;
-                    let _e297 = wj;
-                    let _e298 = xr;
-                    let _e301 = r_1[_e296];
-                    r_1[_e296] = (_e301 + (_e298 * _e297));
+                let _e283 = j_2;
+                if (_e283 < 16i) {
+                    let _e285 = j_2;
+                    let _e288 = w_1.cv[_e285];
+                    wj = bitcast<f32>(_e288);
+                    let _e290 = j_2;
+                    let _e291 = wj;
+                    let _e292 = x_1;
+                    let _e295 = c_3[_e290];
+                    c_3[_e290] = (_e295 + (_e292 * _e291));
+                    let _e298 = j_2;
+                    let _e299 = wj;
+                    let _e300 = xr;
+                    let _e303 = r_1[_e298];
+                    r_1[_e298] = (_e303 + (_e300 * _e299));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e304 = j_2;
-                    j_2 = (_e304 + 1i);
+                    let _e306 = j_2;
+                    j_2 = (_e306 + 1i);
                 }
             }
             continue;
@@ -879,95 +940,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e306 = i_2;
-            i_2 = (_e306 + bitcast<u32>(1i));
+            let _e308 = i_2;
+            i_2 = (_e308 + bitcast<u32>(1i));
         }
     }
-    let _e309 = (*s_4);
-    param_45 = _e309;
+    let _e311 = (*s_4);
+    param_45 = _e311;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e310 = param_46;
-    bu_2 = _e310;
-    let _e311 = param_47;
-    du_2 = _e311;
-    let _e312 = (*t_4);
-    param_48 = _e312;
+    let _e312 = param_46;
+    bu_2 = _e312;
+    let _e313 = param_47;
+    du_2 = _e313;
+    let _e314 = (*t_4);
+    param_48 = _e314;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_48), (&param_49), (&param_50));
-    let _e313 = param_49;
-    bv_2 = _e313;
-    let _e314 = param_50;
-    dv_2 = _e314;
+    let _e315 = param_49;
+    bv_2 = _e315;
+    let _e316 = param_50;
+    dv_2 = _e316;
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e315 = j_3;
-        if (_e315 < 4i) {
+        let _e317 = j_3;
+        if (_e317 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e317 = i_3;
-                if (_e317 < 4i) {
-                    let _e319 = i_3;
-                    let _e321 = bu_2[_e319];
-                    let _e322 = j_3;
-                    let _e324 = i_3;
-                    let _e327 = c_2[((4i * _e322) + _e324)];
-                    let _e329 = row_1;
-                    row_1 = (_e329 + (_e327 * _e321));
-                    let _e331 = i_3;
-                    let _e333 = bu_2[_e331];
-                    let _e334 = j_3;
-                    let _e336 = i_3;
-                    let _e339 = r_1[((4i * _e334) + _e336)];
-                    let _e341 = rowRel_1;
-                    rowRel_1 = (_e341 + (_e339 * _e333));
-                    let _e343 = i_3;
-                    let _e345 = du_2[_e343];
-                    let _e346 = j_3;
-                    let _e348 = i_3;
-                    let _e351 = r_1[((4i * _e346) + _e348)];
-                    let _e353 = rowDu_1;
-                    rowDu_1 = (_e353 + (_e351 * _e345));
+                let _e319 = i_3;
+                if (_e319 < 4i) {
+                    let _e321 = i_3;
+                    let _e323 = bu_2[_e321];
+                    let _e324 = j_3;
+                    let _e326 = i_3;
+                    let _e329 = c_3[((4i * _e324) + _e326)];
+                    let _e331 = row_1;
+                    row_1 = (_e331 + (_e329 * _e323));
+                    let _e333 = i_3;
+                    let _e335 = bu_2[_e333];
+                    let _e336 = j_3;
+                    let _e338 = i_3;
+                    let _e341 = r_1[((4i * _e336) + _e338)];
+                    let _e343 = rowRel_1;
+                    rowRel_1 = (_e343 + (_e341 * _e335));
+                    let _e345 = i_3;
+                    let _e347 = du_2[_e345];
+                    let _e348 = j_3;
+                    let _e350 = i_3;
+                    let _e353 = r_1[((4i * _e348) + _e350)];
+                    let _e355 = rowDu_1;
+                    rowDu_1 = (_e355 + (_e353 * _e347));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e355 = i_3;
-                    i_3 = (_e355 + 1i);
+                    let _e357 = i_3;
+                    i_3 = (_e357 + 1i);
                 }
             }
-            let _e357 = j_3;
-            let _e359 = bv_2[_e357];
-            let _e360 = row_1;
-            let _e362 = (*P_3);
-            (*P_3) = (_e362 + (_e360 * _e359));
-            let _e364 = j_3;
-            let _e366 = bv_2[_e364];
-            let _e367 = rowDu_1;
-            let _e369 = Du_1;
-            Du_1 = (_e369 + (_e367 * _e366));
-            let _e371 = j_3;
-            let _e373 = dv_2[_e371];
-            let _e374 = rowRel_1;
-            let _e376 = Dv_1;
-            Dv_1 = (_e376 + (_e374 * _e373));
+            let _e359 = j_3;
+            let _e361 = bv_2[_e359];
+            let _e362 = row_1;
+            let _e364 = (*P_3);
+            (*P_3) = (_e364 + (_e362 * _e361));
+            let _e366 = j_3;
+            let _e368 = bv_2[_e366];
+            let _e369 = rowDu_1;
+            let _e371 = Du_1;
+            Du_1 = (_e371 + (_e369 * _e368));
+            let _e373 = j_3;
+            let _e375 = dv_2[_e373];
+            let _e376 = rowRel_1;
+            let _e378 = Dv_1;
+            Dv_1 = (_e378 + (_e376 * _e375));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e378 = j_3;
-            j_3 = (_e378 + 1i);
+            let _e380 = j_3;
+            j_3 = (_e380 + 1i);
         }
     }
-    let _e380 = Du_1;
-    let _e381 = Dv_1;
-    (*n_2) = cross(_e380, _e381);
+    let _e382 = Du_1;
+    let _e383 = Dv_1;
+    (*n_2) = cross(_e382, _e383);
     return;
 }
 
@@ -978,20 +1039,20 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     var corner: u32;
     var K: u32;
     var a: u32;
-    var local_4: u32;
     var local_5: u32;
     var local_6: u32;
-    var c_3: u32;
     var local_7: u32;
+    var c_4: u32;
     var local_8: u32;
     var local_9: u32;
+    var local_10: u32;
     var evP: vec3<f32>;
     var evN: vec3<f32>;
     var k_4: u32;
     var qu: u32;
     var qv: u32;
     var q_1: u32;
-    var local_10: u32;
+    var local_11: u32;
     var param_51: u32;
     var param_52: u32;
     var param_53: u32;
@@ -1030,227 +1091,227 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     var y: f32;
     var w_2: array<f32, 4>;
 
-    let _e137 = (*h_1);
-    let _e140 = patches.p[_e137];
-    hd_1.cv[0i] = _e140.cv[0];
-    hd_1.cv[1i] = _e140.cv[1];
-    hd_1.cv[2i] = _e140.cv[2];
-    hd_1.cv[3i] = _e140.cv[3];
-    hd_1.cv[4i] = _e140.cv[4];
-    hd_1.cv[5i] = _e140.cv[5];
-    hd_1.cv[6i] = _e140.cv[6];
-    hd_1.cv[7i] = _e140.cv[7];
-    hd_1.cv[8i] = _e140.cv[8];
-    hd_1.cv[9i] = _e140.cv[9];
-    hd_1.cv[10i] = _e140.cv[10];
-    hd_1.cv[11i] = _e140.cv[11];
-    hd_1.cv[12i] = _e140.cv[12];
-    hd_1.cv[13i] = _e140.cv[13];
-    hd_1.cv[14i] = _e140.cv[14];
-    hd_1.cv[15i] = _e140.cv[15];
-    hd_1.ptex = _e140.ptex;
-    hd_1.u0_ = _e140.u0_;
-    hd_1.v0_ = _e140.v0_;
-    hd_1.size = _e140.size;
-    hd_1.levelBoundary = _e140.levelBoundary;
-    hd_1.sharpness = _e140.sharpness;
-    hd_1.pad1_ = _e140.pad1_;
-    hd_1.pad2_ = _e140.pad2_;
-    let _e191 = (*st);
-    S_1 = (_e191 & 65535u);
+    let _e139 = (*h_1);
+    let _e142 = patches.p[_e139];
+    hd_1.cv[0i] = _e142.cv[0];
+    hd_1.cv[1i] = _e142.cv[1];
+    hd_1.cv[2i] = _e142.cv[2];
+    hd_1.cv[3i] = _e142.cv[3];
+    hd_1.cv[4i] = _e142.cv[4];
+    hd_1.cv[5i] = _e142.cv[5];
+    hd_1.cv[6i] = _e142.cv[6];
+    hd_1.cv[7i] = _e142.cv[7];
+    hd_1.cv[8i] = _e142.cv[8];
+    hd_1.cv[9i] = _e142.cv[9];
+    hd_1.cv[10i] = _e142.cv[10];
+    hd_1.cv[11i] = _e142.cv[11];
+    hd_1.cv[12i] = _e142.cv[12];
+    hd_1.cv[13i] = _e142.cv[13];
+    hd_1.cv[14i] = _e142.cv[14];
+    hd_1.cv[15i] = _e142.cv[15];
+    hd_1.ptex = _e142.ptex;
+    hd_1.u0_ = _e142.u0_;
+    hd_1.v0_ = _e142.v0_;
+    hd_1.size = _e142.size;
+    hd_1.levelBoundary = _e142.levelBoundary;
+    hd_1.sharpness = _e142.sharpness;
+    hd_1.pad1_ = _e142.pad1_;
+    hd_1.pad2_ = _e142.pad2_;
     let _e193 = (*st);
-    T = (_e193 >> bitcast<u32>(16i));
-    let _e198 = hd_1.cv[1i];
-    corner = _e198;
-    let _e201 = hd_1.cv[3i];
-    K = _e201;
-    let _e202 = corner;
-    if (_e202 == 0u) {
-        let _e204 = S_1;
-        local_4 = _e204;
+    S_1 = (_e193 & 65535u);
+    let _e195 = (*st);
+    T = (_e195 >> bitcast<u32>(16i));
+    let _e200 = hd_1.cv[1i];
+    corner = _e200;
+    let _e203 = hd_1.cv[3i];
+    K = _e203;
+    let _e204 = corner;
+    if (_e204 == 0u) {
+        let _e206 = S_1;
+        local_5 = _e206;
     } else {
-        let _e205 = corner;
-        if (_e205 == 1u) {
-            let _e207 = T;
-            local_5 = _e207;
+        let _e207 = corner;
+        if (_e207 == 1u) {
+            let _e209 = T;
+            local_6 = _e209;
         } else {
-            let _e208 = corner;
-            if (_e208 == 2u) {
-                let _e210 = S_1;
-                local_6 = (32768u - _e210);
+            let _e210 = corner;
+            if (_e210 == 2u) {
+                let _e212 = S_1;
+                local_7 = (32768u - _e212);
             } else {
-                let _e212 = T;
-                local_6 = (32768u - _e212);
+                let _e214 = T;
+                local_7 = (32768u - _e214);
             }
-            let _e214 = local_6;
-            local_5 = _e214;
+            let _e216 = local_7;
+            local_6 = _e216;
         }
-        let _e215 = local_5;
-        local_4 = _e215;
+        let _e217 = local_6;
+        local_5 = _e217;
     }
-    let _e216 = local_4;
-    a = _e216;
-    let _e217 = corner;
-    if (_e217 == 0u) {
-        let _e219 = T;
-        local_7 = _e219;
+    let _e218 = local_5;
+    a = _e218;
+    let _e219 = corner;
+    if (_e219 == 0u) {
+        let _e221 = T;
+        local_8 = _e221;
     } else {
-        let _e220 = corner;
-        if (_e220 == 1u) {
-            let _e222 = S_1;
-            local_8 = (32768u - _e222);
+        let _e222 = corner;
+        if (_e222 == 1u) {
+            let _e224 = S_1;
+            local_9 = (32768u - _e224);
         } else {
-            let _e224 = corner;
-            if (_e224 == 2u) {
-                let _e226 = T;
-                local_9 = (32768u - _e226);
+            let _e226 = corner;
+            if (_e226 == 2u) {
+                let _e228 = T;
+                local_10 = (32768u - _e228);
             } else {
-                let _e228 = S_1;
-                local_9 = _e228;
+                let _e230 = S_1;
+                local_10 = _e230;
             }
-            let _e229 = local_9;
-            local_8 = _e229;
+            let _e231 = local_10;
+            local_9 = _e231;
         }
-        let _e230 = local_8;
-        local_7 = _e230;
+        let _e232 = local_9;
+        local_8 = _e232;
     }
-    let _e231 = local_7;
-    c_3 = _e231;
-    let _e234 = hd_1.cv[4i];
-    let _e238 = limits.v[(2u * _e234)];
-    evP = _e238.xyz;
-    let _e242 = hd_1.cv[4i];
-    let _e247 = limits.v[((2u * _e242) + 1u)];
-    evN = _e247.xyz;
-    let _e249 = a;
-    let _e251 = c_3;
-    if ((_e249 == 0u) && (_e251 == 0u)) {
-        let _e254 = evP;
-        (*P_4) = _e254;
-        let _e255 = evN;
-        (*n_3) = _e255;
+    let _e233 = local_8;
+    c_4 = _e233;
+    let _e236 = hd_1.cv[4i];
+    let _e240 = limits.v[(2u * _e236)];
+    evP = _e240.xyz;
+    let _e244 = hd_1.cv[4i];
+    let _e249 = limits.v[((2u * _e244) + 1u)];
+    evN = _e249.xyz;
+    let _e251 = a;
+    let _e253 = c_4;
+    if ((_e251 == 0u) && (_e253 == 0u)) {
+        let _e256 = evP;
+        (*P_4) = _e256;
+        let _e257 = evN;
+        (*n_3) = _e257;
         return;
     }
     k_4 = 1u;
     loop {
-        let _e256 = a;
-        let _e257 = c_3;
-        let _e260 = k_4;
-        let _e261 = K;
-        if ((max(_e256, _e257) < 16384u) && (_e260 < _e261)) {
-            let _e264 = a;
-            a = (_e264 * 2u);
-            let _e266 = c_3;
-            c_3 = (_e266 * 2u);
-            let _e268 = k_4;
-            k_4 = (_e268 + bitcast<u32>(1i));
+        let _e258 = a;
+        let _e259 = c_4;
+        let _e262 = k_4;
+        let _e263 = K;
+        if ((max(_e258, _e259) < 16384u) && (_e262 < _e263)) {
+            let _e266 = a;
+            a = (_e266 * 2u);
+            let _e268 = c_4;
+            c_4 = (_e268 * 2u);
+            let _e270 = k_4;
+            k_4 = (_e270 + bitcast<u32>(1i));
             continue;
         } else {
             break;
         }
     }
-    let _e271 = a;
-    let _e272 = c_3;
-    if (max(_e271, _e272) >= 16384u) {
-        let _e275 = a;
-        qu = select(0u, 1u, (_e275 >= 16384u));
-        let _e278 = c_3;
-        qv = select(0u, 1u, (_e278 >= 16384u));
-        let _e281 = qv;
-        if (_e281 == 0u) {
-            local_10 = 1u;
+    let _e273 = a;
+    let _e274 = c_4;
+    if (max(_e273, _e274) >= 16384u) {
+        let _e277 = a;
+        qu = select(0u, 1u, (_e277 >= 16384u));
+        let _e280 = c_4;
+        qv = select(0u, 1u, (_e280 >= 16384u));
+        let _e283 = qv;
+        if (_e283 == 0u) {
+            local_11 = 1u;
         } else {
-            let _e283 = qu;
-            local_10 = select(3u, 2u, (_e283 == 1u));
+            let _e285 = qu;
+            local_11 = select(3u, 2u, (_e285 == 1u));
         }
-        let _e286 = local_10;
-        q_1 = _e286;
-        let _e287 = a;
-        let _e289 = qu;
-        let _e294 = c_3;
-        let _e296 = qv;
-        let _e301 = (*h_1);
-        param_51 = _e301;
-        let _e302 = k_4;
-        param_52 = _e302;
-        let _e303 = q_1;
-        param_53 = _e303;
-        param_54 = (f32(((2u * _e287) - (_e289 * 32768u))) / 32768f);
-        param_55 = (f32(((2u * _e294) - (_e296 * 32768u))) / 32768f);
+        let _e288 = local_11;
+        q_1 = _e288;
+        let _e289 = a;
+        let _e291 = qu;
+        let _e296 = c_4;
+        let _e298 = qv;
+        let _e303 = (*h_1);
+        param_51 = _e303;
+        let _e304 = k_4;
+        param_52 = _e304;
+        let _e305 = q_1;
+        param_53 = _e305;
+        param_54 = (f32(((2u * _e289) - (_e291 * 32768u))) / 32768f);
+        param_55 = (f32(((2u * _e296) - (_e298 * 32768u))) / 32768f);
         basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_51), (&param_52), (&param_53), (&param_54), (&param_55), (&param_56), (&param_57));
-        let _e304 = param_56;
-        (*P_4) = _e304;
-        let _e305 = param_57;
-        (*n_3) = _e305;
+        let _e306 = param_56;
+        (*P_4) = _e306;
+        let _e307 = param_57;
+        (*n_3) = _e307;
         return;
     }
-    let _e306 = (*h_1);
-    param_58 = _e306;
-    let _e307 = k_4;
-    param_59 = _e307;
+    let _e308 = (*h_1);
+    param_58 = _e308;
+    let _e309 = k_4;
+    param_59 = _e309;
     param_60 = 1u;
     param_61 = 0f;
     param_62 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_58), (&param_59), (&param_60), (&param_61), (&param_62), (&param_63), (&param_64));
-    let _e308 = param_63;
-    P1_ = _e308;
-    let _e309 = param_64;
-    n1_ = _e309;
-    let _e310 = (*h_1);
-    param_65 = _e310;
-    let _e311 = k_4;
-    param_66 = _e311;
+    let _e310 = param_63;
+    P1_ = _e310;
+    let _e311 = param_64;
+    n1_ = _e311;
+    let _e312 = (*h_1);
+    param_65 = _e312;
+    let _e313 = k_4;
+    param_66 = _e313;
     param_67 = 2u;
     param_68 = 0f;
     param_69 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_65), (&param_66), (&param_67), (&param_68), (&param_69), (&param_70), (&param_71));
-    let _e312 = param_70;
-    P2_ = _e312;
-    let _e313 = param_71;
-    n2_ = _e313;
-    let _e314 = (*h_1);
-    param_72 = _e314;
-    let _e315 = k_4;
-    param_73 = _e315;
+    let _e314 = param_70;
+    P2_ = _e314;
+    let _e315 = param_71;
+    n2_ = _e315;
+    let _e316 = (*h_1);
+    param_72 = _e316;
+    let _e317 = k_4;
+    param_73 = _e317;
     param_74 = 3u;
     param_75 = 0f;
     param_76 = 0f;
     basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_72), (&param_73), (&param_74), (&param_75), (&param_76), (&param_77), (&param_78));
-    let _e316 = param_77;
-    P3_ = _e316;
-    let _e317 = param_78;
-    n3_ = _e317;
-    let _e318 = a;
-    x_2 = (f32(_e318) / 16384f);
-    let _e321 = c_3;
-    y = (f32(_e321) / 16384f);
-    let _e324 = x_2;
-    let _e326 = y;
-    let _e329 = x_2;
-    let _e330 = y;
-    let _e333 = x_2;
-    let _e334 = y;
-    let _e336 = x_2;
-    let _e338 = y;
-    w_2 = array<f32, 4>(((1f - _e324) * (1f - _e326)), (_e329 * (1f - _e330)), (_e333 * _e334), ((1f - _e336) * _e338));
-    let _e342 = w_2[0i];
-    let _e343 = evP;
-    let _e346 = w_2[1i];
-    let _e347 = P1_;
-    let _e351 = w_2[2i];
-    let _e352 = P2_;
-    let _e356 = w_2[3i];
-    let _e357 = P3_;
-    (*P_4) = ((((_e343 * _e342) + (_e347 * _e346)) + (_e352 * _e351)) + (_e357 * _e356));
-    let _e361 = w_2[0i];
-    let _e362 = evN;
-    let _e365 = w_2[1i];
-    let _e366 = n1_;
-    let _e371 = w_2[2i];
-    let _e372 = n2_;
-    let _e377 = w_2[3i];
-    let _e378 = n3_;
-    (*n_3) = ((((_e362 * _e361) + (normalize(_e366) * _e365)) + (normalize(_e372) * _e371)) + (normalize(_e378) * _e377));
+    let _e318 = param_77;
+    P3_ = _e318;
+    let _e319 = param_78;
+    n3_ = _e319;
+    let _e320 = a;
+    x_2 = (f32(_e320) / 16384f);
+    let _e323 = c_4;
+    y = (f32(_e323) / 16384f);
+    let _e326 = x_2;
+    let _e328 = y;
+    let _e331 = x_2;
+    let _e332 = y;
+    let _e335 = x_2;
+    let _e336 = y;
+    let _e338 = x_2;
+    let _e340 = y;
+    w_2 = array<f32, 4>(((1f - _e326) * (1f - _e328)), (_e331 * (1f - _e332)), (_e335 * _e336), ((1f - _e338) * _e340));
+    let _e344 = w_2[0i];
+    let _e345 = evP;
+    let _e348 = w_2[1i];
+    let _e349 = P1_;
+    let _e353 = w_2[2i];
+    let _e354 = P2_;
+    let _e358 = w_2[3i];
+    let _e359 = P3_;
+    (*P_4) = ((((_e345 * _e344) + (_e349 * _e348)) + (_e354 * _e353)) + (_e359 * _e358));
+    let _e363 = w_2[0i];
+    let _e364 = evN;
+    let _e367 = w_2[1i];
+    let _e368 = n1_;
+    let _e373 = w_2[2i];
+    let _e374 = n2_;
+    let _e379 = w_2[3i];
+    let _e380 = n3_;
+    (*n_3) = ((((_e364 * _e363) + (normalize(_e368) * _e367)) + (normalize(_e374) * _e373)) + (normalize(_e380) * _e379));
     return;
 }
 
@@ -1258,14 +1319,14 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var S_2: u32;
     var T_1: u32;
     var k_5: u32;
-    var local_11: u32;
-    var c_4: u32;
+    var local_12: u32;
+    var c_5: u32;
     var node: u32;
     var leaf: u32;
     var ls: u32;
     var lt: u32;
     var k_6: i32;
-    var c_5: u32;
+    var c_6: u32;
     var code: u32;
     var param_79: u32;
     var param_80: u32;
@@ -1283,209 +1344,209 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_7: i32;
-    var phi_1441_: bool;
+    var phi_1444_: bool;
 
-    let _e109 = (*st_1);
-    S_2 = (_e109 & 65535u);
     let _e111 = (*st_1);
-    T_1 = (_e111 >> bitcast<u32>(16i));
-    let _e114 = S_2;
+    S_2 = (_e111 & 65535u);
+    let _e113 = (*st_1);
+    T_1 = (_e113 >> bitcast<u32>(16i));
     let _e116 = S_2;
-    let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
-    phi_1441_ = _e118;
-    if _e118 {
-        let _e119 = T_1;
+    let _e118 = S_2;
+    let _e120 = ((_e116 == 0u) || (_e118 == 32768u));
+    phi_1444_ = _e120;
+    if _e120 {
         let _e121 = T_1;
-        phi_1441_ = ((_e119 == 0u) || (_e121 == 32768u));
+        let _e123 = T_1;
+        phi_1444_ = ((_e121 == 0u) || (_e123 == 32768u));
     }
-    let _e125 = phi_1441_;
-    if _e125 {
-        let _e126 = S_2;
-        if (_e126 == 0u) {
-            let _e128 = T_1;
-            local_11 = select(3u, 0u, (_e128 == 0u));
+    let _e127 = phi_1444_;
+    if _e127 {
+        let _e128 = S_2;
+        if (_e128 == 0u) {
+            let _e130 = T_1;
+            local_12 = select(3u, 0u, (_e130 == 0u));
         } else {
-            let _e131 = T_1;
-            local_11 = select(2u, 1u, (_e131 == 0u));
+            let _e133 = T_1;
+            local_12 = select(2u, 1u, (_e133 == 0u));
         }
-        let _e134 = local_11;
-        k_5 = _e134;
-        let _e135 = (*face);
-        let _e136 = k_5;
-        let _e141 = irregulars.f[_e135].corner[_e136];
-        c_4 = _e141;
-        let _e142 = c_4;
-        let _e146 = limits.v[(2u * _e142)];
-        (*P_5) = _e146.xyz;
-        let _e148 = c_4;
-        let _e153 = limits.v[((2u * _e148) + 1u)];
-        (*n_4) = _e153.xyz;
+        let _e136 = local_12;
+        k_5 = _e136;
+        let _e137 = (*face);
+        let _e138 = k_5;
+        let _e143 = irregulars.f[_e137].corner[_e138];
+        c_5 = _e143;
+        let _e144 = c_5;
+        let _e148 = limits.v[(2u * _e144)];
+        (*P_5) = _e148.xyz;
+        let _e150 = c_5;
+        let _e155 = limits.v[((2u * _e150) + 1u)];
+        (*n_4) = _e155.xyz;
         return;
     }
-    let _e155 = (*patchCount);
-    let _e156 = (*face);
-    node = (_e155 + _e156);
+    let _e157 = (*patchCount);
     let _e158 = (*face);
-    leaf = _e158;
-    let _e159 = S_2;
-    ls = _e159;
-    let _e160 = T_1;
-    lt = _e160;
+    node = (_e157 + _e158);
+    let _e160 = (*face);
+    leaf = _e160;
+    let _e161 = S_2;
+    ls = _e161;
+    let _e162 = T_1;
+    lt = _e162;
     k_6 = 0i;
     loop {
-        let _e161 = k_6;
-        if (_e161 < 17i) {
-            let _e163 = S_2;
-            let _e166 = T_1;
-            c_5 = (select(0u, 1u, (_e163 >= 16384u)) | select(0u, 2u, (_e166 >= 16384u)));
-            let _e170 = node;
-            let _e171 = c_5;
-            let _e176 = patches.p[_e170].cv[_e171];
-            code = _e176;
-            let _e177 = code;
-            if (_e177 == 4294967295u) {
-                break;
-            }
+        let _e163 = k_6;
+        if (_e163 < 17i) {
+            let _e165 = S_2;
+            let _e168 = T_1;
+            c_6 = (select(0u, 1u, (_e165 >= 16384u)) | select(0u, 2u, (_e168 >= 16384u)));
+            let _e172 = node;
+            let _e173 = c_6;
+            let _e178 = patches.p[_e172].cv[_e173];
+            code = _e178;
             let _e179 = code;
-            if ((_e179 & 3221225472u) == 3221225472u) {
-                let _e182 = code;
-                param_79 = (_e182 & 1073741823u);
-                let _e184 = (*st_1);
-                param_80 = _e184;
-                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_79), (&param_80), (&param_81), (&param_82));
-                let _e185 = param_81;
-                (*P_5) = _e185;
-                let _e186 = param_82;
-                (*n_4) = _e186;
-                return;
-            }
-            let _e187 = S_2;
-            let _e189 = c_5;
-            S_2 = ((2u * _e187) - select(0u, 32768u, ((_e189 & 1u) != 0u)));
-            let _e194 = T_1;
-            let _e196 = c_5;
-            T_1 = ((2u * _e194) - select(0u, 32768u, ((_e196 & 2u) != 0u)));
-            let _e201 = code;
-            kind = (_e201 & 3221225472u);
-            let _e203 = code;
-            index = (_e203 & 1073741823u);
-            let _e205 = kind;
-            if (_e205 == 0u) {
-                let _e207 = index;
-                let _e208 = S_2;
-                let _e211 = T_1;
-                let _e216 = patches.p[_e207];
-                param_83.cv[0i] = _e216.cv[0];
-                param_83.cv[1i] = _e216.cv[1];
-                param_83.cv[2i] = _e216.cv[2];
-                param_83.cv[3i] = _e216.cv[3];
-                param_83.cv[4i] = _e216.cv[4];
-                param_83.cv[5i] = _e216.cv[5];
-                param_83.cv[6i] = _e216.cv[6];
-                param_83.cv[7i] = _e216.cv[7];
-                param_83.cv[8i] = _e216.cv[8];
-                param_83.cv[9i] = _e216.cv[9];
-                param_83.cv[10i] = _e216.cv[10];
-                param_83.cv[11i] = _e216.cv[11];
-                param_83.cv[12i] = _e216.cv[12];
-                param_83.cv[13i] = _e216.cv[13];
-                param_83.cv[14i] = _e216.cv[14];
-                param_83.cv[15i] = _e216.cv[15];
-                param_83.ptex = _e216.ptex;
-                param_83.u0_ = _e216.u0_;
-                param_83.v0_ = _e216.v0_;
-                param_83.size = _e216.size;
-                param_83.levelBoundary = _e216.levelBoundary;
-                param_83.sharpness = _e216.sharpness;
-                param_83.pad1_ = _e216.pad1_;
-                param_83.pad2_ = _e216.pad2_;
-                param_84 = (f32(_e208) / 32768f);
-                param_85 = (f32(_e211) / 32768f);
-                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_83), (&param_84), (&param_85), (&param_86), (&param_87));
-                let _e267 = param_86;
-                (*P_5) = _e267;
-                let _e268 = param_87;
-                (*n_4) = _e268;
-                return;
-            }
-            let _e269 = kind;
-            if (_e269 == 2147483648u) {
-                let _e271 = index;
-                leaf = _e271;
-                let _e272 = S_2;
-                ls = _e272;
-                let _e273 = T_1;
-                lt = _e273;
+            if (_e179 == 4294967295u) {
                 break;
             }
-            let _e274 = index;
-            node = _e274;
+            let _e181 = code;
+            if ((_e181 & 3221225472u) == 3221225472u) {
+                let _e184 = code;
+                param_79 = (_e184 & 1073741823u);
+                let _e186 = (*st_1);
+                param_80 = _e186;
+                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_79), (&param_80), (&param_81), (&param_82));
+                let _e187 = param_81;
+                (*P_5) = _e187;
+                let _e188 = param_82;
+                (*n_4) = _e188;
+                return;
+            }
+            let _e189 = S_2;
+            let _e191 = c_6;
+            S_2 = ((2u * _e189) - select(0u, 32768u, ((_e191 & 1u) != 0u)));
+            let _e196 = T_1;
+            let _e198 = c_6;
+            T_1 = ((2u * _e196) - select(0u, 32768u, ((_e198 & 2u) != 0u)));
+            let _e203 = code;
+            kind = (_e203 & 3221225472u);
+            let _e205 = code;
+            index = (_e205 & 1073741823u);
+            let _e207 = kind;
+            if (_e207 == 0u) {
+                let _e209 = index;
+                let _e210 = S_2;
+                let _e213 = T_1;
+                let _e218 = patches.p[_e209];
+                param_83.cv[0i] = _e218.cv[0];
+                param_83.cv[1i] = _e218.cv[1];
+                param_83.cv[2i] = _e218.cv[2];
+                param_83.cv[3i] = _e218.cv[3];
+                param_83.cv[4i] = _e218.cv[4];
+                param_83.cv[5i] = _e218.cv[5];
+                param_83.cv[6i] = _e218.cv[6];
+                param_83.cv[7i] = _e218.cv[7];
+                param_83.cv[8i] = _e218.cv[8];
+                param_83.cv[9i] = _e218.cv[9];
+                param_83.cv[10i] = _e218.cv[10];
+                param_83.cv[11i] = _e218.cv[11];
+                param_83.cv[12i] = _e218.cv[12];
+                param_83.cv[13i] = _e218.cv[13];
+                param_83.cv[14i] = _e218.cv[14];
+                param_83.cv[15i] = _e218.cv[15];
+                param_83.ptex = _e218.ptex;
+                param_83.u0_ = _e218.u0_;
+                param_83.v0_ = _e218.v0_;
+                param_83.size = _e218.size;
+                param_83.levelBoundary = _e218.levelBoundary;
+                param_83.sharpness = _e218.sharpness;
+                param_83.pad1_ = _e218.pad1_;
+                param_83.pad2_ = _e218.pad2_;
+                param_84 = (f32(_e210) / 32768f);
+                param_85 = (f32(_e213) / 32768f);
+                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_83), (&param_84), (&param_85), (&param_86), (&param_87));
+                let _e269 = param_86;
+                (*P_5) = _e269;
+                let _e270 = param_87;
+                (*n_4) = _e270;
+                return;
+            }
+            let _e271 = kind;
+            if (_e271 == 2147483648u) {
+                let _e273 = index;
+                leaf = _e273;
+                let _e274 = S_2;
+                ls = _e274;
+                let _e275 = T_1;
+                lt = _e275;
+                break;
+            }
+            let _e276 = index;
+            node = _e276;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e275 = k_6;
-            k_6 = (_e275 + 1i);
+            let _e277 = k_6;
+            k_6 = (_e277 + 1i);
         }
     }
-    let _e277 = leaf;
-    let _e280 = irregulars.f[_e277];
-    q_2.corner = _e280.corner;
-    q_2.ptex = _e280.ptex;
-    q_2.u0_ = _e280.u0_;
-    q_2.v0_ = _e280.v0_;
-    q_2.size = _e280.size;
-    let _e291 = ls;
-    s_5 = (f32(_e291) / 32768f);
-    let _e294 = lt;
-    t_5 = (f32(_e294) / 32768f);
-    let _e297 = s_5;
-    let _e299 = t_5;
-    let _e302 = s_5;
-    let _e303 = t_5;
-    let _e306 = s_5;
-    let _e307 = t_5;
-    let _e309 = s_5;
-    let _e311 = t_5;
-    w_3 = array<f32, 4>(((1f - _e297) * (1f - _e299)), (_e302 * (1f - _e303)), (_e306 * _e307), ((1f - _e309) * _e311));
+    let _e279 = leaf;
+    let _e282 = irregulars.f[_e279];
+    q_2.corner = _e282.corner;
+    q_2.ptex = _e282.ptex;
+    q_2.u0_ = _e282.u0_;
+    q_2.v0_ = _e282.v0_;
+    q_2.size = _e282.size;
+    let _e293 = ls;
+    s_5 = (f32(_e293) / 32768f);
+    let _e296 = lt;
+    t_5 = (f32(_e296) / 32768f);
+    let _e299 = s_5;
+    let _e301 = t_5;
+    let _e304 = s_5;
+    let _e305 = t_5;
+    let _e308 = s_5;
+    let _e309 = t_5;
+    let _e311 = s_5;
+    let _e313 = t_5;
+    w_3 = array<f32, 4>(((1f - _e299) * (1f - _e301)), (_e304 * (1f - _e305)), (_e308 * _e309), ((1f - _e311) * _e313));
     (*P_5) = vec3<f32>(0f, 0f, 0f);
     (*n_4) = vec3<f32>(0f, 0f, 0f);
     k_7 = 0i;
     loop {
-        let _e314 = k_7;
-        if (_e314 < 4i) {
-            let _e316 = k_7;
-            let _e318 = w_3[_e316];
-            let _e319 = k_7;
-            let _e322 = q_2.corner[_e319];
-            let _e326 = limits.v[(2u * _e322)];
-            let _e329 = (*P_5);
-            (*P_5) = (_e329 + (_e326.xyz * _e318));
-            let _e331 = k_7;
-            let _e333 = w_3[_e331];
-            let _e334 = k_7;
-            let _e337 = q_2.corner[_e334];
-            let _e342 = limits.v[((2u * _e337) + 1u)];
-            let _e345 = (*n_4);
-            (*n_4) = (_e345 + (_e342.xyz * _e333));
+        let _e316 = k_7;
+        if (_e316 < 4i) {
+            let _e318 = k_7;
+            let _e320 = w_3[_e318];
+            let _e321 = k_7;
+            let _e324 = q_2.corner[_e321];
+            let _e328 = limits.v[(2u * _e324)];
+            let _e331 = (*P_5);
+            (*P_5) = (_e331 + (_e328.xyz * _e320));
+            let _e333 = k_7;
+            let _e335 = w_3[_e333];
+            let _e336 = k_7;
+            let _e339 = q_2.corner[_e336];
+            let _e344 = limits.v[((2u * _e339) + 1u)];
+            let _e347 = (*n_4);
+            (*n_4) = (_e347 + (_e344.xyz * _e335));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e347 = k_7;
-            k_7 = (_e347 + 1i);
+            let _e349 = k_7;
+            k_7 = (_e349 + 1i);
         }
     }
     return;
 }
 
-fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 5>>, count: ptr<function, u32>, patchCount_1: ptr<function, u32>, P_6: ptr<function, array<vec3<f32>, 5>>) {
+fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b(element: ptr<function, u32>, st_2: ptr<function, array<u32, 5>>, count: ptr<function, u32>, patchCount_1: ptr<function, u32>, P_6: ptr<function, array<vec3<f32>, 5>>, N_1: ptr<function, array<vec3<f32>, 5>>) {
     var q_3: i32;
     var pt_2: Patch;
     var k_8: i32;
-    var c_6: array<vec3<f32>, 16>;
+    var c_7: array<vec3<f32>, 16>;
     var q_4: u32;
     var s_6: f32;
     var t_6: f32;
@@ -1501,11 +1562,13 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
     var param_93: array<f32, 4>;
     var param_94: array<f32, 4>;
     var p: vec3<f32>;
+    var Du_2: vec3<f32>;
+    var Dv_2: vec3<f32>;
     var j_4: i32;
     var row_2: vec3<f32>;
+    var rowDu_2: vec3<f32>;
     var i_4: i32;
     var q_5: u32;
-    var n_5: vec3<f32>;
     var param_95: u32;
     var param_96: u32;
     var param_97: u32;
@@ -1514,171 +1577,198 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
 
     q_3 = 0i;
     loop {
-        let _e110 = q_3;
-        if (_e110 < 5i) {
-            let _e112 = q_3;
-            (*P_6)[_e112] = vec3<f32>(0f, 0f, 0f);
+        let _e115 = q_3;
+        if (_e115 < 5i) {
+            let _e117 = q_3;
+            (*P_6)[_e117] = vec3<f32>(0f, 0f, 0f);
+            let _e119 = q_3;
+            (*N_1)[_e119] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e114 = q_3;
-            q_3 = (_e114 + 1i);
+            let _e121 = q_3;
+            q_3 = (_e121 + 1i);
         }
     }
-    let _e116 = (*element);
-    let _e117 = (*patchCount_1);
-    if (_e116 < _e117) {
-        let _e119 = (*element);
-        let _e122 = patches.p[_e119];
-        pt_2.cv[0i] = _e122.cv[0];
-        pt_2.cv[1i] = _e122.cv[1];
-        pt_2.cv[2i] = _e122.cv[2];
-        pt_2.cv[3i] = _e122.cv[3];
-        pt_2.cv[4i] = _e122.cv[4];
-        pt_2.cv[5i] = _e122.cv[5];
-        pt_2.cv[6i] = _e122.cv[6];
-        pt_2.cv[7i] = _e122.cv[7];
-        pt_2.cv[8i] = _e122.cv[8];
-        pt_2.cv[9i] = _e122.cv[9];
-        pt_2.cv[10i] = _e122.cv[10];
-        pt_2.cv[11i] = _e122.cv[11];
-        pt_2.cv[12i] = _e122.cv[12];
-        pt_2.cv[13i] = _e122.cv[13];
-        pt_2.cv[14i] = _e122.cv[14];
-        pt_2.cv[15i] = _e122.cv[15];
-        pt_2.ptex = _e122.ptex;
-        pt_2.u0_ = _e122.u0_;
-        pt_2.v0_ = _e122.v0_;
-        pt_2.size = _e122.size;
-        pt_2.levelBoundary = _e122.levelBoundary;
-        pt_2.sharpness = _e122.sharpness;
-        pt_2.pad1_ = _e122.pad1_;
-        pt_2.pad2_ = _e122.pad2_;
+    let _e123 = (*element);
+    let _e124 = (*patchCount_1);
+    if (_e123 < _e124) {
+        let _e126 = (*element);
+        let _e129 = patches.p[_e126];
+        pt_2.cv[0i] = _e129.cv[0];
+        pt_2.cv[1i] = _e129.cv[1];
+        pt_2.cv[2i] = _e129.cv[2];
+        pt_2.cv[3i] = _e129.cv[3];
+        pt_2.cv[4i] = _e129.cv[4];
+        pt_2.cv[5i] = _e129.cv[5];
+        pt_2.cv[6i] = _e129.cv[6];
+        pt_2.cv[7i] = _e129.cv[7];
+        pt_2.cv[8i] = _e129.cv[8];
+        pt_2.cv[9i] = _e129.cv[9];
+        pt_2.cv[10i] = _e129.cv[10];
+        pt_2.cv[11i] = _e129.cv[11];
+        pt_2.cv[12i] = _e129.cv[12];
+        pt_2.cv[13i] = _e129.cv[13];
+        pt_2.cv[14i] = _e129.cv[14];
+        pt_2.cv[15i] = _e129.cv[15];
+        pt_2.ptex = _e129.ptex;
+        pt_2.u0_ = _e129.u0_;
+        pt_2.v0_ = _e129.v0_;
+        pt_2.size = _e129.size;
+        pt_2.levelBoundary = _e129.levelBoundary;
+        pt_2.sharpness = _e129.sharpness;
+        pt_2.pad1_ = _e129.pad1_;
+        pt_2.pad2_ = _e129.pad2_;
         k_8 = 0i;
         loop {
-            let _e173 = k_8;
-            if (_e173 < 16i) {
-                let _e175 = k_8;
-                let _e176 = k_8;
-                let _e179 = pt_2.cv[_e176];
-                let _e182 = vertices.p[_e179];
-                c_6[_e175] = _e182.xyz;
+            let _e180 = k_8;
+            if (_e180 < 16i) {
+                let _e182 = k_8;
+                let _e183 = k_8;
+                let _e186 = pt_2.cv[_e183];
+                let _e189 = vertices.p[_e186];
+                c_7[_e182] = _e189.xyz;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e185 = k_8;
-                k_8 = (_e185 + 1i);
+                let _e192 = k_8;
+                k_8 = (_e192 + 1i);
             }
         }
         q_4 = 0u;
         loop {
-            let _e187 = q_4;
-            let _e188 = (*count);
-            if (_e187 < _e188) {
-                let _e190 = q_4;
-                let _e192 = (*st_2)[_e190];
-                s_6 = (f32((_e192 & 65535u)) / 32768f);
-                let _e196 = q_4;
-                let _e198 = (*st_2)[_e196];
-                t_6 = (f32((_e198 >> bitcast<u32>(16i))) / 32768f);
-                let _e203 = pt_2;
-                param_88 = _e203;
-                let _e204 = s_6;
-                param_89 = _e204;
-                let _e205 = t_6;
-                param_90 = _e205;
+            let _e194 = q_4;
+            let _e195 = (*count);
+            if (_e194 < _e195) {
+                let _e197 = q_4;
+                let _e199 = (*st_2)[_e197];
+                s_6 = (f32((_e199 & 65535u)) / 32768f);
+                let _e203 = q_4;
+                let _e205 = (*st_2)[_e203];
+                t_6 = (f32((_e205 >> bitcast<u32>(16i))) / 32768f);
+                let _e210 = pt_2;
+                param_88 = _e210;
+                let _e211 = s_6;
+                param_89 = _e211;
+                let _e212 = t_6;
+                param_90 = _e212;
                 patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_88), (&param_89), (&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
-                let _e206 = param_91;
-                bu_3 = _e206;
-                let _e207 = param_92;
-                du_3 = _e207;
-                let _e208 = param_93;
-                bv_3 = _e208;
-                let _e209 = param_94;
-                dv_3 = _e209;
+                let _e213 = param_91;
+                bu_3 = _e213;
+                let _e214 = param_92;
+                du_3 = _e214;
+                let _e215 = param_93;
+                bv_3 = _e215;
+                let _e216 = param_94;
+                dv_3 = _e216;
                 p = vec3<f32>(0f, 0f, 0f);
+                Du_2 = vec3<f32>(0f, 0f, 0f);
+                Dv_2 = vec3<f32>(0f, 0f, 0f);
                 j_4 = 0i;
                 loop {
-                    let _e210 = j_4;
-                    if (_e210 < 4i) {
+                    let _e217 = j_4;
+                    if (_e217 < 4i) {
                         row_2 = vec3<f32>(0f, 0f, 0f);
+                        rowDu_2 = vec3<f32>(0f, 0f, 0f);
                         i_4 = 0i;
                         loop {
-                            let _e212 = i_4;
-                            if (_e212 < 4i) {
-                                let _e214 = i_4;
-                                let _e216 = bu_3[_e214];
-                                let _e217 = j_4;
-                                let _e219 = i_4;
-                                let _e222 = c_6[((4i * _e217) + _e219)];
-                                let _e224 = row_2;
-                                row_2 = (_e224 + (_e222 * _e216));
+                            let _e219 = i_4;
+                            if (_e219 < 4i) {
+                                let _e221 = i_4;
+                                let _e223 = bu_3[_e221];
+                                let _e224 = j_4;
+                                let _e226 = i_4;
+                                let _e229 = c_7[((4i * _e224) + _e226)];
+                                let _e231 = row_2;
+                                row_2 = (_e231 + (_e229 * _e223));
+                                let _e233 = i_4;
+                                let _e235 = du_3[_e233];
+                                let _e236 = j_4;
+                                let _e238 = i_4;
+                                let _e241 = c_7[((4i * _e236) + _e238)];
+                                let _e243 = rowDu_2;
+                                rowDu_2 = (_e243 + (_e241 * _e235));
                                 continue;
                             } else {
                                 break;
                             }
                             continuing {
-                                let _e226 = i_4;
-                                i_4 = (_e226 + 1i);
+                                let _e245 = i_4;
+                                i_4 = (_e245 + 1i);
                             }
                         }
-                        let _e228 = j_4;
-                        let _e230 = bv_3[_e228];
-                        let _e231 = row_2;
-                        let _e233 = p;
-                        p = (_e233 + (_e231 * _e230));
+                        let _e247 = j_4;
+                        let _e249 = bv_3[_e247];
+                        let _e250 = row_2;
+                        let _e252 = p;
+                        p = (_e252 + (_e250 * _e249));
+                        let _e254 = j_4;
+                        let _e256 = bv_3[_e254];
+                        let _e257 = rowDu_2;
+                        let _e259 = Du_2;
+                        Du_2 = (_e259 + (_e257 * _e256));
+                        let _e261 = j_4;
+                        let _e263 = dv_3[_e261];
+                        let _e264 = row_2;
+                        let _e266 = Dv_2;
+                        Dv_2 = (_e266 + (_e264 * _e263));
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e235 = j_4;
-                        j_4 = (_e235 + 1i);
+                        let _e268 = j_4;
+                        j_4 = (_e268 + 1i);
                     }
                 }
-                let _e237 = q_4;
-                let _e238 = p;
-                (*P_6)[_e237] = _e238;
+                let _e270 = q_4;
+                let _e271 = p;
+                (*P_6)[_e270] = _e271;
+                let _e273 = q_4;
+                let _e274 = Du_2;
+                let _e275 = Dv_2;
+                (*N_1)[_e273] = cross(_e274, _e275);
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e240 = q_4;
-                q_4 = (_e240 + bitcast<u32>(1i));
+                let _e278 = q_4;
+                q_4 = (_e278 + bitcast<u32>(1i));
             }
         }
     } else {
         q_5 = 0u;
         loop {
-            let _e243 = q_5;
-            let _e244 = (*count);
-            if (_e243 < _e244) {
-                let _e246 = (*element);
-                let _e247 = (*patchCount_1);
-                let _e249 = q_5;
-                let _e250 = q_5;
-                param_95 = (_e246 - _e247);
-                let _e252 = (*st_2)[_e249];
-                param_96 = _e252;
-                let _e253 = (*patchCount_1);
-                param_97 = _e253;
+            let _e281 = q_5;
+            let _e282 = (*count);
+            if (_e281 < _e282) {
+                let _e284 = (*element);
+                let _e285 = (*patchCount_1);
+                let _e287 = q_5;
+                let _e288 = q_5;
+                let _e289 = q_5;
+                param_95 = (_e284 - _e285);
+                let _e291 = (*st_2)[_e287];
+                param_96 = _e291;
+                let _e292 = (*patchCount_1);
+                param_97 = _e292;
                 irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_95), (&param_96), (&param_97), (&param_98), (&param_99));
-                let _e254 = param_98;
-                (*P_6)[_e250] = _e254;
-                let _e256 = param_99;
-                n_5 = _e256;
+                let _e293 = param_98;
+                (*P_6)[_e288] = _e293;
+                let _e295 = param_99;
+                (*N_1)[_e289] = _e295;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e257 = q_5;
-                q_5 = (_e257 + bitcast<u32>(1i));
+                let _e297 = q_5;
+                q_5 = (_e297 + bitcast<u32>(1i));
             }
         }
     }
@@ -1686,18 +1776,18 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
 }
 
 fn midST_u0028_u1_u003b_u1_u003b(a_1: ptr<function, u32>, b_4: ptr<function, u32>) -> u32 {
-    let _e78 = (*a_1);
-    let _e80 = (*b_4);
-    let _e84 = (*a_1);
-    let _e87 = (*b_4);
-    return ((((_e78 & 65535u) + (_e80 & 65535u)) / 2u) | ((((_e84 >> bitcast<u32>(16i)) + (_e87 >> bitcast<u32>(16i))) / 2u) << bitcast<u32>(16i)));
+    let _e80 = (*a_1);
+    let _e82 = (*b_4);
+    let _e86 = (*a_1);
+    let _e89 = (*b_4);
+    return ((((_e80 & 65535u) + (_e82 & 65535u)) / 2u) | ((((_e86 >> bitcast<u32>(16i)) + (_e89 >> bitcast<u32>(16i))) / 2u) << bitcast<u32>(16i)));
 }
 
 fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32 {
-    let _e78 = gl_GlobalInvocationID_1[1u];
-    let _e79 = (*rowInvocations);
-    let _e82 = gl_GlobalInvocationID_1[0u];
-    return ((_e78 * _e79) + _e82);
+    let _e80 = gl_GlobalInvocationID_1[1u];
+    let _e81 = (*rowInvocations);
+    let _e84 = gl_GlobalInvocationID_1[0u];
+    return ((_e80 * _e81) + _e84);
 }
 
 fn main_1() {
@@ -1722,407 +1812,467 @@ fn main_1() {
     var behind: u32;
     var allOut: u32;
     var P_7: array<vec3<f32>, 5>;
+    var N_2: array<vec3<f32>, 5>;
     var param_107: u32;
     var param_108: array<u32, 5>;
     var param_109: u32;
     var param_110: u32;
     var param_111: array<vec3<f32>, 5>;
+    var param_112: array<vec3<f32>, 5>;
     var k_9: u32;
-    var c_7: vec4<f32>;
+    var c_8: vec4<f32>;
     var o: u32;
     var px: array<vec2<f32>, 5>;
-    var local_12: vec2<f32>;
+    var local_13: vec2<f32>;
     var len: f32;
-    var local_13: f32;
+    var local_14: f32;
     var want: f32;
-    var param_112: array<vec3<f32>, 5>;
+    var smoothBoth: bool;
+    var k_10: i32;
+    var e: u32;
+    var local_15: u32;
+    var param_113: array<vec3<f32>, 5>;
+    var param_114: array<vec3<f32>, 5>;
+    var param_115: bool;
     var chord: vec2<f32>;
     var cl: f32;
     var off: vec2<f32>;
     var d_3: f32;
-    var local_14: f32;
-    var k_10: i32;
-    var e: u32;
-    var local_15: u32;
+    var local_16: f32;
+    var k_11: i32;
+    var e_1: u32;
+    var local_17: u32;
     var pt_3: Patch;
     var crease_2: u32;
     var alongS: bool;
     var creaseAlongS: bool;
     var most_1: f32;
-    var local_16: f32;
-    var phi_2184_: bool;
-    var phi_2185_: bool;
-    var phi_2438_: bool;
-    var phi_2543_: bool;
+    var local_18: f32;
+    var phi_2289_: bool;
+    var phi_2290_: bool;
+    var phi_2546_: bool;
+    var phi_2597_: bool;
+    var phi_2606_: bool;
+    var phi_2701_: bool;
 
-    let _e126 = pc.limnRowInvocations;
-    param_100 = _e126;
-    let _e127 = limnInvocationIndex_u0028_u1_u003b((&param_100));
-    i_5 = _e127;
-    let _e128 = i_5;
-    let _e130 = pc.limnCount;
-    if (_e128 >= _e130) {
+    let _e136 = pc.limnRowInvocations;
+    param_100 = _e136;
+    let _e137 = limnInvocationIndex_u0028_u1_u003b((&param_100));
+    i_5 = _e137;
+    let _e138 = i_5;
+    let _e140 = pc.limnCount;
+    if (_e138 >= _e140) {
         return;
     }
-    let _e132 = i_5;
-    let _e136 = pieces.v[(2u * _e132)];
-    p0_ = _e136;
-    let _e137 = i_5;
-    let _e142 = pieces.v[((2u * _e137) + 1u)];
-    p1_ = _e142;
-    let _e144 = p1_[0u];
-    let _e147 = cull.c[_e144];
-    let _e148 = (_e147 == 0u);
-    phi_2185_ = _e148;
-    if !(_e148) {
-        let _e151 = p1_[1u];
-        let _e152 = (_e151 != 4294967295u);
-        phi_2184_ = _e152;
-        if _e152 {
-            let _e154 = p1_[1u];
-            let _e157 = cull.c[_e154];
-            phi_2184_ = (_e157 == 0u);
+    let _e142 = i_5;
+    let _e146 = pieces.v[(2u * _e142)];
+    p0_ = _e146;
+    let _e147 = i_5;
+    let _e152 = pieces.v[((2u * _e147) + 1u)];
+    p1_ = _e152;
+    let _e154 = p1_[0u];
+    let _e157 = cull.c[_e154];
+    let _e158 = (_e157 == 0u);
+    phi_2290_ = _e158;
+    if !(_e158) {
+        let _e161 = p1_[1u];
+        let _e162 = (_e161 != 4294967295u);
+        phi_2289_ = _e162;
+        if _e162 {
+            let _e164 = p1_[1u];
+            let _e167 = cull.c[_e164];
+            phi_2289_ = (_e167 == 0u);
         }
-        let _e160 = phi_2184_;
-        phi_2185_ = _e160;
+        let _e170 = phi_2289_;
+        phi_2290_ = _e170;
     }
-    let _e162 = phi_2185_;
-    visible = _e162;
-    let _e164 = pc.tess;
-    let _e166 = p0_[3u];
-    cap = max(min(_e164, _e166), 1u);
+    let _e172 = phi_2290_;
+    visible = _e172;
+    let _e174 = pc.tess;
+    let _e176 = p0_[3u];
+    cap = max(min(_e174, _e176), 1u);
     r_2 = 1u;
     size = 1u;
     ends = vec4<f32>(300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f, 300000000000000000000000000000000000000f);
-    let _e169 = visible;
-    if _e169 {
-        let _e171 = p0_[1u];
-        param_101 = _e171;
-        let _e173 = p0_[2u];
-        param_102 = _e173;
-        let _e174 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
-        mid = _e174;
-        let _e176 = p0_[1u];
-        let _e177 = mid;
-        let _e179 = p0_[2u];
+    let _e179 = visible;
+    if _e179 {
         let _e181 = p0_[1u];
-        param_103 = _e181;
-        let _e182 = mid;
-        param_104 = _e182;
-        let _e183 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
-        let _e184 = mid;
-        param_105 = _e184;
-        let _e186 = p0_[2u];
-        param_106 = _e186;
-        let _e187 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
-        st_3 = array<u32, 5>(_e176, _e177, _e179, _e183, _e187);
-        let _e190 = pc.maxError;
-        count_1 = select(3u, 5u, (_e190 > 0f));
+        param_101 = _e181;
+        let _e183 = p0_[2u];
+        param_102 = _e183;
+        let _e184 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
+        mid = _e184;
+        let _e186 = p0_[1u];
+        let _e187 = mid;
+        let _e189 = p0_[2u];
+        let _e191 = p0_[1u];
+        param_103 = _e191;
+        let _e192 = mid;
+        param_104 = _e192;
+        let _e193 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
+        let _e194 = mid;
+        param_105 = _e194;
+        let _e196 = p0_[2u];
+        param_106 = _e196;
+        let _e197 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
+        st_3 = array<u32, 5>(_e186, _e187, _e189, _e193, _e197);
+        let _e200 = pc.maxError;
+        count_1 = select(3u, 5u, (_e200 > 0f));
         behind = 0u;
         allOut = 63u;
-        let _e194 = p0_[0u];
-        param_107 = _e194;
-        let _e195 = st_3;
-        param_108 = _e195;
-        let _e196 = count_1;
-        param_109 = _e196;
-        let _e198 = pc.patchCount;
-        param_110 = _e198;
-        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111));
-        let _e199 = param_111;
-        P_7 = _e199;
+        let _e204 = p0_[0u];
+        param_107 = _e204;
+        let _e205 = st_3;
+        param_108 = _e205;
+        let _e206 = count_1;
+        param_109 = _e206;
+        let _e208 = pc.patchCount;
+        param_110 = _e208;
+        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111), (&param_112));
+        let _e209 = param_111;
+        P_7 = _e209;
+        let _e210 = param_112;
+        N_2 = _e210;
         k_9 = 0u;
         loop {
-            let _e200 = k_9;
-            let _e201 = count_1;
-            if (_e200 < _e201) {
-                let _e204 = pc.viewProj;
-                let _e205 = k_9;
-                let _e207 = P_7[_e205];
-                c_7 = (_e204 * vec4<f32>(_e207.x, _e207.y, _e207.z, 1f));
+            let _e211 = k_9;
+            let _e212 = count_1;
+            if (_e211 < _e212) {
+                let _e215 = pc.viewProj;
+                let _e216 = k_9;
+                let _e218 = P_7[_e216];
+                c_8 = (_e215 * vec4<f32>(_e218.x, _e218.y, _e218.z, 1f));
                 o = 0u;
-                let _e214 = c_7[0u];
-                let _e216 = c_7[3u];
-                if (_e214 < -(_e216)) {
-                    let _e219 = o;
-                    o = (_e219 | 1u);
+                let _e225 = c_8[0u];
+                let _e227 = c_8[3u];
+                if (_e225 < -(_e227)) {
+                    let _e230 = o;
+                    o = (_e230 | 1u);
                 }
-                let _e222 = c_7[0u];
-                let _e224 = c_7[3u];
-                if (_e222 > _e224) {
-                    let _e226 = o;
-                    o = (_e226 | 2u);
+                let _e233 = c_8[0u];
+                let _e235 = c_8[3u];
+                if (_e233 > _e235) {
+                    let _e237 = o;
+                    o = (_e237 | 2u);
                 }
-                let _e229 = c_7[1u];
-                let _e231 = c_7[3u];
-                if (_e229 < -(_e231)) {
-                    let _e234 = o;
-                    o = (_e234 | 4u);
+                let _e240 = c_8[1u];
+                let _e242 = c_8[3u];
+                if (_e240 < -(_e242)) {
+                    let _e245 = o;
+                    o = (_e245 | 4u);
                 }
-                let _e237 = c_7[1u];
-                let _e239 = c_7[3u];
-                if (_e237 > _e239) {
-                    let _e241 = o;
-                    o = (_e241 | 8u);
+                let _e248 = c_8[1u];
+                let _e250 = c_8[3u];
+                if (_e248 > _e250) {
+                    let _e252 = o;
+                    o = (_e252 | 8u);
                 }
-                let _e244 = c_7[2u];
-                if (_e244 < 0f) {
-                    let _e246 = o;
-                    o = (_e246 | 16u);
+                let _e255 = c_8[2u];
+                if (_e255 < 0f) {
+                    let _e257 = o;
+                    o = (_e257 | 16u);
                 }
-                let _e249 = c_7[2u];
-                let _e251 = c_7[3u];
-                if (_e249 > _e251) {
-                    let _e253 = o;
-                    o = (_e253 | 32u);
+                let _e260 = c_8[2u];
+                let _e262 = c_8[3u];
+                if (_e260 > _e262) {
+                    let _e264 = o;
+                    o = (_e264 | 32u);
                 }
-                let _e255 = o;
-                let _e256 = allOut;
-                allOut = (_e256 & _e255);
-                let _e259 = c_7[3u];
-                if !((_e259 > 0.000001f)) {
-                    let _e262 = behind;
-                    behind = (_e262 + bitcast<u32>(1i));
+                let _e266 = o;
+                let _e267 = allOut;
+                allOut = (_e267 & _e266);
+                let _e270 = c_8[3u];
+                if !((_e270 > 0.000001f)) {
+                    let _e273 = behind;
+                    behind = (_e273 + bitcast<u32>(1i));
                 }
-                let _e265 = k_9;
-                let _e267 = c_7[3u];
-                if (_e267 > 0.000001f) {
-                    let _e269 = c_7;
-                    let _e272 = c_7[3u];
-                    let _e276 = pc.halfViewport;
-                    local_12 = ((_e269.xy / vec2(_e272)) * _e276);
+                let _e276 = k_9;
+                let _e278 = c_8[3u];
+                if (_e278 > 0.000001f) {
+                    let _e280 = c_8;
+                    let _e283 = c_8[3u];
+                    let _e287 = pc.halfViewport;
+                    local_13 = ((_e280.xy / vec2(_e283)) * _e287);
                 } else {
-                    local_12 = vec2<f32>(0f, 0f);
+                    local_13 = vec2<f32>(0f, 0f);
                 }
-                let _e278 = local_12;
-                px[_e265] = _e278;
+                let _e289 = local_13;
+                px[_e276] = _e289;
                 continue;
             } else {
                 break;
             }
             continuing {
-                let _e280 = k_9;
-                k_9 = (_e280 + bitcast<u32>(1i));
+                let _e291 = k_9;
+                k_9 = (_e291 + bitcast<u32>(1i));
             }
         }
-        let _e283 = count_1;
-        if (_e283 == 5u) {
-            let _e286 = px[0i];
-            let _e288 = px[3i];
-            let _e291 = px[3i];
-            let _e293 = px[1i];
-            let _e297 = px[1i];
-            let _e299 = px[4i];
-            let _e303 = px[4i];
-            let _e305 = px[2i];
-            local_13 = (((distance(_e286, _e288) + distance(_e291, _e293)) + distance(_e297, _e299)) + distance(_e303, _e305));
-        } else {
-            let _e309 = px[0i];
-            let _e311 = px[1i];
-            let _e314 = px[1i];
+        let _e294 = count_1;
+        if (_e294 == 5u) {
+            let _e297 = px[0i];
+            let _e299 = px[3i];
+            let _e302 = px[3i];
+            let _e304 = px[1i];
+            let _e308 = px[1i];
+            let _e310 = px[4i];
+            let _e314 = px[4i];
             let _e316 = px[2i];
-            local_13 = (distance(_e309, _e311) + distance(_e314, _e316));
+            local_14 = (((distance(_e297, _e299) + distance(_e302, _e304)) + distance(_e308, _e310)) + distance(_e314, _e316));
+        } else {
+            let _e320 = px[0i];
+            let _e322 = px[1i];
+            let _e325 = px[1i];
+            let _e327 = px[2i];
+            local_14 = (distance(_e320, _e322) + distance(_e325, _e327));
         }
-        let _e319 = local_13;
-        len = _e319;
-        let _e320 = behind;
-        if (_e320 == 0u) {
-            let _e323 = px[0i];
-            let _e325 = px[2i];
-            let _e332 = pc.halfViewport;
-            ends = (vec4<f32>(_e323.x, _e323.y, _e325.x, _e325.y) + _e332.xyxy);
+        let _e330 = local_14;
+        len = _e330;
+        let _e331 = behind;
+        if (_e331 == 0u) {
+            let _e334 = px[0i];
+            let _e336 = px[2i];
+            let _e343 = pc.halfViewport;
+            ends = (vec4<f32>(_e334.x, _e334.y, _e336.x, _e336.y) + _e343.xyxy);
         }
-        let _e335 = behind;
-        let _e336 = count_1;
-        if (_e335 == _e336) {
+        let _e346 = behind;
+        let _e347 = count_1;
+        if (_e346 == _e347) {
             r_2 = 1u;
             size = 1u;
         } else {
-            let _e338 = behind;
-            let _e339 = (_e338 != 0u);
-            phi_2438_ = _e339;
-            if !(_e339) {
-                let _e341 = len;
-                phi_2438_ = !((_e341 < 1000000000f));
+            let _e349 = behind;
+            let _e350 = (_e349 != 0u);
+            phi_2546_ = _e350;
+            if !(_e350) {
+                let _e352 = len;
+                phi_2546_ = !((_e352 < 1000000000f));
             }
-            let _e345 = phi_2438_;
-            if _e345 {
-                let _e346 = cap;
-                r_2 = _e346;
-                let _e347 = cap;
-                size = _e347;
+            let _e356 = phi_2546_;
+            if _e356 {
+                let _e357 = cap;
+                r_2 = _e357;
+                let _e358 = cap;
+                size = _e358;
             } else {
-                let _e348 = len;
-                let _e350 = pc.edgePixels;
-                want = ceil((_e348 / _e350));
-                let _e354 = pc.maxError;
-                if (_e354 > 0f) {
-                    let _e356 = want;
-                    let _e357 = P_7;
-                    param_112 = _e357;
-                    let _e358 = errorSegments_u0028_vf3_u005b_5_u005d_u003b((&param_112));
-                    want = max(_e356, _e358);
-                } else {
-                    let _e361 = px[2i];
-                    let _e363 = px[0i];
-                    chord = (_e361 - _e363);
-                    let _e365 = chord;
-                    cl = length(_e365);
-                    let _e368 = px[1i];
-                    let _e370 = px[0i];
-                    let _e372 = px[2i];
-                    off = (_e368 - ((_e370 + _e372) * 0.5f));
-                    let _e376 = cl;
-                    if (_e376 > 0.000001f) {
-                        let _e379 = chord[0u];
-                        let _e381 = off[1u];
-                        let _e384 = chord[1u];
-                        let _e386 = off[0u];
-                        let _e390 = cl;
-                        local_14 = (abs(((_e379 * _e381) - (_e384 * _e386))) / _e390);
-                    } else {
-                        let _e392 = off;
-                        local_14 = length(_e392);
-                    }
-                    let _e394 = local_14;
-                    d_3 = _e394;
-                    let _e395 = want;
-                    let _e396 = d_3;
-                    let _e398 = pc.edgePixels;
-                    want = max(_e395, ceil(sqrt((_e396 / (0.025f * _e398)))));
-                }
-                k_10 = 0i;
-                loop {
-                    let _e404 = k_10;
-                    if (_e404 < 2i) {
-                        let _e406 = k_10;
-                        if (_e406 == 0i) {
-                            let _e409 = p1_[0u];
-                            local_15 = _e409;
+                let _e359 = len;
+                let _e361 = pc.edgePixels;
+                want = ceil((_e359 / _e361));
+                let _e365 = pc.maxError;
+                if (_e365 > 0f) {
+                    smoothBoth = true;
+                    k_10 = 0i;
+                    loop {
+                        let _e367 = k_10;
+                        if (_e367 < 2i) {
+                            let _e369 = k_10;
+                            if (_e369 == 0i) {
+                                let _e372 = p1_[0u];
+                                local_15 = _e372;
+                            } else {
+                                let _e374 = p1_[1u];
+                                local_15 = _e374;
+                            }
+                            let _e375 = local_15;
+                            e = _e375;
+                            let _e376 = e;
+                            if (_e376 == 4294967295u) {
+                                continue;
+                            }
+                            let _e378 = smoothBoth;
+                            phi_2597_ = _e378;
+                            if _e378 {
+                                let _e379 = e;
+                                let _e381 = pc.patchCount;
+                                phi_2597_ = (_e379 < _e381);
+                            }
+                            let _e384 = phi_2597_;
+                            phi_2606_ = _e384;
+                            if _e384 {
+                                let _e385 = e;
+                                let _e389 = patches.p[_e385].levelBoundary;
+                                phi_2606_ = (((_e389 >> bitcast<u32>(16i)) & 15u) == 0u);
+                            }
+                            let _e395 = phi_2606_;
+                            smoothBoth = _e395;
+                            continue;
                         } else {
-                            let _e411 = p1_[1u];
-                            local_15 = _e411;
+                            break;
                         }
-                        let _e412 = local_15;
-                        e = _e412;
-                        let _e413 = e;
-                        let _e414 = (_e413 == 4294967295u);
-                        phi_2543_ = _e414;
-                        if !(_e414) {
-                            let _e416 = e;
-                            let _e418 = pc.patchCount;
-                            phi_2543_ = (_e416 >= _e418);
+                        continuing {
+                            let _e396 = k_10;
+                            k_10 = (_e396 + 1i);
                         }
-                        let _e421 = phi_2543_;
-                        if _e421 {
+                    }
+                    let _e398 = want;
+                    let _e399 = P_7;
+                    param_113 = _e399;
+                    let _e400 = N_2;
+                    param_114 = _e400;
+                    let _e401 = smoothBoth;
+                    param_115 = _e401;
+                    let _e402 = errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b((&param_113), (&param_114), (&param_115));
+                    want = max(_e398, _e402);
+                } else {
+                    let _e405 = px[2i];
+                    let _e407 = px[0i];
+                    chord = (_e405 - _e407);
+                    let _e409 = chord;
+                    cl = length(_e409);
+                    let _e412 = px[1i];
+                    let _e414 = px[0i];
+                    let _e416 = px[2i];
+                    off = (_e412 - ((_e414 + _e416) * 0.5f));
+                    let _e420 = cl;
+                    if (_e420 > 0.000001f) {
+                        let _e423 = chord[0u];
+                        let _e425 = off[1u];
+                        let _e428 = chord[1u];
+                        let _e430 = off[0u];
+                        let _e434 = cl;
+                        local_16 = (abs(((_e423 * _e425) - (_e428 * _e430))) / _e434);
+                    } else {
+                        let _e436 = off;
+                        local_16 = length(_e436);
+                    }
+                    let _e438 = local_16;
+                    d_3 = _e438;
+                    let _e439 = want;
+                    let _e440 = d_3;
+                    let _e442 = pc.edgePixels;
+                    want = max(_e439, ceil(sqrt((_e440 / (0.025f * _e442)))));
+                }
+                k_11 = 0i;
+                loop {
+                    let _e448 = k_11;
+                    if (_e448 < 2i) {
+                        let _e450 = k_11;
+                        if (_e450 == 0i) {
+                            let _e453 = p1_[0u];
+                            local_17 = _e453;
+                        } else {
+                            let _e455 = p1_[1u];
+                            local_17 = _e455;
+                        }
+                        let _e456 = local_17;
+                        e_1 = _e456;
+                        let _e457 = e_1;
+                        let _e458 = (_e457 == 4294967295u);
+                        phi_2701_ = _e458;
+                        if !(_e458) {
+                            let _e460 = e_1;
+                            let _e462 = pc.patchCount;
+                            phi_2701_ = (_e460 >= _e462);
+                        }
+                        let _e465 = phi_2701_;
+                        if _e465 {
                             continue;
                         }
-                        let _e422 = e;
-                        let _e425 = patches.p[_e422];
-                        pt_3.cv[0i] = _e425.cv[0];
-                        pt_3.cv[1i] = _e425.cv[1];
-                        pt_3.cv[2i] = _e425.cv[2];
-                        pt_3.cv[3i] = _e425.cv[3];
-                        pt_3.cv[4i] = _e425.cv[4];
-                        pt_3.cv[5i] = _e425.cv[5];
-                        pt_3.cv[6i] = _e425.cv[6];
-                        pt_3.cv[7i] = _e425.cv[7];
-                        pt_3.cv[8i] = _e425.cv[8];
-                        pt_3.cv[9i] = _e425.cv[9];
-                        pt_3.cv[10i] = _e425.cv[10];
-                        pt_3.cv[11i] = _e425.cv[11];
-                        pt_3.cv[12i] = _e425.cv[12];
-                        pt_3.cv[13i] = _e425.cv[13];
-                        pt_3.cv[14i] = _e425.cv[14];
-                        pt_3.cv[15i] = _e425.cv[15];
-                        pt_3.ptex = _e425.ptex;
-                        pt_3.u0_ = _e425.u0_;
-                        pt_3.v0_ = _e425.v0_;
-                        pt_3.size = _e425.size;
-                        pt_3.levelBoundary = _e425.levelBoundary;
-                        pt_3.sharpness = _e425.sharpness;
-                        pt_3.pad1_ = _e425.pad1_;
-                        pt_3.pad2_ = _e425.pad2_;
-                        let _e477 = pt_3.levelBoundary;
-                        crease_2 = ((_e477 >> bitcast<u32>(16i)) & 15u);
-                        let _e481 = crease_2;
-                        if (_e481 == 0u) {
-                            let _e483 = k_10;
-                            if (_e483 == 0i) {
+                        let _e466 = e_1;
+                        let _e469 = patches.p[_e466];
+                        pt_3.cv[0i] = _e469.cv[0];
+                        pt_3.cv[1i] = _e469.cv[1];
+                        pt_3.cv[2i] = _e469.cv[2];
+                        pt_3.cv[3i] = _e469.cv[3];
+                        pt_3.cv[4i] = _e469.cv[4];
+                        pt_3.cv[5i] = _e469.cv[5];
+                        pt_3.cv[6i] = _e469.cv[6];
+                        pt_3.cv[7i] = _e469.cv[7];
+                        pt_3.cv[8i] = _e469.cv[8];
+                        pt_3.cv[9i] = _e469.cv[9];
+                        pt_3.cv[10i] = _e469.cv[10];
+                        pt_3.cv[11i] = _e469.cv[11];
+                        pt_3.cv[12i] = _e469.cv[12];
+                        pt_3.cv[13i] = _e469.cv[13];
+                        pt_3.cv[14i] = _e469.cv[14];
+                        pt_3.cv[15i] = _e469.cv[15];
+                        pt_3.ptex = _e469.ptex;
+                        pt_3.u0_ = _e469.u0_;
+                        pt_3.v0_ = _e469.v0_;
+                        pt_3.size = _e469.size;
+                        pt_3.levelBoundary = _e469.levelBoundary;
+                        pt_3.sharpness = _e469.sharpness;
+                        pt_3.pad1_ = _e469.pad1_;
+                        pt_3.pad2_ = _e469.pad2_;
+                        let _e521 = pt_3.levelBoundary;
+                        crease_2 = ((_e521 >> bitcast<u32>(16i)) & 15u);
+                        let _e525 = crease_2;
+                        if (_e525 == 0u) {
+                            let _e527 = k_11;
+                            if (_e527 == 0i) {
                                 continue;
                             }
                             break;
                         }
-                        let _e485 = k_10;
-                        if (_e485 == 0i) {
-                            let _e488 = p0_[1u];
-                            let _e491 = p0_[2u];
-                            alongS = ((_e488 & 65535u) != (_e491 & 65535u));
-                            let _e494 = crease_2;
-                            creaseAlongS = ((_e494 & 5u) != 0u);
-                            let _e497 = alongS;
-                            let _e498 = creaseAlongS;
-                            if (_e497 == _e498) {
+                        let _e529 = k_11;
+                        if (_e529 == 0i) {
+                            let _e532 = p0_[1u];
+                            let _e535 = p0_[2u];
+                            alongS = ((_e532 & 65535u) != (_e535 & 65535u));
+                            let _e538 = crease_2;
+                            creaseAlongS = ((_e538 & 5u) != 0u);
+                            let _e541 = alongS;
+                            let _e542 = creaseAlongS;
+                            if (_e541 == _e542) {
                                 break;
                             }
                         }
-                        let _e501 = pt_3.sharpness;
-                        most_1 = exp2(ceil(_e501));
-                        let _e504 = k_10;
-                        if (_e504 == 0i) {
-                            let _e506 = want;
-                            let _e508 = pc.maxError;
-                            if (_e508 > 0f) {
-                                let _e510 = want;
-                                local_16 = (2f * _e510);
+                        let _e545 = pt_3.sharpness;
+                        most_1 = exp2(ceil(_e545));
+                        let _e548 = k_11;
+                        if (_e548 == 0i) {
+                            let _e550 = want;
+                            let _e552 = pc.maxError;
+                            if (_e552 > 0f) {
+                                let _e554 = want;
+                                local_18 = (2f * _e554);
                             } else {
-                                let _e512 = len;
-                                let _e515 = pc.edgePixels;
-                                local_16 = ceil(((2f * _e512) / _e515));
+                                let _e556 = len;
+                                let _e559 = pc.edgePixels;
+                                local_18 = ceil(((2f * _e556) / _e559));
                             }
-                            let _e518 = local_16;
-                            let _e519 = most_1;
-                            let _e520 = len;
-                            want = max(_e506, max(_e518, min(_e519, ceil(sqrt((_e520 / 0.25f))))));
+                            let _e562 = local_18;
+                            let _e563 = most_1;
+                            let _e564 = len;
+                            want = max(_e550, max(_e562, min(_e563, ceil(sqrt((_e564 / 0.25f))))));
                         } else {
-                            let _e527 = want;
-                            let _e528 = most_1;
-                            let _e529 = len;
-                            want = max(_e527, min(_e528, ceil((_e529 / 1f))));
+                            let _e571 = want;
+                            let _e572 = most_1;
+                            let _e573 = len;
+                            want = max(_e571, min(_e572, ceil((_e573 / 1f))));
                         }
                         break;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e534 = k_10;
-                        k_10 = (_e534 + 1i);
+                        let _e578 = k_11;
+                        k_11 = (_e578 + 1i);
                     }
                 }
-                let _e537 = pc.texels;
-                if (_e537 > 0f) {
-                    let _e539 = want;
-                    let _e541 = p1_[2u];
-                    let _e544 = pc.texels;
-                    let _e547 = len;
-                    want = max(_e539, min(ceil((bitcast<f32>(_e541) * _e544)), ceil((0.5f * _e547))));
+                let _e581 = pc.texels;
+                if (_e581 > 0f) {
+                    let _e583 = want;
+                    let _e585 = p1_[2u];
+                    let _e588 = pc.texels;
+                    let _e591 = len;
+                    want = max(_e583, min(ceil((bitcast<f32>(_e585) * _e588)), ceil((0.5f * _e591))));
                 }
-                let _e552 = want;
-                let _e553 = cap;
-                size = u32(clamp(_e552, 1f, f32(_e553)));
-                let _e557 = allOut;
-                let _e559 = size;
-                r_2 = select(_e559, 1u, (_e557 != 0u));
+                let _e596 = want;
+                let _e597 = cap;
+                size = u32(clamp(_e596, 1f, f32(_e597)));
+                let _e601 = allOut;
+                let _e603 = size;
+                r_2 = select(_e603, 1u, (_e601 != 0u));
             }
         }
     }
-    let _e561 = i_5;
-    let _e562 = r_2;
-    let _e563 = size;
-    rates.r[_e561] = (_e562 | (_e563 << bitcast<u32>(16i)));
-    let _e569 = i_5;
-    let _e570 = ends;
-    pieceEnds.v[_e569] = _e570;
+    let _e605 = i_5;
+    let _e606 = r_2;
+    let _e607 = size;
+    rates.r[_e605] = (_e606 | (_e607 << bitcast<u32>(16i)));
+    let _e613 = i_5;
+    let _e614 = ends;
+    pieceEnds.v[_e613] = _e614;
     return;
 }
 

@@ -1531,37 +1531,40 @@ fn main_1() {
     var s_7: SurfaceSample;
     var param_98: u32;
     var param_99: u32;
+    var extra: vec2<u32>;
 
-    let _e75 = gl_VertexIndex_1;
-    vi_1 = bitcast<u32>(_e75);
+    let _e76 = gl_VertexIndex_1;
+    vi_1 = bitcast<u32>(_e76);
     level = 0u;
-    let _e78 = pc.flags;
-    if ((_e78 & 1u) != 0u) {
-        let _e81 = vi_1;
-        let _e85 = triangleLevels.l[(_e81 / 3u)];
-        level = _e85;
-        let _e86 = vi_1;
-        let _e89 = triangles.i[_e86];
-        vi_1 = _e89;
+    let _e79 = pc.flags;
+    if ((_e79 & 1u) != 0u) {
+        let _e82 = vi_1;
+        let _e86 = triangleLevels.l[(_e82 / 3u)];
+        level = _e86;
+        let _e87 = vi_1;
+        let _e90 = triangles.i[_e87];
+        vi_1 = _e90;
     }
-    let _e90 = vi_1;
-    param_98 = _e90;
-    let _e92 = pc.patchCount;
-    param_99 = _e92;
-    let _e93 = evaluateTessVertex_u0028_u1_u003b_u1_u003b((&param_98), (&param_99));
-    s_7 = _e93;
-    let _e95 = s_7.position;
-    outWorld = _e95;
-    let _e97 = s_7.normal;
-    outNormal = _e97;
-    let _e98 = vi_1;
-    let _e101 = tessVertices.v[_e98];
-    outUV = bitcast<vec2<f32>>(_e101.zw);
-    let _e104 = level;
-    outLevel = _e104;
-    let _e106 = pc.viewProj;
-    let _e108 = s_7.position;
-    unnamed.gl_Position = (_e106 * vec4<f32>(_e108.x, _e108.y, _e108.z, 1f));
+    let _e91 = vi_1;
+    param_98 = _e91;
+    let _e93 = pc.patchCount;
+    param_99 = _e93;
+    let _e94 = evaluateTessVertex_u0028_u1_u003b_u1_u003b((&param_98), (&param_99));
+    s_7 = _e94;
+    let _e96 = s_7.position;
+    outWorld = _e96;
+    let _e98 = s_7.normal;
+    outNormal = _e98;
+    let _e99 = vi_1;
+    let _e102 = tessVertices.v[_e99];
+    extra = _e102.zw;
+    let _e104 = extra;
+    outUV = bitcast<vec2<f32>>(_e104);
+    let _e106 = level;
+    outLevel = _e106;
+    let _e108 = pc.viewProj;
+    let _e110 = s_7.position;
+    unnamed.gl_Position = (_e108 * vec4<f32>(_e110.x, _e110.y, _e110.z, 1f));
     return;
 }
 

@@ -181,12 +181,14 @@ export function adaptivePushes(data, tables, options, view) {
   const vp = view.viewProj.map(f32);
   const cull = [...vp, f32(view.eye[0]), f32(view.eye[1]), f32(view.eye[2]), f32(view.facing), tables.patchCount,
     ((options.cull ? 1 : 0) | (samples << 8)) >>> 0, f32(view.width), f32(view.height), packed[0], packed[1]];
-  const rates = [...vp, f32(0.5 * view.width), f32(0.5 * view.height), f32(options.edgePixels), options.tess, tables.patchCount, f32(options.texelsPerUV ?? 0), f32(options.maxError ?? 0)];
+  const rates = [...vp, f32(0.5 * view.width), f32(0.5 * view.height), f32(options.edgePixels), options.tess, tables.patchCount, f32(options.texelsPerUV ?? 0), f32(options.maxError ?? 0),
+    f32(options.interiorError ?? 0)];
   // Smooth UVs: the emit pass's quadtree walk per vertex (adaptive_tess.cpp kFvarLoopsPerVertex).
   const counts = [options.tess, data.smooth ? 12 : 0, data.shared ? 1 : 0, samples, packed[0], packed[1], options.evaluated ? 0 : 1];
   const scan = [data.elementCount, data.capV, data.capT, ROW_GROUPS, EVAL_GROUP_SIZE, data.shared];
   // fvarCell 2^-21: 1/32 of the finest cell at depth 16, above float's step at 1.
-  const emit = [data.pointBase, data.capT, data.smooth ? 1 : 0, data.smooth ? f32(2 ** -21) : 0, data.domainBase, data.nodeBase, data.recordBase, data.shared ? 1 : 0, data.capV];
+  const emit = [data.pointBase, data.capT, data.smooth ? 1 : 0, data.smooth ? f32(2 ** -21) : 0, data.domainBase, data.nodeBase, data.recordBase, data.shared ? 1 : 0, data.capV,
+    0]; // per-pixel normals: limn-render's --pixel-normals only (docs/adaptive.md)
   return [
     ['adaptive_cull.comp', data.elementCount, cull],
     ['adaptive_rates.comp', data.pieceCount, rates],

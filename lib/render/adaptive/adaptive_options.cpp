@@ -25,6 +25,12 @@ AdaptiveOptions adaptiveOptions(const RenderSettings& settings, const Subdivisio
     }
     adaptive.sharePoints = settings.sharePoints && settings.shade != Shade::Uv && settings.shade != Shade::Texture &&
                            !settings.evaluateVertices && settings.wire == Wire::None && !settings.displacementMap;
+    // Per-pixel normals: the lit shading from the vertex stage's draw only (the evaluated
+    // pipeline binds the evaluated vertices instead of the surface), each element's own vertices.
+    adaptive.pixelNormals = settings.pixelNormals && settings.shade == Shade::Lit && !settings.evalInCompute &&
+                            !settings.evaluateVertices && settings.wire == Wire::None && !settings.displacementMap;
+    if (adaptive.pixelNormals) adaptive.sharePoints = false;
+    adaptive.interiorError = static_cast<float>(settings.interiorError);
     if (settings.displacementMap) // at least a segment per texel, up to one per 2 pixels
         adaptive.texelsPerUV = float(std::max(settings.displacementMap->width, settings.displacementMap->height));
     // Per-frame buffers: every element at its smallest (whole-surface --mesh-out), plus

@@ -30,6 +30,7 @@ struct RatePush { // adaptive_rates.comp
     uint32_t tess, patchCount;
     float texels;
     float maxError;
+    float interiorError;
 };
 static_assert(sizeof(RatePush) + 16 <= 128); // after LIMN_DISPATCH_HEADER, within WebGPU's immediates
 struct CountPush { // adaptive_counts.comp
@@ -49,7 +50,7 @@ struct ScanPush { // adaptive_scan.comp
 struct EmitPush { // adaptive_emit.comp
     uint32_t pointBase, triangleCapacity, smoothUV;
     float fvarCell;
-    uint32_t domainBase, nodeBase, recordBase, sharePoints, vertexCapacity;
+    uint32_t domainBase, nodeBase, recordBase, sharePoints, vertexCapacity, pixelNormals;
 };
 
 constexpr uint32_t kTotalsWords = 24;
@@ -259,6 +260,7 @@ void AdaptiveTess::recordPasses(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     rp.patchCount = patchCount_;
     rp.texels = options_.texelsPerUV;
     rp.maxError = options_.maxError;
+    rp.interiorError = options_.interiorError;
     timed.begin(cmd, "adaptive rates", true);
     cmd.dispatch(*passes_->rates, rateBind_, pieceCount_, rp);
     cmd.endTimed();
@@ -279,7 +281,8 @@ void AdaptiveTess::recordPasses(gpu::CommandBuffer& cmd, TimedPasses& timed) {
     timed.begin(cmd, "adaptive emit", true);
     cmd.dispatch(*passes_->emit, emitBind_, elementCount_,
                  EmitPush{pointBase_, capT_, options_.fvarNodes.empty() ? 0u : 1u, options_.fvarCell, domainBase_,
-                          nodeBase_, recordBase_, sharedPoints_ ? 1u : 0u, capV_});
+                          nodeBase_, recordBase_, sharedPoints_ ? 1u : 0u, capV_,
+                          options_.pixelNormals ? 1u : 0u});
     cmd.endTimed();
     cmd.barrier(write, read | gpu::Access::VertexRead | gpu::Access::IndexRead | gpu::Access::IndirectRead);
 }

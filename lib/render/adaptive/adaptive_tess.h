@@ -105,6 +105,14 @@ struct AdaptiveOptions {
     // nothing reads the whole surface or each element's own vertices (no --mesh-out, --wire,
     // displacement). With `evaluated`, the compute pass then evaluates each point once.
     bool sharePoints = false;
+    // Per-pixel normals: each element writes its own vertices (no shared points) and each
+    // carries, in place of its UV, the element and its own (s, t) (adaptive_emit.comp), which
+    // the lit fragment stage evaluates the limit normal at (surface_lit_pixel.frag).
+    bool pixelNormals = false;
+    // The error allowed, in pixels, for a piece whose every sample faces the eye (normal within
+    // 70 degrees of the view ray, adaptive_rates.comp): there the chords' error moves no outline,
+    // only where the shading lands. 0: maxError everywhere.
+    float interiorError = 0;
     // Built ahead (see AdaptivePipelines); null: AdaptiveTess builds them itself.
     std::shared_ptr<AdaptivePipelines> pipelines;
 };

@@ -201,9 +201,10 @@ SurfaceSample evaluateElement(uint element, uint st, uint patchCount) {
 // The positions of one element at the first `count` of five parameters (st as in
 // evaluateElement), a patch's control points read once (adaptive_rates.comp samples each edge
 // piece three or five times: on lavapipe the repeated reads were most of that pass). The same
-// sums, in the same order, as evaluateElement's positions.
-void elementPositions5(uint element, uint st[5], uint count, uint patchCount, out vec3 P[5]) {
-    for (int q = 0; q < 5; ++q) P[q] = vec3(0.0);
+// sums, in the same order, as evaluateElement's positions. N: the (unnormalized) normals there,
+// for a test of which way the surface faces (a patch's from absolute coordinates).
+void elementPositions5(uint element, uint st[5], uint count, uint patchCount, out vec3 P[5], out vec3 N[5]) {
+    for (int q = 0; q < 5; ++q) P[q] = vec3(0.0), N[q] = vec3(0.0);
     if (element < patchCount) {
         Patch pt = patches.p[element];
         vec3 c[16];
@@ -212,19 +213,19 @@ void elementPositions5(uint element, uint st[5], uint count, uint patchCount, ou
             float s = float(st[q] & 0xFFFFu) / 32768.0, t = float(st[q] >> 16) / 32768.0;
             float bu[4], du[4], bv[4], dv[4];
             patchBasis(pt, s, t, bu, du, bv, dv);
-            vec3 p = vec3(0.0);
+            vec3 p = vec3(0.0), Du = vec3(0.0), Dv = vec3(0.0);
             for (int j = 0; j < 4; ++j) {
-                vec3 row = vec3(0.0);
-                for (int i = 0; i < 4; ++i) row += bu[i] * c[4 * j + i];
+                vec3 row = vec3(0.0), rowDu = vec3(0.0);
+                for (int i = 0; i < 4; ++i) row += bu[i] * c[4 * j + i], rowDu += du[i] * c[4 * j + i];
                 p += bv[j] * row;
+                Du += bv[j] * rowDu;
+                Dv += dv[j] * row;
             }
             P[q] = p;
+            N[q] = cross(Du, Dv);
         }
     } else {
-        for (uint q = 0u; q < count; ++q) {
-            vec3 n;
-            irregularPoint(element - patchCount, st[q], patchCount, P[q], n);
-        }
+        for (uint q = 0u; q < count; ++q) irregularPoint(element - patchCount, st[q], patchCount, P[q], N[q]);
     }
 }
 

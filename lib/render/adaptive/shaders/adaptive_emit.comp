@@ -49,6 +49,12 @@ layout(push_constant) uniform Push {
     // nothing but the points and piece points they own.
     uint sharePoints;
     uint vertexCapacity;
+    // Per-pixel normals (AdaptiveOptions::pixelNormals, never with sharePoints): each vertex
+    // carries, in place of its UV, the emitting element and its own (s, t) there (1/32768,
+    // s | t << 16), so that the fragment stage evaluates the element's normal at the
+    // interpolated (s, t) of the triangle's own element (a side point is named by the piece
+    // owner's element, which the neighbour's triangles share).
+    uint pixelNormals;
 } pc;
 
 uint fvarNode(uint i) { return pieces.v[pc.nodeBase + i / 4u][i % 4u]; }
@@ -79,8 +85,17 @@ vec2 sideParam(uint k, float x) {
     return vec2(0.0, 1.0 - p);
 }
 
-void vertex(uint local, uint element, uint st, vec2 uv) {
-    tessVertices.v[vBase + local] = uvec4(element, st, floatBitsToUint(uv.x), floatBitsToUint(uv.y));
+// A vertex of this element: the point (element, st) drawn, at this element's own (s, t) = own
+// (its UV there, or with per-pixel normals the element and own (s, t) themselves).
+void vertex(uint local, uint element, uint st, vec2 own) {
+    uvec2 extra;
+    if (pc.pixelNormals != 0u) {
+        uvec2 q = uvec2(clamp(own, 0.0, 1.0) * 32768.0 + 0.5);
+        extra = uvec2(elIndex, q.x | (q.y << 16));
+    } else {
+        extra = floatBitsToUint(uvAt(own.x, own.y));
+    }
+    tessVertices.v[vBase + local] = uvec4(element, st, extra);
 }
 
 // A triangle of vertex slots (absolute), and of this element's own vertices (local).
@@ -246,7 +261,7 @@ void emitElement(uint e) {
             uvec4 point = pieces.v[pc.pointBase + sp.y];
             float from = float(sp.w & 0xFFFFu), to = float(sp.w >> 16);
             vec2 st = sideParam(k, from);
-            vertex(B++, point.x, point.y, uvAt(st.x, st.y));
+            vertex(B++, point.x, point.y, st);
             for (uint i = 1u; i < r; ++i) {
                 uint j = (sp.z & 1u) != 0u ? r - i : i;
                 float along;
@@ -257,7 +272,7 @@ void emitElement(uint e) {
                 if (along < 0.0 && pc.smoothUV != 0u) along = pieceFraction(piece, ownerST);
                 float f = along < 0.0 ? float(i) / float(r) : ((sp.z & 1u) != 0u ? 1.0 - along : along);
                 st = sideParam(k, from + (to - from) * f);
-                vertex(B++, piece.x, ownerST, uvAt(st.x, st.y));
+                vertex(B++, piece.x, ownerST, st);
             }
         }
         sideTotal[k] = B - sideStart[k];
@@ -285,7 +300,7 @@ void emitElement(uint e) {
             vec2 f = vec2(gradeS ? float(s) / 32768.0 : float(i) / float(mu),
                           gradeT ? float(t) / 32768.0 : float(j) / float(mv));
             if (pc.smoothUV != 0u) f = vec2(float(s), float(t)) / 32768.0; // the point drawn
-            vertex(grid + (j - 1u) * (mu - 1u) + (i - 1u), e, s | (t << 16), uvAt(f.x, f.y));
+            vertex(grid + (j - 1u) * (mu - 1u) + (i - 1u), e, s | (t << 16), f);
         }
     for (uint j = 1u; j + 1u < mv; ++j)
         for (uint i = 1u; i + 1u < mu; ++i) {
