@@ -11,7 +11,7 @@ namespace {
 
 // The blending surface's fragment stage: each covered sample shaded (and trimmed) on its own with
 // --sample-shading (blend_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN), and for the
-// lit shading the variant without the other modes' code (why in blend_fragment.glsl).
+// lit shading the variant without the other modes' code (why in draw_common.glsl).
 std::span<const uint32_t> blendFragment(const gpu::TargetFormat& target, Shade shade) {
     using Code = std::span<const uint32_t>;
     if (shade == Shade::Lit)

@@ -30,7 +30,7 @@ struct ControlMeshPass::Gpu {
           edges(ctx, {"edge indices", bytes(d.edges), gpu::kIndex}),
           texture(gpu::uploadBufferNow(ctx, "colour texture", textureWords(colour))),
           faceNormalsPass(ctx, {"face normals", face_normals_comp_spv, 4, sizeof(VertexPush)}),
-          // Lit shading: the fragment stage without the other modes' code (why in mesh_fragment.glsl).
+          // Lit shading: the fragment stage without the other modes' code (why in draw_common.glsl).
           meshPipeline(ctx, {"mesh", mesh_vert_spv,
                              shade == Shade::Lit ? std::span<const uint32_t>(mesh_lit_frag_spv)
                                                  : std::span<const uint32_t>(mesh_frag_spv),

@@ -17,7 +17,7 @@ namespace {
 
 // The surface's fragment stage: each covered sample shaded on its own with --sample-shading
 // (surface_per_sample.frag; why in draw_common.glsl's LIMN_SMOOTH_IN), and for the lit and
-// texture shadings the variants without the other modes' code (why in surface_fragment.glsl).
+// texture shadings the variants without the other modes' code (why in draw_common.glsl).
 std::span<const uint32_t> surfaceFragment(const gpu::TargetFormat& target, Shade shade, bool pixelNormals) {
     using Code = std::span<const uint32_t>;
     if (shade == Shade::Lit && pixelNormals)

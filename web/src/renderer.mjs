@@ -70,7 +70,7 @@ function packSrgb8(c) {
  */
 /**
  * The surface's fragment stage for a shading: lit and texture have their own, without the other
- * modes' code (lavapipe runs both sides of every branch; why in surface_fragment.glsl), the rest
+ * modes' code (lavapipe runs both sides of every branch; why in draw_common.glsl), the rest
  * share the general one. A renderer draws the shadings of the stage it was made with: a caller
  * that changes `shade` on a renderer (the viewer) makes a new one when this changes.
  */
@@ -228,7 +228,7 @@ export class Renderer {
     const vertexStage = s.displace ? 'surface_fetch' : 'surface';
     const vs = await shaders.module(perSample ? `${vertexStage}_per_sample.vert` : `${vertexStage}.vert`);
     // Lit and texture shading: the fragment stage without the other modes' code, as limn-render
-    // picks it (subdivision_pass.cpp surfaceFragment; why in surface_fragment.glsl).
+    // picks it (subdivision_pass.cpp surfaceFragment; why in draw_common.glsl).
     const fragmentStage = surfaceFragmentStage(s.shade);
     this.fragmentStage = fragmentStage;
     const fs = await shaders.module(perSample ? `${fragmentStage}_per_sample.frag` : `${fragmentStage}.frag`);

@@ -18,15 +18,7 @@ layout(location = 3) LIMN_SMOOTH_IN vec2 inFaceUV;
 layout(location = 4) flat in uint inFace;
 layout(location = 0) out vec4 outColor;
 
-// The shading mode: the push constant's, or fixed when compiling with LIMN_SHADE (blend_lit*.frag,
-// which the host picks for --shade lit): the other modes' code is then dead and dropped, which a
-// rasterizer that runs both sides of a uniform branch (lavapipe, why in surface_fragment.glsl)
-// would otherwise pay for every fragment.
-#ifdef LIMN_SHADE
-const uint kShade = LIMN_SHADE;
-#else
-#define kShade pc.shade
-#endif
+// kShade: the shading mode, fixed in the lit variants (why in draw_common.glsl).
 
 bool trimmedAway(uint face, vec2 uv) {
     uint R = drawData.trimTile;

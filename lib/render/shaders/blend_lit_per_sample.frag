@@ -1,6 +1,6 @@
 // The blending surface's fragment stage (blend_fragment.glsl) for --shade lit only, each covered
 // sample shaded on its own (blend_per_sample.frag): the other modes' code compiled out (why:
-// blend_fragment.glsl, LIMN_SHADE).
+// draw_common.glsl, LIMN_SHADE).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LIMN_PER_SAMPLE

@@ -46,6 +46,21 @@ vec3 srgbToLinear(vec3 c) {
 #define LIMN_SMOOTH_IN in
 #endif
 
+// The shading mode: the push constant's, or fixed when a variant compiles with LIMN_SHADE
+// (surface_lit*.frag, surface_texture*.frag, blend_lit*.frag, mesh_lit.frag, which the hosts pick
+// for those modes). Fixed, the other modes' code is dead and the compiler drops it; from the push
+// constant every mode's code runs for every fragment on a SIMD rasterizer that executes both
+// sides of a uniform branch under a mask, as lavapipe's does (Mesa 22.3): there the texture
+// filter's four fetches and the twenty-odd pow() of the unused modes cost more than the lit
+// shading itself (spot, 1920x1080, 4 samples: the frame's CPU time 40% less with the lit
+// variant, docs/adaptive.md "Where the frame's time goes"). Each mode's own code is the same in
+// every variant, and so are its pixels.
+#ifdef LIMN_SHADE
+const uint kShade = LIMN_SHADE;
+#else
+#define kShade pc.shade
+#endif
+
 vec3 unpackSrgb8(uint c) {
     return srgbToLinear(vec3(c & 255u, (c >> 8) & 255u, (c >> 16) & 255u) / 255.0);
 }

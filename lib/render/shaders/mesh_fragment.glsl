@@ -13,15 +13,7 @@ layout(location = 0) out vec4 outColor;
 #define LIMN_TEXTURE_BINDING 4
 #include "texture_sample.glsl"
 
-// The shading mode: the push constant's, or fixed when compiling with LIMN_SHADE (mesh_lit.frag,
-// which the host picks for --shade lit): the texture filter and the other modes' code are then
-// dead and dropped, which a rasterizer that runs both sides of a uniform branch (lavapipe, why in
-// surface_fragment.glsl) would otherwise pay for every fragment.
-#ifdef LIMN_SHADE
-const uint kShade = LIMN_SHADE;
-#else
-#define kShade pc.shade
-#endif
+// kShade: the shading mode, fixed in the lit variant (why in draw_common.glsl).
 
 void main() {
     if (backFaceKey(outColor)) return;

@@ -1,5 +1,5 @@
 // The control mesh's fragment stage (mesh_fragment.glsl) for --shade lit only: the other modes'
-// code compiled out (why: mesh_fragment.glsl, LIMN_SHADE).
+// code compiled out (why: draw_common.glsl, LIMN_SHADE).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LIMN_SHADE SHADE_LIT

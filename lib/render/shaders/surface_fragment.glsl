@@ -23,19 +23,7 @@ vec3 levelColour(uint level) {
     return palette[min(level, 7u)];
 }
 
-// The shading mode: the push constant's, or fixed when compiling with LIMN_SHADE (surface_lit*.frag,
-// surface_texture*.frag, which the host picks for those modes). Fixed, the other modes' code is
-// dead and the compiler drops it; from the push constant every mode's code runs for every
-// fragment on a SIMD rasterizer that executes both sides of a uniform branch under a mask, as
-// lavapipe's does (Mesa 22.3): there the texture filter's four fetches and the twenty-odd pow()
-// of the unused modes cost more than the lit shading itself (spot, 1920x1080, 4 samples: the
-// frame's CPU time 40% less with the lit variant, docs/adaptive.md "Where the frame's time goes").
-// Each mode's own code is the same in every variant, and so are its pixels.
-#ifdef LIMN_SHADE
-const uint kShade = LIMN_SHADE;
-#else
-#define kShade pc.shade
-#endif
+// kShade: the shading mode, fixed in the lit and texture variants (why in draw_common.glsl).
 
 #ifdef LIMN_PIXEL_NORMALS
 // Per-pixel limit normals (surface_lit_pixel*.frag): the triangle's element's own (s, t) (inUV's

@@ -1,5 +1,5 @@
 // The subdivision surface's fragment stage (surface_fragment.glsl) for --shade texture only, shaded once
-// per pixel and primitive: the other modes' code compiled out (why: surface_fragment.glsl, LIMN_SHADE).
+// per pixel and primitive: the other modes' code compiled out (why: draw_common.glsl, LIMN_SHADE).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LIMN_SHADE SHADE_TEXTURE
