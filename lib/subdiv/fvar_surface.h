@@ -76,10 +76,9 @@ class FaceVaryingSurface {
         uint32_t node = 0;       // not stored: the node naming it
         float u0 = 0, v0 = 0, size = 0; // not stored: that node's square of its ptex face
     };
-    struct Basis {
-        uint32_t valence = 0, levels = 0;
-        std::vector<float> weights; // IrregularBasis::weights of `levels` bands
-    };
+    // A per-valence basis of `levels` bands (the tables' K, or fewer: gpuLevels()), with the
+    // program its weights expand from (FVSF stores the program, as TBLS version 5 does).
+    using Basis = IrregularBasis;
     struct Gpu {
         std::vector<uint32_t> nodes;
         std::vector<glm::vec4> records;
