@@ -100,7 +100,7 @@ void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
         // TBLS version 5's reader: its checks bound the program and its expansion, and refuse a
         // valence twice.
         FaceVaryingSurface::Basis x = readBasisProgram(r, b, g.bases);
-        // limn-tables builds no basis of valence 4 (regular) and expands each to this many bands.
+        // limn-tables builds no basis of valence 4 (a regular vertex).
         if (x.valence == 4) r.fail("basis " + std::to_string(b) + " has valence 4");
         // Catmull-Clark's smooth weights are convex (irregular_basis.h).
         for (float w : x.weights)

@@ -66,8 +66,9 @@ class FaceVaryingSurface {
     // Compact (FVSF version 2, compactGpu()): a face with a per-valence basis is not pieces but
     // a smooth face, named by a leaf 0x80000000 | (elements + s): its extraordinary corner, its
     // 2n + 8 support UVs (float, in `points`) and that corner's limit UV; each valence's basis
-    // (its weights, and the program FVSF stores them as) once in `bases`. expandSmoothFaces() turns that into the pieces above, the same bits
-    // wherever it runs (web/src/fvar_chunk.mjs mirrors it).
+    // (its weights, and the program FVSF stores them as) once in `bases`. expandSmoothFaces()
+    // turns that into the pieces above, the same bits wherever it runs (web/src/fvar_chunk.mjs
+    // mirrors it).
     struct SmoothFace {
         uint32_t corner = 0;     // ptex order, 0..3
         uint32_t valence = 0;    // a basis of `bases` has it
