@@ -3,9 +3,10 @@
 # instructions with and without the irregular faces' surface (--irregular-levels 0 / K), per mesh
 # and depth, with smooth UVs under rule RULE (default corners-only). One JSON object per line.
 # Usage: bench/tables/fvar_bytes.sh [-K 6] [-F RULE] [-b OLD/limn-tables] [-I] [MESH:DEPTH ...]
-#   -b: another build's limn-tables measured the same way ("before_*"); -I: instructions each run
-#   executes (valgrind --tool=callgrind: deterministic on a loaded machine), else wall seconds of
-#   one run. Tools in build/bin, or $LIMN_BIN.
+#   -b: another build's limn-tables measured the same way ("before_*"; its chunks read by the
+#   limn-info beside it, if any); -I: instructions each run executes (valgrind --tool=callgrind:
+#   deterministic on a loaded machine), else wall seconds of one run. Tools in build/bin, or
+#   $LIMN_BIN.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 bin=${LIMN_BIN:-$root/build/bin}
@@ -26,7 +27,10 @@ cost() { # instructions (or seconds) of one limn-tables run
     local t0; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; python3 -c "import sys; print(round($(date +%s.%N) - $t0, 4))"
   fi
 }
-fvsf() { "$bin/limn-info" --json "$1" | python3 -c 'import json,sys; print(sum(c["bytes"] for c in json.load(sys.stdin)["chunks"] if c["type"]=="FVSF"))'; }
+# The chunk's bytes as the writing build's limn-info reads them (beside it, else in $bin): a
+# layout can change between builds.
+fvsf() { local info=$bin/limn-info; [ -x "$(dirname "$2")/limn-info" ] && info=$(dirname "$2")/limn-info
+  "$info" --json "$1" | python3 -c 'import json,sys; print(sum(c["bytes"] for c in json.load(sys.stdin)["chunks"] if c["type"]=="FVSF"))'; }
 for arg in "$@"; do
   mesh=${arg%:*} depth=${arg##*:} name=$(basename "${arg%:*}" .obj)
   "$bin/limn-classify" -q "$mesh" --fvar "$rule" -o "$tmp/c.limn"
@@ -37,7 +41,7 @@ for arg in "$@"; do
       c=$(cost "$tool" -q --depth "$depth" --irregular-levels "$k" "$tmp/c.limn" -o "$tmp/t$k.limn")
       key=$([ "$k" = 0 ] && echo bilinear || echo surface)
       unit=seconds; [ -z "$count" ] || unit=instructions
-      line+=", \"${prefix}fvsf_bytes_$key\": $(fvsf "$tmp/t$k.limn"), \"${prefix}${unit}_$key\": $c"
+      line+=", \"${prefix}fvsf_bytes_$key\": $(fvsf "$tmp/t$k.limn" "$tool"), \"${prefix}${unit}_$key\": $c"
     done
   done
   echo "$line}"

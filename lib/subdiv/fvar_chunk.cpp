@@ -5,10 +5,10 @@
 #include "subdiv/tables.h"
 #include "subdiv/tables_chunk.h"
 #include "subdiv/tables_stream.h"
+#include "subdiv/tables_surface_records.h"
 
 #include <cmath>
 #include <cstring>
-#include <string_view>
 #include <unordered_map>
 #include <string>
 
@@ -33,9 +33,8 @@ FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& opt
 
 // Layout (formats/limn.md): u32 depth, u32 ptex count, u64 topology hash, u64 UV hash, u32 node
 // count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4]; version
-// 2: u32 bases, {u32 n, u32 k, u32 R, u16 row[k * 48], f32 weights[R * (2n + 8)]}[bases], u32
-// values, f32 values[2 * values], u32 smooth faces, a stream of their corners, valences and
-// value indices.
+// 2: u32 bases, each as TBLS version 5 stores it (writeBasisProgram), u32 values, f32
+// values[2 * values], u32 smooth faces, a stream of their corners, valences and value indices.
 Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     ByteWriter w;
     w.reserve(40 + 4 * c.surface.nodes.size() + 16 * c.surface.records.size());
@@ -49,28 +48,9 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     static_assert(sizeof(glm::vec4) == 16);
     w.writeArray(c.surface.records); // four f32 each, little-endian like every field here
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.bases.size()));
-    for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
-        // The three sub-patches of a band share half their control points: each distinct row
-        // of 2n + 8 weights once (as TBLS version 4 stores its bases), in order of appearance.
-        // (Rows equal as bytes: the same weights, bit for bit.)
-        const size_t M = 2 * size_t(b.valence) + 8, rows = b.weights.size() / M;
-        std::unordered_map<std::string_view, uint16_t> index;
-        index.reserve(rows);
-        std::vector<uint16_t> pick(rows);
-        std::vector<float> distinct;
-        for (size_t j = 0; j < rows; ++j) {
-            const float* row = b.weights.data() + j * M;
-            auto [it, added] = index.emplace(std::string_view(reinterpret_cast<const char*>(row), M * sizeof(float)),
-                                             uint16_t(index.size()));
-            if (added) distinct.insert(distinct.end(), row, row + M);
-            pick[j] = it->second;
-        }
-        w.write<uint32_t>(b.valence);
-        w.write<uint32_t>(b.levels);
-        w.write<uint32_t>(static_cast<uint32_t>(index.size()));
-        w.writeArray(pick);
-        w.writeArray(distinct);
-    }
+    // Each basis as its one-level program (TBLS version 5's codec, a few hundred bytes whatever
+    // k), which the reader expands to the same weights, bit for bit.
+    for (const FaceVaryingSurface::Basis& b : c.surface.bases) writeBasisProgram(w, b);
     // The support UVs and limit UVs, each distinct value once (the n faces around a vertex
     // share most of theirs), and per smooth face in a stream its corner and valence, then its
     // limit's and its 2n + 8 support points' values as differences from the previous value.
@@ -117,25 +97,14 @@ void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
     const uint32_t bases = r.read<uint32_t>();
     if (bases > r.remaining() / 8) r.fail("basis count is too large");
     for (uint32_t b = 0; b < bases; ++b) {
-        FaceVaryingSurface::Basis x;
-        x.valence = r.read<uint32_t>(), x.levels = r.read<uint32_t>();
-        // limn-tables builds no basis beyond valence 64 (kMaxBasisValence) nor deeper than 16.
-        if (x.valence < 3 || x.valence > 64 || x.valence == 4 || x.levels < 1 || x.levels > 16)
-            r.fail("basis " + std::to_string(b) + " has valence " + std::to_string(x.valence) + " and " +
-                   std::to_string(x.levels) + " levels");
-        if (basisLevels(g, x.valence)) r.fail("two bases of valence " + std::to_string(x.valence));
-        const uint32_t M = 2 * x.valence + 8, distinct = r.read<uint32_t>();
-        if (distinct == 0 || distinct > x.levels * 48) r.fail("basis " + std::to_string(b) + " has a bad row count");
-        const std::vector<uint16_t> pick = r.readArray<uint16_t>(uint64_t(x.levels) * 48, "basis rows");
-        const std::vector<float> rows = r.readArray<float>(uint64_t(distinct) * M, "basis weights");
+        // TBLS version 5's reader: its checks bound the program and its expansion, and refuse a
+        // valence twice.
+        FaceVaryingSurface::Basis x = readBasisProgram(r, b, g.bases);
+        // limn-tables builds no basis of valence 4 (a regular vertex).
+        if (x.valence == 4) r.fail("basis " + std::to_string(b) + " has valence 4");
         // Catmull-Clark's smooth weights are convex (irregular_basis.h).
-        for (float w : rows)
+        for (float w : x.weights)
             if (!(w >= 0 && w <= 1)) r.fail("basis " + std::to_string(b) + " has a weight outside [0, 1]");
-        x.weights.reserve(pick.size() * M);
-        for (uint16_t j : pick) {
-            if (j >= distinct) r.fail("basis " + std::to_string(b) + " names a missing row");
-            x.weights.insert(x.weights.end(), rows.begin() + long(size_t(j) * M), rows.begin() + long(size_t(j + 1) * M));
-        }
         g.bases.push_back(std::move(x));
     }
     const uint32_t valueCount = r.read<uint32_t>();

@@ -330,7 +330,9 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
             const uint32_t levels = std::min(gpuLevels_, b.levels);
             auto basis = std::find_if(g.bases.begin(), g.bases.end(), [&](const Basis& x) { return x.valence == b.valence; });
             if (basis == g.bases.end()) {
-                Basis x{b.valence, levels, {}};
+                // Band k's weights depend on bands 1..k only: the program expands to these for
+                // `levels` bands (expandIrregularBasis).
+                Basis x{b.valence, levels, {}, b.program};
                 x.weights.assign(b.weights.begin(), b.weights.begin() + size_t(levels) * 48 * b.supportSize());
                 g.bases.push_back(std::move(x));
             }

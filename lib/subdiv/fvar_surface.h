@@ -65,9 +65,10 @@ class FaceVaryingSurface {
     //
     // Compact (FVSF version 2, compactGpu()): a face with a per-valence basis is not pieces but
     // a smooth face, named by a leaf 0x80000000 | (elements + s): its extraordinary corner, its
-    // 2n + 8 support UVs (float, in `points`) and that corner's limit UV; the weights once per
-    // valence in `bases`. expandSmoothFaces() turns that into the pieces above, the same bits
-    // wherever it runs (web/src/fvar_chunk.mjs mirrors it).
+    // 2n + 8 support UVs (float, in `points`) and that corner's limit UV; each valence's basis
+    // (its weights, and the program FVSF stores them as) once in `bases`. expandSmoothFaces()
+    // turns that into the pieces above, the same bits wherever it runs (web/src/fvar_chunk.mjs
+    // mirrors it).
     struct SmoothFace {
         uint32_t corner = 0;     // ptex order, 0..3
         uint32_t valence = 0;    // a basis of `bases` has it
@@ -76,10 +77,9 @@ class FaceVaryingSurface {
         uint32_t node = 0;       // not stored: the node naming it
         float u0 = 0, v0 = 0, size = 0; // not stored: that node's square of its ptex face
     };
-    struct Basis {
-        uint32_t valence = 0, levels = 0;
-        std::vector<float> weights; // IrregularBasis::weights of `levels` bands
-    };
+    // A per-valence basis of `levels` bands (the tables' K, or fewer: gpuLevels()), with the
+    // program its weights expand from (FVSF stores the program, as TBLS version 5 does).
+    using Basis = IrregularBasis;
     struct Gpu {
         std::vector<uint32_t> nodes;
         std::vector<glm::vec4> records;

@@ -5,6 +5,7 @@
 #include "container/container.h"
 #include "mesh/import.h"
 #include "subdiv/fvar_chunk.h"
+#include "subdiv/irregular_basis.h"
 #include "subdiv/tables_chunk.h"
 #include "test_support.h"
 
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <random>
 
 using namespace limn;
@@ -133,6 +135,17 @@ TEST(FvarSurfaceChunk, FewerLevelsOverTheRecordBudgetStayExactAtTheirCorners) {
         EXPECT_EQ(w.messages.size(), 1u);
         FvarSurfaceChunk c;
         c.surface = cut.gpu();
+        // Stored, its bases' programs (made for K levels) expand to the L bands drawn.
+        FvarSurfaceChunk compact;
+        compact.ptexCount = ptexFaceCount(m);
+        compact.surface = cut.compactGpu();
+        compact.elementCount = static_cast<uint32_t>(compact.surface.records.size() / 9);
+        const FvarSurfaceChunk read = decodeFvarSurfaceChunk(encodeFvarSurfaceChunk(compact), nullptr, nullptr);
+        EXPECT_EQ(read.surface.bases.size(), compact.surface.bases.size());
+        const FaceVaryingSurface::Gpu expanded = expandSmoothFaces(read.surface);
+        EXPECT_EQ(expanded.nodes, c.surface.nodes);
+        ASSERT_EQ(expanded.records.size(), c.surface.records.size());
+        EXPECT_EQ(0, std::memcmp(expanded.records.data(), c.surface.records.data(), 16 * c.surface.records.size()));
         // Level-2 faces are 1/4 of a quad's ptex face, 1/2 of an n-gon's sub-face's.
         const int n = 1 << (depth - 1 + L);
         double worst = 0;
@@ -239,7 +252,8 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     ASSERT_TRUE(good.surface.smoothFaces.empty());
     Chunk first = c;
     first.version = 1;
-    first.payload.resize(first.payload.size() - 16);
+    ASSERT_GE(first.payload.size(), 16u);
+    first.payload.erase(first.payload.end() - 16, first.payload.end());
     EXPECT_NO_THROW(decodeFvarSurfaceChunk(first, &m, &o));
     EXPECT_TRUE(refused(Chunk{c.type, 1, c.payload}, "version 1 with a version-2 tail"));
     // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell).
@@ -256,9 +270,10 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     }
 }
 
-// Version 2's smooth faces (support UVs, per-valence weights): every count and index is checked
-// before anything is allocated or expanded (a valence over 64, a support beyond the points, a
-// face without its basis, a weight outside [0, 1], a face named twice or by no node).
+// Version 2's smooth faces (support UVs, per-valence bases as programs): every count and index is
+// checked before anything is allocated or expanded (a valence over 64, a program reading what
+// is not there, a support beyond the points, a face without its basis, a weight outside [0, 1],
+// a face named twice or by no node).
 TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
     SchemeOptions o;
     const Mesh m = loadSmooth("tri/cube_no_bottom.obj", o);
@@ -282,24 +297,28 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
         return v;
     };
     const size_t S = good.surface.smoothFaces.size();
-    // After the records: the bases (u32 n, k, R, u16 rows[k * 48], f32 weights[R * (2n + 8)]),
-    // the values, the smooth faces' count and stream.
+    // After the records: the bases (each u32 n, k, palette size P, f32 palette[P], then its
+    // program's stream: u32 bytes, the bytes padded to 4), the values, the smooth faces' count
+    // and stream.
     const size_t bases = 32 + 4 * good.surface.nodes.size() + 144 * good.surface.records.size() / 9;
     size_t values = bases + 4;
-    for (uint32_t b = 0; b < at(bases); ++b)
-        values += 12 + 96 * size_t(at(values + 4)) + 4 * size_t(at(values + 8)) * (2 * at(values) + 8);
-    const size_t rows = bases + 16 + 96 * size_t(at(bases + 8));
+    for (uint32_t b = 0; b < at(bases); ++b) {
+        const size_t stream = values + 12 + 4 * size_t(at(values + 8));
+        values = stream + 4 + (size_t(at(stream)) + 3) / 4 * 4;
+    }
+    const size_t palette = bases + 16, stream = palette + 4 * size_t(at(bases + 12));
     const size_t faces = values + 4 + 8 * size_t(at(values));
     ASSERT_EQ(at(faces), S);
     const std::pair<size_t, uint32_t> cases[] = {
         {bases, 0x10000000u},       // basis count
         {bases + 4, 65},            // a valence over 64
         {bases + 8, 17},            // deeper than 16 levels
-        {bases + 12, 0},            // no distinct rows
-        {bases + 12, 0xFFFFFFFFu},  // more rows than control points
-        {bases + 16, 0xFFFFFFFFu},  // a missing row
-        {rows, 0x40000000u},        // a weight of 2
-        {rows, 0xBF800000u},        // a weight of -1
+        {bases + 12, 0xFFFFFFFFu},  // a palette past the end
+        {palette, 0x7F800000u},     // an infinite weight
+        {palette, 0x40000000u},     // a weight of 2: expanded, some weight outside [0, 1]
+        {palette, 0xBF800000u},     // a weight of -1
+        {stream, 0xFFFFFFFFu},      // a program past the end
+        {stream + 4, 0},            // no rows
         {values, 0x40000000u},      // value count
         {values + 4, 0x7F800000u},  // an infinite value
         {values + 8, 0x7FC00000u},  // a NaN value
@@ -322,6 +341,36 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
     Chunk twice = c;
     word(twice, 32 + 4 * named[1], good.surface.nodes[named[0]]);
     EXPECT_TRUE(refused(twice));
+    // A program the reader would run out of bounds (TBLS version 5's checks, tables_chunk_test's
+    // HostileBasisProgramIsRefused has them all): re-encoded as it is, refused naming the fault.
+    const uint32_t M = good.surface.bases[0].supportSize();
+    const std::pair<const char*, std::function<void(BasisProgram&)>> programs[] = {
+        {"reads neither a support point nor an earlier row", [&](BasisProgram& p) { p.source[p.start[3]] = M + 3; }},
+        {"names a missing row", [&](BasisProgram& p) { p.nextSupport[0] = p.rows(); }},
+        {"has a bad weight", [&](BasisProgram& p) { p.weight[p.start[p.rows() - 1]] = 3e38f; }},
+        {"valence 4", [&](BasisProgram&) {}}, // the regular valence (the program is never run)
+    };
+    for (const auto& [why, damage] : programs) {
+        FvarSurfaceChunk bad = good;
+        FaceVaryingSurface::Basis& b = bad.surface.bases[0];
+        damage(b.program);
+        if (std::string(why) == "valence 4") { // a valid program over 16 support points: one row
+            b.valence = 4;
+            b.program = BasisProgram{};
+            b.program.source = {0};
+            b.program.weight = {1.0f};
+            b.program.start = {0, 1};
+            b.program.averaged = {1};
+            b.program.nextSupport.assign(16, 0);
+        }
+        try {
+            decodeFvarSurfaceChunk(encodeFvarSurfaceChunk(bad), &m, &o);
+            ADD_FAILURE() << "accepted: " << why;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where().rfind("chunk FVSF", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
+    }
     // Random corruption of the bases, values and smooth faces: refused, or expanded in bounds.
     std::mt19937 rng(7);
     for (int trial = 0; trial < 300; ++trial) {

@@ -2,11 +2,12 @@
 // writes beside TBLS, as shaders/fvar_eval.glsl reads it: a quadtree per ptex face (nodes) and
 // per element a record of 9 vec4. Checked as lib/subdiv/fvar_chunk.cpp checks it, so that no
 // walk leaves the nodes and no record names what is not there. Version 2 stores a face with a
-// per-valence basis as a smooth face (support UVs, the weights once per valence), expanded here
-// into the pieces the GPU draws with the same arithmetic as lib/subdiv/fvar_expand.cpp (the
-// same bits).
+// per-valence basis as a smooth face (support UVs; the basis once per valence, as its one-level
+// program like TBLS version 5's), expanded here into the pieces the GPU draws with the same
+// arithmetic as lib/subdiv/fvar_expand.cpp (the same bits).
 import { chunkReader } from './container.mjs';
 import { Stream } from './tables_stream.mjs';
+import { readBasisProgram } from './tables_surface_records.mjs';
 
 const MAX_DEPTH = 16;
 const HOLE = 0xffffffff, LEAF = 0x80000000;
@@ -85,31 +86,23 @@ export function decodeFvarSurface(chunk, expected) {
   return { depth, ptexCount, nodes: expanded.nodes, records: expanded.records, elementCount: expanded.records.length / 36 };
 }
 
-// Version 2's per-valence weights, the distinct support and limit UVs, and the smooth faces
-// (fvar_chunk.cpp's readSmoothFaces), each count checked against the bytes left before anything
-// is allocated.
+// Version 2's per-valence bases (as programs), the distinct support and limit UVs, and the
+// smooth faces (fvar_chunk.cpp's readSmoothFaces), each count checked against the bytes left
+// before anything is allocated.
 function readSmoothFaces(r) {
   const basisCount = r.u32('basis count');
   if (basisCount > Math.floor(r.remaining / 8)) r.fail('basis count is too large');
   const bases = new Map();
+  const read = [];
   for (let b = 0; b < basisCount; b++) {
-    const valence = r.u32('valence'), levels = r.u32('levels');
-    // limn-tables builds no basis beyond valence 64 nor deeper than 16.
-    if (valence < 3 || valence > 64 || valence === 4 || levels < 1 || levels > 16) r.fail(`basis ${b} has valence ${valence} and ${levels} levels`);
-    if (bases.has(valence)) r.fail(`two bases of valence ${valence}`);
-    // Each distinct row of 2n + 8 weights once, and per control point of each band's
-    // sub-patches the row it has.
-    const M = 2 * valence + 8, distinct = r.u32('basis row count');
-    if (distinct === 0 || distinct > levels * 48) r.fail(`basis ${b} has a bad row count`);
-    const pick = r.array(Uint16Array, levels * 48, 'basis rows');
-    const rows = r.array(Float32Array, distinct * M, 'basis weights');
-    for (const w of rows) if (!(w >= 0 && w <= 1)) r.fail(`basis ${b} has a weight outside [0, 1]`); // convex (irregular_basis.h)
-    const weights = new Float32Array(levels * 48 * M);
-    pick.forEach((j, at) => {
-      if (j >= distinct) r.fail(`basis ${b} names a missing row`);
-      weights.set(rows.subarray(j * M, (j + 1) * M), at * M);
-    });
-    bases.set(valence, { levels, weights });
+    // TBLS version 5's reader (tables_surface_records.mjs): each basis its one-level program,
+    // checked and expanded to limn-tables's weights, bit for bit; no valence twice.
+    const basis = readBasisProgram(r, b, read);
+    // limn-tables builds no basis of valence 4 (regular); the weights are convex (irregular_basis.h).
+    if (basis.valence === 4) r.fail(`basis ${b} has valence 4`);
+    for (const w of basis.weights) if (!(w >= 0 && w <= 1)) r.fail(`basis ${b} has a weight outside [0, 1]`);
+    read.push(basis);
+    bases.set(basis.valence, { levels: basis.levels, weights: basis.weights });
   }
   const valueCount = r.u32('value count');
   const values = r.array(Float32Array, valueCount * 2, 'values');

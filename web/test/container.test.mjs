@@ -299,19 +299,25 @@ test('FVSF: read with smooth UVs, refused by name when cut, stale or cyclic', ()
   expectLimnError(build(chunks.filter((c) => c.type !== 'FVUV')), /chunk FVSF: the mesh has no UVs/);
 });
 
-// FVSF version 2's smooth faces (support UVs, per-valence weights; lib/subdiv/fvar_chunk.cpp
-// checks the same): each count and index checked before anything is allocated or expanded.
-test('FVSF: smooth faces with a count, valence, support or weight out of bounds are refused by name', () => {
+// FVSF version 2's smooth faces (support UVs, per-valence bases as programs;
+// lib/subdiv/fvar_chunk.cpp checks the same): each count and index checked before anything is
+// allocated or expanded.
+test('FVSF: smooth faces with a count, valence, program, support or weight out of bounds are refused by name', () => {
   const bytes = read(container('tri/cube_no_bottom.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_cube_d2.limn' }));
   const chunks = parseContainer(bytes), fvsf = chunks.findIndex((c) => c.type === 'FVSF');
   assert.equal(chunks[fvsf].version, 2);
   const p = chunks[fvsf].payload, view = new DataView(p.buffer, p.byteOffset, p.byteLength);
   const nodeCount = view.getUint32(24, true), elements = view.getUint32(28, true), at = (o) => view.getUint32(o, true);
-  // After the records: the bases (u32 n, k, R, u16 rows[k * 48], f32 weights[R * (2n + 8)]), the
-  // values, the smooth faces' count and stream.
+  // After the records: the bases (each u32 n, k, palette size P, f32 palette[P], then its
+  // program's stream: u32 bytes, the bytes padded to 4), the values, the smooth faces' count and
+  // stream.
   const bases = 32 + 4 * nodeCount + 144 * elements;
   let values = bases + 4;
-  for (let b = 0; b < at(bases); b++) values += 12 + 96 * at(values + 4) + 4 * at(values + 8) * (2 * at(values) + 8);
+  for (let b = 0; b < at(bases); b++) {
+    const stream = values + 12 + 4 * at(values + 8);
+    values = stream + 4 + Math.ceil(at(stream) / 4) * 4;
+  }
+  const palette = bases + 16, stream = palette + 4 * at(bases + 12);
   const faces = values + 4 + 8 * at(values);
   assert.ok(at(faces) > 0, 'the cube has smooth faces');
   const s = loadLimn(bytes); // expanded to pieces: more elements than the chunk stores
@@ -323,11 +329,13 @@ test('FVSF: smooth faces with a count, valence, support or weight out of bounds 
   };
   for (const [offset, word, message] of [
     [bases, 0x10000000, /basis count is too large/],
-    [bases + 4, 65, /basis 0 has valence 65/],
-    [bases + 8, 17, /basis 0 has valence \d+ and 17 levels/],
-    [bases + 12, 0, /basis 0 has a bad row count/],
-    [bases + 16, 0xffffffff, /basis 0 names a missing row/],
-    [bases + 16 + 96 * at(bases + 8), 0x40000000, /basis 0 has a weight outside \[0, 1\]/],
+    [bases + 4, 65, /irregular basis 0 has a bad valence or level count/],
+    [bases + 8, 17, /irregular basis 0 has a bad valence or level count/],
+    [bases + 12, 0xffffffff, /irregular basis 0 palette/],
+    [palette, 0x7f800000, /irregular basis 0 has a bad weight/],
+    [palette, 0x40000000, /basis 0 has a weight outside \[0, 1\]/],
+    [stream, 0xffffffff, /irregular basis 0 stream/],
+    [stream + 4, 0, /irregular basis 0: bad row count 0/],
     [values, 0x40000000, /values: /],
     [values + 8, 0x7fc00000, /a value is not finite/],
     [faces, 0xffffffff, /smooth face count is too large/],
