@@ -103,7 +103,7 @@ Mesh irregularBasisMesh(uint32_t n) {
 }
 
 IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
-    if (n < 3 || K < 1 || K > uint32_t(kMaxDepth))
+    if (n < 3 || n > kMaxBasisValence || K < 1 || K > uint32_t(kMaxDepth))
         throw std::logic_error("irregular basis: valence or levels out of range");
     const Mesh m = irregularBasisMesh(n);
     Warnings warnings;
@@ -116,246 +116,176 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     // smoothSupport's order: the local subdivision is the same at every level (Stam 1998), and so,
     // entry by entry, are the stencils. That gives the bits of refining every level as the tables
     // do: checked for every valence 3 to 64 at K = 16 (docs/irregular.md), and here by
-    // IrregularBasis.WeightsAreThoseOfTheWholeTables. (kRefinedLevels > 1 would take the program
-    // from a deeper level; the bits are the same.)
-    constexpr uint32_t kRefinedLevels = 1;
-    const uint32_t R = std::min(K, kRefinedLevels);
-    AdaptiveLevels r;
-    r.N = r.D = R;
+    // IrregularBasis.WeightsAreThoseOfTheWholeTables.
+    std::vector<Level> levels;
     {
         Topology topo(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices);
         Sharpness sharp = baseSharpness(topo, m.tags, options.boundary, warnings);
-        r.levels.push_back(makeBaseLevel(std::move(topo), std::move(sharp)));
+        levels.push_back(makeBaseLevel(std::move(topo), std::move(sharp)));
     }
-    r.stencils.resize(1);
-    r.patchSets.emplace_back(r.levels[0].topo.faceCount(), 0);
-    std::vector<uint32_t> ptexBase(r.levels[0].topo.faceCount());
-    for (uint32_t f = 0; f < ptexBase.size(); ++f) ptexBase[f] = r.levels[0].frames[f].ptex;
-    std::vector<uint32_t> centres{0}; // face 0's descendant at the extraordinary vertex, per level
-    for (uint32_t l = 0; l < R; ++l) {
-        const uint32_t centre = centres.back();
-        std::vector<uint8_t> T(r.levels[l].topo.faceCount(), 0);
-        T[centre] = 1;
-        LevelStencils st;
-        Level child = refineLevel(r.levels[l], oneRing(r.levels[l].topo, T), options, ptexBase, st);
-        std::vector<uint8_t> P(child.topo.faceCount(), 0);
-        uint32_t next = kNone;
-        for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) {
-            if (child.faceParent[cf] != centre) continue;
-            if (child.frames[cf].u0 == 0 && child.frames[cf].v0 == 0)
-                next = cf;
-            else
-                P[cf] = 1;
-        }
-        if (next == kNone) throw std::logic_error("irregular basis: no face at the extraordinary vertex");
-        r.levels.push_back(std::move(child));
-        r.stencils.push_back(std::move(st));
-        r.patchSets.push_back(std::move(P));
-        centres.push_back(next);
+    std::vector<uint32_t> ptexBase(levels[0].topo.faceCount());
+    for (uint32_t f = 0; f < ptexBase.size(); ++f) ptexBase[f] = levels[0].frames[f].ptex;
+    LevelStencils st;
+    {
+        std::vector<uint8_t> T(levels[0].topo.faceCount(), 0);
+        T[0] = 1;
+        levels.push_back(refineLevel(levels[0], oneRing(levels[0].topo, T), options, ptexBase, st));
     }
-    // The support of each level's centre, in smoothSupport's order (level 0: face 0's, the
-    // basis's columns).
-    std::vector<std::vector<uint32_t>> supports(R + 1);
-    for (uint32_t l = 0; l <= R; ++l) {
-        int corner = -1;
-        uint32_t valence = 0;
-        if (!smoothSupport(r.levels[l], centres[l], corner, valence, supports[l]) || corner != 0 ||
-            valence != n)
-            throw std::logic_error("irregular basis: the generated valence-" + std::to_string(n) +
-                                   " mesh has no smooth support at level " + std::to_string(l));
-    }
-    const std::vector<uint32_t>& support = supports[0];
-    IrregularBasis basis;
-    basis.valence = n;
-    basis.levels = K;
-    const size_t M = support.size();
-    basis.weights.assign(size_t(K) * 3 * 16 * M, 0.0f);
-    std::vector<uint8_t> filled(size_t(K) * 3, 0);
-    // Rows of W = M + 1 values rounded up to even: the columns are summed two at a time (packed
-    // doubles, below), the pad column staying 0.
-    const size_t W = (M + 2) & ~size_t(1);
-    // Face 0's sub-patches (level, quadrant, control points), and the vertices they read.
+    const Level& L = levels[1];
+    // Face 0's children: the one at the extraordinary vertex (u0 = v0 = 0), and band 1's three
+    // sub-patches.
+    uint32_t centre = kNone;
     struct SubPatch {
-        uint32_t level;
         size_t quadrant;
         Patch patch;
     };
     std::vector<SubPatch> subPatches;
-    std::vector<std::vector<uint8_t>> needed(R + 1);
-    for (uint32_t l = 0; l <= R; ++l) needed[l].assign(r.levels[l].topo.vertexCount(), 0);
-    for (uint32_t l = 1; l <= R; ++l) {
-        const Level& L = r.levels[l];
-        std::vector<uint32_t> identity(L.topo.vertexCount());
-        for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
-        for (uint32_t f = 0; f < r.patchSets[l].size(); ++f) {
-            if (!r.patchSets[l][f] || L.frames[f].ptex != 0) continue;
-            const Patch p = gatherPatch(L, f, 0, identity, kNone);
-            const double size = std::ldexp(1.0, -int(p.level));
-            const int q = (p.u0 > 0 ? 1 : 0) + (p.v0 > 0 ? 2 : 0); // 1, 3 or 2 (both)
-            const int quadrant = q == 1 ? 1 : q == 3 ? 2 : 3;
-            if (q == 0 || p.size != size || (p.u0 != 0 && p.u0 != size) ||
-                (p.v0 != 0 && p.v0 != size) || p.boundary != 0)
-                throw std::logic_error("irregular basis: unexpected sub-patch");
-            subPatches.push_back({l, size_t(quadrant - 1), p});
-            for (uint32_t v : p.cv) needed[l][v] = 1;
+    std::vector<uint32_t> identity(L.topo.vertexCount());
+    for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
+    for (uint32_t cf = 0; cf < L.topo.faceCount(); ++cf) {
+        if (L.faceParent[cf] != 0) continue;
+        if (L.frames[cf].u0 == 0 && L.frames[cf].v0 == 0) {
+            centre = cf;
+            continue;
         }
+        const Patch p = gatherPatch(L, cf, 0, identity, kNone);
+        const int q = (p.u0 > 0 ? 1 : 0) + (p.v0 > 0 ? 2 : 0); // 1, 3 or 2 (both)
+        if (q == 0 || p.size != 0.5f || p.boundary != 0 || p.ptex != 0)
+            throw std::logic_error("irregular basis: unexpected sub-patch");
+        subPatches.push_back({size_t(q == 1 ? 0 : q == 3 ? 1 : 2), p});
     }
-    // The deeper bands' input, and where level R's rows read theirs.
-    for (uint32_t v : supports[R]) needed[R][v] = 1;
-    for (uint32_t v : supports[R - 1]) needed[R - 1][v] = 1;
-    for (uint32_t l = R; l >= 1; --l) {
-        const Level& L = r.levels[l];
-        const LevelStencils& st = r.stencils[l];
-        auto mark = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
-                        const std::vector<StencilEntry>& entries) {
-            for (uint32_t i = 0; i < count; ++i)
-                if (needed[l][first + i])
-                    for (uint32_t k = start[i]; k < start[i + 1]; ++k)
-                        (entries[k].fromFacePoint ? needed[l] : needed[l - 1])[entries[k].index] = 1;
-        };
-        mark(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
-        mark(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
-        for (uint32_t i = 0; i < L.facePointCount; ++i)
-            if (needed[l][i])
-                for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) needed[l - 1][st.faceVertices[k]] = 1;
+    if (centre == kNone || subPatches.size() != 3)
+        throw std::logic_error("irregular basis: face 0 has no child at the extraordinary vertex");
+    // The support of face 0 (the basis's columns) and of its child at the vertex, in
+    // smoothSupport's order.
+    std::vector<uint32_t> supports[2];
+    for (uint32_t l = 0; l < 2; ++l) {
+        int corner = -1;
+        uint32_t valence = 0;
+        if (!smoothSupport(levels[l], l == 0 ? 0 : centre, corner, valence, supports[l]) || corner != 0 ||
+            valence != n)
+            throw std::logic_error("irregular basis: the generated valence-" + std::to_string(n) +
+                                   " mesh has no smooth support at level " + std::to_string(l));
     }
-    // The refinement is linear in the control points: every needed vertex is evaluated for M + 1
-    // control meshes at once, unit points on each support point (giving its weights), and 1 on
-    // every other point (column M): Catmull-Clark's smooth rules have no negative weights, so a
-    // zero there means that none of them reaches face 0's sub-patches. Each column is computed
-    // as evaluateVertices computes the tables (the float weights, in the stencils' order).
-    // Each level's needed vertices (at level 0 with the support) get consecutive rows of W
-    // values; no other vertex is read.
-    for (uint32_t v : support) needed[0][v] = 1;
-    std::vector<std::vector<uint32_t>> row(R + 1);
-    std::vector<std::vector<double>> V(R + 1);
-    for (uint32_t l = 0; l <= R; ++l) {
-        row[l].assign(needed[l].size(), kNone);
-        uint32_t rows = 0;
-        for (size_t v = 0; v < needed[l].size(); ++v)
-            if (needed[l][v]) row[l][v] = rows++;
-        V[l].assign(size_t(rows) * W, 0.0);
-    }
-    for (size_t v = 0; v < needed[0].size(); ++v)
-        if (needed[0][v]) V[0][size_t(row[0][v]) * W + M] = 1;
-    for (size_t i = 0; i < M; ++i) {
-        V[0][size_t(row[0][support[i]]) * W + i] = 1;
-        V[0][size_t(row[0][support[i]]) * W + M] = 0;
-    }
-    // A level's rows as a program: each row the sum of its entries in the stencil's order,
-    // reading the previous level's rows or this level's (face points, read by edge and vertex
-    // points), then divided by `divisor` (face points; 0: not divided).
-    struct Entry {
-        uint32_t source;
-        bool current;
-        double weight;
+    const size_t M = supports[0].size();
+    std::vector<uint32_t> inputOf(levels[0].topo.vertexCount(), kNone);
+    for (size_t i = 0; i < M; ++i) inputOf[supports[0][i]] = uint32_t(i);
+    // The level-1 vertices the sub-patches and the next support read, and the face points those
+    // read (level 1 holds face points, then edge points, then vertex points).
+    std::vector<uint8_t> needed(L.topo.vertexCount(), 0);
+    for (const SubPatch& sp : subPatches)
+        for (uint32_t v : sp.patch.cv) needed[v] = 1;
+    for (uint32_t v : supports[1]) needed[v] = 1;
+    auto markFacePoints = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
+                              const std::vector<StencilEntry>& entries) {
+        for (uint32_t i = 0; i < count; ++i)
+            if (needed[first + i])
+                for (uint32_t k = start[i]; k < start[i + 1]; ++k)
+                    if (entries[k].fromFacePoint) needed[entries[k].index] = 1;
     };
-    struct Row {
-        uint32_t target, first, last; // entries[first, last)
-        double divisor;
+    markFacePoints(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+    markFacePoints(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    std::vector<uint32_t> row(needed.size(), kNone);
+    uint32_t rows = 0;
+    for (size_t v = 0; v < needed.size(); ++v)
+        if (needed[v]) row[v] = rows++;
+    // The program: the needed rows in vertex order, each entry as the tables' evaluation reads it
+    // (the float weight, in the stencil's order), reading face 0's support or an earlier row.
+    IrregularBasis basis;
+    basis.valence = n;
+    basis.levels = K;
+    BasisProgram& p = basis.program;
+    auto input = [&](uint32_t v) {
+        if (inputOf[v] == kNone) throw std::logic_error("irregular basis: a row reads outside the support");
+        return inputOf[v];
     };
-    std::vector<Entry> entries;
-    std::vector<Row> program;
-    auto buildProgram = [&](uint32_t l) {
-        entries.clear();
-        program.clear();
-        const Level& L = r.levels[l];
-        const LevelStencils& st = r.stencils[l];
-        for (uint32_t i = 0; i < L.facePointCount; ++i) {
-            if (!needed[l][i]) continue;
-            const uint32_t first = uint32_t(entries.size());
-            for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k)
-                entries.push_back({row[l - 1][st.faceVertices[k]], false, 1.0});
-            program.push_back({row[l][i], first, uint32_t(entries.size()),
-                               double(st.faceStart[i + 1] - st.faceStart[i])});
+    for (uint32_t i = 0; i < L.facePointCount; ++i) {
+        if (!needed[i]) continue;
+        for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) {
+            p.source.push_back(input(st.faceVertices[k]));
+            p.weight.push_back(1.0f);
         }
-        auto rows = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
+        p.start.push_back(uint32_t(p.source.size()));
+        p.averaged.push_back(1);
+    }
+    auto weighted = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
                         const std::vector<StencilEntry>& stencil) {
-            for (uint32_t i = 0; i < count; ++i) {
-                if (!needed[l][first + i]) continue;
-                const uint32_t begin = uint32_t(entries.size());
-                for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
-                    const StencilEntry& e = stencil[k];
-                    entries.push_back({e.fromFacePoint ? row[l][e.index] : row[l - 1][e.index],
-                                       e.fromFacePoint, double(static_cast<float>(e.weight))});
-                }
-                program.push_back({row[l][first + i], begin, uint32_t(entries.size()), 0.0});
+        for (uint32_t i = 0; i < count; ++i) {
+            if (!needed[first + i]) continue;
+            for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
+                const StencilEntry& e = stencil[k];
+                p.source.push_back(e.fromFacePoint ? uint32_t(M) + row[e.index] : input(e.index));
+                p.weight.push_back(static_cast<float>(e.weight));
             }
-        };
-        rows(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
-        rows(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+            p.start.push_back(uint32_t(p.source.size()));
+            p.averaged.push_back(0);
+        }
     };
-    // Two columns at a time (GCC's packed doubles: SSE2, NEON): each column is still its own
-    // product and sum in the stencil's order, so every bit is that of one column at a time.
+    weighted(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+    weighted(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    for (const SubPatch& sp : subPatches)
+        for (int j = 0; j < 16; ++j) p.controlRow[sp.quadrant * 16 + size_t(j)] = row[sp.patch.cv[j]];
+    for (uint32_t v : supports[1]) p.nextSupport.push_back(row[v]);
+    basis.weights = expandIrregularBasis(p, n, K);
+    return basis;
+}
+
+std::vector<float> expandIrregularBasis(const BasisProgram& p, uint32_t n, uint32_t K) {
+    const size_t M = 2 * size_t(n) + 8, T = p.rows();
+    bool valid = p.start.size() >= 1 && p.start[0] == 0 && p.averaged.size() == T &&
+                 p.source.size() == p.start[T] && p.weight.size() == p.source.size() &&
+                 p.nextSupport.size() == M;
+    for (size_t r = 0; valid && r < T; ++r) {
+        valid = p.start[r] <= p.start[r + 1];
+        for (uint32_t e = p.start[r]; valid && e < p.start[r + 1]; ++e) valid = p.source[e] < M + r;
+    }
+    for (uint32_t x : p.controlRow) valid = valid && x < T;
+    for (uint32_t x : p.nextSupport) valid = valid && x < T;
+    if (!valid) throw std::logic_error("irregular basis: invalid program");
+    // Rows of W values rounded up to even: the columns are summed two at a time (GCC's packed
+    // doubles: SSE2, NEON), each column still its own product and sum in the program's order,
+    // so every bit is that of one column at a time (the web runtime's tables_chunk.mjs computes
+    // one at a time). The pad column stays 0.
+    const size_t W = (M + 1) & ~size_t(1);
     using Pair = double __attribute__((vector_size(16)));
-    auto load = [](const double* p) {
-        Pair x;
-        std::memcpy(&x, p, sizeof x);
-        return x;
+    auto load = [](const double* x) {
+        Pair v;
+        std::memcpy(&v, x, sizeof v);
+        return v;
     };
-    auto store = [](double* p, Pair x) { std::memcpy(p, &x, sizeof x); };
-    auto run = [&](const std::vector<double>& prev, std::vector<double>& cur) {
-        for (const Row& x : program) {
-            double* out = &cur[size_t(x.target) * W];
-            for (uint32_t k = x.first; k < x.last; ++k) {
-                const Entry& e = entries[k];
-                const double* in = &(e.current ? cur : prev)[size_t(e.source) * W];
-                if (x.divisor != 0) {
+    auto store = [](double* x, Pair v) { std::memcpy(x, &v, sizeof v); };
+    std::vector<double> input(M * W, 0.0), values(T * W), next(M * W);
+    for (size_t i = 0; i < M; ++i) input[i * W + i] = 1; // band 1 reads face 0's support
+    std::vector<float> weights(size_t(K) * 48 * M);
+    for (uint32_t band = 1; band <= K; ++band) {
+        std::fill(values.begin(), values.end(), 0.0);
+        for (size_t r = 0; r < T; ++r) {
+            double* out = &values[r * W];
+            for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+                const uint32_t s = p.source[e];
+                const double* in = s < M ? &input[s * W] : &values[(s - M) * W];
+                if (p.averaged[r]) {
                     for (size_t c = 0; c < W; c += 2) store(out + c, load(out + c) + load(in + c));
                 } else {
-                    const Pair weight = {e.weight, e.weight};
-                    for (size_t c = 0; c < W; c += 2)
-                        store(out + c, load(out + c) + weight * load(in + c));
+                    const double w = p.weight[e];
+                    const Pair weight = {w, w};
+                    for (size_t c = 0; c < W; c += 2) store(out + c, load(out + c) + weight * load(in + c));
                 }
             }
-            if (x.divisor != 0) {
-                const Pair divisor = {x.divisor, x.divisor};
+            if (p.averaged[r]) {
+                const double d = double(p.start[r + 1] - p.start[r]);
+                const Pair divisor = {d, d};
                 for (size_t c = 0; c < W; c += 2) store(out + c, load(out + c) / divisor);
             }
         }
-    };
-    for (uint32_t l = 1; l <= R; ++l) {
-        buildProgram(l); // the last one, level R's, is kept for the deeper bands
-        run(V[l - 1], V[l]);
+        float* block = &weights[size_t(band - 1) * 48 * M];
+        for (size_t j = 0; j < 48; ++j)
+            for (size_t i = 0; i < M; ++i) block[j * M + i] = static_cast<float>(values[p.controlRow[j] * W + i]);
+        for (size_t i = 0; i < M; ++i)
+            std::memcpy(&next[i * W], &values[p.nextSupport[i] * W], W * sizeof(double));
+        input.swap(next);
     }
-    auto readSubPatches = [&](uint32_t band, const std::vector<double>& values) {
-        for (const SubPatch& sp : subPatches) {
-            if (sp.level != std::min(band, R)) continue;
-            const size_t block = size_t(band - 1) * 3 + sp.quadrant;
-            filled[block] = 1;
-            for (int j = 0; j < 16; ++j) {
-                const double* P = &values[size_t(row[sp.level][sp.patch.cv[j]]) * W];
-                if (std::abs(P[M]) > 1e-12) throw std::logic_error("irregular basis: support too small");
-                for (size_t i = 0; i < M; ++i)
-                    basis.weights[block * 16 * M + size_t(j) * M + i] = static_cast<float>(P[i]);
-            }
-        }
-    };
-    for (uint32_t band = 1; band <= R; ++band) readSubPatches(band, V[band]);
-    if (K > R) {
-        // The program reads level R - 1 in that level's rows; remap them to the support's order,
-        // which is where the deeper levels put their input.
-        std::vector<uint32_t> inputOf(V[R - 1].size() / W, kNone);
-        for (size_t i = 0; i < M; ++i) inputOf[row[R - 1][supports[R - 1][i]]] = uint32_t(i);
-        for (Entry& e : entries)
-            if (!e.current) {
-                if (inputOf[e.source] == kNone)
-                    throw std::logic_error("irregular basis: a row reads outside the support");
-                e.source = inputOf[e.source];
-            }
-        std::vector<double> input(M * W), output(V[R].size());
-        for (uint32_t band = R + 1; band <= K; ++band) {
-            const std::vector<double>& from = band == R + 1 ? V[R] : output;
-            for (size_t i = 0; i < M; ++i)
-                std::memcpy(&input[i * W], &from[size_t(row[R][supports[R][i]]) * W], W * sizeof(double));
-            std::fill(output.begin(), output.end(), 0.0);
-            run(input, output);
-            readSubPatches(band, output);
-        }
-    }
-    if (std::find(filled.begin(), filled.end(), 0) != filled.end())
-        throw std::logic_error("irregular basis: a sub-patch is missing");
-    return basis;
+    return weights;
 }
 
 } // namespace limn

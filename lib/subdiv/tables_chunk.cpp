@@ -1,6 +1,7 @@
 #include "subdiv/tables_chunk.h"
 
 #include "subdiv/tables_stream.h"
+#include "subdiv/tables_surface_records.h"
 
 #include "base/bytes.h"
 #include "base/cli.h"
@@ -33,9 +34,10 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
 }
 
 Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
-    if (version != 3 && version != kTablesChunkVersion)
-        throw std::logic_error("TBLS: only versions 3 and 4 are written");
+    if (version < 3 || version > kTablesChunkVersion)
+        throw std::logic_error("TBLS: only versions 3 to 5 are written");
     const bool compact = version >= 4;
+    const bool programs = version >= 5; // bases as programs, compact nodes and smooth faces
     ByteWriter w;
     // The size of the layout below, reserved so a large table is written in one pass.
     auto tableBytes = [](const StencilTable& table, bool weights) {
@@ -98,11 +100,18 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     w.write<uint32_t>(static_cast<uint32_t>(t.subPatches.size()));
     writeRecords(t.subPatches);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularNodes.size()));
-    for (const auto& n : t.irregularNodes) w.writeArray(std::span<const uint32_t>(n.data(), 4));
+    if (programs)
+        writeNodeStream(w, t.irregularNodes);
+    else
+        for (const auto& n : t.irregularNodes) w.writeArray(std::span<const uint32_t>(n.data(), 4));
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularLeaves.size()));
     for (const auto& q : t.irregularLeaves) writeFace(q);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularBases.size()));
     for (const auto& b : t.irregularBases) {
+        if (programs) {
+            writeBasisProgram(w, b);
+            continue;
+        }
         // Version 4: each of the k·48 sub-patch control points names its row of weights, and
         // equal rows are stored once (the three sub-patches of a band share half their points).
         if (!compact) {
@@ -132,17 +141,23 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         w.writeArray(rows);
     }
     w.write<uint32_t>(static_cast<uint32_t>(t.smoothIrregular.size()));
-    for (const auto& f : t.smoothIrregular)
-        for (uint32_t x : {f.basis, f.corner, f.first}) w.write<uint32_t>(x);
+    if (programs)
+        writeSmoothFaces(w, t);
+    else
+        for (const auto& f : t.smoothIrregular)
+            for (uint32_t x : {f.basis, f.corner, f.first}) w.write<uint32_t>(x);
     w.write<uint32_t>(static_cast<uint32_t>(t.smoothPoints.size()));
+    if (programs) writeSmoothPoints(w, t);
     if (!compact) w.writeArray(t.smoothPoints);
-    std::vector<uint8_t> points; // version 4: differences from the previous point
-    uint32_t previous = 0;
-    for (uint32_t v : t.smoothPoints) {
-        writeVarint(points, zigzag(int64_t(v) - previous));
-        previous = v;
+    if (compact && !programs) { // version 4: differences from the previous point
+        std::vector<uint8_t> points;
+        uint32_t previous = 0;
+        for (uint32_t v : t.smoothPoints) {
+            writeVarint(points, zigzag(int64_t(v) - previous));
+            previous = v;
+        }
+        writeStream(w, points);
     }
-    if (compact) writeStream(w, points);
     writeStencilTable(w, t.limitPosition, true, compact);
     writeStencilTable(w, t.limitTangent1, true, compact);
     writeStencilTable(w, t.limitTangent2, true, compact);
@@ -160,6 +175,7 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
                       (chunk.version ? "; upgrade limn" : ""));
     const uint32_t patchBytes = chunk.version >= 2 ? 88 : 84;
     const bool compact = chunk.version >= 4; // compact stencil tables and bases
+    const bool programs = chunk.version >= 5; // bases as programs, compact nodes and smooth faces
     ByteReader r(chunk.payload, "chunk TBLS");
     Tables t;
     t.depth = r.read<uint32_t>();
@@ -326,10 +342,15 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         const uint32_t subs = r.read<uint32_t>();
         readPatches(t.subPatches, subs, "sub-patch", false);
         const uint32_t nodes = r.read<uint32_t>();
-        if (nodes > r.remaining() / 16) r.fail("irregular node count is too large");
+        if (!programs && nodes > r.remaining() / 16) r.fail("irregular node count is too large");
         if (nodes && nodes < irregular) r.fail("an irregular face has no quadtree");
+        std::vector<uint32_t> codes;
+        if (programs) {
+            for (const auto& n : readNodeStream(r, nodes)) codes.insert(codes.end(), n.begin(), n.end());
+        } else {
+            codes = r.readArray<uint32_t>(uint64_t(nodes) * 4, "irregular nodes");
+        }
         t.irregularNodes.resize(nodes);
-        std::vector<uint32_t> codes = r.readArray<uint32_t>(uint64_t(nodes) * 4, "irregular nodes");
         const uint32_t leaves = r.read<uint32_t>();
         if (leaves > r.remaining() / 32) r.fail("irregular leaf count is too large");
         for (uint32_t i = 0; i < nodes; ++i)
@@ -346,6 +367,10 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         const uint32_t bases = r.read<uint32_t>();
         if (bases > r.remaining() / 8) r.fail("irregular basis count is too large");
         for (uint32_t i = 0; i < bases; ++i) {
+            if (programs) {
+                t.irregularBases.push_back(readBasisProgram(r, i, t.irregularBases));
+                continue;
+            }
             IrregularBasis basis;
             basis.valence = r.read<uint32_t>();
             basis.levels = r.read<uint32_t>();
@@ -385,14 +410,17 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
             t.irregularBases.push_back(std::move(basis));
         }
         const uint32_t smooth = r.read<uint32_t>();
-        if (smooth > r.remaining() / 12) r.fail("smooth irregular face count is too large");
-        for (uint32_t i = 0; i < smooth; ++i) {
+        if (!programs && smooth > r.remaining() / 12) r.fail("smooth irregular face count is too large");
+        if (programs) t.smoothIrregular = readSmoothFaces(r, smooth, t.irregularBases);
+        for (uint32_t i = 0; !programs && i < smooth; ++i) {
             Tables::SmoothIrregular f{r.read<uint32_t>(), r.read<uint32_t>(), r.read<uint32_t>()};
             if (f.basis >= bases || f.corner > 3) r.fail("smooth irregular face " + std::to_string(i) + " is bad");
             t.smoothIrregular.push_back(f);
         }
         const uint32_t points = r.read<uint32_t>();
-        if (compact) {
+        if (programs) {
+            t.smoothPoints = readSmoothPoints(r, points, t.levels[t.depth]);
+        } else if (compact) {
             StreamReader pts(r, "smooth irregular points");
             if (points > pts.size()) pts.fail("count " + std::to_string(points) + " is too large");
             t.smoothPoints.reserve(points);

@@ -13,9 +13,11 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // beyond the depth, sub-patches, nodes and leaves (docs/irregular.md); older ones have none.
 // Version 4 stores the same tables compactly: stencil tables as palette indices and varint
 // differences, per-valence bases with each distinct row of weights once (formats/limn.md).
-inline constexpr uint32_t kTablesChunkVersion = 4;
+// Version 5 stores each basis as its one-level program (expanded by the reader to the same
+// weights) and the quadtree nodes and smooth faces as varint streams (tables_surface_records.h).
+inline constexpr uint32_t kTablesChunkVersion = 5;
 
-// Writes the current version; 3 (the plain layout) for tests and fuzz seeds of older files.
+// Writes the current version; 3 (the plain layout) and 4 for tests and fuzz seeds of older files.
 Chunk encodeTablesChunk(const Tables& tables, uint32_t version = kTablesChunkVersion);
 
 // Decodes and validates every count and index. With `mesh`, also checks that the tables were

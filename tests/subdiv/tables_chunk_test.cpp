@@ -4,13 +4,17 @@
 #include "mesh/import.h"
 #include "mesh/mesh_chunks.h"
 #include "subdiv/tables_chunk.h"
+#include "subdiv/irregular_basis.h"
 #include "subdiv/tables_stream.h"
+#include "subdiv/tables_surface_records.h"
 #include "tess/tessellation.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
+#include <functional>
 #include <random>
 
 using namespace limn;
@@ -42,25 +46,60 @@ TEST(TablesChunk, RoundTripIsLossless) {
 }
 
 // Version 4 stores the same tables as version 3 in fewer bytes (compact stencil tables, patch
-// records and per-valence bases): both read back to the same tables, on meshes whose irregular
-// faces take every kind of surface (bases, sub-patch quadtrees with boundaries, creases and
-// single-crease sub-patches, leaves).
-TEST(TablesChunk, VersionFourReadsAsVersionThree) {
+// records and per-valence bases), version 5 in fewer still (bases as their programs, compact
+// nodes and smooth faces): all three read back to the same tables, weights to the bit, on meshes
+// whose irregular faces take every kind of surface (bases, sub-patch quadtrees with boundaries,
+// creases and single-crease sub-patches, leaves). Tables read from versions 3 and 4 are written
+// as version 5 with the program of each basis's valence.
+TEST(TablesChunk, OlderVersionsReadAsVersionFive) {
     for (const char* model : {"osd/catmark/catmark_smoothtris0.obj", "osd/catmark/catmark_cubes_semisharp.obj",
                               "quad/osd_catmark_xord_boundary.obj", "osd/catmark/catmark_single_crease.obj"}) {
         SCOPED_TRACE(model);
         Mesh m = load(model);
         for (int depth : {1, 2}) {
             const Tables t = build(m, depth);
-            const Chunk v3 = encodeTablesChunk(t, 3), v4 = encodeTablesChunk(t);
+            const Chunk v3 = encodeTablesChunk(t, 3), v4 = encodeTablesChunk(t, 4), v5 = encodeTablesChunk(t);
             ASSERT_EQ(v4.version, 4u);
+            ASSERT_EQ(v5.version, 5u);
             EXPECT_LT(v4.payload.size(), v3.payload.size() * 3 / 4);
-            const Tables a = decodeTablesChunk(v3, &m), b = decodeTablesChunk(v4, &m);
-            EXPECT_EQ(encodeTablesChunk(b, 3).payload, v3.payload);
-            EXPECT_EQ(encodeTablesChunk(a).payload, v4.payload);
-            EXPECT_FALSE(b.subPatches.empty() && b.irregularBases.empty());
+            EXPECT_LE(v5.payload.size(), v4.payload.size());
+            if (!t.irregularBases.empty()) {
+                EXPECT_LT(v5.payload.size(), v4.payload.size());
+            }
+            const Tables a = decodeTablesChunk(v3, &m), b = decodeTablesChunk(v4, &m), c = decodeTablesChunk(v5, &m);
+            EXPECT_EQ(encodeTablesChunk(c, 3).payload, v3.payload);
+            EXPECT_EQ(encodeTablesChunk(c, 4).payload, v4.payload);
+            EXPECT_EQ(encodeTablesChunk(a).payload, v5.payload);
+            EXPECT_EQ(encodeTablesChunk(b).payload, v5.payload);
+            EXPECT_FALSE(c.subPatches.empty() && c.irregularBases.empty());
+            ASSERT_EQ(c.irregularBases.size(), t.irregularBases.size());
+            for (size_t i = 0; i < t.irregularBases.size(); ++i) {
+                const std::vector<float>&x = t.irregularBases[i].weights, &y = c.irregularBases[i].weights;
+                ASSERT_EQ(x.size(), y.size());
+                EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << "basis " << i;
+            }
         }
     }
+}
+
+// Version 5's reader expands each basis from its program with the builder's arithmetic: the
+// weights the GPU gets are the builder's, to the bit, for every valence a basis is built for
+// (checked by hand at K = 16 too).
+TEST(TablesChunk, BasisProgramsExpandToTheBuildersWeights) {
+    size_t differ = 0;
+    for (uint32_t n = 3; n <= kMaxBasisValence; ++n) {
+        if (n == 4) continue;
+        const IrregularBasis built = buildIrregularBasis(n, 6);
+        ByteWriter w;
+        writeBasisProgram(w, built);
+        const std::vector<uint8_t> bytes = w.take();
+        ByteReader r(bytes, "test");
+        const IrregularBasis read = readBasisProgram(r, 0, {});
+        EXPECT_TRUE(r.atEnd());
+        ASSERT_EQ(read.weights.size(), built.weights.size()) << "valence " << n;
+        differ += std::memcmp(read.weights.data(), built.weights.data(), built.weights.size() * sizeof(float)) != 0;
+    }
+    EXPECT_EQ(differ, 0u);
 }
 
 // Tables are built from topology alone: moving every vertex changes no byte (paper 000: only the
@@ -108,7 +147,7 @@ TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
         EXPECT_EQ(back.patches[i].crease, crease.patches[i].crease);
         EXPECT_EQ(back.patches[i].sharpness, crease.patches[i].sharpness);
     }
-    for (uint32_t version : {0u, 5u}) {
+    for (uint32_t version : {0u, kTablesChunkVersion + 1}) {
         Chunk bad = v2;
         bad.version = version;
         try {
@@ -253,22 +292,77 @@ TEST(TablesChunk, BasisOfTooHighOrRepeatedValenceIsRefused) {
     const Tables good = build(m, 3);
     ASSERT_FALSE(good.irregularBases.empty());
     EXPECT_NO_THROW(decodeTablesChunk(encodeTablesChunk(good), &m));
-    for (int which = 0; which < 2; ++which) {
-        Tables t = good;
-        if (which == 0) {
-            IrregularBasis& b = t.irregularBases[0];
-            b.valence = kMaxBasisValence + 1;
-            b.weights.assign(size_t(b.levels) * 48 * b.supportSize(), 0.0f);
-        } else {
-            t.irregularBases.push_back(t.irregularBases[0]);
+    for (uint32_t version : {4u, 5u})
+        for (int which = 0; which < 2; ++which) {
+            Tables t = good;
+            if (which == 0) {
+                IrregularBasis& b = t.irregularBases[0];
+                b.valence = kMaxBasisValence + 1; // version 5 writes its program as it is
+                b.weights.assign(size_t(b.levels) * 48 * b.supportSize(), 0.0f);
+            } else {
+                t.irregularBases.push_back(t.irregularBases[0]);
+            }
+            try {
+                decodeTablesChunk(encodeTablesChunk(t, version), &m);
+                ADD_FAILURE() << "accepted basis case " << which << " in version " << version;
+            } catch (const Error& e) {
+                const std::string want = which == 1 ? "repeats valence"
+                                         : version == 4 ? "has valence " + std::to_string(kMaxBasisValence + 1)
+                                                        : "bad valence";
+                EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+            }
         }
+}
+
+// A version-5 basis is a program the reader runs K times over 2n + 8 columns: every count and
+// index is checked first (rows within twice the support, entries within 16 a row, sources a
+// support point or an earlier row, control and support points existing rows, weights in the
+// palette and finite), and the expanded weights are bounded like every stencil weight.
+TEST(TablesChunk, HostileBasisProgramIsRefused) {
+    Mesh m = load("quad/osd_catmark_pyramid.obj");
+    const Tables good = build(m, 3);
+    ASSERT_FALSE(good.irregularBases.empty());
+    const BasisProgram& g = good.irregularBases[0].program;
+    const uint32_t M = good.irregularBases[0].supportSize();
+    ASSERT_GT(g.rows(), 0u);
+    struct Case {
+        const char* why;
+        std::function<void(BasisProgram&)> damage;
+    };
+    const std::vector<Case> cases = {
+        {"reads neither a support point nor an earlier row", [&](BasisProgram& p) { p.source[p.start[3]] = M + 3; }},
+        {"reads neither a support point nor an earlier row", [&](BasisProgram& p) { p.source.back() = 1u << 30; }},
+        {"names a missing row", [&](BasisProgram& p) { p.controlRow[7] = p.rows(); }},
+        {"names a missing row", [&](BasisProgram& p) { p.nextSupport[0] = 1u << 31; }},
+        {"bad row count", [&](BasisProgram& p) {
+             while (p.rows() <= 2 * M) {
+                 p.source.push_back(0);
+                 p.weight.push_back(1.0f);
+                 p.averaged.push_back(1);
+                 p.start.push_back(uint32_t(p.source.size()));
+             }
+         }},
+        {"has a bad length", [&](BasisProgram& p) {
+             const uint32_t extra = 16 * p.rows(); // the last row takes more than all rows may
+             p.source.insert(p.source.end(), extra, 0);
+             p.weight.insert(p.weight.end(), extra, 0.5f);
+             p.start.back() += extra;
+         }},
+        {"has a bad weight", [&](BasisProgram& p) { p.weight[p.start[p.rows() - 1]] = 3e38f; }},
+        // Each band multiplies by 1e5: finite in the palette, past 1e6 once expanded.
+        {"has a bad weight", [&](BasisProgram& p) {
+             for (uint32_t r = 0; r < p.rows(); ++r)
+                 if (!p.averaged[r]) p.weight[p.start[r]] = 1e5f;
+         }},
+    };
+    for (size_t i = 0; i < cases.size(); ++i) {
+        Tables t = good;
+        cases[i].damage(t.irregularBases[0].program);
         try {
             decodeTablesChunk(encodeTablesChunk(t), &m);
-            ADD_FAILURE() << "accepted basis case " << which;
+            ADD_FAILURE() << "accepted program case " << i;
         } catch (const Error& e) {
-            const std::string want = which == 0 ? "has valence " + std::to_string(kMaxBasisValence + 1)
-                                                : "repeats valence";
-            EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(cases[i].why), std::string::npos) << "case " << i << ": " << e.what();
         }
     }
 }

@@ -1,9 +1,10 @@
-// The TBLS chunk (formats/limn.md, section 7; versions 1 to 4) as the WebGPU runtime reads it:
+// The TBLS chunk (formats/limn.md, section 7; versions 1 to 5) as the WebGPU runtime reads it:
 // every count, index and stencil entry checked as lib/subdiv/tables_chunk.cpp checks it, so that
 // nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
 import { Fnv64, LimnError, bytesOf, chunkReader } from './container.mjs';
 import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
+import { readBasisProgram, readNodeStream, readSmoothFaces, readSmoothPoints } from './tables_surface_records.mjs';
 
 const MAX_DEPTH = 16;
 const INFINITE_SHARPNESS = 10;
@@ -60,10 +61,11 @@ function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compac
 export const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 export function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 4) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 4); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 4);
+  if (chunk.version > 5) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 5); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 5);
   const patchWords = chunk.version >= 2 ? 22 : 21;
   const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
+  const programs = chunk.version >= 5; // bases as programs, compact nodes and smooth faces
   const depth = r.u32('depth');
   if (depth > MAX_DEPTH) r.fail(`depth ${depth} is out of range`);
   const flags = r.u32('flags');
@@ -202,7 +204,7 @@ export function decodeTables(chunk, mesh, tags) {
   };
   if (Q > Math.floor(r.remaining / 32)) r.fail('irregular face count is too large');
   const irregularFaces = readFaces(Q, 'irregular face', true);
-  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatches, readFaces, compact, depth, levels, Q }) : null;
+  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatches, readFaces, compact, programs, depth, levels, Q }) : null;
   // The domains tile every ptex face exactly once, or not at all (lib/subdiv/tables_chunk.cpp).
   squares.sort((a, b) => a.ptex - b.ptex);
   for (let first = 0, end = 0; first < squares.length; first = end) {
@@ -252,13 +254,13 @@ export function decodeTables(chunk, mesh, tags) {
 
 // TBLS version 3's irregular-face surface (lib/subdiv/tables_chunk.cpp): sub-patches, quadtree
 // nodes, leaves, per-valence bases, smooth faces and their points, with the C++ reader's checks.
-function readIrregularSurface(r, { readPatches, readFaces, compact, depth, levels, Q }) {
+function readIrregularSurface(r, { readPatches, readFaces, compact, programs, depth, levels, Q }) {
   const subs = r.u32('sub-patch count');
   const subPatches = readPatches(subs, 'sub-patch', false);
   const nodes = r.u32('irregular node count');
-  if (nodes > Math.floor(r.remaining / 16)) r.fail('irregular node count is too large');
+  if (!programs && nodes > Math.floor(r.remaining / 16)) r.fail('irregular node count is too large');
   if (nodes && nodes < Q) r.fail('an irregular face has no quadtree');
-  const codes = r.array(Uint32Array, nodes * 4, 'irregular nodes');
+  const codes = programs ? readNodeStream(r, nodes) : r.array(Uint32Array, nodes * 4, 'irregular nodes');
   const leafCount = r.u32('irregular leaf count');
   if (leafCount > Math.floor(r.remaining / 32)) r.fail('irregular leaf count is too large');
   for (let i = 0; i < nodes; i++) {
@@ -274,7 +276,8 @@ function readIrregularSurface(r, { readPatches, readFaces, compact, depth, level
   const baseCount = r.u32('irregular basis count');
   if (baseCount > Math.floor(r.remaining / 8)) r.fail('irregular basis count is too large');
   const bases = [];
-  for (let i = 0; i < baseCount; i++) {
+  for (let i = 0; programs && i < baseCount; i++) bases.push(readBasisProgram(r, i, bases));
+  for (let i = 0; !programs && i < baseCount; i++) {
     const valence = r.u32(), lv = r.u32();
     if (valence < 3 || valence > MAX_STENCIL_VALENCE || lv < 1 || lv > MAX_DEPTH) r.fail(`irregular basis ${i} has a bad valence or level count`);
     const support = 2 * valence + 8;
@@ -300,16 +303,18 @@ function readIrregularSurface(r, { readPatches, readFaces, compact, depth, level
     bases.push({ valence, levels: lv, support, weights });
   }
   const smoothCount = r.u32('smooth irregular face count');
-  if (smoothCount > Math.floor(r.remaining / 12)) r.fail('smooth irregular face count is too large');
-  const smooth = [];
-  for (let i = 0; i < smoothCount; i++) {
+  if (!programs && smoothCount > Math.floor(r.remaining / 12)) r.fail('smooth irregular face count is too large');
+  const smooth = programs ? readSmoothFaces(r, smoothCount, bases) : [];
+  for (let i = 0; !programs && i < smoothCount; i++) {
     const f = { basis: r.u32(), corner: r.u32(), first: r.u32() };
     if (f.basis >= baseCount || f.corner > 3) r.fail(`smooth irregular face ${i} is bad`);
     smooth.push(f);
   }
   const points = r.u32('smooth irregular point count');
   let smoothPoints;
-  if (compact) { // differences from the previous point
+  if (programs) {
+    smoothPoints = readSmoothPoints(r, points, levels[depth]);
+  } else if (compact) { // differences from the previous point
     const s = new Stream(r, 'smooth irregular points');
     if (points > s.size) s.fail(`count ${points} is too large`);
     smoothPoints = new Uint32Array(points);

@@ -4,7 +4,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { loadLimn } from '../src/chunks.mjs';
-import { LimnError, parseContainer } from '../src/container.mjs';
+import { ByteReader, LimnError, parseContainer } from '../src/container.mjs';
+import { readBasisProgram, readNodeStream } from '../src/tables_surface_records.mjs';
 import { join } from 'node:path';
 import { container, read, repo } from './support.mjs';
 
@@ -114,14 +115,14 @@ test('byte flips are accepted or refused with a LimnError, never another excepti
 test('BLND is refused clearly, a newer chunk version names itself', () => {
   const chunks = parseContainer(small());
   expectLimnError(build([...chunks, { type: 'BLND', version: 1, payload: new Uint8Array(24) }]), /chunk BLND: blending surfaces are not supported here/);
-  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 5 } : c));
-  expectLimnError(build(newer), /chunk TBLS: version 5 is newer/);
+  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 6 } : c));
+  expectLimnError(build(newer), /chunk TBLS: version 6 is newer/);
   const unknown = [...chunks, { type: 'ZZZZ', version: 9, payload: new Uint8Array(5) }];
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
 });
 
-// Where TBLS v4's irregular-surface section starts (formats/limn.md): after the header, levels,
+// Where TBLS v4's and v5's irregular-surface section starts (formats/limn.md): after the header, levels,
 // stencil tables (their palettes and streams), the patch stream and the irregular faces, walked
 // over the payload's own length fields.
 function irregularSectionOffset(t, payload) {
@@ -132,7 +133,28 @@ function irregularSectionOffset(t, payload) {
   return { at: stream(o) + 32 * t.irregularCount, stream };
 }
 
-test('hostile TBLS v4 irregular-surface fields are refused by name, never a hang', () => {
+// TBLS v5's node stream (formats/limn.md): codes as varints from the last index of their kind.
+function nodeStream(codes) {
+  const bytes = [], next = [0, 0, 0, 0];
+  const varint = (x) => { for (; x >= 0x80; x = Math.floor(x / 128)) bytes.push((x % 128) | 0x80); bytes.push(x); };
+  const code = (c) => {
+    if (c === 0xffffffff) return 0;
+    const kind = c >>> 30, x = c & ((1 << 30) - 1), d = x - next[kind];
+    next[kind] = x + 1;
+    return 1 + kind + 4 * (d >= 0 ? 2 * d : -2 * d - 1);
+  };
+  for (let i = 0; i < codes.length; i += 4) {
+    const same = codes[i] === codes[i + 1] && codes[i] === codes[i + 2] && codes[i] === codes[i + 3];
+    varint(2 * code(codes[i]) + (same ? 1 : 0));
+    if (!same) for (let q = 1; q < 4; q++) varint(code(codes[i + q]));
+  }
+  const out = new Uint8Array(4 + Math.ceil(bytes.length / 4) * 4);
+  new DataView(out.buffer).setUint32(0, bytes.length, true);
+  out.set(bytes, 4);
+  return out;
+}
+
+test('hostile TBLS v5 irregular-surface fields are refused by name, never a hang', () => {
   const bytes = small(), chunks = parseContainer(bytes);
   const s = loadLimn(bytes);
   const tbls = chunks.find((c) => c.type === 'TBLS').payload;
@@ -143,27 +165,73 @@ test('hostile TBLS v4 irregular-surface fields are refused by name, never a hang
     edit(new DataView(payload.buffer));
     return { ...c, payload };
   }));
-  const subs = new DataView(tbls.slice().buffer).getUint32(at, true);
-  const nodes = stream(at + 4) + 4;
+  const view = new DataView(tbls.slice().buffer);
+  const subs = view.getUint32(at, true);
+  const count = stream(at + 4), nodes = count + 4;
   // The section as located holds the reader's own sub-patch and node counts.
   assert.ok(subs > 0 && subs < 1e6);
+  const codes = readNodeStream(new ByteReader(tbls.subarray(nodes), 'test'), view.getUint32(count, true));
+  assert.ok(codes.length >= 4);
+  const withNodes = (edit) => {
+    const c = codes.slice();
+    edit(c);
+    const payload = new Uint8Array([...tbls.subarray(0, nodes), ...nodeStream(c), ...tbls.subarray(stream(nodes))]);
+    return build(chunks.map((k) => (k.type === 'TBLS' ? { ...k, payload } : k)));
+  };
+  assert.equal(loadLimn(withNodes(() => {})).tables.depth, 2); // the helper writes the same stream
   // A node naming itself (or an earlier node) as its child would make the GPU's walk endless.
-  expectLimnError(patched((v) => v.setUint32(nodes, (1 << 30) >>> 0, true)), /chunk TBLS: .*irregular node 0 has a bad child/);
-  expectLimnError(patched((v) => v.setUint32(nodes + 4, 0x3fffffff, true)), /chunk TBLS: .*irregular node 0 has a bad child/);
+  expectLimnError(withNodes((c) => { c[0] = (1 << 30) >>> 0; }), /chunk TBLS: .*irregular node 0 has a bad child/);
+  expectLimnError(withNodes((c) => { c[1] = 0x3fffffff; }), /chunk TBLS: .*irregular node 0 has a bad child/);
+  expectLimnError(patched((v) => v.setUint32(count, 1 << 30, true)), /chunk TBLS: irregular nodes: count 1073741824 is too large/);
   expectLimnError(patched((v) => v.setUint32(at, 0xffffffff, true)), /chunk TBLS: .*sub-patch count 4294967295 is too large/);
   // Extra levels on uniform tables, or more than depth 16 allows.
   expectLimnError(patched((v) => v.setUint32(12, 15, true)), /chunk TBLS: .*irregular levels 15 out of range/);
 });
 
-// TBLS v4 (compact stencil tables, patch streams, deduplicated bases, point streams) and v3 (the
-// plain layout; this seed was converted from the v4 one by a separate decoder written from
-// formats/limn.md) of the same tables, with valence bases, sub-patch quadtrees and leaves, read
-// to the same GPU buffers and stencils.
-test('TBLS v4 and v3 of the same tables read the same', () => {
+// TBLS v5 (bases as programs, node and smooth-face streams), v4 (compact stencil tables, patch
+// streams, deduplicated bases, point streams) and v3 (the plain layout; this seed was converted
+// from the v4 one by a separate decoder written from formats/limn.md) of the same tables, with
+// valence bases, sub-patch quadtrees and leaves, read to the same GPU buffers and stencils: the
+// weights this reader expands from v5's programs are limn-tables' own (stored in v4), to the bit.
+// (The v5 seed is the v4 one's tables written again by limn's encoder.)
+test('TBLS v5, v4 and v3 of the same tables read the same', () => {
   const seed = (v) => read(join(repo, `fuzz/corpus/render_input/pentagon_tower_d1_irregular_v${v}.limn`));
-  const v3 = loadLimn(seed(3)).tables, v4 = loadLimn(seed(4)).tables;
+  const v3 = loadLimn(seed(3)).tables, v4 = loadLimn(seed(4)).tables, v5 = loadLimn(seed(5)).tables;
   assert.ok(v4.irregularLevels > 0 && v4.patches.length > (v4.patchCount + v4.irregularCount) * 24);
   assert.deepEqual(v4, v3);
+  assert.deepEqual(v5, v4);
+});
+
+// A v5 basis is a program this reader runs over 2n + 8 columns K times: a valence over 64, a
+// source that is neither a support point nor an earlier row, or a missing row is refused by name.
+test('TBLS v5: a hostile basis program is refused', () => {
+  const bytes = read(join(repo, 'fuzz/corpus/render_input/pentagon_tower_d1_irregular_v5.limn'));
+  const chunks = parseContainer(bytes);
+  const tbls = chunks.find((c) => c.type === 'TBLS').payload;
+  const v = new DataView(tbls.buffer, tbls.byteOffset, tbls.byteLength);
+  // The basis record: found by reading one at each offset where its header fits (valence 3, one
+  // level, a small palette), as the sections before it have no fixed size.
+  let at = -1;
+  for (let o = 0; o + 12 <= tbls.length && at < 0; o += 4) {
+    if (v.getUint32(o, true) !== 3 || v.getUint32(o + 4, true) !== 1 || v.getUint32(o + 8, true) > 64) continue;
+    try { readBasisProgram(new ByteReader(tbls.subarray(o), 'test'), 0, []); at = o; } catch { /* not it */ }
+  }
+  assert.ok(at >= 0, 'no basis found');
+  const palette = v.getUint32(at + 8, true), stream = at + 12 + 4 * palette + 4;
+  const patched = (edit) => {
+    const payload = tbls.slice();
+    edit(new DataView(payload.buffer), payload);
+    return build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c)));
+  };
+  expectLimnError(patched((w) => w.setUint32(at, 65, true)), /chunk TBLS: irregular basis 0 has a bad valence or level count/);
+  expectLimnError(patched((w) => w.setUint32(at + 4, 17, true)), /chunk TBLS: irregular basis 0 has a bad valence or level count/);
+  // The row count (its first varint, one byte here): 0, or more than twice the support.
+  assert.ok(tbls[stream] < 0x80);
+  expectLimnError(patched((w, p) => { p[stream] = 0; }), /irregular basis 0: bad row count 0/);
+  expectLimnError(patched((w, p) => { p[stream] = 29; }), /irregular basis 0: bad row count 29/);
+  // Row 0's first source (after its one-byte head): a later row, itself.
+  assert.ok(tbls[stream + 1] < 0x80 && tbls[stream + 2] < 0x80);
+  expectLimnError(patched((w, p) => { p[stream + 2] = 14; }), /irregular basis 0: row 0 reads neither a support point nor an earlier row/);
 });
 
 // A v4 basis's rows are stored once and copied per use: a valence limn-tables never builds a

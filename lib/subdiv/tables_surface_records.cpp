@@ -1,0 +1,234 @@
+#include "subdiv/tables_surface_records.h"
+
+#include "subdiv/irregular_basis.h"
+#include "subdiv/tables_stream.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+namespace limn {
+
+// A program has 2n + 17 rows (the band's support, the sub-patches' other points and the face
+// points they read) of about five entries each (formats/limn.md); these bounds leave room and
+// keep a hostile program's expansion small (rows x support doubles, entries x support x K
+// operations).
+static constexpr uint32_t kMaxProgramRowsPerPoint = 2;
+static constexpr uint32_t kMaxProgramEntriesPerRow = 16;
+
+void writeBasisProgram(ByteWriter& w, const IrregularBasis& b) {
+    const BasisProgram* p = &b.program;
+    IrregularBasis built;
+    if (b.program.rows() == 0) {
+        built = buildIrregularBasis(b.valence, b.levels);
+        if (built.weights.size() != b.weights.size() ||
+            std::memcmp(built.weights.data(), b.weights.data(), b.weights.size() * sizeof(float)) != 0)
+            throw std::logic_error("TBLS: a valence-" + std::to_string(b.valence) +
+                                   " basis is not this limn's; it cannot be written as a program");
+        p = &built.program;
+    }
+    std::vector<float> palette;
+    std::unordered_map<uint32_t, uint32_t> slot; // a weight's bits -> its palette index
+    std::vector<uint8_t> s;
+    writeVarint(s, p->rows());
+    for (uint32_t r = 0; r < p->rows(); ++r) {
+        writeVarint(s, uint64_t(p->start[r + 1] - p->start[r]) << 1 | p->averaged[r]);
+        for (uint32_t e = p->start[r]; e < p->start[r + 1]; ++e) {
+            writeVarint(s, p->source[e]);
+            if (p->averaged[r]) continue;
+            const auto [it, added] =
+                slot.try_emplace(std::bit_cast<uint32_t>(p->weight[e]), static_cast<uint32_t>(palette.size()));
+            if (added) palette.push_back(p->weight[e]);
+            writeVarint(s, it->second);
+        }
+    }
+    for (uint32_t x : p->controlRow) writeVarint(s, x);
+    for (uint32_t x : p->nextSupport) writeVarint(s, x);
+    w.write<uint32_t>(b.valence);
+    w.write<uint32_t>(b.levels);
+    w.write<uint32_t>(static_cast<uint32_t>(palette.size()));
+    w.writeArray(palette);
+    writeStream(w, s);
+}
+
+IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector<IrregularBasis>& earlier) {
+    const std::string what = "irregular basis " + std::to_string(index);
+    IrregularBasis b;
+    b.valence = r.read<uint32_t>();
+    b.levels = r.read<uint32_t>();
+    // The expanded weights take K * 48 * (2n + 8) floats from a few hundred bytes: valences
+    // beyond kMaxBasisValence (limn-tables builds none) and repeated ones are damage.
+    if (b.valence < 3 || b.valence > kMaxBasisValence || b.levels < 1 || b.levels > uint32_t(kMaxDepth))
+        r.fail(what + " has a bad valence or level count (valence 3 to " + std::to_string(kMaxBasisValence) +
+               ", 1 to " + std::to_string(kMaxDepth) + " levels)");
+    for (const IrregularBasis& other : earlier)
+        if (other.valence == b.valence) r.fail(what + " repeats valence " + std::to_string(b.valence));
+    const uint32_t M = b.supportSize();
+    const uint32_t P = r.read<uint32_t>();
+    const std::vector<float> palette = r.readArray<float>(P, (what + " palette").c_str());
+    for (float x : palette)
+        if (!(std::abs(x) <= kMaxStencilWeight)) r.fail(what + " has a bad weight");
+    StreamReader in(r, what);
+    BasisProgram& p = b.program;
+    const uint64_t rows = in.varint();
+    if (rows == 0 || rows > uint64_t(kMaxProgramRowsPerPoint) * M) in.fail("bad row count " + std::to_string(rows));
+    const uint64_t maxEntries = rows * kMaxProgramEntriesPerRow;
+    p.start.reserve(rows + 1);
+    p.averaged.reserve(rows);
+    for (uint32_t row = 0; row < rows; ++row) {
+        const uint64_t head = in.varint(), length = head >> 1;
+        if (length == 0 || length > maxEntries - p.source.size())
+            in.fail("row " + std::to_string(row) + " has a bad length");
+        const bool averaged = head & 1;
+        for (uint64_t e = 0; e < length; ++e) {
+            const uint64_t source = in.varint();
+            if (source >= uint64_t(M) + row)
+                in.fail("row " + std::to_string(row) + " reads neither a support point nor an earlier row");
+            p.source.push_back(static_cast<uint32_t>(source));
+            if (averaged) {
+                p.weight.push_back(1.0f);
+                continue;
+            }
+            const uint64_t slot = in.varint();
+            if (slot >= P) in.fail("a weight is not in the palette");
+            p.weight.push_back(palette[slot]);
+        }
+        p.start.push_back(static_cast<uint32_t>(p.source.size()));
+        p.averaged.push_back(averaged ? 1 : 0);
+    }
+    auto rowIndex = [&]() {
+        const uint64_t x = in.varint();
+        if (x >= rows) in.fail("a control point or support point names a missing row");
+        return static_cast<uint32_t>(x);
+    };
+    for (uint32_t& x : p.controlRow) x = rowIndex();
+    p.nextSupport.resize(M);
+    for (uint32_t& x : p.nextSupport) x = rowIndex();
+    in.finish();
+    b.weights = expandIrregularBasis(p, b.valence, b.levels);
+    for (float x : b.weights) // sums of bounded weights can still grow past any bound
+        if (!(std::abs(x) <= kMaxStencilWeight)) r.fail(what + " has a bad weight");
+    return b;
+}
+
+// A node code as a varint: 0 for none, else 1 + kind + 4 * zigzag(index - next[kind]), next[kind]
+// being one past the index of the last code of that kind (children, sub-patches, leaves and
+// smooth faces are numbered in the order the nodes name them, so the difference is mostly 0).
+void writeNodeStream(ByteWriter& w, const std::vector<std::array<uint32_t, 4>>& nodes) {
+    std::vector<uint8_t> s;
+    s.reserve(nodes.size() * 2);
+    uint32_t next[4] = {0, 0, 0, 0};
+    auto code = [&](uint32_t c) -> uint64_t {
+        if (c == kNodeNone) return 0;
+        const uint32_t kind = c >> 30, x = c & kNodeIndexMask;
+        const uint64_t z = zigzag(int64_t(x) - next[kind]);
+        next[kind] = x + 1;
+        return 1 + kind + 4 * z;
+    };
+    for (const auto& n : nodes) {
+        const bool same = n[0] == n[1] && n[0] == n[2] && n[0] == n[3];
+        writeVarint(s, code(n[0]) << 1 | (same ? 1 : 0));
+        if (!same)
+            for (int q = 1; q < 4; ++q) writeVarint(s, code(n[q]));
+    }
+    writeStream(w, s);
+}
+
+std::vector<std::array<uint32_t, 4>> readNodeStream(ByteReader& r, uint32_t count) {
+    StreamReader in(r, "irregular nodes");
+    if (count > in.size()) in.fail("count " + std::to_string(count) + " is too large"); // a byte a node at least
+    uint32_t next[4] = {0, 0, 0, 0};
+    auto code = [&](uint64_t z) -> uint32_t {
+        if (z == 0) return kNodeNone;
+        const uint64_t kind = (z - 1) % 4;
+        const int64_t x = int64_t(next[kind]) + unzigzag((z - 1) / 4);
+        if (x < 0 || x > int64_t(kNodeIndexMask)) in.fail("a child index out of range");
+        next[kind] = static_cast<uint32_t>(x) + 1;
+        return static_cast<uint32_t>(kind << 30 | uint64_t(x));
+    };
+    std::vector<std::array<uint32_t, 4>> nodes(count);
+    for (auto& n : nodes) {
+        const uint64_t head = in.varint();
+        n[0] = code(head >> 1);
+        for (int q = 1; q < 4; ++q) n[q] = (head & 1) ? n[0] : code(in.varint());
+    }
+    in.finish();
+    return nodes;
+}
+
+void writeSmoothFaces(ByteWriter& w, const Tables& t) {
+    std::vector<uint8_t> s;
+    s.reserve(t.smoothIrregular.size() * 2);
+    uint32_t end = 0; // one past the previous face's points
+    for (const Tables::SmoothIrregular& f : t.smoothIrregular) {
+        writeVarint(s, uint64_t(f.basis) << 2 | f.corner);
+        writeVarint(s, zigzag(int64_t(f.first) - end));
+        end = f.first + t.irregularBases[f.basis].supportSize();
+    }
+    writeStream(w, s);
+}
+
+std::vector<Tables::SmoothIrregular> readSmoothFaces(ByteReader& r, uint32_t count,
+                                                     const std::vector<IrregularBasis>& bases) {
+    StreamReader in(r, "smooth irregular faces");
+    if (count > in.size() / 2) in.fail("count " + std::to_string(count) + " is too large"); // two bytes a face
+    std::vector<Tables::SmoothIrregular> faces(count);
+    uint32_t end = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint64_t head = in.varint();
+        if ((head >> 2) >= bases.size()) in.fail("face " + std::to_string(i) + " names a missing basis");
+        faces[i].basis = static_cast<uint32_t>(head >> 2);
+        faces[i].corner = static_cast<uint32_t>(head & 3);
+        faces[i].first = in.after(end, "a face's first point");
+        end = static_cast<uint32_t>(std::min<uint64_t>(uint64_t(faces[i].first) + bases[faces[i].basis].supportSize(),
+                                                       0xFFFFFFFFu));
+    }
+    in.finish();
+    return faces;
+}
+
+namespace {
+
+// The start of each class of level N: face points, edge points, vertex points, and the end.
+std::array<uint32_t, 4> pointClasses(const LevelInfo& L) {
+    return {L.first, L.first + L.facePoints, L.first + L.facePoints + L.edgePoints, L.first + L.count()};
+}
+
+} // namespace
+
+void writeSmoothPoints(ByteWriter& w, const Tables& t) {
+    const std::array<uint32_t, 4> range = pointClasses(t.levels[t.depth]);
+    uint32_t last[3] = {range[0], range[1], range[2]};
+    std::vector<uint8_t> s;
+    s.reserve(t.smoothPoints.size() * 2);
+    for (uint32_t v : t.smoothPoints) {
+        const int c = v < range[1] ? 0 : v < range[2] ? 1 : 2;
+        if (v < range[0] || v >= range[3]) throw std::logic_error("TBLS: a smooth point is not at the last level");
+        writeVarint(s, uint64_t(c) + 3 * zigzag(int64_t(v) - last[c]));
+        last[c] = v;
+    }
+    writeStream(w, s);
+}
+
+std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const LevelInfo& levelN) {
+    StreamReader in(r, "smooth irregular points");
+    if (count > in.size()) in.fail("count " + std::to_string(count) + " is too large"); // a byte a point
+    const std::array<uint32_t, 4> range = pointClasses(levelN);
+    uint32_t last[3] = {range[0], range[1], range[2]};
+    std::vector<uint32_t> points(count);
+    for (uint32_t& v : points) {
+        const uint64_t z = in.varint();
+        const uint64_t c = z % 3;
+        const int64_t x = int64_t(last[c]) + unzigzag(std::min<uint64_t>(z / 3, uint64_t(1) << 40));
+        if (x < int64_t(range[c]) || x >= int64_t(range[c + 1])) in.fail("a point is not at the last level");
+        v = last[c] = static_cast<uint32_t>(x);
+    }
+    in.finish();
+    return points;
+}
+
+} // namespace limn

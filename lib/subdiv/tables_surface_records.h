@@ -1,0 +1,44 @@
+// TBLS version 5's records of the irregular faces' surface (formats/limn.md, "Per-valence bases
+// as programs, and compact per-face records"): each per-valence basis as its one-level program
+// (BasisProgram), which the reader expands to the same weights, bit for bit; the quadtree nodes
+// and the smooth faces as varint streams. Kept apart from the rest of the TBLS codec
+// (tables_chunk.cpp) so that other version-5 changes merge beside it.
+#pragma once
+
+#include "base/bytes.h"
+#include "subdiv/tables.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace limn {
+
+// A basis as its program. A basis without one (read from an older version) gets the program
+// buildIrregularBasis makes for its valence, which must expand to its weights (std::logic_error
+// otherwise: such tables cannot be written as version 5).
+void writeBasisProgram(ByteWriter& w, const IrregularBasis& basis);
+// Reads basis `index` and expands its weights; `earlier` are the bases read before it (no valence
+// twice). Every count and index is checked before anything is allocated from it.
+IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector<IrregularBasis>& earlier);
+
+// The quadtree nodes (after their count): a stream of codes, each a varint from the last index of
+// its kind, a node of four equal codes as one. The codes' kinds and indices are checked by the
+// caller, as for the plain layout.
+void writeNodeStream(ByteWriter& w, const std::vector<std::array<uint32_t, 4>>& nodes);
+std::vector<std::array<uint32_t, 4>> readNodeStream(ByteReader& r, uint32_t count);
+
+// The smooth faces (after their count): basis and corner in one varint, `first` as a difference
+// from the end of the previous face's points.
+void writeSmoothFaces(ByteWriter& w, const Tables& t);
+std::vector<Tables::SmoothIrregular> readSmoothFaces(ByteReader& r, uint32_t count,
+                                                     const std::vector<IrregularBasis>& bases);
+
+// The smooth points (after their count): each a varint `c + 3 * zigzag(v - last[c])`, c its class
+// at level N (0: face points, 1: edge points, 2: vertex points) and last[c] the previous point of
+// that class (the class's first vertex at first): a support's points alternate between the three
+// ranges, and are neighbours within each.
+void writeSmoothPoints(ByteWriter& w, const Tables& t);
+std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const LevelInfo& levelN);
+
+} // namespace limn

@@ -1,0 +1,154 @@
+// TBLS version 5's records of the irregular faces' surface (formats/limn.md, "Per-valence bases
+// as programs, and compact per-face records"; lib/subdiv/tables_surface_records.cpp): each basis
+// as its one-level program, expanded here to the weights limn-tables computes, bit for bit; the
+// quadtree nodes and the smooth faces as varint streams. Every count and index is checked as the
+// C++ reader checks it.
+import { MAX_STENCIL_WEIGHT, Stream } from './tables_stream.mjs';
+
+const MAX_DEPTH = 16;
+const MAX_BASIS_VALENCE = 64; // kMaxBasisValence (lib/subdiv/tables.h)
+// A program has 2n + 17 rows of about five entries; these bound a hostile one's expansion.
+const MAX_ROWS_PER_POINT = 2, MAX_ENTRIES_PER_ROW = 16;
+const NODE_NONE = 0xffffffff, NODE_INDEX = (1 << 30) - 1;
+
+// lib/subdiv/irregular_basis.cpp's expandIrregularBasis: per band, every row the sum of its
+// entries in order, in double (JS numbers; no fused multiply-add), an averaged row divided by its
+// count, each weight rounded to float once (Float32Array's store rounds to nearest even, as
+// static_cast<float>); the next band reads the rows of the next support.
+export function expandBasis(p, valence, levels) {
+  const M = 2 * valence + 8, T = p.averaged.length;
+  let input = new Float64Array(M * M), next = new Float64Array(M * M);
+  for (let i = 0; i < M; i++) input[i * M + i] = 1;
+  const values = new Float64Array(T * M);
+  const weights = new Float32Array(levels * 48 * M);
+  for (let band = 0; band < levels; band++) {
+    values.fill(0);
+    for (let r = 0; r < T; r++) {
+      const o = r * M;
+      for (let e = p.start[r]; e < p.start[r + 1]; e++) {
+        const s = p.source[e], from = s < M ? input : values, at = (s < M ? s : s - M) * M;
+        if (p.averaged[r]) {
+          for (let c = 0; c < M; c++) values[o + c] += from[at + c];
+        } else {
+          const w = p.weight[e];
+          for (let c = 0; c < M; c++) values[o + c] += w * from[at + c];
+        }
+      }
+      if (p.averaged[r]) {
+        const d = p.start[r + 1] - p.start[r];
+        for (let c = 0; c < M; c++) values[o + c] /= d;
+      }
+    }
+    for (let j = 0; j < 48; j++) weights.set(values.subarray(p.controlRow[j] * M, p.controlRow[j] * M + M), (band * 48 + j) * M);
+    for (let i = 0; i < M; i++) next.set(values.subarray(p.nextSupport[i] * M, p.nextSupport[i] * M + M), i * M);
+    [input, next] = [next, input];
+  }
+  return weights;
+}
+
+// One basis: u32 valence, u32 levels, the program's weight palette, then its stream.
+export function readBasisProgram(r, index, earlier) {
+  const what = `irregular basis ${index}`;
+  const valence = r.u32(), levels = r.u32();
+  if (valence < 3 || valence > MAX_BASIS_VALENCE || levels < 1 || levels > MAX_DEPTH) {
+    r.fail(`${what} has a bad valence or level count (valence 3 to ${MAX_BASIS_VALENCE}, 1 to ${MAX_DEPTH} levels)`);
+  }
+  if (earlier.some((b) => b.valence === valence)) r.fail(`${what} repeats valence ${valence}`);
+  const M = 2 * valence + 8;
+  const palette = r.array(Float32Array, r.u32(`${what} palette size`), `${what} palette`);
+  for (const x of palette) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`${what} has a bad weight`);
+  const s = new Stream(r, what);
+  const rows = s.varint();
+  if (rows === 0 || rows > MAX_ROWS_PER_POINT * M) s.fail(`bad row count ${rows}`);
+  const maxEntries = rows * MAX_ENTRIES_PER_ROW;
+  const start = new Uint32Array(rows + 1), averaged = new Uint8Array(rows);
+  const source = new Uint32Array(maxEntries), weight = new Float32Array(maxEntries);
+  let n = 0;
+  for (let row = 0; row < rows; row++) {
+    const head = s.varint(), length = Math.floor(head / 2);
+    if (length === 0 || length > maxEntries - n) s.fail(`row ${row} has a bad length`);
+    averaged[row] = head % 2;
+    for (let e = 0; e < length; e++, n++) {
+      const x = s.varint();
+      if (x >= M + row) s.fail(`row ${row} reads neither a support point nor an earlier row`);
+      source[n] = x;
+      if (averaged[row]) { weight[n] = 1; continue; }
+      const slot = s.varint();
+      if (slot >= palette.length) s.fail('a weight is not in the palette');
+      weight[n] = palette[slot];
+    }
+    start[row + 1] = n;
+  }
+  const rowIndex = () => {
+    const x = s.varint();
+    if (x >= rows) s.fail('a control point or support point names a missing row');
+    return x;
+  };
+  const controlRow = Uint32Array.from({ length: 48 }, rowIndex);
+  const nextSupport = Uint32Array.from({ length: M }, rowIndex);
+  s.finish();
+  const weights = expandBasis({ start, source, weight, averaged, controlRow, nextSupport }, valence, levels);
+  // Sums of bounded weights can still grow past any bound.
+  for (const x of weights) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`${what} has a bad weight`);
+  return { valence, levels, support: M, weights };
+}
+
+// The quadtree nodes: per node a varint (its first code << 1 | all four equal), then the other
+// three codes unless equal; a code is 0 (none) or 1 + kind + 4 * zigzag(index - next[kind]).
+export function readNodeStream(r, count) {
+  const s = new Stream(r, 'irregular nodes');
+  if (count > s.size) s.fail(`count ${count} is too large`);
+  const next = [0, 0, 0, 0];
+  const code = (z) => {
+    if (z === 0) return NODE_NONE;
+    const kind = (z - 1) % 4, d = Math.floor((z - 1) / 4);
+    const x = next[kind] + (d % 2 === 1 ? -(d + 1) / 2 : d / 2);
+    if (x < 0 || x > NODE_INDEX) s.fail('a child index out of range');
+    next[kind] = x + 1;
+    return (kind * 2 ** 30 + x) >>> 0;
+  };
+  const codes = new Uint32Array(count * 4);
+  for (let i = 0; i < count; i++) {
+    const head = s.varint();
+    codes[4 * i] = code(Math.floor(head / 2));
+    for (let q = 1; q < 4; q++) codes[4 * i + q] = head % 2 ? codes[4 * i] : code(s.varint());
+  }
+  s.finish();
+  return codes;
+}
+
+// The smooth faces: basis << 2 | corner, then `first` as a difference from the end of the
+// previous face's points.
+export function readSmoothFaces(r, count, bases) {
+  const s = new Stream(r, 'smooth irregular faces');
+  if (count > Math.floor(s.size / 2)) s.fail(`count ${count} is too large`);
+  const faces = [];
+  let end = 0;
+  for (let i = 0; i < count; i++) {
+    const head = s.varint(), basis = Math.floor(head / 4);
+    if (basis >= bases.length) s.fail(`face ${i} names a missing basis`);
+    const first = s.after(end, "a face's first point");
+    faces.push({ basis, corner: head % 4, first });
+    end = Math.min(first + bases[basis].support, 0xffffffff);
+  }
+  s.finish();
+  return faces;
+}
+
+// The smooth points: each a varint c + 3 * zigzag(v - last[c]), c its class at level N (face,
+// edge or vertex points) and last[c] the previous point of that class (the class's first at first).
+export function readSmoothPoints(r, count, levelN) {
+  const s = new Stream(r, 'smooth irregular points');
+  if (count > s.size) s.fail(`count ${count} is too large`);
+  const range = [levelN.first, levelN.first + levelN.facePoints, levelN.first + levelN.facePoints + levelN.edgePoints, levelN.first + levelN.count];
+  const last = range.slice(0, 3);
+  const points = new Uint32Array(count);
+  for (let i = 0; i < count; i++) {
+    const z = s.varint(), c = z % 3, d = Math.floor(z / 3);
+    const x = last[c] + (d % 2 === 1 ? -(d + 1) / 2 : d / 2);
+    if (!(x >= range[c] && x < range[c + 1])) s.fail('a point is not at the last level');
+    points[i] = last[c] = x;
+  }
+  s.finish();
+  return points;
+}
