@@ -13,9 +13,13 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // beyond the depth, sub-patches, nodes and leaves (docs/irregular.md); older ones have none.
 // Version 4 stores the same tables compactly: stencil tables as palette indices and varint
 // differences, per-valence bases with each distinct row of weights once (formats/limn.md).
-inline constexpr uint32_t kTablesChunkVersion = 4;
+// Version 5 lets a quadtree node below a root name a smooth face (a descendant whose semi-sharp
+// creases have decayed, drawn from the per-valence basis): same layout, new meaning of the
+// node codes and smooth faces' levels (formats/limn.md, "Smooth faces below level N").
+inline constexpr uint32_t kTablesChunkVersion = 5;
 
-// Writes the current version; 3 (the plain layout) for tests and fuzz seeds of older files.
+// Writes the current version; 3 (the plain layout) and 4 for tests and fuzz seeds of older
+// files (tables with smooth faces below level N need version 5).
 Chunk encodeTablesChunk(const Tables& tables, uint32_t version = kTablesChunkVersion);
 
 // Decodes and validates every count and index. With `mesh`, also checks that the tables were
