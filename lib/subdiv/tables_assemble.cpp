@@ -106,8 +106,10 @@ std::vector<std::vector<uint8_t>> neededVertices(const AdaptiveLevels& a, const 
         for (uint32_t v : table->indices) needed[N][v] = 1;
     for (const auto* table : {&limD.position, &limD.tangent1, &limD.tangent2})
         for (uint32_t v : table->indices) needed[D][v] = 1;
-    for (const SmoothIrregularFace& sm : a.smooth)
-        for (uint32_t v : sm.support) needed[sm.level][v] = 1;
+    for (const SmoothIrregularFace& sm : a.smooth) {
+        std::vector<uint8_t>& at = needed[sm.level];
+        for (uint32_t v : sm.support) at[v] = 1;
+    }
     for (uint32_t l = D; l >= 1; --l) {
         const Level& L = levels[l];
         const LevelStencils& st = stencils[l];
@@ -297,9 +299,12 @@ void emitIrregularQuadtrees(AdaptiveLevels& a, const CornerLimits& limD,
         if (smoothOf[l].empty()) smoothOf[l].assign(levels[l].topo.faceCount(), kNone);
         smoothOf[l][smooth[i].face] = static_cast<uint32_t>(i);
         t.smoothIrregular.push_back({smooth[i].basis, smooth[i].corner, uint32_t(t.smoothPoints.size())});
-        for (uint32_t v : smooth[i].support) t.smoothPoints.push_back(t.levels[l].first + remap[l][v]);
+        const uint32_t base = t.levels[l].first;
+        const std::vector<uint32_t>& local = remap[l];
+        for (uint32_t v : smooth[i].support) t.smoothPoints.push_back(base + local[v]);
     }
     auto smoothAt = [&](uint32_t l, uint32_t f) { return smoothOf[l].empty() ? kNone : smoothOf[l][f]; };
+    const std::vector<uint32_t>& smoothN = smoothOf[N];
     if (D > N || !smooth.empty()) {
         std::vector<std::vector<uint32_t>> nodeIndex(D + 1);
         for (uint32_t l = N; l < std::max(D, N + 1); ++l) {
@@ -307,7 +312,7 @@ void emitIrregularQuadtrees(AdaptiveLevels& a, const CornerLimits& limD,
             for (uint32_t f = 0; f < irregularSets[l].size(); ++f)
                 if (irregularSets[l][f]) {
                     nodeIndex[l][f] = static_cast<uint32_t>(t.irregularNodes.size());
-                    const uint32_t b = l == N && smoothAt(N, f) != kNone ? kNodeBasis | smoothAt(N, f) : kNodeNone;
+                    const uint32_t b = l == N && !smoothN.empty() && smoothN[f] != kNone ? kNodeBasis | smoothN[f] : kNodeNone;
                     t.irregularNodes.push_back({b, b, b, b});
                 }
         }

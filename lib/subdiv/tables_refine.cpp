@@ -51,9 +51,12 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, std::vector<uint8_t>&
     uint32_t valence = 0;
     std::vector<uint32_t> support;
     const uint32_t F = L.topo.faceCount();
-    std::vector<uint32_t> facesAt(L.topo.vertexCount(), 0);
+    // Below N no face is crowded: those of level N were not refined, and refinement keeps
+    // valences.
+    const bool roots = L.depth == a.N;
+    std::vector<uint32_t> facesAt(roots ? L.topo.vertexCount() : 0, 0);
     std::vector<int>& basisOfValence = a.basisOfValence;
-    for (uint32_t f = 0; f < F; ++f)
+    for (uint32_t f = 0; roots && f < F; ++f)
         for (uint32_t v : L.topo.faceVertices(f)) ++facesAt[v];
     for (uint32_t f = 0; f < F; ++f) {
         if (!T[f]) continue;
@@ -62,7 +65,7 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, std::vector<uint8_t>&
         // at depth 2 took minutes. Such a face stays bilinear between its limit points,
         // counted as such (irregularSurfaceCounts; limn-render and limn-info say so).
         bool crowded = false;
-        for (uint32_t v : L.topo.faceVertices(f)) crowded |= facesAt[v] > kMaxBasisValence;
+        for (uint32_t v : L.topo.faceVertices(f)) crowded |= roots && facesAt[v] > kMaxBasisValence;
         if (crowded) {
             T[f] = 0;
             continue;
