@@ -276,6 +276,47 @@ TEST(TablesChunk, BasisOfTooHighOrRepeatedValenceIsRefused) {
     }
 }
 
+// Smooth faces below level N (version 5): a basis code below a root in a version-4 chunk, a
+// smooth face named twice, one too deep for its basis's bands, and support points at another
+// level are each refused by name.
+TEST(TablesChunk, SmoothFacesBelowRootsAreChecked) {
+    Mesh m = load("osd/catmark/catmark_pyramid_creases0.obj");
+    const Tables good = build(m, 2);
+    uint32_t node = 0, quadrant = 4;
+    for (uint32_t i = 0; i < good.irregularNodes.size() && quadrant == 4; ++i)
+        for (uint32_t q = 0; q < 4 && quadrant == 4; ++q)
+            if ((good.irregularNodes[i][q] & ~kNodeIndexMask) == kNodeBasis && good.irregularNodes[i][q] != kNodeNone &&
+                !(i < good.irregular.size() && smoothRoot(good.irregularNodes[i])))
+                node = i, quadrant = q;
+    ASSERT_LT(quadrant, 4u) << "no smooth face below level N";
+    const uint32_t code = good.irregularNodes[node][quadrant], smooth = code & kNodeIndexMask;
+    EXPECT_NO_THROW(decodeTablesChunk(encodeTablesChunk(good), &m));
+    for (int which = 0; which < 4; ++which) {
+        Tables t = good;
+        Chunk c;
+        if (which == 0) { // the same bytes, called version 4
+            c = encodeTablesChunk(t);
+            c.version = 4;
+        } else {
+            if (which == 1) t.irregularNodes[node][quadrant ^ 1] = code;
+            if (which == 2) { // a basis of one band: none left below level N
+                IrregularBasis& b = t.irregularBases[t.smoothIrregular[smooth].basis];
+                b.levels = 1;
+                b.weights.resize(size_t(48) * b.supportSize());
+            }
+            if (which == 3) t.smoothPoints[t.smoothIrregular[smooth].first] = t.levels[t.depth].first;
+            c = encodeTablesChunk(t);
+        }
+        const char* want[4] = {"basis code below a root", "is named twice", "too deep", "not at its face's level"};
+        try {
+            decodeTablesChunk(c, &m);
+            ADD_FAILURE() << "accepted case " << which;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(want[which]), std::string::npos) << which << ": " << e.what();
+        }
+    }
+}
+
 TEST(TablesChunk, HugeWeightIsRefused) {
     Mesh m = load("quad/osd_catmark_pyramid.obj");
     for (int which = 0; which < 3; ++which) {
