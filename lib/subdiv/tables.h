@@ -175,6 +175,7 @@ struct Tables {
 // is on the limit surface (for the bilinear ones only the corners are).
 struct IrregularSurfaceCounts {
     size_t basis = 0, subPatches = 0, bilinear = 0;
+    size_t basisBelow = 0; // smooth faces below level N in the sub-patch quadtrees (TBLS version 5)
     uint32_t exactLevels = 0; // the smallest K among the faces that are not bilinear
 };
 IrregularSurfaceCounts irregularSurfaceCounts(const Tables& tables);
