@@ -217,20 +217,27 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
 
 size_t FaceVaryingSurface::gpuElementCount(uint32_t levels) const {
     size_t n = tables_.patches.size();
+    auto bands = [&](uint32_t smooth, uint32_t below) {
+        const uint32_t b = tables_.irregularBases[tables_.smoothIrregular[smooth].basis].levels;
+        return std::min(levels - below, b > below ? b - below : 1);
+    };
     auto count = [&](auto&& self, uint32_t node, uint32_t depth) -> size_t {
         size_t c = 0;
         for (uint32_t code : tables_.irregularNodes[node]) {
             if (code == kNodeNone) continue;
             const bool child = (code & ~kNodeIndexMask) == kNodeChild;
-            c += child && depth + 1 < levels ? self(self, code & kNodeIndexMask, depth + 1) : 1;
+            const bool basis = (code & ~kNodeIndexMask) == kNodeBasis; // a smooth face below the root
+            c += child && depth + 1 < levels ? self(self, code & kNodeIndexMask, depth + 1)
+                 : basis && depth + 1 < levels ? 3 * bands(code & kNodeIndexMask, depth + 1) + 1
+                                               : 1;
         }
         return c;
     };
     for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
         const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
         if (root == kNodeNone || levels == 0) ++n;
-        else if ((root & ~kNodeIndexMask) == kNodeBasis)
-            n += 3 * std::min(levels, tables_.irregularBases[tables_.smoothIrregular[root & kNodeIndexMask].basis].levels) + 1;
+        else if (smoothRoot(tables_.irregularNodes[q]))
+            n += 3 * bands(root & kNodeIndexMask, 0) + 1;
         else n += count(count, q, 0);
     }
     return n;
@@ -238,16 +245,24 @@ size_t FaceVaryingSurface::gpuElementCount(uint32_t levels) const {
 
 namespace {
 
-// The records of a smooth irregular face (`smooth` of tables.smoothIrregular): its band
-// sub-patches as patch(ptex, u0, v0, size, Q) and its leaf as bilinear(ptex, u0, v0, size, corners).
+// Where a smooth face lies: the square [s0, s0 + h]^2 (and t0) of irregular face `face`'s (s, t),
+// which is f.u0 + s0 * f.size ... of its ptex face; the whole face for a root.
+struct SmoothSquare {
+    double s0 = 0, t0 = 0, h = 1;
+};
+
+// The records of a smooth irregular face (`smooth` of tables.smoothIrregular) in square `sq` of
+// irregular face `face`: its first K band sub-patches as patch(ptex, u0, v0, size, Q) and its
+// leaf as bilinear(ptex, u0, v0, size, corners).
 template <class PatchFn, class BilinearFn>
 void smoothRecords(const Tables& tables_, std::span<const glm::dvec3> vertices_, std::span<const LimitPoint> limits_,
-                   uint32_t face, uint32_t smooth, uint32_t levels, PatchFn&& patch, BilinearFn&& bilinear) {
+                   uint32_t face, uint32_t smooth, SmoothSquare sq, uint32_t K, PatchFn&& patch, BilinearFn&& bilinear) {
     // The bands of evaluateIrregular's per-valence basis, turned from the band's frame (a, c),
-    // the extraordinary corner at (0, 0), to the ptex face's (s, t): a rotation by the corner.
+    // the extraordinary corner at (0, 0), to the square's (s, t): a rotation by the corner.
     const IrregularFace& f = tables_.irregular[face];
     const Tables::SmoothIrregular& sm = tables_.smoothIrregular[smooth];
-    const uint32_t K = std::min(levels, tables_.irregularBases[sm.basis].levels), corner = sm.corner;
+    const uint32_t corner = sm.corner;
+    const double fu = f.u0 + sq.s0 * f.size, fv = f.v0 + sq.t0 * f.size, fsize = sq.h * f.size;
     // The ptex-face square whose (a, c) square is [a0, a0 + h] x [c0, c0 + h], and which of its
     // band-frame control points P[i][j] is its ptex-frame Q[i'][j'] (B_i(1 - x) = B_{3-i}(x)).
     auto square = [&](double a0, double c0, double h, double& s0, double& t0) {
@@ -269,7 +284,7 @@ void smoothRecords(const Tables& tables_, std::span<const glm::dvec3> vertices_,
                     Q[i][j] = corner == 0 ? P[i][j] : corner == 1 ? P[j][3 - i] : corner == 2 ? P[3 - i][3 - j] : P[3 - j][i];
             double s0, t0;
             square(qu * h, qv * h, h, s0, t0);
-            patch(f.ptex, f.u0 + s0 * f.size, f.v0 + t0 * f.size, h * f.size, Q);
+            patch(f.ptex, fu + s0 * fsize, fv + t0 * fsize, h * fsize, Q);
         }
     }
     // Within 2^-K of the corner: evaluateIrregular's bilinear leaf, its corners from it.
@@ -278,8 +293,9 @@ void smoothRecords(const Tables& tables_, std::span<const glm::dvec3> vertices_,
     square(0, 0, h, s0, t0);
     glm::dvec3 c[4];
     const double cs[4] = {s0, s0 + h, s0 + h, s0}, ct[4] = {t0, t0, t0 + h, t0 + h};
-    for (int k = 0; k < 4; ++k) c[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
-    bilinear(f.ptex, f.u0 + s0 * f.size, f.v0 + t0 * f.size, h * f.size, c);
+    for (int k = 0; k < 4; ++k)
+        c[k] = evaluateIrregular(tables_, vertices_, limits_, face, sq.s0 + cs[k] * sq.h, sq.t0 + ct[k] * sq.h).position;
+    bilinear(f.ptex, fu + s0 * fsize, fv + t0 * fsize, h * fsize, c);
 }
 
 } // namespace
@@ -356,6 +372,17 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
                 bilinearRecord(ptex, cu, cv, h, corners);
             } else if (kind == kNodeChild) {
                 self(self, face, index, depth + 1, cu, cv, h, gs, gt, gh);
+            } else if (kind == kNodeBasis && depth + 1 >= gpuLevels_) { // cut, as a child
+                glm::dvec3 corners[4];
+                const double cs[4] = {gs, gs + gh, gs + gh, gs}, ct[4] = {gt, gt, gt + gh, gt + gh};
+                for (int k = 0; k < 4; ++k)
+                    corners[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
+                bilinearRecord(ptex, cu, cv, h, corners);
+            } else if (kind == kNodeBasis) { // a smooth face below the root (a decayed crease)
+                const uint32_t b = tables_.irregularBases[tables_.smoothIrregular[index].basis].levels;
+                const uint32_t K = std::min(gpuLevels_ - (depth + 1), b > depth + 1 ? b - (depth + 1) : 1);
+                smoothRecords(tables_, vertices_, limits_, face, index, SmoothSquare{gs, gt, gh}, K, patchRecord,
+                              bilinearRecord);
             } else if (kind == kNodeSubPatch) {
                 glm::dvec3 C[4][4];
                 gatherControlPoints(tables_.subPatches[index], vertices_, C);
@@ -370,8 +397,10 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::gpu() const {
     for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
         const IrregularFace& f = tables_.irregular[q];
         const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
-        if (root != kNodeNone && gpuLevels_ > 0 && (root & ~kNodeIndexMask) == kNodeBasis) {
-            smoothRecords(tables_, vertices_, limits_, q, root & kNodeIndexMask, gpuLevels_, patchRecord, bilinearRecord);
+        if (root != kNodeNone && gpuLevels_ > 0 && smoothRoot(tables_.irregularNodes[q])) {
+            const uint32_t b = tables_.irregularBases[tables_.smoothIrregular[root & kNodeIndexMask].basis].levels;
+            smoothRecords(tables_, vertices_, limits_, q, root & kNodeIndexMask, SmoothSquare{}, std::min(gpuLevels_, b),
+                          patchRecord, bilinearRecord);
         } else if (root != kNodeNone && gpuLevels_ > 0) {
             walk(walk, q, q, 0, f.u0, f.v0, f.size, 0.0, 0.0, 1.0);
         } else { // tables without the irregular surface: the bilinear blend of its corners

@@ -1267,6 +1267,10 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_6: i32;
     var c_5: u32;
     var code: u32;
+    var halvedS: u32;
+    var halvedT: u32;
+    var h_2: u32;
+    var local_12: u32;
     var param_79: u32;
     var param_80: u32;
     var param_81: vec3<f32>;
@@ -1285,197 +1289,214 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_7: i32;
     var phi_1441_: bool;
 
-    let _e109 = (*st_1);
-    S_2 = (_e109 & 65535u);
-    let _e111 = (*st_1);
-    T_1 = (_e111 >> bitcast<u32>(16i));
-    let _e114 = S_2;
-    let _e116 = S_2;
-    let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
-    phi_1441_ = _e118;
-    if _e118 {
-        let _e119 = T_1;
-        let _e121 = T_1;
-        phi_1441_ = ((_e119 == 0u) || (_e121 == 32768u));
+    let _e113 = (*st_1);
+    S_2 = (_e113 & 65535u);
+    let _e115 = (*st_1);
+    T_1 = (_e115 >> bitcast<u32>(16i));
+    let _e118 = S_2;
+    let _e120 = S_2;
+    let _e122 = ((_e118 == 0u) || (_e120 == 32768u));
+    phi_1441_ = _e122;
+    if _e122 {
+        let _e123 = T_1;
+        let _e125 = T_1;
+        phi_1441_ = ((_e123 == 0u) || (_e125 == 32768u));
     }
-    let _e125 = phi_1441_;
-    if _e125 {
-        let _e126 = S_2;
-        if (_e126 == 0u) {
-            let _e128 = T_1;
-            local_11 = select(3u, 0u, (_e128 == 0u));
+    let _e129 = phi_1441_;
+    if _e129 {
+        let _e130 = S_2;
+        if (_e130 == 0u) {
+            let _e132 = T_1;
+            local_11 = select(3u, 0u, (_e132 == 0u));
         } else {
-            let _e131 = T_1;
-            local_11 = select(2u, 1u, (_e131 == 0u));
+            let _e135 = T_1;
+            local_11 = select(2u, 1u, (_e135 == 0u));
         }
-        let _e134 = local_11;
-        k_5 = _e134;
-        let _e135 = (*face);
-        let _e136 = k_5;
-        let _e141 = irregulars.f[_e135].corner[_e136];
-        c_4 = _e141;
-        let _e142 = c_4;
-        let _e146 = limits.v[(2u * _e142)];
-        (*P_5) = _e146.xyz;
-        let _e148 = c_4;
-        let _e153 = limits.v[((2u * _e148) + 1u)];
-        (*n_4) = _e153.xyz;
+        let _e138 = local_11;
+        k_5 = _e138;
+        let _e139 = (*face);
+        let _e140 = k_5;
+        let _e145 = irregulars.f[_e139].corner[_e140];
+        c_4 = _e145;
+        let _e146 = c_4;
+        let _e150 = limits.v[(2u * _e146)];
+        (*P_5) = _e150.xyz;
+        let _e152 = c_4;
+        let _e157 = limits.v[((2u * _e152) + 1u)];
+        (*n_4) = _e157.xyz;
         return;
     }
-    let _e155 = (*patchCount);
-    let _e156 = (*face);
-    node = (_e155 + _e156);
-    let _e158 = (*face);
-    leaf = _e158;
-    let _e159 = S_2;
-    ls = _e159;
-    let _e160 = T_1;
-    lt = _e160;
+    let _e159 = (*patchCount);
+    let _e160 = (*face);
+    node = (_e159 + _e160);
+    let _e162 = (*face);
+    leaf = _e162;
+    let _e163 = S_2;
+    ls = _e163;
+    let _e164 = T_1;
+    lt = _e164;
     k_6 = 0i;
     loop {
-        let _e161 = k_6;
-        if (_e161 < 17i) {
-            let _e163 = S_2;
-            let _e166 = T_1;
-            c_5 = (select(0u, 1u, (_e163 >= 16384u)) | select(0u, 2u, (_e166 >= 16384u)));
-            let _e170 = node;
-            let _e171 = c_5;
-            let _e176 = patches.p[_e170].cv[_e171];
-            code = _e176;
-            let _e177 = code;
-            if (_e177 == 4294967295u) {
+        let _e165 = k_6;
+        if (_e165 < 17i) {
+            let _e167 = S_2;
+            let _e170 = T_1;
+            c_5 = (select(0u, 1u, (_e167 >= 16384u)) | select(0u, 2u, (_e170 >= 16384u)));
+            let _e174 = node;
+            let _e175 = c_5;
+            let _e180 = patches.p[_e174].cv[_e175];
+            code = _e180;
+            let _e181 = code;
+            if (_e181 == 4294967295u) {
                 break;
             }
-            let _e179 = code;
-            if ((_e179 & 3221225472u) == 3221225472u) {
-                let _e182 = code;
-                param_79 = (_e182 & 1073741823u);
-                let _e184 = (*st_1);
-                param_80 = _e184;
+            let _e183 = S_2;
+            let _e185 = c_5;
+            halvedS = ((2u * _e183) - select(0u, 32768u, ((_e185 & 1u) != 0u)));
+            let _e190 = T_1;
+            let _e192 = c_5;
+            halvedT = ((2u * _e190) - select(0u, 32768u, ((_e192 & 2u) != 0u)));
+            let _e197 = code;
+            if ((_e197 & 3221225472u) == 3221225472u) {
+                let _e200 = code;
+                h_2 = (_e200 & 1073741823u);
+                let _e202 = h_2;
+                let _e207 = patches.p[_e202].cv[5i];
+                if (_e207 == 0u) {
+                    let _e209 = S_2;
+                    let _e210 = T_1;
+                    local_12 = (_e209 | (_e210 << bitcast<u32>(16i)));
+                } else {
+                    let _e214 = halvedS;
+                    let _e215 = halvedT;
+                    local_12 = (_e214 | (_e215 << bitcast<u32>(16i)));
+                }
+                let _e219 = h_2;
+                param_79 = _e219;
+                let _e220 = local_12;
+                param_80 = _e220;
                 smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_79), (&param_80), (&param_81), (&param_82));
-                let _e185 = param_81;
-                (*P_5) = _e185;
-                let _e186 = param_82;
-                (*n_4) = _e186;
+                let _e221 = param_81;
+                (*P_5) = _e221;
+                let _e222 = param_82;
+                (*n_4) = _e222;
                 return;
             }
-            let _e187 = S_2;
-            let _e189 = c_5;
-            S_2 = ((2u * _e187) - select(0u, 32768u, ((_e189 & 1u) != 0u)));
-            let _e194 = T_1;
-            let _e196 = c_5;
-            T_1 = ((2u * _e194) - select(0u, 32768u, ((_e196 & 2u) != 0u)));
-            let _e201 = code;
-            kind = (_e201 & 3221225472u);
-            let _e203 = code;
-            index = (_e203 & 1073741823u);
-            let _e205 = kind;
-            if (_e205 == 0u) {
-                let _e207 = index;
-                let _e208 = S_2;
-                let _e211 = T_1;
-                let _e216 = patches.p[_e207];
-                param_83.cv[0i] = _e216.cv[0];
-                param_83.cv[1i] = _e216.cv[1];
-                param_83.cv[2i] = _e216.cv[2];
-                param_83.cv[3i] = _e216.cv[3];
-                param_83.cv[4i] = _e216.cv[4];
-                param_83.cv[5i] = _e216.cv[5];
-                param_83.cv[6i] = _e216.cv[6];
-                param_83.cv[7i] = _e216.cv[7];
-                param_83.cv[8i] = _e216.cv[8];
-                param_83.cv[9i] = _e216.cv[9];
-                param_83.cv[10i] = _e216.cv[10];
-                param_83.cv[11i] = _e216.cv[11];
-                param_83.cv[12i] = _e216.cv[12];
-                param_83.cv[13i] = _e216.cv[13];
-                param_83.cv[14i] = _e216.cv[14];
-                param_83.cv[15i] = _e216.cv[15];
-                param_83.ptex = _e216.ptex;
-                param_83.u0_ = _e216.u0_;
-                param_83.v0_ = _e216.v0_;
-                param_83.size = _e216.size;
-                param_83.levelBoundary = _e216.levelBoundary;
-                param_83.sharpness = _e216.sharpness;
-                param_83.pad1_ = _e216.pad1_;
-                param_83.pad2_ = _e216.pad2_;
-                param_84 = (f32(_e208) / 32768f);
-                param_85 = (f32(_e211) / 32768f);
+            let _e223 = halvedS;
+            S_2 = _e223;
+            let _e224 = halvedT;
+            T_1 = _e224;
+            let _e225 = code;
+            kind = (_e225 & 3221225472u);
+            let _e227 = code;
+            index = (_e227 & 1073741823u);
+            let _e229 = kind;
+            if (_e229 == 0u) {
+                let _e231 = index;
+                let _e232 = S_2;
+                let _e235 = T_1;
+                let _e240 = patches.p[_e231];
+                param_83.cv[0i] = _e240.cv[0];
+                param_83.cv[1i] = _e240.cv[1];
+                param_83.cv[2i] = _e240.cv[2];
+                param_83.cv[3i] = _e240.cv[3];
+                param_83.cv[4i] = _e240.cv[4];
+                param_83.cv[5i] = _e240.cv[5];
+                param_83.cv[6i] = _e240.cv[6];
+                param_83.cv[7i] = _e240.cv[7];
+                param_83.cv[8i] = _e240.cv[8];
+                param_83.cv[9i] = _e240.cv[9];
+                param_83.cv[10i] = _e240.cv[10];
+                param_83.cv[11i] = _e240.cv[11];
+                param_83.cv[12i] = _e240.cv[12];
+                param_83.cv[13i] = _e240.cv[13];
+                param_83.cv[14i] = _e240.cv[14];
+                param_83.cv[15i] = _e240.cv[15];
+                param_83.ptex = _e240.ptex;
+                param_83.u0_ = _e240.u0_;
+                param_83.v0_ = _e240.v0_;
+                param_83.size = _e240.size;
+                param_83.levelBoundary = _e240.levelBoundary;
+                param_83.sharpness = _e240.sharpness;
+                param_83.pad1_ = _e240.pad1_;
+                param_83.pad2_ = _e240.pad2_;
+                param_84 = (f32(_e232) / 32768f);
+                param_85 = (f32(_e235) / 32768f);
                 patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_83), (&param_84), (&param_85), (&param_86), (&param_87));
-                let _e267 = param_86;
-                (*P_5) = _e267;
-                let _e268 = param_87;
-                (*n_4) = _e268;
+                let _e291 = param_86;
+                (*P_5) = _e291;
+                let _e292 = param_87;
+                (*n_4) = _e292;
                 return;
             }
-            let _e269 = kind;
-            if (_e269 == 2147483648u) {
-                let _e271 = index;
-                leaf = _e271;
-                let _e272 = S_2;
-                ls = _e272;
-                let _e273 = T_1;
-                lt = _e273;
+            let _e293 = kind;
+            if (_e293 == 2147483648u) {
+                let _e295 = index;
+                leaf = _e295;
+                let _e296 = S_2;
+                ls = _e296;
+                let _e297 = T_1;
+                lt = _e297;
                 break;
             }
-            let _e274 = index;
-            node = _e274;
+            let _e298 = index;
+            node = _e298;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e275 = k_6;
-            k_6 = (_e275 + 1i);
+            let _e299 = k_6;
+            k_6 = (_e299 + 1i);
         }
     }
-    let _e277 = leaf;
-    let _e280 = irregulars.f[_e277];
-    q_2.corner = _e280.corner;
-    q_2.ptex = _e280.ptex;
-    q_2.u0_ = _e280.u0_;
-    q_2.v0_ = _e280.v0_;
-    q_2.size = _e280.size;
-    let _e291 = ls;
-    s_5 = (f32(_e291) / 32768f);
-    let _e294 = lt;
-    t_5 = (f32(_e294) / 32768f);
-    let _e297 = s_5;
-    let _e299 = t_5;
-    let _e302 = s_5;
-    let _e303 = t_5;
-    let _e306 = s_5;
-    let _e307 = t_5;
-    let _e309 = s_5;
-    let _e311 = t_5;
-    w_3 = array<f32, 4>(((1f - _e297) * (1f - _e299)), (_e302 * (1f - _e303)), (_e306 * _e307), ((1f - _e309) * _e311));
+    let _e301 = leaf;
+    let _e304 = irregulars.f[_e301];
+    q_2.corner = _e304.corner;
+    q_2.ptex = _e304.ptex;
+    q_2.u0_ = _e304.u0_;
+    q_2.v0_ = _e304.v0_;
+    q_2.size = _e304.size;
+    let _e315 = ls;
+    s_5 = (f32(_e315) / 32768f);
+    let _e318 = lt;
+    t_5 = (f32(_e318) / 32768f);
+    let _e321 = s_5;
+    let _e323 = t_5;
+    let _e326 = s_5;
+    let _e327 = t_5;
+    let _e330 = s_5;
+    let _e331 = t_5;
+    let _e333 = s_5;
+    let _e335 = t_5;
+    w_3 = array<f32, 4>(((1f - _e321) * (1f - _e323)), (_e326 * (1f - _e327)), (_e330 * _e331), ((1f - _e333) * _e335));
     (*P_5) = vec3<f32>(0f, 0f, 0f);
     (*n_4) = vec3<f32>(0f, 0f, 0f);
     k_7 = 0i;
     loop {
-        let _e314 = k_7;
-        if (_e314 < 4i) {
-            let _e316 = k_7;
-            let _e318 = w_3[_e316];
-            let _e319 = k_7;
-            let _e322 = q_2.corner[_e319];
-            let _e326 = limits.v[(2u * _e322)];
-            let _e329 = (*P_5);
-            (*P_5) = (_e329 + (_e326.xyz * _e318));
-            let _e331 = k_7;
-            let _e333 = w_3[_e331];
-            let _e334 = k_7;
-            let _e337 = q_2.corner[_e334];
-            let _e342 = limits.v[((2u * _e337) + 1u)];
-            let _e345 = (*n_4);
-            (*n_4) = (_e345 + (_e342.xyz * _e333));
+        let _e338 = k_7;
+        if (_e338 < 4i) {
+            let _e340 = k_7;
+            let _e342 = w_3[_e340];
+            let _e343 = k_7;
+            let _e346 = q_2.corner[_e343];
+            let _e350 = limits.v[(2u * _e346)];
+            let _e353 = (*P_5);
+            (*P_5) = (_e353 + (_e350.xyz * _e342));
+            let _e355 = k_7;
+            let _e357 = w_3[_e355];
+            let _e358 = k_7;
+            let _e361 = q_2.corner[_e358];
+            let _e366 = limits.v[((2u * _e361) + 1u)];
+            let _e369 = (*n_4);
+            (*n_4) = (_e369 + (_e366.xyz * _e357));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e347 = k_7;
-            k_7 = (_e347 + 1i);
+            let _e371 = k_7;
+            k_7 = (_e371 + 1i);
         }
     }
     return;
@@ -1731,29 +1752,29 @@ fn main_1() {
     var c_7: vec4<f32>;
     var o: u32;
     var px: array<vec2<f32>, 5>;
-    var local_12: vec2<f32>;
+    var local_13: vec2<f32>;
     var len: f32;
-    var local_13: f32;
+    var local_14: f32;
     var want: f32;
     var param_112: array<vec3<f32>, 5>;
     var chord: vec2<f32>;
     var cl: f32;
     var off: vec2<f32>;
     var d_3: f32;
-    var local_14: f32;
+    var local_15: f32;
     var k_10: i32;
     var e: u32;
-    var local_15: u32;
+    var local_16: u32;
     var pt_3: Patch;
     var crease_2: u32;
     var alongS: bool;
     var creaseAlongS: bool;
     var most_1: f32;
-    var local_16: f32;
-    var phi_2184_: bool;
-    var phi_2185_: bool;
-    var phi_2438_: bool;
-    var phi_2543_: bool;
+    var local_17: f32;
+    var phi_2206_: bool;
+    var phi_2207_: bool;
+    var phi_2460_: bool;
+    var phi_2565_: bool;
 
     let _e126 = pc.limnRowInvocations;
     param_100 = _e126;
@@ -1773,20 +1794,20 @@ fn main_1() {
     let _e144 = p1_[0u];
     let _e147 = cull.c[_e144];
     let _e148 = (_e147 == 0u);
-    phi_2185_ = _e148;
+    phi_2207_ = _e148;
     if !(_e148) {
         let _e151 = p1_[1u];
         let _e152 = (_e151 != 4294967295u);
-        phi_2184_ = _e152;
+        phi_2206_ = _e152;
         if _e152 {
             let _e154 = p1_[1u];
             let _e157 = cull.c[_e154];
-            phi_2184_ = (_e157 == 0u);
+            phi_2206_ = (_e157 == 0u);
         }
-        let _e160 = phi_2184_;
-        phi_2185_ = _e160;
+        let _e160 = phi_2206_;
+        phi_2207_ = _e160;
     }
-    let _e162 = phi_2185_;
+    let _e162 = phi_2207_;
     visible = _e162;
     let _e164 = pc.tess;
     let _e166 = p0_[3u];
@@ -1890,11 +1911,11 @@ fn main_1() {
                     let _e269 = c_7;
                     let _e272 = c_7[3u];
                     let _e276 = pc.halfViewport;
-                    local_12 = ((_e269.xy / vec2(_e272)) * _e276);
+                    local_13 = ((_e269.xy / vec2(_e272)) * _e276);
                 } else {
-                    local_12 = vec2<f32>(0f, 0f);
+                    local_13 = vec2<f32>(0f, 0f);
                 }
-                let _e278 = local_12;
+                let _e278 = local_13;
                 px[_e265] = _e278;
                 continue;
             } else {
@@ -1915,15 +1936,15 @@ fn main_1() {
             let _e299 = px[4i];
             let _e303 = px[4i];
             let _e305 = px[2i];
-            local_13 = (((distance(_e286, _e288) + distance(_e291, _e293)) + distance(_e297, _e299)) + distance(_e303, _e305));
+            local_14 = (((distance(_e286, _e288) + distance(_e291, _e293)) + distance(_e297, _e299)) + distance(_e303, _e305));
         } else {
             let _e309 = px[0i];
             let _e311 = px[1i];
             let _e314 = px[1i];
             let _e316 = px[2i];
-            local_13 = (distance(_e309, _e311) + distance(_e314, _e316));
+            local_14 = (distance(_e309, _e311) + distance(_e314, _e316));
         }
-        let _e319 = local_13;
+        let _e319 = local_14;
         len = _e319;
         let _e320 = behind;
         if (_e320 == 0u) {
@@ -1940,12 +1961,12 @@ fn main_1() {
         } else {
             let _e338 = behind;
             let _e339 = (_e338 != 0u);
-            phi_2438_ = _e339;
+            phi_2460_ = _e339;
             if !(_e339) {
                 let _e341 = len;
-                phi_2438_ = !((_e341 < 1000000000f));
+                phi_2460_ = !((_e341 < 1000000000f));
             }
-            let _e345 = phi_2438_;
+            let _e345 = phi_2460_;
             if _e345 {
                 let _e346 = cap;
                 r_2 = _e346;
@@ -1979,12 +2000,12 @@ fn main_1() {
                         let _e384 = chord[1u];
                         let _e386 = off[0u];
                         let _e390 = cl;
-                        local_14 = (abs(((_e379 * _e381) - (_e384 * _e386))) / _e390);
+                        local_15 = (abs(((_e379 * _e381) - (_e384 * _e386))) / _e390);
                     } else {
                         let _e392 = off;
-                        local_14 = length(_e392);
+                        local_15 = length(_e392);
                     }
-                    let _e394 = local_14;
+                    let _e394 = local_15;
                     d_3 = _e394;
                     let _e395 = want;
                     let _e396 = d_3;
@@ -1998,22 +2019,22 @@ fn main_1() {
                         let _e406 = k_10;
                         if (_e406 == 0i) {
                             let _e409 = p1_[0u];
-                            local_15 = _e409;
+                            local_16 = _e409;
                         } else {
                             let _e411 = p1_[1u];
-                            local_15 = _e411;
+                            local_16 = _e411;
                         }
-                        let _e412 = local_15;
+                        let _e412 = local_16;
                         e = _e412;
                         let _e413 = e;
                         let _e414 = (_e413 == 4294967295u);
-                        phi_2543_ = _e414;
+                        phi_2565_ = _e414;
                         if !(_e414) {
                             let _e416 = e;
                             let _e418 = pc.patchCount;
-                            phi_2543_ = (_e416 >= _e418);
+                            phi_2565_ = (_e416 >= _e418);
                         }
-                        let _e421 = phi_2543_;
+                        let _e421 = phi_2565_;
                         if _e421 {
                             continue;
                         }
@@ -2074,13 +2095,13 @@ fn main_1() {
                             let _e508 = pc.maxError;
                             if (_e508 > 0f) {
                                 let _e510 = want;
-                                local_16 = (2f * _e510);
+                                local_17 = (2f * _e510);
                             } else {
                                 let _e512 = len;
                                 let _e515 = pc.edgePixels;
-                                local_16 = ceil(((2f * _e512) / _e515));
+                                local_17 = ceil(((2f * _e512) / _e515));
                             }
-                            let _e518 = local_16;
+                            let _e518 = local_17;
                             let _e519 = most_1;
                             let _e520 = len;
                             want = max(_e506, max(_e518, min(_e519, ceil(sqrt((_e520 / 0.25f))))));
