@@ -210,8 +210,9 @@ void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
     const uint32_t P = static_cast<uint32_t>(t.patches.size()), I = static_cast<uint32_t>(t.irregular.size());
     const uint32_t nodes = std::max<uint32_t>(I, static_cast<uint32_t>(t.irregularNodes.size()));
     // After the sub-patches: per smooth face a header (valence, corner, its basis's first
-    // record, K, the corner's limit point) and its support points, 16 a record; then per basis,
-    // per band and quadrant, per support point a record of its 16 weights.
+    // record, its bands, the corner's limit point, the levels below its irregular face: 0 for
+    // a root, whose codes are read before halving) and its support points, 16 a record; then
+    // per basis, per band and quadrant, per support point a record of its 16 weights.
     std::vector<uint32_t> header(t.smoothIrregular.size()), basisFirst(t.irregularBases.size());
     uint32_t next = P + nodes + static_cast<uint32_t>(t.subPatches.size());
     for (size_t i = 0; i < t.smoothIrregular.size(); ++i) {
@@ -222,20 +223,27 @@ void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
         basisFirst[b] = next;
         next += t.irregularBases[b].levels * 3 * t.irregularBases[b].supportSize();
     }
-    std::vector<uint32_t> faceOf(t.smoothIrregular.size(), 0);
+    // Per node its irregular face and depth (children come after their parents); per smooth
+    // face the irregular face whose corner it shares, and its levels below that face.
+    std::vector<uint32_t> faceOf(t.smoothIrregular.size(), 0), below(t.smoothIrregular.size(), 0);
+    std::vector<uint32_t> rootOf(t.irregularNodes.size(), 0), depthOf(t.irregularNodes.size(), 0);
     for (uint32_t i = 0; i < nodes; ++i) {
         GpuPatch g{};
         std::fill(std::begin(g.cv), std::end(g.cv), kNodeNone);
-        if (i < t.irregularNodes.size())
+        if (i < t.irregularNodes.size()) {
+            if (i < I) rootOf[i] = i;
+            const bool root = i < I && smoothRoot(t.irregularNodes[i]);
             for (int q = 0; q < 4; ++q) {
                 const uint32_t c = t.irregularNodes[i][q], kind = c & ~kNodeIndexMask, x = c & kNodeIndexMask;
-                if (c != kNodeNone && kind == kNodeBasis) faceOf[x] = i;
+                if (c != kNodeNone && kind == kNodeChild) rootOf[x] = rootOf[i], depthOf[x] = depthOf[i] + 1;
+                if (c != kNodeNone && kind == kNodeBasis) faceOf[x] = rootOf[i], below[x] = root ? 0 : depthOf[i] + 1;
                 g.cv[q] = c == kNodeNone       ? kNodeNone
                           : kind == kNodeBasis ? kNodeBasis | header[x]
                           : kind == kNodeChild ? kNodeChild | (P + x)
                           : kind == kNodeLeaf  ? kNodeLeaf | (I + x)
                                                : kNodeSubPatch | (P + nodes + x);
             }
+        }
         d.irregularNodes.push_back(g);
     }
     for (const Patch& p : t.subPatches) d.irregularNodes.push_back(gpuPatch(p));
@@ -243,8 +251,10 @@ void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
         const Tables::SmoothIrregular& f = t.smoothIrregular[i];
         const IrregularBasis& b = t.irregularBases[f.basis];
         GpuPatch h{};
-        h.cv[0] = b.valence, h.cv[1] = f.corner, h.cv[2] = basisFirst[f.basis], h.cv[3] = b.levels;
+        h.cv[0] = b.valence, h.cv[1] = f.corner, h.cv[2] = basisFirst[f.basis];
+        h.cv[3] = b.levels > below[i] ? b.levels - below[i] : 1;
         h.cv[4] = t.irregular[faceOf[i]].corner[f.corner];
+        h.cv[5] = below[i];
         d.irregularNodes.push_back(h);
         for (uint32_t k = 0; k < b.supportSize(); k += 16) {
             GpuPatch g{};
@@ -457,8 +467,12 @@ bool drawnPointIsApproximate(const SubdivisionDraw& d, uint32_t element, uint32_
         const uint32_t c = (S >= half ? 1u : 0u) | (T >= half ? 2u : 0u), code = node(at).cv[c];
         if (code == kNodeNone) break;
         const uint32_t kind = code & ~kNodeIndexMask, index = code & kNodeIndexMask;
-        if (kind == kNodeBasis) { // a smooth face: bilinear only within 2^-K of its corner
+        if (kind == kNodeBasis) { // a smooth face: bilinear only within 2^-bands of its corner
             const GpuPatch& h = node(index);
+            if (h.cv[5] > 0) { // below the root: in the quadrant's halved (s, t)
+                S = 2 * S - ((c & 1) ? full : 0);
+                T = 2 * T - ((c & 2) ? full : 0);
+            }
             const uint32_t r = h.cv[1], K = h.cv[3];
             uint32_t a = r == 0 ? S : r == 1 ? T : r == 2 ? full - S : full - T;
             uint32_t b = r == 0 ? T : r == 1 ? full - S : r == 2 ? full - T : S;

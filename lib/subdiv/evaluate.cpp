@@ -218,12 +218,16 @@ SurfacePoint basisPatch(const Tables& t, uint32_t smooth, std::span<const glm::d
 
 // A smooth irregular face at its (s, t): turned so that the extraordinary corner is at (0, 0)
 // (a rotation, so normals keep their sign), then its band k = the number of halvings until
-// max(s, t) >= 1/2, at most K; within 2^-K of the corner, the bilinear blend of the corner's
-// limit point and the three band-K points around it.
+// max(s, t) >= 1/2, at most `bands`; within 2^-bands of the corner, the bilinear blend of the
+// corner's limit point and the three last-band points around it. A smooth face `depth` levels
+// below its irregular face (a decayed crease) uses the basis's first levels - depth bands; its
+// extraordinary vertex is the irregular face's corner of the same index (every extraordinary
+// vertex below level N is one of level N), whose limit point it shares.
 SurfacePoint evaluateSmooth(const Tables& t, std::span<const glm::dvec3> V, std::span<const LimitPoint> limits,
-                            uint32_t face, uint32_t smooth, double s, double tt, bool* exact) {
+                            uint32_t face, uint32_t smooth, uint32_t depth, double s, double tt, bool* exact) {
     const Tables::SmoothIrregular& f = t.smoothIrregular[smooth];
     const IrregularBasis& b = t.irregularBases[f.basis];
+    const uint32_t bands = b.levels > depth ? b.levels - depth : 1;
     double a, c;
     switch (f.corner) {
     case 0: a = s, c = tt; break;
@@ -239,7 +243,7 @@ SurfacePoint evaluateSmooth(const Tables& t, std::span<const glm::dvec3> V, std:
         return r;
     }
     uint32_t k = 1;
-    while (std::max(a, c) < 0.5 && k < b.levels) a *= 2, c *= 2, ++k;
+    while (std::max(a, c) < 0.5 && k < bands) a *= 2, c *= 2, ++k;
     if (std::max(a, c) >= 0.5) {
         const uint32_t qu = a >= 0.5 ? 1 : 0, qv = c >= 0.5 ? 1 : 0;
         const uint32_t q = qu && !qv ? 1 : qu && qv ? 2 : 3;
@@ -280,8 +284,10 @@ SurfacePoint evaluateIrregular(const Tables& t, std::span<const glm::dvec3> V,
             const uint32_t code = t.irregularNodes[node][qu | qv << 1];
             const uint32_t kind = code & ~kNodeIndexMask, index = code & kNodeIndexMask;
             if (code == kNodeNone) break;
-            if (kind == kNodeBasis) // only at the root: (s, t) not yet halved
-                return evaluateSmooth(t, V, limits, face, index, (s + qu) / 2, (tt + qv) / 2, exact);
+            if (kind == kNodeBasis && level == 0 && smoothRoot(t.irregularNodes[node])) // (s, t) not yet halved
+                return evaluateSmooth(t, V, limits, face, index, 0, (s + qu) / 2, (tt + qv) / 2, exact);
+            if (kind == kNodeBasis) // the child in this quadrant, level + 1 below the face
+                return evaluateSmooth(t, V, limits, face, index, level + 1, s, tt, exact);
             if (kind == kNodeSubPatch) {
                 return evaluatePatch(t.subPatches[index], V, s, tt); // derivatives per ptex unit
             }

@@ -217,24 +217,88 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
 
 size_t FaceVaryingSurface::gpuElementCount(uint32_t levels) const {
     size_t n = tables_.patches.size();
+    auto bands = [&](uint32_t smooth, uint32_t below) {
+        const uint32_t b = tables_.irregularBases[tables_.smoothIrregular[smooth].basis].levels;
+        return std::min(levels - below, b > below ? b - below : 1);
+    };
     auto count = [&](auto&& self, uint32_t node, uint32_t depth) -> size_t {
         size_t c = 0;
         for (uint32_t code : tables_.irregularNodes[node]) {
             if (code == kNodeNone) continue;
             const bool child = (code & ~kNodeIndexMask) == kNodeChild;
-            c += child && depth + 1 < levels ? self(self, code & kNodeIndexMask, depth + 1) : 1;
+            const bool basis = (code & ~kNodeIndexMask) == kNodeBasis; // a smooth face below the root
+            c += child && depth + 1 < levels ? self(self, code & kNodeIndexMask, depth + 1)
+                 : basis && depth + 1 < levels ? 3 * bands(code & kNodeIndexMask, depth + 1) + 1
+                                               : 1;
         }
         return c;
     };
     for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
         const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
         if (root == kNodeNone || levels == 0) ++n;
-        else if ((root & ~kNodeIndexMask) == kNodeBasis)
-            n += 3 * std::min(levels, tables_.irregularBases[tables_.smoothIrregular[root & kNodeIndexMask].basis].levels) + 1;
+        else if (smoothRoot(tables_.irregularNodes[q]))
+            n += 3 * bands(root & kNodeIndexMask, 0) + 1;
         else n += count(count, q, 0);
     }
     return n;
 }
+
+namespace {
+
+// Where a smooth face lies: the square [s0, s0 + h]^2 (and t0) of irregular face `face`'s (s, t),
+// which is f.u0 + s0 * f.size ... of its ptex face; the whole face for a root.
+struct SmoothSquare {
+    double s0 = 0, t0 = 0, h = 1;
+};
+
+// The records of a smooth irregular face (`smooth` of tables.smoothIrregular) in square `sq` of
+// irregular face `face`: its first K band sub-patches as patch(ptex, u0, v0, size, Q) and its
+// leaf as bilinear(ptex, u0, v0, size, corners).
+template <class PatchFn, class BilinearFn>
+void smoothRecords(const Tables& tables_, std::span<const glm::dvec3> vertices_, std::span<const LimitPoint> limits_,
+                   uint32_t face, uint32_t smooth, SmoothSquare sq, uint32_t K, PatchFn&& patch, BilinearFn&& bilinear) {
+    // The bands of evaluateIrregular's per-valence basis, turned from the band's frame (a, c),
+    // the extraordinary corner at (0, 0), to the square's (s, t): a rotation by the corner.
+    const IrregularFace& f = tables_.irregular[face];
+    const Tables::SmoothIrregular& sm = tables_.smoothIrregular[smooth];
+    const uint32_t corner = sm.corner;
+    const double fu = f.u0 + sq.s0 * f.size, fv = f.v0 + sq.t0 * f.size, fsize = sq.h * f.size;
+    // The ptex-face square whose (a, c) square is [a0, a0 + h] x [c0, c0 + h], and which of its
+    // band-frame control points P[i][j] is its ptex-frame Q[i'][j'] (B_i(1 - x) = B_{3-i}(x)).
+    auto square = [&](double a0, double c0, double h, double& s0, double& t0) {
+        switch (corner) {
+        case 0: s0 = a0, t0 = c0; break;
+        case 1: s0 = 1 - c0 - h, t0 = a0; break;
+        case 2: s0 = 1 - a0 - h, t0 = 1 - c0 - h; break;
+        default: s0 = c0, t0 = 1 - a0 - h; break;
+        }
+    };
+    for (uint32_t k = 1; k <= K; ++k) {
+        const double h = std::ldexp(1.0, -int(k)); // the band's quadrants
+        for (uint32_t q = 1; q <= 3; ++q) {
+            const uint32_t qu = q == 3 ? 0 : 1, qv = q == 1 ? 0 : 1;
+            glm::dvec3 P[4][4], Q[4][4];
+            smoothSubPatchControlPoints(tables_, smooth, vertices_, k, q, P);
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; j < 4; ++j)
+                    Q[i][j] = corner == 0 ? P[i][j] : corner == 1 ? P[j][3 - i] : corner == 2 ? P[3 - i][3 - j] : P[3 - j][i];
+            double s0, t0;
+            square(qu * h, qv * h, h, s0, t0);
+            patch(f.ptex, fu + s0 * fsize, fv + t0 * fsize, h * fsize, Q);
+        }
+    }
+    // Within 2^-K of the corner: evaluateIrregular's bilinear leaf, its corners from it.
+    const double h = std::ldexp(1.0, -int(K));
+    double s0, t0;
+    square(0, 0, h, s0, t0);
+    glm::dvec3 c[4];
+    const double cs[4] = {s0, s0 + h, s0 + h, s0}, ct[4] = {t0, t0, t0 + h, t0 + h};
+    for (int k = 0; k < 4; ++k)
+        c[k] = evaluateIrregular(tables_, vertices_, limits_, face, sq.s0 + cs[k] * sq.h, sq.t0 + ct[k] * sq.h).position;
+    bilinear(f.ptex, fu + s0 * fsize, fv + t0 * fsize, h * fsize, c);
+}
+
+} // namespace
 
 FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
     Gpu g;
@@ -271,7 +335,9 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
     // of its own: the sub-patches and leaves of its quadtree. A face with a per-valence basis is
     // a smooth face (its support's UVs, the weights once per valence), which expandSmoothFaces
     // turns into its band sub-patches and leaf where the GPU needs them: a fraction of the bytes
-    // in the file. Elements are numbered in record order, smooth faces after them.
+    // in the file. A smooth face below a root (a decayed crease, inside a quadtree) is stored as
+    // its pieces (smoothRecords): there are few. Elements are numbered in record order, smooth
+    // faces after them.
     uint32_t next = P;
     auto patchRecord = [&](uint32_t ptex, double u0, double v0, double size, const glm::dvec3 C[4][4]) {
         insert(next++, ptex, float(u0), float(v0), float(size));
@@ -310,6 +376,17 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
                 bilinearRecord(ptex, cu, cv, h, corners);
             } else if (kind == kNodeChild) {
                 self(self, face, index, depth + 1, cu, cv, h, gs, gt, gh);
+            } else if (kind == kNodeBasis && depth + 1 >= gpuLevels_) { // cut, as a child
+                glm::dvec3 corners[4];
+                const double cs[4] = {gs, gs + gh, gs + gh, gs}, ct[4] = {gt, gt, gt + gh, gt + gh};
+                for (int k = 0; k < 4; ++k)
+                    corners[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
+                bilinearRecord(ptex, cu, cv, h, corners);
+            } else if (kind == kNodeBasis) { // a smooth face below the root (a decayed crease): its pieces
+                const uint32_t b = tables_.irregularBases[tables_.smoothIrregular[index].basis].levels;
+                const uint32_t K = std::min(gpuLevels_ - (depth + 1), b > depth + 1 ? b - (depth + 1) : 1);
+                smoothRecords(tables_, vertices_, limits_, face, index, SmoothSquare{gs, gt, gh}, K, patchRecord,
+                              bilinearRecord);
             } else if (kind == kNodeSubPatch) {
                 glm::dvec3 C[4][4];
                 gatherControlPoints(tables_.subPatches[index], vertices_, C);
@@ -324,7 +401,7 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
     for (uint32_t q = 0; q < tables_.irregular.size(); ++q) {
         const IrregularFace& f = tables_.irregular[q];
         const uint32_t root = q < tables_.irregularNodes.size() ? tables_.irregularNodes[q][0] : kNodeNone;
-        if (root != kNodeNone && gpuLevels_ > 0 && (root & ~kNodeIndexMask) == kNodeBasis) {
+        if (root != kNodeNone && gpuLevels_ > 0 && smoothRoot(tables_.irregularNodes[q])) {
             const Tables::SmoothIrregular& sm = tables_.smoothIrregular[root & kNodeIndexMask];
             const IrregularBasis& b = tables_.irregularBases[sm.basis];
             const uint32_t levels = std::min(gpuLevels_, b.levels);

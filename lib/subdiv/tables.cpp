@@ -51,6 +51,10 @@ IrregularSurfaceCounts irregularSurfaceCounts(const Tables& t) {
             most = std::min(most, t.irregularLevels);
         }
     }
+    for (size_t i = 0; i < t.irregularNodes.size(); ++i)
+        if (!(i < t.irregular.size() && smoothRoot(t.irregularNodes[i])))
+            for (uint32_t code : t.irregularNodes[i])
+                c.basisBelow += code != kNodeNone && (code & ~kNodeIndexMask) == kNodeBasis;
     c.exactLevels = most > uint32_t(kMaxDepth) ? 0 : most;
     return c;
 }

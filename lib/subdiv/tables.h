@@ -96,6 +96,11 @@ struct TablesOptions {
     // sub-patch or is a limit point; K = 6 covers the view-adaptive default of 64 segments.
     // Capped so that depth + K <= kMaxDepth; none for uniform tables.
     int irregularLevels = 6;
+    // Descendants of irregular faces (levels depth+1..depth+K-1) around one smooth interior
+    // extraordinary vertex, once their semi-sharp creases have decayed, use the per-valence
+    // basis there instead of being refined on (TBLS version 5). Off: the quadtree refines them
+    // to depth+K, which versions 3 and 4 can hold (tests compare the two).
+    bool smoothFacesBelowDepth = true;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;
@@ -113,9 +118,17 @@ uint64_t uniformTableVertices(const Mesh& mesh, int depth);
 inline constexpr uint32_t kNodeSubPatch = 0u << 30; // into Tables::subPatches
 inline constexpr uint32_t kNodeChild = 1u << 30;    // into Tables::irregularNodes
 inline constexpr uint32_t kNodeLeaf = 2u << 30;     // into Tables::irregularLeaves
-inline constexpr uint32_t kNodeBasis = 3u << 30;    // into Tables::smoothIrregular (all four)
+inline constexpr uint32_t kNodeBasis = 3u << 30;    // into Tables::smoothIrregular (see smoothRoot)
 inline constexpr uint32_t kNodeNone = 0xFFFFFFFFu;  // no surface there (never in a built table)
 inline constexpr uint32_t kNodeIndexMask = (1u << 30) - 1;
+// A root whose four codes are the same basis code is itself a smooth face (at level N); any
+// other basis code names the smooth face of its quadrant, one level below the node (a face
+// whose semi-sharp creases have decayed there; TBLS version 5). Two quadrants are different
+// faces, so they never share a smooth face.
+inline bool smoothRoot(const std::array<uint32_t, 4>& node) {
+    return (node[0] & ~kNodeIndexMask) == kNodeBasis && node[0] == node[1] && node[0] == node[2] &&
+           node[0] == node[3];
+}
 
 struct Tables {
     uint32_t depth = 0;
@@ -138,7 +151,9 @@ struct Tables {
     std::vector<IrregularFace> irregularLeaves;
     // Irregular faces around one smooth interior extraordinary vertex are not refined further:
     // their sub-patches come from per-valence weights of their 2n + 8 surrounding level-N
-    // points (irregular_basis.h). A root node of kNodeBasis codes names one of these.
+    // points (irregular_basis.h). A root node of kNodeBasis codes names one of these. So do
+    // the basis codes of deeper nodes (version 5): descendants at level N + j whose creases
+    // have decayed, their support at that level, the basis's first levels - j bands.
     struct SmoothIrregular {
         uint32_t basis;  // into irregularBases
         uint32_t corner; // the extraordinary corner (ptex order)
@@ -146,7 +161,7 @@ struct Tables {
     };
     std::vector<IrregularBasis> irregularBases;
     std::vector<SmoothIrregular> smoothIrregular;
-    std::vector<uint32_t> smoothPoints; // global vertex indices (level N)
+    std::vector<uint32_t> smoothPoints; // global vertex indices (level N, or the face's level)
     // Limit points (paper 000, 4.4; math.md C): position and two tangents per point.
     StencilTable limitPosition, limitTangent1, limitTangent2;
     std::vector<uint32_t> limitVertex; // the level-N vertex (global index) of each limit point
@@ -160,6 +175,7 @@ struct Tables {
 // is on the limit surface (for the bilinear ones only the corners are).
 struct IrregularSurfaceCounts {
     size_t basis = 0, subPatches = 0, bilinear = 0;
+    size_t basisBelow = 0; // smooth faces below level N in the sub-patch quadtrees (TBLS version 5)
     uint32_t exactLevels = 0; // the smallest K among the faces that are not bilinear
 };
 IrregularSurfaceCounts irregularSurfaceCounts(const Tables& tables);

@@ -106,8 +106,10 @@ std::vector<std::vector<uint8_t>> neededVertices(const AdaptiveLevels& a, const 
         for (uint32_t v : table->indices) needed[N][v] = 1;
     for (const auto* table : {&limD.position, &limD.tangent1, &limD.tangent2})
         for (uint32_t v : table->indices) needed[D][v] = 1;
-    for (const SmoothIrregularFace& sm : a.smooth)
-        for (uint32_t v : sm.support) needed[N][v] = 1;
+    for (const SmoothIrregularFace& sm : a.smooth) {
+        std::vector<uint8_t>& at = needed[sm.level];
+        for (uint32_t v : sm.support) at[v] = 1;
+    }
     for (uint32_t l = D; l >= 1; --l) {
         const Level& L = levels[l];
         const LevelStencils& st = stencils[l];
@@ -280,7 +282,8 @@ void emitLimitPoints(const AdaptiveLevels& a, const CornerLimits& limN, const Co
 }
 
 // The quadtree of each irregular face: a node per face of T_l (N <= l < D), the roots (T_N)
-// first in the order of t.irregular; a child's quadrant comes from its ptex frame.
+// first in the order of t.irregular; a child's quadrant comes from its ptex frame. A smooth
+// face at level N is a root of four equal basis codes; one below N is its parent's basis code.
 void emitIrregularQuadtrees(AdaptiveLevels& a, const CornerLimits& limD,
                             const std::vector<std::vector<uint32_t>>& remap,
                             const std::vector<std::vector<uint32_t>>& subIndex, Tables& t) {
@@ -289,14 +292,19 @@ void emitIrregularQuadtrees(AdaptiveLevels& a, const CornerLimits& limD,
     const auto& patchSets = a.patchSets;
     const auto& smooth = a.smooth;
     const uint32_t N = a.N, D = a.D;
-    const uint32_t baseN = t.levels[N].first;
     t.irregularBases = std::move(a.bases);
-    std::vector<uint32_t> smoothOf(irregularSets[N].size(), kNone);
+    std::vector<std::vector<uint32_t>> smoothOf(D + 1); // per level and face: its smooth index
     for (size_t i = 0; i < smooth.size(); ++i) {
-        smoothOf[smooth[i].face] = static_cast<uint32_t>(i);
+        const uint32_t l = smooth[i].level;
+        if (smoothOf[l].empty()) smoothOf[l].assign(levels[l].topo.faceCount(), kNone);
+        smoothOf[l][smooth[i].face] = static_cast<uint32_t>(i);
         t.smoothIrregular.push_back({smooth[i].basis, smooth[i].corner, uint32_t(t.smoothPoints.size())});
-        for (uint32_t v : smooth[i].support) t.smoothPoints.push_back(baseN + remap[N][v]);
+        const uint32_t base = t.levels[l].first;
+        const std::vector<uint32_t>& local = remap[l];
+        for (uint32_t v : smooth[i].support) t.smoothPoints.push_back(base + local[v]);
     }
+    auto smoothAt = [&](uint32_t l, uint32_t f) { return smoothOf[l].empty() ? kNone : smoothOf[l][f]; };
+    const std::vector<uint32_t>& smoothN = smoothOf[N];
     if (D > N || !smooth.empty()) {
         std::vector<std::vector<uint32_t>> nodeIndex(D + 1);
         for (uint32_t l = N; l < std::max(D, N + 1); ++l) {
@@ -304,7 +312,7 @@ void emitIrregularQuadtrees(AdaptiveLevels& a, const CornerLimits& limD,
             for (uint32_t f = 0; f < irregularSets[l].size(); ++f)
                 if (irregularSets[l][f]) {
                     nodeIndex[l][f] = static_cast<uint32_t>(t.irregularNodes.size());
-                    const uint32_t b = l == N && smoothOf[f] != kNone ? kNodeBasis | smoothOf[f] : kNodeNone;
+                    const uint32_t b = l == N && !smoothN.empty() && smoothN[f] != kNone ? kNodeBasis | smoothN[f] : kNodeNone;
                     t.irregularNodes.push_back({b, b, b, b});
                 }
         }
@@ -322,6 +330,8 @@ void emitIrregularQuadtrees(AdaptiveLevels& a, const CornerLimits& limD,
                     code = kNodeSubPatch | subIndex[l][cf];
                 else if (irregularSets[l][cf])
                     code = l < D ? kNodeChild | nodeIndex[l][cf] : kNodeLeaf | leafIndex[cf];
+                else if (smoothAt(l, cf) != kNone)
+                    code = kNodeBasis | smoothAt(l, cf);
                 t.irregularNodes[nodeIndex[l - 1][pf]][q] = code;
             }
         }

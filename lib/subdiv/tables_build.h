@@ -33,11 +33,13 @@ Patch gatherPatch(const Level& L, uint32_t f, uint32_t levelBase, const std::vec
 void checkTablesOptions(const Mesh& mesh, const TablesOptions& opts);
 void checkTablesTopology(const Topology& baseTopo, const TablesOptions& opts);
 
-// A face of T_N around one smooth interior extraordinary vertex: drawn from the per-valence
-// weights of its support (irregular_basis.h), not refined further.
+// A face of T_N, or a descendant of one at level N + j (j < K) once its semi-sharp features
+// have decayed, around one smooth interior extraordinary vertex: drawn from the per-valence
+// weights of its support (irregular_basis.h; bands 1..levels - j), not refined further.
 struct SmoothIrregularFace {
     uint32_t face, basis, corner;
-    std::vector<uint32_t> support; // level-N vertices
+    std::vector<uint32_t> support; // vertices of `level`
+    uint32_t level = 0;
 };
 
 // Levels 0..D = N + K of the refinement, where N is the depth and K the irregular faces' extra
@@ -50,8 +52,9 @@ struct AdaptiveLevels {
     std::vector<std::vector<uint8_t>> patchSets;     // D_l \ T_l with a limit surface
     std::vector<std::vector<uint32_t>> creaseEdges;  // per face: a single-crease patch's edge
     std::vector<uint32_t> ptexBase;                  // per base face: its first ptex id
-    std::vector<SmoothIrregularFace> smooth;         // faces of T_N (taken out of it)
+    std::vector<SmoothIrregularFace> smooth;         // by level: roots (T_N) first, then deeper
     std::vector<IrregularBasis> bases;               // their bases, one per valence met
+    std::vector<int> basisOfValence;                 // into bases; -1: not tried, -2: failed
 };
 
 // Refines `baseTopo` (checked by checkTablesTopology) to depth opts.depth and K more levels under

@@ -14,10 +14,14 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // Version 4 stores the same tables compactly: stencil tables as palette indices and varint
 // differences, per-valence bases with each distinct row of weights once (formats/limn.md).
 // Version 5 stores each basis as its one-level program (expanded by the reader to the same
-// weights) and the quadtree nodes and smooth faces as varint streams (tables_surface_records.h).
+// weights) and the quadtree nodes, smooth faces and smooth points as varint streams
+// (tables_surface_records.h); and lets a quadtree node below a root name a smooth face (a
+// descendant whose semi-sharp creases have decayed, drawn from the per-valence basis; its
+// support points at its own level). formats/limn.md, "Smooth faces below level N".
 inline constexpr uint32_t kTablesChunkVersion = 5;
 
-// Writes the current version; 3 (the plain layout) and 4 for tests and fuzz seeds of older files.
+// Writes the current version; 3 (the plain layout) and 4 for tests and fuzz seeds of older
+// files (tables with smooth faces below level N need version 5).
 Chunk encodeTablesChunk(const Tables& tables, uint32_t version = kTablesChunkVersion);
 
 // Decodes and validates every count and index. With `mesh`, also checks that the tables were

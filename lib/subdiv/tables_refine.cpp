@@ -39,17 +39,24 @@ void requireManifold(const Topology& T) {
 }
 
 
-// The faces of T_N around one smooth interior extraordinary vertex: drawn from the per-valence
+// The faces of T_l around one smooth interior extraordinary vertex: drawn from the per-valence
 // weights of their support (irregular_basis.h, built once per valence met), so taken out of T
 // (not refined further) and recorded in a.smooth; and the faces too crowded for either surface.
+// At l = N these are irregular faces (quadtree roots); below N (l < D) they are descendants of
+// irregular faces whose semi-sharp creases have decayed by level l: the rest of their surface
+// is smooth Catmull-Clark, which the same basis gives (its first levels - (l - N) bands)
+// instead of refining on to level D.
 void takeSmoothFaces(const Level& L, uint32_t basisLevels, std::vector<uint8_t>& T, AdaptiveLevels& a) {
     int corner = 0;
     uint32_t valence = 0;
     std::vector<uint32_t> support;
     const uint32_t F = L.topo.faceCount();
-    std::vector<uint32_t> facesAt(L.topo.vertexCount(), 0);
-    std::vector<int> basisOfValence; // -1: not tried, -2: failed
-    for (uint32_t f = 0; f < F; ++f)
+    // Below N no face is crowded: those of level N were not refined, and refinement keeps
+    // valences.
+    const bool roots = L.depth == a.N;
+    std::vector<uint32_t> facesAt(roots ? L.topo.vertexCount() : 0, 0);
+    std::vector<int>& basisOfValence = a.basisOfValence;
+    for (uint32_t f = 0; roots && f < F; ++f)
         for (uint32_t v : L.topo.faceVertices(f)) ++facesAt[v];
     for (uint32_t f = 0; f < F; ++f) {
         if (!T[f]) continue;
@@ -58,7 +65,7 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, std::vector<uint8_t>&
         // at depth 2 took minutes. Such a face stays bilinear between its limit points,
         // counted as such (irregularSurfaceCounts; limn-render and limn-info say so).
         bool crowded = false;
-        for (uint32_t v : L.topo.faceVertices(f)) crowded |= facesAt[v] > kMaxBasisValence;
+        for (uint32_t v : L.topo.faceVertices(f)) crowded |= roots && facesAt[v] > kMaxBasisValence;
         if (crowded) {
             T[f] = 0;
             continue;
@@ -74,7 +81,7 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, std::vector<uint8_t>&
             }
         }
         if (basisOfValence[valence] < 0) continue;
-        a.smooth.push_back({f, uint32_t(basisOfValence[valence]), uint32_t(corner), support});
+        a.smooth.push_back({f, uint32_t(basisOfValence[valence]), uint32_t(corner), support, L.depth});
         T[f] = 0; // not refined further
     }
 }
@@ -212,6 +219,9 @@ AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeO
             if (!L.complete[f] || L.noLimit[f]) continue;
             (regular[f] ? P : T)[f] = 1;
         }
+        // Roots stay in T_N (each has a node); smooth faces below N are not in T_l: their
+        // parent's node names them.
+        if (opts.smoothFacesBelowDepth && l > N && l < D && basisLevels > 0) takeSmoothFaces(L, basisLevels, T, a);
         irregularSets.push_back(T);
         patchSets.push_back(P);
         if (l == N && basisLevels > 0) takeSmoothFaces(L, basisLevels, T, a);

@@ -193,39 +193,69 @@ std::vector<Tables::SmoothIrregular> readSmoothFaces(ByteReader& r, uint32_t cou
 
 namespace {
 
-// The start of each class of level N: face points, edge points, vertex points, and the end.
+// The start of each class of a level: face points, edge points, vertex points, and the end.
 std::array<uint32_t, 4> pointClasses(const LevelInfo& L) {
     return {L.first, L.first + L.facePoints, L.first + L.facePoints + L.edgePoints, L.first + L.count()};
+}
+
+// The levels smooth faces' points may be at: N, and below it those of the smooth faces in the
+// quadtrees, N + 1 .. N + K - 1 (a face at N + K has no band left).
+uint32_t deepestSmoothLevel(const Tables& t) {
+    const uint32_t deepest = t.depth + std::max<uint32_t>(t.irregularLevels, 1) - 1;
+    return std::min<uint32_t>(deepest, static_cast<uint32_t>(t.levels.size()) - 1);
 }
 
 } // namespace
 
 void writeSmoothPoints(ByteWriter& w, const Tables& t) {
-    const std::array<uint32_t, 4> range = pointClasses(t.levels[t.depth]);
-    uint32_t last[3] = {range[0], range[1], range[2]};
+    const uint32_t N = t.depth, deepest = deepestSmoothLevel(t);
+    auto levelOf = [&](uint32_t v) {
+        for (uint32_t l = N; l <= deepest; ++l)
+            if (v >= t.levels[l].first && v - t.levels[l].first < t.levels[l].count()) return l;
+        throw std::logic_error("TBLS: a smooth point is not at level N or a smooth face's level below it");
+    };
+    const std::vector<uint32_t>& points = t.smoothPoints;
     std::vector<uint8_t> s;
-    s.reserve(t.smoothPoints.size() * 2);
-    for (uint32_t v : t.smoothPoints) {
-        const int c = v < range[1] ? 0 : v < range[2] ? 1 : 2;
-        if (v < range[0] || v >= range[3]) throw std::logic_error("TBLS: a smooth point is not at the last level");
-        writeVarint(s, uint64_t(c) + 3 * zigzag(int64_t(v) - last[c]));
-        last[c] = v;
+    s.reserve(points.size() * 2);
+    for (size_t i = 0; i < points.size();) {
+        // A run: the points up to the next one at another level (one run per level when the
+        // faces come by level, as limn-tables writes them).
+        const uint32_t l = levelOf(points[i]);
+        const std::array<uint32_t, 4> range = pointClasses(t.levels[l]);
+        size_t end = i + 1;
+        while (end < points.size() && points[end] >= range[0] && points[end] < range[3]) ++end;
+        writeVarint(s, l - N);
+        writeVarint(s, end - i);
+        uint32_t last[3] = {range[0], range[1], range[2]};
+        for (; i < end; ++i) {
+            const uint32_t v = points[i];
+            const int c = v < range[1] ? 0 : v < range[2] ? 1 : 2;
+            writeVarint(s, uint64_t(c) + 3 * zigzag(int64_t(v) - last[c]));
+            last[c] = v;
+        }
     }
     writeStream(w, s);
 }
 
-std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const LevelInfo& levelN) {
+std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const Tables& t) {
     StreamReader in(r, "smooth irregular points");
     if (count > in.size()) in.fail("count " + std::to_string(count) + " is too large"); // a byte a point
-    const std::array<uint32_t, 4> range = pointClasses(levelN);
-    uint32_t last[3] = {range[0], range[1], range[2]};
+    const uint32_t N = t.depth, deepest = deepestSmoothLevel(t);
     std::vector<uint32_t> points(count);
-    for (uint32_t& v : points) {
-        const uint64_t z = in.varint();
-        const uint64_t c = z % 3;
-        const int64_t x = int64_t(last[c]) + unzigzag(std::min<uint64_t>(z / 3, uint64_t(1) << 40));
-        if (x < int64_t(range[c]) || x >= int64_t(range[c + 1])) in.fail("a point is not at the last level");
-        v = last[c] = static_cast<uint32_t>(x);
+    for (uint32_t i = 0; i < count;) {
+        const uint64_t j = in.varint(), n = in.varint();
+        if (j > deepest - N)
+            in.fail("a run at level N + " + std::to_string(j) + " (levels N to N + " + std::to_string(deepest - N) + ")");
+        if (n == 0 || n > count - i) in.fail("a run of " + std::to_string(n) + " points (" + std::to_string(count - i) + " left)");
+        const std::array<uint32_t, 4> range = pointClasses(t.levels[N + j]);
+        uint32_t last[3] = {range[0], range[1], range[2]};
+        for (const uint32_t end = i + static_cast<uint32_t>(n); i < end; ++i) {
+            const uint64_t z = in.varint();
+            const uint64_t c = z % 3;
+            const int64_t x = int64_t(last[c]) + unzigzag(std::min<uint64_t>(z / 3, uint64_t(1) << 40));
+            if (x < int64_t(range[c]) || x >= int64_t(range[c + 1])) in.fail("a point is not at its run's level");
+            points[i] = last[c] = static_cast<uint32_t>(x);
+        }
     }
     in.finish();
     return points;

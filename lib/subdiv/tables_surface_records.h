@@ -1,7 +1,8 @@
 // TBLS version 5's records of the irregular faces' surface (formats/limn.md, "Per-valence bases
 // as programs, and compact per-face records"): each per-valence basis as its one-level program
-// (BasisProgram), which the reader expands to the same weights, bit for bit; the quadtree nodes
-// and the smooth faces as varint streams. Kept apart from the rest of the TBLS codec
+// (BasisProgram), which the reader expands to the same weights, bit for bit; the quadtree nodes,
+// the smooth faces and their points (in runs by level, for the smooth faces below level N) as
+// varint streams. Kept apart from the rest of the TBLS codec
 // (tables_chunk.cpp) so that other version-5 changes merge beside it.
 #pragma once
 
@@ -34,11 +35,14 @@ void writeSmoothFaces(ByteWriter& w, const Tables& t);
 std::vector<Tables::SmoothIrregular> readSmoothFaces(ByteReader& r, uint32_t count,
                                                      const std::vector<IrregularBasis>& bases);
 
-// The smooth points (after their count): each a varint `c + 3 * zigzag(v - last[c])`, c its class
-// at level N (0: face points, 1: edge points, 2: vertex points) and last[c] the previous point of
-// that class (the class's first vertex at first): a support's points alternate between the three
-// ranges, and are neighbours within each.
+// The smooth points (after their count): runs of points at one level, N + j (0 <= j < K; j > 0
+// for the supports of smooth faces below level N), each a varint j, a varint count >= 1, then
+// per point a varint `c + 3 * zigzag(v - last[c])`, c its class at that level (0: face points,
+// 1: edge points, 2: vertex points) and last[c] the previous point of that class in the run (the
+// class's first vertex at first): a support's points alternate between the three ranges, and
+// are neighbours within each. Which level each face's points must be at is checked by the caller.
 void writeSmoothPoints(ByteWriter& w, const Tables& t);
-std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const LevelInfo& levelN);
+// `t` holds the header and levels read so far.
+std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const Tables& t);
 
 } // namespace limn

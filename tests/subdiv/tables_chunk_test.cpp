@@ -26,11 +26,12 @@ Mesh load(const std::string& model) {
     return importMeshFile(test::modelPath(model).string(), w);
 }
 
-Tables build(const Mesh& m, int depth, bool uniform = false) {
+Tables build(const Mesh& m, int depth, bool uniform = false, bool smoothBelowDepth = true) {
     Warnings w;
     TablesOptions o;
     o.depth = depth;
     o.uniform = uniform;
+    o.smoothFacesBelowDepth = smoothBelowDepth;
     return buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
 }
 
@@ -50,14 +51,15 @@ TEST(TablesChunk, RoundTripIsLossless) {
 // nodes and smooth faces): all three read back to the same tables, weights to the bit, on meshes
 // whose irregular faces take every kind of surface (bases, sub-patch quadtrees with boundaries,
 // creases and single-crease sub-patches, leaves). Tables read from versions 3 and 4 are written
-// as version 5 with the program of each basis's valence.
+// as version 5 with the program of each basis's valence. (Tables without smooth faces below
+// level N: versions 3 and 4 cannot hold those; SmoothFacesBelowRootsAreChecked round-trips them.)
 TEST(TablesChunk, OlderVersionsReadAsVersionFive) {
     for (const char* model : {"osd/catmark/catmark_smoothtris0.obj", "osd/catmark/catmark_cubes_semisharp.obj",
                               "quad/osd_catmark_xord_boundary.obj", "osd/catmark/catmark_single_crease.obj"}) {
         SCOPED_TRACE(model);
         Mesh m = load(model);
         for (int depth : {1, 2}) {
-            const Tables t = build(m, depth);
+            const Tables t = build(m, depth, false, false);
             const Chunk v3 = encodeTablesChunk(t, 3), v4 = encodeTablesChunk(t, 4), v5 = encodeTablesChunk(t);
             ASSERT_EQ(v4.version, 4u);
             ASSERT_EQ(v5.version, 5u);
@@ -363,6 +365,98 @@ TEST(TablesChunk, HostileBasisProgramIsRefused) {
             ADD_FAILURE() << "accepted program case " << i;
         } catch (const Error& e) {
             EXPECT_NE(std::string(e.what()).find(cases[i].why), std::string::npos) << "case " << i << ": " << e.what();
+        }
+    }
+}
+
+// Smooth faces below level N (version 5): a basis code below a root in a version-4 chunk, a
+// smooth face named twice, one too deep for its basis's bands, and support points at another
+// level are each refused by name.
+TEST(TablesChunk, SmoothFacesBelowRootsAreChecked) {
+    Mesh m = load("osd/catmark/catmark_pyramid_creases0.obj");
+    const Tables good = build(m, 2);
+    uint32_t node = 0, quadrant = 4;
+    for (uint32_t i = 0; i < good.irregularNodes.size() && quadrant == 4; ++i)
+        for (uint32_t q = 0; q < 4 && quadrant == 4; ++q)
+            if ((good.irregularNodes[i][q] & ~kNodeIndexMask) == kNodeBasis && good.irregularNodes[i][q] != kNodeNone &&
+                !(i < good.irregular.size() && smoothRoot(good.irregularNodes[i])))
+                node = i, quadrant = q;
+    ASSERT_LT(quadrant, 4u) << "no smooth face below level N";
+    const uint32_t code = good.irregularNodes[node][quadrant], smooth = code & kNodeIndexMask;
+    // Version 5 holds them: its smooth points' runs carry the deeper levels' vertices, and the
+    // tables read back as they were written.
+    const Chunk v5 = encodeTablesChunk(good);
+    const Tables back = decodeTablesChunk(v5, &m);
+    EXPECT_EQ(back.irregularNodes, good.irregularNodes);
+    EXPECT_EQ(back.smoothPoints, good.smoothPoints);
+    ASSERT_EQ(back.smoothIrregular.size(), good.smoothIrregular.size());
+    for (size_t i = 0; i < good.smoothIrregular.size(); ++i)
+        EXPECT_EQ(back.smoothIrregular[i].first, good.smoothIrregular[i].first);
+    EXPECT_EQ(encodeTablesChunk(back).payload, v5.payload);
+    const LevelInfo& below = good.levels[good.depth + 1];
+    EXPECT_TRUE(std::any_of(good.smoothPoints.begin(), good.smoothPoints.end(),
+                            [&](uint32_t v) { return v >= below.first && v - below.first < below.count(); }));
+    for (int which = 0; which < 4; ++which) {
+        Tables t = good;
+        Chunk c;
+        if (which == 0) { // version 4's plain node records, one naming the smooth face below N
+            for (uint32_t i = 0; i < t.irregularNodes.size(); ++i) // version 4 cannot hold them
+                for (uint32_t& x : t.irregularNodes[i])
+                    if ((x & ~kNodeIndexMask) == kNodeBasis && x != kNodeNone &&
+                        !(i < t.irregular.size() && smoothRoot(good.irregularNodes[i])))
+                        x = kNodeNone;
+            c = encodeTablesChunk(t, 4);
+            const auto* record = reinterpret_cast<const uint8_t*>(t.irregularNodes[node].data());
+            const auto at = std::search(c.payload.begin(), c.payload.end(), record, record + 16);
+            ASSERT_NE(at, c.payload.end());
+            ASSERT_EQ(std::search(at + 1, c.payload.end(), record, record + 16), c.payload.end());
+            std::memcpy(&*at + 4 * quadrant, &code, 4); // little-endian, as the chunk
+        } else {
+            if (which == 1) t.irregularNodes[node][quadrant ^ 1] = code;
+            if (which == 2) { // a basis of one band: none left below level N
+                IrregularBasis& b = t.irregularBases[t.smoothIrregular[smooth].basis];
+                b.levels = 1;
+                b.weights.resize(size_t(48) * b.supportSize());
+            }
+            if (which == 3) t.smoothPoints[t.smoothIrregular[smooth].first] = t.levels[t.depth].first;
+            c = encodeTablesChunk(t);
+        }
+        const char* want[4] = {"basis code below a root", "is named twice", "too deep", "not at its face's level"};
+        try {
+            decodeTablesChunk(c, &m);
+            ADD_FAILURE() << "accepted case " << which;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(want[which]), std::string::npos) << which << ": " << e.what();
+        }
+    }
+}
+
+// Version 5's smooth points come in runs, each at one level (N, or a smooth face's level below
+// it): a run deeper than the smooth faces can be (level N + K), one of no points or of more than
+// are left, and a point outside its run's level are refused by name.
+TEST(TablesChunk, HostileSmoothPointRunsAreRefused) {
+    Mesh m = load("osd/catmark/catmark_pyramid_creases0.obj");
+    const Tables t = build(m, 2);
+    const uint32_t K = t.irregularLevels;
+    ASSERT_GT(K, 1u);
+    std::vector<uint8_t> outside = {0, 2}; // a vertex point 100 past level N's last
+    writeVarint(outside, 2 + 3 * zigzag(int64_t(t.levels[t.depth].vertexPoints) + 100));
+    const std::vector<std::pair<std::vector<uint8_t>, const char*>> cases = {
+        {{uint8_t(K), 1, 0}, "a run at level N + "},
+        {{0, 0}, "a run of 0 points"},
+        {{0, 3, 0, 0}, "a run of 3 points (2 left)"},
+        {outside, "not at its run's level"},
+    };
+    for (const auto& [s, why] : cases) {
+        ByteWriter w;
+        writeStream(w, s);
+        const std::vector<uint8_t> bytes = w.take();
+        ByteReader r(bytes, "test");
+        try {
+            readSmoothPoints(r, 2, t);
+            ADD_FAILURE() << "accepted " << why;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
         }
     }
 }

@@ -7,6 +7,7 @@
 #include "subdiv/evaluate.h"
 #include "subdiv/irregular_basis.h"
 #include "subdiv/tables.h"
+#include "subdiv/tables_chunk.h"
 #include "test_support.h"
 #include "topology/features.h"
 
@@ -405,6 +406,61 @@ TEST(IrregularBasis, WeightsAreThoseOfTheWholeTables) {
         }
         EXPECT_EQ(compared, size_t(K) * 3 * 16 * M);
         EXPECT_EQ(differ, 0u);
+    }
+}
+
+// Below level N, a descendant of an irregular face whose semi-sharp creases have decayed (or,
+// with two extraordinary corners, that has only one left) is drawn from the per-valence basis
+// at its level instead of being refined on (TBLS version 5): such faces exist on these meshes
+// (a decaying crease through extraordinary vertices; faces between two n-gon centres), and the
+// surface evaluateIrregular gives there is OpenSubdiv's limit (isolation 10): positions within
+// 1e-6 of the diagonal and normals within 0.05 degrees wherever it says it is exact, on a grid
+// of every irregular face finer than the nested faces' bands. The tables round-trip through
+// TBLS (whose reader checks each nested face's level and bands) and cannot be written as
+// version 4.
+TEST(IrregularSurface, SmoothFacesBelowDepthMatchOpenSubdiv) {
+    for (auto [model, depth] : {std::pair{"osd/catmark/catmark_pyramid_creases0.obj", 2},
+                                std::pair{"osd/catmark/catmark_nonquads.obj", 2}}) {
+        SCOPED_TRACE(model);
+        const Fixture f = build({model, depth, false});
+        size_t nested = 0;
+        for (size_t i = 0; i < f.tables.irregularNodes.size(); ++i)
+            for (uint32_t c : f.tables.irregularNodes[i])
+                nested += c != kNodeNone && (c & ~kNodeIndexMask) == kNodeBasis &&
+                          !(i < f.tables.irregular.size() && smoothRoot(f.tables.irregularNodes[i]));
+        EXPECT_GT(nested, 0u) << "no smooth face below level N";
+        const Chunk c = encodeTablesChunk(f.tables);
+        EXPECT_EQ(c.version, 5u);
+        EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(c, &f.mesh)).payload, c.payload);
+        EXPECT_THROW(encodeTablesChunk(f.tables, 4), std::logic_error);
+        test::OsdLimitSurface osd(f.mesh, f.options, 10);
+        const std::vector<LimitPoint> limits = evaluateLimitPoints(f.tables, f.vertices);
+        double worstP = 0, worstN = 0;
+        size_t compared = 0;
+        const int R = 32; // 1/32 of a face: inside the bands of faces 1 to 4 levels down
+        for (uint32_t q = 0; q < f.tables.irregular.size(); ++q) {
+            const IrregularFace& face = f.tables.irregular[q];
+            for (int j = 0; j <= R; ++j)
+                for (int i = 0; i <= R; ++i) {
+                    const double s = double(i) / R, t = double(j) / R;
+                    bool exact = false;
+                    const SurfacePoint x = evaluateIrregular(f.tables, f.vertices, limits, q, s, t, &exact);
+                    if (!exact || ((i == 0 || i == R) && (j == 0 || j == R))) continue; // corners: LimitPoints test
+                    const double u = face.u0 + s * face.size, v = face.v0 + t * face.size;
+                    // OpenSubdiv's patch inside this face (its derivatives can degenerate on an edge).
+                    const double iu = u + (i == R ? -1e-9 : 1e-9), iv = v + (j == R ? -1e-9 : 1e-9);
+                    glm::dvec3 P, N;
+                    ASSERT_TRUE(osd.evaluate(int(face.ptex), u, v, iu, iv, P, N));
+                    worstP = std::max(worstP, glm::length(P - x.position) / f.diag);
+                    worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, x.normal))) * 180 / M_PI);
+                    ++compared;
+                }
+        }
+        EXPECT_GT(compared, 1000u);
+        EXPECT_LE(worstP, 1e-6) << compared << " points";
+        EXPECT_LE(worstN, 0.05) << compared << " points";
+        std::printf("%s d%d: %zu smooth faces below level N, %zu points, max %.3g of the diagonal, %.3g degrees\n",
+                    model, depth, nested, compared, worstP, worstN);
     }
 }
 

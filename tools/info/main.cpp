@@ -100,9 +100,11 @@ int main(int argc, char** argv) {
                    "chunks (type, version, bytes). With subdivision tables (limn-tables): depth,\n"
                    "uniform, table_bytes, table_vertices, patches, limit_points,\n"
                    "approximate_limit_points, irregular_surface (how the faces left irregular at\n"
-                   "level N are drawn: basis, sub_patches, bilinear counts, and exact_levels K: every\n"
-                   "point at least 2^-K of a face from its extraordinary corners is on the limit\n"
-                   "surface; docs/irregular.md) and levels (per level 0..N+K: vertices computed at\n"
+                   "level N are drawn: basis, sub_patches, bilinear counts, basis_below (smooth\n"
+                   "faces below level N inside the sub-patch faces, from a valence basis), and\n"
+                   "exact_levels K: every point at least 2^-K of a face from its extraordinary\n"
+                   "corners is on the limit surface; docs/irregular.md) and levels (per level\n"
+                   "0..N+K: vertices computed at\n"
                    "that level, regular_patches at it, irregular_faces: faces refined further, or\n"
                    "at the last level drawn at their limit corners).\n");
         if (!parser.parse(ac, av)) return 0;
@@ -209,7 +211,7 @@ int main(int argc, char** argv) {
                 const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
                 j.key("irregular_surface").beginObject();
                 j.field("basis", irr.basis).field("sub_patches", irr.subPatches).field("bilinear", irr.bilinear)
-                    .field("exact_levels", irr.exactLevels);
+                    .field("basis_below", irr.basisBelow).field("exact_levels", irr.exactLevels);
                 j.endObject();
                 j.key("levels").beginArray();
                 for (const auto& L : tables->levels) {
@@ -254,9 +256,10 @@ int main(int argc, char** argv) {
                             tables->totalVertices, tables->patches.size(),
                             tables->limitPosition.rows(), tables->approximateLimitPoints);
                 const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
-                std::printf("  irregular surface      %zu from a valence basis, %zu on sub-patches, %zu bilinear "
-                            "(exact beyond 2^-%u of their extraordinary corners)\n",
-                            irr.basis, irr.subPatches, irr.bilinear, irr.exactLevels);
+                std::printf("  irregular surface      %zu from a valence basis, %zu on sub-patches (%zu smooth faces "
+                            "below level N from a valence basis), %zu bilinear (exact beyond 2^-%u of their "
+                            "extraordinary corners)\n",
+                            irr.basis, irr.subPatches, irr.basisBelow, irr.bilinear, irr.exactLevels);
                 for (size_t l = 0; l < tables->levels.size(); ++l)
                     std::printf("    level %zu: %u vertices, %u regular patches, %u irregular faces\n", l,
                                 tables->levels[l].count(), tables->levels[l].regularPatches,

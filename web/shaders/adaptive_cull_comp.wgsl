@@ -502,9 +502,12 @@ fn main_1() {
     var phi_714_: bool;
     var phi_798_: bool;
     var phi_817_: bool;
-    var phi_893_: bool;
-    var phi_978_: bool;
-    var phi_1027_: bool;
+    var phi_827_: bool;
+    var phi_837_: bool;
+    var phi_847_: bool;
+    var phi_923_: bool;
+    var phi_1008_: bool;
+    var phi_1057_: bool;
 
     let _e109 = pc.limnRowInvocations;
     param_9 = _e109;
@@ -688,170 +691,197 @@ fn main_1() {
                 phi_817_ = (_e286 != 4294967295u);
             }
             let _e289 = phi_817_;
+            phi_827_ = _e289;
             if _e289 {
                 let _e290 = e;
-                let _e295 = patches.p[_e290].cv[0i];
-                h = (_e295 & 1073741823u);
-                let _e297 = h;
-                let _e302 = patches.p[_e297].cv[0i];
-                M = ((2u * _e302) + 8u);
+                let _e295 = patches.p[_e290].cv[1i];
+                let _e296 = e;
+                let _e301 = patches.p[_e296].cv[0i];
+                phi_827_ = (_e295 == _e301);
+            }
+            let _e304 = phi_827_;
+            phi_837_ = _e304;
+            if _e304 {
+                let _e305 = e;
+                let _e310 = patches.p[_e305].cv[2i];
+                let _e311 = e;
+                let _e316 = patches.p[_e311].cv[0i];
+                phi_837_ = (_e310 == _e316);
+            }
+            let _e319 = phi_837_;
+            phi_847_ = _e319;
+            if _e319 {
+                let _e320 = e;
+                let _e325 = patches.p[_e320].cv[3i];
+                let _e326 = e;
+                let _e331 = patches.p[_e326].cv[0i];
+                phi_847_ = (_e325 == _e331);
+            }
+            let _e334 = phi_847_;
+            if _e334 {
+                let _e335 = e;
+                let _e340 = patches.p[_e335].cv[0i];
+                h = (_e340 & 1073741823u);
+                let _e342 = h;
+                let _e347 = patches.p[_e342].cv[0i];
+                M = ((2u * _e347) + 8u);
                 lo_3 = vec2<f32>(1000000000000000000000000000000f, 1000000000000000000000000000000f);
                 hi_3 = vec2<f32>(-1000000000000000000000000000000f, -1000000000000000000000000000000f);
-                let _e306 = pc.enabled;
-                boxed = (((_e306 >> bitcast<u32>(8i)) & 255u) != 0u);
+                let _e351 = pc.enabled;
+                boxed = (((_e351 >> bitcast<u32>(8i)) & 255u) != 0u);
                 i_1 = 0u;
                 loop {
-                    let _e311 = i_1;
-                    let _e312 = M;
-                    if (_e311 < _e312) {
-                        let _e314 = h;
-                        let _e316 = i_1;
-                        let _e319 = i_1;
-                        let _e325 = patches.p[((_e314 + 1u) + (_e316 / 16u))].cv[(_e319 % 16u)];
-                        let _e328 = vertices.p[_e325];
-                        x = _e328.xyz;
-                        let _e330 = x;
-                        param_20 = _e330;
-                        let _e331 = outside_u0028_vf3_u003b((&param_20));
-                        let _e332 = all_;
-                        all_ = (_e332 & _e331);
-                        let _e334 = boxed;
-                        if _e334 {
-                            let _e335 = x;
-                            param_21 = _e335;
-                            let _e336 = lo_3;
-                            param_22 = _e336;
-                            let _e337 = hi_3;
-                            param_23 = _e337;
-                            let _e338 = growProjectedBox_u0028_vf3_u003b_vf2_u003b_vf2_u003b((&param_21), (&param_22), (&param_23));
-                            let _e339 = param_22;
-                            lo_3 = _e339;
-                            let _e340 = param_23;
-                            hi_3 = _e340;
-                            boxed = _e338;
+                    let _e356 = i_1;
+                    let _e357 = M;
+                    if (_e356 < _e357) {
+                        let _e359 = h;
+                        let _e361 = i_1;
+                        let _e364 = i_1;
+                        let _e370 = patches.p[((_e359 + 1u) + (_e361 / 16u))].cv[(_e364 % 16u)];
+                        let _e373 = vertices.p[_e370];
+                        x = _e373.xyz;
+                        let _e375 = x;
+                        param_20 = _e375;
+                        let _e376 = outside_u0028_vf3_u003b((&param_20));
+                        let _e377 = all_;
+                        all_ = (_e377 & _e376);
+                        let _e379 = boxed;
+                        if _e379 {
+                            let _e380 = x;
+                            param_21 = _e380;
+                            let _e381 = lo_3;
+                            param_22 = _e381;
+                            let _e382 = hi_3;
+                            param_23 = _e382;
+                            let _e383 = growProjectedBox_u0028_vf3_u003b_vf2_u003b_vf2_u003b((&param_21), (&param_22), (&param_23));
+                            let _e384 = param_22;
+                            lo_3 = _e384;
+                            let _e385 = param_23;
+                            hi_3 = _e385;
+                            boxed = _e383;
                         }
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e341 = i_1;
-                        i_1 = (_e341 + bitcast<u32>(1i));
+                        let _e386 = i_1;
+                        i_1 = (_e386 + bitcast<u32>(1i));
                     }
                 }
-                let _e344 = all_;
-                let _e346 = boxed;
-                let _e347 = ((_e344 == 0u) && _e346);
-                phi_893_ = _e347;
-                if _e347 {
-                    let _e348 = lo_3;
-                    param_24 = _e348;
-                    let _e349 = hi_3;
-                    param_25 = _e349;
-                    let _e350 = boxBetweenSamples_u0028_vf2_u003b_vf2_u003b((&param_24), (&param_25));
-                    phi_893_ = _e350;
+                let _e389 = all_;
+                let _e391 = boxed;
+                let _e392 = ((_e389 == 0u) && _e391);
+                phi_923_ = _e392;
+                if _e392 {
+                    let _e393 = lo_3;
+                    param_24 = _e393;
+                    let _e394 = hi_3;
+                    param_25 = _e394;
+                    let _e395 = boxBetweenSamples_u0028_vf2_u003b_vf2_u003b((&param_24), (&param_25));
+                    phi_923_ = _e395;
                 }
-                let _e352 = phi_893_;
-                if _e352 {
+                let _e397 = phi_923_;
+                if _e397 {
                     all_ = 128u;
                 }
             } else {
-                let _e353 = e;
-                let _e358 = patches.p[_e353].cv[0i];
-                if (_e358 != 4294967295u) {
+                let _e398 = e;
+                let _e403 = patches.p[_e398].cv[0i];
+                if (_e403 != 4294967295u) {
                     all_ = 0u;
                 } else {
-                    let _e360 = e;
-                    let _e362 = pc.patchCount;
-                    let _e366 = irregulars.f[(_e360 - _e362)];
-                    q.corner[0i] = _e366.corner[0];
-                    q.corner[1i] = _e366.corner[1];
-                    q.corner[2i] = _e366.corner[2];
-                    q.corner[3i] = _e366.corner[3];
-                    q.ptex = _e366.ptex;
-                    q.u0_ = _e366.u0_;
-                    q.v0_ = _e366.v0_;
-                    q.size = _e366.size;
+                    let _e405 = e;
+                    let _e407 = pc.patchCount;
+                    let _e411 = irregulars.f[(_e405 - _e407)];
+                    q.corner[0i] = _e411.corner[0];
+                    q.corner[1i] = _e411.corner[1];
+                    q.corner[2i] = _e411.corner[2];
+                    q.corner[3i] = _e411.corner[3];
+                    q.ptex = _e411.ptex;
+                    q.u0_ = _e411.u0_;
+                    q.v0_ = _e411.v0_;
+                    q.size = _e411.size;
                     k_4 = 0i;
                     loop {
-                        let _e385 = k_4;
-                        if (_e385 < 4i) {
-                            let _e387 = k_4;
-                            let _e388 = k_4;
-                            let _e391 = q.corner[_e388];
-                            let _e395 = limits.v[(2u * _e391)];
-                            P_4[_e387] = _e395.xyz;
-                            let _e398 = k_4;
-                            let _e400 = P_4[_e398];
-                            param_26 = _e400;
-                            let _e401 = outside_u0028_vf3_u003b((&param_26));
-                            let _e402 = all_;
-                            all_ = (_e402 & _e401);
+                        let _e430 = k_4;
+                        if (_e430 < 4i) {
+                            let _e432 = k_4;
+                            let _e433 = k_4;
+                            let _e436 = q.corner[_e433];
+                            let _e440 = limits.v[(2u * _e436)];
+                            P_4[_e432] = _e440.xyz;
+                            let _e443 = k_4;
+                            let _e445 = P_4[_e443];
+                            param_26 = _e445;
+                            let _e446 = outside_u0028_vf3_u003b((&param_26));
+                            let _e447 = all_;
+                            all_ = (_e447 & _e446);
                             continue;
                         } else {
                             break;
                         }
                         continuing {
-                            let _e404 = k_4;
-                            k_4 = (_e404 + 1i);
+                            let _e449 = k_4;
+                            k_4 = (_e449 + 1i);
                         }
                     }
-                    let _e406 = all_;
-                    let _e407 = (_e406 == 0u);
-                    phi_978_ = _e407;
-                    if _e407 {
-                        let _e410 = pc.eye[3u];
-                        phi_978_ = (_e410 != 0f);
+                    let _e451 = all_;
+                    let _e452 = (_e451 == 0u);
+                    phi_1008_ = _e452;
+                    if _e452 {
+                        let _e455 = pc.eye[3u];
+                        phi_1008_ = (_e455 != 0f);
                     }
-                    let _e413 = phi_978_;
-                    if _e413 {
-                        let _e415 = P_4[1i];
-                        let _e417 = P_4[0i];
-                        U_2[0i] = (_e415 - _e417);
-                        let _e421 = P_4[2i];
-                        let _e423 = P_4[3i];
-                        U_2[1i] = (_e421 - _e423);
-                        let _e427 = P_4[3i];
-                        let _e429 = P_4[0i];
-                        V_2[0i] = (_e427 - _e429);
-                        let _e433 = P_4[2i];
-                        let _e435 = P_4[1i];
-                        V_2[1i] = (_e433 - _e435);
-                        let _e438 = P_4;
-                        param_27 = _e438;
+                    let _e458 = phi_1008_;
+                    if _e458 {
+                        let _e460 = P_4[1i];
+                        let _e462 = P_4[0i];
+                        U_2[0i] = (_e460 - _e462);
+                        let _e466 = P_4[2i];
+                        let _e468 = P_4[3i];
+                        U_2[1i] = (_e466 - _e468);
+                        let _e472 = P_4[3i];
+                        let _e474 = P_4[0i];
+                        V_2[0i] = (_e472 - _e474);
+                        let _e478 = P_4[2i];
+                        let _e480 = P_4[1i];
+                        V_2[1i] = (_e478 - _e480);
+                        let _e483 = P_4;
+                        param_27 = _e483;
                         param_28 = 4u;
-                        let _e439 = U_2;
-                        param_29 = _e439;
+                        let _e484 = U_2;
+                        param_29 = _e484;
                         param_30 = 2u;
-                        let _e440 = V_2;
-                        param_31 = _e440;
+                        let _e485 = V_2;
+                        param_31 = _e485;
                         param_32 = 2u;
-                        let _e441 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_27), (&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
-                        if _e441 {
+                        let _e486 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_27), (&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
+                        if _e486 {
                             all_ = 64u;
                         }
                     }
-                    let _e442 = all_;
-                    let _e443 = (_e442 == 0u);
-                    phi_1027_ = _e443;
-                    if _e443 {
-                        let _e444 = P_4;
-                        param_33 = _e444;
+                    let _e487 = all_;
+                    let _e488 = (_e487 == 0u);
+                    phi_1057_ = _e488;
+                    if _e488 {
+                        let _e489 = P_4;
+                        param_33 = _e489;
                         param_34 = 4u;
-                        let _e445 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_33), (&param_34));
-                        phi_1027_ = _e445;
+                        let _e490 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_33), (&param_34));
+                        phi_1057_ = _e490;
                     }
-                    let _e447 = phi_1027_;
-                    if _e447 {
+                    let _e492 = phi_1057_;
+                    if _e492 {
                         all_ = 128u;
                     }
                 }
             }
         }
     }
-    let _e448 = e;
-    let _e449 = all_;
-    cull.c[_e448] = select(0u, 1u, (_e449 != 0u));
+    let _e493 = e;
+    let _e494 = all_;
+    cull.c[_e493] = select(0u, 1u, (_e494 != 0u));
     return;
 }
 

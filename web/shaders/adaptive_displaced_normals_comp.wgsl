@@ -1316,6 +1316,10 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_6: i32;
     var c_4: u32;
     var code: u32;
+    var halvedS: u32;
+    var halvedT: u32;
+    var h_2: u32;
+    var local_13: u32;
     var param_96: u32;
     var param_97: u32;
     var param_98: vec3<f32>;
@@ -1334,197 +1338,214 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_7: i32;
     var phi_1443_: bool;
 
-    let _e105 = (*st_1);
-    S_1 = (_e105 & 65535u);
-    let _e107 = (*st_1);
-    T_1 = (_e107 >> bitcast<u32>(16i));
-    let _e110 = S_1;
-    let _e112 = S_1;
-    let _e114 = ((_e110 == 0u) || (_e112 == 32768u));
-    phi_1443_ = _e114;
-    if _e114 {
-        let _e115 = T_1;
-        let _e117 = T_1;
-        phi_1443_ = ((_e115 == 0u) || (_e117 == 32768u));
+    let _e109 = (*st_1);
+    S_1 = (_e109 & 65535u);
+    let _e111 = (*st_1);
+    T_1 = (_e111 >> bitcast<u32>(16i));
+    let _e114 = S_1;
+    let _e116 = S_1;
+    let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
+    phi_1443_ = _e118;
+    if _e118 {
+        let _e119 = T_1;
+        let _e121 = T_1;
+        phi_1443_ = ((_e119 == 0u) || (_e121 == 32768u));
     }
-    let _e121 = phi_1443_;
-    if _e121 {
-        let _e122 = S_1;
-        if (_e122 == 0u) {
-            let _e124 = T_1;
-            local_12 = select(3u, 0u, (_e124 == 0u));
+    let _e125 = phi_1443_;
+    if _e125 {
+        let _e126 = S_1;
+        if (_e126 == 0u) {
+            let _e128 = T_1;
+            local_12 = select(3u, 0u, (_e128 == 0u));
         } else {
-            let _e127 = T_1;
-            local_12 = select(2u, 1u, (_e127 == 0u));
+            let _e131 = T_1;
+            local_12 = select(2u, 1u, (_e131 == 0u));
         }
-        let _e130 = local_12;
-        k_5 = _e130;
-        let _e131 = (*face);
-        let _e132 = k_5;
-        let _e137 = irregulars.f[_e131].corner[_e132];
-        c_3 = _e137;
-        let _e138 = c_3;
-        let _e142 = limits.v[(2u * _e138)];
-        (*P_3) = _e142.xyz;
-        let _e144 = c_3;
-        let _e149 = limits.v[((2u * _e144) + 1u)];
-        (*n_4) = _e149.xyz;
+        let _e134 = local_12;
+        k_5 = _e134;
+        let _e135 = (*face);
+        let _e136 = k_5;
+        let _e141 = irregulars.f[_e135].corner[_e136];
+        c_3 = _e141;
+        let _e142 = c_3;
+        let _e146 = limits.v[(2u * _e142)];
+        (*P_3) = _e146.xyz;
+        let _e148 = c_3;
+        let _e153 = limits.v[((2u * _e148) + 1u)];
+        (*n_4) = _e153.xyz;
         return;
     }
-    let _e151 = (*patchCount);
-    let _e152 = (*face);
-    node = (_e151 + _e152);
-    let _e154 = (*face);
-    leaf = _e154;
-    let _e155 = S_1;
-    ls = _e155;
-    let _e156 = T_1;
-    lt = _e156;
+    let _e155 = (*patchCount);
+    let _e156 = (*face);
+    node = (_e155 + _e156);
+    let _e158 = (*face);
+    leaf = _e158;
+    let _e159 = S_1;
+    ls = _e159;
+    let _e160 = T_1;
+    lt = _e160;
     k_6 = 0i;
     loop {
-        let _e157 = k_6;
-        if (_e157 < 17i) {
-            let _e159 = S_1;
-            let _e162 = T_1;
-            c_4 = (select(0u, 1u, (_e159 >= 16384u)) | select(0u, 2u, (_e162 >= 16384u)));
-            let _e166 = node;
-            let _e167 = c_4;
-            let _e172 = patches.p[_e166].cv[_e167];
-            code = _e172;
-            let _e173 = code;
-            if (_e173 == 4294967295u) {
+        let _e161 = k_6;
+        if (_e161 < 17i) {
+            let _e163 = S_1;
+            let _e166 = T_1;
+            c_4 = (select(0u, 1u, (_e163 >= 16384u)) | select(0u, 2u, (_e166 >= 16384u)));
+            let _e170 = node;
+            let _e171 = c_4;
+            let _e176 = patches.p[_e170].cv[_e171];
+            code = _e176;
+            let _e177 = code;
+            if (_e177 == 4294967295u) {
                 break;
             }
-            let _e175 = code;
-            if ((_e175 & 3221225472u) == 3221225472u) {
-                let _e178 = code;
-                param_96 = (_e178 & 1073741823u);
-                let _e180 = (*st_1);
-                param_97 = _e180;
+            let _e179 = S_1;
+            let _e181 = c_4;
+            halvedS = ((2u * _e179) - select(0u, 32768u, ((_e181 & 1u) != 0u)));
+            let _e186 = T_1;
+            let _e188 = c_4;
+            halvedT = ((2u * _e186) - select(0u, 32768u, ((_e188 & 2u) != 0u)));
+            let _e193 = code;
+            if ((_e193 & 3221225472u) == 3221225472u) {
+                let _e196 = code;
+                h_2 = (_e196 & 1073741823u);
+                let _e198 = h_2;
+                let _e203 = patches.p[_e198].cv[5i];
+                if (_e203 == 0u) {
+                    let _e205 = S_1;
+                    let _e206 = T_1;
+                    local_13 = (_e205 | (_e206 << bitcast<u32>(16i)));
+                } else {
+                    let _e210 = halvedS;
+                    let _e211 = halvedT;
+                    local_13 = (_e210 | (_e211 << bitcast<u32>(16i)));
+                }
+                let _e215 = h_2;
+                param_96 = _e215;
+                let _e216 = local_13;
+                param_97 = _e216;
                 smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_96), (&param_97), (&param_98), (&param_99));
-                let _e181 = param_98;
-                (*P_3) = _e181;
-                let _e182 = param_99;
-                (*n_4) = _e182;
+                let _e217 = param_98;
+                (*P_3) = _e217;
+                let _e218 = param_99;
+                (*n_4) = _e218;
                 return;
             }
-            let _e183 = S_1;
-            let _e185 = c_4;
-            S_1 = ((2u * _e183) - select(0u, 32768u, ((_e185 & 1u) != 0u)));
-            let _e190 = T_1;
-            let _e192 = c_4;
-            T_1 = ((2u * _e190) - select(0u, 32768u, ((_e192 & 2u) != 0u)));
-            let _e197 = code;
-            kind = (_e197 & 3221225472u);
-            let _e199 = code;
-            index = (_e199 & 1073741823u);
-            let _e201 = kind;
-            if (_e201 == 0u) {
-                let _e203 = index;
-                let _e204 = S_1;
-                let _e207 = T_1;
-                let _e212 = patches.p[_e203];
-                param_100.cv[0i] = _e212.cv[0];
-                param_100.cv[1i] = _e212.cv[1];
-                param_100.cv[2i] = _e212.cv[2];
-                param_100.cv[3i] = _e212.cv[3];
-                param_100.cv[4i] = _e212.cv[4];
-                param_100.cv[5i] = _e212.cv[5];
-                param_100.cv[6i] = _e212.cv[6];
-                param_100.cv[7i] = _e212.cv[7];
-                param_100.cv[8i] = _e212.cv[8];
-                param_100.cv[9i] = _e212.cv[9];
-                param_100.cv[10i] = _e212.cv[10];
-                param_100.cv[11i] = _e212.cv[11];
-                param_100.cv[12i] = _e212.cv[12];
-                param_100.cv[13i] = _e212.cv[13];
-                param_100.cv[14i] = _e212.cv[14];
-                param_100.cv[15i] = _e212.cv[15];
-                param_100.ptex = _e212.ptex;
-                param_100.u0_ = _e212.u0_;
-                param_100.v0_ = _e212.v0_;
-                param_100.size = _e212.size;
-                param_100.levelBoundary = _e212.levelBoundary;
-                param_100.sharpness = _e212.sharpness;
-                param_100.pad1_ = _e212.pad1_;
-                param_100.pad2_ = _e212.pad2_;
-                param_101 = (f32(_e204) / 32768f);
-                param_102 = (f32(_e207) / 32768f);
+            let _e219 = halvedS;
+            S_1 = _e219;
+            let _e220 = halvedT;
+            T_1 = _e220;
+            let _e221 = code;
+            kind = (_e221 & 3221225472u);
+            let _e223 = code;
+            index = (_e223 & 1073741823u);
+            let _e225 = kind;
+            if (_e225 == 0u) {
+                let _e227 = index;
+                let _e228 = S_1;
+                let _e231 = T_1;
+                let _e236 = patches.p[_e227];
+                param_100.cv[0i] = _e236.cv[0];
+                param_100.cv[1i] = _e236.cv[1];
+                param_100.cv[2i] = _e236.cv[2];
+                param_100.cv[3i] = _e236.cv[3];
+                param_100.cv[4i] = _e236.cv[4];
+                param_100.cv[5i] = _e236.cv[5];
+                param_100.cv[6i] = _e236.cv[6];
+                param_100.cv[7i] = _e236.cv[7];
+                param_100.cv[8i] = _e236.cv[8];
+                param_100.cv[9i] = _e236.cv[9];
+                param_100.cv[10i] = _e236.cv[10];
+                param_100.cv[11i] = _e236.cv[11];
+                param_100.cv[12i] = _e236.cv[12];
+                param_100.cv[13i] = _e236.cv[13];
+                param_100.cv[14i] = _e236.cv[14];
+                param_100.cv[15i] = _e236.cv[15];
+                param_100.ptex = _e236.ptex;
+                param_100.u0_ = _e236.u0_;
+                param_100.v0_ = _e236.v0_;
+                param_100.size = _e236.size;
+                param_100.levelBoundary = _e236.levelBoundary;
+                param_100.sharpness = _e236.sharpness;
+                param_100.pad1_ = _e236.pad1_;
+                param_100.pad2_ = _e236.pad2_;
+                param_101 = (f32(_e228) / 32768f);
+                param_102 = (f32(_e231) / 32768f);
                 patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_100), (&param_101), (&param_102), (&param_103), (&param_104));
-                let _e263 = param_103;
-                (*P_3) = _e263;
-                let _e264 = param_104;
-                (*n_4) = _e264;
+                let _e287 = param_103;
+                (*P_3) = _e287;
+                let _e288 = param_104;
+                (*n_4) = _e288;
                 return;
             }
-            let _e265 = kind;
-            if (_e265 == 2147483648u) {
-                let _e267 = index;
-                leaf = _e267;
-                let _e268 = S_1;
-                ls = _e268;
-                let _e269 = T_1;
-                lt = _e269;
+            let _e289 = kind;
+            if (_e289 == 2147483648u) {
+                let _e291 = index;
+                leaf = _e291;
+                let _e292 = S_1;
+                ls = _e292;
+                let _e293 = T_1;
+                lt = _e293;
                 break;
             }
-            let _e270 = index;
-            node = _e270;
+            let _e294 = index;
+            node = _e294;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e271 = k_6;
-            k_6 = (_e271 + 1i);
+            let _e295 = k_6;
+            k_6 = (_e295 + 1i);
         }
     }
-    let _e273 = leaf;
-    let _e276 = irregulars.f[_e273];
-    q_2.corner = _e276.corner;
-    q_2.ptex = _e276.ptex;
-    q_2.u0_ = _e276.u0_;
-    q_2.v0_ = _e276.v0_;
-    q_2.size = _e276.size;
-    let _e287 = ls;
-    s_5 = (f32(_e287) / 32768f);
-    let _e290 = lt;
-    t_5 = (f32(_e290) / 32768f);
-    let _e293 = s_5;
-    let _e295 = t_5;
-    let _e298 = s_5;
-    let _e299 = t_5;
-    let _e302 = s_5;
-    let _e303 = t_5;
-    let _e305 = s_5;
-    let _e307 = t_5;
-    w_3 = array<f32, 4>(((1f - _e293) * (1f - _e295)), (_e298 * (1f - _e299)), (_e302 * _e303), ((1f - _e305) * _e307));
+    let _e297 = leaf;
+    let _e300 = irregulars.f[_e297];
+    q_2.corner = _e300.corner;
+    q_2.ptex = _e300.ptex;
+    q_2.u0_ = _e300.u0_;
+    q_2.v0_ = _e300.v0_;
+    q_2.size = _e300.size;
+    let _e311 = ls;
+    s_5 = (f32(_e311) / 32768f);
+    let _e314 = lt;
+    t_5 = (f32(_e314) / 32768f);
+    let _e317 = s_5;
+    let _e319 = t_5;
+    let _e322 = s_5;
+    let _e323 = t_5;
+    let _e326 = s_5;
+    let _e327 = t_5;
+    let _e329 = s_5;
+    let _e331 = t_5;
+    w_3 = array<f32, 4>(((1f - _e317) * (1f - _e319)), (_e322 * (1f - _e323)), (_e326 * _e327), ((1f - _e329) * _e331));
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     (*n_4) = vec3<f32>(0f, 0f, 0f);
     k_7 = 0i;
     loop {
-        let _e310 = k_7;
-        if (_e310 < 4i) {
-            let _e312 = k_7;
-            let _e314 = w_3[_e312];
-            let _e315 = k_7;
-            let _e318 = q_2.corner[_e315];
-            let _e322 = limits.v[(2u * _e318)];
-            let _e325 = (*P_3);
-            (*P_3) = (_e325 + (_e322.xyz * _e314));
-            let _e327 = k_7;
-            let _e329 = w_3[_e327];
-            let _e330 = k_7;
-            let _e333 = q_2.corner[_e330];
-            let _e338 = limits.v[((2u * _e333) + 1u)];
-            let _e341 = (*n_4);
-            (*n_4) = (_e341 + (_e338.xyz * _e329));
+        let _e334 = k_7;
+        if (_e334 < 4i) {
+            let _e336 = k_7;
+            let _e338 = w_3[_e336];
+            let _e339 = k_7;
+            let _e342 = q_2.corner[_e339];
+            let _e346 = limits.v[(2u * _e342)];
+            let _e349 = (*P_3);
+            (*P_3) = (_e349 + (_e346.xyz * _e338));
+            let _e351 = k_7;
+            let _e353 = w_3[_e351];
+            let _e354 = k_7;
+            let _e357 = q_2.corner[_e354];
+            let _e362 = limits.v[((2u * _e357) + 1u)];
+            let _e365 = (*n_4);
+            (*n_4) = (_e365 + (_e362.xyz * _e353));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e343 = k_7;
-            k_7 = (_e343 + 1i);
+            let _e367 = k_7;
+            k_7 = (_e367 + 1i);
         }
     }
     return;
@@ -1548,7 +1569,7 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_112: u32;
     var param_113: vec3<f32>;
     var param_114: vec3<f32>;
-    var local_13: vec3<f32>;
+    var local_14: vec3<f32>;
 
     let _e93 = (*st_2);
     s_6 = (f32((_e93 & 65535u)) / 32768f);
@@ -1641,11 +1662,11 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     let _e227 = n_5;
     if (dot(_e226, _e227) > 0f) {
         let _e230 = n_5;
-        local_13 = normalize(_e230);
+        local_14 = normalize(_e230);
     } else {
-        local_13 = vec3<f32>(0f, 0f, 0f);
+        local_14 = vec3<f32>(0f, 0f, 0f);
     }
-    let _e232 = local_13;
+    let _e232 = local_14;
     r_2.normal = _e232;
     let _e234 = r_2;
     return _e234;
@@ -1734,7 +1755,7 @@ fn main_1() {
     var param_128: i32;
     var n_6: vec3<f32>;
     var len: f32;
-    var local_14: vec3<f32>;
+    var local_15: vec3<f32>;
 
     let _e95 = pc.limnRowInvocations;
     param_119 = _e95;
@@ -1796,11 +1817,11 @@ fn main_1() {
     if (_e159 > 0f) {
         let _e161 = n_6;
         let _e162 = len;
-        local_14 = (_e161 / vec3(_e162));
+        local_15 = (_e161 / vec3(_e162));
     } else {
-        local_14 = vec3<f32>(0f, 0f, 0f);
+        local_15 = vec3<f32>(0f, 0f, 0f);
     }
-    let _e165 = local_14;
+    let _e165 = local_15;
     normals.n[_e158] = vec4<f32>(_e165.x, _e165.y, _e165.z, 0f);
     return;
 }

@@ -144,9 +144,9 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
     var c_1: f32;
     var n: f32;
     var local: f32;
-    var phi_2143_: bool;
-    var phi_2202_: bool;
-    var phi_2209_: bool;
+    var phi_2165_: bool;
+    var phi_2224_: bool;
+    var phi_2231_: bool;
 
     let _e98 = (*S)[0i];
     let _e100 = (*S)[3i];
@@ -181,13 +181,13 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
     most = 0f;
     side = 0f;
     let _e165 = (*mayLoosen);
-    phi_2143_ = _e165;
+    phi_2165_ = _e165;
     if _e165 {
         let _e167 = pc.interiorError;
         let _e169 = pc.maxError;
-        phi_2143_ = (_e167 > _e169);
+        phi_2165_ = (_e167 > _e169);
     }
-    let _e172 = phi_2143_;
+    let _e172 = phi_2165_;
     facing = _e172;
     k = 0i;
     loop {
@@ -217,22 +217,22 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
             let _e200 = ray;
             c_1 = dot(_e199, _e200);
             let _e202 = facing;
-            phi_2202_ = _e202;
+            phi_2224_ = _e202;
             if _e202 {
                 let _e203 = c_1;
                 let _e205 = k;
                 let _e207 = N[_e205];
                 let _e210 = ray;
-                phi_2202_ = (abs(_e203) > ((0.35f * length(_e207)) * length(_e210)));
+                phi_2224_ = (abs(_e203) > ((0.35f * length(_e207)) * length(_e210)));
             }
-            let _e215 = phi_2202_;
-            phi_2209_ = _e215;
+            let _e215 = phi_2224_;
+            phi_2231_ = _e215;
             if _e215 {
                 let _e216 = c_1;
                 let _e217 = side;
-                phi_2209_ = ((_e216 * _e217) >= 0f);
+                phi_2231_ = ((_e216 * _e217) >= 0f);
             }
-            let _e221 = phi_2209_;
+            let _e221 = phi_2231_;
             facing = _e221;
             let _e222 = c_1;
             side = _e222;
@@ -1328,6 +1328,10 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_6: i32;
     var c_6: u32;
     var code: u32;
+    var halvedS: u32;
+    var halvedT: u32;
+    var h_2: u32;
+    var local_13: u32;
     var param_79: u32;
     var param_80: u32;
     var param_81: vec3<f32>;
@@ -1346,197 +1350,214 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_7: i32;
     var phi_1444_: bool;
 
-    let _e111 = (*st_1);
-    S_2 = (_e111 & 65535u);
-    let _e113 = (*st_1);
-    T_1 = (_e113 >> bitcast<u32>(16i));
-    let _e116 = S_2;
-    let _e118 = S_2;
-    let _e120 = ((_e116 == 0u) || (_e118 == 32768u));
-    phi_1444_ = _e120;
-    if _e120 {
-        let _e121 = T_1;
-        let _e123 = T_1;
-        phi_1444_ = ((_e121 == 0u) || (_e123 == 32768u));
+    let _e115 = (*st_1);
+    S_2 = (_e115 & 65535u);
+    let _e117 = (*st_1);
+    T_1 = (_e117 >> bitcast<u32>(16i));
+    let _e120 = S_2;
+    let _e122 = S_2;
+    let _e124 = ((_e120 == 0u) || (_e122 == 32768u));
+    phi_1444_ = _e124;
+    if _e124 {
+        let _e125 = T_1;
+        let _e127 = T_1;
+        phi_1444_ = ((_e125 == 0u) || (_e127 == 32768u));
     }
-    let _e127 = phi_1444_;
-    if _e127 {
-        let _e128 = S_2;
-        if (_e128 == 0u) {
-            let _e130 = T_1;
-            local_12 = select(3u, 0u, (_e130 == 0u));
+    let _e131 = phi_1444_;
+    if _e131 {
+        let _e132 = S_2;
+        if (_e132 == 0u) {
+            let _e134 = T_1;
+            local_12 = select(3u, 0u, (_e134 == 0u));
         } else {
-            let _e133 = T_1;
-            local_12 = select(2u, 1u, (_e133 == 0u));
+            let _e137 = T_1;
+            local_12 = select(2u, 1u, (_e137 == 0u));
         }
-        let _e136 = local_12;
-        k_5 = _e136;
-        let _e137 = (*face);
-        let _e138 = k_5;
-        let _e143 = irregulars.f[_e137].corner[_e138];
-        c_5 = _e143;
-        let _e144 = c_5;
-        let _e148 = limits.v[(2u * _e144)];
-        (*P_5) = _e148.xyz;
-        let _e150 = c_5;
-        let _e155 = limits.v[((2u * _e150) + 1u)];
-        (*n_4) = _e155.xyz;
+        let _e140 = local_12;
+        k_5 = _e140;
+        let _e141 = (*face);
+        let _e142 = k_5;
+        let _e147 = irregulars.f[_e141].corner[_e142];
+        c_5 = _e147;
+        let _e148 = c_5;
+        let _e152 = limits.v[(2u * _e148)];
+        (*P_5) = _e152.xyz;
+        let _e154 = c_5;
+        let _e159 = limits.v[((2u * _e154) + 1u)];
+        (*n_4) = _e159.xyz;
         return;
     }
-    let _e157 = (*patchCount);
-    let _e158 = (*face);
-    node = (_e157 + _e158);
-    let _e160 = (*face);
-    leaf = _e160;
-    let _e161 = S_2;
-    ls = _e161;
-    let _e162 = T_1;
-    lt = _e162;
+    let _e161 = (*patchCount);
+    let _e162 = (*face);
+    node = (_e161 + _e162);
+    let _e164 = (*face);
+    leaf = _e164;
+    let _e165 = S_2;
+    ls = _e165;
+    let _e166 = T_1;
+    lt = _e166;
     k_6 = 0i;
     loop {
-        let _e163 = k_6;
-        if (_e163 < 17i) {
-            let _e165 = S_2;
-            let _e168 = T_1;
-            c_6 = (select(0u, 1u, (_e165 >= 16384u)) | select(0u, 2u, (_e168 >= 16384u)));
-            let _e172 = node;
-            let _e173 = c_6;
-            let _e178 = patches.p[_e172].cv[_e173];
-            code = _e178;
-            let _e179 = code;
-            if (_e179 == 4294967295u) {
+        let _e167 = k_6;
+        if (_e167 < 17i) {
+            let _e169 = S_2;
+            let _e172 = T_1;
+            c_6 = (select(0u, 1u, (_e169 >= 16384u)) | select(0u, 2u, (_e172 >= 16384u)));
+            let _e176 = node;
+            let _e177 = c_6;
+            let _e182 = patches.p[_e176].cv[_e177];
+            code = _e182;
+            let _e183 = code;
+            if (_e183 == 4294967295u) {
                 break;
             }
-            let _e181 = code;
-            if ((_e181 & 3221225472u) == 3221225472u) {
-                let _e184 = code;
-                param_79 = (_e184 & 1073741823u);
-                let _e186 = (*st_1);
-                param_80 = _e186;
+            let _e185 = S_2;
+            let _e187 = c_6;
+            halvedS = ((2u * _e185) - select(0u, 32768u, ((_e187 & 1u) != 0u)));
+            let _e192 = T_1;
+            let _e194 = c_6;
+            halvedT = ((2u * _e192) - select(0u, 32768u, ((_e194 & 2u) != 0u)));
+            let _e199 = code;
+            if ((_e199 & 3221225472u) == 3221225472u) {
+                let _e202 = code;
+                h_2 = (_e202 & 1073741823u);
+                let _e204 = h_2;
+                let _e209 = patches.p[_e204].cv[5i];
+                if (_e209 == 0u) {
+                    let _e211 = S_2;
+                    let _e212 = T_1;
+                    local_13 = (_e211 | (_e212 << bitcast<u32>(16i)));
+                } else {
+                    let _e216 = halvedS;
+                    let _e217 = halvedT;
+                    local_13 = (_e216 | (_e217 << bitcast<u32>(16i)));
+                }
+                let _e221 = h_2;
+                param_79 = _e221;
+                let _e222 = local_13;
+                param_80 = _e222;
                 smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_79), (&param_80), (&param_81), (&param_82));
-                let _e187 = param_81;
-                (*P_5) = _e187;
-                let _e188 = param_82;
-                (*n_4) = _e188;
+                let _e223 = param_81;
+                (*P_5) = _e223;
+                let _e224 = param_82;
+                (*n_4) = _e224;
                 return;
             }
-            let _e189 = S_2;
-            let _e191 = c_6;
-            S_2 = ((2u * _e189) - select(0u, 32768u, ((_e191 & 1u) != 0u)));
-            let _e196 = T_1;
-            let _e198 = c_6;
-            T_1 = ((2u * _e196) - select(0u, 32768u, ((_e198 & 2u) != 0u)));
-            let _e203 = code;
-            kind = (_e203 & 3221225472u);
-            let _e205 = code;
-            index = (_e205 & 1073741823u);
-            let _e207 = kind;
-            if (_e207 == 0u) {
-                let _e209 = index;
-                let _e210 = S_2;
-                let _e213 = T_1;
-                let _e218 = patches.p[_e209];
-                param_83.cv[0i] = _e218.cv[0];
-                param_83.cv[1i] = _e218.cv[1];
-                param_83.cv[2i] = _e218.cv[2];
-                param_83.cv[3i] = _e218.cv[3];
-                param_83.cv[4i] = _e218.cv[4];
-                param_83.cv[5i] = _e218.cv[5];
-                param_83.cv[6i] = _e218.cv[6];
-                param_83.cv[7i] = _e218.cv[7];
-                param_83.cv[8i] = _e218.cv[8];
-                param_83.cv[9i] = _e218.cv[9];
-                param_83.cv[10i] = _e218.cv[10];
-                param_83.cv[11i] = _e218.cv[11];
-                param_83.cv[12i] = _e218.cv[12];
-                param_83.cv[13i] = _e218.cv[13];
-                param_83.cv[14i] = _e218.cv[14];
-                param_83.cv[15i] = _e218.cv[15];
-                param_83.ptex = _e218.ptex;
-                param_83.u0_ = _e218.u0_;
-                param_83.v0_ = _e218.v0_;
-                param_83.size = _e218.size;
-                param_83.levelBoundary = _e218.levelBoundary;
-                param_83.sharpness = _e218.sharpness;
-                param_83.pad1_ = _e218.pad1_;
-                param_83.pad2_ = _e218.pad2_;
-                param_84 = (f32(_e210) / 32768f);
-                param_85 = (f32(_e213) / 32768f);
+            let _e225 = halvedS;
+            S_2 = _e225;
+            let _e226 = halvedT;
+            T_1 = _e226;
+            let _e227 = code;
+            kind = (_e227 & 3221225472u);
+            let _e229 = code;
+            index = (_e229 & 1073741823u);
+            let _e231 = kind;
+            if (_e231 == 0u) {
+                let _e233 = index;
+                let _e234 = S_2;
+                let _e237 = T_1;
+                let _e242 = patches.p[_e233];
+                param_83.cv[0i] = _e242.cv[0];
+                param_83.cv[1i] = _e242.cv[1];
+                param_83.cv[2i] = _e242.cv[2];
+                param_83.cv[3i] = _e242.cv[3];
+                param_83.cv[4i] = _e242.cv[4];
+                param_83.cv[5i] = _e242.cv[5];
+                param_83.cv[6i] = _e242.cv[6];
+                param_83.cv[7i] = _e242.cv[7];
+                param_83.cv[8i] = _e242.cv[8];
+                param_83.cv[9i] = _e242.cv[9];
+                param_83.cv[10i] = _e242.cv[10];
+                param_83.cv[11i] = _e242.cv[11];
+                param_83.cv[12i] = _e242.cv[12];
+                param_83.cv[13i] = _e242.cv[13];
+                param_83.cv[14i] = _e242.cv[14];
+                param_83.cv[15i] = _e242.cv[15];
+                param_83.ptex = _e242.ptex;
+                param_83.u0_ = _e242.u0_;
+                param_83.v0_ = _e242.v0_;
+                param_83.size = _e242.size;
+                param_83.levelBoundary = _e242.levelBoundary;
+                param_83.sharpness = _e242.sharpness;
+                param_83.pad1_ = _e242.pad1_;
+                param_83.pad2_ = _e242.pad2_;
+                param_84 = (f32(_e234) / 32768f);
+                param_85 = (f32(_e237) / 32768f);
                 patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_83), (&param_84), (&param_85), (&param_86), (&param_87));
-                let _e269 = param_86;
-                (*P_5) = _e269;
-                let _e270 = param_87;
-                (*n_4) = _e270;
+                let _e293 = param_86;
+                (*P_5) = _e293;
+                let _e294 = param_87;
+                (*n_4) = _e294;
                 return;
             }
-            let _e271 = kind;
-            if (_e271 == 2147483648u) {
-                let _e273 = index;
-                leaf = _e273;
-                let _e274 = S_2;
-                ls = _e274;
-                let _e275 = T_1;
-                lt = _e275;
+            let _e295 = kind;
+            if (_e295 == 2147483648u) {
+                let _e297 = index;
+                leaf = _e297;
+                let _e298 = S_2;
+                ls = _e298;
+                let _e299 = T_1;
+                lt = _e299;
                 break;
             }
-            let _e276 = index;
-            node = _e276;
+            let _e300 = index;
+            node = _e300;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e277 = k_6;
-            k_6 = (_e277 + 1i);
+            let _e301 = k_6;
+            k_6 = (_e301 + 1i);
         }
     }
-    let _e279 = leaf;
-    let _e282 = irregulars.f[_e279];
-    q_2.corner = _e282.corner;
-    q_2.ptex = _e282.ptex;
-    q_2.u0_ = _e282.u0_;
-    q_2.v0_ = _e282.v0_;
-    q_2.size = _e282.size;
-    let _e293 = ls;
-    s_5 = (f32(_e293) / 32768f);
-    let _e296 = lt;
-    t_5 = (f32(_e296) / 32768f);
-    let _e299 = s_5;
-    let _e301 = t_5;
-    let _e304 = s_5;
-    let _e305 = t_5;
-    let _e308 = s_5;
-    let _e309 = t_5;
-    let _e311 = s_5;
-    let _e313 = t_5;
-    w_3 = array<f32, 4>(((1f - _e299) * (1f - _e301)), (_e304 * (1f - _e305)), (_e308 * _e309), ((1f - _e311) * _e313));
+    let _e303 = leaf;
+    let _e306 = irregulars.f[_e303];
+    q_2.corner = _e306.corner;
+    q_2.ptex = _e306.ptex;
+    q_2.u0_ = _e306.u0_;
+    q_2.v0_ = _e306.v0_;
+    q_2.size = _e306.size;
+    let _e317 = ls;
+    s_5 = (f32(_e317) / 32768f);
+    let _e320 = lt;
+    t_5 = (f32(_e320) / 32768f);
+    let _e323 = s_5;
+    let _e325 = t_5;
+    let _e328 = s_5;
+    let _e329 = t_5;
+    let _e332 = s_5;
+    let _e333 = t_5;
+    let _e335 = s_5;
+    let _e337 = t_5;
+    w_3 = array<f32, 4>(((1f - _e323) * (1f - _e325)), (_e328 * (1f - _e329)), (_e332 * _e333), ((1f - _e335) * _e337));
     (*P_5) = vec3<f32>(0f, 0f, 0f);
     (*n_4) = vec3<f32>(0f, 0f, 0f);
     k_7 = 0i;
     loop {
-        let _e316 = k_7;
-        if (_e316 < 4i) {
-            let _e318 = k_7;
-            let _e320 = w_3[_e318];
-            let _e321 = k_7;
-            let _e324 = q_2.corner[_e321];
-            let _e328 = limits.v[(2u * _e324)];
-            let _e331 = (*P_5);
-            (*P_5) = (_e331 + (_e328.xyz * _e320));
-            let _e333 = k_7;
-            let _e335 = w_3[_e333];
-            let _e336 = k_7;
-            let _e339 = q_2.corner[_e336];
-            let _e344 = limits.v[((2u * _e339) + 1u)];
-            let _e347 = (*n_4);
-            (*n_4) = (_e347 + (_e344.xyz * _e335));
+        let _e340 = k_7;
+        if (_e340 < 4i) {
+            let _e342 = k_7;
+            let _e344 = w_3[_e342];
+            let _e345 = k_7;
+            let _e348 = q_2.corner[_e345];
+            let _e352 = limits.v[(2u * _e348)];
+            let _e355 = (*P_5);
+            (*P_5) = (_e355 + (_e352.xyz * _e344));
+            let _e357 = k_7;
+            let _e359 = w_3[_e357];
+            let _e360 = k_7;
+            let _e363 = q_2.corner[_e360];
+            let _e368 = limits.v[((2u * _e363) + 1u)];
+            let _e371 = (*n_4);
+            (*n_4) = (_e371 + (_e368.xyz * _e359));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e349 = k_7;
-            k_7 = (_e349 + 1i);
+            let _e373 = k_7;
+            k_7 = (_e373 + 1i);
         }
     }
     return;
@@ -1823,14 +1844,14 @@ fn main_1() {
     var c_8: vec4<f32>;
     var o: u32;
     var px: array<vec2<f32>, 5>;
-    var local_13: vec2<f32>;
+    var local_14: vec2<f32>;
     var len: f32;
-    var local_14: f32;
+    var local_15: f32;
     var want: f32;
     var smoothBoth: bool;
     var k_10: i32;
     var e: u32;
-    var local_15: u32;
+    var local_16: u32;
     var param_113: array<vec3<f32>, 5>;
     var param_114: array<vec3<f32>, 5>;
     var param_115: bool;
@@ -1838,22 +1859,22 @@ fn main_1() {
     var cl: f32;
     var off: vec2<f32>;
     var d_3: f32;
-    var local_16: f32;
+    var local_17: f32;
     var k_11: i32;
     var e_1: u32;
-    var local_17: u32;
+    var local_18: u32;
     var pt_3: Patch;
     var crease_2: u32;
     var alongS: bool;
     var creaseAlongS: bool;
     var most_1: f32;
-    var local_18: f32;
-    var phi_2289_: bool;
-    var phi_2290_: bool;
-    var phi_2546_: bool;
-    var phi_2597_: bool;
-    var phi_2606_: bool;
-    var phi_2701_: bool;
+    var local_19: f32;
+    var phi_2311_: bool;
+    var phi_2312_: bool;
+    var phi_2568_: bool;
+    var phi_2619_: bool;
+    var phi_2628_: bool;
+    var phi_2723_: bool;
 
     let _e136 = pc.limnRowInvocations;
     param_100 = _e136;
@@ -1873,20 +1894,20 @@ fn main_1() {
     let _e154 = p1_[0u];
     let _e157 = cull.c[_e154];
     let _e158 = (_e157 == 0u);
-    phi_2290_ = _e158;
+    phi_2312_ = _e158;
     if !(_e158) {
         let _e161 = p1_[1u];
         let _e162 = (_e161 != 4294967295u);
-        phi_2289_ = _e162;
+        phi_2311_ = _e162;
         if _e162 {
             let _e164 = p1_[1u];
             let _e167 = cull.c[_e164];
-            phi_2289_ = (_e167 == 0u);
+            phi_2311_ = (_e167 == 0u);
         }
-        let _e170 = phi_2289_;
-        phi_2290_ = _e170;
+        let _e170 = phi_2311_;
+        phi_2312_ = _e170;
     }
-    let _e172 = phi_2290_;
+    let _e172 = phi_2312_;
     visible = _e172;
     let _e174 = pc.tess;
     let _e176 = p0_[3u];
@@ -1992,11 +2013,11 @@ fn main_1() {
                     let _e280 = c_8;
                     let _e283 = c_8[3u];
                     let _e287 = pc.halfViewport;
-                    local_13 = ((_e280.xy / vec2(_e283)) * _e287);
+                    local_14 = ((_e280.xy / vec2(_e283)) * _e287);
                 } else {
-                    local_13 = vec2<f32>(0f, 0f);
+                    local_14 = vec2<f32>(0f, 0f);
                 }
-                let _e289 = local_13;
+                let _e289 = local_14;
                 px[_e276] = _e289;
                 continue;
             } else {
@@ -2017,15 +2038,15 @@ fn main_1() {
             let _e310 = px[4i];
             let _e314 = px[4i];
             let _e316 = px[2i];
-            local_14 = (((distance(_e297, _e299) + distance(_e302, _e304)) + distance(_e308, _e310)) + distance(_e314, _e316));
+            local_15 = (((distance(_e297, _e299) + distance(_e302, _e304)) + distance(_e308, _e310)) + distance(_e314, _e316));
         } else {
             let _e320 = px[0i];
             let _e322 = px[1i];
             let _e325 = px[1i];
             let _e327 = px[2i];
-            local_14 = (distance(_e320, _e322) + distance(_e325, _e327));
+            local_15 = (distance(_e320, _e322) + distance(_e325, _e327));
         }
-        let _e330 = local_14;
+        let _e330 = local_15;
         len = _e330;
         let _e331 = behind;
         if (_e331 == 0u) {
@@ -2042,12 +2063,12 @@ fn main_1() {
         } else {
             let _e349 = behind;
             let _e350 = (_e349 != 0u);
-            phi_2546_ = _e350;
+            phi_2568_ = _e350;
             if !(_e350) {
                 let _e352 = len;
-                phi_2546_ = !((_e352 < 1000000000f));
+                phi_2568_ = !((_e352 < 1000000000f));
             }
-            let _e356 = phi_2546_;
+            let _e356 = phi_2568_;
             if _e356 {
                 let _e357 = cap;
                 r_2 = _e357;
@@ -2067,32 +2088,32 @@ fn main_1() {
                             let _e369 = k_10;
                             if (_e369 == 0i) {
                                 let _e372 = p1_[0u];
-                                local_15 = _e372;
+                                local_16 = _e372;
                             } else {
                                 let _e374 = p1_[1u];
-                                local_15 = _e374;
+                                local_16 = _e374;
                             }
-                            let _e375 = local_15;
+                            let _e375 = local_16;
                             e = _e375;
                             let _e376 = e;
                             if (_e376 == 4294967295u) {
                                 continue;
                             }
                             let _e378 = smoothBoth;
-                            phi_2597_ = _e378;
+                            phi_2619_ = _e378;
                             if _e378 {
                                 let _e379 = e;
                                 let _e381 = pc.patchCount;
-                                phi_2597_ = (_e379 < _e381);
+                                phi_2619_ = (_e379 < _e381);
                             }
-                            let _e384 = phi_2597_;
-                            phi_2606_ = _e384;
+                            let _e384 = phi_2619_;
+                            phi_2628_ = _e384;
                             if _e384 {
                                 let _e385 = e;
                                 let _e389 = patches.p[_e385].levelBoundary;
-                                phi_2606_ = (((_e389 >> bitcast<u32>(16i)) & 15u) == 0u);
+                                phi_2628_ = (((_e389 >> bitcast<u32>(16i)) & 15u) == 0u);
                             }
-                            let _e395 = phi_2606_;
+                            let _e395 = phi_2628_;
                             smoothBoth = _e395;
                             continue;
                         } else {
@@ -2129,12 +2150,12 @@ fn main_1() {
                         let _e428 = chord[1u];
                         let _e430 = off[0u];
                         let _e434 = cl;
-                        local_16 = (abs(((_e423 * _e425) - (_e428 * _e430))) / _e434);
+                        local_17 = (abs(((_e423 * _e425) - (_e428 * _e430))) / _e434);
                     } else {
                         let _e436 = off;
-                        local_16 = length(_e436);
+                        local_17 = length(_e436);
                     }
-                    let _e438 = local_16;
+                    let _e438 = local_17;
                     d_3 = _e438;
                     let _e439 = want;
                     let _e440 = d_3;
@@ -2148,22 +2169,22 @@ fn main_1() {
                         let _e450 = k_11;
                         if (_e450 == 0i) {
                             let _e453 = p1_[0u];
-                            local_17 = _e453;
+                            local_18 = _e453;
                         } else {
                             let _e455 = p1_[1u];
-                            local_17 = _e455;
+                            local_18 = _e455;
                         }
-                        let _e456 = local_17;
+                        let _e456 = local_18;
                         e_1 = _e456;
                         let _e457 = e_1;
                         let _e458 = (_e457 == 4294967295u);
-                        phi_2701_ = _e458;
+                        phi_2723_ = _e458;
                         if !(_e458) {
                             let _e460 = e_1;
                             let _e462 = pc.patchCount;
-                            phi_2701_ = (_e460 >= _e462);
+                            phi_2723_ = (_e460 >= _e462);
                         }
-                        let _e465 = phi_2701_;
+                        let _e465 = phi_2723_;
                         if _e465 {
                             continue;
                         }
@@ -2224,13 +2245,13 @@ fn main_1() {
                             let _e552 = pc.maxError;
                             if (_e552 > 0f) {
                                 let _e554 = want;
-                                local_18 = (2f * _e554);
+                                local_19 = (2f * _e554);
                             } else {
                                 let _e556 = len;
                                 let _e559 = pc.edgePixels;
-                                local_18 = ceil(((2f * _e556) / _e559));
+                                local_19 = ceil(((2f * _e556) / _e559));
                             }
-                            let _e562 = local_18;
+                            let _e562 = local_19;
                             let _e563 = most_1;
                             let _e564 = len;
                             want = max(_e550, max(_e562, min(_e563, ceil(sqrt((_e564 / 0.25f))))));

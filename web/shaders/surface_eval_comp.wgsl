@@ -1154,6 +1154,10 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_5: i32;
     var c_4: u32;
     var code: u32;
+    var halvedS: u32;
+    var halvedT: u32;
+    var h_2: u32;
+    var local_12: u32;
     var param_76: u32;
     var param_77: u32;
     var param_78: vec3<f32>;
@@ -1172,197 +1176,214 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_6: i32;
     var phi_1427_: bool;
 
-    let _e101 = (*st_1);
-    S_1 = (_e101 & 65535u);
-    let _e103 = (*st_1);
-    T_1 = (_e103 >> bitcast<u32>(16i));
-    let _e106 = S_1;
-    let _e108 = S_1;
-    let _e110 = ((_e106 == 0u) || (_e108 == 32768u));
-    phi_1427_ = _e110;
-    if _e110 {
-        let _e111 = T_1;
-        let _e113 = T_1;
-        phi_1427_ = ((_e111 == 0u) || (_e113 == 32768u));
+    let _e105 = (*st_1);
+    S_1 = (_e105 & 65535u);
+    let _e107 = (*st_1);
+    T_1 = (_e107 >> bitcast<u32>(16i));
+    let _e110 = S_1;
+    let _e112 = S_1;
+    let _e114 = ((_e110 == 0u) || (_e112 == 32768u));
+    phi_1427_ = _e114;
+    if _e114 {
+        let _e115 = T_1;
+        let _e117 = T_1;
+        phi_1427_ = ((_e115 == 0u) || (_e117 == 32768u));
     }
-    let _e117 = phi_1427_;
-    if _e117 {
-        let _e118 = S_1;
-        if (_e118 == 0u) {
-            let _e120 = T_1;
-            local_11 = select(3u, 0u, (_e120 == 0u));
+    let _e121 = phi_1427_;
+    if _e121 {
+        let _e122 = S_1;
+        if (_e122 == 0u) {
+            let _e124 = T_1;
+            local_11 = select(3u, 0u, (_e124 == 0u));
         } else {
-            let _e123 = T_1;
-            local_11 = select(2u, 1u, (_e123 == 0u));
+            let _e127 = T_1;
+            local_11 = select(2u, 1u, (_e127 == 0u));
         }
-        let _e126 = local_11;
-        k_4 = _e126;
-        let _e127 = (*face);
-        let _e128 = k_4;
-        let _e133 = irregulars.f[_e127].corner[_e128];
-        c_3 = _e133;
-        let _e134 = c_3;
-        let _e138 = limits.v[(2u * _e134)];
-        (*P_3) = _e138.xyz;
-        let _e140 = c_3;
-        let _e145 = limits.v[((2u * _e140) + 1u)];
-        (*n_3) = _e145.xyz;
+        let _e130 = local_11;
+        k_4 = _e130;
+        let _e131 = (*face);
+        let _e132 = k_4;
+        let _e137 = irregulars.f[_e131].corner[_e132];
+        c_3 = _e137;
+        let _e138 = c_3;
+        let _e142 = limits.v[(2u * _e138)];
+        (*P_3) = _e142.xyz;
+        let _e144 = c_3;
+        let _e149 = limits.v[((2u * _e144) + 1u)];
+        (*n_3) = _e149.xyz;
         return;
     }
-    let _e147 = (*patchCount);
-    let _e148 = (*face);
-    node = (_e147 + _e148);
-    let _e150 = (*face);
-    leaf = _e150;
-    let _e151 = S_1;
-    ls = _e151;
-    let _e152 = T_1;
-    lt = _e152;
+    let _e151 = (*patchCount);
+    let _e152 = (*face);
+    node = (_e151 + _e152);
+    let _e154 = (*face);
+    leaf = _e154;
+    let _e155 = S_1;
+    ls = _e155;
+    let _e156 = T_1;
+    lt = _e156;
     k_5 = 0i;
     loop {
-        let _e153 = k_5;
-        if (_e153 < 17i) {
-            let _e155 = S_1;
-            let _e158 = T_1;
-            c_4 = (select(0u, 1u, (_e155 >= 16384u)) | select(0u, 2u, (_e158 >= 16384u)));
-            let _e162 = node;
-            let _e163 = c_4;
-            let _e168 = patches.p[_e162].cv[_e163];
-            code = _e168;
-            let _e169 = code;
-            if (_e169 == 4294967295u) {
+        let _e157 = k_5;
+        if (_e157 < 17i) {
+            let _e159 = S_1;
+            let _e162 = T_1;
+            c_4 = (select(0u, 1u, (_e159 >= 16384u)) | select(0u, 2u, (_e162 >= 16384u)));
+            let _e166 = node;
+            let _e167 = c_4;
+            let _e172 = patches.p[_e166].cv[_e167];
+            code = _e172;
+            let _e173 = code;
+            if (_e173 == 4294967295u) {
                 break;
             }
-            let _e171 = code;
-            if ((_e171 & 3221225472u) == 3221225472u) {
-                let _e174 = code;
-                param_76 = (_e174 & 1073741823u);
-                let _e176 = (*st_1);
-                param_77 = _e176;
+            let _e175 = S_1;
+            let _e177 = c_4;
+            halvedS = ((2u * _e175) - select(0u, 32768u, ((_e177 & 1u) != 0u)));
+            let _e182 = T_1;
+            let _e184 = c_4;
+            halvedT = ((2u * _e182) - select(0u, 32768u, ((_e184 & 2u) != 0u)));
+            let _e189 = code;
+            if ((_e189 & 3221225472u) == 3221225472u) {
+                let _e192 = code;
+                h_2 = (_e192 & 1073741823u);
+                let _e194 = h_2;
+                let _e199 = patches.p[_e194].cv[5i];
+                if (_e199 == 0u) {
+                    let _e201 = S_1;
+                    let _e202 = T_1;
+                    local_12 = (_e201 | (_e202 << bitcast<u32>(16i)));
+                } else {
+                    let _e206 = halvedS;
+                    let _e207 = halvedT;
+                    local_12 = (_e206 | (_e207 << bitcast<u32>(16i)));
+                }
+                let _e211 = h_2;
+                param_76 = _e211;
+                let _e212 = local_12;
+                param_77 = _e212;
                 smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_76), (&param_77), (&param_78), (&param_79));
-                let _e177 = param_78;
-                (*P_3) = _e177;
-                let _e178 = param_79;
-                (*n_3) = _e178;
+                let _e213 = param_78;
+                (*P_3) = _e213;
+                let _e214 = param_79;
+                (*n_3) = _e214;
                 return;
             }
-            let _e179 = S_1;
-            let _e181 = c_4;
-            S_1 = ((2u * _e179) - select(0u, 32768u, ((_e181 & 1u) != 0u)));
-            let _e186 = T_1;
-            let _e188 = c_4;
-            T_1 = ((2u * _e186) - select(0u, 32768u, ((_e188 & 2u) != 0u)));
-            let _e193 = code;
-            kind = (_e193 & 3221225472u);
-            let _e195 = code;
-            index = (_e195 & 1073741823u);
-            let _e197 = kind;
-            if (_e197 == 0u) {
-                let _e199 = index;
-                let _e200 = S_1;
-                let _e203 = T_1;
-                let _e208 = patches.p[_e199];
-                param_80.cv[0i] = _e208.cv[0];
-                param_80.cv[1i] = _e208.cv[1];
-                param_80.cv[2i] = _e208.cv[2];
-                param_80.cv[3i] = _e208.cv[3];
-                param_80.cv[4i] = _e208.cv[4];
-                param_80.cv[5i] = _e208.cv[5];
-                param_80.cv[6i] = _e208.cv[6];
-                param_80.cv[7i] = _e208.cv[7];
-                param_80.cv[8i] = _e208.cv[8];
-                param_80.cv[9i] = _e208.cv[9];
-                param_80.cv[10i] = _e208.cv[10];
-                param_80.cv[11i] = _e208.cv[11];
-                param_80.cv[12i] = _e208.cv[12];
-                param_80.cv[13i] = _e208.cv[13];
-                param_80.cv[14i] = _e208.cv[14];
-                param_80.cv[15i] = _e208.cv[15];
-                param_80.ptex = _e208.ptex;
-                param_80.u0_ = _e208.u0_;
-                param_80.v0_ = _e208.v0_;
-                param_80.size = _e208.size;
-                param_80.levelBoundary = _e208.levelBoundary;
-                param_80.sharpness = _e208.sharpness;
-                param_80.pad1_ = _e208.pad1_;
-                param_80.pad2_ = _e208.pad2_;
-                param_81 = (f32(_e200) / 32768f);
-                param_82 = (f32(_e203) / 32768f);
+            let _e215 = halvedS;
+            S_1 = _e215;
+            let _e216 = halvedT;
+            T_1 = _e216;
+            let _e217 = code;
+            kind = (_e217 & 3221225472u);
+            let _e219 = code;
+            index = (_e219 & 1073741823u);
+            let _e221 = kind;
+            if (_e221 == 0u) {
+                let _e223 = index;
+                let _e224 = S_1;
+                let _e227 = T_1;
+                let _e232 = patches.p[_e223];
+                param_80.cv[0i] = _e232.cv[0];
+                param_80.cv[1i] = _e232.cv[1];
+                param_80.cv[2i] = _e232.cv[2];
+                param_80.cv[3i] = _e232.cv[3];
+                param_80.cv[4i] = _e232.cv[4];
+                param_80.cv[5i] = _e232.cv[5];
+                param_80.cv[6i] = _e232.cv[6];
+                param_80.cv[7i] = _e232.cv[7];
+                param_80.cv[8i] = _e232.cv[8];
+                param_80.cv[9i] = _e232.cv[9];
+                param_80.cv[10i] = _e232.cv[10];
+                param_80.cv[11i] = _e232.cv[11];
+                param_80.cv[12i] = _e232.cv[12];
+                param_80.cv[13i] = _e232.cv[13];
+                param_80.cv[14i] = _e232.cv[14];
+                param_80.cv[15i] = _e232.cv[15];
+                param_80.ptex = _e232.ptex;
+                param_80.u0_ = _e232.u0_;
+                param_80.v0_ = _e232.v0_;
+                param_80.size = _e232.size;
+                param_80.levelBoundary = _e232.levelBoundary;
+                param_80.sharpness = _e232.sharpness;
+                param_80.pad1_ = _e232.pad1_;
+                param_80.pad2_ = _e232.pad2_;
+                param_81 = (f32(_e224) / 32768f);
+                param_82 = (f32(_e227) / 32768f);
                 patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_80), (&param_81), (&param_82), (&param_83), (&param_84));
-                let _e259 = param_83;
-                (*P_3) = _e259;
-                let _e260 = param_84;
-                (*n_3) = _e260;
+                let _e283 = param_83;
+                (*P_3) = _e283;
+                let _e284 = param_84;
+                (*n_3) = _e284;
                 return;
             }
-            let _e261 = kind;
-            if (_e261 == 2147483648u) {
-                let _e263 = index;
-                leaf = _e263;
-                let _e264 = S_1;
-                ls = _e264;
-                let _e265 = T_1;
-                lt = _e265;
+            let _e285 = kind;
+            if (_e285 == 2147483648u) {
+                let _e287 = index;
+                leaf = _e287;
+                let _e288 = S_1;
+                ls = _e288;
+                let _e289 = T_1;
+                lt = _e289;
                 break;
             }
-            let _e266 = index;
-            node = _e266;
+            let _e290 = index;
+            node = _e290;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e267 = k_5;
-            k_5 = (_e267 + 1i);
+            let _e291 = k_5;
+            k_5 = (_e291 + 1i);
         }
     }
-    let _e269 = leaf;
-    let _e272 = irregulars.f[_e269];
-    q_2.corner = _e272.corner;
-    q_2.ptex = _e272.ptex;
-    q_2.u0_ = _e272.u0_;
-    q_2.v0_ = _e272.v0_;
-    q_2.size = _e272.size;
-    let _e283 = ls;
-    s_5 = (f32(_e283) / 32768f);
-    let _e286 = lt;
-    t_5 = (f32(_e286) / 32768f);
-    let _e289 = s_5;
-    let _e291 = t_5;
-    let _e294 = s_5;
-    let _e295 = t_5;
-    let _e298 = s_5;
-    let _e299 = t_5;
-    let _e301 = s_5;
-    let _e303 = t_5;
-    w_3 = array<f32, 4>(((1f - _e289) * (1f - _e291)), (_e294 * (1f - _e295)), (_e298 * _e299), ((1f - _e301) * _e303));
+    let _e293 = leaf;
+    let _e296 = irregulars.f[_e293];
+    q_2.corner = _e296.corner;
+    q_2.ptex = _e296.ptex;
+    q_2.u0_ = _e296.u0_;
+    q_2.v0_ = _e296.v0_;
+    q_2.size = _e296.size;
+    let _e307 = ls;
+    s_5 = (f32(_e307) / 32768f);
+    let _e310 = lt;
+    t_5 = (f32(_e310) / 32768f);
+    let _e313 = s_5;
+    let _e315 = t_5;
+    let _e318 = s_5;
+    let _e319 = t_5;
+    let _e322 = s_5;
+    let _e323 = t_5;
+    let _e325 = s_5;
+    let _e327 = t_5;
+    w_3 = array<f32, 4>(((1f - _e313) * (1f - _e315)), (_e318 * (1f - _e319)), (_e322 * _e323), ((1f - _e325) * _e327));
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     (*n_3) = vec3<f32>(0f, 0f, 0f);
     k_6 = 0i;
     loop {
-        let _e306 = k_6;
-        if (_e306 < 4i) {
-            let _e308 = k_6;
-            let _e310 = w_3[_e308];
-            let _e311 = k_6;
-            let _e314 = q_2.corner[_e311];
-            let _e318 = limits.v[(2u * _e314)];
-            let _e321 = (*P_3);
-            (*P_3) = (_e321 + (_e318.xyz * _e310));
-            let _e323 = k_6;
-            let _e325 = w_3[_e323];
-            let _e326 = k_6;
-            let _e329 = q_2.corner[_e326];
-            let _e334 = limits.v[((2u * _e329) + 1u)];
-            let _e337 = (*n_3);
-            (*n_3) = (_e337 + (_e334.xyz * _e325));
+        let _e330 = k_6;
+        if (_e330 < 4i) {
+            let _e332 = k_6;
+            let _e334 = w_3[_e332];
+            let _e335 = k_6;
+            let _e338 = q_2.corner[_e335];
+            let _e342 = limits.v[(2u * _e338)];
+            let _e345 = (*P_3);
+            (*P_3) = (_e345 + (_e342.xyz * _e334));
+            let _e347 = k_6;
+            let _e349 = w_3[_e347];
+            let _e350 = k_6;
+            let _e353 = q_2.corner[_e350];
+            let _e358 = limits.v[((2u * _e353) + 1u)];
+            let _e361 = (*n_3);
+            (*n_3) = (_e361 + (_e358.xyz * _e349));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e339 = k_6;
-            k_6 = (_e339 + 1i);
+            let _e363 = k_6;
+            k_6 = (_e363 + 1i);
         }
     }
     return;
@@ -1386,7 +1407,7 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_92: u32;
     var param_93: vec3<f32>;
     var param_94: vec3<f32>;
-    var local_12: vec3<f32>;
+    var local_13: vec3<f32>;
 
     let _e89 = (*st_2);
     s_6 = (f32((_e89 & 65535u)) / 32768f);
@@ -1479,11 +1500,11 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     let _e223 = n_4;
     if (dot(_e222, _e223) > 0f) {
         let _e226 = n_4;
-        local_12 = normalize(_e226);
+        local_13 = normalize(_e226);
     } else {
-        local_12 = vec3<f32>(0f, 0f, 0f);
+        local_13 = vec3<f32>(0f, 0f, 0f);
     }
-    let _e228 = local_12;
+    let _e228 = local_13;
     r_2.normal = _e228;
     let _e230 = r_2;
     return _e230;

@@ -1171,6 +1171,10 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_5: i32;
     var c_4: u32;
     var code: u32;
+    var halvedS: u32;
+    var halvedT: u32;
+    var h_2: u32;
+    var local_12: u32;
     var param_76: u32;
     var param_77: u32;
     var param_78: vec3<f32>;
@@ -1189,197 +1193,214 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_6: i32;
     var phi_1410_: bool;
 
-    let _e103 = (*st_1);
-    S_1 = (_e103 & 65535u);
-    let _e105 = (*st_1);
-    T_1 = (_e105 >> bitcast<u32>(16i));
-    let _e108 = S_1;
-    let _e110 = S_1;
-    let _e112 = ((_e108 == 0u) || (_e110 == 32768u));
-    phi_1410_ = _e112;
-    if _e112 {
-        let _e113 = T_1;
-        let _e115 = T_1;
-        phi_1410_ = ((_e113 == 0u) || (_e115 == 32768u));
+    let _e107 = (*st_1);
+    S_1 = (_e107 & 65535u);
+    let _e109 = (*st_1);
+    T_1 = (_e109 >> bitcast<u32>(16i));
+    let _e112 = S_1;
+    let _e114 = S_1;
+    let _e116 = ((_e112 == 0u) || (_e114 == 32768u));
+    phi_1410_ = _e116;
+    if _e116 {
+        let _e117 = T_1;
+        let _e119 = T_1;
+        phi_1410_ = ((_e117 == 0u) || (_e119 == 32768u));
     }
-    let _e119 = phi_1410_;
-    if _e119 {
-        let _e120 = S_1;
-        if (_e120 == 0u) {
-            let _e122 = T_1;
-            local_11 = select(3u, 0u, (_e122 == 0u));
+    let _e123 = phi_1410_;
+    if _e123 {
+        let _e124 = S_1;
+        if (_e124 == 0u) {
+            let _e126 = T_1;
+            local_11 = select(3u, 0u, (_e126 == 0u));
         } else {
-            let _e125 = T_1;
-            local_11 = select(2u, 1u, (_e125 == 0u));
+            let _e129 = T_1;
+            local_11 = select(2u, 1u, (_e129 == 0u));
         }
-        let _e128 = local_11;
-        k_4 = _e128;
-        let _e129 = (*face);
-        let _e130 = k_4;
-        let _e135 = irregulars.f[_e129].corner[_e130];
-        c_3 = _e135;
-        let _e136 = c_3;
-        let _e140 = limits.v[(2u * _e136)];
-        (*P_3) = _e140.xyz;
-        let _e142 = c_3;
-        let _e147 = limits.v[((2u * _e142) + 1u)];
-        (*n_3) = _e147.xyz;
+        let _e132 = local_11;
+        k_4 = _e132;
+        let _e133 = (*face);
+        let _e134 = k_4;
+        let _e139 = irregulars.f[_e133].corner[_e134];
+        c_3 = _e139;
+        let _e140 = c_3;
+        let _e144 = limits.v[(2u * _e140)];
+        (*P_3) = _e144.xyz;
+        let _e146 = c_3;
+        let _e151 = limits.v[((2u * _e146) + 1u)];
+        (*n_3) = _e151.xyz;
         return;
     }
-    let _e149 = (*patchCount);
-    let _e150 = (*face);
-    node = (_e149 + _e150);
-    let _e152 = (*face);
-    leaf = _e152;
-    let _e153 = S_1;
-    ls = _e153;
-    let _e154 = T_1;
-    lt = _e154;
+    let _e153 = (*patchCount);
+    let _e154 = (*face);
+    node = (_e153 + _e154);
+    let _e156 = (*face);
+    leaf = _e156;
+    let _e157 = S_1;
+    ls = _e157;
+    let _e158 = T_1;
+    lt = _e158;
     k_5 = 0i;
     loop {
-        let _e155 = k_5;
-        if (_e155 < 17i) {
-            let _e157 = S_1;
-            let _e160 = T_1;
-            c_4 = (select(0u, 1u, (_e157 >= 16384u)) | select(0u, 2u, (_e160 >= 16384u)));
-            let _e164 = node;
-            let _e165 = c_4;
-            let _e170 = patches.p[_e164].cv[_e165];
-            code = _e170;
-            let _e171 = code;
-            if (_e171 == 4294967295u) {
+        let _e159 = k_5;
+        if (_e159 < 17i) {
+            let _e161 = S_1;
+            let _e164 = T_1;
+            c_4 = (select(0u, 1u, (_e161 >= 16384u)) | select(0u, 2u, (_e164 >= 16384u)));
+            let _e168 = node;
+            let _e169 = c_4;
+            let _e174 = patches.p[_e168].cv[_e169];
+            code = _e174;
+            let _e175 = code;
+            if (_e175 == 4294967295u) {
                 break;
             }
-            let _e173 = code;
-            if ((_e173 & 3221225472u) == 3221225472u) {
-                let _e176 = code;
-                param_76 = (_e176 & 1073741823u);
-                let _e178 = (*st_1);
-                param_77 = _e178;
+            let _e177 = S_1;
+            let _e179 = c_4;
+            halvedS = ((2u * _e177) - select(0u, 32768u, ((_e179 & 1u) != 0u)));
+            let _e184 = T_1;
+            let _e186 = c_4;
+            halvedT = ((2u * _e184) - select(0u, 32768u, ((_e186 & 2u) != 0u)));
+            let _e191 = code;
+            if ((_e191 & 3221225472u) == 3221225472u) {
+                let _e194 = code;
+                h_2 = (_e194 & 1073741823u);
+                let _e196 = h_2;
+                let _e201 = patches.p[_e196].cv[5i];
+                if (_e201 == 0u) {
+                    let _e203 = S_1;
+                    let _e204 = T_1;
+                    local_12 = (_e203 | (_e204 << bitcast<u32>(16i)));
+                } else {
+                    let _e208 = halvedS;
+                    let _e209 = halvedT;
+                    local_12 = (_e208 | (_e209 << bitcast<u32>(16i)));
+                }
+                let _e213 = h_2;
+                param_76 = _e213;
+                let _e214 = local_12;
+                param_77 = _e214;
                 smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_76), (&param_77), (&param_78), (&param_79));
-                let _e179 = param_78;
-                (*P_3) = _e179;
-                let _e180 = param_79;
-                (*n_3) = _e180;
+                let _e215 = param_78;
+                (*P_3) = _e215;
+                let _e216 = param_79;
+                (*n_3) = _e216;
                 return;
             }
-            let _e181 = S_1;
-            let _e183 = c_4;
-            S_1 = ((2u * _e181) - select(0u, 32768u, ((_e183 & 1u) != 0u)));
-            let _e188 = T_1;
-            let _e190 = c_4;
-            T_1 = ((2u * _e188) - select(0u, 32768u, ((_e190 & 2u) != 0u)));
-            let _e195 = code;
-            kind = (_e195 & 3221225472u);
-            let _e197 = code;
-            index = (_e197 & 1073741823u);
-            let _e199 = kind;
-            if (_e199 == 0u) {
-                let _e201 = index;
-                let _e202 = S_1;
-                let _e205 = T_1;
-                let _e210 = patches.p[_e201];
-                param_80.cv[0i] = _e210.cv[0];
-                param_80.cv[1i] = _e210.cv[1];
-                param_80.cv[2i] = _e210.cv[2];
-                param_80.cv[3i] = _e210.cv[3];
-                param_80.cv[4i] = _e210.cv[4];
-                param_80.cv[5i] = _e210.cv[5];
-                param_80.cv[6i] = _e210.cv[6];
-                param_80.cv[7i] = _e210.cv[7];
-                param_80.cv[8i] = _e210.cv[8];
-                param_80.cv[9i] = _e210.cv[9];
-                param_80.cv[10i] = _e210.cv[10];
-                param_80.cv[11i] = _e210.cv[11];
-                param_80.cv[12i] = _e210.cv[12];
-                param_80.cv[13i] = _e210.cv[13];
-                param_80.cv[14i] = _e210.cv[14];
-                param_80.cv[15i] = _e210.cv[15];
-                param_80.ptex = _e210.ptex;
-                param_80.u0_ = _e210.u0_;
-                param_80.v0_ = _e210.v0_;
-                param_80.size = _e210.size;
-                param_80.levelBoundary = _e210.levelBoundary;
-                param_80.sharpness = _e210.sharpness;
-                param_80.pad1_ = _e210.pad1_;
-                param_80.pad2_ = _e210.pad2_;
-                param_81 = (f32(_e202) / 32768f);
-                param_82 = (f32(_e205) / 32768f);
+            let _e217 = halvedS;
+            S_1 = _e217;
+            let _e218 = halvedT;
+            T_1 = _e218;
+            let _e219 = code;
+            kind = (_e219 & 3221225472u);
+            let _e221 = code;
+            index = (_e221 & 1073741823u);
+            let _e223 = kind;
+            if (_e223 == 0u) {
+                let _e225 = index;
+                let _e226 = S_1;
+                let _e229 = T_1;
+                let _e234 = patches.p[_e225];
+                param_80.cv[0i] = _e234.cv[0];
+                param_80.cv[1i] = _e234.cv[1];
+                param_80.cv[2i] = _e234.cv[2];
+                param_80.cv[3i] = _e234.cv[3];
+                param_80.cv[4i] = _e234.cv[4];
+                param_80.cv[5i] = _e234.cv[5];
+                param_80.cv[6i] = _e234.cv[6];
+                param_80.cv[7i] = _e234.cv[7];
+                param_80.cv[8i] = _e234.cv[8];
+                param_80.cv[9i] = _e234.cv[9];
+                param_80.cv[10i] = _e234.cv[10];
+                param_80.cv[11i] = _e234.cv[11];
+                param_80.cv[12i] = _e234.cv[12];
+                param_80.cv[13i] = _e234.cv[13];
+                param_80.cv[14i] = _e234.cv[14];
+                param_80.cv[15i] = _e234.cv[15];
+                param_80.ptex = _e234.ptex;
+                param_80.u0_ = _e234.u0_;
+                param_80.v0_ = _e234.v0_;
+                param_80.size = _e234.size;
+                param_80.levelBoundary = _e234.levelBoundary;
+                param_80.sharpness = _e234.sharpness;
+                param_80.pad1_ = _e234.pad1_;
+                param_80.pad2_ = _e234.pad2_;
+                param_81 = (f32(_e226) / 32768f);
+                param_82 = (f32(_e229) / 32768f);
                 patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_80), (&param_81), (&param_82), (&param_83), (&param_84));
-                let _e261 = param_83;
-                (*P_3) = _e261;
-                let _e262 = param_84;
-                (*n_3) = _e262;
+                let _e285 = param_83;
+                (*P_3) = _e285;
+                let _e286 = param_84;
+                (*n_3) = _e286;
                 return;
             }
-            let _e263 = kind;
-            if (_e263 == 2147483648u) {
-                let _e265 = index;
-                leaf = _e265;
-                let _e266 = S_1;
-                ls = _e266;
-                let _e267 = T_1;
-                lt = _e267;
+            let _e287 = kind;
+            if (_e287 == 2147483648u) {
+                let _e289 = index;
+                leaf = _e289;
+                let _e290 = S_1;
+                ls = _e290;
+                let _e291 = T_1;
+                lt = _e291;
                 break;
             }
-            let _e268 = index;
-            node = _e268;
+            let _e292 = index;
+            node = _e292;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e269 = k_5;
-            k_5 = (_e269 + 1i);
+            let _e293 = k_5;
+            k_5 = (_e293 + 1i);
         }
     }
-    let _e271 = leaf;
-    let _e274 = irregulars.f[_e271];
-    q_2.corner = _e274.corner;
-    q_2.ptex = _e274.ptex;
-    q_2.u0_ = _e274.u0_;
-    q_2.v0_ = _e274.v0_;
-    q_2.size = _e274.size;
-    let _e285 = ls;
-    s_5 = (f32(_e285) / 32768f);
-    let _e288 = lt;
-    t_5 = (f32(_e288) / 32768f);
-    let _e291 = s_5;
-    let _e293 = t_5;
-    let _e296 = s_5;
-    let _e297 = t_5;
-    let _e300 = s_5;
-    let _e301 = t_5;
-    let _e303 = s_5;
-    let _e305 = t_5;
-    w_3 = array<f32, 4>(((1f - _e291) * (1f - _e293)), (_e296 * (1f - _e297)), (_e300 * _e301), ((1f - _e303) * _e305));
+    let _e295 = leaf;
+    let _e298 = irregulars.f[_e295];
+    q_2.corner = _e298.corner;
+    q_2.ptex = _e298.ptex;
+    q_2.u0_ = _e298.u0_;
+    q_2.v0_ = _e298.v0_;
+    q_2.size = _e298.size;
+    let _e309 = ls;
+    s_5 = (f32(_e309) / 32768f);
+    let _e312 = lt;
+    t_5 = (f32(_e312) / 32768f);
+    let _e315 = s_5;
+    let _e317 = t_5;
+    let _e320 = s_5;
+    let _e321 = t_5;
+    let _e324 = s_5;
+    let _e325 = t_5;
+    let _e327 = s_5;
+    let _e329 = t_5;
+    w_3 = array<f32, 4>(((1f - _e315) * (1f - _e317)), (_e320 * (1f - _e321)), (_e324 * _e325), ((1f - _e327) * _e329));
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     (*n_3) = vec3<f32>(0f, 0f, 0f);
     k_6 = 0i;
     loop {
-        let _e308 = k_6;
-        if (_e308 < 4i) {
-            let _e310 = k_6;
-            let _e312 = w_3[_e310];
-            let _e313 = k_6;
-            let _e316 = q_2.corner[_e313];
-            let _e320 = limits.v[(2u * _e316)];
-            let _e323 = (*P_3);
-            (*P_3) = (_e323 + (_e320.xyz * _e312));
-            let _e325 = k_6;
-            let _e327 = w_3[_e325];
-            let _e328 = k_6;
-            let _e331 = q_2.corner[_e328];
-            let _e336 = limits.v[((2u * _e331) + 1u)];
-            let _e339 = (*n_3);
-            (*n_3) = (_e339 + (_e336.xyz * _e327));
+        let _e332 = k_6;
+        if (_e332 < 4i) {
+            let _e334 = k_6;
+            let _e336 = w_3[_e334];
+            let _e337 = k_6;
+            let _e340 = q_2.corner[_e337];
+            let _e344 = limits.v[(2u * _e340)];
+            let _e347 = (*P_3);
+            (*P_3) = (_e347 + (_e344.xyz * _e336));
+            let _e349 = k_6;
+            let _e351 = w_3[_e349];
+            let _e352 = k_6;
+            let _e355 = q_2.corner[_e352];
+            let _e360 = limits.v[((2u * _e355) + 1u)];
+            let _e363 = (*n_3);
+            (*n_3) = (_e363 + (_e360.xyz * _e351));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e341 = k_6;
-            k_6 = (_e341 + 1i);
+            let _e365 = k_6;
+            k_6 = (_e365 + 1i);
         }
     }
     return;
@@ -1403,7 +1424,7 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     var param_92: u32;
     var param_93: vec3<f32>;
     var param_94: vec3<f32>;
-    var local_12: vec3<f32>;
+    var local_13: vec3<f32>;
 
     let _e91 = (*st_2);
     s_6 = (f32((_e91 & 65535u)) / 32768f);
@@ -1496,11 +1517,11 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element: ptr<function, u32>,
     let _e225 = n_4;
     if (dot(_e224, _e225) > 0f) {
         let _e228 = n_4;
-        local_12 = normalize(_e228);
+        local_13 = normalize(_e228);
     } else {
-        local_12 = vec3<f32>(0f, 0f, 0f);
+        local_13 = vec3<f32>(0f, 0f, 0f);
     }
-    let _e230 = local_12;
+    let _e230 = local_13;
     r_2.normal = _e230;
     let _e232 = r_2;
     return _e232;

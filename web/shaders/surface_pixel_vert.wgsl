@@ -1389,6 +1389,10 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_5: i32;
     var c_4: u32;
     var code: u32;
+    var halvedS: u32;
+    var halvedT: u32;
+    var h_2: u32;
+    var local_12: u32;
     var param_76: u32;
     var param_77: u32;
     var param_78: vec3<f32>;
@@ -1407,197 +1411,214 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var k_6: i32;
     var phi_1414_: bool;
 
-    let _e115 = (*st_1);
-    S_1 = (_e115 & 65535u);
-    let _e117 = (*st_1);
-    T_1 = (_e117 >> bitcast<u32>(16i));
-    let _e120 = S_1;
-    let _e122 = S_1;
-    let _e124 = ((_e120 == 0u) || (_e122 == 32768u));
-    phi_1414_ = _e124;
-    if _e124 {
-        let _e125 = T_1;
-        let _e127 = T_1;
-        phi_1414_ = ((_e125 == 0u) || (_e127 == 32768u));
+    let _e119 = (*st_1);
+    S_1 = (_e119 & 65535u);
+    let _e121 = (*st_1);
+    T_1 = (_e121 >> bitcast<u32>(16i));
+    let _e124 = S_1;
+    let _e126 = S_1;
+    let _e128 = ((_e124 == 0u) || (_e126 == 32768u));
+    phi_1414_ = _e128;
+    if _e128 {
+        let _e129 = T_1;
+        let _e131 = T_1;
+        phi_1414_ = ((_e129 == 0u) || (_e131 == 32768u));
     }
-    let _e131 = phi_1414_;
-    if _e131 {
-        let _e132 = S_1;
-        if (_e132 == 0u) {
-            let _e134 = T_1;
-            local_11 = select(3u, 0u, (_e134 == 0u));
+    let _e135 = phi_1414_;
+    if _e135 {
+        let _e136 = S_1;
+        if (_e136 == 0u) {
+            let _e138 = T_1;
+            local_11 = select(3u, 0u, (_e138 == 0u));
         } else {
-            let _e137 = T_1;
-            local_11 = select(2u, 1u, (_e137 == 0u));
+            let _e141 = T_1;
+            local_11 = select(2u, 1u, (_e141 == 0u));
         }
-        let _e140 = local_11;
-        k_4 = _e140;
-        let _e141 = (*face);
-        let _e142 = k_4;
-        let _e147 = irregulars.f[_e141].corner[_e142];
-        c_3 = _e147;
-        let _e148 = c_3;
-        let _e152 = limits.v[(2u * _e148)];
-        (*P_3) = _e152.xyz;
-        let _e154 = c_3;
-        let _e159 = limits.v[((2u * _e154) + 1u)];
-        (*n_3) = _e159.xyz;
+        let _e144 = local_11;
+        k_4 = _e144;
+        let _e145 = (*face);
+        let _e146 = k_4;
+        let _e151 = irregulars.f[_e145].corner[_e146];
+        c_3 = _e151;
+        let _e152 = c_3;
+        let _e156 = limits.v[(2u * _e152)];
+        (*P_3) = _e156.xyz;
+        let _e158 = c_3;
+        let _e163 = limits.v[((2u * _e158) + 1u)];
+        (*n_3) = _e163.xyz;
         return;
     }
-    let _e161 = (*patchCount);
-    let _e162 = (*face);
-    node = (_e161 + _e162);
-    let _e164 = (*face);
-    leaf = _e164;
-    let _e165 = S_1;
-    ls = _e165;
-    let _e166 = T_1;
-    lt = _e166;
+    let _e165 = (*patchCount);
+    let _e166 = (*face);
+    node = (_e165 + _e166);
+    let _e168 = (*face);
+    leaf = _e168;
+    let _e169 = S_1;
+    ls = _e169;
+    let _e170 = T_1;
+    lt = _e170;
     k_5 = 0i;
     loop {
-        let _e167 = k_5;
-        if (_e167 < 17i) {
-            let _e169 = S_1;
-            let _e172 = T_1;
-            c_4 = (select(0u, 1u, (_e169 >= 16384u)) | select(0u, 2u, (_e172 >= 16384u)));
-            let _e176 = node;
-            let _e177 = c_4;
-            let _e182 = patches.p[_e176].cv[_e177];
-            code = _e182;
-            let _e183 = code;
-            if (_e183 == 4294967295u) {
+        let _e171 = k_5;
+        if (_e171 < 17i) {
+            let _e173 = S_1;
+            let _e176 = T_1;
+            c_4 = (select(0u, 1u, (_e173 >= 16384u)) | select(0u, 2u, (_e176 >= 16384u)));
+            let _e180 = node;
+            let _e181 = c_4;
+            let _e186 = patches.p[_e180].cv[_e181];
+            code = _e186;
+            let _e187 = code;
+            if (_e187 == 4294967295u) {
                 break;
             }
-            let _e185 = code;
-            if ((_e185 & 3221225472u) == 3221225472u) {
-                let _e188 = code;
-                param_76 = (_e188 & 1073741823u);
-                let _e190 = (*st_1);
-                param_77 = _e190;
+            let _e189 = S_1;
+            let _e191 = c_4;
+            halvedS = ((2u * _e189) - select(0u, 32768u, ((_e191 & 1u) != 0u)));
+            let _e196 = T_1;
+            let _e198 = c_4;
+            halvedT = ((2u * _e196) - select(0u, 32768u, ((_e198 & 2u) != 0u)));
+            let _e203 = code;
+            if ((_e203 & 3221225472u) == 3221225472u) {
+                let _e206 = code;
+                h_2 = (_e206 & 1073741823u);
+                let _e208 = h_2;
+                let _e213 = patches.p[_e208].cv[5i];
+                if (_e213 == 0u) {
+                    let _e215 = S_1;
+                    let _e216 = T_1;
+                    local_12 = (_e215 | (_e216 << bitcast<u32>(16i)));
+                } else {
+                    let _e220 = halvedS;
+                    let _e221 = halvedT;
+                    local_12 = (_e220 | (_e221 << bitcast<u32>(16i)));
+                }
+                let _e225 = h_2;
+                param_76 = _e225;
+                let _e226 = local_12;
+                param_77 = _e226;
                 smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_76), (&param_77), (&param_78), (&param_79));
-                let _e191 = param_78;
-                (*P_3) = _e191;
-                let _e192 = param_79;
-                (*n_3) = _e192;
+                let _e227 = param_78;
+                (*P_3) = _e227;
+                let _e228 = param_79;
+                (*n_3) = _e228;
                 return;
             }
-            let _e193 = S_1;
-            let _e195 = c_4;
-            S_1 = ((2u * _e193) - select(0u, 32768u, ((_e195 & 1u) != 0u)));
-            let _e200 = T_1;
-            let _e202 = c_4;
-            T_1 = ((2u * _e200) - select(0u, 32768u, ((_e202 & 2u) != 0u)));
-            let _e207 = code;
-            kind = (_e207 & 3221225472u);
-            let _e209 = code;
-            index = (_e209 & 1073741823u);
-            let _e211 = kind;
-            if (_e211 == 0u) {
-                let _e213 = index;
-                let _e214 = S_1;
-                let _e217 = T_1;
-                let _e222 = patches.p[_e213];
-                param_80.cv[0i] = _e222.cv[0];
-                param_80.cv[1i] = _e222.cv[1];
-                param_80.cv[2i] = _e222.cv[2];
-                param_80.cv[3i] = _e222.cv[3];
-                param_80.cv[4i] = _e222.cv[4];
-                param_80.cv[5i] = _e222.cv[5];
-                param_80.cv[6i] = _e222.cv[6];
-                param_80.cv[7i] = _e222.cv[7];
-                param_80.cv[8i] = _e222.cv[8];
-                param_80.cv[9i] = _e222.cv[9];
-                param_80.cv[10i] = _e222.cv[10];
-                param_80.cv[11i] = _e222.cv[11];
-                param_80.cv[12i] = _e222.cv[12];
-                param_80.cv[13i] = _e222.cv[13];
-                param_80.cv[14i] = _e222.cv[14];
-                param_80.cv[15i] = _e222.cv[15];
-                param_80.ptex = _e222.ptex;
-                param_80.u0_ = _e222.u0_;
-                param_80.v0_ = _e222.v0_;
-                param_80.size = _e222.size;
-                param_80.levelBoundary = _e222.levelBoundary;
-                param_80.sharpness = _e222.sharpness;
-                param_80.pad1_ = _e222.pad1_;
-                param_80.pad2_ = _e222.pad2_;
-                param_81 = (f32(_e214) / 32768f);
-                param_82 = (f32(_e217) / 32768f);
+            let _e229 = halvedS;
+            S_1 = _e229;
+            let _e230 = halvedT;
+            T_1 = _e230;
+            let _e231 = code;
+            kind = (_e231 & 3221225472u);
+            let _e233 = code;
+            index = (_e233 & 1073741823u);
+            let _e235 = kind;
+            if (_e235 == 0u) {
+                let _e237 = index;
+                let _e238 = S_1;
+                let _e241 = T_1;
+                let _e246 = patches.p[_e237];
+                param_80.cv[0i] = _e246.cv[0];
+                param_80.cv[1i] = _e246.cv[1];
+                param_80.cv[2i] = _e246.cv[2];
+                param_80.cv[3i] = _e246.cv[3];
+                param_80.cv[4i] = _e246.cv[4];
+                param_80.cv[5i] = _e246.cv[5];
+                param_80.cv[6i] = _e246.cv[6];
+                param_80.cv[7i] = _e246.cv[7];
+                param_80.cv[8i] = _e246.cv[8];
+                param_80.cv[9i] = _e246.cv[9];
+                param_80.cv[10i] = _e246.cv[10];
+                param_80.cv[11i] = _e246.cv[11];
+                param_80.cv[12i] = _e246.cv[12];
+                param_80.cv[13i] = _e246.cv[13];
+                param_80.cv[14i] = _e246.cv[14];
+                param_80.cv[15i] = _e246.cv[15];
+                param_80.ptex = _e246.ptex;
+                param_80.u0_ = _e246.u0_;
+                param_80.v0_ = _e246.v0_;
+                param_80.size = _e246.size;
+                param_80.levelBoundary = _e246.levelBoundary;
+                param_80.sharpness = _e246.sharpness;
+                param_80.pad1_ = _e246.pad1_;
+                param_80.pad2_ = _e246.pad2_;
+                param_81 = (f32(_e238) / 32768f);
+                param_82 = (f32(_e241) / 32768f);
                 patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_80), (&param_81), (&param_82), (&param_83), (&param_84));
-                let _e273 = param_83;
-                (*P_3) = _e273;
-                let _e274 = param_84;
-                (*n_3) = _e274;
+                let _e297 = param_83;
+                (*P_3) = _e297;
+                let _e298 = param_84;
+                (*n_3) = _e298;
                 return;
             }
-            let _e275 = kind;
-            if (_e275 == 2147483648u) {
-                let _e277 = index;
-                leaf = _e277;
-                let _e278 = S_1;
-                ls = _e278;
-                let _e279 = T_1;
-                lt = _e279;
+            let _e299 = kind;
+            if (_e299 == 2147483648u) {
+                let _e301 = index;
+                leaf = _e301;
+                let _e302 = S_1;
+                ls = _e302;
+                let _e303 = T_1;
+                lt = _e303;
                 break;
             }
-            let _e280 = index;
-            node = _e280;
+            let _e304 = index;
+            node = _e304;
             continue;
         } else {
             break;
         }
         continuing {
-            let _e281 = k_5;
-            k_5 = (_e281 + 1i);
+            let _e305 = k_5;
+            k_5 = (_e305 + 1i);
         }
     }
-    let _e283 = leaf;
-    let _e286 = irregulars.f[_e283];
-    q_2.corner = _e286.corner;
-    q_2.ptex = _e286.ptex;
-    q_2.u0_ = _e286.u0_;
-    q_2.v0_ = _e286.v0_;
-    q_2.size = _e286.size;
-    let _e297 = ls;
-    s_5 = (f32(_e297) / 32768f);
-    let _e300 = lt;
-    t_5 = (f32(_e300) / 32768f);
-    let _e303 = s_5;
-    let _e305 = t_5;
-    let _e308 = s_5;
-    let _e309 = t_5;
-    let _e312 = s_5;
-    let _e313 = t_5;
-    let _e315 = s_5;
-    let _e317 = t_5;
-    w_3 = array<f32, 4>(((1f - _e303) * (1f - _e305)), (_e308 * (1f - _e309)), (_e312 * _e313), ((1f - _e315) * _e317));
+    let _e307 = leaf;
+    let _e310 = irregulars.f[_e307];
+    q_2.corner = _e310.corner;
+    q_2.ptex = _e310.ptex;
+    q_2.u0_ = _e310.u0_;
+    q_2.v0_ = _e310.v0_;
+    q_2.size = _e310.size;
+    let _e321 = ls;
+    s_5 = (f32(_e321) / 32768f);
+    let _e324 = lt;
+    t_5 = (f32(_e324) / 32768f);
+    let _e327 = s_5;
+    let _e329 = t_5;
+    let _e332 = s_5;
+    let _e333 = t_5;
+    let _e336 = s_5;
+    let _e337 = t_5;
+    let _e339 = s_5;
+    let _e341 = t_5;
+    w_3 = array<f32, 4>(((1f - _e327) * (1f - _e329)), (_e332 * (1f - _e333)), (_e336 * _e337), ((1f - _e339) * _e341));
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     (*n_3) = vec3<f32>(0f, 0f, 0f);
     k_6 = 0i;
     loop {
-        let _e320 = k_6;
-        if (_e320 < 4i) {
-            let _e322 = k_6;
-            let _e324 = w_3[_e322];
-            let _e325 = k_6;
-            let _e328 = q_2.corner[_e325];
-            let _e332 = limits.v[(2u * _e328)];
-            let _e335 = (*P_3);
-            (*P_3) = (_e335 + (_e332.xyz * _e324));
-            let _e337 = k_6;
-            let _e339 = w_3[_e337];
-            let _e340 = k_6;
-            let _e343 = q_2.corner[_e340];
-            let _e348 = limits.v[((2u * _e343) + 1u)];
-            let _e351 = (*n_3);
-            (*n_3) = (_e351 + (_e348.xyz * _e339));
+        let _e344 = k_6;
+        if (_e344 < 4i) {
+            let _e346 = k_6;
+            let _e348 = w_3[_e346];
+            let _e349 = k_6;
+            let _e352 = q_2.corner[_e349];
+            let _e356 = limits.v[(2u * _e352)];
+            let _e359 = (*P_3);
+            (*P_3) = (_e359 + (_e356.xyz * _e348));
+            let _e361 = k_6;
+            let _e363 = w_3[_e361];
+            let _e364 = k_6;
+            let _e367 = q_2.corner[_e364];
+            let _e372 = limits.v[((2u * _e367) + 1u)];
+            let _e375 = (*n_3);
+            (*n_3) = (_e375 + (_e372.xyz * _e363));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e353 = k_6;
-            k_6 = (_e353 + 1i);
+            let _e377 = k_6;
+            k_6 = (_e377 + 1i);
         }
     }
     return;
@@ -1621,7 +1642,7 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element_1: ptr<function, u32
     var param_92: u32;
     var param_93: vec3<f32>;
     var param_94: vec3<f32>;
-    var local_12: vec3<f32>;
+    var local_13: vec3<f32>;
 
     let _e103 = (*st_2);
     s_6 = (f32((_e103 & 65535u)) / 32768f);
@@ -1714,11 +1735,11 @@ fn evaluateElement_u0028_u1_u003b_u1_u003b_u1_u003b(element_1: ptr<function, u32
     let _e237 = n_4;
     if (dot(_e236, _e237) > 0f) {
         let _e240 = n_4;
-        local_12 = normalize(_e240);
+        local_13 = normalize(_e240);
     } else {
-        local_12 = vec3<f32>(0f, 0f, 0f);
+        local_13 = vec3<f32>(0f, 0f, 0f);
     }
-    let _e242 = local_12;
+    let _e242 = local_13;
     r_3.normal = _e242;
     let _e244 = r_3;
     return _e244;

@@ -101,7 +101,11 @@ export function drawnPointIsApproximate(tables, element, st) {
     const c = (S >= half ? 1 : 0) | (T >= half ? 2 : 0), code = cv(at, c);
     if (code === NODE_NONE) break;
     const kind = (code & ~NODE_INDEX) >>> 0, index = code & NODE_INDEX;
-    if (kind === NODE_BASIS) { // a smooth face: bilinear only within 2^-K of its corner
+    if (kind === NODE_BASIS) { // a smooth face: bilinear only within 2^-bands of its corner
+      if (cv(index, 5) > 0) { // below the root: in the quadrant's halved (s, t)
+        S = 2 * S - (c & 1 ? full : 0);
+        T = 2 * T - (c & 2 ? full : 0);
+      }
       const r = cv(index, 1), K = cv(index, 3);
       let a = r === 0 ? S : r === 1 ? T : r === 2 ? full - S : full - T;
       let b = r === 0 ? T : r === 1 ? full - S : r === 2 ? full - T : S;

@@ -204,7 +204,7 @@ export function decodeTables(chunk, mesh, tags) {
   };
   if (Q > Math.floor(r.remaining / 32)) r.fail('irregular face count is too large');
   const irregularFaces = readFaces(Q, 'irregular face', true);
-  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatches, readFaces, compact, programs, depth, levels, Q }) : null;
+  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatches, readFaces, compact, programs, depth, levels, Q, D, version: chunk.version }) : null;
   // The domains tile every ptex face exactly once, or not at all (lib/subdiv/tables_chunk.cpp).
   squares.sort((a, b) => a.ptex - b.ptex);
   for (let first = 0, end = 0; first < squares.length; first = end) {
@@ -254,7 +254,8 @@ export function decodeTables(chunk, mesh, tags) {
 
 // TBLS version 3's irregular-face surface (lib/subdiv/tables_chunk.cpp): sub-patches, quadtree
 // nodes, leaves, per-valence bases, smooth faces and their points, with the C++ reader's checks.
-function readIrregularSurface(r, { readPatches, readFaces, compact, programs, depth, levels, Q }) {
+function readIrregularSurface(r, o) {
+  const { readPatches, readFaces, compact, programs, depth, levels, Q } = o;
   const subs = r.u32('sub-patch count');
   const subPatches = readPatches(subs, 'sub-patch', false);
   const nodes = r.u32('irregular node count');
@@ -313,7 +314,7 @@ function readIrregularSurface(r, { readPatches, readFaces, compact, programs, de
   const points = r.u32('smooth irregular point count');
   let smoothPoints;
   if (programs) {
-    smoothPoints = readSmoothPoints(r, points, levels[depth]);
+    smoothPoints = readSmoothPoints(r, points, levels, depth, o.D);
   } else if (compact) { // differences from the previous point
     const s = new Stream(r, 'smooth irregular points');
     if (points > s.size) s.fail(`count ${points} is too large`);
@@ -323,18 +324,45 @@ function readIrregularSurface(r, { readPatches, readFaces, compact, programs, de
   } else {
     smoothPoints = r.array(Uint32Array, points, 'smooth irregular points');
   }
-  const LN = levels[depth];
-  for (const v of smoothPoints) if (v < LN.first || v >= LN.first + LN.count) r.fail('a smooth irregular point is not at the last level');
   for (const f of smooth) if (f.first + bases[f.basis].support > points) r.fail("a smooth irregular face's points run past the end");
-  // Basis codes name a smooth face, and only roots hold them (all four alike).
+  const below = checkSmoothFaceLevels(r, { codes, nodes, Q, bases, smooth, smoothPoints, levels, depth, D: o.D, version: o.version });
+  return { subPatches, subs, codes, nodes, leaves, bases, smooth, smoothPoints, below };
+}
+
+const isSmoothRoot = (codes, i) => ((codes[4 * i] & ~NODE_INDEX) >>> 0) === NODE_BASIS &&
+  codes[4 * i] === codes[4 * i + 1] && codes[4 * i] === codes[4 * i + 2] && codes[4 * i] === codes[4 * i + 3];
+
+// Smooth faces below level N (version 5; tables_chunk.cpp's checkSmoothFaceLevels): a basis code
+// at a root whose four codes are equal is the root's own smooth face; any other names the smooth
+// face of its quadrant, a level below its node. Each smooth face is named once, has bands left
+// at its level, and its support points are at that level. Returns per smooth face its levels
+// below its irregular face.
+function checkSmoothFaceLevels(r, { codes, nodes, Q, bases, smooth, smoothPoints, levels, depth, D, version }) {
+  const depthOf = new Uint32Array(nodes), levelOf = new Array(smooth.length).fill(-1);
   for (let i = 0; i < nodes; i++) {
+    const root = i < Q && isSmoothRoot(codes, i);
     for (let q = 0; q < 4; q++) {
       const c = codes[4 * i + q];
-      if (c !== NODE_NONE && ((c & ~NODE_INDEX) >>> 0) === NODE_BASIS &&
-        (i >= Q || (c & NODE_INDEX) >= smoothCount || codes[4 * i] !== c || codes[4 * i + 3] !== c)) r.fail(`irregular node ${i} has a bad basis code`);
+      if (c === NODE_NONE) continue;
+      const kind = (c & ~NODE_INDEX) >>> 0, x = c & NODE_INDEX;
+      if (kind === NODE_CHILD) depthOf[x] = depthOf[i] + 1;
+      if (kind !== NODE_BASIS) continue;
+      if (x >= smooth.length) r.fail(`irregular node ${i} has a bad basis code`);
+      if (!root && version < 5) r.fail(`irregular node ${i} has a basis code below a root (version 5)`);
+      const below = root ? 0 : depthOf[i] + 1;
+      if (levelOf[x] !== -1 && !(root && levelOf[x] === depth)) r.fail(`smooth irregular face ${x} is named twice`);
+      if (below && (depth + below >= D || below >= bases[smooth[x].basis].levels)) r.fail(`irregular node ${i} names a smooth face too deep`);
+      levelOf[x] = depth + below;
     }
   }
-  return { subPatches, subs, codes, nodes, leaves, bases, smooth, smoothPoints };
+  return smooth.map((f, i) => {
+    const l = levelOf[i] === -1 ? depth : levelOf[i], L = levels[l];
+    for (let k = 0; k < bases[f.basis].support; k++) {
+      const v = smoothPoints[f.first + k];
+      if (v < L.first || v >= L.first + L.count) r.fail("a smooth irregular point is not at its face's level");
+    }
+    return l - depth;
+  });
 }
 
 // subdivision_draw.cpp's packIrregularQuadtrees: the quadtree codes made absolute indices into
@@ -342,21 +370,25 @@ function readIrregularSurface(r, { readPatches, readFaces, compact, programs, de
 // root node, with no children where the tables have no quadtree.
 function packIrregularQuadtrees(P, Q, irregularFaces, v3) {
   const W = 24;
-  if (!v3) v3 = { subPatches: new Uint32Array(0), subs: 0, codes: new Uint32Array(0), nodes: 0, leaves: new Uint32Array(0), bases: [], smooth: [], smoothPoints: new Uint32Array(0) };
+  if (!v3) v3 = { subPatches: new Uint32Array(0), subs: 0, codes: new Uint32Array(0), nodes: 0, leaves: new Uint32Array(0), bases: [], smooth: [], smoothPoints: new Uint32Array(0), below: [] };
   const nodes = Math.max(Q, v3.nodes);
   const header = [], basisFirst = [];
   let next = P + nodes + v3.subs;
   for (const f of v3.smooth) { header.push(next); next += 1 + Math.ceil(v3.bases[f.basis].support / 16); }
   for (const b of v3.bases) { basisFirst.push(next); next += b.levels * 3 * b.support; }
   const out = new Uint32Array((next - P) * W);
-  const faceOf = new Uint32Array(v3.smooth.length);
+  // Per node its irregular face (children come after their parents); per smooth face the
+  // irregular face whose corner it shares.
+  const faceOf = new Uint32Array(v3.smooth.length), rootOf = new Uint32Array(v3.nodes);
   for (let i = 0; i < nodes; i++) {
     const g = out.subarray(W * i, W * i + 16);
     g.fill(NODE_NONE);
     if (i >= v3.nodes) continue;
+    if (i < Q) rootOf[i] = i;
     for (let q = 0; q < 4; q++) {
       const c = v3.codes[4 * i + q], kind = (c & ~NODE_INDEX) >>> 0, x = c & NODE_INDEX;
-      if (c !== NODE_NONE && kind === NODE_BASIS) faceOf[x] = i;
+      if (c !== NODE_NONE && kind === NODE_CHILD) rootOf[x] = rootOf[i];
+      if (c !== NODE_NONE && kind === NODE_BASIS) faceOf[x] = rootOf[i];
       g[q] = c === NODE_NONE ? NODE_NONE
         : kind === NODE_BASIS ? (NODE_BASIS | header[x]) >>> 0
           : kind === NODE_CHILD ? (NODE_CHILD | (P + x)) >>> 0
@@ -370,7 +402,8 @@ function packIrregularQuadtrees(P, Q, irregularFaces, v3) {
   const of = new Float32Array(out.buffer);
   v3.smooth.forEach((f, i) => {
     const b = v3.bases[f.basis];
-    out.set([b.valence, f.corner, basisFirst[f.basis], b.levels, irregularFaces[8 * faceOf[i] + f.corner]], W * at++);
+    const below = v3.below[i];
+    out.set([b.valence, f.corner, basisFirst[f.basis], Math.max(1, b.levels - below), irregularFaces[8 * faceOf[i] + f.corner], below], W * at++);
     for (let k = 0; k < b.support; k += 16) {
       for (let j = 0; j < 16 && k + j < b.support; j++) out[W * at + j] = v3.smoothPoints[f.first + k + j];
       at++;

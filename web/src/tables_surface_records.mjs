@@ -135,19 +135,29 @@ export function readSmoothFaces(r, count, bases) {
   return faces;
 }
 
-// The smooth points: each a varint c + 3 * zigzag(v - last[c]), c its class at level N (face,
-// edge or vertex points) and last[c] the previous point of that class (the class's first at first).
-export function readSmoothPoints(r, count, levelN) {
+// The smooth points: runs of points at one level N + j (0 <= j < K; below N, the supports of
+// smooth faces in the quadtrees), each a varint j, a varint count >= 1, then per point a varint
+// c + 3 * zigzag(v - last[c]), c its class at that level (face, edge or vertex points) and
+// last[c] the previous point of that class in the run (the class's first at first). `levels`
+// are the chunk's levels 0..D.
+export function readSmoothPoints(r, count, levels, depth, D) {
   const s = new Stream(r, 'smooth irregular points');
   if (count > s.size) s.fail(`count ${count} is too large`);
-  const range = [levelN.first, levelN.first + levelN.facePoints, levelN.first + levelN.facePoints + levelN.edgePoints, levelN.first + levelN.count];
-  const last = range.slice(0, 3);
+  const deepest = Math.min(depth + Math.max(D - depth, 1) - 1, levels.length - 1);
   const points = new Uint32Array(count);
-  for (let i = 0; i < count; i++) {
-    const z = s.varint(), c = z % 3, d = Math.floor(z / 3);
-    const x = last[c] + (d % 2 === 1 ? -(d + 1) / 2 : d / 2);
-    if (!(x >= range[c] && x < range[c + 1])) s.fail('a point is not at the last level');
-    points[i] = last[c] = x;
+  for (let i = 0; i < count;) {
+    const j = s.varint(), n = s.varint();
+    if (j > deepest - depth) s.fail(`a run at level N + ${j} (levels N to N + ${deepest - depth})`);
+    if (n === 0 || n > count - i) s.fail(`a run of ${n} points (${count - i} left)`);
+    const L = levels[depth + j];
+    const range = [L.first, L.first + L.facePoints, L.first + L.facePoints + L.edgePoints, L.first + L.count];
+    const last = range.slice(0, 3);
+    for (const end = i + n; i < end; i++) {
+      const z = s.varint(), c = z % 3, d = Math.floor(z / 3);
+      const x = last[c] + (d % 2 === 1 ? -(d + 1) / 2 : d / 2);
+      if (!(x >= range[c] && x < range[c + 1])) s.fail("a point is not at its run's level");
+      points[i] = last[c] = x;
+    }
   }
   s.finish();
   return points;

@@ -142,6 +142,20 @@ test('--mesh-out writes the bytes limn-render --mesh-out writes', () => {
   assert.match(readFileSync(join(scratch, 'web_mesh_fixed.ply')).toString('latin1', 0, 600), /format ascii 1\.0\n(.|\n)*property float s\n/);
 });
 
+// Smooth faces below level N (TBLS version 5: quadtree nodes naming per-valence basis faces
+// where a semi-sharp crease has decayed, and below faces with two extraordinary corners): the web
+// reader, its GPU records and the WGSL walk draw limn-render's bytes.
+test('--mesh-out on smooth faces below level N writes limn-render\'s bytes', () => {
+  const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
+  const limn = container('osd/catmark/catmark_pyramid_creases0.obj', { depth: 2 });
+  const native = join(scratch, 'nested_native.ply'), web = join(scratch, 'nested_web.ply');
+  const args = ['--size', '160x120', '--mesh-out'];
+  execFileSync(tool('limn-render'), [limn, ...args, native, '-o', join(scratch, 'nested_native.png')], { env, stdio: 'ignore' });
+  const r = spawnSync(process.execPath, [cli, limn, ...args, web, '-o', join(scratch, 'nested_web.png')], { encoding: 'utf8', timeout: 120000, env });
+  assert.equal(r.status, 0, r.stderr);
+  assert.ok(readFileSync(web).equals(readFileSync(native)), 'the bytes differ from limn-render\'s');
+});
+
 // A binary --mesh-out PLY's vertices (11 floats: x y z nx ny nz, ptex bits, u v s t) and triangles.
 function readDrawnPly(bytes) {
   const end = bytes.indexOf('end_header\n') + 'end_header\n'.length, header = bytes.toString('latin1', 0, end);

@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { loadLimn } from '../src/chunks.mjs';
 import { ByteReader, LimnError, parseContainer } from '../src/container.mjs';
-import { readBasisProgram, readNodeStream } from '../src/tables_surface_records.mjs';
+import { readBasisProgram, readNodeStream, readSmoothPoints } from '../src/tables_surface_records.mjs';
 import { join } from 'node:path';
 import { container, read, repo } from './support.mjs';
 
@@ -341,4 +341,25 @@ test('FVSF: smooth faces with a count, valence, program, support or weight out o
     [faces, 0xffffffff, /smooth face count is too large/],
     [faces + 8, 0x10101010, /smooth face 0 has no basis of its valence/],
   ]) expectLimnError(patched(offset, word), new RegExp(`^chunk FVSF: ${message.source}`));
+});
+
+// TBLS v5's smooth points come in runs, each at one level N + j (the supports of smooth faces
+// below level N at theirs): a run at level N + K or deeper, one of no points or of more than are
+// left, and a point outside its run's level are refused by name, as the C++ reader refuses them.
+test('TBLS v5: hostile smooth-point runs are refused', () => {
+  const level = (first) => ({ first, facePoints: 4, edgePoints: 8, vertexPoints: 4, count: 16 });
+  const levels = [level(0), level(16), level(32), level(48)]; // N = 1, K = 2: runs at levels 1 and 2
+  const read = (bytes, count = 2) => {
+    const out = new Uint8Array(4 + Math.ceil(bytes.length / 4) * 4);
+    new DataView(out.buffer).setUint32(0, bytes.length, true);
+    out.set(bytes, 4);
+    return readSmoothPoints(new ByteReader(out, 'chunk TBLS'), count, levels, 1, 3);
+  };
+  const refused = (f, why) => assert.throws(f, (e) => e instanceof LimnError && why.test(e.message));
+  // Level 1's first face point, then level 2's second edge point (class 1, +1 from its first).
+  assert.deepEqual([...read([0, 1, 0, 1, 1, 1 + 3 * 2])], [16, 32 + 4 + 1]);
+  refused(() => read([2, 1, 0, 0, 1, 0]), /a run at level N \+ 2 \(levels N to N \+ 1\)/);
+  refused(() => read([0, 0]), /a run of 0 points \(2 left\)/);
+  refused(() => read([0, 3, 0, 0, 0]), /a run of 3 points \(2 left\)/);
+  refused(() => read([1, 2, 2, 2 + 3 * 8]), /a point is not at its run's level/); // vertex points: 4
 });

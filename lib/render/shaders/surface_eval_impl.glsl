@@ -54,9 +54,9 @@ void patchPoint(Patch pt, float s, float t, out vec3 P, out vec3 n) {
 
 // A smooth irregular face's band-k sub-patch in quadrant q at local (s, t) (lib/subdiv/
 // irregular_basis.h): its 16 control points from the per-valence weights (header record h:
-// valence, corner, the basis's first record, K, the corner's limit point; then the support
-// points, 16 a record; the basis: per band and quadrant, per support point a record of 16
-// weights).
+// valence, corner, the basis's first record, its bands, the corner's limit point, its levels
+// below its irregular face; then the support points, 16 a record; the basis: per band and
+// quadrant, per support point a record of 16 weights).
 void basisPatchPoint(uint h, uint k, uint q, float s, float t, out vec3 P, out vec3 n) {
     Patch hd = patches.p[h];
     uint M = 2u * hd.cv[0] + 8u;
@@ -147,12 +147,17 @@ void irregularPoint(uint face, uint st, uint patchCount, out vec3 P, out vec3 n)
         uint c = (S >= 16384u ? 1u : 0u) | (T >= 16384u ? 2u : 0u);
         uint code = patches.p[node].cv[c];
         if (code == IRREGULAR_NONE) break;
-        if ((code & IRREGULAR_KIND) == IRREGULAR_BASIS) { // only at the root
-            smoothPoint(code & ~IRREGULAR_KIND, st, P, n);
+        uint halvedS = 2u * S - ((c & 1u) != 0u ? 32768u : 0u);
+        uint halvedT = 2u * T - ((c & 2u) != 0u ? 32768u : 0u);
+        if ((code & IRREGULAR_KIND) == IRREGULAR_BASIS) {
+            // A root that is a smooth face reads its own (s, t); a smooth face below a node (a
+            // decayed crease) the quadrant's.
+            uint h = code & ~IRREGULAR_KIND;
+            smoothPoint(h, patches.p[h].cv[5] == 0u ? (S | T << 16) : (halvedS | halvedT << 16), P, n);
             return;
         }
-        S = 2u * S - ((c & 1u) != 0u ? 32768u : 0u);
-        T = 2u * T - ((c & 2u) != 0u ? 32768u : 0u);
+        S = halvedS;
+        T = halvedT;
         uint kind = code & IRREGULAR_KIND, index = code & ~IRREGULAR_KIND;
         if (kind == IRREGULAR_SUBPATCH) {
             patchPoint(patches.p[index], float(S) / 32768.0, float(T) / 32768.0, P, n);

@@ -152,10 +152,15 @@ void main() {
             }
             if (all == 0u && betweenSamples(P, 16u)) all = 128u;
         }
-    } else if ((patches.p[e].cv[0] & IRREGULAR_KIND) == IRREGULAR_BASIS && patches.p[e].cv[0] != IRREGULAR_NONE) {
+    } else if ((patches.p[e].cv[0] & IRREGULAR_KIND) == IRREGULAR_BASIS && patches.p[e].cv[0] != IRREGULAR_NONE &&
+               patches.p[e].cv[1] == patches.p[e].cv[0] && patches.p[e].cv[2] == patches.p[e].cv[0] &&
+               patches.p[e].cv[3] == patches.p[e].cv[0]) {
         // A face on a per-valence basis: the hull of its support (the header's cv[0] is the
         // valence n, the support's 2n + 8 indices follow it, surface_eval_impl.glsl
         // basisPatchPoint). The facing test would need its sub-patches' derivative cones: not made.
+        // Only a root of four equal basis codes is such a face: a basis code in one quadrant
+        // alone is a smooth face below level N (a decayed crease), whose hull bounds that
+        // quadrant, not the face.
         uint h = patches.p[e].cv[0] & ~IRREGULAR_KIND, M = 2u * patches.p[h].cv[0] + 8u;
         vec2 lo = vec2(1e30), hi = vec2(-1e30);
         bool boxed = ((pc.enabled >> 8) & 0xFFu) != 0u;
