@@ -63,6 +63,8 @@ what is not listed is not supported here. IN.limn: - (the default) is standard i
                           JSON fields on stdout (gpu_ms.total from timestamp queries, null
                           without them; cpu_ms the host's frame: record, submit, wait) and
                           js_ms, the JavaScript of the frame's recording and submission
+  -q, --quiet             silence limn's warnings, as limn-render's -q (Dawn's own notes about
+                          the adapter's limits are Dawn's, printed by it)
   --help, --version
 Smooth face-varying UVs (TAGS fvar other than "all") are drawn, and displaced, from the
 container's FVSF chunk (limn-tables writes it). Not supported here yet: BLND (blending
@@ -105,6 +107,7 @@ function parseArgs(argv) {
     switch (a) {
       case '--help': case '-h': o.help = true; break;
       case '--version': o.version = true; break;
+      case '-q': case '--quiet': o.quiet = true; break;
       case '-o': case '--output': o.output = value(); break;
       case '--mesh-out': o.meshOut = value(); break;
       case '--mesh-ascii': o.meshAscii = true; break;
@@ -180,7 +183,7 @@ const linearToSrgb = (c) => { c = Math.min(Math.max(c, 0), 1); return c <= 0.003
 // tools/render/input.cpp: the maps, and a MATL chunk's base colour (factor and texture).
 function applyMaps(o, surface) {
   const s = o.settings;
-  if (!o.displace && (o.displaceScale !== undefined || o.displaceMid !== undefined || o.noSeamFix)) {
+  if (!o.displace && !o.quiet && (o.displaceScale !== undefined || o.displaceMid !== undefined || o.noSeamFix)) {
     process.stderr.write(`${TOOL}: warning: --displace-scale, --displace-mid and --no-seam-fix shape the --displace map; without --displace they do nothing\n`);
   }
   if (o.displace) {
@@ -208,7 +211,7 @@ function applyMaps(o, surface) {
         s.texture = decodePngImage(m.texture, 'the MATL base colour texture');
         s.shade = 'texture';
       } catch (e) {
-        process.stderr.write(`${TOOL}: warning: ${inputName}: the base colour texture cannot be read (${e.detail ?? e.message}); drawing the base colour factor instead\n`);
+        if (!o.quiet) process.stderr.write(`${TOOL}: warning: ${inputName}: the base colour texture cannot be read (${e.detail ?? e.message}); drawing the base colour factor instead\n`);
       }
     }
   }

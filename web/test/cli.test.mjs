@@ -40,6 +40,18 @@ test('usage errors exit 2', () => {
   assert.equal(run('--help').status, 0);
 });
 
+test('-q silences limn\'s warnings, as limn-render -q does', () => {
+  const input = container('quad/osd_catmark_fvar_bound1.obj', { depth: 1 });
+  const out = join(scratch, 'quiet.png');
+  const loud = run(input, '--size', '16x12', '--displace-scale', '2', '-o', out);
+  assert.equal(loud.status, 0, loud.stderr);
+  assert.match(loud.stderr, /limn-web-render: warning: --displace-scale/);
+  const quiet = run(input, '--size', '16x12', '--displace-scale', '2', '-q', '-o', out);
+  assert.equal(quiet.status, 0, quiet.stderr);
+  assert.doesNotMatch(quiet.stderr, /limn-web-render: warning/);
+  rmSync(out, { force: true });
+});
+
 test('damaged containers exit 1 naming the chunk, and leave no output', () => {
   const bytes = readFileSync(container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, seams: true }));
   const out = join(scratch, 'damaged.png');
