@@ -5,6 +5,7 @@
 #include "blend/blend_surface.h"
 #include "render/blend_pass.h"
 #include "render/control_mesh_pass.h"
+#include "render/gpu_origin.h"
 #include "render/adaptive/adaptive_options.h"
 #include "render/subdivision_pass.h"
 #include "subdiv/evaluate.h"
@@ -135,26 +136,6 @@ void Renderer::checkImageSize(const gpu::Context& ctx) {
                         cli::formatBytes(budget) +
                         " allowed (--max-memory); lower --size, --samples or --supersample");
 }
-
-namespace {
-
-// Where the GPU's coordinates are centred: the middle of the control points' box. Float carries
-// 24 bits of a coordinate, so a small face far from the origin loses its small differences
-// (the rook sits 3.4 from the origin with a diagonal of 0.87: its normals were up to 0.44 degrees
-// off in float, where limn's double evaluation is on OpenSubdiv's to the last digit; a model a
-// thousand units out had its points 3e-5 of its diagonal off). Relative to the box's middle the
-// coordinates are at most half the diagonal. The same expression as the web runtime's, so both
-// upload the same bits. Only for the subdivision surface: the control mesh is drawn flat at its
-// own points, which --mesh-out gives back exactly (a shifted point plus the shift is not always
-// the point in float).
-glm::dvec3 renderOrigin(const Mesh& mesh) {
-    if (mesh.positions.empty()) return glm::dvec3(0.0);
-    glm::dvec3 lo = mesh.positions[0], hi = mesh.positions[0];
-    for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    return (lo + hi) * 0.5;
-}
-
-} // namespace
 
 Renderer::Renderer(gpu::Context& ctx, const Mesh& mesh, const Tables* tables,
                    const RenderSettings& settings)
@@ -327,12 +308,7 @@ void Renderer::recordUpload() {
 }
 
 glm::dmat4 Renderer::gpuViewProjection(double aspect) const {
-    // viewProjection * translate(origin_), written out term by term in the order the web
-    // runtime's renderer.mjs uses, so that both round the same doubles to float.
-    glm::dmat4 vp = camera_.viewProjection(aspect);
-    for (int r = 0; r < 4; ++r)
-        vp[3][r] = ((vp[3][r] + vp[0][r] * origin_.x) + vp[1][r] * origin_.y) + vp[2][r] * origin_.z;
-    return vp;
+    return translatedViewProjection(camera_.viewProjection(aspect), origin_);
 }
 
 void Renderer::recordCompute() {

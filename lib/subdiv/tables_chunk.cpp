@@ -25,49 +25,6 @@ bool isDyadic(float x, uint32_t maxDepth) {
     return std::isfinite(x) && scaled == std::floor(scaled);
 }
 
-// Smooth faces below level N (version 5). A basis code at a root whose four codes are equal is
-// the root's own smooth face (level N); any other names the smooth face of its quadrant, a
-// level below its node. Returns what is wrong with the codes and the smooth faces' levels,
-// or an empty string: each smooth face named once, its basis bands left at its level (at least
-// one), its support points all at its level; before version 5 only roots hold basis codes.
-// The code walks are bounded: children come after their parents (checked before).
-std::string checkSmoothFaceLevels(const Tables& t, uint32_t version) {
-    const uint32_t I = static_cast<uint32_t>(t.irregular.size()), nodes = static_cast<uint32_t>(t.irregularNodes.size());
-    const uint32_t N = t.depth, D = t.depth + t.irregularLevels;
-    std::vector<uint32_t> depth(nodes, 0), levelOf(t.smoothIrregular.size(), kNone);
-    for (uint32_t i = 0; i < nodes; ++i) {
-        const auto& node = t.irregularNodes[i];
-        const bool root = i < I && smoothRoot(node);
-        for (uint32_t c : node) {
-            if (c == kNodeNone) continue;
-            const uint32_t kind = c & ~kNodeIndexMask, x = c & kNodeIndexMask;
-            if (kind == kNodeChild) depth[x] = depth[i] + 1;
-            if (kind != kNodeBasis) continue;
-            if (x >= t.smoothIrregular.size()) return "irregular node " + std::to_string(i) + " has a bad basis code";
-            if (!root && version < 5)
-                return "irregular node " + std::to_string(i) + " has a basis code below a root (version 5)";
-            const uint32_t below = root ? 0 : depth[i] + 1; // levels below the irregular face
-            if (levelOf[x] != kNone && !(root && levelOf[x] == N))
-                return "smooth irregular face " + std::to_string(x) + " is named twice";
-            const IrregularBasis& b = t.irregularBases[t.smoothIrregular[x].basis];
-            if (below && (N + below >= D || below >= b.levels))
-                return "irregular node " + std::to_string(i) + " names a smooth face too deep";
-            levelOf[x] = N + below;
-        }
-    }
-    for (size_t i = 0; i < t.smoothIrregular.size(); ++i) {
-        const auto& f = t.smoothIrregular[i];
-        const uint32_t l = levelOf[i] == kNone ? N : levelOf[i];
-        const LevelInfo& L = t.levels[l];
-        for (uint32_t k = 0; k < t.irregularBases[f.basis].supportSize(); ++k) {
-            const uint32_t v = t.smoothPoints[f.first + k];
-            if (v < L.first || v >= L.first + L.count())
-                return "a smooth irregular point is not at its face's level";
-        }
-    }
-    return {};
-}
-
 } // namespace
 
 uint32_t ptexFaceCount(const Mesh& mesh) {

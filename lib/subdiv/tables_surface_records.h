@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace limn {
@@ -44,5 +45,11 @@ std::vector<Tables::SmoothIrregular> readSmoothFaces(ByteReader& r, uint32_t cou
 void writeSmoothPoints(ByteWriter& w, const Tables& t);
 // `t` holds the header and levels read so far.
 std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const Tables& t);
+
+// Smooth faces below level N (version 5): what is wrong with the quadtree's basis codes and the
+// smooth faces' levels (each named once, a band left at its level, its support points at its
+// level; before version 5 only roots hold basis codes), or an empty string. Called by the TBLS
+// reader once the nodes' kinds and indices are checked and children come after their parents.
+std::string checkSmoothFaceLevels(const Tables& t, uint32_t version);
 
 } // namespace limn

@@ -166,7 +166,7 @@ const SweepCase kSweep[] = {
     {"osd/catmark/catmark_pole360.obj", 3, "64x64", true, false},
     // A model far from the origin (scenes exported with their placement baked in): float keeps
     // 24 bits of a coordinate near 300, so the GPU works relative to the middle of the control
-    // points' box (renderer.cpp, renderOrigin). In model coordinates (this view, 320x240, d2),
+    // points' box (lib/render/gpu_origin.h). In model coordinates (this view, 320x240, d2),
     // 3,767 vertices were off, up to 3.1e-5 of the diagonal and 0.15 degrees; relative to the
     // middle, 5.6e-6 (the PLY's own float at 300) and 0.0005 degrees. (At 1000 the PLY's float
     // alone is 1.1e-5 of spot's diagonal, past the 1e-5 asked.)

@@ -29,7 +29,7 @@ const DEFAULT_BASE = 0.8;
 const srgbToLinear = (c) => (c <= 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4));
 /**
  * Where the GPU's coordinates are centred: the middle of the control points' box, as
- * renderer.cpp's renderOrigin (why there: float keeps 24 bits of a coordinate, and a small face
+ * lib/render/gpu_origin.h's renderOrigin (why there: float keeps 24 bits of a coordinate, and a small face
  * far from the origin lost its small differences). The same expression, so both upload the same
  * bits.
  */
@@ -46,7 +46,7 @@ export function renderOrigin(positions) {
 }
 
 /**
- * viewProj * translate(origin), column-major: term by term in renderer.cpp's gpuViewProjection
+ * viewProj * translate(origin), column-major: term by term in gpu_origin.h's translatedViewProjection
  * order, so both round the same doubles to float.
  */
 function translated(vp, o) {
