@@ -33,15 +33,7 @@ FaceVaryingSurface::Gpu expandSmoothFaces(FaceVaryingSurface::Gpu g) {
     auto insert = [&](uint32_t node, uint32_t level, double s0, double t0, uint32_t e) {
         const uint32_t i = uint32_t(std::lround(std::ldexp(s0, int(level))));
         const uint32_t j = uint32_t(std::lround(std::ldexp(t0, int(level))));
-        for (uint32_t l = 0; l < level; ++l) {
-            if (g.nodes[node] == 0xFFFFFFFFu) {
-                g.nodes[node] = static_cast<uint32_t>(g.nodes.size());
-                g.nodes.insert(g.nodes.end(), 4, 0xFFFFFFFFu);
-            }
-            const uint32_t shift = level - 1 - l;
-            node = g.nodes[node] + ((i >> shift) & 1u) + 2 * ((j >> shift) & 1u);
-        }
-        g.nodes[node] = 0x80000000u | e;
+        g.nodes[fvarQuadtreeCell(g.nodes, node, level, i, j)] = 0x80000000u | e;
     };
     for (const FaceVaryingSurface::SmoothFace& f : g.smoothFaces) {
         const auto basis = std::find_if(g.bases.begin(), g.bases.end(), [&](const Basis& b) { return b.valence == f.valence; });

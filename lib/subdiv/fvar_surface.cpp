@@ -163,6 +163,18 @@ Mesh faceVaryingMesh(const Mesh& mesh, const SchemeOptions& o) {
     return uv;
 }
 
+uint32_t fvarQuadtreeCell(std::vector<uint32_t>& nodes, uint32_t node, uint32_t levels, uint32_t i, uint32_t j) {
+    for (uint32_t level = 0; level < levels; ++level) { // descend, splitting leaves-to-be
+        if (nodes[node] == 0xFFFFFFFFu) {
+            nodes[node] = static_cast<uint32_t>(nodes.size());
+            nodes.insert(nodes.end(), 4, 0xFFFFFFFFu);
+        }
+        const uint32_t shift = levels - 1 - level;
+        node = nodes[node] + ((i >> shift) & 1u) + 2 * ((j >> shift) & 1u);
+    }
+    return node;
+}
+
 namespace {
 
 uint64_t cellKey(uint32_t ptex, uint32_t k, uint32_t i, uint32_t j) {
@@ -308,15 +320,7 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
         const uint32_t k = sizeExponent(size);
         const uint32_t i = uint32_t(std::lround(u0 * std::ldexp(1.0, int(k))));
         const uint32_t j = uint32_t(std::lround(v0 * std::ldexp(1.0, int(k))));
-        uint32_t node = ptex;
-        for (uint32_t level = 0; level < k; ++level) { // descend, splitting leaves-to-be
-            if (g.nodes[node] == 0xFFFFFFFFu) {
-                g.nodes[node] = static_cast<uint32_t>(g.nodes.size());
-                g.nodes.insert(g.nodes.end(), 4, 0xFFFFFFFFu);
-            }
-            const uint32_t shift = k - 1 - level;
-            node = g.nodes[node] + ((i >> shift) & 1u) + 2 * ((j >> shift) & 1u);
-        }
+        const uint32_t node = fvarQuadtreeCell(g.nodes, ptex, k, i, j);
         g.nodes[node] = 0x80000000u | e;
         return node;
     };

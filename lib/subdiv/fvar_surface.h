@@ -114,4 +114,9 @@ class FaceVaryingSurface {
 // children of the smooth face's node. Every smooth face must be named by its node.
 FaceVaryingSurface::Gpu expandSmoothFaces(FaceVaryingSurface::Gpu compact);
 
+// The GPU quadtree's cell (i, j) `levels` below `node` (FaceVaryingSurface::Gpu::nodes: a node
+// holds the index of its four children, 0xFFFFFFFF none yet), its nodes made on the way down:
+// where the records' builder and the readers' expansion of smooth faces put an element.
+uint32_t fvarQuadtreeCell(std::vector<uint32_t>& nodes, uint32_t node, uint32_t levels, uint32_t i, uint32_t j);
+
 } // namespace limn
