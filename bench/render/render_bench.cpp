@@ -24,7 +24,9 @@
 // Per configuration: covered pixels,
 // drawn triangles (after culling, from the GPU) and triangles per covered pixel, vertices
 // evaluated, buffer bytes, compute/draw/frame GPU ms, cpu_ms of a still camera and with the
-// camera orbiting DEG degrees per frame (default 2).
+// camera orbiting DEG degrees per frame (default 2; 0: no orbiting run), and process_cpu_ms: the CPU
+// time of all threads a still frame (steadier than wall time on a shared machine; instructions,
+// steadier still: bench/render/frame_instructions.sh).
 #include "render_bench.h"
 
 #include "bake/heightmap.h"

@@ -30,6 +30,17 @@
 #include <string>
 #include <vector>
 
+#include <time.h>
+
+// Under `valgrind --tool=callgrind --instr-atstart=no` (bench/render/frame_instructions.sh) each
+// configuration's measured frames are counted alone and dumped under its label: instructions
+// are the one measure of a frame that a shared machine's load does not move. Without valgrind
+// the requests are a few no-op instructions; without its header, nothing.
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define LIMN_CALLGRIND 1
+#endif
+
 namespace limn::render_bench {
 
 namespace {
@@ -43,9 +54,18 @@ struct ViewConfig {
     const Mesh* mesh = nullptr;
     std::shared_ptr<Tables> built;
     std::string skipped;
-    std::vector<double> frame, compute, draw, cpu, cpuOrbit;
+    std::vector<double> frame, compute, draw, cpu, cpuOrbit, processCpu;
     uint64_t triangles = 0, vertices = 0, bufferBytes = 0, covered = 0;
 };
+
+// CPU time of every thread of this process (the main thread's vertex stage and compute passes,
+// lavapipe's rasterizer threads), in ms: unlike wall time it does not count the time other
+// processes hold the cores, so it is the steadier frame cost on a shared machine.
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
 
 } // namespace
 
@@ -123,7 +143,20 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
             if (c.eye) s.view.eye = c.eye, s.view.target = glm::dvec3(0.0);
             try {
                 render::Renderer r(ctx, *c.mesh, c.built.get(), s);
-                render::BenchResult still = render::runBenchmark(r, o.frames, 2);
+                for (int i = 0; i < 2; ++i) r.renderFrame(); // shader compilation, caches
+                const double cpuStart = processCpuMs();
+#ifdef LIMN_CALLGRIND
+                CALLGRIND_ZERO_STATS;
+                CALLGRIND_START_INSTRUMENTATION;
+#endif
+                render::BenchResult still = render::runBenchmark(r, o.frames, 0);
+#ifdef LIMN_CALLGRIND
+                CALLGRIND_STOP_INSTRUMENTATION;
+                const std::string label = "frames " + c.model + " " + c.tables + " " + std::to_string(c.depth) +
+                                          " " + std::to_string(round);
+                CALLGRIND_DUMP_STATS_AT(label.c_str());
+#endif
+                c.processCpu.push_back((processCpuMs() - cpuStart) / o.frames);
                 c.triangles = r.triangleCount();
                 c.vertices = r.verticesEvaluated();
                 c.bufferBytes = r.bufferBytes();
@@ -138,8 +171,8 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
                 c.compute.push_back(still.computeMs);
                 c.draw.push_back(still.drawMs);
                 c.cpu.push_back(still.cpuMs);
-                render::BenchResult moving = render::runBenchmark(r, o.frames, 0, orbitDeg);
-                c.cpuOrbit.push_back(moving.cpuMs);
+                // --orbit 0: no orbiting run (frame_instructions.sh, where each frame is slow).
+                c.cpuOrbit.push_back(orbitDeg == 0 ? still.cpuMs : render::runBenchmark(r, o.frames, 0, orbitDeg).cpuMs);
             } catch (const Error& e) {
                 c.skipped = e.what();
             }
@@ -161,11 +194,12 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
                     "\"tables\":\"%s\",\"depth\":%d,\"edge_pixels\":%g,\"covered_pixels\":%llu,"
                     "\"triangles\":%llu,\"triangles_per_covered_pixel\":%.4f,\"vertices_evaluated\":%llu,"
                     "\"buffer_bytes\":%llu,\"compute_ms\":%.3f,\"draw_ms\":%.3f,\"frame_ms\":%.3f,"
-                    "\"cpu_ms\":%.3f,\"cpu_ms_orbit\":%.3f,\"orbit_deg\":%g}\n",
+                    "\"cpu_ms\":%.3f,\"cpu_ms_orbit\":%.3f,\"orbit_deg\":%g,\"process_cpu_ms\":%.3f}\n",
                     c.model.c_str(), c.width, c.height, c.tables.c_str(), c.depth, c.edgePixels,
                     (unsigned long long)c.covered, (unsigned long long)c.triangles, perPixel,
                     (unsigned long long)c.vertices, (unsigned long long)c.bufferBytes, median(c.compute),
-                    median(c.draw), median(c.frame), median(c.cpu), median(c.cpuOrbit), orbitDeg);
+                    median(c.draw), median(c.frame), median(c.cpu), median(c.cpuOrbit), orbitDeg,
+                    median(c.processCpu));
         std::fprintf(stderr, "| %s | %ux%u | %s | %d | %g | %llu | %llu | %.3f | %llu | %.1f | %.1f / %.1f / %.1f | %.1f / %.1f |\n",
                      c.model.c_str(), c.width, c.height, c.tables.c_str(), c.depth, c.edgePixels,
                      (unsigned long long)c.covered, (unsigned long long)c.triangles, perPixel,
@@ -190,11 +224,14 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
             if (a.tables == "adaptive" && b.tables == "bilinear" && a.model == b.model && a.depth == b.depth &&
                 a.skipped.empty() && b.skipped.empty()) {
                 std::printf("{\"bench\":\"irregular_surface_ratio\",\"model\":\"%s\",\"depth\":%d,"
-                            "\"frame_over_bilinear\":%.4f,\"triangles_over_bilinear\":%.4f}\n",
+                            "\"frame_over_bilinear\":%.4f,\"process_cpu_over_bilinear\":%.4f,"
+                            "\"triangles_over_bilinear\":%.4f}\n",
                             a.model.c_str(), a.depth, median(a.frame) / median(b.frame),
+                            median(a.processCpu) / median(b.processCpu),
                             double(a.triangles) / double(std::max<uint64_t>(b.triangles, 1)));
-                std::fprintf(stderr, "%s depth %d: irregular surface / bilinear frame %.3f, triangles %.3f\n",
+                std::fprintf(stderr, "%s depth %d: irregular surface / bilinear frame %.3f, process CPU %.3f, triangles %.3f\n",
                              a.model.c_str(), a.depth, median(a.frame) / median(b.frame),
+                             median(a.processCpu) / median(b.processCpu),
                              double(a.triangles) / double(std::max<uint64_t>(b.triangles, 1)));
             }
     std::fprintf(stderr, "\ndevice: %s; %d rounds x %d frames; %u sample(s) a pixel; orbit %g deg/frame\n",
