@@ -27,7 +27,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 bench=${LIMN_BIN:-$root/build/bin}/bench_render
-frames=2 repeats=1 keep= limit=3600
+frames=2 repeats=1 keep='' limit=3600
 while getopts "f:r:b:k:t:" o; do
   case $o in f) frames=$OPTARG ;; r) repeats=$OPTARG ;; b) bench=$OPTARG ;; k) keep=$OPTARG ;;
     t) limit=$OPTARG ;; *) echo "usage: $0 [-f FRAMES] [-r REPEATS] [-b BENCH_RENDER] [-k DIR] [-t S] [-- ARGS]" >&2; exit 2 ;;
