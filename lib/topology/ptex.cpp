@@ -30,6 +30,8 @@ PtexMap::PtexMap(const Mesh& mesh, const Topology& topo, uint32_t resolution)
     }
 }
 
+bool PtexMap::isBaseVertexKey(uint64_t key) { return key >> 61 == kVertex; }
+
 uint64_t PtexMap::onEdge(uint32_t a, uint32_t b, uint32_t t) const {
     if (t == 0) return makeKey(kVertex, a, 0, 0);
     if (t == 2 * R_) return makeKey(kVertex, b, 0, 0);

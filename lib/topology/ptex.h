@@ -27,6 +27,8 @@ class PtexMap {
     // A 64-bit key equal for equal surface points: base vertex, base edge + position along it,
     // n-gon spoke + position, n-gon centroid, or a point inside a ptex face.
     uint64_t key(uint32_t ptex, uint32_t U, uint32_t V) const;
+    // Whether a key names a base vertex (whose charts are every face around it).
+    static bool isBaseVertexKey(uint64_t key);
 
     // The UV of the point in each base face that contains it (its face-varying chart, refined
     // linearly: bilinear in quads, in n-gon sub-faces through edge midpoints and the centroid),
