@@ -48,13 +48,14 @@ class PtexMap {
         int32_t sub;
     };
     uint64_t onEdge(uint32_t a, uint32_t b, uint32_t t) const;
-    glm::dvec2 faceUV(uint32_t face, uint32_t vertex) const; // UV of a vertex in a face's chart
+    glm::dvec2 cornerUV(uint32_t halfedge) const; // UV of a face corner (a halfedge's start)
 
     const Mesh& mesh_;
     const Topology& topo_;
     uint32_t R_;
     std::vector<PtexFace> ptex_;
     std::vector<uint32_t> firstPtex_; // per base face
+    std::vector<glm::dvec2> centroidUV_; // per base face: an n-gon's UV centroid (with UVs)
 };
 
 } // namespace limn
