@@ -22,6 +22,10 @@ namespace limn {
 
 inline constexpr FourCC kSeamsChunk{"SEAM"};
 
+// The most distinct UVs one point may have in the faces around it (a vertex with a UV seam
+// between each pair of its faces): what the readers accept for a corner.
+inline constexpr uint32_t kMaxPointUVs = 4096;
+
 struct ElementSeams {
     glm::vec2 own[4];           // the element's corners in its own face's chart
     uint32_t cornerFirst[4];    // corner k: distinct UVs of the point in every face around it
@@ -36,7 +40,8 @@ struct Seams {
     std::vector<glm::vec2> uvs;
 };
 
-// Throws Error(BadInput) if the mesh has no UVs.
+// Throws Error(BadInput) if the mesh has no UVs, a vertex has more than kMaxPointUVs distinct
+// UVs, or the UVs would pass one 128 MiB GPU storage buffer.
 Seams computeSeams(const Mesh& mesh, const Tables& tables, uint64_t sourceHash);
 
 // The hash computeSeams records, from the container's chunks.

@@ -28,7 +28,21 @@ PtexMap::PtexMap(const Mesh& mesh, const Topology& topo, uint32_t resolution)
         else
             for (uint32_t k = 0; k < n; ++k) ptex_.push_back({f, int32_t(k)});
     }
+    // Each n-gon's UV centroid once: every point of its n sub-faces uses it, so summing it per
+    // point made an n-gon of thousands of sides cost its square.
+    if (mesh.hasUVs()) {
+        centroidUV_.resize(mesh.faceCount());
+        for (uint32_t f = 0; f < mesh.faceCount(); ++f) {
+            const auto uvi = mesh.faceUVs(f);
+            if (uvi.size() == 4) continue;
+            glm::dvec2 sum(0.0);
+            for (uint32_t i : uvi) sum += mesh.uvs[i];
+            centroidUV_[f] = sum / double(uvi.size());
+        }
+    }
 }
+
+bool PtexMap::isBaseVertexKey(uint64_t key) { return key >> 61 == kVertex; }
 
 uint64_t PtexMap::onEdge(uint32_t a, uint32_t b, uint32_t t) const {
     if (t == 0) return makeKey(kVertex, a, 0, 0);
@@ -57,12 +71,7 @@ uint64_t PtexMap::key(uint32_t p, uint32_t U, uint32_t V) const {
     return makeKey(kSpoke, pf.face, (k + n - 1) % n, U); // mid(k-1, k) -> centre
 }
 
-glm::dvec2 PtexMap::faceUV(uint32_t face, uint32_t vertex) const {
-    auto fv = mesh_.face(face);
-    for (size_t i = 0; i < fv.size(); ++i)
-        if (fv[i] == vertex) return mesh_.uvs[mesh_.faceUVs(face)[i]];
-    return {0, 0};
-}
+glm::dvec2 PtexMap::cornerUV(uint32_t h) const { return mesh_.uvs[mesh_.uvIndices[h]]; }
 
 glm::dvec2 PtexMap::ownUV(uint32_t p, double u, double v) const {
     const PtexFace pf = ptex_[p];
@@ -73,11 +82,9 @@ glm::dvec2 PtexMap::ownUV(uint32_t p, double u, double v) const {
         for (int i = 0; i < 4; ++i) c[i] = mesh_.uvs[uvi[i]];
     } else {
         const uint32_t k = uint32_t(pf.sub);
-        glm::dvec2 centroid(0.0);
-        for (uint32_t i = 0; i < n; ++i) centroid += mesh_.uvs[uvi[i]];
         c[0] = mesh_.uvs[uvi[k]];
         c[1] = 0.5 * (mesh_.uvs[uvi[k]] + mesh_.uvs[uvi[(k + 1) % n]]);
-        c[2] = centroid / double(n);
+        c[2] = centroidUV_[pf.face];
         c[3] = 0.5 * (mesh_.uvs[uvi[(k + n - 1) % n]] + mesh_.uvs[uvi[k]]);
     }
     return bilinear(c, u, v);
@@ -116,15 +123,16 @@ void PtexMap::charts(uint32_t p, uint32_t U, uint32_t V, std::vector<ChartUV>& o
     }
     if (t == 0 || t == 1) { // a base vertex: every face around it
         uint32_t vtx = t == 0 ? a : b;
-        for (uint32_t h : topo_.vertexOutgoing(vtx))
-            out.push_back({topo_.face(h), faceUV(topo_.face(h), vtx)});
+        for (uint32_t h : topo_.vertexOutgoing(vtx)) out.push_back({topo_.face(h), cornerUV(h)});
     } else { // a base edge: its one or two faces
         uint32_t e = topo_.findEdge(a, b);
         uint32_t h = topo_.edgeHalfedge(e);
         for (uint32_t hh : {h, topo_.twin(h)}) {
             if (hh == kNone) continue;
-            uint32_t f = topo_.face(hh);
-            out.push_back({f, (1 - t) * faceUV(f, a) + t * faceUV(f, b)});
+            // hh runs from one end to the other in its face: the corners of a and b there.
+            const bool fromA = topo_.vertex(hh) == a;
+            const glm::dvec2 uvA = cornerUV(fromA ? hh : topo_.next(hh)), uvB = cornerUV(fromA ? topo_.next(hh) : hh);
+            out.push_back({topo_.face(hh), (1 - t) * uvA + t * uvB});
         }
     }
     std::sort(out.begin(), out.end(),

@@ -27,6 +27,8 @@ class PtexMap {
     // A 64-bit key equal for equal surface points: base vertex, base edge + position along it,
     // n-gon spoke + position, n-gon centroid, or a point inside a ptex face.
     uint64_t key(uint32_t ptex, uint32_t U, uint32_t V) const;
+    // Whether a key names a base vertex (whose charts are every face around it).
+    static bool isBaseVertexKey(uint64_t key);
 
     // The UV of the point in each base face that contains it (its face-varying chart, refined
     // linearly: bilinear in quads, in n-gon sub-faces through edge midpoints and the centroid),
@@ -46,13 +48,14 @@ class PtexMap {
         int32_t sub;
     };
     uint64_t onEdge(uint32_t a, uint32_t b, uint32_t t) const;
-    glm::dvec2 faceUV(uint32_t face, uint32_t vertex) const; // UV of a vertex in a face's chart
+    glm::dvec2 cornerUV(uint32_t halfedge) const; // UV of a face corner (a halfedge's start)
 
     const Mesh& mesh_;
     const Topology& topo_;
     uint32_t R_;
     std::vector<PtexFace> ptex_;
     std::vector<uint32_t> firstPtex_; // per base face
+    std::vector<glm::dvec2> centroidUV_; // per base face: an n-gon's UV centroid (with UVs)
 };
 
 } // namespace limn

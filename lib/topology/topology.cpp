@@ -151,7 +151,11 @@ void Topology::vertexRing(uint32_t v, std::vector<uint32_t>& out) const {
 
 uint32_t Topology::findEdge(uint32_t a, uint32_t b) const {
     if (a >= vertexCount_ || b >= vertexCount_) return kNone;
-    for (uint32_t v : {a, b})
+    // Around the vertex of fewer faces first (an edge with a face is in both rings): every edge
+    // of a cone or dart of thousands of faces would otherwise cost that vertex's whole ring, and
+    // the callers that look up each edge in turn (ptex keys, chart UVs) became quadratic in it.
+    const bool aFirst = vertexFaceCount(a) <= vertexFaceCount(b);
+    for (uint32_t v : {aFirst ? a : b, aFirst ? b : a})
         for (uint32_t h : vertexOutgoing(v)) {
             uint32_t w = v == a ? b : a;
             if (destination(h) == w) return edge(h);

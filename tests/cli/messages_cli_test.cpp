@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <filesystem>
 #include <cstdio>
 
 using namespace limn;
@@ -273,6 +275,63 @@ TEST(Messages, MoebiusStripIsNotOrientable) {
     EXPECT_EQ(t.exitCode, 1);
     EXPECT_NE(t.err.find("faces of opposite orientation meet at 4 edges"), std::string::npos) << t.err;
     EXPECT_NE(t.err.find("flipping 1 faces would make the mesh consistent"), std::string::npos) << t.err;
+}
+
+
+// A cone of n quads whose apex has its own UV in every face (a UV seam between each two): every
+// element at the apex carries all n of its UVs. Past what the displacement's seam fix averages
+// (4,096 UVs at a point), or past one 128 MiB storage buffer of UVs in all, limn-seams refuses at
+// once; it once worked n^3 (30 s at n = 4,000, minutes at 16,383) and wrote seams no reader took.
+std::string coneWithSeamAtApex(int n) {
+    std::string obj = "v 0 0 1\n";
+    for (int ring = 1; ring <= 2; ++ring)
+        for (int i = 0; i < n; ++i) {
+            const double a = 6.283185307179586 * (i + 0.5 * (ring - 1)) / n;
+            obj += "v " + std::to_string(ring * std::cos(a)) + " " + std::to_string(ring * std::sin(a)) + " 0\n";
+        }
+    for (int ring = 0; ring <= 2; ++ring)
+        for (int i = 0; i < n; ++i) {
+            const double a = 6.283185307179586 * (i + 0.5) / n, r = 0.05 + 0.15 * ring;
+            obj += "vt " + std::to_string(0.5 + r * std::cos(a)) + " " + std::to_string(0.5 + r * std::sin(a)) + "\n";
+        }
+    for (int i = 0; i < n; ++i) {
+        const int j = (i + 1) % n;
+        obj += "f 1/" + std::to_string(1 + i) + " " + std::to_string(2 + i) + "/" + std::to_string(1 + n + i) + " " +
+               std::to_string(2 + n + i) + "/" + std::to_string(1 + 2 * n + i) + " " + std::to_string(2 + j) + "/" +
+               std::to_string(1 + n + j) + "\n";
+    }
+    return obj;
+}
+
+TEST(Messages, SeamsOfAVertexWithThousandsOfUVsAreRefusedAtOnce) {
+    struct Case {
+        int n;
+        const char* message;
+    };
+    for (Case c : {Case{4097, "a vertex has 4097 different UVs in the faces around it, more than the 4096"},
+                   Case{4000, "the seams need more than 16777216 UVs (128 MiB, one GPU storage buffer)"}}) {
+        SCOPED_TRACE(c.n);
+        test::ScratchDir dir;
+        test::writeFile(dir / "cone.obj", coneWithSeamAtApex(c.n));
+        ASSERT_EQ(test::run({bin("limn-classify"), "-q", (dir / "cone.obj").string(), "-o", (dir / "c.limn").string()}).exitCode, 0);
+        ASSERT_EQ(test::run({bin("limn-tables"), "-q", (dir / "c.limn").string(), "-o", (dir / "t.limn").string()}).exitCode, 0);
+        const auto start = std::chrono::steady_clock::now();
+        auto r = test::run({bin("limn-seams"), (dir / "t.limn").string(), "-o", (dir / "s.limn").string()});
+        EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10)); // 0.5 s here, loaded
+        EXPECT_EQ(r.exitCode, 1) << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "s.limn"));
+    }
+    // Within both: 1,000 UVs at the apex, in each of its 1,000 elements' corners.
+    test::ScratchDir dir;
+    test::writeFile(dir / "cone.obj", coneWithSeamAtApex(1000));
+    ASSERT_EQ(test::run({bin("limn-classify"), "-q", (dir / "cone.obj").string(), "-o", (dir / "c.limn").string()}).exitCode, 0);
+    ASSERT_EQ(test::run({bin("limn-tables"), "-q", (dir / "c.limn").string(), "-o", (dir / "t.limn").string()}).exitCode, 0);
+    auto r = test::run({bin("limn-seams"), (dir / "t.limn").string(), "-o", (dir / "s.limn").string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = test::run({bin("limn-info"), "--json", (dir / "s.limn").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err; // limn-info decodes and checks the SEAM chunk
+    EXPECT_NE(r.out.find("\"SEAM\""), std::string::npos) << r.out;
 }
 
 } // namespace
