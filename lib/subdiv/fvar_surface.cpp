@@ -186,7 +186,7 @@ uint32_t sizeExponent(float size) { return static_cast<uint32_t>(std::lround(-st
 } // namespace
 
 FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o, uint32_t depth,
-                                       uint32_t irregularLevels, Warnings& warnings, size_t maxGpuRecordBytes)
+                                       uint32_t irregularLevels, Warnings& warnings, size_t maxGpuRecordBytes, bool boundaryBases)
     : depth_(depth) {
     Mesh uv = faceVaryingMesh(mesh, o);
     for (size_t f = 0; f < mesh.faceCount(); ++f) ptexCount_ += mesh.faceSize(f) == 4 ? 1 : mesh.faceSize(f);
@@ -200,6 +200,9 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     // (docs/irregular.md), from the same machinery (quadtrees, per-valence bases).
     // Capped so that the finest UV element stays within the GPU's float walk (fvar_eval.glsl).
     to.irregularLevels = static_cast<int>(std::min(irregularLevels, uint32_t(kMaxDepth) - std::min(depth, uint32_t(kMaxDepth))));
+    // Faces along UV seams and boundaries take a basis per configuration instead of K levels of
+    // refinement (FVSF version 3): the records they expand to are those pieces.
+    to.boundaryBases = boundaryBases;
     tables_ = buildTables(uv, uo, to, warnings);
     vertices_ = evaluateVertices(tables_, uv.positions);
     limits_ = evaluateLimitPoints(tables_, vertices_);
@@ -409,17 +412,20 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
             const Tables::SmoothIrregular& sm = tables_.smoothIrregular[root & kNodeIndexMask];
             const IrregularBasis& b = tables_.irregularBases[sm.basis];
             const uint32_t levels = std::min(gpuLevels_, b.levels);
-            auto basis = std::find_if(g.bases.begin(), g.bases.end(), [&](const Basis& x) { return x.valence == b.valence; });
+            auto basis = std::find_if(g.bases.begin(), g.bases.end(),
+                                      [&](const Basis& x) { return x.configuration == b.configuration; });
             if (basis == g.bases.end()) {
                 // Band k's weights depend on bands 1..k only: the program expands to these for
                 // `levels` bands (expandIrregularBasis).
-                Basis x{b.valence, levels, {}, b.program};
-                x.weights.assign(b.weights.begin(), b.weights.begin() + size_t(levels) * 48 * b.supportSize());
-                g.bases.push_back(std::move(x));
+                Basis x = b;
+                x.levels = levels;
+                x.weights.resize(size_t(levels) * 48 * b.supportSize());
+                x.signature.clear();
+                basis = g.bases.insert(g.bases.end(), std::move(x));
             }
             SmoothFace face;
             face.corner = sm.corner;
-            face.valence = b.valence;
+            face.basis = static_cast<uint32_t>(basis - g.bases.begin());
             face.firstPoint = static_cast<uint32_t>(g.points.size());
             for (uint32_t i = 0; i < b.supportSize(); ++i) {
                 const glm::dvec3& x = vertices_[tables_.smoothPoints[sm.first + i]];
