@@ -16,8 +16,8 @@
 
 namespace limn {
 
-bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
-                   std::vector<uint32_t>& support) {
+bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence, std::vector<uint32_t>& support,
+                   bool featuresBeyondCorners) {
     const Topology& T = L.topo;
     if (T.faceSize(f) != 4 || L.noLimit[f]) return false;
     const FaceFrame& fr = L.frames[f];
@@ -34,6 +34,13 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
     if (ev < 0) return false;
     corner = ev;
     support.clear();
+    // The stencils one level reads for the sub-patches and the next support are the corners'
+    // vertex points and the edge points of the edges at the corners: only there do sharpness
+    // and boundaries change them. Beyond (an edge or vertex of the support's rim) they are
+    // plain inputs.
+    const uint32_t h0f = T.faceHalfedge(f);
+    const uint32_t corners[4] = {T.vertex(h0f), T.vertex(h0f + 1), T.vertex(h0f + 2), T.vertex(h0f + 3)};
+    auto atCorner = [&](uint32_t v) { return v == corners[0] || v == corners[1] || v == corners[2] || v == corners[3]; };
     // This runs once per irregular face of the last level (hundreds of thousands on a scanned
     // mesh), so it avoids searching: the support's vertices go into a small open-addressing set
     // (at most half full), and faces met a second time are skipped, as they add no vertex. Fan j
@@ -66,10 +73,13 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
                 if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
                 uint32_t x = h;
                 for (int c = 0; c < 4; ++c, x = T.next(x)) {
-                    if (L.edgeSharpness[T.edge(x)] != 0) return false;
                     const uint32_t v = T.vertex(x);
+                    if (L.edgeSharpness[T.edge(x)] != 0 &&
+                        (!featuresBeyondCorners || atCorner(v) || atCorner(T.vertex(T.next(x)))))
+                        return false;
                     if (!insert(v)) continue;
-                    if (L.vertexSharpness[v] != 0 || support.size() == M) return false;
+                    if ((L.vertexSharpness[v] != 0 && (!featuresBeyondCorners || atCorner(v))) || support.size() == M)
+                        return false;
                     support.push_back(v);
                 }
             }
@@ -103,6 +113,9 @@ bool boundarySupport(const Level& L, uint32_t f, int& corner, BasisConfiguration
     for (uint32_t h = T.rotateCW(h0); h != kNone; h = T.rotateCW(h))
         if (++configuration.position >= configuration.valence) return false;
     const uint32_t evVertex = T.vertex(h0);
+    const uint32_t h0f = T.faceHalfedge(f);
+    const uint32_t corners[4] = {T.vertex(h0f), T.vertex(h0f + 1), T.vertex(h0f + 2), T.vertex(h0f + 3)};
+    auto atCorner = [&](uint32_t v) { return v == corners[0] || v == corners[1] || v == corners[2] || v == corners[3]; };
     support.clear();
     signature.clear();
     // A linear search: the supports are small (2n + 8 at most) and this runs only on the faces
@@ -137,9 +150,11 @@ bool boundarySupport(const Level& L, uint32_t f, int& corner, BasisConfiguration
             if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
             uint32_t x = h;
             for (int c = 0; c < 4; ++c, x = T.next(x)) {
-                if (L.edgeSharpness[T.edge(x)] != 0 && T.twin(x) != kNone) return false; // a crease
+                // A crease at a corner (smoothSupport says why only there).
                 const uint32_t v = T.vertex(x);
-                if (v != evVertex && L.vertexSharpness[v] != 0) return false;
+                if (L.edgeSharpness[T.edge(x)] != 0 && T.twin(x) != kNone && (atCorner(v) || atCorner(T.vertex(T.next(x)))))
+                    return false;
+                if (v != evVertex && atCorner(v) && L.vertexSharpness[v] != 0) return false;
                 signature.push_back(index(v));
             }
             if (support.size() > 2 * size_t(kMaxBasisValence) + 8) return false;

@@ -107,13 +107,17 @@ std::vector<float> expandIrregularBasis(const BasisProgram& program, uint32_t su
 // `valence` its valence and `support` the 2n + 8 vertices of the faces around its corners in
 // a canonical order (corners from the extraordinary one counter-clockwise, faces around each
 // counter-clockwise from f, each face's vertices from that corner on; each vertex once).
-bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
-                   std::vector<uint32_t>& support);
+// `featuresBeyondCorners`: accept boundaries, creases and sharp vertices on the support's rim
+// (edges and vertices not at the four corners), which the stencils of one level do not read as
+// features. Only the face-varying surface sets it (its interior extraordinary vertices beside
+// a UV seam); TBLS's smooth faces keep the strict rule.
+bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence, std::vector<uint32_t>& support,
+                   bool featuresBeyondCorners = false);
 
 // Whether face f of level L is a quad around one boundary vertex (any number of faces up to
 // kMaxBasisValence, a smooth boundary or an infinitely sharp corner) whose other corners are
-// regular (4 faces inside, 2 on a boundary) and nothing else is sharp or without a limit in the
-// faces around its corners. Then `corner`, `configuration` and `support` (the vertices of the
+// regular (4 faces inside, 2 on a boundary), no crease or other sharp vertex at its corners, and
+// no face around them without a limit. Then `corner`, `configuration` and `support` (the vertices of the
 // faces around the corners: corners from the boundary one counter-clockwise, each corner's fan
 // counter-clockwise from f to a boundary, then clockwise from f, each face's vertices from that
 // corner on, each vertex once), and `signature`: per corner its fan's length and whether it

@@ -89,7 +89,7 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, bool boundaryBases, s
             T[f] = 0;
             continue;
         }
-        if (!smoothSupport(L, f, corner, valence, support)) continue;
+        if (!smoothSupport(L, f, corner, valence, support, boundaryBases)) continue;
         if (basisOfValence.size() <= valence) basisOfValence.resize(valence + 1, -1);
         if (basisOfValence[valence] == -1) {
             try {

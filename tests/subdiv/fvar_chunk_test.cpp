@@ -301,14 +301,20 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
             EXPECT_TRUE(refused(shared, "two parents"));
         }
     }
-    // Version 1 (no smooth faces: its tail of zero counts and an empty stream removed) is still read.
-    ASSERT_TRUE(good.surface.smoothFaces.empty());
-    Chunk first = c;
+    // Version 1 (no smooth faces: its tail of zero counts and an empty stream removed) is still
+    // read. Its faces along the UV boundary are their pieces (version 3 stores them as smooth
+    // faces of boundary configurations).
+    FvarSurfaceChunk pieces = good;
+    pieces.surface = FaceVaryingSurface(m, o, 1, kLevels, w, FaceVaryingSurface::kMaxGpuRecordBytes, false).compactGpu();
+    pieces.elementCount = static_cast<uint32_t>(pieces.surface.records.size() / 9);
+    ASSERT_TRUE(pieces.surface.smoothFaces.empty());
+    const Chunk v2 = encodeFvarSurfaceChunk(pieces);
+    Chunk first = v2;
     first.version = 1;
     ASSERT_GE(first.payload.size(), 16u);
     first.payload.erase(first.payload.end() - 16, first.payload.end());
     EXPECT_NO_THROW(decodeFvarSurfaceChunk(first, &m, &o));
-    EXPECT_TRUE(refused(Chunk{c.type, 1, c.payload}, "version 1 with a version-2 tail"));
+    EXPECT_TRUE(refused(Chunk{v2.type, 1, v2.payload}, "version 1 with a version-2 tail"));
     // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell).
     std::mt19937 rng(5);
     for (int trial = 0; trial < 500; ++trial) {
