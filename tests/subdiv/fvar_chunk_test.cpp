@@ -7,6 +7,7 @@
 #include "subdiv/fvar_chunk.h"
 #include "subdiv/irregular_basis.h"
 #include "subdiv/tables_chunk.h"
+#include "subdiv/tables_surface_records.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -164,6 +165,36 @@ TEST(FvarSurfaceChunk, BoundaryBasesExpandToTheQuadtreesPieces) {
             EXPECT_LE(worst, 8 * std::ldexp(span, -24)) << boundary << " boundary faces";
         }
     }
+}
+
+// Every boundary configuration limn-tables can build (up to 16 faces at the vertex, every place
+// in its fan, smooth or a corner) builds, is self-similar, and stays within what the readers accept: its program's rows, its
+// support's size and its weights (phantom points of convex rows: [-4, 5]); the FVSF codec gives
+// its weights back bit for bit.
+TEST(FvarSurfaceChunk, EveryBoundaryConfigurationIsReadable) {
+    size_t built = 0;
+    for (uint32_t n = 1; n <= 16; ++n)
+        for (uint32_t position = 0; position < n; ++position)
+            for (bool corner : {false, true}) {
+                SCOPED_TRACE(std::to_string(n) + " faces, face " + std::to_string(position) + (corner ? ", corner" : ""));
+                if (n == 2 && !corner) continue; // a regular boundary vertex: no configuration
+                IrregularBasis b;
+                ASSERT_NO_THROW(b = buildBoundaryBasis({n, true, position, corner}, 3));
+                ++built;
+                const uint32_t M = b.supportSize();
+                EXPECT_GE(M, 4u);
+                EXPECT_LE(M, 2 * kMaxBasisValence + 8);
+                EXPECT_LE(b.program.rows(), 2 * M + 21);
+                for (float x : b.weights) ASSERT_TRUE(x >= -4 && x <= 5) << x;
+                ByteWriter w;
+                writeProgram(w, b.program);
+                const std::vector<uint8_t> bytes = w.take();
+                ByteReader r(bytes, "test");
+                const std::vector<float> again = expandIrregularBasis(readProgram(r, "test", M, 21), M, 3);
+                EXPECT_EQ(0, std::memcmp(again.data(), b.weights.data(), again.size() * 4));
+                EXPECT_EQ(again.size(), b.weights.size());
+            }
+    EXPECT_EQ(built, 16u * 17u - 2);
 }
 
 // Where the pieces of every irregular face would take too many GPU records, they stop at fewer
