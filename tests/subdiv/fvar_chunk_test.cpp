@@ -120,57 +120,66 @@ TEST(FvarSurfaceChunk, StoresTheUVSurfaceLosslessly) {
 // control points and leaf corners up to float rounding (the bases' weights are floats over
 // float support UVs, the quadtree's stencils ran in double).
 TEST(FvarSurfaceChunk, BoundaryBasesExpandToTheQuadtreesPieces) {
-    for (const char* model : {"tri/cube_no_bottom.obj", "quad/spot_control_mesh.obj", "quad/blub_control_mesh.obj",
-                              "osd/catmark/catmark_fvar_bound3.obj"}) {
-        for (FVarRule rule : {FVarRule::CornersOnly, FVarRule::Boundaries}) {
-            SCOPED_TRACE(std::string(model) + (rule == FVarRule::Boundaries ? " boundaries" : " corners-only"));
+    for (const char* model :
+         {"tri/cube_no_bottom.obj", "quad/spot_control_mesh.obj", "quad/blub_control_mesh.obj",
+          "osd/catmark/catmark_fvar_bound3.obj"}) {
+        for (FVarRule rule : {FVarRule::LinearNone, FVarRule::CornersOnly, FVarRule::CornersPlus1,
+                              FVarRule::Boundaries}) {
+            SCOPED_TRACE(std::string(model) + " rule " + std::to_string(int(rule)));
             Warnings w;
             Mesh m = importMeshFile(test::modelPath(model).string(), w);
             m.tags.fvar = rule;
             const SchemeOptions o = resolveSchemeOptions(m.tags, {});
-            const uint32_t depth = 2;
-            const FaceVaryingSurface before(m, o, depth, kLevels, w, FaceVaryingSurface::kMaxGpuRecordBytes, false);
-            const FvarSurfaceChunk stored =
-                decodeFvarSurfaceChunk(encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, depth, kLevels, w)), &m, &o);
-            size_t boundary = 0;
-            for (const FaceVaryingSurface::SmoothFace& f : stored.surface.smoothFaces)
-                boundary += stored.surface.bases[f.basis].configuration.boundary;
-            if (rule == FVarRule::CornersOnly && std::string(model).find("bound3") == std::string::npos) {
-                EXPECT_GT(boundary, 0u);
-            }
-            const FaceVaryingSurface::Gpu want = before.gpu(), got = expandSmoothFaces(stored.surface);
-            ASSERT_EQ(want.nodes.size() >= stored.ptexCount, true);
-            size_t leaves = 0;
-            double worst = 0, span = 0;
-            for (const glm::vec4& r : want.records) span = std::max({span, double(std::fabs(r.x)), double(std::fabs(r.y))});
-            std::function<void(uint32_t, uint32_t)> compare = [&](uint32_t a, uint32_t b) {
-                const uint32_t x = want.nodes[a], y = got.nodes[b];
-                ASSERT_EQ(x == 0xFFFFFFFFu, y == 0xFFFFFFFFu);
-                if (x == 0xFFFFFFFFu) return;
-                ASSERT_EQ(bool(x & 0x80000000u), bool(y & 0x80000000u)) << "node " << a;
-                if (!(x & 0x80000000u)) {
-                    for (uint32_t k = 0; k < 4; ++k) compare(x + k, y + k);
-                    return;
+            for (uint32_t depth : {1u, 2u}) {
+                const FaceVaryingSurface before(m, o, depth, kLevels, w,
+                                                FaceVaryingSurface::kMaxGpuRecordBytes, false);
+                const FvarSurfaceChunk stored = decodeFvarSurfaceChunk(
+                    encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, depth, kLevels, w)), &m, &o);
+                size_t boundary = 0;
+                for (const FaceVaryingSurface::SmoothFace& f : stored.surface.smoothFaces)
+                    boundary += stored.surface.bases[f.basis].configuration.boundary;
+                if (depth == 2 && rule == FVarRule::CornersOnly &&
+                    std::string(model).find("bound3") == std::string::npos) {
+                    EXPECT_GT(boundary, 0u);
                 }
-                const glm::vec4* r = &want.records[9 * size_t(x & 0x7FFFFFFFu)];
-                const glm::vec4* q = &got.records[9 * size_t(y & 0x7FFFFFFFu)];
-                ASSERT_EQ(std::memcmp(r, q, 16), 0) << "the domain and kind of node " << a;
-                for (int k = 1; k < 9; ++k)
-                    for (int c = 0; c < 4; ++c) worst = std::max(worst, double(std::fabs(r[k][c] - q[k][c])));
-                ++leaves;
-            };
-            for (uint32_t p = 0; p < stored.ptexCount; ++p) compare(p, p);
-            EXPECT_EQ(leaves, want.records.size() / 9);
-            // A few float steps of the UVs' range.
-            EXPECT_LE(worst, 8 * std::ldexp(span, -24)) << boundary << " boundary faces";
+                const FaceVaryingSurface::Gpu want = before.gpu(),
+                                              got = expandSmoothFaces(stored.surface);
+                ASSERT_EQ(want.nodes.size() >= stored.ptexCount, true);
+                size_t leaves = 0;
+                double worst = 0, span = 0;
+                for (const glm::vec4& r : want.records)
+                    span = std::max({span, double(std::fabs(r.x)), double(std::fabs(r.y))});
+                std::function<void(uint32_t, uint32_t)> compare = [&](uint32_t a, uint32_t b) {
+                    const uint32_t x = want.nodes[a], y = got.nodes[b];
+                    ASSERT_EQ(x == 0xFFFFFFFFu, y == 0xFFFFFFFFu);
+                    if (x == 0xFFFFFFFFu) return;
+                    ASSERT_EQ(bool(x & 0x80000000u), bool(y & 0x80000000u)) << "node " << a;
+                    if (!(x & 0x80000000u)) {
+                        for (uint32_t k = 0; k < 4; ++k) compare(x + k, y + k);
+                        return;
+                    }
+                    const glm::vec4* r = &want.records[9 * size_t(x & 0x7FFFFFFFu)];
+                    const glm::vec4* q = &got.records[9 * size_t(y & 0x7FFFFFFFu)];
+                    ASSERT_EQ(std::memcmp(r, q, 16), 0) << "the domain and kind of node " << a;
+                    for (int k = 1; k < 9; ++k)
+                        for (int c = 0; c < 4; ++c)
+                            worst = std::max(worst, double(std::fabs(r[k][c] - q[k][c])));
+                    ++leaves;
+                };
+                for (uint32_t p = 0; p < stored.ptexCount; ++p) compare(p, p);
+                EXPECT_EQ(leaves, want.records.size() / 9);
+                // A few float steps of the UVs' range.
+                EXPECT_LE(worst, 8 * std::ldexp(span, -24))
+                    << boundary << " boundary faces, depth " << depth;
+            }
         }
     }
 }
 
 // Every boundary configuration limn-tables can build (up to 16 faces at the vertex, every place
-// in its fan, smooth or a corner) builds, is self-similar, and stays within what the readers accept: its program's rows, its
-// support's size and its weights (phantom points of convex rows: [-4, 5]); the FVSF codec gives
-// its weights back bit for bit.
+// in its fan, smooth or a corner) builds, is self-similar, and stays within what the readers
+// accept: its program's rows, its support's size and its weights (phantom points of convex rows:
+// [-4, 5]); the FVSF codec gives its weights back bit for bit.
 TEST(FvarSurfaceChunk, EveryBoundaryConfigurationIsReadable) {
     size_t built = 0;
     for (uint32_t n = 1; n <= 16; ++n)
