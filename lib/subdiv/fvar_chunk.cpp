@@ -7,7 +7,9 @@
 #include "subdiv/tables_stream.h"
 #include "subdiv/tables_surface_records.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <cstring>
 #include <unordered_map>
 #include <string>
@@ -35,6 +37,8 @@ FvarSurfaceChunk makeFvarSurfaceChunk(const Mesh& mesh, const SchemeOptions& opt
 // count, u32 element count, u32 nodes[node count], f32 records[element count * 9 * 4]; version
 // 2: u32 bases, each as TBLS version 5 stores it (writeBasisProgram), u32 values, f32
 // values[2 * values], u32 smooth faces, a stream of their corners, valences and value indices.
+// Version 3: each basis with its configuration and support size, then its program; a smooth
+// face names its basis by index.
 Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     ByteWriter w;
     w.reserve(40 + 4 * c.surface.nodes.size() + 16 * c.surface.records.size());
@@ -48,9 +52,17 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     static_assert(sizeof(glm::vec4) == 16);
     w.writeArray(c.surface.records); // four f32 each, little-endian like every field here
     w.write<uint32_t>(static_cast<uint32_t>(c.surface.bases.size()));
-    // Each basis as its one-level program (TBLS version 5's codec, a few hundred bytes whatever
-    // k), which the reader expands to the same weights, bit for bit.
-    for (const FaceVaryingSurface::Basis& b : c.surface.bases) writeBasisProgram(w, b);
+    // Each basis as its configuration (version 3: interior valences and the configurations of
+    // UV boundary vertices) and its one-level program (TBLS version 5's codec, a few hundred
+    // bytes whatever k), which the reader expands to the same weights, bit for bit.
+    for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
+        if (b.program.rows() == 0) throw std::logic_error("FVSF: a basis without its program");
+        w.write<uint32_t>(b.valence);
+        w.write<uint32_t>(b.configuration.code());
+        w.write<uint32_t>(b.supportSize());
+        w.write<uint32_t>(b.levels);
+        writeProgram(w, b.program);
+    }
     // The support UVs and limit UVs, each distinct value once (the n faces around a vertex
     // share most of theirs), and per smooth face in a stream its corner and valence, then its
     // limit's and its 2n + 8 support points' values as differences from the previous value.
@@ -72,9 +84,9 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
         previous = v;
     };
     for (const FaceVaryingSurface::SmoothFace& f : c.surface.smoothFaces) {
-        writeVarint(stream, f.corner | uint64_t(f.valence) << 2);
+        writeVarint(stream, f.corner | uint64_t(f.basis) << 2);
         index(f.limit);
-        for (uint32_t i = 0; i < 2 * f.valence + 8; ++i) index(c.surface.points[f.firstPoint + i]);
+        for (uint32_t i = 0; i < c.surface.bases[f.basis].supportSize(); ++i) index(c.surface.points[f.firstPoint + i]);
     }
     w.write<uint32_t>(static_cast<uint32_t>(values.size() / 2));
     w.writeArray(values);
@@ -85,26 +97,54 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
 
 namespace {
 
-uint32_t basisLevels(const FaceVaryingSurface::Gpu& g, uint32_t valence) {
-    for (const FaceVaryingSurface::Basis& b : g.bases)
-        if (b.valence == valence) return b.levels;
-    return 0;
+// Version 2: per valence, as TBLS version 5 stores one.
+FaceVaryingSurface::Basis readValenceBasis(ByteReader& r, uint32_t b, const FaceVaryingSurface::Gpu& g) {
+    // TBLS version 5's reader: its checks bound the program and its expansion, and refuse a
+    // valence twice.
+    FaceVaryingSurface::Basis x = readBasisProgram(r, b, g.bases);
+    // limn-tables builds no basis of valence 4 (a regular vertex).
+    if (x.valence == 4) r.fail("basis " + std::to_string(b) + " has valence 4");
+    return x;
 }
 
-// Version 2's smooth faces, their support UVs and the per-valence weights, each count checked
-// against the bytes left before anything is allocated.
-void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
+// Version 3: u32 valence, u32 configuration, u32 support size, u32 levels, then the program.
+FaceVaryingSurface::Basis readConfigurationBasis(ByteReader& r, uint32_t b, const FaceVaryingSurface::Gpu& g) {
+    const std::string what = "basis " + std::to_string(b);
+    FaceVaryingSurface::Basis x;
+    x.valence = r.read<uint32_t>();
+    const uint32_t code = r.read<uint32_t>();
+    const uint32_t M = r.read<uint32_t>();
+    x.levels = r.read<uint32_t>();
+    BasisConfiguration& c = x.configuration;
+    c = {x.valence, (code & 1) != 0, code >> 2, (code & 2) != 0};
+    if (c.code() != code || x.valence < 1 || x.valence > kMaxBasisValence || x.levels < 1 ||
+        x.levels > uint32_t(kMaxDepth) || (c.boundary && c.position >= x.valence) ||
+        (!c.boundary && (x.valence < 3 || x.valence == 4 || M != 2 * x.valence + 8)) || M < 4 ||
+        M > 2 * kMaxBasisValence + 8)
+        r.fail(what + " has a bad configuration, support size or level count");
+    for (const FaceVaryingSurface::Basis& other : g.bases)
+        if (other.configuration == c) r.fail(what + " repeats a configuration");
+    if (c.boundary) x.support = M;
+    // A boundary sub-patch has at most 7 phantom points, each one row.
+    x.program = readProgram(r, what, M, c.boundary ? 21 : 0);
+    x.weights = expandIrregularBasis(x.program, M, x.levels);
+    return x;
+}
+
+// Version 2 and 3's smooth faces, their support UVs and the bases, each count checked against
+// the bytes left before anything is allocated.
+void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g, uint32_t version) {
     const uint32_t bases = r.read<uint32_t>();
     if (bases > r.remaining() / 8) r.fail("basis count is too large");
     for (uint32_t b = 0; b < bases; ++b) {
-        // TBLS version 5's reader: its checks bound the program and its expansion, and refuse a
-        // valence twice.
-        FaceVaryingSurface::Basis x = readBasisProgram(r, b, g.bases);
-        // limn-tables builds no basis of valence 4 (a regular vertex).
-        if (x.valence == 4) r.fail("basis " + std::to_string(b) + " has valence 4");
-        // Catmull-Clark's smooth weights are convex (irregular_basis.h).
+        FaceVaryingSurface::Basis x = version >= 3 ? readConfigurationBasis(r, b, g) : readValenceBasis(r, b, g);
+        // Catmull-Clark's smooth weights are convex (irregular_basis.h); a boundary
+        // configuration's hold its phantom points, 2 a - b of such (corners: 4 a - 2 b - 2 c + d).
+        const float lo = x.configuration.boundary ? -4.0f : 0.0f, hi = x.configuration.boundary ? 5.0f : 1.0f;
         for (float w : x.weights)
-            if (!(w >= 0 && w <= 1)) r.fail("basis " + std::to_string(b) + " has a weight outside [0, 1]");
+            if (!(w >= lo && w <= hi))
+                r.fail("basis " + std::to_string(b) + " has a weight outside [" + std::to_string(int(lo)) + ", " +
+                       std::to_string(int(hi)) + "]");
         g.bases.push_back(std::move(x));
     }
     const uint32_t valueCount = r.read<uint32_t>();
@@ -113,8 +153,9 @@ void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
         if (!std::isfinite(x) || std::fabs(x) > 1e18f) r.fail("a value is not finite");
     const uint32_t faces = r.read<uint32_t>();
     StreamReader s(r, "smooth faces");
-    // Each face takes at least 2n + 10 >= 16 bytes of the stream, and gives 8 bytes a point.
-    if (faces > s.size() / 16) r.fail("smooth face count is too large");
+    // Each face takes at least 2 + support >= 6 bytes of the stream (2n + 10 >= 16 for an
+    // interior one), and gives 8 bytes a point.
+    if (faces > s.size() / (version >= 3 ? 6 : 16)) r.fail("smooth face count is too large");
     g.smoothFaces.resize(faces);
     uint32_t previous = 0;
     auto next = [&](uint32_t face) {
@@ -126,11 +167,16 @@ void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
         FaceVaryingSurface::SmoothFace& f = g.smoothFaces[i];
         const uint64_t packed = s.varint();
         f.corner = uint32_t(packed & 3u);
-        f.valence = packed >> 2 <= 64 ? uint32_t(packed >> 2) : 0;
-        if (!basisLevels(g, f.valence)) r.fail("smooth face " + std::to_string(i) + " has no basis of its valence");
+        // Version 2 names the basis by its valence, version 3 by its index.
+        uint64_t b = packed >> 2;
+        if (version < 3)
+            b = std::find_if(g.bases.begin(), g.bases.end(), [&](const FaceVaryingSurface::Basis& x) { return x.valence == b; }) -
+                g.bases.begin();
+        if (b >= g.bases.size()) r.fail("smooth face " + std::to_string(i) + " has no basis");
+        f.basis = uint32_t(b);
         f.firstPoint = static_cast<uint32_t>(g.points.size());
         f.limit = next(i);
-        for (uint32_t k = 0; k < 2 * f.valence + 8; ++k) g.points.push_back(next(i));
+        for (uint32_t k = 0; k < g.bases[b].supportSize(); ++k) g.points.push_back(next(i));
     }
     s.finish();
 }
@@ -139,7 +185,7 @@ void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g) {
 
 FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, const SchemeOptions* options) {
     if (chunk.version > kFvarSurfaceChunkVersion)
-        throwBadInput("version " + std::to_string(chunk.version) + " is newer than this reader (2)", "chunk FVSF");
+        throwBadInput("version " + std::to_string(chunk.version) + " is newer than this reader (3)", "chunk FVSF");
     ByteReader r(chunk.payload, "chunk FVSF");
     FvarSurfaceChunk c;
     c.depth = r.read<uint32_t>();
@@ -153,7 +199,7 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
     c.surface.nodes = r.readArray<uint32_t>(nodes, "nodes");
     if (c.elementCount > r.remaining() / (9 * 16)) r.fail("element count is too large");
     const std::vector<float> f = r.readArray<float>(uint64_t(c.elementCount) * 36, "records");
-    if (chunk.version >= 2) readSmoothFaces(r, c.surface);
+    if (chunk.version >= 2) readSmoothFaces(r, c.surface, chunk.version);
     if (!r.atEnd()) r.fail("trailing bytes");
     const uint64_t named = uint64_t(c.elementCount) + c.surface.smoothFaces.size();
     for (uint32_t i = 0; i < nodes; ++i) {
@@ -193,7 +239,7 @@ FvarSurfaceChunk decodeFvarSurfaceChunk(const Chunk& chunk, const Mesh* mesh, co
         if ((v & 0x7FFFFFFFu) >= c.elementCount && (v & 0x80000000u)) { // a smooth face
             FaceVaryingSurface::SmoothFace& sf = c.surface.smoothFaces[(v & 0x7FFFFFFFu) - c.elementCount];
             if (sf.size != 0) r.fail("node " + std::to_string(n) + " names a smooth face named before");
-            const uint32_t levels = basisLevels(c.surface, sf.valence);
+            const uint32_t levels = c.surface.bases[sf.basis].levels;
             if (q.level + levels > 24) r.fail("node " + std::to_string(n) + "'s smooth face is deeper than 24 levels");
             sf.node = n;
             sf.size = std::ldexp(1.0f, -int(q.level));

@@ -15,7 +15,7 @@
 namespace limn {
 
 inline constexpr FourCC kFvarSurfaceChunk{"FVSF"};
-inline constexpr uint32_t kFvarSurfaceChunkVersion = 2;
+inline constexpr uint32_t kFvarSurfaceChunkVersion = 3;
 
 struct FvarSurfaceChunk {
     uint32_t depth = 0;         // of the geometry's tables (TBLS): the same lattice of drawn points

@@ -28,6 +28,8 @@ void bandSquareToFace(uint32_t corner, double a0, double c0, double h, double& s
 
 FaceVaryingSurface::Gpu expandSmoothFaces(FaceVaryingSurface::Gpu g) {
     using Basis = FaceVaryingSurface::Basis;
+    // A boundary configuration's weights hold its sub-patches' phantom points (2 a - b of
+    // points), so its control points come out as gatherControlPoints makes them.
     uint32_t next = static_cast<uint32_t>(g.records.size() / 9);
     // Piece `e` at the face-local square (s0, t0, h = 2^-level) below the smooth face's node.
     auto insert = [&](uint32_t node, uint32_t level, double s0, double t0, uint32_t e) {
@@ -36,9 +38,9 @@ FaceVaryingSurface::Gpu expandSmoothFaces(FaceVaryingSurface::Gpu g) {
         g.nodes[fvarQuadtreeCell(g.nodes, node, level, i, j)] = 0x80000000u | e;
     };
     for (const FaceVaryingSurface::SmoothFace& f : g.smoothFaces) {
-        const auto basis = std::find_if(g.bases.begin(), g.bases.end(), [&](const Basis& b) { return b.valence == f.valence; });
-        if (basis == g.bases.end()) throw Error(ErrorKind::BadInput, "a smooth UV face has no basis of its valence");
-        const uint32_t M = 2 * f.valence + 8, K = basis->levels;
+        if (f.basis >= g.bases.size()) throw Error(ErrorKind::BadInput, "a smooth UV face has no basis");
+        const Basis* basis = &g.bases[f.basis];
+        const uint32_t M = basis->supportSize(), K = basis->levels;
         const glm::vec2* support = g.points.data() + f.firstPoint;
         g.nodes[f.node] = 0xFFFFFFFFu;
         // The band-frame control points P[i][j] of band k's quadrant q (1: a >= 1/2, 2: both, 3:

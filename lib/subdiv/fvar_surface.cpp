@@ -186,7 +186,7 @@ uint32_t sizeExponent(float size) { return static_cast<uint32_t>(std::lround(-st
 } // namespace
 
 FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o, uint32_t depth,
-                                       uint32_t irregularLevels, Warnings& warnings, size_t maxGpuRecordBytes)
+                                       uint32_t irregularLevels, Warnings& warnings, size_t maxGpuRecordBytes, bool boundaryBases)
     : depth_(depth) {
     Mesh uv = faceVaryingMesh(mesh, o);
     for (size_t f = 0; f < mesh.faceCount(); ++f) ptexCount_ += mesh.faceSize(f) == 4 ? 1 : mesh.faceSize(f);
@@ -200,6 +200,9 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     // (docs/irregular.md), from the same machinery (quadtrees, per-valence bases).
     // Capped so that the finest UV element stays within the GPU's float walk (fvar_eval.glsl).
     to.irregularLevels = static_cast<int>(std::min(irregularLevels, uint32_t(kMaxDepth) - std::min(depth, uint32_t(kMaxDepth))));
+    // Faces along UV seams and boundaries take a basis per configuration instead of K levels of
+    // refinement (FVSF version 3): the records they expand to are those pieces.
+    to.boundaryBases = boundaryBases;
     tables_ = buildTables(uv, uo, to, warnings);
     vertices_ = evaluateVertices(tables_, uv.positions);
     limits_ = evaluateLimitPoints(tables_, vertices_);
@@ -255,63 +258,6 @@ size_t FaceVaryingSurface::gpuElementCount(uint32_t levels) const {
     return n;
 }
 
-namespace {
-
-// Where a smooth face lies: the square [s0, s0 + h]^2 (and t0) of irregular face `face`'s (s, t),
-// which is f.u0 + s0 * f.size ... of its ptex face; the whole face for a root.
-struct SmoothSquare {
-    double s0 = 0, t0 = 0, h = 1;
-};
-
-// The records of a smooth irregular face (`smooth` of tables.smoothIrregular) in square `sq` of
-// irregular face `face`: its first K band sub-patches as patch(ptex, u0, v0, size, Q) and its
-// leaf as bilinear(ptex, u0, v0, size, corners).
-template <class PatchFn, class BilinearFn>
-void smoothRecords(const Tables& tables_, std::span<const glm::dvec3> vertices_, std::span<const LimitPoint> limits_,
-                   uint32_t face, uint32_t smooth, SmoothSquare sq, uint32_t K, PatchFn&& patch, BilinearFn&& bilinear) {
-    // The bands of evaluateIrregular's per-valence basis, turned from the band's frame (a, c),
-    // the extraordinary corner at (0, 0), to the square's (s, t): a rotation by the corner.
-    const IrregularFace& f = tables_.irregular[face];
-    const Tables::SmoothIrregular& sm = tables_.smoothIrregular[smooth];
-    const uint32_t corner = sm.corner;
-    const double fu = f.u0 + sq.s0 * f.size, fv = f.v0 + sq.t0 * f.size, fsize = sq.h * f.size;
-    // The ptex-face square whose (a, c) square is [a0, a0 + h] x [c0, c0 + h], and which of its
-    // band-frame control points P[i][j] is its ptex-frame Q[i'][j'] (B_i(1 - x) = B_{3-i}(x)).
-    auto square = [&](double a0, double c0, double h, double& s0, double& t0) {
-        switch (corner) {
-        case 0: s0 = a0, t0 = c0; break;
-        case 1: s0 = 1 - c0 - h, t0 = a0; break;
-        case 2: s0 = 1 - a0 - h, t0 = 1 - c0 - h; break;
-        default: s0 = c0, t0 = 1 - a0 - h; break;
-        }
-    };
-    for (uint32_t k = 1; k <= K; ++k) {
-        const double h = std::ldexp(1.0, -int(k)); // the band's quadrants
-        for (uint32_t q = 1; q <= 3; ++q) {
-            const uint32_t qu = q == 3 ? 0 : 1, qv = q == 1 ? 0 : 1;
-            glm::dvec3 P[4][4], Q[4][4];
-            smoothSubPatchControlPoints(tables_, smooth, vertices_, k, q, P);
-            for (int i = 0; i < 4; ++i)
-                for (int j = 0; j < 4; ++j)
-                    Q[i][j] = corner == 0 ? P[i][j] : corner == 1 ? P[j][3 - i] : corner == 2 ? P[3 - i][3 - j] : P[3 - j][i];
-            double s0, t0;
-            square(qu * h, qv * h, h, s0, t0);
-            patch(f.ptex, fu + s0 * fsize, fv + t0 * fsize, h * fsize, Q);
-        }
-    }
-    // Within 2^-K of the corner: evaluateIrregular's bilinear leaf, its corners from it.
-    const double h = std::ldexp(1.0, -int(K));
-    double s0, t0;
-    square(0, 0, h, s0, t0);
-    glm::dvec3 c[4];
-    const double cs[4] = {s0, s0 + h, s0 + h, s0}, ct[4] = {t0, t0, t0 + h, t0 + h};
-    for (int k = 0; k < 4; ++k)
-        c[k] = evaluateIrregular(tables_, vertices_, limits_, face, sq.s0 + cs[k] * sq.h, sq.t0 + ct[k] * sq.h).position;
-    bilinear(f.ptex, fu + s0 * fsize, fv + t0 * fsize, h * fsize, c);
-}
-
-} // namespace
-
 FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
     Gpu g;
     g.nodes.assign(ptexCount_, 0xFFFFFFFFu);
@@ -340,8 +286,8 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
     // a smooth face (its support's UVs, the weights once per valence), which expandSmoothFaces
     // turns into its band sub-patches and leaf where the GPU needs them: a fraction of the bytes
     // in the file. A smooth face below a root (a decayed crease, inside a quadtree) is stored as
-    // its pieces (smoothRecords): there are few. Elements are numbered in record order, smooth
-    // faces after them.
+    // its pieces, expanded here as the readers expand a root's: there are few. Elements are
+    // numbered in record order, smooth faces after them.
     uint32_t next = P;
     auto patchRecord = [&](uint32_t ptex, double u0, double v0, double size, const glm::dvec3 C[4][4]) {
         insert(next++, ptex, float(u0), float(v0), float(size));
@@ -386,11 +332,38 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
                 for (int k = 0; k < 4; ++k)
                     corners[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
                 bilinearRecord(ptex, cu, cv, h, corners);
-            } else if (kind == kNodeBasis) { // a smooth face below the root (a decayed crease): its pieces
-                const uint32_t b = tables_.irregularBases[tables_.smoothIrregular[index].basis].levels;
-                const uint32_t K = std::min(gpuLevels_ - (depth + 1), b > depth + 1 ? b - (depth + 1) : 1);
-                smoothRecords(tables_, vertices_, limits_, face, index, SmoothSquare{gs, gt, gh}, K, patchRecord,
-                              bilinearRecord);
+            } else if (kind == kNodeBasis) {
+                // A smooth face below the root (a decayed crease, a corner child of a face with
+                // two extraordinary corners): its pieces, by the readers' own expansion of a
+                // root's smooth face (expandSmoothFaces), with the bands it has.
+                const Tables::SmoothIrregular& sm = tables_.smoothIrregular[index];
+                const IrregularBasis& b = tables_.irregularBases[sm.basis];
+                SmoothFace sf;
+                sf.u0 = float(cu), sf.v0 = float(cv), sf.size = float(h);
+                sf.node = insert(0, ptex, sf.u0, sf.v0, sf.size);
+                Gpu one;
+                one.nodes.swap(g.nodes);
+                one.records.swap(g.records);
+                Basis x = b;
+                x.levels = std::min(gpuLevels_ - (depth + 1), b.levels > depth + 1 ? b.levels - (depth + 1) : 1);
+                x.weights.resize(size_t(x.levels) * 48 * b.supportSize());
+                x.signature.clear();
+                one.bases.push_back(std::move(x));
+                for (uint32_t i = 0; i < b.supportSize(); ++i) {
+                    const glm::dvec3& p = vertices_[tables_.smoothPoints[sm.first + i]];
+                    one.points.emplace_back(float(p.x), float(p.y));
+                }
+                sf.corner = sm.corner;
+                // Its extraordinary vertex is a corner of the irregular face: the limit point there.
+                const double es = gs + ((sm.corner == 1 || sm.corner == 2) ? gh : 0.0);
+                const double et = gt + (sm.corner >= 2 ? gh : 0.0);
+                const glm::dvec3 limit = evaluateIrregular(tables_, vertices_, limits_, face, es, et).position;
+                sf.limit = glm::vec2(float(limit.x), float(limit.y));
+                one.smoothFaces.push_back(sf);
+                one = expandSmoothFaces(std::move(one));
+                g.nodes.swap(one.nodes);
+                g.records.swap(one.records);
+                next = static_cast<uint32_t>(g.records.size() / 9);
             } else if (kind == kNodeSubPatch) {
                 glm::dvec3 C[4][4];
                 gatherControlPoints(tables_.subPatches[index], vertices_, C);
@@ -409,17 +382,20 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
             const Tables::SmoothIrregular& sm = tables_.smoothIrregular[root & kNodeIndexMask];
             const IrregularBasis& b = tables_.irregularBases[sm.basis];
             const uint32_t levels = std::min(gpuLevels_, b.levels);
-            auto basis = std::find_if(g.bases.begin(), g.bases.end(), [&](const Basis& x) { return x.valence == b.valence; });
+            auto basis = std::find_if(g.bases.begin(), g.bases.end(),
+                                      [&](const Basis& x) { return x.configuration == b.configuration; });
             if (basis == g.bases.end()) {
                 // Band k's weights depend on bands 1..k only: the program expands to these for
                 // `levels` bands (expandIrregularBasis).
-                Basis x{b.valence, levels, {}, b.program};
-                x.weights.assign(b.weights.begin(), b.weights.begin() + size_t(levels) * 48 * b.supportSize());
-                g.bases.push_back(std::move(x));
+                Basis x = b;
+                x.levels = levels;
+                x.weights.resize(size_t(levels) * 48 * b.supportSize());
+                x.signature.clear();
+                basis = g.bases.insert(g.bases.end(), std::move(x));
             }
             SmoothFace face;
             face.corner = sm.corner;
-            face.valence = b.valence;
+            face.basis = static_cast<uint32_t>(basis - g.bases.begin());
             face.firstPoint = static_cast<uint32_t>(g.points.size());
             for (uint32_t i = 0; i < b.supportSize(); ++i) {
                 const glm::dvec3& x = vertices_[tables_.smoothPoints[sm.first + i]];

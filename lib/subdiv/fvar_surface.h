@@ -40,8 +40,10 @@ class FaceVaryingSurface {
     // `depth`: that of the geometry's tables, so their lattice of drawn points is this one's;
     // `irregularLevels`: their K, the levels of the irregular faces' surface (docs/irregular.md).
     // `maxGpuRecordBytes`: see gpuLevels().
+    // `boundaryBases`: faces around one UV boundary vertex take a basis per configuration (FVSF
+    // version 3); off, they are refined K levels as in version 2 (tests compare the two).
     FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& options, uint32_t depth, uint32_t irregularLevels,
-                       Warnings& warnings, size_t maxGpuRecordBytes = kMaxGpuRecordBytes);
+                       Warnings& warnings, size_t maxGpuRecordBytes = kMaxGpuRecordBytes, bool boundaryBases = true);
 
     // The UV at (u, v) of ptex face `ptex`, from the element that contains the point just inside
     // toward (towardU, towardV) (any element containing it gives the same limit; this picks one).
@@ -66,13 +68,15 @@ class FaceVaryingSurface {
     // Compact (FVSF version 2, compactGpu()): a face with a per-valence basis is not pieces but
     // a smooth face, named by a leaf 0x80000000 | (elements + s): its extraordinary corner, its
     // 2n + 8 support UVs (float, in `points`) and that corner's limit UV; each valence's basis
-    // (its weights, and the program FVSF stores them as) once in `bases`. expandSmoothFaces()
+    // (its weights, and the program FVSF stores them as) once in `bases`. Version 3: so is a
+    // face around one UV boundary vertex (a seam), with its configuration's basis
+    // (irregular_basis.h, buildBoundaryBasis) over its support. expandSmoothFaces()
     // turns that into the pieces above, the same bits wherever it runs (web/src/fvar_chunk.mjs
     // mirrors it).
     struct SmoothFace {
         uint32_t corner = 0;     // ptex order, 0..3
-        uint32_t valence = 0;    // a basis of `bases` has it
-        uint32_t firstPoint = 0; // its 2n + 8 support UVs: points[firstPoint ...]
+        uint32_t basis = 0;      // into `bases`
+        uint32_t firstPoint = 0; // its support UVs (bases[basis].supportSize()): points[firstPoint ...]
         glm::vec2 limit{0.0f};   // the limit UV at the extraordinary corner
         uint32_t node = 0;       // not stored: the node naming it
         float u0 = 0, v0 = 0, size = 0; // not stored: that node's square of its ptex face

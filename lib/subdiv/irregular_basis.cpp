@@ -16,8 +16,8 @@
 
 namespace limn {
 
-bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
-                   std::vector<uint32_t>& support) {
+bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence, std::vector<uint32_t>& support,
+                   bool featuresBeyondCorners) {
     const Topology& T = L.topo;
     if (T.faceSize(f) != 4 || L.noLimit[f]) return false;
     const FaceFrame& fr = L.frames[f];
@@ -34,6 +34,13 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
     if (ev < 0) return false;
     corner = ev;
     support.clear();
+    // The stencils one level reads for the sub-patches and the next support are the corners'
+    // vertex points and the edge points of the edges at the corners: only there do sharpness
+    // and boundaries change them. Beyond (an edge or vertex of the support's rim) they are
+    // plain inputs.
+    const uint32_t h0f = T.faceHalfedge(f);
+    const uint32_t corners[4] = {T.vertex(h0f), T.vertex(h0f + 1), T.vertex(h0f + 2), T.vertex(h0f + 3)};
+    auto atCorner = [&](uint32_t v) { return v == corners[0] || v == corners[1] || v == corners[2] || v == corners[3]; };
     // This runs once per irregular face of the last level (hundreds of thousands on a scanned
     // mesh), so it avoids searching: the support's vertices go into a small open-addressing set
     // (at most half full), and faces met a second time are skipped, as they add no vertex. Fan j
@@ -66,10 +73,13 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
                 if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
                 uint32_t x = h;
                 for (int c = 0; c < 4; ++c, x = T.next(x)) {
-                    if (L.edgeSharpness[T.edge(x)] != 0) return false;
                     const uint32_t v = T.vertex(x);
+                    if (L.edgeSharpness[T.edge(x)] != 0 &&
+                        (!featuresBeyondCorners || atCorner(v) || atCorner(T.vertex(T.next(x)))))
+                        return false;
                     if (!insert(v)) continue;
-                    if (L.vertexSharpness[v] != 0 || support.size() == M) return false;
+                    if ((L.vertexSharpness[v] != 0 && (!featuresBeyondCorners || atCorner(v))) || support.size() == M)
+                        return false;
                     support.push_back(v);
                 }
             }
@@ -80,17 +90,94 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
     return support.size() == M;
 }
 
-Mesh irregularBasisMesh(uint32_t n) {
+bool boundarySupport(const Level& L, uint32_t f, int& corner, BasisConfiguration& configuration,
+                     std::vector<uint32_t>& support, std::vector<uint32_t>& signature) {
+    const Topology& T = L.topo;
+    if (T.faceSize(f) != 4 || L.noLimit[f]) return false;
+    const FaceFrame& fr = L.frames[f];
+    int ev = -1;
+    for (int k = 0; k < 4; ++k) {
+        const uint32_t v = T.vertex(T.faceHalfedge(f) + (fr.rotation + k) % 4);
+        if (T.vertexIsNonManifold(v)) return false;
+        const bool boundary = T.vertexIsBoundary(v);
+        const uint32_t n = T.vertexFaceCount(v);
+        if (L.vertexSharpness[v] == 0 && n == (boundary ? 2u : 4u)) continue; // regular
+        if (ev >= 0 || !boundary || n < 1 || n > kMaxBasisValence) return false;
+        if (L.vertexSharpness[v] != 0 && L.vertexSharpness[v] < kInfiniteSharpness) return false;
+        ev = k;
+        configuration = {n, true, 0, L.vertexSharpness[v] != 0};
+    }
+    if (ev < 0) return false;
+    corner = ev;
+    const uint32_t h0 = T.faceHalfedge(f) + (fr.rotation + ev) % 4;
+    for (uint32_t h = T.rotateCW(h0); h != kNone; h = T.rotateCW(h))
+        if (++configuration.position >= configuration.valence) return false;
+    const uint32_t evVertex = T.vertex(h0);
+    const uint32_t h0f = T.faceHalfedge(f);
+    const uint32_t corners[4] = {T.vertex(h0f), T.vertex(h0f + 1), T.vertex(h0f + 2), T.vertex(h0f + 3)};
+    auto atCorner = [&](uint32_t v) { return v == corners[0] || v == corners[1] || v == corners[2] || v == corners[3]; };
+    support.clear();
+    signature.clear();
+    // A linear search: the supports are small (2n + 8 at most) and this runs only on the faces
+    // along UV seams.
+    auto index = [&](uint32_t v) -> uint32_t {
+        const auto it = std::find(support.begin(), support.end(), v);
+        if (it != support.end()) return uint32_t(it - support.begin());
+        support.push_back(v);
+        return uint32_t(support.size() - 1);
+    };
+    std::vector<uint32_t> fan;
+    for (int j = 0; j < 4; ++j) {
+        const uint32_t hc = T.faceHalfedge(f) + (fr.rotation + ev + j) % 4;
+        fan.assign(1, hc);
+        bool closed = false;
+        for (uint32_t h = T.rotateCCW(hc); h != kNone; h = T.rotateCCW(h)) {
+            if (h == hc) {
+                closed = true;
+                break;
+            }
+            if (fan.size() > kMaxBasisValence) return false;
+            fan.push_back(h);
+        }
+        if (!closed)
+            for (uint32_t h = T.rotateCW(hc); h != kNone; h = T.rotateCW(h)) {
+                if (fan.size() > kMaxBasisValence) return false;
+                fan.push_back(h);
+            }
+        signature.push_back(uint32_t(fan.size()) << 1 | (closed ? 1u : 0u));
+        for (uint32_t h : fan) {
+            const uint32_t g = T.face(h);
+            if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
+            uint32_t x = h;
+            for (int c = 0; c < 4; ++c, x = T.next(x)) {
+                // A crease at a corner (smoothSupport says why only there).
+                const uint32_t v = T.vertex(x);
+                if (L.edgeSharpness[T.edge(x)] != 0 && T.twin(x) != kNone && (atCorner(v) || atCorner(T.vertex(T.next(x)))))
+                    return false;
+                if (v != evVertex && atCorner(v) && L.vertexSharpness[v] != 0) return false;
+                signature.push_back(index(v));
+            }
+            if (support.size() > 2 * size_t(kMaxBasisValence) + 8) return false;
+        }
+    }
+    return true;
+}
+
+Mesh irregularBasisMesh(uint32_t n) { return basisConfigurationMesh(n, false); }
+
+Mesh basisConfigurationMesh(uint32_t n, bool boundary) {
     // Three rings of quads around a valence-n vertex: sector j spans rays j and j+1, its point
     // (a, b) = a e_j + b e_{j+1}; the ray points (a, 0) belong to sector j. The rim (a boundary)
-    // is two faces beyond face 0, whose sub-patches it therefore never reaches.
+    // is two faces beyond face 0, whose sub-patches it therefore never reaches. On a boundary,
+    // ray n is not ray 0: its three points come last.
     Mesh m;
     auto id = [&](uint32_t j, uint32_t a, uint32_t b) -> uint32_t {
         if (a == 0 && b == 0) return 0;
+        if (a == 0 && boundary && j + 1 == n) return 1 + n * 12 + (b - 1);
         if (a == 0) return 1 + ((j + 1) % n) * 12 + (b - 1) * 4;
         return 1 + j * 12 + (a - 1) * 4 + b;
     };
-    m.positions.resize(1 + 12 * size_t(n));
+    m.positions.resize(1 + 12 * size_t(n) + (boundary ? 3 : 0));
     for (size_t v = 0; v < m.positions.size(); ++v) m.positions[v] = glm::dvec3(double(v), 0, 0);
     for (uint32_t j = 0; j < n; ++j)
         for (uint32_t a = 0; a < 3; ++a)
@@ -102,12 +189,17 @@ Mesh irregularBasisMesh(uint32_t n) {
     return m;
 }
 
-IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
-    if (n < 3 || n > kMaxBasisValence || K < 1 || K > uint32_t(kMaxDepth))
-        throw std::logic_error("irregular basis: valence or levels out of range");
-    const Mesh m = irregularBasisMesh(n);
+namespace {
+
+// The support of face f of a level, in its basis's order, and whether it is the configuration
+// the basis is for (as the face one level up was).
+using SupportOf = bool (*)(const Level& L, uint32_t f, const void* context, std::vector<uint32_t>& support);
+
+// One level of Catmull-Clark under face `face0` of `m` (its corner 0 the extraordinary vertex),
+// as a program over face0's support, and the weights of K bands expanded from it.
+IrregularBasis basisFromMesh(const Mesh& m, const SchemeOptions& options, uint32_t face0, uint32_t n, uint32_t K,
+                             SupportOf supportOf, const void* context, bool boundary) {
     Warnings warnings;
-    const SchemeOptions options;
     // The table builder's refinement under face 0, one level deep: it refines the faces around
     // face 0's corners (the builder's isolation, oneRing); three children of face 0 are band 1's
     // sub-patches, the fourth (at the extraordinary vertex) has a support like face 0's. The rows
@@ -128,10 +220,11 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     LevelStencils st;
     {
         std::vector<uint8_t> T(levels[0].topo.faceCount(), 0);
-        T[0] = 1;
+        T[face0] = 1;
         levels.push_back(refineLevel(levels[0], oneRing(levels[0].topo, T), options, ptexBase, st));
     }
     const Level& L = levels[1];
+    const uint32_t ptex0 = levels[0].frames[face0].ptex;
     // Face 0's children: the one at the extraordinary vertex (u0 = v0 = 0), and band 1's three
     // sub-patches.
     uint32_t centre = kNone;
@@ -142,15 +235,22 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     std::vector<SubPatch> subPatches;
     std::vector<uint32_t> identity(L.topo.vertexCount());
     for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
+    auto regularCorners = [&](uint32_t cf) {
+        for (uint32_t v : L.topo.faceVertices(cf))
+            if (L.vertexSharpness[v] != 0 || L.topo.vertexFaceCount(v) != (L.topo.vertexIsBoundary(v) ? 2u : 4u))
+                return false;
+        return true;
+    };
     for (uint32_t cf = 0; cf < L.topo.faceCount(); ++cf) {
-        if (L.faceParent[cf] != 0) continue;
+        if (L.faceParent[cf] != face0) continue;
         if (L.frames[cf].u0 == 0 && L.frames[cf].v0 == 0) {
             centre = cf;
             continue;
         }
         const Patch p = gatherPatch(L, cf, 0, identity, kNone);
         const int q = (p.u0 > 0 ? 1 : 0) + (p.v0 > 0 ? 2 : 0); // 1, 3 or 2 (both)
-        if (q == 0 || p.size != 0.5f || p.boundary != 0 || p.ptex != 0)
+        if (q == 0 || p.size != 0.5f || (p.boundary != 0 && !boundary) || p.ptex != ptex0 ||
+            (boundary && !regularCorners(cf)))
             throw std::logic_error("irregular basis: unexpected sub-patch");
         subPatches.push_back({size_t(q == 1 ? 0 : q == 3 ? 1 : 2), p});
     }
@@ -159,22 +259,20 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     // The support of face 0 (the basis's columns) and of its child at the vertex, in
     // smoothSupport's order.
     std::vector<uint32_t> supports[2];
-    for (uint32_t l = 0; l < 2; ++l) {
-        int corner = -1;
-        uint32_t valence = 0;
-        if (!smoothSupport(levels[l], l == 0 ? 0 : centre, corner, valence, supports[l]) || corner != 0 ||
-            valence != n)
+    for (uint32_t l = 0; l < 2; ++l)
+        if (!supportOf(levels[l], l == 0 ? face0 : centre, context, supports[l]))
             throw std::logic_error("irregular basis: the generated valence-" + std::to_string(n) +
-                                   " mesh has no smooth support at level " + std::to_string(l));
-    }
+                                   " mesh has no support of its configuration at level " + std::to_string(l));
     const size_t M = supports[0].size();
+    if (supports[1].size() != M) throw std::logic_error("irregular basis: supports of two sizes");
     std::vector<uint32_t> inputOf(levels[0].topo.vertexCount(), kNone);
     for (size_t i = 0; i < M; ++i) inputOf[supports[0][i]] = uint32_t(i);
     // The level-1 vertices the sub-patches and the next support read, and the face points those
     // read (level 1 holds face points, then edge points, then vertex points).
     std::vector<uint8_t> needed(L.topo.vertexCount(), 0);
     for (const SubPatch& sp : subPatches)
-        for (uint32_t v : sp.patch.cv) needed[v] = 1;
+        for (int i = 0; i < 16; ++i)
+            if (!isPhantom(sp.patch.boundary, i)) needed[sp.patch.cv[i]] = 1;
     for (uint32_t v : supports[1]) needed[v] = 1;
     auto markFacePoints = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
                               const std::vector<StencilEntry>& entries) {
@@ -223,15 +321,103 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     };
     weighted(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
     weighted(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
-    for (const SubPatch& sp : subPatches)
-        for (int j = 0; j < 16; ++j) p.controlRow[sp.quadrant * 16 + size_t(j)] = row[sp.patch.cv[j]];
+    // A boundary sub-patch's phantom points, as gatherControlPoints makes them (columns first,
+    // then rows over all columns): rows 2 a - b of earlier rows, the same double operations
+    // (0 + 2 a + (-1) b is 2 a - b to the bit).
+    auto phantom = [&](uint32_t a, uint32_t b) {
+        p.source.push_back(uint32_t(M) + a);
+        p.weight.push_back(2.0f);
+        p.source.push_back(uint32_t(M) + b);
+        p.weight.push_back(-1.0f);
+        p.start.push_back(uint32_t(p.source.size()));
+        p.averaged.push_back(0);
+        return rows++;
+    };
+    for (const SubPatch& sp : subPatches) {
+        const uint8_t mask = sp.patch.boundary;
+        uint32_t R[4][4]; // P[i][j]'s row
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) R[i][j] = isPhantom(mask, 4 * j + i) ? kNone : row[sp.patch.cv[4 * j + i]];
+        for (int j = 0; j < 4; ++j) { // a column phantom beside a row phantom is overwritten below
+            if ((mask & kBoundaryV0) && j == 0) continue;
+            if ((mask & kBoundaryV1) && j == 3) continue;
+            if (mask & kBoundaryU0) R[0][j] = phantom(R[1][j], R[2][j]);
+            if (mask & kBoundaryU1) R[3][j] = phantom(R[2][j], R[1][j]);
+        }
+        for (int i = 0; i < 4; ++i) {
+            if (mask & kBoundaryV0) R[i][0] = phantom(R[i][1], R[i][2]);
+            if (mask & kBoundaryV1) R[i][3] = phantom(R[i][2], R[i][1]);
+        }
+        for (int j = 0; j < 16; ++j) p.controlRow[sp.quadrant * 16 + size_t(j)] = R[j % 4][j / 4];
+    }
     for (uint32_t v : supports[1]) p.nextSupport.push_back(row[v]);
-    basis.weights = expandIrregularBasis(p, n, K);
+    if (boundary) basis.support = uint32_t(M);
+    basis.weights = expandIrregularBasis(p, uint32_t(M), K);
     return basis;
 }
 
-std::vector<float> expandIrregularBasis(const BasisProgram& p, uint32_t n, uint32_t K) {
-    const size_t M = 2 * size_t(n) + 8, T = p.rows();
+bool interiorSupport(const Level& L, uint32_t f, const void* context, std::vector<uint32_t>& support) {
+    int corner = -1;
+    uint32_t valence = 0;
+    return smoothSupport(L, f, corner, valence, support) && corner == 0 &&
+           valence == *static_cast<const uint32_t*>(context);
+}
+
+struct BoundaryContext {
+    BasisConfiguration configuration;
+    std::vector<uint32_t> signature; // of face 0, which the centre child must share
+};
+
+bool boundarySupportOf(const Level& L, uint32_t f, const void* context, std::vector<uint32_t>& support) {
+    auto* c = static_cast<const BoundaryContext*>(context);
+    int corner = -1;
+    BasisConfiguration x;
+    std::vector<uint32_t> signature;
+    return boundarySupport(L, f, corner, x, support, signature) && corner == 0 && x == c->configuration &&
+           signature == c->signature;
+}
+
+} // namespace
+
+IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
+    if (n < 3 || n > kMaxBasisValence || K < 1 || K > uint32_t(kMaxDepth))
+        throw std::logic_error("irregular basis: valence or levels out of range");
+    IrregularBasis b = basisFromMesh(irregularBasisMesh(n), SchemeOptions{}, 0, n, K, interiorSupport, &n, false);
+    b.configuration = {n, false, 0, false};
+    return b;
+}
+
+IrregularBasis buildBoundaryBasis(const BasisConfiguration& c, uint32_t K) {
+    if (!c.boundary || c.valence < 1 || c.valence > kMaxBasisValence || c.position >= c.valence || K < 1 ||
+        K > uint32_t(kMaxDepth))
+        throw std::logic_error("boundary basis: configuration or levels out of range");
+    Mesh m = basisConfigurationMesh(c.valence, true);
+    if (c.corner) m.tags.corners.push_back({0, kInfiniteSharpness});
+    SchemeOptions options; // the face-varying mesh's (fvar_surface.cpp)
+    options.boundary = BoundaryRule::EdgeOnly;
+    m.tags.boundary = BoundaryRule::EdgeOnly;
+    // The face at the configuration's place in the vertex's fan, and its signature.
+    Warnings warnings;
+    Topology topo(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices);
+    Sharpness sharp = baseSharpness(topo, m.tags, options.boundary, warnings);
+    const Level base = makeBaseLevel(std::move(topo), std::move(sharp));
+    BoundaryContext context{c, {}};
+    for (uint32_t j = 0; j < c.valence; ++j) {
+        int corner = -1;
+        BasisConfiguration x;
+        std::vector<uint32_t> support, signature;
+        if (!boundarySupport(base, j * 9, corner, x, support, signature) || corner != 0 || !(x == c)) continue;
+        context.signature = signature;
+        IrregularBasis b = basisFromMesh(m, options, j * 9, c.valence, K, boundarySupportOf, &context, true);
+        b.configuration = c;
+        b.signature = std::move(context.signature);
+        return b;
+    }
+    throw std::logic_error("boundary basis: the generated mesh has no face of the configuration");
+}
+
+std::vector<float> expandIrregularBasis(const BasisProgram& p, uint32_t support, uint32_t K) {
+    const size_t M = support, T = p.rows();
     bool valid = p.start.size() >= 1 && p.start[0] == 0 && p.averaged.size() == T &&
                  p.source.size() == p.start[T] && p.weight.size() == p.source.size() &&
                  p.nextSupport.size() == M;

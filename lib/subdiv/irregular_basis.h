@@ -36,6 +36,24 @@ struct BasisProgram {
     uint32_t rows() const { return static_cast<uint32_t>(start.size() - 1); }
 };
 
+// Which faces a basis draws: those around one extraordinary vertex with `valence` faces, the other
+// vertices of the faces around their corners regular. Interior: Stam's setting, one basis per
+// valence (the faces around the vertex are alike up to rotation). On a boundary (a UV seam or a
+// mesh boundary of the face-varying surface; FVSF version 3) the faces around the vertex differ,
+// so a basis is per face: `position` is the face's place in the vertex's fan, 0 for the face at
+// its clockwise end, and `corner` says the vertex is infinitely sharp (a corner) rather than a
+// smooth boundary vertex.
+struct BasisConfiguration {
+    uint32_t valence = 0;
+    bool boundary = false;
+    uint32_t position = 0;
+    bool corner = false;
+    // What FVSF version 3 stores: 0 for interior, else 1 | corner << 1 | position << 2.
+    uint32_t code() const { return boundary ? 1u | uint32_t(corner) << 1 | position << 2 : 0u; }
+    uint64_t key() const { return uint64_t(valence) << 32 | code(); }
+    bool operator==(const BasisConfiguration&) const = default;
+};
+
 struct IrregularBasis {
     uint32_t valence = 0;
     uint32_t levels = 0; // K
@@ -46,22 +64,41 @@ struct IrregularBasis {
     std::vector<float> weights;
     // What the weights were expanded from (empty rows when read from TBLS before version 5).
     BasisProgram program;
-    uint32_t supportSize() const { return 2 * valence + 8; }
+    // Interior (the geometry's bases, and TBLS's only kind): 2n + 8 points. A boundary
+    // configuration's support has `support` points.
+    BasisConfiguration configuration;
+    uint32_t support = 0;
+    // Builder only (not stored): the local topology the program was made for, as
+    // boundarySupport's signature; a face whose signature differs is refined instead.
+    std::vector<uint32_t> signature;
+    uint32_t supportSize() const { return support ? support : 2 * valence + 8; }
 };
 
 // The mesh a basis is refined from: three rings of quads around a valence-n vertex (vertex 0),
 // face 0 one of the faces at it, the rim a boundary two faces beyond face 0.
 Mesh irregularBasisMesh(uint32_t valence);
+// The same around a vertex with `valence` faces, on a boundary (the fan open between rays 0 and n)
+// or not (irregularBasisMesh); face 9 j is the fan's face j, vertex 0 its corner 0.
+Mesh basisConfigurationMesh(uint32_t valence, bool boundary);
 
 // Builds the basis of valence n (3..kMaxBasisValence) for K levels (1..16): its program, and the
 // weights expanded from it. Throws on failure.
 IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);
 
-// The weights of K bands (IrregularBasis::weights' layout) from a program over 2n + 8 support
-// points, with the builder's own arithmetic (double sums in the program's order, each weight
+// The same for a boundary configuration (boundarySupport's), from a generated mesh of three rings
+// of quads around a boundary vertex with that many faces, refined one level with the builder's
+// own rules (the face-varying mesh's: edge-only boundaries, the vertex tagged a corner when it is
+// one). The program also holds the boundary sub-patches' phantom points (gatherControlPoints'
+// 2 a - b, columns first), so its weights give the ptex-frame control points as the tables
+// evaluate them. Throws where the configuration is not self-similar (the sub-patch at the vertex
+// one level down must be the same configuration) or a sub-patch is not regular.
+IrregularBasis buildBoundaryBasis(const BasisConfiguration& configuration, uint32_t levels);
+
+// The weights of K bands (IrregularBasis::weights' layout) from a program over `support` points
+// (2n + 8 for an interior basis), with the builder's own arithmetic (double sums in the program's order, each weight
 // rounded to float once). The program must be valid (TBLS's reader checks every count and index
 // before calling this); throws std::logic_error otherwise.
-std::vector<float> expandIrregularBasis(const BasisProgram& program, uint32_t valence, uint32_t levels);
+std::vector<float> expandIrregularBasis(const BasisProgram& program, uint32_t support, uint32_t levels);
 
 // Whether face f of level L is a quad whose surface these bases give: exactly one corner is an
 // extraordinary vertex (valence n >= 3, any n != 4), the other three have valence 4, every face
@@ -70,7 +107,23 @@ std::vector<float> expandIrregularBasis(const BasisProgram& program, uint32_t va
 // `valence` its valence and `support` the 2n + 8 vertices of the faces around its corners in
 // a canonical order (corners from the extraordinary one counter-clockwise, faces around each
 // counter-clockwise from f, each face's vertices from that corner on; each vertex once).
-bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence,
-                   std::vector<uint32_t>& support);
+// `featuresBeyondCorners`: accept boundaries, creases and sharp vertices on the support's rim
+// (edges and vertices not at the four corners), which the stencils of one level do not read as
+// features. Only the face-varying surface sets it (its interior extraordinary vertices beside
+// a UV seam); TBLS's smooth faces keep the strict rule.
+bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence, std::vector<uint32_t>& support,
+                   bool featuresBeyondCorners = false);
+
+// Whether face f of level L is a quad around one boundary vertex (any number of faces up to
+// kMaxBasisValence, a smooth boundary or an infinitely sharp corner) whose other corners are
+// regular (4 faces inside, 2 on a boundary), no crease or other sharp vertex at its corners, and
+// no face around them without a limit. Then `corner`, `configuration` and `support` (the vertices of the
+// faces around the corners: corners from the boundary one counter-clockwise, each corner's fan
+// counter-clockwise from f to a boundary, then clockwise from f, each face's vertices from that
+// corner on, each vertex once), and `signature`: per corner its fan's length and whether it
+// closed, then per face its four vertices' support indices — the local topology the stencils of
+// one level read, which buildBoundaryBasis's generated mesh must share.
+bool boundarySupport(const Level& L, uint32_t f, int& corner, BasisConfiguration& configuration,
+                     std::vector<uint32_t>& support, std::vector<uint32_t>& signature);
 
 } // namespace limn

@@ -101,6 +101,11 @@ struct TablesOptions {
     // basis there instead of being refined on (TBLS version 5). Off: the quadtree refines them
     // to depth+K, which versions 3 and 4 can hold (tests compare the two).
     bool smoothFacesBelowDepth = true;
+    // Faces around one boundary vertex (smooth or a corner) with regular neighbours also take a
+    // basis, one per configuration (irregular_basis.h, buildBoundaryBasis), instead of being
+    // refined. Only the face-varying UV surface sets it (FVSF version 3): TBLS holds interior
+    // bases only, and the geometry's GPU evaluation knows no other.
+    bool boundaryBases = false;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;

@@ -10,6 +10,7 @@
 #include "subdiv/tables.h"
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace limn {
@@ -55,6 +56,7 @@ struct AdaptiveLevels {
     std::vector<SmoothIrregularFace> smooth;         // by level: roots (T_N) first, then deeper
     std::vector<IrregularBasis> bases;               // their bases, one per valence met
     std::vector<int> basisOfValence;                 // into bases; -1: not tried, -2: failed
+    std::unordered_map<uint64_t, int> basisOfConfiguration; // boundary ones, by key (the same)
 };
 
 // Refines `baseTopo` (checked by checkTablesTopology) to depth opts.depth and K more levels under

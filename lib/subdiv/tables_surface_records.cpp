@@ -20,17 +20,8 @@ namespace limn {
 static constexpr uint32_t kMaxProgramRowsPerPoint = 2;
 static constexpr uint32_t kMaxProgramEntriesPerRow = 16;
 
-void writeBasisProgram(ByteWriter& w, const IrregularBasis& b) {
-    const BasisProgram* p = &b.program;
-    IrregularBasis built;
-    if (b.program.rows() == 0) {
-        built = buildIrregularBasis(b.valence, b.levels);
-        if (built.weights.size() != b.weights.size() ||
-            std::memcmp(built.weights.data(), b.weights.data(), b.weights.size() * sizeof(float)) != 0)
-            throw std::logic_error("TBLS: a valence-" + std::to_string(b.valence) +
-                                   " basis is not this limn's; it cannot be written as a program");
-        p = &built.program;
-    }
+void writeProgram(ByteWriter& w, const BasisProgram& program) {
+    const BasisProgram* p = &program;
     std::vector<float> palette;
     std::unordered_map<uint32_t, uint32_t> slot; // a weight's bits -> its palette index
     std::vector<uint8_t> s;
@@ -48,34 +39,39 @@ void writeBasisProgram(ByteWriter& w, const IrregularBasis& b) {
     }
     for (uint32_t x : p->controlRow) writeVarint(s, x);
     for (uint32_t x : p->nextSupport) writeVarint(s, x);
-    w.write<uint32_t>(b.valence);
-    w.write<uint32_t>(b.levels);
     w.write<uint32_t>(static_cast<uint32_t>(palette.size()));
     w.writeArray(palette);
     writeStream(w, s);
 }
 
-IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector<IrregularBasis>& earlier) {
-    const std::string what = "irregular basis " + std::to_string(index);
-    IrregularBasis b;
-    b.valence = r.read<uint32_t>();
-    b.levels = r.read<uint32_t>();
-    // The expanded weights take K * 48 * (2n + 8) floats from a few hundred bytes: valences
-    // beyond kMaxBasisValence (limn-tables builds none) and repeated ones are damage.
-    if (b.valence < 3 || b.valence > kMaxBasisValence || b.levels < 1 || b.levels > uint32_t(kMaxDepth))
-        r.fail(what + " has a bad valence or level count (valence 3 to " + std::to_string(kMaxBasisValence) +
-               ", 1 to " + std::to_string(kMaxDepth) + " levels)");
-    for (const IrregularBasis& other : earlier)
-        if (other.valence == b.valence) r.fail(what + " repeats valence " + std::to_string(b.valence));
-    const uint32_t M = b.supportSize();
+void writeBasisProgram(ByteWriter& w, const IrregularBasis& b) {
+    if (b.configuration.boundary)
+        throw std::logic_error("TBLS: a boundary configuration's basis has no place in TBLS (FVSF only)");
+    const BasisProgram* p = &b.program;
+    IrregularBasis built;
+    if (b.program.rows() == 0) {
+        built = buildIrregularBasis(b.valence, b.levels);
+        if (built.weights.size() != b.weights.size() ||
+            std::memcmp(built.weights.data(), b.weights.data(), b.weights.size() * sizeof(float)) != 0)
+            throw std::logic_error("TBLS: a valence-" + std::to_string(b.valence) +
+                                   " basis is not this limn's; it cannot be written as a program");
+        p = &built.program;
+    }
+    w.write<uint32_t>(b.valence);
+    w.write<uint32_t>(b.levels);
+    writeProgram(w, *p);
+}
+
+BasisProgram readProgram(ByteReader& r, const std::string& what, uint32_t M, uint32_t phantomRows) {
     const uint32_t P = r.read<uint32_t>();
     const std::vector<float> palette = r.readArray<float>(P, (what + " palette").c_str());
     for (float x : palette)
         if (!(std::abs(x) <= kMaxStencilWeight)) r.fail(what + " has a bad weight");
     StreamReader in(r, what);
-    BasisProgram& p = b.program;
+    BasisProgram p;
     const uint64_t rows = in.varint();
-    if (rows == 0 || rows > uint64_t(kMaxProgramRowsPerPoint) * M) in.fail("bad row count " + std::to_string(rows));
+    if (rows == 0 || rows > uint64_t(kMaxProgramRowsPerPoint) * M + phantomRows)
+        in.fail("bad row count " + std::to_string(rows));
     const uint64_t maxEntries = rows * kMaxProgramEntriesPerRow;
     p.start.reserve(rows + 1);
     p.averaged.reserve(rows);
@@ -109,7 +105,26 @@ IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector
     p.nextSupport.resize(M);
     for (uint32_t& x : p.nextSupport) x = rowIndex();
     in.finish();
-    b.weights = expandIrregularBasis(p, b.valence, b.levels);
+    return p;
+}
+
+IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector<IrregularBasis>& earlier) {
+    const std::string what = "irregular basis " + std::to_string(index);
+    IrregularBasis b;
+    b.valence = r.read<uint32_t>();
+    b.levels = r.read<uint32_t>();
+    // The expanded weights take K * 48 * (2n + 8) floats from a few hundred bytes: valences
+    // beyond kMaxBasisValence (limn-tables builds none) and repeated ones are damage.
+    if (b.valence < 3 || b.valence > kMaxBasisValence || b.levels < 1 || b.levels > uint32_t(kMaxDepth))
+        r.fail(what + " has a bad valence or level count (valence 3 to " + std::to_string(kMaxBasisValence) +
+               ", 1 to " + std::to_string(kMaxDepth) + " levels)");
+    for (const IrregularBasis& other : earlier)
+        if (other.valence == b.valence && !other.configuration.boundary)
+            r.fail(what + " repeats valence " + std::to_string(b.valence));
+    b.configuration = {b.valence, false, 0, false};
+    const uint32_t M = b.supportSize();
+    b.program = readProgram(r, what, M, 0);
+    b.weights = expandIrregularBasis(b.program, M, b.levels);
     for (float x : b.weights) // sums of bounded weights can still grow past any bound
         if (!(std::abs(x) <= kMaxStencilWeight)) r.fail(what + " has a bad weight");
     return b;

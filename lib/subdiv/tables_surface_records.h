@@ -23,6 +23,11 @@ void writeBasisProgram(ByteWriter& w, const IrregularBasis& basis);
 // Reads basis `index` and expands its weights; `earlier` are the bases read before it (no valence
 // twice). Every count and index is checked before anything is allocated from it.
 IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector<IrregularBasis>& earlier);
+// The program alone (u32 palette size, the palette, the stream), over `support` points, which
+// FVSF version 3 writes after a configuration's own header; `phantomRows` more rows than TBLS's
+// bound allows (a boundary configuration's phantom points). Checked as readBasisProgram does.
+void writeProgram(ByteWriter& w, const BasisProgram& program);
+BasisProgram readProgram(ByteReader& r, const std::string& what, uint32_t support, uint32_t phantomRows);
 
 // The quadtree nodes (after their count): a stream of codes, each a varint from the last index of
 // its kind, a node of four equal codes as one. The codes' kinds and indices are checked by the

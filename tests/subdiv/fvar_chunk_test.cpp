@@ -7,6 +7,7 @@
 #include "subdiv/fvar_chunk.h"
 #include "subdiv/irregular_basis.h"
 #include "subdiv/tables_chunk.h"
+#include "subdiv/tables_surface_records.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -113,6 +114,98 @@ TEST(FvarSurfaceChunk, StoresTheUVSurfaceLosslessly) {
     }
 }
 
+// The faces along UV seams and boundaries (version 3) are stored as their support and their
+// configuration's basis; expanded, they must be the pieces the quadtree of K refined levels gave
+// (version 2, boundaryBases off): the same squares, kinds and leaves everywhere, and the same
+// control points and leaf corners up to float rounding (the bases' weights are floats over
+// float support UVs, the quadtree's stencils ran in double).
+TEST(FvarSurfaceChunk, BoundaryBasesExpandToTheQuadtreesPieces) {
+    for (const char* model :
+         {"tri/cube_no_bottom.obj", "quad/spot_control_mesh.obj", "quad/blub_control_mesh.obj",
+          "osd/catmark/catmark_fvar_bound3.obj"}) {
+        for (FVarRule rule : {FVarRule::LinearNone, FVarRule::CornersOnly, FVarRule::CornersPlus1,
+                              FVarRule::Boundaries}) {
+            SCOPED_TRACE(std::string(model) + " rule " + std::to_string(int(rule)));
+            Warnings w;
+            Mesh m = importMeshFile(test::modelPath(model).string(), w);
+            m.tags.fvar = rule;
+            const SchemeOptions o = resolveSchemeOptions(m.tags, {});
+            for (uint32_t depth : {1u, 2u}) {
+                const FaceVaryingSurface before(m, o, depth, kLevels, w,
+                                                FaceVaryingSurface::kMaxGpuRecordBytes, false);
+                const FvarSurfaceChunk stored = decodeFvarSurfaceChunk(
+                    encodeFvarSurfaceChunk(makeFvarSurfaceChunk(m, o, depth, kLevels, w)), &m, &o);
+                size_t boundary = 0;
+                for (const FaceVaryingSurface::SmoothFace& f : stored.surface.smoothFaces)
+                    boundary += stored.surface.bases[f.basis].configuration.boundary;
+                if (depth == 2 && rule == FVarRule::CornersOnly &&
+                    std::string(model).find("bound3") == std::string::npos) {
+                    EXPECT_GT(boundary, 0u);
+                }
+                const FaceVaryingSurface::Gpu want = before.gpu(),
+                                              got = expandSmoothFaces(stored.surface);
+                ASSERT_EQ(want.nodes.size() >= stored.ptexCount, true);
+                size_t leaves = 0;
+                double worst = 0, span = 0;
+                for (const glm::vec4& r : want.records)
+                    span = std::max({span, double(std::fabs(r.x)), double(std::fabs(r.y))});
+                std::function<void(uint32_t, uint32_t)> compare = [&](uint32_t a, uint32_t b) {
+                    const uint32_t x = want.nodes[a], y = got.nodes[b];
+                    ASSERT_EQ(x == 0xFFFFFFFFu, y == 0xFFFFFFFFu);
+                    if (x == 0xFFFFFFFFu) return;
+                    ASSERT_EQ(bool(x & 0x80000000u), bool(y & 0x80000000u)) << "node " << a;
+                    if (!(x & 0x80000000u)) {
+                        for (uint32_t k = 0; k < 4; ++k) compare(x + k, y + k);
+                        return;
+                    }
+                    const glm::vec4* r = &want.records[9 * size_t(x & 0x7FFFFFFFu)];
+                    const glm::vec4* q = &got.records[9 * size_t(y & 0x7FFFFFFFu)];
+                    ASSERT_EQ(std::memcmp(r, q, 16), 0) << "the domain and kind of node " << a;
+                    for (int k = 1; k < 9; ++k)
+                        for (int c = 0; c < 4; ++c)
+                            worst = std::max(worst, double(std::fabs(r[k][c] - q[k][c])));
+                    ++leaves;
+                };
+                for (uint32_t p = 0; p < stored.ptexCount; ++p) compare(p, p);
+                EXPECT_EQ(leaves, want.records.size() / 9);
+                // A few float steps of the UVs' range.
+                EXPECT_LE(worst, 8 * std::ldexp(span, -24))
+                    << boundary << " boundary faces, depth " << depth;
+            }
+        }
+    }
+}
+
+// Every boundary configuration limn-tables can build (up to 16 faces at the vertex, every place
+// in its fan, smooth or a corner) builds, is self-similar, and stays within what the readers
+// accept: its program's rows, its support's size and its weights (phantom points of convex rows:
+// [-4, 5]); the FVSF codec gives its weights back bit for bit.
+TEST(FvarSurfaceChunk, EveryBoundaryConfigurationIsReadable) {
+    size_t built = 0;
+    for (uint32_t n = 1; n <= 16; ++n)
+        for (uint32_t position = 0; position < n; ++position)
+            for (bool corner : {false, true}) {
+                SCOPED_TRACE(std::to_string(n) + " faces, face " + std::to_string(position) + (corner ? ", corner" : ""));
+                if (n == 2 && !corner) continue; // a regular boundary vertex: no configuration
+                IrregularBasis b;
+                ASSERT_NO_THROW(b = buildBoundaryBasis({n, true, position, corner}, 3));
+                ++built;
+                const uint32_t M = b.supportSize();
+                EXPECT_GE(M, 4u);
+                EXPECT_LE(M, 2 * kMaxBasisValence + 8);
+                EXPECT_LE(b.program.rows(), 2 * M + 21);
+                for (float x : b.weights) ASSERT_TRUE(x >= -4 && x <= 5) << x;
+                ByteWriter w;
+                writeProgram(w, b.program);
+                const std::vector<uint8_t> bytes = w.take();
+                ByteReader r(bytes, "test");
+                const std::vector<float> again = expandIrregularBasis(readProgram(r, "test", M, 21), M, 3);
+                EXPECT_EQ(0, std::memcmp(again.data(), b.weights.data(), again.size() * 4));
+                EXPECT_EQ(again.size(), b.weights.size());
+            }
+    EXPECT_EQ(built, 16u * 17u - 2);
+}
+
 // Where the pieces of every irregular face would take too many GPU records, they stop at fewer
 // levels (and say so): still exact on the lattice of their deepest squares.
 TEST(FvarSurfaceChunk, FewerLevelsOverTheRecordBudgetStayExactAtTheirCorners) {
@@ -207,7 +300,7 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     longer.payload.push_back(0);
     EXPECT_TRUE(refused(longer, "trailing byte"));
     Chunk newer = c;
-    newer.version = 3;
+    newer.version = kFvarSurfaceChunkVersion + 1;
     EXPECT_TRUE(refused(newer, "newer version"));
     const size_t nodes = 32; // the payload offset of nodes[0]
     auto word = [](Chunk& k, size_t at, uint32_t v) { std::memcpy(k.payload.data() + at, &v, 4); };
@@ -248,14 +341,20 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
             EXPECT_TRUE(refused(shared, "two parents"));
         }
     }
-    // Version 1 (no smooth faces: its tail of zero counts and an empty stream removed) is still read.
-    ASSERT_TRUE(good.surface.smoothFaces.empty());
-    Chunk first = c;
+    // Version 1 (no smooth faces: its tail of zero counts and an empty stream removed) is still
+    // read. Its faces along the UV boundary are their pieces (version 3 stores them as smooth
+    // faces of boundary configurations).
+    FvarSurfaceChunk pieces = good;
+    pieces.surface = FaceVaryingSurface(m, o, 1, kLevels, w, FaceVaryingSurface::kMaxGpuRecordBytes, false).compactGpu();
+    pieces.elementCount = static_cast<uint32_t>(pieces.surface.records.size() / 9);
+    ASSERT_TRUE(pieces.surface.smoothFaces.empty());
+    const Chunk v2 = encodeFvarSurfaceChunk(pieces);
+    Chunk first = v2;
     first.version = 1;
     ASSERT_GE(first.payload.size(), 16u);
     first.payload.erase(first.payload.end() - 16, first.payload.end());
     EXPECT_NO_THROW(decodeFvarSurfaceChunk(first, &m, &o));
-    EXPECT_TRUE(refused(Chunk{c.type, 1, c.payload}, "version 1 with a version-2 tail"));
+    EXPECT_TRUE(refused(Chunk{v2.type, 1, v2.payload}, "version 1 with a version-2 tail"));
     // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell).
     std::mt19937 rng(5);
     for (int trial = 0; trial < 500; ++trial) {
@@ -296,24 +395,39 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
         if (offset + 4 <= c.payload.size()) std::memcpy(&v, c.payload.data() + offset, 4);
         return v;
     };
-    const size_t S = good.surface.smoothFaces.size();
-    // After the records: the bases (each u32 n, k, palette size P, f32 palette[P], then its
-    // program's stream: u32 bytes, the bytes padded to 4), the values, the smooth faces' count
-    // and stream.
+    const size_t S = good.surface.smoothFaces.size(), B = good.surface.bases.size();
+    ASSERT_LT(B, 32u);
+    // After the records: the bases (each u32 n, configuration, support size, k, palette size P,
+    // f32 palette[P], then its program's stream: u32 bytes, the bytes padded to 4), the values,
+    // the smooth faces' count and stream.
     const size_t bases = 32 + 4 * good.surface.nodes.size() + 144 * good.surface.records.size() / 9;
+    std::vector<size_t> basisAt;
     size_t values = bases + 4;
     for (uint32_t b = 0; b < at(bases); ++b) {
-        const size_t stream = values + 12 + 4 * size_t(at(values + 8));
+        basisAt.push_back(values);
+        const size_t stream = values + 20 + 4 * size_t(at(values + 16));
         values = stream + 4 + (size_t(at(stream)) + 3) / 4 * 4;
     }
-    const size_t palette = bases + 16, stream = palette + 4 * size_t(at(bases + 12));
+    ASSERT_EQ(basisAt.size(), B);
+    size_t interior = B, boundary = B;
+    for (size_t b = B; b-- > 0;)
+        (good.surface.bases[b].configuration.boundary ? boundary : interior) = b;
+    ASSERT_LT(interior, B);
+    ASSERT_LT(boundary, B);
+    const size_t in = basisAt[interior], bd = basisAt[boundary];
+    const size_t palette = in + 20, stream = palette + 4 * size_t(at(in + 16));
     const size_t faces = values + 4 + 8 * size_t(at(values));
     ASSERT_EQ(at(faces), S);
+    const uint32_t n = good.surface.bases[boundary].valence;
     const std::pair<size_t, uint32_t> cases[] = {
         {bases, 0x10000000u},       // basis count
-        {bases + 4, 65},            // a valence over 64
-        {bases + 8, 17},            // deeper than 16 levels
-        {bases + 12, 0xFFFFFFFFu},  // a palette past the end
+        {in, 65},                   // a valence over 64
+        {in + 4, 2},                // a corner that is not on a boundary
+        {in + 8, 0xFFFFu},          // a support size past any valence's
+        {in + 12, 17},              // deeper than 16 levels
+        {in + 16, 0xFFFFFFFFu},     // a palette past the end
+        {bd + 4, 1u | n << 2},      // a boundary face beyond the vertex's fan
+        {bd + 8, 3},                // a support smaller than a face
         {palette, 0x7F800000u},     // an infinite weight
         {palette, 0x40000000u},     // a weight of 2: expanded, some weight outside [0, 1]
         {palette, 0xBF800000u},     // a weight of -1
@@ -323,7 +437,7 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
         {values + 4, 0x7F800000u},  // an infinite value
         {values + 8, 0x7FC00000u},  // a NaN value
         {faces, 0xFFFFFFFFu},       // smooth face count
-        {faces + 8, 0x10101010u},   // a valence without a basis (4) in the stream
+        {faces + 8, (at(faces + 8) & 0xFFFFFF00u) | uint32_t(B << 2)}, // a missing basis in the stream
         {faces + 8, 0xFFFFFF00u | (at(faces + 8) & 0xFFu)}, // a value index beyond the values
     };
     for (const auto& [offset, v] : cases) {
@@ -343,18 +457,18 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
     EXPECT_TRUE(refused(twice));
     // A program the reader would run out of bounds (TBLS version 5's checks, tables_chunk_test's
     // HostileBasisProgramIsRefused has them all): re-encoded as it is, refused naming the fault.
-    const uint32_t M = good.surface.bases[0].supportSize();
+    const uint32_t M = good.surface.bases[interior].supportSize();
     const std::pair<const char*, std::function<void(BasisProgram&)>> programs[] = {
         {"reads neither a support point nor an earlier row", [&](BasisProgram& p) { p.source[p.start[3]] = M + 3; }},
         {"names a missing row", [&](BasisProgram& p) { p.nextSupport[0] = p.rows(); }},
         {"has a bad weight", [&](BasisProgram& p) { p.weight[p.start[p.rows() - 1]] = 3e38f; }},
-        {"valence 4", [&](BasisProgram&) {}}, // the regular valence (the program is never run)
+        {"bad configuration", [&](BasisProgram&) {}}, // the regular valence (the program is never run)
     };
     for (const auto& [why, damage] : programs) {
         FvarSurfaceChunk bad = good;
-        FaceVaryingSurface::Basis& b = bad.surface.bases[0];
+        FaceVaryingSurface::Basis& b = bad.surface.bases[interior];
         damage(b.program);
-        if (std::string(why) == "valence 4") { // a valid program over 16 support points: one row
+        if (std::string(why) == "bad configuration") { // a valid program over 16 support points: one row
             b.valence = 4;
             b.program = BasisProgram{};
             b.program.source = {0};

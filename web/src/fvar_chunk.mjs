@@ -4,12 +4,14 @@
 // walk leaves the nodes and no record names what is not there. Version 2 stores a face with a
 // per-valence basis as a smooth face (support UVs; the basis once per valence, as its one-level
 // program like TBLS version 5's), expanded here into the pieces the GPU draws with the same
-// arithmetic as lib/subdiv/fvar_expand.cpp (the same bits).
+// arithmetic as lib/subdiv/fvar_expand.cpp (the same bits). Version 3 does the same for faces
+// around one UV boundary vertex, with a basis per configuration.
 import { chunkReader } from './container.mjs';
 import { Stream } from './tables_stream.mjs';
-import { readBasisProgram } from './tables_surface_records.mjs';
+import { expandBasis, readBasisProgram, readProgram } from './tables_surface_records.mjs';
 
 const MAX_DEPTH = 16;
+const MAX_BASIS_VALENCE = 64; // kMaxBasisValence
 const HOLE = 0xffffffff, LEAF = 0x80000000;
 
 /**
@@ -18,7 +20,7 @@ const HOLE = 0xffffffff, LEAF = 0x80000000;
  * an element), elementCount }.
  */
 export function decodeFvarSurface(chunk, expected) {
-  const r = chunkReader(chunk, 2);
+  const r = chunkReader(chunk, 3);
   const depth = r.u32('depth');
   if (depth > MAX_DEPTH) r.fail(`depth ${depth} is out of range`);
   const ptexCount = r.u32('ptex count');
@@ -28,7 +30,7 @@ export function decodeFvarSurface(chunk, expected) {
   const nodes = r.array(Uint32Array, nodeCount, 'nodes');
   if (elementCount > Math.floor(r.remaining / 144)) r.fail('element count is too large');
   const records = r.array(Float32Array, elementCount * 36, 'records');
-  const smooth = chunk.version >= 2 ? readSmoothFaces(r) : { faces: [], points: new Float32Array(0), bases: new Map() };
+  const smooth = chunk.version >= 2 ? readSmoothFaces(r, chunk.version) : { faces: [], points: new Float32Array(0), bases: [] };
   r.requireEnd();
   const named = elementCount + smooth.faces.length;
   for (let i = 0; i < nodeCount; i++) {
@@ -59,7 +61,7 @@ export function decodeFvarSurface(chunk, expected) {
     if (v >= LEAF && v - LEAF >= elementCount) { // a smooth face
       const f = smooth.faces[v - LEAF - elementCount];
       if (f.size !== 0) r.fail(`node ${n} names a smooth face named before`);
-      if (level[n] + smooth.bases.get(f.valence).levels > 24) r.fail(`node ${n}'s smooth face is deeper than 24 levels`);
+      if (level[n] + smooth.bases[f.basis].levels > 24) r.fail(`node ${n}'s smooth face is deeper than 24 levels`);
       f.node = n; f.size = Math.fround(2 ** -level[n]); f.u0 = Math.fround(ci[n] * f.size); f.v0 = Math.fround(cj[n] * f.size);
       continue;
     }
@@ -86,31 +88,56 @@ export function decodeFvarSurface(chunk, expected) {
   return { depth, ptexCount, nodes: expanded.nodes, records: expanded.records, elementCount: expanded.records.length / 36 };
 }
 
-// Version 2's per-valence bases (as programs), the distinct support and limit UVs, and the
-// smooth faces (fvar_chunk.cpp's readSmoothFaces), each count checked against the bytes left
-// before anything is allocated.
-function readSmoothFaces(r) {
+// Version 3's basis: u32 valence, u32 configuration (0 interior, else 1 | corner << 1 | position
+// << 2), u32 support size, u32 levels, then its program (fvar_chunk.cpp's readConfigurationBasis).
+function readConfigurationBasis(r, b, read) {
+  const what = `basis ${b}`;
+  const valence = r.u32(), code = r.u32(), M = r.u32(), levels = r.u32();
+  const boundary = (code & 1) !== 0, position = code >>> 2;
+  if (valence < 1 || valence > MAX_BASIS_VALENCE || levels < 1 || levels > MAX_DEPTH ||
+      (boundary && position >= valence) || (!boundary && (code !== 0 || valence < 3 || valence === 4 || M !== 2 * valence + 8)) ||
+      M < 4 || M > 2 * MAX_BASIS_VALENCE + 8) {
+    r.fail(`${what} has a bad configuration, support size or level count`);
+  }
+  if (read.some((x) => x.valence === valence && x.code === code)) r.fail(`${what} repeats a configuration`);
+  // A boundary sub-patch has at most 7 phantom points, each one row.
+  const weights = expandBasis(readProgram(r, what, M, boundary ? 21 : 0), M, levels);
+  return { valence, code, boundary, levels, support: M, weights };
+}
+
+// Version 2's per-valence bases and version 3's configurations (as programs), the distinct
+// support and limit UVs, and the smooth faces (fvar_chunk.cpp's readSmoothFaces), each count
+// checked against the bytes left before anything is allocated.
+function readSmoothFaces(r, version) {
   const basisCount = r.u32('basis count');
   if (basisCount > Math.floor(r.remaining / 8)) r.fail('basis count is too large');
-  const bases = new Map();
-  const read = [];
+  const bases = [];
   for (let b = 0; b < basisCount; b++) {
-    // TBLS version 5's reader (tables_surface_records.mjs): each basis its one-level program,
-    // checked and expanded to limn-tables's weights, bit for bit; no valence twice.
-    const basis = readBasisProgram(r, b, read);
-    // limn-tables builds no basis of valence 4 (regular); the weights are convex (irregular_basis.h).
-    if (basis.valence === 4) r.fail(`basis ${b} has valence 4`);
-    for (const w of basis.weights) if (!(w >= 0 && w <= 1)) r.fail(`basis ${b} has a weight outside [0, 1]`);
-    read.push(basis);
-    bases.set(basis.valence, { levels: basis.levels, weights: basis.weights });
+    let basis;
+    if (version >= 3) {
+      basis = readConfigurationBasis(r, b, bases);
+    } else {
+      // TBLS version 5's reader (tables_surface_records.mjs): each basis its one-level program,
+      // checked and expanded to limn-tables's weights, bit for bit; no valence twice.
+      basis = readBasisProgram(r, b, bases);
+      // limn-tables builds no basis of valence 4 (regular).
+      if (basis.valence === 4) r.fail(`basis ${b} has valence 4`);
+      basis.code = 0;
+    }
+    // Smooth weights are convex (irregular_basis.h); a boundary configuration's hold its phantom
+    // points (2 a - b; corners 4 a - 2 b - 2 c + d).
+    const [lo, hi] = basis.boundary ? [-4, 5] : [0, 1];
+    for (const w of basis.weights) if (!(w >= lo && w <= hi)) r.fail(`basis ${b} has a weight outside [${lo}, ${hi}]`);
+    bases.push(basis);
   }
   const valueCount = r.u32('value count');
   const values = r.array(Float32Array, valueCount * 2, 'values');
   for (const x of values) if (!Number.isFinite(x) || Math.abs(x) > 1e18) r.fail('a value is not finite');
   const count = r.u32('smooth face count');
   const s = new Stream(r, 'smooth faces');
-  // Each face takes at least 2n + 10 >= 16 bytes of the stream, and gives 8 bytes a point.
-  if (count > Math.floor(s.size / 16)) r.fail('smooth face count is too large');
+  // Each face takes at least 2 + support >= 6 bytes of the stream (2n + 10 >= 16 for an interior
+  // one), and gives 8 bytes a point.
+  if (count > Math.floor(s.size / (version >= 3 ? 6 : 16))) r.fail('smooth face count is too large');
   const faces = [], points = [];
   let previous = 0;
   const next = (i) => {
@@ -119,10 +146,12 @@ function readSmoothFaces(r) {
     return [values[2 * previous], values[2 * previous + 1]];
   };
   for (let i = 0; i < count; i++) {
-    const packed = s.varint(), valence = Math.floor(packed / 4);
-    if (!bases.has(valence)) r.fail(`smooth face ${i} has no basis of its valence`);
-    const f = { corner: packed % 4, valence, firstPoint: points.length / 2, limit: next(i), node: 0, u0: 0, v0: 0, size: 0 };
-    for (let k = 0; k < 2 * valence + 8; k++) points.push(...next(i));
+    // Version 2 names the basis by its valence, version 3 by its index.
+    const packed = s.varint(), x = Math.floor(packed / 4);
+    const basis = version >= 3 ? x : bases.findIndex((b) => b.valence === x);
+    if (!(basis >= 0 && basis < bases.length)) r.fail(`smooth face ${i} has no basis`);
+    const f = { corner: packed % 4, basis, firstPoint: points.length / 2, limit: next(i), node: 0, u0: 0, v0: 0, size: 0 };
+    for (let k = 0; k < bases[basis].support; k++) points.push(...next(i));
     faces.push(f);
   }
   s.finish();
@@ -156,7 +185,7 @@ function expandSmoothFaces(nodesIn, recordsIn, { faces, points, bases }) {
     nodes[node] = (LEAF | e) >>> 0;
   };
   for (const f of faces) {
-    const { levels: K, weights } = bases.get(f.valence), M = 2 * f.valence + 8, first = 2 * f.firstPoint;
+    const { levels: K, weights, support: M } = bases[f.basis], first = 2 * f.firstPoint;
     nodes[f.node] = HOLE;
     const control = (k, q) => { // P[i][j] of band k's quadrant q, [x, y] each
       const base = ((k - 1) * 3 + (q - 1)) * 16 * M, P = [[], [], [], []];

@@ -15,8 +15,10 @@ const NODE_NONE = 0xffffffff, NODE_INDEX = (1 << 30) - 1;
 // entries in order, in double (JS numbers; no fused multiply-add), an averaged row divided by its
 // count, each weight rounded to float once (Float32Array's store rounds to nearest even, as
 // static_cast<float>); the next band reads the rows of the next support.
-export function expandBasis(p, valence, levels) {
-  const M = 2 * valence + 8, T = p.averaged.length;
+// `M`: the support size (2n + 8 for a per-valence basis; FVSF version 3's boundary
+// configurations store theirs).
+export function expandBasis(p, M, levels) {
+  const T = p.averaged.length;
   let input = new Float64Array(M * M), next = new Float64Array(M * M);
   for (let i = 0; i < M; i++) input[i * M + i] = 1;
   const values = new Float64Array(T * M);
@@ -55,11 +57,21 @@ export function readBasisProgram(r, index, earlier) {
   }
   if (earlier.some((b) => b.valence === valence)) r.fail(`${what} repeats valence ${valence}`);
   const M = 2 * valence + 8;
+  const weights = expandBasis(readProgram(r, what, M, 0), M, levels);
+  // Sums of bounded weights can still grow past any bound.
+  for (const x of weights) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`${what} has a bad weight`);
+  return { valence, levels, support: M, weights };
+}
+
+// A program alone (u32 palette size, the palette, the stream) over M support points, with
+// `phantomRows` more rows than TBLS allows (FVSF version 3's boundary configurations); the C++
+// readProgram's checks.
+export function readProgram(r, what, M, phantomRows) {
   const palette = r.array(Float32Array, r.u32(`${what} palette size`), `${what} palette`);
   for (const x of palette) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`${what} has a bad weight`);
   const s = new Stream(r, what);
   const rows = s.varint();
-  if (rows === 0 || rows > MAX_ROWS_PER_POINT * M) s.fail(`bad row count ${rows}`);
+  if (rows === 0 || rows > MAX_ROWS_PER_POINT * M + phantomRows) s.fail(`bad row count ${rows}`);
   const maxEntries = rows * MAX_ENTRIES_PER_ROW;
   const start = new Uint32Array(rows + 1), averaged = new Uint8Array(rows);
   const source = new Uint32Array(maxEntries), weight = new Float32Array(maxEntries);
@@ -87,10 +99,7 @@ export function readBasisProgram(r, index, earlier) {
   const controlRow = Uint32Array.from({ length: 48 }, rowIndex);
   const nextSupport = Uint32Array.from({ length: M }, rowIndex);
   s.finish();
-  const weights = expandBasis({ start, source, weight, averaged, controlRow, nextSupport }, valence, levels);
-  // Sums of bounded weights can still grow past any bound.
-  for (const x of weights) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`${what} has a bad weight`);
-  return { valence, levels, support: M, weights };
+  return { start, source, weight, averaged, controlRow, nextSupport };
 }
 
 // The quadtree nodes: per node a varint (its first code << 1 | all four equal), then the other

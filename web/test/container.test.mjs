@@ -282,14 +282,18 @@ test('FVSF: read with smooth UVs, refused by name when cut, stale or cyclic', ()
   expectLimnError(patched(32, 0x80000000 + s.fvarSurface.elementCount), /chunk FVSF: node 0 names a missing element/);
   // A hole (0xFFFFFFFF) where the tables draw: every walk from a drawn point must end in an
   // element (the seam fix's walks threw a bare Error, with its stack, from smooth_uvs.mjs).
-  expectLimnError(patched(32, 0xffffffff), /chunk FVSF: no UV element where the tables draw ptex face 0/);
+  // (A node naming a stored patch: a hole in place of a smooth face, since version 3 also along
+  // the UV boundary, is refused first as a smooth face named by no node.)
+  const pv = new DataView(p.buffer, p.byteOffset, p.byteLength), storedElements = pv.getUint32(28, true);
+  const leaf = Array.from({ length: pv.getUint32(24, true) }, (_, i) => pv.getUint32(32 + 4 * i, true))
+    .findIndex((v) => v >= 0x80000000 && v !== 0xffffffff && v - 0x80000000 < storedElements);
+  assert.ok(leaf >= 0);
+  expectLimnError(patched(32 + 4 * leaf, 0xffffffff), /chunk FVSF: no UV element where the tables draw ptex face \d+/);
   // A record's domain that is not its leaf's square (size 1e-30): finite and inside [0, 1], but
   // a walk ending there evaluated the element far outside it (Inf UVs, NaN in --mesh-out).
   const tinyRecord = p.slice();
-  new DataView(tinyRecord.buffer).setFloat32(32 + 4 * s.fvarSurface.nodes.length + 8, 1e-30, true);
+  new DataView(tinyRecord.buffer).setFloat32(32 + 4 * pv.getUint32(24, true) + 8, 1e-30, true); // the stored nodes
   expectLimnError(withPayload(tinyRecord), /chunk FVSF: node \d+ names element 0, whose domain is not the node's square/);
-  const inner = [...s.fvarSurface.nodes].findIndex((v) => v < 0x80000000);
-  if (inner >= 0) expectLimnError(patched(32 + 4 * (s.fvarSurface.nodes[inner] + 3), 0xffffffff), /chunk FVSF: no UV element where the tables draw/);
   // The UVs changed after limn-tables: a value of FVUV moved (its first f64, 16 bytes in).
   const fvuv = chunks.findIndex((c) => c.type === 'FVUV');
   const moved = chunks[fvuv].payload.slice();
@@ -299,25 +303,30 @@ test('FVSF: read with smooth UVs, refused by name when cut, stale or cyclic', ()
   expectLimnError(build(chunks.filter((c) => c.type !== 'FVUV')), /chunk FVSF: the mesh has no UVs/);
 });
 
-// FVSF version 2's smooth faces (support UVs, per-valence bases as programs;
-// lib/subdiv/fvar_chunk.cpp checks the same): each count and index checked before anything is
-// allocated or expanded.
-test('FVSF: smooth faces with a count, valence, program, support or weight out of bounds are refused by name', () => {
+// FVSF version 3's smooth faces (support UVs, per-valence bases and boundary configurations as
+// programs; lib/subdiv/fvar_chunk.cpp checks the same): each count and index checked before
+// anything is allocated or expanded.
+test('FVSF: smooth faces with a count, configuration, program, support or weight out of bounds are refused by name', () => {
   const bytes = read(container('tri/cube_no_bottom.obj', { depth: 2, classifyArgs: ['--fvar', 'boundaries'], name: 'fvar_cube_d2.limn' }));
   const chunks = parseContainer(bytes), fvsf = chunks.findIndex((c) => c.type === 'FVSF');
-  assert.equal(chunks[fvsf].version, 2);
+  assert.equal(chunks[fvsf].version, 3);
   const p = chunks[fvsf].payload, view = new DataView(p.buffer, p.byteOffset, p.byteLength);
   const nodeCount = view.getUint32(24, true), elements = view.getUint32(28, true), at = (o) => view.getUint32(o, true);
-  // After the records: the bases (each u32 n, k, palette size P, f32 palette[P], then its
-  // program's stream: u32 bytes, the bytes padded to 4), the values, the smooth faces' count and
-  // stream.
+  // After the records: the bases (each u32 n, configuration, support size, k, palette size P,
+  // f32 palette[P], then its program's stream: u32 bytes, the bytes padded to 4), the values,
+  // the smooth faces' count and stream.
   const bases = 32 + 4 * nodeCount + 144 * elements;
   let values = bases + 4;
+  const basisAt = [];
   for (let b = 0; b < at(bases); b++) {
-    const stream = values + 12 + 4 * at(values + 8);
+    basisAt.push(values);
+    const stream = values + 20 + 4 * at(values + 16);
     values = stream + 4 + Math.ceil(at(stream) / 4) * 4;
   }
-  const palette = bases + 16, stream = palette + 4 * at(bases + 12);
+  const ib = basisAt.findIndex((o) => at(o + 4) === 0), bb = basisAt.findIndex((o) => at(o + 4) !== 0);
+  assert.ok(ib >= 0 && bb >= 0, 'the cube has interior and boundary bases');
+  const inner = basisAt[ib], edge = basisAt[bb];
+  const palette = inner + 20, stream = palette + 4 * at(inner + 16);
   const faces = values + 4 + 8 * at(values);
   assert.ok(at(faces) > 0, 'the cube has smooth faces');
   const s = loadLimn(bytes); // expanded to pieces: more elements than the chunk stores
@@ -329,17 +338,21 @@ test('FVSF: smooth faces with a count, valence, program, support or weight out o
   };
   for (const [offset, word, message] of [
     [bases, 0x10000000, /basis count is too large/],
-    [bases + 4, 65, /irregular basis 0 has a bad valence or level count/],
-    [bases + 8, 17, /irregular basis 0 has a bad valence or level count/],
-    [bases + 12, 0xffffffff, /irregular basis 0 palette/],
-    [palette, 0x7f800000, /irregular basis 0 has a bad weight/],
-    [palette, 0x40000000, /basis 0 has a weight outside \[0, 1\]/],
-    [stream, 0xffffffff, /irregular basis 0 stream/],
-    [stream + 4, 0, /irregular basis 0: bad row count 0/],
+    [inner, 65, new RegExp(`basis ${ib} has a bad configuration`)],
+    [inner + 4, 2, new RegExp(`basis ${ib} has a bad configuration`)], // a corner off the boundary
+    [inner + 8, 0xffff, new RegExp(`basis ${ib} has a bad configuration`)],
+    [inner + 12, 17, new RegExp(`basis ${ib} has a bad configuration`)],
+    [edge + 4, 1 + 4 * at(edge), new RegExp(`basis ${bb} has a bad configuration`)], // beyond its fan
+    [edge + 8, 3, new RegExp(`basis ${bb} has a bad configuration`)],
+    [inner + 16, 0xffffffff, new RegExp(`basis ${ib} palette`)],
+    [palette, 0x7f800000, new RegExp(`basis ${ib} has a bad weight`)],
+    [palette, 0x40000000, new RegExp(`basis ${ib} has a weight outside \\[0, 1\\]`)],
+    [stream, 0xffffffff, new RegExp(`basis ${ib} stream`)],
+    [stream + 4, 0, new RegExp(`basis ${ib}: bad row count 0`)],
     [values, 0x40000000, /values: /],
     [values + 8, 0x7fc00000, /a value is not finite/],
     [faces, 0xffffffff, /smooth face count is too large/],
-    [faces + 8, 0x10101010, /smooth face 0 has no basis of its valence/],
+    [faces + 8, (at(faces + 8) & 0xffffff00 | (4 * basisAt.length)) >>> 0, /smooth face 0 has no basis/],
   ]) expectLimnError(patched(offset, word), new RegExp(`^chunk FVSF: ${message.source}`));
 });
 
