@@ -25,6 +25,23 @@ bool isDyadic(float x, uint32_t maxDepth) {
     return std::isfinite(x) && scaled == std::floor(scaled);
 }
 
+// Version 6: bit l set when level l's three stencil tables are level l - 1's shifted one level
+// (shiftedStencilTable), with as many face, edge and vertex points; level 1 never is.
+uint32_t repeatedLevels(const Tables& t) {
+    uint32_t bits = 0;
+    for (uint32_t l = 2; l < t.levels.size(); ++l) {
+        const LevelInfo &a = t.levels[l - 1], &b = t.levels[l];
+        if (a.facePoints != b.facePoints || a.edgePoints != b.edgePoints || a.vertexPoints != b.vertexPoints)
+            continue;
+        const uint32_t g = t.levels[l - 2].first;
+        if (isShiftedStencilTable(t.facePoints[l - 1], t.facePoints[l - 2], g, a.first, b.first) &&
+            isShiftedStencilTable(t.edgePoints[l - 1], t.edgePoints[l - 2], g, a.first, b.first) &&
+            isShiftedStencilTable(t.vertexPoints[l - 1], t.vertexPoints[l - 2], g, a.first, b.first))
+            bits |= 1u << l;
+    }
+    return bits;
+}
+
 } // namespace
 
 uint32_t ptexFaceCount(const Mesh& mesh) {
@@ -35,7 +52,7 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
 
 Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     if (version < 3 || version > kTablesChunkVersion)
-        throw std::logic_error("TBLS: only versions 3 to 5 are written");
+        throw std::logic_error("TBLS: only versions 3 to 6 are written");
     if (version < 5)
         for (uint32_t i = 0; i < t.irregularNodes.size(); ++i)
             for (uint32_t c : t.irregularNodes[i])
@@ -75,7 +92,10 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         for (uint32_t x : {L.first, L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches,
                            L.irregularFaces})
             w.write<uint32_t>(x);
+    const uint32_t repeats = version >= 6 ? repeatedLevels(t) : 0u;
+    if (version >= 6) w.write<uint32_t>(repeats);
     for (uint32_t l = 0; l + 1 < t.levels.size(); ++l) {
+        if (repeats >> (l + 1) & 1) continue; // level l + 1 is level l's, shifted
         writeStencilTable(w, t.facePoints[l], false, compact);
         writeStencilTable(w, t.edgePoints[l], true, compact);
         writeStencilTable(w, t.vertexPoints[l], true, compact);
@@ -227,10 +247,28 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     if (mesh && t.levels[0].count() != mesh->vertexCount())
         r.fail("level 0 has " + std::to_string(t.levels[0].count()) + " vertices, the mesh " +
                std::to_string(mesh->vertexCount()));
+    // Version 6: levels whose stencil tables are the previous level's, shifted (levels 2..D).
+    const uint32_t repeats = chunk.version >= 6 ? r.read<uint32_t>() : 0u;
+    if (repeats & ~(((2u << D) - 1u) & ~3u)) // D <= 16, checked above
+        r.fail("repeated levels " + std::to_string(repeats) + " name a level without a previous one");
     for (uint32_t l = 1; l <= D; ++l) {
         const LevelInfo &P = t.levels[l - 1], &L = t.levels[l];
         std::string lv = "level " + std::to_string(l);
         uint32_t parentEnd = P.first + P.count(), faceEnd = L.first + L.facePoints;
+        if (repeats >> l & 1) {
+            if (P.facePoints != L.facePoints || P.edgePoints != L.edgePoints || P.vertexPoints != L.vertexPoints)
+                r.fail(lv + " repeats level " + std::to_string(l - 1) + " but has other point counts");
+            const uint32_t g = t.levels[l - 2].first;
+            t.facePoints.push_back(shiftedStencilTable(t.facePoints.back(), g, P.first, L.first));
+            t.edgePoints.push_back(shiftedStencilTable(t.edgePoints.back(), g, P.first, L.first));
+            t.vertexPoints.push_back(shiftedStencilTable(t.vertexPoints.back(), g, P.first, L.first));
+            checkStencilTable(r, t.facePoints.back(), lv + " face points", L.facePoints, false, P.first, parentEnd);
+            checkStencilTable(r, t.edgePoints.back(), lv + " edge points", L.edgePoints, true, P.first, parentEnd,
+                              L.first, faceEnd);
+            checkStencilTable(r, t.vertexPoints.back(), lv + " vertex points", L.vertexPoints, true, P.first,
+                              parentEnd, L.first, faceEnd);
+            continue;
+        }
         t.facePoints.push_back(
             readStencilTable(r, compact, lv + " face points", L.facePoints, false, P.first, parentEnd));
         t.edgePoints.push_back(readStencilTable(r, compact, lv + " edge points", L.edgePoints, true, P.first,

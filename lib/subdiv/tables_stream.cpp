@@ -3,6 +3,7 @@
 #include "base/cli.h"
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -112,6 +113,15 @@ StencilTable readStencilTable(ByteReader& r, bool compact, const std::string& wh
         t.indices = r.readArray<uint32_t>(entries, (what + " indices").c_str());
         if (weights) t.weights = r.readArray<float>(entries, (what + " weights").c_str());
     }
+    checkStencilTable(r, t, what, rows, weights, lo0, hi0, lo1, hi1);
+    return t;
+}
+
+void checkStencilTable(ByteReader& r, const StencilTable& t, const std::string& what, uint32_t rows, bool weights,
+                       uint32_t lo0, uint32_t hi0, uint32_t lo1, uint32_t hi1) {
+    const uint32_t entries = static_cast<uint32_t>(t.indices.size());
+    if (t.start.size() != uint64_t(rows) + 1)
+        r.fail(what + ": " + std::to_string(t.start.size() - 1) + " rows, expected " + std::to_string(rows));
     if (t.start[0] != 0 || t.start[rows] != entries)
         r.fail(what + ": row starts do not span the " + std::to_string(entries) + " entries");
     for (uint32_t i = 0; i < rows; ++i)
@@ -131,7 +141,26 @@ StencilTable readStencilTable(ByteReader& r, bool compact, const std::string& wh
     for (uint32_t i = 0; !weights && i < rows; ++i)
         if (t.start[i + 1] == t.start[i])
             r.fail(what + ": face point " + std::to_string(i) + " is empty");
+}
+
+StencilTable shiftedStencilTable(const StencilTable& previous, uint32_t grandFirst, uint32_t parentFirst,
+                                 uint32_t first) {
+    StencilTable t = previous;
+    // Unsigned arithmetic wraps; a source moved out of its level is refused by checkStencilTable.
+    for (uint32_t& x : t.indices) x += x < parentFirst ? parentFirst - grandFirst : first - parentFirst;
     return t;
+}
+
+bool isShiftedStencilTable(const StencilTable& t, const StencilTable& previous, uint32_t grandFirst,
+                           uint32_t parentFirst, uint32_t first) {
+    if (t.start != previous.start || t.weights.size() != previous.weights.size() ||
+        (!t.weights.empty() && std::memcmp(t.weights.data(), previous.weights.data(), t.weights.size() * sizeof(float))))
+        return false;
+    for (size_t k = 0; k < t.indices.size(); ++k) {
+        const uint32_t x = previous.indices[k];
+        if (t.indices[k] != x + (x < parentFirst ? parentFirst - grandFirst : first - parentFirst)) return false;
+    }
+    return true;
 }
 
 // Version 4's patch records (formats/limn.md): a patch's control points are neighbours at one

@@ -1,4 +1,4 @@
-// The TBLS chunk (formats/limn.md, section 7; versions 1 to 5) as the WebGPU runtime reads it:
+// The TBLS chunk (formats/limn.md, section 7; versions 1 to 6) as the WebGPU runtime reads it:
 // every count, index and stencil entry checked as lib/subdiv/tables_chunk.cpp checks it, so that
 // nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
@@ -45,6 +45,13 @@ function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compac
     index: r.array(Uint32Array, entries, `${what} indices`),
     weight: weights ? r.array(Float32Array, entries, `${what} weights`) : null,
   };
+  return checkStencils(r, { rows, start, index, weight }, what, weights, lo0, hi0, lo1, hi1);
+}
+
+// The checks of a stencil table read or expanded (a repeated level's) from the chunk.
+function checkStencils(r, table, what, weights, lo0, hi0, lo1 = 0, hi1 = 0) {
+  const { rows, start, index, weight } = table;
+  const entries = index.length;
   if (start[0] !== 0 || start[rows] !== entries) r.fail(`${what}: row starts do not span the ${entries} entries`);
   for (let i = 0; i < rows; i++) {
     if (start[i + 1] < start[i] || start[i + 1] - start[i] > 65536) r.fail(`${what}: row ${i} has a bad length`);
@@ -55,14 +62,22 @@ function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compac
     if (!((x >= lo0 && x < hi0) || (x >= lo1 && x < hi1))) r.fail(`${what}: entry ${i} reads vertex ${x} outside the levels it may read`);
     if (weights && !(Math.abs(weight[i]) <= MAX_STENCIL_WEIGHT)) r.fail(`${what}: entry ${i} has weight ${weight[i]}; a stencil weight must be finite and within +-1e6`);
   }
-  return { rows, start, index, weight };
+  return table;
+}
+
+// Version 6's repeated level (tables_stream.cpp's shiftedStencilTable): the previous level's
+// table with each source moved one level on; a source of level l - 2 (below parentFirst) by
+// parentFirst - grandFirst, one of level l - 1 by first - parentFirst. The same weights.
+function shiftedStencils(previous, grandFirst, parentFirst, first) {
+  const index = previous.index.map((x) => x + (x < parentFirst ? parentFirst - grandFirst : first - parentFirst));
+  return { rows: previous.rows, start: previous.start.slice(), index, weight: previous.weight ? previous.weight.slice() : null };
 }
 
 export const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 export function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 5) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 5); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 5);
+  if (chunk.version > 6) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 6); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 6);
   const patchWords = chunk.version >= 2 ? 22 : 21;
   const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
   const programs = chunk.version >= 5; // bases as programs, compact nodes and smooth faces
@@ -95,9 +110,22 @@ export function decodeTables(chunk, mesh, tags) {
   if (sum !== totalVertices) r.fail('level vertex counts do not add up to the total');
   if (levels[0].count !== mesh.vertexCount) r.fail(`level 0 has ${levels[0].count} vertices, the mesh ${mesh.vertexCount}`);
   const facePoints = [], edgePoints = [], vertexPoints = [];
+  // Version 6: bit l (2..D) set when level l's stencil tables are level l - 1's, shifted.
+  const repeats = chunk.version >= 6 ? r.u32('repeated levels') : 0;
+  if ((repeats & ~(((2 ** (D + 1)) - 1) & ~3)) !== 0) r.fail(`repeated levels ${repeats} name a level without a previous one`);
   for (let l = 1; l <= D; l++) {
     const p = levels[l - 1], c = levels[l];
     const end = p.first + p.count, faceEnd = c.first + c.facePoints;
+    if ((repeats >>> l) & 1) {
+      if (p.facePoints !== c.facePoints || p.edgePoints !== c.edgePoints || p.vertexPoints !== c.vertexPoints) {
+        r.fail(`level ${l} repeats level ${l - 1} but has other point counts`);
+      }
+      const g = levels[l - 2].first, shift = (t) => shiftedStencils(t[t.length - 1], g, p.first, c.first);
+      facePoints.push(checkStencils(r, shift(facePoints), `level ${l} face points`, false, p.first, end));
+      edgePoints.push(checkStencils(r, shift(edgePoints), `level ${l} edge points`, true, p.first, end, c.first, faceEnd));
+      vertexPoints.push(checkStencils(r, shift(vertexPoints), `level ${l} vertex points`, true, p.first, end, c.first, faceEnd));
+      continue;
+    }
     facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end, 0, 0, compact));
     edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd, compact));
     vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd, compact));
