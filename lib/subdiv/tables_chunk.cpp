@@ -107,8 +107,8 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         w.write<float>(q.v0);
         w.write<float>(q.size);
     };
-    auto writeRecords = [&](const std::vector<Patch>& patches) {
-        if (compact) return writePatchStream(w, patches);
+    auto writeRecords = [&](const std::vector<Patch>& patches, bool domains) {
+        if (compact) return writePatchStream(w, patches, domains);
         for (const Patch& p : patches) {
             w.writeArray(std::span<const uint32_t>(p.cv, 16));
             w.write<uint32_t>(p.ptex);
@@ -119,11 +119,11 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
             w.write<float>(p.sharpness);
         }
     };
-    writeRecords(t.patches);
+    writeRecords(t.patches, true);
     for (const auto& q : t.irregular) writeFace(q);
     // Version 3: the irregular faces' quadtrees (docs/irregular.md).
     w.write<uint32_t>(static_cast<uint32_t>(t.subPatches.size()));
-    writeRecords(t.subPatches);
+    writeRecords(t.subPatches, version < 6); // version 6: domains from the quadtrees
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularNodes.size()));
     if (programs)
         writeNodeStream(w, t.irregularNodes);
@@ -302,7 +302,7 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     // Version 4's records come from a stream (writePatches); earlier ones are plain.
     StreamReader* in = nullptr;
     uint32_t lastCorner = 0, lastPtex = 0;
-    auto readPatch = [&](Patch& p, const std::string& what, bool drawn) {
+    auto readPatch = [&](Patch& p, const std::string& what, bool drawn, bool domains) {
         uint32_t packed = 0;
         if (in) {
             p.cv[5] = lastCorner = in->after(lastCorner, "a control point");
@@ -313,9 +313,10 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
                 if (x < 0 || x > int64_t(0xFFFFFFFFu)) in->fail(what + ": a control point out of range");
                 p.cv[i] = static_cast<uint32_t>(x);
             }
-            p.ptex = lastPtex = in->after(lastPtex, "a ptex face");
+            if (domains) p.ptex = lastPtex = in->after(lastPtex, "a ptex face");
             float* domain[3] = {&p.u0, &p.v0, &p.size};
             for (float* x : domain) {
+                if (!domains) break;
                 const uint64_t u = in->varint();
                 if (u > 65536) in->fail(what + ": a domain outside its ptex face");
                 *x = static_cast<float>(double(u) / 65536.0);
@@ -348,21 +349,24 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         for (uint32_t cv : p.cv)
             if (cv >= t.totalVertices || (cv != 0 && (cv < L.first || cv >= L.first + L.count())))
                 r.fail(what + " has a control point outside its level");
-        checkDomain(p.ptex, p.u0, p.v0, p.size, what, drawn);
+        if (domains) checkDomain(p.ptex, p.u0, p.v0, p.size, what, drawn);
     };
-    // At least 20 bytes a record in a stream (16 control points, ptex, domain, packed word).
+    // At least 20 bytes a record in a stream (16 control points, ptex, domain, packed word), 17
+    // without the domain (version 6's sub-patches: assignSubPatchDomains sets it).
     auto readPatches = [&](std::vector<Patch>& out, uint32_t count, const std::string& what, bool drawn) {
         std::optional<StreamReader> stream;
+        const bool domains = drawn || chunk.version < 6;
         if (compact) {
             stream.emplace(r, what + "es");
-            if (count > stream->size() / 20) r.fail(what + " count " + std::to_string(count) + " is too large");
+            if (count > stream->size() / (domains ? 20 : 17))
+                r.fail(what + " count " + std::to_string(count) + " is too large");
             in = &*stream;
             lastCorner = lastPtex = 0;
         } else if (count > r.remaining() / patchBytes) {
             r.fail(what + " count " + std::to_string(count) + " is too large");
         }
         out.resize(count);
-        for (uint32_t i = 0; i < count; ++i) readPatch(out[i], what + " " + std::to_string(i), drawn);
+        for (uint32_t i = 0; i < count; ++i) readPatch(out[i], what + " " + std::to_string(i), drawn, domains);
         if (stream) stream->finish();
         in = nullptr;
     };
@@ -479,6 +483,8 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         // Basis codes name a smooth face: roots (all four alike), and from version 5 deeper
         // nodes; each face's points at its level.
         if (const std::string bad = checkSmoothFaceLevels(t, chunk.version); !bad.empty()) r.fail(bad);
+        if (chunk.version >= 6)
+            if (const std::string bad = assignSubPatchDomains(t); !bad.empty()) r.fail(bad);
     }
     // The domains tile every ptex face exactly once, or not at all (a face without a limit
     // surface): no square inside another, areas adding up to R^2 (paper 000, 4.1: each face is

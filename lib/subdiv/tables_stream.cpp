@@ -167,7 +167,7 @@ bool isShiftedStencilTable(const StencilTable& t, const StencilTable& previous, 
 // level, so each is a varint difference from its first corner P11 (0 stays 0, a phantom), P11
 // from the previous record's, the ptex face from the previous record's, the domain in units of
 // 2^-16, the packed word, and the sharpness only for a single-crease patch.
-void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches) {
+void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches, bool domains) {
     std::vector<uint8_t> s;
     s.reserve(patches.size() * 32);
     uint32_t corner = 0, ptex = 0;
@@ -182,11 +182,13 @@ void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches) {
         corner = p.cv[5];
         for (int i = 0; i < 16; ++i)
             if (i != 5) writeVarint(s, p.cv[i] == 0 ? 0 : zigzag(int64_t(p.cv[i]) - p.cv[5]) + 1);
-        writeVarint(s, zigzag(int64_t(p.ptex) - ptex));
-        ptex = p.ptex;
-        writeVarint(s, units(p.u0));
-        writeVarint(s, units(p.v0));
-        writeVarint(s, units(p.size));
+        if (domains) {
+            writeVarint(s, zigzag(int64_t(p.ptex) - ptex));
+            ptex = p.ptex;
+            writeVarint(s, units(p.u0));
+            writeVarint(s, units(p.v0));
+            writeVarint(s, units(p.size));
+        }
         writeVarint(s, uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16);
         if (p.crease) {
             const uint32_t bits = std::bit_cast<uint32_t>(p.sharpness);

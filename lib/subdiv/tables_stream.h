@@ -70,6 +70,8 @@ bool isShiftedStencilTable(const StencilTable& t, const StencilTable& previous, 
                            uint32_t parentFirst, uint32_t first);
 
 // Version 4's patch records, one stream for the list (the reader is decodeTablesChunk's).
-void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches);
+// Without `domains` (version 6's sub-patches) the ptex face and domain are left out: the
+// reader takes them from the quadtrees (assignSubPatchDomains, tables_surface_records.h).
+void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches, bool domains = true);
 
 } // namespace limn

@@ -304,4 +304,47 @@ std::string checkSmoothFaceLevels(const Tables& t, uint32_t version) {
     return {};
 }
 
+std::string assignSubPatchDomains(Tables& t) {
+    const uint32_t I = static_cast<uint32_t>(t.irregular.size()), nodes = static_cast<uint32_t>(t.irregularNodes.size());
+    struct Square {
+        uint32_t ptex = kNone, level = 0;
+        float u0 = 0, v0 = 0, size = 0;
+    };
+    std::vector<Square> square(nodes);
+    for (uint32_t i = 0; i < std::min(I, nodes); ++i) {
+        const IrregularFace& f = t.irregular[i];
+        square[i] = {f.ptex, t.depth, f.u0, f.v0, f.size};
+    }
+    std::vector<uint8_t> named(t.subPatches.size(), 0);
+    for (uint32_t i = 0; i < nodes; ++i) {
+        const Square& s = square[i];
+        if (s.ptex == kNone) return "irregular node " + std::to_string(i) + " is in no quadtree";
+        for (int q = 0; q < 4; ++q) {
+            const uint32_t c = t.irregularNodes[i][q], kind = c & ~kNodeIndexMask, x = c & kNodeIndexMask;
+            if (c == kNodeNone || (kind != kNodeChild && kind != kNodeSubPatch)) continue;
+            // Quadrant q = (s >= 1/2) + 2 (t >= 1/2) of the square; halving a dyadic float is exact.
+            const float half = s.size / 2;
+            const Square child{s.ptex, s.level + 1, s.u0 + (q & 1 ? half : 0.0f), s.v0 + (q & 2 ? half : 0.0f), half};
+            if (kind == kNodeChild) {
+                if (square[x].ptex != kNone) return "irregular node " + std::to_string(x) + " is named twice";
+                square[x] = child;
+                continue;
+            }
+            if (named[x]) return "sub-patch " + std::to_string(x) + " is named twice";
+            named[x] = 1;
+            Patch& p = t.subPatches[x];
+            if (p.level != child.level)
+                return "sub-patch " + std::to_string(x) + " is at level " + std::to_string(p.level) + ", its node's quadrant at " +
+                       std::to_string(child.level);
+            p.ptex = child.ptex;
+            p.u0 = child.u0;
+            p.v0 = child.v0;
+            p.size = child.size;
+        }
+    }
+    for (size_t x = 0; x < named.size(); ++x)
+        if (!named[x]) return "sub-patch " + std::to_string(x) + " is in no quadtree";
+    return {};
+}
+
 } // namespace limn

@@ -52,4 +52,12 @@ std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const Tabl
 // reader once the nodes' kinds and indices are checked and children come after their parents.
 std::string checkSmoothFaceLevels(const Tables& t, uint32_t version);
 
+// Version 6's sub-patches hold no domain: a sub-patch is a quadrant of its node, whose square
+// is a quadrant of its parent's, down from the irregular face (formats/limn.md, "Sub-patch
+// domains"). Sets every sub-patch's ptex face and domain from the quadtrees, or returns what is
+// wrong: a node or sub-patch named twice, a node below the roots or a sub-patch named by none, a
+// sub-patch whose level is not its node's plus one. Called by the TBLS reader once the nodes'
+// kinds and indices are checked and children come after their parents.
+std::string assignSubPatchDomains(Tables& t);
+
 } // namespace limn

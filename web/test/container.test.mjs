@@ -208,31 +208,56 @@ test('TBLS v5, v4 and v3 of the same tables read the same', () => {
 });
 
 // TBLS v6 stores a level whose stencil tables are the previous level's shifted one level as a bit
-// (formats/limn.md, "Repeated levels"): the cube at depth 1 repeats levels 3 to 7 below its
-// extraordinary corners. The v6 seed is limn-tables' output, the v5 one the same tables written
-// by limn's version-5 encoder, which stores every level: both read to the same stencils and GPU
-// buffers. A bit without a previous level, past N + K, on a level of other counts or on a level
-// whose tables are stored is refused by name or by the tables' own checks.
-test('TBLS v6 repeated levels read as the v5 tables they stand for; hostile bits are refused', () => {
-  const seed = (v) => read(join(repo, `fuzz/corpus/render_input/cube_d1_repeated_levels_v${v}.limn`));
+// (formats/limn.md, "Repeated levels"), and sub-patches without their domains, which the reader
+// takes from the quadtrees ("Sub-patch domains"): xord_boundary at depth 1 repeats levels 5 to 7
+// and has 18 faces on sub-patches. The v6 seed is limn-tables' output, the v5 one the same tables
+// written by limn's version-5 encoder, which stores every level and every domain: both read to
+// the same stencils and GPU buffers. A repeated level's bit without a previous level, past N + K,
+// on a level of other counts or on a level whose tables are stored is refused, by name or by the
+// tables' own checks; so are a sub-patch named twice or by no node.
+test('TBLS v6 repeated levels and sub-patch domains read as the v5 tables they stand for; hostile ones are refused', () => {
+  const seed = (v) => read(join(repo, `fuzz/corpus/render_input/xord_boundary_d1_repeated_levels_v${v}.limn`));
   const v5 = loadLimn(seed(5)).tables, v6 = loadLimn(seed(6)).tables;
   assert.equal(v6.levels.length, 8); // N + K = 7
+  assert.ok(v6.patches.length > (v6.patchCount + v6.irregularCount) * 24);
   assert.deepEqual(v6, v5);
   const chunks = parseContainer(seed(6));
   const tbls = chunks.find((c) => c.type === 'TBLS');
   assert.equal(tbls.version, 6);
   const at = 40 + 24 * v6.levels.length;
+  const withPayload = (payload) => build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c)));
   const withRepeats = (bits) => {
     const payload = tbls.payload.slice();
     new DataView(payload.buffer).setUint32(at, bits, true);
-    return build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c)));
+    return withPayload(payload);
   };
-  assert.equal(new DataView(tbls.payload.buffer, tbls.payload.byteOffset).getUint32(at, true), 0xf8);
-  assert.deepEqual(loadLimn(withRepeats(0xf8)).tables, v5);
-  expectLimnError(withRepeats(0xf8 | 2), /chunk TBLS: repeated levels 250 name a level without a previous one/);
-  expectLimnError(withRepeats(0xf8 | 0x100), /chunk TBLS: repeated levels .* name a level without a previous one/);
-  expectLimnError(withRepeats(0xf8 | 4), /chunk TBLS: level 2 repeats level 1 but has other point counts/);
-  for (let l = 3; l <= 7; l++) expectLimnError(withRepeats(0xf8 ^ (1 << l)), /chunk TBLS/);
+  assert.equal(new DataView(tbls.payload.buffer, tbls.payload.byteOffset).getUint32(at, true), 0xe0);
+  assert.deepEqual(loadLimn(withRepeats(0xe0)).tables, v5);
+  expectLimnError(withRepeats(0xe0 | 2), /chunk TBLS: repeated levels 226 name a level without a previous one/);
+  expectLimnError(withRepeats(0xe0 | 0x100), /chunk TBLS: repeated levels .* name a level without a previous one/);
+  expectLimnError(withRepeats(0xe0 | 4), /chunk TBLS: level 2 repeats level 1 but has other point counts/);
+  for (let l = 3; l <= 7; l++) expectLimnError(withRepeats(0xe0 ^ (1 << l)), /chunk TBLS/);
+  // The node stream rewritten with one sub-patch code named twice, then with one named by none.
+  const { at: section, stream } = irregularSectionOffset(v6, tbls.payload);
+  const nodesAt = stream(section + 4) + 4; // after the sub-patch count and stream, the node count
+  const view = new DataView(tbls.payload.buffer, tbls.payload.byteOffset, tbls.payload.byteLength);
+  const nodeCount = view.getUint32(nodesAt - 4, true);
+  const codes = Array.from(readNodeStream(new ByteReader(tbls.payload.subarray(nodesAt), 'test'), nodeCount));
+  const withNodes = (edit) => {
+    const c = codes.slice();
+    edit(c);
+    const encoded = nodeStream(c);
+    const payload = new Uint8Array(tbls.payload.length - (stream(nodesAt) - nodesAt) + encoded.length);
+    payload.set(tbls.payload.subarray(0, nodesAt));
+    payload.set(encoded, nodesAt);
+    payload.set(tbls.payload.subarray(stream(nodesAt)), nodesAt + encoded.length);
+    return withPayload(payload);
+  };
+  assert.deepEqual(loadLimn(withNodes(() => {})).tables, v5); // the helper writes the same stream
+  const sub = codes.findIndex((c) => c !== 0xffffffff && c >>> 30 === 0);
+  const spare = codes.findIndex((c, i) => i !== sub && c !== 0xffffffff && c >>> 30 === 0);
+  expectLimnError(withNodes((c) => { c[spare] = c[sub]; }), /chunk TBLS: sub-patch \d+ is (named twice|in no quadtree)/);
+  expectLimnError(withNodes((c) => { c[sub] = 0xffffffff; }), /chunk TBLS: sub-patch \d+ is in no quadtree/);
 });
 
 // A v5 basis is a program this reader runs over 2n + 8 columns K times: a valence over 64, a
