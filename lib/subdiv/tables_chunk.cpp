@@ -25,23 +25,6 @@ bool isDyadic(float x, uint32_t maxDepth) {
     return std::isfinite(x) && scaled == std::floor(scaled);
 }
 
-// Version 6: bit l set when level l's three stencil tables are level l - 1's shifted one level
-// (shiftedStencilTable), with as many face, edge and vertex points; level 1 never is.
-uint32_t repeatedLevels(const Tables& t) {
-    uint32_t bits = 0;
-    for (uint32_t l = 2; l < t.levels.size(); ++l) {
-        const LevelInfo &a = t.levels[l - 1], &b = t.levels[l];
-        if (a.facePoints != b.facePoints || a.edgePoints != b.edgePoints || a.vertexPoints != b.vertexPoints)
-            continue;
-        const uint32_t g = t.levels[l - 2].first;
-        if (isShiftedStencilTable(t.facePoints[l - 1], t.facePoints[l - 2], g, a.first, b.first) &&
-            isShiftedStencilTable(t.edgePoints[l - 1], t.edgePoints[l - 2], g, a.first, b.first) &&
-            isShiftedStencilTable(t.vertexPoints[l - 1], t.vertexPoints[l - 2], g, a.first, b.first))
-            bits |= 1u << l;
-    }
-    return bits;
-}
-
 } // namespace
 
 uint32_t ptexFaceCount(const Mesh& mesh) {
@@ -256,17 +239,7 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         std::string lv = "level " + std::to_string(l);
         uint32_t parentEnd = P.first + P.count(), faceEnd = L.first + L.facePoints;
         if (repeats >> l & 1) {
-            if (P.facePoints != L.facePoints || P.edgePoints != L.edgePoints || P.vertexPoints != L.vertexPoints)
-                r.fail(lv + " repeats level " + std::to_string(l - 1) + " but has other point counts");
-            const uint32_t g = t.levels[l - 2].first;
-            t.facePoints.push_back(shiftedStencilTable(t.facePoints.back(), g, P.first, L.first));
-            t.edgePoints.push_back(shiftedStencilTable(t.edgePoints.back(), g, P.first, L.first));
-            t.vertexPoints.push_back(shiftedStencilTable(t.vertexPoints.back(), g, P.first, L.first));
-            checkStencilTable(r, t.facePoints.back(), lv + " face points", L.facePoints, false, P.first, parentEnd);
-            checkStencilTable(r, t.edgePoints.back(), lv + " edge points", L.edgePoints, true, P.first, parentEnd,
-                              L.first, faceEnd);
-            checkStencilTable(r, t.vertexPoints.back(), lv + " vertex points", L.vertexPoints, true, P.first,
-                              parentEnd, L.first, faceEnd);
+            appendRepeatedLevel(r, t, l);
             continue;
         }
         t.facePoints.push_back(
@@ -414,47 +387,8 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         const uint32_t bases = r.read<uint32_t>();
         if (bases > r.remaining() / 8) r.fail("irregular basis count is too large");
         for (uint32_t i = 0; i < bases; ++i) {
-            if (programs) {
-                t.irregularBases.push_back(readBasisProgram(r, i, t.irregularBases));
-                continue;
-            }
-            IrregularBasis basis;
-            basis.valence = r.read<uint32_t>();
-            basis.levels = r.read<uint32_t>();
-            if (basis.valence < 3 || basis.valence > kMaxStencilValence || basis.levels < 1 ||
-                basis.levels > uint32_t(kMaxDepth))
-                r.fail("irregular basis " + std::to_string(i) + " has a bad valence or level count");
-            const uint64_t M = basis.supportSize(), count = uint64_t(basis.levels) * 48;
-            if (compact) {
-                // Compact rows are stored once and copied per use, up to 768 times: a basis of
-                // valence 32,767 would take 200 MB from 260 KB of file, and a file could hold
-                // hundreds. Version 4 came after limn-tables stopped building bases above
-                // kMaxBasisValence, and it builds one per valence: anything else is damage.
-                if (basis.valence > kMaxBasisValence)
-                    r.fail("irregular basis " + std::to_string(i) + " has valence " +
-                           std::to_string(basis.valence) + "; version 4 bases go up to " +
-                           std::to_string(kMaxBasisValence));
-                for (const IrregularBasis& other : t.irregularBases)
-                    if (other.valence == basis.valence)
-                        r.fail("irregular basis " + std::to_string(i) + " repeats valence " +
-                               std::to_string(basis.valence));
-                const uint32_t distinct = r.read<uint32_t>();
-                if (distinct == 0 || distinct > count)
-                    r.fail("irregular basis " + std::to_string(i) + " has a bad row count");
-                const std::vector<uint16_t> pick = r.readArray<uint16_t>(count, "irregular basis rows");
-                const std::vector<float> rows = r.readArray<float>(distinct * M, "irregular basis weights");
-                basis.weights.resize(count * M);
-                for (uint64_t j = 0; j < count; ++j) {
-                    if (pick[j] >= distinct) r.fail("irregular basis " + std::to_string(i) + " names a missing row");
-                    std::copy_n(rows.begin() + long(pick[j] * M), M, basis.weights.begin() + long(j * M));
-                }
-            } else {
-                basis.weights = r.readArray<float>(count * M, "irregular basis weights");
-            }
-            for (float x : basis.weights)
-                if (!(std::abs(x) <= kMaxStencilWeight))
-                    r.fail("irregular basis " + std::to_string(i) + " has a bad weight");
-            t.irregularBases.push_back(std::move(basis));
+            t.irregularBases.push_back(programs ? readBasisProgram(r, i, t.irregularBases)
+                                                : readBasisWeights(r, i, compact, t.irregularBases));
         }
         const uint32_t smooth = r.read<uint32_t>();
         if (!programs && smooth > r.remaining() / 12) r.fail("smooth irregular face count is too large");

@@ -19,7 +19,9 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // descendant whose semi-sharp creases have decayed, drawn from the per-valence basis; its
 // support points at its own level). formats/limn.md, "Smooth faces below level N". Version 6
 // stores a level whose stencil tables are the previous level's shifted one level (below a
-// decaying crease, each level is refined as the one before) as a bit instead of its tables.
+// decaying crease, each level is refined as the one before) as a bit instead of its tables, and
+// the sub-patches without their domains, which the quadtrees give (formats/limn.md, "Repeated
+// levels", "Sub-patch domains").
 inline constexpr uint32_t kTablesChunkVersion = 6;
 
 // Writes the current version; 3 (the plain layout), 4 and 5 for tests and fuzz seeds of older

@@ -234,4 +234,37 @@ float StreamReader::rawFloat() {
     return std::bit_cast<float>(bits);
 }
 
+// Version 6: bit l set when level l's three stencil tables are level l - 1's shifted one level
+// (shiftedStencilTable), with as many face, edge and vertex points; level 1 never is.
+uint32_t repeatedLevels(const Tables& t) {
+    uint32_t bits = 0;
+    for (uint32_t l = 2; l < t.levels.size(); ++l) {
+        const LevelInfo &a = t.levels[l - 1], &b = t.levels[l];
+        if (a.facePoints != b.facePoints || a.edgePoints != b.edgePoints || a.vertexPoints != b.vertexPoints)
+            continue;
+        const uint32_t g = t.levels[l - 2].first;
+        if (isShiftedStencilTable(t.facePoints[l - 1], t.facePoints[l - 2], g, a.first, b.first) &&
+            isShiftedStencilTable(t.edgePoints[l - 1], t.edgePoints[l - 2], g, a.first, b.first) &&
+            isShiftedStencilTable(t.vertexPoints[l - 1], t.vertexPoints[l - 2], g, a.first, b.first))
+            bits |= 1u << l;
+    }
+    return bits;
+}
+
+void appendRepeatedLevel(ByteReader& r, Tables& t, uint32_t l) {
+    const LevelInfo &P = t.levels[l - 1], &L = t.levels[l];
+    const std::string lv = "level " + std::to_string(l);
+    if (P.facePoints != L.facePoints || P.edgePoints != L.edgePoints || P.vertexPoints != L.vertexPoints)
+        r.fail(lv + " repeats level " + std::to_string(l - 1) + " but has other point counts");
+    const uint32_t g = t.levels[l - 2].first, parentEnd = P.first + P.count(), faceEnd = L.first + L.facePoints;
+    t.facePoints.push_back(shiftedStencilTable(t.facePoints.back(), g, P.first, L.first));
+    t.edgePoints.push_back(shiftedStencilTable(t.edgePoints.back(), g, P.first, L.first));
+    t.vertexPoints.push_back(shiftedStencilTable(t.vertexPoints.back(), g, P.first, L.first));
+    checkStencilTable(r, t.facePoints.back(), lv + " face points", L.facePoints, false, P.first, parentEnd);
+    checkStencilTable(r, t.edgePoints.back(), lv + " edge points", L.edgePoints, true, P.first, parentEnd, L.first,
+                      faceEnd);
+    checkStencilTable(r, t.vertexPoints.back(), lv + " vertex points", L.vertexPoints, true, P.first, parentEnd,
+                      L.first, faceEnd);
+}
+
 } // namespace limn

@@ -69,6 +69,13 @@ StencilTable shiftedStencilTable(const StencilTable& previous, uint32_t grandFir
 bool isShiftedStencilTable(const StencilTable& t, const StencilTable& previous, uint32_t grandFirst,
                            uint32_t parentFirst, uint32_t first);
 
+// Version 6: bit l set when level l's three stencil tables are level l - 1's shifted
+// (shiftedStencilTable), with as many face, edge and vertex points; level 1 never is.
+uint32_t repeatedLevels(const Tables& t);
+// Appends level l's three tables (l >= 2, the levels before it read) as a repeated level stands
+// for them, checked as stored ones; refuses (through r) a level of other counts than level l - 1.
+void appendRepeatedLevel(ByteReader& r, Tables& t, uint32_t l);
+
 // Version 4's patch records, one stream for the list (the reader is decodeTablesChunk's).
 // Without `domains` (version 6's sub-patches) the ptex face and domain are left out: the
 // reader takes them from the quadtrees (assignSubPatchDomains, tables_surface_records.h).

@@ -347,4 +347,44 @@ std::string assignSubPatchDomains(Tables& t) {
     return {};
 }
 
+IrregularBasis readBasisWeights(ByteReader& r, uint32_t index, bool compact, const std::vector<IrregularBasis>& earlier) {
+    IrregularBasis basis;
+    basis.valence = r.read<uint32_t>();
+    basis.levels = r.read<uint32_t>();
+    if (basis.valence < 3 || basis.valence > kMaxStencilValence || basis.levels < 1 ||
+        basis.levels > uint32_t(kMaxDepth))
+        r.fail("irregular basis " + std::to_string(index) + " has a bad valence or level count");
+    const uint64_t M = basis.supportSize(), count = uint64_t(basis.levels) * 48;
+    if (compact) {
+        // Compact rows are stored once and copied per use, up to 768 times: a basis of
+        // valence 32,767 would take 200 MB from 260 KB of file, and a file could hold
+        // hundreds. Version 4 came after limn-tables stopped building bases above
+        // kMaxBasisValence, and it builds one per valence: anything else is damage.
+        if (basis.valence > kMaxBasisValence)
+            r.fail("irregular basis " + std::to_string(index) + " has valence " +
+                   std::to_string(basis.valence) + "; version 4 bases go up to " +
+                   std::to_string(kMaxBasisValence));
+        for (const IrregularBasis& other : earlier)
+            if (other.valence == basis.valence)
+                r.fail("irregular basis " + std::to_string(index) + " repeats valence " +
+                       std::to_string(basis.valence));
+        const uint32_t distinct = r.read<uint32_t>();
+        if (distinct == 0 || distinct > count)
+            r.fail("irregular basis " + std::to_string(index) + " has a bad row count");
+        const std::vector<uint16_t> pick = r.readArray<uint16_t>(count, "irregular basis rows");
+        const std::vector<float> rows = r.readArray<float>(distinct * M, "irregular basis weights");
+        basis.weights.resize(count * M);
+        for (uint64_t j = 0; j < count; ++j) {
+            if (pick[j] >= distinct) r.fail("irregular basis " + std::to_string(index) + " names a missing row");
+            std::copy_n(rows.begin() + long(pick[j] * M), M, basis.weights.begin() + long(j * M));
+        }
+    } else {
+        basis.weights = r.readArray<float>(count * M, "irregular basis weights");
+    }
+    for (float x : basis.weights)
+        if (!(std::abs(x) <= kMaxStencilWeight))
+            r.fail("irregular basis " + std::to_string(index) + " has a bad weight");
+    return basis;
+}
+
 } // namespace limn

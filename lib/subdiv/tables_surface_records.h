@@ -2,8 +2,8 @@
 // as programs, and compact per-face records"): each per-valence basis as its one-level program
 // (BasisProgram), which the reader expands to the same weights, bit for bit; the quadtree nodes,
 // the smooth faces and their points (in runs by level, for the smooth faces below level N) as
-// varint streams. Kept apart from the rest of the TBLS codec
-// (tables_chunk.cpp) so that other version-5 changes merge beside it.
+// varint streams; version 6's sub-patch domains, taken from the quadtrees; and the bases of
+// versions 3 and 4. Kept apart from the rest of the TBLS codec (tables_chunk.cpp).
 #pragma once
 
 #include "base/bytes.h"
@@ -23,6 +23,10 @@ void writeBasisProgram(ByteWriter& w, const IrregularBasis& basis);
 // Reads basis `index` and expands its weights; `earlier` are the bases read before it (no valence
 // twice). Every count and index is checked before anything is allocated from it.
 IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector<IrregularBasis>& earlier);
+
+// A basis as versions 3 (the weights, `compact` false) and 4 (each distinct row once, `compact`)
+// store it, checked; `earlier` are the bases read before it (version 4: no valence twice).
+IrregularBasis readBasisWeights(ByteReader& r, uint32_t index, bool compact, const std::vector<IrregularBasis>& earlier);
 
 // The quadtree nodes (after their count): a stream of codes, each a varint from the last index of
 // its kind, a node of four equal codes as one. The codes' kinds and indices are checked by the
