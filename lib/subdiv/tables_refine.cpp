@@ -207,8 +207,13 @@ AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeO
         const uint32_t F = L.topo.faceCount();
         std::vector<uint8_t> regular(F, 0);
         if (!opts.uniform) {
+            // Only the faces that can become patches or irregular faces below (the children of
+            // T_{l-1}): a quarter of the level below the depth, where the rest are the refined
+            // one-ring's outer children.
+            std::vector<uint8_t> drawn(F, 0);
+            for (uint32_t f = 0; f < F; ++f) drawn[f] = L.complete[f] && !L.noLimit[f];
             Regularity r = analyzeRegularity(L.topo, L.edgeSharpness, L.vertexSharpness, L.noLimit,
-                                             opts.infSharpPatches, opts.singleCreasePatches);
+                                             opts.infSharpPatches, opts.singleCreasePatches, &drawn);
             regular = std::move(r.faceRegular);
             creaseEdges.push_back(std::move(r.faceCreaseEdge));
         } else {
