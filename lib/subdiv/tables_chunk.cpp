@@ -35,7 +35,7 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
 
 Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     if (version < 3 || version > kTablesChunkVersion)
-        throw std::logic_error("TBLS: only versions 3 to 5 are written");
+        throw std::logic_error("TBLS: only versions 3 to 6 are written");
     if (version < 5)
         for (uint32_t i = 0; i < t.irregularNodes.size(); ++i)
             for (uint32_t c : t.irregularNodes[i])
@@ -75,7 +75,10 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         for (uint32_t x : {L.first, L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches,
                            L.irregularFaces})
             w.write<uint32_t>(x);
+    const uint32_t repeats = version >= 6 ? repeatedLevels(t) : 0u;
+    if (version >= 6) w.write<uint32_t>(repeats);
     for (uint32_t l = 0; l + 1 < t.levels.size(); ++l) {
+        if (repeats >> (l + 1) & 1) continue; // level l + 1 is level l's, shifted
         writeStencilTable(w, t.facePoints[l], false, compact);
         writeStencilTable(w, t.edgePoints[l], true, compact);
         writeStencilTable(w, t.vertexPoints[l], true, compact);
@@ -87,8 +90,8 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         w.write<float>(q.v0);
         w.write<float>(q.size);
     };
-    auto writeRecords = [&](const std::vector<Patch>& patches) {
-        if (compact) return writePatchStream(w, patches);
+    auto writeRecords = [&](const std::vector<Patch>& patches, bool domains) {
+        if (compact) return writePatchStream(w, patches, domains);
         for (const Patch& p : patches) {
             w.writeArray(std::span<const uint32_t>(p.cv, 16));
             w.write<uint32_t>(p.ptex);
@@ -99,11 +102,11 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
             w.write<float>(p.sharpness);
         }
     };
-    writeRecords(t.patches);
+    writeRecords(t.patches, true);
     for (const auto& q : t.irregular) writeFace(q);
     // Version 3: the irregular faces' quadtrees (docs/irregular.md).
     w.write<uint32_t>(static_cast<uint32_t>(t.subPatches.size()));
-    writeRecords(t.subPatches);
+    writeRecords(t.subPatches, version < 6); // version 6: domains from the quadtrees
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularNodes.size()));
     if (programs)
         writeNodeStream(w, t.irregularNodes);
@@ -227,10 +230,18 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     if (mesh && t.levels[0].count() != mesh->vertexCount())
         r.fail("level 0 has " + std::to_string(t.levels[0].count()) + " vertices, the mesh " +
                std::to_string(mesh->vertexCount()));
+    // Version 6: levels whose stencil tables are the previous level's, shifted (levels 2..D).
+    const uint32_t repeats = chunk.version >= 6 ? r.read<uint32_t>() : 0u;
+    if (repeats & ~(((2u << D) - 1u) & ~3u)) // D <= 16, checked above
+        r.fail("repeated levels " + std::to_string(repeats) + " name a level without a previous one");
     for (uint32_t l = 1; l <= D; ++l) {
         const LevelInfo &P = t.levels[l - 1], &L = t.levels[l];
         std::string lv = "level " + std::to_string(l);
         uint32_t parentEnd = P.first + P.count(), faceEnd = L.first + L.facePoints;
+        if (repeats >> l & 1) {
+            appendRepeatedLevel(r, t, l);
+            continue;
+        }
         t.facePoints.push_back(
             readStencilTable(r, compact, lv + " face points", L.facePoints, false, P.first, parentEnd));
         t.edgePoints.push_back(readStencilTable(r, compact, lv + " edge points", L.edgePoints, true, P.first,
@@ -264,7 +275,7 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     // Version 4's records come from a stream (writePatches); earlier ones are plain.
     StreamReader* in = nullptr;
     uint32_t lastCorner = 0, lastPtex = 0;
-    auto readPatch = [&](Patch& p, const std::string& what, bool drawn) {
+    auto readPatch = [&](Patch& p, const std::string& what, bool drawn, bool domains) {
         uint32_t packed = 0;
         if (in) {
             p.cv[5] = lastCorner = in->after(lastCorner, "a control point");
@@ -275,9 +286,10 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
                 if (x < 0 || x > int64_t(0xFFFFFFFFu)) in->fail(what + ": a control point out of range");
                 p.cv[i] = static_cast<uint32_t>(x);
             }
-            p.ptex = lastPtex = in->after(lastPtex, "a ptex face");
+            if (domains) p.ptex = lastPtex = in->after(lastPtex, "a ptex face");
             float* domain[3] = {&p.u0, &p.v0, &p.size};
             for (float* x : domain) {
+                if (!domains) break;
                 const uint64_t u = in->varint();
                 if (u > 65536) in->fail(what + ": a domain outside its ptex face");
                 *x = static_cast<float>(double(u) / 65536.0);
@@ -310,21 +322,24 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         for (uint32_t cv : p.cv)
             if (cv >= t.totalVertices || (cv != 0 && (cv < L.first || cv >= L.first + L.count())))
                 r.fail(what + " has a control point outside its level");
-        checkDomain(p.ptex, p.u0, p.v0, p.size, what, drawn);
+        if (domains) checkDomain(p.ptex, p.u0, p.v0, p.size, what, drawn);
     };
-    // At least 20 bytes a record in a stream (16 control points, ptex, domain, packed word).
+    // At least 20 bytes a record in a stream (16 control points, ptex, domain, packed word), 17
+    // without the domain (version 6's sub-patches: assignSubPatchDomains sets it).
     auto readPatches = [&](std::vector<Patch>& out, uint32_t count, const std::string& what, bool drawn) {
         std::optional<StreamReader> stream;
+        const bool domains = drawn || chunk.version < 6;
         if (compact) {
             stream.emplace(r, what + "es");
-            if (count > stream->size() / 20) r.fail(what + " count " + std::to_string(count) + " is too large");
+            if (count > stream->size() / (domains ? 20 : 17))
+                r.fail(what + " count " + std::to_string(count) + " is too large");
             in = &*stream;
             lastCorner = lastPtex = 0;
         } else if (count > r.remaining() / patchBytes) {
             r.fail(what + " count " + std::to_string(count) + " is too large");
         }
         out.resize(count);
-        for (uint32_t i = 0; i < count; ++i) readPatch(out[i], what + " " + std::to_string(i), drawn);
+        for (uint32_t i = 0; i < count; ++i) readPatch(out[i], what + " " + std::to_string(i), drawn, domains);
         if (stream) stream->finish();
         in = nullptr;
     };
@@ -372,47 +387,8 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         const uint32_t bases = r.read<uint32_t>();
         if (bases > r.remaining() / 8) r.fail("irregular basis count is too large");
         for (uint32_t i = 0; i < bases; ++i) {
-            if (programs) {
-                t.irregularBases.push_back(readBasisProgram(r, i, t.irregularBases));
-                continue;
-            }
-            IrregularBasis basis;
-            basis.valence = r.read<uint32_t>();
-            basis.levels = r.read<uint32_t>();
-            if (basis.valence < 3 || basis.valence > kMaxStencilValence || basis.levels < 1 ||
-                basis.levels > uint32_t(kMaxDepth))
-                r.fail("irregular basis " + std::to_string(i) + " has a bad valence or level count");
-            const uint64_t M = basis.supportSize(), count = uint64_t(basis.levels) * 48;
-            if (compact) {
-                // Compact rows are stored once and copied per use, up to 768 times: a basis of
-                // valence 32,767 would take 200 MB from 260 KB of file, and a file could hold
-                // hundreds. Version 4 came after limn-tables stopped building bases above
-                // kMaxBasisValence, and it builds one per valence: anything else is damage.
-                if (basis.valence > kMaxBasisValence)
-                    r.fail("irregular basis " + std::to_string(i) + " has valence " +
-                           std::to_string(basis.valence) + "; version 4 bases go up to " +
-                           std::to_string(kMaxBasisValence));
-                for (const IrregularBasis& other : t.irregularBases)
-                    if (other.valence == basis.valence)
-                        r.fail("irregular basis " + std::to_string(i) + " repeats valence " +
-                               std::to_string(basis.valence));
-                const uint32_t distinct = r.read<uint32_t>();
-                if (distinct == 0 || distinct > count)
-                    r.fail("irregular basis " + std::to_string(i) + " has a bad row count");
-                const std::vector<uint16_t> pick = r.readArray<uint16_t>(count, "irregular basis rows");
-                const std::vector<float> rows = r.readArray<float>(distinct * M, "irregular basis weights");
-                basis.weights.resize(count * M);
-                for (uint64_t j = 0; j < count; ++j) {
-                    if (pick[j] >= distinct) r.fail("irregular basis " + std::to_string(i) + " names a missing row");
-                    std::copy_n(rows.begin() + long(pick[j] * M), M, basis.weights.begin() + long(j * M));
-                }
-            } else {
-                basis.weights = r.readArray<float>(count * M, "irregular basis weights");
-            }
-            for (float x : basis.weights)
-                if (!(std::abs(x) <= kMaxStencilWeight))
-                    r.fail("irregular basis " + std::to_string(i) + " has a bad weight");
-            t.irregularBases.push_back(std::move(basis));
+            t.irregularBases.push_back(programs ? readBasisProgram(r, i, t.irregularBases)
+                                                : readBasisWeights(r, i, compact, t.irregularBases));
         }
         const uint32_t smooth = r.read<uint32_t>();
         if (!programs && smooth > r.remaining() / 12) r.fail("smooth irregular face count is too large");
@@ -441,6 +417,8 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         // Basis codes name a smooth face: roots (all four alike), and from version 5 deeper
         // nodes; each face's points at its level.
         if (const std::string bad = checkSmoothFaceLevels(t, chunk.version); !bad.empty()) r.fail(bad);
+        if (chunk.version >= 6)
+            if (const std::string bad = assignSubPatchDomains(t); !bad.empty()) r.fail(bad);
     }
     // The domains tile every ptex face exactly once, or not at all (a face without a limit
     // surface): no square inside another, areas adding up to R^2 (paper 000, 4.1: each face is

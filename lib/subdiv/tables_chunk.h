@@ -17,11 +17,15 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // weights) and the quadtree nodes, smooth faces and smooth points as varint streams
 // (tables_surface_records.h); and lets a quadtree node below a root name a smooth face (a
 // descendant whose semi-sharp creases have decayed, drawn from the per-valence basis; its
-// support points at its own level). formats/limn.md, "Smooth faces below level N".
-inline constexpr uint32_t kTablesChunkVersion = 5;
+// support points at its own level). formats/limn.md, "Smooth faces below level N". Version 6
+// stores a level whose stencil tables are the previous level's shifted one level (below a
+// decaying crease, each level is refined as the one before) as a bit instead of its tables, and
+// the sub-patches without their domains, which the quadtrees give (formats/limn.md, "Repeated
+// levels", "Sub-patch domains").
+inline constexpr uint32_t kTablesChunkVersion = 6;
 
-// Writes the current version; 3 (the plain layout) and 4 for tests and fuzz seeds of older
-// files (tables with smooth faces below level N need version 5).
+// Writes the current version; 3 (the plain layout), 4 and 5 for tests and fuzz seeds of older
+// files (tables with smooth faces below level N need version 5 or later).
 Chunk encodeTablesChunk(const Tables& tables, uint32_t version = kTablesChunkVersion);
 
 // Decodes and validates every count and index. With `mesh`, also checks that the tables were

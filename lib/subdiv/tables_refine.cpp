@@ -224,20 +224,26 @@ AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeO
     for (uint32_t l = 0;; ++l) {
         Level& L = levels[l];
         const uint32_t F = L.topo.faceCount();
+        // The faces that can become patches or irregular faces (the children of T_{l-1} with a
+        // limit surface): below the depth a quarter of the level, the rest being the refined
+        // one-ring's outer children, whose regularity is not needed. Where most faces are such
+        // (the first levels), analysing all is cheaper than visiting each vertex from its faces.
+        std::vector<uint8_t> drawn(F, 0);
+        uint32_t count = 0;
+        for (uint32_t f = 0; f < F; ++f) count += drawn[f] = L.complete[f] && !L.noLimit[f];
         std::vector<uint8_t> regular(F, 0);
         if (!opts.uniform) {
             Regularity r = analyzeRegularity(L.topo, L.edgeSharpness, L.vertexSharpness, L.noLimit,
-                                             opts.infSharpPatches, opts.singleCreasePatches);
+                                             opts.infSharpPatches, opts.singleCreasePatches,
+                                             2 * count < F ? &drawn : nullptr);
             regular = std::move(r.faceRegular);
             creaseEdges.push_back(std::move(r.faceCreaseEdge));
         } else {
             creaseEdges.emplace_back(F, kNone);
         }
         std::vector<uint8_t> T(F, 0), P(F, 0);
-        for (uint32_t f = 0; f < F; ++f) {
-            if (!L.complete[f] || L.noLimit[f]) continue;
-            (regular[f] ? P : T)[f] = 1;
-        }
+        for (uint32_t f = 0; f < F; ++f)
+            if (drawn[f]) (regular[f] ? P : T)[f] = 1;
         // Roots stay in T_N (each has a node); smooth faces below N are not in T_l: their
         // parent's node names them.
         if (opts.smoothFacesBelowDepth && l > N && l < D && basisLevels > 0) takeSmoothFaces(L, basisLevels, opts.boundaryBases, T, a);

@@ -3,6 +3,7 @@
 #include "base/cli.h"
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -112,6 +113,15 @@ StencilTable readStencilTable(ByteReader& r, bool compact, const std::string& wh
         t.indices = r.readArray<uint32_t>(entries, (what + " indices").c_str());
         if (weights) t.weights = r.readArray<float>(entries, (what + " weights").c_str());
     }
+    checkStencilTable(r, t, what, rows, weights, lo0, hi0, lo1, hi1);
+    return t;
+}
+
+void checkStencilTable(ByteReader& r, const StencilTable& t, const std::string& what, uint32_t rows, bool weights,
+                       uint32_t lo0, uint32_t hi0, uint32_t lo1, uint32_t hi1) {
+    const uint32_t entries = static_cast<uint32_t>(t.indices.size());
+    if (t.start.size() != uint64_t(rows) + 1)
+        r.fail(what + ": " + std::to_string(t.start.size() - 1) + " rows, expected " + std::to_string(rows));
     if (t.start[0] != 0 || t.start[rows] != entries)
         r.fail(what + ": row starts do not span the " + std::to_string(entries) + " entries");
     for (uint32_t i = 0; i < rows; ++i)
@@ -131,14 +141,33 @@ StencilTable readStencilTable(ByteReader& r, bool compact, const std::string& wh
     for (uint32_t i = 0; !weights && i < rows; ++i)
         if (t.start[i + 1] == t.start[i])
             r.fail(what + ": face point " + std::to_string(i) + " is empty");
+}
+
+StencilTable shiftedStencilTable(const StencilTable& previous, uint32_t grandFirst, uint32_t parentFirst,
+                                 uint32_t first) {
+    StencilTable t = previous;
+    // Unsigned arithmetic wraps; a source moved out of its level is refused by checkStencilTable.
+    for (uint32_t& x : t.indices) x += x < parentFirst ? parentFirst - grandFirst : first - parentFirst;
     return t;
+}
+
+bool isShiftedStencilTable(const StencilTable& t, const StencilTable& previous, uint32_t grandFirst,
+                           uint32_t parentFirst, uint32_t first) {
+    if (t.start != previous.start || t.weights.size() != previous.weights.size() ||
+        (!t.weights.empty() && std::memcmp(t.weights.data(), previous.weights.data(), t.weights.size() * sizeof(float))))
+        return false;
+    for (size_t k = 0; k < t.indices.size(); ++k) {
+        const uint32_t x = previous.indices[k];
+        if (t.indices[k] != x + (x < parentFirst ? parentFirst - grandFirst : first - parentFirst)) return false;
+    }
+    return true;
 }
 
 // Version 4's patch records (formats/limn.md): a patch's control points are neighbours at one
 // level, so each is a varint difference from its first corner P11 (0 stays 0, a phantom), P11
 // from the previous record's, the ptex face from the previous record's, the domain in units of
 // 2^-16, the packed word, and the sharpness only for a single-crease patch.
-void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches) {
+void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches, bool domains) {
     std::vector<uint8_t> s;
     s.reserve(patches.size() * 32);
     uint32_t corner = 0, ptex = 0;
@@ -153,11 +182,13 @@ void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches) {
         corner = p.cv[5];
         for (int i = 0; i < 16; ++i)
             if (i != 5) writeVarint(s, p.cv[i] == 0 ? 0 : zigzag(int64_t(p.cv[i]) - p.cv[5]) + 1);
-        writeVarint(s, zigzag(int64_t(p.ptex) - ptex));
-        ptex = p.ptex;
-        writeVarint(s, units(p.u0));
-        writeVarint(s, units(p.v0));
-        writeVarint(s, units(p.size));
+        if (domains) {
+            writeVarint(s, zigzag(int64_t(p.ptex) - ptex));
+            ptex = p.ptex;
+            writeVarint(s, units(p.u0));
+            writeVarint(s, units(p.v0));
+            writeVarint(s, units(p.size));
+        }
         writeVarint(s, uint32_t(p.level) | uint32_t(p.boundary) << 8 | uint32_t(p.crease) << 16);
         if (p.crease) {
             const uint32_t bits = std::bit_cast<uint32_t>(p.sharpness);
@@ -201,6 +232,39 @@ float StreamReader::rawFloat() {
     uint32_t bits = 0;
     for (int i = 0; i < 4; ++i) bits |= uint32_t(data_[at_++]) << (8 * i);
     return std::bit_cast<float>(bits);
+}
+
+// Version 6: bit l set when level l's three stencil tables are level l - 1's shifted one level
+// (shiftedStencilTable), with as many face, edge and vertex points; level 1 never is.
+uint32_t repeatedLevels(const Tables& t) {
+    uint32_t bits = 0;
+    for (uint32_t l = 2; l < t.levels.size(); ++l) {
+        const LevelInfo &a = t.levels[l - 1], &b = t.levels[l];
+        if (a.facePoints != b.facePoints || a.edgePoints != b.edgePoints || a.vertexPoints != b.vertexPoints)
+            continue;
+        const uint32_t g = t.levels[l - 2].first;
+        if (isShiftedStencilTable(t.facePoints[l - 1], t.facePoints[l - 2], g, a.first, b.first) &&
+            isShiftedStencilTable(t.edgePoints[l - 1], t.edgePoints[l - 2], g, a.first, b.first) &&
+            isShiftedStencilTable(t.vertexPoints[l - 1], t.vertexPoints[l - 2], g, a.first, b.first))
+            bits |= 1u << l;
+    }
+    return bits;
+}
+
+void appendRepeatedLevel(ByteReader& r, Tables& t, uint32_t l) {
+    const LevelInfo &P = t.levels[l - 1], &L = t.levels[l];
+    const std::string lv = "level " + std::to_string(l);
+    if (P.facePoints != L.facePoints || P.edgePoints != L.edgePoints || P.vertexPoints != L.vertexPoints)
+        r.fail(lv + " repeats level " + std::to_string(l - 1) + " but has other point counts");
+    const uint32_t g = t.levels[l - 2].first, parentEnd = P.first + P.count(), faceEnd = L.first + L.facePoints;
+    t.facePoints.push_back(shiftedStencilTable(t.facePoints.back(), g, P.first, L.first));
+    t.edgePoints.push_back(shiftedStencilTable(t.edgePoints.back(), g, P.first, L.first));
+    t.vertexPoints.push_back(shiftedStencilTable(t.vertexPoints.back(), g, P.first, L.first));
+    checkStencilTable(r, t.facePoints.back(), lv + " face points", L.facePoints, false, P.first, parentEnd);
+    checkStencilTable(r, t.edgePoints.back(), lv + " edge points", L.edgePoints, true, P.first, parentEnd, L.first,
+                      faceEnd);
+    checkStencilTable(r, t.vertexPoints.back(), lv + " vertex points", L.vertexPoints, true, P.first, parentEnd,
+                      L.first, faceEnd);
 }
 
 } // namespace limn

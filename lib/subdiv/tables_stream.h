@@ -54,7 +54,31 @@ void writeStencilTable(ByteWriter& w, const StencilTable& t, bool weights, bool 
 StencilTable readStencilTable(ByteReader& r, bool compact, const std::string& what, uint32_t rows, bool weights,
                               uint32_t lo0, uint32_t hi0, uint32_t lo1 = 0, uint32_t hi1 = 0);
 
+// Checks a stencil table read or expanded from `r`'s chunk as readStencilTable does.
+void checkStencilTable(ByteReader& r, const StencilTable& t, const std::string& what, uint32_t rows, bool weights,
+                       uint32_t lo0, uint32_t hi0, uint32_t lo1 = 0, uint32_t hi1 = 0);
+
+// Version 6's repeated levels (formats/limn.md): below a decaying feature the refinement of
+// level l is that of level l - 1 one level finer, the same rows over the same neighbours, so
+// level l's table is level l - 1's with every source moved to the next level: a source of level
+// l - 2 (below `parentFirst`, the first vertex of level l - 1) by parentFirst - grandFirst, one of
+// level l - 1 (its face points) by first - parentFirst. The weights are the same bits.
+StencilTable shiftedStencilTable(const StencilTable& previous, uint32_t grandFirst, uint32_t parentFirst,
+                                 uint32_t first);
+// Whether `t` is shiftedStencilTable(previous, ...), without building it (the encoder's test).
+bool isShiftedStencilTable(const StencilTable& t, const StencilTable& previous, uint32_t grandFirst,
+                           uint32_t parentFirst, uint32_t first);
+
+// Version 6: bit l set when level l's three stencil tables are level l - 1's shifted
+// (shiftedStencilTable), with as many face, edge and vertex points; level 1 never is.
+uint32_t repeatedLevels(const Tables& t);
+// Appends level l's three tables (l >= 2, the levels before it read) as a repeated level stands
+// for them, checked as stored ones; refuses (through r) a level of other counts than level l - 1.
+void appendRepeatedLevel(ByteReader& r, Tables& t, uint32_t l);
+
 // Version 4's patch records, one stream for the list (the reader is decodeTablesChunk's).
-void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches);
+// Without `domains` (version 6's sub-patches) the ptex face and domain are left out: the
+// reader takes them from the quadtrees (assignSubPatchDomains, tables_surface_records.h).
+void writePatchStream(ByteWriter& w, const std::vector<Patch>& patches, bool domains = true);
 
 } // namespace limn

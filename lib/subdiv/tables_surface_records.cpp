@@ -319,4 +319,87 @@ std::string checkSmoothFaceLevels(const Tables& t, uint32_t version) {
     return {};
 }
 
+std::string assignSubPatchDomains(Tables& t) {
+    const uint32_t I = static_cast<uint32_t>(t.irregular.size()), nodes = static_cast<uint32_t>(t.irregularNodes.size());
+    struct Square {
+        uint32_t ptex = kNone, level = 0;
+        float u0 = 0, v0 = 0, size = 0;
+    };
+    std::vector<Square> square(nodes);
+    for (uint32_t i = 0; i < std::min(I, nodes); ++i) {
+        const IrregularFace& f = t.irregular[i];
+        square[i] = {f.ptex, t.depth, f.u0, f.v0, f.size};
+    }
+    std::vector<uint8_t> named(t.subPatches.size(), 0);
+    for (uint32_t i = 0; i < nodes; ++i) {
+        const Square& s = square[i];
+        if (s.ptex == kNone) return "irregular node " + std::to_string(i) + " is in no quadtree";
+        for (int q = 0; q < 4; ++q) {
+            const uint32_t c = t.irregularNodes[i][q], kind = c & ~kNodeIndexMask, x = c & kNodeIndexMask;
+            if (c == kNodeNone || (kind != kNodeChild && kind != kNodeSubPatch)) continue;
+            // Quadrant q = (s >= 1/2) + 2 (t >= 1/2) of the square; halving a dyadic float is exact.
+            const float half = s.size / 2;
+            const Square child{s.ptex, s.level + 1, s.u0 + (q & 1 ? half : 0.0f), s.v0 + (q & 2 ? half : 0.0f), half};
+            if (kind == kNodeChild) {
+                if (square[x].ptex != kNone) return "irregular node " + std::to_string(x) + " is named twice";
+                square[x] = child;
+                continue;
+            }
+            if (named[x]) return "sub-patch " + std::to_string(x) + " is named twice";
+            named[x] = 1;
+            Patch& p = t.subPatches[x];
+            if (p.level != child.level)
+                return "sub-patch " + std::to_string(x) + " is at level " + std::to_string(p.level) + ", its node's quadrant at " +
+                       std::to_string(child.level);
+            p.ptex = child.ptex;
+            p.u0 = child.u0;
+            p.v0 = child.v0;
+            p.size = child.size;
+        }
+    }
+    for (size_t x = 0; x < named.size(); ++x)
+        if (!named[x]) return "sub-patch " + std::to_string(x) + " is in no quadtree";
+    return {};
+}
+
+IrregularBasis readBasisWeights(ByteReader& r, uint32_t index, bool compact, const std::vector<IrregularBasis>& earlier) {
+    IrregularBasis basis;
+    basis.valence = r.read<uint32_t>();
+    basis.levels = r.read<uint32_t>();
+    if (basis.valence < 3 || basis.valence > kMaxStencilValence || basis.levels < 1 ||
+        basis.levels > uint32_t(kMaxDepth))
+        r.fail("irregular basis " + std::to_string(index) + " has a bad valence or level count");
+    const uint64_t M = basis.supportSize(), count = uint64_t(basis.levels) * 48;
+    if (compact) {
+        // Compact rows are stored once and copied per use, up to 768 times: a basis of
+        // valence 32,767 would take 200 MB from 260 KB of file, and a file could hold
+        // hundreds. Version 4 came after limn-tables stopped building bases above
+        // kMaxBasisValence, and it builds one per valence: anything else is damage.
+        if (basis.valence > kMaxBasisValence)
+            r.fail("irregular basis " + std::to_string(index) + " has valence " +
+                   std::to_string(basis.valence) + "; version 4 bases go up to " +
+                   std::to_string(kMaxBasisValence));
+        for (const IrregularBasis& other : earlier)
+            if (other.valence == basis.valence)
+                r.fail("irregular basis " + std::to_string(index) + " repeats valence " +
+                       std::to_string(basis.valence));
+        const uint32_t distinct = r.read<uint32_t>();
+        if (distinct == 0 || distinct > count)
+            r.fail("irregular basis " + std::to_string(index) + " has a bad row count");
+        const std::vector<uint16_t> pick = r.readArray<uint16_t>(count, "irregular basis rows");
+        const std::vector<float> rows = r.readArray<float>(distinct * M, "irregular basis weights");
+        basis.weights.resize(count * M);
+        for (uint64_t j = 0; j < count; ++j) {
+            if (pick[j] >= distinct) r.fail("irregular basis " + std::to_string(index) + " names a missing row");
+            std::copy_n(rows.begin() + long(pick[j] * M), M, basis.weights.begin() + long(j * M));
+        }
+    } else {
+        basis.weights = r.readArray<float>(count * M, "irregular basis weights");
+    }
+    for (float x : basis.weights)
+        if (!(std::abs(x) <= kMaxStencilWeight))
+            r.fail("irregular basis " + std::to_string(index) + " has a bad weight");
+    return basis;
+}
+
 } // namespace limn

@@ -2,8 +2,8 @@
 // as programs, and compact per-face records"): each per-valence basis as its one-level program
 // (BasisProgram), which the reader expands to the same weights, bit for bit; the quadtree nodes,
 // the smooth faces and their points (in runs by level, for the smooth faces below level N) as
-// varint streams. Kept apart from the rest of the TBLS codec
-// (tables_chunk.cpp) so that other version-5 changes merge beside it.
+// varint streams; version 6's sub-patch domains, taken from the quadtrees; and the bases of
+// versions 3 and 4. Kept apart from the rest of the TBLS codec (tables_chunk.cpp).
 #pragma once
 
 #include "base/bytes.h"
@@ -28,6 +28,10 @@ IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector
 // bound allows (a boundary configuration's phantom points). Checked as readBasisProgram does.
 void writeProgram(ByteWriter& w, const BasisProgram& program);
 BasisProgram readProgram(ByteReader& r, const std::string& what, uint32_t support, uint32_t phantomRows);
+
+// A basis as versions 3 (the weights, `compact` false) and 4 (each distinct row once, `compact`)
+// store it, checked; `earlier` are the bases read before it (version 4: no valence twice).
+IrregularBasis readBasisWeights(ByteReader& r, uint32_t index, bool compact, const std::vector<IrregularBasis>& earlier);
 
 // The quadtree nodes (after their count): a stream of codes, each a varint from the last index of
 // its kind, a node of four equal codes as one. The codes' kinds and indices are checked by the
@@ -56,5 +60,13 @@ std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const Tabl
 // level; before version 5 only roots hold basis codes), or an empty string. Called by the TBLS
 // reader once the nodes' kinds and indices are checked and children come after their parents.
 std::string checkSmoothFaceLevels(const Tables& t, uint32_t version);
+
+// Version 6's sub-patches hold no domain: a sub-patch is a quadrant of its node, whose square
+// is a quadrant of its parent's, down from the irregular face (formats/limn.md, "Sub-patch
+// domains"). Sets every sub-patch's ptex face and domain from the quadtrees, or returns what is
+// wrong: a node or sub-patch named twice, a node below the roots or a sub-patch named by none, a
+// sub-patch whose level is not its node's plus one. Called by the TBLS reader once the nodes'
+// kinds and indices are checked and children come after their parents.
+std::string assignSubPatchDomains(Tables& t);
 
 } // namespace limn

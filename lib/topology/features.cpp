@@ -173,40 +173,56 @@ float straightCreaseSharpness(const Topology& topo, const std::vector<float>& ed
 
 } // namespace
 
+namespace {
+
+// Whether vertex v is a regular corner of the patches around it (analyzeRegularity).
+uint8_t vertexRegularity(const Topology& topo, const std::vector<float>& edgeSharpness,
+                         const std::vector<float>& vertexSharpness, uint32_t v, bool infSharpPatches) {
+    const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
+    if (topo.vertexIsIsolated(v) || topo.vertexIsNonManifold(v)) return 0;
+    uint32_t faces = topo.vertexFaceCount(v);
+    bool allQuads = true, interiorEdgesSmooth = true, infSharpEdge = false;
+    for (uint32_t h : topo.vertexOutgoing(v)) {
+        if (topo.faceSize(topo.face(h)) != 4) allQuads = false;
+        if (topo.twin(h) != kNone && edgeSharpness[topo.edge(h)] > 0)
+            interiorEdgesSmooth = false;
+        if (topo.twin(h) != kNone && edgeSharpness[topo.edge(h)] >= inf) infSharpEdge = true;
+    }
+    if (!allQuads) return 0;
+    if (infSharpPatches && (infSharpEdge || vertexSharpness[v] >= inf) &&
+        !(topo.vertexIsBoundary(v) && faces == 1))
+        return infSharpRegular(topo, edgeSharpness, vertexSharpness[v], v);
+    if (!interiorEdgesSmooth) return 0;
+    if (!topo.vertexIsBoundary(v)) return faces == 4 && vertexSharpness[v] == 0;
+    if (faces == 2) return vertexSharpness[v] == 0;
+    if (faces == 1) return vertexSharpness[v] >= inf;
+    return 0;
+}
+
+} // namespace
+
 Regularity analyzeRegularity(const Topology& topo, const std::vector<float>& edgeSharpness,
                              const std::vector<float>& vertexSharpness,
                              const std::vector<uint8_t>& faceNoLimit, bool infSharpPatches,
-                             bool singleCreasePatches) {
-    const float inf = OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
+                             bool singleCreasePatches, const std::vector<uint8_t>* only) {
     Regularity r;
     r.vertexRegular.assign(topo.vertexCount(), 0);
-    for (uint32_t v = 0; v < topo.vertexCount(); ++v) {
-        if (topo.vertexIsIsolated(v) || topo.vertexIsNonManifold(v)) continue;
-        uint32_t faces = topo.vertexFaceCount(v);
-        bool allQuads = true, interiorEdgesSmooth = true, infSharpEdge = false;
-        for (uint32_t h : topo.vertexOutgoing(v)) {
-            if (topo.faceSize(topo.face(h)) != 4) allQuads = false;
-            if (topo.twin(h) != kNone && edgeSharpness[topo.edge(h)] > 0)
-                interiorEdgesSmooth = false;
-            if (topo.twin(h) != kNone && edgeSharpness[topo.edge(h)] >= inf) infSharpEdge = true;
-        }
-        if (!allQuads) continue;
-        if (infSharpPatches && (infSharpEdge || vertexSharpness[v] >= inf) &&
-            !(topo.vertexIsBoundary(v) && faces == 1)) {
-            r.vertexRegular[v] = infSharpRegular(topo, edgeSharpness, vertexSharpness[v], v);
-            continue;
-        }
-        if (!interiorEdgesSmooth) continue;
-        if (!topo.vertexIsBoundary(v)) {
-            r.vertexRegular[v] = faces == 4 && vertexSharpness[v] == 0;
-        } else if (faces == 2) {
-            r.vertexRegular[v] = vertexSharpness[v] == 0;
-        } else if (faces == 1) {
-            r.vertexRegular[v] = vertexSharpness[v] >= inf;
-        }
+    if (!only) {
+        for (uint32_t v = 0; v < topo.vertexCount(); ++v)
+            r.vertexRegular[v] = vertexRegularity(topo, edgeSharpness, vertexSharpness, v, infSharpPatches);
+    } else { // the corners of the faces asked about (and of their single-crease checks: the same)
+        std::vector<uint8_t> done(topo.vertexCount(), 0);
+        for (uint32_t f = 0; f < topo.faceCount(); ++f)
+            if ((*only)[f])
+                for (uint32_t v : topo.faceVertices(f))
+                    if (!done[v]) {
+                        done[v] = 1;
+                        r.vertexRegular[v] = vertexRegularity(topo, edgeSharpness, vertexSharpness, v, infSharpPatches);
+                    }
     }
     r.faceRegular.assign(topo.faceCount(), 0);
     for (uint32_t f = 0; f < topo.faceCount(); ++f) {
+        if (only && !(*only)[f]) continue;
         bool regular = topo.faceSize(f) == 4 && !faceNoLimit[f];
         for (uint32_t v : topo.faceVertices(f))
             if (!r.vertexRegular[v]) regular = false;
@@ -221,7 +237,7 @@ Regularity analyzeRegularity(const Topology& topo, const std::vector<float>& edg
     if (!singleCreasePatches) return r;
     std::vector<uint32_t> ring;
     for (uint32_t f = 0; f < topo.faceCount(); ++f) {
-        if (r.faceRegular[f] || topo.faceSize(f) != 4 || faceNoLimit[f]) continue;
+        if ((only && !(*only)[f]) || r.faceRegular[f] || topo.faceSize(f) != 4 || faceNoLimit[f]) continue;
         const uint32_t h0 = topo.faceHalfedge(f);
         float crease[4];
         int creaseMask = 0;

@@ -65,7 +65,8 @@ VertexRule vertexRule(const Topology& topo, const Sharpness& sharp, uint32_t v);
 // With `singleCreasePatches` (OpenSubdiv's useSingleCreasePatch) an interior quad with a
 // semi-sharp crease of one sharpness along one of its edges, continuing straight through both
 // ends, and two smooth regular corners is regular too: a single-crease patch, faceCreaseEdge
-// names its crease edge (kNone for every other face).
+// names its crease edge (kNone for every other face). With `only`, just the faces it marks are
+// analysed (and vertexRegular set at their corners): the others are left irregular.
 struct Regularity {
     std::vector<uint8_t> vertexRegular;
     std::vector<uint8_t> faceRegular; // never set for faces without a limit surface
@@ -75,6 +76,7 @@ struct Regularity {
 Regularity analyzeRegularity(const Topology& topo, const std::vector<float>& edgeSharpness,
                              const std::vector<float>& vertexSharpness,
                              const std::vector<uint8_t>& faceNoLimit,
-                             bool infSharpPatches = true, bool singleCreasePatches = true);
+                             bool infSharpPatches = true, bool singleCreasePatches = true,
+                             const std::vector<uint8_t>* only = nullptr);
 
 } // namespace limn

@@ -60,7 +60,7 @@ TEST(TablesChunk, OlderVersionsReadAsVersionFive) {
         Mesh m = load(model);
         for (int depth : {1, 2}) {
             const Tables t = build(m, depth, false, false);
-            const Chunk v3 = encodeTablesChunk(t, 3), v4 = encodeTablesChunk(t, 4), v5 = encodeTablesChunk(t);
+            const Chunk v3 = encodeTablesChunk(t, 3), v4 = encodeTablesChunk(t, 4), v5 = encodeTablesChunk(t, 5);
             ASSERT_EQ(v4.version, 4u);
             ASSERT_EQ(v5.version, 5u);
             EXPECT_LT(v4.payload.size(), v3.payload.size() * 3 / 4);
@@ -71,8 +71,9 @@ TEST(TablesChunk, OlderVersionsReadAsVersionFive) {
             const Tables a = decodeTablesChunk(v3, &m), b = decodeTablesChunk(v4, &m), c = decodeTablesChunk(v5, &m);
             EXPECT_EQ(encodeTablesChunk(c, 3).payload, v3.payload);
             EXPECT_EQ(encodeTablesChunk(c, 4).payload, v4.payload);
-            EXPECT_EQ(encodeTablesChunk(a).payload, v5.payload);
-            EXPECT_EQ(encodeTablesChunk(b).payload, v5.payload);
+            EXPECT_EQ(encodeTablesChunk(a, 5).payload, v5.payload);
+            EXPECT_EQ(encodeTablesChunk(b, 5).payload, v5.payload);
+            EXPECT_EQ(encodeTablesChunk(c).payload, encodeTablesChunk(t).payload); // version 6
             EXPECT_FALSE(c.subPatches.empty() && c.irregularBases.empty());
             ASSERT_EQ(c.irregularBases.size(), t.irregularBases.size());
             for (size_t i = 0; i < t.irregularBases.size(); ++i) {

@@ -430,7 +430,7 @@ TEST(IrregularSurface, SmoothFacesBelowDepthMatchOpenSubdiv) {
                           !(i < f.tables.irregular.size() && smoothRoot(f.tables.irregularNodes[i]));
         EXPECT_GT(nested, 0u) << "no smooth face below level N";
         const Chunk c = encodeTablesChunk(f.tables);
-        EXPECT_EQ(c.version, 5u);
+        EXPECT_EQ(c.version, kTablesChunkVersion);
         EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(c, &f.mesh)).payload, c.payload);
         EXPECT_THROW(encodeTablesChunk(f.tables, 4), std::logic_error);
         test::OsdLimitSurface osd(f.mesh, f.options, 10);

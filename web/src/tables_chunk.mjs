@@ -1,4 +1,4 @@
-// The TBLS chunk (formats/limn.md, section 7; versions 1 to 5) as the WebGPU runtime reads it:
+// The TBLS chunk (formats/limn.md, section 7; versions 1 to 6) as the WebGPU runtime reads it:
 // every count, index and stencil entry checked as lib/subdiv/tables_chunk.cpp checks it, so that
 // nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
@@ -45,6 +45,13 @@ function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compac
     index: r.array(Uint32Array, entries, `${what} indices`),
     weight: weights ? r.array(Float32Array, entries, `${what} weights`) : null,
   };
+  return checkStencils(r, { rows, start, index, weight }, what, weights, lo0, hi0, lo1, hi1);
+}
+
+// The checks of a stencil table read or expanded (a repeated level's) from the chunk.
+function checkStencils(r, table, what, weights, lo0, hi0, lo1 = 0, hi1 = 0) {
+  const { rows, start, index, weight } = table;
+  const entries = index.length;
   if (start[0] !== 0 || start[rows] !== entries) r.fail(`${what}: row starts do not span the ${entries} entries`);
   for (let i = 0; i < rows; i++) {
     if (start[i + 1] < start[i] || start[i + 1] - start[i] > 65536) r.fail(`${what}: row ${i} has a bad length`);
@@ -55,14 +62,22 @@ function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compac
     if (!((x >= lo0 && x < hi0) || (x >= lo1 && x < hi1))) r.fail(`${what}: entry ${i} reads vertex ${x} outside the levels it may read`);
     if (weights && !(Math.abs(weight[i]) <= MAX_STENCIL_WEIGHT)) r.fail(`${what}: entry ${i} has weight ${weight[i]}; a stencil weight must be finite and within +-1e6`);
   }
-  return { rows, start, index, weight };
+  return table;
+}
+
+// Version 6's repeated level (tables_stream.cpp's shiftedStencilTable): the previous level's
+// table with each source moved one level on; a source of level l - 2 (below parentFirst) by
+// parentFirst - grandFirst, one of level l - 1 by first - parentFirst. The same weights.
+function shiftedStencils(previous, grandFirst, parentFirst, first) {
+  const index = previous.index.map((x) => x + (x < parentFirst ? parentFirst - grandFirst : first - parentFirst));
+  return { rows: previous.rows, start: previous.start.slice(), index, weight: previous.weight ? previous.weight.slice() : null };
 }
 
 export const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 export function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 5) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 5); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 5);
+  if (chunk.version > 6) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 6); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 6);
   const patchWords = chunk.version >= 2 ? 22 : 21;
   const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
   const programs = chunk.version >= 5; // bases as programs, compact nodes and smooth faces
@@ -95,9 +110,22 @@ export function decodeTables(chunk, mesh, tags) {
   if (sum !== totalVertices) r.fail('level vertex counts do not add up to the total');
   if (levels[0].count !== mesh.vertexCount) r.fail(`level 0 has ${levels[0].count} vertices, the mesh ${mesh.vertexCount}`);
   const facePoints = [], edgePoints = [], vertexPoints = [];
+  // Version 6: bit l (2..D) set when level l's stencil tables are level l - 1's, shifted.
+  const repeats = chunk.version >= 6 ? r.u32('repeated levels') : 0;
+  if ((repeats & ~(((2 ** (D + 1)) - 1) & ~3)) !== 0) r.fail(`repeated levels ${repeats} name a level without a previous one`);
   for (let l = 1; l <= D; l++) {
     const p = levels[l - 1], c = levels[l];
     const end = p.first + p.count, faceEnd = c.first + c.facePoints;
+    if ((repeats >>> l) & 1) {
+      if (p.facePoints !== c.facePoints || p.edgePoints !== c.edgePoints || p.vertexPoints !== c.vertexPoints) {
+        r.fail(`level ${l} repeats level ${l - 1} but has other point counts`);
+      }
+      const g = levels[l - 2].first, shift = (t) => shiftedStencils(t[t.length - 1], g, p.first, c.first);
+      facePoints.push(checkStencils(r, shift(facePoints), `level ${l} face points`, false, p.first, end));
+      edgePoints.push(checkStencils(r, shift(edgePoints), `level ${l} edge points`, true, p.first, end, c.first, faceEnd));
+      vertexPoints.push(checkStencils(r, shift(vertexPoints), `level ${l} vertex points`, true, p.first, end, c.first, faceEnd));
+      continue;
+    }
     facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end, 0, 0, compact));
     edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd, compact));
     vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd, compact));
@@ -125,7 +153,7 @@ export function decodeTables(chunk, mesh, tags) {
   // differences from P11 (0 stays 0), P11 and ptex from the previous record's, the domain in
   // units of 2^-16, the packed word, the sharpness only for single-crease patches.
   let stream = null, lastCorner = 0, lastPtex = 0;
-  const readPatch = (w, f, what, drawn) => {
+  const readPatch = (w, f, what, drawn, domains) => {
     let packed, sharpness;
     if (stream) {
       w[5] = lastCorner = stream.after(lastCorner, 'a control point');
@@ -137,8 +165,8 @@ export function decodeTables(chunk, mesh, tags) {
         if (x < 0 || x > 0xffffffff) stream.fail(`${what}: a control point out of range`);
         w[k] = x;
       }
-      w[16] = lastPtex = stream.after(lastPtex, 'a ptex face');
-      for (let k = 17; k < 20; k++) {
+      if (domains) w[16] = lastPtex = stream.after(lastPtex, 'a ptex face');
+      for (let k = 17; k < 20 && domains; k++) {
         const u = stream.varint();
         if (u > 65536) stream.fail(`${what}: a domain outside its ptex face`);
         f[k] = u / 65536;
@@ -166,13 +194,15 @@ export function decodeTables(chunk, mesh, tags) {
       const cv = w[k];
       if (cv >= totalVertices || (cv !== 0 && (cv < lv.first || cv >= lv.first + lv.count))) r.fail(`${what} has a control point outside its level`);
     }
-    checkDomain(w[16], f[17], f[18], f[19], what, drawn);
+    if (domains) checkDomain(w[16], f[17], f[18], f[19], what, drawn);
   };
-  // Reads `count` patch records (24 GPU words each); at least 20 bytes a record in a stream.
+  // Reads `count` patch records (24 GPU words each); at least 20 bytes a record in a stream, 17
+  // without the domain (v6's sub-patches: assignSubPatchDomains sets it from the quadtrees).
   const readPatches = (count, what, drawn) => {
+    const domains = drawn || chunk.version < 6;
     if (compact) {
       stream = new Stream(r, `${what}es`);
-      if (count > Math.floor(stream.size / 20)) r.fail(`${what} count ${count} is too large`);
+      if (count > Math.floor(stream.size / (domains ? 20 : 17))) r.fail(`${what} count ${count} is too large`);
       lastCorner = lastPtex = 0;
     } else if (count > Math.floor(r.remaining / (4 * patchWords))) {
       r.fail(`${what} count ${count} is too large`);
@@ -180,7 +210,7 @@ export function decodeTables(chunk, mesh, tags) {
     const out = new Uint32Array(count * W);
     for (let i = 0; i < count; i++) {
       const w = out.subarray(W * i, W * i + W);
-      readPatch(w, new Float32Array(w.buffer, w.byteOffset, W), `${what} ${i}`, drawn);
+      readPatch(w, new Float32Array(w.buffer, w.byteOffset, W), `${what} ${i}`, drawn, domains);
     }
     if (stream) stream.finish();
     stream = null;
@@ -204,7 +234,7 @@ export function decodeTables(chunk, mesh, tags) {
   };
   if (Q > Math.floor(r.remaining / 32)) r.fail('irregular face count is too large');
   const irregularFaces = readFaces(Q, 'irregular face', true);
-  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatches, readFaces, compact, programs, depth, levels, Q, D, version: chunk.version }) : null;
+  const v3 = chunk.version >= 3 ? readIrregularSurface(r, { readPatches, readFaces, compact, programs, depth, levels, Q, D, version: chunk.version, irregularFaces }) : null;
   // The domains tile every ptex face exactly once, or not at all (lib/subdiv/tables_chunk.cpp).
   squares.sort((a, b) => a.ptex - b.ptex);
   for (let first = 0, end = 0; first < squares.length; first = end) {
@@ -326,7 +356,42 @@ function readIrregularSurface(r, o) {
   }
   for (const f of smooth) if (f.first + bases[f.basis].support > points) r.fail("a smooth irregular face's points run past the end");
   const below = checkSmoothFaceLevels(r, { codes, nodes, Q, bases, smooth, smoothPoints, levels, depth, D: o.D, version: o.version });
+  if (o.version >= 6) assignSubPatchDomains(r, { codes, nodes, Q, subPatches, subs, irregularFaces: o.irregularFaces, depth });
   return { subPatches, subs, codes, nodes, leaves, bases, smooth, smoothPoints, below };
+}
+
+// v6's sub-patches hold no domain (tables_surface_records.cpp's assignSubPatchDomains): each is
+// a quadrant of its node's square, down from its irregular face's. Every node below the roots
+// and every sub-patch is named exactly once, a sub-patch at its node's level plus one.
+function assignSubPatchDomains(r, { codes, nodes, Q, subPatches, subs, irregularFaces, depth }) {
+  const W = 24, f32 = new Float32Array(subPatches.buffer, subPatches.byteOffset, subPatches.length);
+  const faces = new Float32Array(irregularFaces.buffer, irregularFaces.byteOffset, irregularFaces.length);
+  const square = new Array(nodes).fill(null), named = new Uint8Array(subs);
+  for (let i = 0; i < Math.min(Q, nodes); i++) square[i] = { ptex: irregularFaces[8 * i + 4], level: depth, u0: faces[8 * i + 5], v0: faces[8 * i + 6], size: faces[8 * i + 7] };
+  for (let i = 0; i < nodes; i++) {
+    const s = square[i];
+    if (!s) r.fail(`irregular node ${i} is in no quadtree`);
+    for (let q = 0; q < 4; q++) {
+      const c = codes[4 * i + q], kind = (c & ~NODE_INDEX) >>> 0, x = c & NODE_INDEX;
+      if (c === NODE_NONE || (kind !== NODE_CHILD && kind !== NODE_SUBPATCH)) continue;
+      // Quadrant q = (s >= 1/2) + 2 (t >= 1/2); halving a dyadic float is exact, as in float.
+      const half = Math.fround(s.size / 2);
+      const child = { ptex: s.ptex, level: s.level + 1, u0: Math.fround(s.u0 + (q & 1 ? half : 0)), v0: Math.fround(s.v0 + (q & 2 ? half : 0)), size: half };
+      if (kind === NODE_CHILD) {
+        if (square[x]) r.fail(`irregular node ${x} is named twice`);
+        square[x] = child;
+        continue;
+      }
+      if (named[x]) r.fail(`sub-patch ${x} is named twice`);
+      named[x] = 1;
+      const level = subPatches[W * x + 20] & 0xff;
+      if (level !== child.level) r.fail(`sub-patch ${x} is at level ${level}, its node's quadrant at ${child.level}`);
+      subPatches[W * x + 16] = child.ptex;
+      f32[W * x + 17] = child.u0; f32[W * x + 18] = child.v0; f32[W * x + 19] = child.size;
+    }
+  }
+  const missing = named.indexOf(0);
+  if (missing >= 0) r.fail(`sub-patch ${missing} is in no quadtree`);
 }
 
 const isSmoothRoot = (codes, i) => ((codes[4 * i] & ~NODE_INDEX) >>> 0) === NODE_BASIS &&

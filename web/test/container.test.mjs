@@ -115,21 +115,26 @@ test('byte flips are accepted or refused with a LimnError, never another excepti
 test('BLND is refused clearly, a newer chunk version names itself', () => {
   const chunks = parseContainer(small());
   expectLimnError(build([...chunks, { type: 'BLND', version: 1, payload: new Uint8Array(24) }]), /chunk BLND: blending surfaces are not supported here/);
-  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 6 } : c));
-  expectLimnError(build(newer), /chunk TBLS: version 6 is newer/);
+  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 7 } : c));
+  expectLimnError(build(newer), /chunk TBLS: version 7 is newer/);
   const unknown = [...chunks, { type: 'ZZZZ', version: 9, payload: new Uint8Array(5) }];
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
 });
 
-// Where TBLS v4's and v5's irregular-surface section starts (formats/limn.md): after the header, levels,
-// stencil tables (their palettes and streams), the patch stream and the irregular faces, walked
-// over the payload's own length fields.
+// Where TBLS v6's irregular-surface section starts (formats/limn.md): after the header, levels,
+// the repeated levels' bits, the stencil tables of the others (their palettes and streams), the
+// patch stream and the irregular faces, walked over the payload's own length fields.
 function irregularSectionOffset(t, payload) {
   const v = new DataView(payload.buffer, payload.byteOffset, payload.byteLength);
   const stream = (o) => o + 4 + Math.ceil(v.getUint32(o, true) / 4) * 4;
   let o = 40 + 24 * t.levels.length;
-  for (let k = 0; k < 3 * (t.levels.length - 1); k++) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
+  const repeats = v.getUint32(o, true);
+  o += 4;
+  for (let l = 1; l < t.levels.length; l++) {
+    if ((repeats >>> l) & 1) continue;
+    for (let k = 0; k < 3; k++) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
+  }
   return { at: stream(o) + 32 * t.irregularCount, stream };
 }
 
@@ -200,6 +205,59 @@ test('TBLS v5, v4 and v3 of the same tables read the same', () => {
   assert.ok(v4.irregularLevels > 0 && v4.patches.length > (v4.patchCount + v4.irregularCount) * 24);
   assert.deepEqual(v4, v3);
   assert.deepEqual(v5, v4);
+});
+
+// TBLS v6 stores a level whose stencil tables are the previous level's shifted one level as a bit
+// (formats/limn.md, "Repeated levels"), and sub-patches without their domains, which the reader
+// takes from the quadtrees ("Sub-patch domains"): xord_boundary at depth 1 repeats levels 5 to 7
+// and has 18 faces on sub-patches. The v6 seed is limn-tables' output, the v5 one the same tables
+// written by limn's version-5 encoder, which stores every level and every domain: both read to
+// the same stencils and GPU buffers. A repeated level's bit without a previous level, past N + K,
+// on a level of other counts or on a level whose tables are stored is refused, by name or by the
+// tables' own checks; so are a sub-patch named twice or by no node.
+test('TBLS v6 repeated levels and sub-patch domains read as the v5 tables they stand for; hostile ones are refused', () => {
+  const seed = (v) => read(join(repo, `fuzz/corpus/render_input/xord_boundary_d1_repeated_levels_v${v}.limn`));
+  const v5 = loadLimn(seed(5)).tables, v6 = loadLimn(seed(6)).tables;
+  assert.equal(v6.levels.length, 8); // N + K = 7
+  assert.ok(v6.patches.length > (v6.patchCount + v6.irregularCount) * 24);
+  assert.deepEqual(v6, v5);
+  const chunks = parseContainer(seed(6));
+  const tbls = chunks.find((c) => c.type === 'TBLS');
+  assert.equal(tbls.version, 6);
+  const at = 40 + 24 * v6.levels.length;
+  const withPayload = (payload) => build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c)));
+  const withRepeats = (bits) => {
+    const payload = tbls.payload.slice();
+    new DataView(payload.buffer).setUint32(at, bits, true);
+    return withPayload(payload);
+  };
+  assert.equal(new DataView(tbls.payload.buffer, tbls.payload.byteOffset).getUint32(at, true), 0xe0);
+  assert.deepEqual(loadLimn(withRepeats(0xe0)).tables, v5);
+  expectLimnError(withRepeats(0xe0 | 2), /chunk TBLS: repeated levels 226 name a level without a previous one/);
+  expectLimnError(withRepeats(0xe0 | 0x100), /chunk TBLS: repeated levels .* name a level without a previous one/);
+  expectLimnError(withRepeats(0xe0 | 4), /chunk TBLS: level 2 repeats level 1 but has other point counts/);
+  for (let l = 3; l <= 7; l++) expectLimnError(withRepeats(0xe0 ^ (1 << l)), /chunk TBLS/);
+  // The node stream rewritten with one sub-patch code named twice, then with one named by none.
+  const { at: section, stream } = irregularSectionOffset(v6, tbls.payload);
+  const nodesAt = stream(section + 4) + 4; // after the sub-patch count and stream, the node count
+  const view = new DataView(tbls.payload.buffer, tbls.payload.byteOffset, tbls.payload.byteLength);
+  const nodeCount = view.getUint32(nodesAt - 4, true);
+  const codes = Array.from(readNodeStream(new ByteReader(tbls.payload.subarray(nodesAt), 'test'), nodeCount));
+  const withNodes = (edit) => {
+    const c = codes.slice();
+    edit(c);
+    const encoded = nodeStream(c);
+    const payload = new Uint8Array(tbls.payload.length - (stream(nodesAt) - nodesAt) + encoded.length);
+    payload.set(tbls.payload.subarray(0, nodesAt));
+    payload.set(encoded, nodesAt);
+    payload.set(tbls.payload.subarray(stream(nodesAt)), nodesAt + encoded.length);
+    return withPayload(payload);
+  };
+  assert.deepEqual(loadLimn(withNodes(() => {})).tables, v5); // the helper writes the same stream
+  const sub = codes.findIndex((c) => c !== 0xffffffff && c >>> 30 === 0);
+  const spare = codes.findIndex((c, i) => i !== sub && c !== 0xffffffff && c >>> 30 === 0);
+  expectLimnError(withNodes((c) => { c[spare] = c[sub]; }), /chunk TBLS: sub-patch \d+ is (named twice|in no quadtree)/);
+  expectLimnError(withNodes((c) => { c[sub] = 0xffffffff; }), /chunk TBLS: sub-patch \d+ is in no quadtree/);
 });
 
 // A v5 basis is a program this reader runs over 2n + 8 columns K times: a valence over 64, a

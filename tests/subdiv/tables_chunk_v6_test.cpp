@@ -1,0 +1,155 @@
+// TBLS version 6 (formats/limn.md, "Repeated levels", "Sub-patch domains"): what it leaves out
+// of version 5 is read back as the builder's tables, and hostile input is refused by name.
+#include "base/error.h"
+#include "mesh/import.h"
+#include "subdiv/tables_chunk.h"
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstring>
+#include <string>
+#include <tuple>
+#include <utility>
+
+using namespace limn;
+
+namespace {
+
+Mesh loadModel(const std::string& model) {
+    Warnings w;
+    return importMeshFile(test::modelPath(model).string(), w);
+}
+
+Tables buildAt(const Mesh& m, int depth) {
+    Warnings w;
+    TablesOptions o;
+    o.depth = depth;
+    return buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
+}
+
+// Version 6 stores a level whose three stencil tables are the previous level's shifted one level
+// as a bit (formats/limn.md, "Repeated levels"): xord_boundary at depth 1 repeats levels 5 to 7
+// below its boundary's extraordinary vertices (0xE0), the car at depth 3 level 6 below its
+// decaying sharpness-6 creases and 9 below its smooth corners (0x240). The tables read back are
+// the builder's, entry by entry (the builder refined every level; the reader copied them), and
+// write version 5's bytes again.
+TEST(TablesChunk, RepeatedLevelsReadAsTheBuildersTables) {
+    for (auto [model, depth, bits] : {std::tuple{"quad/osd_catmark_xord_boundary.obj", 1, 0xE0u},
+                                      std::tuple{"osd/catmark/catmark_car.obj", 3, 0x240u}}) {
+        SCOPED_TRACE(model);
+        Mesh m = loadModel(model);
+        const Tables t = buildAt(m, depth);
+        const Chunk v5 = encodeTablesChunk(t, 5), v6 = encodeTablesChunk(t);
+        ASSERT_EQ(v6.version, 6u);
+        uint32_t repeats = 0;
+        std::memcpy(&repeats, v6.payload.data() + 40 + 24 * t.levels.size(), 4);
+        EXPECT_EQ(repeats, bits);
+        EXPECT_LT(v6.payload.size(), v5.payload.size());
+        const Tables back = decodeTablesChunk(v6, &m);
+        ASSERT_EQ(back.edgePoints.size(), t.edgePoints.size());
+        for (size_t l = 0; l < t.edgePoints.size(); ++l)
+            for (auto [a, b] : {std::pair{&back.facePoints[l], &t.facePoints[l]}, {&back.edgePoints[l], &t.edgePoints[l]},
+                                {&back.vertexPoints[l], &t.vertexPoints[l]}}) {
+                EXPECT_EQ(a->start, b->start) << "level " << l + 1;
+                EXPECT_EQ(a->indices, b->indices) << "level " << l + 1;
+                EXPECT_EQ(a->weights, b->weights) << "level " << l + 1;
+            }
+        EXPECT_EQ(encodeTablesChunk(back, 5).payload, v5.payload);
+        EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(v5, &m)).payload, v6.payload);
+    }
+}
+
+// A repeated level's bit is refused where there is no previous level's tables to copy (level 1,
+// levels past N + K), where the counts differ, and where it is set on a level whose tables are
+// stored (the stream then holds tables the reader does not expect); never read as other tables.
+TEST(TablesChunk, HostileRepeatedLevelsAreRefused) {
+    Mesh m = loadModel("quad/osd_catmark_xord_boundary.obj");
+    const Tables t = buildAt(m, 1);
+    const Chunk c = encodeTablesChunk(t);
+    const size_t at = 40 + 24 * t.levels.size();
+    auto with = [&](uint32_t repeats) {
+        Chunk bad = c;
+        std::memcpy(bad.payload.data() + at, &repeats, 4);
+        return bad;
+    };
+    auto refused = [&](uint32_t repeats, const std::string& message) {
+        try {
+            decodeTablesChunk(with(repeats), &m);
+            ADD_FAILURE() << "accepted repeated levels " << repeats;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    const uint32_t D = static_cast<uint32_t>(t.levels.size() - 1), repeats = 0xE0u;
+    ASSERT_NE(t.levels[1].count(), t.levels[2].count());
+    refused(repeats | 2u, "name a level without a previous one");
+    refused(repeats | 1u, "name a level without a previous one");
+    refused(repeats | 2u << D, "name a level without a previous one");
+    refused(repeats | 4u, "level 2 repeats level 1 but has other point counts");
+    for (uint32_t l = 2; l <= D; ++l) // every other bit flipped: refused, whatever the reason
+        if (!(repeats >> l & 1)) {
+            EXPECT_THROW(decodeTablesChunk(with(repeats | 1u << l), &m), Error) << l;
+        }
+    for (uint32_t l = 2; l <= D; ++l) // a repeated level's tables missing from the stream
+        if (repeats >> l & 1) {
+            EXPECT_THROW(decodeTablesChunk(with(repeats & ~(1u << l)), &m), Error) << l;
+        }
+}
+
+// Version 6's sub-patches hold no ptex face or domain: the reader takes each from its node's
+// quadrant (formats/limn.md, "Sub-patch domains"), and gets the builder's (compared here field by
+// field on a mesh with boundary, crease and single-crease sub-patches). A sub-patch named twice
+// or by no node, a node below the roots named by none, and a sub-patch whose level is not its
+// node's plus one are refused by name.
+TEST(TablesChunk, SubPatchDomainsComeFromTheQuadtrees) {
+    Mesh m = loadModel("osd/catmark/catmark_single_crease.obj");
+    const Tables good = buildAt(m, 2);
+    ASSERT_FALSE(good.subPatches.empty());
+    const Tables back = decodeTablesChunk(encodeTablesChunk(good), &m);
+    ASSERT_EQ(back.subPatches.size(), good.subPatches.size());
+    for (size_t i = 0; i < good.subPatches.size(); ++i) {
+        const Patch &a = back.subPatches[i], &b = good.subPatches[i];
+        EXPECT_TRUE(a.ptex == b.ptex && a.u0 == b.u0 && a.v0 == b.v0 && a.size == b.size && a.level == b.level)
+            << "sub-patch " << i;
+    }
+    EXPECT_LT(encodeTablesChunk(good).payload.size(), encodeTablesChunk(good, 5).payload.size());
+    // A node naming a sub-patch and one naming a child node.
+    uint32_t sub = kNone, subQ = 0, child = kNone, childQ = 0;
+    for (uint32_t i = 0; i < good.irregularNodes.size(); ++i)
+        for (uint32_t q = 0; q < 4; ++q) {
+            const uint32_t c = good.irregularNodes[i][q];
+            if (c == kNodeNone) continue;
+            if ((c & ~kNodeIndexMask) == kNodeSubPatch && sub == kNone) sub = i, subQ = q;
+            if ((c & ~kNodeIndexMask) == kNodeChild && child == kNone) child = i, childQ = q;
+        }
+    ASSERT_NE(sub, kNone);
+    ASSERT_NE(child, kNone);
+    for (int which = 0; which < 4; ++which) {
+        Tables t = good;
+        std::array<uint32_t, 4>& node = t.irregularNodes[sub];
+        if (which == 0) node[(subQ + 1) % 4] = node[subQ];
+        if (which == 1) node[subQ] = kNodeNone;
+        if (which == 2) t.irregularNodes[child][childQ] = kNodeNone;
+        if (which == 3) { // two sub-patch codes of different levels swapped
+            const auto level = [&](uint32_t c) { return t.subPatches[c & kNodeIndexMask].level; };
+            uint32_t* other = nullptr;
+            for (auto& n : t.irregularNodes)
+                for (uint32_t& c : n)
+                    if (!other && c != kNodeNone && (c & ~kNodeIndexMask) == kNodeSubPatch && level(c) != level(node[subQ]))
+                        other = &c;
+            ASSERT_NE(other, nullptr);
+            std::swap(*other, node[subQ]);
+        }
+        const char* want[4] = {"is named twice", "is in no quadtree", "is in no quadtree", "its node's quadrant at"};
+        try {
+            decodeTablesChunk(encodeTablesChunk(t), &m);
+            ADD_FAILURE() << "accepted case " << which;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(want[which]), std::string::npos) << which << ": " << e.what();
+        }
+    }
+}
+
+} // namespace
