@@ -54,6 +54,14 @@ what is not listed is not supported here. IN.limn: - (the default) is standard i
   --max-error PX          view-adaptive: each patch edge gets the fewest segments whose chords
                           stay within PX pixels of the surface (default 0.1); 0: segments of
                           about --edge-pixels
+  --interior-error PX     view-adaptive: the --max-error allowed where an edge faces the eye
+                          (every sample's normal within 70 degrees of the view ray), where the
+                          error moves no outline, only where the shading lands; 0: --max-error
+                          everywhere (docs/adaptive.md, per-pixel normals)
+  --pixel-normals         view-adaptive, --shade lit: shade with the limit surface's normal at
+                          each pixel (evaluated at the triangle's interpolated parameters)
+                          instead of normals interpolated across the triangle; not with --wire,
+                          --displace or --mesh-out (those draw as without)
   --edge-pixels P         view-adaptive: segments of at most P pixels (default 32); 0: the fixed
                           grids of 2^(depth-l) segments per level-l patch side
   --wire                  overlay the patch and face outlines (drawn on the fixed grids)
@@ -131,6 +139,15 @@ function parseArgs(argv) {
       case '--background': s.background = numbers(a, value(), 3); break;
       case '--tess': { const [t] = numbers(a, value(), 1); if (!Number.isInteger(t) || t < 1 || t > 4096) throw new Usage('--tess: an integer from 1 to 4096'); s.tess = t; break; }
       case '--max-error': { const [e] = numbers(a, value(), 1); if (e < 0 || e > 4096) throw new Usage('--max-error: 0 to 4096'); s.maxError = e; break; }
+      case '--interior-error': {
+        // limn-render's messages (tools/render/options.cpp's .real).
+        const v = value(), e = Number(v);
+        if (v.trim() === '' || !Number.isFinite(e)) throw new Usage(`--interior-error: '${v}' is not a number (see --help)`);
+        if (e < 0 || e > 4096) throw new Usage(`--interior-error: ${v} is out of range 0 to 4096 (see --help)`);
+        s.interiorError = e;
+        break;
+      }
+      case '--pixel-normals': s.pixelNormals = true; break;
       case '--edge-pixels': { const [p] = numbers(a, value(), 1); if (p < 0 || p > 4096) throw new Usage('--edge-pixels: 0 to 4096'); s.edgePixels = p; break; }
       case '--bench': { const [n] = numbers(a, value(), 1); if (!Number.isInteger(n) || n < 0 || n > 100000) throw new Usage('--bench: 0 to 100000 frames'); o.bench = n; break; }
       case '--displace': o.displace = value(); break;

@@ -36,7 +36,6 @@ var<private> inNet9_1: vec4<f32>;
 var<private> inNet10_1: vec4<f32>;
 var<private> inUV_1: vec2<f32>;
 var<private> outColor: vec4<f32>;
-var<private> inLevel_1: u32;
 var<private> inWorld_1: vec3<f32>;
 
 fn lightRig_u0028_vf3_u003b_vf3_u003b_vf3_u003b(albedo: ptr<function, vec3<f32>>, n: ptr<function, vec3<f32>>, world: ptr<function, vec3<f32>>) -> vec3<f32> {
@@ -48,108 +47,108 @@ fn lightRig_u0028_vf3_u003b_vf3_u003b_vf3_u003b(albedo: ptr<function, vec3<f32>>
     var fill: f32;
     var highlight: f32;
 
-    let _e104 = pc.eye;
-    let _e106 = (*world);
-    v = normalize((_e104.xyz - _e106));
-    let _e109 = (*n);
-    let _e110 = v;
-    if (dot(_e109, _e110) < 0f) {
-        let _e113 = (*n);
-        (*n) = -(_e113);
+    let _e103 = pc.eye;
+    let _e105 = (*world);
+    v = normalize((_e103.xyz - _e105));
+    let _e108 = (*n);
+    let _e109 = v;
+    if (dot(_e108, _e109) < 0f) {
+        let _e112 = (*n);
+        (*n) = -(_e112);
     }
-    let _e116 = pc.flags;
-    up = select(vec3<f32>(0f, 1f, 0f), vec3<f32>(0f, 0f, 1f), vec3(((_e116 & 4u) != 0u)));
-    let _e121 = (*n);
-    let _e122 = up;
-    ambient = mix(vec3<f32>(0.09f, 0.09f, 0.09f), vec3<f32>(0.32f, 0.32f, 0.32f), vec3((0.5f + (0.5f * dot(_e121, _e122)))));
-    let _e129 = pc.light;
-    l = _e129.xyz;
-    let _e131 = (*n);
-    let _e132 = l;
-    key = max(dot(_e131, _e132), 0f);
-    let _e135 = (*n);
-    let _e136 = v;
-    fill = max(dot(_e135, _e136), 0f);
+    let _e115 = pc.flags;
+    up = select(vec3<f32>(0f, 1f, 0f), vec3<f32>(0f, 0f, 1f), vec3(((_e115 & 4u) != 0u)));
+    let _e120 = (*n);
+    let _e121 = up;
+    ambient = mix(vec3<f32>(0.09f, 0.09f, 0.09f), vec3<f32>(0.32f, 0.32f, 0.32f), vec3((0.5f + (0.5f * dot(_e120, _e121)))));
+    let _e128 = pc.light;
+    l = _e128.xyz;
+    let _e130 = (*n);
+    let _e131 = l;
+    key = max(dot(_e130, _e131), 0f);
+    let _e134 = (*n);
+    let _e135 = v;
+    fill = max(dot(_e134, _e135), 0f);
     highlight = 0f;
-    let _e139 = key;
-    if (_e139 > 0f) {
-        let _e141 = (*n);
-        let _e142 = l;
-        let _e143 = v;
-        highlight = pow(max(dot(_e141, normalize((_e142 + _e143))), 0f), 40f);
+    let _e138 = key;
+    if (_e138 > 0f) {
+        let _e140 = (*n);
+        let _e141 = l;
+        let _e142 = v;
+        highlight = pow(max(dot(_e140, normalize((_e141 + _e142))), 0f), 40f);
     }
-    let _e149 = (*albedo);
-    let _e150 = ambient;
-    let _e151 = key;
-    let _e155 = fill;
-    let _e160 = highlight;
-    return ((_e149 * ((_e150 + vec3((0.75f * _e151))) + vec3((0.18f * _e155)))) + vec3((0.06f * _e160)));
+    let _e148 = (*albedo);
+    let _e149 = ambient;
+    let _e150 = key;
+    let _e154 = fill;
+    let _e159 = highlight;
+    return ((_e148 * ((_e149 + vec3((0.75f * _e150))) + vec3((0.18f * _e154)))) + vec3((0.06f * _e159)));
 }
 
 fn srgbToLinear_u0028_vf3_u003b(c: ptr<function, vec3<f32>>) -> vec3<f32> {
-    let _e94 = (*c);
-    let _e97 = (*c);
-    let _e103 = (*c);
-    return select((_e94 / vec3(12.92f)), pow(((_e97 + vec3(0.055f)) / vec3(1.055f)), vec3<f32>(2.4f, 2.4f, 2.4f)), (_e103 > vec3<f32>(0.04045f, 0.04045f, 0.04045f)));
+    let _e93 = (*c);
+    let _e96 = (*c);
+    let _e102 = (*c);
+    return select((_e93 / vec3(12.92f)), pow(((_e96 + vec3(0.055f)) / vec3(1.055f)), vec3<f32>(2.4f, 2.4f, 2.4f)), (_e102 > vec3<f32>(0.04045f, 0.04045f, 0.04045f)));
 }
 
 fn unpackSrgb8_u0028_u1_u003b(c_1: ptr<function, u32>) -> vec3<f32> {
     var param: vec3<f32>;
 
-    let _e95 = (*c_1);
-    let _e98 = (*c_1);
-    let _e103 = (*c_1);
-    param = (vec3<f32>(f32((_e95 & 255u)), f32(((_e98 >> bitcast<u32>(8i)) & 255u)), f32(((_e103 >> bitcast<u32>(16i)) & 255u))) / vec3(255f));
-    let _e111 = srgbToLinear_u0028_vf3_u003b((&param));
-    return _e111;
+    let _e94 = (*c_1);
+    let _e97 = (*c_1);
+    let _e102 = (*c_1);
+    param = (vec3<f32>(f32((_e94 & 255u)), f32(((_e97 >> bitcast<u32>(8i)) & 255u)), f32(((_e102 >> bitcast<u32>(16i)) & 255u))) / vec3(255f));
+    let _e110 = srgbToLinear_u0028_vf3_u003b((&param));
+    return _e110;
 }
 
 fn baseColour_u0028_() -> vec3<f32> {
     var param_1: u32;
 
-    let _e96 = pc.eye[3u];
-    param_1 = bitcast<u32>(_e96);
-    let _e98 = unpackSrgb8_u0028_u1_u003b((&param_1));
-    return _e98;
+    let _e95 = pc.eye[3u];
+    param_1 = bitcast<u32>(_e95);
+    let _e97 = unpackSrgb8_u0028_u1_u003b((&param_1));
+    return _e97;
 }
 
 fn texel_u0028_u1_u003b_u1_u003b(x: ptr<function, u32>, y: ptr<function, u32>) -> vec3<f32> {
     var c_2: u32;
     var param_2: vec3<f32>;
 
-    let _e97 = (*y);
-    let _e99 = tex.width;
-    let _e101 = (*x);
-    let _e105 = tex.rgba[((_e97 * _e99) + _e101)];
-    c_2 = _e105;
-    let _e106 = c_2;
-    let _e109 = c_2;
-    let _e114 = c_2;
-    param_2 = (vec3<f32>(f32((_e106 & 255u)), f32(((_e109 >> bitcast<u32>(8i)) & 255u)), f32(((_e114 >> bitcast<u32>(16i)) & 255u))) / vec3(255f));
-    let _e122 = srgbToLinear_u0028_vf3_u003b((&param_2));
-    return _e122;
+    let _e96 = (*y);
+    let _e98 = tex.width;
+    let _e100 = (*x);
+    let _e104 = tex.rgba[((_e96 * _e98) + _e100)];
+    c_2 = _e104;
+    let _e105 = c_2;
+    let _e108 = c_2;
+    let _e113 = c_2;
+    param_2 = (vec3<f32>(f32((_e105 & 255u)), f32(((_e108 >> bitcast<u32>(8i)) & 255u)), f32(((_e113 >> bitcast<u32>(16i)) & 255u))) / vec3(255f));
+    let _e121 = srgbToLinear_u0028_vf3_u003b((&param_2));
+    return _e121;
 }
 
 fn wrap_u0028_f1_u003b_u1_u003b(i: ptr<function, f32>, n_1: ptr<function, u32>) -> u32 {
     var k: i32;
     var local: i32;
 
-    let _e97 = (*i);
-    let _e98 = i32(_e97);
-    let _e99 = (*n_1);
-    let _e100 = bitcast<i32>(_e99);
-    k = (_e98 - (i32(floor((f32(_e98) / f32(_e100)))) * _e100));
-    let _e108 = k;
-    if (_e108 < 0i) {
-        let _e110 = k;
-        let _e111 = (*n_1);
-        local = (_e110 + bitcast<i32>(_e111));
+    let _e96 = (*i);
+    let _e97 = i32(_e96);
+    let _e98 = (*n_1);
+    let _e99 = bitcast<i32>(_e98);
+    k = (_e97 - (i32(floor((f32(_e97) / f32(_e99)))) * _e99));
+    let _e107 = k;
+    if (_e107 < 0i) {
+        let _e109 = k;
+        let _e110 = (*n_1);
+        local = (_e109 + bitcast<i32>(_e110));
     } else {
-        let _e114 = k;
-        local = _e114;
+        let _e113 = k;
+        local = _e113;
     }
-    let _e115 = local;
-    return bitcast<u32>(_e115);
+    let _e114 = local;
+    return bitcast<u32>(_e114);
 }
 
 fn sampleTexture_u0028_vf2_u003b(uv: ptr<function, vec2<f32>>) -> vec3<f32> {
@@ -182,105 +181,105 @@ fn sampleTexture_u0028_vf2_u003b(uv: ptr<function, vec2<f32>>) -> vec3<f32> {
     var param_17: u32;
     var param_18: u32;
 
-    let _e123 = (*uv)[0u];
-    let _e125 = tex.width;
-    x_1 = ((_e123 * f32(_e125)) - 0.5f);
-    let _e130 = (*uv)[1u];
-    let _e133 = tex.height;
-    y_1 = (((1f - _e130) * f32(_e133)) - 0.5f);
-    let _e137 = x_1;
-    x0_ = floor(_e137);
-    let _e139 = y_1;
-    y0_ = floor(_e139);
-    let _e141 = x_1;
-    let _e142 = x0_;
-    fx = (_e141 - _e142);
-    let _e144 = y_1;
-    let _e145 = y0_;
-    fy = (_e144 - _e145);
-    let _e147 = x0_;
-    param_3 = _e147;
-    let _e149 = tex.width;
-    param_4 = _e149;
-    let _e150 = wrap_u0028_f1_u003b_u1_u003b((&param_3), (&param_4));
-    ix0_ = _e150;
-    let _e151 = x0_;
-    param_5 = (_e151 + 1f);
-    let _e154 = tex.width;
-    param_6 = _e154;
-    let _e155 = wrap_u0028_f1_u003b_u1_u003b((&param_5), (&param_6));
-    ix1_ = _e155;
-    let _e156 = y0_;
-    param_7 = _e156;
-    let _e158 = tex.height;
-    param_8 = _e158;
-    let _e159 = wrap_u0028_f1_u003b_u1_u003b((&param_7), (&param_8));
-    iy0_ = _e159;
-    let _e160 = y0_;
-    param_9 = (_e160 + 1f);
-    let _e163 = tex.height;
-    param_10 = _e163;
-    let _e164 = wrap_u0028_f1_u003b_u1_u003b((&param_9), (&param_10));
-    iy1_ = _e164;
-    let _e165 = ix0_;
-    param_11 = _e165;
-    let _e166 = iy0_;
-    param_12 = _e166;
-    let _e167 = texel_u0028_u1_u003b_u1_u003b((&param_11), (&param_12));
-    let _e168 = ix1_;
-    param_13 = _e168;
-    let _e169 = iy0_;
-    param_14 = _e169;
-    let _e170 = texel_u0028_u1_u003b_u1_u003b((&param_13), (&param_14));
-    let _e171 = fx;
-    top = mix(_e167, _e170, vec3(_e171));
-    let _e174 = ix0_;
-    param_15 = _e174;
-    let _e175 = iy1_;
-    param_16 = _e175;
-    let _e176 = texel_u0028_u1_u003b_u1_u003b((&param_15), (&param_16));
-    let _e177 = ix1_;
-    param_17 = _e177;
-    let _e178 = iy1_;
-    param_18 = _e178;
-    let _e179 = texel_u0028_u1_u003b_u1_u003b((&param_17), (&param_18));
-    let _e180 = fx;
-    bottom = mix(_e176, _e179, vec3(_e180));
-    let _e183 = top;
-    let _e184 = bottom;
-    let _e185 = fy;
-    return mix(_e183, _e184, vec3(_e185));
+    let _e122 = (*uv)[0u];
+    let _e124 = tex.width;
+    x_1 = ((_e122 * f32(_e124)) - 0.5f);
+    let _e129 = (*uv)[1u];
+    let _e132 = tex.height;
+    y_1 = (((1f - _e129) * f32(_e132)) - 0.5f);
+    let _e136 = x_1;
+    x0_ = floor(_e136);
+    let _e138 = y_1;
+    y0_ = floor(_e138);
+    let _e140 = x_1;
+    let _e141 = x0_;
+    fx = (_e140 - _e141);
+    let _e143 = y_1;
+    let _e144 = y0_;
+    fy = (_e143 - _e144);
+    let _e146 = x0_;
+    param_3 = _e146;
+    let _e148 = tex.width;
+    param_4 = _e148;
+    let _e149 = wrap_u0028_f1_u003b_u1_u003b((&param_3), (&param_4));
+    ix0_ = _e149;
+    let _e150 = x0_;
+    param_5 = (_e150 + 1f);
+    let _e153 = tex.width;
+    param_6 = _e153;
+    let _e154 = wrap_u0028_f1_u003b_u1_u003b((&param_5), (&param_6));
+    ix1_ = _e154;
+    let _e155 = y0_;
+    param_7 = _e155;
+    let _e157 = tex.height;
+    param_8 = _e157;
+    let _e158 = wrap_u0028_f1_u003b_u1_u003b((&param_7), (&param_8));
+    iy0_ = _e158;
+    let _e159 = y0_;
+    param_9 = (_e159 + 1f);
+    let _e162 = tex.height;
+    param_10 = _e162;
+    let _e163 = wrap_u0028_f1_u003b_u1_u003b((&param_9), (&param_10));
+    iy1_ = _e163;
+    let _e164 = ix0_;
+    param_11 = _e164;
+    let _e165 = iy0_;
+    param_12 = _e165;
+    let _e166 = texel_u0028_u1_u003b_u1_u003b((&param_11), (&param_12));
+    let _e167 = ix1_;
+    param_13 = _e167;
+    let _e168 = iy0_;
+    param_14 = _e168;
+    let _e169 = texel_u0028_u1_u003b_u1_u003b((&param_13), (&param_14));
+    let _e170 = fx;
+    top = mix(_e166, _e169, vec3(_e170));
+    let _e173 = ix0_;
+    param_15 = _e173;
+    let _e174 = iy1_;
+    param_16 = _e174;
+    let _e175 = texel_u0028_u1_u003b_u1_u003b((&param_15), (&param_16));
+    let _e176 = ix1_;
+    param_17 = _e176;
+    let _e177 = iy1_;
+    param_18 = _e177;
+    let _e178 = texel_u0028_u1_u003b_u1_u003b((&param_17), (&param_18));
+    let _e179 = fx;
+    bottom = mix(_e175, _e178, vec3(_e179));
+    let _e182 = top;
+    let _e183 = bottom;
+    let _e184 = fy;
+    return mix(_e182, _e183, vec3(_e184));
 }
 
 fn levelsLight_u0028_vf3_u003b_vf3_u003b_vf3_u003b(albedo_1: ptr<function, vec3<f32>>, n_2: ptr<function, vec3<f32>>, world_1: ptr<function, vec3<f32>>) -> vec3<f32> {
     var diffuse: f32;
 
-    let _e97 = (*n_2);
-    let _e99 = pc.eye;
-    let _e101 = (*world_1);
-    if (dot(_e97, (_e99.xyz - _e101)) < 0f) {
-        let _e105 = (*n_2);
-        (*n_2) = -(_e105);
+    let _e96 = (*n_2);
+    let _e98 = pc.eye;
+    let _e100 = (*world_1);
+    if (dot(_e96, (_e98.xyz - _e100)) < 0f) {
+        let _e104 = (*n_2);
+        (*n_2) = -(_e104);
     }
-    let _e107 = (*n_2);
-    let _e109 = pc.light;
-    diffuse = max(dot(_e107, _e109.xyz), 0f);
-    let _e113 = (*albedo_1);
-    let _e114 = diffuse;
-    return (_e113 * (0.12f + (0.88f * _e114)));
+    let _e106 = (*n_2);
+    let _e108 = pc.light;
+    diffuse = max(dot(_e106, _e108.xyz), 0f);
+    let _e112 = (*albedo_1);
+    let _e113 = diffuse;
+    return (_e112 * (0.12f + (0.88f * _e113)));
 }
 
 fn levelColour_u0028_u1_u003b(level: ptr<function, u32>) -> vec3<f32> {
     var indexable: array<vec3<f32>, 8>;
 
-    let _e95 = (*level);
-    if (_e95 == 255u) {
+    let _e94 = (*level);
+    if (_e94 == 255u) {
         return vec3<f32>(0.25f, 0.45f, 0.95f);
     }
-    let _e97 = (*level);
+    let _e96 = (*level);
     indexable = array<vec3<f32>, 8>(vec3<f32>(0.72f, 0.72f, 0.72f), vec3<f32>(0.95f, 0.55f, 0.7f), vec3<f32>(0.95f, 0.85f, 0.35f), vec3<f32>(0.45f, 0.85f, 0.45f), vec3<f32>(0.4f, 0.85f, 0.85f), vec3<f32>(0.95f, 0.6f, 0.3f), vec3<f32>(0.7f, 0.5f, 0.9f), vec3<f32>(0.55f, 0.4f, 0.3f));
-    let _e100 = indexable[min(_e97, 7u)];
-    return _e100;
+    let _e99 = indexable[min(_e96, 7u)];
+    return _e99;
 }
 
 fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<function, f32>, b: ptr<function, array<f32, 4>>, d: ptr<function, array<f32, 4>>) {
@@ -288,38 +287,38 @@ fn bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b(t: ptr<f
     var t3_: f32;
     var s: f32;
 
+    let _e98 = (*t);
     let _e99 = (*t);
-    let _e100 = (*t);
-    t2_ = (_e99 * _e100);
-    let _e102 = t2_;
-    let _e103 = (*t);
-    t3_ = (_e102 * _e103);
-    let _e105 = (*t);
-    s = (1f - _e105);
+    t2_ = (_e98 * _e99);
+    let _e101 = t2_;
+    let _e102 = (*t);
+    t3_ = (_e101 * _e102);
+    let _e104 = (*t);
+    s = (1f - _e104);
+    let _e106 = s;
     let _e107 = s;
-    let _e108 = s;
-    let _e110 = s;
-    (*b)[0i] = (((_e107 * _e108) * _e110) / 6f);
-    let _e114 = t3_;
-    let _e116 = t2_;
-    (*b)[1i] = ((((3f * _e114) - (6f * _e116)) + 4f) / 6f);
-    let _e122 = t3_;
-    let _e124 = t2_;
-    let _e127 = (*t);
-    (*b)[2i] = (((((-3f * _e122) + (3f * _e124)) + (3f * _e127)) + 1f) / 6f);
-    let _e133 = t3_;
-    (*b)[3i] = (_e133 / 6f);
-    let _e136 = s;
-    let _e138 = s;
-    (*d)[0i] = ((-(_e136) * _e138) / 2f);
-    let _e142 = t2_;
-    let _e144 = (*t);
-    (*d)[1i] = (((9f * _e142) - (12f * _e144)) / 6f);
-    let _e149 = t2_;
-    let _e151 = (*t);
-    (*d)[2i] = ((((-9f * _e149) + (6f * _e151)) + 3f) / 6f);
-    let _e157 = t2_;
-    (*d)[3i] = (_e157 / 2f);
+    let _e109 = s;
+    (*b)[0i] = (((_e106 * _e107) * _e109) / 6f);
+    let _e113 = t3_;
+    let _e115 = t2_;
+    (*b)[1i] = ((((3f * _e113) - (6f * _e115)) + 4f) / 6f);
+    let _e121 = t3_;
+    let _e123 = t2_;
+    let _e126 = (*t);
+    (*b)[2i] = (((((-3f * _e121) + (3f * _e123)) + (3f * _e126)) + 1f) / 6f);
+    let _e132 = t3_;
+    (*b)[3i] = (_e132 / 6f);
+    let _e135 = s;
+    let _e137 = s;
+    (*d)[0i] = ((-(_e135) * _e137) / 2f);
+    let _e141 = t2_;
+    let _e143 = (*t);
+    (*d)[1i] = (((9f * _e141) - (12f * _e143)) / 6f);
+    let _e148 = t2_;
+    let _e150 = (*t);
+    (*d)[2i] = ((((-9f * _e148) + (6f * _e150)) + 3f) / 6f);
+    let _e156 = t2_;
+    (*d)[3i] = (_e156 / 2f);
     return;
 }
 
@@ -346,150 +345,150 @@ fn pixelNormal_u0028_() -> vec3<f32> {
     var n_3: vec3<f32>;
     var local_1: vec3<f32>;
 
-    let _e115 = inNet11_1[1u];
-    mask = bitcast<u32>(_e115);
-    let _e117 = mask;
-    if ((_e117 & 16u) == 0u) {
-        let _e120 = inNormal_1;
-        return normalize(_e120);
+    let _e114 = inNet11_1[1u];
+    mask = bitcast<u32>(_e114);
+    let _e116 = mask;
+    if ((_e116 & 16u) == 0u) {
+        let _e119 = inNormal_1;
+        return normalize(_e119);
     }
-    let _e122 = inNet0_1;
-    let _e125 = inNet0_1[3u];
-    let _e126 = inNet1_1;
-    let _e127 = _e126.xy;
-    let _e131 = inNet1_1;
-    let _e132 = _e131.zw;
-    let _e134 = inNet2_1[0u];
-    let _e138 = inNet2_1;
-    let _e140 = inNet3_1;
-    let _e143 = inNet3_1[3u];
-    let _e144 = inNet4_1;
-    let _e145 = _e144.xy;
-    let _e149 = inNet4_1;
-    let _e150 = _e149.zw;
-    let _e152 = inNet5_1[0u];
-    let _e156 = inNet5_1;
-    let _e158 = inNet6_1;
-    let _e161 = inNet6_1[3u];
-    let _e162 = inNet7_1;
-    let _e163 = _e162.xy;
-    let _e167 = inNet7_1;
-    let _e168 = _e167.zw;
-    let _e170 = inNet8_1[0u];
-    let _e174 = inNet8_1;
-    let _e176 = inNet9_1;
-    let _e179 = inNet9_1[3u];
-    let _e180 = inNet10_1;
-    let _e181 = _e180.xy;
-    let _e185 = inNet10_1;
-    let _e186 = _e185.zw;
-    let _e188 = inNet11_1[0u];
-    r = array<vec3<f32>, 16>(_e122.xyz, vec3<f32>(_e125, _e127.x, _e127.y), vec3<f32>(_e132.x, _e132.y, _e134), _e138.yzw, _e140.xyz, vec3<f32>(0f, 0f, 0f), vec3<f32>(_e143, _e145.x, _e145.y), vec3<f32>(_e150.x, _e150.y, _e152), _e156.yzw, _e158.xyz, vec3<f32>(_e161, _e163.x, _e163.y), vec3<f32>(_e168.x, _e168.y, _e170), _e174.yzw, _e176.xyz, vec3<f32>(_e179, _e181.x, _e181.y), vec3<f32>(_e186.x, _e186.y, _e188));
-    let _e193 = inUV_1;
-    st = clamp(_e193, vec2(0f), vec2(1f));
-    let _e198 = st[0u];
-    param_19 = _e198;
+    let _e121 = inNet0_1;
+    let _e124 = inNet0_1[3u];
+    let _e125 = inNet1_1;
+    let _e126 = _e125.xy;
+    let _e130 = inNet1_1;
+    let _e131 = _e130.zw;
+    let _e133 = inNet2_1[0u];
+    let _e137 = inNet2_1;
+    let _e139 = inNet3_1;
+    let _e142 = inNet3_1[3u];
+    let _e143 = inNet4_1;
+    let _e144 = _e143.xy;
+    let _e148 = inNet4_1;
+    let _e149 = _e148.zw;
+    let _e151 = inNet5_1[0u];
+    let _e155 = inNet5_1;
+    let _e157 = inNet6_1;
+    let _e160 = inNet6_1[3u];
+    let _e161 = inNet7_1;
+    let _e162 = _e161.xy;
+    let _e166 = inNet7_1;
+    let _e167 = _e166.zw;
+    let _e169 = inNet8_1[0u];
+    let _e173 = inNet8_1;
+    let _e175 = inNet9_1;
+    let _e178 = inNet9_1[3u];
+    let _e179 = inNet10_1;
+    let _e180 = _e179.xy;
+    let _e184 = inNet10_1;
+    let _e185 = _e184.zw;
+    let _e187 = inNet11_1[0u];
+    r = array<vec3<f32>, 16>(_e121.xyz, vec3<f32>(_e124, _e126.x, _e126.y), vec3<f32>(_e131.x, _e131.y, _e133), _e137.yzw, _e139.xyz, vec3<f32>(0f, 0f, 0f), vec3<f32>(_e142, _e144.x, _e144.y), vec3<f32>(_e149.x, _e149.y, _e151), _e155.yzw, _e157.xyz, vec3<f32>(_e160, _e162.x, _e162.y), vec3<f32>(_e167.x, _e167.y, _e169), _e173.yzw, _e175.xyz, vec3<f32>(_e178, _e180.x, _e180.y), vec3<f32>(_e185.x, _e185.y, _e187));
+    let _e192 = inUV_1;
+    st = clamp(_e192, vec2(0f), vec2(1f));
+    let _e197 = st[0u];
+    param_19 = _e197;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_19), (&param_20), (&param_21));
-    let _e199 = param_20;
-    bu = _e199;
-    let _e200 = param_21;
-    du = _e200;
-    let _e202 = st[1u];
-    param_22 = _e202;
+    let _e198 = param_20;
+    bu = _e198;
+    let _e199 = param_21;
+    du = _e199;
+    let _e201 = st[1u];
+    param_22 = _e201;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_22), (&param_23), (&param_24));
-    let _e203 = param_23;
-    bv = _e203;
-    let _e204 = param_24;
-    dv = _e204;
+    let _e202 = param_23;
+    bv = _e202;
+    let _e203 = param_24;
+    dv = _e203;
     Du = vec3<f32>(0f, 0f, 0f);
     Dv = vec3<f32>(0f, 0f, 0f);
     j = 0i;
     loop {
-        let _e205 = j;
-        if (_e205 < 4i) {
+        let _e204 = j;
+        if (_e204 < 4i) {
             rowRel = vec3<f32>(0f, 0f, 0f);
             rowDu = vec3<f32>(0f, 0f, 0f);
             i_1 = 0i;
             loop {
-                let _e207 = i_1;
-                if (_e207 < 4i) {
-                    let _e209 = i_1;
-                    let _e211 = bu[_e209];
-                    let _e212 = j;
-                    let _e214 = i_1;
-                    let _e217 = r[((4i * _e212) + _e214)];
-                    let _e219 = rowRel;
-                    rowRel = (_e219 + (_e217 * _e211));
-                    let _e221 = i_1;
-                    let _e223 = du[_e221];
-                    let _e224 = j;
-                    let _e226 = i_1;
-                    let _e229 = r[((4i * _e224) + _e226)];
-                    let _e231 = rowDu;
-                    rowDu = (_e231 + (_e229 * _e223));
+                let _e206 = i_1;
+                if (_e206 < 4i) {
+                    let _e208 = i_1;
+                    let _e210 = bu[_e208];
+                    let _e211 = j;
+                    let _e213 = i_1;
+                    let _e216 = r[((4i * _e211) + _e213)];
+                    let _e218 = rowRel;
+                    rowRel = (_e218 + (_e216 * _e210));
+                    let _e220 = i_1;
+                    let _e222 = du[_e220];
+                    let _e223 = j;
+                    let _e225 = i_1;
+                    let _e228 = r[((4i * _e223) + _e225)];
+                    let _e230 = rowDu;
+                    rowDu = (_e230 + (_e228 * _e222));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e233 = i_1;
-                    i_1 = (_e233 + 1i);
+                    let _e232 = i_1;
+                    i_1 = (_e232 + 1i);
                 }
             }
-            let _e235 = j;
-            let _e237 = bv[_e235];
-            let _e238 = rowDu;
-            let _e240 = Du;
-            Du = (_e240 + (_e238 * _e237));
-            let _e242 = j;
-            let _e244 = dv[_e242];
-            let _e245 = rowRel;
-            let _e247 = Dv;
-            Dv = (_e247 + (_e245 * _e244));
+            let _e234 = j;
+            let _e236 = bv[_e234];
+            let _e237 = rowDu;
+            let _e239 = Du;
+            Du = (_e239 + (_e237 * _e236));
+            let _e241 = j;
+            let _e243 = dv[_e241];
+            let _e244 = rowRel;
+            let _e246 = Dv;
+            Dv = (_e246 + (_e244 * _e243));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e249 = j;
-            j = (_e249 + 1i);
+            let _e248 = j;
+            j = (_e248 + 1i);
         }
     }
-    let _e251 = Du;
-    let _e252 = Dv;
-    n_3 = cross(_e251, _e252);
+    let _e250 = Du;
+    let _e251 = Dv;
+    n_3 = cross(_e250, _e251);
+    let _e253 = n_3;
     let _e254 = n_3;
-    let _e255 = n_3;
-    if (dot(_e254, _e255) > 0f) {
-        let _e258 = n_3;
-        local_1 = normalize(_e258);
+    if (dot(_e253, _e254) > 0f) {
+        let _e257 = n_3;
+        local_1 = normalize(_e257);
     } else {
-        let _e260 = inNormal_1;
-        local_1 = normalize(_e260);
+        let _e259 = inNormal_1;
+        local_1 = normalize(_e259);
     }
-    let _e262 = local_1;
-    return _e262;
+    let _e261 = local_1;
+    return _e261;
 }
 
 fn backFaceKey_u0028_vf4_u003b(colour: ptr<function, vec4<f32>>) -> bool {
     var param_25: u32;
     var phi_134_: bool;
 
-    let _e96 = pc.flags;
-    let _e98 = ((_e96 & 2u) == 0u);
-    phi_134_ = _e98;
-    if !(_e98) {
-        let _e100 = gl_FrontFacing_1;
-        phi_134_ = _e100;
+    let _e95 = pc.flags;
+    let _e97 = ((_e95 & 2u) == 0u);
+    phi_134_ = _e97;
+    if !(_e97) {
+        let _e99 = gl_FrontFacing_1;
+        phi_134_ = _e99;
     }
-    let _e102 = phi_134_;
-    if _e102 {
+    let _e101 = phi_134_;
+    if _e101 {
         return false;
     }
-    let _e105 = pc.light[3u];
-    param_25 = bitcast<u32>(_e105);
-    let _e107 = unpackSrgb8_u0028_u1_u003b((&param_25));
-    (*colour) = vec4<f32>(_e107.x, _e107.y, _e107.z, 1f);
+    let _e104 = pc.light[3u];
+    param_25 = bitcast<u32>(_e104);
+    let _e106 = unpackSrgb8_u0028_u1_u003b((&param_25));
+    (*colour) = vec4<f32>(_e106.x, _e106.y, _e106.z, 1f);
     return true;
 }
 
@@ -510,69 +509,68 @@ fn main_1() {
     var param_36: vec3<f32>;
     var param_37: vec3<f32>;
 
-    let _e108 = backFaceKey_u0028_vf4_u003b((&param_26));
-    let _e109 = param_26;
-    outColor = _e109;
-    if _e108 {
+    let _e107 = backFaceKey_u0028_vf4_u003b((&param_26));
+    let _e108 = param_26;
+    outColor = _e108;
+    if _e107 {
         return;
     }
-    let _e110 = pixelNormal_u0028_();
-    n_4 = _e110;
+    let _e109 = pixelNormal_u0028_();
+    n_4 = _e109;
     if false {
-        let _e111 = n_4;
-        param_27 = ((_e111 * 0.5f) + vec3(0.5f));
-        let _e115 = srgbToLinear_u0028_vf3_u003b((&param_27));
-        outColor = vec4<f32>(_e115.x, _e115.y, _e115.z, 1f);
-        return;
-    }
-    if false {
-        let _e120 = inUV_1;
-        let _e123 = clamp(_e120, vec2(0f), vec2(1f));
-        param_28 = vec3<f32>(_e123.x, _e123.y, 0f);
-        let _e127 = srgbToLinear_u0028_vf3_u003b((&param_28));
-        outColor = vec4<f32>(_e127.x, _e127.y, _e127.z, 1f);
+        let _e110 = n_4;
+        param_27 = ((_e110 * 0.5f) + vec3(0.5f));
+        let _e114 = srgbToLinear_u0028_vf3_u003b((&param_27));
+        outColor = vec4<f32>(_e114.x, _e114.y, _e114.z, 1f);
         return;
     }
     if false {
-        let _e132 = inLevel_1;
-        param_29 = _e132;
-        let _e133 = levelColour_u0028_u1_u003b((&param_29));
-        param_30 = _e133;
-        let _e134 = srgbToLinear_u0028_vf3_u003b((&param_30));
-        param_31 = _e134;
-        let _e135 = n_4;
-        param_32 = _e135;
-        let _e136 = inWorld_1;
-        param_33 = _e136;
-        let _e137 = levelsLight_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param_31), (&param_32), (&param_33));
-        outColor = vec4<f32>(_e137.x, _e137.y, _e137.z, 1f);
+        let _e119 = inUV_1;
+        let _e122 = clamp(_e119, vec2(0f), vec2(1f));
+        param_28 = vec3<f32>(_e122.x, _e122.y, 0f);
+        let _e126 = srgbToLinear_u0028_vf3_u003b((&param_28));
+        outColor = vec4<f32>(_e126.x, _e126.y, _e126.z, 1f);
         return;
     }
     if false {
-        let _e142 = inUV_1;
-        param_34 = _e142;
-        let _e143 = sampleTexture_u0028_vf2_u003b((&param_34));
-        let _e144 = baseColour_u0028_();
-        local_2 = (_e143 * _e144);
+        param_29 = 0u;
+        let _e131 = levelColour_u0028_u1_u003b((&param_29));
+        param_30 = _e131;
+        let _e132 = srgbToLinear_u0028_vf3_u003b((&param_30));
+        param_31 = _e132;
+        let _e133 = n_4;
+        param_32 = _e133;
+        let _e134 = inWorld_1;
+        param_33 = _e134;
+        let _e135 = levelsLight_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param_31), (&param_32), (&param_33));
+        outColor = vec4<f32>(_e135.x, _e135.y, _e135.z, 1f);
+        return;
+    }
+    if false {
+        let _e140 = inUV_1;
+        param_34 = _e140;
+        let _e141 = sampleTexture_u0028_vf2_u003b((&param_34));
+        let _e142 = baseColour_u0028_();
+        local_2 = (_e141 * _e142);
     } else {
-        let _e146 = baseColour_u0028_();
-        local_2 = _e146;
+        let _e144 = baseColour_u0028_();
+        local_2 = _e144;
     }
-    let _e147 = local_2;
-    albedo_2 = _e147;
-    let _e148 = albedo_2;
-    param_35 = _e148;
-    let _e149 = n_4;
-    param_36 = _e149;
-    let _e150 = inWorld_1;
-    param_37 = _e150;
-    let _e151 = lightRig_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param_35), (&param_36), (&param_37));
-    outColor = vec4<f32>(_e151.x, _e151.y, _e151.z, 1f);
+    let _e145 = local_2;
+    albedo_2 = _e145;
+    let _e146 = albedo_2;
+    param_35 = _e146;
+    let _e147 = n_4;
+    param_36 = _e147;
+    let _e148 = inWorld_1;
+    param_37 = _e148;
+    let _e149 = lightRig_u0028_vf3_u003b_vf3_u003b_vf3_u003b((&param_35), (&param_36), (&param_37));
+    outColor = vec4<f32>(_e149.x, _e149.y, _e149.z, 1f);
     return;
 }
 
 @fragment 
-fn main(@builtin(front_facing) gl_FrontFacing: bool, @location(15) @interpolate(flat, either) inNet11_: vec4<f32>, @location(1) @interpolate(perspective, sample) inNormal: vec3<f32>, @location(4) @interpolate(flat, either) inNet0_: vec4<f32>, @location(5) @interpolate(flat, either) inNet1_: vec4<f32>, @location(6) @interpolate(flat, either) inNet2_: vec4<f32>, @location(7) @interpolate(flat, either) inNet3_: vec4<f32>, @location(8) @interpolate(flat, either) inNet4_: vec4<f32>, @location(9) @interpolate(flat, either) inNet5_: vec4<f32>, @location(10) @interpolate(flat, either) inNet6_: vec4<f32>, @location(11) @interpolate(flat, either) inNet7_: vec4<f32>, @location(12) @interpolate(flat, either) inNet8_: vec4<f32>, @location(13) @interpolate(flat, either) inNet9_: vec4<f32>, @location(14) @interpolate(flat, either) inNet10_: vec4<f32>, @location(2) @interpolate(perspective, sample) inUV: vec2<f32>, @location(3) @interpolate(flat, either) inLevel: u32, @location(0) @interpolate(perspective, sample) inWorld: vec3<f32>) -> @location(0) vec4<f32> {
+fn main(@builtin(front_facing) gl_FrontFacing: bool, @location(15) @interpolate(flat, either) inNet11_: vec4<f32>, @location(1) @interpolate(perspective, sample) inNormal: vec3<f32>, @location(4) @interpolate(flat, either) inNet0_: vec4<f32>, @location(5) @interpolate(flat, either) inNet1_: vec4<f32>, @location(6) @interpolate(flat, either) inNet2_: vec4<f32>, @location(7) @interpolate(flat, either) inNet3_: vec4<f32>, @location(8) @interpolate(flat, either) inNet4_: vec4<f32>, @location(9) @interpolate(flat, either) inNet5_: vec4<f32>, @location(10) @interpolate(flat, either) inNet6_: vec4<f32>, @location(11) @interpolate(flat, either) inNet7_: vec4<f32>, @location(12) @interpolate(flat, either) inNet8_: vec4<f32>, @location(13) @interpolate(flat, either) inNet9_: vec4<f32>, @location(14) @interpolate(flat, either) inNet10_: vec4<f32>, @location(2) @interpolate(perspective, sample) inUV: vec2<f32>, @location(0) @interpolate(perspective, sample) inWorld: vec3<f32>) -> @location(0) vec4<f32> {
     gl_FrontFacing_1 = gl_FrontFacing;
     inNet11_1 = inNet11_;
     inNormal_1 = inNormal;
@@ -588,9 +586,8 @@ fn main(@builtin(front_facing) gl_FrontFacing: bool, @location(15) @interpolate(
     inNet9_1 = inNet9_;
     inNet10_1 = inNet10_;
     inUV_1 = inUV;
-    inLevel_1 = inLevel;
     inWorld_1 = inWorld;
     main_1();
-    let _e35 = outColor;
-    return _e35;
+    let _e33 = outColor;
+    return _e33;
 }

@@ -188,7 +188,7 @@ export function adaptivePushes(data, tables, options, view) {
   const scan = [data.elementCount, data.capV, data.capT, ROW_GROUPS, EVAL_GROUP_SIZE, data.shared];
   // fvarCell 2^-21: 1/32 of the finest cell at depth 16, above float's step at 1.
   const emit = [data.pointBase, data.capT, data.smooth ? 1 : 0, data.smooth ? f32(2 ** -21) : 0, data.domainBase, data.nodeBase, data.recordBase, data.shared ? 1 : 0, data.capV,
-    0]; // per-pixel normals: limn-render's --pixel-normals only (docs/adaptive.md)
+    options.pixelNormals ? 1 : 0]; // per-pixel normals: each vertex its triangle's element and (s, t)
   return [
     ['adaptive_cull.comp', data.elementCount, cull],
     ['adaptive_rates.comp', data.pieceCount, rates],

@@ -65,8 +65,9 @@ function packSrgb8(c) {
  * A renderer for one loaded surface (chunks.mjs's loadLimn). settings: {width, height, samples
  * (1|4), shade, edgePixels (0: fixed grids; else the longest segment allowed), maxError (pixels
  * between the drawn chords and the surface, at most; limn-render's --max-error, default 0.1; 0:
- * segments of about edgePixels), tess, view {azimuthDeg, elevationDeg, fovDeg, zUp,
- * eye, target, up}, color, background, sampleShading}.
+ * segments of about edgePixels), interiorError (the maxError allowed where a piece faces the
+ * eye; 0: maxError everywhere), pixelNormals (lit: the limit normal at each pixel), tess, view
+ * {azimuthDeg, elevationDeg, fovDeg, zUp, eye, target, up}, color, background, sampleShading}.
  */
 /**
  * The surface's fragment stage for a shading: lit and texture have their own, without the other
@@ -142,6 +143,9 @@ export class Renderer {
     }
     // renderer.cpp: the element outlines exist for the fixed grids only, so --wire draws those.
     this.adaptive = s.edgePixels > 0 && s.wire !== 'outlines';
+    // adaptive_options.cpp: per-pixel normals from the vertex stage's lit draw only (the
+    // evaluated draws bind the evaluated vertices, not the surface), each element's own vertices.
+    this.pixelNormals = this.adaptive && !!s.pixelNormals && s.shade === 'lit' && !s.meshOut && !s.wire && !s.displace;
     let tess = { vertices: new Uint32Array(4), indices: new Uint32Array(3), triangleLevels: new Uint32Array(1), vertexCount: 0 };
     if (this.adaptive) {
       // Smooth UVs: the elements' corners in their own chart and, displaced, the seam records of
@@ -162,7 +166,8 @@ export class Renderer {
         // --mesh-out (evaluated): every triangle of an element that draws some, no shared slots.
         // and with displacement: the compute passes read the whole capacity (zeroed slots included).
         evaluated: !!s.meshOut || !!s.displace || !!s.wire,
-        sharePoints: !s.meshOut && !s.displace && !s.wire && s.shade !== 'uv' && s.shade !== 'texture',
+        sharePoints: !s.meshOut && !s.displace && !s.wire && s.shade !== 'uv' && s.shade !== 'texture' && !this.pixelNormals,
+        pixelNormals: this.pixelNormals, interiorError: s.interiorError ?? 0,
         // Displacement moves the surface off its control points' hull: no culling then.
         cull: !s.displace,
         // With a displacement map, at least a segment per texel (up to one per 2 pixels).
@@ -225,13 +230,16 @@ export class Renderer {
     const [facePass, stencilPass, limitPass] = await Promise.all(['subdiv_face_points.comp', 'subdiv_stencils.comp', 'subdiv_limit.comp'].map(compute));
     const perSample = s.sampleShading && s.samples > 1;
     // Displaced: the vertices were evaluated and moved by compute passes; the draw fetches them.
-    const vertexStage = s.displace ? 'surface_fetch' : 'surface';
+    // Per-pixel normals: the vertex stage also hands the fragment stage each triangle's element
+    // net (subdivision_pass.cpp surfaceVertex; the same bindings as surface.vert).
+    const vertexStage = s.displace ? 'surface_fetch' : this.pixelNormals ? 'surface_pixel' : 'surface';
     const vs = await shaders.module(perSample ? `${vertexStage}_per_sample.vert` : `${vertexStage}.vert`);
     // Lit and texture shading: the fragment stage without the other modes' code, as limn-render
     // picks it (subdivision_pass.cpp surfaceFragment; why in draw_common.glsl).
     const fragmentStage = surfaceFragmentStage(s.shade);
     this.fragmentStage = fragmentStage;
-    const fs = await shaders.module(perSample ? `${fragmentStage}_per_sample.frag` : `${fragmentStage}.frag`);
+    const fragmentShader = this.pixelNormals ? 'surface_lit_pixel' : fragmentStage;
+    const fs = await shaders.module(perSample ? `${fragmentShader}_per_sample.frag` : `${fragmentShader}.frag`);
     const drawGroupLayouts = [
       groupLayout(device, (await loadShaderText(`${vertexStage}.vert`)) + (await loadShaderText('surface.frag')), 1 | 2),
       device.createBindGroupLayout({ entries: [] }), device.createBindGroupLayout({ entries: [] }),

@@ -40,6 +40,18 @@ test('usage errors exit 2', () => {
   assert.equal(run('--help').status, 0);
 });
 
+// --interior-error's refusals are limn-render's: the same exit code and message.
+test('--interior-error: limn-render\'s range, exit code and message', () => {
+  for (const args of [['--interior-error', '-1'], ['--interior-error', '5000'], ['--interior-error', 'abc'], ['--interior-error', '1', '--interior-error', '2']]) {
+    const native = spawnSync(tool('limn-render'), [...args, 'x.limn', '-o', join(scratch, 'ie.png')], { encoding: 'utf8', timeout: 60000 });
+    const r = run(...args, 'x.limn', '-o', join(scratch, 'ie.png'));
+    assert.equal(r.status, native.status, `${args.join(' ')}: ${r.stderr}`);
+    assert.equal(r.status, 2);
+    assert.equal(r.stderr.replace(/^limn-web-render: /, ''), native.stderr.replace(/^limn-render: /, ''));
+  }
+  assert.equal(existsSync(join(scratch, 'ie.png')), false);
+});
+
 test('-q silences limn\'s warnings, as limn-render -q does', () => {
   const input = container('quad/osd_catmark_fvar_bound1.obj', { depth: 1 });
   const out = join(scratch, 'quiet.png');
@@ -136,6 +148,8 @@ test('--mesh-out writes the bytes limn-render --mesh-out writes', () => {
   for (let y = 0; y < n; y++) for (let x = 0; x < n; x++) { const c = ((x >> 3) ^ (y >> 3)) & 1 ? 230 : 25; px.set([c, c, c, 255], 4 * (y * n + x)); }
   writeFileSync(checker, encodePng(n, n, px));
   const cases = [
+    // --interior-error's coarser interior; --pixel-normals draws as without under --mesh-out.
+    [container('quad/spot_quadrangulated.obj', { depth: 3 }), 'mesh_interior.ply', ['--size', '320x240', '--pixel-normals', '--interior-error', '1']],
     [container('quad/spot_quadrangulated.obj', { depth: 2, tablesArgs: ['--irregular-levels', '0'], name: 'spot_bilinear.limn' }), 'mesh_adaptive.ply',
       ['--size', '320x240', '--edge-pixels', '4', '--displace', checker, '--displace-scale', '2%']],
     [container('quad/osd_catmark_fvar_bound1.obj', { depth: 2 }), 'mesh_fixed.ply', ['--size', '64x64', '--edge-pixels', '0', '--mesh-ascii']],
