@@ -51,6 +51,16 @@ export interface RenderSettings {
   width?: number; height?: number; samples?: 1 | 4; sampleShading?: boolean; shade?: Shade;
   /** View-adaptive segments of about this many pixels (limn-render's default 4); 0: the fixed grids. */
   edgePixels?: number; tess?: number; view?: ViewSpec;
+  /** --max-error: pixels between the drawn chords and the limit surface, at most (default 0.1);
+   *  0: segments of about edgePixels. */
+  maxError?: number;
+  /** --interior-error: the maxError allowed where a piece faces the eye (every sample's normal
+   *  within 70 degrees of the view ray; the outline keeps maxError); 0 (default): maxError everywhere. */
+  interiorError?: number;
+  /** --pixel-normals: view-adaptive, shade 'lit': the limit surface's normal at each pixel of a
+   *  smooth patch instead of normals interpolated across the triangle; not with wire, displace or
+   *  meshOut (those draw as without). */
+  pixelNormals?: boolean;
   lightAzimuthDeg?: number; lightElevationDeg?: number; color?: Vec3; background?: Vec3;
   /** --texture (or a MATL texture): values 0..1 as decoded, 3 a texel, rows top to bottom; with shade 'texture'. */
   texture?: ImageRGB;
