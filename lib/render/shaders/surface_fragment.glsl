@@ -10,8 +10,8 @@ layout(location = 1) LIMN_SMOOTH_IN vec3 inNormal;
 layout(location = 2) LIMN_SMOOTH_IN vec2 inUV;
 #ifdef LIMN_PIXEL_NORMALS
 // Lit only, so the level is never read; without its input the fragment stage's inter-stage
-// variables are the 15 below, the 12 of the net and gl_FrontFacing, which WebGPU counts too:
-// its 16 (maxInterStageShaderVariables' default).
+// variables are the three above, the net's 12 and gl_FrontFacing, which WebGPU counts too:
+// 16, its maxInterStageShaderVariables' default.
 const uint inLevel = 0u;
 #else
 layout(location = 3) flat in uint inLevel;
