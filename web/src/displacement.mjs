@@ -95,6 +95,10 @@ function sideUVsOf(seams, element, st, out) {
   return 1;
 }
 
+// seams.h: the most distinct UVs at one point (the readers' limit), and the UVs one 128 MiB
+// storage buffer holds.
+const MAX_POINT_UVS = 4096, MAX_SEAM_UVS = (128 * 2 ** 20) / 8;
+
 /**
  * lib/seams/seams.cpp's computeSeams, for a container without a SEAM chunk (limn-render computes
  * them too): per element, its corners' UVs in their own face, every distinct UV of each corner
@@ -109,30 +113,65 @@ export function computeSeams(mesh, uvs, tables) {
   const CU = [0, 1, 1, 0], CV = [0, 0, 1, 1];
   const same = (x, y) => x[0] === y[0] && x[1] === y[1];
   const f2 = (uv) => [f32(uv[0]), f32(uv[1])];
+  // A point's charts (in face order) and its distinct float UVs. A base vertex's are made once
+  // (seams.cpp): from each of its elements they would cost its whole ring, and the distinct UVs
+  // of a vertex with a seam between every two faces their square per element.
+  const describe = (charts) => {
+    const distinct = [], seen = new Set();
+    for (const c of charts) {
+      const uv = f2(c.uv), key = `${uv[0]},${uv[1]}`; // String(-0) is "0": -0 and 0 merge, as === does
+      if (!seen.has(key)) { seen.add(key); distinct.push(uv); }
+    }
+    if (distinct.length > MAX_POINT_UVS) {
+      throw new LimnError(`a vertex has ${distinct.length} different UVs in the faces around it, more than the ` +
+        `${MAX_POINT_UVS} the displacement's seam fix averages`);
+    }
+    return { charts, distinct };
+  };
+  const baseVertices = new Map();
+  const at = (p, U, V) => {
+    const key = ptex.key(p, U, V);
+    if (ptex.kindOf(key) !== 1) return describe(ptex.charts(p, U, V));
+    let d = baseVertices.get(key);
+    if (!d) { d = describe(ptex.charts(p, U, V)); baseVertices.set(key, d); }
+    return d;
+  };
+  // The UVs stay within one storage buffer (WebGPU's 128 MiB), checked as they grow.
+  const reserve = (more) => {
+    if (out.length + more > MAX_SEAM_UVS) {
+      throw new LimnError(`the seams need more than ${MAX_SEAM_UVS} UVs (128 MiB, one GPU storage buffer): each element at a ` +
+        "vertex carries all of the vertex's different UVs, and some vertex has UV seams between many of its faces");
+    }
+  };
+  // The UV of `face` in a point's charts (face order; the last of equal faces, as a scan would).
+  const uvIn = (charts, face) => {
+    let lo = 0, hi = charts.length;
+    while (lo < hi) { const mid = (lo + hi) >> 1; if (charts[mid].face <= face) lo = mid + 1; else hi = mid; }
+    return lo > 0 && charts[lo - 1].face === face ? f2(charts[lo - 1].uv) : [0, 0];
+  };
   const add = (e, p, u0, v0, size) => {
     const base = 24 * e, U0 = Math.trunc(u0 * R), V0 = Math.trunc(v0 * R), W = Math.trunc(size * R);
-    const at = (k) => [U0 + CU[k] * W, V0 + CV[k] * W];
+    const corner = (k) => [U0 + CU[k] * W, V0 + CV[k] * W];
     for (let k = 0; k < 4; k++) {
       const own = f2(ptex.ownUV(p, u0 + CU[k] * size, v0 + CV[k] * size));
       rf[base + 2 * k] = own[0];
       rf[base + 2 * k + 1] = own[1];
-      const first = out.length, distinct = [];
-      for (const c of ptex.charts(p, ...at(k))) {
-        const uv = f2(c.uv);
-        if (!distinct.some((d) => same(d, uv))) { distinct.push(uv); out.push(uv); }
-      }
-      records[base + 8 + 2 * k] = first;
+      const { distinct } = at(p, ...corner(k));
+      reserve(distinct.length);
+      records[base + 8 + 2 * k] = out.length;
       records[base + 9 + 2 * k] = distinct.length;
+      for (const uv of distinct) out.push(uv);
     }
     for (let k = 0; k < 4; k++) {
-      const [Ua, Va] = at(k), [Ub, Vb] = at((k + 1) % 4);
-      const ends = [ptex.charts(p, Ua, Va), ptex.charts(p, Ub, Vb)];
+      const [Ua, Va] = corner(k), [Ub, Vb] = corner((k + 1) % 4);
+      const ends = [at(p, Ua, Va).charts, at(p, Ub, Vb).charts];
       const sides = [];
       records[base + 16 + 2 * k] = out.length;
-      for (const side of ptex.charts(p, (Ua + Ub) / 2, (Va + Vb) / 2)) { // the faces along the edge
-        const pair = ends.map((list) => { let uv = [0, 0]; for (const c of list) if (c.face === side.face) uv = f2(c.uv); return uv; });
+      for (const side of at(p, (Ua + Ub) / 2, (Va + Vb) / 2).charts) { // the faces along the edge
+        const pair = ends.map((list) => uvIn(list, side.face));
         if (sides.some((x) => same(x[0], pair[0]) && same(x[1], pair[1]))) continue;
         sides.push(pair);
+        reserve(2);
         out.push(pair[0], pair[1]);
       }
       records[base + 17 + 2 * k] = sides.length;

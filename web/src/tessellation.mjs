@@ -26,7 +26,9 @@ export class PtexMap {
     // Undirected edges by vertex pair; any numbering does, keys only need to be equal for equal points.
     this.edges = new Map();
     this.edgeFaces = [];
+    this.edgeCorners = []; // per edge and face: the corner the face's side of the edge starts at
     this.vertexFaces = Array.from({ length: mesh.vertexCount }, () => []);
+    this.vertexCorners = Array.from({ length: mesh.vertexCount }, () => []); // the vertex's corner in each
     const { faceOffsets: off, faceVertices: fv } = mesh;
     for (let f = 0; f < mesh.faceCount; f++) {
       const n = off[f + 1] - off[f];
@@ -34,9 +36,11 @@ export class PtexMap {
         const a = fv[off[f] + i], b = fv[off[f] + ((i + 1) % n)];
         const k = a < b ? a * mesh.vertexCount + b : b * mesh.vertexCount + a;
         let e = this.edges.get(k);
-        if (e === undefined) { e = this.edgeFaces.length; this.edges.set(k, e); this.edgeFaces.push([]); }
+        if (e === undefined) { e = this.edgeFaces.length; this.edges.set(k, e); this.edgeFaces.push([]); this.edgeCorners.push([]); }
         this.edgeFaces[e].push(f);
+        this.edgeCorners[e].push(i);
         this.vertexFaces[a].push(f);
+        this.vertexCorners[a].push(i);
       }
     }
     // Keys as numbers while they fit in 53 bits (depth <= 9), else strings; kindOf undoes them.
@@ -92,12 +96,6 @@ export class PtexMap {
     return [uvs.values[2 * j], uvs.values[2 * j + 1]];
   }
 
-  faceUV(f, vertex) {
-    const fv = this.faceVerts(f);
-    for (let i = 0; i < fv.length; i++) if (fv[i] === vertex) return this.uvAt(f, i);
-    return [0, 0];
-  }
-
   ownUV(p, u, v) {
     // Allocation-free (it runs for every tessellation vertex): the corners' UVs are read in place.
     const f = this.face[p], sub = this.sub[p], n = this.mesh.faceSizes[f];
@@ -109,8 +107,20 @@ export class PtexMap {
         w0 * val[a + 1] + w1 * val[b + 1] + w2 * val[c + 1] + w3 * val[d + 1]];
     }
     const k = sub;
-    let cx = 0, cy = 0;
-    for (let i = 0; i < n; i++) { const q = 2 * ix[o + i]; cx += val[q]; cy += val[q + 1]; }
+    // Each n-gon's UV sums once (ptex.cpp's centroidUV_): summed per point, an n-gon of thousands
+    // of sides cost its square.
+    if (!this.uvSums) {
+      this.uvSums = new Float64Array(2 * this.mesh.faceCount);
+      for (let g = 0; g < this.mesh.faceCount; g++) {
+        const og = faceOffsets[g], ng = this.mesh.faceSizes[g];
+        if (ng === 4) continue;
+        let sx = 0, sy = 0;
+        for (let i = 0; i < ng; i++) { const q = 2 * ix[og + i]; sx += val[q]; sy += val[q + 1]; }
+        this.uvSums[2 * g] = sx;
+        this.uvSums[2 * g + 1] = sy;
+      }
+    }
+    const cx = this.uvSums[2 * f], cy = this.uvSums[2 * f + 1];
     const a = 2 * ix[o + k], b = 2 * ix[o + ((k + 1) % n)], d = 2 * ix[o + ((k + n - 1) % n)];
     const c1x = 0.5 * (val[a] + val[b]), c1y = 0.5 * (val[a + 1] + val[b + 1]);
     const c3x = 0.5 * (val[d] + val[a]), c3y = 0.5 * (val[d + 1] + val[a + 1]);
@@ -135,11 +145,16 @@ export class PtexMap {
     const out = [];
     if (t === 0 || t === 1) {
       const vtx = t === 0 ? a : b;
-      for (const g of this.vertexFaces[vtx]) out.push({ face: g, uv: this.faceUV(g, vtx) });
+      // The corner's own UV (ptex.cpp's cornerUV), not a search of each face for the vertex.
+      const faces = this.vertexFaces[vtx], corners = this.vertexCorners[vtx];
+      for (let j = 0; j < faces.length; j++) out.push({ face: faces[j], uv: this.uvAt(faces[j], corners[j]) });
     } else {
       // Topology's edgeHalfedge and its twin: the first two faces of a (manifold) edge.
-      for (const g of this.edgeFaces[this.findEdge(a, b)].slice(0, 2)) {
-        const pa = this.faceUV(g, a), pb = this.faceUV(g, b);
+      const e = this.findEdge(a, b), faces = this.edgeFaces[e], corners = this.edgeCorners[e];
+      for (let j = 0; j < Math.min(2, faces.length); j++) {
+        const g = faces[j], i = corners[j], fromA = this.faceVerts(g)[i] === a;
+        const next = (i + 1) % this.mesh.faceSizes[g];
+        const pa = this.uvAt(g, fromA ? i : next), pb = this.uvAt(g, fromA ? next : i);
         out.push({ face: g, uv: [(1 - t) * pa[0] + t * pb[0], (1 - t) * pa[1] + t * pb[1]] });
       }
     }

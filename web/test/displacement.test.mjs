@@ -184,3 +184,48 @@ test('seam records computed without a SEAM chunk are the ones limn-seams writes'
   assert.deepEqual(new Uint32Array(c.records.buffer, c.records.byteOffset, c.records.length), surface.seams.records);
   assert.deepEqual(new Uint32Array(c.uvs.buffer), new Uint32Array(surface.seams.uvs.buffer, surface.seams.uvs.byteOffset, surface.seams.uvs.length));
 });
+
+// A cone whose apex has its own UV in each of its n faces (messages_cli_test.cpp's
+// coneWithSeamAtApex): each element at the apex carries all n UVs. n = 1,000: the records equal
+// limn-seams'; n = 4,097 (past the readers' 4,096 at a point): refused at once, as limn-seams does
+// (the search it replaced cost n^2 per element).
+test('seam records of a vertex with a UV seam between each two faces: limn-seams\' records, refused past 4,096 UVs', () => {
+  const cone = (n) => {
+    const lines = ['v 0 0 1'];
+    for (let ring = 1; ring <= 2; ring++) {
+      for (let i = 0; i < n; i++) {
+        const a = 2 * Math.PI * (i + 0.5 * (ring - 1)) / n;
+        lines.push(`v ${ring * Math.cos(a)} ${ring * Math.sin(a)} 0`);
+      }
+    }
+    for (let ring = 0; ring <= 2; ring++) {
+      for (let i = 0; i < n; i++) {
+        const a = 2 * Math.PI * (i + 0.5) / n, r = 0.05 + 0.15 * ring;
+        lines.push(`vt ${0.5 + r * Math.cos(a)} ${0.5 + r * Math.sin(a)}`);
+      }
+    }
+    for (let i = 0; i < n; i++) {
+      const j = (i + 1) % n;
+      lines.push(`f 1/${1 + i} ${2 + i}/${1 + n + i} ${2 + n + i}/${1 + 2 * n + i} ${2 + j}/${1 + n + j}`);
+    }
+    return lines.join('\n') + '\n';
+  };
+  for (const n of [1000, 4097]) {
+    const obj = join(scratch, `cone${n}.obj`), tables = join(scratch, `cone${n}.limn`);
+    writeFileSync(obj, cone(n));
+    execFileSync(tool('limn-classify'), ['-q', obj, '-o', join(scratch, `cone${n}_c.limn`)]);
+    execFileSync(tool('limn-tables'), ['-q', '--depth', '1', join(scratch, `cone${n}_c.limn`), '-o', tables]);
+    const surface = loadLimn(new Uint8Array(readFileSync(tables)));
+    if (n === 4097) {
+      assert.throws(() => computeSeams(surface.mesh, surface.uvs, surface.tables), /a vertex has 4097 different UVs in the faces around it/);
+      continue;
+    }
+    const seams = join(scratch, `cone${n}_s.limn`);
+    execFileSync(tool('limn-seams'), ['-q', tables, '-o', seams]);
+    const ref = loadLimn(new Uint8Array(readFileSync(seams))).seams;
+    const c = computeSeams(surface.mesh, surface.uvs, surface.tables);
+    assert.equal(c.uvCount, ref.uvCount);
+    assert.deepEqual(c.records, ref.records);
+    assert.deepEqual(new Uint32Array(c.uvs.buffer), new Uint32Array(ref.uvs.buffer, ref.uvs.byteOffset, ref.uvs.length));
+  }
+});
