@@ -322,11 +322,15 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     std::memcpy(tiny.payload.data() + records + 8, &size, 4);
     EXPECT_TRUE(refused(tiny, "domain not the leaf's square"));
     const FvarSurfaceChunk good = decodeFvarSurfaceChunk(c, &m, &o);
-    const auto leaf0 = std::find_if(good.surface.nodes.begin(), good.surface.nodes.end(),
-                                    [](uint32_t v) { return v != 0xFFFFFFFFu && (v & 0x80000000u); });
+    // Leaves naming a stored piece (the others name smooth faces, expanded after the records).
+    const size_t storedPieces = good.surface.records.size() / 9;
+    auto namesPiece = [&](uint32_t v) {
+        return v != 0xFFFFFFFFu && (v & 0x80000000u) && (v & 0x7FFFFFFFu) < storedPieces;
+    };
+    const auto leaf0 = std::find_if(good.surface.nodes.begin(), good.surface.nodes.end(), namesPiece);
     ASSERT_NE(leaf0, good.surface.nodes.end());
     const auto leafOther = std::find_if(leaf0 + 1, good.surface.nodes.end(), [&](uint32_t v) {
-        return v != 0xFFFFFFFFu && (v & 0x80000000u) && good.surface.records[9 * (v & 0x7FFFFFFFu)] != good.surface.records[9 * (*leaf0 & 0x7FFFFFFFu)];
+        return namesPiece(v) && good.surface.records[9 * (v & 0x7FFFFFFFu)] != good.surface.records[9 * (*leaf0 & 0x7FFFFFFFu)];
     });
     ASSERT_NE(leafOther, good.surface.nodes.end());
     Chunk swapped = c; // a leaf naming an element of another square
@@ -355,13 +359,15 @@ TEST(FvarSurfaceChunk, HostileBytesAreRefusedNamingTheChunk) {
     first.payload.erase(first.payload.end() - 16, first.payload.end());
     EXPECT_NO_THROW(decodeFvarSurfaceChunk(first, &m, &o));
     EXPECT_TRUE(refused(Chunk{v2.type, 1, v2.payload}, "version 1 with a version-2 tail"));
-    // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell).
+    // Random corruption: refused, or a chunk whose every walk stays in bounds (ASan would tell),
+    // its smooth faces expanded as the readers do before drawing.
     std::mt19937 rng(5);
     for (int trial = 0; trial < 500; ++trial) {
         Chunk bad = c;
         bad.payload[rng() % bad.payload.size()] ^= uint8_t(1u << (rng() % 8));
         try {
-            const FvarSurfaceChunk d = decodeFvarSurfaceChunk(bad, &m, &o);
+            FvarSurfaceChunk d = decodeFvarSurfaceChunk(bad, &m, &o);
+            d.surface = expandSmoothFaces(std::move(d.surface));
             double uv[2];
             for (uint32_t p = 0; p < d.ptexCount; ++p) chunkUV(d, p, 0.3, 0.7, uv);
         } catch (const Error&) {
@@ -476,6 +482,9 @@ TEST(FvarSurfaceChunk, HostileSmoothFacesAreRefused) {
             b.program.start = {0, 1};
             b.program.averaged = {1};
             b.program.nextSupport.assign(16, 0);
+            // The encoder reads each face's support (now 16 points) from points: keep the last
+            // face's reads inside the vector, so that the reader is what refuses it.
+            bad.surface.points.resize(bad.surface.points.size() + 16);
         }
         try {
             decodeFvarSurfaceChunk(encodeFvarSurfaceChunk(bad), &m, &o);
