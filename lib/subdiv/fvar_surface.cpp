@@ -318,7 +318,8 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
             const double gh = fh / 2, gs = fs + (c & 1) * gh, gt = ft + (c >> 1) * gh;
             const uint32_t kind = code & ~kNodeIndexMask, index = code & kNodeIndexMask;
             if (code == kNodeNone) continue;
-            if (kind == kNodeChild && depth + 1 >= gpuLevels_) { // cut: bilinear in its exact corners
+            if ((kind == kNodeChild || kind == kNodeBasis) && depth + 1 >= gpuLevels_) {
+                // Cut (a child or a smooth face below the root alike): bilinear in its exact corners.
                 glm::dvec3 corners[4];
                 const double cs[4] = {gs, gs + gh, gs + gh, gs}, ct[4] = {gt, gt, gt + gh, gt + gh};
                 for (int k = 0; k < 4; ++k)
@@ -326,12 +327,6 @@ FaceVaryingSurface::Gpu FaceVaryingSurface::compactGpu() const {
                 bilinearRecord(ptex, cu, cv, h, corners);
             } else if (kind == kNodeChild) {
                 self(self, face, index, depth + 1, cu, cv, h, gs, gt, gh);
-            } else if (kind == kNodeBasis && depth + 1 >= gpuLevels_) { // cut, as a child
-                glm::dvec3 corners[4];
-                const double cs[4] = {gs, gs + gh, gs + gh, gs}, ct[4] = {gt, gt, gt + gh, gt + gh};
-                for (int k = 0; k < 4; ++k)
-                    corners[k] = evaluateIrregular(tables_, vertices_, limits_, face, cs[k], ct[k]).position;
-                bilinearRecord(ptex, cu, cv, h, corners);
             } else if (kind == kNodeBasis) {
                 // A smooth face below the root (a decayed crease, a corner child of a face with
                 // two extraordinary corners): its pieces, by the readers' own expansion of a
