@@ -8,7 +8,7 @@
 #   commit), timed in the same interleaved runs: "before_seconds*" in the JSON. -I: also the
 #   instructions each run executes (valgrind --tool=callgrind, one run each: deterministic, where
 #   wall times on a loaded machine are not): "instructions*" in the JSON, millions on stderr.
-# Without arguments: the meshes of docs/irregular.md's table.
+# Without arguments: the meshes of docs/irregular.md's table. A mesh the tools refuse is skipped.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 bin=${LIMN_BIN:-$root/build/bin}
@@ -32,7 +32,13 @@ printf "%-22s %2s %12s %12s %8s %8s %8s%s\n" mesh d "bytes K=0" "bytes K=$K" rat
   "${before:+  before: s K=0  s K=$K}" >&2
 for arg in "$@"; do
   mesh=${arg%:*} d=${arg##*:} name=$(basename "${arg%:*}" .obj)
-  "$bin/limn-classify" "$mesh" -o "$tmp/c.limn"
+  # A mesh the tools refuse (non-manifold, ...) is reported and skipped, so a sweep over a folder
+  # of shapes goes on.
+  if ! "$bin/limn-classify" -q "$mesh" -o "$tmp/c.limn" 2>"$tmp/err" ||
+     ! "$bin/limn-tables" -q --depth "$d" "$tmp/c.limn" -o "$tmp/tk.limn" 2>>"$tmp/err"; then
+    printf '%-22s %2s skipped: %s\n' "$name" "$d" "$(head -1 "$tmp/err")" >&2
+    continue
+  fi
   times=()
   for ((i = 0; i < R; ++i)); do
     t0=$(date +%s.%N); "$bin/limn-tables" -q --depth "$d" --irregular-levels 0 "$tmp/c.limn" -o "$tmp/t0.limn"
