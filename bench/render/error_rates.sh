@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What the view-adaptive frame costs against the cost of shading its pixels (docs/benchmarks.md,
 # "Rates from the screen-space error"): per model, limn-render --bench with
-#   default   the error-driven rates (--max-error 0.25, --edge-pixels 32)
+#   default   the error-driven rates (--max-error 0.1, --edge-pixels 32)
 #   old       the rule before them (--max-error 0 --edge-pixels 4: segments of about 4 px)
 #   coarse    --edge-pixels 1000 --max-error 0 (about 2 triangles an element: the pixels' shading)
 #   pixel     per-pixel limit normals and the interior at 1 px (--pixel-normals --interior-error 1)
