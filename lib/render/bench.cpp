@@ -7,6 +7,16 @@
 #include <chrono>
 #include <map>
 
+// Under `valgrind --tool=callgrind --instr-atstart=no` only the measured frames are counted, on
+// every thread (instrumentation is process-wide: lavapipe's rasterizer threads too), not start-up
+// or the warm-up frames where lavapipe's LLVM compiles the shaders: instructions a frame, the one
+// frame cost that a shared machine's load does not move (bench/render/error_rates.sh -I). Without
+// valgrind the requests are a few no-op instructions; without its header, nothing.
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define LIMN_CALLGRIND 1
+#endif
+
 namespace limn::render {
 
 namespace {
@@ -34,6 +44,10 @@ BenchResult runBenchmark(Renderer& renderer, int frames, int warmup, double orbi
     std::vector<double> cpu, compute, draw, total;
     std::map<std::string, std::vector<double>> passes;
     std::vector<std::string> order;
+    cpu.reserve(frames), compute.reserve(frames), draw.reserve(frames), total.reserve(frames);
+#ifdef LIMN_CALLGRIND
+    CALLGRIND_START_INSTRUMENTATION;
+#endif
     for (int i = 0; i < frames; ++i) {
         auto start = Clock::now();
         orbit();
@@ -48,6 +62,9 @@ BenchResult runBenchmark(Renderer& renderer, int frames, int warmup, double orbi
             passes[p.name].push_back(p.ms);
         }
     }
+#ifdef LIMN_CALLGRIND
+    CALLGRIND_STOP_INSTRUMENTATION;
+#endif
     BenchResult r;
     r.frames = frames;
     r.computeMs = median(compute);

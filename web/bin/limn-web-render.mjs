@@ -82,6 +82,18 @@ Exit codes: 0 ok, 1 bad input, 2 usage, 3 missing capability.
 
 class Usage extends Error {}
 
+// limn-render's real-valued options (lib/base/cli.cpp, Parser::real): the same words and exit
+// code. Its std::from_chars takes a plain decimal or exponent form only (no '+', no spaces, no
+// hex), and a value out of double's range (1e400, 1e-400) is "not a number" there.
+function real(opt, v, lo, hi, metavar) {
+  if (v === '') throw new Usage(`${opt}: the value is empty; give ${metavar} (see --help)`);
+  let x = /^-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(v) ? Number(v) : NaN;
+  if (x === 0 && /[1-9]/.test(v.replace(/[eE].*/, ''))) x = NaN; // underflow
+  if (!Number.isFinite(x)) throw new Usage(`${opt}: '${v}' is not a number (see --help)`);
+  if (x < lo || x > hi) throw new Usage(`${opt}: ${v} is out of range ${lo} to ${hi} (see --help)`);
+  return x;
+}
+
 function numbers(opt, v, n) {
   const parts = v.split(',').map(Number);
   if (parts.length !== n || parts.some((x) => !Number.isFinite(x))) throw new Usage(`${opt}: '${v}' is not ${n} comma-separated numbers`);
@@ -138,15 +150,8 @@ function parseArgs(argv) {
       case '--color': s.color = numbers(a, value(), 3); break;
       case '--background': s.background = numbers(a, value(), 3); break;
       case '--tess': { const [t] = numbers(a, value(), 1); if (!Number.isInteger(t) || t < 1 || t > 4096) throw new Usage('--tess: an integer from 1 to 4096'); s.tess = t; break; }
-      case '--max-error': { const [e] = numbers(a, value(), 1); if (e < 0 || e > 4096) throw new Usage('--max-error: 0 to 4096'); s.maxError = e; break; }
-      case '--interior-error': {
-        // limn-render's messages (tools/render/options.cpp's .real).
-        const v = value(), e = Number(v);
-        if (v.trim() === '' || !Number.isFinite(e)) throw new Usage(`--interior-error: '${v}' is not a number (see --help)`);
-        if (e < 0 || e > 4096) throw new Usage(`--interior-error: ${v} is out of range 0 to 4096 (see --help)`);
-        s.interiorError = e;
-        break;
-      }
+      case '--max-error': s.maxError = real(a, value(), 0, 4096, 'PX'); break;
+      case '--interior-error': s.interiorError = real(a, value(), 0, 4096, 'PX'); break;
       case '--pixel-normals': s.pixelNormals = true; break;
       case '--edge-pixels': { const [p] = numbers(a, value(), 1); if (p < 0 || p > 4096) throw new Usage('--edge-pixels: 0 to 4096'); s.edgePixels = p; break; }
       case '--bench': { const [n] = numbers(a, value(), 1); if (!Number.isInteger(n) || n < 0 || n > 100000) throw new Usage('--bench: 0 to 100000 frames'); o.bench = n; break; }

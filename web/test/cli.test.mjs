@@ -40,9 +40,10 @@ test('usage errors exit 2', () => {
   assert.equal(run('--help').status, 0);
 });
 
-// --interior-error's refusals are limn-render's: the same exit code and message.
-test('--interior-error: limn-render\'s range, exit code and message', () => {
-  for (const args of [['--interior-error', '-1'], ['--interior-error', '5000'], ['--interior-error', 'abc'], ['--interior-error', '1', '--interior-error', '2']]) {
+// --max-error's and --interior-error's refusals are limn-render's: the same exit code and message.
+test('--max-error, --interior-error: limn-render\'s range, exit code and message', () => {
+  const refused = ['-1', '5000', 'abc', '', '+1', ' 1', '0x10', 'inf', '1e400', '1e-400'];
+  for (const args of ['--max-error', '--interior-error'].flatMap((o) => [...refused.map((v) => [o, v]), [o, '1', o, '2']])) {
     const native = spawnSync(tool('limn-render'), [...args, 'x.limn', '-o', join(scratch, 'ie.png')], { encoding: 'utf8', timeout: 60000 });
     const r = run(...args, 'x.limn', '-o', join(scratch, 'ie.png'));
     assert.equal(r.status, native.status, `${args.join(' ')}: ${r.stderr}`);

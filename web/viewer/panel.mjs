@@ -12,7 +12,8 @@ export function setEnabled(input, why) {
   const label = input.closest('label');
   if (!label) return;
   label.classList.toggle('disabled', !!why);
-  label.title = why ?? '';
+  label.dataset.help ??= label.title; // the control's own help comes back when it is enabled
+  label.title = why ?? label.dataset.help;
   let note = label.querySelector('.why');
   if (why && !note) note = label.appendChild(Object.assign(document.createElement('span'), { className: 'why' }));
   if (note) note.textContent = why ?? '';
@@ -43,6 +44,11 @@ export function buildPanel(app) {
     const v = +e.target.value;
     if (Number.isFinite(v) && v > 0 && v <= 4096) { lastEdgePixels = v; app.commit({ ...app.state, edgePixels: v }); }
   });
+  $('interiorError').addEventListener('change', (e) => {
+    const v = +e.target.value;
+    if (Number.isFinite(v) && v >= 0 && v <= 4096) app.commit({ ...app.state, interiorError: v });
+  });
+  $('pixelNormals').addEventListener('change', (e) => app.commit({ ...app.state, pixelNormals: e.target.checked }));
   for (const k of ['displaceScale', 'displaceMid']) {
     $(k).addEventListener('change', (e) => { const v = +e.target.value; if (Number.isFinite(v)) app.commit({ ...app.state, [k]: v }); });
   }
@@ -72,6 +78,14 @@ export function syncPanel(app) {
   setEnabled($('edgePixels'), adaptiveWhy);
   $('maxError').value = String(s.maxError);
   setEnabled($('maxError'), adaptiveWhy);
+  $('interiorError').value = String(s.interiorError);
+  setEnabled($('interiorError'), adaptiveWhy);
+  // The runtime draws per-pixel normals where limn-render does (renderer.mjs); elsewhere the
+  // option draws as without, so the box says why instead of looking as if it did something
+  // (in words that name no other control: a label's text is how a control is found).
+  $('pixelNormals').checked = s.pixelNormals;
+  setEnabled($('pixelNormals'), s.edgePixels === 0 ? 'not with the fixed grids' : s.shade !== 'lit' ? 'not with this shading mode'
+    : s.wire ? 'not with the wireframe overlay' : app.map?.kind === 'displace' ? 'not with a displacement map' : adaptiveWhy);
   if (![...$('tess').options].some((o) => +o.value === s.tess)) $('tess').append(new Option(String(s.tess), String(s.tess)));
   $('tess').value = String(s.tess);
   $('displaceScale').value = String(s.displaceScale);

@@ -6,6 +6,7 @@
 export const DEFAULTS = Object.freeze({
   view: [-30, 20], eye: null, target: null, up: null, upAxis: 'y', fov: 35, light: [-40, 35],
   shade: 'lit', samples: 4, sampleShading: false, maxError: 0.1, edgePixels: 32, tess: 64, wire: false,
+  interiorError: 0, pixelNormals: false,
   size: null, color: null, background: [0.2, 0.2, 0.2],
   displaceScale: 1, displaceMid: 0, seamFix: true,
 });
@@ -67,6 +68,8 @@ export function parseQuery(query) {
   take('sampleShading', (t) => { state.sampleShading = flag('sampleShading', t); });
   take('maxError', (t) => { state.maxError = number('maxError', t, 0, 4096); });
   take('edgePixels', (t) => { state.edgePixels = number('edgePixels', t, 0, 4096); });
+  take('interiorError', (t) => { state.interiorError = number('interiorError', t, 0, 4096); });
+  take('pixelNormals', (t) => { state.pixelNormals = flag('pixelNormals', t); });
   take('tess', (t) => { state.tess = number('tess', t, 1, 4096, true); });
   take('wire', (t) => { state.wire = flag('wire', t); });
   take('size', (t) => {
@@ -106,7 +109,7 @@ export function toQuery(state, { model, displace, texture } = {}) {
   } else {
     put('view', state.view.map(roundAngle).join(','));
   }
-  for (const k of ['upAxis', 'fov', 'light', 'shade', 'samples', 'sampleShading', 'maxError', 'edgePixels', 'tess', 'wire', 'color', 'background']) {
+  for (const k of ['upAxis', 'fov', 'light', 'shade', 'samples', 'sampleShading', 'maxError', 'edgePixels', 'interiorError', 'pixelNormals', 'tess', 'wire', 'color', 'background']) {
     if (state[k] !== null && !same(state[k], DEFAULTS[k])) put(k, typeof state[k] === 'boolean' ? (state[k] ? 1 : 0) : Array.isArray(state[k]) ? state[k].join(',') : state[k]);
   }
   if (state.size) put('size', `${state.size[0]}x${state.size[1]}`);
@@ -135,6 +138,9 @@ export function renderCommand(state, { modelName = 'MODEL.limn', width, height, 
   // --max-error only where it means something: the view-adaptive tessellation (edge pixels > 0).
   if (state.edgePixels > 0) a.push('--max-error', String(state.maxError));
   a.push('--edge-pixels', String(state.edgePixels), '--tess', String(state.tess));
+  // Per-pixel normals and the coarser interior, as --max-error: view-adaptive only.
+  if (state.edgePixels > 0 && state.interiorError > 0) a.push('--interior-error', String(state.interiorError));
+  if (state.edgePixels > 0 && state.pixelNormals) a.push('--pixel-normals');
   if (state.sampleShading) a.push('--sample-shading');
   if (state.wire) a.push('--wire-triangles');
   if (state.color) a.push('--color', state.color.join(','));

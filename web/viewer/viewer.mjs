@@ -45,6 +45,7 @@ function rendererSettings(s) {
   const [width, height] = canvasSize();
   return {
     width, height, samples: s.samples, sampleShading: s.sampleShading, shade: s.shade, maxError: s.maxError, edgePixels: s.edgePixels, tess: s.tess,
+    interiorError: s.interiorError, pixelNormals: s.pixelNormals,
     wire: s.wire ? 'triangles' : undefined, // limn-render --wire-triangles: the edges of the triangles drawn
     view: viewSpec(s), color: s.color ?? undefined, background: s.background,
     lightAzimuthDeg: s.light[0], lightElevationDeg: s.light[1],
@@ -95,8 +96,10 @@ function layoutCanvas() {
 // (View-adaptive tessellation shares points across UV seams unless the shading needs the UVs.)
 // The shading's fragment stage is the renderer's (lit and texture have their own).
 // A displacement's scale, mid and seam fix are set up with the renderer (its framing, the fixed
-// grids' sample UVs), so changing them makes a new one.
+// grids' sample UVs), so changing them makes a new one. So are the view-adaptive rates' errors
+// and the per-pixel normals' pipelines (the renderer's adaptive options).
 const keyOf = (s) => JSON.stringify([canvasSize(), s.samples, s.sampleShading, s.edgePixels, s.tess, s.wire, s.edgePixels > 0 && ['uv', 'texture'].includes(s.shade), surfaceFragmentStage(s.shade), model?.serial, map?.serial,
+  s.edgePixels > 0 ? [s.maxError, s.interiorError, s.pixelNormals] : null,
   map?.kind === 'displace' ? [s.displaceScale, s.displaceMid, s.seamFix] : null]);
 
 async function ensureRenderer() {

@@ -6,7 +6,8 @@ export async function bench(app, frames) {
   const median = (a) => { const b = [...a].sort((x, y) => x - y); return b.length ? b[b.length >> 1] : null; };
   const configs = [{ tessellation: 'fixed', edgePixels: 0 }, { tessellation: 'adaptive', edgePixels: app.state.edgePixels > 0 ? app.state.edgePixels : DEFAULTS.edgePixels }];
   for (const c of configs) {
-    const line = { bench: 'limn-viewer', model: app.model.name, depth: app.model.surface.tables.depth, tessellation: c.tessellation, edge_pixels: c.edgePixels, max_error: c.edgePixels > 0 ? app.state.maxError : null, tess: app.state.tess, samples: app.state.samples, size: app.canvasSize(), frames };
+    const line = { bench: 'limn-viewer', model: app.model.name, depth: app.model.surface.tables.depth, tessellation: c.tessellation, edge_pixels: c.edgePixels, max_error: c.edgePixels > 0 ? app.state.maxError : null,
+      interior_error: c.edgePixels > 0 ? app.state.interiorError : null, pixel_normals: c.edgePixels > 0 ? app.state.pixelNormals : null, tess: app.state.tess, samples: app.state.samples, size: app.canvasSize(), frames };
     const why = app.refusal({ edgePixels: c.edgePixels });
     if (why) { console.log(JSON.stringify({ ...line, unsupported: why })); continue; }
     app.state = { ...app.state, edgePixels: c.edgePixels };

@@ -34,6 +34,13 @@ test('the limn-render command names the same options', () => {
   assert.equal(toQuery(e.state), 'view=-30,20&maxError=0.5&edgePixels=8');
   assert.match(renderCommand(e.state, { width: 64, height: 48 }), / --max-error 0\.5 --edge-pixels 8 /);
   assert.deepEqual(parseQuery('maxError=-1').errors, ['maxError=-1: a number from 0 to 4096']);
+  // Per-pixel normals and the interior error: limn-render's options, view-adaptive only.
+  const p = parseQuery('interiorError=1&pixelNormals=1');
+  assert.deepEqual(p.errors, []);
+  assert.equal(toQuery(p.state), 'view=-30,20&interiorError=1&pixelNormals=1');
+  assert.match(renderCommand(p.state, { width: 64, height: 48 }), / --tess 64 --interior-error 1 --pixel-normals$/);
+  assert.doesNotMatch(renderCommand({ ...p.state, edgePixels: 0 }, { width: 64, height: 48 }), /interior|pixel-normals/);
+  assert.deepEqual(parseQuery('interiorError=x&pixelNormals=2').errors, ['interiorError=x: a number from 0 to 4096', 'pixelNormals=2: 1 or 0']);
 });
 
 test('orbit keeps a framed view framed; zoom makes it explicit; frame goes back from the same direction', () => {

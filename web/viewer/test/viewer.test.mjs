@@ -52,8 +52,8 @@ function native(limn, args, name) {
 }
 
 const isBg = (img, i) => img.rgba[4 * i] === BG[0] && img.rgba[4 * i + 1] === BG[1] && img.rgba[4 * i + 2] === BG[2];
-/** Covered pixels, those off by more than 8/255, and the same split at and away from the silhouette. */
-function compare(a, b) {
+/** Covered pixels, those off by more than `tolerance`/255 (8), and the same split at and away from the silhouette. */
+function compare(a, b, tolerance = 8) {
   assert.equal(a.width, b.width);
   assert.equal(a.height, b.height);
   const r = { covered: 0, off: 0, interior: 0, interiorOff: 0, worst: 0 };
@@ -71,8 +71,8 @@ function compare(a, b) {
         }
       }
       r.covered++;
-      if (d > 8) r.off++;
-      if (!silhouette) { r.interior++; if (d > 8) r.interiorOff++; }
+      if (d > tolerance) r.off++;
+      if (!silhouette) { r.interior++; if (d > tolerance) r.interiorOff++; }
       r.worst = Math.max(r.worst, d);
     }
   }
@@ -101,6 +101,9 @@ test('spot depth 3 from ?model=: lit and levels, 4 then 1 samples, as limn-rende
   await page.getByLabel('levels').check();
   await settled(page, n + 1);
   t.diagnostic(check('spot levels, 4 samples', compare(await shot(), native(spot, [...common, '--samples', '4', '--shade', 'levels'], 'spot-levels-4')), 4));
+  // Per-pixel normals are the view-adaptive lit shading's only: elsewhere the box is disabled, saying why.
+  assert.equal(await page.locator('#pixelNormals').isDisabled(), true);
+  assert.equal(await page.locator('#pixelNormals').locator('xpath=..').getAttribute('title'), 'not with the fixed grids');
   assert.match(await page.evaluate(() => location.search), /shade=levels/);
   n = await frames(page);
   await page.selectOption('#samples', '1');
@@ -148,6 +151,45 @@ test('a drag turns the view, the URL follows, and reloading it draws the same im
   const drawn = await frames(page);
   await page.waitForTimeout(1500);
   assert.equal(await frames(page), drawn, 'the page drew frames while nothing changed');
+});
+
+// The rate controls make a new renderer with the new rates: a coarser max error and interior
+// error draw fewer triangles, and per-pixel normals change the shading to limn-render's
+// --pixel-normals image (its own pipelines), not the interpolated normals' image.
+test('max error, interior error and per-pixel normals from the panel draw what limn-render draws with them', async (t) => {
+  const p = await newPage(browser);
+  try {
+    await p.goto(`${base()}/viewer/?model=../models/spot_d3.limn&size=${SIZE.join('x')}&samples=1`);
+    await settled(p);
+    const triangles = async () => +(await p.locator('#st-tris').textContent()).replace(/,/g, '');
+    const shotOf = async () => decodePng(await p.locator('#view').screenshot());
+    const set = async (change) => { const n = await frames(p); await change(); await settled(p, n + 1); };
+    const number = (id, v) => set(() => p.fill(id, v).then(() => p.locator(id).dispatchEvent('change')));
+    const byDefault = await triangles();
+    await number('#interiorError', '1');
+    const interior = await triangles();
+    assert.ok(interior < 0.9 * byDefault, `--interior-error 1 drew ${interior} triangles, without ${byDefault}`);
+    const interpolated = await shotOf();
+    await set(() => p.getByLabel('Per-pixel normals').check());
+    assert.equal(await triangles(), interior, 'per-pixel normals changed the rates');
+    const perPixel = await shotOf();
+    const args = ['--view', '-30,20', '--samples', '1', '--interior-error', '1', '--pixel-normals'];
+    t.diagnostic(check('spot, per-pixel normals', compare(perPixel, native(spot, args, 'spot-pixel-normals')), 1));
+    // The shading moves by a few levels where the interior's triangles are large (at 320x240
+    // few pixels move by more than 8/255), so any change of more than 1/255 counts.
+    const changed = compare(perPixel, interpolated, 1);
+    t.diagnostic(`per-pixel against interpolated normals: ${changed.off} of ${changed.covered} pixels off by more than 1/255`);
+    assert.ok(changed.off >= 0.02 * changed.covered, `per-pixel normals changed only ${changed.off} pixels`);
+    await number('#maxError', '0.25');
+    const coarse = await triangles();
+    assert.ok(coarse < 0.8 * interior, `--max-error 0.25 drew ${coarse} triangles, 0.1 ${interior}`);
+    assert.match(p.url(), /maxError=0.25&interiorError=1&pixelNormals=1/);
+    assert.equal(await p.locator('#command').textContent(),
+      'limn-render spot_d3.limn -o view.png --size 320x240 --view -30,20 --shade lit --samples 1 --max-error 0.25 --edge-pixels 32 --tess 64 --interior-error 1 --pixel-normals');
+    assert.deepEqual(p.problems, []);
+  } finally {
+    await p.close();
+  }
 });
 
 test('a truncated or damaged container dropped on the page shows the reader\'s error; the page goes on working', async (t) => {
