@@ -387,15 +387,18 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     return b;
 }
 
-IrregularBasis buildBoundaryBasis(const BasisConfiguration& c, uint32_t K) {
+IrregularBasis buildBoundaryBasis(const BasisConfiguration& c, uint32_t K, BoundaryRule rule) {
     if (!c.boundary || c.valence < 1 || c.valence > kMaxBasisValence || c.position >= c.valence || K < 1 ||
         K > uint32_t(kMaxDepth))
         throw std::logic_error("boundary basis: configuration or levels out of range");
     Mesh m = basisConfigurationMesh(c.valence, true);
     if (c.corner) m.tags.corners.push_back({0, kInfiniteSharpness});
-    SchemeOptions options; // the face-varying mesh's (fvar_surface.cpp)
-    options.boundary = BoundaryRule::EdgeOnly;
-    m.tags.boundary = BoundaryRule::EdgeOnly;
+    // Edge-only for the face-varying mesh (fvar_surface.cpp); the geometry's own rule for TBLS.
+    // Under edge-and-corner a vertex of one face is a corner (its configuration says so); the
+    // generated mesh's rim corners are beyond what one level under face 0 reads.
+    SchemeOptions options;
+    options.boundary = rule == BoundaryRule::None ? BoundaryRule::EdgeOnly : rule;
+    m.tags.boundary = options.boundary;
     // The face at the configuration's place in the vertex's fan, and its signature.
     Warnings warnings;
     Topology topo(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices);

@@ -87,12 +87,14 @@ IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);
 
 // The same for a boundary configuration (boundarySupport's), from a generated mesh of three rings
 // of quads around a boundary vertex with that many faces, refined one level with the builder's
-// own rules (the face-varying mesh's: edge-only boundaries, the vertex tagged a corner when it is
-// one). The program also holds the boundary sub-patches' phantom points (gatherControlPoints'
+// own rules under boundary rule `rule` (the face-varying mesh's is edge-only; the geometry's is
+// its mesh's, None read as edge-only: a face with a surface under None has its boundary edges
+// tagged sharp, which is what edge-only does) and the vertex tagged a corner when it is one. The program also holds the boundary sub-patches' phantom points (gatherControlPoints'
 // 2 a - b, columns first), so its weights give the ptex-frame control points as the tables
 // evaluate them. Throws where the configuration is not self-similar (the sub-patch at the vertex
 // one level down must be the same configuration) or a sub-patch is not regular.
-IrregularBasis buildBoundaryBasis(const BasisConfiguration& configuration, uint32_t levels);
+IrregularBasis buildBoundaryBasis(const BasisConfiguration& configuration, uint32_t levels,
+                                  BoundaryRule rule = BoundaryRule::EdgeOnly);
 
 // The weights of K bands (IrregularBasis::weights' layout) from a program over `support` points
 // (2n + 8 for an interior basis), with the builder's own arithmetic (double sums in the program's order, each weight

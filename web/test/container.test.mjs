@@ -115,8 +115,8 @@ test('byte flips are accepted or refused with a LimnError, never another excepti
 test('BLND is refused clearly, a newer chunk version names itself', () => {
   const chunks = parseContainer(small());
   expectLimnError(build([...chunks, { type: 'BLND', version: 1, payload: new Uint8Array(24) }]), /chunk BLND: blending surfaces are not supported here/);
-  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 7 } : c));
-  expectLimnError(build(newer), /chunk TBLS: version 7 is newer/);
+  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 8 } : c));
+  expectLimnError(build(newer), /chunk TBLS: version 8 is newer/);
   const unknown = [...chunks, { type: 'ZZZZ', version: 9, payload: new Uint8Array(5) }];
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
