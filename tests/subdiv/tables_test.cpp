@@ -471,9 +471,9 @@ TEST(IrregularSurface, SmoothFacesBelowDepthMatchOpenSubdiv) {
     }
 }
 
-// Faces around one boundary vertex (a smooth boundary vertex of any number of faces, or a corner)
-// take a basis per configuration (TBLS version 7) instead of K more levels, under the mesh's own
-// boundary rule: the surface evaluateIrregular gives there is OpenSubdiv's limit (isolation 10)
+// Faces around one boundary vertex (a smooth boundary vertex of any number of faces, or a corner;
+// or a vertex whose sector is bounded by infinitely sharp creases) take a basis per configuration
+// (TBLS version 7) instead of K more levels, under the mesh's own boundary rule: the surface evaluateIrregular gives there is OpenSubdiv's limit (isolation 10)
 // wherever it says it is exact, on a 1/32 grid of every irregular face, within 1e-6 of the
 // diagonal and 0.05 degrees; each such face's surface lies in its support's box (the cull
 // pass's hull test: the boundary rules are convex too, whatever the phantom points' weights);
@@ -484,7 +484,9 @@ TEST(IrregularSurface, BoundaryBasesMatchOpenSubdiv) {
                                       std::tuple{"osd/catmark/catmark_xord_boundary.obj", 1,
                                                  std::optional<BoundaryRule>{BoundaryRule::EdgeOnly}},
                                       std::tuple{"osd/catmark/catmark_xord_boundary.obj", 2,
-                                                 std::optional<BoundaryRule>{BoundaryRule::EdgeAndCorner}}}) {
+                                                 std::optional<BoundaryRule>{BoundaryRule::EdgeAndCorner}},
+                                      // Sectors bounded by infinitely sharp creases.
+                                      std::tuple{"osd/catmark/catmark_cubes_infsharp.obj", 2, std::optional<BoundaryRule>{}}}) {
         SCOPED_TRACE(std::string(model) + " d" + std::to_string(depth));
         Fixture f;
         Warnings w;
