@@ -102,10 +102,14 @@ struct TablesOptions {
     // to depth+K, which versions 3 and 4 can hold (tests compare the two).
     bool smoothFacesBelowDepth = true;
     // Faces around one boundary vertex (smooth or a corner) with regular neighbours also take a
-    // basis, one per configuration (irregular_basis.h, buildBoundaryBasis), instead of being
-    // refined. Only the face-varying UV surface sets it (FVSF version 3): TBLS holds interior
-    // bases only, and the geometry's GPU evaluation knows no other.
-    bool boundaryBases = false;
+    // basis, one per configuration (irregular_basis.h, buildBoundaryBasis, under the mesh's
+    // boundary rule), instead of being refined (FVSF version 3, TBLS version 7). Off: refined
+    // (TBLS version 6 can hold such tables; tests compare the two).
+    bool boundaryBases = true;
+    // Faces around one interior extraordinary vertex keep their basis where boundaries, creases
+    // or sharp vertices lie on their support's rim only (smoothSupport's featuresBeyondCorners:
+    // the stencils of one level read features at the face's corners only).
+    bool basisRimFeatures = true;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;
@@ -156,13 +160,15 @@ struct Tables {
     std::vector<IrregularFace> irregularLeaves;
     // Irregular faces around one smooth interior extraordinary vertex are not refined further:
     // their sub-patches come from per-valence weights of their 2n + 8 surrounding level-N
-    // points (irregular_basis.h). A root node of kNodeBasis codes names one of these. So do
+    // points (irregular_basis.h); since version 7 also those around one boundary vertex or in a
+    // sector between infinitely sharp creases, from a basis per configuration over its own
+    // support size. A root node of kNodeBasis codes names one of these. So do
     // the basis codes of deeper nodes (version 5): descendants at level N + j whose creases
     // have decayed, their support at that level, the basis's first levels - j bands.
     struct SmoothIrregular {
         uint32_t basis;  // into irregularBases
         uint32_t corner; // the extraordinary corner (ptex order)
-        uint32_t first;  // its 2n + 8 points: smoothPoints[first ...]
+        uint32_t first;  // its basis's supportSize() points: smoothPoints[first ...]
     };
     std::vector<IrregularBasis> irregularBases;
     std::vector<SmoothIrregular> smoothIrregular;
@@ -181,6 +187,7 @@ struct Tables {
 struct IrregularSurfaceCounts {
     size_t basis = 0, subPatches = 0, bilinear = 0;
     size_t basisBelow = 0; // smooth faces below level N in the sub-patch quadtrees (TBLS version 5)
+    size_t boundaryBasis = 0; // of `basis`, those around a boundary vertex (TBLS version 7)
     uint32_t exactLevels = 0; // the smallest K among the faces that are not bilinear
 };
 IrregularSurfaceCounts irregularSurfaceCounts(const Tables& tables);
