@@ -24,11 +24,17 @@ void gatherControlPoints(const Patch& p, std::span<const glm::dvec3> V, glm::dve
 
 namespace {
 
-glm::dvec3 apply(const StencilTable& table, size_t row, std::span<const glm::dvec3> V) {
+// A stencil row's sum, relative to its first point: float weights sum to their exact sum (1 for
+// a point, 0 for a tangent) only to a float step, and over absolute coordinates that step times
+// the points' distance from the origin moves the result (normals beside catmark_bishop's poles
+// 2 degrees off, 4 once the mesh was 10 units away). `weightsSum`: the exact sum.
+glm::dvec3 apply(const StencilTable& table, size_t row, std::span<const glm::dvec3> V, double weightsSum = 1) {
+    if (table.start[row] == table.start[row + 1]) return glm::dvec3(0.0);
+    const glm::dvec3 origin = V[table.indices[table.start[row]]];
     glm::dvec3 sum(0.0);
     for (uint32_t i = table.start[row]; i < table.start[row + 1]; ++i)
-        sum += double(table.weights[i]) * V[table.indices[i]];
-    return sum;
+        sum += double(table.weights[i]) * (V[table.indices[i]] - origin);
+    return weightsSum * origin + sum;
 }
 
 } // namespace
@@ -170,8 +176,8 @@ std::vector<LimitPoint> evaluateLimitPoints(const Tables& t, std::span<const glm
     std::vector<LimitPoint> out(t.limitPosition.rows());
     for (size_t i = 0; i < out.size(); ++i) {
         out[i].position = apply(t.limitPosition, i, V);
-        out[i].tangent1 = apply(t.limitTangent1, i, V);
-        out[i].tangent2 = apply(t.limitTangent2, i, V);
+        out[i].tangent1 = apply(t.limitTangent1, i, V, 0);
+        out[i].tangent2 = apply(t.limitTangent2, i, V, 0);
         out[i].normal = glm::normalize(glm::cross(out[i].tangent1, out[i].tangent2));
     }
     return out;
@@ -187,10 +193,15 @@ void smoothSubPatchControlPoints(const Tables& t, uint32_t smooth, std::span<con
     const IrregularBasis& b = t.irregularBases[f.basis];
     const uint32_t M = b.supportSize();
     const float* w = b.weights.data() + (size_t(k - 1) * 3 + (q - 1)) * 16 * M;
+    // Relative to the first support point, as the shader's derivatives are: a row's float weights
+    // sum to 1 only to a float step, and that step times the points' distance from the origin
+    // moved each control point differently (catmark_bishop d3 beside its valence-24 poles, whose
+    // bands are a few 1e-7 across: normals 2 degrees off; translated by 10 units, 4 degrees).
+    const glm::dvec3 origin = V[t.smoothPoints[f.first]];
     for (int j = 0; j < 16; ++j) {
         glm::dvec3 c(0.0);
-        for (uint32_t i = 0; i < M; ++i) c += double(w[size_t(j) * M + i]) * V[t.smoothPoints[f.first + i]];
-        P[j % 4][j / 4] = c;
+        for (uint32_t i = 0; i < M; ++i) c += double(w[size_t(j) * M + i]) * (V[t.smoothPoints[f.first + i]] - origin);
+        P[j % 4][j / 4] = origin + c;
     }
 }
 
