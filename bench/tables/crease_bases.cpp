@@ -1,0 +1,70 @@
+// Per-configuration bases for decaying-crease faces, a builder-side prototype
+// (lib/subdiv/crease_basis.h; docs/irregular.md, "Decaying-crease configurations"): per mesh and
+// depth, how many quadtree faces take a chain, how many configurations and band programs there
+// are, whether the chains' sub-patch points are the quadtree's (bitwise), and what they would
+// store. One JSON object per line on stdout, a readable line on stderr.
+// Usage: bench_crease_bases [-K 6] MESH:DEPTH...
+#include "mesh/import.h"
+#include "subdiv/crease_basis.h"
+#include "topology/features.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+
+using namespace limn;
+
+int main(int argc, char** argv) {
+    int K = 6, first = 1;
+    if (argc > 2 && std::string(argv[1]) == "-K") K = std::atoi(argv[2]), first = 3;
+    if (first >= argc) {
+        std::fprintf(stderr, "usage: bench_crease_bases [-K levels] MESH:DEPTH...\n");
+        return 2;
+    }
+    for (int i = first; i < argc; ++i) {
+        const std::string arg = argv[i];
+        const size_t colon = arg.rfind(':');
+        if (colon == std::string::npos) {
+            std::fprintf(stderr, "bench_crease_bases: %s: expected MESH:DEPTH\n", arg.c_str());
+            return 2;
+        }
+        try {
+            Warnings warnings;
+            const Mesh mesh = importMeshFile(arg.substr(0, colon), warnings);
+            TablesOptions opts;
+            opts.depth = std::atoi(arg.c_str() + colon + 1);
+            opts.irregularLevels = K;
+            const auto t0 = std::chrono::steady_clock::now();
+            const CreaseBasisStudy s = studyCreaseBases(mesh, resolveSchemeOptions(mesh.tags, {}), opts, warnings);
+            const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::string name = arg.substr(0, colon);
+            name = name.substr(name.find_last_of('/') + 1);
+            std::printf("{\"mesh\":\"%s\",\"depth\":%d,\"K\":%d,\"quadtree_faces\":%zu,\"qualifying\":%zu,"
+                        "\"configurations\":%zu,\"band_programs\":%zu,\"end_leaf\":%zu,\"end_smooth\":%zu,"
+                        "\"end_regular\":%zu,\"bands\":%zu,\"max_bands\":%zu,\"kinds_bspline\":%zu,"
+                        "\"kinds_crease\":%zu,\"kinds_boundary\":%zu,\"points\":%zu,\"bitwise\":%zu,"
+                        "\"max_difference\":%.3g,\"deduped_bitwise\":%zu,\"deduped_max_difference\":%.3g,"
+                        "\"structure_mismatches\":%zu,\"level_n_mismatches\":%zu,\"program_bytes\":%zu,"
+                        "\"face_bytes\":%zu,\"support_points\":%zu,\"key_seconds\":%.6f,\"chain_seconds\":%.6f,"
+                        "\"study_seconds\":%.3f}\n",
+                        name.c_str(), opts.depth, K, s.quadtreeFaces, s.qualifying, s.configurations, s.bandPrograms,
+                        s.endLeaf, s.endSmooth, s.endRegular, s.bands, s.maxBands, s.kindsBSpline, s.kindsCrease,
+                        s.kindsBoundary, s.pointsCompared, s.pointsBitwise, s.maxDifference, s.dedupedBitwise,
+                        s.dedupedMaxDifference, s.structureMismatches, s.levelNMismatches, s.programBytes,
+                        s.faceBytes, s.supportPoints, s.keySeconds, s.chainSeconds, total);
+            std::fprintf(stderr,
+                         "%-24s d%d: %zu/%zu quadtree faces with a chain, %zu configurations, %zu band programs "
+                         "(%zu B), ends leaf/smooth/regular %zu/%zu/%zu; points %zu, bitwise %zu (deduped %zu), "
+                         "max %.3g (deduped %.3g), structure %zu\n",
+                         name.c_str(), opts.depth, s.qualifying, s.quadtreeFaces, s.configurations, s.bandPrograms,
+                         s.programBytes, s.endLeaf, s.endSmooth, s.endRegular, s.pointsCompared, s.pointsBitwise,
+                         s.dedupedBitwise, s.maxDifference, s.dedupedMaxDifference, s.structureMismatches);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "bench_crease_bases: %s: %s\n", arg.c_str(), e.what());
+            return 1;
+        }
+    }
+    return 0;
+}

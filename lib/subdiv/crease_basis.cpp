@@ -1,0 +1,252 @@
+#include "subdiv/crease_basis.h"
+
+#include "subdiv/tables_build.h"
+
+#include <algorithm>
+#include <bit>
+#include <stdexcept>
+
+namespace limn {
+
+bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& support,
+                   std::vector<uint32_t>& key, std::vector<uint32_t>* faces) {
+    const Topology& T = L.topo;
+    if (T.faceSize(f) != 4 || L.noLimit[f]) return false;
+    const FaceFrame& fr = L.frames[f];
+    const uint32_t h0f = T.faceHalfedge(f);
+    uint32_t corners[4];
+    for (int k = 0; k < 4; ++k) corners[k] = T.vertex(h0f + (fr.rotation + corner + k) % 4);
+    auto atCorner = [&](uint32_t v) { return v == corners[0] || v == corners[1] || v == corners[2] || v == corners[3]; };
+    support.clear();
+    key.clear();
+    if (faces) faces->clear();
+    // A linear search, as boundarySupport's: supports are small.
+    auto index = [&](uint32_t v) -> uint32_t {
+        const auto it = std::find(support.begin(), support.end(), v);
+        if (it != support.end()) return uint32_t(it - support.begin());
+        support.push_back(v);
+        return uint32_t(support.size() - 1);
+    };
+    std::vector<uint32_t> fan;
+    for (int j = 0; j < 4; ++j) {
+        const uint32_t hc = h0f + (fr.rotation + corner + j) % 4;
+        if (T.vertexIsNonManifold(T.vertex(hc))) return false;
+        fan.assign(1, hc);
+        bool closed = false;
+        for (uint32_t h = T.rotateCCW(hc); h != kNone; h = T.rotateCCW(h)) {
+            if (h == hc) {
+                closed = true;
+                break;
+            }
+            if (fan.size() > kMaxBasisValence) return false;
+            fan.push_back(h);
+        }
+        if (!closed)
+            for (uint32_t h = T.rotateCW(hc); h != kNone; h = T.rotateCW(h)) {
+                if (fan.size() > kMaxBasisValence) return false;
+                fan.push_back(h);
+            }
+        key.push_back(uint32_t(fan.size()) << 1 | (closed ? 1u : 0u));
+        for (uint32_t h : fan) {
+            const uint32_t g = T.face(h);
+            if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
+            if (faces) faces->push_back(g);
+            uint32_t x = h;
+            for (int c = 0; c < 4; ++c, x = T.next(x)) {
+                const uint32_t v = T.vertex(x);
+                key.push_back(index(v));
+                const bool read = atCorner(v) || atCorner(T.vertex(T.next(x)));
+                key.push_back(read ? std::bit_cast<uint32_t>(L.edgeSharpness[T.edge(x)]) : 0u);
+            }
+            if (support.size() > 2 * size_t(kMaxBasisValence) + 8) return false;
+        }
+    }
+    for (uint32_t v : corners) key.push_back(std::bit_cast<uint32_t>(L.vertexSharpness[v]));
+    return true;
+}
+
+namespace {
+
+// A level of the faces in `faces` (sorted by index, so that every stencil's entries come in the
+// order of the level's own: vertex rings start at the lowest half-edge, edges at their first),
+// vertex i being support[i], with their sharpness; the copy's own boundary (the rim, where the
+// level goes on) infinitely sharp, which only the rim's rows read. Face f's frame turned so that
+// `corner` is at (0, 0).
+Level localLevel(const Level& L, const std::vector<uint32_t>& support, std::vector<uint32_t> faces, uint32_t f,
+                 int corner, uint32_t& face0) {
+    const Topology& T = L.topo;
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    auto local = [&](uint32_t v) { return uint32_t(std::find(support.begin(), support.end(), v) - support.begin()); };
+    std::vector<uint32_t> offsets{0}, corners;
+    for (uint32_t g : faces) {
+        for (uint32_t k = 0; k < 4; ++k) corners.push_back(local(T.vertex(T.faceHalfedge(g) + k)));
+        offsets.push_back(uint32_t(corners.size()));
+    }
+    const uint32_t M = uint32_t(support.size());
+    Topology topo(M, offsets, corners);
+    Sharpness s;
+    s.edge.assign(topo.edgeCount(), 0.0f);
+    s.vertex.resize(M);
+    s.faceNoLimit.assign(faces.size(), 0);
+    s.vertexOnUnsharpBoundary.assign(M, 0);
+    for (uint32_t i = 0; i < faces.size(); ++i)
+        for (uint32_t k = 0; k < 4; ++k) {
+            const uint32_t lh = topo.faceHalfedge(i) + k, rh = T.faceHalfedge(faces[i]) + k;
+            s.edge[topo.edge(lh)] =
+                topo.twin(lh) == kNone && T.twin(rh) != kNone ? kInfiniteSharpness : L.edgeSharpness[T.edge(rh)];
+        }
+    for (uint32_t i = 0; i < M; ++i) s.vertex[i] = L.vertexSharpness[support[i]];
+    Level out = makeBaseLevel(std::move(topo), std::move(s));
+    face0 = uint32_t(std::find(faces.begin(), faces.end(), f) - faces.begin());
+    out.frames[face0].rotation = uint8_t((L.frames[f].rotation + corner) % 4);
+    return out;
+}
+
+CreaseBandKind kindOf(const Patch& p) { return {p.boundary, p.crease, p.sharpness}; }
+
+// The program of one band: the rows of `child` (refined from `parent` with stencils `st`) that
+// the patches and the next support read, over the parent's support `input` (basisFromMesh's
+// construction, irregular_basis.cpp, with any patches and support).
+void bandProgram(const Level& child, const LevelStencils& st, const std::vector<uint32_t>& input,
+                 uint32_t parentVertices, const std::vector<Patch>& patches, const std::vector<uint32_t>& next,
+                 BasisProgram& p, std::vector<std::array<uint32_t, 16>>& controlRows) {
+    const size_t M = input.size();
+    std::vector<uint32_t> inputOf(parentVertices, kNone);
+    for (size_t i = 0; i < M; ++i) inputOf[input[i]] = uint32_t(i);
+    const Level& L = child;
+    std::vector<uint8_t> needed(L.topo.vertexCount(), 0);
+    for (const Patch& sp : patches)
+        for (int i = 0; i < 16; ++i)
+            if (!isPhantom(sp.boundary, i)) needed[sp.cv[i]] = 1;
+    for (uint32_t v : next) needed[v] = 1;
+    auto markFacePoints = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
+                              const std::vector<StencilEntry>& entries) {
+        for (uint32_t i = 0; i < count; ++i)
+            if (needed[first + i])
+                for (uint32_t k = start[i]; k < start[i + 1]; ++k)
+                    if (entries[k].fromFacePoint) needed[entries[k].index] = 1;
+    };
+    markFacePoints(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+    markFacePoints(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    std::vector<uint32_t> row(needed.size(), kNone);
+    uint32_t rows = 0;
+    for (size_t v = 0; v < needed.size(); ++v)
+        if (needed[v]) row[v] = rows++;
+    p = BasisProgram{};
+    auto in = [&](uint32_t v) {
+        if (inputOf[v] == kNone) throw std::logic_error("crease basis: a row reads outside the support");
+        return inputOf[v];
+    };
+    for (uint32_t i = 0; i < L.facePointCount; ++i) {
+        if (!needed[i]) continue;
+        for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) {
+            p.source.push_back(in(st.faceVertices[k]));
+            p.weight.push_back(1.0f);
+        }
+        p.start.push_back(uint32_t(p.source.size()));
+        p.averaged.push_back(1);
+    }
+    auto weighted = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
+                        const std::vector<StencilEntry>& stencil) {
+        for (uint32_t i = 0; i < count; ++i) {
+            if (!needed[first + i]) continue;
+            for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
+                const StencilEntry& e = stencil[k];
+                p.source.push_back(e.fromFacePoint ? uint32_t(M) + row[e.index] : in(e.index));
+                p.weight.push_back(static_cast<float>(e.weight));
+            }
+            p.start.push_back(uint32_t(p.source.size()));
+            p.averaged.push_back(0);
+        }
+    };
+    weighted(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+    weighted(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    // Phantom points are left to the evaluator (gatherControlPoints, from the kind's bits): a
+    // phantom's row is kNone.
+    controlRows.clear();
+    for (const Patch& sp : patches) {
+        std::array<uint32_t, 16> r{};
+        for (int i = 0; i < 16; ++i) r[size_t(i)] = isPhantom(sp.boundary, i) ? kNone : row[sp.cv[i]];
+        controlRows.push_back(r);
+    }
+    for (uint32_t v : next) p.nextSupport.push_back(row[v]);
+}
+
+} // namespace
+
+bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const SchemeOptions& options,
+                      const TablesOptions& opts, CreaseChain& chain) {
+    std::vector<uint32_t> support, faces, key;
+    chain = CreaseChain{};
+    if (K == 0 || !creaseSupport(L, f, corner, support, chain.key, &faces)) return false;
+    uint32_t chainFace = 0;
+    Level cur = localLevel(L, support, faces, f, corner, chainFace);
+    std::vector<uint32_t> curSupport;
+    bool same = creaseSupport(cur, chainFace, 0, curSupport, key) && key == chain.key;
+    for (uint32_t i = 0; same && i < curSupport.size(); ++i) same = curSupport[i] == i;
+    if (!same)
+        throw std::logic_error("crease basis: the copy's support is not the face's");
+    std::vector<uint32_t> ptexBase(cur.topo.faceCount());
+    for (uint32_t g = 0; g < ptexBase.size(); ++g) ptexBase[g] = cur.frames[g].ptex;
+    std::vector<uint32_t> identity;
+    for (uint32_t j = 1; j <= K; ++j) {
+        std::vector<uint8_t> selected(cur.topo.faceCount(), 0);
+        selected[chainFace] = 1;
+        LevelStencils st;
+        Level child = refineLevel(cur, oneRing(cur.topo, selected), options, ptexBase, st);
+        const Regularity r = analyzeRegularity(child.topo, child.edgeSharpness, child.vertexSharpness, child.noLimit,
+                                               opts.infSharpPatches, opts.singleCreasePatches);
+        identity.resize(child.topo.vertexCount());
+        for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
+        const FaceFrame& pf = cur.frames[chainFace];
+        uint32_t centre = kNone;
+        std::vector<Patch> patches(3);
+        for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) {
+            if (child.faceParent[cf] != chainFace) continue;
+            const FaceFrame& c = child.frames[cf];
+            const int q = (c.u0 > pf.u0 ? 1 : 0) | (c.v0 > pf.v0 ? 2 : 0);
+            if (q == 0) {
+                centre = cf;
+                continue;
+            }
+            if (!r.faceRegular[cf]) return false;
+            patches[q == 1 ? 0 : q == 3 ? 1 : 2] = gatherPatch(child, cf, 0, identity, r.faceCreaseEdge[cf]);
+        }
+        if (centre == kNone) throw std::logic_error("crease basis: no child at the feature corner");
+        CreaseBand band;
+        band.key = key;
+        band.support = uint32_t(curSupport.size());
+        for (size_t q = 0; q < 3; ++q) band.kind[q] = kindOf(patches[q]);
+        std::vector<uint32_t> next;
+        int c2 = -1;
+        uint32_t valence = 0;
+        bool last = true;
+        if (r.faceRegular[centre]) {
+            chain.end = CreaseEnd::Regular;
+            patches.push_back(gatherPatch(child, centre, 0, identity, r.faceCreaseEdge[centre]));
+            band.centreKind = kindOf(patches.back());
+        } else if (j < K && smoothSupport(child, centre, c2, valence, next) && c2 == 0) {
+            chain.end = CreaseEnd::Smooth;
+            chain.valence = valence;
+        } else if (j == K) {
+            chain.end = CreaseEnd::Leaf;
+        } else {
+            if (!creaseSupport(child, centre, 0, next, key)) return false;
+            last = false;
+        }
+        std::vector<std::array<uint32_t, 16>> rows;
+        bandProgram(child, st, curSupport, cur.topo.vertexCount(), patches, next, band.program, rows);
+        for (size_t q = 0; q < 3; ++q)
+            std::copy(rows[q].begin(), rows[q].end(), band.program.controlRow.begin() + 16 * long(q));
+        if (rows.size() == 4) band.centreRow = rows[3];
+        chain.bands.push_back(std::move(band));
+        if (last) break;
+        cur = std::move(child);
+        chainFace = centre;
+        curSupport = std::move(next);
+    }
+    return true;
+}
+
+} // namespace limn

@@ -1,0 +1,104 @@
+// A measured prototype, builder side only (nothing writes or reads it): per-configuration bases
+// for the irregular faces whose feature corner is on semi-sharp creases that have not decayed at
+// level N (docs/irregular.md, "Decaying-crease configurations"). Today such a face is refined K
+// more levels (its quadtree); but the sub-patches of its three quadrants away from the feature
+// corner, band after band, follow from its support by one-level programs that depend only on
+// the local topology and the sharpness the stencils of that level read (Stam's observation for
+// smooth vertices, with a program per band instead of one repeated: the sharpness decreases
+// band by band until the crease has decayed, then the per-valence basis goes on).
+#pragma once
+
+#include "mesh/mesh.h"
+#include "subdiv/irregular_basis.h"
+#include "subdiv/level.h"
+#include "subdiv/tables.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace limn {
+
+// The kind of a band's sub-patch, as the quadtree's Patch holds it: boundary and crease bits (in
+// the canonical frame: the feature corner at (0, 0)) and the crease's sharpness.
+struct CreaseBandKind {
+    uint8_t boundary = 0, crease = 0;
+    float sharpness = 0;
+    bool operator==(const CreaseBandKind&) const = default;
+};
+
+// One band (one level below the chain face): a program over the chain face's support at that
+// level whose rows give the sub-patches of its quadrants 1..3 (controlRow, canonical frame, as
+// BasisProgram's) and the next band's support (nextSupport; empty at the last band).
+struct CreaseBand {
+    std::vector<uint32_t> key; // the chain face's configuration at this band (creaseSupport)
+    uint32_t support = 0;      // its points
+    BasisProgram program;
+    std::array<CreaseBandKind, 3> kind{}; // quadrants 1, 3, 2 (BasisProgram's order)
+    // The last band of a chain that ends Regular: the corner quadrant's patch too.
+    std::array<uint32_t, 16> centreRow{};
+    CreaseBandKind centreKind;
+};
+
+// How a chain ends: at level N + K with the corner's child still irregular (a leaf, as the
+// quadtree's); with the corner's child a smooth face of the per-valence basis (the crease has
+// decayed; nextSupport in smoothSupport's order); or with the corner's child a regular patch (a
+// dart's end once its crease has decayed).
+enum class CreaseEnd : uint8_t { Leaf, Smooth, Regular };
+
+struct CreaseChain {
+    std::vector<uint32_t> key; // band 1's
+    std::vector<CreaseBand> bands;
+    CreaseEnd end = CreaseEnd::Leaf;
+    uint32_t valence = 0; // CreaseEnd::Smooth: the basis that goes on
+};
+
+// The support of face f of level L seen from its ptex corner `corner`: the vertices of the faces
+// around its four corners (corners from `corner` counter-clockwise, each fan counter-clockwise from
+// f, then clockwise from f where it is open, each face's vertices from that corner on, each vertex
+// once), and the key of its configuration: per corner its fan's length and whether it closed, per
+// fan face its four vertices' support indices and, for its edges at a corner, their sharpness
+// (the bits of the float), then the corners' vertex sharpness. That is what the stencils of one
+// level read for the face's children and the next support: the corners' vertex points and the
+// edge points of the edges at the corners (and their children's sharpness: the Chaikin rule
+// reads only edges at the same vertex). `faces` (optional): the fans' faces, with repeats.
+bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& support,
+                   std::vector<uint32_t>& key, std::vector<uint32_t>* faces = nullptr);
+
+// The chain of face f of level L with feature corner `corner` over `levels` bands, from a copy
+// of its support's faces (their sharpness; the copy's rim edges infinitely sharp, which no
+// stencil of the programs reads) refined band by band by the table builder's refineLevel, only
+// around the chain face (its isolation). False where some band's three other quadrants are not
+// all regular patches (the face is not of this kind: two feature corners, a bent crease).
+bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t levels, const SchemeOptions& options,
+                      const TablesOptions& opts, CreaseChain& chain);
+
+// What studyCreaseBases measured on one mesh (bench/tables/crease_bases.cpp prints it).
+struct CreaseBasisStudy {
+    size_t quadtreeFaces = 0; // roots of T_N that are neither smooth faces nor bilinear
+    size_t qualifying = 0;    // of those, faces with a chain
+    size_t configurations = 0, bandPrograms = 0; // distinct band-1 keys; distinct band keys
+    size_t endLeaf = 0, endSmooth = 0, endRegular = 0;
+    size_t bands = 0, maxBands = 0;
+    size_t kindsBSpline = 0, kindsCrease = 0, kindsBoundary = 0; // per distinct band's quadrant
+    // The chains' sub-patch control points (and a Smooth end's support) against the tables'
+    // quadtree, evaluated by evaluateVertices: each face's own chain, and the chain of the first
+    // face of its configuration (what a per-configuration basis stores).
+    size_t pointsCompared = 0, pointsBitwise = 0, dedupedBitwise = 0;
+    double maxDifference = 0, dedupedMaxDifference = 0; // relative to the box's diagonal
+    size_t structureMismatches = 0; // quadrant codes or patch kinds that differ
+    size_t levelNMismatches = 0;    // this study's level-N points against the tables' (corners)
+    // Bytes a format would add: the distinct band programs (TBLS version 5's program encoding),
+    // 9 bytes of kinds per band program, and per qualifying face two bytes plus its support's
+    // points (at two bytes each, about what version 5's smooth points take).
+    size_t programBytes = 0, faceBytes = 0;
+    size_t supportPoints = 0;
+    double keySeconds = 0, chainSeconds = 0; // keys of every quadtree face; one chain per configuration
+};
+
+// Builds `mesh`'s tables as buildTables does, and for every quadtree face of T_N with a chain:
+// counts, checks and sizes above. Throws as buildTables does.
+CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options, const TablesOptions& opts,
+                                  Warnings& warnings);
+
+} // namespace limn
