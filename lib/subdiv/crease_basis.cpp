@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <map>
 #include <stdexcept>
 
 namespace limn {
@@ -63,6 +64,20 @@ bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>
     }
     for (uint32_t v : corners) key.push_back(std::bit_cast<uint32_t>(L.vertexSharpness[v]));
     return true;
+}
+
+std::vector<uint32_t> programKey(const std::vector<uint32_t>& key, float sharp) {
+    std::vector<uint32_t> out = key;
+    auto clamp = [&](uint32_t& x) {
+        if (std::bit_cast<float>(x) >= sharp) x = std::bit_cast<uint32_t>(sharp);
+    };
+    size_t at = 0;
+    for (int j = 0; j < 4; ++j) {
+        const size_t faces = out[at++] >> 1;
+        for (size_t k = 0; k < 4 * faces; ++k, at += 2) clamp(out[at + 1]);
+    }
+    for (; at < out.size(); ++at) clamp(out[at]);
+    return out;
 }
 
 namespace {
@@ -247,6 +262,46 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
         curSupport = std::move(next);
     }
     return true;
+}
+
+void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, std::vector<uint8_t>& T,
+                     AdaptiveLevels& a) {
+    // A configuration's chain is the same for every face of its key (the study checks it), so
+    // it is built once; a key without one is remembered too.
+    std::map<std::vector<uint32_t>, int> chainOf;
+    std::vector<uint32_t> support, key;
+    const Topology& topo = L.topo;
+    // The feature corner is tried first: an extraordinary vertex, else one with a sharp vertex
+    // or edge (a regular crease vertex beside it is also one: its chain fails at once).
+    auto rank = [&](uint32_t v) {
+        if (topo.vertexFaceCount(v) != (topo.vertexIsBoundary(v) ? 2u : 4u)) return 0;
+        if (L.vertexSharpness[v] != 0) return 1;
+        for (uint32_t h : topo.vertexOutgoing(v))
+            if (L.edgeSharpness[topo.edge(h)] != 0) return 1;
+        return 2;
+    };
+    for (uint32_t f = 0; f < topo.faceCount(); ++f) {
+        if (!T[f] || topo.faceSize(f) != 4) continue;
+        int order[4] = {0, 1, 2, 3}, ranks[4];
+        for (int c = 0; c < 4; ++c) ranks[c] = rank(topo.vertex(topo.faceHalfedge(f) + (L.frames[f].rotation + c) % 4));
+        std::stable_sort(order, order + 4, [&](int x, int y) { return ranks[x] < ranks[y]; });
+        for (int c : order) {
+            if (ranks[c] == 2) break; // a smooth regular corner has no chain
+            if (!creaseSupport(L, f, c, support, key)) continue;
+            auto [it, added] = chainOf.try_emplace(key, -1);
+            if (added) {
+                CreaseChain chain;
+                if (buildCreaseChain(L, f, c, a.K, options, opts, chain)) {
+                    a.creaseChains.push_back(std::move(chain));
+                    it->second = int(a.creaseChains.size() - 1);
+                }
+            }
+            if (it->second < 0) continue;
+            a.creaseFaces.push_back({f, uint32_t(it->second), uint32_t(c), support, L.depth});
+            T[f] = 0;
+            break;
+        }
+    }
 }
 
 } // namespace limn

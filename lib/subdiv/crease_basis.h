@@ -65,6 +65,13 @@ struct CreaseChain {
 bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& support,
                    std::vector<uint32_t>& key, std::vector<uint32_t>* faces = nullptr);
 
+// The key of a band's program: `key` with every sharpness of at least `sharp` as `sharp`. Rules
+// read sharpness only below 1 (a crease's edge point is its midpoint from 1 on; a vertex's rule
+// changes where a child's sharpness reaches 0, blended by the parent's fraction), so bands whose
+// keys differ only above that share their program: a crease of sharpness 7.9 runs one program
+// for its first bands, and only the kinds' sharpness (the single-crease patches') changes.
+std::vector<uint32_t> programKey(const std::vector<uint32_t>& key, float sharp);
+
 // The chain of face f of level L with feature corner `corner` over `levels` bands, from a copy
 // of its support's faces (their sharpness; the copy's rim edges infinitely sharp, which no
 // stencil of the programs reads) refined band by band by the table builder's refineLevel, only
@@ -88,6 +95,12 @@ struct CreaseBasisStudy {
     double maxDifference = 0, dedupedMaxDifference = 0; // relative to the box's diagonal
     size_t structureMismatches = 0; // quadrant codes or patch kinds that differ
     size_t levelNMismatches = 0;    // this study's level-N points against the tables' (corners)
+    // Band programs by programKey (sharpness from 2 on clamped): how many distinct, whether
+    // every band of one such key has the same program (rows, weights, control rows), and how
+    // many bands repeat the previous band's program (the refinements a builder could skip).
+    size_t sharedPrograms = 0, sharedMismatches = 0, repeatedBands = 0;
+    size_t sharedProgramBytes = 0, bandKindBytes = 0;
+    double sharedMaxDifference = 0; // between such programs' points, support values of size ~1
     // Bytes a format would add: the distinct band programs (TBLS version 5's program encoding),
     // 9 bytes of kinds per band program, and per qualifying face two bytes plus its support's
     // points (at two bytes each, about what version 5's smooth points take).
@@ -100,5 +113,19 @@ struct CreaseBasisStudy {
 // counts, checks and sizes above. Throws as buildTables does.
 CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options, const TablesOptions& opts,
                                   Warnings& warnings);
+
+// What tables would hold with decaying-crease chains (TablesOptions::creaseChainsPrototype):
+// the TBLS chunk of the tables built with opts (payload bytes, as limn-info's), and, where
+// opts.creaseChainsPrototype is set, the faces taken, their chains and the bytes a format would
+// add for them: the programs once per programKey (sharpness from 2 on clamped) and 15 bytes of
+// kinds per band of each chain (CreaseBasisStudy's sharedProgramBytes + bandKindBytes), and
+// faceBytes as CreaseBasisStudy's.
+struct CreaseTablesEstimate {
+    size_t tablesBytes = 0;
+    size_t faces = 0, chains = 0, bandPrograms = 0;
+    size_t programBytes = 0, faceBytes = 0;
+};
+CreaseTablesEstimate estimateCreaseTables(const Mesh& mesh, const SchemeOptions& options, const TablesOptions& opts,
+                                          Warnings& warnings);
 
 } // namespace limn

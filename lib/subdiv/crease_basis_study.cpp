@@ -3,6 +3,7 @@
 #include "subdiv/crease_basis.h"
 #include "subdiv/evaluate.h"
 #include "subdiv/tables_build.h"
+#include "subdiv/tables_chunk.h"
 #include "subdiv/tables_surface_records.h"
 
 #include <chrono>
@@ -151,6 +152,15 @@ void compareChain(const CreaseChain& chain, std::span<const glm::dvec3> supportV
     }
 }
 
+// A band program's bytes in TBLS version 5's program encoding, and three kinds (bits, sharpness).
+size_t bandBytes(const CreaseBand& band) {
+    BasisProgram p = band.program;
+    for (uint32_t& x : p.controlRow) x = x == kNone ? 0 : x;
+    ByteWriter w;
+    writeProgram(w, p);
+    return w.size() + 15;
+}
+
 double seconds(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -172,7 +182,30 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     CreaseBasisStudy s;
     std::map<std::vector<uint32_t>, CreaseChain> configurations;
     std::set<std::vector<uint32_t>> bandKeys;
+    std::map<std::vector<uint32_t>, const CreaseBand*> shared;
     std::vector<uint32_t> support, key;
+    // Two bands' programs as functions: the points they give from the same (arbitrary) support
+    // values. Rows come in each level's vertex order, which differs between the face's copy
+    // (band 1) and its refined levels, so the arrays differ where the functions do not.
+    double sharedMax = 0; // the largest difference between two bands' points where they differ
+    auto sameProgram = [&sharedMax](const CreaseBand& x, const CreaseBand& y) {
+        if (x.support != y.support || x.program.nextSupport.size() != y.program.nextSupport.size()) return false;
+        std::vector<glm::dvec3> in(x.support);
+        for (size_t i = 0; i < in.size(); ++i) in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
+        const std::vector<glm::dvec3> px = runBand(x.program, in), py = runBand(y.program, in);
+        auto same = [&](uint32_t r, uint32_t q) {
+            if (r == kNone || q == kNone) return r == q;
+            for (int k = 0; k < 3; ++k) sharedMax = std::max(sharedMax, std::abs(px[r][k] - py[q][k]));
+            return px[r] == py[q];
+        };
+        for (size_t k = 0; k < 48; ++k)
+            if (!same(x.program.controlRow[k], y.program.controlRow[k])) return false;
+        for (size_t k = 0; k < 16; ++k)
+            if ((x.centreRow[k] != 0 || y.centreRow[k] != 0) && !same(x.centreRow[k], y.centreRow[k])) return false;
+        for (size_t k = 0; k < x.program.nextSupport.size(); ++k)
+            if (!same(x.program.nextSupport[k], y.program.nextSupport[k])) return false;
+        return true;
+    };
     uint32_t root = 0;
     Comparison own, deduped;
     for (uint32_t f = 0; f < L.topo.faceCount(); ++f) {
@@ -202,13 +235,18 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
         if (added) {
             s.chainSeconds += built;
             it->second = chain;
-            for (const CreaseBand& band : chain.bands) {
+            const CreaseBand* previous = nullptr;
+            for (const CreaseBand& band : it->second.bands) {
+                s.bandKindBytes += 15;
+                auto [at, first] = shared.try_emplace(programKey(band.key, 2.0f), &band);
+                if (first)
+                    s.sharedProgramBytes += bandBytes(band) - 15;
+                else
+                    s.sharedMismatches += !sameProgram(*at->second, band);
+                s.repeatedBands += previous && sameProgram(*previous, band);
+                previous = &band;
                 if (!bandKeys.insert(band.key).second) continue;
-                BasisProgram p = band.program;
-                for (uint32_t& x : p.controlRow) x = x == kNone ? 0 : x;
-                ByteWriter w;
-                writeProgram(w, p);
-                s.programBytes += w.size() + 15; // and three kinds (bits, sharpness)
+                s.programBytes += bandBytes(band);
                 for (const CreaseBandKind& k : band.kind)
                     ++(k.crease ? s.kindsCrease : k.boundary ? s.kindsBoundary : s.kindsBSpline);
             }
@@ -227,6 +265,8 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     }
     s.configurations = configurations.size();
     s.bandPrograms = bandKeys.size();
+    s.sharedPrograms = shared.size();
+    s.sharedMaxDifference = sharedMax;
     s.pointsCompared = own.points;
     s.pointsBitwise = own.bitwise;
     s.maxDifference = own.maxDifference;
@@ -234,6 +274,30 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     s.dedupedMaxDifference = deduped.maxDifference;
     s.structureMismatches = own.structure + deduped.structure;
     return s;
+}
+
+CreaseTablesEstimate estimateCreaseTables(const Mesh& mesh, const SchemeOptions& options, const TablesOptions& opts,
+                                          Warnings& warnings) {
+    checkTablesOptions(mesh, opts);
+    Topology baseTopo(static_cast<uint32_t>(mesh.vertexCount()), mesh.faceOffsets, mesh.faceVertices);
+    checkTablesTopology(baseTopo, opts);
+    AdaptiveLevels a = refineAdaptive(mesh, std::move(baseTopo), options, opts, warnings);
+    CreaseTablesEstimate e;
+    e.faces = a.creaseFaces.size();
+    e.chains = a.creaseChains.size();
+    // Programs once per programKey (the study checks that they are the same functions), three
+    // kinds per band of each chain.
+    std::set<std::vector<uint32_t>> programKeys;
+    for (const CreaseChain& chain : a.creaseChains)
+        for (const CreaseBand& band : chain.bands) {
+            e.programBytes += 15;
+            if (programKeys.insert(programKey(band.key, 2.0f)).second) e.programBytes += bandBytes(band) - 15;
+        }
+    e.bandPrograms = programKeys.size();
+    for (const SmoothIrregularFace& f : a.creaseFaces) e.faceBytes += 2 + 2 * f.support.size();
+    const Tables t = assembleTables(mesh, options, opts, std::move(a));
+    e.tablesBytes = encodeTablesChunk(t).payload.size();
+    return e;
 }
 
 } // namespace limn

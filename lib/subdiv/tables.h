@@ -106,6 +106,10 @@ struct TablesOptions {
     // refined. Only the face-varying UV surface sets it (FVSF version 3): TBLS holds interior
     // bases only, and the geometry's GPU evaluation knows no other.
     bool boundaryBases = false;
+    // Measurement only (bench_crease_bases; no tool sets it): faces of T_N with a decaying-crease
+    // chain (crease_basis.h) are not refined below N and their roots get no codes, so the tables
+    // lack those faces' surface; what the tables would hold without their extra levels.
+    bool creaseChainsPrototype = false;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;
