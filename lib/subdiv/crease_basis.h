@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace limn {
@@ -93,6 +94,10 @@ struct CreaseBasisStudy {
     // face of its configuration (what a per-configuration basis stores).
     size_t pointsCompared = 0, pointsBitwise = 0, dedupedBitwise = 0;
     double maxDifference = 0, dedupedMaxDifference = 0; // relative to the box's diagonal
+    // The quadtree faces without a chain, as "eEsSbB:count": E corners extraordinary, S of the
+    // others sharp (a sharp vertex or edge), B the band where the best corner's chain met an
+    // irregular quadrant away from its corner (1: at once).
+    std::string failures;
     size_t structureMismatches = 0; // quadrant codes or patch kinds that differ
     size_t levelNMismatches = 0;    // this study's level-N points against the tables' (corners)
     // Band programs by programKey (sharpness from 2 on clamped): how many distinct, whether

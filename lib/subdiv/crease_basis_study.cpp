@@ -11,6 +11,7 @@
 #include <map>
 #include <set>
 #include <span>
+#include <string>
 
 namespace limn {
 
@@ -183,6 +184,7 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     std::map<std::vector<uint32_t>, CreaseChain> configurations;
     std::set<std::vector<uint32_t>> bandKeys;
     std::map<std::vector<uint32_t>, const CreaseBand*> shared;
+    std::map<std::string, size_t> failures;
     std::vector<uint32_t> support, key;
     // Two bands' programs as functions: the points they give from the same (arbitrary) support
     // values. Rows come in each level's vertex order, which differs between the face's copy
@@ -226,7 +228,28 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
         for (int c = 0; c < 4 && corner < 0; ++c)
             if (buildCreaseChain(L, f, c, a.K, options, opts, chain)) corner = c;
         const double built = seconds(t0);
-        if (corner < 0) continue;
+        if (corner < 0) {
+            // Why not: the corners that are extraordinary (e) or sharp (s), and the band at
+            // which the best corner's chain met an irregular quadrant away from its corner.
+            size_t best = 0;
+            for (int c = 0; c < 4; ++c) {
+                CreaseChain partial;
+                buildCreaseChain(L, f, c, a.K, options, opts, partial);
+                best = std::max(best, partial.bands.size() + 1);
+            }
+            int e = 0, sharp = 0;
+            for (uint32_t v : L.topo.faceVertices(f)) {
+                if (L.topo.vertexFaceCount(v) != (L.topo.vertexIsBoundary(v) ? 2u : 4u))
+                    ++e;
+                else {
+                    bool x = L.vertexSharpness[v] != 0;
+                    for (uint32_t h : L.topo.vertexOutgoing(v)) x |= L.edgeSharpness[L.topo.edge(h)] != 0;
+                    sharp += x;
+                }
+            }
+            ++failures["e" + std::to_string(e) + "s" + std::to_string(sharp) + "b" + std::to_string(best)];
+            continue;
+        }
         ++s.qualifying;
         const auto t1 = std::chrono::steady_clock::now();
         creaseSupport(L, f, corner, support, key);
@@ -265,6 +288,7 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     }
     s.configurations = configurations.size();
     s.bandPrograms = bandKeys.size();
+    for (const auto& [why, n] : failures) s.failures += (s.failures.empty() ? "" : " ") + why + ":" + std::to_string(n);
     s.sharedPrograms = shared.size();
     s.sharedMaxDifference = sharedMax;
     s.pointsCompared = own.points;
