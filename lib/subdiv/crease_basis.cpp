@@ -271,14 +271,26 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
     std::map<std::vector<uint32_t>, int> chainOf;
     std::vector<uint32_t> support, key;
     const Topology& topo = L.topo;
-    // The feature corner is tried first: an extraordinary vertex, else one with a sharp vertex
-    // or edge (a regular crease vertex beside it is also one: its chain fails at once).
+    // The feature corner is tried first: an extraordinary vertex, else a regular one with a
+    // sharp vertex, a dart, or a crease that does not go straight through with one sharpness. A
+    // straight crease of one sharpness through a regular vertex is no feature corner: faces along
+    // such a crease that are irregular elsewhere have such corners only, and trying them cost a
+    // refinement per key for nothing.
+    std::vector<uint32_t> ring;
     auto rank = [&](uint32_t v) {
         if (topo.vertexFaceCount(v) != (topo.vertexIsBoundary(v) ? 2u : 4u)) return 0;
         if (L.vertexSharpness[v] != 0) return 1;
-        for (uint32_t h : topo.vertexOutgoing(v))
-            if (L.edgeSharpness[topo.edge(h)] != 0) return 1;
-        return 2;
+        topo.vertexRing(v, ring);
+        int sharp = 0, first = -1, second = -1;
+        for (int k = 0; k < int(ring.size()); ++k)
+            if (L.edgeSharpness[topo.edge(ring[size_t(k)])] != 0) {
+                (sharp++ == 0 ? first : second) = k;
+            }
+        if (sharp == 0) return 2;
+        const bool straight = sharp == 2 && !topo.vertexIsBoundary(v) && second - first == 2 &&
+                              L.edgeSharpness[topo.edge(ring[size_t(first)])] ==
+                                  L.edgeSharpness[topo.edge(ring[size_t(second)])];
+        return straight ? 2 : 1;
     };
     for (uint32_t f = 0; f < topo.faceCount(); ++f) {
         if (!T[f] || topo.faceSize(f) != 4) continue;
