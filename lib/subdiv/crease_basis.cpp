@@ -210,8 +210,11 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
         selected[chainFace] = 1;
         LevelStencils st;
         Level child = refineLevel(cur, oneRing(cur.topo, selected), options, ptexBase, st);
+        // Only the chain face's children are read.
+        std::vector<uint8_t> children(child.topo.faceCount(), 0);
+        for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) children[cf] = child.faceParent[cf] == chainFace;
         const Regularity r = analyzeRegularity(child.topo, child.edgeSharpness, child.vertexSharpness, child.noLimit,
-                                               opts.infSharpPatches, opts.singleCreasePatches);
+                                               opts.infSharpPatches, opts.singleCreasePatches, &children);
         identity.resize(child.topo.vertexCount());
         for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
         const FaceFrame& pf = cur.frames[chainFace];
