@@ -162,6 +162,15 @@ size_t bandBytes(const CreaseBand& band) {
     return w.size() + 15;
 }
 
+// What a format would share a band's program by: its programKey (sharpness from 2 on clamped),
+// and, for the last band of a chain, how the chain ends (a smooth face's next support comes in
+// smoothSupport's order, a leaf or regular end has none).
+std::vector<uint32_t> sharedKey(const CreaseChain& chain, const CreaseBand& band) {
+    std::vector<uint32_t> key = programKey(band.key, 2.0f);
+    key.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
+    return key;
+}
+
 double seconds(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -190,14 +199,15 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     // values. Rows come in each level's vertex order, which differs between the face's copy
     // (band 1) and its refined levels, so the arrays differ where the functions do not.
     double sharedMax = 0; // the largest difference between two bands' points where they differ
-    auto sameProgram = [&sharedMax](const CreaseBand& x, const CreaseBand& y) {
+    double* difference = nullptr; // where sameProgram records the largest difference
+    auto sameProgram = [&difference](const CreaseBand& x, const CreaseBand& y) {
         if (x.support != y.support || x.program.nextSupport.size() != y.program.nextSupport.size()) return false;
         std::vector<glm::dvec3> in(x.support);
         for (size_t i = 0; i < in.size(); ++i) in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
         const std::vector<glm::dvec3> px = runBand(x.program, in), py = runBand(y.program, in);
         auto same = [&](uint32_t r, uint32_t q) {
             if (r == kNone || q == kNone) return r == q;
-            for (int k = 0; k < 3; ++k) sharedMax = std::max(sharedMax, std::abs(px[r][k] - py[q][k]));
+            for (int k = 0; k < 3 && difference; ++k) *difference = std::max(*difference, std::abs(px[r][k] - py[q][k]));
             return px[r] == py[q];
         };
         for (size_t k = 0; k < 48; ++k)
@@ -261,11 +271,14 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
             const CreaseBand* previous = nullptr;
             for (const CreaseBand& band : it->second.bands) {
                 s.bandKindBytes += 15;
-                auto [at, first] = shared.try_emplace(programKey(band.key, 2.0f), &band);
-                if (first)
+                auto [at, first] = shared.try_emplace(sharedKey(it->second, band), &band);
+                if (first) {
                     s.sharedProgramBytes += bandBytes(band) - 15;
-                else
+                } else {
+                    difference = &sharedMax;
                     s.sharedMismatches += !sameProgram(*at->second, band);
+                    difference = nullptr;
+                }
                 s.repeatedBands += previous && sameProgram(*previous, band);
                 previous = &band;
                 if (!bandKeys.insert(band.key).second) continue;
@@ -315,7 +328,7 @@ CreaseTablesEstimate estimateCreaseTables(const Mesh& mesh, const SchemeOptions&
     for (const CreaseChain& chain : a.creaseChains)
         for (const CreaseBand& band : chain.bands) {
             e.programBytes += 15;
-            if (programKeys.insert(programKey(band.key, 2.0f)).second) e.programBytes += bandBytes(band) - 15;
+            if (programKeys.insert(sharedKey(chain, band)).second) e.programBytes += bandBytes(band) - 15;
         }
     e.bandPrograms = programKeys.size();
     for (const SmoothIrregularFace& f : a.creaseFaces) e.faceBytes += 2 + 2 * f.support.size();
