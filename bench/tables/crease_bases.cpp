@@ -74,14 +74,14 @@ int main(int argc, char** argv) {
                         "\"structure_mismatches\":%zu,\"level_n_mismatches\":%zu,\"program_bytes\":%zu,"
                         "\"face_bytes\":%zu,\"support_points\":%zu,\"key_seconds\":%.6f,\"chain_seconds\":%.6f,"
                         "\"study_seconds\":%.3f,\"shared_programs\":%zu,\"shared_mismatches\":%zu,\"repeated_bands\":%zu,"
-                        "\"shared_program_bytes\":%zu,\"band_kind_bytes\":%zu,\"shared_max_difference\":%.3g,\"failures\":\"%s\"}\n",
+                        "\"shared_program_bytes\":%zu,\"band_kind_bytes\":%zu,\"shared_max_difference\":%.3g,\"failures\":\"%s\",\"leaf_corners\":%zu,\"leaf_max_difference\":%.3g}\n",
                         name.c_str(), opts.depth, K, s.quadtreeFaces, s.qualifying, s.configurations, s.bandPrograms,
                         s.endLeaf, s.endSmooth, s.endRegular, s.bands, s.maxBands, s.kindsBSpline, s.kindsCrease,
                         s.kindsBoundary, s.pointsCompared, s.pointsBitwise, s.maxDifference, s.dedupedBitwise,
                         s.dedupedMaxDifference, s.structureMismatches, s.levelNMismatches, s.programBytes,
                         s.faceBytes, s.supportPoints, s.keySeconds, s.chainSeconds, total, s.sharedPrograms,
                         s.sharedMismatches, s.repeatedBands, s.sharedProgramBytes, s.bandKindBytes,
-                        s.sharedMaxDifference, s.failures.c_str());
+                        s.sharedMaxDifference, s.failures.c_str(), s.leafCorners, s.leafMaxDifference);
             std::fprintf(stderr,
                          "%-24s d%d: %zu/%zu quadtree faces with a chain, %zu configurations, %zu band programs "
                          "(%zu B), ends leaf/smooth/regular %zu/%zu/%zu; points %zu, bitwise %zu (deduped %zu), "

@@ -98,6 +98,11 @@ struct CreaseBasisStudy {
     // others sharp (a sharp vertex or edge), B the band where the best corner's chain met an
     // irregular quadrant away from its corner (1: at once).
     std::string failures;
+    // A leaf end's corners away from the feature corner, evaluated on the last band's
+    // sub-patches that share them, against the quadtree leaf's limit points (evaluateLimitPoints):
+    // a format could leave the leaves' limit points out.
+    size_t leafCorners = 0;
+    double leafMaxDifference = 0; // relative to the box's diagonal
     size_t structureMismatches = 0; // quadrant codes or patch kinds that differ
     size_t levelNMismatches = 0;    // this study's level-N points against the tables' (corners)
     // Band programs by programKey (sharpness from 2 on clamped): how many distinct, whether

@@ -84,11 +84,16 @@ constexpr int kQuadrantAtCorner[4] = {0, 1, 3, 2}; // ptex corner -> quadrant co
 struct Comparison {
     size_t points = 0, bitwise = 0, structure = 0;
     double maxDifference = 0;
+    // A leaf end: its corners away from the feature corner, evaluated on the last band's
+    // sub-patches that share them, against the quadtree leaf's limit points.
+    size_t leafCorners = 0;
+    double leafMaxDifference = 0;
 };
 
 // The chain run over one face's support values, against its quadtree from root `node`.
 void compareChain(const CreaseChain& chain, std::span<const glm::dvec3> supportValues, int c, const Tables& t,
-                  uint32_t node, std::span<const glm::dvec3> V, double diagonal, Comparison& out) {
+                  uint32_t node, std::span<const glm::dvec3> V, std::span<const LimitPoint> limits, double diagonal,
+                  Comparison& out) {
     std::vector<glm::dvec3> input(supportValues.begin(), supportValues.end());
     auto compare = [&](const glm::dvec3& mine, const glm::dvec3& theirs) {
         ++out.points;
@@ -149,6 +154,23 @@ void compareChain(const CreaseChain& chain, std::span<const glm::dvec3> supportV
                 compare(values[band.program.nextSupport[i]], V[t.smoothPoints[first + i]]);
         } else if (kind != kNodeLeaf) {
             ++out.structure;
+        } else if (!limits.empty()) {
+            const IrregularFace& leaf = t.irregularLeaves[index];
+            static constexpr double kCornerU[4] = {0, 1, 1, 0}, kCornerV[4] = {0, 0, 1, 1};
+            for (int k = 0; k < 4; ++k) {
+                if (k == c) continue; // the feature corner: its limit point, as today
+                const double u = leaf.u0 + kCornerU[k] * leaf.size, v = leaf.v0 + kCornerV[k] * leaf.size;
+                for (uint32_t code : codes) {
+                    if ((code & ~kNodeIndexMask) != kNodeSubPatch) continue;
+                    const Patch& p = t.subPatches[code & kNodeIndexMask];
+                    const double ps = (u - p.u0) / p.size, pt = (v - p.v0) / p.size;
+                    if (ps < 0 || ps > 1 || pt < 0 || pt > 1) continue;
+                    const glm::dvec3 x = evaluatePatch(p, V, ps, pt).position, y = limits[leaf.corner[k]].position;
+                    ++out.leafCorners;
+                    for (int a = 0; a < 3; ++a)
+                        out.leafMaxDifference = std::max(out.leafMaxDifference, std::abs(x[a] - y[a]) / diagonal);
+                }
+            }
         }
     }
 }
@@ -185,6 +207,7 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     const AdaptiveLevels a = refineAdaptive(mesh, std::move(baseTopo), options, opts, warnings);
     const Tables t = assembleTables(mesh, options, opts, a);
     const std::vector<glm::dvec3> V = evaluateVertices(t, mesh.positions);
+    const std::vector<LimitPoint> limits = evaluateLimitPoints(t, V);
     const uint32_t N = a.N;
     const std::vector<std::vector<glm::dvec3>> P = levelPositions(a, mesh, N);
     const Level& L = a.levels[N];
@@ -296,14 +319,16 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
         s.faceBytes += 2 + 2 * support.size();
         std::vector<glm::dvec3> values;
         for (uint32_t v : support) values.push_back(P[N][v]);
-        compareChain(chain, values, corner, t, node, V, diagonal, own);
-        compareChain(it->second, values, corner, t, node, V, diagonal, deduped);
+        compareChain(chain, values, corner, t, node, V, limits, diagonal, own);
+        compareChain(it->second, values, corner, t, node, V, {}, diagonal, deduped);
     }
     s.configurations = configurations.size();
     s.bandPrograms = bandKeys.size();
     for (const auto& [why, n] : failures) s.failures += (s.failures.empty() ? "" : " ") + why + ":" + std::to_string(n);
     s.sharedPrograms = shared.size();
     s.sharedMaxDifference = sharedMax;
+    s.leafCorners = own.leafCorners;
+    s.leafMaxDifference = own.leafMaxDifference;
     s.pointsCompared = own.points;
     s.pointsBitwise = own.bitwise;
     s.maxDifference = own.maxDifference;
