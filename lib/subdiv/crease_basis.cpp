@@ -4,13 +4,32 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
 namespace limn {
 
+namespace {
+
+// Where creaseSupport's key entries come from (sourcesOf): an edge's index, a corner vertex's
+// index with this bit, or kNone (a support index, or an edge no stencil reads).
+constexpr uint32_t kVertexEntry = 1u << 31;
+
+bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& support, std::vector<uint32_t>& key,
+               std::vector<uint32_t>* faces, std::vector<uint32_t>* sources);
+
+} // namespace
+
 bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& support,
                    std::vector<uint32_t>& key, std::vector<uint32_t>* faces) {
+    return supportOf(L, f, corner, support, key, faces, nullptr);
+}
+
+namespace {
+
+bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& support, std::vector<uint32_t>& key,
+               std::vector<uint32_t>* faces, std::vector<uint32_t>* sources) {
     const Topology& T = L.topo;
     if (T.faceSize(f) != 4 || L.noLimit[f]) return false;
     const FaceFrame& fr = L.frames[f];
@@ -21,6 +40,11 @@ bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>
     support.clear();
     key.clear();
     if (faces) faces->clear();
+    if (sources) sources->clear();
+    auto push = [&](uint32_t value, uint32_t source) {
+        key.push_back(value);
+        if (sources) sources->push_back(source);
+    };
     // A linear search, as boundarySupport's: supports are small.
     auto index = [&](uint32_t v) -> uint32_t {
         const auto it = std::find(support.begin(), support.end(), v);
@@ -47,7 +71,7 @@ bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>
                 if (fan.size() > kMaxBasisValence) return false;
                 fan.push_back(h);
             }
-        key.push_back(uint32_t(fan.size()) << 1 | (closed ? 1u : 0u));
+        push(uint32_t(fan.size()) << 1 | (closed ? 1u : 0u), kNone);
         for (uint32_t h : fan) {
             const uint32_t g = T.face(h);
             if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
@@ -55,29 +79,45 @@ bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>
             uint32_t x = h;
             for (int c = 0; c < 4; ++c, x = T.next(x)) {
                 const uint32_t v = T.vertex(x);
-                key.push_back(index(v));
+                push(index(v), kNone);
                 const bool read = atCorner(v) || atCorner(T.vertex(T.next(x)));
-                key.push_back(read ? std::bit_cast<uint32_t>(L.edgeSharpness[T.edge(x)]) : 0u);
+                push(read ? std::bit_cast<uint32_t>(L.edgeSharpness[T.edge(x)]) : 0u, read ? T.edge(x) : kNone);
             }
             if (support.size() > 2 * size_t(kMaxBasisValence) + 8) return false;
         }
     }
-    for (uint32_t v : corners) key.push_back(std::bit_cast<uint32_t>(L.vertexSharpness[v]));
+    for (uint32_t v : corners) push(std::bit_cast<uint32_t>(L.vertexSharpness[v]), v | kVertexEntry);
     return true;
 }
 
-std::vector<uint32_t> programKey(const std::vector<uint32_t>& key, float sharp) {
+} // namespace
+
+namespace {
+
+// The key with every sharpness entry s replaced by map(s).
+template <class Map>
+std::vector<uint32_t> mapSharpness(const std::vector<uint32_t>& key, Map map) {
     std::vector<uint32_t> out = key;
-    auto clamp = [&](uint32_t& x) {
-        if (std::bit_cast<float>(x) >= sharp) x = std::bit_cast<uint32_t>(sharp);
-    };
+    auto apply = [&](uint32_t& x) { x = std::bit_cast<uint32_t>(map(std::bit_cast<float>(x))); };
     size_t at = 0;
     for (int j = 0; j < 4; ++j) {
         const size_t faces = out[at++] >> 1;
-        for (size_t k = 0; k < 4 * faces; ++k, at += 2) clamp(out[at + 1]);
+        for (size_t k = 0; k < 4 * faces; ++k, at += 2) apply(out[at + 1]);
     }
-    for (; at < out.size(); ++at) clamp(out[at]);
+    for (; at < out.size(); ++at) apply(out[at]);
     return out;
+}
+
+// One level of uniform creasing (Sdc::Crease's decrement): what the key of the next band is
+// when the chain face's neighbourhood repeats itself.
+float decrement(float s) { return s >= kInfiniteSharpness ? s : s > 1.0f ? s - 1.0f : 0.0f; }
+
+std::vector<uint32_t> decremented(const std::vector<uint32_t>& key) { return mapSharpness(key, decrement); }
+
+} // namespace
+
+std::vector<uint32_t> programKey(const std::vector<uint32_t>& key, float sharp) {
+    return mapSharpness(key, [sharp](float s) { return s >= sharp ? sharp : s; });
 }
 
 namespace {
@@ -190,6 +230,46 @@ void bandProgram(const Level& child, const LevelStencils& st, const std::vector<
 
 } // namespace
 
+// The rows of a band's program over its support's values, with evaluateVertices' arithmetic
+// (double sums in the program's order of float weights times points; face points averaged).
+std::vector<glm::dvec3> runBandProgram(const BasisProgram& p, std::span<const glm::dvec3> in) {
+    const uint32_t M = uint32_t(in.size());
+    std::vector<glm::dvec3> values(p.rows());
+    for (uint32_t r = 0; r < p.rows(); ++r) {
+        glm::dvec3 sum(0.0);
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+            const uint32_t s = p.source[e];
+            const glm::dvec3& x = s < M ? in[s] : values[s - M];
+            if (p.averaged[r])
+                sum += x;
+            else
+                sum += double(p.weight[e]) * x;
+        }
+        values[r] = p.averaged[r] ? sum / double(p.start[r + 1] - p.start[r]) : sum;
+    }
+    return values;
+}
+
+bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference) {
+    if (x.support != y.support || x.program.nextSupport.size() != y.program.nextSupport.size()) return false;
+    std::vector<glm::dvec3> in(x.support);
+    for (size_t i = 0; i < in.size(); ++i)
+        in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
+    const std::vector<glm::dvec3> px = runBandProgram(x.program, in), py = runBandProgram(y.program, in);
+    auto same = [&](uint32_t r, uint32_t q) {
+        if (r == kNone || q == kNone) return r == q;
+        for (int k = 0; k < 3 && difference; ++k) *difference = std::max(*difference, std::abs(px[r][k] - py[q][k]));
+        return px[r] == py[q];
+    };
+    for (size_t k = 0; k < 48; ++k)
+        if (!same(x.program.controlRow[k], y.program.controlRow[k])) return false;
+    for (size_t k = 0; k < 16; ++k)
+        if ((x.centreRow[k] != 0 || y.centreRow[k] != 0) && !same(x.centreRow[k], y.centreRow[k])) return false;
+    for (size_t k = 0; k < x.program.nextSupport.size(); ++k)
+        if (!same(x.program.nextSupport[k], y.program.nextSupport[k])) return false;
+    return true;
+}
+
 bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const SchemeOptions& options,
                       const TablesOptions& opts, CreaseChain& chain) {
     std::vector<uint32_t> support, faces, key;
@@ -204,8 +284,40 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
         throw std::logic_error("crease basis: the copy's support is not the face's");
     std::vector<uint32_t> ptexBase(cur.topo.faceCount());
     for (uint32_t g = 0; g < ptexBase.size(); ++g) ptexBase[g] = cur.frames[g].ptex;
-    std::vector<uint32_t> identity;
+    std::vector<uint32_t> identity, sources, probe, probeKey;
+    // Under uniform creasing, once two bands from refined levels have run the same program and
+    // each key was the one before less 1 (the neighbourhood repeats itself, Stam's observation
+    // with the sharpness counting down), the next bands are that program again, with keys and
+    // kinds' sharpness less 1 each, as long as no sharpness crosses 2 (below 2 a child's
+    // sharpness can reach 0: a kind or the chain's end changes): they are not refined. Then the last refined level is given the band's key
+    // (the same topology) and refined from there. bench_crease_bases checks the result against
+    // the quadtree, bit for bit.
+    const bool uniform = options.creaseMethod == CreaseMethod::Uniform;
+    bool repeating = false;
+    auto zeroSharpness = [](const std::vector<uint32_t>& k) { return mapSharpness(k, [](float) { return 0.0f; }); };
     for (uint32_t j = 1; j <= K; ++j) {
+        if (repeating) {
+            if (j < K && programKey(key, 2.0f) == programKey(chain.bands.back().key, 2.0f)) {
+                CreaseBand band = chain.bands.back();
+                band.key = key;
+                for (CreaseBandKind& k : band.kind) k.sharpness = decrement(k.sharpness);
+                chain.bands.push_back(std::move(band));
+                key = decremented(key);
+                continue;
+            }
+            repeating = false;
+            if (!supportOf(cur, chainFace, 0, probe, probeKey, nullptr, &sources) ||
+                zeroSharpness(probeKey) != zeroSharpness(key))
+                throw std::logic_error("crease basis: a repeated band's level is not the key's");
+            for (size_t p = 0; p < sources.size(); ++p) {
+                if (sources[p] == kNone) continue;
+                const float x = std::bit_cast<float>(key[p]);
+                (sources[p] & kVertexEntry ? cur.vertexSharpness[sources[p] & ~kVertexEntry] : cur.edgeSharpness[sources[p]]) = x;
+            }
+            assignVertexRules(cur);
+            if (!creaseSupport(cur, chainFace, 0, probe, probeKey) || probeKey != key)
+                throw std::logic_error("crease basis: a repeated band's key did not take");
+        }
         std::vector<uint8_t> selected(cur.topo.faceCount(), 0);
         selected[chainFace] = 1;
         LevelStencils st;
@@ -260,6 +372,11 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
         if (rows.size() == 4) band.centreRow = rows[3];
         chain.bands.push_back(std::move(band));
         if (last) break;
+        const size_t b = chain.bands.size();
+        if (uniform && b >= 2) {
+            const CreaseBand &x = chain.bands[b - 2], &y = chain.bands[b - 1];
+            repeating = y.key == decremented(x.key) && key == decremented(y.key) && sameBandFunction(x, y);
+        }
         cur = std::move(child);
         chainFace = centre;
         curSupport = std::move(next);

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,15 @@ bool creaseSupport(const Level& L, uint32_t f, int corner, std::vector<uint32_t>
 // keys differ only above that share their program: a crease of sharpness 7.9 runs one program
 // for its first bands, and only the kinds' sharpness (the single-crease patches') changes.
 std::vector<uint32_t> programKey(const std::vector<uint32_t>& key, float sharp);
+// The sharpness from which programKey clamps where programs are shared and bands repeated.
+inline constexpr float kProgramSharpness = 1.0f;
+
+// A band's rows over its support's values (evaluateVertices' arithmetic: double sums in the
+// program's order of float weights times points, face points averaged).
+std::vector<glm::dvec3> runBandProgram(const BasisProgram& program, std::span<const glm::dvec3> support);
+// Whether two bands' programs are the same function: the same points to the bit from the same
+// (arbitrary) support values; `difference` (optional) gets the largest difference met.
+bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference = nullptr);
 
 // The chain of face f of level L with feature corner `corner` over `levels` bands, from a copy
 // of its support's faces (their sharpness; the copy's rim edges infinitely sharp, which no

@@ -17,26 +17,6 @@ namespace limn {
 
 namespace {
 
-// The rows of a band's program over its support's values, with evaluateVertices' arithmetic
-// (double sums in the program's order of float weights times points; face points averaged).
-std::vector<glm::dvec3> runBand(const BasisProgram& p, std::span<const glm::dvec3> in) {
-    const uint32_t M = uint32_t(in.size());
-    std::vector<glm::dvec3> values(p.rows());
-    for (uint32_t r = 0; r < p.rows(); ++r) {
-        glm::dvec3 sum(0.0);
-        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
-            const uint32_t s = p.source[e];
-            const glm::dvec3& x = s < M ? in[s] : values[s - M];
-            if (p.averaged[r])
-                sum += x;
-            else
-                sum += double(p.weight[e]) * x;
-        }
-        values[r] = p.averaged[r] ? sum / double(p.start[r + 1] - p.start[r]) : sum;
-    }
-    return values;
-}
-
 // The positions of levels 0..n of the refinement, with evaluateVertices' arithmetic.
 std::vector<std::vector<glm::dvec3>> levelPositions(const AdaptiveLevels& a, const Mesh& mesh, uint32_t n) {
     std::vector<std::vector<glm::dvec3>> P(n + 1);
@@ -124,7 +104,7 @@ void compareChain(const CreaseChain& chain, std::span<const glm::dvec3> supportV
     };
     for (size_t b = 0; b < chain.bands.size(); ++b) {
         const CreaseBand& band = chain.bands[b];
-        const std::vector<glm::dvec3> values = runBand(band.program, input);
+        const std::vector<glm::dvec3> values = runBandProgram(band.program, input);
         const std::array<uint32_t, 4>& codes = t.irregularNodes[node];
         static constexpr int kCanonicalCorner[3] = {1, 2, 3}; // quadrants 1, 3, 2
         for (size_t q = 0; q < 3; ++q)
@@ -188,7 +168,7 @@ size_t bandBytes(const CreaseBand& band) {
 // and, for the last band of a chain, how the chain ends (a smooth face's next support comes in
 // smoothSupport's order, a leaf or regular end has none).
 std::vector<uint32_t> sharedKey(const CreaseChain& chain, const CreaseBand& band) {
-    std::vector<uint32_t> key = programKey(band.key, 2.0f);
+    std::vector<uint32_t> key = programKey(band.key, kProgramSharpness);
     key.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
     return key;
 }
@@ -223,24 +203,7 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     // (band 1) and its refined levels, so the arrays differ where the functions do not.
     double sharedMax = 0; // the largest difference between two bands' points where they differ
     double* difference = nullptr; // where sameProgram records the largest difference
-    auto sameProgram = [&difference](const CreaseBand& x, const CreaseBand& y) {
-        if (x.support != y.support || x.program.nextSupport.size() != y.program.nextSupport.size()) return false;
-        std::vector<glm::dvec3> in(x.support);
-        for (size_t i = 0; i < in.size(); ++i) in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
-        const std::vector<glm::dvec3> px = runBand(x.program, in), py = runBand(y.program, in);
-        auto same = [&](uint32_t r, uint32_t q) {
-            if (r == kNone || q == kNone) return r == q;
-            for (int k = 0; k < 3 && difference; ++k) *difference = std::max(*difference, std::abs(px[r][k] - py[q][k]));
-            return px[r] == py[q];
-        };
-        for (size_t k = 0; k < 48; ++k)
-            if (!same(x.program.controlRow[k], y.program.controlRow[k])) return false;
-        for (size_t k = 0; k < 16; ++k)
-            if ((x.centreRow[k] != 0 || y.centreRow[k] != 0) && !same(x.centreRow[k], y.centreRow[k])) return false;
-        for (size_t k = 0; k < x.program.nextSupport.size(); ++k)
-            if (!same(x.program.nextSupport[k], y.program.nextSupport[k])) return false;
-        return true;
-    };
+    auto sameProgram = [&difference](const CreaseBand& x, const CreaseBand& y) { return sameBandFunction(x, y, difference); };
     uint32_t root = 0;
     Comparison own, deduped;
     for (uint32_t f = 0; f < L.topo.faceCount(); ++f) {
