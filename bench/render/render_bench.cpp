@@ -20,7 +20,9 @@
 // models' rows. --samples: per pixel, 4 (limn-render's default, and this benchmark's) or 1.
 // --irregular: instead, the irregular faces' surface (docs/irregular.md) against the bilinear
 // irregular faces of before (tables "bilinear": --irregular-levels 0), view-adaptive only: spot
-// at depths 3 and 6, the car at 3, the paper's sphere at 6.
+// at depths 3 and 6, the car at 3, the paper's sphere at 6. --no-boundary-bases: tables whose
+// faces around boundary vertices are refined, as before TBLS version 7 (the frame cost of those
+// bases: run with and without).
 // Per configuration: covered pixels,
 // drawn triangles (after culling, from the GPU) and triangles per covered pixel, vertices
 // evaluated, buffer bytes, compute/draw/frame GPU ms, cpu_ms of a still camera and with the
@@ -146,6 +148,8 @@ int main(int argc, char** argv) {
             viewAdaptive = true;
         else if (a == "--irregular")
             irregular = true;
+        else if (a == "--no-boundary-bases")
+            o.boundaryBases = false;
         else if (a == "--only")
             only.insert(next());
         else if (a == "--samples") {

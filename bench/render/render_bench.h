@@ -14,6 +14,9 @@ struct Options {
     int frames = 10, rounds = 3, maxDepth = 6;
     uint32_t width = 1024, height = 768;
     uint32_t samples = 4; // --view-adaptive: limn-render's default
+    // --no-boundary-bases (--view-adaptive): tables with faces around boundary vertices refined
+    // (TablesOptions::boundaryBases and basisRimFeatures off), as before TBLS version 7.
+    bool boundaryBases = true;
     std::vector<std::string> meshes;
 };
 

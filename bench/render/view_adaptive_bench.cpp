@@ -124,6 +124,7 @@ int runViewAdaptive(const Options& o, double orbitDeg, const std::set<std::strin
             to.depth = c.depth;
             to.uniform = c.tables == "uniform";
             if (c.tables == "bilinear") to.irregularLevels = 0;
+            to.boundaryBases = to.basisRimFeatures = o.boundaryBases;
             try {
                 t = std::make_shared<Tables>(buildTables(*c.mesh, resolveSchemeOptions(c.mesh->tags, {}), to, w));
             } catch (const Error& e) {

@@ -209,9 +209,10 @@ GpuPatch gpuPatch(const Patch& p) {
 void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
     const uint32_t P = static_cast<uint32_t>(t.patches.size()), I = static_cast<uint32_t>(t.irregular.size());
     const uint32_t nodes = std::max<uint32_t>(I, static_cast<uint32_t>(t.irregularNodes.size()));
-    // After the sub-patches: per smooth face a header (valence, corner, its basis's first
-    // record, its bands, the corner's limit point, the levels below its irregular face: 0 for
-    // a root, whose codes are read before halving) and its support points, 16 a record; then
+    // After the sub-patches: per smooth face a header (its support size M: 2n + 8 for a
+    // per-valence basis, a boundary configuration's own; corner, its basis's first record, its
+    // bands, the corner's limit point, the levels below its irregular face: 0 for a root, whose
+    // codes are read before halving) and its support points, 16 a record; then
     // per basis, per band and quadrant, per support point a record of its 16 weights.
     std::vector<uint32_t> header(t.smoothIrregular.size()), basisFirst(t.irregularBases.size());
     uint32_t next = P + nodes + static_cast<uint32_t>(t.subPatches.size());
@@ -251,7 +252,7 @@ void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
         const Tables::SmoothIrregular& f = t.smoothIrregular[i];
         const IrregularBasis& b = t.irregularBases[f.basis];
         GpuPatch h{};
-        h.cv[0] = b.valence, h.cv[1] = f.corner, h.cv[2] = basisFirst[f.basis];
+        h.cv[0] = b.supportSize(), h.cv[1] = f.corner, h.cv[2] = basisFirst[f.basis];
         h.cv[3] = b.levels > below[i] ? b.levels - below[i] : 1;
         h.cv[4] = t.irregular[faceOf[i]].corner[f.corner];
         h.cv[5] = below[i];

@@ -57,11 +57,7 @@ Chunk encodeFvarSurfaceChunk(const FvarSurfaceChunk& c) {
     // bytes whatever k), which the reader expands to the same weights, bit for bit.
     for (const FaceVaryingSurface::Basis& b : c.surface.bases) {
         if (b.program.rows() == 0) throw std::logic_error("FVSF: a basis without its program");
-        w.write<uint32_t>(b.valence);
-        w.write<uint32_t>(b.configuration.code());
-        w.write<uint32_t>(b.supportSize());
-        w.write<uint32_t>(b.levels);
-        writeProgram(w, b.program);
+        writeConfigurationBasis(w, b);
     }
     // The support UVs and limit UVs, each distinct value once (the n faces around a vertex
     // share most of theirs), and per smooth face in a stream its corner and valence, then its
@@ -107,44 +103,19 @@ FaceVaryingSurface::Basis readValenceBasis(ByteReader& r, uint32_t b, const Face
     return x;
 }
 
-// Version 3: u32 valence, u32 configuration, u32 support size, u32 levels, then the program.
-FaceVaryingSurface::Basis readConfigurationBasis(ByteReader& r, uint32_t b, const FaceVaryingSurface::Gpu& g) {
-    const std::string what = "basis " + std::to_string(b);
-    FaceVaryingSurface::Basis x;
-    x.valence = r.read<uint32_t>();
-    const uint32_t code = r.read<uint32_t>();
-    const uint32_t M = r.read<uint32_t>();
-    x.levels = r.read<uint32_t>();
-    BasisConfiguration& c = x.configuration;
-    c = {x.valence, (code & 1) != 0, code >> 2, (code & 2) != 0};
-    if (c.code() != code || x.valence < 1 || x.valence > kMaxBasisValence || x.levels < 1 ||
-        x.levels > uint32_t(kMaxDepth) || (c.boundary && c.position >= x.valence) ||
-        (!c.boundary && (x.valence < 3 || x.valence == 4 || M != 2 * x.valence + 8)) || M < 4 ||
-        M > 2 * kMaxBasisValence + 8)
-        r.fail(what + " has a bad configuration, support size or level count");
-    for (const FaceVaryingSurface::Basis& other : g.bases)
-        if (other.configuration == c) r.fail(what + " repeats a configuration");
-    if (c.boundary) x.support = M;
-    // A boundary sub-patch has at most 7 phantom points, each one row.
-    x.program = readProgram(r, what, M, c.boundary ? 21 : 0);
-    x.weights = expandIrregularBasis(x.program, M, x.levels);
-    return x;
-}
-
 // Version 2 and 3's smooth faces, their support UVs and the bases, each count checked against
 // the bytes left before anything is allocated.
 void readSmoothFaces(ByteReader& r, FaceVaryingSurface::Gpu& g, uint32_t version) {
     const uint32_t bases = r.read<uint32_t>();
     if (bases > r.remaining() / 8) r.fail("basis count is too large");
     for (uint32_t b = 0; b < bases; ++b) {
-        FaceVaryingSurface::Basis x = version >= 3 ? readConfigurationBasis(r, b, g) : readValenceBasis(r, b, g);
-        // Catmull-Clark's smooth weights are convex (irregular_basis.h); a boundary
-        // configuration's hold its phantom points, 2 a - b of such (corners: 4 a - 2 b - 2 c + d).
-        const float lo = x.configuration.boundary ? -4.0f : 0.0f, hi = x.configuration.boundary ? 5.0f : 1.0f;
-        for (float w : x.weights)
-            if (!(w >= lo && w <= hi))
-                r.fail("basis " + std::to_string(b) + " has a weight outside [" + std::to_string(int(lo)) + ", " +
-                       std::to_string(int(hi)) + "]");
+        // Version 3: with its configuration (TBLS version 7's codec, which checks the weights'
+        // range); version 2: per valence.
+        FaceVaryingSurface::Basis x = version >= 3 ? readConfigurationBasis(r, "basis " + std::to_string(b), g.bases)
+                                                   : readValenceBasis(r, b, g);
+        if (version < 3) // Catmull-Clark's smooth weights are convex (irregular_basis.h)
+            for (float w : x.weights)
+                if (!(w >= 0.0f && w <= 1.0f)) r.fail("basis " + std::to_string(b) + " has a weight outside [0, 1]");
         g.bases.push_back(std::move(x));
     }
     const uint32_t valueCount = r.read<uint32_t>();

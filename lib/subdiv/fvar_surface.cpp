@@ -202,7 +202,7 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     to.irregularLevels = static_cast<int>(std::min(irregularLevels, uint32_t(kMaxDepth) - std::min(depth, uint32_t(kMaxDepth))));
     // Faces along UV seams and boundaries take a basis per configuration instead of K levels of
     // refinement (FVSF version 3): the records they expand to are those pieces.
-    to.boundaryBases = boundaryBases;
+    to.boundaryBases = to.basisRimFeatures = boundaryBases;
     tables_ = buildTables(uv, uo, to, warnings);
     vertices_ = evaluateVertices(tables_, uv.positions);
     limits_ = evaluateLimitPoints(tables_, vertices_);

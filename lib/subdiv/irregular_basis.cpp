@@ -95,68 +95,77 @@ bool boundarySupport(const Level& L, uint32_t f, int& corner, BasisConfiguration
     const Topology& T = L.topo;
     if (T.faceSize(f) != 4 || L.noLimit[f]) return false;
     const FaceFrame& fr = L.frames[f];
+    // A wall bounds a fan: a boundary edge, or an infinitely sharp one (the rules on its side read
+    // no point across it: edge points are midpoints, vertex points of crease vertices the
+    // (1, 6, 1) / 8 of the crease, as on a boundary).
+    auto wall = [&](uint32_t e) { return T.edgeIsBoundary(e) || L.edgeSharpness[e] >= kInfiniteSharpness; };
+    // The fan of corner halfedge hc: faces counter-clockwise from hc's to a wall, then clockwise
+    // from it to a wall (rotateCCW crosses prev(h)'s edge, rotateCW h's); closed if it came round.
+    std::vector<uint32_t> fan;
+    auto fanOf = [&](uint32_t hc) {
+        fan.assign(1, hc);
+        for (uint32_t h = hc; !wall(T.edge(T.prev(h)));) {
+            h = T.rotateCCW(h);
+            if (h == hc) return true;
+            if (fan.size() > kMaxBasisValence) return false;
+            fan.push_back(h);
+        }
+        for (uint32_t h = hc; !wall(T.edge(h));) {
+            h = T.rotateCW(h);
+            if (fan.size() > kMaxBasisValence) return false;
+            fan.push_back(h);
+        }
+        return false;
+    };
+    // Per corner: its walls (0, or 2 along a boundary or crease; the extraordinary one's sector
+    // may be bounded by more, a corner), no other sharp edge (it would change the vertex's rule).
     int ev = -1;
     for (int k = 0; k < 4; ++k) {
-        const uint32_t v = T.vertex(T.faceHalfedge(f) + (fr.rotation + k) % 4);
+        const uint32_t hc = T.faceHalfedge(f) + (fr.rotation + k) % 4, v = T.vertex(hc);
         if (T.vertexIsNonManifold(v)) return false;
-        const bool boundary = T.vertexIsBoundary(v);
-        const uint32_t n = T.vertexFaceCount(v);
-        if (L.vertexSharpness[v] == 0 && n == (boundary ? 2u : 4u)) continue; // regular
-        if (ev >= 0 || !boundary || n < 1 || n > kMaxBasisValence) return false;
+        uint32_t walls = 0;
+        for (uint32_t h : T.vertexOutgoing(v)) {
+            for (uint32_t e : {T.edge(h), T.edge(T.prev(h))}) {
+                if (e == T.edge(T.prev(h)) && !T.edgeIsBoundary(e)) continue; // each edge once
+                if (wall(e))
+                    ++walls;
+                else if (L.edgeSharpness[e] != 0)
+                    return false;
+            }
+        }
+        if (walls == 1) return false; // a dart: the smooth rule across the whole vertex
+        const bool closed = fanOf(hc);
+        const uint32_t n = uint32_t(fan.size());
+        if (L.vertexSharpness[v] == 0 && (walls == 0 ? closed && n == 4 : n == 2 && walls == 2)) continue; // regular
+        if (ev >= 0 || walls == 0 || n < 1 || n > kMaxBasisValence) return false;
         if (L.vertexSharpness[v] != 0 && L.vertexSharpness[v] < kInfiniteSharpness) return false;
         ev = k;
-        configuration = {n, true, 0, L.vertexSharpness[v] != 0};
+        configuration = {n, true, 0, L.vertexSharpness[v] != 0 || walls > 2};
     }
     if (ev < 0) return false;
     corner = ev;
     const uint32_t h0 = T.faceHalfedge(f) + (fr.rotation + ev) % 4;
-    for (uint32_t h = T.rotateCW(h0); h != kNone; h = T.rotateCW(h))
+    for (uint32_t h = h0; !wall(T.edge(h)); h = T.rotateCW(h))
         if (++configuration.position >= configuration.valence) return false;
-    const uint32_t evVertex = T.vertex(h0);
-    const uint32_t h0f = T.faceHalfedge(f);
-    const uint32_t corners[4] = {T.vertex(h0f), T.vertex(h0f + 1), T.vertex(h0f + 2), T.vertex(h0f + 3)};
-    auto atCorner = [&](uint32_t v) { return v == corners[0] || v == corners[1] || v == corners[2] || v == corners[3]; };
     support.clear();
     signature.clear();
     // A linear search: the supports are small (2n + 8 at most) and this runs only on the faces
-    // along UV seams.
+    // around a boundary or crease vertex (mesh boundaries, UV seams, infinitely sharp creases).
     auto index = [&](uint32_t v) -> uint32_t {
         const auto it = std::find(support.begin(), support.end(), v);
         if (it != support.end()) return uint32_t(it - support.begin());
         support.push_back(v);
         return uint32_t(support.size() - 1);
     };
-    std::vector<uint32_t> fan;
     for (int j = 0; j < 4; ++j) {
-        const uint32_t hc = T.faceHalfedge(f) + (fr.rotation + ev + j) % 4;
-        fan.assign(1, hc);
-        bool closed = false;
-        for (uint32_t h = T.rotateCCW(hc); h != kNone; h = T.rotateCCW(h)) {
-            if (h == hc) {
-                closed = true;
-                break;
-            }
-            if (fan.size() > kMaxBasisValence) return false;
-            fan.push_back(h);
-        }
-        if (!closed)
-            for (uint32_t h = T.rotateCW(hc); h != kNone; h = T.rotateCW(h)) {
-                if (fan.size() > kMaxBasisValence) return false;
-                fan.push_back(h);
-            }
+        const bool closed = fanOf(T.faceHalfedge(f) + (fr.rotation + ev + j) % 4);
+        if (fan.size() > kMaxBasisValence) return false;
         signature.push_back(uint32_t(fan.size()) << 1 | (closed ? 1u : 0u));
         for (uint32_t h : fan) {
             const uint32_t g = T.face(h);
             if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
             uint32_t x = h;
-            for (int c = 0; c < 4; ++c, x = T.next(x)) {
-                // A crease at a corner (smoothSupport says why only there).
-                const uint32_t v = T.vertex(x);
-                if (L.edgeSharpness[T.edge(x)] != 0 && T.twin(x) != kNone && (atCorner(v) || atCorner(T.vertex(T.next(x)))))
-                    return false;
-                if (v != evVertex && atCorner(v) && L.vertexSharpness[v] != 0) return false;
-                signature.push_back(index(v));
-            }
+            for (int c = 0; c < 4; ++c, x = T.next(x)) signature.push_back(index(T.vertex(x)));
             if (support.size() > 2 * size_t(kMaxBasisValence) + 8) return false;
         }
     }
@@ -387,15 +396,18 @@ IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     return b;
 }
 
-IrregularBasis buildBoundaryBasis(const BasisConfiguration& c, uint32_t K) {
+IrregularBasis buildBoundaryBasis(const BasisConfiguration& c, uint32_t K, BoundaryRule rule) {
     if (!c.boundary || c.valence < 1 || c.valence > kMaxBasisValence || c.position >= c.valence || K < 1 ||
         K > uint32_t(kMaxDepth))
         throw std::logic_error("boundary basis: configuration or levels out of range");
     Mesh m = basisConfigurationMesh(c.valence, true);
     if (c.corner) m.tags.corners.push_back({0, kInfiniteSharpness});
-    SchemeOptions options; // the face-varying mesh's (fvar_surface.cpp)
-    options.boundary = BoundaryRule::EdgeOnly;
-    m.tags.boundary = BoundaryRule::EdgeOnly;
+    // Edge-only for the face-varying mesh (fvar_surface.cpp); the geometry's own rule for TBLS.
+    // Under edge-and-corner a vertex of one face is a corner (its configuration says so); the
+    // generated mesh's rim corners are beyond what one level under face 0 reads.
+    SchemeOptions options;
+    options.boundary = rule == BoundaryRule::None ? BoundaryRule::EdgeOnly : rule;
+    m.tags.boundary = options.boundary;
     // The face at the configuration's place in the vertex's fan, and its signature.
     Warnings warnings;
     Topology topo(static_cast<uint32_t>(m.vertexCount()), m.faceOffsets, m.faceVertices);

@@ -39,7 +39,7 @@ struct BasisProgram {
 // Which faces a basis draws: those around one extraordinary vertex with `valence` faces, the other
 // vertices of the faces around their corners regular. Interior: Stam's setting, one basis per
 // valence (the faces around the vertex are alike up to rotation). On a boundary (a UV seam or a
-// mesh boundary of the face-varying surface; FVSF version 3) the faces around the vertex differ,
+// mesh boundary; FVSF version 3, TBLS version 7) the faces around the vertex differ,
 // so a basis is per face: `position` is the face's place in the vertex's fan, 0 for the face at
 // its clockwise end, and `corner` says the vertex is infinitely sharp (a corner) rather than a
 // smooth boundary vertex.
@@ -48,7 +48,7 @@ struct BasisConfiguration {
     bool boundary = false;
     uint32_t position = 0;
     bool corner = false;
-    // What FVSF version 3 stores: 0 for interior, else 1 | corner << 1 | position << 2.
+    // What FVSF version 3 and TBLS version 7 store: 0 for interior, else 1 | corner << 1 | position << 2.
     uint32_t code() const { return boundary ? 1u | uint32_t(corner) << 1 | position << 2 : 0u; }
     uint64_t key() const { return uint64_t(valence) << 32 | code(); }
     bool operator==(const BasisConfiguration&) const = default;
@@ -64,8 +64,8 @@ struct IrregularBasis {
     std::vector<float> weights;
     // What the weights were expanded from (empty rows when read from TBLS before version 5).
     BasisProgram program;
-    // Interior (the geometry's bases, and TBLS's only kind): 2n + 8 points. A boundary
-    // configuration's support has `support` points.
+    // Interior: 2n + 8 points. A boundary configuration's support has `support` points (FVSF
+    // version 3, TBLS version 7).
     BasisConfiguration configuration;
     uint32_t support = 0;
     // Builder only (not stored): the local topology the program was made for, as
@@ -87,12 +87,14 @@ IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);
 
 // The same for a boundary configuration (boundarySupport's), from a generated mesh of three rings
 // of quads around a boundary vertex with that many faces, refined one level with the builder's
-// own rules (the face-varying mesh's: edge-only boundaries, the vertex tagged a corner when it is
-// one). The program also holds the boundary sub-patches' phantom points (gatherControlPoints'
+// own rules under boundary rule `rule` (the face-varying mesh's is edge-only; the geometry's is
+// its mesh's, None read as edge-only: a face with a surface under None has its boundary edges
+// tagged sharp, which is what edge-only does) and the vertex tagged a corner when it is one. The program also holds the boundary sub-patches' phantom points (gatherControlPoints'
 // 2 a - b, columns first), so its weights give the ptex-frame control points as the tables
 // evaluate them. Throws where the configuration is not self-similar (the sub-patch at the vertex
 // one level down must be the same configuration) or a sub-patch is not regular.
-IrregularBasis buildBoundaryBasis(const BasisConfiguration& configuration, uint32_t levels);
+IrregularBasis buildBoundaryBasis(const BasisConfiguration& configuration, uint32_t levels,
+                                  BoundaryRule rule = BoundaryRule::EdgeOnly);
 
 // The weights of K bands (IrregularBasis::weights' layout) from a program over `support` points
 // (2n + 8 for an interior basis), with the builder's own arithmetic (double sums in the program's order, each weight
@@ -109,20 +111,24 @@ std::vector<float> expandIrregularBasis(const BasisProgram& program, uint32_t su
 // counter-clockwise from f, each face's vertices from that corner on; each vertex once).
 // `featuresBeyondCorners`: accept boundaries, creases and sharp vertices on the support's rim
 // (edges and vertices not at the four corners), which the stencils of one level do not read as
-// features. Only the face-varying surface sets it (its interior extraordinary vertices beside
-// a UV seam); TBLS's smooth faces keep the strict rule.
+// features (TablesOptions::basisRimFeatures: the UV surface beside its seams, and the geometry
+// beside its boundaries and creases since TBLS version 7).
 bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence, std::vector<uint32_t>& support,
                    bool featuresBeyondCorners = false);
 
 // Whether face f of level L is a quad around one boundary vertex (any number of faces up to
 // kMaxBasisValence, a smooth boundary or an infinitely sharp corner) whose other corners are
 // regular (4 faces inside, 2 on a boundary), no crease or other sharp vertex at its corners, and
-// no face around them without a limit. Then `corner`, `configuration` and `support` (the vertices of the
-// faces around the corners: corners from the boundary one counter-clockwise, each corner's fan
-// counter-clockwise from f to a boundary, then clockwise from f, each face's vertices from that
-// corner on, each vertex once), and `signature`: per corner its fan's length and whether it
-// closed, then per face its four vertices' support indices — the local topology the stencils of
-// one level read, which buildBoundaryBasis's generated mesh must share.
+// no face around them without a limit. A wall is a boundary edge or an infinitely sharp one: the
+// rules on one side of an infinitely sharp crease read nothing across it, so a sector between two
+// such edges (or more: a corner) is a boundary vertex's fan, and a corner on a crease with two
+// faces on f's side is regular. Then `corner`, `configuration` (its fan's faces; `corner` if the
+// vertex is infinitely sharp or has more than two walls) and `support` (the vertices of the faces
+// around the corners: corners from the extraordinary one counter-clockwise, each corner's fan
+// counter-clockwise from f to a wall, then clockwise from f, each face's vertices from that corner
+// on, each vertex once), and `signature`: per corner its fan's length and whether it closed, then
+// per face its four vertices' support indices — the local topology the stencils of one level
+// read, which buildBoundaryBasis's generated mesh must share.
 bool boundarySupport(const Level& L, uint32_t f, int& corner, BasisConfiguration& configuration,
                      std::vector<uint32_t>& support, std::vector<uint32_t>& signature);
 

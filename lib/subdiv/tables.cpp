@@ -46,6 +46,7 @@ IrregularSurfaceCounts irregularSurfaceCounts(const Tables& t) {
             ++c.basis;
             const auto& f = t.smoothIrregular[code & kNodeIndexMask];
             most = std::min(most, t.irregularBases[f.basis].levels);
+            c.boundaryBasis += t.irregularBases[f.basis].configuration.boundary;
         } else {
             ++c.subPatches;
             most = std::min(most, t.irregularLevels);

@@ -102,10 +102,14 @@ struct TablesOptions {
     // to depth+K, which versions 3 and 4 can hold (tests compare the two).
     bool smoothFacesBelowDepth = true;
     // Faces around one boundary vertex (smooth or a corner) with regular neighbours also take a
-    // basis, one per configuration (irregular_basis.h, buildBoundaryBasis), instead of being
-    // refined. Only the face-varying UV surface sets it (FVSF version 3): TBLS holds interior
-    // bases only, and the geometry's GPU evaluation knows no other.
-    bool boundaryBases = false;
+    // basis, one per configuration (irregular_basis.h, buildBoundaryBasis, under the mesh's
+    // boundary rule), instead of being refined (FVSF version 3, TBLS version 7). Off: refined
+    // (TBLS version 6 can hold such tables; tests compare the two).
+    bool boundaryBases = true;
+    // Faces around one interior extraordinary vertex keep their basis where boundaries, creases
+    // or sharp vertices lie on their support's rim only (smoothSupport's featuresBeyondCorners:
+    // the stencils of one level read features at the face's corners only).
+    bool basisRimFeatures = true;
     // Measurement only (bench_crease_bases; no tool sets it): faces of T_N with a decaying-crease
     // chain (crease_basis.h) are not refined below N and their roots get no codes, so the tables
     // lack those faces' surface; what the tables would hold without their extra levels.
@@ -185,6 +189,7 @@ struct Tables {
 struct IrregularSurfaceCounts {
     size_t basis = 0, subPatches = 0, bilinear = 0;
     size_t basisBelow = 0; // smooth faces below level N in the sub-patch quadtrees (TBLS version 5)
+    size_t boundaryBasis = 0; // of `basis`, those around a boundary vertex (TBLS version 7)
     uint32_t exactLevels = 0; // the smallest K among the faces that are not bilinear
 };
 IrregularSurfaceCounts irregularSurfaceCounts(const Tables& tables);

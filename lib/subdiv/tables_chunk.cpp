@@ -35,7 +35,7 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
 
 Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     if (version < 3 || version > kTablesChunkVersion)
-        throw std::logic_error("TBLS: only versions 3 to 6 are written");
+        throw std::logic_error("TBLS: only versions 3 to 7 are written");
     if (version < 5)
         for (uint32_t i = 0; i < t.irregularNodes.size(); ++i)
             for (uint32_t c : t.irregularNodes[i])
@@ -116,8 +116,11 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     for (const auto& q : t.irregularLeaves) writeFace(q);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularBases.size()));
     for (const auto& b : t.irregularBases) {
-        if (programs) {
-            writeBasisProgram(w, b);
+        if (programs) { // version 7: with its configuration (boundary bases)
+            if (version >= 7)
+                writeConfigurationBasis(w, b);
+            else
+                writeBasisProgram(w, b);
             continue;
         }
         // Version 4: each of the k·48 sub-patch control points names its row of weights, and
@@ -387,8 +390,10 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         const uint32_t bases = r.read<uint32_t>();
         if (bases > r.remaining() / 8) r.fail("irregular basis count is too large");
         for (uint32_t i = 0; i < bases; ++i) {
-            t.irregularBases.push_back(programs ? readBasisProgram(r, i, t.irregularBases)
-                                                : readBasisWeights(r, i, compact, t.irregularBases));
+            t.irregularBases.push_back(
+                chunk.version >= 7 ? readConfigurationBasis(r, "irregular basis " + std::to_string(i), t.irregularBases)
+                : programs         ? readBasisProgram(r, i, t.irregularBases)
+                                   : readBasisWeights(r, i, compact, t.irregularBases));
         }
         const uint32_t smooth = r.read<uint32_t>();
         if (!programs && smooth > r.remaining() / 12) r.fail("smooth irregular face count is too large");

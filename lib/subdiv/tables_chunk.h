@@ -21,11 +21,13 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // stores a level whose stencil tables are the previous level's shifted one level (below a
 // decaying crease, each level is refined as the one before) as a bit instead of its tables, and
 // the sub-patches without their domains, which the quadtrees give (formats/limn.md, "Repeated
-// levels", "Sub-patch domains").
-inline constexpr uint32_t kTablesChunkVersion = 6;
+// levels", "Sub-patch domains"). Version 7 stores each basis with its configuration and support
+// size (FVSF version 3's layout), so that faces around one boundary vertex can take a basis per
+// configuration (formats/limn.md, "Boundary configurations").
+inline constexpr uint32_t kTablesChunkVersion = 7;
 
-// Writes the current version; 3 (the plain layout), 4 and 5 for tests and fuzz seeds of older
-// files (tables with smooth faces below level N need version 5 or later).
+// Writes the current version; 3 (the plain layout), 4, 5 and 6 for tests and fuzz seeds of older
+// files (tables with smooth faces below level N need version 5 or later, with boundary bases 7).
 Chunk encodeTablesChunk(const Tables& tables, uint32_t version = kTablesChunkVersion);
 
 // Decodes and validates every count and index. With `mesh`, also checks that the tables were

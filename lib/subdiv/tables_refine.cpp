@@ -46,8 +46,8 @@ void requireManifold(const Topology& T) {
 // irregular faces whose semi-sharp creases have decayed by level l: the rest of their surface
 // is smooth Catmull-Clark, which the same basis gives (its first levels - (l - N) bands)
 // instead of refining on to level D.
-void takeSmoothFaces(const Level& L, uint32_t basisLevels, bool boundaryBases, std::vector<uint8_t>& T,
-                     AdaptiveLevels& a) {
+void takeSmoothFaces(const Level& L, uint32_t basisLevels, const TablesOptions& opts, BoundaryRule rule,
+                     std::vector<uint8_t>& T, AdaptiveLevels& a) {
     int corner = 0;
     uint32_t valence = 0;
     std::vector<uint32_t> support, signature;
@@ -72,13 +72,14 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, bool boundaryBases, s
             T[f] = 0;
             continue;
         }
-        if (boundaryBases && boundarySupport(L, f, corner, configuration, support, signature)) {
-            // A face around one boundary vertex (a UV seam): its configuration's basis, built
-            // once, if the configuration is self-similar and its topology the generated one's.
+        if (opts.boundaryBases && boundarySupport(L, f, corner, configuration, support, signature)) {
+            // A face around one boundary vertex (a mesh boundary or a UV seam): its
+            // configuration's basis, built once under the mesh's boundary rule, if the
+            // configuration is self-similar and its topology the generated one's.
             auto [it, added] = a.basisOfConfiguration.try_emplace(configuration.key(), -1);
             if (added) {
                 try {
-                    a.bases.push_back(buildBoundaryBasis(configuration, basisLevels));
+                    a.bases.push_back(buildBoundaryBasis(configuration, basisLevels, rule));
                     it->second = static_cast<int>(a.bases.size() - 1);
                 } catch (const std::exception&) {
                     it->second = -2; // refined like any other
@@ -89,7 +90,7 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, bool boundaryBases, s
             T[f] = 0;
             continue;
         }
-        if (!smoothSupport(L, f, corner, valence, support, boundaryBases)) continue;
+        if (!smoothSupport(L, f, corner, valence, support, opts.basisRimFeatures)) continue;
         if (basisOfValence.size() <= valence) basisOfValence.resize(valence + 1, -1);
         if (basisOfValence[valence] == -1) {
             try {
@@ -246,10 +247,10 @@ AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeO
             if (drawn[f]) (regular[f] ? P : T)[f] = 1;
         // Roots stay in T_N (each has a node); smooth faces below N are not in T_l: their
         // parent's node names them.
-        if (opts.smoothFacesBelowDepth && l > N && l < D && basisLevels > 0) takeSmoothFaces(L, basisLevels, opts.boundaryBases, T, a);
+        if (opts.smoothFacesBelowDepth && l > N && l < D && basisLevels > 0) takeSmoothFaces(L, basisLevels, opts, options.boundary, T, a);
         irregularSets.push_back(T);
         patchSets.push_back(P);
-        if (l == N && basisLevels > 0) takeSmoothFaces(L, basisLevels, opts.boundaryBases, T, a);
+        if (l == N && basisLevels > 0) takeSmoothFaces(L, basisLevels, opts, options.boundary, T, a);
         if (l == N && K > 0 && opts.creaseChainsPrototype) takeCreaseFaces(L, options, opts, T, a);
         if (l == D) break;
         std::vector<uint8_t> S = opts.uniform ? std::vector<uint8_t>(F, 1) : oneRing(L.topo, T);

@@ -44,22 +44,67 @@ void writeProgram(ByteWriter& w, const BasisProgram& program) {
     writeStream(w, s);
 }
 
+namespace {
+
+// The program of basis b: its own, or (an interior basis read from TBLS before version 5) the one
+// buildIrregularBasis makes for its valence, if that expands to its weights.
+const BasisProgram& programOf(const IrregularBasis& b, IrregularBasis& built) {
+    if (b.program.rows() != 0) return b.program;
+    if (b.configuration.boundary) throw std::logic_error("TBLS: a boundary basis without its program");
+    built = buildIrregularBasis(b.valence, b.levels);
+    if (built.weights.size() != b.weights.size() ||
+        std::memcmp(built.weights.data(), b.weights.data(), b.weights.size() * sizeof(float)) != 0)
+        throw std::logic_error("TBLS: a valence-" + std::to_string(b.valence) +
+                               " basis is not this limn's; it cannot be written as a program");
+    return built.program;
+}
+
+} // namespace
+
 void writeBasisProgram(ByteWriter& w, const IrregularBasis& b) {
     if (b.configuration.boundary)
-        throw std::logic_error("TBLS: a boundary configuration's basis has no place in TBLS (FVSF only)");
-    const BasisProgram* p = &b.program;
+        throw std::logic_error("TBLS: a boundary configuration's basis needs version 7");
     IrregularBasis built;
-    if (b.program.rows() == 0) {
-        built = buildIrregularBasis(b.valence, b.levels);
-        if (built.weights.size() != b.weights.size() ||
-            std::memcmp(built.weights.data(), b.weights.data(), b.weights.size() * sizeof(float)) != 0)
-            throw std::logic_error("TBLS: a valence-" + std::to_string(b.valence) +
-                                   " basis is not this limn's; it cannot be written as a program");
-        p = &built.program;
-    }
+    const BasisProgram& p = programOf(b, built);
     w.write<uint32_t>(b.valence);
     w.write<uint32_t>(b.levels);
-    writeProgram(w, *p);
+    writeProgram(w, p);
+}
+
+void writeConfigurationBasis(ByteWriter& w, const IrregularBasis& b) {
+    IrregularBasis built;
+    const BasisProgram& p = programOf(b, built);
+    w.write<uint32_t>(b.valence);
+    w.write<uint32_t>(b.configuration.code());
+    w.write<uint32_t>(b.supportSize());
+    w.write<uint32_t>(b.levels);
+    writeProgram(w, p);
+}
+
+IrregularBasis readConfigurationBasis(ByteReader& r, const std::string& what, const std::vector<IrregularBasis>& earlier) {
+    IrregularBasis x;
+    x.valence = r.read<uint32_t>();
+    const uint32_t code = r.read<uint32_t>();
+    const uint32_t M = r.read<uint32_t>();
+    x.levels = r.read<uint32_t>();
+    BasisConfiguration& c = x.configuration;
+    c = {x.valence, (code & 1) != 0, code >> 2, (code & 2) != 0};
+    if (c.code() != code || x.valence < 1 || x.valence > kMaxBasisValence || x.levels < 1 ||
+        x.levels > uint32_t(kMaxDepth) || (c.boundary && c.position >= x.valence) ||
+        (!c.boundary && (x.valence < 3 || x.valence == 4 || M != 2 * x.valence + 8)) || M < 4 ||
+        M > 2 * kMaxBasisValence + 8)
+        r.fail(what + " has a bad configuration, support size or level count");
+    for (const IrregularBasis& other : earlier)
+        if (other.configuration == c) r.fail(what + " repeats a configuration");
+    if (c.boundary) x.support = M;
+    // A boundary sub-patch has at most 7 phantom points, each one row.
+    x.program = readProgram(r, what, M, c.boundary ? 21 : 0);
+    x.weights = expandIrregularBasis(x.program, M, x.levels);
+    const float lo = c.boundary ? -4.0f : 0.0f, hi = c.boundary ? 5.0f : 1.0f;
+    for (float wt : x.weights)
+        if (!(wt >= lo && wt <= hi))
+            r.fail(what + " has a weight outside [" + std::to_string(int(lo)) + ", " + std::to_string(int(hi)) + "]");
+    return x;
 }
 
 BasisProgram readProgram(ByteReader& r, const std::string& what, uint32_t M, uint32_t phantomRows) {

@@ -23,6 +23,18 @@ void writeBasisProgram(ByteWriter& w, const IrregularBasis& basis);
 // Reads basis `index` and expands its weights; `earlier` are the bases read before it (no valence
 // twice). Every count and index is checked before anything is allocated from it.
 IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector<IrregularBasis>& earlier);
+// A basis with its configuration (FVSF version 3, TBLS version 7; formats/limn.md): u32 valence,
+// u32 configuration code (BasisConfiguration::code), u32 support size, u32 levels, then its
+// program. An interior basis without a program (read from an older version) is written as
+// writeBasisProgram writes it. The reader checks every field (an interior basis: valence 3 to
+// kMaxBasisValence but 4, 2n + 8 points; a boundary one: its place in a fan of 1 to
+// kMaxBasisValence faces), refuses a configuration twice, expands the weights and checks their
+// range: [0, 1] for an interior basis (Catmull-Clark's smooth weights are convex), [-4, 5] for a
+// boundary one (its phantom points, 2 a - b of such; corners 4 a - 2 b - 2 c + d). `what` names
+// the basis in messages.
+void writeConfigurationBasis(ByteWriter& w, const IrregularBasis& basis);
+IrregularBasis readConfigurationBasis(ByteReader& r, const std::string& what, const std::vector<IrregularBasis>& earlier);
+
 // The program alone (u32 palette size, the palette, the stream), over `support` points, which
 // FVSF version 3 writes after a configuration's own header; `phantomRows` more rows than TBLS's
 // bound allows (a boundary configuration's phantom points). Checked as readBasisProgram does.

@@ -348,6 +348,12 @@ const Case kCases[] = {
     {"tri/osd_loop_tetrahedron.obj", 2, true, {0.2, 1, 0.4}, 2.0},
     {"prism7", 3, true, {0.4, 0.3, 1}, 0.6},
     {"osd/catmark/catmark_car.obj", 3, false, {0.2, 0.6, 1}, 0.7},
+    // Faces around boundary vertices on their configurations' bases (smooth boundary vertices of
+    // 2 to 4 faces; edge-only smooth corners and boundary vertices of 3 faces).
+    {"tri/cube_no_bottom.obj", 2, false, {0.3, -0.6, 0.5}, 0.7},
+    {"osd/catmark/catmark_edgeonly.obj", 2, false, {0.3, 0.4, 1}, 0.7},
+    // And in sectors between infinitely sharp creases.
+    {"osd/catmark/catmark_cubes_infsharp.obj", 2, true, {0.3, 0.5, 1}, 0.8},
 };
 
 INSTANTIATE_TEST_SUITE_P(Shared, AdaptiveRender, ::testing::ValuesIn(kCases), caseName);

@@ -32,6 +32,9 @@ Tables build(const Mesh& m, int depth, bool uniform = false, bool smoothBelowDep
     o.depth = depth;
     o.uniform = uniform;
     o.smoothFacesBelowDepth = smoothBelowDepth;
+    // Tables older versions can hold (versions 3 and 4: no smooth face below level N; before 7:
+    // no boundary basis).
+    o.boundaryBases = o.basisRimFeatures = smoothBelowDepth;
     return buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
 }
 
@@ -352,8 +355,9 @@ TEST(TablesChunk, HostileBasisProgramIsRefused) {
              p.start.back() += extra;
          }},
         {"has a bad weight", [&](BasisProgram& p) { p.weight[p.start[p.rows() - 1]] = 3e38f; }},
-        // Each band multiplies by 1e5: finite in the palette, past 1e6 once expanded.
-        {"has a bad weight", [&](BasisProgram& p) {
+        // Each band multiplies by 1e5: finite in the palette, past 1 once expanded (version 7
+        // bounds an interior basis's weights by [0, 1]).
+        {"has a weight outside [0, 1]", [&](BasisProgram& p) {
              for (uint32_t r = 0; r < p.rows(); ++r)
                  if (!p.averaged[r]) p.weight[p.start[r]] = 1e5f;
          }},

@@ -1,7 +1,9 @@
-// TBLS version 6 (formats/limn.md, "Repeated levels", "Sub-patch domains"): what it leaves out
-// of version 5 is read back as the builder's tables, and hostile input is refused by name.
+// TBLS versions 6 and 7 (formats/limn.md, "Repeated levels", "Sub-patch domains", "Boundary
+// configurations"): what version 6 leaves out of version 5 is read back as the builder's tables,
+// version 7's boundary bases expand to the builder's weights, and hostile input is refused by name.
 #include "base/error.h"
 #include "mesh/import.h"
+#include "subdiv/irregular_basis.h"
 #include "subdiv/tables_chunk.h"
 #include "test_support.h"
 
@@ -22,10 +24,12 @@ Mesh loadModel(const std::string& model) {
     return importMeshFile(test::modelPath(model).string(), w);
 }
 
+// Tables version 6 can hold: without boundary bases.
 Tables buildAt(const Mesh& m, int depth) {
     Warnings w;
     TablesOptions o;
     o.depth = depth;
+    o.boundaryBases = o.basisRimFeatures = false;
     return buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
 }
 
@@ -41,7 +45,7 @@ TEST(TablesChunk, RepeatedLevelsReadAsTheBuildersTables) {
         SCOPED_TRACE(model);
         Mesh m = loadModel(model);
         const Tables t = buildAt(m, depth);
-        const Chunk v5 = encodeTablesChunk(t, 5), v6 = encodeTablesChunk(t);
+        const Chunk v5 = encodeTablesChunk(t, 5), v6 = encodeTablesChunk(t, 6);
         ASSERT_EQ(v6.version, 6u);
         uint32_t repeats = 0;
         std::memcpy(&repeats, v6.payload.data() + 40 + 24 * t.levels.size(), 4);
@@ -57,7 +61,7 @@ TEST(TablesChunk, RepeatedLevelsReadAsTheBuildersTables) {
                 EXPECT_EQ(a->weights, b->weights) << "level " << l + 1;
             }
         EXPECT_EQ(encodeTablesChunk(back, 5).payload, v5.payload);
-        EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(v5, &m)).payload, v6.payload);
+        EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(v5, &m), 6).payload, v6.payload);
     }
 }
 
@@ -143,6 +147,60 @@ TEST(TablesChunk, SubPatchDomainsComeFromTheQuadtrees) {
             std::swap(*other, node[subQ]);
         }
         const char* want[4] = {"is named twice", "is in no quadtree", "is in no quadtree", "its node's quadrant at"};
+        try {
+            decodeTablesChunk(encodeTablesChunk(t), &m);
+            ADD_FAILURE() << "accepted case " << which;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(want[which]), std::string::npos) << which << ": " << e.what();
+        }
+    }
+}
+
+// Version 7 stores each basis with its configuration and support size, as FVSF version 3 does:
+// tables with boundary bases (cube_no_bottom at depth 1: smooth boundary vertices of 2 to 4
+// faces; edge-and-corner catmark_edgecorner's corners) read back with the builder's weights, to
+// the bit; version 6 cannot hold them; tables without them read the same from versions 6 and 7.
+// A configuration that is not one (a place beyond its fan, a fan of more than kMaxBasisValence
+// faces), one twice, and weights outside [-4, 5] are refused by name.
+TEST(TablesChunk, BoundaryBasesReadAsTheBuildersAndHostileOnesAreRefused) {
+    Mesh m = loadModel("tri/cube_no_bottom.obj");
+    Warnings w;
+    TablesOptions o;
+    o.depth = 1;
+    o.boundaryBases = o.basisRimFeatures = true;
+    const Tables good = buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
+    size_t boundary = 0;
+    for (const IrregularBasis& b : good.irregularBases) boundary += b.configuration.boundary;
+    ASSERT_GT(boundary, 0u);
+    const Chunk c = encodeTablesChunk(good);
+    ASSERT_EQ(c.version, 7u);
+    const Tables back = decodeTablesChunk(c, &m);
+    ASSERT_EQ(back.irregularBases.size(), good.irregularBases.size());
+    for (size_t i = 0; i < good.irregularBases.size(); ++i) {
+        const IrregularBasis &a = back.irregularBases[i], &b = good.irregularBases[i];
+        EXPECT_TRUE(a.configuration == b.configuration && a.supportSize() == b.supportSize()) << "basis " << i;
+        ASSERT_EQ(a.weights.size(), b.weights.size());
+        EXPECT_EQ(std::memcmp(a.weights.data(), b.weights.data(), a.weights.size() * sizeof(float)), 0) << "basis " << i;
+    }
+    EXPECT_EQ(encodeTablesChunk(back).payload, c.payload);
+    EXPECT_THROW(encodeTablesChunk(good, 6), std::logic_error);
+    const Tables plain = buildAt(m, 1);
+    EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(encodeTablesChunk(plain, 6), &m)).payload,
+              encodeTablesChunk(plain).payload);
+    size_t first = good.irregularBases.size();
+    for (size_t i = 0; i < good.irregularBases.size() && first == good.irregularBases.size(); ++i)
+        if (good.irregularBases[i].configuration.boundary) first = i;
+    for (int which = 0; which < 4; ++which) {
+        Tables t = good;
+        IrregularBasis& b = t.irregularBases[first];
+        if (which == 0) b.configuration.position = b.valence;
+        if (which == 1) b.valence = b.configuration.valence = kMaxBasisValence + 1;
+        if (which == 2) t.irregularBases.push_back(b);
+        if (which == 3)
+            for (uint32_t r = 0; r < b.program.rows(); ++r)
+                if (!b.program.averaged[r]) b.program.weight[b.program.start[r]] *= 4.0f;
+        const char* want[4] = {"bad configuration", "bad configuration", "repeats a configuration",
+                               "has a weight outside [-4, 5]"};
         try {
             decodeTablesChunk(encodeTablesChunk(t), &m);
             ADD_FAILURE() << "accepted case " << which;

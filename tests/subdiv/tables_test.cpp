@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <tuple>
 
 #include <algorithm>
 #include <cmath>
@@ -62,7 +63,9 @@ struct Fixture {
     double diag = 1;
 };
 
-Fixture build(const Case& c) {
+// `bases`: boundary bases and interior bases with features on their rim (the default), or
+// neither (more faces refined, and smooth faces below level N where those features decay).
+Fixture build(const Case& c, bool bases = true) {
     Fixture f;
     Warnings w;
     f.mesh = importMeshFile(test::modelPath(c.model).string(), w);
@@ -70,6 +73,7 @@ Fixture build(const Case& c) {
     TablesOptions opts;
     opts.depth = c.depth;
     opts.uniform = c.uniform;
+    opts.boundaryBases = opts.basisRimFeatures = bases;
     f.tables = buildTables(f.mesh, f.options, opts, w);
     f.vertices = evaluateVertices(f.tables, f.mesh.positions);
     f.diag = diagonal(f.mesh);
@@ -422,7 +426,10 @@ TEST(IrregularSurface, SmoothFacesBelowDepthMatchOpenSubdiv) {
     for (auto [model, depth] : {std::pair{"osd/catmark/catmark_pyramid_creases0.obj", 2},
                                 std::pair{"osd/catmark/catmark_nonquads.obj", 2}}) {
         SCOPED_TRACE(model);
-        const Fixture f = build({model, depth, false});
+        // Without the rim rule: nonquads' roots whose support meets the boundary on its rim are
+        // refined, and their corner children take the basis below level N (with it, the roots
+        // take it at level N).
+        const Fixture f = build({model, depth, false}, false);
         size_t nested = 0;
         for (size_t i = 0; i < f.tables.irregularNodes.size(); ++i)
             for (uint32_t c : f.tables.irregularNodes[i])
@@ -461,6 +468,91 @@ TEST(IrregularSurface, SmoothFacesBelowDepthMatchOpenSubdiv) {
         EXPECT_LE(worstN, 0.05) << compared << " points";
         std::printf("%s d%d: %zu smooth faces below level N, %zu points, max %.3g of the diagonal, %.3g degrees\n",
                     model, depth, nested, compared, worstP, worstN);
+    }
+}
+
+// Faces around one boundary vertex (a smooth boundary vertex of any number of faces, or a corner;
+// or a vertex whose sector is bounded by infinitely sharp creases) take a basis per configuration
+// (TBLS version 7) instead of K more levels, under the mesh's own boundary rule: the surface evaluateIrregular gives there is OpenSubdiv's limit (isolation 10)
+// wherever it says it is exact, on a 1/32 grid of every irregular face, within 1e-6 of the
+// diagonal and 0.05 degrees; each such face's surface lies in its support's box (the cull
+// pass's hull test: the boundary rules are convex too, whatever the phantom points' weights);
+// the tables round-trip through TBLS, whose version 6 cannot hold them.
+TEST(IrregularSurface, BoundaryBasesMatchOpenSubdiv) {
+    for (auto [model, depth, rule] : {std::tuple{"tri/cube_no_bottom.obj", 2, std::optional<BoundaryRule>{}},
+                                      std::tuple{"osd/catmark/catmark_edgeonly.obj", 2, std::optional<BoundaryRule>{}},
+                                      std::tuple{"osd/catmark/catmark_xord_boundary.obj", 1,
+                                                 std::optional<BoundaryRule>{BoundaryRule::EdgeOnly}},
+                                      std::tuple{"osd/catmark/catmark_xord_boundary.obj", 2,
+                                                 std::optional<BoundaryRule>{BoundaryRule::EdgeAndCorner}},
+                                      // Sectors bounded by infinitely sharp creases.
+                                      std::tuple{"osd/catmark/catmark_cubes_infsharp.obj", 2, std::optional<BoundaryRule>{}}}) {
+        SCOPED_TRACE(std::string(model) + " d" + std::to_string(depth));
+        Fixture f;
+        Warnings w;
+        f.mesh = importMeshFile(test::modelPath(model).string(), w);
+        f.options = resolveSchemeOptions(f.mesh.tags, rule);
+        TablesOptions opts;
+        opts.depth = depth;
+        opts.boundaryBases = opts.basisRimFeatures = true;
+        f.tables = buildTables(f.mesh, f.options, opts, w);
+        f.vertices = evaluateVertices(f.tables, f.mesh.positions);
+        f.diag = diagonal(f.mesh);
+        const limn::Tables& t = f.tables;
+        size_t boundaryFaces = 0, quadtreeRoots = 0;
+        for (const auto& sm : t.smoothIrregular) boundaryFaces += t.irregularBases[sm.basis].configuration.boundary;
+        for (uint32_t q = 0; q < t.irregular.size() && q < t.irregularNodes.size(); ++q)
+            quadtreeRoots += !smoothRoot(t.irregularNodes[q]);
+        EXPECT_GT(boundaryFaces, 0u) << "no face takes a boundary basis";
+        const Chunk c = encodeTablesChunk(t);
+        EXPECT_EQ(c.version, kTablesChunkVersion);
+        EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(c, &f.mesh)).payload, c.payload);
+        EXPECT_THROW(encodeTablesChunk(t, 6), std::logic_error);
+        // Each smooth root's surface in its support's box.
+        std::vector<int> smoothOf(t.irregular.size(), -1);
+        for (uint32_t q = 0; q < t.irregular.size() && q < t.irregularNodes.size(); ++q)
+            if (smoothRoot(t.irregularNodes[q])) smoothOf[q] = int(t.irregularNodes[q][0] & kNodeIndexMask);
+        test::OsdLimitSurface osd(f.mesh, f.options, 10);
+        const std::vector<LimitPoint> limits = evaluateLimitPoints(t, f.vertices);
+        double worstP = 0, worstN = 0, outside = 0;
+        size_t compared = 0;
+        const int R = 32;
+        for (uint32_t q = 0; q < t.irregular.size(); ++q) {
+            const IrregularFace& face = t.irregular[q];
+            glm::dvec3 lo(1e300), hi(-1e300);
+            if (smoothOf[q] >= 0) {
+                const auto& sm = t.smoothIrregular[size_t(smoothOf[q])];
+                for (uint32_t i = 0; i < t.irregularBases[sm.basis].supportSize(); ++i) {
+                    lo = glm::min(lo, f.vertices[t.smoothPoints[sm.first + i]]);
+                    hi = glm::max(hi, f.vertices[t.smoothPoints[sm.first + i]]);
+                }
+            }
+            for (int j = 0; j <= R; ++j)
+                for (int i = 0; i <= R; ++i) {
+                    const double s = double(i) / R, tt = double(j) / R;
+                    bool exact = false;
+                    const SurfacePoint x = evaluateIrregular(t, f.vertices, limits, q, s, tt, &exact);
+                    if (smoothOf[q] >= 0) {
+                        const glm::dvec3 below = glm::max(lo - x.position, glm::dvec3(0.0));
+                        const glm::dvec3 above = glm::max(x.position - hi, glm::dvec3(0.0));
+                        outside = std::max(outside, glm::length(below + above) / f.diag);
+                    }
+                    if (!exact || ((i == 0 || i == R) && (j == 0 || j == R))) continue;
+                    const double u = face.u0 + s * face.size, v = face.v0 + tt * face.size;
+                    const double iu = u + (i == R ? -1e-9 : 1e-9), iv = v + (j == R ? -1e-9 : 1e-9);
+                    glm::dvec3 P, N;
+                    ASSERT_TRUE(osd.evaluate(int(face.ptex), u, v, iu, iv, P, N));
+                    worstP = std::max(worstP, glm::length(P - x.position) / f.diag);
+                    worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, x.normal))) * 180 / M_PI);
+                    ++compared;
+                }
+        }
+        EXPECT_GT(compared, 1000u);
+        EXPECT_LE(worstP, 1e-6) << compared << " points";
+        EXPECT_LE(worstN, 0.05) << compared << " points";
+        EXPECT_LE(outside, 1e-7);
+        std::printf("%s d%d: %zu boundary-basis faces, %zu quadtrees, %zu points, max %.3g of the diagonal, %.3g degrees\n",
+                    model, depth, boundaryFaces, quadtreeRoots, compared, worstP, worstN);
     }
 }
 

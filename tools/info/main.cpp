@@ -100,8 +100,9 @@ int main(int argc, char** argv) {
                    "chunks (type, version, bytes). With subdivision tables (limn-tables): depth,\n"
                    "uniform, table_bytes, table_vertices, patches, limit_points,\n"
                    "approximate_limit_points, irregular_surface (how the faces left irregular at\n"
-                   "level N are drawn: basis, sub_patches, bilinear counts, basis_below (smooth\n"
-                   "faces below level N inside the sub-patch faces, from a valence basis), and\n"
+                   "level N are drawn: basis, sub_patches, bilinear counts, boundary_basis (of\n"
+                   "basis, those around a boundary vertex, from a basis per configuration),\n"
+                   "basis_below (smooth faces below level N inside the sub-patch faces), and\n"
                    "exact_levels K: every point at least 2^-K of a face from its extraordinary\n"
                    "corners is on the limit surface; docs/irregular.md) and levels (per level\n"
                    "0..N+K: vertices computed at\n"
@@ -211,7 +212,8 @@ int main(int argc, char** argv) {
                 const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
                 j.key("irregular_surface").beginObject();
                 j.field("basis", irr.basis).field("sub_patches", irr.subPatches).field("bilinear", irr.bilinear)
-                    .field("basis_below", irr.basisBelow).field("exact_levels", irr.exactLevels);
+                    .field("boundary_basis", irr.boundaryBasis).field("basis_below", irr.basisBelow)
+                    .field("exact_levels", irr.exactLevels);
                 j.endObject();
                 j.key("levels").beginArray();
                 for (const auto& L : tables->levels) {
@@ -256,10 +258,11 @@ int main(int argc, char** argv) {
                             tables->totalVertices, tables->patches.size(),
                             tables->limitPosition.rows(), tables->approximateLimitPoints);
                 const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
-                std::printf("  irregular surface      %zu from a valence basis, %zu on sub-patches (%zu smooth faces "
-                            "below level N from a valence basis), %zu bilinear (exact beyond 2^-%u of their "
-                            "extraordinary corners)\n",
-                            irr.basis, irr.subPatches, irr.basisBelow, irr.bilinear, irr.exactLevels);
+                std::printf("  irregular surface      %zu from a basis (%zu around a boundary vertex), %zu on "
+                            "sub-patches (%zu smooth faces below level N from a basis), %zu bilinear (exact "
+                            "beyond 2^-%u of their extraordinary corners)\n",
+                            irr.basis, irr.boundaryBasis, irr.subPatches, irr.basisBelow, irr.bilinear,
+                            irr.exactLevels);
                 for (size_t l = 0; l < tables->levels.size(); ++l)
                     std::printf("    level %zu: %u vertices, %u regular patches, %u irregular faces\n", l,
                                 tables->levels[l].count(), tables->levels[l].regularPatches,

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
         std::string input = "-";
         int depth = 3, irregularLevels = TablesOptions{}.irregularLevels;
         bool uniform = false, noCreasePatches = false;
+        std::string boundaryBases = TablesOptions{}.boundaryBases ? "on" : "off";
         uint64_t maxMemory = cli::defaultMemoryBudget();
         cli::Parser parser(
             "limn-tables", "[options] [INPUT|-] [-o OUTPUT|-]",
@@ -44,6 +45,13 @@ int main(int argc, char** argv) {
                      "at least 2^-K of the face from an extraordinary corner, which covers every "
                      "drawn vertex up to --tess 2^K (capped at depth 16 in all; 0: drawn bilinear "
                      "between their corners' limit points, as before)")
+            .choice("--boundary-bases", &boundaryBases, {"on", "off"},
+                    "faces around one boundary vertex (smooth or a corner) whose other corners "
+                    "are regular drawn from a basis per configuration of the vertex's fan, like "
+                    "those around one interior extraordinary vertex, and those whose support "
+                    "reaches a boundary or crease only on its rim from their per-valence basis, "
+                    "instead of K more levels (off: refined, as TBLS version 6 held them; "
+                    "docs/irregular.md)")
             .flag("--no-crease-patches", &noCreasePatches,
                   "isolate creases and sharp corners to level N like extraordinary vertices, "
                   "instead of drawing the regular faces along infinitely sharp ones as boundary "
@@ -94,6 +102,10 @@ int main(int argc, char** argv) {
             opts.uniform = uniform;
             opts.irregularLevels = irregularLevels;
             opts.infSharpPatches = opts.singleCreasePatches = !noCreasePatches;
+            // With it, faces around one interior extraordinary vertex whose support only reaches a
+            // boundary on its rim keep their basis too (the stencils of one level read features
+            // at the face's corners only; docs/irregular.md).
+            opts.boundaryBases = opts.basisRimFeatures = boundaryBases == "on";
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
             // Smooth face-varying UVs: their own surface, for runtimes that do not build it. Its

@@ -505,9 +505,9 @@ fn main_1() {
     var phi_827_: bool;
     var phi_837_: bool;
     var phi_847_: bool;
-    var phi_923_: bool;
-    var phi_1008_: bool;
-    var phi_1057_: bool;
+    var phi_921_: bool;
+    var phi_1006_: bool;
+    var phi_1055_: bool;
 
     let _e109 = pc.limnRowInvocations;
     param_9 = _e109;
@@ -724,164 +724,164 @@ fn main_1() {
                 h = (_e340 & 1073741823u);
                 let _e342 = h;
                 let _e347 = patches.p[_e342].cv[0i];
-                M = ((2u * _e347) + 8u);
+                M = _e347;
                 lo_3 = vec2<f32>(1000000000000000000000000000000f, 1000000000000000000000000000000f);
                 hi_3 = vec2<f32>(-1000000000000000000000000000000f, -1000000000000000000000000000000f);
-                let _e351 = pc.enabled;
-                boxed = (((_e351 >> bitcast<u32>(8i)) & 255u) != 0u);
+                let _e349 = pc.enabled;
+                boxed = (((_e349 >> bitcast<u32>(8i)) & 255u) != 0u);
                 i_1 = 0u;
                 loop {
-                    let _e356 = i_1;
-                    let _e357 = M;
-                    if (_e356 < _e357) {
-                        let _e359 = h;
-                        let _e361 = i_1;
-                        let _e364 = i_1;
-                        let _e370 = patches.p[((_e359 + 1u) + (_e361 / 16u))].cv[(_e364 % 16u)];
-                        let _e373 = vertices.p[_e370];
-                        x = _e373.xyz;
-                        let _e375 = x;
-                        param_20 = _e375;
-                        let _e376 = outside_u0028_vf3_u003b((&param_20));
-                        let _e377 = all_;
-                        all_ = (_e377 & _e376);
-                        let _e379 = boxed;
-                        if _e379 {
-                            let _e380 = x;
-                            param_21 = _e380;
-                            let _e381 = lo_3;
-                            param_22 = _e381;
-                            let _e382 = hi_3;
-                            param_23 = _e382;
-                            let _e383 = growProjectedBox_u0028_vf3_u003b_vf2_u003b_vf2_u003b((&param_21), (&param_22), (&param_23));
-                            let _e384 = param_22;
-                            lo_3 = _e384;
-                            let _e385 = param_23;
-                            hi_3 = _e385;
-                            boxed = _e383;
+                    let _e354 = i_1;
+                    let _e355 = M;
+                    if (_e354 < _e355) {
+                        let _e357 = h;
+                        let _e359 = i_1;
+                        let _e362 = i_1;
+                        let _e368 = patches.p[((_e357 + 1u) + (_e359 / 16u))].cv[(_e362 % 16u)];
+                        let _e371 = vertices.p[_e368];
+                        x = _e371.xyz;
+                        let _e373 = x;
+                        param_20 = _e373;
+                        let _e374 = outside_u0028_vf3_u003b((&param_20));
+                        let _e375 = all_;
+                        all_ = (_e375 & _e374);
+                        let _e377 = boxed;
+                        if _e377 {
+                            let _e378 = x;
+                            param_21 = _e378;
+                            let _e379 = lo_3;
+                            param_22 = _e379;
+                            let _e380 = hi_3;
+                            param_23 = _e380;
+                            let _e381 = growProjectedBox_u0028_vf3_u003b_vf2_u003b_vf2_u003b((&param_21), (&param_22), (&param_23));
+                            let _e382 = param_22;
+                            lo_3 = _e382;
+                            let _e383 = param_23;
+                            hi_3 = _e383;
+                            boxed = _e381;
                         }
                         continue;
                     } else {
                         break;
                     }
                     continuing {
-                        let _e386 = i_1;
-                        i_1 = (_e386 + bitcast<u32>(1i));
+                        let _e384 = i_1;
+                        i_1 = (_e384 + bitcast<u32>(1i));
                     }
                 }
-                let _e389 = all_;
-                let _e391 = boxed;
-                let _e392 = ((_e389 == 0u) && _e391);
-                phi_923_ = _e392;
-                if _e392 {
-                    let _e393 = lo_3;
-                    param_24 = _e393;
-                    let _e394 = hi_3;
-                    param_25 = _e394;
-                    let _e395 = boxBetweenSamples_u0028_vf2_u003b_vf2_u003b((&param_24), (&param_25));
-                    phi_923_ = _e395;
+                let _e387 = all_;
+                let _e389 = boxed;
+                let _e390 = ((_e387 == 0u) && _e389);
+                phi_921_ = _e390;
+                if _e390 {
+                    let _e391 = lo_3;
+                    param_24 = _e391;
+                    let _e392 = hi_3;
+                    param_25 = _e392;
+                    let _e393 = boxBetweenSamples_u0028_vf2_u003b_vf2_u003b((&param_24), (&param_25));
+                    phi_921_ = _e393;
                 }
-                let _e397 = phi_923_;
-                if _e397 {
+                let _e395 = phi_921_;
+                if _e395 {
                     all_ = 128u;
                 }
             } else {
-                let _e398 = e;
-                let _e403 = patches.p[_e398].cv[0i];
-                if (_e403 != 4294967295u) {
+                let _e396 = e;
+                let _e401 = patches.p[_e396].cv[0i];
+                if (_e401 != 4294967295u) {
                     all_ = 0u;
                 } else {
-                    let _e405 = e;
-                    let _e407 = pc.patchCount;
-                    let _e411 = irregulars.f[(_e405 - _e407)];
-                    q.corner[0i] = _e411.corner[0];
-                    q.corner[1i] = _e411.corner[1];
-                    q.corner[2i] = _e411.corner[2];
-                    q.corner[3i] = _e411.corner[3];
-                    q.ptex = _e411.ptex;
-                    q.u0_ = _e411.u0_;
-                    q.v0_ = _e411.v0_;
-                    q.size = _e411.size;
+                    let _e403 = e;
+                    let _e405 = pc.patchCount;
+                    let _e409 = irregulars.f[(_e403 - _e405)];
+                    q.corner[0i] = _e409.corner[0];
+                    q.corner[1i] = _e409.corner[1];
+                    q.corner[2i] = _e409.corner[2];
+                    q.corner[3i] = _e409.corner[3];
+                    q.ptex = _e409.ptex;
+                    q.u0_ = _e409.u0_;
+                    q.v0_ = _e409.v0_;
+                    q.size = _e409.size;
                     k_4 = 0i;
                     loop {
-                        let _e430 = k_4;
-                        if (_e430 < 4i) {
-                            let _e432 = k_4;
-                            let _e433 = k_4;
-                            let _e436 = q.corner[_e433];
-                            let _e440 = limits.v[(2u * _e436)];
-                            P_4[_e432] = _e440.xyz;
-                            let _e443 = k_4;
-                            let _e445 = P_4[_e443];
-                            param_26 = _e445;
-                            let _e446 = outside_u0028_vf3_u003b((&param_26));
-                            let _e447 = all_;
-                            all_ = (_e447 & _e446);
+                        let _e428 = k_4;
+                        if (_e428 < 4i) {
+                            let _e430 = k_4;
+                            let _e431 = k_4;
+                            let _e434 = q.corner[_e431];
+                            let _e438 = limits.v[(2u * _e434)];
+                            P_4[_e430] = _e438.xyz;
+                            let _e441 = k_4;
+                            let _e443 = P_4[_e441];
+                            param_26 = _e443;
+                            let _e444 = outside_u0028_vf3_u003b((&param_26));
+                            let _e445 = all_;
+                            all_ = (_e445 & _e444);
                             continue;
                         } else {
                             break;
                         }
                         continuing {
-                            let _e449 = k_4;
-                            k_4 = (_e449 + 1i);
+                            let _e447 = k_4;
+                            k_4 = (_e447 + 1i);
                         }
                     }
-                    let _e451 = all_;
-                    let _e452 = (_e451 == 0u);
-                    phi_1008_ = _e452;
-                    if _e452 {
-                        let _e455 = pc.eye[3u];
-                        phi_1008_ = (_e455 != 0f);
+                    let _e449 = all_;
+                    let _e450 = (_e449 == 0u);
+                    phi_1006_ = _e450;
+                    if _e450 {
+                        let _e453 = pc.eye[3u];
+                        phi_1006_ = (_e453 != 0f);
                     }
-                    let _e458 = phi_1008_;
-                    if _e458 {
-                        let _e460 = P_4[1i];
-                        let _e462 = P_4[0i];
-                        U_2[0i] = (_e460 - _e462);
-                        let _e466 = P_4[2i];
-                        let _e468 = P_4[3i];
-                        U_2[1i] = (_e466 - _e468);
-                        let _e472 = P_4[3i];
-                        let _e474 = P_4[0i];
-                        V_2[0i] = (_e472 - _e474);
-                        let _e478 = P_4[2i];
-                        let _e480 = P_4[1i];
-                        V_2[1i] = (_e478 - _e480);
-                        let _e483 = P_4;
-                        param_27 = _e483;
+                    let _e456 = phi_1006_;
+                    if _e456 {
+                        let _e458 = P_4[1i];
+                        let _e460 = P_4[0i];
+                        U_2[0i] = (_e458 - _e460);
+                        let _e464 = P_4[2i];
+                        let _e466 = P_4[3i];
+                        U_2[1i] = (_e464 - _e466);
+                        let _e470 = P_4[3i];
+                        let _e472 = P_4[0i];
+                        V_2[0i] = (_e470 - _e472);
+                        let _e476 = P_4[2i];
+                        let _e478 = P_4[1i];
+                        V_2[1i] = (_e476 - _e478);
+                        let _e481 = P_4;
+                        param_27 = _e481;
                         param_28 = 4u;
-                        let _e484 = U_2;
-                        param_29 = _e484;
+                        let _e482 = U_2;
+                        param_29 = _e482;
                         param_30 = 2u;
-                        let _e485 = V_2;
-                        param_31 = _e485;
+                        let _e483 = V_2;
+                        param_31 = _e483;
                         param_32 = 2u;
-                        let _e486 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_27), (&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
-                        if _e486 {
+                        let _e484 = facesAway_u0028_vf3_u005b_16_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b_vf3_u005b_12_u005d_u003b_u1_u003b((&param_27), (&param_28), (&param_29), (&param_30), (&param_31), (&param_32));
+                        if _e484 {
                             all_ = 64u;
                         }
                     }
-                    let _e487 = all_;
-                    let _e488 = (_e487 == 0u);
-                    phi_1057_ = _e488;
-                    if _e488 {
-                        let _e489 = P_4;
-                        param_33 = _e489;
+                    let _e485 = all_;
+                    let _e486 = (_e485 == 0u);
+                    phi_1055_ = _e486;
+                    if _e486 {
+                        let _e487 = P_4;
+                        param_33 = _e487;
                         param_34 = 4u;
-                        let _e490 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_33), (&param_34));
-                        phi_1057_ = _e490;
+                        let _e488 = betweenSamples_u0028_vf3_u005b_16_u005d_u003b_u1_u003b((&param_33), (&param_34));
+                        phi_1055_ = _e488;
                     }
-                    let _e492 = phi_1057_;
-                    if _e492 {
+                    let _e490 = phi_1055_;
+                    if _e490 {
                         all_ = 128u;
                     }
                 }
             }
         }
     }
-    let _e493 = e;
-    let _e494 = all_;
-    cull.c[_e493] = select(0u, 1u, (_e494 != 0u));
+    let _e491 = e;
+    let _e492 = all_;
+    cull.c[_e491] = select(0u, 1u, (_e492 != 0u));
     return;
 }
 

@@ -829,98 +829,98 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     hd.pad1_ = _e112.pad1_;
     hd.pad2_ = _e112.pad2_;
     let _e165 = hd.cv[0i];
-    M_1 = ((2u * _e165) + 8u);
-    let _e170 = hd.cv[2i];
-    let _e171 = (*k_3);
-    let _e174 = (*q);
-    let _e177 = M_1;
-    block = (_e170 + ((((_e171 - 1u) * 3u) + (_e174 - 1u)) * _e177));
+    M_1 = _e165;
+    let _e168 = hd.cv[2i];
+    let _e169 = (*k_3);
+    let _e172 = (*q);
+    let _e175 = M_1;
+    block = (_e168 + ((((_e169 - 1u) * 3u) + (_e172 - 1u)) * _e175));
     j_1 = 0i;
     loop {
-        let _e180 = j_1;
-        if (_e180 < 16i) {
+        let _e178 = j_1;
+        if (_e178 < 16i) {
+            let _e180 = j_1;
+            c_1[_e180] = vec3<f32>(0f, 0f, 0f);
             let _e182 = j_1;
-            c_1[_e182] = vec3<f32>(0f, 0f, 0f);
-            let _e184 = j_1;
-            r_1[_e184] = vec3<f32>(0f, 0f, 0f);
+            r_1[_e182] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e186 = j_1;
-            j_1 = (_e186 + 1i);
+            let _e184 = j_1;
+            j_1 = (_e184 + 1i);
         }
     }
-    let _e188 = (*h);
-    let _e194 = patches.p[(_e188 + 1u)].cv[0i];
-    let _e197 = vertices.p[_e194];
-    origin_1 = _e197.xyz;
+    let _e186 = (*h);
+    let _e192 = patches.p[(_e186 + 1u)].cv[0i];
+    let _e195 = vertices.p[_e192];
+    origin_1 = _e195.xyz;
     i_3 = 0u;
     loop {
-        let _e199 = i_3;
-        let _e200 = M_1;
-        if (_e199 < _e200) {
-            let _e202 = (*h);
-            let _e204 = i_3;
-            let _e207 = i_3;
-            let _e213 = patches.p[((_e202 + 1u) + (_e204 / 16u))].cv[(_e207 % 16u)];
-            let _e216 = vertices.p[_e213];
-            x_3 = _e216.xyz;
-            let _e218 = x_3;
-            let _e219 = origin_1;
-            xr = (_e218 - _e219);
-            let _e221 = block;
-            let _e222 = i_3;
-            let _e226 = patches.p[(_e221 + _e222)];
-            w_1.cv[0i] = _e226.cv[0];
-            w_1.cv[1i] = _e226.cv[1];
-            w_1.cv[2i] = _e226.cv[2];
-            w_1.cv[3i] = _e226.cv[3];
-            w_1.cv[4i] = _e226.cv[4];
-            w_1.cv[5i] = _e226.cv[5];
-            w_1.cv[6i] = _e226.cv[6];
-            w_1.cv[7i] = _e226.cv[7];
-            w_1.cv[8i] = _e226.cv[8];
-            w_1.cv[9i] = _e226.cv[9];
-            w_1.cv[10i] = _e226.cv[10];
-            w_1.cv[11i] = _e226.cv[11];
-            w_1.cv[12i] = _e226.cv[12];
-            w_1.cv[13i] = _e226.cv[13];
-            w_1.cv[14i] = _e226.cv[14];
-            w_1.cv[15i] = _e226.cv[15];
-            w_1.ptex = _e226.ptex;
-            w_1.u0_ = _e226.u0_;
-            w_1.v0_ = _e226.v0_;
-            w_1.size = _e226.size;
-            w_1.levelBoundary = _e226.levelBoundary;
-            w_1.sharpness = _e226.sharpness;
-            w_1.pad1_ = _e226.pad1_;
-            w_1.pad2_ = _e226.pad2_;
+        let _e197 = i_3;
+        let _e198 = M_1;
+        if (_e197 < _e198) {
+            let _e200 = (*h);
+            let _e202 = i_3;
+            let _e205 = i_3;
+            let _e211 = patches.p[((_e200 + 1u) + (_e202 / 16u))].cv[(_e205 % 16u)];
+            let _e214 = vertices.p[_e211];
+            x_3 = _e214.xyz;
+            let _e216 = x_3;
+            let _e217 = origin_1;
+            xr = (_e216 - _e217);
+            let _e219 = block;
+            let _e220 = i_3;
+            let _e224 = patches.p[(_e219 + _e220)];
+            w_1.cv[0i] = _e224.cv[0];
+            w_1.cv[1i] = _e224.cv[1];
+            w_1.cv[2i] = _e224.cv[2];
+            w_1.cv[3i] = _e224.cv[3];
+            w_1.cv[4i] = _e224.cv[4];
+            w_1.cv[5i] = _e224.cv[5];
+            w_1.cv[6i] = _e224.cv[6];
+            w_1.cv[7i] = _e224.cv[7];
+            w_1.cv[8i] = _e224.cv[8];
+            w_1.cv[9i] = _e224.cv[9];
+            w_1.cv[10i] = _e224.cv[10];
+            w_1.cv[11i] = _e224.cv[11];
+            w_1.cv[12i] = _e224.cv[12];
+            w_1.cv[13i] = _e224.cv[13];
+            w_1.cv[14i] = _e224.cv[14];
+            w_1.cv[15i] = _e224.cv[15];
+            w_1.ptex = _e224.ptex;
+            w_1.u0_ = _e224.u0_;
+            w_1.v0_ = _e224.v0_;
+            w_1.size = _e224.size;
+            w_1.levelBoundary = _e224.levelBoundary;
+            w_1.sharpness = _e224.sharpness;
+            w_1.pad1_ = _e224.pad1_;
+            w_1.pad2_ = _e224.pad2_;
             j_2 = 0i;
             loop {
-                let _e277 = j_2;
-                if (_e277 < 16i) {
-                    let _e279 = j_2;
-                    let _e282 = w_1.cv[_e279];
-                    wj = bitcast<f32>(_e282);
-                    let _e284 = j_2;
-                    let _e285 = wj;
-                    let _e286 = x_3;
-                    let _e289 = c_1[_e284];
-                    c_1[_e284] = (_e289 + (_e286 * _e285));
-                    let _e292 = j_2;
-                    let _e293 = wj;
-                    let _e294 = xr;
-                    let _e297 = r_1[_e292];
-                    r_1[_e292] = (_e297 + (_e294 * _e293));
+                let _e275 = j_2;
+                if (_e275 < 16i) {
+                    let _e277 = j_2;
+                    let _e280 = w_1.cv[_e277];
+                    wj = bitcast<f32>(_e280);
+                    let _e282 = j_2;
+                    let _e283 = wj;
+                    let _e284 = x_3;
+                    let _e287 = c_1[_e282];
+                    c_1[_e282] = (_e287 + (_e284 * _e283));
+                    let _e290 = j_2;
+                    let _e291 = wj;
+                    let _e292 = xr;
+                    let _e295 = r_1[_e290];
+                    r_1[_e290] = (_e295 + (_e292 * _e291));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e300 = j_2;
-                    j_2 = (_e300 + 1i);
+                    let _e298 = j_2;
+                    j_2 = (_e298 + 1i);
                 }
             }
             continue;
@@ -928,95 +928,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e302 = i_3;
-            i_3 = (_e302 + bitcast<u32>(1i));
+            let _e300 = i_3;
+            i_3 = (_e300 + bitcast<u32>(1i));
         }
     }
-    let _e305 = (*s_4);
-    param_62 = _e305;
+    let _e303 = (*s_4);
+    param_62 = _e303;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_62), (&param_63), (&param_64));
-    let _e306 = param_63;
-    bu_2 = _e306;
-    let _e307 = param_64;
-    du_2 = _e307;
-    let _e308 = (*t_4);
-    param_65 = _e308;
+    let _e304 = param_63;
+    bu_2 = _e304;
+    let _e305 = param_64;
+    du_2 = _e305;
+    let _e306 = (*t_4);
+    param_65 = _e306;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_65), (&param_66), (&param_67));
-    let _e309 = param_66;
-    bv_2 = _e309;
-    let _e310 = param_67;
-    dv_2 = _e310;
+    let _e307 = param_66;
+    bv_2 = _e307;
+    let _e308 = param_67;
+    dv_2 = _e308;
     (*P_1) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e311 = j_3;
-        if (_e311 < 4i) {
+        let _e309 = j_3;
+        if (_e309 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_4 = 0i;
             loop {
-                let _e313 = i_4;
-                if (_e313 < 4i) {
-                    let _e315 = i_4;
-                    let _e317 = bu_2[_e315];
-                    let _e318 = j_3;
-                    let _e320 = i_4;
-                    let _e323 = c_1[((4i * _e318) + _e320)];
-                    let _e325 = row_1;
-                    row_1 = (_e325 + (_e323 * _e317));
-                    let _e327 = i_4;
-                    let _e329 = bu_2[_e327];
-                    let _e330 = j_3;
-                    let _e332 = i_4;
-                    let _e335 = r_1[((4i * _e330) + _e332)];
-                    let _e337 = rowRel_1;
-                    rowRel_1 = (_e337 + (_e335 * _e329));
-                    let _e339 = i_4;
-                    let _e341 = du_2[_e339];
-                    let _e342 = j_3;
-                    let _e344 = i_4;
-                    let _e347 = r_1[((4i * _e342) + _e344)];
-                    let _e349 = rowDu_1;
-                    rowDu_1 = (_e349 + (_e347 * _e341));
+                let _e311 = i_4;
+                if (_e311 < 4i) {
+                    let _e313 = i_4;
+                    let _e315 = bu_2[_e313];
+                    let _e316 = j_3;
+                    let _e318 = i_4;
+                    let _e321 = c_1[((4i * _e316) + _e318)];
+                    let _e323 = row_1;
+                    row_1 = (_e323 + (_e321 * _e315));
+                    let _e325 = i_4;
+                    let _e327 = bu_2[_e325];
+                    let _e328 = j_3;
+                    let _e330 = i_4;
+                    let _e333 = r_1[((4i * _e328) + _e330)];
+                    let _e335 = rowRel_1;
+                    rowRel_1 = (_e335 + (_e333 * _e327));
+                    let _e337 = i_4;
+                    let _e339 = du_2[_e337];
+                    let _e340 = j_3;
+                    let _e342 = i_4;
+                    let _e345 = r_1[((4i * _e340) + _e342)];
+                    let _e347 = rowDu_1;
+                    rowDu_1 = (_e347 + (_e345 * _e339));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e351 = i_4;
-                    i_4 = (_e351 + 1i);
+                    let _e349 = i_4;
+                    i_4 = (_e349 + 1i);
                 }
             }
-            let _e353 = j_3;
-            let _e355 = bv_2[_e353];
-            let _e356 = row_1;
-            let _e358 = (*P_1);
-            (*P_1) = (_e358 + (_e356 * _e355));
-            let _e360 = j_3;
-            let _e362 = bv_2[_e360];
-            let _e363 = rowDu_1;
-            let _e365 = Du_1;
-            Du_1 = (_e365 + (_e363 * _e362));
-            let _e367 = j_3;
-            let _e369 = dv_2[_e367];
-            let _e370 = rowRel_1;
-            let _e372 = Dv_1;
-            Dv_1 = (_e372 + (_e370 * _e369));
+            let _e351 = j_3;
+            let _e353 = bv_2[_e351];
+            let _e354 = row_1;
+            let _e356 = (*P_1);
+            (*P_1) = (_e356 + (_e354 * _e353));
+            let _e358 = j_3;
+            let _e360 = bv_2[_e358];
+            let _e361 = rowDu_1;
+            let _e363 = Du_1;
+            Du_1 = (_e363 + (_e361 * _e360));
+            let _e365 = j_3;
+            let _e367 = dv_2[_e365];
+            let _e368 = rowRel_1;
+            let _e370 = Dv_1;
+            Dv_1 = (_e370 + (_e368 * _e367));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e374 = j_3;
-            j_3 = (_e374 + 1i);
+            let _e372 = j_3;
+            j_3 = (_e372 + 1i);
         }
     }
-    let _e376 = Du_1;
-    let _e377 = Dv_1;
-    (*n_2) = cross(_e376, _e377);
+    let _e374 = Du_1;
+    let _e375 = Dv_1;
+    (*n_2) = cross(_e374, _e375);
     return;
 }
 
@@ -1336,7 +1336,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_7: i32;
-    var phi_1443_: bool;
+    var phi_1441_: bool;
 
     let _e109 = (*st_1);
     S_1 = (_e109 & 65535u);
@@ -1345,13 +1345,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e114 = S_1;
     let _e116 = S_1;
     let _e118 = ((_e114 == 0u) || (_e116 == 32768u));
-    phi_1443_ = _e118;
+    phi_1441_ = _e118;
     if _e118 {
         let _e119 = T_1;
         let _e121 = T_1;
-        phi_1443_ = ((_e119 == 0u) || (_e121 == 32768u));
+        phi_1441_ = ((_e119 == 0u) || (_e121 == 32768u));
     }
-    let _e125 = phi_1443_;
+    let _e125 = phi_1441_;
     if _e125 {
         let _e126 = S_1;
         if (_e126 == 0u) {

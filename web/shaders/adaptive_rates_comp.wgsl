@@ -144,9 +144,9 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
     var c_1: f32;
     var n: f32;
     var local: f32;
-    var phi_2165_: bool;
-    var phi_2224_: bool;
-    var phi_2231_: bool;
+    var phi_2163_: bool;
+    var phi_2222_: bool;
+    var phi_2229_: bool;
 
     let _e98 = (*S)[0i];
     let _e100 = (*S)[3i];
@@ -181,13 +181,13 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
     most = 0f;
     side = 0f;
     let _e165 = (*mayLoosen);
-    phi_2165_ = _e165;
+    phi_2163_ = _e165;
     if _e165 {
         let _e167 = pc.interiorError;
         let _e169 = pc.maxError;
-        phi_2165_ = (_e167 > _e169);
+        phi_2163_ = (_e167 > _e169);
     }
-    let _e172 = phi_2165_;
+    let _e172 = phi_2163_;
     facing = _e172;
     k = 0i;
     loop {
@@ -217,22 +217,22 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
             let _e200 = ray;
             c_1 = dot(_e199, _e200);
             let _e202 = facing;
-            phi_2224_ = _e202;
+            phi_2222_ = _e202;
             if _e202 {
                 let _e203 = c_1;
                 let _e205 = k;
                 let _e207 = N[_e205];
                 let _e210 = ray;
-                phi_2224_ = (abs(_e203) > ((0.35f * length(_e207)) * length(_e210)));
+                phi_2222_ = (abs(_e203) > ((0.35f * length(_e207)) * length(_e210)));
             }
-            let _e215 = phi_2224_;
-            phi_2231_ = _e215;
+            let _e215 = phi_2222_;
+            phi_2229_ = _e215;
             if _e215 {
                 let _e216 = c_1;
                 let _e217 = side;
-                phi_2231_ = ((_e216 * _e217) >= 0f);
+                phi_2229_ = ((_e216 * _e217) >= 0f);
             }
-            let _e221 = phi_2231_;
+            let _e221 = phi_2229_;
             facing = _e221;
             let _e222 = c_1;
             side = _e222;
@@ -841,98 +841,98 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     hd.pad1_ = _e118.pad1_;
     hd.pad2_ = _e118.pad2_;
     let _e171 = hd.cv[0i];
-    M_2 = ((2u * _e171) + 8u);
-    let _e176 = hd.cv[2i];
-    let _e177 = (*k_3);
-    let _e180 = (*q);
-    let _e183 = M_2;
-    block = (_e176 + ((((_e177 - 1u) * 3u) + (_e180 - 1u)) * _e183));
+    M_2 = _e171;
+    let _e174 = hd.cv[2i];
+    let _e175 = (*k_3);
+    let _e178 = (*q);
+    let _e181 = M_2;
+    block = (_e174 + ((((_e175 - 1u) * 3u) + (_e178 - 1u)) * _e181));
     j_1 = 0i;
     loop {
-        let _e186 = j_1;
-        if (_e186 < 16i) {
+        let _e184 = j_1;
+        if (_e184 < 16i) {
+            let _e186 = j_1;
+            c_3[_e186] = vec3<f32>(0f, 0f, 0f);
             let _e188 = j_1;
-            c_3[_e188] = vec3<f32>(0f, 0f, 0f);
-            let _e190 = j_1;
-            r_1[_e190] = vec3<f32>(0f, 0f, 0f);
+            r_1[_e188] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e192 = j_1;
-            j_1 = (_e192 + 1i);
+            let _e190 = j_1;
+            j_1 = (_e190 + 1i);
         }
     }
-    let _e194 = (*h);
-    let _e200 = patches.p[(_e194 + 1u)].cv[0i];
-    let _e203 = vertices.p[_e200];
-    origin_1 = _e203.xyz;
+    let _e192 = (*h);
+    let _e198 = patches.p[(_e192 + 1u)].cv[0i];
+    let _e201 = vertices.p[_e198];
+    origin_1 = _e201.xyz;
     i_2 = 0u;
     loop {
-        let _e205 = i_2;
-        let _e206 = M_2;
-        if (_e205 < _e206) {
-            let _e208 = (*h);
-            let _e210 = i_2;
-            let _e213 = i_2;
-            let _e219 = patches.p[((_e208 + 1u) + (_e210 / 16u))].cv[(_e213 % 16u)];
-            let _e222 = vertices.p[_e219];
-            x_1 = _e222.xyz;
-            let _e224 = x_1;
-            let _e225 = origin_1;
-            xr = (_e224 - _e225);
-            let _e227 = block;
-            let _e228 = i_2;
-            let _e232 = patches.p[(_e227 + _e228)];
-            w_1.cv[0i] = _e232.cv[0];
-            w_1.cv[1i] = _e232.cv[1];
-            w_1.cv[2i] = _e232.cv[2];
-            w_1.cv[3i] = _e232.cv[3];
-            w_1.cv[4i] = _e232.cv[4];
-            w_1.cv[5i] = _e232.cv[5];
-            w_1.cv[6i] = _e232.cv[6];
-            w_1.cv[7i] = _e232.cv[7];
-            w_1.cv[8i] = _e232.cv[8];
-            w_1.cv[9i] = _e232.cv[9];
-            w_1.cv[10i] = _e232.cv[10];
-            w_1.cv[11i] = _e232.cv[11];
-            w_1.cv[12i] = _e232.cv[12];
-            w_1.cv[13i] = _e232.cv[13];
-            w_1.cv[14i] = _e232.cv[14];
-            w_1.cv[15i] = _e232.cv[15];
-            w_1.ptex = _e232.ptex;
-            w_1.u0_ = _e232.u0_;
-            w_1.v0_ = _e232.v0_;
-            w_1.size = _e232.size;
-            w_1.levelBoundary = _e232.levelBoundary;
-            w_1.sharpness = _e232.sharpness;
-            w_1.pad1_ = _e232.pad1_;
-            w_1.pad2_ = _e232.pad2_;
+        let _e203 = i_2;
+        let _e204 = M_2;
+        if (_e203 < _e204) {
+            let _e206 = (*h);
+            let _e208 = i_2;
+            let _e211 = i_2;
+            let _e217 = patches.p[((_e206 + 1u) + (_e208 / 16u))].cv[(_e211 % 16u)];
+            let _e220 = vertices.p[_e217];
+            x_1 = _e220.xyz;
+            let _e222 = x_1;
+            let _e223 = origin_1;
+            xr = (_e222 - _e223);
+            let _e225 = block;
+            let _e226 = i_2;
+            let _e230 = patches.p[(_e225 + _e226)];
+            w_1.cv[0i] = _e230.cv[0];
+            w_1.cv[1i] = _e230.cv[1];
+            w_1.cv[2i] = _e230.cv[2];
+            w_1.cv[3i] = _e230.cv[3];
+            w_1.cv[4i] = _e230.cv[4];
+            w_1.cv[5i] = _e230.cv[5];
+            w_1.cv[6i] = _e230.cv[6];
+            w_1.cv[7i] = _e230.cv[7];
+            w_1.cv[8i] = _e230.cv[8];
+            w_1.cv[9i] = _e230.cv[9];
+            w_1.cv[10i] = _e230.cv[10];
+            w_1.cv[11i] = _e230.cv[11];
+            w_1.cv[12i] = _e230.cv[12];
+            w_1.cv[13i] = _e230.cv[13];
+            w_1.cv[14i] = _e230.cv[14];
+            w_1.cv[15i] = _e230.cv[15];
+            w_1.ptex = _e230.ptex;
+            w_1.u0_ = _e230.u0_;
+            w_1.v0_ = _e230.v0_;
+            w_1.size = _e230.size;
+            w_1.levelBoundary = _e230.levelBoundary;
+            w_1.sharpness = _e230.sharpness;
+            w_1.pad1_ = _e230.pad1_;
+            w_1.pad2_ = _e230.pad2_;
             j_2 = 0i;
             loop {
-                let _e283 = j_2;
-                if (_e283 < 16i) {
-                    let _e285 = j_2;
-                    let _e288 = w_1.cv[_e285];
-                    wj = bitcast<f32>(_e288);
-                    let _e290 = j_2;
-                    let _e291 = wj;
-                    let _e292 = x_1;
-                    let _e295 = c_3[_e290];
-                    c_3[_e290] = (_e295 + (_e292 * _e291));
-                    let _e298 = j_2;
-                    let _e299 = wj;
-                    let _e300 = xr;
-                    let _e303 = r_1[_e298];
-                    r_1[_e298] = (_e303 + (_e300 * _e299));
+                let _e281 = j_2;
+                if (_e281 < 16i) {
+                    let _e283 = j_2;
+                    let _e286 = w_1.cv[_e283];
+                    wj = bitcast<f32>(_e286);
+                    let _e288 = j_2;
+                    let _e289 = wj;
+                    let _e290 = x_1;
+                    let _e293 = c_3[_e288];
+                    c_3[_e288] = (_e293 + (_e290 * _e289));
+                    let _e296 = j_2;
+                    let _e297 = wj;
+                    let _e298 = xr;
+                    let _e301 = r_1[_e296];
+                    r_1[_e296] = (_e301 + (_e298 * _e297));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e306 = j_2;
-                    j_2 = (_e306 + 1i);
+                    let _e304 = j_2;
+                    j_2 = (_e304 + 1i);
                 }
             }
             continue;
@@ -940,95 +940,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e308 = i_2;
-            i_2 = (_e308 + bitcast<u32>(1i));
+            let _e306 = i_2;
+            i_2 = (_e306 + bitcast<u32>(1i));
         }
     }
-    let _e311 = (*s_4);
-    param_45 = _e311;
+    let _e309 = (*s_4);
+    param_45 = _e309;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e312 = param_46;
-    bu_2 = _e312;
-    let _e313 = param_47;
-    du_2 = _e313;
-    let _e314 = (*t_4);
-    param_48 = _e314;
+    let _e310 = param_46;
+    bu_2 = _e310;
+    let _e311 = param_47;
+    du_2 = _e311;
+    let _e312 = (*t_4);
+    param_48 = _e312;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_48), (&param_49), (&param_50));
-    let _e315 = param_49;
-    bv_2 = _e315;
-    let _e316 = param_50;
-    dv_2 = _e316;
+    let _e313 = param_49;
+    bv_2 = _e313;
+    let _e314 = param_50;
+    dv_2 = _e314;
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e317 = j_3;
-        if (_e317 < 4i) {
+        let _e315 = j_3;
+        if (_e315 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e319 = i_3;
-                if (_e319 < 4i) {
-                    let _e321 = i_3;
-                    let _e323 = bu_2[_e321];
-                    let _e324 = j_3;
-                    let _e326 = i_3;
-                    let _e329 = c_3[((4i * _e324) + _e326)];
-                    let _e331 = row_1;
-                    row_1 = (_e331 + (_e329 * _e323));
-                    let _e333 = i_3;
-                    let _e335 = bu_2[_e333];
-                    let _e336 = j_3;
-                    let _e338 = i_3;
-                    let _e341 = r_1[((4i * _e336) + _e338)];
-                    let _e343 = rowRel_1;
-                    rowRel_1 = (_e343 + (_e341 * _e335));
-                    let _e345 = i_3;
-                    let _e347 = du_2[_e345];
-                    let _e348 = j_3;
-                    let _e350 = i_3;
-                    let _e353 = r_1[((4i * _e348) + _e350)];
-                    let _e355 = rowDu_1;
-                    rowDu_1 = (_e355 + (_e353 * _e347));
+                let _e317 = i_3;
+                if (_e317 < 4i) {
+                    let _e319 = i_3;
+                    let _e321 = bu_2[_e319];
+                    let _e322 = j_3;
+                    let _e324 = i_3;
+                    let _e327 = c_3[((4i * _e322) + _e324)];
+                    let _e329 = row_1;
+                    row_1 = (_e329 + (_e327 * _e321));
+                    let _e331 = i_3;
+                    let _e333 = bu_2[_e331];
+                    let _e334 = j_3;
+                    let _e336 = i_3;
+                    let _e339 = r_1[((4i * _e334) + _e336)];
+                    let _e341 = rowRel_1;
+                    rowRel_1 = (_e341 + (_e339 * _e333));
+                    let _e343 = i_3;
+                    let _e345 = du_2[_e343];
+                    let _e346 = j_3;
+                    let _e348 = i_3;
+                    let _e351 = r_1[((4i * _e346) + _e348)];
+                    let _e353 = rowDu_1;
+                    rowDu_1 = (_e353 + (_e351 * _e345));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e357 = i_3;
-                    i_3 = (_e357 + 1i);
+                    let _e355 = i_3;
+                    i_3 = (_e355 + 1i);
                 }
             }
-            let _e359 = j_3;
-            let _e361 = bv_2[_e359];
-            let _e362 = row_1;
-            let _e364 = (*P_3);
-            (*P_3) = (_e364 + (_e362 * _e361));
-            let _e366 = j_3;
-            let _e368 = bv_2[_e366];
-            let _e369 = rowDu_1;
-            let _e371 = Du_1;
-            Du_1 = (_e371 + (_e369 * _e368));
-            let _e373 = j_3;
-            let _e375 = dv_2[_e373];
-            let _e376 = rowRel_1;
-            let _e378 = Dv_1;
-            Dv_1 = (_e378 + (_e376 * _e375));
+            let _e357 = j_3;
+            let _e359 = bv_2[_e357];
+            let _e360 = row_1;
+            let _e362 = (*P_3);
+            (*P_3) = (_e362 + (_e360 * _e359));
+            let _e364 = j_3;
+            let _e366 = bv_2[_e364];
+            let _e367 = rowDu_1;
+            let _e369 = Du_1;
+            Du_1 = (_e369 + (_e367 * _e366));
+            let _e371 = j_3;
+            let _e373 = dv_2[_e371];
+            let _e374 = rowRel_1;
+            let _e376 = Dv_1;
+            Dv_1 = (_e376 + (_e374 * _e373));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e380 = j_3;
-            j_3 = (_e380 + 1i);
+            let _e378 = j_3;
+            j_3 = (_e378 + 1i);
         }
     }
-    let _e382 = Du_1;
-    let _e383 = Dv_1;
-    (*n_2) = cross(_e382, _e383);
+    let _e380 = Du_1;
+    let _e381 = Dv_1;
+    (*n_2) = cross(_e380, _e381);
     return;
 }
 
@@ -1348,7 +1348,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_7: i32;
-    var phi_1444_: bool;
+    var phi_1442_: bool;
 
     let _e115 = (*st_1);
     S_2 = (_e115 & 65535u);
@@ -1357,13 +1357,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e120 = S_2;
     let _e122 = S_2;
     let _e124 = ((_e120 == 0u) || (_e122 == 32768u));
-    phi_1444_ = _e124;
+    phi_1442_ = _e124;
     if _e124 {
         let _e125 = T_1;
         let _e127 = T_1;
-        phi_1444_ = ((_e125 == 0u) || (_e127 == 32768u));
+        phi_1442_ = ((_e125 == 0u) || (_e127 == 32768u));
     }
-    let _e131 = phi_1444_;
+    let _e131 = phi_1442_;
     if _e131 {
         let _e132 = S_2;
         if (_e132 == 0u) {
@@ -1869,12 +1869,12 @@ fn main_1() {
     var creaseAlongS: bool;
     var most_1: f32;
     var local_19: f32;
-    var phi_2311_: bool;
-    var phi_2312_: bool;
-    var phi_2568_: bool;
-    var phi_2619_: bool;
-    var phi_2628_: bool;
-    var phi_2723_: bool;
+    var phi_2309_: bool;
+    var phi_2310_: bool;
+    var phi_2566_: bool;
+    var phi_2617_: bool;
+    var phi_2626_: bool;
+    var phi_2721_: bool;
 
     let _e136 = pc.limnRowInvocations;
     param_100 = _e136;
@@ -1894,20 +1894,20 @@ fn main_1() {
     let _e154 = p1_[0u];
     let _e157 = cull.c[_e154];
     let _e158 = (_e157 == 0u);
-    phi_2312_ = _e158;
+    phi_2310_ = _e158;
     if !(_e158) {
         let _e161 = p1_[1u];
         let _e162 = (_e161 != 4294967295u);
-        phi_2311_ = _e162;
+        phi_2309_ = _e162;
         if _e162 {
             let _e164 = p1_[1u];
             let _e167 = cull.c[_e164];
-            phi_2311_ = (_e167 == 0u);
+            phi_2309_ = (_e167 == 0u);
         }
-        let _e170 = phi_2311_;
-        phi_2312_ = _e170;
+        let _e170 = phi_2309_;
+        phi_2310_ = _e170;
     }
-    let _e172 = phi_2312_;
+    let _e172 = phi_2310_;
     visible = _e172;
     let _e174 = pc.tess;
     let _e176 = p0_[3u];
@@ -2063,12 +2063,12 @@ fn main_1() {
         } else {
             let _e349 = behind;
             let _e350 = (_e349 != 0u);
-            phi_2568_ = _e350;
+            phi_2566_ = _e350;
             if !(_e350) {
                 let _e352 = len;
-                phi_2568_ = !((_e352 < 1000000000f));
+                phi_2566_ = !((_e352 < 1000000000f));
             }
-            let _e356 = phi_2568_;
+            let _e356 = phi_2566_;
             if _e356 {
                 let _e357 = cap;
                 r_2 = _e357;
@@ -2100,20 +2100,20 @@ fn main_1() {
                                 continue;
                             }
                             let _e378 = smoothBoth;
-                            phi_2619_ = _e378;
+                            phi_2617_ = _e378;
                             if _e378 {
                                 let _e379 = e;
                                 let _e381 = pc.patchCount;
-                                phi_2619_ = (_e379 < _e381);
+                                phi_2617_ = (_e379 < _e381);
                             }
-                            let _e384 = phi_2619_;
-                            phi_2628_ = _e384;
+                            let _e384 = phi_2617_;
+                            phi_2626_ = _e384;
                             if _e384 {
                                 let _e385 = e;
                                 let _e389 = patches.p[_e385].levelBoundary;
-                                phi_2628_ = (((_e389 >> bitcast<u32>(16i)) & 15u) == 0u);
+                                phi_2626_ = (((_e389 >> bitcast<u32>(16i)) & 15u) == 0u);
                             }
-                            let _e395 = phi_2628_;
+                            let _e395 = phi_2626_;
                             smoothBoth = _e395;
                             continue;
                         } else {
@@ -2178,13 +2178,13 @@ fn main_1() {
                         e_1 = _e456;
                         let _e457 = e_1;
                         let _e458 = (_e457 == 4294967295u);
-                        phi_2723_ = _e458;
+                        phi_2721_ = _e458;
                         if !(_e458) {
                             let _e460 = e_1;
                             let _e462 = pc.patchCount;
-                            phi_2723_ = (_e460 >= _e462);
+                            phi_2721_ = (_e460 >= _e462);
                         }
-                        let _e465 = phi_2723_;
+                        let _e465 = phi_2721_;
                         if _e465 {
                             continue;
                         }

@@ -667,98 +667,98 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     hd.pad1_ = _e108.pad1_;
     hd.pad2_ = _e108.pad2_;
     let _e161 = hd.cv[0i];
-    M_1 = ((2u * _e161) + 8u);
-    let _e166 = hd.cv[2i];
-    let _e167 = (*k_2);
-    let _e170 = (*q);
-    let _e173 = M_1;
-    block = (_e166 + ((((_e167 - 1u) * 3u) + (_e170 - 1u)) * _e173));
+    M_1 = _e161;
+    let _e164 = hd.cv[2i];
+    let _e165 = (*k_2);
+    let _e168 = (*q);
+    let _e171 = M_1;
+    block = (_e164 + ((((_e165 - 1u) * 3u) + (_e168 - 1u)) * _e171));
     j_1 = 0i;
     loop {
-        let _e176 = j_1;
-        if (_e176 < 16i) {
+        let _e174 = j_1;
+        if (_e174 < 16i) {
+            let _e176 = j_1;
+            c_1[_e176] = vec3<f32>(0f, 0f, 0f);
             let _e178 = j_1;
-            c_1[_e178] = vec3<f32>(0f, 0f, 0f);
-            let _e180 = j_1;
-            r_1[_e180] = vec3<f32>(0f, 0f, 0f);
+            r_1[_e178] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e182 = j_1;
-            j_1 = (_e182 + 1i);
+            let _e180 = j_1;
+            j_1 = (_e180 + 1i);
         }
     }
-    let _e184 = (*h);
-    let _e190 = patches.p[(_e184 + 1u)].cv[0i];
-    let _e193 = vertices.p[_e190];
-    origin_1 = _e193.xyz;
+    let _e182 = (*h);
+    let _e188 = patches.p[(_e182 + 1u)].cv[0i];
+    let _e191 = vertices.p[_e188];
+    origin_1 = _e191.xyz;
     i_2 = 0u;
     loop {
-        let _e195 = i_2;
-        let _e196 = M_1;
-        if (_e195 < _e196) {
-            let _e198 = (*h);
-            let _e200 = i_2;
-            let _e203 = i_2;
-            let _e209 = patches.p[((_e198 + 1u) + (_e200 / 16u))].cv[(_e203 % 16u)];
-            let _e212 = vertices.p[_e209];
-            x_1 = _e212.xyz;
-            let _e214 = x_1;
-            let _e215 = origin_1;
-            xr = (_e214 - _e215);
-            let _e217 = block;
-            let _e218 = i_2;
-            let _e222 = patches.p[(_e217 + _e218)];
-            w_1.cv[0i] = _e222.cv[0];
-            w_1.cv[1i] = _e222.cv[1];
-            w_1.cv[2i] = _e222.cv[2];
-            w_1.cv[3i] = _e222.cv[3];
-            w_1.cv[4i] = _e222.cv[4];
-            w_1.cv[5i] = _e222.cv[5];
-            w_1.cv[6i] = _e222.cv[6];
-            w_1.cv[7i] = _e222.cv[7];
-            w_1.cv[8i] = _e222.cv[8];
-            w_1.cv[9i] = _e222.cv[9];
-            w_1.cv[10i] = _e222.cv[10];
-            w_1.cv[11i] = _e222.cv[11];
-            w_1.cv[12i] = _e222.cv[12];
-            w_1.cv[13i] = _e222.cv[13];
-            w_1.cv[14i] = _e222.cv[14];
-            w_1.cv[15i] = _e222.cv[15];
-            w_1.ptex = _e222.ptex;
-            w_1.u0_ = _e222.u0_;
-            w_1.v0_ = _e222.v0_;
-            w_1.size = _e222.size;
-            w_1.levelBoundary = _e222.levelBoundary;
-            w_1.sharpness = _e222.sharpness;
-            w_1.pad1_ = _e222.pad1_;
-            w_1.pad2_ = _e222.pad2_;
+        let _e193 = i_2;
+        let _e194 = M_1;
+        if (_e193 < _e194) {
+            let _e196 = (*h);
+            let _e198 = i_2;
+            let _e201 = i_2;
+            let _e207 = patches.p[((_e196 + 1u) + (_e198 / 16u))].cv[(_e201 % 16u)];
+            let _e210 = vertices.p[_e207];
+            x_1 = _e210.xyz;
+            let _e212 = x_1;
+            let _e213 = origin_1;
+            xr = (_e212 - _e213);
+            let _e215 = block;
+            let _e216 = i_2;
+            let _e220 = patches.p[(_e215 + _e216)];
+            w_1.cv[0i] = _e220.cv[0];
+            w_1.cv[1i] = _e220.cv[1];
+            w_1.cv[2i] = _e220.cv[2];
+            w_1.cv[3i] = _e220.cv[3];
+            w_1.cv[4i] = _e220.cv[4];
+            w_1.cv[5i] = _e220.cv[5];
+            w_1.cv[6i] = _e220.cv[6];
+            w_1.cv[7i] = _e220.cv[7];
+            w_1.cv[8i] = _e220.cv[8];
+            w_1.cv[9i] = _e220.cv[9];
+            w_1.cv[10i] = _e220.cv[10];
+            w_1.cv[11i] = _e220.cv[11];
+            w_1.cv[12i] = _e220.cv[12];
+            w_1.cv[13i] = _e220.cv[13];
+            w_1.cv[14i] = _e220.cv[14];
+            w_1.cv[15i] = _e220.cv[15];
+            w_1.ptex = _e220.ptex;
+            w_1.u0_ = _e220.u0_;
+            w_1.v0_ = _e220.v0_;
+            w_1.size = _e220.size;
+            w_1.levelBoundary = _e220.levelBoundary;
+            w_1.sharpness = _e220.sharpness;
+            w_1.pad1_ = _e220.pad1_;
+            w_1.pad2_ = _e220.pad2_;
             j_2 = 0i;
             loop {
-                let _e273 = j_2;
-                if (_e273 < 16i) {
-                    let _e275 = j_2;
-                    let _e278 = w_1.cv[_e275];
-                    wj = bitcast<f32>(_e278);
-                    let _e280 = j_2;
-                    let _e281 = wj;
-                    let _e282 = x_1;
-                    let _e285 = c_1[_e280];
-                    c_1[_e280] = (_e285 + (_e282 * _e281));
-                    let _e288 = j_2;
-                    let _e289 = wj;
-                    let _e290 = xr;
-                    let _e293 = r_1[_e288];
-                    r_1[_e288] = (_e293 + (_e290 * _e289));
+                let _e271 = j_2;
+                if (_e271 < 16i) {
+                    let _e273 = j_2;
+                    let _e276 = w_1.cv[_e273];
+                    wj = bitcast<f32>(_e276);
+                    let _e278 = j_2;
+                    let _e279 = wj;
+                    let _e280 = x_1;
+                    let _e283 = c_1[_e278];
+                    c_1[_e278] = (_e283 + (_e280 * _e279));
+                    let _e286 = j_2;
+                    let _e287 = wj;
+                    let _e288 = xr;
+                    let _e291 = r_1[_e286];
+                    r_1[_e286] = (_e291 + (_e288 * _e287));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e296 = j_2;
-                    j_2 = (_e296 + 1i);
+                    let _e294 = j_2;
+                    j_2 = (_e294 + 1i);
                 }
             }
             continue;
@@ -766,95 +766,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e298 = i_2;
-            i_2 = (_e298 + bitcast<u32>(1i));
+            let _e296 = i_2;
+            i_2 = (_e296 + bitcast<u32>(1i));
         }
     }
-    let _e301 = (*s_4);
-    param_42 = _e301;
+    let _e299 = (*s_4);
+    param_42 = _e299;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
-    let _e302 = param_43;
-    bu_2 = _e302;
-    let _e303 = param_44;
-    du_2 = _e303;
-    let _e304 = (*t_4);
-    param_45 = _e304;
+    let _e300 = param_43;
+    bu_2 = _e300;
+    let _e301 = param_44;
+    du_2 = _e301;
+    let _e302 = (*t_4);
+    param_45 = _e302;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e305 = param_46;
-    bv_2 = _e305;
-    let _e306 = param_47;
-    dv_2 = _e306;
+    let _e303 = param_46;
+    bv_2 = _e303;
+    let _e304 = param_47;
+    dv_2 = _e304;
     (*P_1) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e307 = j_3;
-        if (_e307 < 4i) {
+        let _e305 = j_3;
+        if (_e305 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e309 = i_3;
-                if (_e309 < 4i) {
-                    let _e311 = i_3;
-                    let _e313 = bu_2[_e311];
-                    let _e314 = j_3;
-                    let _e316 = i_3;
-                    let _e319 = c_1[((4i * _e314) + _e316)];
-                    let _e321 = row_1;
-                    row_1 = (_e321 + (_e319 * _e313));
-                    let _e323 = i_3;
-                    let _e325 = bu_2[_e323];
-                    let _e326 = j_3;
-                    let _e328 = i_3;
-                    let _e331 = r_1[((4i * _e326) + _e328)];
-                    let _e333 = rowRel_1;
-                    rowRel_1 = (_e333 + (_e331 * _e325));
-                    let _e335 = i_3;
-                    let _e337 = du_2[_e335];
-                    let _e338 = j_3;
-                    let _e340 = i_3;
-                    let _e343 = r_1[((4i * _e338) + _e340)];
-                    let _e345 = rowDu_1;
-                    rowDu_1 = (_e345 + (_e343 * _e337));
+                let _e307 = i_3;
+                if (_e307 < 4i) {
+                    let _e309 = i_3;
+                    let _e311 = bu_2[_e309];
+                    let _e312 = j_3;
+                    let _e314 = i_3;
+                    let _e317 = c_1[((4i * _e312) + _e314)];
+                    let _e319 = row_1;
+                    row_1 = (_e319 + (_e317 * _e311));
+                    let _e321 = i_3;
+                    let _e323 = bu_2[_e321];
+                    let _e324 = j_3;
+                    let _e326 = i_3;
+                    let _e329 = r_1[((4i * _e324) + _e326)];
+                    let _e331 = rowRel_1;
+                    rowRel_1 = (_e331 + (_e329 * _e323));
+                    let _e333 = i_3;
+                    let _e335 = du_2[_e333];
+                    let _e336 = j_3;
+                    let _e338 = i_3;
+                    let _e341 = r_1[((4i * _e336) + _e338)];
+                    let _e343 = rowDu_1;
+                    rowDu_1 = (_e343 + (_e341 * _e335));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e347 = i_3;
-                    i_3 = (_e347 + 1i);
+                    let _e345 = i_3;
+                    i_3 = (_e345 + 1i);
                 }
             }
-            let _e349 = j_3;
-            let _e351 = bv_2[_e349];
-            let _e352 = row_1;
-            let _e354 = (*P_1);
-            (*P_1) = (_e354 + (_e352 * _e351));
-            let _e356 = j_3;
-            let _e358 = bv_2[_e356];
-            let _e359 = rowDu_1;
-            let _e361 = Du_1;
-            Du_1 = (_e361 + (_e359 * _e358));
-            let _e363 = j_3;
-            let _e365 = dv_2[_e363];
-            let _e366 = rowRel_1;
-            let _e368 = Dv_1;
-            Dv_1 = (_e368 + (_e366 * _e365));
+            let _e347 = j_3;
+            let _e349 = bv_2[_e347];
+            let _e350 = row_1;
+            let _e352 = (*P_1);
+            (*P_1) = (_e352 + (_e350 * _e349));
+            let _e354 = j_3;
+            let _e356 = bv_2[_e354];
+            let _e357 = rowDu_1;
+            let _e359 = Du_1;
+            Du_1 = (_e359 + (_e357 * _e356));
+            let _e361 = j_3;
+            let _e363 = dv_2[_e361];
+            let _e364 = rowRel_1;
+            let _e366 = Dv_1;
+            Dv_1 = (_e366 + (_e364 * _e363));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e370 = j_3;
-            j_3 = (_e370 + 1i);
+            let _e368 = j_3;
+            j_3 = (_e368 + 1i);
         }
     }
-    let _e372 = Du_1;
-    let _e373 = Dv_1;
-    (*n_1) = cross(_e372, _e373);
+    let _e370 = Du_1;
+    let _e371 = Dv_1;
+    (*n_1) = cross(_e370, _e371);
     return;
 }
 
@@ -1174,7 +1174,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_6: i32;
-    var phi_1427_: bool;
+    var phi_1425_: bool;
 
     let _e105 = (*st_1);
     S_1 = (_e105 & 65535u);
@@ -1183,13 +1183,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e110 = S_1;
     let _e112 = S_1;
     let _e114 = ((_e110 == 0u) || (_e112 == 32768u));
-    phi_1427_ = _e114;
+    phi_1425_ = _e114;
     if _e114 {
         let _e115 = T_1;
         let _e117 = T_1;
-        phi_1427_ = ((_e115 == 0u) || (_e117 == 32768u));
+        phi_1425_ = ((_e115 == 0u) || (_e117 == 32768u));
     }
-    let _e121 = phi_1427_;
+    let _e121 = phi_1425_;
     if _e121 {
         let _e122 = S_1;
         if (_e122 == 0u) {

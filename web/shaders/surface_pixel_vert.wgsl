@@ -902,98 +902,98 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     hd.pad1_ = _e122.pad1_;
     hd.pad2_ = _e122.pad2_;
     let _e175 = hd.cv[0i];
-    M_1 = ((2u * _e175) + 8u);
-    let _e180 = hd.cv[2i];
-    let _e181 = (*k_2);
-    let _e184 = (*q);
-    let _e187 = M_1;
-    block = (_e180 + ((((_e181 - 1u) * 3u) + (_e184 - 1u)) * _e187));
+    M_1 = _e175;
+    let _e178 = hd.cv[2i];
+    let _e179 = (*k_2);
+    let _e182 = (*q);
+    let _e185 = M_1;
+    block = (_e178 + ((((_e179 - 1u) * 3u) + (_e182 - 1u)) * _e185));
     j_2 = 0i;
     loop {
-        let _e190 = j_2;
-        if (_e190 < 16i) {
+        let _e188 = j_2;
+        if (_e188 < 16i) {
+            let _e190 = j_2;
+            c_1[_e190] = vec3<f32>(0f, 0f, 0f);
             let _e192 = j_2;
-            c_1[_e192] = vec3<f32>(0f, 0f, 0f);
-            let _e194 = j_2;
-            r_2[_e194] = vec3<f32>(0f, 0f, 0f);
+            r_2[_e192] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e196 = j_2;
-            j_2 = (_e196 + 1i);
+            let _e194 = j_2;
+            j_2 = (_e194 + 1i);
         }
     }
-    let _e198 = (*h);
-    let _e204 = patches.p[(_e198 + 1u)].cv[0i];
-    let _e207 = vertices.p[_e204];
-    origin_2 = _e207.xyz;
+    let _e196 = (*h);
+    let _e202 = patches.p[(_e196 + 1u)].cv[0i];
+    let _e205 = vertices.p[_e202];
+    origin_2 = _e205.xyz;
     i_5 = 0u;
     loop {
-        let _e209 = i_5;
-        let _e210 = M_1;
-        if (_e209 < _e210) {
-            let _e212 = (*h);
-            let _e214 = i_5;
-            let _e217 = i_5;
-            let _e223 = patches.p[((_e212 + 1u) + (_e214 / 16u))].cv[(_e217 % 16u)];
-            let _e226 = vertices.p[_e223];
-            x_1 = _e226.xyz;
-            let _e228 = x_1;
-            let _e229 = origin_2;
-            xr = (_e228 - _e229);
-            let _e231 = block;
-            let _e232 = i_5;
-            let _e236 = patches.p[(_e231 + _e232)];
-            w_1.cv[0i] = _e236.cv[0];
-            w_1.cv[1i] = _e236.cv[1];
-            w_1.cv[2i] = _e236.cv[2];
-            w_1.cv[3i] = _e236.cv[3];
-            w_1.cv[4i] = _e236.cv[4];
-            w_1.cv[5i] = _e236.cv[5];
-            w_1.cv[6i] = _e236.cv[6];
-            w_1.cv[7i] = _e236.cv[7];
-            w_1.cv[8i] = _e236.cv[8];
-            w_1.cv[9i] = _e236.cv[9];
-            w_1.cv[10i] = _e236.cv[10];
-            w_1.cv[11i] = _e236.cv[11];
-            w_1.cv[12i] = _e236.cv[12];
-            w_1.cv[13i] = _e236.cv[13];
-            w_1.cv[14i] = _e236.cv[14];
-            w_1.cv[15i] = _e236.cv[15];
-            w_1.ptex = _e236.ptex;
-            w_1.u0_ = _e236.u0_;
-            w_1.v0_ = _e236.v0_;
-            w_1.size = _e236.size;
-            w_1.levelBoundary = _e236.levelBoundary;
-            w_1.sharpness = _e236.sharpness;
-            w_1.pad1_ = _e236.pad1_;
-            w_1.pad2_ = _e236.pad2_;
+        let _e207 = i_5;
+        let _e208 = M_1;
+        if (_e207 < _e208) {
+            let _e210 = (*h);
+            let _e212 = i_5;
+            let _e215 = i_5;
+            let _e221 = patches.p[((_e210 + 1u) + (_e212 / 16u))].cv[(_e215 % 16u)];
+            let _e224 = vertices.p[_e221];
+            x_1 = _e224.xyz;
+            let _e226 = x_1;
+            let _e227 = origin_2;
+            xr = (_e226 - _e227);
+            let _e229 = block;
+            let _e230 = i_5;
+            let _e234 = patches.p[(_e229 + _e230)];
+            w_1.cv[0i] = _e234.cv[0];
+            w_1.cv[1i] = _e234.cv[1];
+            w_1.cv[2i] = _e234.cv[2];
+            w_1.cv[3i] = _e234.cv[3];
+            w_1.cv[4i] = _e234.cv[4];
+            w_1.cv[5i] = _e234.cv[5];
+            w_1.cv[6i] = _e234.cv[6];
+            w_1.cv[7i] = _e234.cv[7];
+            w_1.cv[8i] = _e234.cv[8];
+            w_1.cv[9i] = _e234.cv[9];
+            w_1.cv[10i] = _e234.cv[10];
+            w_1.cv[11i] = _e234.cv[11];
+            w_1.cv[12i] = _e234.cv[12];
+            w_1.cv[13i] = _e234.cv[13];
+            w_1.cv[14i] = _e234.cv[14];
+            w_1.cv[15i] = _e234.cv[15];
+            w_1.ptex = _e234.ptex;
+            w_1.u0_ = _e234.u0_;
+            w_1.v0_ = _e234.v0_;
+            w_1.size = _e234.size;
+            w_1.levelBoundary = _e234.levelBoundary;
+            w_1.sharpness = _e234.sharpness;
+            w_1.pad1_ = _e234.pad1_;
+            w_1.pad2_ = _e234.pad2_;
             j_3 = 0i;
             loop {
-                let _e287 = j_3;
-                if (_e287 < 16i) {
-                    let _e289 = j_3;
-                    let _e292 = w_1.cv[_e289];
-                    wj = bitcast<f32>(_e292);
-                    let _e294 = j_3;
-                    let _e295 = wj;
-                    let _e296 = x_1;
-                    let _e299 = c_1[_e294];
-                    c_1[_e294] = (_e299 + (_e296 * _e295));
-                    let _e302 = j_3;
-                    let _e303 = wj;
-                    let _e304 = xr;
-                    let _e307 = r_2[_e302];
-                    r_2[_e302] = (_e307 + (_e304 * _e303));
+                let _e285 = j_3;
+                if (_e285 < 16i) {
+                    let _e287 = j_3;
+                    let _e290 = w_1.cv[_e287];
+                    wj = bitcast<f32>(_e290);
+                    let _e292 = j_3;
+                    let _e293 = wj;
+                    let _e294 = x_1;
+                    let _e297 = c_1[_e292];
+                    c_1[_e292] = (_e297 + (_e294 * _e293));
+                    let _e300 = j_3;
+                    let _e301 = wj;
+                    let _e302 = xr;
+                    let _e305 = r_2[_e300];
+                    r_2[_e300] = (_e305 + (_e302 * _e301));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e310 = j_3;
-                    j_3 = (_e310 + 1i);
+                    let _e308 = j_3;
+                    j_3 = (_e308 + 1i);
                 }
             }
             continue;
@@ -1001,95 +1001,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e312 = i_5;
-            i_5 = (_e312 + bitcast<u32>(1i));
+            let _e310 = i_5;
+            i_5 = (_e310 + bitcast<u32>(1i));
         }
     }
-    let _e315 = (*s_4);
-    param_42 = _e315;
+    let _e313 = (*s_4);
+    param_42 = _e313;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
-    let _e316 = param_43;
-    bu_2 = _e316;
-    let _e317 = param_44;
-    du_2 = _e317;
-    let _e318 = (*t_4);
-    param_45 = _e318;
+    let _e314 = param_43;
+    bu_2 = _e314;
+    let _e315 = param_44;
+    du_2 = _e315;
+    let _e316 = (*t_4);
+    param_45 = _e316;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e319 = param_46;
-    bv_2 = _e319;
-    let _e320 = param_47;
-    dv_2 = _e320;
+    let _e317 = param_46;
+    bv_2 = _e317;
+    let _e318 = param_47;
+    dv_2 = _e318;
     (*P_1) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_4 = 0i;
     loop {
-        let _e321 = j_4;
-        if (_e321 < 4i) {
+        let _e319 = j_4;
+        if (_e319 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_6 = 0i;
             loop {
-                let _e323 = i_6;
-                if (_e323 < 4i) {
-                    let _e325 = i_6;
-                    let _e327 = bu_2[_e325];
-                    let _e328 = j_4;
-                    let _e330 = i_6;
-                    let _e333 = c_1[((4i * _e328) + _e330)];
-                    let _e335 = row_1;
-                    row_1 = (_e335 + (_e333 * _e327));
-                    let _e337 = i_6;
-                    let _e339 = bu_2[_e337];
-                    let _e340 = j_4;
-                    let _e342 = i_6;
-                    let _e345 = r_2[((4i * _e340) + _e342)];
-                    let _e347 = rowRel_1;
-                    rowRel_1 = (_e347 + (_e345 * _e339));
-                    let _e349 = i_6;
-                    let _e351 = du_2[_e349];
-                    let _e352 = j_4;
-                    let _e354 = i_6;
-                    let _e357 = r_2[((4i * _e352) + _e354)];
-                    let _e359 = rowDu_1;
-                    rowDu_1 = (_e359 + (_e357 * _e351));
+                let _e321 = i_6;
+                if (_e321 < 4i) {
+                    let _e323 = i_6;
+                    let _e325 = bu_2[_e323];
+                    let _e326 = j_4;
+                    let _e328 = i_6;
+                    let _e331 = c_1[((4i * _e326) + _e328)];
+                    let _e333 = row_1;
+                    row_1 = (_e333 + (_e331 * _e325));
+                    let _e335 = i_6;
+                    let _e337 = bu_2[_e335];
+                    let _e338 = j_4;
+                    let _e340 = i_6;
+                    let _e343 = r_2[((4i * _e338) + _e340)];
+                    let _e345 = rowRel_1;
+                    rowRel_1 = (_e345 + (_e343 * _e337));
+                    let _e347 = i_6;
+                    let _e349 = du_2[_e347];
+                    let _e350 = j_4;
+                    let _e352 = i_6;
+                    let _e355 = r_2[((4i * _e350) + _e352)];
+                    let _e357 = rowDu_1;
+                    rowDu_1 = (_e357 + (_e355 * _e349));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e361 = i_6;
-                    i_6 = (_e361 + 1i);
+                    let _e359 = i_6;
+                    i_6 = (_e359 + 1i);
                 }
             }
-            let _e363 = j_4;
-            let _e365 = bv_2[_e363];
-            let _e366 = row_1;
-            let _e368 = (*P_1);
-            (*P_1) = (_e368 + (_e366 * _e365));
-            let _e370 = j_4;
-            let _e372 = bv_2[_e370];
-            let _e373 = rowDu_1;
-            let _e375 = Du_1;
-            Du_1 = (_e375 + (_e373 * _e372));
-            let _e377 = j_4;
-            let _e379 = dv_2[_e377];
-            let _e380 = rowRel_1;
-            let _e382 = Dv_1;
-            Dv_1 = (_e382 + (_e380 * _e379));
+            let _e361 = j_4;
+            let _e363 = bv_2[_e361];
+            let _e364 = row_1;
+            let _e366 = (*P_1);
+            (*P_1) = (_e366 + (_e364 * _e363));
+            let _e368 = j_4;
+            let _e370 = bv_2[_e368];
+            let _e371 = rowDu_1;
+            let _e373 = Du_1;
+            Du_1 = (_e373 + (_e371 * _e370));
+            let _e375 = j_4;
+            let _e377 = dv_2[_e375];
+            let _e378 = rowRel_1;
+            let _e380 = Dv_1;
+            Dv_1 = (_e380 + (_e378 * _e377));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e384 = j_4;
-            j_4 = (_e384 + 1i);
+            let _e382 = j_4;
+            j_4 = (_e382 + 1i);
         }
     }
-    let _e386 = Du_1;
-    let _e387 = Dv_1;
-    (*n_1) = cross(_e386, _e387);
+    let _e384 = Du_1;
+    let _e385 = Dv_1;
+    (*n_1) = cross(_e384, _e385);
     return;
 }
 
@@ -1409,7 +1409,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_6: i32;
-    var phi_1414_: bool;
+    var phi_1412_: bool;
 
     let _e119 = (*st_1);
     S_1 = (_e119 & 65535u);
@@ -1418,13 +1418,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e124 = S_1;
     let _e126 = S_1;
     let _e128 = ((_e124 == 0u) || (_e126 == 32768u));
-    phi_1414_ = _e128;
+    phi_1412_ = _e128;
     if _e128 {
         let _e129 = T_1;
         let _e131 = T_1;
-        phi_1414_ = ((_e129 == 0u) || (_e131 == 32768u));
+        phi_1412_ = ((_e129 == 0u) || (_e131 == 32768u));
     }
-    let _e135 = phi_1414_;
+    let _e135 = phi_1412_;
     if _e135 {
         let _e136 = S_1;
         if (_e136 == 0u) {

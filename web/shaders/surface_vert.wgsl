@@ -684,98 +684,98 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     hd.pad1_ = _e110.pad1_;
     hd.pad2_ = _e110.pad2_;
     let _e163 = hd.cv[0i];
-    M_1 = ((2u * _e163) + 8u);
-    let _e168 = hd.cv[2i];
-    let _e169 = (*k_2);
-    let _e172 = (*q);
-    let _e175 = M_1;
-    block = (_e168 + ((((_e169 - 1u) * 3u) + (_e172 - 1u)) * _e175));
+    M_1 = _e163;
+    let _e166 = hd.cv[2i];
+    let _e167 = (*k_2);
+    let _e170 = (*q);
+    let _e173 = M_1;
+    block = (_e166 + ((((_e167 - 1u) * 3u) + (_e170 - 1u)) * _e173));
     j_1 = 0i;
     loop {
-        let _e178 = j_1;
-        if (_e178 < 16i) {
+        let _e176 = j_1;
+        if (_e176 < 16i) {
+            let _e178 = j_1;
+            c_1[_e178] = vec3<f32>(0f, 0f, 0f);
             let _e180 = j_1;
-            c_1[_e180] = vec3<f32>(0f, 0f, 0f);
-            let _e182 = j_1;
-            r_1[_e182] = vec3<f32>(0f, 0f, 0f);
+            r_1[_e180] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e184 = j_1;
-            j_1 = (_e184 + 1i);
+            let _e182 = j_1;
+            j_1 = (_e182 + 1i);
         }
     }
-    let _e186 = (*h);
-    let _e192 = patches.p[(_e186 + 1u)].cv[0i];
-    let _e195 = vertices.p[_e192];
-    origin_1 = _e195.xyz;
+    let _e184 = (*h);
+    let _e190 = patches.p[(_e184 + 1u)].cv[0i];
+    let _e193 = vertices.p[_e190];
+    origin_1 = _e193.xyz;
     i_2 = 0u;
     loop {
-        let _e197 = i_2;
-        let _e198 = M_1;
-        if (_e197 < _e198) {
-            let _e200 = (*h);
-            let _e202 = i_2;
-            let _e205 = i_2;
-            let _e211 = patches.p[((_e200 + 1u) + (_e202 / 16u))].cv[(_e205 % 16u)];
-            let _e214 = vertices.p[_e211];
-            x_1 = _e214.xyz;
-            let _e216 = x_1;
-            let _e217 = origin_1;
-            xr = (_e216 - _e217);
-            let _e219 = block;
-            let _e220 = i_2;
-            let _e224 = patches.p[(_e219 + _e220)];
-            w_1.cv[0i] = _e224.cv[0];
-            w_1.cv[1i] = _e224.cv[1];
-            w_1.cv[2i] = _e224.cv[2];
-            w_1.cv[3i] = _e224.cv[3];
-            w_1.cv[4i] = _e224.cv[4];
-            w_1.cv[5i] = _e224.cv[5];
-            w_1.cv[6i] = _e224.cv[6];
-            w_1.cv[7i] = _e224.cv[7];
-            w_1.cv[8i] = _e224.cv[8];
-            w_1.cv[9i] = _e224.cv[9];
-            w_1.cv[10i] = _e224.cv[10];
-            w_1.cv[11i] = _e224.cv[11];
-            w_1.cv[12i] = _e224.cv[12];
-            w_1.cv[13i] = _e224.cv[13];
-            w_1.cv[14i] = _e224.cv[14];
-            w_1.cv[15i] = _e224.cv[15];
-            w_1.ptex = _e224.ptex;
-            w_1.u0_ = _e224.u0_;
-            w_1.v0_ = _e224.v0_;
-            w_1.size = _e224.size;
-            w_1.levelBoundary = _e224.levelBoundary;
-            w_1.sharpness = _e224.sharpness;
-            w_1.pad1_ = _e224.pad1_;
-            w_1.pad2_ = _e224.pad2_;
+        let _e195 = i_2;
+        let _e196 = M_1;
+        if (_e195 < _e196) {
+            let _e198 = (*h);
+            let _e200 = i_2;
+            let _e203 = i_2;
+            let _e209 = patches.p[((_e198 + 1u) + (_e200 / 16u))].cv[(_e203 % 16u)];
+            let _e212 = vertices.p[_e209];
+            x_1 = _e212.xyz;
+            let _e214 = x_1;
+            let _e215 = origin_1;
+            xr = (_e214 - _e215);
+            let _e217 = block;
+            let _e218 = i_2;
+            let _e222 = patches.p[(_e217 + _e218)];
+            w_1.cv[0i] = _e222.cv[0];
+            w_1.cv[1i] = _e222.cv[1];
+            w_1.cv[2i] = _e222.cv[2];
+            w_1.cv[3i] = _e222.cv[3];
+            w_1.cv[4i] = _e222.cv[4];
+            w_1.cv[5i] = _e222.cv[5];
+            w_1.cv[6i] = _e222.cv[6];
+            w_1.cv[7i] = _e222.cv[7];
+            w_1.cv[8i] = _e222.cv[8];
+            w_1.cv[9i] = _e222.cv[9];
+            w_1.cv[10i] = _e222.cv[10];
+            w_1.cv[11i] = _e222.cv[11];
+            w_1.cv[12i] = _e222.cv[12];
+            w_1.cv[13i] = _e222.cv[13];
+            w_1.cv[14i] = _e222.cv[14];
+            w_1.cv[15i] = _e222.cv[15];
+            w_1.ptex = _e222.ptex;
+            w_1.u0_ = _e222.u0_;
+            w_1.v0_ = _e222.v0_;
+            w_1.size = _e222.size;
+            w_1.levelBoundary = _e222.levelBoundary;
+            w_1.sharpness = _e222.sharpness;
+            w_1.pad1_ = _e222.pad1_;
+            w_1.pad2_ = _e222.pad2_;
             j_2 = 0i;
             loop {
-                let _e275 = j_2;
-                if (_e275 < 16i) {
-                    let _e277 = j_2;
-                    let _e280 = w_1.cv[_e277];
-                    wj = bitcast<f32>(_e280);
-                    let _e282 = j_2;
-                    let _e283 = wj;
-                    let _e284 = x_1;
-                    let _e287 = c_1[_e282];
-                    c_1[_e282] = (_e287 + (_e284 * _e283));
-                    let _e290 = j_2;
-                    let _e291 = wj;
-                    let _e292 = xr;
-                    let _e295 = r_1[_e290];
-                    r_1[_e290] = (_e295 + (_e292 * _e291));
+                let _e273 = j_2;
+                if (_e273 < 16i) {
+                    let _e275 = j_2;
+                    let _e278 = w_1.cv[_e275];
+                    wj = bitcast<f32>(_e278);
+                    let _e280 = j_2;
+                    let _e281 = wj;
+                    let _e282 = x_1;
+                    let _e285 = c_1[_e280];
+                    c_1[_e280] = (_e285 + (_e282 * _e281));
+                    let _e288 = j_2;
+                    let _e289 = wj;
+                    let _e290 = xr;
+                    let _e293 = r_1[_e288];
+                    r_1[_e288] = (_e293 + (_e290 * _e289));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e298 = j_2;
-                    j_2 = (_e298 + 1i);
+                    let _e296 = j_2;
+                    j_2 = (_e296 + 1i);
                 }
             }
             continue;
@@ -783,95 +783,95 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e300 = i_2;
-            i_2 = (_e300 + bitcast<u32>(1i));
+            let _e298 = i_2;
+            i_2 = (_e298 + bitcast<u32>(1i));
         }
     }
-    let _e303 = (*s_4);
-    param_42 = _e303;
+    let _e301 = (*s_4);
+    param_42 = _e301;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_42), (&param_43), (&param_44));
-    let _e304 = param_43;
-    bu_2 = _e304;
-    let _e305 = param_44;
-    du_2 = _e305;
-    let _e306 = (*t_4);
-    param_45 = _e306;
+    let _e302 = param_43;
+    bu_2 = _e302;
+    let _e303 = param_44;
+    du_2 = _e303;
+    let _e304 = (*t_4);
+    param_45 = _e304;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e307 = param_46;
-    bv_2 = _e307;
-    let _e308 = param_47;
-    dv_2 = _e308;
+    let _e305 = param_46;
+    bv_2 = _e305;
+    let _e306 = param_47;
+    dv_2 = _e306;
     (*P_1) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e309 = j_3;
-        if (_e309 < 4i) {
+        let _e307 = j_3;
+        if (_e307 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e311 = i_3;
-                if (_e311 < 4i) {
-                    let _e313 = i_3;
-                    let _e315 = bu_2[_e313];
-                    let _e316 = j_3;
-                    let _e318 = i_3;
-                    let _e321 = c_1[((4i * _e316) + _e318)];
-                    let _e323 = row_1;
-                    row_1 = (_e323 + (_e321 * _e315));
-                    let _e325 = i_3;
-                    let _e327 = bu_2[_e325];
-                    let _e328 = j_3;
-                    let _e330 = i_3;
-                    let _e333 = r_1[((4i * _e328) + _e330)];
-                    let _e335 = rowRel_1;
-                    rowRel_1 = (_e335 + (_e333 * _e327));
-                    let _e337 = i_3;
-                    let _e339 = du_2[_e337];
-                    let _e340 = j_3;
-                    let _e342 = i_3;
-                    let _e345 = r_1[((4i * _e340) + _e342)];
-                    let _e347 = rowDu_1;
-                    rowDu_1 = (_e347 + (_e345 * _e339));
+                let _e309 = i_3;
+                if (_e309 < 4i) {
+                    let _e311 = i_3;
+                    let _e313 = bu_2[_e311];
+                    let _e314 = j_3;
+                    let _e316 = i_3;
+                    let _e319 = c_1[((4i * _e314) + _e316)];
+                    let _e321 = row_1;
+                    row_1 = (_e321 + (_e319 * _e313));
+                    let _e323 = i_3;
+                    let _e325 = bu_2[_e323];
+                    let _e326 = j_3;
+                    let _e328 = i_3;
+                    let _e331 = r_1[((4i * _e326) + _e328)];
+                    let _e333 = rowRel_1;
+                    rowRel_1 = (_e333 + (_e331 * _e325));
+                    let _e335 = i_3;
+                    let _e337 = du_2[_e335];
+                    let _e338 = j_3;
+                    let _e340 = i_3;
+                    let _e343 = r_1[((4i * _e338) + _e340)];
+                    let _e345 = rowDu_1;
+                    rowDu_1 = (_e345 + (_e343 * _e337));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e349 = i_3;
-                    i_3 = (_e349 + 1i);
+                    let _e347 = i_3;
+                    i_3 = (_e347 + 1i);
                 }
             }
-            let _e351 = j_3;
-            let _e353 = bv_2[_e351];
-            let _e354 = row_1;
-            let _e356 = (*P_1);
-            (*P_1) = (_e356 + (_e354 * _e353));
-            let _e358 = j_3;
-            let _e360 = bv_2[_e358];
-            let _e361 = rowDu_1;
-            let _e363 = Du_1;
-            Du_1 = (_e363 + (_e361 * _e360));
-            let _e365 = j_3;
-            let _e367 = dv_2[_e365];
-            let _e368 = rowRel_1;
-            let _e370 = Dv_1;
-            Dv_1 = (_e370 + (_e368 * _e367));
+            let _e349 = j_3;
+            let _e351 = bv_2[_e349];
+            let _e352 = row_1;
+            let _e354 = (*P_1);
+            (*P_1) = (_e354 + (_e352 * _e351));
+            let _e356 = j_3;
+            let _e358 = bv_2[_e356];
+            let _e359 = rowDu_1;
+            let _e361 = Du_1;
+            Du_1 = (_e361 + (_e359 * _e358));
+            let _e363 = j_3;
+            let _e365 = dv_2[_e363];
+            let _e366 = rowRel_1;
+            let _e368 = Dv_1;
+            Dv_1 = (_e368 + (_e366 * _e365));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e372 = j_3;
-            j_3 = (_e372 + 1i);
+            let _e370 = j_3;
+            j_3 = (_e370 + 1i);
         }
     }
-    let _e374 = Du_1;
-    let _e375 = Dv_1;
-    (*n_1) = cross(_e374, _e375);
+    let _e372 = Du_1;
+    let _e373 = Dv_1;
+    (*n_1) = cross(_e372, _e373);
     return;
 }
 
@@ -1191,7 +1191,7 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_6: i32;
-    var phi_1410_: bool;
+    var phi_1408_: bool;
 
     let _e107 = (*st_1);
     S_1 = (_e107 & 65535u);
@@ -1200,13 +1200,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e112 = S_1;
     let _e114 = S_1;
     let _e116 = ((_e112 == 0u) || (_e114 == 32768u));
-    phi_1410_ = _e116;
+    phi_1408_ = _e116;
     if _e116 {
         let _e117 = T_1;
         let _e119 = T_1;
-        phi_1410_ = ((_e117 == 0u) || (_e119 == 32768u));
+        phi_1408_ = ((_e117 == 0u) || (_e119 == 32768u));
     }
-    let _e123 = phi_1410_;
+    let _e123 = phi_1408_;
     if _e123 {
         let _e124 = S_1;
         if (_e124 == 0u) {

@@ -8,7 +8,7 @@
 // around one UV boundary vertex, with a basis per configuration.
 import { chunkReader } from './container.mjs';
 import { Stream } from './tables_stream.mjs';
-import { expandBasis, readBasisProgram, readProgram } from './tables_surface_records.mjs';
+import { readBasisProgram, readConfigurationBasis } from './tables_surface_records.mjs';
 
 const MAX_DEPTH = 16;
 const MAX_BASIS_VALENCE = 64; // kMaxBasisValence
@@ -88,23 +88,6 @@ export function decodeFvarSurface(chunk, expected) {
   return { depth, ptexCount, nodes: expanded.nodes, records: expanded.records, elementCount: expanded.records.length / 36 };
 }
 
-// Version 3's basis: u32 valence, u32 configuration (0 interior, else 1 | corner << 1 | position
-// << 2), u32 support size, u32 levels, then its program (fvar_chunk.cpp's readConfigurationBasis).
-function readConfigurationBasis(r, b, read) {
-  const what = `basis ${b}`;
-  const valence = r.u32(), code = r.u32(), M = r.u32(), levels = r.u32();
-  const boundary = (code & 1) !== 0, position = code >>> 2;
-  if (valence < 1 || valence > MAX_BASIS_VALENCE || levels < 1 || levels > MAX_DEPTH ||
-      (boundary && position >= valence) || (!boundary && (code !== 0 || valence < 3 || valence === 4 || M !== 2 * valence + 8)) ||
-      M < 4 || M > 2 * MAX_BASIS_VALENCE + 8) {
-    r.fail(`${what} has a bad configuration, support size or level count`);
-  }
-  if (read.some((x) => x.valence === valence && x.code === code)) r.fail(`${what} repeats a configuration`);
-  // A boundary sub-patch has at most 7 phantom points, each one row.
-  const weights = expandBasis(readProgram(r, what, M, boundary ? 21 : 0), M, levels);
-  return { valence, code, boundary, levels, support: M, weights };
-}
-
 // Version 2's per-valence bases and version 3's configurations (as programs), the distinct
 // support and limit UVs, and the smooth faces (fvar_chunk.cpp's readSmoothFaces), each count
 // checked against the bytes left before anything is allocated.
@@ -115,7 +98,8 @@ function readSmoothFaces(r, version) {
   for (let b = 0; b < basisCount; b++) {
     let basis;
     if (version >= 3) {
-      basis = readConfigurationBasis(r, b, bases);
+      // TBLS version 7's reader: the configuration checked, its weights' range too.
+      basis = readConfigurationBasis(r, `basis ${b}`, bases);
     } else {
       // TBLS version 5's reader (tables_surface_records.mjs): each basis its one-level program,
       // checked and expanded to limn-tables's weights, bit for bit; no valence twice.
@@ -123,11 +107,9 @@ function readSmoothFaces(r, version) {
       // limn-tables builds no basis of valence 4 (regular).
       if (basis.valence === 4) r.fail(`basis ${b} has valence 4`);
       basis.code = 0;
+      // Smooth weights are convex (irregular_basis.h).
+      for (const w of basis.weights) if (!(w >= 0 && w <= 1)) r.fail(`basis ${b} has a weight outside [0, 1]`);
     }
-    // Smooth weights are convex (irregular_basis.h); a boundary configuration's hold its phantom
-    // points (2 a - b; corners 4 a - 2 b - 2 c + d).
-    const [lo, hi] = basis.boundary ? [-4, 5] : [0, 1];
-    for (const w of basis.weights) if (!(w >= lo && w <= hi)) r.fail(`basis ${b} has a weight outside [${lo}, ${hi}]`);
     bases.push(basis);
   }
   const valueCount = r.u32('value count');

@@ -1,10 +1,10 @@
-// The TBLS chunk (formats/limn.md, section 7; versions 1 to 6) as the WebGPU runtime reads it:
+// The TBLS chunk (formats/limn.md, section 7; versions 1 to 7) as the WebGPU runtime reads it:
 // every count, index and stencil entry checked as lib/subdiv/tables_chunk.cpp checks it, so that
 // nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
 import { Fnv64, LimnError, bytesOf, chunkReader } from './container.mjs';
 import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
-import { readBasisProgram, readNodeStream, readSmoothFaces, readSmoothPoints } from './tables_surface_records.mjs';
+import { readBasisProgram, readConfigurationBasis, readNodeStream, readSmoothFaces, readSmoothPoints } from './tables_surface_records.mjs';
 
 const MAX_DEPTH = 16;
 const INFINITE_SHARPNESS = 10;
@@ -76,8 +76,8 @@ function shiftedStencils(previous, grandFirst, parentFirst, first) {
 export const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 export function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 6) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 6); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 6);
+  if (chunk.version > 7) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 7); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 7);
   const patchWords = chunk.version >= 2 ? 22 : 21;
   const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
   const programs = chunk.version >= 5; // bases as programs, compact nodes and smooth faces
@@ -307,7 +307,10 @@ function readIrregularSurface(r, o) {
   const baseCount = r.u32('irregular basis count');
   if (baseCount > Math.floor(r.remaining / 8)) r.fail('irregular basis count is too large');
   const bases = [];
-  for (let i = 0; programs && i < baseCount; i++) bases.push(readBasisProgram(r, i, bases));
+  // Version 7: each with its configuration (a boundary one's support size stored).
+  for (let i = 0; programs && i < baseCount; i++) {
+    bases.push(o.version >= 7 ? readConfigurationBasis(r, `irregular basis ${i}`, bases) : readBasisProgram(r, i, bases));
+  }
   for (let i = 0; !programs && i < baseCount; i++) {
     const valence = r.u32(), lv = r.u32();
     if (valence < 3 || valence > MAX_STENCIL_VALENCE || lv < 1 || lv > MAX_DEPTH) r.fail(`irregular basis ${i} has a bad valence or level count`);
@@ -468,7 +471,7 @@ function packIrregularQuadtrees(P, Q, irregularFaces, v3) {
   v3.smooth.forEach((f, i) => {
     const b = v3.bases[f.basis];
     const below = v3.below[i];
-    out.set([b.valence, f.corner, basisFirst[f.basis], Math.max(1, b.levels - below), irregularFaces[8 * faceOf[i] + f.corner], below], W * at++);
+    out.set([b.support, f.corner, basisFirst[f.basis], Math.max(1, b.levels - below), irregularFaces[8 * faceOf[i] + f.corner], below], W * at++);
     for (let k = 0; k < b.support; k += 16) {
       for (let j = 0; j < 16 && k + j < b.support; j++) out[W * at + j] = v3.smoothPoints[f.first + k + j];
       at++;

@@ -63,6 +63,27 @@ export function readBasisProgram(r, index, earlier) {
   return { valence, levels, support: M, weights };
 }
 
+// A basis with its configuration (FVSF version 3, TBLS version 7; tables_surface_records.cpp's
+// readConfigurationBasis): u32 valence, u32 configuration (0 interior, else 1 | corner << 1 |
+// position << 2), u32 support size, u32 levels, then its program; its expanded weights in [0, 1]
+// (interior: Catmull-Clark's smooth weights are convex) or [-4, 5] (a boundary configuration's
+// phantom points, 2 a - b; corners 4 a - 2 b - 2 c + d).
+export function readConfigurationBasis(r, what, earlier) {
+  const valence = r.u32(), code = r.u32(), M = r.u32(), levels = r.u32();
+  const boundary = (code & 1) !== 0, position = code >>> 2;
+  if (valence < 1 || valence > MAX_BASIS_VALENCE || levels < 1 || levels > MAX_DEPTH ||
+      (boundary && position >= valence) || (!boundary && (code !== 0 || valence < 3 || valence === 4 || M !== 2 * valence + 8)) ||
+      M < 4 || M > 2 * MAX_BASIS_VALENCE + 8) {
+    r.fail(`${what} has a bad configuration, support size or level count`);
+  }
+  if (earlier.some((x) => x.valence === valence && x.code === code)) r.fail(`${what} repeats a configuration`);
+  // A boundary sub-patch has at most 7 phantom points, each one row.
+  const weights = expandBasis(readProgram(r, what, M, boundary ? 21 : 0), M, levels);
+  const [lo, hi] = boundary ? [-4, 5] : [0, 1];
+  for (const w of weights) if (!(w >= lo && w <= hi)) r.fail(`${what} has a weight outside [${lo}, ${hi}]`);
+  return { valence, code, boundary, levels, support: M, weights };
+}
+
 // A program alone (u32 palette size, the palette, the stream) over M support points, with
 // `phantomRows` more rows than TBLS allows (FVSF version 3's boundary configurations); the C++
 // readProgram's checks.

@@ -169,17 +169,20 @@ test('--mesh-out writes the bytes limn-render --mesh-out writes', () => {
 });
 
 // Smooth faces below level N (TBLS version 5: quadtree nodes naming per-valence basis faces
-// where a semi-sharp crease has decayed, and below faces with two extraordinary corners): the web
-// reader, its GPU records and the WGSL walk draw limn-render's bytes.
-test('--mesh-out on smooth faces below level N writes limn-render\'s bytes', () => {
+// where a semi-sharp crease has decayed, and below faces with two extraordinary corners), and
+// faces around boundary vertices on their configurations' bases (TBLS version 7: cube_no_bottom's
+// open bottom): the web reader, its GPU records and the WGSL walk draw limn-render's bytes.
+test('--mesh-out on smooth faces below level N and boundary bases writes limn-render\'s bytes', () => {
   const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
-  const limn = container('osd/catmark/catmark_pyramid_creases0.obj', { depth: 2 });
-  const native = join(scratch, 'nested_native.ply'), web = join(scratch, 'nested_web.ply');
-  const args = ['--size', '160x120', '--mesh-out'];
-  execFileSync(tool('limn-render'), [limn, ...args, native, '-o', join(scratch, 'nested_native.png')], { env, stdio: 'ignore' });
-  const r = spawnSync(process.execPath, [cli, limn, ...args, web, '-o', join(scratch, 'nested_web.png')], { encoding: 'utf8', timeout: 120000, env });
-  assert.equal(r.status, 0, r.stderr);
-  assert.ok(readFileSync(web).equals(readFileSync(native)), 'the bytes differ from limn-render\'s');
+  for (const [model, name] of [['osd/catmark/catmark_pyramid_creases0.obj', 'nested'], ['tri/cube_no_bottom.obj', 'boundary']]) {
+    const limn = container(model, { depth: 2 });
+    const native = join(scratch, `${name}_native.ply`), web = join(scratch, `${name}_web.ply`);
+    const args = ['--size', '160x120', '--mesh-out'];
+    execFileSync(tool('limn-render'), [limn, ...args, native, '-o', join(scratch, `${name}_native.png`)], { env, stdio: 'ignore' });
+    const r = spawnSync(process.execPath, [cli, limn, ...args, web, '-o', join(scratch, `${name}_web.png`)], { encoding: 'utf8', timeout: 120000, env });
+    assert.equal(r.status, 0, r.stderr);
+    assert.ok(readFileSync(web).equals(readFileSync(native)), `${name}: the bytes differ from limn-render's`);
+  }
 });
 
 // A binary --mesh-out PLY's vertices (11 floats: x y z nx ny nz, ptex bits, u v s t) and triangles.

@@ -9,7 +9,9 @@ import { readBasisProgram, readNodeStream, readSmoothPoints } from '../src/table
 import { join } from 'node:path';
 import { container, read, repo } from './support.mjs';
 
-const small = () => read(container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, seams: true }));
+// With its boundary faces refined (no boundary bases): the hostile tests below need sub-patches
+// and quadtree nodes; TBLS v7's bases have their own test.
+const small = () => read(container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, seams: true, tablesArgs: ['--boundary-bases', 'off'], name: 'fvar_bound1_refined_d2_s.limn' }));
 
 function build(chunks) {
   const size = 24 + chunks.reduce((n, c) => n + 16 + Math.ceil(c.payload.length / 8) * 8, 0);
@@ -115,8 +117,8 @@ test('byte flips are accepted or refused with a LimnError, never another excepti
 test('BLND is refused clearly, a newer chunk version names itself', () => {
   const chunks = parseContainer(small());
   expectLimnError(build([...chunks, { type: 'BLND', version: 1, payload: new Uint8Array(24) }]), /chunk BLND: blending surfaces are not supported here/);
-  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 7 } : c));
-  expectLimnError(build(newer), /chunk TBLS: version 7 is newer/);
+  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 8 } : c));
+  expectLimnError(build(newer), /chunk TBLS: version 8 is newer/);
   const unknown = [...chunks, { type: 'ZZZZ', version: 9, payload: new Uint8Array(5) }];
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
@@ -191,6 +193,31 @@ test('hostile TBLS v5 irregular-surface fields are refused by name, never a hang
   expectLimnError(patched((v) => v.setUint32(at, 0xffffffff, true)), /chunk TBLS: .*sub-patch count 4294967295 is too large/);
   // Extra levels on uniform tables, or more than depth 16 allows.
   expectLimnError(patched((v) => v.setUint32(12, 15, true)), /chunk TBLS: .*irregular levels 15 out of range/);
+});
+
+// TBLS v7's bases carry their configuration and support size (formats/limn.md, "Boundary
+// configurations (version 7)"): a place beyond the vertex's fan, a code that is no
+// configuration's and a level count of 0 are refused by name, before the program is run.
+test('hostile TBLS v7 basis configurations are refused by name', () => {
+  const bytes = read(container('osd/catmark/catmark_edgeonly.obj', { depth: 1 })), chunks = parseContainer(bytes);
+  const tbls = chunks.find((c) => c.type === 'TBLS');
+  assert.equal(tbls.version, 7);
+  const { at, stream } = irregularSectionOffset(loadLimn(bytes).tables, tbls.payload);
+  const v = new DataView(tbls.payload.buffer, tbls.payload.byteOffset, tbls.payload.byteLength);
+  const nodes = stream(at + 4), leaves = stream(nodes + 4), bases = leaves + 4 + 32 * v.getUint32(leaves, true);
+  assert.ok(v.getUint32(bases, true) > 0);
+  const first = bases + 4, valence = v.getUint32(first, true); // valence, configuration, support size, levels
+  assert.ok(valence >= 1 && valence <= 64 && v.getUint32(first + 12, true) === 6);
+  const patched = (offset, value) => build(chunks.map((c) => {
+    if (c.type !== 'TBLS') return c;
+    const payload = c.payload.slice();
+    new DataView(payload.buffer).setUint32(offset, value, true);
+    return { ...c, payload };
+  }));
+  const bad = /chunk TBLS: .*irregular basis 0 has a bad configuration, support size or level count/;
+  expectLimnError(patched(first + 4, 1 + 4 * valence), bad);
+  expectLimnError(patched(first + 4, 2), bad);
+  expectLimnError(patched(first + 12, 0), bad);
 });
 
 // TBLS v5 (bases as programs, node and smooth-face streams), v4 (compact stencil tables, patch

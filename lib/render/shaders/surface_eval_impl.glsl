@@ -53,13 +53,15 @@ void patchPoint(Patch pt, float s, float t, out vec3 P, out vec3 n) {
 }
 
 // A smooth irregular face's band-k sub-patch in quadrant q at local (s, t) (lib/subdiv/
-// irregular_basis.h): its 16 control points from the per-valence weights (header record h:
-// valence, corner, the basis's first record, its bands, the corner's limit point, its levels
-// below its irregular face; then the support points, 16 a record; the basis: per band and
-// quadrant, per support point a record of 16 weights).
+// irregular_basis.h): its 16 control points from the basis's weights (header record h: the
+// support size M (2n + 8 for a per-valence basis, a boundary configuration's own), corner, the
+// basis's first record, its bands, the corner's limit point, its levels below its irregular
+// face; then the support points, 16 a record; the basis: per band and quadrant, per support
+// point a record of 16 weights). A boundary configuration's weights hold its sub-patches'
+// phantom points (2 a - b of support points): its rows sum to 1 as well.
 void basisPatchPoint(uint h, uint k, uint q, float s, float t, out vec3 P, out vec3 n) {
     Patch hd = patches.p[h];
-    uint M = 2u * hd.cv[0] + 8u;
+    uint M = hd.cv[0];
     uint block = hd.cv[2] + ((k - 1u) * 3u + (q - 1u)) * M;
     // c: the control points (the position's sums, unchanged); r: the same relative to the first
     // support point (each row of weights sums to 1), which the derivatives read, as in

@@ -4,9 +4,10 @@
 //
 // Outside the view frustum: a regular patch lies in the convex hull of its 16 Bezier control
 // points (converted from its B-spline ones, paper 000, eq. 1), an irregular face drawn bilinear
-// (tables without its sub-patches) in that of its four limit points, a face on a per-valence
-// basis (docs/irregular.md) in that of its 2n + 8 support points (every point of its surface is
-// a limit of Catmull-Clark's smooth rules, whose weights are not negative, over them); the element
+// (tables without its sub-patches) in that of its four limit points, a face on a basis
+// (docs/irregular.md: per valence, or per boundary configuration) in that of its support points
+// (every point of its surface is a limit of Catmull-Clark's smooth and boundary rules, whose
+// weights are not negative, over them); the element
 // is culled when all of them are outside one clip plane. Patches on a mesh boundary (whose phantom
 // points are not among the control points), single-crease patches and the faces on quadtrees of
 // sub-patches (their hulls would be those of their sub-patches) are never culled.
@@ -155,13 +156,14 @@ void main() {
     } else if ((patches.p[e].cv[0] & IRREGULAR_KIND) == IRREGULAR_BASIS && patches.p[e].cv[0] != IRREGULAR_NONE &&
                patches.p[e].cv[1] == patches.p[e].cv[0] && patches.p[e].cv[2] == patches.p[e].cv[0] &&
                patches.p[e].cv[3] == patches.p[e].cv[0]) {
-        // A face on a per-valence basis: the hull of its support (the header's cv[0] is the
-        // valence n, the support's 2n + 8 indices follow it, surface_eval_impl.glsl
-        // basisPatchPoint). The facing test would need its sub-patches' derivative cones: not made.
+        // A face on a basis: the hull of its support (the header's cv[0] is the support size
+        // M, its indices follow it, surface_eval_impl.glsl basisPatchPoint). On a boundary too:
+        // the boundary rules (edge midpoints, (1, 6, 1) / 8, corners kept) are convex, and the
+        // stored weights' negative phantom terms only re-express those points' B-spline. The facing test would need its sub-patches' derivative cones: not made.
         // Only a root of four equal basis codes is such a face: a basis code in one quadrant
         // alone is a smooth face below level N (a decayed crease), whose hull bounds that
         // quadrant, not the face.
-        uint h = patches.p[e].cv[0] & ~IRREGULAR_KIND, M = 2u * patches.p[h].cv[0] + 8u;
+        uint h = patches.p[e].cv[0] & ~IRREGULAR_KIND, M = patches.p[h].cv[0];
         vec2 lo = vec2(1e30), hi = vec2(-1e30);
         bool boxed = ((pc.enabled >> 8) & 0xFFu) != 0u;
         for (uint i = 0u; i < M; ++i) {
