@@ -9,7 +9,7 @@
 //   a decaying-crease chain not refined (chains; TablesOptions::creaseChainsPrototype): its
 //   bytes, and the chains' estimated bytes; run under callgrind for the instructions of each.
 #include "mesh/import.h"
-#include "subdiv/crease_basis.h"
+#include "crease_study.h"
 #include "topology/features.h"
 
 #include <chrono>

@@ -3,7 +3,7 @@
 // its level-N neighbourhood, the quadtrees by refining the whole level K more times, and both
 // are evaluated from the same level-N points (evaluateVertices for the quadtrees).
 #include "mesh/import.h"
-#include "subdiv/crease_basis.h"
+#include "crease_study.h"
 #include "test_support.h"
 #include "topology/features.h"
 

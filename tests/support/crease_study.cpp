@@ -1,6 +1,6 @@
-// studyCreaseBases (crease_basis.h): the prototype's chains against the tables' own quadtrees.
+// studyCreaseBases (crease_study.h): the chains against the tables' own quadtrees.
 #include "base/bytes.h"
-#include "subdiv/crease_basis.h"
+#include "crease_study.h"
 #include "subdiv/evaluate.h"
 #include "subdiv/tables_build.h"
 #include "subdiv/tables_chunk.h"
