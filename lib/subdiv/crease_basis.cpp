@@ -384,11 +384,139 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
     return true;
 }
 
+namespace {
+
+using WeightRow = std::vector<double>; // a point as weights of the chain face's M level-N points
+
+// gatherControlPoints' phantoms (columns first, then rows over all columns), on weights.
+void foldPhantoms(uint8_t boundary, WeightRow P[4][4]) {
+    auto phantom = [](const WeightRow& a, const WeightRow& b) {
+        WeightRow r(a.size());
+        for (size_t i = 0; i < r.size(); ++i) r[i] = 2.0 * a[i] - b[i];
+        return r;
+    };
+    for (int j = 0; j < 4; ++j) {
+        if (boundary & kBoundaryU0) P[0][j] = phantom(P[1][j], P[2][j]);
+        if (boundary & kBoundaryU1) P[3][j] = phantom(P[2][j], P[1][j]);
+    }
+    for (int i = 0; i < 4; ++i) {
+        if (boundary & kBoundaryV0) P[i][0] = phantom(P[i][1], P[i][2]);
+        if (boundary & kBoundaryV1) P[i][3] = phantom(P[i][2], P[i][1]);
+    }
+}
+
+// The control points of a band's patch from its 16 rows (kNone: a phantom).
+void patchWeights(const uint32_t* rows, uint8_t boundary, const std::vector<WeightRow>& values, size_t M,
+                  WeightRow P[4][4]) {
+    for (int j = 0; j < 16; ++j)
+        P[j % 4][j / 4] = rows[j] == kNone ? WeightRow(M, 0.0) : values.at(rows[j]);
+    foldPhantoms(boundary, P);
+}
+
+// A uniform cubic B-spline's half (0: [0, 1/2], 1: [1/2, 1]) as its control points' weights.
+constexpr double kHalf[2][4][4] = {
+    {{0.5, 0.5, 0, 0}, {0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}},
+    {{0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}, {0, 0, 0.5, 0.5}}};
+
+void splitPatch(const WeightRow P[4][4], int hu, int hv, WeightRow Q[4][4]) {
+    const size_t M = P[0][0].size();
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            Q[i][j].assign(M, 0.0);
+            for (int b = 0; b < 4; ++b)
+                for (int a = 0; a < 4; ++a) {
+                    const double w = kHalf[hu][i][a] * kHalf[hv][j][b];
+                    if (w != 0)
+                        for (size_t x = 0; x < M; ++x) Q[i][j][x] += w * P[a][b][x];
+                }
+        }
+}
+
+} // namespace
+
+bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out) {
+    out = IrregularBasis{};
+    if (chain.bands.empty() || chain.bands.size() > K || chain.end == CreaseEnd::Leaf) return false;
+    if (chain.end == CreaseEnd::Regular && chain.bands.back().centreKind.crease) return false;
+    const size_t M = chain.bands[0].support;
+    out.levels = K;
+    out.support = uint32_t(M);
+    out.weights.assign(size_t(K) * 3 * 16 * M, 0.0f);
+    out.kinds.assign(size_t(K) * 3, CreaseBandKind{});
+    auto store = [&](uint32_t k, int q, const WeightRow P[4][4]) {
+        float* w = out.weights.data() + (size_t(k - 1) * 3 + size_t(q)) * 16 * M;
+        for (int j = 0; j < 16; ++j)
+            for (size_t i = 0; i < M; ++i) w[size_t(j) * M + i] = static_cast<float>(P[j % 4][j / 4][i]);
+    };
+    std::vector<WeightRow> cur(M, WeightRow(M, 0.0));
+    for (size_t i = 0; i < M; ++i) cur[i][i] = 1.0;
+    WeightRow P[4][4], Q[4][4];
+    uint32_t k = 0;
+    std::vector<WeightRow> rows;
+    for (const CreaseBand& band : chain.bands) {
+        ++k;
+        const BasisProgram& p = band.program;
+        const size_t S = cur.size();
+        if (band.support != S) throw std::logic_error("crease chain: a band's support is not the last band's next");
+        rows.assign(p.rows(), WeightRow(M, 0.0));
+        for (uint32_t r = 0; r < p.rows(); ++r) {
+            WeightRow& sum = rows[r];
+            for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+                const uint32_t src = p.source[e];
+                const WeightRow& x = src < S ? cur[src] : rows.at(src - S);
+                const double w = p.averaged[r] ? 1.0 : double(p.weight[e]);
+                for (size_t i = 0; i < M; ++i) sum[i] += w * x[i];
+            }
+            if (p.averaged[r])
+                for (double& x : sum) x /= double(p.start[r + 1] - p.start[r]);
+        }
+        for (int q = 0; q < 3; ++q) {
+            patchWeights(p.controlRow.data() + 16 * q, band.kind[size_t(q)].boundary, rows, M, P);
+            store(k, q, P);
+            out.kinds[size_t(k - 1) * 3 + size_t(q)] = {0, band.kind[size_t(q)].crease, band.kind[size_t(q)].sharpness};
+        }
+        std::vector<WeightRow> next;
+        for (uint32_t r : p.nextSupport) next.push_back(rows.at(r));
+        if (&band == &chain.bands.back() && chain.end == CreaseEnd::Regular)
+            patchWeights(band.centreRow.data(), band.centreKind.boundary, rows, M, P);
+        cur = std::move(next);
+    }
+    if (chain.end == CreaseEnd::Regular) {
+        // The corner's patch P, split: its quadrants 1..3 are band k's, its corner quadrant the next P.
+        for (++k; k <= K; ++k) {
+            constexpr int half[3][2] = {{1, 0}, {1, 1}, {0, 1}};
+            for (int q = 0; q < 3; ++q) {
+                splitPatch(P, half[q][0], half[q][1], Q);
+                store(k, q, Q);
+            }
+            splitPatch(P, 0, 0, Q);
+            for (int j = 0; j < 16; ++j) P[j % 4][j / 4] = Q[j % 4][j / 4];
+        }
+    } else if (k < K) { // Smooth: the per-valence basis over the end's next support
+        const IrregularBasis b = buildIrregularBasis(chain.valence, K - k);
+        const size_t m = b.supportSize();
+        if (cur.size() != m) throw std::logic_error("crease chain: a smooth end's support is not the basis's");
+        for (uint32_t kb = 1; kb <= b.levels; ++kb)
+            for (int q = 0; q < 3; ++q) {
+                const float* w = b.weights.data() + (size_t(kb - 1) * 3 + size_t(q)) * 16 * m;
+                for (int j = 0; j < 16; ++j) {
+                    WeightRow& c = P[j % 4][j / 4];
+                    c.assign(M, 0.0);
+                    for (size_t s = 0; s < m; ++s)
+                        for (size_t i = 0; i < M; ++i) c[i] += double(w[size_t(j) * m + s]) * cur[s][i];
+                }
+                store(k + kb, q, P);
+            }
+    }
+    return true;
+}
+
 void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, std::vector<uint8_t>& T,
                      AdaptiveLevels& a) {
     // A configuration's chain is the same for every face of its key (the study checks it), so
     // it is built once; a key without one is remembered too.
     std::map<std::vector<uint32_t>, int> chainOf;
+    std::map<int, int> basisOfChain; // TablesOptions::creaseChains: into a.bases, -1 for none
     std::vector<uint32_t> support, key;
     const Topology& topo = L.topo;
     // The feature corner is tried first: an extraordinary vertex, else a regular one with a
@@ -429,6 +557,20 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 }
             }
             if (it->second < 0) continue;
+            if (opts.creaseChains) {
+                // The chain's surface as a basis of the face's own support (expandCreaseChain),
+                // once per chain; a face whose chain has none is refined.
+                auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
+                IrregularBasis basis;
+                if (fresh && expandCreaseChain(a.creaseChains[size_t(it->second)], a.K, basis)) {
+                    a.bases.push_back(std::move(basis));
+                    b->second = int(a.bases.size() - 1);
+                }
+                if (b->second < 0) continue;
+                a.smooth.push_back({f, uint32_t(b->second), uint32_t(c), support, L.depth});
+                T[f] = 0;
+                break;
+            }
             a.creaseFaces.push_back({f, uint32_t(it->second), uint32_t(c), support, L.depth});
             T[f] = 0;
             break;

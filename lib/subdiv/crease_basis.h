@@ -21,14 +21,6 @@
 
 namespace limn {
 
-// The kind of a band's sub-patch, as the quadtree's Patch holds it: boundary and crease bits (in
-// the canonical frame: the feature corner at (0, 0)) and the crease's sharpness.
-struct CreaseBandKind {
-    uint8_t boundary = 0, crease = 0;
-    float sharpness = 0;
-    bool operator==(const CreaseBandKind&) const = default;
-};
-
 // One band (one level below the chain face): a program over the chain face's support at that
 // level whose rows give the sub-patches of its quadrants 1..3 (controlRow, canonical frame, as
 // BasisProgram's) and the next band's support (nextSupport; empty at the last band).
@@ -90,5 +82,17 @@ bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* differen
 // all regular patches (the face is not of this kind: two feature corners, a bent crease).
 bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t levels, const SchemeOptions& options,
                       const TablesOptions& opts, CreaseChain& chain);
+
+// A chain's surface in the layout of a basis (IrregularBasis::weights, K bands of three
+// quadrants' 16 control points as weights of the face's own M level-N support points) with each
+// band's kinds (IrregularBasis::kinds): its bands' programs run on weights instead of points
+// (double sums in each program's order, rounded to float once), boundary quadrants' phantom
+// points folded into the weights as gatherControlPoints makes them (so only a crease's bits and
+// sharpness remain of a kind), and then, to band K, a Smooth end's per-valence basis (`valence`
+// basis built for the bands left, composed with the end's next support) or a Regular end's
+// B-spline patch split into its quadrants band by band (uniform knot insertion: (1, 1)/2 and
+// (1, 6, 1)/8). False, and nothing usable, for a Leaf end or a Regular end whose patch has a
+// crease: such faces are refined as before.
+bool expandCreaseChain(const CreaseChain& chain, uint32_t levels, IrregularBasis& out);
 
 } // namespace limn

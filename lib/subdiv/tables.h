@@ -110,6 +110,12 @@ struct TablesOptions {
     // or sharp vertices lie on their support's rim only (smoothSupport's featuresBeyondCorners:
     // the stencils of one level read features at the face's corners only).
     bool basisRimFeatures = true;
+    // Faces of T_N whose feature corner is on a semi-sharp crease that has not decayed take the
+    // surface of their configuration's chain (crease_basis.h) as a basis of their own support,
+    // instead of K more levels, where the chain ends in a smooth face or a B-spline patch.
+    // Off: no format stores such a basis yet (encodeTablesChunk refuses it) and the GPU
+    // evaluates none; evaluateIrregular does (tests compare it with OpenSubdiv).
+    bool creaseChains = false;
     // Measurement only (bench_crease_bases; no tool sets it): faces of T_N with a decaying-crease
     // chain (crease_basis.h) are not refined below N and their roots get no codes, so the tables
     // lack those faces' surface; what the tables would hold without their extra levels.

@@ -116,6 +116,8 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     for (const auto& q : t.irregularLeaves) writeFace(q);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularBases.size()));
     for (const auto& b : t.irregularBases) {
+        if (!b.kinds.empty()) // TablesOptions::creaseChains: no version stores a chain's basis yet
+            throw std::logic_error("TBLS: tables with decaying-crease chains cannot be encoded");
         if (programs) { // version 7: with its configuration (boundary bases)
             if (version >= 7)
                 writeConfigurationBasis(w, b);
