@@ -207,6 +207,13 @@ GpuPatch gpuPatch(const Patch& p) {
 }
 
 void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
+    // The shaders evaluate no single-crease band of a basis yet: such tables are refused rather
+    // than drawn wrong along their creases.
+    for (const IrregularBasis& b : t.irregularBases)
+        if (!b.kinds.empty())
+            throw Error(ErrorKind::Capability, "tables with decaying-crease chains (TBLS version 8, "
+                                               "limn-tables --crease-chains on) are not drawn yet; "
+                                               "rebuild them with --crease-chains off");
     const uint32_t P = static_cast<uint32_t>(t.patches.size()), I = static_cast<uint32_t>(t.irregular.size());
     const uint32_t nodes = std::max<uint32_t>(I, static_cast<uint32_t>(t.irregularNodes.size()));
     // After the sub-patches: per smooth face a header (its support size M: 2n + 8 for a

@@ -563,6 +563,7 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
                 IrregularBasis basis;
                 if (fresh && expandCreaseChain(a.creaseChains[size_t(it->second)], a.K, basis)) {
+                    basis.chain = std::make_shared<const CreaseChain>(a.creaseChains[size_t(it->second)]);
                     a.bases.push_back(std::move(basis));
                     b->second = int(a.bases.size() - 1);
                 }

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace limn {
@@ -62,6 +63,8 @@ struct CreaseBandKind {
     bool operator==(const CreaseBandKind&) const = default;
 };
 
+struct CreaseChain; // crease_basis.h
+
 struct IrregularBasis {
     uint32_t valence = 0;
     uint32_t levels = 0; // K
@@ -81,6 +84,8 @@ struct IrregularBasis {
     // band-k sub-patch's in quadrant q, crease bit and sharpness in the canonical frame (its
     // boundary phantoms are in the weights already, so its boundary bits are 0).
     std::vector<CreaseBandKind> kinds;
+    // What a chain's weights were expanded from (TBLS version 8 stores it).
+    std::shared_ptr<const CreaseChain> chain;
     // Builder only (not stored): the local topology the program was made for, as
     // boundarySupport's signature; a face whose signature differs is refined instead.
     std::vector<uint32_t> signature;

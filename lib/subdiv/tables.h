@@ -196,6 +196,7 @@ struct IrregularSurfaceCounts {
     size_t basis = 0, subPatches = 0, bilinear = 0;
     size_t basisBelow = 0; // smooth faces below level N in the sub-patch quadtrees (TBLS version 5)
     size_t boundaryBasis = 0; // of `basis`, those around a boundary vertex (TBLS version 7)
+    size_t creaseChain = 0;   // of `basis`, those from a decaying-crease chain (TBLS version 8)
     uint32_t exactLevels = 0; // the smallest K among the faces that are not bilinear
 };
 IrregularSurfaceCounts irregularSurfaceCounts(const Tables& tables);

@@ -562,7 +562,8 @@ TEST(IrregularSurface, BoundaryBasesMatchOpenSubdiv) {
 // surface evaluateIrregular gives there is OpenSubdiv's limit (isolation 10) wherever it says
 // it is exact, on a 1/16 grid of every irregular face (single-crease bands, boundary phantoms,
 // smooth and regular ends), within 1e-6 of the diagonal and 0.05 degrees, and it lies in its
-// support's box (the creasing rules are convex combinations). No TBLS version holds them yet.
+// support's box (the creasing rules are convex combinations); TBLS version 8 holds them (its
+// reader expands the chains to the same weights), older versions cannot.
 TEST(IrregularSurface, CreaseChainsMatchOpenSubdiv) {
     for (auto [model, depth] : {std::pair{"osd/catmark/catmark_car.obj", 3}, std::pair{"osd/catmark/catmark_rook.obj", 2},
                                 std::pair{"osd/catmark/catmark_chaikin0.obj", 2},
@@ -579,7 +580,17 @@ TEST(IrregularSurface, CreaseChainsMatchOpenSubdiv) {
         f.vertices = evaluateVertices(f.tables, f.mesh.positions);
         f.diag = diagonal(f.mesh);
         const limn::Tables& t = f.tables;
-        EXPECT_THROW(encodeTablesChunk(t), std::logic_error);
+        // TBLS version 8 holds the chains: the reader expands them to the same weights.
+        const Chunk c = encodeTablesChunk(t);
+        EXPECT_EQ(c.version, kTablesChunkChainVersion);
+        const limn::Tables back = decodeTablesChunk(c, &f.mesh);
+        EXPECT_EQ(encodeTablesChunk(back).payload, c.payload);
+        ASSERT_EQ(back.irregularBases.size(), t.irregularBases.size());
+        for (size_t b = 0; b < t.irregularBases.size(); ++b) {
+            EXPECT_EQ(back.irregularBases[b].weights, t.irregularBases[b].weights);
+            EXPECT_EQ(back.irregularBases[b].kinds, t.irregularBases[b].kinds);
+        }
+        EXPECT_THROW(encodeTablesChunk(t, 6), std::logic_error);
         std::vector<int> chainOf(t.irregular.size(), -1);
         size_t chainFaces = 0, quadtreeRoots = 0;
         for (uint32_t q = 0; q < t.irregular.size() && q < t.irregularNodes.size(); ++q) {
