@@ -434,9 +434,14 @@ void splitPatch(const WeightRow P[4][4], int hu, int hv, WeightRow Q[4][4]) {
 
 } // namespace
 
-bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out) {
+bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out,
+                       std::map<uint32_t, IrregularBasis>* valenceBases) {
     out = IrregularBasis{};
-    if (chain.bands.empty() || chain.bands.size() > K || chain.end == CreaseEnd::Leaf) return false;
+    // A leaf end's K bands are all there is: within 2^-K of the corner evaluateIrregular blends
+    // the corner's limit point and band K's sub-patches at their corners, as the quadtree's leaf
+    // blends its corners' limit points (the same points to the float limit masks' rounding).
+    if (chain.bands.empty() || chain.bands.size() > K || (chain.end == CreaseEnd::Leaf && chain.bands.size() != K))
+        return false;
     if (chain.end == CreaseEnd::Regular && chain.bands.back().centreKind.crease) return false;
     const size_t M = chain.bands[0].support;
     out.levels = K;
@@ -493,10 +498,21 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
             for (int j = 0; j < 16; ++j) P[j % 4][j / 4] = Q[j % 4][j / 4];
         }
     } else if (k < K) { // Smooth: the per-valence basis over the end's next support
-        const IrregularBasis b = buildIrregularBasis(chain.valence, K - k);
+        IrregularBasis built;
+        const IrregularBasis* found = nullptr;
+        if (valenceBases) {
+            auto it = valenceBases->find(chain.valence);
+            if (it == valenceBases->end()) it = valenceBases->emplace(chain.valence, IrregularBasis{}).first;
+            if (it->second.levels < K - k) it->second = buildIrregularBasis(chain.valence, K);
+            found = &it->second;
+        } else {
+            built = buildIrregularBasis(chain.valence, K - k);
+            found = &built;
+        }
+        const IrregularBasis& b = *found;
         const size_t m = b.supportSize();
         if (cur.size() != m) throw std::logic_error("crease chain: a smooth end's support is not the basis's");
-        for (uint32_t kb = 1; kb <= b.levels; ++kb)
+        for (uint32_t kb = 1; kb <= K - k; ++kb) // a basis's band kb is the same for any level count
             for (int q = 0; q < 3; ++q) {
                 const float* w = b.weights.data() + (size_t(kb - 1) * 3 + size_t(q)) * 16 * m;
                 for (int j = 0; j < 16; ++j) {
@@ -517,6 +533,7 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
     // it is built once; a key without one is remembered too.
     std::map<std::vector<uint32_t>, int> chainOf;
     std::map<int, int> basisOfChain; // TablesOptions::creaseChains: into a.bases, -1 for none
+    std::map<uint32_t, IrregularBasis> valenceBases; // their smooth ends' bases
     std::vector<uint32_t> support, key;
     const Topology& topo = L.topo;
     // The feature corner is tried first: an extraordinary vertex, else a regular one with a
@@ -562,7 +579,7 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 // once per chain; a face whose chain has none is refined.
                 auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
                 IrregularBasis basis;
-                if (fresh && expandCreaseChain(a.creaseChains[size_t(it->second)], a.K, basis)) {
+                if (fresh && expandCreaseChain(a.creaseChains[size_t(it->second)], a.K, basis, &valenceBases)) {
                     basis.chain = std::make_shared<const CreaseChain>(a.creaseChains[size_t(it->second)]);
                     a.bases.push_back(std::move(basis));
                     b->second = int(a.bases.size() - 1);

@@ -14,6 +14,7 @@
 #include "subdiv/tables.h"
 
 #include <array>
+#include <map>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -91,8 +92,11 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t levels, c
 // sharpness remain of a kind), and then, to band K, a Smooth end's per-valence basis (`valence`
 // basis built for the bands left, composed with the end's next support) or a Regular end's
 // B-spline patch split into its quadrants band by band (uniform knot insertion: (1, 1)/2 and
-// (1, 6, 1)/8). False, and nothing usable, for a Leaf end or a Regular end whose patch has a
-// crease: such faces are refined as before.
-bool expandCreaseChain(const CreaseChain& chain, uint32_t levels, IrregularBasis& out);
+// (1, 6, 1)/8); a Leaf end has its K bands already. False, and nothing usable, for a Regular
+// end whose patch has a crease: such faces are refined as before.
+// `valenceBases` (optional): per valence a basis of `levels` bands, built here once for the
+// smooth ends that need it.
+bool expandCreaseChain(const CreaseChain& chain, uint32_t levels, IrregularBasis& out,
+                       std::map<uint32_t, IrregularBasis>* valenceBases = nullptr);
 
 } // namespace limn

@@ -117,7 +117,7 @@ CreaseBandKind readKind(ByteReader& r, const std::string& what) {
 void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& programs) {
     if (!b.chain) throw std::logic_error("TBLS: a chain basis without its chain");
     const CreaseChain& c = *b.chain;
-    w.write<uint32_t>(c.end == CreaseEnd::Smooth ? 1u : 2u);
+    w.write<uint32_t>(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
     w.write<uint32_t>(static_cast<uint32_t>(c.bands.size()));
     for (const CreaseBand& band : c.bands) {
         std::vector<uint8_t> bytes = programBytes(band.program, band.support);
@@ -137,11 +137,11 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
     auto chain = std::make_shared<CreaseChain>();
     CreaseChain& c = *chain;
     const uint32_t end = r.read<uint32_t>(), bands = r.read<uint32_t>();
-    if (end < 1 || end > 2 || bands < 1 || bands > K || K > uint32_t(kMaxDepth) || M < 4 || M > kMaxChainSupport ||
+    if (end > 2 || bands < 1 || bands > K || K > uint32_t(kMaxDepth) || M < 4 || M > kMaxChainSupport ||
         (end == 1 && (valence < 3 || valence == 4 || valence > kMaxBasisValence || bands == K)) ||
-        (end == 2 && valence != 0))
+        (end != 1 && valence != 0) || (end == 0 && bands != K))
         r.fail(what + " has a bad end, band count, valence or support size");
-    c.end = end == 1 ? CreaseEnd::Smooth : CreaseEnd::Regular;
+    c.end = end == 0 ? CreaseEnd::Leaf : end == 1 ? CreaseEnd::Smooth : CreaseEnd::Regular;
     c.valence = valence;
     uint32_t support = M;
     for (uint32_t j = 0; j < bands; ++j) {
@@ -177,7 +177,7 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
         }
     }
     IrregularBasis basis;
-    if (!expandCreaseChain(c, K, basis)) r.fail(what + " cannot be expanded");
+    if (!expandCreaseChain(c, K, basis, &programs.valenceBases)) r.fail(what + " cannot be expanded");
     for (float x : basis.weights)
         if (!(std::abs(x) <= kMaxStencilWeight)) r.fail(what + " has a bad weight");
     basis.chain = std::move(chain);

@@ -24,10 +24,12 @@ using ChainProgramIndex = std::map<std::vector<uint8_t>, uint32_t>;
 struct ChainPrograms {
     std::vector<BasisProgram> programs;
     std::vector<uint32_t> support;
+    std::map<uint32_t, IrregularBasis> valenceBases; // smooth ends' bases, built once per valence
 };
 
 // After the record's u32 valence (a smooth end's basis; else 0), u32 code (2), u32 support size
-// M and u32 levels K, which the caller writes and reads: u32 end (1 smooth, 2 regular), u32
+// M and u32 levels K, which the caller writes and reads: u32 end (0 leaf: K bands, 1 smooth, 2
+// regular), u32
 // bands, per band u32 program (an index of a program the chunk's chains brought before, or their
 // count: u32 support, u32 next-support count, u32 palette size, the palette, a stream of the
 // rows as writeProgram's, 48 control rows as varints of row + 1 (0: a phantom) and the next
