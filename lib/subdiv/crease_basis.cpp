@@ -419,16 +419,22 @@ constexpr double kHalf[2][4][4] = {
     {{0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}, {0, 0, 0.5, 0.5}}};
 
 void splitPatch(const WeightRow P[4][4], int hu, int hv, WeightRow Q[4][4]) {
+    // Separable: along u, then along v (at most three nonzero weights a row).
     const size_t M = P[0][0].size();
+    WeightRow T[4][4];
+    for (int b = 0; b < 4; ++b)
+        for (int i = 0; i < 4; ++i) {
+            T[i][b].assign(M, 0.0);
+            for (int a = 0; a < 4; ++a)
+                if (const double w = kHalf[hu][i][a]; w != 0)
+                    for (size_t x = 0; x < M; ++x) T[i][b][x] += w * P[a][b][x];
+        }
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
             Q[i][j].assign(M, 0.0);
             for (int b = 0; b < 4; ++b)
-                for (int a = 0; a < 4; ++a) {
-                    const double w = kHalf[hu][i][a] * kHalf[hv][j][b];
-                    if (w != 0)
-                        for (size_t x = 0; x < M; ++x) Q[i][j][x] += w * P[a][b][x];
-                }
+                if (const double w = kHalf[hv][j][b]; w != 0)
+                    for (size_t x = 0; x < M; ++x) Q[i][j][x] += w * T[i][b][x];
         }
 }
 
