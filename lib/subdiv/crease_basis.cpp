@@ -440,8 +440,7 @@ void splitPatch(const WeightRow P[4][4], int hu, int hv, WeightRow Q[4][4]) {
 
 } // namespace
 
-bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out,
-                       std::map<uint32_t, IrregularBasis>* valenceBases) {
+bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out, const IrregularBasis* endBasis) {
     out = IrregularBasis{};
     // A leaf end's K bands are all there is: within 2^-K of the corner evaluateIrregular blends
     // the corner's limit point and band K's sub-patches at their corners, as the quadtree's leaf
@@ -505,16 +504,11 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
         }
     } else if (k < K) { // Smooth: the per-valence basis over the end's next support
         IrregularBasis built;
-        const IrregularBasis* found = nullptr;
-        if (valenceBases) {
-            auto it = valenceBases->find(chain.valence);
-            if (it == valenceBases->end()) it = valenceBases->emplace(chain.valence, IrregularBasis{}).first;
-            if (it->second.levels < K - k) it->second = buildIrregularBasis(chain.valence, K);
-            found = &it->second;
-        } else {
-            built = buildIrregularBasis(chain.valence, K - k);
-            found = &built;
-        }
+        if (!endBasis) built = buildIrregularBasis(chain.valence, K - k);
+        const IrregularBasis* found = endBasis ? endBasis : &built;
+        if (found->valence != chain.valence || found->configuration.boundary || found->levels < K - k ||
+            !found->kinds.empty())
+            throw std::logic_error("crease chain: a smooth end's basis is not its valence's");
         const IrregularBasis& b = *found;
         const size_t m = b.supportSize();
         if (cur.size() != m) throw std::logic_error("crease chain: a smooth end's support is not the basis's");
@@ -533,13 +527,12 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
     return true;
 }
 
-void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, std::vector<uint8_t>& T,
-                     AdaptiveLevels& a) {
+void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, uint32_t basisLevels,
+                     std::vector<uint8_t>& T, AdaptiveLevels& a) {
     // A configuration's chain is the same for every face of its key (the study checks it), so
     // it is built once; a key without one is remembered too.
     std::map<std::vector<uint32_t>, int> chainOf;
     std::map<int, int> basisOfChain; // TablesOptions::creaseChains: into a.bases, -1 for none
-    std::map<uint32_t, IrregularBasis> valenceBases; // their smooth ends' bases
     std::vector<uint32_t> support, key;
     const Topology& topo = L.topo;
     // The feature corner is tried first: an extraordinary vertex, else a regular one with a
@@ -585,10 +578,31 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 // once per chain; a face whose chain has none is refined.
                 auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
                 IrregularBasis basis;
-                if (fresh && expandCreaseChain(a.creaseChains[size_t(it->second)], a.K, basis, &valenceBases)) {
-                    basis.chain = std::make_shared<const CreaseChain>(a.creaseChains[size_t(it->second)]);
-                    a.bases.push_back(std::move(basis));
-                    b->second = int(a.bases.size() - 1);
+                if (fresh) {
+                    auto chain = std::make_shared<CreaseChain>(a.creaseChains[size_t(it->second)]);
+                    // A smooth end goes on with its valence's basis, which the tables hold (TBLS
+                    // version 8 names it), even where no face of its own draws from it.
+                    int end = -1;
+                    if (chain->end == CreaseEnd::Smooth) {
+                        std::vector<int>& of = a.basisOfValence;
+                        if (of.size() <= chain->valence) of.resize(chain->valence + 1, -1);
+                        if (of[chain->valence] == -1) {
+                            try {
+                                a.bases.push_back(buildIrregularBasis(chain->valence, std::max(a.K, basisLevels)));
+                                of[chain->valence] = int(a.bases.size() - 1);
+                            } catch (const std::exception&) {
+                                of[chain->valence] = -2;
+                            }
+                        }
+                        end = of[chain->valence];
+                        chain->endBasis = uint32_t(end);
+                    }
+                    if ((chain->end != CreaseEnd::Smooth || end >= 0) &&
+                        expandCreaseChain(*chain, a.K, basis, end >= 0 ? &a.bases[size_t(end)] : nullptr)) {
+                        basis.chain = std::move(chain);
+                        a.bases.push_back(std::move(basis));
+                        b->second = int(a.bases.size() - 1);
+                    }
                 }
                 if (b->second < 0) continue;
                 a.smooth.push_back({f, uint32_t(b->second), uint32_t(c), support, L.depth});

@@ -46,6 +46,7 @@ struct CreaseChain {
     std::vector<CreaseBand> bands;
     CreaseEnd end = CreaseEnd::Leaf;
     uint32_t valence = 0; // CreaseEnd::Smooth: the basis that goes on
+    uint32_t endBasis = UINT32_MAX; // and its index among the tables' bases (TBLS version 8 names it)
 };
 
 // The support of face f of level L seen from its ptex corner `corner`: the vertices of the faces
@@ -94,9 +95,9 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t levels, c
 // B-spline patch split into its quadrants band by band (uniform knot insertion: (1, 1)/2 and
 // (1, 6, 1)/8); a Leaf end has its K bands already. False, and nothing usable, for a Regular
 // end whose patch has a crease: such faces are refined as before.
-// `valenceBases` (optional): per valence a basis of `levels` bands, built here once for the
-// smooth ends that need it.
+// `endBasis` (a Smooth end's): the valence's basis, with at least the bands left (built here
+// where it is not given). Throws std::logic_error where it is not that valence's.
 bool expandCreaseChain(const CreaseChain& chain, uint32_t levels, IrregularBasis& out,
-                       std::map<uint32_t, IrregularBasis>* valenceBases = nullptr);
+                       const IrregularBasis* endBasis = nullptr);
 
 } // namespace limn

@@ -66,7 +66,8 @@ struct AdaptiveLevels {
 
 // TablesOptions::creaseChainsPrototype (crease_basis.cpp): takes the faces of T (level N) that
 // have a decaying-crease chain out of T, building one chain per configuration.
-void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, std::vector<uint8_t>& T,
+void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, uint32_t basisLevels,
+                     std::vector<uint8_t>& T,
                      AdaptiveLevels& a);
 
 // Refines `baseTopo` (checked by checkTablesTopology) to depth opts.depth and K more levels under

@@ -118,6 +118,7 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
     if (!b.chain) throw std::logic_error("TBLS: a chain basis without its chain");
     const CreaseChain& c = *b.chain;
     w.write<uint32_t>(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
+    if (c.end == CreaseEnd::Smooth) w.write<uint32_t>(c.endBasis);
     w.write<uint32_t>(static_cast<uint32_t>(c.bands.size()));
     for (const CreaseBand& band : c.bands) {
         std::vector<uint8_t> bytes = programBytes(band.program, band.support);
@@ -133,16 +134,28 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
 }
 
 IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t valence, uint32_t M, uint32_t K,
-                              ChainPrograms& programs) {
+                              const std::vector<IrregularBasis>& earlier, ChainPrograms& programs) {
     auto chain = std::make_shared<CreaseChain>();
     CreaseChain& c = *chain;
-    const uint32_t end = r.read<uint32_t>(), bands = r.read<uint32_t>();
+    const uint32_t end = r.read<uint32_t>();
+    const uint32_t endBasis = end == 1 ? r.read<uint32_t>() : kNone;
+    const uint32_t bands = r.read<uint32_t>();
     if (end > 2 || bands < 1 || bands > K || K > uint32_t(kMaxDepth) || M < 4 || M > kMaxChainSupport ||
         (end == 1 && (valence < 3 || valence == 4 || valence > kMaxBasisValence || bands == K)) ||
         (end != 1 && valence != 0) || (end == 0 && bands != K))
         r.fail(what + " has a bad end, band count, valence or support size");
     c.end = end == 0 ? CreaseEnd::Leaf : end == 1 ? CreaseEnd::Smooth : CreaseEnd::Regular;
     c.valence = valence;
+    // A smooth end names its valence's basis, read before it, with the bands left.
+    const IrregularBasis* endOf = nullptr;
+    if (end == 1) {
+        if (endBasis >= earlier.size()) r.fail(what + "'s smooth end names a missing basis");
+        endOf = &earlier[endBasis];
+        if (endOf->chain || endOf->configuration.boundary || endOf->valence != valence || endOf->levels < K - bands)
+            r.fail(what + "'s smooth end names basis " + std::to_string(endBasis) + ", not valence " +
+                   std::to_string(valence) + "'s with " + std::to_string(K - bands) + " bands");
+        c.endBasis = endBasis;
+    }
     uint32_t support = M;
     for (uint32_t j = 0; j < bands; ++j) {
         const std::string band = what + " band " + std::to_string(j + 1);
@@ -177,7 +190,7 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
         }
     }
     IrregularBasis basis;
-    if (!expandCreaseChain(c, K, basis, &programs.valenceBases)) r.fail(what + " cannot be expanded");
+    if (!expandCreaseChain(c, K, basis, endOf)) r.fail(what + " cannot be expanded");
     for (float x : basis.weights)
         if (!(std::abs(x) <= kMaxStencilWeight)) r.fail(what + " has a bad weight");
     basis.chain = std::move(chain);

@@ -89,7 +89,7 @@ IrregularBasis readConfigurationBasis(ByteReader& r, const std::string& what, co
     const uint32_t code = r.read<uint32_t>();
     const uint32_t M = r.read<uint32_t>();
     x.levels = r.read<uint32_t>();
-    if (chains && code == kChainConfigurationCode) return readChainBasis(r, what, x.valence, M, x.levels, *chains);
+    if (chains && code == kChainConfigurationCode) return readChainBasis(r, what, x.valence, M, x.levels, earlier, *chains);
     BasisConfiguration& c = x.configuration;
     c = {x.valence, (code & 1) != 0, code >> 2, (code & 2) != 0};
     if (c.code() != code || x.valence < 1 || x.valence > kMaxBasisValence || x.levels < 1 ||

@@ -231,8 +231,8 @@ Tables buildChains(const Mesh& m, int depth) {
 
 // TBLS version 8's decaying-crease chains (formats/limn.md, "Decaying-crease chains"): a damaged
 // chain is refused naming what is wrong (a kind with two crease edges, more bands than levels, a
-// smooth end whose next support is not its basis's, a control point or a regular end's row that
-// names no row of its program), never expanded; and random bit flips are refused or read as
+// smooth end naming no basis or another valence's, or whose next support is not its basis's, a
+// control point or a regular end's row that names no row of its program), never expanded; and random bit flips are refused or read as
 // tables whose chains expand (ASan run: no read out of bounds).
 TEST(TablesChunk, HostileCreaseChainsAreRefused) {
     const Mesh m = loadModel("osd/catmark/catmark_chaikin0.obj");
@@ -261,7 +261,9 @@ TEST(TablesChunk, HostileCreaseChainsAreRefused) {
     expectRefused(smooth, [](CreaseChain& x) { x.bands[0].kind[1] = {1, 1, 2.0f}; }, "bad patch kind");
     expectRefused(smooth, [&](CreaseChain& x) { x.bands.resize(good.irregularLevels + 1, x.bands.back()); },
                   "bad end, band count");
-    expectRefused(smooth, [](CreaseChain& x) { x.valence = x.valence == 3 ? 5 : 3; }, "bad next support");
+    expectRefused(smooth, [](CreaseChain& x) { x.valence = x.valence == 3 ? 5 : 3; }, "smooth end names basis");
+    expectRefused(smooth, [](CreaseChain& x) { x.endBasis = 1000; }, "names a missing basis");
+    expectRefused(smooth, [](CreaseChain& x) { x.bands.back().program.nextSupport.pop_back(); }, "bad next support");
     expectRefused(smooth, [](CreaseChain& x) { x.bands[0].program.controlRow[5] = x.bands[0].program.rows(); },
                   "names a missing row");
     expectRefused(regular, [](CreaseChain& x) { x.bands.back().centreRow[3] = x.bands.back().program.rows(); },
