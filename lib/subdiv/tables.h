@@ -170,13 +170,15 @@ struct Tables {
     std::vector<IrregularFace> irregularLeaves;
     // Irregular faces around one smooth interior extraordinary vertex are not refined further:
     // their sub-patches come from per-valence weights of their 2n + 8 surrounding level-N
-    // points (irregular_basis.h). A root node of kNodeBasis codes names one of these. So do
+    // points (irregular_basis.h); since version 7 also those around one boundary vertex or in a
+    // sector between infinitely sharp creases, from a basis per configuration over its own
+    // support size. A root node of kNodeBasis codes names one of these. So do
     // the basis codes of deeper nodes (version 5): descendants at level N + j whose creases
     // have decayed, their support at that level, the basis's first levels - j bands.
     struct SmoothIrregular {
         uint32_t basis;  // into irregularBases
         uint32_t corner; // the extraordinary corner (ptex order)
-        uint32_t first;  // its 2n + 8 points: smoothPoints[first ...]
+        uint32_t first;  // its basis's supportSize() points: smoothPoints[first ...]
     };
     std::vector<IrregularBasis> irregularBases;
     std::vector<SmoothIrregular> smoothIrregular;

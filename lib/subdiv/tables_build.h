@@ -36,8 +36,9 @@ void checkTablesOptions(const Mesh& mesh, const TablesOptions& opts);
 void checkTablesTopology(const Topology& baseTopo, const TablesOptions& opts);
 
 // A face of T_N, or a descendant of one at level N + j (j < K) once its semi-sharp features
-// have decayed, around one smooth interior extraordinary vertex: drawn from the per-valence
-// weights of its support (irregular_basis.h; bands 1..levels - j), not refined further.
+// have decayed, around one smooth interior extraordinary vertex or one boundary or crease vertex:
+// drawn from its basis's weights of its support (irregular_basis.h; bands 1..levels - j), not
+// refined further.
 struct SmoothIrregularFace {
     uint32_t face, basis, corner;
     std::vector<uint32_t> support; // vertices of `level`
@@ -55,7 +56,7 @@ struct AdaptiveLevels {
     std::vector<std::vector<uint32_t>> creaseEdges;  // per face: a single-crease patch's edge
     std::vector<uint32_t> ptexBase;                  // per base face: its first ptex id
     std::vector<SmoothIrregularFace> smooth;         // by level: roots (T_N) first, then deeper
-    std::vector<IrregularBasis> bases;               // their bases, one per valence met
+    std::vector<IrregularBasis> bases;               // their bases, one per valence or configuration met
     std::vector<int> basisOfValence;                 // into bases; -1: not tried, -2: failed
     std::unordered_map<uint64_t, int> basisOfConfiguration; // boundary ones, by key (the same)
     // TablesOptions::creaseChainsPrototype: the faces of T_N taken with a chain (basis: the

@@ -39,9 +39,11 @@ void requireManifold(const Topology& T) {
 }
 
 
-// The faces of T_l around one smooth interior extraordinary vertex: drawn from the per-valence
-// weights of their support (irregular_basis.h, built once per valence met), so taken out of T
-// (not refined further) and recorded in a.smooth; and the faces too crowded for either surface.
+// The faces of T_l around one smooth interior extraordinary vertex, or (opts.boundaryBases) one
+// boundary or crease vertex: drawn from the weights of their support (irregular_basis.h, built
+// once per valence or boundary configuration met, under the mesh's boundary rule `rule`), so
+// taken out of T (not refined further) and recorded in a.smooth; and the faces too crowded for
+// either surface.
 // At l = N these are irregular faces (quadtree roots); below N (l < D) they are descendants of
 // irregular faces whose semi-sharp creases have decayed by level l: the rest of their surface
 // is smooth Catmull-Clark, which the same basis gives (its first levels - (l - N) bands)
