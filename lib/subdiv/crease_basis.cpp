@@ -250,7 +250,7 @@ std::vector<glm::dvec3> runBandProgram(const BasisProgram& p, std::span<const gl
     return values;
 }
 
-bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference) {
+bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference, double tolerance) {
     if (x.support != y.support || x.program.nextSupport.size() != y.program.nextSupport.size()) return false;
     std::vector<glm::dvec3> in(x.support);
     for (size_t i = 0; i < in.size(); ++i)
@@ -258,8 +258,10 @@ bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* differen
     const std::vector<glm::dvec3> px = runBandProgram(x.program, in), py = runBandProgram(y.program, in);
     auto same = [&](uint32_t r, uint32_t q) {
         if (r == kNone || q == kNone) return r == q;
-        for (int k = 0; k < 3 && difference; ++k) *difference = std::max(*difference, std::abs(px[r][k] - py[q][k]));
-        return px[r] == py[q];
+        double most = 0;
+        for (int k = 0; k < 3; ++k) most = std::max(most, std::abs(px[r][k] - py[q][k]));
+        if (difference) *difference = std::max(*difference, most);
+        return tolerance > 0 ? most <= tolerance : px[r] == py[q];
     };
     for (size_t k = 0; k < 48; ++k)
         if (!same(x.program.controlRow[k], y.program.controlRow[k])) return false;
@@ -548,6 +550,7 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
     // it is built once; a key without one is remembered too.
     std::map<std::vector<uint32_t>, int> chainOf;
     std::map<int, int> basisOfChain; // TablesOptions::creaseChains: into a.bases, -1 for none
+    std::map<std::vector<uint32_t>, CreaseBand> sharedBands; // the first band of each programKey and end
     std::vector<uint32_t> support, key;
     const Topology& topo = L.topo;
     // The feature corner is tried first: an extraordinary vertex, else a regular one with a
@@ -595,6 +598,20 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 IrregularBasis basis;
                 if (fresh) {
                     auto chain = std::make_shared<CreaseChain>(a.creaseChains[size_t(it->second)]);
+                    // Bands whose keys agree once every sharpness from 1 on is clamped, and that
+                    // end alike, run the same function (bench_crease_bases checks it: to 1e-16),
+                    // so they share one program, which TBLS then stores once; only their kinds'
+                    // sharpness differs.
+                    for (CreaseBand& band : chain->bands) {
+                        std::vector<uint32_t> shared = programKey(band.key, kProgramSharpness);
+                        shared.push_back(&band == &chain->bands.back() ? 1u + uint32_t(chain->end) : 0u);
+                        auto [other, first] = sharedBands.try_emplace(std::move(shared), band);
+                        double difference = 0;
+                        if (!first && sameBandFunction(other->second, band, &difference, 1e-12)) {
+                            band.program = other->second.program;
+                            band.centreRow = other->second.centreRow;
+                        }
+                    }
                     // A smooth end goes on with its valence's basis, which the tables hold (TBLS
                     // version 8 names it), even where no face of its own draws from it.
                     int end = -1;

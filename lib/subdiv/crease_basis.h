@@ -74,8 +74,9 @@ inline constexpr float kProgramSharpness = 1.0f;
 // program's order of float weights times points, face points averaged).
 std::vector<glm::dvec3> runBandProgram(const BasisProgram& program, std::span<const glm::dvec3> support);
 // Whether two bands' programs are the same function: the same points to the bit from the same
-// (arbitrary) support values; `difference` (optional) gets the largest difference met.
-bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference = nullptr);
+// (arbitrary) support values of size about 1 (`tolerance` > 0: within it); `difference`
+// (optional) gets the largest difference met.
+bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference = nullptr, double tolerance = 0);
 
 // The chain of face f of level L with feature corner `corner` over `levels` bands, from a copy
 // of its support's faces (their sharpness; the copy's rim edges infinitely sharp, which no
