@@ -112,9 +112,11 @@ struct TablesOptions {
     bool basisRimFeatures = true;
     // Faces of T_N whose feature corner is on a semi-sharp crease that has not decayed take the
     // surface of their configuration's chain (crease_basis.h) as a basis of their own support,
-    // instead of K more levels, where the chain ends in a smooth face or a B-spline patch.
-    // Off: no format stores such a basis yet (encodeTablesChunk refuses it) and the GPU
-    // evaluates none; evaluateIrregular does (tests compare it with OpenSubdiv).
+    // instead of K more levels (leaf and smooth ends, and regular ends whose patch is a
+    // B-spline). TBLS version 8 holds them; limn-render, the web runtime and evaluateIrregular
+    // draw them. Off by default for now: turning it on moves many tests' tables to version 8 and
+    // off their quadtrees (docs/irregular.md, "Chains in the tables"); the face-varying surface
+    // never takes them (FVSF has no chains).
     bool creaseChains = false;
     // Measurement only (bench_crease_bases; no tool sets it): faces of T_N with a decaying-crease
     // chain (crease_basis.h) are not refined below N and their roots get no codes, so the tables
