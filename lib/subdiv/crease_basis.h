@@ -1,4 +1,4 @@
-// Per-configuration bases (builder side; no format stores them yet) for the irregular faces
+// Per-configuration bases (TablesOptions::creaseChains; TBLS version 8) for the irregular faces
 // whose feature corner is on semi-sharp creases that have not decayed at
 // level N (docs/irregular.md, "Decaying-crease configurations"). Today such a face is refined K
 // more levels (its quadtree); but the sub-patches of its three quadrants away from the feature
