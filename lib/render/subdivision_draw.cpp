@@ -213,7 +213,8 @@ void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
     // per-valence basis, a boundary configuration's own; corner, its basis's first record, its
     // bands, the corner's limit point, the levels below its irregular face: 0 for a root, whose
     // codes are read before halving) and its support points, 16 a record; then
-    // per basis, per band and quadrant, per support point a record of its 16 weights.
+    // per basis, per band and quadrant, per support point a record of its 16 weights (the first
+    // one of a decaying-crease chain's block also its band's crease bits and sharpness).
     std::vector<uint32_t> header(t.smoothIrregular.size()), basisFirst(t.irregularBases.size());
     uint32_t next = P + nodes + static_cast<uint32_t>(t.subPatches.size());
     for (size_t i = 0; i < t.smoothIrregular.size(); ++i) {
@@ -268,6 +269,11 @@ void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
         for (uint32_t block = 0; block < b.levels * 3; ++block)
             for (uint32_t i = 0; i < M; ++i) {
                 GpuPatch g{};
+                // A chain's band kind (basisPatchPoint reads it from the block's first record).
+                if (i == 0 && !b.kinds.empty()) {
+                    g.levelBoundary = uint32_t(b.kinds[block].crease) << 16;
+                    g.sharpness = b.kinds[block].sharpness;
+                }
                 for (uint32_t j = 0; j < 16; ++j) std::memcpy(&g.cv[j], &b.weights[(size_t(block) * 16 + j) * M + i], 4);
                 d.irregularNodes.push_back(g);
             }

@@ -213,9 +213,18 @@ SurfacePoint basisPatch(const Tables& t, uint32_t smooth, std::span<const glm::d
                         uint32_t k, uint32_t q, double s, double tt) {
     glm::dvec3 P[4][4];
     smoothSubPatchControlPoints(t, smooth, V, k, q, P);
+    // A decaying-crease chain's band may be a single-crease patch (its bits in the canonical
+    // frame); every other basis sub-patch is a B-spline (a boundary's phantoms are in the weights).
+    const IrregularBasis& b = t.irregularBases[t.smoothIrregular[smooth].basis];
+    Patch kind{};
+    if (!b.kinds.empty()) {
+        const CreaseBandKind& c = b.kinds[size_t(k - 1) * 3 + (q - 1)];
+        kind.crease = c.crease;
+        kind.sharpness = c.sharpness;
+    }
     double bu[4], du[4], bv[4], dv[4];
-    bsplineBasis(s, bu, du);
-    bsplineBasis(tt, bv, dv);
+    directionBasis(kind, s, kBoundaryU0, kBoundaryU1, bu, du);
+    directionBasis(kind, tt, kBoundaryV0, kBoundaryV1, bv, dv);
     SurfacePoint r{};
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {

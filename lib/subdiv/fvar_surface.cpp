@@ -203,6 +203,7 @@ FaceVaryingSurface::FaceVaryingSurface(const Mesh& mesh, const SchemeOptions& o,
     // Faces along UV seams and boundaries take a basis per configuration instead of K levels of
     // refinement (FVSF version 3): the records they expand to are those pieces.
     to.boundaryBases = to.basisRimFeatures = boundaryBases;
+    to.creaseChains = false; // FVSF stores no decaying-crease chains
     tables_ = buildTables(uv, uo, to, warnings);
     vertices_ = evaluateVertices(tables_, uv.positions);
     limits_ = evaluateLimitPoints(tables_, vertices_);

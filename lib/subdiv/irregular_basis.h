@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace limn {
@@ -54,6 +55,16 @@ struct BasisConfiguration {
     bool operator==(const BasisConfiguration&) const = default;
 };
 
+// The kind of a band's sub-patch, as the quadtree's Patch holds it: boundary and crease bits (in
+// the canonical frame: the feature corner at (0, 0)) and the crease's sharpness.
+struct CreaseBandKind {
+    uint8_t boundary = 0, crease = 0;
+    float sharpness = 0;
+    bool operator==(const CreaseBandKind&) const = default;
+};
+
+struct CreaseChain; // crease_basis.h
+
 struct IrregularBasis {
     uint32_t valence = 0;
     uint32_t levels = 0; // K
@@ -68,6 +79,13 @@ struct IrregularBasis {
     // version 3, TBLS version 7).
     BasisConfiguration configuration;
     uint32_t support = 0;
+    // A decaying-crease chain's (crease_basis.h, expandCreaseChain; empty for the per-valence and
+    // boundary bases, whose sub-patches are all B-splines): kinds[(k - 1) * 3 + (q - 1)] is the
+    // band-k sub-patch's in quadrant q, crease bit and sharpness in the canonical frame (its
+    // boundary phantoms are in the weights already, so its boundary bits are 0).
+    std::vector<CreaseBandKind> kinds;
+    // What a chain's weights were expanded from (TBLS version 8 stores it).
+    std::shared_ptr<const CreaseChain> chain;
     // Builder only (not stored): the local topology the program was made for, as
     // boundarySupport's signature; a face whose signature differs is refined instead.
     std::vector<uint32_t> signature;

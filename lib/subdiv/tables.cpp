@@ -47,6 +47,7 @@ IrregularSurfaceCounts irregularSurfaceCounts(const Tables& t) {
             const auto& f = t.smoothIrregular[code & kNodeIndexMask];
             most = std::min(most, t.irregularBases[f.basis].levels);
             c.boundaryBasis += t.irregularBases[f.basis].configuration.boundary;
+            c.creaseChain += !t.irregularBases[f.basis].kinds.empty();
         } else {
             ++c.subPatches;
             most = std::min(most, t.irregularLevels);

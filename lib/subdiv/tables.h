@@ -110,6 +110,18 @@ struct TablesOptions {
     // or sharp vertices lie on their support's rim only (smoothSupport's featuresBeyondCorners:
     // the stencils of one level read features at the face's corners only).
     bool basisRimFeatures = true;
+    // Faces of T_N whose feature corner is on a semi-sharp crease that has not decayed take the
+    // surface of their configuration's chain (crease_basis.h) as a basis of their own support,
+    // instead of K more levels (leaf and smooth ends, and regular ends whose patch is a
+    // B-spline). TBLS version 8 holds them; limn-render, the web runtime and evaluateIrregular
+    // draw them. Off by default for now: turning it on moves many tests' tables to version 8 and
+    // off their quadtrees (docs/irregular.md, "Chains in the tables"); the face-varying surface
+    // never takes them (FVSF has no chains).
+    bool creaseChains = false;
+    // Measurement only (bench_crease_bases; no tool sets it): faces of T_N with a decaying-crease
+    // chain (crease_basis.h) are not refined below N and their roots get no codes, so the tables
+    // lack those faces' surface; what the tables would hold without their extra levels.
+    bool creaseChainsPrototype = false;
     // Refuse (Error(BadInput), with the estimate and a remedy) tables whose building would need
     // more memory than this, estimated from the counts before each level is refined; 0: no limit.
     uint64_t maxMemoryBytes = 0;
@@ -188,6 +200,7 @@ struct IrregularSurfaceCounts {
     size_t basis = 0, subPatches = 0, bilinear = 0;
     size_t basisBelow = 0; // smooth faces below level N in the sub-patch quadtrees (TBLS version 5)
     size_t boundaryBasis = 0; // of `basis`, those around a boundary vertex (TBLS version 7)
+    size_t creaseChain = 0;   // of `basis`, those from a decaying-crease chain (TBLS version 8)
     uint32_t exactLevels = 0; // the smallest K among the faces that are not bilinear
 };
 IrregularSurfaceCounts irregularSurfaceCounts(const Tables& tables);

@@ -5,6 +5,7 @@
 // reads the sub-patches from such levels, without the tables.
 #pragma once
 
+#include "subdiv/crease_basis.h"
 #include "subdiv/irregular_basis.h"
 #include "subdiv/level.h"
 #include "subdiv/tables.h"
@@ -58,7 +59,17 @@ struct AdaptiveLevels {
     std::vector<IrregularBasis> bases;               // their bases, one per valence or configuration met
     std::vector<int> basisOfValence;                 // into bases; -1: not tried, -2: failed
     std::unordered_map<uint64_t, int> basisOfConfiguration; // boundary ones, by key (the same)
+    // TablesOptions::creaseChainsPrototype: the faces of T_N taken with a chain (basis: the
+    // chain's index, corner: its feature corner) and one chain per configuration.
+    std::vector<SmoothIrregularFace> creaseFaces;
+    std::vector<CreaseChain> creaseChains;
 };
+
+// TablesOptions::creaseChainsPrototype (crease_basis.cpp): takes the faces of T (level N) that
+// have a decaying-crease chain out of T, building one chain per configuration.
+void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, uint32_t basisLevels,
+                     std::vector<uint8_t>& T,
+                     AdaptiveLevels& a);
 
 // Refines `baseTopo` (checked by checkTablesTopology) to depth opts.depth and K more levels under
 // the irregular faces; throws Error(BadInput) where that would pass opts.maxMemoryBytes or

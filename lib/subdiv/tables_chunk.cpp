@@ -1,6 +1,8 @@
 #include "subdiv/tables_chunk.h"
 
 #include "subdiv/tables_stream.h"
+#include "subdiv/crease_basis.h"
+#include "subdiv/tables_chain_records.h"
 #include "subdiv/tables_surface_records.h"
 
 #include "base/bytes.h"
@@ -34,8 +36,13 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
 }
 
 Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
-    if (version < 3 || version > kTablesChunkVersion)
-        throw std::logic_error("TBLS: only versions 3 to 7 are written");
+    // Tables with decaying-crease chains need version 8; others are written as version 7, which
+    // every reader of this release knows.
+    const bool chains = std::any_of(t.irregularBases.begin(), t.irregularBases.end(),
+                                    [](const IrregularBasis& b) { return b.chain != nullptr; });
+    if (chains && version == kTablesChunkVersion) version = kTablesChunkChainVersion;
+    if (version < 3 || version > kTablesChunkChainVersion)
+        throw std::logic_error("TBLS: only versions 3 to 8 are written");
     if (version < 5)
         for (uint32_t i = 0; i < t.irregularNodes.size(); ++i)
             for (uint32_t c : t.irregularNodes[i])
@@ -115,7 +122,18 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularLeaves.size()));
     for (const auto& q : t.irregularLeaves) writeFace(q);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularBases.size()));
+    ChainProgramIndex chainPrograms;
     for (const auto& b : t.irregularBases) {
+        if (b.chain) {
+            if (version < kTablesChunkChainVersion)
+                throw std::logic_error("TBLS: decaying-crease chains need version 8");
+            w.write<uint32_t>(b.chain->end == CreaseEnd::Smooth ? b.chain->valence : 0u);
+            w.write<uint32_t>(kChainConfigurationCode);
+            w.write<uint32_t>(b.supportSize());
+            w.write<uint32_t>(b.levels);
+            writeChainBasis(w, b, chainPrograms);
+            continue;
+        }
         if (programs) { // version 7: with its configuration (boundary bases)
             if (version >= 7)
                 writeConfigurationBasis(w, b);
@@ -179,10 +197,10 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
 
 Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     // Version 1 has no single-crease patches: its patch records end before the sharpness.
-    if (chunk.version > kTablesChunkVersion || chunk.version == 0)
+    if (chunk.version > kTablesChunkChainVersion || chunk.version == 0)
         throwBadInput("chunk TBLS version " + std::to_string(chunk.version) + " is " +
                       (chunk.version ? "newer than" : "not one") + " this limn reads (1 to " +
-                      std::to_string(kTablesChunkVersion) + ")" +
+                      std::to_string(kTablesChunkChainVersion) + ")" +
                       (chunk.version ? "; upgrade limn" : ""));
     const uint32_t patchBytes = chunk.version >= 2 ? 88 : 84;
     const bool compact = chunk.version >= 4; // compact stencil tables and bases
@@ -389,9 +407,11 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         for (uint32_t i = 0; i < leaves; ++i) readFace(t.irregularLeaves[i], "irregular leaf " + std::to_string(i), false);
         const uint32_t bases = r.read<uint32_t>();
         if (bases > r.remaining() / 8) r.fail("irregular basis count is too large");
+        ChainPrograms chainPrograms;
         for (uint32_t i = 0; i < bases; ++i) {
             t.irregularBases.push_back(
-                chunk.version >= 7 ? readConfigurationBasis(r, "irregular basis " + std::to_string(i), t.irregularBases)
+                chunk.version >= 7 ? readConfigurationBasis(r, "irregular basis " + std::to_string(i), t.irregularBases,
+                                                            chunk.version >= 8 ? &chainPrograms : nullptr)
                 : programs         ? readBasisProgram(r, i, t.irregularBases)
                                    : readBasisWeights(r, i, compact, t.irregularBases));
         }

@@ -25,6 +25,9 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // size (FVSF version 3's layout), so that faces around one boundary vertex can take a basis per
 // configuration (formats/limn.md, "Boundary configurations").
 inline constexpr uint32_t kTablesChunkVersion = 7;
+// Tables with decaying-crease chains (TablesOptions::creaseChains) are written as version 8,
+// which the readers also take.
+inline constexpr uint32_t kTablesChunkChainVersion = 8;
 
 // Writes the current version; 3 (the plain layout), 4, 5 and 6 for tests and fuzz seeds of older
 // files (tables with smooth faces below level N need version 5 or later, with boundary bases 7).

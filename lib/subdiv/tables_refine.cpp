@@ -253,6 +253,7 @@ AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeO
         irregularSets.push_back(T);
         patchSets.push_back(P);
         if (l == N && basisLevels > 0) takeSmoothFaces(L, basisLevels, opts, options.boundary, T, a);
+        if (l == N && K > 0 && (opts.creaseChainsPrototype || opts.creaseChains)) takeCreaseFaces(L, options, opts, basisLevels, T, a);
         if (l == D) break;
         std::vector<uint8_t> S = opts.uniform ? std::vector<uint8_t>(F, 1) : oneRing(L.topo, T);
         if (std::find(S.begin(), S.end(), 1) == S.end()) {

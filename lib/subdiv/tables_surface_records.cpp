@@ -1,6 +1,7 @@
 #include "subdiv/tables_surface_records.h"
 
 #include "subdiv/irregular_basis.h"
+#include "subdiv/tables_chain_records.h"
 #include "subdiv/tables_stream.h"
 
 #include <algorithm>
@@ -81,12 +82,14 @@ void writeConfigurationBasis(ByteWriter& w, const IrregularBasis& b) {
     writeProgram(w, p);
 }
 
-IrregularBasis readConfigurationBasis(ByteReader& r, const std::string& what, const std::vector<IrregularBasis>& earlier) {
+IrregularBasis readConfigurationBasis(ByteReader& r, const std::string& what, const std::vector<IrregularBasis>& earlier,
+                                      ChainPrograms* chains) {
     IrregularBasis x;
     x.valence = r.read<uint32_t>();
     const uint32_t code = r.read<uint32_t>();
     const uint32_t M = r.read<uint32_t>();
     x.levels = r.read<uint32_t>();
+    if (chains && code == kChainConfigurationCode) return readChainBasis(r, what, x.valence, M, x.levels, earlier, *chains);
     BasisConfiguration& c = x.configuration;
     c = {x.valence, (code & 1) != 0, code >> 2, (code & 2) != 0};
     if (c.code() != code || x.valence < 1 || x.valence > kMaxBasisValence || x.levels < 1 ||

@@ -1,8 +1,10 @@
 // TBLS versions 6 and 7 (formats/limn.md, "Repeated levels", "Sub-patch domains", "Boundary
 // configurations"): what version 6 leaves out of version 5 is read back as the builder's tables,
-// version 7's boundary bases expand to the builder's weights, and hostile input is refused by name.
+// version 7's boundary bases and version 8's crease chains expand to the builder's weights, and
+// hostile input is refused by name.
 #include "base/error.h"
 #include "mesh/import.h"
+#include "subdiv/crease_basis.h"
 #include "subdiv/irregular_basis.h"
 #include "subdiv/tables_chunk.h"
 #include "test_support.h"
@@ -11,6 +13,9 @@
 
 #include <array>
 #include <cstring>
+#include <functional>
+#include <memory>
+#include <random>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -211,3 +216,72 @@ TEST(TablesChunk, BoundaryBasesReadAsTheBuildersAndHostileOnesAreRefused) {
 }
 
 } // namespace
+
+namespace {
+
+Tables buildChains(const Mesh& m, int depth) {
+    Warnings w;
+    TablesOptions o;
+    o.depth = depth;
+    o.creaseChains = true;
+    return buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
+}
+
+} // namespace
+
+// TBLS version 8's decaying-crease chains (formats/limn.md, "Decaying-crease chains"): a damaged
+// chain is refused naming what is wrong (a kind with two crease edges, more bands than levels, a
+// smooth end naming no basis or another valence's, or whose next support is not its basis's, a
+// control point or a regular end's row that names no row of its program), never expanded; and random bit flips are refused or read as
+// tables whose chains expand (ASan run: no read out of bounds).
+TEST(TablesChunk, HostileCreaseChainsAreRefused) {
+    const Mesh m = loadModel("osd/catmark/catmark_chaikin0.obj");
+    const Tables good = buildChains(m, 2);
+    const Chunk c = encodeTablesChunk(good);
+    ASSERT_EQ(c.version, kTablesChunkChainVersion);
+    int smooth = -1, regular = -1;
+    for (size_t b = 0; b < good.irregularBases.size(); ++b)
+        if (good.irregularBases[b].chain)
+            (good.irregularBases[b].chain->end == CreaseEnd::Smooth ? smooth : regular) = int(b);
+    ASSERT_GE(smooth, 0);
+    ASSERT_GE(regular, 0);
+    auto expectRefused = [&](int basis, const std::function<void(CreaseChain&)>& damage, const std::string& why) {
+        Tables t = good;
+        auto chain = std::make_shared<CreaseChain>(*t.irregularBases[size_t(basis)].chain);
+        damage(*chain);
+        t.irregularBases[size_t(basis)].chain = chain;
+        try {
+            decodeTablesChunk(encodeTablesChunk(t), &m);
+            ADD_FAILURE() << "accepted: " << why;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
+    };
+    expectRefused(smooth, [](CreaseChain& x) { x.bands[0].kind[0] = {0, 3, 2.0f}; }, "bad patch kind");
+    expectRefused(smooth, [](CreaseChain& x) { x.bands[0].kind[1] = {1, 1, 2.0f}; }, "bad patch kind");
+    expectRefused(smooth, [&](CreaseChain& x) { x.bands.resize(good.irregularLevels + 1, x.bands.back()); },
+                  "bad end, band count");
+    expectRefused(smooth, [](CreaseChain& x) { x.valence = x.valence == 3 ? 5 : 3; }, "smooth end names basis");
+    expectRefused(smooth, [](CreaseChain& x) { x.endBasis = 1000; }, "names a missing basis");
+    expectRefused(smooth, [](CreaseChain& x) { x.bands.back().program.nextSupport.pop_back(); }, "bad next support");
+    expectRefused(smooth, [](CreaseChain& x) { x.bands[0].program.controlRow[5] = x.bands[0].program.rows(); },
+                  "names a missing row");
+    expectRefused(regular, [](CreaseChain& x) { x.bands.back().centreRow[3] = x.bands.back().program.rows(); },
+                  "names a missing row");
+    expectRefused(regular, [](CreaseChain& x) { x.bands.back().centreKind = {0, 1, 1.5f}; }, "has a crease");
+    std::mt19937 rng(8);
+    size_t rejected = 0;
+    for (int trial = 0; trial < 1500; ++trial) {
+        Chunk bad = c;
+        for (int k = 0; k < 1 + trial % 3; ++k)
+            bad.payload[rng() % bad.payload.size()] ^= static_cast<uint8_t>(1u << (rng() % 8));
+        try {
+            const Tables t = decodeTablesChunk(bad, &m);
+            for (const IrregularBasis& b : t.irregularBases)
+                ASSERT_EQ(b.weights.size(), size_t(b.levels) * 48 * b.supportSize());
+        } catch (const Error&) {
+            ++rejected;
+        }
+    }
+    EXPECT_GT(rejected, 500u);
+}

@@ -588,6 +588,95 @@ TEST(IrregularSurface, BoundaryBasesMatchOpenSubdiv) {
     }
 }
 
+// Faces whose feature corner is on a semi-sharp crease that has not decayed at level N take
+// their configuration's decaying-crease chain as a basis of their own support
+// (TablesOptions::creaseChains; crease_basis.h, expandCreaseChain) instead of K more levels: the
+// surface evaluateIrregular gives there is OpenSubdiv's limit (isolation 10) wherever it says
+// it is exact, on a 1/16 grid of every irregular face (single-crease bands, boundary phantoms,
+// smooth and regular ends), within 1e-6 of the diagonal and 0.05 degrees, and it lies in its
+// support's box (the creasing rules are convex combinations); TBLS version 8 holds them (its
+// reader expands the chains to the same weights), older versions cannot.
+TEST(IrregularSurface, CreaseChainsMatchOpenSubdiv) {
+    for (auto [model, depth] : {std::pair{"osd/catmark/catmark_car.obj", 3}, std::pair{"osd/catmark/catmark_rook.obj", 2},
+                                std::pair{"osd/catmark/catmark_chaikin0.obj", 2},
+                                std::pair{"osd/catmark/catmark_cubes_semisharp.obj", 2}}) {
+        SCOPED_TRACE(std::string(model) + " d" + std::to_string(depth));
+        Fixture f;
+        Warnings w;
+        f.mesh = importMeshFile(test::modelPath(model).string(), w);
+        f.options = resolveSchemeOptions(f.mesh.tags, {});
+        TablesOptions opts;
+        opts.depth = depth;
+        opts.creaseChains = true;
+        f.tables = buildTables(f.mesh, f.options, opts, w);
+        f.vertices = evaluateVertices(f.tables, f.mesh.positions);
+        f.diag = diagonal(f.mesh);
+        const limn::Tables& t = f.tables;
+        // TBLS version 8 holds the chains: the reader expands them to the same weights.
+        const Chunk c = encodeTablesChunk(t);
+        EXPECT_EQ(c.version, kTablesChunkChainVersion);
+        const limn::Tables back = decodeTablesChunk(c, &f.mesh);
+        EXPECT_EQ(encodeTablesChunk(back).payload, c.payload);
+        ASSERT_EQ(back.irregularBases.size(), t.irregularBases.size());
+        for (size_t b = 0; b < t.irregularBases.size(); ++b) {
+            EXPECT_EQ(back.irregularBases[b].weights, t.irregularBases[b].weights);
+            EXPECT_EQ(back.irregularBases[b].kinds, t.irregularBases[b].kinds);
+        }
+        EXPECT_THROW(encodeTablesChunk(t, 6), std::logic_error);
+        std::vector<int> chainOf(t.irregular.size(), -1);
+        size_t chainFaces = 0, quadtreeRoots = 0;
+        for (uint32_t q = 0; q < t.irregular.size() && q < t.irregularNodes.size(); ++q) {
+            if (!smoothRoot(t.irregularNodes[q])) {
+                ++quadtreeRoots;
+                continue;
+            }
+            const auto& sm = t.smoothIrregular[t.irregularNodes[q][0] & kNodeIndexMask];
+            if (t.irregularBases[sm.basis].kinds.empty()) continue;
+            chainOf[q] = int(t.irregularNodes[q][0] & kNodeIndexMask);
+            ++chainFaces;
+        }
+        EXPECT_GT(chainFaces, 0u) << "no face takes a chain";
+        test::OsdLimitSurface osd(f.mesh, f.options, 10);
+        const std::vector<LimitPoint> limits = evaluateLimitPoints(t, f.vertices);
+        double worstP = 0, worstN = 0, outside = 0;
+        size_t compared = 0;
+        const int R = 16;
+        for (uint32_t q = 0; q < t.irregular.size(); ++q) {
+            if (chainOf[q] < 0) continue;
+            const IrregularFace& face = t.irregular[q];
+            const auto& sm = t.smoothIrregular[size_t(chainOf[q])];
+            glm::dvec3 lo(1e300), hi(-1e300);
+            for (uint32_t i = 0; i < t.irregularBases[sm.basis].supportSize(); ++i) {
+                lo = glm::min(lo, f.vertices[t.smoothPoints[sm.first + i]]);
+                hi = glm::max(hi, f.vertices[t.smoothPoints[sm.first + i]]);
+            }
+            for (int j = 0; j <= R; ++j)
+                for (int i = 0; i <= R; ++i) {
+                    const double s = double(i) / R, tt = double(j) / R;
+                    bool exact = false;
+                    const SurfacePoint x = evaluateIrregular(t, f.vertices, limits, q, s, tt, &exact);
+                    const glm::dvec3 below = glm::max(lo - x.position, glm::dvec3(0.0));
+                    const glm::dvec3 above = glm::max(x.position - hi, glm::dvec3(0.0));
+                    outside = std::max(outside, glm::length(below + above) / f.diag);
+                    if (!exact || ((i == 0 || i == R) && (j == 0 || j == R))) continue;
+                    const double u = face.u0 + s * face.size, v = face.v0 + tt * face.size;
+                    const double iu = u + (i == R ? -1e-9 : 1e-9), iv = v + (j == R ? -1e-9 : 1e-9);
+                    glm::dvec3 P, N;
+                    ASSERT_TRUE(osd.evaluate(int(face.ptex), u, v, iu, iv, P, N));
+                    worstP = std::max(worstP, glm::length(P - x.position) / f.diag);
+                    worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, x.normal))) * 180 / M_PI);
+                    ++compared;
+                }
+        }
+        EXPECT_GT(compared, 1000u);
+        EXPECT_LE(worstP, 1e-6) << compared << " points";
+        EXPECT_LE(worstN, 0.05) << compared << " points";
+        EXPECT_LE(outside, 1e-7);
+        std::printf("%s d%d: %zu chain faces, %zu quadtrees, %zu points, max %.3g of the diagonal, %.3g degrees\n",
+                    model, depth, chainFaces, quadtreeRoots, compared, worstP, worstN);
+    }
+}
+
 const Case kCases[] = {
     {"quad/spot_control_mesh.obj", 1, false},
     {"quad/spot_control_mesh.obj", 3, false},

@@ -102,6 +102,7 @@ int main(int argc, char** argv) {
                    "approximate_limit_points, irregular_surface (how the faces left irregular at\n"
                    "level N are drawn: basis, sub_patches, bilinear counts, boundary_basis (of\n"
                    "basis, those around a boundary vertex, from a basis per configuration),\n"
+                   "crease_chain (of basis, those from a decaying-crease chain, TBLS version 8),\n"
                    "basis_below (smooth faces below level N inside the sub-patch faces), and\n"
                    "exact_levels K: every point at least 2^-K of a face from its extraordinary\n"
                    "corners is on the limit surface; docs/irregular.md) and levels (per level\n"
@@ -212,7 +213,8 @@ int main(int argc, char** argv) {
                 const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
                 j.key("irregular_surface").beginObject();
                 j.field("basis", irr.basis).field("sub_patches", irr.subPatches).field("bilinear", irr.bilinear)
-                    .field("boundary_basis", irr.boundaryBasis).field("basis_below", irr.basisBelow)
+                    .field("boundary_basis", irr.boundaryBasis).field("crease_chain", irr.creaseChain)
+                    .field("basis_below", irr.basisBelow)
                     .field("exact_levels", irr.exactLevels);
                 j.endObject();
                 j.key("levels").beginArray();
@@ -258,10 +260,12 @@ int main(int argc, char** argv) {
                             tables->totalVertices, tables->patches.size(),
                             tables->limitPosition.rows(), tables->approximateLimitPoints);
                 const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
-                std::printf("  irregular surface      %zu from a basis (%zu around a boundary vertex), %zu on "
+                const std::string chains =
+                    irr.creaseChain ? ", " + std::to_string(irr.creaseChain) + " from a decaying-crease chain" : "";
+                std::printf("  irregular surface      %zu from a basis (%zu around a boundary vertex%s), %zu on "
                             "sub-patches (%zu smooth faces below level N from a basis), %zu bilinear (exact "
                             "beyond 2^-%u of their extraordinary corners)\n",
-                            irr.basis, irr.boundaryBasis, irr.subPatches, irr.basisBelow, irr.bilinear,
+                            irr.basis, irr.boundaryBasis, chains.c_str(), irr.subPatches, irr.basisBelow, irr.bilinear,
                             irr.exactLevels);
                 for (size_t l = 0; l < tables->levels.size(); ++l)
                     std::printf("    level %zu: %u vertices, %u regular patches, %u irregular faces\n", l,

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
         int depth = 3, irregularLevels = TablesOptions{}.irregularLevels;
         bool uniform = false, noCreasePatches = false;
         std::string boundaryBases = TablesOptions{}.boundaryBases ? "on" : "off";
+        std::string creaseChains = TablesOptions{}.creaseChains ? "on" : "off";
         uint64_t maxMemory = cli::defaultMemoryBudget();
         cli::Parser parser(
             "limn-tables", "[options] [INPUT|-] [-o OUTPUT|-]",
@@ -52,6 +53,11 @@ int main(int argc, char** argv) {
                     "reaches a boundary or crease only on its rim from their per-valence basis, "
                     "instead of K more levels (off: refined, as TBLS version 6 held them; "
                     "docs/irregular.md)")
+            .choice("--crease-chains", &creaseChains, {"on", "off"},
+                    "faces at a semi-sharp crease that has not decayed at level N drawn from a "
+                    "chain per configuration (one-level programs band by band until the crease "
+                    "has decayed) instead of K more levels; written as TBLS version 8 "
+                    "(docs/irregular.md) [default: off]")
             .flag("--no-crease-patches", &noCreasePatches,
                   "isolate creases and sharp corners to level N like extraordinary vertices, "
                   "instead of drawing the regular faces along infinitely sharp ones as boundary "
@@ -106,6 +112,7 @@ int main(int argc, char** argv) {
             // boundary on its rim keep their basis too (the stencils of one level read features
             // at the face's corners only; docs/irregular.md).
             opts.boundaryBases = opts.basisRimFeatures = boundaryBases == "on";
+            opts.creaseChains = creaseChains == "on";
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
             // Smooth face-varying UVs: their own surface, for runtimes that do not build it. Its

@@ -144,9 +144,9 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
     var c_1: f32;
     var n: f32;
     var local: f32;
-    var phi_2163_: bool;
-    var phi_2222_: bool;
-    var phi_2229_: bool;
+    var phi_2260_: bool;
+    var phi_2319_: bool;
+    var phi_2326_: bool;
 
     let _e98 = (*S)[0i];
     let _e100 = (*S)[3i];
@@ -181,13 +181,13 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
     most = 0f;
     side = 0f;
     let _e165 = (*mayLoosen);
-    phi_2163_ = _e165;
+    phi_2260_ = _e165;
     if _e165 {
         let _e167 = pc.interiorError;
         let _e169 = pc.maxError;
-        phi_2163_ = (_e167 > _e169);
+        phi_2260_ = (_e167 > _e169);
     }
-    let _e172 = phi_2163_;
+    let _e172 = phi_2260_;
     facing = _e172;
     k = 0i;
     loop {
@@ -217,22 +217,22 @@ fn errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b(
             let _e200 = ray;
             c_1 = dot(_e199, _e200);
             let _e202 = facing;
-            phi_2222_ = _e202;
+            phi_2319_ = _e202;
             if _e202 {
                 let _e203 = c_1;
                 let _e205 = k;
                 let _e207 = N[_e205];
                 let _e210 = ray;
-                phi_2222_ = (abs(_e203) > ((0.35f * length(_e207)) * length(_e210)));
+                phi_2319_ = (abs(_e203) > ((0.35f * length(_e207)) * length(_e210)));
             }
-            let _e215 = phi_2222_;
-            phi_2229_ = _e215;
+            let _e215 = phi_2319_;
+            phi_2326_ = _e215;
             if _e215 {
                 let _e216 = c_1;
                 let _e217 = side;
-                phi_2229_ = ((_e216 * _e217) >= 0f);
+                phi_2326_ = ((_e216 * _e217) >= 0f);
             }
-            let _e221 = phi_2229_;
+            let _e221 = phi_2326_;
             facing = _e221;
             let _e222 = c_1;
             side = _e222;
@@ -806,6 +806,18 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var param_48: f32;
     var param_49: array<f32, 4>;
     var param_50: array<f32, 4>;
+    var kind: Patch;
+    var crease_2: u32;
+    var param_51: f32;
+    var param_52: bool;
+    var param_53: f32;
+    var param_54: array<f32, 4>;
+    var param_55: array<f32, 4>;
+    var param_56: f32;
+    var param_57: bool;
+    var param_58: f32;
+    var param_59: array<f32, 4>;
+    var param_60: array<f32, 4>;
     var Du_1: vec3<f32>;
     var Dv_1: vec3<f32>;
     var j_3: i32;
@@ -814,125 +826,125 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
     var rowDu_1: vec3<f32>;
     var i_3: i32;
 
-    let _e115 = (*h);
-    let _e118 = patches.p[_e115];
-    hd.cv[0i] = _e118.cv[0];
-    hd.cv[1i] = _e118.cv[1];
-    hd.cv[2i] = _e118.cv[2];
-    hd.cv[3i] = _e118.cv[3];
-    hd.cv[4i] = _e118.cv[4];
-    hd.cv[5i] = _e118.cv[5];
-    hd.cv[6i] = _e118.cv[6];
-    hd.cv[7i] = _e118.cv[7];
-    hd.cv[8i] = _e118.cv[8];
-    hd.cv[9i] = _e118.cv[9];
-    hd.cv[10i] = _e118.cv[10];
-    hd.cv[11i] = _e118.cv[11];
-    hd.cv[12i] = _e118.cv[12];
-    hd.cv[13i] = _e118.cv[13];
-    hd.cv[14i] = _e118.cv[14];
-    hd.cv[15i] = _e118.cv[15];
-    hd.ptex = _e118.ptex;
-    hd.u0_ = _e118.u0_;
-    hd.v0_ = _e118.v0_;
-    hd.size = _e118.size;
-    hd.levelBoundary = _e118.levelBoundary;
-    hd.sharpness = _e118.sharpness;
-    hd.pad1_ = _e118.pad1_;
-    hd.pad2_ = _e118.pad2_;
-    let _e171 = hd.cv[0i];
-    M_2 = _e171;
-    let _e174 = hd.cv[2i];
-    let _e175 = (*k_3);
-    let _e178 = (*q);
-    let _e181 = M_2;
-    block = (_e174 + ((((_e175 - 1u) * 3u) + (_e178 - 1u)) * _e181));
+    let _e127 = (*h);
+    let _e130 = patches.p[_e127];
+    hd.cv[0i] = _e130.cv[0];
+    hd.cv[1i] = _e130.cv[1];
+    hd.cv[2i] = _e130.cv[2];
+    hd.cv[3i] = _e130.cv[3];
+    hd.cv[4i] = _e130.cv[4];
+    hd.cv[5i] = _e130.cv[5];
+    hd.cv[6i] = _e130.cv[6];
+    hd.cv[7i] = _e130.cv[7];
+    hd.cv[8i] = _e130.cv[8];
+    hd.cv[9i] = _e130.cv[9];
+    hd.cv[10i] = _e130.cv[10];
+    hd.cv[11i] = _e130.cv[11];
+    hd.cv[12i] = _e130.cv[12];
+    hd.cv[13i] = _e130.cv[13];
+    hd.cv[14i] = _e130.cv[14];
+    hd.cv[15i] = _e130.cv[15];
+    hd.ptex = _e130.ptex;
+    hd.u0_ = _e130.u0_;
+    hd.v0_ = _e130.v0_;
+    hd.size = _e130.size;
+    hd.levelBoundary = _e130.levelBoundary;
+    hd.sharpness = _e130.sharpness;
+    hd.pad1_ = _e130.pad1_;
+    hd.pad2_ = _e130.pad2_;
+    let _e183 = hd.cv[0i];
+    M_2 = _e183;
+    let _e186 = hd.cv[2i];
+    let _e187 = (*k_3);
+    let _e190 = (*q);
+    let _e193 = M_2;
+    block = (_e186 + ((((_e187 - 1u) * 3u) + (_e190 - 1u)) * _e193));
     j_1 = 0i;
     loop {
-        let _e184 = j_1;
-        if (_e184 < 16i) {
-            let _e186 = j_1;
-            c_3[_e186] = vec3<f32>(0f, 0f, 0f);
-            let _e188 = j_1;
-            r_1[_e188] = vec3<f32>(0f, 0f, 0f);
+        let _e196 = j_1;
+        if (_e196 < 16i) {
+            let _e198 = j_1;
+            c_3[_e198] = vec3<f32>(0f, 0f, 0f);
+            let _e200 = j_1;
+            r_1[_e200] = vec3<f32>(0f, 0f, 0f);
             continue;
         } else {
             break;
         }
         continuing {
-            let _e190 = j_1;
-            j_1 = (_e190 + 1i);
+            let _e202 = j_1;
+            j_1 = (_e202 + 1i);
         }
     }
-    let _e192 = (*h);
-    let _e198 = patches.p[(_e192 + 1u)].cv[0i];
-    let _e201 = vertices.p[_e198];
-    origin_1 = _e201.xyz;
+    let _e204 = (*h);
+    let _e210 = patches.p[(_e204 + 1u)].cv[0i];
+    let _e213 = vertices.p[_e210];
+    origin_1 = _e213.xyz;
     i_2 = 0u;
     loop {
-        let _e203 = i_2;
-        let _e204 = M_2;
-        if (_e203 < _e204) {
-            let _e206 = (*h);
-            let _e208 = i_2;
-            let _e211 = i_2;
-            let _e217 = patches.p[((_e206 + 1u) + (_e208 / 16u))].cv[(_e211 % 16u)];
-            let _e220 = vertices.p[_e217];
-            x_1 = _e220.xyz;
-            let _e222 = x_1;
-            let _e223 = origin_1;
-            xr = (_e222 - _e223);
-            let _e225 = block;
-            let _e226 = i_2;
-            let _e230 = patches.p[(_e225 + _e226)];
-            w_1.cv[0i] = _e230.cv[0];
-            w_1.cv[1i] = _e230.cv[1];
-            w_1.cv[2i] = _e230.cv[2];
-            w_1.cv[3i] = _e230.cv[3];
-            w_1.cv[4i] = _e230.cv[4];
-            w_1.cv[5i] = _e230.cv[5];
-            w_1.cv[6i] = _e230.cv[6];
-            w_1.cv[7i] = _e230.cv[7];
-            w_1.cv[8i] = _e230.cv[8];
-            w_1.cv[9i] = _e230.cv[9];
-            w_1.cv[10i] = _e230.cv[10];
-            w_1.cv[11i] = _e230.cv[11];
-            w_1.cv[12i] = _e230.cv[12];
-            w_1.cv[13i] = _e230.cv[13];
-            w_1.cv[14i] = _e230.cv[14];
-            w_1.cv[15i] = _e230.cv[15];
-            w_1.ptex = _e230.ptex;
-            w_1.u0_ = _e230.u0_;
-            w_1.v0_ = _e230.v0_;
-            w_1.size = _e230.size;
-            w_1.levelBoundary = _e230.levelBoundary;
-            w_1.sharpness = _e230.sharpness;
-            w_1.pad1_ = _e230.pad1_;
-            w_1.pad2_ = _e230.pad2_;
+        let _e215 = i_2;
+        let _e216 = M_2;
+        if (_e215 < _e216) {
+            let _e218 = (*h);
+            let _e220 = i_2;
+            let _e223 = i_2;
+            let _e229 = patches.p[((_e218 + 1u) + (_e220 / 16u))].cv[(_e223 % 16u)];
+            let _e232 = vertices.p[_e229];
+            x_1 = _e232.xyz;
+            let _e234 = x_1;
+            let _e235 = origin_1;
+            xr = (_e234 - _e235);
+            let _e237 = block;
+            let _e238 = i_2;
+            let _e242 = patches.p[(_e237 + _e238)];
+            w_1.cv[0i] = _e242.cv[0];
+            w_1.cv[1i] = _e242.cv[1];
+            w_1.cv[2i] = _e242.cv[2];
+            w_1.cv[3i] = _e242.cv[3];
+            w_1.cv[4i] = _e242.cv[4];
+            w_1.cv[5i] = _e242.cv[5];
+            w_1.cv[6i] = _e242.cv[6];
+            w_1.cv[7i] = _e242.cv[7];
+            w_1.cv[8i] = _e242.cv[8];
+            w_1.cv[9i] = _e242.cv[9];
+            w_1.cv[10i] = _e242.cv[10];
+            w_1.cv[11i] = _e242.cv[11];
+            w_1.cv[12i] = _e242.cv[12];
+            w_1.cv[13i] = _e242.cv[13];
+            w_1.cv[14i] = _e242.cv[14];
+            w_1.cv[15i] = _e242.cv[15];
+            w_1.ptex = _e242.ptex;
+            w_1.u0_ = _e242.u0_;
+            w_1.v0_ = _e242.v0_;
+            w_1.size = _e242.size;
+            w_1.levelBoundary = _e242.levelBoundary;
+            w_1.sharpness = _e242.sharpness;
+            w_1.pad1_ = _e242.pad1_;
+            w_1.pad2_ = _e242.pad2_;
             j_2 = 0i;
             loop {
-                let _e281 = j_2;
-                if (_e281 < 16i) {
-                    let _e283 = j_2;
-                    let _e286 = w_1.cv[_e283];
-                    wj = bitcast<f32>(_e286);
-                    let _e288 = j_2;
-                    let _e289 = wj;
-                    let _e290 = x_1;
-                    let _e293 = c_3[_e288];
-                    c_3[_e288] = (_e293 + (_e290 * _e289));
-                    let _e296 = j_2;
-                    let _e297 = wj;
-                    let _e298 = xr;
-                    let _e301 = r_1[_e296];
-                    r_1[_e296] = (_e301 + (_e298 * _e297));
+                let _e293 = j_2;
+                if (_e293 < 16i) {
+                    let _e295 = j_2;
+                    let _e298 = w_1.cv[_e295];
+                    wj = bitcast<f32>(_e298);
+                    let _e300 = j_2;
+                    let _e301 = wj;
+                    let _e302 = x_1;
+                    let _e305 = c_3[_e300];
+                    c_3[_e300] = (_e305 + (_e302 * _e301));
+                    let _e308 = j_2;
+                    let _e309 = wj;
+                    let _e310 = xr;
+                    let _e313 = r_1[_e308];
+                    r_1[_e308] = (_e313 + (_e310 * _e309));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e304 = j_2;
-                    j_2 = (_e304 + 1i);
+                    let _e316 = j_2;
+                    j_2 = (_e316 + 1i);
                 }
             }
             continue;
@@ -940,95 +952,151 @@ fn basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_
             break;
         }
         continuing {
-            let _e306 = i_2;
-            i_2 = (_e306 + bitcast<u32>(1i));
+            let _e318 = i_2;
+            i_2 = (_e318 + bitcast<u32>(1i));
         }
     }
-    let _e309 = (*s_4);
-    param_45 = _e309;
+    let _e321 = (*s_4);
+    param_45 = _e321;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_45), (&param_46), (&param_47));
-    let _e310 = param_46;
-    bu_2 = _e310;
-    let _e311 = param_47;
-    du_2 = _e311;
-    let _e312 = (*t_4);
-    param_48 = _e312;
+    let _e322 = param_46;
+    bu_2 = _e322;
+    let _e323 = param_47;
+    du_2 = _e323;
+    let _e324 = (*t_4);
+    param_48 = _e324;
     bspline_u0028_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_48), (&param_49), (&param_50));
-    let _e313 = param_49;
-    bv_2 = _e313;
-    let _e314 = param_50;
-    dv_2 = _e314;
+    let _e325 = param_49;
+    bv_2 = _e325;
+    let _e326 = param_50;
+    dv_2 = _e326;
+    let _e327 = block;
+    let _e330 = patches.p[_e327];
+    kind.cv[0i] = _e330.cv[0];
+    kind.cv[1i] = _e330.cv[1];
+    kind.cv[2i] = _e330.cv[2];
+    kind.cv[3i] = _e330.cv[3];
+    kind.cv[4i] = _e330.cv[4];
+    kind.cv[5i] = _e330.cv[5];
+    kind.cv[6i] = _e330.cv[6];
+    kind.cv[7i] = _e330.cv[7];
+    kind.cv[8i] = _e330.cv[8];
+    kind.cv[9i] = _e330.cv[9];
+    kind.cv[10i] = _e330.cv[10];
+    kind.cv[11i] = _e330.cv[11];
+    kind.cv[12i] = _e330.cv[12];
+    kind.cv[13i] = _e330.cv[13];
+    kind.cv[14i] = _e330.cv[14];
+    kind.cv[15i] = _e330.cv[15];
+    kind.ptex = _e330.ptex;
+    kind.u0_ = _e330.u0_;
+    kind.v0_ = _e330.v0_;
+    kind.size = _e330.size;
+    kind.levelBoundary = _e330.levelBoundary;
+    kind.sharpness = _e330.sharpness;
+    kind.pad1_ = _e330.pad1_;
+    kind.pad2_ = _e330.pad2_;
+    let _e382 = kind.levelBoundary;
+    crease_2 = ((_e382 >> bitcast<u32>(16i)) & 15u);
+    let _e386 = crease_2;
+    if ((_e386 & 5u) != 0u) {
+        let _e389 = crease_2;
+        let _e392 = (*t_4);
+        param_51 = _e392;
+        param_52 = ((_e389 & 4u) != 0u);
+        let _e394 = kind.sharpness;
+        param_53 = _e394;
+        creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_51), (&param_52), (&param_53), (&param_54), (&param_55));
+        let _e395 = param_54;
+        bv_2 = _e395;
+        let _e396 = param_55;
+        dv_2 = _e396;
+    }
+    let _e397 = crease_2;
+    if ((_e397 & 10u) != 0u) {
+        let _e400 = crease_2;
+        let _e403 = (*s_4);
+        param_56 = _e403;
+        param_57 = ((_e400 & 2u) != 0u);
+        let _e405 = kind.sharpness;
+        param_58 = _e405;
+        creaseBasisAcross_u0028_f1_u003b_b1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_56), (&param_57), (&param_58), (&param_59), (&param_60));
+        let _e406 = param_59;
+        bu_2 = _e406;
+        let _e407 = param_60;
+        du_2 = _e407;
+    }
     (*P_3) = vec3<f32>(0f, 0f, 0f);
     Du_1 = vec3<f32>(0f, 0f, 0f);
     Dv_1 = vec3<f32>(0f, 0f, 0f);
     j_3 = 0i;
     loop {
-        let _e315 = j_3;
-        if (_e315 < 4i) {
+        let _e408 = j_3;
+        if (_e408 < 4i) {
             row_1 = vec3<f32>(0f, 0f, 0f);
             rowRel_1 = vec3<f32>(0f, 0f, 0f);
             rowDu_1 = vec3<f32>(0f, 0f, 0f);
             i_3 = 0i;
             loop {
-                let _e317 = i_3;
-                if (_e317 < 4i) {
-                    let _e319 = i_3;
-                    let _e321 = bu_2[_e319];
-                    let _e322 = j_3;
-                    let _e324 = i_3;
-                    let _e327 = c_3[((4i * _e322) + _e324)];
-                    let _e329 = row_1;
-                    row_1 = (_e329 + (_e327 * _e321));
-                    let _e331 = i_3;
-                    let _e333 = bu_2[_e331];
-                    let _e334 = j_3;
-                    let _e336 = i_3;
-                    let _e339 = r_1[((4i * _e334) + _e336)];
-                    let _e341 = rowRel_1;
-                    rowRel_1 = (_e341 + (_e339 * _e333));
-                    let _e343 = i_3;
-                    let _e345 = du_2[_e343];
-                    let _e346 = j_3;
-                    let _e348 = i_3;
-                    let _e351 = r_1[((4i * _e346) + _e348)];
-                    let _e353 = rowDu_1;
-                    rowDu_1 = (_e353 + (_e351 * _e345));
+                let _e410 = i_3;
+                if (_e410 < 4i) {
+                    let _e412 = i_3;
+                    let _e414 = bu_2[_e412];
+                    let _e415 = j_3;
+                    let _e417 = i_3;
+                    let _e420 = c_3[((4i * _e415) + _e417)];
+                    let _e422 = row_1;
+                    row_1 = (_e422 + (_e420 * _e414));
+                    let _e424 = i_3;
+                    let _e426 = bu_2[_e424];
+                    let _e427 = j_3;
+                    let _e429 = i_3;
+                    let _e432 = r_1[((4i * _e427) + _e429)];
+                    let _e434 = rowRel_1;
+                    rowRel_1 = (_e434 + (_e432 * _e426));
+                    let _e436 = i_3;
+                    let _e438 = du_2[_e436];
+                    let _e439 = j_3;
+                    let _e441 = i_3;
+                    let _e444 = r_1[((4i * _e439) + _e441)];
+                    let _e446 = rowDu_1;
+                    rowDu_1 = (_e446 + (_e444 * _e438));
                     continue;
                 } else {
                     break;
                 }
                 continuing {
-                    let _e355 = i_3;
-                    i_3 = (_e355 + 1i);
+                    let _e448 = i_3;
+                    i_3 = (_e448 + 1i);
                 }
             }
-            let _e357 = j_3;
-            let _e359 = bv_2[_e357];
-            let _e360 = row_1;
-            let _e362 = (*P_3);
-            (*P_3) = (_e362 + (_e360 * _e359));
-            let _e364 = j_3;
-            let _e366 = bv_2[_e364];
-            let _e367 = rowDu_1;
-            let _e369 = Du_1;
-            Du_1 = (_e369 + (_e367 * _e366));
-            let _e371 = j_3;
-            let _e373 = dv_2[_e371];
-            let _e374 = rowRel_1;
-            let _e376 = Dv_1;
-            Dv_1 = (_e376 + (_e374 * _e373));
+            let _e450 = j_3;
+            let _e452 = bv_2[_e450];
+            let _e453 = row_1;
+            let _e455 = (*P_3);
+            (*P_3) = (_e455 + (_e453 * _e452));
+            let _e457 = j_3;
+            let _e459 = bv_2[_e457];
+            let _e460 = rowDu_1;
+            let _e462 = Du_1;
+            Du_1 = (_e462 + (_e460 * _e459));
+            let _e464 = j_3;
+            let _e466 = dv_2[_e464];
+            let _e467 = rowRel_1;
+            let _e469 = Dv_1;
+            Dv_1 = (_e469 + (_e467 * _e466));
             continue;
         } else {
             break;
         }
         continuing {
-            let _e378 = j_3;
-            j_3 = (_e378 + 1i);
+            let _e471 = j_3;
+            j_3 = (_e471 + 1i);
         }
     }
-    let _e380 = Du_1;
-    let _e381 = Dv_1;
-    (*n_2) = cross(_e380, _e381);
+    let _e473 = Du_1;
+    let _e474 = Dv_1;
+    (*n_2) = cross(_e473, _e474);
     return;
 }
 
@@ -1053,40 +1121,40 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
     var qv: u32;
     var q_1: u32;
     var local_11: u32;
-    var param_51: u32;
-    var param_52: u32;
-    var param_53: u32;
-    var param_54: f32;
-    var param_55: f32;
-    var param_56: vec3<f32>;
-    var param_57: vec3<f32>;
+    var param_61: u32;
+    var param_62: u32;
+    var param_63: u32;
+    var param_64: f32;
+    var param_65: f32;
+    var param_66: vec3<f32>;
+    var param_67: vec3<f32>;
     var P1_: vec3<f32>;
     var n1_: vec3<f32>;
-    var param_58: u32;
-    var param_59: u32;
-    var param_60: u32;
-    var param_61: f32;
-    var param_62: f32;
-    var param_63: vec3<f32>;
-    var param_64: vec3<f32>;
+    var param_68: u32;
+    var param_69: u32;
+    var param_70: u32;
+    var param_71: f32;
+    var param_72: f32;
+    var param_73: vec3<f32>;
+    var param_74: vec3<f32>;
     var P2_: vec3<f32>;
     var n2_: vec3<f32>;
-    var param_65: u32;
-    var param_66: u32;
-    var param_67: u32;
-    var param_68: f32;
-    var param_69: f32;
-    var param_70: vec3<f32>;
-    var param_71: vec3<f32>;
+    var param_75: u32;
+    var param_76: u32;
+    var param_77: u32;
+    var param_78: f32;
+    var param_79: f32;
+    var param_80: vec3<f32>;
+    var param_81: vec3<f32>;
     var P3_: vec3<f32>;
     var n3_: vec3<f32>;
-    var param_72: u32;
-    var param_73: u32;
-    var param_74: u32;
-    var param_75: f32;
-    var param_76: f32;
-    var param_77: vec3<f32>;
-    var param_78: vec3<f32>;
+    var param_82: u32;
+    var param_83: u32;
+    var param_84: u32;
+    var param_85: f32;
+    var param_86: f32;
+    var param_87: vec3<f32>;
+    var param_88: vec3<f32>;
     var x_2: f32;
     var y: f32;
     var w_2: array<f32, 4>;
@@ -1231,55 +1299,55 @@ fn smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(h_1: ptr<function, u3
         let _e296 = c_4;
         let _e298 = qv;
         let _e303 = (*h_1);
-        param_51 = _e303;
+        param_61 = _e303;
         let _e304 = k_4;
-        param_52 = _e304;
+        param_62 = _e304;
         let _e305 = q_1;
-        param_53 = _e305;
-        param_54 = (f32(((2u * _e289) - (_e291 * 32768u))) / 32768f);
-        param_55 = (f32(((2u * _e296) - (_e298 * 32768u))) / 32768f);
-        basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_51), (&param_52), (&param_53), (&param_54), (&param_55), (&param_56), (&param_57));
-        let _e306 = param_56;
+        param_63 = _e305;
+        param_64 = (f32(((2u * _e289) - (_e291 * 32768u))) / 32768f);
+        param_65 = (f32(((2u * _e296) - (_e298 * 32768u))) / 32768f);
+        basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_61), (&param_62), (&param_63), (&param_64), (&param_65), (&param_66), (&param_67));
+        let _e306 = param_66;
         (*P_4) = _e306;
-        let _e307 = param_57;
+        let _e307 = param_67;
         (*n_3) = _e307;
         return;
     }
     let _e308 = (*h_1);
-    param_58 = _e308;
+    param_68 = _e308;
     let _e309 = k_4;
-    param_59 = _e309;
-    param_60 = 1u;
-    param_61 = 0f;
-    param_62 = 0f;
-    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_58), (&param_59), (&param_60), (&param_61), (&param_62), (&param_63), (&param_64));
-    let _e310 = param_63;
+    param_69 = _e309;
+    param_70 = 1u;
+    param_71 = 0f;
+    param_72 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_68), (&param_69), (&param_70), (&param_71), (&param_72), (&param_73), (&param_74));
+    let _e310 = param_73;
     P1_ = _e310;
-    let _e311 = param_64;
+    let _e311 = param_74;
     n1_ = _e311;
     let _e312 = (*h_1);
-    param_65 = _e312;
+    param_75 = _e312;
     let _e313 = k_4;
-    param_66 = _e313;
-    param_67 = 2u;
-    param_68 = 0f;
-    param_69 = 0f;
-    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_65), (&param_66), (&param_67), (&param_68), (&param_69), (&param_70), (&param_71));
-    let _e314 = param_70;
+    param_76 = _e313;
+    param_77 = 2u;
+    param_78 = 0f;
+    param_79 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_75), (&param_76), (&param_77), (&param_78), (&param_79), (&param_80), (&param_81));
+    let _e314 = param_80;
     P2_ = _e314;
-    let _e315 = param_71;
+    let _e315 = param_81;
     n2_ = _e315;
     let _e316 = (*h_1);
-    param_72 = _e316;
+    param_82 = _e316;
     let _e317 = k_4;
-    param_73 = _e317;
-    param_74 = 3u;
-    param_75 = 0f;
-    param_76 = 0f;
-    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_72), (&param_73), (&param_74), (&param_75), (&param_76), (&param_77), (&param_78));
-    let _e318 = param_77;
+    param_83 = _e317;
+    param_84 = 3u;
+    param_85 = 0f;
+    param_86 = 0f;
+    basisPatchPoint_u0028_u1_u003b_u1_u003b_u1_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_82), (&param_83), (&param_84), (&param_85), (&param_86), (&param_87), (&param_88));
+    let _e318 = param_87;
     P3_ = _e318;
-    let _e319 = param_78;
+    let _e319 = param_88;
     n3_ = _e319;
     let _e320 = a;
     x_2 = (f32(_e320) / 16384f);
@@ -1332,23 +1400,23 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     var halvedT: u32;
     var h_2: u32;
     var local_13: u32;
-    var param_79: u32;
-    var param_80: u32;
-    var param_81: vec3<f32>;
-    var param_82: vec3<f32>;
-    var kind: u32;
+    var param_89: u32;
+    var param_90: u32;
+    var param_91: vec3<f32>;
+    var param_92: vec3<f32>;
+    var kind_1: u32;
     var index: u32;
-    var param_83: Patch;
-    var param_84: f32;
-    var param_85: f32;
-    var param_86: vec3<f32>;
-    var param_87: vec3<f32>;
+    var param_93: Patch;
+    var param_94: f32;
+    var param_95: f32;
+    var param_96: vec3<f32>;
+    var param_97: vec3<f32>;
     var q_2: IrregularFace;
     var s_5: f32;
     var t_5: f32;
     var w_3: array<f32, 4>;
     var k_7: i32;
-    var phi_1442_: bool;
+    var phi_1539_: bool;
 
     let _e115 = (*st_1);
     S_2 = (_e115 & 65535u);
@@ -1357,13 +1425,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
     let _e120 = S_2;
     let _e122 = S_2;
     let _e124 = ((_e120 == 0u) || (_e122 == 32768u));
-    phi_1442_ = _e124;
+    phi_1539_ = _e124;
     if _e124 {
         let _e125 = T_1;
         let _e127 = T_1;
-        phi_1442_ = ((_e125 == 0u) || (_e127 == 32768u));
+        phi_1539_ = ((_e125 == 0u) || (_e127 == 32768u));
     }
-    let _e131 = phi_1442_;
+    let _e131 = phi_1539_;
     if _e131 {
         let _e132 = S_2;
         if (_e132 == 0u) {
@@ -1433,13 +1501,13 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
                     local_13 = (_e216 | (_e217 << bitcast<u32>(16i)));
                 }
                 let _e221 = h_2;
-                param_79 = _e221;
+                param_89 = _e221;
                 let _e222 = local_13;
-                param_80 = _e222;
-                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_79), (&param_80), (&param_81), (&param_82));
-                let _e223 = param_81;
+                param_90 = _e222;
+                smoothPoint_u0028_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_89), (&param_90), (&param_91), (&param_92));
+                let _e223 = param_91;
                 (*P_5) = _e223;
-                let _e224 = param_82;
+                let _e224 = param_92;
                 (*n_4) = _e224;
                 return;
             }
@@ -1448,49 +1516,49 @@ fn irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b(face: ptr
             let _e226 = halvedT;
             T_1 = _e226;
             let _e227 = code;
-            kind = (_e227 & 3221225472u);
+            kind_1 = (_e227 & 3221225472u);
             let _e229 = code;
             index = (_e229 & 1073741823u);
-            let _e231 = kind;
+            let _e231 = kind_1;
             if (_e231 == 0u) {
                 let _e233 = index;
                 let _e234 = S_2;
                 let _e237 = T_1;
                 let _e242 = patches.p[_e233];
-                param_83.cv[0i] = _e242.cv[0];
-                param_83.cv[1i] = _e242.cv[1];
-                param_83.cv[2i] = _e242.cv[2];
-                param_83.cv[3i] = _e242.cv[3];
-                param_83.cv[4i] = _e242.cv[4];
-                param_83.cv[5i] = _e242.cv[5];
-                param_83.cv[6i] = _e242.cv[6];
-                param_83.cv[7i] = _e242.cv[7];
-                param_83.cv[8i] = _e242.cv[8];
-                param_83.cv[9i] = _e242.cv[9];
-                param_83.cv[10i] = _e242.cv[10];
-                param_83.cv[11i] = _e242.cv[11];
-                param_83.cv[12i] = _e242.cv[12];
-                param_83.cv[13i] = _e242.cv[13];
-                param_83.cv[14i] = _e242.cv[14];
-                param_83.cv[15i] = _e242.cv[15];
-                param_83.ptex = _e242.ptex;
-                param_83.u0_ = _e242.u0_;
-                param_83.v0_ = _e242.v0_;
-                param_83.size = _e242.size;
-                param_83.levelBoundary = _e242.levelBoundary;
-                param_83.sharpness = _e242.sharpness;
-                param_83.pad1_ = _e242.pad1_;
-                param_83.pad2_ = _e242.pad2_;
-                param_84 = (f32(_e234) / 32768f);
-                param_85 = (f32(_e237) / 32768f);
-                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_83), (&param_84), (&param_85), (&param_86), (&param_87));
-                let _e293 = param_86;
+                param_93.cv[0i] = _e242.cv[0];
+                param_93.cv[1i] = _e242.cv[1];
+                param_93.cv[2i] = _e242.cv[2];
+                param_93.cv[3i] = _e242.cv[3];
+                param_93.cv[4i] = _e242.cv[4];
+                param_93.cv[5i] = _e242.cv[5];
+                param_93.cv[6i] = _e242.cv[6];
+                param_93.cv[7i] = _e242.cv[7];
+                param_93.cv[8i] = _e242.cv[8];
+                param_93.cv[9i] = _e242.cv[9];
+                param_93.cv[10i] = _e242.cv[10];
+                param_93.cv[11i] = _e242.cv[11];
+                param_93.cv[12i] = _e242.cv[12];
+                param_93.cv[13i] = _e242.cv[13];
+                param_93.cv[14i] = _e242.cv[14];
+                param_93.cv[15i] = _e242.cv[15];
+                param_93.ptex = _e242.ptex;
+                param_93.u0_ = _e242.u0_;
+                param_93.v0_ = _e242.v0_;
+                param_93.size = _e242.size;
+                param_93.levelBoundary = _e242.levelBoundary;
+                param_93.sharpness = _e242.sharpness;
+                param_93.pad1_ = _e242.pad1_;
+                param_93.pad2_ = _e242.pad2_;
+                param_94 = (f32(_e234) / 32768f);
+                param_95 = (f32(_e237) / 32768f);
+                patchPoint_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_vf3_u003b_vf3_u003b((&param_93), (&param_94), (&param_95), (&param_96), (&param_97));
+                let _e293 = param_96;
                 (*P_5) = _e293;
-                let _e294 = param_87;
+                let _e294 = param_97;
                 (*n_4) = _e294;
                 return;
             }
-            let _e295 = kind;
+            let _e295 = kind_1;
             if (_e295 == 2147483648u) {
                 let _e297 = index;
                 leaf = _e297;
@@ -1575,13 +1643,13 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
     var du_3: array<f32, 4>;
     var bv_3: array<f32, 4>;
     var dv_3: array<f32, 4>;
-    var param_88: Patch;
-    var param_89: f32;
-    var param_90: f32;
-    var param_91: array<f32, 4>;
-    var param_92: array<f32, 4>;
-    var param_93: array<f32, 4>;
-    var param_94: array<f32, 4>;
+    var param_98: Patch;
+    var param_99: f32;
+    var param_100: f32;
+    var param_101: array<f32, 4>;
+    var param_102: array<f32, 4>;
+    var param_103: array<f32, 4>;
+    var param_104: array<f32, 4>;
     var p: vec3<f32>;
     var Du_2: vec3<f32>;
     var Dv_2: vec3<f32>;
@@ -1590,11 +1658,11 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
     var rowDu_2: vec3<f32>;
     var i_4: i32;
     var q_5: u32;
-    var param_95: u32;
-    var param_96: u32;
-    var param_97: u32;
-    var param_98: vec3<f32>;
-    var param_99: vec3<f32>;
+    var param_105: u32;
+    var param_106: u32;
+    var param_107: u32;
+    var param_108: vec3<f32>;
+    var param_109: vec3<f32>;
 
     q_3 = 0i;
     loop {
@@ -1672,19 +1740,19 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
                 let _e205 = (*st_2)[_e203];
                 t_6 = (f32((_e205 >> bitcast<u32>(16i))) / 32768f);
                 let _e210 = pt_2;
-                param_88 = _e210;
+                param_98 = _e210;
                 let _e211 = s_6;
-                param_89 = _e211;
+                param_99 = _e211;
                 let _e212 = t_6;
-                param_90 = _e212;
-                patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_88), (&param_89), (&param_90), (&param_91), (&param_92), (&param_93), (&param_94));
-                let _e213 = param_91;
+                param_100 = _e212;
+                patchBasis_u0028_struct_u002d_Patch_u002d_u1_u005b_16_u005d_u002d_u1_u002d_f1_u002d_f1_u002d_f1_u002d_u1_u002d_f1_u002d_u1_u002d_u11_u003b_f1_u003b_f1_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b_f1_u005b_4_u005d_u003b((&param_98), (&param_99), (&param_100), (&param_101), (&param_102), (&param_103), (&param_104));
+                let _e213 = param_101;
                 bu_3 = _e213;
-                let _e214 = param_92;
+                let _e214 = param_102;
                 du_3 = _e214;
-                let _e215 = param_93;
+                let _e215 = param_103;
                 bv_3 = _e215;
-                let _e216 = param_94;
+                let _e216 = param_104;
                 dv_3 = _e216;
                 p = vec3<f32>(0f, 0f, 0f);
                 Du_2 = vec3<f32>(0f, 0f, 0f);
@@ -1773,15 +1841,15 @@ fn elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3
                 let _e287 = q_5;
                 let _e288 = q_5;
                 let _e289 = q_5;
-                param_95 = (_e284 - _e285);
+                param_105 = (_e284 - _e285);
                 let _e291 = (*st_2)[_e287];
-                param_96 = _e291;
+                param_106 = _e291;
                 let _e292 = (*patchCount_1);
-                param_97 = _e292;
-                irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_95), (&param_96), (&param_97), (&param_98), (&param_99));
-                let _e293 = param_98;
+                param_107 = _e292;
+                irregularPoint_u0028_u1_u003b_u1_u003b_u1_u003b_vf3_u003b_vf3_u003b((&param_105), (&param_106), (&param_107), (&param_108), (&param_109));
+                let _e293 = param_108;
                 (*P_6)[_e288] = _e293;
-                let _e295 = param_99;
+                let _e295 = param_109;
                 (*N_1)[_e289] = _e295;
                 continue;
             } else {
@@ -1813,7 +1881,7 @@ fn limnInvocationIndex_u0028_u1_u003b(rowInvocations: ptr<function, u32>) -> u32
 
 fn main_1() {
     var i_5: u32;
-    var param_100: u32;
+    var param_110: u32;
     var p0_: vec4<u32>;
     var p1_: vec4<u32>;
     var visible: bool;
@@ -1822,24 +1890,24 @@ fn main_1() {
     var size: u32;
     var ends: vec4<f32>;
     var mid: u32;
-    var param_101: u32;
-    var param_102: u32;
+    var param_111: u32;
+    var param_112: u32;
     var st_3: array<u32, 5>;
-    var param_103: u32;
-    var param_104: u32;
-    var param_105: u32;
-    var param_106: u32;
+    var param_113: u32;
+    var param_114: u32;
+    var param_115: u32;
+    var param_116: u32;
     var count_1: u32;
     var behind: u32;
     var allOut: u32;
     var P_7: array<vec3<f32>, 5>;
     var N_2: array<vec3<f32>, 5>;
-    var param_107: u32;
-    var param_108: array<u32, 5>;
-    var param_109: u32;
-    var param_110: u32;
-    var param_111: array<vec3<f32>, 5>;
-    var param_112: array<vec3<f32>, 5>;
+    var param_117: u32;
+    var param_118: array<u32, 5>;
+    var param_119: u32;
+    var param_120: u32;
+    var param_121: array<vec3<f32>, 5>;
+    var param_122: array<vec3<f32>, 5>;
     var k_9: u32;
     var c_8: vec4<f32>;
     var o: u32;
@@ -1852,9 +1920,9 @@ fn main_1() {
     var k_10: i32;
     var e: u32;
     var local_16: u32;
-    var param_113: array<vec3<f32>, 5>;
-    var param_114: array<vec3<f32>, 5>;
-    var param_115: bool;
+    var param_123: array<vec3<f32>, 5>;
+    var param_124: array<vec3<f32>, 5>;
+    var param_125: bool;
     var chord: vec2<f32>;
     var cl: f32;
     var off: vec2<f32>;
@@ -1864,21 +1932,21 @@ fn main_1() {
     var e_1: u32;
     var local_18: u32;
     var pt_3: Patch;
-    var crease_2: u32;
+    var crease_3: u32;
     var alongS: bool;
     var creaseAlongS: bool;
     var most_1: f32;
     var local_19: f32;
-    var phi_2309_: bool;
-    var phi_2310_: bool;
-    var phi_2566_: bool;
-    var phi_2617_: bool;
-    var phi_2626_: bool;
-    var phi_2721_: bool;
+    var phi_2406_: bool;
+    var phi_2407_: bool;
+    var phi_2663_: bool;
+    var phi_2714_: bool;
+    var phi_2723_: bool;
+    var phi_2818_: bool;
 
     let _e136 = pc.limnRowInvocations;
-    param_100 = _e136;
-    let _e137 = limnInvocationIndex_u0028_u1_u003b((&param_100));
+    param_110 = _e136;
+    let _e137 = limnInvocationIndex_u0028_u1_u003b((&param_110));
     i_5 = _e137;
     let _e138 = i_5;
     let _e140 = pc.limnCount;
@@ -1894,20 +1962,20 @@ fn main_1() {
     let _e154 = p1_[0u];
     let _e157 = cull.c[_e154];
     let _e158 = (_e157 == 0u);
-    phi_2310_ = _e158;
+    phi_2407_ = _e158;
     if !(_e158) {
         let _e161 = p1_[1u];
         let _e162 = (_e161 != 4294967295u);
-        phi_2309_ = _e162;
+        phi_2406_ = _e162;
         if _e162 {
             let _e164 = p1_[1u];
             let _e167 = cull.c[_e164];
-            phi_2309_ = (_e167 == 0u);
+            phi_2406_ = (_e167 == 0u);
         }
-        let _e170 = phi_2309_;
-        phi_2310_ = _e170;
+        let _e170 = phi_2406_;
+        phi_2407_ = _e170;
     }
-    let _e172 = phi_2310_;
+    let _e172 = phi_2407_;
     visible = _e172;
     let _e174 = pc.tess;
     let _e176 = p0_[3u];
@@ -1918,41 +1986,41 @@ fn main_1() {
     let _e179 = visible;
     if _e179 {
         let _e181 = p0_[1u];
-        param_101 = _e181;
+        param_111 = _e181;
         let _e183 = p0_[2u];
-        param_102 = _e183;
-        let _e184 = midST_u0028_u1_u003b_u1_u003b((&param_101), (&param_102));
+        param_112 = _e183;
+        let _e184 = midST_u0028_u1_u003b_u1_u003b((&param_111), (&param_112));
         mid = _e184;
         let _e186 = p0_[1u];
         let _e187 = mid;
         let _e189 = p0_[2u];
         let _e191 = p0_[1u];
-        param_103 = _e191;
+        param_113 = _e191;
         let _e192 = mid;
-        param_104 = _e192;
-        let _e193 = midST_u0028_u1_u003b_u1_u003b((&param_103), (&param_104));
+        param_114 = _e192;
+        let _e193 = midST_u0028_u1_u003b_u1_u003b((&param_113), (&param_114));
         let _e194 = mid;
-        param_105 = _e194;
+        param_115 = _e194;
         let _e196 = p0_[2u];
-        param_106 = _e196;
-        let _e197 = midST_u0028_u1_u003b_u1_u003b((&param_105), (&param_106));
+        param_116 = _e196;
+        let _e197 = midST_u0028_u1_u003b_u1_u003b((&param_115), (&param_116));
         st_3 = array<u32, 5>(_e186, _e187, _e189, _e193, _e197);
         let _e200 = pc.maxError;
         count_1 = select(3u, 5u, (_e200 > 0f));
         behind = 0u;
         allOut = 63u;
         let _e204 = p0_[0u];
-        param_107 = _e204;
+        param_117 = _e204;
         let _e205 = st_3;
-        param_108 = _e205;
+        param_118 = _e205;
         let _e206 = count_1;
-        param_109 = _e206;
+        param_119 = _e206;
         let _e208 = pc.patchCount;
-        param_110 = _e208;
-        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b((&param_107), (&param_108), (&param_109), (&param_110), (&param_111), (&param_112));
-        let _e209 = param_111;
+        param_120 = _e208;
+        elementPositions5_u0028_u1_u003b_u1_u005b_5_u005d_u003b_u1_u003b_u1_u003b_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b((&param_117), (&param_118), (&param_119), (&param_120), (&param_121), (&param_122));
+        let _e209 = param_121;
         P_7 = _e209;
-        let _e210 = param_112;
+        let _e210 = param_122;
         N_2 = _e210;
         k_9 = 0u;
         loop {
@@ -2063,12 +2131,12 @@ fn main_1() {
         } else {
             let _e349 = behind;
             let _e350 = (_e349 != 0u);
-            phi_2566_ = _e350;
+            phi_2663_ = _e350;
             if !(_e350) {
                 let _e352 = len;
-                phi_2566_ = !((_e352 < 1000000000f));
+                phi_2663_ = !((_e352 < 1000000000f));
             }
-            let _e356 = phi_2566_;
+            let _e356 = phi_2663_;
             if _e356 {
                 let _e357 = cap;
                 r_2 = _e357;
@@ -2100,20 +2168,20 @@ fn main_1() {
                                 continue;
                             }
                             let _e378 = smoothBoth;
-                            phi_2617_ = _e378;
+                            phi_2714_ = _e378;
                             if _e378 {
                                 let _e379 = e;
                                 let _e381 = pc.patchCount;
-                                phi_2617_ = (_e379 < _e381);
+                                phi_2714_ = (_e379 < _e381);
                             }
-                            let _e384 = phi_2617_;
-                            phi_2626_ = _e384;
+                            let _e384 = phi_2714_;
+                            phi_2723_ = _e384;
                             if _e384 {
                                 let _e385 = e;
                                 let _e389 = patches.p[_e385].levelBoundary;
-                                phi_2626_ = (((_e389 >> bitcast<u32>(16i)) & 15u) == 0u);
+                                phi_2723_ = (((_e389 >> bitcast<u32>(16i)) & 15u) == 0u);
                             }
-                            let _e395 = phi_2626_;
+                            let _e395 = phi_2723_;
                             smoothBoth = _e395;
                             continue;
                         } else {
@@ -2126,12 +2194,12 @@ fn main_1() {
                     }
                     let _e398 = want;
                     let _e399 = P_7;
-                    param_113 = _e399;
+                    param_123 = _e399;
                     let _e400 = N_2;
-                    param_114 = _e400;
+                    param_124 = _e400;
                     let _e401 = smoothBoth;
-                    param_115 = _e401;
-                    let _e402 = errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b((&param_113), (&param_114), (&param_115));
+                    param_125 = _e401;
+                    let _e402 = errorSegments_u0028_vf3_u005b_5_u005d_u003b_vf3_u005b_5_u005d_u003b_b1_u003b((&param_123), (&param_124), (&param_125));
                     want = max(_e398, _e402);
                 } else {
                     let _e405 = px[2i];
@@ -2178,13 +2246,13 @@ fn main_1() {
                         e_1 = _e456;
                         let _e457 = e_1;
                         let _e458 = (_e457 == 4294967295u);
-                        phi_2721_ = _e458;
+                        phi_2818_ = _e458;
                         if !(_e458) {
                             let _e460 = e_1;
                             let _e462 = pc.patchCount;
-                            phi_2721_ = (_e460 >= _e462);
+                            phi_2818_ = (_e460 >= _e462);
                         }
-                        let _e465 = phi_2721_;
+                        let _e465 = phi_2818_;
                         if _e465 {
                             continue;
                         }
@@ -2215,8 +2283,8 @@ fn main_1() {
                         pt_3.pad1_ = _e469.pad1_;
                         pt_3.pad2_ = _e469.pad2_;
                         let _e521 = pt_3.levelBoundary;
-                        crease_2 = ((_e521 >> bitcast<u32>(16i)) & 15u);
-                        let _e525 = crease_2;
+                        crease_3 = ((_e521 >> bitcast<u32>(16i)) & 15u);
+                        let _e525 = crease_3;
                         if (_e525 == 0u) {
                             let _e527 = k_11;
                             if (_e527 == 0i) {
@@ -2229,7 +2297,7 @@ fn main_1() {
                             let _e532 = p0_[1u];
                             let _e535 = p0_[2u];
                             alongS = ((_e532 & 65535u) != (_e535 & 65535u));
-                            let _e538 = crease_2;
+                            let _e538 = crease_3;
                             creaseAlongS = ((_e538 & 5u) != 0u);
                             let _e541 = alongS;
                             let _e542 = creaseAlongS;

@@ -1,4 +1,4 @@
-// The TBLS chunk (formats/limn.md, section 7; versions 1 to 7) as the WebGPU runtime reads it:
+// The TBLS chunk (formats/limn.md, section 7; versions 1 to 8) as the WebGPU runtime reads it:
 // every count, index and stencil entry checked as lib/subdiv/tables_chunk.cpp checks it, so that
 // nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
@@ -76,8 +76,8 @@ function shiftedStencils(previous, grandFirst, parentFirst, first) {
 export const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 export function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 7) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 7); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 7);
+  if (chunk.version > 8) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 8); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 8);
   const patchWords = chunk.version >= 2 ? 22 : 21;
   const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
   const programs = chunk.version >= 5; // bases as programs, compact nodes and smooth faces
@@ -306,10 +306,11 @@ function readIrregularSurface(r, o) {
   const leaves = readFaces(leafCount, 'irregular leaf', false);
   const baseCount = r.u32('irregular basis count');
   if (baseCount > Math.floor(r.remaining / 8)) r.fail('irregular basis count is too large');
-  const bases = [];
-  // Version 7: each with its configuration (a boundary one's support size stored).
+  const bases = [], chainPrograms = [];
+  // Version 7: each with its configuration (a boundary one's support size stored); version 8's
+  // decaying-crease chains share their programs across the chunk.
   for (let i = 0; programs && i < baseCount; i++) {
-    bases.push(o.version >= 7 ? readConfigurationBasis(r, `irregular basis ${i}`, bases) : readBasisProgram(r, i, bases));
+    bases.push(o.version >= 7 ? readConfigurationBasis(r, `irregular basis ${i}`, bases, o.version >= 8 ? chainPrograms : null) : readBasisProgram(r, i, bases));
   }
   for (let i = 0; !programs && i < baseCount; i++) {
     const valence = r.u32(), lv = r.u32();
@@ -480,7 +481,11 @@ function packIrregularQuadtrees(P, Q, irregularFaces, v3) {
   for (const b of v3.bases) {
     const M = b.support;
     for (let block = 0; block < b.levels * 3; block++) {
-      for (let i = 0; i < M; i++, at++) for (let j = 0; j < 16; j++) of[W * at + j] = b.weights[(block * 16 + j) * M + i];
+      for (let i = 0; i < M; i++, at++) {
+        for (let j = 0; j < 16; j++) of[W * at + j] = b.weights[(block * 16 + j) * M + i];
+        // A chain's band kind rides on its block's first record (surface_eval_impl basisPatchPoint).
+        if (i === 0 && b.chain) { out[W * at + 20] = b.crease[block] << 16; of[W * at + 21] = b.sharpness[block]; }
+      }
     }
   }
   return { nodes: out, leaves: v3.leaves };

@@ -4,6 +4,7 @@
 // quadtree nodes and the smooth faces as varint streams. Every count and index is checked as the
 // C++ reader checks it.
 import { MAX_STENCIL_WEIGHT, Stream } from './tables_stream.mjs';
+import { readChainBasis } from './tables_chain_records.mjs';
 
 const MAX_DEPTH = 16;
 const MAX_BASIS_VALENCE = 64; // kMaxBasisValence (lib/subdiv/tables.h)
@@ -68,15 +69,18 @@ export function readBasisProgram(r, index, earlier) {
 // position << 2), u32 support size, u32 levels, then its program; its expanded weights in [0, 1]
 // (interior: Catmull-Clark's smooth weights are convex) or [-4, 5] (a boundary configuration's
 // phantom points, 2 a - b; corners 4 a - 2 b - 2 c + d).
-export function readConfigurationBasis(r, what, earlier) {
+// TBLS version 8 (`chains`: the programs its chains brought so far): configuration 2 is a
+// decaying-crease chain (tables_chain_records.mjs).
+export function readConfigurationBasis(r, what, earlier, chains = null) {
   const valence = r.u32(), code = r.u32(), M = r.u32(), levels = r.u32();
+  if (chains && code === 2) return readChainBasis(r, what, valence, M, levels, earlier, chains);
   const boundary = (code & 1) !== 0, position = code >>> 2;
   if (valence < 1 || valence > MAX_BASIS_VALENCE || levels < 1 || levels > MAX_DEPTH ||
       (boundary && position >= valence) || (!boundary && (code !== 0 || valence < 3 || valence === 4 || M !== 2 * valence + 8)) ||
       M < 4 || M > 2 * MAX_BASIS_VALENCE + 8) {
     r.fail(`${what} has a bad configuration, support size or level count`);
   }
-  if (earlier.some((x) => x.valence === valence && x.code === code)) r.fail(`${what} repeats a configuration`);
+  if (earlier.some((x) => !x.chain && x.valence === valence && x.code === code)) r.fail(`${what} repeats a configuration`);
   // A boundary sub-patch has at most 7 phantom points, each one row.
   const weights = expandBasis(readProgram(r, what, M, boundary ? 21 : 0), M, levels);
   const [lo, hi] = boundary ? [-4, 5] : [0, 1];

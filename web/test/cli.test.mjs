@@ -172,11 +172,14 @@ test('--mesh-out writes the bytes limn-render --mesh-out writes', () => {
 // Smooth faces below level N (TBLS version 5: quadtree nodes naming per-valence basis faces
 // where a semi-sharp crease has decayed, and below faces with two extraordinary corners), and
 // faces around boundary vertices on their configurations' bases (TBLS version 7: cube_no_bottom's
-// open bottom): the web reader, its GPU records and the WGSL walk draw limn-render's bytes.
-test('--mesh-out on smooth faces below level N and boundary bases writes limn-render\'s bytes', () => {
+// open bottom), and decaying-crease chains (TBLS version 8: chaikin0's faces along its creases,
+// single-crease bands, smooth and regular ends): the web reader, its GPU records and the WGSL
+// walk draw limn-render's bytes.
+test('--mesh-out on smooth faces below level N, boundary bases and crease chains writes limn-render\'s bytes', () => {
   const env = { ...process.env, VK_ICD_FILENAMES: process.env.VK_ICD_FILENAMES ?? privateIcd };
-  for (const [model, name] of [['osd/catmark/catmark_pyramid_creases0.obj', 'nested'], ['tri/cube_no_bottom.obj', 'boundary']]) {
-    const limn = container(model, { depth: 2 });
+  for (const [model, name, tablesArgs] of [['osd/catmark/catmark_pyramid_creases0.obj', 'nested'], ['tri/cube_no_bottom.obj', 'boundary'],
+    ['osd/catmark/catmark_chaikin0.obj', 'chains', ['--crease-chains', 'on']]]) {
+    const limn = container(model, tablesArgs ? { depth: 2, tablesArgs, name: `${name}.limn` } : { depth: 2 });
     const native = join(scratch, `${name}_native.ply`), web = join(scratch, `${name}_web.ply`);
     const args = ['--size', '160x120', '--mesh-out'];
     execFileSync(tool('limn-render'), [limn, ...args, native, '-o', join(scratch, `${name}_native.png`)], { env, stdio: 'ignore' });

@@ -117,8 +117,8 @@ test('byte flips are accepted or refused with a LimnError, never another excepti
 test('BLND is refused clearly, a newer chunk version names itself', () => {
   const chunks = parseContainer(small());
   expectLimnError(build([...chunks, { type: 'BLND', version: 1, payload: new Uint8Array(24) }]), /chunk BLND: blending surfaces are not supported here/);
-  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 8 } : c));
-  expectLimnError(build(newer), /chunk TBLS: version 8 is newer/);
+  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 9 } : c));
+  expectLimnError(build(newer), /chunk TBLS: version 9 is newer/);
   const unknown = [...chunks, { type: 'ZZZZ', version: 9, payload: new Uint8Array(5) }];
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
@@ -218,6 +218,54 @@ test('hostile TBLS v7 basis configurations are refused by name', () => {
   expectLimnError(patched(first + 4, 1 + 4 * valence), bad);
   expectLimnError(patched(first + 4, 2), bad);
   expectLimnError(patched(first + 12, 0), bad);
+});
+
+// TBLS v8's decaying-crease chains (formats/limn.md, "Decaying-crease chains (version 8)"): the
+// seed's first chain (chaikin0 d1); an end that is none, more bands than levels, a smooth end
+// naming no basis or another valence's and a program index beyond those read are refused by
+// name before anything is expanded, and byte flips from the bases on are refused as LimnErrors
+// or read (the --mesh-out test checks what is drawn from such tables).
+test('hostile TBLS v8 crease chains are refused by name', () => {
+  const bytes = read(join(repo, 'fuzz/corpus/render_input/chaikin0_d1_crease_chains_v8.limn')), chunks = parseContainer(bytes);
+  const tbls = chunks.find((c) => c.type === 'TBLS');
+  assert.equal(tbls.version, 8);
+  const v = new DataView(tbls.payload.buffer, tbls.payload.byteOffset, tbls.payload.byteLength);
+  // The first chain's record: valence 3, configuration 2, support 14, 6 levels, a smooth end
+  // naming basis 0 (valence 3's), 1 to 5 bands, band 1 bringing program 0 (found by its header:
+  // the sections before it have no fixed size).
+  const u = (o) => v.getUint32(o, true);
+  let first = -1;
+  for (let o = 0; o + 32 <= v.byteLength && first < 0; o++) {
+    if (u(o) === 3 && u(o + 4) === 2 && u(o + 8) === 14 && u(o + 12) === 6 && u(o + 16) === 1 && u(o + 20) === 0 &&
+        u(o + 24) >= 1 && u(o + 24) <= 5 && u(o + 28) === 0) first = o;
+  }
+  assert.ok(first >= 0, 'no chain record found');
+  const bases = first;
+  const patched = (offset, value) => build(chunks.map((c) => {
+    if (c.type !== 'TBLS') return c;
+    const payload = c.payload.slice();
+    new DataView(payload.buffer).setUint32(offset, value, true);
+    return { ...c, payload };
+  }));
+  expectLimnError(patched(first + 16, 3), /irregular basis \d+ has a bad end, band count, valence or support size/);
+  expectLimnError(patched(first + 24, 7), /irregular basis \d+ has a bad end, band count, valence or support size/);
+  expectLimnError(patched(first + 20, 99), /irregular basis \d+'s smooth end names a missing basis/);
+  expectLimnError(patched(first, 5), /irregular basis \d+'s smooth end names basis 0, not valence 5's/);
+  expectLimnError(patched(first + 28, 5), /irregular basis \d+ band 1 names a missing program/);
+  let state = 8, refused = 0;
+  const random = () => (state = (state * 1103515245 + 12345) % 2147483648);
+  for (let trial = 0; trial < 300; trial++) {
+    const payload = tbls.payload.slice();
+    const o = bases + (random() % (payload.length - bases));
+    payload[o] ^= 1 << (random() % 8);
+    try {
+      loadLimn(build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c))));
+    } catch (e) {
+      assert.ok(e instanceof LimnError, `not a LimnError: ${e.stack}`);
+      refused++;
+    }
+  }
+  assert.ok(refused > 50, `${refused} refused`);
 });
 
 // TBLS v5 (bases as programs, node and smooth-face streams), v4 (compact stencil tables, patch

@@ -58,7 +58,8 @@ void patchPoint(Patch pt, float s, float t, out vec3 P, out vec3 n) {
 // basis's first record, its bands, the corner's limit point, its levels below its irregular
 // face; then the support points, 16 a record; the basis: per band and quadrant, per support
 // point a record of 16 weights). A boundary configuration's weights hold its sub-patches'
-// phantom points (2 a - b of support points): its rows sum to 1 as well.
+// phantom points (2 a - b of support points): its rows sum to 1 as well; so do a decaying-crease
+// chain's (TBLS version 8), whose bands may be single-crease patches.
 void basisPatchPoint(uint h, uint k, uint q, float s, float t, out vec3 P, out vec3 n) {
     Patch hd = patches.p[h];
     uint M = hd.cv[0];
@@ -82,6 +83,14 @@ void basisPatchPoint(uint h, uint k, uint q, float s, float t, out vec3 P, out v
     float bu[4], du[4], bv[4], dv[4];
     bspline(s, bu, du);
     bspline(t, bv, dv);
+    // A decaying-crease chain's band may be a single-crease patch: its crease bits (canonical
+    // frame) and sharpness ride on the block's first weight record (0 for a B-spline).
+    Patch kind = patches.p[block];
+    uint crease = (kind.levelBoundary >> 16) & 0xFu;
+    if ((crease & (BOUNDARY_V0 | BOUNDARY_V1)) != 0u)
+        creaseBasisAcross(t, (crease & BOUNDARY_V1) != 0u, kind.sharpness, bv, dv);
+    if ((crease & (BOUNDARY_U0 | BOUNDARY_U1)) != 0u)
+        creaseBasisAcross(s, (crease & BOUNDARY_U1) != 0u, kind.sharpness, bu, du);
     P = vec3(0.0);
     vec3 Du = vec3(0.0), Dv = vec3(0.0);
     for (int j = 0; j < 4; ++j) {
