@@ -24,17 +24,11 @@ void gatherControlPoints(const Patch& p, std::span<const glm::dvec3> V, glm::dve
 
 namespace {
 
-// A stencil row's sum, relative to its first point: float weights sum to their exact sum (1 for
-// a point, 0 for a tangent) only to a float step, and over absolute coordinates that step times
-// the points' distance from the origin moves the result (normals beside catmark_bishop's poles
-// 2 degrees off, 4 once the mesh was 10 units away). `weightsSum`: the exact sum.
-glm::dvec3 apply(const StencilTable& table, size_t row, std::span<const glm::dvec3> V, double weightsSum = 1) {
-    if (table.start[row] == table.start[row + 1]) return glm::dvec3(0.0);
-    const glm::dvec3 origin = V[table.indices[table.start[row]]];
+glm::dvec3 apply(const StencilTable& table, size_t row, std::span<const glm::dvec3> V) {
     glm::dvec3 sum(0.0);
     for (uint32_t i = table.start[row]; i < table.start[row + 1]; ++i)
-        sum += double(table.weights[i]) * (V[table.indices[i]] - origin);
-    return weightsSum * origin + sum;
+        sum += double(table.weights[i]) * V[table.indices[i]];
+    return sum;
 }
 
 } // namespace
@@ -176,8 +170,8 @@ std::vector<LimitPoint> evaluateLimitPoints(const Tables& t, std::span<const glm
     std::vector<LimitPoint> out(t.limitPosition.rows());
     for (size_t i = 0; i < out.size(); ++i) {
         out[i].position = apply(t.limitPosition, i, V);
-        out[i].tangent1 = apply(t.limitTangent1, i, V, 0);
-        out[i].tangent2 = apply(t.limitTangent2, i, V, 0);
+        out[i].tangent1 = apply(t.limitTangent1, i, V);
+        out[i].tangent2 = apply(t.limitTangent2, i, V);
         out[i].normal = glm::normalize(glm::cross(out[i].tangent1, out[i].tangent2));
     }
     return out;

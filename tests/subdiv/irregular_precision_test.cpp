@@ -1,13 +1,13 @@
-// limn's CPU reference of the irregular faces' surface does not depend on where the mesh is. A
+// limn's CPU reference of the irregular faces' surface barely depends on where the mesh is. A
 // smooth face's sub-patch control points are float basis weights over its support
-// (docs/irregular.md, section 1), and the refined vertices float stencil weights over the level
-// above; a row of float weights sums to 1 only to a float step. Summed over absolute coordinates,
-// that step times the points' distance from the origin moved each point differently; beside
-// catmark_bishop's valence-24 poles, whose deep bands are a few 1e-5 across, the normals turned by
-// 2 degrees, and by 4 once the bishop was moved 10 units away (with the control points summed
-// relative to the support's first point but the stencils not: 0.07 degrees moved). Both sum
-// relative to the row's first point now (evaluate.cpp). OpenSubdiv's limit (isolation 10) is the
-// reference: it does not move with the mesh.
+// (docs/irregular.md, section 1), and a row of float weights sums to 1 only to a float step.
+// Summed over absolute coordinates, that step times the points' distance from the origin moved
+// each control point differently; beside catmark_bishop's valence-24 poles, whose deep bands are
+// a few 1e-5 across, the normals turned by 2 degrees, and by 4 once the bishop was moved 10 units
+// away. They are summed relative to the support's first point now (evaluate.cpp). The refined
+// vertices' stencil rows are still summed absolutely, as the builder and the GPU sum them: that
+// leaves 0.01 degrees in place and 0.07 moved (summed relatively too: 2e-6 degrees, tried).
+// OpenSubdiv's limit (isolation 10) is the reference: it does not move with the mesh.
 #include "mesh/import.h"
 #include "osd_oracle.h"
 #include "subdiv/evaluate.h"
@@ -66,9 +66,9 @@ TEST(IrregularPrecision, SmoothFaceNormalsDoNotMoveWithTheMesh) {
         }
         EXPECT_GT(compared, 10000u);
         // Before: 2.05 degrees in place, 4.2 moved (bench_accuracy --at 1198 0.0078125 0.0078125);
-        // now 2e-6 degrees and 1e-10 of the diagonal, moved or not.
-        EXPECT_LE(worstN, 1e-3) << compared << " points";
-        EXPECT_LE(worstP, 1e-8) << compared << " points";
+        // now 0.011 and 0.073 degrees, 9.7e-8 and 8.1e-7 of the diagonal.
+        EXPECT_LE(worstN, 0.15) << compared << " points";
+        EXPECT_LE(worstP, 2e-6) << compared << " points";
         std::printf("bishop d3 moved by %g: %zu points on smooth faces, max %.3g of the diagonal, %.3g degrees\n",
                     offset, compared, worstP, worstN);
     }

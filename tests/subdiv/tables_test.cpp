@@ -364,44 +364,12 @@ TEST(ExactLimits, NoApproximateLimitPointsOnCatmarkShapes) {
 
 // The per-valence weights of irregular_basis.h against the whole tables of the same mesh:
 // three rings of quads around a valence-n vertex (written here), built by buildTables with the
-// default boundary rule, evaluated for unit control points as the builder sums, and face 0's
+// default boundary rule, evaluated by evaluateVertices for unit control points, and face 0's
 // sub-patches read from those tables (the way the weights were first computed).
 // buildIrregularBasis refines one level around face 0, evaluates only what its sub-patches read,
 // all columns at once, and runs that level's rows again for the deeper bands: the two must agree
 // to the bit (checked once for every valence 3 to 64 at K = 16; five valences here at K = 6,
 // bands 2 to 6 from the rerun rows).
-namespace {
-
-// The tables' vertices summed as the builder sums (each stencil row over absolute coordinates),
-// not relative to the row's first point as evaluateVertices sums them: a float row sums to 1
-// only to a float step, so the two drift apart by a float step or two over six levels of unit
-// control points, and the basis is the builder's arithmetic to the bit.
-std::vector<glm::dvec3> builderVertices(const limn::Tables& t, const std::vector<glm::dvec3>& control) {
-    std::vector<glm::dvec3> V(t.totalVertices);
-    std::copy(control.begin(), control.end(), V.begin());
-    auto rows = [&](const StencilTable& s, uint32_t& out) {
-        for (size_t r = 0; r < s.rows(); ++r, ++out) {
-            glm::dvec3 sum(0.0);
-            for (uint32_t i = s.start[r]; i < s.start[r + 1]; ++i) sum += double(s.weights[i]) * V[s.indices[i]];
-            V[out] = sum;
-        }
-    };
-    for (uint32_t l = 1; l < t.levels.size(); ++l) {
-        uint32_t out = t.levels[l].first;
-        const StencilTable& f = t.facePoints[l - 1];
-        for (size_t r = 0; r < f.rows(); ++r, ++out) {
-            glm::dvec3 sum(0.0);
-            for (uint32_t i = f.start[r]; i < f.start[r + 1]; ++i) sum += V[f.indices[i]];
-            V[out] = sum / double(f.start[r + 1] - f.start[r]);
-        }
-        rows(t.edgePoints[l - 1], out);
-        rows(t.vertexPoints[l - 1], out);
-    }
-    return V;
-}
-
-} // namespace
-
 TEST(IrregularBasis, WeightsAreThoseOfTheWholeTables) {
     for (uint32_t n : {3u, 5u, 6u, 9u, 20u}) {
         SCOPED_TRACE("valence " + std::to_string(n));
@@ -429,7 +397,7 @@ TEST(IrregularBasis, WeightsAreThoseOfTheWholeTables) {
         for (size_t i = 0; i < M; ++i) {
             std::vector<glm::dvec3> control(m.vertexCount(), glm::dvec3(0.0));
             control[support[i]] = glm::dvec3(1.0);
-            const std::vector<glm::dvec3> V = builderVertices(t, control);
+            const std::vector<glm::dvec3> V = evaluateVertices(t, control);
             for (const Patch& p : t.patches) {
                 if (p.ptex != 0 || p.level < 1) continue;
                 const int q = (p.u0 > 0 ? 1 : 0) + (p.v0 > 0 ? 2 : 0); // 1, 3 or 2 (both)

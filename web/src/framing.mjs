@@ -29,18 +29,14 @@ function evaluateVertices(tables, control) {
   return V;
 }
 
-// A stencil row's weighted sum of V into out[at..at+2], relative to the row's first point as
-// evaluate.cpp's apply sums it (its weights sum to 1 only to a float step).
+// A stencil row's weighted sum of V into out[at..at+2].
 function apply(table, row, V, out, at) {
-  const b = table.start[row], e = table.start[row + 1];
-  if (b === e) { out[at] = out[at + 1] = out[at + 2] = 0; return; }
-  const o = 3 * table.index[b], ox = V[o], oy = V[o + 1], oz = V[o + 2];
   let x = 0, y = 0, z = 0;
-  for (let i = b; i < e; i++) {
+  for (let i = table.start[row]; i < table.start[row + 1]; i++) {
     const w = table.weight[i], v = 3 * table.index[i];
-    x += w * (V[v] - ox); y += w * (V[v + 1] - oy); z += w * (V[v + 2] - oz);
+    x += w * V[v]; y += w * V[v + 1]; z += w * V[v + 2];
   }
-  out[at] = ox + x; out[at + 1] = oy + y; out[at + 2] = oz + z;
+  out[at] = x; out[at + 1] = y; out[at + 2] = z;
 }
 
 // evaluate.cpp's creaseBasis (positions only): the crease curve's rules applied until the segment
