@@ -13,11 +13,13 @@
 //        the view-adaptive one included): every vertex, and the centroid of every triangle whose
 //        corners share a ptex face (at the interpolated (ptex, u, v)), against isolation 10.
 //        bench_accuracy [--depth N] --at PTEX U V MESH: limn's CPU evaluation of every element
-//        holding that point (double: what the GPU should draw) against OpenSubdiv's limit there.
+//        holding that point (double: what the GPU should draw) against OpenSubdiv's limit there,
+//        and the same evaluation from table vertices computed as the GPU computes them (float).
 #include "base/error.h"
 #include "drawn_ply.h"
 #include "mesh/import.h"
 #include "osd_oracle.h"
+#include "render/gpu_origin.h"
 #include "subdiv/evaluate.h"
 #include "subdiv/tables.h"
 #include "subdiv/tables_chunk.h"
@@ -133,6 +135,45 @@ int comparePly(const std::string& plyPath, const std::string& meshPath, int refI
     return 0;
 }
 
+// The table vertices as the GPU's subdivision passes compute them (subdiv_face_points.comp,
+// subdiv_stencils.comp): float, relative to renderOrigin, each row summed in the shaders' order
+// (rows of more than 64 entries relative to their first point), levels 1..`floatLevels` in float
+// and the ones below in double from those (all levels: what the GPU has; through level N only:
+// what an evaluation of the deeper levels from level N in double, or in a frame local to the
+// face, would have). Returned in the model's coordinates.
+std::vector<glm::dvec3> gpuFloatVertices(const Tables& t, const Mesh& mesh, uint32_t floatLevels) {
+    const glm::dvec3 origin = render::renderOrigin(mesh);
+    std::vector<glm::vec3> F(t.totalVertices);
+    std::vector<glm::dvec3> D(t.totalVertices);
+    for (size_t i = 0; i < t.levels[0].count(); ++i) F[i] = glm::vec3(mesh.positions[i] - origin), D[i] = F[i];
+    for (uint32_t l = 1; l < t.levels.size(); ++l) {
+        const bool inFloat = l <= floatLevels;
+        uint32_t out = t.levels[l].first;
+        const StencilTable& faces = t.facePoints[l - 1];
+        for (size_t r = 0; r < faces.rows(); ++r, ++out) {
+            glm::vec3 f(0.0f);
+            glm::dvec3 d(0.0);
+            for (uint32_t i = faces.start[r]; i < faces.start[r + 1]; ++i) f += F[faces.indices[i]], d += D[faces.indices[i]];
+            const uint32_t n = faces.start[r + 1] - faces.start[r];
+            D[out] = inFloat ? glm::dvec3(f / float(n)) : d / double(n);
+            F[out] = glm::vec3(D[out]);
+        }
+        for (const StencilTable* rows : {&t.edgePoints[l - 1], &t.vertexPoints[l - 1]})
+            for (size_t r = 0; r < rows->rows(); ++r, ++out) {
+                const uint32_t b = rows->start[r], e = rows->start[r + 1];
+                const glm::vec3 o = e - b > 64 ? F[rows->indices[b]] : glm::vec3(0.0f);
+                glm::vec3 f(0.0f);
+                glm::dvec3 d(0.0);
+                for (uint32_t i = b; i < e; ++i)
+                    f += rows->weights[i] * (F[rows->indices[i]] - o), d += double(rows->weights[i]) * D[rows->indices[i]];
+                D[out] = inFloat ? glm::dvec3(f + o) : d;
+                F[out] = glm::vec3(D[out]);
+            }
+    }
+    for (glm::dvec3& p : D) p += origin;
+    return D;
+}
+
 // The --at mode: which side is off at one drawn point. limn's CPU evaluation (double, the
 // reference of what the GPU draws) of the element holding (ptex, u, v), next to OpenSubdiv's
 // limit there; the normal is taken a hundred-thousandth towards the element's centre, as above.
@@ -146,6 +187,9 @@ int compareAt(const std::string& meshPath, int depth, int refIso, int ptex, doub
     auto V = evaluateVertices(t, mesh.positions);
     auto L = evaluateLimitPoints(t, V);
     test::OsdLimitSurface ref(mesh, so, refIso);
+    // The GPU's vertices (float through every level), and float through level N only.
+    const auto VG = gpuFloatVertices(t, mesh, uint32_t(t.levels.size())), VN = gpuFloatVertices(t, mesh, uint32_t(depth));
+    const auto LG = evaluateLimitPoints(t, VG), LN = evaluateLimitPoints(t, VN);
     const uint32_t P = uint32_t(t.patches.size());
     int found = 0;
     for (uint32_t e = 0; e < P + t.irregular.size(); ++e) {
@@ -159,18 +203,25 @@ int compareAt(const std::string& meshPath, int depth, int refIso, int ptex, doub
         bool exact = true;
         const SurfacePoint p = patch ? evaluatePatch(t.patches[e], V, s, tt)
                                      : evaluateIrregular(t, V, L, e - P, s, tt, &exact);
+        const SurfacePoint g = patch ? evaluatePatch(t.patches[e], VG, s, tt)
+                                     : evaluateIrregular(t, VG, LG, e - P, s, tt, nullptr);
+        const SurfacePoint gn = patch ? evaluatePatch(t.patches[e], VN, s, tt)
+                                      : evaluateIrregular(t, VN, LN, e - P, s, tt, nullptr);
         const double iu = u + (u0 + size / 2 - u) * 1e-5, iv = v + (v0 + size / 2 - v) * 1e-5;
         glm::dvec3 rp, rn;
         if (!ref.evaluate(ptex, u, v, iu, iv, rp, rn)) continue;
         std::printf("{\"element\":%u,\"kind\":\"%s\",\"level\":%d,\"s\":%.9g,\"t\":%.9g,"
                     "\"exact\":%s,\"limn_position\":[%.9g,%.9g,%.9g],\"limn_normal\":[%.9g,%.9g,%.9g],"
                     "\"osd_position\":[%.9g,%.9g,%.9g],\"osd_normal\":[%.9g,%.9g,%.9g],"
-                    "\"distance\":%.3e,\"normal_degrees\":%.4g,\"du\":%.4g,\"dv\":%.4g}\n",
+                    "\"distance\":%.3e,\"normal_degrees\":%.4g,\"du\":%.4g,\"dv\":%.4g,"
+                    "\"du_dv_degrees\":%.6g,\"float_vertices_normal\":[%.7g,%.7g,%.7g],"
+                    "\"float_vertices_normal_degrees\":%.4g,\"float_to_depth_normal_degrees\":%.4g}\n",
                     e, patch ? (t.patches[e].crease ? "crease patch" : "patch") : "irregular face",
                     patch ? int(t.patches[e].level) : -1, s, tt, exact ? "true" : "false",
                     p.position.x, p.position.y, p.position.z, p.normal.x, p.normal.y, p.normal.z, rp.x, rp.y,
                     rp.z, rn.x, rn.y, rn.z, glm::length(p.position - rp), angleDeg(p.normal, rn),
-                    glm::length(p.du), glm::length(p.dv));
+                    glm::length(p.du), glm::length(p.dv), angleDeg(p.du, p.dv), g.normal.x, g.normal.y, g.normal.z,
+                    angleDeg(g.normal, rn), angleDeg(gn.normal, rn));
         ++found;
     }
     if (!found) std::fprintf(stderr, "bench_accuracy: no element holds ptex %d (%g, %g)\n", ptex, u, v);
