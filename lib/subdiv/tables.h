@@ -114,10 +114,11 @@ struct TablesOptions {
     // surface of their configuration's chain (crease_basis.h) as a basis of their own support,
     // instead of K more levels (leaf and smooth ends, and regular ends whose patch is a
     // B-spline). TBLS version 8 holds them; limn-render, the web runtime and evaluateIrregular
-    // draw them. Off by default for now: turning it on moves many tests' tables to version 8 and
-    // off their quadtrees (docs/irregular.md, "Chains in the tables"); the face-varying surface
-    // never takes them (FVSF has no chains).
-    bool creaseChains = false;
+    // draw them (docs/irregular.md, "Chains in the tables"): the car's tables within 5% of those
+    // without the irregular surface, and close-ups beside such creases no longer lose their
+    // normals to the float coordinates of levels below N. The face-varying surface never takes
+    // them (FVSF has no chains).
+    bool creaseChains = true;
     // Measurement only (bench_crease_bases; no tool sets it): faces of T_N with a decaying-crease
     // chain (crease_basis.h) are not refined below N and their roots get no codes, so the tables
     // lack those faces' surface; what the tables would hold without their extra levels.

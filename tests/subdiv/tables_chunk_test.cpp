@@ -32,6 +32,7 @@ Tables build(const Mesh& m, int depth, bool uniform = false, bool smoothBelowDep
     o.depth = depth;
     o.uniform = uniform;
     o.smoothFacesBelowDepth = smoothBelowDepth;
+    o.creaseChains = false; // the quadtrees' records (and versions before 8) are what these tests read
     // Tables older versions can hold (versions 3 and 4: no smooth face below level N; before 7:
     // no boundary basis).
     o.boundaryBases = o.basisRimFeatures = smoothBelowDepth;

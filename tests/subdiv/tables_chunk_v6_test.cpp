@@ -34,7 +34,7 @@ Tables buildAt(const Mesh& m, int depth) {
     Warnings w;
     TablesOptions o;
     o.depth = depth;
-    o.boundaryBases = o.basisRimFeatures = false;
+    o.boundaryBases = o.basisRimFeatures = o.creaseChains = false; // version 6's tables
     return buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
 }
 

@@ -57,8 +57,8 @@ struct Fixture {
     double diag = 1;
 };
 
-// `bases`: boundary bases and interior bases with features on their rim (the default), or
-// neither (more faces refined, and smooth faces below level N where those features decay).
+// `bases`: boundary bases, interior bases with features on their rim and crease chains (the default), or
+// none of them (more faces refined, and smooth faces below level N where those features decay).
 inline Fixture build(const Case& c, bool bases = true) {
     Fixture f;
     Warnings w;
@@ -67,7 +67,7 @@ inline Fixture build(const Case& c, bool bases = true) {
     TablesOptions opts;
     opts.depth = c.depth;
     opts.uniform = c.uniform;
-    opts.boundaryBases = opts.basisRimFeatures = bases;
+    opts.boundaryBases = opts.basisRimFeatures = opts.creaseChains = bases;
     f.tables = buildTables(f.mesh, f.options, opts, w);
     f.vertices = evaluateVertices(f.tables, f.mesh.positions);
     f.diag = diagonal(f.mesh);
