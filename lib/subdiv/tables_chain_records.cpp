@@ -183,10 +183,12 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
         CreaseBand& last = c.bands.back();
         last.centreKind = readKind(r, what + " end");
         if (last.centreKind.crease) r.fail(what + "'s regular end has a crease");
+        // 0: no row (a boundary phantom, which the expansion makes from the rows beside it), as
+        // the program's control rows store it.
         for (uint32_t& x : last.centreRow) {
             const uint32_t v = r.read<uint32_t>();
-            if (v == 0 || v > last.program.rows()) r.fail(what + "'s regular end names a missing row");
-            x = v - 1;
+            if (v > last.program.rows()) r.fail(what + "'s regular end names a missing row");
+            x = v == 0 ? kNone : v - 1;
         }
     }
     IrregularBasis basis;

@@ -231,7 +231,10 @@ TEST(IrregularSurface, BoundaryBasesMatchOpenSubdiv) {
 TEST(IrregularSurface, CreaseChainsMatchOpenSubdiv) {
     for (auto [model, depth] : {std::pair{"osd/catmark/catmark_car.obj", 3}, std::pair{"osd/catmark/catmark_rook.obj", 2},
                                 std::pair{"osd/catmark/catmark_chaikin0.obj", 2},
-                                std::pair{"osd/catmark/catmark_cubes_semisharp.obj", 2}}) {
+                                std::pair{"osd/catmark/catmark_cubes_semisharp.obj", 2},
+                                // A regular end whose patch has boundary phantoms (no row in the
+                                // program: written as 0, which version 8's readers once refused).
+                                std::pair{"osd/catmark/catmark_single_crease.obj", 1}}) {
         SCOPED_TRACE(std::string(model) + " d" + std::to_string(depth));
         Fixture f;
         Warnings w;

@@ -199,10 +199,11 @@ export function readChainBasis(r, what, valence, M, K, earlier, programs) {
     const last = chain.bands[bands - 1].program;
     chain.centreKind = readKind(r, `${what} end`);
     if (chain.centreKind.crease) r.fail(`${what}'s regular end has a crease`);
+    // 0: no row (a boundary phantom, made from the rows beside it), as the control rows store it.
     chain.centreRow = Array.from({ length: 16 }, () => {
       const v = r.u32();
-      if (v === 0 || v > last.rows) r.fail(`${what}'s regular end names a missing row`);
-      return v - 1;
+      if (v > last.rows) r.fail(`${what}'s regular end names a missing row`);
+      return v === 0 ? NONE : v - 1;
     });
   }
   const { weights, crease, sharpness } = expandChain(chain, K, M, endBasis);
