@@ -8,7 +8,7 @@
 # under the configuration's label; this script divides by the frames. Instructions of every
 # thread (the main thread's compute passes and vertex stage, lavapipe's rasterizer threads, their
 # JIT-compiled code included) do not move with the load of a shared machine the way wall and CPU
-# time do (two repeats agree within 0.1%: docs/irregular.md "Frame time"). They are not time: a
+# time do (two repeats agree within 0.1%: docs/irregular-measurements.md "Frame time"). They are not time: a
 # cache miss or a long division counts as one. Runs one process at a time (each frame about 130x
 # slower than natively: about 12 minutes a repeat at -f 2).
 #

@@ -1,5 +1,5 @@
 // Per-configuration bases for decaying-crease faces, a builder-side prototype
-// (lib/subdiv/crease_basis.h; docs/irregular.md, "Decaying-crease configurations"): per mesh and
+// (lib/subdiv/crease_basis.h; docs/irregular-tables.md, "Decaying-crease configurations"): per mesh and
 // depth, how many quadtree faces take a chain, how many configurations and band programs there
 // are, whether the chains' sub-patch points are the quadtree's (bitwise), and what they would
 // store. One JSON object per line on stdout, a readable line on stderr.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # What per-configuration bases for decaying-crease faces would save (lib/subdiv/crease_basis.h,
-# docs/irregular.md "Decaying-crease configurations"): per mesh and depth, the TBLS bytes and the
+# docs/irregular-tables.md "Decaying-crease configurations"): per mesh and depth, the TBLS bytes and the
 # instructions (valgrind --tool=callgrind, deterministic) of building and encoding the tables
 # without the irregular faces' levels (K = 0), with them (K), and with K but the faces that have
 # a chain not refined, their chains' programs and supports added as estimated bytes. One JSON

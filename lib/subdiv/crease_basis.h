@@ -1,6 +1,6 @@
 // Per-configuration bases (TablesOptions::creaseChains; TBLS version 8) for the irregular faces
 // whose feature corner is on semi-sharp creases that have not decayed at
-// level N (docs/irregular.md, "Decaying-crease configurations"). Today such a face is refined K
+// level N (docs/irregular-tables.md, "Decaying-crease configurations"). Today such a face is refined K
 // more levels (its quadtree); but the sub-patches of its three quadrants away from the feature
 // corner, band after band, follow from its support by one-level programs that depend only on
 // the local topology and the sharpness the stencils of that level read (Stam's observation for

@@ -114,7 +114,7 @@ struct TablesOptions {
     // surface of their configuration's chain (crease_basis.h) as a basis of their own support,
     // instead of K more levels (leaf and smooth ends, and regular ends whose patch is a
     // B-spline). TBLS version 8 holds them; limn-render, the web runtime and evaluateIrregular
-    // draw them (docs/irregular.md, "Chains in the tables"): the car's tables within 5% of those
+    // draw them (docs/irregular-tables.md, "Chains in the tables"): the car's tables within 5% of those
     // without the irregular surface, and close-ups beside such creases no longer lose their
     // normals to the float coordinates of levels below N. The face-varying surface never takes
     // them (FVSF has no chains).
