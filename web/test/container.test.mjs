@@ -11,7 +11,7 @@ import { container, read, repo } from './support.mjs';
 
 // With its boundary faces refined (no boundary bases): the hostile tests below need sub-patches
 // and quadtree nodes; TBLS v7's bases have their own test.
-const small = () => read(container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, seams: true, tablesArgs: ['--boundary-bases', 'off'], name: 'fvar_bound1_refined_d2_s.limn' }));
+const small = () => read(container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, seams: true, tablesArgs: ['--boundary-bases', 'off', '--crease-chains', 'off'], name: 'fvar_bound1_refined_d2_s.limn' }));
 
 function build(chunks) {
   const size = 24 + chunks.reduce((n, c) => n + 16 + Math.ceil(c.payload.length / 8) * 8, 0);
@@ -199,7 +199,7 @@ test('hostile TBLS v5 irregular-surface fields are refused by name, never a hang
 // configurations (version 7)"): a place beyond the vertex's fan, a code that is no
 // configuration's and a level count of 0 are refused by name, before the program is run.
 test('hostile TBLS v7 basis configurations are refused by name', () => {
-  const bytes = read(container('osd/catmark/catmark_edgeonly.obj', { depth: 1 })), chunks = parseContainer(bytes);
+  const bytes = read(container('osd/catmark/catmark_edgeonly.obj', { depth: 1, tablesArgs: ['--crease-chains', 'off'], name: 'edgeonly_d1_v7.limn' })), chunks = parseContainer(bytes);
   const tbls = chunks.find((c) => c.type === 'TBLS');
   assert.equal(tbls.version, 7);
   const { at, stream } = irregularSectionOffset(loadLimn(bytes).tables, tbls.payload);
