@@ -1,0 +1,169 @@
+// A decaying-crease chain as a basis of its face's own support (crease_basis.h,
+// expandCreaseChain): the band programs run on weights, the boundary quadrants' phantoms folded
+// in, then on to band K through the chain's end (docs/irregular-tables.md, "Chains in the tables").
+#include "subdiv/crease_basis.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace limn {
+
+namespace {
+
+// Points as weights of the chain face's M level-N points: row r is [r * M, (r + 1) * M) of a
+// flat array (one allocation per band, not per point).
+struct WeightRows {
+    size_t M = 0;
+    std::vector<double> w;
+    void assign(size_t rows, size_t m) { M = m, w.assign(rows * m, 0.0); }
+    double* row(size_t r) { return w.data() + r * M; }
+    const double* row(size_t r) const { return w.data() + r * M; }
+    size_t rows() const { return M ? w.size() / M : 0; }
+};
+
+// a * x + b * y into out (the rows are M long).
+void combine(double* out, double a, const double* x, double b, const double* y, size_t M) {
+    for (size_t i = 0; i < M; ++i) out[i] = a * x[i] + b * y[i];
+}
+
+// A patch's 16 control points (P[i + 4 j] = P_{i,j}) from a band's rows (kNone: a phantom),
+// then gatherControlPoints' phantoms (columns first, then rows over all columns).
+void patchWeights(const uint32_t* rows, uint8_t boundary, const WeightRows& values, WeightRows& P) {
+    const size_t M = values.M;
+    P.assign(16, M);
+    for (int j = 0; j < 16; ++j)
+        if (rows[j] != kNone) std::copy(values.row(rows[j]), values.row(rows[j]) + M, P.row(size_t(j)));
+    auto at = [&](int i, int j) { return P.row(size_t(i + 4 * j)); };
+    for (int j = 0; j < 4; ++j) {
+        if (boundary & kBoundaryU0) combine(at(0, j), 2.0, at(1, j), -1.0, at(2, j), M);
+        if (boundary & kBoundaryU1) combine(at(3, j), 2.0, at(2, j), -1.0, at(1, j), M);
+    }
+    for (int i = 0; i < 4; ++i) {
+        if (boundary & kBoundaryV0) combine(at(i, 0), 2.0, at(i, 1), -1.0, at(i, 2), M);
+        if (boundary & kBoundaryV1) combine(at(i, 3), 2.0, at(i, 2), -1.0, at(i, 1), M);
+    }
+}
+
+// A uniform cubic B-spline's half (0: [0, 1/2], 1: [1/2, 1]) as its control points' weights.
+constexpr double kHalf[2][4][4] = {
+    {{0.5, 0.5, 0, 0}, {0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}},
+    {{0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}, {0, 0, 0.5, 0.5}}};
+
+// Quadrant (hu, hv) of patch P, separably: along u, then along v.
+void splitPatch(const WeightRows& P, int hu, int hv, WeightRows& T, WeightRows& Q) {
+    const size_t M = P.M;
+    T.assign(16, M);
+    Q.assign(16, M);
+    for (int b = 0; b < 4; ++b)
+        for (int i = 0; i < 4; ++i)
+            for (int a = 0; a < 4; ++a)
+                if (const double w = kHalf[hu][i][a]; w != 0) {
+                    double* out = T.row(size_t(i + 4 * b));
+                    const double* x = P.row(size_t(a + 4 * b));
+                    for (size_t k = 0; k < M; ++k) out[k] += w * x[k];
+                }
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i)
+            for (int b = 0; b < 4; ++b)
+                if (const double w = kHalf[hv][j][b]; w != 0) {
+                    double* out = Q.row(size_t(i + 4 * j));
+                    const double* x = T.row(size_t(i + 4 * b));
+                    for (size_t k = 0; k < M; ++k) out[k] += w * x[k];
+                }
+}
+
+} // namespace
+
+bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out, const IrregularBasis* endBasis) {
+    out = IrregularBasis{};
+    // A leaf end's K bands are all there is: within 2^-K of the corner evaluateIrregular blends
+    // the corner's limit point and band K's sub-patches at their corners, as the quadtree's leaf
+    // blends its corners' limit points (the same points to the float limit masks' rounding).
+    if (chain.bands.empty() || chain.bands.size() > K || (chain.end == CreaseEnd::Leaf && chain.bands.size() != K))
+        return false;
+    if (chain.end == CreaseEnd::Regular && chain.bands.back().centreKind.crease) return false;
+    const size_t M = chain.bands[0].support;
+    out.levels = K;
+    out.support = uint32_t(M);
+    out.weights.assign(size_t(K) * 3 * 16 * M, 0.0f);
+    out.kinds.assign(size_t(K) * 3, CreaseBandKind{});
+    auto store = [&](uint32_t k, int q, const WeightRows& P) {
+        float* w = out.weights.data() + (size_t(k - 1) * 3 + size_t(q)) * 16 * M;
+        for (size_t x = 0; x < 16 * M; ++x) w[x] = static_cast<float>(P.w[x]);
+    };
+    WeightRows cur, rows, next, P, Q, T;
+    cur.assign(M, M);
+    for (size_t i = 0; i < M; ++i) cur.row(i)[i] = 1.0;
+    uint32_t k = 0;
+    for (const CreaseBand& band : chain.bands) {
+        ++k;
+        const BasisProgram& p = band.program;
+        const size_t S = cur.rows();
+        if (band.support != S) throw std::logic_error("crease chain: a band's support is not the last band's next");
+        rows.assign(p.rows(), M);
+        for (uint32_t r = 0; r < p.rows(); ++r) {
+            double* sum = rows.row(r);
+            for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+                const uint32_t src = p.source[e];
+                if (src >= S + r) throw std::logic_error("crease chain: a row reads a later row");
+                const double* x = src < S ? cur.row(src) : rows.row(src - S);
+                const double w = p.averaged[r] ? 1.0 : double(p.weight[e]);
+                for (size_t i = 0; i < M; ++i) sum[i] += w * x[i];
+            }
+            if (p.averaged[r]) {
+                const double n = double(p.start[r + 1] - p.start[r]);
+                for (size_t i = 0; i < M; ++i) sum[i] /= n;
+            }
+        }
+        for (int q = 0; q < 3; ++q) {
+            patchWeights(p.controlRow.data() + 16 * q, band.kind[size_t(q)].boundary, rows, P);
+            store(k, q, P);
+            out.kinds[size_t(k - 1) * 3 + size_t(q)] = {0, band.kind[size_t(q)].crease, band.kind[size_t(q)].sharpness};
+        }
+        next.assign(p.nextSupport.size(), M);
+        for (size_t i = 0; i < p.nextSupport.size(); ++i)
+            std::copy(rows.row(p.nextSupport[i]), rows.row(p.nextSupport[i]) + M, next.row(i));
+        if (&band == &chain.bands.back() && chain.end == CreaseEnd::Regular)
+            patchWeights(band.centreRow.data(), band.centreKind.boundary, rows, P);
+        std::swap(cur, next);
+    }
+    if (chain.end == CreaseEnd::Regular) {
+        // The corner's patch P, split: its quadrants 1..3 are band k's, its corner quadrant the next P.
+        for (++k; k <= K; ++k) {
+            constexpr int half[3][2] = {{1, 0}, {1, 1}, {0, 1}};
+            for (int q = 0; q < 3; ++q) {
+                splitPatch(P, half[q][0], half[q][1], T, Q);
+                store(k, q, Q);
+            }
+            splitPatch(P, 0, 0, T, Q);
+            std::swap(P, Q);
+        }
+    } else if (k < K) { // Smooth: the per-valence basis over the end's next support
+        IrregularBasis built;
+        if (!endBasis) built = buildIrregularBasis(chain.valence, K - k);
+        const IrregularBasis* found = endBasis ? endBasis : &built;
+        if (found->valence != chain.valence || found->configuration.boundary || found->levels < K - k ||
+            !found->kinds.empty())
+            throw std::logic_error("crease chain: a smooth end's basis is not its valence's");
+        const IrregularBasis& b = *found;
+        const size_t m = b.supportSize();
+        if (cur.rows() != m) throw std::logic_error("crease chain: a smooth end's support is not the basis's");
+        for (uint32_t kb = 1; kb <= K - k; ++kb) // a basis's band kb is the same for any level count
+            for (int q = 0; q < 3; ++q) {
+                const float* w = b.weights.data() + (size_t(kb - 1) * 3 + size_t(q)) * 16 * m;
+                P.assign(16, M);
+                for (int j = 0; j < 16; ++j) {
+                    double* c = P.row(size_t(j));
+                    for (size_t s = 0; s < m; ++s)
+                        if (const double x = double(w[size_t(j) * m + s]); x != 0) {
+                            const double* from = cur.row(s);
+                            for (size_t i = 0; i < M; ++i) c[i] += x * from[i];
+                        }
+                }
+                store(k + kb, q, P);
+            }
+    }
+    return true;
+}
+
+} // namespace limn
