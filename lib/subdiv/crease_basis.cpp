@@ -290,16 +290,23 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
     // Under uniform creasing, once two bands from refined levels have run the same program and
     // each key was the one before less 1 (the neighbourhood repeats itself, Stam's observation
     // with the sharpness counting down), the next bands are that program again, with keys and
-    // kinds' sharpness less 1 each, as long as no sharpness crosses 2 (below 2 a child's
-    // sharpness can reach 0: a kind or the chain's end changes): they are not refined. Then the last refined level is given the band's key
-    // (the same topology) and refined from there. bench_crease_bases checks the result against
-    // the quadtree, bit for bit.
+    // kinds' sharpness less 1 each, as long as every sharpness of the band's key is 0 or above 1
+    // (the rules read none of them, and no child's sharpness reaches 0: the kinds and the
+    // chain's end stay as they were; a sharpness of 1 or less changes the program, or a child's
+    // rule): they are not refined. Then the last refined level is given the band's key (the same
+    // topology) and refined from there. bench_crease_bases checks the result against the
+    // quadtree, bit for bit.
     const bool uniform = options.creaseMethod == CreaseMethod::Uniform;
     bool repeating = false;
     auto zeroSharpness = [](const std::vector<uint32_t>& k) { return mapSharpness(k, [](float) { return 0.0f; }); };
+    auto aboveOne = [](const std::vector<uint32_t>& k) {
+        bool above = true;
+        mapSharpness(k, [&above](float s) { return above = above && (s == 0 || s > 1.0f), s; });
+        return above;
+    };
     for (uint32_t j = 1; j <= K; ++j) {
         if (repeating) {
-            if (j < K && programKey(key, 2.0f) == programKey(chain.bands.back().key, 2.0f)) {
+            if (j < K && aboveOne(key) && programKey(key, 1.0f) == programKey(chain.bands.back().key, 1.0f)) {
                 CreaseBand band = chain.bands.back();
                 band.key = key;
                 for (CreaseBandKind& k : band.kind) k.sharpness = decrement(k.sharpness);
