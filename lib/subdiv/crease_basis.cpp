@@ -250,12 +250,23 @@ std::vector<glm::dvec3> runBandProgram(const BasisProgram& p, std::span<const gl
     return values;
 }
 
-bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference, double tolerance) {
+std::vector<glm::dvec3> bandProbe(const CreaseBand& band) {
+    // Arbitrary support values of size about 1, made once for the largest support a chain has.
+    static const std::vector<glm::dvec3> values = [] {
+        std::vector<glm::dvec3> in(2 * size_t(kMaxBasisValence) + 8);
+        for (size_t i = 0; i < in.size(); ++i)
+            in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
+        return in;
+    }();
+    if (band.support > values.size()) throw std::logic_error("crease basis: a band's support is too large");
+    return runBandProgram(band.program, std::span(values).first(band.support));
+}
+
+bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference, double tolerance,
+                      const std::vector<glm::dvec3>* xProbe) {
     if (x.support != y.support || x.program.nextSupport.size() != y.program.nextSupport.size()) return false;
-    std::vector<glm::dvec3> in(x.support);
-    for (size_t i = 0; i < in.size(); ++i)
-        in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
-    const std::vector<glm::dvec3> px = runBandProgram(x.program, in), py = runBandProgram(y.program, in);
+    const std::vector<glm::dvec3> own = xProbe ? std::vector<glm::dvec3>{} : bandProbe(x), py = bandProbe(y);
+    const std::vector<glm::dvec3>& px = xProbe ? *xProbe : own;
     auto same = [&](uint32_t r, uint32_t q) {
         if (r == kNone || q == kNone) return r == q;
         double most = 0;
@@ -399,7 +410,8 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
     // it is built once; a key without one is remembered too.
     std::map<std::vector<uint32_t>, int> chainOf;
     std::map<int, int> basisOfChain; // TablesOptions::creaseChains: into a.bases, -1 for none
-    std::map<std::vector<uint32_t>, CreaseBand> sharedBands; // the first band of each programKey and end
+    // The first band of each programKey and end, and its points from bandProbe.
+    std::map<std::vector<uint32_t>, std::pair<CreaseBand, std::vector<glm::dvec3>>> sharedBands;
     std::vector<uint32_t> support, key;
     const Topology& topo = L.topo;
     // The feature corner is tried first: an extraordinary vertex, else a regular one with a
@@ -454,11 +466,12 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                     for (CreaseBand& band : chain->bands) {
                         std::vector<uint32_t> shared = programKey(band.key, kProgramSharpness);
                         shared.push_back(&band == &chain->bands.back() ? 1u + uint32_t(chain->end) : 0u);
-                        auto [other, first] = sharedBands.try_emplace(std::move(shared), band);
+                        auto [other, first] = sharedBands.try_emplace(std::move(shared), band, std::vector<glm::dvec3>{});
+                        if (first) other->second.second = bandProbe(band);
                         double difference = 0;
-                        if (!first && sameBandFunction(other->second, band, &difference, 1e-12)) {
-                            band.program = other->second.program;
-                            band.centreRow = other->second.centreRow;
+                        if (!first && sameBandFunction(other->second.first, band, &difference, 1e-12, &other->second.second)) {
+                            band.program = other->second.first.program;
+                            band.centreRow = other->second.first.centreRow;
                         }
                     }
                     // A smooth end goes on with its valence's basis, which the tables hold (TBLS

@@ -76,7 +76,11 @@ std::vector<glm::dvec3> runBandProgram(const BasisProgram& program, std::span<co
 // Whether two bands' programs are the same function: the same points to the bit from the same
 // (arbitrary) support values of size about 1 (`tolerance` > 0: within it); `difference`
 // (optional) gets the largest difference met.
-bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference = nullptr, double tolerance = 0);
+// `xProbe` (optional): bandProbe(x), computed once where x is compared with many bands.
+bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference = nullptr, double tolerance = 0,
+                      const std::vector<glm::dvec3>* xProbe = nullptr);
+// A band's rows from sameBandFunction's support values.
+std::vector<glm::dvec3> bandProbe(const CreaseBand& band);
 
 // The chain of face f of level L with feature corner `corner` over `levels` bands, from a copy
 // of its support's faces (their sharpness; the copy's rim edges infinitely sharp, which no
