@@ -3,6 +3,7 @@
 #include "subdiv/tables_build.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <map>
@@ -45,34 +46,45 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
         key.push_back(value);
         if (sources) sources->push_back(source);
     };
-    // A linear search, as boundarySupport's: supports are small.
+    // Support indices by vertex in a small open-addressing table (at most a quarter full): this
+    // runs for every corner tried of every irregular face at level N and for every band.
+    constexpr size_t kMaxSupport = 2 * size_t(kMaxBasisValence) + 8, kSlots = 1024;
+    static_assert(kSlots >= 4 * (kMaxSupport + 4));
+    std::array<uint32_t, kSlots> slotVertex, slotIndex;
+    slotVertex.fill(kNone);
     auto index = [&](uint32_t v) -> uint32_t {
-        const auto it = std::find(support.begin(), support.end(), v);
-        if (it != support.end()) return uint32_t(it - support.begin());
-        support.push_back(v);
-        return uint32_t(support.size() - 1);
+        for (size_t i = (v * 0x9E3779B1u) >> 22;; i = (i + 1) & (kSlots - 1)) {
+            if (slotVertex[i] == v) return slotIndex[i];
+            if (slotVertex[i] == kNone) {
+                slotVertex[i] = v;
+                slotIndex[i] = uint32_t(support.size());
+                support.push_back(v);
+                return slotIndex[i];
+            }
+        }
     };
-    std::vector<uint32_t> fan;
+    std::array<uint32_t, kMaxBasisValence + 1> fan;
     for (int j = 0; j < 4; ++j) {
         const uint32_t hc = h0f + (fr.rotation + corner + j) % 4;
         if (T.vertexIsNonManifold(T.vertex(hc))) return false;
-        fan.assign(1, hc);
+        size_t fanSize = 0;
+        fan[fanSize++] = hc;
         bool closed = false;
         for (uint32_t h = T.rotateCCW(hc); h != kNone; h = T.rotateCCW(h)) {
             if (h == hc) {
                 closed = true;
                 break;
             }
-            if (fan.size() > kMaxBasisValence) return false;
-            fan.push_back(h);
+            if (fanSize > kMaxBasisValence) return false;
+            fan[fanSize++] = h;
         }
         if (!closed)
             for (uint32_t h = T.rotateCW(hc); h != kNone; h = T.rotateCW(h)) {
-                if (fan.size() > kMaxBasisValence) return false;
-                fan.push_back(h);
+                if (fanSize > kMaxBasisValence) return false;
+                fan[fanSize++] = h;
             }
-        push(uint32_t(fan.size()) << 1 | (closed ? 1u : 0u), kNone);
-        for (uint32_t h : fan) {
+        push(uint32_t(fanSize) << 1 | (closed ? 1u : 0u), kNone);
+        for (uint32_t h : std::span(fan).first(fanSize)) {
             const uint32_t g = T.face(h);
             if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
             if (faces) faces->push_back(g);
@@ -83,7 +95,7 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
                 const bool read = atCorner(v) || atCorner(T.vertex(T.next(x)));
                 push(read ? std::bit_cast<uint32_t>(L.edgeSharpness[T.edge(x)]) : 0u, read ? T.edge(x) : kNone);
             }
-            if (support.size() > 2 * size_t(kMaxBasisValence) + 8) return false;
+            if (support.size() > kMaxSupport) return false;
         }
     }
     for (uint32_t v : corners) push(std::bit_cast<uint32_t>(L.vertexSharpness[v]), v | kVertexEntry);
