@@ -173,62 +173,17 @@ Level localLevel(const Level& L, const std::vector<uint32_t>& support, std::vect
 CreaseBandKind kindOf(const Patch& p) { return {p.boundary, p.crease, p.sharpness}; }
 
 // The program of one band: the rows of `child` (refined from `parent` with stencils `st`) that
-// the patches and the next support read, over the parent's support `input` (basisFromMesh's
-// construction, irregular_basis.cpp, with any patches and support).
+// the patches and the next support read, over the parent's support `input` (stencilRows, as
+// basisFromMesh's, with any patches and support).
 void bandProgram(const Level& child, const LevelStencils& st, const std::vector<uint32_t>& input,
                  uint32_t parentVertices, const std::vector<Patch>& patches, const std::vector<uint32_t>& next,
                  BasisProgram& p, std::vector<std::array<uint32_t, 16>>& controlRows) {
-    const size_t M = input.size();
-    std::vector<uint32_t> inputOf(parentVertices, kNone);
-    for (size_t i = 0; i < M; ++i) inputOf[input[i]] = uint32_t(i);
-    const Level& L = child;
-    std::vector<uint8_t> needed(L.topo.vertexCount(), 0);
+    std::vector<uint8_t> needed(child.topo.vertexCount(), 0);
     for (const Patch& sp : patches)
         for (int i = 0; i < 16; ++i)
             if (!isPhantom(sp.boundary, i)) needed[sp.cv[i]] = 1;
     for (uint32_t v : next) needed[v] = 1;
-    auto markFacePoints = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
-                              const std::vector<StencilEntry>& entries) {
-        for (uint32_t i = 0; i < count; ++i)
-            if (needed[first + i])
-                for (uint32_t k = start[i]; k < start[i + 1]; ++k)
-                    if (entries[k].fromFacePoint) needed[entries[k].index] = 1;
-    };
-    markFacePoints(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
-    markFacePoints(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
-    std::vector<uint32_t> row(needed.size(), kNone);
-    uint32_t rows = 0;
-    for (size_t v = 0; v < needed.size(); ++v)
-        if (needed[v]) row[v] = rows++;
-    p = BasisProgram{};
-    auto in = [&](uint32_t v) {
-        if (inputOf[v] == kNone) throw std::logic_error("crease basis: a row reads outside the support");
-        return inputOf[v];
-    };
-    for (uint32_t i = 0; i < L.facePointCount; ++i) {
-        if (!needed[i]) continue;
-        for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) {
-            p.source.push_back(in(st.faceVertices[k]));
-            p.weight.push_back(1.0f);
-        }
-        p.start.push_back(uint32_t(p.source.size()));
-        p.averaged.push_back(1);
-    }
-    auto weighted = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
-                        const std::vector<StencilEntry>& stencil) {
-        for (uint32_t i = 0; i < count; ++i) {
-            if (!needed[first + i]) continue;
-            for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
-                const StencilEntry& e = stencil[k];
-                p.source.push_back(e.fromFacePoint ? uint32_t(M) + row[e.index] : in(e.index));
-                p.weight.push_back(static_cast<float>(e.weight));
-            }
-            p.start.push_back(uint32_t(p.source.size()));
-            p.averaged.push_back(0);
-        }
-    };
-    weighted(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
-    weighted(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    const std::vector<uint32_t> row = stencilRows(child, st, input, parentVertices, std::move(needed), p);
     // Phantom points are left to the evaluator (gatherControlPoints, from the kind's bits): a
     // phantom's row is kNone.
     controlRows.clear();

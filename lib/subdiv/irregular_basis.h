@@ -114,6 +114,16 @@ IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);
 IrregularBasis buildBoundaryBasis(const BasisConfiguration& configuration, uint32_t levels,
                                   BoundaryRule rule = BoundaryRule::EdgeOnly);
 
+// The rows of one refined level that a basis's program keeps (basisFromMesh's, and each band of
+// a crease chain's, crease_basis.cpp): the child vertices marked `needed`, and the face points
+// their edge and vertex stencils read, in vertex order (face points, edge points, vertex points),
+// each row's entries in its stencil's order as the tables' evaluation reads them (float weights;
+// a face point averaged), reading the parent's support `input` (source i: input[i]'s point) or an
+// earlier row. `p` gets those rows (nothing else); the result is each child vertex's row (kNone
+// where none). Throws std::logic_error where a row reads a parent vertex outside `input`.
+std::vector<uint32_t> stencilRows(const Level& child, const LevelStencils& stencils, const std::vector<uint32_t>& input,
+                                  uint32_t parentVertices, std::vector<uint8_t> needed, BasisProgram& p);
+
 // The weights of K bands (IrregularBasis::weights' layout) from a program over `support` points
 // (2n + 8 for an interior basis), with the builder's own arithmetic (double sums in the program's order, each weight
 // rounded to float once). The program must be valid (TBLS's reader checks every count and index
