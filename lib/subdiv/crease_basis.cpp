@@ -172,6 +172,13 @@ Level localLevel(const Level& L, const std::vector<uint32_t>& support, std::vect
 
 CreaseBandKind kindOf(const Patch& p) { return {p.boundary, p.crease, p.sharpness}; }
 
+// The child of face f (whose frame is pf) at its feature corner (the frame's (u0, v0)), or kNone.
+uint32_t centreChild(const Level& child, uint32_t f, const FaceFrame& pf) {
+    for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf)
+        if (child.faceParent[cf] == f && !(child.frames[cf].u0 > pf.u0) && !(child.frames[cf].v0 > pf.v0)) return cf;
+    return kNone;
+}
+
 // The program of one band: the rows of `child` (refined from `parent` with stencils `st`) that
 // the patches and the next support read, over the parent's support `input` (stencilRows, as
 // basisFromMesh's, with any patches and support).
@@ -251,7 +258,7 @@ bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* differen
 }
 
 bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const SchemeOptions& options,
-                      const TablesOptions& opts, CreaseChain& chain) {
+                      const TablesOptions& opts, CreaseChain& chain, bool sharedPrograms) {
     std::vector<uint32_t> support, faces, key;
     chain = CreaseChain{};
     if (K == 0 || !creaseSupport(L, f, corner, support, chain.key, &faces)) return false;
@@ -317,16 +324,12 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
         identity.resize(child.topo.vertexCount());
         for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
         const FaceFrame& pf = cur.frames[chainFace];
-        uint32_t centre = kNone;
+        const uint32_t centre = centreChild(child, chainFace, pf);
         std::vector<Patch> patches(3);
         for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) {
-            if (child.faceParent[cf] != chainFace) continue;
+            if (child.faceParent[cf] != chainFace || cf == centre) continue;
             const FaceFrame& c = child.frames[cf];
             const int q = (c.u0 > pf.u0 ? 1 : 0) | (c.v0 > pf.v0 ? 2 : 0);
-            if (q == 0) {
-                centre = cf;
-                continue;
-            }
             if (!r.faceRegular[cf]) return false;
             patches[q == 1 ? 0 : q == 3 ? 1 : 2] = gatherPatch(child, cf, 0, identity, r.faceCreaseEdge[cf]);
         }
@@ -367,9 +370,71 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
         cur = std::move(child);
         chainFace = centre;
         curSupport = std::move(next);
+        // With sharedPrograms, a second band whose key is the first's less 1 (and that repeats
+        // it, as above) is the first band again: its program is the first's by programKey, its
+        // kinds less 1. Its level is still made (without stencils), and the next key read there,
+        // so that the bands refined later are refined from the levels they were before (their
+        // rows in those levels' vertex order, the bytes of a program that is the first of its
+        // programKey) and the repetition rests on the same two keys.
+        if (sharedPrograms && uniform && b == 1 && j + 1 < K && key == decremented(chain.bands[0].key) &&
+            aboveOne(key) && programKey(key, 1.0f) == programKey(chain.bands[0].key, 1.0f)) {
+            std::vector<uint8_t> around(cur.topo.faceCount(), 0);
+            around[chainFace] = 1;
+            LevelStencils none;
+            Level third = refineLevel(cur, oneRing(cur.topo, around), options, ptexBase, none, false);
+            const uint32_t thirdFace = centreChild(third, chainFace, cur.frames[chainFace]);
+            std::vector<uint32_t> thirdSupport, thirdKey;
+            if (thirdFace != kNone && creaseSupport(third, thirdFace, 0, thirdSupport, thirdKey) &&
+                thirdKey == decremented(key)) {
+                CreaseBand second = chain.bands.back();
+                second.key = key;
+                second.borrowed = true;
+                for (CreaseBandKind& k : second.kind) k.sharpness = decrement(k.sharpness);
+                chain.bands.push_back(std::move(second));
+                key = std::move(thirdKey);
+                cur = std::move(third);
+                chainFace = thirdFace;
+                curSupport = std::move(thirdSupport);
+                repeating = true;
+                ++j;
+            }
+        }
     }
     return true;
 }
+
+namespace {
+
+// The first band of each programKey and end, and its points from bandProbe.
+using SharedBands = std::map<std::vector<uint32_t>, std::pair<CreaseBand, std::vector<glm::dvec3>>>;
+
+// Gives each band of `chain` the program of the first band of its programKey and end (in
+// `shared`, where the band is added if it is the first) where that is the same function to
+// 1e-12. False, with `shared` as it was (and `chain` to be built again), where a borrowed band
+// would keep its program.
+bool shareBands(CreaseChain& chain, SharedBands& shared) {
+    std::vector<SharedBands::iterator> added;
+    for (CreaseBand& band : chain.bands) {
+        std::vector<uint32_t> key = programKey(band.key, kProgramSharpness);
+        key.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
+        auto [other, first] = shared.try_emplace(std::move(key), band, std::vector<glm::dvec3>{});
+        if (first) {
+            other->second.second = bandProbe(band);
+            added.push_back(other);
+        }
+        double difference = 0;
+        if (!first && sameBandFunction(other->second.first, band, &difference, 1e-12, &other->second.second)) {
+            band.program = other->second.first.program;
+            band.centreRow = other->second.first.centreRow;
+        } else if (band.borrowed) {
+            for (auto x : added) shared.erase(x);
+            return false;
+        }
+    }
+    return true;
+}
+
+} // namespace
 
 void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, uint32_t basisLevels,
                      std::vector<uint8_t>& T, AdaptiveLevels& a) {
@@ -377,8 +442,7 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
     // it is built once; a key without one is remembered too.
     std::map<std::vector<uint32_t>, int> chainOf;
     std::map<int, int> basisOfChain; // TablesOptions::creaseChains: into a.bases, -1 for none
-    // The first band of each programKey and end, and its points from bandProbe.
-    std::map<std::vector<uint32_t>, std::pair<CreaseBand, std::vector<glm::dvec3>>> sharedBands;
+    SharedBands sharedBands;
     std::vector<uint32_t> support, key;
     const Topology& topo = L.topo;
     // The feature corner is tried first: an extraordinary vertex, else a regular one with a
@@ -413,7 +477,7 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
             auto [it, added] = chainOf.try_emplace(key, -1);
             if (added) {
                 CreaseChain chain;
-                if (buildCreaseChain(L, f, c, a.K, options, opts, chain)) {
+                if (buildCreaseChain(L, f, c, a.K, options, opts, chain, opts.creaseChains)) {
                     a.creaseChains.push_back(std::move(chain));
                     it->second = int(a.creaseChains.size() - 1);
                 }
@@ -429,17 +493,15 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                     // Bands whose keys agree once every sharpness from 1 on is clamped, and that
                     // end alike, run the same function (bench_crease_bases checks it: to 1e-16),
                     // so they share one program, which TBLS then stores once; only their kinds'
-                    // sharpness differs.
-                    for (CreaseBand& band : chain->bands) {
-                        std::vector<uint32_t> shared = programKey(band.key, kProgramSharpness);
-                        shared.push_back(&band == &chain->bands.back() ? 1u + uint32_t(chain->end) : 0u);
-                        auto [other, first] = sharedBands.try_emplace(std::move(shared), band, std::vector<glm::dvec3>{});
-                        if (first) other->second.second = bandProbe(band);
-                        double difference = 0;
-                        if (!first && sameBandFunction(other->second.first, band, &difference, 1e-12, &other->second.second)) {
-                            band.program = other->second.first.program;
-                            band.centreRow = other->second.first.centreRow;
-                        }
+                    // sharpness differs. A borrowed band that is not replaced so would keep
+                    // another band's bits: its chain is built again with every band its own.
+                    if (!shareBands(*chain, sharedBands)) {
+                        CreaseChain own;
+                        if (!buildCreaseChain(L, f, c, a.K, options, opts, own))
+                            throw std::logic_error("crease basis: a chain with borrowed bands has none of its own");
+                        a.creaseChains[size_t(it->second)] = own;
+                        *chain = std::move(own);
+                        if (!shareBands(*chain, sharedBands)) throw std::logic_error("crease basis: own bands borrowed");
                     }
                     // A smooth end goes on with its valence's basis, which the tables hold (TBLS
                     // version 8 names it), even where no face of its own draws from it.

@@ -82,7 +82,7 @@ Level makeBaseLevel(Topology topo, Sharpness sharpness) {
 }
 
 Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
-                  const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
+                  const std::vector<uint32_t>& ptexBase, LevelStencils& st, bool withStencils) {
     const Topology& T = P.topo;
     const uint32_t F = T.faceCount(), E = T.edgeCount(), V = T.vertexCount();
     Crease crease(toSdcOptions(options));
@@ -222,6 +222,7 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
     OpenSubdiv::Sdc::Scheme<OpenSubdiv::Sdc::SCHEME_CATMARK> scheme(toSdcOptions(options));
     // Rows are appended in child vertex order (face, edge, vertex points by parent index).
     st = LevelStencils{};
+    if (!withStencils) return C;
     st.faceStart.reserve(C.facePointCount + 1);
     st.faceVertices.reserve(4 * size_t(C.facePointCount)); // quads after the first level
     for (uint32_t f = 0; f < F; ++f)
