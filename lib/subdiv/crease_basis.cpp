@@ -466,10 +466,15 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                                   L.edgeSharpness[topo.edge(ring[size_t(second)])];
         return straight ? 2 : 1;
     };
+    std::vector<int8_t> rankOf(topo.vertexCount(), -1);
     for (uint32_t f = 0; f < topo.faceCount(); ++f) {
         if (!T[f] || topo.faceSize(f) != 4) continue;
         int order[4] = {0, 1, 2, 3}, ranks[4];
-        for (int c = 0; c < 4; ++c) ranks[c] = rank(topo.vertex(topo.faceHalfedge(f) + (L.frames[f].rotation + c) % 4));
+        for (int c = 0; c < 4; ++c) {
+            const uint32_t v = topo.vertex(topo.faceHalfedge(f) + (L.frames[f].rotation + c) % 4);
+            if (rankOf[v] < 0) rankOf[v] = int8_t(rank(v)); // a vertex is met from each of its faces
+            ranks[c] = rankOf[v];
+        }
         std::stable_sort(order, order + 4, [&](int x, int y) { return ranks[x] < ranks[y]; });
         for (int c : order) {
             if (ranks[c] == 2) break; // a smooth regular corner has no chain

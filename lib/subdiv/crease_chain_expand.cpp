@@ -80,16 +80,21 @@ constexpr double kHalf[2][4][4] = {
     {{0.5, 0.5, 0, 0}, {0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}},
     {{0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}, {0, 0, 0.5, 0.5}}};
 
-// Quadrant (hu, hv) of patch P, separably: along u, then along v.
-void splitPatch(const WeightRows& P, int hu, int hv, WeightRows& T, WeightRows& Q) {
+// Half hu of patch P along u (the same for both halves along v: splitAlongV).
+void splitAlongU(const WeightRows& P, int hu, WeightRows& T) {
     const size_t W = P.W;
     T.assign(16, P.M);
-    Q.assign(16, P.M);
     for (int b = 0; b < 4; ++b)
         for (int i = 0; i < 4; ++i)
             for (int a = 0; a < 4; ++a)
                 if (const double w = kHalf[hu][i][a]; w != 0)
                     addScaled(T.row(size_t(i + 4 * b)), w, P.row(size_t(a + 4 * b)), W);
+}
+
+// Quadrant (hu, hv) of patch P, separably: along u (T: splitAlongU(P, hu)), then along v.
+void splitAlongV(const WeightRows& T, int hv, WeightRows& Q) {
+    const size_t W = T.W;
+    Q.assign(16, T.M);
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i)
             for (int b = 0; b < 4; ++b)
@@ -167,13 +172,20 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
     }
     if (chain.end == CreaseEnd::Regular) {
         // The corner's patch P, split: its quadrants 1..3 are band k's, its corner quadrant the next P.
+        // Quadrants 1 (hu 1, hv 0), 3 (1, 1) and 2 (0, 1) in that order, then the corner (0, 0);
+        // each half along u made once (T1, T0).
+        WeightRows T0;
         for (++k; k <= K; ++k) {
-            constexpr int half[3][2] = {{1, 0}, {1, 1}, {0, 1}};
-            for (int q = 0; q < 3; ++q) {
-                splitPatch(P, half[q][0], half[q][1], T, Q);
-                storePatch(k, q, Q);
-            }
-            splitPatch(P, 0, 0, T, Q);
+            splitAlongU(P, 1, T);
+            splitAlongV(T, 0, Q);
+            storePatch(k, 0, Q);
+            splitAlongV(T, 1, Q);
+            storePatch(k, 1, Q);
+            splitAlongU(P, 0, T0);
+            splitAlongV(T0, 1, Q);
+            storePatch(k, 2, Q);
+            if (k == K) break; // no band below the last
+            splitAlongV(T0, 0, Q);
             std::swap(P, Q);
         }
     } else if (k < K) { // Smooth: the per-valence basis over the end's next support
