@@ -414,6 +414,15 @@ using SharedBands = std::map<std::vector<uint32_t>, std::pair<CreaseBand, std::v
 // would keep its program.
 bool shareBands(CreaseChain& chain, SharedBands& shared) {
     std::vector<SharedBands::iterator> added;
+    // A band that holds the program of the band before it (a repeated band), with the same
+    // entry, is that band's case again.
+    std::vector<uint8_t> repeats(chain.bands.size(), 0);
+    for (size_t b = 1; b < chain.bands.size(); ++b)
+        repeats[b] = chain.bands[b].support == chain.bands[b - 1].support &&
+                     chain.bands[b].centreRow == chain.bands[b - 1].centreRow &&
+                     sameProgramBytes(chain.bands[b].program, chain.bands[b - 1].program);
+    SharedBands::iterator previous = shared.end(); // the entry of the band before
+    bool previousSame = false;
     for (CreaseBand& band : chain.bands) {
         std::vector<uint32_t> key = programKey(band.key, kProgramSharpness);
         key.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
@@ -423,7 +432,13 @@ bool shareBands(CreaseChain& chain, SharedBands& shared) {
             added.push_back(other);
         }
         double difference = 0;
-        if (!first && sameBandFunction(other->second.first, band, &difference, 1e-12, &other->second.second)) {
+        const bool same = !first && (repeats[size_t(&band - chain.bands.data())] && other == previous
+                                         ? previousSame
+                                         : sameBandFunction(other->second.first, band, &difference, 1e-12,
+                                                            &other->second.second));
+        previous = other;
+        previousSame = first || same; // a first band is its entry: a band repeating it is the same
+        if (same) {
             band.program = other->second.first.program;
             band.centreRow = other->second.first.centreRow;
         } else if (band.borrowed) {

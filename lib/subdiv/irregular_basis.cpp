@@ -345,6 +345,12 @@ bool boundarySupportOf(const Level& L, uint32_t f, const void* context, std::vec
 
 } // namespace
 
+bool sameProgramBytes(const BasisProgram& x, const BasisProgram& y) {
+    return x.start == y.start && x.source == y.source && x.averaged == y.averaged && x.controlRow == y.controlRow &&
+           x.nextSupport == y.nextSupport && x.weight.size() == y.weight.size() &&
+           std::memcmp(x.weight.data(), y.weight.data(), x.weight.size() * sizeof(float)) == 0;
+}
+
 std::vector<uint32_t> stencilRows(const Level& L, const LevelStencils& st, const std::vector<uint32_t>& input,
                                   uint32_t parentVertices, std::vector<uint8_t> needed, BasisProgram& p) {
     const size_t M = input.size();

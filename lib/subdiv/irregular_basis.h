@@ -37,6 +37,9 @@ struct BasisProgram {
     uint32_t rows() const { return static_cast<uint32_t>(start.size() - 1); }
 };
 
+// Whether two programs are the same, entry for entry (weights compared as bits).
+bool sameProgramBytes(const BasisProgram& x, const BasisProgram& y);
+
 // Which faces a basis draws: those around one extraordinary vertex with `valence` faces, the other
 // vertices of the faces around their corners regular. Interior: Stam's setting, one basis per
 // valence (the faces around the vertex are alike up to rotation). On a boundary (a UV seam or a

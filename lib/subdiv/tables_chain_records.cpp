@@ -5,7 +5,6 @@
 
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <stdexcept>
 
@@ -46,14 +45,6 @@ std::vector<uint8_t> programBytes(const BasisProgram& p, uint32_t support) {
     w.writeArray(palette);
     writeStream(w, s);
     return w.take();
-}
-
-// Whether two programs have the same bytes (weights compared as bits): a chain's bands that
-// share a program hold copies of it, which need not be encoded again.
-bool sameProgramBytes(const BasisProgram& x, const BasisProgram& y) {
-    return x.start == y.start && x.source == y.source && x.averaged == y.averaged && x.controlRow == y.controlRow &&
-           x.nextSupport == y.nextSupport && x.weight.size() == y.weight.size() &&
-           std::memcmp(x.weight.data(), y.weight.data(), x.weight.size() * sizeof(float)) == 0;
 }
 
 BasisProgram readChainProgram(ByteReader& r, const std::string& what, uint32_t& support) {
@@ -129,6 +120,7 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
     w.write<uint32_t>(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
     if (c.end == CreaseEnd::Smooth) w.write<uint32_t>(c.endBasis);
     w.write<uint32_t>(static_cast<uint32_t>(c.bands.size()));
+    // A chain's bands that share a program hold copies of it, which need not be encoded again.
     const CreaseBand* previous = nullptr;
     uint32_t previousIndex = 0;
     for (const CreaseBand& band : c.bands) {
