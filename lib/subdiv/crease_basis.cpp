@@ -405,7 +405,8 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
 
 namespace {
 
-// The first band of each programKey and end, and its points from bandProbe.
+// The first band of each programKey and end, and its points from bandProbe (made when a later
+// band is first compared with it: most first bands never are).
 using SharedBands = std::map<std::vector<uint32_t>, std::pair<CreaseBand, std::vector<glm::dvec3>>>;
 
 // Gives each band of `chain` the program of the first band of its programKey and end (in
@@ -427,15 +428,14 @@ bool shareBands(CreaseChain& chain, SharedBands& shared) {
         std::vector<uint32_t> key = programKey(band.key, kProgramSharpness);
         key.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
         auto [other, first] = shared.try_emplace(std::move(key), band, std::vector<glm::dvec3>{});
-        if (first) {
-            other->second.second = bandProbe(band);
-            added.push_back(other);
-        }
-        double difference = 0;
-        const bool same = !first && (repeats[size_t(&band - chain.bands.data())] && other == previous
-                                         ? previousSame
-                                         : sameBandFunction(other->second.first, band, &difference, 1e-12,
-                                                            &other->second.second));
+        if (first) added.push_back(other);
+        auto compare = [&, &entry = other->second] {
+            if (entry.second.empty()) entry.second = bandProbe(entry.first); // probed when first compared
+            double difference = 0;
+            return sameBandFunction(entry.first, band, &difference, 1e-12, &entry.second);
+        };
+        const bool same =
+            !first && (repeats[size_t(&band - chain.bands.data())] && other == previous ? previousSame : compare());
         previous = other;
         previousSame = first || same; // a first band is its entry: a band repeating it is the same
         if (same) {
