@@ -509,7 +509,8 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
                 IrregularBasis basis;
                 if (fresh) {
-                    auto chain = std::make_shared<CreaseChain>(a.creaseChains[size_t(it->second)]);
+                    // The chain moves into its basis (a.creaseChains are the prototype's).
+                    auto chain = std::make_shared<CreaseChain>(std::move(a.creaseChains[size_t(it->second)]));
                     // Bands whose keys agree once every sharpness from 1 on is clamped, and that
                     // end alike, run the same function (bench_crease_bases checks it: to 1e-16),
                     // so they share one program, which TBLS then stores once; only their kinds'
@@ -519,7 +520,6 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                         CreaseChain own;
                         if (!buildCreaseChain(L, f, c, a.K, options, opts, own))
                             throw std::logic_error("crease basis: a chain with borrowed bands has none of its own");
-                        a.creaseChains[size_t(it->second)] = own;
                         *chain = std::move(own);
                         if (!shareBands(*chain, sharedBands)) throw std::logic_error("crease basis: own bands borrowed");
                     }
