@@ -380,8 +380,7 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
             aboveOne(key) && programKey(key, 1.0f) == programKey(chain.bands[0].key, 1.0f)) {
             std::vector<uint8_t> around(cur.topo.faceCount(), 0);
             around[chainFace] = 1;
-            LevelStencils none;
-            Level third = refineLevel(cur, oneRing(cur.topo, around), options, ptexBase, none, false);
+            Level third = refineLevelTopology(cur, oneRing(cur.topo, around), options, ptexBase);
             const uint32_t thirdFace = centreChild(third, chainFace, cur.frames[chainFace]);
             std::vector<uint32_t> thirdSupport, thirdKey;
             if (thirdFace != kNone && creaseSupport(third, thirdFace, 0, thirdSupport, thirdKey) &&

@@ -64,11 +64,14 @@ Level makeBaseLevel(Topology topo, Sharpness sharpness);
 // stencils of every new vertex with OpenSubdiv's Sdc masks. Face points are also made for every
 // face around a vertex of a selected face, because the edge and vertex rules read them.
 // `ptexBase` maps a base face to its first ptex id (used when refining level 0).
-// `withStencils` false: the level only (its topology, sharpness, rules and frames; `stencils`
-// left empty), where its points are not needed.
 Level refineLevel(const Level& parent, const std::vector<uint8_t>& selected,
                   const SchemeOptions& options, const std::vector<uint32_t>& ptexBase,
-                  LevelStencils& stencils, bool withStencils = true);
+                  LevelStencils& stencils);
+
+// refineLevel's level without its stencils (topology, sharpness, rules, frames), where the
+// points are not needed.
+Level refineLevelTopology(const Level& parent, const std::vector<uint8_t>& selected,
+                          const SchemeOptions& options, const std::vector<uint32_t>& ptexBase);
 
 // Faces sharing a vertex with a marked face: what must be refined with the marked faces so that
 // their children have complete neighbourhoods (the isolation of tables.h).
