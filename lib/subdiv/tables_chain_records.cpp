@@ -3,6 +3,7 @@
 #include "subdiv/crease_basis.h"
 #include "subdiv/tables_stream.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <memory>
@@ -19,6 +20,66 @@ constexpr uint32_t kMaxChainRowsPerPoint = 3;
 constexpr uint32_t kMaxChainEntriesPerRow = 16;
 // creaseSupport's faces around four corners of at most kMaxBasisValence faces each.
 constexpr uint32_t kMaxChainSupport = 4 * 2 * kMaxBasisValence + 16;
+
+// The program with its rows in a canonical order, and where each row went (`moved[old] = new`).
+// A row's value depends only on its own entries, in their order, and the rows it reads: any order
+// in which a row comes after the rows it reads expands to the same weights, bit for bit. Chains
+// of different faces often build the same program with its rows in another order (the copy's
+// faces are numbered as the mesh numbers them); in the canonical one they are the same bytes, and
+// the chunk stores them once. Order: in rounds, the rows whose read rows are all placed, sorted
+// by their entries (sources as support points or placed rows' new numbers, weights' bits); equal
+// rows keep their order.
+BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vector<uint32_t>& moved) {
+    const uint32_t n = p.rows();
+    moved.assign(n, kNone);
+    using Key = std::vector<uint64_t>;
+    auto key = [&](uint32_t r) {
+        Key k{p.averaged[r]};
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+            const uint32_t s = p.source[e];
+            k.push_back(s < support ? s : uint64_t(support) + moved[s - support]);
+            k.push_back(p.averaged[r] ? 0 : std::bit_cast<uint32_t>(p.weight[e]));
+        }
+        return k;
+    };
+    std::vector<uint32_t> order;
+    order.reserve(n);
+    while (order.size() < n) {
+        std::vector<std::pair<Key, uint32_t>> ready;
+        for (uint32_t r = 0; r < n; ++r) {
+            if (moved[r] != kNone) continue;
+            bool placed = true;
+            for (uint32_t e = p.start[r]; e < p.start[r + 1] && placed; ++e)
+                placed = p.source[e] < support || (p.source[e] - support < n && moved[p.source[e] - support] != kNone);
+            if (placed) ready.emplace_back(key(r), r);
+        }
+        if (ready.empty()) { // a row reads a later or missing row: written as it is, for the reader to refuse
+            for (uint32_t r = 0; r < n; ++r) moved[r] = r;
+            return p;
+        }
+        std::stable_sort(ready.begin(), ready.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (const auto& [k, r] : ready) {
+            moved[r] = static_cast<uint32_t>(order.size());
+            order.push_back(r);
+        }
+    }
+    BasisProgram c; // start holds its first 0
+    for (uint32_t r : order) {
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+            const uint32_t s = p.source[e];
+            c.source.push_back(s < support ? s : support + moved[s - support]);
+            c.weight.push_back(p.weight[e]);
+        }
+        c.start.push_back(static_cast<uint32_t>(c.source.size()));
+        c.averaged.push_back(p.averaged[r]);
+    }
+    // (Rows out of range stay so: the reader refuses them.)
+    for (size_t i = 0; i < c.controlRow.size(); ++i)
+        c.controlRow[i] = p.controlRow[i] < n ? moved[p.controlRow[i]] : p.controlRow[i];
+    c.nextSupport.reserve(p.nextSupport.size());
+    for (uint32_t x : p.nextSupport) c.nextSupport.push_back(x < n ? moved[x] : x);
+    return c;
+}
 
 std::vector<uint8_t> programBytes(const BasisProgram& p, uint32_t support) {
     ByteWriter w;
@@ -120,8 +181,9 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
     w.write<uint32_t>(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
     if (c.end == CreaseEnd::Smooth) w.write<uint32_t>(c.endBasis);
     w.write<uint32_t>(static_cast<uint32_t>(c.bands.size()));
+    std::vector<uint32_t> moved;
     for (const CreaseBand& band : c.bands) {
-        std::vector<uint8_t> bytes = programBytes(band.program, band.support);
+        std::vector<uint8_t> bytes = programBytes(canonicalProgram(band.program, band.support, moved), band.support);
         const auto [it, added] = programs.try_emplace(std::move(bytes), static_cast<uint32_t>(programs.size()));
         w.write<uint32_t>(it->second);
         if (added) w.writeArray(it->first);
@@ -129,7 +191,7 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
     }
     if (c.end == CreaseEnd::Regular) {
         writeKind(w, c.bands.back().centreKind);
-        for (uint32_t x : c.bands.back().centreRow) w.write<uint32_t>(x + 1);
+        for (uint32_t x : c.bands.back().centreRow) w.write<uint32_t>(x < moved.size() ? moved[x] + 1 : x + 1);
     }
 }
 
