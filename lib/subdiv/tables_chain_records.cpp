@@ -1,12 +1,14 @@
 #include "subdiv/tables_chain_records.h"
 
 #include "subdiv/crease_basis.h"
+#include "subdiv/tables_program_dictionary.h"
 #include "subdiv/tables_stream.h"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 namespace limn {
@@ -20,66 +22,6 @@ constexpr uint32_t kMaxChainRowsPerPoint = 3;
 constexpr uint32_t kMaxChainEntriesPerRow = 16;
 // creaseSupport's faces around four corners of at most kMaxBasisValence faces each.
 constexpr uint32_t kMaxChainSupport = 4 * 2 * kMaxBasisValence + 16;
-
-// The program with its rows in a canonical order, and where each row went (`moved[old] = new`).
-// A row's value depends only on its own entries, in their order, and the rows it reads: any order
-// in which a row comes after the rows it reads expands to the same weights, bit for bit. Chains
-// of different faces often build the same program with its rows in another order (the copy's
-// faces are numbered as the mesh numbers them); in the canonical one they are the same bytes, and
-// the chunk stores them once. Order: in rounds, the rows whose read rows are all placed, sorted
-// by their entries (sources as support points or placed rows' new numbers, weights' bits); equal
-// rows keep their order.
-BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vector<uint32_t>& moved) {
-    const uint32_t n = p.rows();
-    moved.assign(n, kNone);
-    using Key = std::vector<uint64_t>;
-    auto key = [&](uint32_t r) {
-        Key k{p.averaged[r]};
-        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
-            const uint32_t s = p.source[e];
-            k.push_back(s < support ? s : uint64_t(support) + moved[s - support]);
-            k.push_back(p.averaged[r] ? 0 : std::bit_cast<uint32_t>(p.weight[e]));
-        }
-        return k;
-    };
-    std::vector<uint32_t> order;
-    order.reserve(n);
-    while (order.size() < n) {
-        std::vector<std::pair<Key, uint32_t>> ready;
-        for (uint32_t r = 0; r < n; ++r) {
-            if (moved[r] != kNone) continue;
-            bool placed = true;
-            for (uint32_t e = p.start[r]; e < p.start[r + 1] && placed; ++e)
-                placed = p.source[e] < support || (p.source[e] - support < n && moved[p.source[e] - support] != kNone);
-            if (placed) ready.emplace_back(key(r), r);
-        }
-        if (ready.empty()) { // a row reads a later or missing row: written as it is, for the reader to refuse
-            for (uint32_t r = 0; r < n; ++r) moved[r] = r;
-            return p;
-        }
-        std::stable_sort(ready.begin(), ready.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (const auto& [k, r] : ready) {
-            moved[r] = static_cast<uint32_t>(order.size());
-            order.push_back(r);
-        }
-    }
-    BasisProgram c; // start holds its first 0
-    for (uint32_t r : order) {
-        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
-            const uint32_t s = p.source[e];
-            c.source.push_back(s < support ? s : support + moved[s - support]);
-            c.weight.push_back(p.weight[e]);
-        }
-        c.start.push_back(static_cast<uint32_t>(c.source.size()));
-        c.averaged.push_back(p.averaged[r]);
-    }
-    // (Rows out of range stay so: the reader refuses them.)
-    for (size_t i = 0; i < c.controlRow.size(); ++i)
-        c.controlRow[i] = p.controlRow[i] < n ? moved[p.controlRow[i]] : p.controlRow[i];
-    c.nextSupport.reserve(p.nextSupport.size());
-    for (uint32_t x : p.nextSupport) c.nextSupport.push_back(x < n ? moved[x] : x);
-    return c;
-}
 
 std::vector<uint8_t> programBytes(const BasisProgram& p, uint32_t support) {
     ByteWriter w;
@@ -158,6 +100,36 @@ BasisProgram readChainProgram(ByteReader& r, const std::string& what, uint32_t& 
     return p;
 }
 
+// Version 9's kind: a varint boundary | crease << 4 | how << 8, the sharpness by `how`: 0 none
+// (0), 1 the previous band's in that quadrant less 1, 2 the previous band's, 3 its 4 raw bytes
+// (a crease's sharpness counts down band by band).
+void writeCompactKind(std::vector<uint8_t>& s, const CreaseBandKind& k, float previous) {
+    const uint32_t bits = std::bit_cast<uint32_t>(k.sharpness);
+    const uint32_t how = bits == 0 ? 0u : bits == std::bit_cast<uint32_t>(previous - 1.0f) ? 1u
+                         : bits == std::bit_cast<uint32_t>(previous) ? 2u : 3u;
+    writeVarint(s, uint32_t(k.boundary) | uint32_t(k.crease) << 4 | how << 8);
+    if (how == 3)
+        for (int i = 0; i < 4; ++i) s.push_back(static_cast<uint8_t>(bits >> (8 * i)));
+}
+
+// A kind's checks: a single-crease patch has one crease edge, not on its boundary; infinitely
+// sharp at most.
+void checkKind(ByteReader& r, uint32_t bits, const CreaseBandKind& k, const std::string& what) {
+    if (bits >> 8 || (k.crease & (k.crease - 1)) || (k.crease & k.boundary) ||
+        !(k.sharpness >= 0 && k.sharpness <= kInfiniteSharpness) || (k.crease && k.sharpness == 0))
+        r.fail(what + " has a bad patch kind");
+}
+
+CreaseBandKind readCompactKind(ByteReader& r, StreamReader& in, float previous, const std::string& what) {
+    const uint64_t code = in.varint();
+    if (code >> 10) r.fail(what + " has a bad patch kind");
+    const uint32_t how = static_cast<uint32_t>(code >> 8), bits = static_cast<uint32_t>(code & 0xFF);
+    const float sharpness = how == 0 ? 0.0f : how == 1 ? previous - 1.0f : how == 2 ? previous : in.rawFloat();
+    CreaseBandKind k{uint8_t(bits & 15), uint8_t(bits >> 4), sharpness};
+    checkKind(r, bits, k, what);
+    return k;
+}
+
 void writeKind(ByteWriter& w, const CreaseBandKind& k) {
     w.write<uint32_t>(uint32_t(k.boundary) | uint32_t(k.crease) << 4);
     w.write<float>(k.sharpness);
@@ -166,42 +138,82 @@ void writeKind(ByteWriter& w, const CreaseBandKind& k) {
 CreaseBandKind readKind(ByteReader& r, const std::string& what) {
     const uint32_t bits = r.read<uint32_t>();
     CreaseBandKind k{uint8_t(bits & 15), uint8_t(bits >> 4), r.read<float>()};
-    // A single-crease patch has one crease edge, not on its boundary; infinitely sharp at most.
-    if (bits >> 8 || (k.crease & (k.crease - 1)) || (k.crease & k.boundary) ||
-        !(k.sharpness >= 0 && k.sharpness <= kInfiniteSharpness) || (k.crease && k.sharpness == 0))
-        r.fail(what + " has a bad patch kind");
+    checkKind(r, bits, k, what);
     return k;
 }
 
 } // namespace
 
-void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& programs) {
+void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& programs, ProgramDictionary* dictionary) {
     if (!b.chain) throw std::logic_error("TBLS: a chain basis without its chain");
     const CreaseChain& c = *b.chain;
-    w.write<uint32_t>(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
-    if (c.end == CreaseEnd::Smooth) w.write<uint32_t>(c.endBasis);
-    w.write<uint32_t>(static_cast<uint32_t>(c.bands.size()));
+    // Version 8: u32 fields, the programs' own bytes; version 9: one stream of varints, the
+    // programs through the chunk's dictionary (tables_program_dictionary.h).
+    std::vector<uint8_t> s;
+    auto number = [&](uint32_t x) {
+        if (dictionary)
+            writeVarint(s, x);
+        else
+            w.write<uint32_t>(x);
+    };
+    number(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
+    if (c.end == CreaseEnd::Smooth) number(c.endBasis);
+    number(static_cast<uint32_t>(c.bands.size()));
     std::vector<uint32_t> moved;
+    std::array<float, 3> previous{};
     for (const CreaseBand& band : c.bands) {
-        std::vector<uint8_t> bytes = programBytes(canonicalProgram(band.program, band.support, moved), band.support);
+        const BasisProgram canonical = canonicalProgram(band.program, band.support, moved);
+        std::vector<uint8_t> bytes = programBytes(canonical, band.support);
         const auto [it, added] = programs.try_emplace(std::move(bytes), static_cast<uint32_t>(programs.size()));
-        w.write<uint32_t>(it->second);
-        if (added) w.writeArray(it->first);
-        for (const CreaseBandKind& k : band.kind) writeKind(w, k);
+        number(it->second);
+        if (added && dictionary) {
+            writeVarint(s, canonical.nextSupport.size());
+            writeDictionaryProgram(s, canonical, *dictionary);
+        } else if (added) {
+            w.writeArray(it->first);
+        }
+        for (size_t q = 0; q < 3; ++q) {
+            if (dictionary)
+                writeCompactKind(s, band.kind[q], previous[q]);
+            else
+                writeKind(w, band.kind[q]);
+            previous[q] = band.kind[q].sharpness;
+        }
     }
     if (c.end == CreaseEnd::Regular) {
-        writeKind(w, c.bands.back().centreKind);
-        for (uint32_t x : c.bands.back().centreRow) w.write<uint32_t>(x < moved.size() ? moved[x] + 1 : x + 1);
+        if (dictionary)
+            writeCompactKind(s, c.bands.back().centreKind, 0.0f);
+        else
+            writeKind(w, c.bands.back().centreKind);
+        // (A row out of range, from damaged tables, stays so: the reader refuses it.)
+        for (uint32_t x : c.bands.back().centreRow) number(x < moved.size() ? moved[x] + 1 : x + 1);
     }
+    if (dictionary) writeStream(w, s);
 }
 
 IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t valence, uint32_t M, uint32_t K,
-                              const std::vector<IrregularBasis>& earlier, ChainPrograms& programs) {
+                              const std::vector<IrregularBasis>& earlier, ChainPrograms& programs,
+                              ProgramDictionary* dictionary) {
     auto chain = std::make_shared<CreaseChain>();
     CreaseChain& c = *chain;
-    const uint32_t end = r.read<uint32_t>();
-    const uint32_t endBasis = end == 1 ? r.read<uint32_t>() : kNone;
-    const uint32_t bands = r.read<uint32_t>();
+    // Version 9: the record's fields are varints of one stream (writeChainBasis).
+    std::optional<StreamReader> in;
+    if (dictionary) in.emplace(r, what);
+    auto number = [&]() -> uint32_t {
+        if (!in) return r.read<uint32_t>();
+        const uint64_t x = in->varint();
+        if (x > 0xFFFFFFFFu) in->fail("a number out of range");
+        return static_cast<uint32_t>(x);
+    };
+    std::array<float, 3> previous{};
+    auto kind = [&](size_t q, const std::string& name) {
+        const CreaseBandKind k = in ? readCompactKind(r, *in, previous[q], name) : readKind(r, name);
+        previous[q] = k.sharpness;
+        return k;
+    };
+    const uint32_t end = number();
+    const uint32_t endBasis = end == 1 ? number() : kNone;
+    const uint32_t bands = number();
     if (end > 2 || bands < 1 || bands > K || K > uint32_t(kMaxDepth) || M < 4 || M > kMaxChainSupport ||
         (end == 1 && (valence < 3 || valence == 4 || valence > kMaxBasisValence || bands == K)) ||
         (end != 1 && valence != 0) || (end == 0 && bands != K))
@@ -221,9 +233,15 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
     uint32_t support = M;
     for (uint32_t j = 0; j < bands; ++j) {
         const std::string band = what + " band " + std::to_string(j + 1);
-        const uint32_t index = r.read<uint32_t>();
+        const uint32_t index = number();
         if (index > programs.programs.size()) r.fail(band + " names a missing program");
-        if (index == programs.programs.size()) {
+        if (index == programs.programs.size() && in) { // over this band's support
+            const uint64_t next = in->varint();
+            if (next > kMaxChainSupport) in->fail(band + " has a bad support size");
+            programs.programs.push_back(readDictionaryProgram(*in, support, uint64_t(kMaxChainRowsPerPoint) * support,
+                                                              static_cast<uint32_t>(next), true, *dictionary));
+            programs.support.push_back(support);
+        } else if (index == programs.programs.size()) {
             uint32_t s = 0;
             programs.programs.push_back(readChainProgram(r, band + " program", s));
             programs.support.push_back(s);
@@ -235,7 +253,7 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
         CreaseBand b;
         b.program = programs.programs[index];
         b.support = support;
-        for (CreaseBandKind& k : b.kind) k = readKind(r, band);
+        for (size_t q = 0; q < 3; ++q) b.kind[q] = kind(q, band);
         c.bands.push_back(std::move(b));
         support = static_cast<uint32_t>(c.bands.back().program.nextSupport.size());
     }
@@ -243,16 +261,18 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
         r.fail(what + "'s last band has a bad next support for its end");
     if (c.end == CreaseEnd::Regular) {
         CreaseBand& last = c.bands.back();
-        last.centreKind = readKind(r, what + " end");
+        previous[0] = 0.0f;
+        last.centreKind = kind(0, what + " end");
         if (last.centreKind.crease) r.fail(what + "'s regular end has a crease");
         // 0: no row (a boundary phantom, which the expansion makes from the rows beside it), as
         // the program's control rows store it.
         for (uint32_t& x : last.centreRow) {
-            const uint32_t v = r.read<uint32_t>();
+            const uint32_t v = number();
             if (v > last.program.rows()) r.fail(what + "'s regular end names a missing row");
             x = v == 0 ? kNone : v - 1;
         }
     }
+    if (in) in->finish();
     IrregularBasis basis;
     if (!expandCreaseChain(c, K, basis, endOf)) r.fail(what + " cannot be expanded");
     for (float x : basis.weights)

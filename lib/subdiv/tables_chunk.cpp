@@ -3,6 +3,7 @@
 #include "subdiv/tables_stream.h"
 #include "subdiv/crease_basis.h"
 #include "subdiv/tables_chain_records.h"
+#include "subdiv/tables_program_dictionary.h"
 #include "subdiv/tables_surface_records.h"
 
 #include "base/bytes.h"
@@ -36,13 +37,11 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
 }
 
 Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
-    // Tables with decaying-crease chains need version 8; others are written as version 7, which
-    // every reader of this release knows.
-    const bool chains = std::any_of(t.irregularBases.begin(), t.irregularBases.end(),
-                                    [](const IrregularBasis& b) { return b.chain != nullptr; });
-    if (chains && version == kTablesChunkVersion) version = kTablesChunkChainVersion;
-    if (version < 3 || version > kTablesChunkChainVersion)
-        throw std::logic_error("TBLS: only versions 3 to 8 are written");
+    // Tables with irregular bases are written as version 9 (their programs through the chunk's
+    // dictionary); others as version 7, which readers since boundary bases know.
+    if (version == 0) version = t.irregularBases.empty() ? kTablesChunkVersion : kTablesChunkDictionaryVersion;
+    if (version < 3 || version > kTablesChunkDictionaryVersion)
+        throw std::logic_error("TBLS: only versions 3 to 9 are written");
     if (version < 5)
         for (uint32_t i = 0; i < t.irregularNodes.size(); ++i)
             for (uint32_t c : t.irregularNodes[i])
@@ -123,6 +122,8 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     for (const auto& q : t.irregularLeaves) writeFace(q);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularBases.size()));
     ChainProgramIndex chainPrograms;
+    ProgramDictionary dictionaryOf;
+    ProgramDictionary* dictionary = version >= kTablesChunkDictionaryVersion ? &dictionaryOf : nullptr;
     for (const auto& b : t.irregularBases) {
         if (b.chain) {
             if (version < kTablesChunkChainVersion)
@@ -131,12 +132,12 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
             w.write<uint32_t>(kChainConfigurationCode);
             w.write<uint32_t>(b.supportSize());
             w.write<uint32_t>(b.levels);
-            writeChainBasis(w, b, chainPrograms);
+            writeChainBasis(w, b, chainPrograms, dictionary);
             continue;
         }
         if (programs) { // version 7: with its configuration (boundary bases)
             if (version >= 7)
-                writeConfigurationBasis(w, b);
+                writeConfigurationBasis(w, b, dictionary);
             else
                 writeBasisProgram(w, b);
             continue;
@@ -197,10 +198,10 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
 
 Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     // Version 1 has no single-crease patches: its patch records end before the sharpness.
-    if (chunk.version > kTablesChunkChainVersion || chunk.version == 0)
+    if (chunk.version > kTablesChunkDictionaryVersion || chunk.version == 0)
         throwBadInput("chunk TBLS version " + std::to_string(chunk.version) + " is " +
                       (chunk.version ? "newer than" : "not one") + " this limn reads (1 to " +
-                      std::to_string(kTablesChunkChainVersion) + ")" +
+                      std::to_string(kTablesChunkDictionaryVersion) + ")" +
                       (chunk.version ? "; upgrade limn" : ""));
     const uint32_t patchBytes = chunk.version >= 2 ? 88 : 84;
     const bool compact = chunk.version >= 4; // compact stencil tables and bases
@@ -408,10 +409,12 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         const uint32_t bases = r.read<uint32_t>();
         if (bases > r.remaining() / 8) r.fail("irregular basis count is too large");
         ChainPrograms chainPrograms;
+        ProgramDictionary dictionary; // version 9
         for (uint32_t i = 0; i < bases; ++i) {
             t.irregularBases.push_back(
                 chunk.version >= 7 ? readConfigurationBasis(r, "irregular basis " + std::to_string(i), t.irregularBases,
-                                                            chunk.version >= 8 ? &chainPrograms : nullptr)
+                                                            chunk.version >= 8 ? &chainPrograms : nullptr,
+                                                            chunk.version >= 9 ? &dictionary : nullptr)
                 : programs         ? readBasisProgram(r, i, t.irregularBases)
                                    : readBasisWeights(r, i, compact, t.irregularBases));
         }

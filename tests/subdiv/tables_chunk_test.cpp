@@ -154,7 +154,7 @@ TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
         EXPECT_EQ(back.patches[i].crease, crease.patches[i].crease);
         EXPECT_EQ(back.patches[i].sharpness, crease.patches[i].sharpness);
     }
-    for (uint32_t version : {0u, kTablesChunkChainVersion + 1}) {
+    for (uint32_t version : {0u, kTablesChunkDictionaryVersion + 1}) {
         Chunk bad = v2;
         bad.version = version;
         try {

@@ -1,10 +1,11 @@
-// The TBLS chunk (formats/limn.md, section 7; versions 1 to 8) as the WebGPU runtime reads it:
+// The TBLS chunk (formats/limn.md, section 7; versions 1 to 9) as the WebGPU runtime reads it:
 // every count, index and stencil entry checked as lib/subdiv/tables_chunk.cpp checks it, so that
 // nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
 import { Fnv64, LimnError, bytesOf, chunkReader } from './container.mjs';
 import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
 import { readBasisProgram, readConfigurationBasis, readNodeStream, readSmoothFaces, readSmoothPoints } from './tables_surface_records.mjs';
+import { programDictionary } from './tables_program_dictionary.mjs';
 
 const MAX_DEPTH = 16;
 const INFINITE_SHARPNESS = 10;
@@ -76,8 +77,8 @@ function shiftedStencils(previous, grandFirst, parentFirst, first) {
 export const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 export function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 8) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 8); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 8);
+  if (chunk.version > 9) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 9); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 9);
   const patchWords = chunk.version >= 2 ? 22 : 21;
   const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
   const programs = chunk.version >= 5; // bases as programs, compact nodes and smooth faces
@@ -306,11 +307,11 @@ function readIrregularSurface(r, o) {
   const leaves = readFaces(leafCount, 'irregular leaf', false);
   const baseCount = r.u32('irregular basis count');
   if (baseCount > Math.floor(r.remaining / 8)) r.fail('irregular basis count is too large');
-  const bases = [], chainPrograms = [];
+  const bases = [], chainPrograms = [], dictionary = o.version >= 9 ? programDictionary() : null;
   // Version 7: each with its configuration (a boundary one's support size stored); version 8's
   // decaying-crease chains share their programs across the chunk.
   for (let i = 0; programs && i < baseCount; i++) {
-    bases.push(o.version >= 7 ? readConfigurationBasis(r, `irregular basis ${i}`, bases, o.version >= 8 ? chainPrograms : null) : readBasisProgram(r, i, bases));
+    bases.push(o.version >= 7 ? readConfigurationBasis(r, `irregular basis ${i}`, bases, o.version >= 8 ? chainPrograms : null, dictionary) : readBasisProgram(r, i, bases));
   }
   for (let i = 0; !programs && i < baseCount; i++) {
     const valence = r.u32(), lv = r.u32();

@@ -1,0 +1,173 @@
+#include "subdiv/tables_program_dictionary.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <utility>
+
+namespace limn {
+
+namespace {
+
+constexpr uint32_t kMaxDictionaryEntriesPerRow = 16;
+
+void appendRawFloat(std::vector<uint8_t>& s, float x) {
+    const uint32_t bits = std::bit_cast<uint32_t>(x);
+    for (int i = 0; i < 4; ++i) s.push_back(static_cast<uint8_t>(bits >> (8 * i)));
+}
+
+} // namespace
+
+BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vector<uint32_t>& moved) {
+    const uint32_t n = p.rows();
+    moved.assign(n, kNone);
+    using Key = std::vector<uint64_t>;
+    auto key = [&](uint32_t r) {
+        Key k{p.averaged[r]};
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+            const uint32_t s = p.source[e];
+            k.push_back(s < support ? s : uint64_t(support) + moved[s - support]);
+            k.push_back(p.averaged[r] ? 0 : std::bit_cast<uint32_t>(p.weight[e]));
+        }
+        return k;
+    };
+    std::vector<uint32_t> order;
+    order.reserve(n);
+    while (order.size() < n) {
+        std::vector<std::pair<Key, uint32_t>> ready;
+        for (uint32_t r = 0; r < n; ++r) {
+            if (moved[r] != kNone) continue;
+            bool placed = true;
+            for (uint32_t e = p.start[r]; e < p.start[r + 1] && placed; ++e)
+                placed = p.source[e] < support || (p.source[e] - support < n && moved[p.source[e] - support] != kNone);
+            if (placed) ready.emplace_back(key(r), r);
+        }
+        if (ready.empty()) { // a row reads a later or missing row: written as it is, for the reader to refuse
+            for (uint32_t r = 0; r < n; ++r) moved[r] = r;
+            return p;
+        }
+        std::stable_sort(ready.begin(), ready.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (const auto& [k, r] : ready) {
+            moved[r] = static_cast<uint32_t>(order.size());
+            order.push_back(r);
+        }
+    }
+    BasisProgram c; // start holds its first 0
+    for (uint32_t r : order) {
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+            const uint32_t s = p.source[e];
+            c.source.push_back(s < support ? s : support + moved[s - support]);
+            c.weight.push_back(p.weight[e]);
+        }
+        c.start.push_back(static_cast<uint32_t>(c.source.size()));
+        c.averaged.push_back(p.averaged[r]);
+    }
+    // (Rows out of range stay so: the reader refuses them.)
+    for (size_t i = 0; i < c.controlRow.size(); ++i)
+        c.controlRow[i] = p.controlRow[i] < n ? moved[p.controlRow[i]] : p.controlRow[i];
+    c.nextSupport.reserve(p.nextSupport.size());
+    for (uint32_t x : p.nextSupport) c.nextSupport.push_back(x < n ? moved[x] : x);
+    return c;
+}
+
+void writeDictionaryProgram(std::vector<uint8_t>& s, const BasisProgram& p, ProgramDictionary& d) {
+    writeVarint(s, p.rows());
+    for (uint32_t r = 0; r < p.rows(); ++r) {
+        std::vector<uint32_t> key{p.averaged[r]};
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+            key.push_back(p.source[e]);
+            key.push_back(p.averaged[r] ? 0u : std::bit_cast<uint32_t>(p.weight[e]));
+        }
+        const auto [it, added] = d.rowIndex.try_emplace(std::move(key), d.rows.rows());
+        if (!added) {
+            writeVarint(s, uint64_t(d.rows.rows() - 1 - it->second) << 1 | 1);
+            continue;
+        }
+        writeVarint(s, (uint64_t(p.start[r + 1] - p.start[r]) << 1 | p.averaged[r]) << 1);
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+            writeVarint(s, p.source[e]);
+            d.rows.source.push_back(p.source[e]);
+            d.rows.weight.push_back(p.weight[e]);
+            if (p.averaged[r]) continue;
+            const auto [slot, fresh] =
+                d.slot.try_emplace(std::bit_cast<uint32_t>(p.weight[e]), static_cast<uint32_t>(d.palette.size()));
+            writeVarint(s, slot->second);
+            if (fresh) {
+                d.palette.push_back(p.weight[e]);
+                appendRawFloat(s, p.weight[e]);
+            }
+        }
+        d.rows.start.push_back(static_cast<uint32_t>(d.rows.source.size()));
+        d.rows.averaged.push_back(p.averaged[r]);
+    }
+    for (uint32_t x : p.controlRow) writeVarint(s, x == kNone ? 0 : uint64_t(x) + 1);
+    for (uint32_t x : p.nextSupport) writeVarint(s, x);
+}
+
+BasisProgram readDictionaryProgram(StreamReader& in, uint32_t support, uint64_t maxRows, uint32_t next, bool phantoms,
+                                   ProgramDictionary& d) {
+    BasisProgram p;
+    const uint64_t rows = in.varint();
+    if (rows == 0 || rows > maxRows) in.fail("bad row count " + std::to_string(rows));
+    const uint64_t maxEntries = rows * kMaxDictionaryEntriesPerRow;
+    for (uint32_t row = 0; row < rows; ++row) {
+        const uint64_t code = in.varint();
+        const std::string at = "row " + std::to_string(row);
+        if ((code & 1) && (code >> 1) >= d.rows.rows()) in.fail(at + " names a missing dictionary row");
+        if (code & 1) { // a row written before: its sources checked against this program
+            const uint32_t ref = d.rows.rows() - 1 - static_cast<uint32_t>(code >> 1);
+            const uint32_t from = d.rows.start[ref], to = d.rows.start[ref + 1];
+            if (to - from > maxEntries - p.source.size()) in.fail(at + " has a bad length");
+            for (uint32_t e = from; e < to; ++e) {
+                if (d.rows.source[e] >= uint64_t(support) + row)
+                    in.fail(at + " reads neither a support point nor an earlier row");
+                p.source.push_back(d.rows.source[e]);
+                p.weight.push_back(d.rows.weight[e]);
+            }
+            p.averaged.push_back(d.rows.averaged[ref]);
+        } else {
+            const uint64_t head = code >> 1, length = head >> 1;
+            if (length == 0 || length > maxEntries - p.source.size()) in.fail(at + " has a bad length");
+            const bool averaged = head & 1;
+            for (uint64_t e = 0; e < length; ++e) {
+                const uint64_t source = in.varint();
+                if (source >= uint64_t(support) + row) in.fail(at + " reads neither a support point nor an earlier row");
+                float w = 1.0f;
+                if (!averaged) {
+                    const uint64_t slot = in.varint();
+                    if (slot > d.palette.size()) in.fail("a weight is not in the palette");
+                    if (slot == d.palette.size()) {
+                        const float x = in.rawFloat();
+                        if (!(std::abs(x) <= kMaxStencilWeight)) in.fail("has a bad weight");
+                        d.palette.push_back(x);
+                    }
+                    w = d.palette[slot];
+                }
+                p.source.push_back(static_cast<uint32_t>(source));
+                p.weight.push_back(w);
+                d.rows.source.push_back(static_cast<uint32_t>(source));
+                d.rows.weight.push_back(w);
+            }
+            d.rows.start.push_back(static_cast<uint32_t>(d.rows.source.size()));
+            d.rows.averaged.push_back(averaged ? 1 : 0);
+            p.averaged.push_back(averaged ? 1 : 0);
+        }
+        p.start.push_back(static_cast<uint32_t>(p.source.size()));
+    }
+    for (uint32_t& x : p.controlRow) {
+        const uint64_t v = in.varint();
+        if (v > rows || (v == 0 && !phantoms)) in.fail("a control point names a missing row");
+        x = v == 0 ? kNone : static_cast<uint32_t>(v - 1);
+    }
+    p.nextSupport.resize(next);
+    for (uint32_t& x : p.nextSupport) {
+        const uint64_t v = in.varint();
+        if (v >= rows) in.fail("a support point names a missing row");
+        x = static_cast<uint32_t>(v);
+    }
+    return p;
+}
+
+} // namespace limn
