@@ -77,17 +77,29 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     w.write<uint32_t>(static_cast<uint32_t>(t.patches.size()));
     w.write<uint32_t>(static_cast<uint32_t>(t.irregular.size()));
     w.write<uint32_t>(static_cast<uint32_t>(t.limitPosition.rows()));
-    for (const auto& L : t.levels)
-        for (uint32_t x : {L.first, L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches,
-                           L.irregularFaces})
-            w.write<uint32_t>(x);
+    if (version >= kTablesChunkDictionaryVersion) { // a stream of varints, each level's first implied
+        std::vector<uint8_t> s;
+        for (const auto& L : t.levels)
+            for (uint32_t x : {L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches, L.irregularFaces})
+                writeVarint(s, x);
+        writeStream(w, s);
+    } else {
+        for (const auto& L : t.levels)
+            for (uint32_t x : {L.first, L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches,
+                               L.irregularFaces})
+                w.write<uint32_t>(x);
+    }
     const uint32_t repeats = version >= 6 ? repeatedLevels(t) : 0u;
     if (version >= 6) w.write<uint32_t>(repeats);
+    // Version 9: a table of no rows (a level below N where no quadtree refines) is not written.
+    auto writeTable = [&](const StencilTable& x, bool weights) {
+        if (version < kTablesChunkDictionaryVersion || x.rows() != 0) writeStencilTable(w, x, weights, compact);
+    };
     for (uint32_t l = 0; l + 1 < t.levels.size(); ++l) {
         if (repeats >> (l + 1) & 1) continue; // level l + 1 is level l's, shifted
-        writeStencilTable(w, t.facePoints[l], false, compact);
-        writeStencilTable(w, t.edgePoints[l], true, compact);
-        writeStencilTable(w, t.vertexPoints[l], true, compact);
+        writeTable(t.facePoints[l], false);
+        writeTable(t.edgePoints[l], true);
+        writeTable(t.vertexPoints[l], true);
     }
     auto writeFace = [&](const IrregularFace& q) {
         w.writeArray(std::span<const uint32_t>(q.corner, 4));
@@ -188,9 +200,9 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         }
         writeStream(w, points);
     }
-    writeStencilTable(w, t.limitPosition, true, compact);
-    writeStencilTable(w, t.limitTangent1, true, compact);
-    writeStencilTable(w, t.limitTangent2, true, compact);
+    writeTable(t.limitPosition, true);
+    writeTable(t.limitTangent1, true);
+    writeTable(t.limitTangent2, true);
     w.writeArray(t.limitVertex);
     for (uint8_t e : t.limitExact) w.write<uint32_t>(e ? 0u : 1u); // bit 0: approximate
     return {kTablesChunk, version, w.take()};
@@ -234,24 +246,40 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     uint32_t patches = r.read<uint32_t>(), irregular = r.read<uint32_t>(),
              limits = r.read<uint32_t>();
     uint64_t sum = 0;
+    // Version 9: the levels' counts as varints of one stream, each level's first implied.
+    std::optional<StreamReader> levelStream;
+    if (chunk.version >= kTablesChunkDictionaryVersion) levelStream.emplace(r, "levels");
+    auto levelCount = [&]() -> uint32_t {
+        if (!levelStream) return r.read<uint32_t>();
+        const uint64_t x = levelStream->varint();
+        if (x > 0xFFFFFFFFu) levelStream->fail("a count out of range");
+        return static_cast<uint32_t>(x);
+    };
     for (uint32_t l = 0; l <= D; ++l) {
         LevelInfo L;
-        L.first = r.read<uint32_t>();
-        L.facePoints = r.read<uint32_t>();
-        L.edgePoints = r.read<uint32_t>();
-        L.vertexPoints = r.read<uint32_t>();
-        L.regularPatches = r.read<uint32_t>();
-        L.irregularFaces = r.read<uint32_t>();
+        L.first = levelStream ? static_cast<uint32_t>(std::min<uint64_t>(sum, 0xFFFFFFFFu)) : levelCount();
+        L.facePoints = levelCount();
+        L.edgePoints = levelCount();
+        L.vertexPoints = levelCount();
+        L.regularPatches = levelCount();
+        L.irregularFaces = levelCount();
         if (L.first != sum)
             r.fail("level " + std::to_string(l) + " does not start where the previous ends");
         sum += uint64_t(L.facePoints) + L.edgePoints + L.vertexPoints;
         if (sum > t.totalVertices) r.fail("level vertex counts exceed the total");
         t.levels.push_back(L);
     }
+    if (levelStream) levelStream->finish();
     if (sum != t.totalVertices) r.fail("level vertex counts do not add up to the total");
     if (mesh && t.levels[0].count() != mesh->vertexCount())
         r.fail("level 0 has " + std::to_string(t.levels[0].count()) + " vertices, the mesh " +
                std::to_string(mesh->vertexCount()));
+    // Version 9: a table of no rows is not stored.
+    auto readTable = [&](const std::string& what, uint32_t rows, bool weights, uint32_t lo0, uint32_t hi0,
+                         uint32_t lo1 = 0, uint32_t hi1 = 0) {
+        if (chunk.version >= kTablesChunkDictionaryVersion && rows == 0) return StencilTable{};
+        return readStencilTable(r, compact, what, rows, weights, lo0, hi0, lo1, hi1);
+    };
     // Version 6: levels whose stencil tables are the previous level's, shifted (levels 2..D).
     const uint32_t repeats = chunk.version >= 6 ? r.read<uint32_t>() : 0u;
     if (repeats & ~(((2u << D) - 1u) & ~3u)) // D <= 16, checked above
@@ -265,10 +293,10 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
             continue;
         }
         t.facePoints.push_back(
-            readStencilTable(r, compact, lv + " face points", L.facePoints, false, P.first, parentEnd));
-        t.edgePoints.push_back(readStencilTable(r, compact, lv + " edge points", L.edgePoints, true, P.first,
+            readTable(lv + " face points", L.facePoints, false, P.first, parentEnd));
+        t.edgePoints.push_back(readTable(lv + " edge points", L.edgePoints, true, P.first,
                                          parentEnd, L.first, faceEnd));
-        t.vertexPoints.push_back(readStencilTable(r, compact, lv + " vertex points", L.vertexPoints, true, P.first,
+        t.vertexPoints.push_back(readTable(lv + " vertex points", L.vertexPoints, true, P.first,
                                            parentEnd, L.first, faceEnd));
     }
     const uint32_t ptexCount = mesh ? ptexFaceCount(*mesh) : 0xFFFFFFFFu;
@@ -482,9 +510,9 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     // Limit points read level N (the irregular faces' corners) or level D (the leaves').
     const LevelInfo &LN = t.levels[t.depth], &LD = t.levels[D];
     uint32_t lo = LN.first, hi = LN.first + LN.count(), lo1 = LD.first, hi1 = LD.first + LD.count();
-    t.limitPosition = readStencilTable(r, compact, "limit positions", limits, true, lo, hi, lo1, hi1);
-    t.limitTangent1 = readStencilTable(r, compact, "limit tangents 1", limits, true, lo, hi, lo1, hi1);
-    t.limitTangent2 = readStencilTable(r, compact, "limit tangents 2", limits, true, lo, hi, lo1, hi1);
+    t.limitPosition = readTable("limit positions", limits, true, lo, hi, lo1, hi1);
+    t.limitTangent1 = readTable("limit tangents 1", limits, true, lo, hi, lo1, hi1);
+    t.limitTangent2 = readTable("limit tangents 2", limits, true, lo, hi, lo1, hi1);
     t.limitVertex = r.readArray<uint32_t>(limits, "limit vertices");
     for (uint32_t v : t.limitVertex)
         if (!((v >= lo && v < hi) || (v >= lo1 && v < hi1)))

@@ -355,6 +355,21 @@ TEST(TablesChunk, ProgramDictionaryExpandsToTheBuildersWeights) {
         EXPECT_EQ(encodeTablesChunk(back).payload, c.payload) << model << " d" << depth;
     }
     EXPECT_GT(chains, 0u);
+    // Version 9's levels are a stream of counts (each level's first implied): counts past the
+    // total and a stream cut short are refused by name.
+    const Mesh m = loadModel("osd/catmark/catmark_chaikin0.obj");
+    const Tables good = buildChains(m, 2);
+    Tables more = good;
+    more.levels[1].edgePoints += 1;
+    EXPECT_THROW(
+        try { decodeTablesChunk(encodeTablesChunk(more), &m); } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("level vertex counts"), std::string::npos) << e.what();
+            throw;
+        },
+        Error);
+    Chunk cut = encodeTablesChunk(good);
+    cut.payload[40] = 2; // the levels stream's length: 2 bytes
+    EXPECT_THROW(decodeTablesChunk(cut, &m), Error);
     RecordProperty("tables", int(tables));
     RecordProperty("chains", int(chains));
 }

@@ -35,7 +35,12 @@ export function topologyHash(mesh, tags, options) {
   return h.value;
 }
 
-function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compact = false) {
+// `skipEmpty` (version 9): a table of no rows is not stored.
+function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compact = false, skipEmpty = false) {
+  if (skipEmpty && rows === 0) {
+    const empty = { rows: 0, start: new Uint32Array(1), index: new Uint32Array(0), weight: weights ? new Float32Array(0) : null };
+    return checkStencils(r, empty, what, weights, lo0, hi0, lo1, hi1);
+  }
   const n = r.u32(), entries = r.u32(), hasWeights = r.u32();
   const fourth = r.u32(); // version 4: the palette's size; before: reserved
   if (!compact && fourth !== 0) r.fail(`${what}: reserved field is not zero`);
@@ -100,14 +105,24 @@ export function decodeTables(chunk, mesh, tags) {
   const totalVertices = r.u32(), P = r.u32('patch count'), Q = r.u32('irregular count'), L = r.u32('limit count');
   const levels = [];
   let sum = 0;
+  // Version 9: the levels' counts as varints of one stream, each level's first implied.
+  const v9 = chunk.version >= 9, levelStream = v9 ? new Stream(r, 'levels') : null;
+  const count = () => {
+    if (!levelStream) return r.u32();
+    const x = levelStream.varint();
+    if (x > 0xffffffff) levelStream.fail('a count out of range');
+    return x;
+  };
   for (let l = 0; l <= D; l++) {
-    const lv = { first: r.u32(), facePoints: r.u32(), edgePoints: r.u32(), vertexPoints: r.u32(), regularPatches: r.u32(), irregularFaces: r.u32() };
+    const first = levelStream ? sum : count();
+    const lv = { first, facePoints: count(), edgePoints: count(), vertexPoints: count(), regularPatches: count(), irregularFaces: count() };
     if (lv.first !== sum) r.fail(`level ${l} does not start where the previous ends`);
     lv.count = lv.facePoints + lv.edgePoints + lv.vertexPoints;
     sum += lv.count;
     if (sum > totalVertices) r.fail('level vertex counts exceed the total');
     levels.push(lv);
   }
+  if (levelStream) levelStream.finish();
   if (sum !== totalVertices) r.fail('level vertex counts do not add up to the total');
   if (levels[0].count !== mesh.vertexCount) r.fail(`level 0 has ${levels[0].count} vertices, the mesh ${mesh.vertexCount}`);
   const facePoints = [], edgePoints = [], vertexPoints = [];
@@ -127,9 +142,9 @@ export function decodeTables(chunk, mesh, tags) {
       vertexPoints.push(checkStencils(r, shift(vertexPoints), `level ${l} vertex points`, true, p.first, end, c.first, faceEnd));
       continue;
     }
-    facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end, 0, 0, compact));
-    edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd, compact));
-    vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd, compact));
+    facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end, 0, 0, compact, v9));
+    edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd, compact, v9));
+    vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd, compact, v9));
   }
   const ptex = ptexCount(mesh), R = 2 ** depth;
   const squares = [];
@@ -259,9 +274,9 @@ export function decodeTables(chunk, mesh, tags) {
   // Limit points read level N (the irregular faces' corners) or level D (the leaves').
   const last = levels[depth], deepest = levels[D];
   const lo = last.first, hi = last.first + last.count, lo1 = deepest.first, hi1 = deepest.first + deepest.count;
-  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi, lo1, hi1, compact);
-  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi, lo1, hi1, compact);
-  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi, lo1, hi1, compact);
+  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi, lo1, hi1, compact, v9);
+  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi, lo1, hi1, compact, v9);
+  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi, lo1, hi1, compact, v9);
   const limitVertex = r.array(Uint32Array, L, 'limit vertices');
   for (const v of limitVertex) if (!((v >= lo && v < hi) || (v >= lo1 && v < hi1))) r.fail("a limit point's vertex is not at the last level");
   const limitFlags = r.array(Uint32Array, L, 'limit flags');

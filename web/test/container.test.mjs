@@ -126,16 +126,18 @@ test('BLND is refused clearly, a newer chunk version names itself', () => {
 
 // Where TBLS v6's irregular-surface section starts (formats/limn.md): after the header, levels,
 // the repeated levels' bits, the stencil tables of the others (their palettes and streams), the
-// patch stream and the irregular faces, walked over the payload's own length fields.
-function irregularSectionOffset(t, payload) {
+// patch stream and the irregular faces, walked over the payload's own length fields. Version 9
+// (`version`): the levels a stream, no table of no rows.
+function irregularSectionOffset(t, payload, version = 6) {
   const v = new DataView(payload.buffer, payload.byteOffset, payload.byteLength);
   const stream = (o) => o + 4 + Math.ceil(v.getUint32(o, true) / 4) * 4;
-  let o = 40 + 24 * t.levels.length;
+  let o = version >= 9 ? stream(40) : 40 + 24 * t.levels.length;
   const repeats = v.getUint32(o, true);
   o += 4;
   for (let l = 1; l < t.levels.length; l++) {
     if ((repeats >>> l) & 1) continue;
-    for (let k = 0; k < 3; k++) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
+    const L = t.levels[l], rows = [L.facePoints, L.edgePoints, L.vertexPoints];
+    for (let k = 0; k < 3; k++) if (version < 9 || rows[k] > 0) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
   }
   return { at: stream(o) + 32 * t.irregularCount, stream };
 }
@@ -203,7 +205,7 @@ test('hostile TBLS v7 and v9 basis configurations are refused by name', () => {
   const bytes = read(container('osd/catmark/catmark_edgeonly.obj', { depth: 1, tablesArgs: ['--crease-chains', 'off'], name: 'edgeonly_d1_v7.limn' })), chunks = parseContainer(bytes);
   const tbls = chunks.find((c) => c.type === 'TBLS');
   assert.equal(tbls.version, 9);
-  const { at, stream } = irregularSectionOffset(loadLimn(bytes).tables, tbls.payload);
+  const { at, stream } = irregularSectionOffset(loadLimn(bytes).tables, tbls.payload, tbls.version);
   const v = new DataView(tbls.payload.buffer, tbls.payload.byteOffset, tbls.payload.byteLength);
   const nodes = stream(at + 4), leaves = stream(nodes + 4), bases = leaves + 4 + 32 * v.getUint32(leaves, true);
   assert.ok(v.getUint32(bases, true) > 0);
