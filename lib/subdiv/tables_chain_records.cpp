@@ -161,10 +161,25 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
     number(static_cast<uint32_t>(c.bands.size()));
     std::vector<uint32_t> moved;
     std::array<float, 3> previous{};
+    // A chain's bands often run one program (the sharpness clamped): the last band's canonical
+    // form and bytes are reused when its program is the same.
+    const CreaseBand* last = nullptr;
+    BasisProgram canonical;
+    std::vector<uint8_t> bytes;
+    auto same = [](const CreaseBand& a, const CreaseBand& o) {
+        const BasisProgram &x = a.program, &y = o.program;
+        return a.support == o.support && x.start == y.start && x.source == y.source && x.averaged == y.averaged &&
+               x.controlRow == y.controlRow && x.nextSupport == y.nextSupport && x.weight.size() == y.weight.size() &&
+               std::equal(x.weight.begin(), x.weight.end(), y.weight.begin(),
+                          [](float u, float v) { return std::bit_cast<uint32_t>(u) == std::bit_cast<uint32_t>(v); });
+    };
     for (const CreaseBand& band : c.bands) {
-        const BasisProgram canonical = canonicalProgram(band.program, band.support, moved);
-        std::vector<uint8_t> bytes = programBytes(canonical, band.support);
-        const auto [it, added] = programs.try_emplace(std::move(bytes), static_cast<uint32_t>(programs.size()));
+        if (!last || !same(*last, band)) {
+            canonical = canonicalProgram(band.program, band.support, moved);
+            bytes = programBytes(canonical, band.support);
+        }
+        last = &band;
+        const auto [it, added] = programs.try_emplace(bytes, static_cast<uint32_t>(programs.size()));
         number(it->second);
         if (added && dictionary) {
             writeVarint(s, canonical.nextSupport.size());

@@ -23,33 +23,38 @@ void appendRawFloat(std::vector<uint8_t>& s, float x) {
 BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vector<uint32_t>& moved) {
     const uint32_t n = p.rows();
     moved.assign(n, kNone);
-    using Key = std::vector<uint64_t>;
-    auto key = [&](uint32_t r) {
-        Key k{p.averaged[r]};
-        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
-            const uint32_t s = p.source[e];
-            k.push_back(s < support ? s : uint64_t(support) + moved[s - support]);
-            k.push_back(p.averaged[r] ? 0 : std::bit_cast<uint32_t>(p.weight[e]));
+    // A row's entries as the sequence averaged, then per entry its source (a placed row's new
+    // number after the support) and weight bits (0 when averaged), compared in place.
+    auto source = [&](uint32_t e) { return p.source[e] < support ? uint64_t(p.source[e]) : uint64_t(support) + moved[p.source[e] - support]; };
+    auto bits = [&](uint32_t r, uint32_t e) { return p.averaged[r] ? 0u : std::bit_cast<uint32_t>(p.weight[e]); };
+    auto before = [&](uint32_t a, uint32_t b) {
+        if (p.averaged[a] != p.averaged[b]) return p.averaged[a] < p.averaged[b];
+        const uint32_t na = p.start[a + 1] - p.start[a], nb = p.start[b + 1] - p.start[b];
+        for (uint32_t i = 0; i < std::min(na, nb); ++i) {
+            const uint32_t ea = p.start[a] + i, eb = p.start[b] + i;
+            if (source(ea) != source(eb)) return source(ea) < source(eb);
+            if (bits(a, ea) != bits(b, eb)) return bits(a, ea) < bits(b, eb);
         }
-        return k;
+        return na < nb;
     };
-    std::vector<uint32_t> order;
+    std::vector<uint32_t> order, ready;
     order.reserve(n);
+    ready.reserve(n);
     while (order.size() < n) {
-        std::vector<std::pair<Key, uint32_t>> ready;
+        ready.clear();
         for (uint32_t r = 0; r < n; ++r) {
             if (moved[r] != kNone) continue;
             bool placed = true;
             for (uint32_t e = p.start[r]; e < p.start[r + 1] && placed; ++e)
                 placed = p.source[e] < support || (p.source[e] - support < n && moved[p.source[e] - support] != kNone);
-            if (placed) ready.emplace_back(key(r), r);
+            if (placed) ready.push_back(r);
         }
         if (ready.empty()) { // a row reads a later or missing row: written as it is, for the reader to refuse
             for (uint32_t r = 0; r < n; ++r) moved[r] = r;
             return p;
         }
-        std::stable_sort(ready.begin(), ready.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (const auto& [k, r] : ready) {
+        std::stable_sort(ready.begin(), ready.end(), before);
+        for (uint32_t r : ready) {
             moved[r] = static_cast<uint32_t>(order.size());
             order.push_back(r);
         }
@@ -74,13 +79,14 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
 
 void writeDictionaryProgram(std::vector<uint8_t>& s, const BasisProgram& p, ProgramDictionary& d) {
     writeVarint(s, p.rows());
+    std::string key;
     for (uint32_t r = 0; r < p.rows(); ++r) {
-        std::vector<uint32_t> key{p.averaged[r]};
+        key.assign(1, char(p.averaged[r]));
         for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
-            key.push_back(p.source[e]);
-            key.push_back(p.averaged[r] ? 0u : std::bit_cast<uint32_t>(p.weight[e]));
+            const uint32_t x[2] = {p.source[e], p.averaged[r] ? 0u : std::bit_cast<uint32_t>(p.weight[e])};
+            key.append(reinterpret_cast<const char*>(x), sizeof x);
         }
-        const auto [it, added] = d.rowIndex.try_emplace(std::move(key), d.rows.rows());
+        const auto [it, added] = d.rowIndex.try_emplace(key, d.rows.rows());
         if (!added) {
             writeVarint(s, uint64_t(d.rows.rows() - 1 - it->second) << 1 | 1);
             continue;

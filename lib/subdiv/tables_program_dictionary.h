@@ -10,7 +10,7 @@
 #include "subdiv/tables_stream.h"
 
 #include <cstdint>
-#include <map>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -27,9 +27,9 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
 struct ProgramDictionary {
     BasisProgram rows;          // the rows (start, source, weight, averaged) in the order first written
     std::vector<float> palette; // the weights in the order first written
-    // The writer's indices: a row's entries (averaged, then source and weight bits per entry),
-    // and a weight's bits.
-    std::map<std::vector<uint32_t>, uint32_t> rowIndex;
+    // The writer's indices: a row's entries (averaged, then source and weight bits per entry, as
+    // bytes), and a weight's bits.
+    std::unordered_map<std::string, uint32_t> rowIndex;
     std::unordered_map<uint32_t, uint32_t> slot;
 };
 
