@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -108,8 +109,19 @@ void writeDictionaryProgram(std::vector<uint8_t>& s, const BasisProgram& p, Prog
         d.rows.start.push_back(static_cast<uint32_t>(d.rows.source.size()));
         d.rows.averaged.push_back(p.averaged[r]);
     }
-    for (uint32_t x : p.controlRow) writeVarint(s, x == kNone ? 0 : uint64_t(x) + 1);
-    for (uint32_t x : p.nextSupport) writeVarint(s, x);
+    // The control rows (row + 1, 0 a phantom) and the next support's rows, each in
+    // bit_width(rows + 1) bits, least significant first, the last byte's spare bits 0.
+    const uint32_t width = static_cast<uint32_t>(std::bit_width(uint64_t(p.rows()) + 1));
+    uint64_t pending = 0;
+    uint32_t bits = 0;
+    auto put = [&](uint64_t x) {
+        if (x >> width) throw std::logic_error("TBLS: a control or support row beyond what its width holds");
+        pending |= x << bits;
+        for (bits += width; bits >= 8; bits -= 8, pending >>= 8) s.push_back(static_cast<uint8_t>(pending));
+    };
+    for (uint32_t x : p.controlRow) put(x == kNone ? 0 : uint64_t(x) + 1);
+    for (uint32_t x : p.nextSupport) put(x);
+    if (bits) s.push_back(static_cast<uint8_t>(pending));
 }
 
 BasisProgram readDictionaryProgram(StreamReader& in, uint32_t support, uint64_t maxRows, uint32_t next, bool phantoms,
@@ -162,17 +174,28 @@ BasisProgram readDictionaryProgram(StreamReader& in, uint32_t support, uint64_t 
         }
         p.start.push_back(static_cast<uint32_t>(p.source.size()));
     }
+    const uint32_t width = static_cast<uint32_t>(std::bit_width(rows + 1)); // rows <= maxRows: a few thousand
+    uint64_t pending = 0;
+    uint32_t bits = 0;
+    auto take = [&]() -> uint64_t {
+        for (; bits < width; bits += 8) pending |= uint64_t(in.rawByte()) << bits;
+        const uint64_t x = pending & ((uint64_t(1) << width) - 1);
+        pending >>= width;
+        bits -= width;
+        return x;
+    };
     for (uint32_t& x : p.controlRow) {
-        const uint64_t v = in.varint();
+        const uint64_t v = take();
         if (v > rows || (v == 0 && !phantoms)) in.fail("a control point names a missing row");
         x = v == 0 ? kNone : static_cast<uint32_t>(v - 1);
     }
     p.nextSupport.resize(next);
     for (uint32_t& x : p.nextSupport) {
-        const uint64_t v = in.varint();
+        const uint64_t v = take();
         if (v >= rows) in.fail("a support point names a missing row");
         x = static_cast<uint32_t>(v);
     }
+    if (pending != 0) in.fail("the packed rows' spare bits are not 0");
     return p;
 }
 

@@ -37,8 +37,9 @@ struct ProgramDictionary {
 // the dictionary row h >> 1 back from its last (0: the last); h even, a new row, which joins the
 // dictionary: its head h >> 1 (length << 1 | averaged), then per entry its source and, unless
 // averaged, a varint weight slot: below the palette's size that weight, equal to it a new weight
-// as 4 raw bytes. Then the 48 control rows as varints row + 1 (0: a phantom) and the next
-// support's rows (its count is the caller's).
+// as 4 raw bytes. Then the 48 control rows as row + 1 (0: a phantom) and the next support's rows
+// (its count is the caller's), packed in bit_width(rows + 1) bits each, least significant bit
+// first, the last byte's spare bits 0 (std::logic_error for a row beyond that width).
 void writeDictionaryProgram(std::vector<uint8_t>& s, const BasisProgram& p, ProgramDictionary& d);
 // Reads a program over `support` points with at most `maxRows` rows (16 entries a row at most),
 // `next` next-support rows; phantom control rows only where `phantoms`. Every reference, source,

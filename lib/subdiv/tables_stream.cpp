@@ -227,6 +227,11 @@ uint32_t StreamReader::after(uint32_t previous, const char* what) {
     return static_cast<uint32_t>(x);
 }
 
+uint8_t StreamReader::rawByte() {
+    if (at_ == data_.size()) fail("the stream ends inside a record");
+    return data_[at_++];
+}
+
 float StreamReader::rawFloat() {
     if (data_.size() - at_ < 4) fail("the stream ends inside a number");
     uint32_t bits = 0;

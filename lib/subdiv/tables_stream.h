@@ -36,6 +36,7 @@ public:
     // A u32 given as a zigzag difference from `previous`.
     uint32_t after(uint32_t previous, const char* what);
     float rawFloat(); // 4 raw little-endian bytes
+    uint8_t rawByte();
     void finish() {
         if (at_ != data_.size()) fail("unexpected bytes after the last record");
     }

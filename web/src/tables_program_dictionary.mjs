@@ -63,15 +63,28 @@ export function readDictionaryProgram(s, support, maxRows, next, phantoms, d) {
     }
     start.push(source.length);
   }
+  // The control rows (row + 1, 0 a phantom) and the next support's rows, each in
+  // bit_width(rows + 1) bits, least significant first, the last byte's spare bits 0 (rows <=
+  // maxRows: a few thousand).
+  const width = 32 - Math.clz32(rows + 1);
+  let pending = 0, bits = 0;
+  const take = () => {
+    for (; bits < width; bits += 8) pending += s.rawByte() * 2 ** bits;
+    const x = pending % 2 ** width;
+    pending = Math.floor(pending / 2 ** width);
+    bits -= width;
+    return x;
+  };
   const controlRow = Array.from({ length: 48 }, () => {
-    const v = s.varint();
+    const v = take();
     if (v > rows || (v === 0 && !phantoms)) s.fail('a control point names a missing row');
     return v === 0 ? NONE : v - 1;
   });
   const nextSupport = Array.from({ length: next }, () => {
-    const v = s.varint();
+    const v = take();
     if (v >= rows) s.fail('a support point names a missing row');
     return v;
   });
+  if (pending !== 0) s.fail("the packed rows' spare bits are not 0");
   return { rows, start, source, weight, averaged, controlRow, nextSupport };
 }

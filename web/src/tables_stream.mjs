@@ -36,6 +36,10 @@ export class Stream {
     if (x < 0 || x > 0xffffffff) this.fail(`${what} out of range`);
     return x;
   }
+  rawByte() {
+    if (this.at === this.bytes.length) this.fail('the stream ends inside a record');
+    return this.bytes[this.at++];
+  }
   rawFloat() {
     if (this.bytes.length - this.at < 4) this.fail('the stream ends inside a number');
     const v = new DataView(this.bytes.buffer, this.bytes.byteOffset + this.at, 4).getFloat32(0, true);
