@@ -81,17 +81,30 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
 void writeDictionaryProgram(std::vector<uint8_t>& s, const BasisProgram& p, ProgramDictionary& d) {
     writeVarint(s, p.rows());
     std::string key;
-    for (uint32_t r = 0; r < p.rows(); ++r) {
+    auto keyOf = [&](uint32_t r) -> const std::string& {
         key.assign(1, char(p.averaged[r]));
         for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
             const uint32_t x[2] = {p.source[e], p.averaged[r] ? 0u : std::bit_cast<uint32_t>(p.weight[e])};
             key.append(reinterpret_cast<const char*>(x), sizeof x);
         }
-        const auto [it, added] = d.rowIndex.try_emplace(key, d.rows.rows());
-        if (!added) {
-            writeVarint(s, uint64_t(d.rows.rows() - 1 - it->second) << 1 | 1);
+        return key;
+    };
+    auto known = [&](uint32_t r) {
+        const auto it = d.rowIndex.find(keyOf(r));
+        return it == d.rowIndex.end() ? kNone : it->second;
+    };
+    for (uint32_t r = 0; r < p.rows();) {
+        if (const uint32_t first = known(r); first != kNone) {
+            // A run of rows written before, one after the other in the dictionary.
+            uint32_t length = 1;
+            while (r + length < p.rows() && known(r + length) == first + length) ++length;
+            const uint64_t back = d.rows.rows() - 1 - first;
+            writeVarint(s, back << 2 | (length > 1 ? 3 : 1));
+            if (length > 1) writeVarint(s, length - 2);
+            r += length;
             continue;
         }
+        d.rowIndex.emplace(keyOf(r), d.rows.rows());
         writeVarint(s, (uint64_t(p.start[r + 1] - p.start[r]) << 1 | p.averaged[r]) << 1);
         for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
             writeVarint(s, p.source[e]);
@@ -108,6 +121,7 @@ void writeDictionaryProgram(std::vector<uint8_t>& s, const BasisProgram& p, Prog
         }
         d.rows.start.push_back(static_cast<uint32_t>(d.rows.source.size()));
         d.rows.averaged.push_back(p.averaged[r]);
+        ++r;
     }
     // The control rows (row + 1, 0 a phantom) and the next support's rows, each in
     // bit_width(rows + 1) bits, least significant first, the last byte's spare bits 0.
@@ -130,22 +144,31 @@ BasisProgram readDictionaryProgram(StreamReader& in, uint32_t support, uint64_t 
     const uint64_t rows = in.varint();
     if (rows == 0 || rows > maxRows) in.fail("bad row count " + std::to_string(rows));
     const uint64_t maxEntries = rows * kMaxDictionaryEntriesPerRow;
-    for (uint32_t row = 0; row < rows; ++row) {
+    for (uint32_t row = 0; row < rows;) {
         const uint64_t code = in.varint();
         const std::string at = "row " + std::to_string(row);
-        if ((code & 1) && (code >> 1) >= d.rows.rows()) in.fail(at + " names a missing dictionary row");
-        if (code & 1) { // a row written before: its sources checked against this program
-            const uint32_t ref = d.rows.rows() - 1 - static_cast<uint32_t>(code >> 1);
-            const uint32_t from = d.rows.start[ref], to = d.rows.start[ref + 1];
-            if (to - from > maxEntries - p.source.size()) in.fail(at + " has a bad length");
-            for (uint32_t e = from; e < to; ++e) {
-                if (d.rows.source[e] >= uint64_t(support) + row)
-                    in.fail(at + " reads neither a support point nor an earlier row");
-                p.source.push_back(d.rows.source[e]);
-                p.weight.push_back(d.rows.weight[e]);
+        if (code & 1) { // rows written before, `back` from the last: their sources checked here
+            const uint64_t back = code >> 2, extra = (code & 2) ? in.varint() : 0;
+            if (extra >= rows - row) in.fail(at + " has a bad run length");
+            const uint64_t run = (code & 2) ? extra + 2 : 1;
+            if (back >= d.rows.rows() || run > back + 1 || run > rows - row)
+                in.fail(at + " names a missing dictionary row");
+            const uint32_t ref = d.rows.rows() - 1 - static_cast<uint32_t>(back);
+            for (uint32_t k = 0; k < run; ++k, ++row) {
+                const uint32_t from = d.rows.start[ref + k], to = d.rows.start[ref + k + 1];
+                if (to - from > maxEntries - p.source.size()) in.fail(at + " has a bad length");
+                for (uint32_t e = from; e < to; ++e) {
+                    if (d.rows.source[e] >= uint64_t(support) + row)
+                        in.fail(at + " reads neither a support point nor an earlier row");
+                    p.source.push_back(d.rows.source[e]);
+                    p.weight.push_back(d.rows.weight[e]);
+                }
+                p.averaged.push_back(d.rows.averaged[ref + k]);
+                p.start.push_back(static_cast<uint32_t>(p.source.size()));
             }
-            p.averaged.push_back(d.rows.averaged[ref]);
-        } else {
+            continue;
+        }
+        {
             const uint64_t head = code >> 1, length = head >> 1;
             if (length == 0 || length > maxEntries - p.source.size()) in.fail(at + " has a bad length");
             const bool averaged = head & 1;
@@ -173,6 +196,7 @@ BasisProgram readDictionaryProgram(StreamReader& in, uint32_t support, uint64_t 
             p.averaged.push_back(averaged ? 1 : 0);
         }
         p.start.push_back(static_cast<uint32_t>(p.source.size()));
+        ++row;
     }
     const uint32_t width = static_cast<uint32_t>(std::bit_width(rows + 1)); // rows <= maxRows: a few thousand
     uint64_t pending = 0;

@@ -33,8 +33,9 @@ struct ProgramDictionary {
     std::unordered_map<uint32_t, uint32_t> slot;
 };
 
-// Appends `p` (canonical already) to stream `s`: varint row count, per row a varint h: h odd,
-// the dictionary row h >> 1 back from its last (0: the last); h even, a new row, which joins the
+// Appends `p` (canonical already) to stream `s`: varint row count, then rows by a varint h: h & 3
+// = 1, the dictionary row h >> 2 back from its last (0: the last); h & 3 = 3, that row and the
+// next ones in the dictionary, a varint count - 2 following (a run); h even, a new row, which joins the
 // dictionary: its head h >> 1 (length << 1 | averaged), then per entry its source and, unless
 // averaged, a varint weight slot: below the palette's size that weight, equal to it a new weight
 // as 4 raw bytes. Then the 48 control rows as row + 1 (0: a phantom) and the next support's rows

@@ -1,7 +1,7 @@
 // TBLS version 9's program dictionary (formats/limn.md, "Program dictionary";
 // lib/subdiv/tables_program_dictionary.cpp): the bases' and chains' programs share their rows and
-// weights across the chunk. Each row is a reference to a row written before or a new row, which
-// joins the dictionary; weights come from one palette that new rows extend. Every reference,
+// weights across the chunk. Each row is a reference to a row written before (or a run of them)
+// or a new row, which joins the dictionary; weights come from one palette that new rows extend. Every reference,
 // source, slot and weight is checked as the C++ reader checks it.
 import { MAX_STENCIL_WEIGHT } from './tables_stream.mjs';
 
@@ -22,20 +22,29 @@ export function readDictionaryProgram(s, support, maxRows, next, phantoms, d) {
   if (rows === 0 || rows > maxRows) s.fail(`bad row count ${rows}`);
   const maxEntries = rows * MAX_ENTRIES_PER_ROW;
   const start = [0], source = [], weight = [], averaged = [];
-  for (let row = 0; row < rows; row++) {
+  for (let row = 0; row < rows;) {
     const code = s.varint(), known = d.averaged.length;
-    if (code % 2 === 1) { // a row written before, h >> 1 back from the last: its sources checked here
-      const back = Math.floor(code / 2);
-      if (back >= known) s.fail(`row ${row} names a missing dictionary row`);
-      const ref = known - 1 - back, from = d.start[ref], to = d.start[ref + 1];
-      if (to - from > maxEntries - source.length) s.fail(`row ${row} has a bad length`);
-      for (let e = from; e < to; e++) {
-        if (d.source[e] >= support + row) s.fail(`row ${row} reads neither a support point nor an earlier row`);
-        source.push(d.source[e]);
-        weight.push(d.weight[e]);
+    if (code % 2 === 1) { // rows written before, `back` from the last (a run of them when code & 2): sources checked here
+      const back = Math.floor(code / 4), isRun = Math.floor(code / 2) % 2 === 1;
+      const extra = isRun ? s.varint() : 0;
+      if (extra >= rows - row) s.fail(`row ${row} has a bad run length`);
+      const run = isRun ? extra + 2 : 1;
+      if (back >= known || run > back + 1 || run > rows - row) s.fail(`row ${row} names a missing dictionary row`);
+      const ref = known - 1 - back;
+      for (let k = 0; k < run; k++, row++) {
+        const from = d.start[ref + k], to = d.start[ref + k + 1];
+        if (to - from > maxEntries - source.length) s.fail(`row ${row} has a bad length`);
+        for (let e = from; e < to; e++) {
+          if (d.source[e] >= support + row) s.fail(`row ${row} reads neither a support point nor an earlier row`);
+          source.push(d.source[e]);
+          weight.push(d.weight[e]);
+        }
+        averaged.push(d.averaged[ref + k]);
+        start.push(source.length);
       }
-      averaged.push(d.averaged[ref]);
-    } else {
+      continue;
+    }
+    {
       const head = code / 2, length = Math.floor(head / 2), avg = head % 2;
       if (length === 0 || length > maxEntries - source.length) s.fail(`row ${row} has a bad length`);
       for (let e = 0; e < length; e++) {
@@ -62,6 +71,7 @@ export function readDictionaryProgram(s, support, maxRows, next, phantoms, d) {
       averaged.push(avg);
     }
     start.push(source.length);
+    row++;
   }
   // The control rows (row + 1, 0 a phantom) and the next support's rows, each in
   // bit_width(rows + 1) bits, least significant first, the last byte's spare bits 0 (rows <=
