@@ -77,18 +77,7 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     w.write<uint32_t>(static_cast<uint32_t>(t.patches.size()));
     w.write<uint32_t>(static_cast<uint32_t>(t.irregular.size()));
     w.write<uint32_t>(static_cast<uint32_t>(t.limitPosition.rows()));
-    if (version >= kTablesChunkDictionaryVersion) { // a stream of varints, each level's first implied
-        std::vector<uint8_t> s;
-        for (const auto& L : t.levels)
-            for (uint32_t x : {L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches, L.irregularFaces})
-                writeVarint(s, x);
-        writeStream(w, s);
-    } else {
-        for (const auto& L : t.levels)
-            for (uint32_t x : {L.first, L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches,
-                               L.irregularFaces})
-                w.write<uint32_t>(x);
-    }
+    writeLevels(w, t.levels, version >= kTablesChunkDictionaryVersion);
     const uint32_t repeats = version >= 6 ? repeatedLevels(t) : 0u;
     if (version >= 6) w.write<uint32_t>(repeats);
     // Version 9: a table of no rows (a level below N where no quadtree refines) is not written.
@@ -246,30 +235,15 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     uint32_t patches = r.read<uint32_t>(), irregular = r.read<uint32_t>(),
              limits = r.read<uint32_t>();
     uint64_t sum = 0;
-    // Version 9: the levels' counts as varints of one stream, each level's first implied.
-    std::optional<StreamReader> levelStream;
-    if (chunk.version >= kTablesChunkDictionaryVersion) levelStream.emplace(r, "levels");
-    auto levelCount = [&]() -> uint32_t {
-        if (!levelStream) return r.read<uint32_t>();
-        const uint64_t x = levelStream->varint();
-        if (x > 0xFFFFFFFFu) levelStream->fail("a count out of range");
-        return static_cast<uint32_t>(x);
-    };
+    const std::vector<LevelInfo> levels = readLevels(r, D + 1, chunk.version >= kTablesChunkDictionaryVersion);
     for (uint32_t l = 0; l <= D; ++l) {
-        LevelInfo L;
-        L.first = levelStream ? static_cast<uint32_t>(std::min<uint64_t>(sum, 0xFFFFFFFFu)) : levelCount();
-        L.facePoints = levelCount();
-        L.edgePoints = levelCount();
-        L.vertexPoints = levelCount();
-        L.regularPatches = levelCount();
-        L.irregularFaces = levelCount();
+        const LevelInfo& L = levels[l];
         if (L.first != sum)
             r.fail("level " + std::to_string(l) + " does not start where the previous ends");
         sum += uint64_t(L.facePoints) + L.edgePoints + L.vertexPoints;
         if (sum > t.totalVertices) r.fail("level vertex counts exceed the total");
         t.levels.push_back(L);
     }
-    if (levelStream) levelStream->finish();
     if (sum != t.totalVertices) r.fail("level vertex counts do not add up to the total");
     if (mesh && t.levels[0].count() != mesh->vertexCount())
         r.fail("level 0 has " + std::to_string(t.levels[0].count()) + " vertices, the mesh " +

@@ -3,7 +3,7 @@
 // nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
 import { Fnv64, LimnError, bytesOf, chunkReader } from './container.mjs';
-import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
+import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils, readLevels } from './tables_stream.mjs';
 import { readBasisProgram, readConfigurationBasis, readNodeStream, readSmoothFaces, readSmoothPoints } from './tables_surface_records.mjs';
 import { programDictionary } from './tables_program_dictionary.mjs';
 
@@ -103,26 +103,15 @@ export function decodeTables(chunk, mesh, tags) {
     throw new LimnError('the subdivision tables were built for a different mesh topology or tags; re-run limn-tables', 'chunk TBLS');
   }
   const totalVertices = r.u32(), P = r.u32('patch count'), Q = r.u32('irregular count'), L = r.u32('limit count');
-  const levels = [];
+  const levels = [], v9 = chunk.version >= 9;
   let sum = 0;
-  // Version 9: the levels' counts as varints of one stream, each level's first implied.
-  const v9 = chunk.version >= 9, levelStream = v9 ? new Stream(r, 'levels') : null;
-  const count = () => {
-    if (!levelStream) return r.u32();
-    const x = levelStream.varint();
-    if (x > 0xffffffff) levelStream.fail('a count out of range');
-    return x;
-  };
-  for (let l = 0; l <= D; l++) {
-    const first = levelStream ? sum : count();
-    const lv = { first, facePoints: count(), edgePoints: count(), vertexPoints: count(), regularPatches: count(), irregularFaces: count() };
+  readLevels(r, D + 1, v9).forEach((lv, l) => {
     if (lv.first !== sum) r.fail(`level ${l} does not start where the previous ends`);
     lv.count = lv.facePoints + lv.edgePoints + lv.vertexPoints;
     sum += lv.count;
     if (sum > totalVertices) r.fail('level vertex counts exceed the total');
     levels.push(lv);
-  }
-  if (levelStream) levelStream.finish();
+  });
   if (sum !== totalVertices) r.fail('level vertex counts do not add up to the total');
   if (levels[0].count !== mesh.vertexCount) r.fail(`level 0 has ${levels[0].count} vertices, the mesh ${mesh.vertexCount}`);
   const facePoints = [], edgePoints = [], vertexPoints = [];
