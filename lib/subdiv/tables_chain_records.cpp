@@ -1,11 +1,14 @@
 #include "subdiv/tables_chain_records.h"
 
 #include "subdiv/crease_basis.h"
+#include "subdiv/tables_program_dictionary.h"
 #include "subdiv/tables_stream.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 namespace limn {
@@ -97,6 +100,36 @@ BasisProgram readChainProgram(ByteReader& r, const std::string& what, uint32_t& 
     return p;
 }
 
+// Version 9's kind: a varint boundary | crease << 4 | how << 8, the sharpness by `how`: 0 none
+// (0), 1 the previous band's in that quadrant less 1, 2 the previous band's, 3 its 4 raw bytes
+// (a crease's sharpness counts down band by band).
+void writeCompactKind(std::vector<uint8_t>& s, const CreaseBandKind& k, float previous) {
+    const uint32_t bits = std::bit_cast<uint32_t>(k.sharpness);
+    const uint32_t how = bits == 0 ? 0u : bits == std::bit_cast<uint32_t>(previous - 1.0f) ? 1u
+                         : bits == std::bit_cast<uint32_t>(previous) ? 2u : 3u;
+    writeVarint(s, uint32_t(k.boundary) | uint32_t(k.crease) << 4 | how << 8);
+    if (how == 3)
+        for (int i = 0; i < 4; ++i) s.push_back(static_cast<uint8_t>(bits >> (8 * i)));
+}
+
+// A kind's checks: a single-crease patch has one crease edge, not on its boundary; infinitely
+// sharp at most.
+void checkKind(ByteReader& r, uint32_t bits, const CreaseBandKind& k, const std::string& what) {
+    if (bits >> 8 || (k.crease & (k.crease - 1)) || (k.crease & k.boundary) ||
+        !(k.sharpness >= 0 && k.sharpness <= kInfiniteSharpness) || (k.crease && k.sharpness == 0))
+        r.fail(what + " has a bad patch kind");
+}
+
+CreaseBandKind readCompactKind(ByteReader& r, StreamReader& in, float previous, const std::string& what) {
+    const uint64_t code = in.varint();
+    if (code >> 10) r.fail(what + " has a bad patch kind");
+    const uint32_t how = static_cast<uint32_t>(code >> 8), bits = static_cast<uint32_t>(code & 0xFF);
+    const float sharpness = how == 0 ? 0.0f : how == 1 ? previous - 1.0f : how == 2 ? previous : in.rawFloat();
+    CreaseBandKind k{uint8_t(bits & 15), uint8_t(bits >> 4), sharpness};
+    checkKind(r, bits, k, what);
+    return k;
+}
+
 void writeKind(ByteWriter& w, const CreaseBandKind& k) {
     w.write<uint32_t>(uint32_t(k.boundary) | uint32_t(k.crease) << 4);
     w.write<float>(k.sharpness);
@@ -105,50 +138,98 @@ void writeKind(ByteWriter& w, const CreaseBandKind& k) {
 CreaseBandKind readKind(ByteReader& r, const std::string& what) {
     const uint32_t bits = r.read<uint32_t>();
     CreaseBandKind k{uint8_t(bits & 15), uint8_t(bits >> 4), r.read<float>()};
-    // A single-crease patch has one crease edge, not on its boundary; infinitely sharp at most.
-    if (bits >> 8 || (k.crease & (k.crease - 1)) || (k.crease & k.boundary) ||
-        !(k.sharpness >= 0 && k.sharpness <= kInfiniteSharpness) || (k.crease && k.sharpness == 0))
-        r.fail(what + " has a bad patch kind");
+    checkKind(r, bits, k, what);
     return k;
 }
 
 } // namespace
 
-void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& programs) {
+void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& programs, ProgramDictionary* dictionary) {
     if (!b.chain) throw std::logic_error("TBLS: a chain basis without its chain");
     const CreaseChain& c = *b.chain;
-    w.write<uint32_t>(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
-    if (c.end == CreaseEnd::Smooth) w.write<uint32_t>(c.endBasis);
-    w.write<uint32_t>(static_cast<uint32_t>(c.bands.size()));
-    // A chain's bands that share a program hold copies of it, which need not be encoded again.
-    const CreaseBand* previous = nullptr;
-    uint32_t previousIndex = 0;
+    // Version 8: u32 fields, the programs' own bytes; version 9: one stream of varints, the
+    // programs through the chunk's dictionary (tables_program_dictionary.h).
+    std::vector<uint8_t> s;
+    auto number = [&](uint32_t x) {
+        if (dictionary)
+            writeVarint(s, x);
+        else
+            w.write<uint32_t>(x);
+    };
+    number(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
+    if (c.end == CreaseEnd::Smooth) number(c.endBasis);
+    number(static_cast<uint32_t>(c.bands.size()));
+    std::vector<uint32_t> moved;
+    std::array<float, 3> previous{};
+    // A chain's bands often run one program (the sharpness clamped): the last band's canonical
+    // form and bytes are reused when its program is the same.
+    const CreaseBand* last = nullptr;
+    BasisProgram canonical;
+    std::vector<uint8_t> bytes;
+    auto same = [](const CreaseBand& a, const CreaseBand& o) {
+        return a.support == o.support && sameProgramBytes(a.program, o.program);
+    };
+    uint32_t index = 0;
     for (const CreaseBand& band : c.bands) {
-        if (!previous || previous->support != band.support || !sameProgramBytes(previous->program, band.program)) {
-            std::vector<uint8_t> bytes = programBytes(band.program, band.support);
-            const auto [it, added] = programs.try_emplace(std::move(bytes), static_cast<uint32_t>(programs.size()));
-            previousIndex = it->second;
-            w.write<uint32_t>(previousIndex);
-            if (added) w.writeArray(it->first);
+        // A band that runs the last band's program names the same entry without looking it up.
+        if (!last || !same(*last, band)) {
+            canonical = canonicalProgram(band.program, band.support, moved);
+            bytes = programBytes(canonical, band.support);
+            const auto [it, added] = programs.try_emplace(bytes, static_cast<uint32_t>(programs.size()));
+            index = it->second;
+            number(index);
+            if (added && dictionary) {
+                writeVarint(s, canonical.nextSupport.size());
+                writeDictionaryProgram(s, canonical, *dictionary);
+            } else if (added) {
+                w.writeArray(it->first);
+            }
         } else {
-            w.write<uint32_t>(previousIndex);
+            number(index);
         }
-        previous = &band;
-        for (const CreaseBandKind& k : band.kind) writeKind(w, k);
+        last = &band;
+        for (size_t q = 0; q < 3; ++q) {
+            if (dictionary)
+                writeCompactKind(s, band.kind[q], previous[q]);
+            else
+                writeKind(w, band.kind[q]);
+            previous[q] = band.kind[q].sharpness;
+        }
     }
     if (c.end == CreaseEnd::Regular) {
-        writeKind(w, c.bands.back().centreKind);
-        for (uint32_t x : c.bands.back().centreRow) w.write<uint32_t>(x + 1);
+        if (dictionary)
+            writeCompactKind(s, c.bands.back().centreKind, 0.0f);
+        else
+            writeKind(w, c.bands.back().centreKind);
+        // (A row out of range, from damaged tables, stays so: the reader refuses it.)
+        for (uint32_t x : c.bands.back().centreRow) number(x < moved.size() ? moved[x] + 1 : x + 1);
     }
+    if (dictionary) writeStream(w, s);
 }
 
 IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t valence, uint32_t M, uint32_t K,
-                              const std::vector<IrregularBasis>& earlier, ChainPrograms& programs) {
+                              const std::vector<IrregularBasis>& earlier, ChainPrograms& programs,
+                              ProgramDictionary* dictionary) {
     auto chain = std::make_shared<CreaseChain>();
     CreaseChain& c = *chain;
-    const uint32_t end = r.read<uint32_t>();
-    const uint32_t endBasis = end == 1 ? r.read<uint32_t>() : kNone;
-    const uint32_t bands = r.read<uint32_t>();
+    // Version 9: the record's fields are varints of one stream (writeChainBasis).
+    std::optional<StreamReader> in;
+    if (dictionary) in.emplace(r, what);
+    auto number = [&]() -> uint32_t {
+        if (!in) return r.read<uint32_t>();
+        const uint64_t x = in->varint();
+        if (x > 0xFFFFFFFFu) in->fail("a number out of range");
+        return static_cast<uint32_t>(x);
+    };
+    std::array<float, 3> previous{};
+    auto kind = [&](size_t q, const std::string& name) {
+        const CreaseBandKind k = in ? readCompactKind(r, *in, previous[q], name) : readKind(r, name);
+        previous[q] = k.sharpness;
+        return k;
+    };
+    const uint32_t end = number();
+    const uint32_t endBasis = end == 1 ? number() : kNone;
+    const uint32_t bands = number();
     if (end > 2 || bands < 1 || bands > K || K > uint32_t(kMaxDepth) || M < 4 || M > kMaxChainSupport ||
         (end == 1 && (valence < 3 || valence == 4 || valence > kMaxBasisValence || bands == K)) ||
         (end != 1 && valence != 0) || (end == 0 && bands != K))
@@ -168,9 +249,15 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
     uint32_t support = M;
     for (uint32_t j = 0; j < bands; ++j) {
         const std::string band = what + " band " + std::to_string(j + 1);
-        const uint32_t index = r.read<uint32_t>();
+        const uint32_t index = number();
         if (index > programs.programs.size()) r.fail(band + " names a missing program");
-        if (index == programs.programs.size()) {
+        if (index == programs.programs.size() && in) { // over this band's support
+            const uint64_t next = in->varint();
+            if (next > kMaxChainSupport) in->fail(band + " has a bad support size");
+            programs.programs.push_back(readDictionaryProgram(*in, support, uint64_t(kMaxChainRowsPerPoint) * support,
+                                                              static_cast<uint32_t>(next), true, *dictionary));
+            programs.support.push_back(support);
+        } else if (index == programs.programs.size()) {
             uint32_t s = 0;
             programs.programs.push_back(readChainProgram(r, band + " program", s));
             programs.support.push_back(s);
@@ -182,7 +269,7 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
         CreaseBand b;
         b.program = programs.programs[index];
         b.support = support;
-        for (CreaseBandKind& k : b.kind) k = readKind(r, band);
+        for (size_t q = 0; q < 3; ++q) b.kind[q] = kind(q, band);
         c.bands.push_back(std::move(b));
         support = static_cast<uint32_t>(c.bands.back().program.nextSupport.size());
     }
@@ -190,16 +277,18 @@ IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t v
         r.fail(what + "'s last band has a bad next support for its end");
     if (c.end == CreaseEnd::Regular) {
         CreaseBand& last = c.bands.back();
-        last.centreKind = readKind(r, what + " end");
+        previous[0] = 0.0f;
+        last.centreKind = kind(0, what + " end");
         if (last.centreKind.crease) r.fail(what + "'s regular end has a crease");
         // 0: no row (a boundary phantom, which the expansion makes from the rows beside it), as
         // the program's control rows store it.
         for (uint32_t& x : last.centreRow) {
-            const uint32_t v = r.read<uint32_t>();
+            const uint32_t v = number();
             if (v > last.program.rows()) r.fail(what + "'s regular end names a missing row");
             x = v == 0 ? kNone : v - 1;
         }
     }
+    if (in) in->finish();
     IrregularBasis basis;
     if (!expandCreaseChain(c, K, basis, endOf)) r.fail(what + " cannot be expanded");
     for (float x : basis.weights)

@@ -7,6 +7,7 @@
 
 #include "base/bytes.h"
 #include "subdiv/irregular_basis.h"
+#include "subdiv/tables_program_dictionary.h"
 
 #include <cstdint>
 #include <map>
@@ -34,11 +35,17 @@ struct ChainPrograms {
 // rows as writeProgram's, 48 control rows as varints of row + 1 (0: a phantom) and the next
 // support's rows), its three quadrants' kinds (u32 boundary | crease << 4, f32 sharpness) and,
 // on a regular end's last band, the corner patch's kind and 16 rows as u32 row + 1.
-void writeChainBasis(ByteWriter& w, const IrregularBasis& basis, ChainProgramIndex& programs);
+// Version 9 (`dictionary` given): the fields after the header as varints of one stream, a new
+// program as its next-support count and its rows through the dictionary
+// (tables_program_dictionary.h), a kind as writeCompactKind's varint (its sharpness mostly the
+// previous band's less 1). The programs are written with their rows in canonical order in both.
+void writeChainBasis(ByteWriter& w, const IrregularBasis& basis, ChainProgramIndex& programs,
+                     ProgramDictionary* dictionary = nullptr);
 // Checks every count, index, kind and the chain's shape (band 1's support M, each band's
 // support the last one's next support, a smooth end's 2n + 8 points and its basis among
 // `earlier`, at most K bands) before expanding, then the weights' range.
 IrregularBasis readChainBasis(ByteReader& r, const std::string& what, uint32_t valence, uint32_t support,
-                              uint32_t levels, const std::vector<IrregularBasis>& earlier, ChainPrograms& programs);
+                              uint32_t levels, const std::vector<IrregularBasis>& earlier, ChainPrograms& programs,
+                              ProgramDictionary* dictionary = nullptr);
 
 } // namespace limn

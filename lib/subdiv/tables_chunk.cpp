@@ -3,6 +3,7 @@
 #include "subdiv/tables_stream.h"
 #include "subdiv/crease_basis.h"
 #include "subdiv/tables_chain_records.h"
+#include "subdiv/tables_program_dictionary.h"
 #include "subdiv/tables_surface_records.h"
 
 #include "base/bytes.h"
@@ -36,13 +37,11 @@ uint32_t ptexFaceCount(const Mesh& mesh) {
 }
 
 Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
-    // Tables with decaying-crease chains need version 8; others are written as version 7, which
-    // every reader of this release knows.
-    const bool chains = std::any_of(t.irregularBases.begin(), t.irregularBases.end(),
-                                    [](const IrregularBasis& b) { return b.chain != nullptr; });
-    if (chains && version == kTablesChunkVersion) version = kTablesChunkChainVersion;
-    if (version < 3 || version > kTablesChunkChainVersion)
-        throw std::logic_error("TBLS: only versions 3 to 8 are written");
+    // Tables with irregular bases are written as version 9 (their programs through the chunk's
+    // dictionary); others as version 7, which readers since boundary bases know.
+    if (version == 0) version = t.irregularBases.empty() ? kTablesChunkVersion : kTablesChunkDictionaryVersion;
+    if (version < 3 || version > kTablesChunkDictionaryVersion)
+        throw std::logic_error("TBLS: only versions 3 to 9 are written");
     if (version < 5)
         for (uint32_t i = 0; i < t.irregularNodes.size(); ++i)
             for (uint32_t c : t.irregularNodes[i])
@@ -78,17 +77,18 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     w.write<uint32_t>(static_cast<uint32_t>(t.patches.size()));
     w.write<uint32_t>(static_cast<uint32_t>(t.irregular.size()));
     w.write<uint32_t>(static_cast<uint32_t>(t.limitPosition.rows()));
-    for (const auto& L : t.levels)
-        for (uint32_t x : {L.first, L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches,
-                           L.irregularFaces})
-            w.write<uint32_t>(x);
+    writeLevels(w, t.levels, version >= kTablesChunkDictionaryVersion);
     const uint32_t repeats = version >= 6 ? repeatedLevels(t) : 0u;
     if (version >= 6) w.write<uint32_t>(repeats);
+    // Version 9: a table of no rows (a level below N where no quadtree refines) is not written.
+    auto writeTable = [&](const StencilTable& x, bool weights) {
+        if (version < kTablesChunkDictionaryVersion || x.rows() != 0) writeStencilTable(w, x, weights, compact);
+    };
     for (uint32_t l = 0; l + 1 < t.levels.size(); ++l) {
         if (repeats >> (l + 1) & 1) continue; // level l + 1 is level l's, shifted
-        writeStencilTable(w, t.facePoints[l], false, compact);
-        writeStencilTable(w, t.edgePoints[l], true, compact);
-        writeStencilTable(w, t.vertexPoints[l], true, compact);
+        writeTable(t.facePoints[l], false);
+        writeTable(t.edgePoints[l], true);
+        writeTable(t.vertexPoints[l], true);
     }
     auto writeFace = [&](const IrregularFace& q) {
         w.writeArray(std::span<const uint32_t>(q.corner, 4));
@@ -123,6 +123,8 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
     for (const auto& q : t.irregularLeaves) writeFace(q);
     w.write<uint32_t>(static_cast<uint32_t>(t.irregularBases.size()));
     ChainProgramIndex chainPrograms;
+    ProgramDictionary dictionaryOf;
+    ProgramDictionary* dictionary = version >= kTablesChunkDictionaryVersion ? &dictionaryOf : nullptr;
     for (const auto& b : t.irregularBases) {
         if (b.chain) {
             if (version < kTablesChunkChainVersion)
@@ -131,12 +133,12 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
             w.write<uint32_t>(kChainConfigurationCode);
             w.write<uint32_t>(b.supportSize());
             w.write<uint32_t>(b.levels);
-            writeChainBasis(w, b, chainPrograms);
+            writeChainBasis(w, b, chainPrograms, dictionary);
             continue;
         }
         if (programs) { // version 7: with its configuration (boundary bases)
             if (version >= 7)
-                writeConfigurationBasis(w, b);
+                writeConfigurationBasis(w, b, dictionary);
             else
                 writeBasisProgram(w, b);
             continue;
@@ -187,9 +189,9 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
         }
         writeStream(w, points);
     }
-    writeStencilTable(w, t.limitPosition, true, compact);
-    writeStencilTable(w, t.limitTangent1, true, compact);
-    writeStencilTable(w, t.limitTangent2, true, compact);
+    writeTable(t.limitPosition, true);
+    writeTable(t.limitTangent1, true);
+    writeTable(t.limitTangent2, true);
     w.writeArray(t.limitVertex);
     for (uint8_t e : t.limitExact) w.write<uint32_t>(e ? 0u : 1u); // bit 0: approximate
     return {kTablesChunk, version, w.take()};
@@ -197,10 +199,10 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
 
 Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     // Version 1 has no single-crease patches: its patch records end before the sharpness.
-    if (chunk.version > kTablesChunkChainVersion || chunk.version == 0)
+    if (chunk.version > kTablesChunkDictionaryVersion || chunk.version == 0)
         throwBadInput("chunk TBLS version " + std::to_string(chunk.version) + " is " +
                       (chunk.version ? "newer than" : "not one") + " this limn reads (1 to " +
-                      std::to_string(kTablesChunkChainVersion) + ")" +
+                      std::to_string(kTablesChunkDictionaryVersion) + ")" +
                       (chunk.version ? "; upgrade limn" : ""));
     const uint32_t patchBytes = chunk.version >= 2 ? 88 : 84;
     const bool compact = chunk.version >= 4; // compact stencil tables and bases
@@ -233,14 +235,9 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     uint32_t patches = r.read<uint32_t>(), irregular = r.read<uint32_t>(),
              limits = r.read<uint32_t>();
     uint64_t sum = 0;
+    const std::vector<LevelInfo> levels = readLevels(r, D + 1, chunk.version >= kTablesChunkDictionaryVersion);
     for (uint32_t l = 0; l <= D; ++l) {
-        LevelInfo L;
-        L.first = r.read<uint32_t>();
-        L.facePoints = r.read<uint32_t>();
-        L.edgePoints = r.read<uint32_t>();
-        L.vertexPoints = r.read<uint32_t>();
-        L.regularPatches = r.read<uint32_t>();
-        L.irregularFaces = r.read<uint32_t>();
+        const LevelInfo& L = levels[l];
         if (L.first != sum)
             r.fail("level " + std::to_string(l) + " does not start where the previous ends");
         sum += uint64_t(L.facePoints) + L.edgePoints + L.vertexPoints;
@@ -251,6 +248,12 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     if (mesh && t.levels[0].count() != mesh->vertexCount())
         r.fail("level 0 has " + std::to_string(t.levels[0].count()) + " vertices, the mesh " +
                std::to_string(mesh->vertexCount()));
+    // Version 9: a table of no rows is not stored.
+    auto readTable = [&](const std::string& what, uint32_t rows, bool weights, uint32_t lo0, uint32_t hi0,
+                         uint32_t lo1 = 0, uint32_t hi1 = 0) {
+        if (chunk.version >= kTablesChunkDictionaryVersion && rows == 0) return StencilTable{};
+        return readStencilTable(r, compact, what, rows, weights, lo0, hi0, lo1, hi1);
+    };
     // Version 6: levels whose stencil tables are the previous level's, shifted (levels 2..D).
     const uint32_t repeats = chunk.version >= 6 ? r.read<uint32_t>() : 0u;
     if (repeats & ~(((2u << D) - 1u) & ~3u)) // D <= 16, checked above
@@ -264,10 +267,10 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
             continue;
         }
         t.facePoints.push_back(
-            readStencilTable(r, compact, lv + " face points", L.facePoints, false, P.first, parentEnd));
-        t.edgePoints.push_back(readStencilTable(r, compact, lv + " edge points", L.edgePoints, true, P.first,
+            readTable(lv + " face points", L.facePoints, false, P.first, parentEnd));
+        t.edgePoints.push_back(readTable(lv + " edge points", L.edgePoints, true, P.first,
                                          parentEnd, L.first, faceEnd));
-        t.vertexPoints.push_back(readStencilTable(r, compact, lv + " vertex points", L.vertexPoints, true, P.first,
+        t.vertexPoints.push_back(readTable(lv + " vertex points", L.vertexPoints, true, P.first,
                                            parentEnd, L.first, faceEnd));
     }
     const uint32_t ptexCount = mesh ? ptexFaceCount(*mesh) : 0xFFFFFFFFu;
@@ -408,10 +411,12 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         const uint32_t bases = r.read<uint32_t>();
         if (bases > r.remaining() / 8) r.fail("irregular basis count is too large");
         ChainPrograms chainPrograms;
+        ProgramDictionary dictionary; // version 9
         for (uint32_t i = 0; i < bases; ++i) {
             t.irregularBases.push_back(
                 chunk.version >= 7 ? readConfigurationBasis(r, "irregular basis " + std::to_string(i), t.irregularBases,
-                                                            chunk.version >= 8 ? &chainPrograms : nullptr)
+                                                            chunk.version >= 8 ? &chainPrograms : nullptr,
+                                                            chunk.version >= 9 ? &dictionary : nullptr)
                 : programs         ? readBasisProgram(r, i, t.irregularBases)
                                    : readBasisWeights(r, i, compact, t.irregularBases));
         }
@@ -479,9 +484,9 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
     // Limit points read level N (the irregular faces' corners) or level D (the leaves').
     const LevelInfo &LN = t.levels[t.depth], &LD = t.levels[D];
     uint32_t lo = LN.first, hi = LN.first + LN.count(), lo1 = LD.first, hi1 = LD.first + LD.count();
-    t.limitPosition = readStencilTable(r, compact, "limit positions", limits, true, lo, hi, lo1, hi1);
-    t.limitTangent1 = readStencilTable(r, compact, "limit tangents 1", limits, true, lo, hi, lo1, hi1);
-    t.limitTangent2 = readStencilTable(r, compact, "limit tangents 2", limits, true, lo, hi, lo1, hi1);
+    t.limitPosition = readTable("limit positions", limits, true, lo, hi, lo1, hi1);
+    t.limitTangent1 = readTable("limit tangents 1", limits, true, lo, hi, lo1, hi1);
+    t.limitTangent2 = readTable("limit tangents 2", limits, true, lo, hi, lo1, hi1);
     t.limitVertex = r.readArray<uint32_t>(limits, "limit vertices");
     for (uint32_t v : t.limitVertex)
         if (!((v >= lo && v < hi) || (v >= lo1 && v < hi1)))

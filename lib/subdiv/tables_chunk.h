@@ -28,10 +28,14 @@ inline constexpr uint32_t kTablesChunkVersion = 7;
 // Tables with decaying-crease chains (TablesOptions::creaseChains) are written as version 8,
 // which the readers also take.
 inline constexpr uint32_t kTablesChunkChainVersion = 8;
+// Tables with irregular bases are written as version 9, which stores the bases' and chains'
+// programs through one program dictionary per chunk (formats/limn.md, "Program dictionary").
+inline constexpr uint32_t kTablesChunkDictionaryVersion = 9;
 
-// Writes the current version; 3 (the plain layout), 4, 5 and 6 for tests and fuzz seeds of older
-// files (tables with smooth faces below level N need version 5 or later, with boundary bases 7).
-Chunk encodeTablesChunk(const Tables& tables, uint32_t version = kTablesChunkVersion);
+// Writes the current version (0: version 9 for tables with irregular bases, else 7); 3 (the
+// plain layout) to 8 for tests and fuzz seeds of older files (tables with smooth faces below
+// level N need version 5 or later, with boundary bases 7, with chains 8).
+Chunk encodeTablesChunk(const Tables& tables, uint32_t version = 0);
 
 // Decodes and validates every count and index. With `mesh`, also checks that the tables were
 // built from this mesh's topology (hash of faces, tags and options) and that ptex ids exist.

@@ -2,6 +2,7 @@
 
 #include "base/cli.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -225,6 +226,49 @@ uint32_t StreamReader::after(uint32_t previous, const char* what) {
     const int64_t x = int64_t(previous) + unzigzag(z);
     if (x < 0 || x > int64_t(0xFFFFFFFFu)) fail(std::string(what) + " out of range");
     return static_cast<uint32_t>(x);
+}
+
+uint8_t StreamReader::rawByte() {
+    if (at_ == data_.size()) fail("the stream ends inside a record");
+    return data_[at_++];
+}
+
+void writeLevels(ByteWriter& w, const std::vector<LevelInfo>& levels, bool stream) {
+    if (!stream) {
+        for (const LevelInfo& L : levels)
+            for (uint32_t x : {L.first, L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches, L.irregularFaces})
+                w.write<uint32_t>(x);
+        return;
+    }
+    std::vector<uint8_t> s;
+    for (const LevelInfo& L : levels)
+        for (uint32_t x : {L.facePoints, L.edgePoints, L.vertexPoints, L.regularPatches, L.irregularFaces})
+            writeVarint(s, x);
+    writeStream(w, s);
+}
+
+std::vector<LevelInfo> readLevels(ByteReader& r, uint32_t count, bool stream) {
+    std::vector<LevelInfo> levels(count);
+    if (!stream) {
+        for (LevelInfo& L : levels)
+            for (uint32_t* x : {&L.first, &L.facePoints, &L.edgePoints, &L.vertexPoints, &L.regularPatches,
+                                &L.irregularFaces})
+                *x = r.read<uint32_t>();
+        return levels;
+    }
+    StreamReader in(r, "levels");
+    uint64_t sum = 0;
+    for (LevelInfo& L : levels) {
+        L.first = static_cast<uint32_t>(std::min<uint64_t>(sum, 0xFFFFFFFFu));
+        for (uint32_t* x : {&L.facePoints, &L.edgePoints, &L.vertexPoints, &L.regularPatches, &L.irregularFaces}) {
+            const uint64_t v = in.varint();
+            if (v > 0xFFFFFFFFu) in.fail("a count out of range");
+            *x = static_cast<uint32_t>(v);
+        }
+        sum += uint64_t(L.facePoints) + L.edgePoints + L.vertexPoints;
+    }
+    in.finish();
+    return levels;
 }
 
 float StreamReader::rawFloat() {

@@ -36,6 +36,7 @@ public:
     // A u32 given as a zigzag difference from `previous`.
     uint32_t after(uint32_t previous, const char* what);
     float rawFloat(); // 4 raw little-endian bytes
+    uint8_t rawByte();
     void finish() {
         if (at_ != data_.size()) fail("unexpected bytes after the last record");
     }
@@ -57,6 +58,12 @@ StencilTable readStencilTable(ByteReader& r, bool compact, const std::string& wh
 // Checks a stencil table read or expanded from `r`'s chunk as readStencilTable does.
 void checkStencilTable(ByteReader& r, const StencilTable& t, const std::string& what, uint32_t rows, bool weights,
                        uint32_t lo0, uint32_t hi0, uint32_t lo1 = 0, uint32_t hi1 = 0);
+
+// The level records: six u32 each (first, face, edge and vertex points, regular patches,
+// irregular faces), or (`stream`, version 9) one stream of varints without the first, which
+// readLevels sets to where the previous level ends (capped at 2^32 - 1); the caller checks them.
+void writeLevels(ByteWriter& w, const std::vector<LevelInfo>& levels, bool stream);
+std::vector<LevelInfo> readLevels(ByteReader& r, uint32_t count, bool stream);
 
 // Version 6's repeated levels (formats/limn.md): below a decaying feature the refinement of
 // level l is that of level l - 1 one level finer, the same rows over the same neighbours, so

@@ -2,6 +2,7 @@
 
 #include "subdiv/irregular_basis.h"
 #include "subdiv/tables_chain_records.h"
+#include "subdiv/tables_program_dictionary.h"
 #include "subdiv/tables_stream.h"
 
 #include <algorithm>
@@ -72,24 +73,29 @@ void writeBasisProgram(ByteWriter& w, const IrregularBasis& b) {
     writeProgram(w, p);
 }
 
-void writeConfigurationBasis(ByteWriter& w, const IrregularBasis& b) {
+void writeConfigurationBasis(ByteWriter& w, const IrregularBasis& b, ProgramDictionary* dictionary) {
     IrregularBasis built;
     const BasisProgram& p = programOf(b, built);
     w.write<uint32_t>(b.valence);
     w.write<uint32_t>(b.configuration.code());
     w.write<uint32_t>(b.supportSize());
     w.write<uint32_t>(b.levels);
-    writeProgram(w, p);
+    if (!dictionary) return writeProgram(w, p);
+    std::vector<uint32_t> moved;
+    std::vector<uint8_t> s;
+    writeDictionaryProgram(s, canonicalProgram(p, b.supportSize(), moved), *dictionary);
+    writeStream(w, s);
 }
 
 IrregularBasis readConfigurationBasis(ByteReader& r, const std::string& what, const std::vector<IrregularBasis>& earlier,
-                                      ChainPrograms* chains) {
+                                      ChainPrograms* chains, ProgramDictionary* dictionary) {
     IrregularBasis x;
     x.valence = r.read<uint32_t>();
     const uint32_t code = r.read<uint32_t>();
     const uint32_t M = r.read<uint32_t>();
     x.levels = r.read<uint32_t>();
-    if (chains && code == kChainConfigurationCode) return readChainBasis(r, what, x.valence, M, x.levels, earlier, *chains);
+    if (chains && code == kChainConfigurationCode)
+        return readChainBasis(r, what, x.valence, M, x.levels, earlier, *chains, dictionary);
     BasisConfiguration& c = x.configuration;
     c = {x.valence, (code & 1) != 0, code >> 2, (code & 2) != 0};
     if (c.code() != code || x.valence < 1 || x.valence > kMaxBasisValence || x.levels < 1 ||
@@ -101,7 +107,14 @@ IrregularBasis readConfigurationBasis(ByteReader& r, const std::string& what, co
         if (other.configuration == c) r.fail(what + " repeats a configuration");
     if (c.boundary) x.support = M;
     // A boundary sub-patch has at most 7 phantom points, each one row.
-    x.program = readProgram(r, what, M, c.boundary ? 21 : 0);
+    const uint32_t phantomRows = c.boundary ? 21 : 0;
+    if (dictionary) { // version 9
+        StreamReader in(r, what);
+        x.program = readDictionaryProgram(in, M, uint64_t(kMaxProgramRowsPerPoint) * M + phantomRows, M, false, *dictionary);
+        in.finish();
+    } else {
+        x.program = readProgram(r, what, M, phantomRows);
+    }
     x.weights = expandIrregularBasis(x.program, M, x.levels);
     const float lo = c.boundary ? -4.0f : 0.0f, hi = c.boundary ? 5.0f : 1.0f;
     for (float wt : x.weights)

@@ -32,12 +32,15 @@ IrregularBasis readBasisProgram(ByteReader& r, uint32_t index, const std::vector
 // range: [0, 1] for an interior basis (Catmull-Clark's smooth weights are convex), [-4, 5] for a
 // boundary one (its phantom points, 2 a - b of such; corners 4 a - 2 b - 2 c + d). `what` names
 // the basis in messages.
-void writeConfigurationBasis(ByteWriter& w, const IrregularBasis& basis);
+// TBLS version 9 (`dictionary` given): the program, rows in canonical order, through the chunk's
+// program dictionary, in a stream after the header (tables_program_dictionary.h).
+struct ProgramDictionary;
+void writeConfigurationBasis(ByteWriter& w, const IrregularBasis& basis, ProgramDictionary* dictionary = nullptr);
 // TBLS version 8 (`chains` given): a record of configuration code 2 is a decaying-crease chain
 // (tables_chain_records.h), its programs shared through `chains`.
 struct ChainPrograms;
 IrregularBasis readConfigurationBasis(ByteReader& r, const std::string& what, const std::vector<IrregularBasis>& earlier,
-                                      ChainPrograms* chains = nullptr);
+                                      ChainPrograms* chains = nullptr, ProgramDictionary* dictionary = nullptr);
 
 // The program alone (u32 palette size, the palette, the stream), over `support` points, which
 // FVSF version 3 writes after a configuration's own header; `phantomRows` more rows than TBLS's

@@ -100,7 +100,7 @@ TEST(IrregularSurface, SmoothFacesBelowDepthMatchOpenSubdiv) {
                           !(i < f.tables.irregular.size() && smoothRoot(f.tables.irregularNodes[i]));
         EXPECT_GT(nested, 0u) << "no smooth face below level N";
         const Chunk c = encodeTablesChunk(f.tables);
-        EXPECT_EQ(c.version, kTablesChunkVersion);
+        EXPECT_EQ(c.version, kTablesChunkDictionaryVersion);
         EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(c, &f.mesh)).payload, c.payload);
         EXPECT_THROW(encodeTablesChunk(f.tables, 4), std::logic_error);
         test::OsdLimitSurface osd(f.mesh, f.options, 10);
@@ -169,7 +169,7 @@ TEST(IrregularSurface, BoundaryBasesMatchOpenSubdiv) {
             quadtreeRoots += !smoothRoot(t.irregularNodes[q]);
         EXPECT_GT(boundaryFaces, 0u) << "no face takes a boundary basis";
         const Chunk c = encodeTablesChunk(t);
-        EXPECT_EQ(c.version, kTablesChunkVersion);
+        EXPECT_EQ(c.version, kTablesChunkDictionaryVersion);
         EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(c, &f.mesh)).payload, c.payload);
         EXPECT_THROW(encodeTablesChunk(t, 6), std::logic_error);
         // Each smooth root's surface in its support's box.
@@ -247,9 +247,9 @@ TEST(IrregularSurface, CreaseChainsMatchOpenSubdiv) {
         f.vertices = evaluateVertices(f.tables, f.mesh.positions);
         f.diag = diagonal(f.mesh);
         const limn::Tables& t = f.tables;
-        // TBLS version 8 holds the chains: the reader expands them to the same weights.
+        // TBLS version 9 holds the chains: the reader expands them to the same weights.
         const Chunk c = encodeTablesChunk(t);
-        EXPECT_EQ(c.version, kTablesChunkChainVersion);
+        EXPECT_EQ(c.version, kTablesChunkDictionaryVersion);
         const limn::Tables back = decodeTablesChunk(c, &f.mesh);
         EXPECT_EQ(encodeTablesChunk(back).payload, c.payload);
         ASSERT_EQ(back.irregularBases.size(), t.irregularBases.size());

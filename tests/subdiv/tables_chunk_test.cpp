@@ -154,7 +154,7 @@ TEST(TablesChunk, ReadsVersionOneAndRefusesUnknownVersions) {
         EXPECT_EQ(back.patches[i].crease, crease.patches[i].crease);
         EXPECT_EQ(back.patches[i].sharpness, crease.patches[i].sharpness);
     }
-    for (uint32_t version : {0u, kTablesChunkChainVersion + 1}) {
+    for (uint32_t version : {0u, kTablesChunkDictionaryVersion + 1}) {
         Chunk bad = v2;
         bad.version = version;
         try {
@@ -340,7 +340,7 @@ TEST(TablesChunk, HostileBasisProgramIsRefused) {
         {"reads neither a support point nor an earlier row", [&](BasisProgram& p) { p.source[p.start[3]] = M + 3; }},
         {"reads neither a support point nor an earlier row", [&](BasisProgram& p) { p.source.back() = 1u << 30; }},
         {"names a missing row", [&](BasisProgram& p) { p.controlRow[7] = p.rows(); }},
-        {"names a missing row", [&](BasisProgram& p) { p.nextSupport[0] = 1u << 31; }},
+        {"names a missing row", [&](BasisProgram& p) { p.nextSupport[0] = p.rows(); }},
         {"bad row count", [&](BasisProgram& p) {
              while (p.rows() <= 2 * M) {
                  p.source.push_back(0);

@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
                    "approximate_limit_points, irregular_surface (how the faces left irregular at\n"
                    "level N are drawn: basis, sub_patches, bilinear counts, boundary_basis (of\n"
                    "basis, those around a boundary vertex, from a basis per configuration),\n"
-                   "crease_chain (of basis, those from a decaying-crease chain, TBLS version 8),\n"
+                   "crease_chain (of basis, those from a decaying-crease chain, TBLS version 8 on),\n"
                    "basis_below (smooth faces below level N inside the sub-patch faces), and\n"
                    "exact_levels K: every point at least 2^-K of a face from its extraordinary\n"
                    "corners is on the limit surface; docs/irregular.md) and levels (per level\n"

@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
             .choice("--crease-chains", &creaseChains, {"on", "off"},
                     "faces at a semi-sharp crease that has not decayed at level N drawn from a "
                     "chain per configuration (one-level programs band by band until the crease "
-                    "has decayed) instead of K more levels; written as TBLS version 8 "
+                    "has decayed) instead of K more levels; written as TBLS version 9 "
                     "(docs/irregular.md) [default: on]")
             .flag("--no-crease-patches", &noCreasePatches,
                   "isolate creases and sharp corners to level N like extraordinary vertices, "

@@ -1,5 +1,5 @@
 // The chunks the WebGPU runtime reads (formats/limn.md, sections 5-8): MESH, FVUV, TAGS, MATL,
-// CLSF, TBLS (versions 1 to 8), SEAM. Every count and index is checked as the C++ readers check it
+// CLSF, TBLS (versions 1 to 9), SEAM. Every count and index is checked as the C++ readers check it
 // (lib/mesh/mesh_chunks.cpp, lib/mesh/mesh.cpp validateMesh, lib/topology/classification.cpp,
 // lib/subdiv/tables_chunk.cpp, lib/seams/seams.cpp), so that nothing out of range reaches the GPU.
 import { Fnv64, LimnError, bytesOf, chunkReader, parseContainer } from './container.mjs';

@@ -7,6 +7,7 @@
 // float once), plus per band and quadrant the crease bits and sharpness. Every field is checked
 // as the C++ reader checks it.
 import { MAX_STENCIL_WEIGHT, Stream } from './tables_stream.mjs';
+import { readDictionaryProgram } from './tables_program_dictionary.mjs';
 
 const MAX_DEPTH = 16;
 const MAX_BASIS_VALENCE = 64;
@@ -56,14 +57,28 @@ function readChainProgram(r, what) {
   return { support, rows, start, source, weight, averaged, controlRow, nextSupport };
 }
 
-function readKind(r, what) {
-  const bits = r.u32(), sharpness = r.f32();
+function checkKind(r, bits, sharpness, what) {
   const boundary = bits & 15, crease = (bits >>> 4) & 15;
   if (bits >>> 8 || (crease & (crease - 1)) || (crease & boundary) ||
       !(sharpness >= 0 && sharpness <= INFINITE_SHARPNESS) || (crease && sharpness === 0)) {
     r.fail(`${what} has a bad patch kind`);
   }
   return { boundary, crease, sharpness };
+}
+
+function readKind(r, what) {
+  const bits = r.u32(), sharpness = r.f32();
+  return checkKind(r, bits, sharpness, what);
+}
+
+// Version 9: a varint boundary | crease << 4 | how << 8; the sharpness 0 (how 0), the previous
+// band's in that quadrant less 1 (1, in float: Math.fround), the previous band's (2) or 4 raw bytes (3).
+function readCompactKind(r, s, previous, what) {
+  const code = s.varint();
+  if (code >= 1024) r.fail(`${what} has a bad patch kind`);
+  const how = code >>> 8;
+  const sharpness = how === 0 ? 0 : how === 1 ? Math.fround(previous - 1) : how === 2 ? previous : s.rawFloat();
+  return checkKind(r, code & 0xff, sharpness, what);
 }
 
 // The 16 control points (P[i + 4 j] = P_{i,j}, M columns each) of a band's patch, phantoms folded.
@@ -165,10 +180,25 @@ function expandChain(chain, K, M, endBasis) {
 }
 
 // After the record's u32 valence, code (2), support M and levels K (read by the caller).
-export function readChainBasis(r, what, valence, M, K, earlier, programs) {
-  const end = r.u32();
-  const endIndex = end === 1 ? r.u32() : NONE;
-  const bands = r.u32();
+// Version 9 (`dictionary`): the fields as varints of one stream, a new program as its next-support
+// count and its rows through the chunk's dictionary, the kinds compact.
+export function readChainBasis(r, what, valence, M, K, earlier, programs, dictionary = null) {
+  const s = dictionary ? new Stream(r, what) : null;
+  const number = () => {
+    if (!s) return r.u32();
+    const x = s.varint();
+    if (x > 0xffffffff) s.fail('a number out of range');
+    return x;
+  };
+  const previous = [0, 0, 0];
+  const kind = (q, name) => {
+    const k = s ? readCompactKind(r, s, previous[q], name) : readKind(r, name);
+    previous[q] = k.sharpness;
+    return k;
+  };
+  const end = number();
+  const endIndex = end === 1 ? number() : NONE;
+  const bands = number();
   if (end > 2 || bands < 1 || bands > K || K < 1 || K > MAX_DEPTH || M < 4 || M > MAX_SUPPORT ||
       (end === 1 && (valence < 3 || valence === 4 || valence > MAX_BASIS_VALENCE || bands === K)) ||
       (end !== 1 && valence !== 0) || (end === 0 && bands !== K)) {
@@ -186,26 +216,34 @@ export function readChainBasis(r, what, valence, M, K, earlier, programs) {
   let support = M;
   for (let j = 0; j < bands; j++) {
     const band = `${what} band ${j + 1}`;
-    const index = r.u32();
+    const index = number();
     if (index > programs.length) r.fail(`${band} names a missing program`);
-    if (index === programs.length) programs.push(readChainProgram(r, `${band} program`));
+    if (index === programs.length && s) { // over this band's support
+      const next = s.varint();
+      if (next > MAX_SUPPORT) s.fail(`${band} has a bad support size`);
+      programs.push({ ...readDictionaryProgram(s, support, MAX_ROWS_PER_POINT * support, next, true, dictionary), support });
+    } else if (index === programs.length) {
+      programs.push(readChainProgram(r, `${band} program`));
+    }
     const program = programs[index];
     if (program.support !== support) r.fail(`${band}'s program reads ${program.support} points, not the band's ${support}`);
-    chain.bands.push({ program, kinds: [readKind(r, band), readKind(r, band), readKind(r, band)] });
+    chain.bands.push({ program, kinds: [kind(0, band), kind(1, band), kind(2, band)] });
     support = program.nextSupport.length;
   }
   if (end === 1 ? support !== 2 * valence + 8 : support !== 0) r.fail(`${what}'s last band has a bad next support for its end`);
   if (end === 2) {
     const last = chain.bands[bands - 1].program;
-    chain.centreKind = readKind(r, `${what} end`);
+    previous[0] = 0;
+    chain.centreKind = kind(0, `${what} end`);
     if (chain.centreKind.crease) r.fail(`${what}'s regular end has a crease`);
     // 0: no row (a boundary phantom, made from the rows beside it), as the control rows store it.
     chain.centreRow = Array.from({ length: 16 }, () => {
-      const v = r.u32();
+      const v = number();
       if (v > last.rows) r.fail(`${what}'s regular end names a missing row`);
       return v === 0 ? NONE : v - 1;
     });
   }
+  if (s) s.finish();
   const { weights, crease, sharpness } = expandChain(chain, K, M, endBasis);
   for (const x of weights) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`${what} has a bad weight`);
   return { valence: 0, code: 2, chain: true, boundary: false, levels: K, support: M, weights, crease, sharpness };

@@ -1,10 +1,11 @@
-// The TBLS chunk (formats/limn.md, section 7; versions 1 to 8) as the WebGPU runtime reads it:
+// The TBLS chunk (formats/limn.md, section 7; versions 1 to 9) as the WebGPU runtime reads it:
 // every count, index and stencil entry checked as lib/subdiv/tables_chunk.cpp checks it, so that
 // nothing out of range reaches the GPU; the irregular faces' quadtrees packed as the shaders read
 // them. loadLimn (chunks.mjs) calls decodeTables after MESH and TAGS.
 import { Fnv64, LimnError, bytesOf, chunkReader } from './container.mjs';
-import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils } from './tables_stream.mjs';
+import { MAX_STENCIL_WEIGHT, Stream, readCompactStencils, readLevels } from './tables_stream.mjs';
 import { readBasisProgram, readConfigurationBasis, readNodeStream, readSmoothFaces, readSmoothPoints } from './tables_surface_records.mjs';
+import { programDictionary } from './tables_program_dictionary.mjs';
 
 const MAX_DEPTH = 16;
 const INFINITE_SHARPNESS = 10;
@@ -34,7 +35,12 @@ export function topologyHash(mesh, tags, options) {
   return h.value;
 }
 
-function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compact = false) {
+// `skipEmpty` (version 9): a table of no rows is not stored.
+function readStencils(r, what, rows, weights, lo0, hi0, lo1 = 0, hi1 = 0, compact = false, skipEmpty = false) {
+  if (skipEmpty && rows === 0) {
+    const empty = { rows: 0, start: new Uint32Array(1), index: new Uint32Array(0), weight: weights ? new Float32Array(0) : null };
+    return checkStencils(r, empty, what, weights, lo0, hi0, lo1, hi1);
+  }
   const n = r.u32(), entries = r.u32(), hasWeights = r.u32();
   const fourth = r.u32(); // version 4: the palette's size; before: reserved
   if (!compact && fourth !== 0) r.fail(`${what}: reserved field is not zero`);
@@ -76,8 +82,8 @@ function shiftedStencils(previous, grandFirst, parentFirst, first) {
 export const ptexCount = (mesh) => mesh.faceSizes.reduce((n, s) => n + (s === 4 ? 1 : s), 0);
 
 export function decodeTables(chunk, mesh, tags) {
-  if (chunk.version > 8) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 8); upgrade limn`, 'chunk TBLS');
-  const r = chunkReader(chunk, 8);
+  if (chunk.version > 9) throw new LimnError(`version ${chunk.version} is newer than this reader reads (1 to 9); upgrade limn`, 'chunk TBLS');
+  const r = chunkReader(chunk, 9);
   const patchWords = chunk.version >= 2 ? 22 : 21;
   const compact = chunk.version >= 4; // compact stencil tables, patch records, bases and points
   const programs = chunk.version >= 5; // bases as programs, compact nodes and smooth faces
@@ -97,16 +103,15 @@ export function decodeTables(chunk, mesh, tags) {
     throw new LimnError('the subdivision tables were built for a different mesh topology or tags; re-run limn-tables', 'chunk TBLS');
   }
   const totalVertices = r.u32(), P = r.u32('patch count'), Q = r.u32('irregular count'), L = r.u32('limit count');
-  const levels = [];
+  const levels = [], v9 = chunk.version >= 9;
   let sum = 0;
-  for (let l = 0; l <= D; l++) {
-    const lv = { first: r.u32(), facePoints: r.u32(), edgePoints: r.u32(), vertexPoints: r.u32(), regularPatches: r.u32(), irregularFaces: r.u32() };
+  readLevels(r, D + 1, v9).forEach((lv, l) => {
     if (lv.first !== sum) r.fail(`level ${l} does not start where the previous ends`);
     lv.count = lv.facePoints + lv.edgePoints + lv.vertexPoints;
     sum += lv.count;
     if (sum > totalVertices) r.fail('level vertex counts exceed the total');
     levels.push(lv);
-  }
+  });
   if (sum !== totalVertices) r.fail('level vertex counts do not add up to the total');
   if (levels[0].count !== mesh.vertexCount) r.fail(`level 0 has ${levels[0].count} vertices, the mesh ${mesh.vertexCount}`);
   const facePoints = [], edgePoints = [], vertexPoints = [];
@@ -126,9 +131,9 @@ export function decodeTables(chunk, mesh, tags) {
       vertexPoints.push(checkStencils(r, shift(vertexPoints), `level ${l} vertex points`, true, p.first, end, c.first, faceEnd));
       continue;
     }
-    facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end, 0, 0, compact));
-    edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd, compact));
-    vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd, compact));
+    facePoints.push(readStencils(r, `level ${l} face points`, c.facePoints, false, p.first, end, 0, 0, compact, v9));
+    edgePoints.push(readStencils(r, `level ${l} edge points`, c.edgePoints, true, p.first, end, c.first, faceEnd, compact, v9));
+    vertexPoints.push(readStencils(r, `level ${l} vertex points`, c.vertexPoints, true, p.first, end, c.first, faceEnd, compact, v9));
   }
   const ptex = ptexCount(mesh), R = 2 ** depth;
   const squares = [];
@@ -258,9 +263,9 @@ export function decodeTables(chunk, mesh, tags) {
   // Limit points read level N (the irregular faces' corners) or level D (the leaves').
   const last = levels[depth], deepest = levels[D];
   const lo = last.first, hi = last.first + last.count, lo1 = deepest.first, hi1 = deepest.first + deepest.count;
-  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi, lo1, hi1, compact);
-  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi, lo1, hi1, compact);
-  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi, lo1, hi1, compact);
+  const limitPosition = readStencils(r, 'limit positions', L, true, lo, hi, lo1, hi1, compact, v9);
+  const limitTangent1 = readStencils(r, 'limit tangents 1', L, true, lo, hi, lo1, hi1, compact, v9);
+  const limitTangent2 = readStencils(r, 'limit tangents 2', L, true, lo, hi, lo1, hi1, compact, v9);
   const limitVertex = r.array(Uint32Array, L, 'limit vertices');
   for (const v of limitVertex) if (!((v >= lo && v < hi) || (v >= lo1 && v < hi1))) r.fail("a limit point's vertex is not at the last level");
   const limitFlags = r.array(Uint32Array, L, 'limit flags');
@@ -306,11 +311,11 @@ function readIrregularSurface(r, o) {
   const leaves = readFaces(leafCount, 'irregular leaf', false);
   const baseCount = r.u32('irregular basis count');
   if (baseCount > Math.floor(r.remaining / 8)) r.fail('irregular basis count is too large');
-  const bases = [], chainPrograms = [];
+  const bases = [], chainPrograms = [], dictionary = o.version >= 9 ? programDictionary() : null;
   // Version 7: each with its configuration (a boundary one's support size stored); version 8's
   // decaying-crease chains share their programs across the chunk.
   for (let i = 0; programs && i < baseCount; i++) {
-    bases.push(o.version >= 7 ? readConfigurationBasis(r, `irregular basis ${i}`, bases, o.version >= 8 ? chainPrograms : null) : readBasisProgram(r, i, bases));
+    bases.push(o.version >= 7 ? readConfigurationBasis(r, `irregular basis ${i}`, bases, o.version >= 8 ? chainPrograms : null, dictionary) : readBasisProgram(r, i, bases));
   }
   for (let i = 0; !programs && i < baseCount; i++) {
     const valence = r.u32(), lv = r.u32();

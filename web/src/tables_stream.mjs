@@ -36,6 +36,10 @@ export class Stream {
     if (x < 0 || x > 0xffffffff) this.fail(`${what} out of range`);
     return x;
   }
+  rawByte() {
+    if (this.at === this.bytes.length) this.fail('the stream ends inside a record');
+    return this.bytes[this.at++];
+  }
   rawFloat() {
     if (this.bytes.length - this.at < 4) this.fail('the stream ends inside a number');
     const v = new DataView(this.bytes.buffer, this.bytes.byteOffset + this.at, 4).getFloat32(0, true);
@@ -78,4 +82,31 @@ export function readCompactStencils(r, what, rows, entries, weights, paletteSize
   if (n !== entries) s.fail(`${n} entries, expected ${entries}`);
   s.finish();
   return { start, index, weight };
+}
+
+// The level records (lib/subdiv/tables_stream.cpp's readLevels): six u32 each, or (`stream`,
+// version 9) one stream of varints without the first, which is where the previous level ends;
+// the caller checks them.
+export function readLevels(r, count, stream) {
+  const levels = [];
+  if (!stream) {
+    for (let l = 0; l < count; l++) {
+      levels.push({ first: r.u32(), facePoints: r.u32(), edgePoints: r.u32(), vertexPoints: r.u32(), regularPatches: r.u32(), irregularFaces: r.u32() });
+    }
+    return levels;
+  }
+  const s = new Stream(r, 'levels');
+  const next = () => {
+    const x = s.varint();
+    if (x > 0xffffffff) s.fail('a count out of range');
+    return x;
+  };
+  let sum = 0;
+  for (let l = 0; l < count; l++) {
+    const lv = { first: Math.min(sum, 0xffffffff), facePoints: next(), edgePoints: next(), vertexPoints: next(), regularPatches: next(), irregularFaces: next() };
+    sum += lv.facePoints + lv.edgePoints + lv.vertexPoints;
+    levels.push(lv);
+  }
+  s.finish();
+  return levels;
 }

@@ -5,6 +5,7 @@
 // C++ reader checks it.
 import { MAX_STENCIL_WEIGHT, Stream } from './tables_stream.mjs';
 import { readChainBasis } from './tables_chain_records.mjs';
+import { readDictionaryProgram } from './tables_program_dictionary.mjs';
 
 const MAX_DEPTH = 16;
 const MAX_BASIS_VALENCE = 64; // kMaxBasisValence (lib/subdiv/tables.h)
@@ -71,9 +72,11 @@ export function readBasisProgram(r, index, earlier) {
 // phantom points, 2 a - b; corners 4 a - 2 b - 2 c + d).
 // TBLS version 8 (`chains`: the programs its chains brought so far): configuration 2 is a
 // decaying-crease chain (tables_chain_records.mjs).
-export function readConfigurationBasis(r, what, earlier, chains = null) {
+// TBLS version 9 (`dictionary`, tables_program_dictionary.mjs): the program in a stream after the
+// header, its rows through the chunk's dictionary; a chain's fields as varints.
+export function readConfigurationBasis(r, what, earlier, chains = null, dictionary = null) {
   const valence = r.u32(), code = r.u32(), M = r.u32(), levels = r.u32();
-  if (chains && code === 2) return readChainBasis(r, what, valence, M, levels, earlier, chains);
+  if (chains && code === 2) return readChainBasis(r, what, valence, M, levels, earlier, chains, dictionary);
   const boundary = (code & 1) !== 0, position = code >>> 2;
   if (valence < 1 || valence > MAX_BASIS_VALENCE || levels < 1 || levels > MAX_DEPTH ||
       (boundary && position >= valence) || (!boundary && (code !== 0 || valence < 3 || valence === 4 || M !== 2 * valence + 8)) ||
@@ -82,7 +85,16 @@ export function readConfigurationBasis(r, what, earlier, chains = null) {
   }
   if (earlier.some((x) => !x.chain && x.valence === valence && x.code === code)) r.fail(`${what} repeats a configuration`);
   // A boundary sub-patch has at most 7 phantom points, each one row.
-  const weights = expandBasis(readProgram(r, what, M, boundary ? 21 : 0), M, levels);
+  const phantomRows = boundary ? 21 : 0;
+  let program;
+  if (dictionary) {
+    const s = new Stream(r, what);
+    program = readDictionaryProgram(s, M, MAX_ROWS_PER_POINT * M + phantomRows, M, false, dictionary);
+    s.finish();
+  } else {
+    program = readProgram(r, what, M, phantomRows);
+  }
+  const weights = expandBasis(program, M, levels);
   const [lo, hi] = boundary ? [-4, 5] : [0, 1];
   for (const w of weights) if (!(w >= lo && w <= hi)) r.fail(`${what} has a weight outside [${lo}, ${hi}]`);
   return { valence, code, boundary, levels, support: M, weights };

@@ -117,8 +117,8 @@ test('byte flips are accepted or refused with a LimnError, never another excepti
 test('BLND is refused clearly, a newer chunk version names itself', () => {
   const chunks = parseContainer(small());
   expectLimnError(build([...chunks, { type: 'BLND', version: 1, payload: new Uint8Array(24) }]), /chunk BLND: blending surfaces are not supported here/);
-  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 9 } : c));
-  expectLimnError(build(newer), /chunk TBLS: version 9 is newer/);
+  const newer = chunks.map((c) => (c.type === 'TBLS' ? { ...c, version: 10 } : c));
+  expectLimnError(build(newer), /chunk TBLS: version 10 is newer/);
   const unknown = [...chunks, { type: 'ZZZZ', version: 9, payload: new Uint8Array(5) }];
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
@@ -126,16 +126,18 @@ test('BLND is refused clearly, a newer chunk version names itself', () => {
 
 // Where TBLS v6's irregular-surface section starts (formats/limn.md): after the header, levels,
 // the repeated levels' bits, the stencil tables of the others (their palettes and streams), the
-// patch stream and the irregular faces, walked over the payload's own length fields.
-function irregularSectionOffset(t, payload) {
+// patch stream and the irregular faces, walked over the payload's own length fields. Version 9
+// (`version`): the levels a stream, no table of no rows.
+function irregularSectionOffset(t, payload, version = 6) {
   const v = new DataView(payload.buffer, payload.byteOffset, payload.byteLength);
   const stream = (o) => o + 4 + Math.ceil(v.getUint32(o, true) / 4) * 4;
-  let o = 40 + 24 * t.levels.length;
+  let o = version >= 9 ? stream(40) : 40 + 24 * t.levels.length;
   const repeats = v.getUint32(o, true);
   o += 4;
   for (let l = 1; l < t.levels.length; l++) {
     if ((repeats >>> l) & 1) continue;
-    for (let k = 0; k < 3; k++) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
+    const L = t.levels[l], rows = [L.facePoints, L.edgePoints, L.vertexPoints];
+    for (let k = 0; k < 3; k++) if (version < 9 || rows[k] > 0) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
   }
   return { at: stream(o) + 32 * t.irregularCount, stream };
 }
@@ -196,13 +198,14 @@ test('hostile TBLS v5 irregular-surface fields are refused by name, never a hang
 });
 
 // TBLS v7's bases carry their configuration and support size (formats/limn.md, "Boundary
-// configurations (version 7)"): a place beyond the vertex's fan, a code that is no
-// configuration's and a level count of 0 are refused by name, before the program is run.
-test('hostile TBLS v7 basis configurations are refused by name', () => {
+// configurations (version 7)"), as version 9's (limn-tables' output here) do: a place beyond the
+// vertex's fan, a code that is no configuration's and a level count of 0 are refused by name,
+// before the program is run.
+test('hostile TBLS v7 and v9 basis configurations are refused by name', () => {
   const bytes = read(container('osd/catmark/catmark_edgeonly.obj', { depth: 1, tablesArgs: ['--crease-chains', 'off'], name: 'edgeonly_d1_v7.limn' })), chunks = parseContainer(bytes);
   const tbls = chunks.find((c) => c.type === 'TBLS');
-  assert.equal(tbls.version, 7);
-  const { at, stream } = irregularSectionOffset(loadLimn(bytes).tables, tbls.payload);
+  assert.equal(tbls.version, 9);
+  const { at, stream } = irregularSectionOffset(loadLimn(bytes).tables, tbls.payload, tbls.version);
   const v = new DataView(tbls.payload.buffer, tbls.payload.byteOffset, tbls.payload.byteLength);
   const nodes = stream(at + 4), leaves = stream(nodes + 4), bases = leaves + 4 + 32 * v.getUint32(leaves, true);
   assert.ok(v.getUint32(bases, true) > 0);
@@ -216,7 +219,8 @@ test('hostile TBLS v7 basis configurations are refused by name', () => {
   }));
   const bad = /chunk TBLS: .*irregular basis 0 has a bad configuration, support size or level count/;
   expectLimnError(patched(first + 4, 1 + 4 * valence), bad);
-  expectLimnError(patched(first + 4, 2), bad);
+  // From version 8 on, code 2 is a chain's: the record is then refused as a chain.
+  expectLimnError(patched(first + 4, 2), /chunk TBLS: .*irregular basis 0 has a bad end, band count, valence or support size/);
   expectLimnError(patched(first + 12, 0), bad);
 });
 
@@ -257,6 +261,58 @@ test('hostile TBLS v8 crease chains are refused by name', () => {
   for (let trial = 0; trial < 300; trial++) {
     const payload = tbls.payload.slice();
     const o = bases + (random() % (payload.length - bases));
+    payload[o] ^= 1 << (random() % 8);
+    try {
+      loadLimn(build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c))));
+    } catch (e) {
+      assert.ok(e instanceof LimnError, `not a LimnError: ${e.stack}`);
+      refused++;
+    }
+  }
+  assert.ok(refused > 50, `${refused} refused`);
+});
+
+// TBLS v9 (formats/limn.md, "Program dictionary (version 9)"): the seed's first chain (chaikin0
+// d1), its fields varints of one stream after the record's header: an end that is none, more
+// bands than levels, a smooth end naming no basis, a program index beyond those read and a
+// program of no rows are refused by name before anything is expanded; byte flips from the
+// bases on are refused as LimnErrors or read. The tables read are those of the v8 seed (the
+// same limn-tables tables), their GPU buffers to the bit.
+test('hostile TBLS v9 program dictionaries and chains are refused by name', () => {
+  const bytes = read(join(repo, 'fuzz/corpus/render_input/chaikin0_d1_crease_chains_v9.limn')), chunks = parseContainer(bytes);
+  const tbls = chunks.find((c) => c.type === 'TBLS');
+  assert.equal(tbls.version, 9);
+  const v8 = loadLimn(read(join(repo, 'fuzz/corpus/render_input/chaikin0_d1_crease_chains_v8.limn'))).tables;
+  const v9 = loadLimn(bytes).tables;
+  // The GPU buffers (the bases' weights packed after the quadtrees' nodes), to the bit.
+  assert.ok(Buffer.from(v9.patches.buffer).equals(Buffer.from(v8.patches.buffer)));
+  assert.ok(Buffer.from(v9.irregular.buffer).equals(Buffer.from(v8.irregular.buffer)));
+  const v = new DataView(tbls.payload.buffer, tbls.payload.byteOffset, tbls.payload.byteLength);
+  // valence 3, configuration 2, support 14, 6 levels, the stream's length, then end 1 (smooth),
+  // basis 0, 1 to 5 bands, program 0 (new), its 14 next-support points.
+  const u = (o) => v.getUint32(o, true), b = (o) => v.getUint8(o);
+  let first = -1;
+  for (let o = 0; o + 26 <= v.byteLength && first < 0; o++) {
+    if (u(o) === 3 && u(o + 4) === 2 && u(o + 8) === 14 && u(o + 12) === 6 && b(o + 20) === 1 && b(o + 21) === 0 &&
+        b(o + 22) >= 1 && b(o + 22) <= 5 && b(o + 23) === 0 && b(o + 24) === 14) first = o;
+  }
+  assert.ok(first >= 0, 'no chain record found');
+  const patched = (offset, value) => build(chunks.map((c) => {
+    if (c.type !== 'TBLS') return c;
+    const payload = c.payload.slice();
+    payload[offset] = value;
+    return { ...c, payload };
+  }));
+  expectLimnError(patched(first + 20, 3), /irregular basis \d+ has a bad end, band count, valence or support size/);
+  expectLimnError(patched(first + 22, 7), /irregular basis \d+ has a bad end, band count, valence or support size/);
+  expectLimnError(patched(first + 21, 99), /irregular basis \d+'s smooth end names a missing basis/);
+  expectLimnError(patched(first + 23, 5), /irregular basis \d+ band 1 names a missing program/);
+  expectLimnError(patched(first + 25, 0), /irregular basis \d+: bad row count 0/);
+  let state = 9, refused = 0;
+  const random = () => (state = (state * 1103515245 + 12345) % 2147483648);
+  for (let trial = 0; trial < 300; trial++) {
+    const payload = tbls.payload.slice();
+    const o = first + (random() % (payload.length - first));
     payload[o] ^= 1 << (random() % 8);
     try {
       loadLimn(build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c))));
