@@ -120,7 +120,8 @@ std::vector<uint32_t> programKey(const std::vector<uint32_t>& key, float sharp) 
     return mapSharpness(key, [sharp](float s) { return s >= sharp ? sharp : s; });
 }
 
-namespace {
+// localLevel, kindOf and bandProgram are declared in crease_basis.h (the study's crease trees
+// build from them too).
 
 // A level of the faces in `faces` (sorted by index, so that every stencil's entries come in the
 // order of the level's own: vertex rings start at the lowest half-edge, edges at their first),
@@ -227,8 +228,6 @@ void bandProgram(const Level& child, const LevelStencils& st, const std::vector<
     }
     for (uint32_t v : next) p.nextSupport.push_back(row[v]);
 }
-
-} // namespace
 
 // The rows of a band's program over its support's values, with evaluateVertices' arithmetic
 // (double sums in the program's order of float weights times points; face points averaged).
