@@ -55,6 +55,9 @@ struct CreaseBasisStudy {
     // version 5's encoding with 64 control rows and 20 bytes of child codes and kinds, and per
     // face 2 bytes and 2 per support point.
     size_t treeFaces = 0, treeNodes = 0, treeNodeKeys = 0, treeSharedPrograms = 0;
+    // Distinct node keys with every sharpness as its class (0, in (0, 1), from 1 on): what a
+    // program with weights as functions of the sharpness below 1 would be per.
+    size_t treeNodeClasses = 0;
     size_t treeProgramBytes = 0, treeSharedProgramBytes = 0, treeFaceBytes = 0;
     size_t treePoints = 0, treeBitwise = 0, treeStructure = 0;
     double treeMaxDifference = 0, treeSeconds = 0;
