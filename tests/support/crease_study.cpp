@@ -298,7 +298,7 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     std::map<std::vector<uint32_t>, const CreaseTreeNode*> treeKeys;
     std::map<std::vector<uint32_t>, std::vector<const CreaseTreeNode*>> treeShared;
     std::vector<size_t> treeLevels;
-    std::set<std::vector<uint32_t>> treeClasses;
+    std::set<std::vector<uint32_t>> treeClasses, treeTurned;
     // Two bands' programs as functions: the points they give from the same (arbitrary) support
     // values. Rows come in each level's vertex order, which differs between the face's copy
     // (band 1) and its refined levels, so the arrays differ where the functions do not.
@@ -367,6 +367,7 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
                 // Its key with each sharpness as a class (0, below 1, from 1 on): a program
                 // whose weights were functions of the sharpness below 1 would be per class.
                 treeClasses.insert(programKey(programKey(n.key, kProgramSharpness), 0.5f));
+                treeTurned.insert(n.turnedKey);
                 auto [k, fresh] = treeKeys.try_emplace(n.key, &n);
                 if (!fresh) continue;
                 s.treeProgramBytes += treeNodeBytes(n);
@@ -432,6 +433,7 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     s.sharedPrograms = shared.size();
     s.treeNodeKeys = treeKeys.size();
     s.treeNodeClasses = treeClasses.size();
+    s.treeTurnedKeys = treeTurned.size();
     for (size_t n : treeLevels) s.treeLevelNodes += (s.treeLevelNodes.empty() ? "" : "/") + std::to_string(n);
     s.sharedMaxDifference = sharedMax;
     s.leafCorners = own.leafCorners;

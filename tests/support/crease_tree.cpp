@@ -9,6 +9,17 @@
 
 namespace limn {
 
+namespace {
+
+std::vector<uint32_t> leastKey(const Level& L, uint32_t f) {
+    std::vector<uint32_t> least, support, key;
+    for (int c = 0; c < 4; ++c)
+        if (creaseSupport(L, f, c, support, key) && (least.empty() || key < least)) least = key;
+    return least;
+}
+
+} // namespace
+
 bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions& options, const TablesOptions& opts,
                      CreaseTree& tree) {
     tree = CreaseTree{};
@@ -27,6 +38,7 @@ bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions
     {
         CreaseTreeNode root;
         root.key = key;
+        root.turnedKey = leastKey(L, f);
         root.support = uint32_t(support.size());
         tree.nodes.push_back(std::move(root));
         std::vector<uint32_t> identity(support.size());
@@ -85,6 +97,7 @@ bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions
                     // The child's place, filled when its level is refined.
                     CreaseTreeNode placeholder;
                     placeholder.key = subKey;
+                    placeholder.turnedKey = leastKey(child, cf);
                     placeholder.support = uint32_t(sub.size());
                     tree.nodes.push_back(std::move(placeholder));
                     node.next[q] = uint32_t(tree.nodes.size() - 1);
@@ -96,6 +109,7 @@ bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions
             for (size_t q = 0, p = 0; q < 4; ++q)
                 if (node.child[q] == CreaseTreeChild::Patch) node.rows[q] = rows[p++];
             node.key = std::move(tree.nodes[o.node].key);
+            node.turnedKey = std::move(tree.nodes[o.node].turnedKey);
             node.support = tree.nodes[o.node].support;
             tree.nodes[o.node] = std::move(node);
         }

@@ -25,6 +25,7 @@ enum class CreaseTreeChild : uint8_t { Patch, Node, Smooth, Leaf };
 
 struct CreaseTreeNode {
     std::vector<uint32_t> key; // creaseSupport(level, node, 0)
+    std::vector<uint32_t> turnedKey; // the least of creaseSupport's keys from its four corners
     uint32_t support = 0;
     BasisProgram program; // nextSupport: the Node and Smooth children's supports, in quadrant order
     std::array<CreaseTreeChild, 4> child{};       // by quadrant code (u high: 1, v high: 2)
