@@ -367,7 +367,7 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
                 // Its key with each sharpness as a class (0, below 1, from 1 on): a program
                 // whose weights were functions of the sharpness below 1 would be per class.
                 treeClasses.insert(programKey(programKey(n.key, kProgramSharpness), 0.5f));
-                treeTurned.insert(n.turnedKey);
+                if (treeTurned.insert(n.turnedKey).second) s.treeTurnedProgramBytes += treeNodeBytes(n);
                 auto [k, fresh] = treeKeys.try_emplace(n.key, &n);
                 if (!fresh) continue;
                 s.treeProgramBytes += treeNodeBytes(n);

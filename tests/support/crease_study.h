@@ -58,7 +58,10 @@ struct CreaseBasisStudy {
     // Distinct node keys with every sharpness as its class (0, in (0, 1), from 1 on): what a
     // program with weights as functions of the sharpness below 1 would be per.
     size_t treeNodeClasses = 0;
-    size_t treeTurnedKeys = 0; // distinct node keys, each the least of its four corners'
+    // Distinct node keys, each the least of its four corners' (a program per such key and a
+    // corner per node would share across turns), and their programs' bytes (each key's first
+    // node's, from its corner 0: the same rows in another order).
+    size_t treeTurnedKeys = 0, treeTurnedProgramBytes = 0;
     size_t treeProgramBytes = 0, treeSharedProgramBytes = 0, treeFaceBytes = 0;
     size_t treePoints = 0, treeBitwise = 0, treeStructure = 0;
     double treeMaxDifference = 0, treeSeconds = 0;
