@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 namespace limn {
@@ -385,6 +386,55 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
     return true;
 }
 
+namespace {
+
+// The key a band's program is shared by (TBLS stores it once): its programKey, and for a
+// chain's last band how the chain ends.
+std::vector<uint32_t> sharedProgramKey(const CreaseChain& chain, const CreaseBand& band) {
+    std::vector<uint32_t> shared = programKey(band.key, kProgramSharpness);
+    shared.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
+    return shared;
+}
+
+// Whether a configuration's chain costs fewer bytes than the quadtrees of the faces it draws. A
+// band program of its own (300-400 bytes) costs about what one face's quadtree node does (its
+// level's stencils and three sub-patches), so a chain pays off where faces share it, or where
+// most of its bands run programs shared with other chains or repeated (a long crease); a chain
+// of one face whose bands mostly need programs of their own does not (measured over the catmark
+// shapes at depths 1-3: docs/irregular-tables.md, "Chains that do not pay off").
+template <class Shared>
+bool paysOff(const CreaseChain& chain, uint32_t faces, const Shared& sharedBands) {
+    if (faces >= 2) return true;
+    std::set<std::vector<uint32_t>> own;
+    for (const CreaseBand& band : chain.bands) {
+        std::vector<uint32_t> shared = sharedProgramKey(chain, band);
+        if (!sharedBands.contains(shared)) own.insert(std::move(shared));
+    }
+    // One band ending in a smooth face: its program is the rows of the quadtree's one level.
+    if (chain.bands.size() == 1 && chain.end == CreaseEnd::Smooth) return true;
+    return 3 * own.size() <= chain.bands.size();
+}
+
+// How many faces of T each configuration (creaseSupport's key) is met at, over the corners
+// takeCreaseFaces would try.
+template <class Order>
+std::map<std::vector<uint32_t>, uint32_t> countCreaseKeys(const Level& L, const std::vector<uint8_t>& T, Order cornerOrder) {
+    std::map<std::vector<uint32_t>, uint32_t> count;
+    std::vector<uint32_t> support, key;
+    for (uint32_t f = 0; f < L.topo.faceCount(); ++f) {
+        if (!T[f] || L.topo.faceSize(f) != 4) continue;
+        int order[4], ranks[4];
+        cornerOrder(f, order, ranks);
+        for (int c : order) {
+            if (ranks[c] == 2) break;
+            if (creaseSupport(L, f, c, support, key)) ++count[key];
+        }
+    }
+    return count;
+}
+
+} // namespace
+
 void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, uint32_t basisLevels,
                      std::vector<uint8_t>& T, AdaptiveLevels& a) {
     // A configuration's chain is the same for every face of its key (the study checks it), so
@@ -415,11 +465,18 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                                   L.edgeSharpness[topo.edge(ring[size_t(second)])];
         return straight ? 2 : 1;
     };
+    auto cornerOrder = [&](uint32_t f, int order[4], int ranks[4]) {
+        for (int c = 0; c < 4; ++c) {
+            order[c] = c;
+            ranks[c] = rank(topo.vertex(topo.faceHalfedge(f) + (L.frames[f].rotation + c) % 4));
+        }
+        std::stable_sort(order, order + 4, [&](int x, int y) { return ranks[x] < ranks[y]; });
+    };
+    const std::map<std::vector<uint32_t>, uint32_t> facesOfKey = countCreaseKeys(L, T, cornerOrder);
     for (uint32_t f = 0; f < topo.faceCount(); ++f) {
         if (!T[f] || topo.faceSize(f) != 4) continue;
-        int order[4] = {0, 1, 2, 3}, ranks[4];
-        for (int c = 0; c < 4; ++c) ranks[c] = rank(topo.vertex(topo.faceHalfedge(f) + (L.frames[f].rotation + c) % 4));
-        std::stable_sort(order, order + 4, [&](int x, int y) { return ranks[x] < ranks[y]; });
+        int order[4], ranks[4];
+        cornerOrder(f, order, ranks);
         for (int c : order) {
             if (ranks[c] == 2) break; // a smooth regular corner has no chain
             if (!creaseSupport(L, f, c, support, key)) continue;
@@ -437,16 +494,14 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 // once per chain; a face whose chain has none is refined.
                 auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
                 IrregularBasis basis;
-                if (fresh) {
+                if (fresh && paysOff(a.creaseChains[size_t(it->second)], facesOfKey.at(key), sharedBands)) {
                     auto chain = std::make_shared<CreaseChain>(a.creaseChains[size_t(it->second)]);
                     // Bands whose keys agree once every sharpness from 1 on is clamped, and that
                     // end alike, run the same function (bench_crease_bases checks it: to 1e-16),
                     // so they share one program, which TBLS then stores once; only their kinds'
                     // sharpness differs.
                     for (CreaseBand& band : chain->bands) {
-                        std::vector<uint32_t> shared = programKey(band.key, kProgramSharpness);
-                        shared.push_back(&band == &chain->bands.back() ? 1u + uint32_t(chain->end) : 0u);
-                        auto [other, first] = sharedBands.try_emplace(std::move(shared), band);
+                        auto [other, first] = sharedBands.try_emplace(sharedProgramKey(*chain, band), band);
                         double difference = 0;
                         if (!first && sameBandFunction(other->second, band, &difference, 1e-12)) {
                             band.program = other->second.program;
