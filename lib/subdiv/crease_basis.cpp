@@ -6,7 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <map>
-#include <set>
+#include <unordered_map>
 #include <stdexcept>
 
 namespace limn {
@@ -402,24 +402,41 @@ std::vector<uint32_t> sharedProgramKey(const CreaseChain& chain, const CreaseBan
 // most of its bands run programs shared with other chains or repeated (a long crease); a chain
 // of one face whose bands mostly need programs of their own does not (measured over the catmark
 // shapes at depths 1-3: docs/irregular-tables.md, "Chains that do not pay off").
-template <class Shared>
-bool paysOff(const CreaseChain& chain, uint32_t faces, const Shared& sharedBands) {
-    if (faces >= 2) return true;
-    std::set<std::vector<uint32_t>> own;
+// `faces()`: how many faces draw the chain's configuration, asked only where its programs do
+// not decide.
+constexpr uint32_t kMinChainFaces = 2;
+template <class Shared, class Faces>
+bool paysOff(const CreaseChain& chain, const Shared& sharedBands, Faces faces) {
+    std::vector<std::vector<uint32_t>> own; // a few bands: a linear search
     for (const CreaseBand& band : chain.bands) {
         std::vector<uint32_t> shared = sharedProgramKey(chain, band);
-        if (!sharedBands.contains(shared)) own.insert(std::move(shared));
+        if (std::find(own.begin(), own.end(), shared) == own.end() && !sharedBands.contains(shared))
+            own.push_back(std::move(shared));
     }
     // One band ending in a smooth face: its program is the rows of the quadtree's one level.
-    if (chain.bands.size() == 1 && chain.end == CreaseEnd::Smooth) return true;
-    return 3 * own.size() <= chain.bands.size();
+    if (3 * own.size() <= chain.bands.size() || (chain.bands.size() == 1 && chain.end == CreaseEnd::Smooth)) return true;
+    return faces() >= kMinChainFaces;
 }
 
-// How many faces of T each configuration (creaseSupport's key) is met at, over the corners
-// takeCreaseFaces would try.
+// Each face's candidate corners' supports and keys (creaseSupport's), and how many faces each
+// key is met at over them: counted once, the first time a chain's programs do not decide, with
+// the supports kept for takeCreaseFaces' own loop (so that counting costs little).
+struct CreaseKeyCount {
+    bool counted = false;
+    std::unordered_map<uint64_t, uint32_t> faces; // by keyHash: a decision about bytes only
+    std::unordered_map<uint64_t, std::pair<std::vector<uint32_t>, std::vector<uint32_t>>> candidates; // f * 4 + c
+};
+
+// FNV-1a over a key's words.
+uint64_t keyHash(const std::vector<uint32_t>& key) {
+    uint64_t h = 14695981039346656037ull;
+    for (uint32_t x : key) h = (h ^ x) * 1099511628211ull;
+    return h;
+}
+
 template <class Order>
-std::map<std::vector<uint32_t>, uint32_t> countCreaseKeys(const Level& L, const std::vector<uint8_t>& T, Order cornerOrder) {
-    std::map<std::vector<uint32_t>, uint32_t> count;
+void countCreaseKeys(const Level& L, const std::vector<uint8_t>& T, Order cornerOrder, CreaseKeyCount& out) {
+    out.counted = true;
     std::vector<uint32_t> support, key;
     for (uint32_t f = 0; f < L.topo.faceCount(); ++f) {
         if (!T[f] || L.topo.faceSize(f) != 4) continue;
@@ -427,10 +444,11 @@ std::map<std::vector<uint32_t>, uint32_t> countCreaseKeys(const Level& L, const 
         cornerOrder(f, order, ranks);
         for (int c : order) {
             if (ranks[c] == 2) break;
-            if (creaseSupport(L, f, c, support, key)) ++count[key];
+            if (!creaseSupport(L, f, c, support, key)) continue;
+            ++out.faces[keyHash(key)];
+            out.candidates.emplace(uint64_t(f) * 4 + uint64_t(c), std::pair{support, key});
         }
     }
-    return count;
 }
 
 } // namespace
@@ -472,14 +490,23 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
         }
         std::stable_sort(order, order + 4, [&](int x, int y) { return ranks[x] < ranks[y]; });
     };
-    const std::map<std::vector<uint32_t>, uint32_t> facesOfKey = countCreaseKeys(L, T, cornerOrder);
+    CreaseKeyCount count;
+    const std::vector<uint8_t> faceSet = T; // before any face is taken: what count counts over
     for (uint32_t f = 0; f < topo.faceCount(); ++f) {
         if (!T[f] || topo.faceSize(f) != 4) continue;
         int order[4], ranks[4];
         cornerOrder(f, order, ranks);
         for (int c : order) {
             if (ranks[c] == 2) break; // a smooth regular corner has no chain
-            if (!creaseSupport(L, f, c, support, key)) continue;
+            if (count.counted) {
+                auto found = count.candidates.find(uint64_t(f) * 4 + uint64_t(c));
+                if (found == count.candidates.end()) continue;
+                support = std::move(found->second.first);
+                key = std::move(found->second.second);
+                count.candidates.erase(found);
+            } else if (!creaseSupport(L, f, c, support, key)) {
+                continue;
+            }
             auto [it, added] = chainOf.try_emplace(key, -1);
             if (added) {
                 CreaseChain chain;
@@ -494,7 +521,11 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 // once per chain; a face whose chain has none is refined.
                 auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
                 IrregularBasis basis;
-                if (fresh && paysOff(a.creaseChains[size_t(it->second)], facesOfKey.at(key), sharedBands)) {
+                auto faces = [&] {
+                    if (!count.counted) countCreaseKeys(L, faceSet, cornerOrder, count);
+                    return count.faces.at(keyHash(key));
+                };
+                if (fresh && paysOff(a.creaseChains[size_t(it->second)], sharedBands, faces)) {
                     auto chain = std::make_shared<CreaseChain>(a.creaseChains[size_t(it->second)]);
                     // Bands whose keys agree once every sharpness from 1 on is clamped, and that
                     // end alike, run the same function (bench_crease_bases checks it: to 1e-16),
