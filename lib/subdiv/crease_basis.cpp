@@ -414,7 +414,8 @@ bool paysOff(const CreaseChain& chain, const Shared& sharedBands, Faces faces) {
             own.push_back(std::move(shared));
     }
     // One band ending in a smooth face: its program is the rows of the quadtree's one level.
-    if (3 * own.size() <= chain.bands.size() || (chain.bands.size() == 1 && chain.end == CreaseEnd::Smooth)) return true;
+    if (3 * own.size() <= chain.bands.size() || (chain.bands.size() == 1 && chain.end == CreaseEnd::Smooth))
+        return true;
     return faces() >= kMinChainFaces;
 }
 

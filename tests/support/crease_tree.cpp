@@ -20,8 +20,8 @@ std::vector<uint32_t> leastKey(const Level& L, uint32_t f) {
 
 } // namespace
 
-bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions& options, const TablesOptions& opts,
-                     CreaseTree& tree) {
+bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions& options,
+                     const TablesOptions& opts, CreaseTree& tree) {
     tree = CreaseTree{};
     std::vector<uint32_t> support, faces, key;
     if (K == 0 || !creaseSupport(L, f, 0, support, key, &faces)) return false;
@@ -54,8 +54,9 @@ bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions
         std::vector<uint8_t> children(child.topo.faceCount(), 0);
         for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf)
             children[cf] = child.faceParent[cf] < selected.size() && selected[child.faceParent[cf]];
-        const Regularity r = analyzeRegularity(child.topo, child.edgeSharpness, child.vertexSharpness, child.noLimit,
-                                               opts.infSharpPatches, opts.singleCreasePatches, &children);
+        const Regularity r =
+            analyzeRegularity(child.topo, child.edgeSharpness, child.vertexSharpness, child.noLimit,
+                              opts.infSharpPatches, opts.singleCreasePatches, &children);
         identity.resize(child.topo.vertexCount());
         for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
         std::vector<Open> next;
@@ -80,7 +81,8 @@ bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions
                     node.child[q] = CreaseTreeChild::Patch;
                     patches.push_back(gatherPatch(child, cf, 0, identity, r.faceCreaseEdge[cf]));
                     node.kind[q] = kindOf(patches.back());
-                } else if (j < K && smoothSupport(child, cf, c2, valence, sub, opts.basisRimFeatures)) {
+                } else if (j < K &&
+                           smoothSupport(child, cf, c2, valence, sub, opts.basisRimFeatures)) {
                     node.child[q] = CreaseTreeChild::Smooth;
                     node.next[q] = valence;
                     node.nextFirst[q] = uint32_t(nextRows.size());
@@ -105,7 +107,8 @@ bool buildCreaseTree(const Level& L, uint32_t f, uint32_t K, const SchemeOptions
                 }
             }
             std::vector<std::array<uint32_t, 16>> rows;
-            bandProgram(child, st, o.support, cur.topo.vertexCount(), patches, nextRows, node.program, rows);
+            bandProgram(child, st, o.support, cur.topo.vertexCount(), patches, nextRows,
+                        node.program, rows);
             for (size_t q = 0, p = 0; q < 4; ++q)
                 if (node.child[q] == CreaseTreeChild::Patch) node.rows[q] = rows[p++];
             node.key = std::move(tree.nodes[o.node].key);

@@ -24,11 +24,11 @@ namespace limn {
 enum class CreaseTreeChild : uint8_t { Patch, Node, Smooth, Leaf };
 
 struct CreaseTreeNode {
-    std::vector<uint32_t> key; // creaseSupport(level, node, 0)
+    std::vector<uint32_t> key;       // creaseSupport(level, node, 0)
     std::vector<uint32_t> turnedKey; // the least of creaseSupport's keys from its four corners
     uint32_t support = 0;
     BasisProgram program; // nextSupport: the Node and Smooth children's supports, in quadrant order
-    std::array<CreaseTreeChild, 4> child{};       // by quadrant code (u high: 1, v high: 2)
+    std::array<CreaseTreeChild, 4> child{};         // by quadrant code (u high: 1, v high: 2)
     std::array<std::array<uint32_t, 16>, 4> rows{}; // a Patch's control rows (kNone: a phantom)
     std::array<CreaseBandKind, 4> kind{};
     std::array<uint32_t, 4> next{}; // a Node's index in CreaseTree::nodes; a Smooth child's valence
