@@ -48,6 +48,9 @@ int main(int argc, char** argv) {
             TablesOptions opts;
             opts.depth = std::atoi(arg.c_str() + colon + 1);
             opts.irregularLevels = K;
+            // The study compares the chains with the quadtrees they replace, and the estimate's
+            // modes are quadtrees (k0, k) or the prototype (chains): not the tables' chains.
+            opts.creaseChains = false;
             std::string name = arg.substr(0, colon);
             name = name.substr(name.find_last_of('/') + 1);
             if (!estimate.empty()) {

@@ -3,10 +3,10 @@
 #include "subdiv/tables_build.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <map>
-#include <unordered_map>
 #include <stdexcept>
 
 namespace limn {
@@ -46,34 +46,45 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
         key.push_back(value);
         if (sources) sources->push_back(source);
     };
-    // A linear search, as boundarySupport's: supports are small.
+    // Support indices by vertex in a small open-addressing table (at most a quarter full): this
+    // runs for every corner tried of every irregular face at level N and for every band.
+    constexpr size_t kMaxSupport = 2 * size_t(kMaxBasisValence) + 8, kSlots = 1024;
+    static_assert(kSlots >= 4 * (kMaxSupport + 4));
+    std::array<uint32_t, kSlots> slotVertex, slotIndex;
+    slotVertex.fill(kNone);
     auto index = [&](uint32_t v) -> uint32_t {
-        const auto it = std::find(support.begin(), support.end(), v);
-        if (it != support.end()) return uint32_t(it - support.begin());
-        support.push_back(v);
-        return uint32_t(support.size() - 1);
+        for (size_t i = (v * 0x9E3779B1u) >> 22;; i = (i + 1) & (kSlots - 1)) {
+            if (slotVertex[i] == v) return slotIndex[i];
+            if (slotVertex[i] == kNone) {
+                slotVertex[i] = v;
+                slotIndex[i] = uint32_t(support.size());
+                support.push_back(v);
+                return slotIndex[i];
+            }
+        }
     };
-    std::vector<uint32_t> fan;
+    std::array<uint32_t, kMaxBasisValence + 1> fan;
     for (int j = 0; j < 4; ++j) {
         const uint32_t hc = h0f + (fr.rotation + corner + j) % 4;
         if (T.vertexIsNonManifold(T.vertex(hc))) return false;
-        fan.assign(1, hc);
+        size_t fanSize = 0;
+        fan[fanSize++] = hc;
         bool closed = false;
         for (uint32_t h = T.rotateCCW(hc); h != kNone; h = T.rotateCCW(h)) {
             if (h == hc) {
                 closed = true;
                 break;
             }
-            if (fan.size() > kMaxBasisValence) return false;
-            fan.push_back(h);
+            if (fanSize > kMaxBasisValence) return false;
+            fan[fanSize++] = h;
         }
         if (!closed)
             for (uint32_t h = T.rotateCW(hc); h != kNone; h = T.rotateCW(h)) {
-                if (fan.size() > kMaxBasisValence) return false;
-                fan.push_back(h);
+                if (fanSize > kMaxBasisValence) return false;
+                fan[fanSize++] = h;
             }
-        push(uint32_t(fan.size()) << 1 | (closed ? 1u : 0u), kNone);
-        for (uint32_t h : fan) {
+        push(uint32_t(fanSize) << 1 | (closed ? 1u : 0u), kNone);
+        for (uint32_t h : std::span(fan).first(fanSize)) {
             const uint32_t g = T.face(h);
             if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
             if (faces) faces->push_back(g);
@@ -84,7 +95,7 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
                 const bool read = atCorner(v) || atCorner(T.vertex(T.next(x)));
                 push(read ? std::bit_cast<uint32_t>(L.edgeSharpness[T.edge(x)]) : 0u, read ? T.edge(x) : kNone);
             }
-            if (support.size() > 2 * size_t(kMaxBasisValence) + 8) return false;
+            if (support.size() > kMaxSupport) return false;
         }
     }
     for (uint32_t v : corners) push(std::bit_cast<uint32_t>(L.vertexSharpness[v]), v | kVertexEntry);
@@ -162,63 +173,29 @@ Level localLevel(const Level& L, const std::vector<uint32_t>& support, std::vect
 
 CreaseBandKind kindOf(const Patch& p) { return {p.boundary, p.crease, p.sharpness}; }
 
+namespace {
+
+// The child of face f (whose frame is pf) at its feature corner (the frame's (u0, v0)), or kNone.
+uint32_t centreChild(const Level& child, uint32_t f, const FaceFrame& pf) {
+    for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf)
+        if (child.faceParent[cf] == f && !(child.frames[cf].u0 > pf.u0) && !(child.frames[cf].v0 > pf.v0)) return cf;
+    return kNone;
+}
+
+} // namespace
+
 // The program of one band: the rows of `child` (refined from `parent` with stencils `st`) that
-// the patches and the next support read, over the parent's support `input` (basisFromMesh's
-// construction, irregular_basis.cpp, with any patches and support).
+// the patches and the next support read, over the parent's support `input` (stencilRows, as
+// basisFromMesh's, with any patches and support).
 void bandProgram(const Level& child, const LevelStencils& st, const std::vector<uint32_t>& input,
                  uint32_t parentVertices, const std::vector<Patch>& patches, const std::vector<uint32_t>& next,
                  BasisProgram& p, std::vector<std::array<uint32_t, 16>>& controlRows) {
-    const size_t M = input.size();
-    std::vector<uint32_t> inputOf(parentVertices, kNone);
-    for (size_t i = 0; i < M; ++i) inputOf[input[i]] = uint32_t(i);
-    const Level& L = child;
-    std::vector<uint8_t> needed(L.topo.vertexCount(), 0);
+    std::vector<uint8_t> needed(child.topo.vertexCount(), 0);
     for (const Patch& sp : patches)
         for (int i = 0; i < 16; ++i)
             if (!isPhantom(sp.boundary, i)) needed[sp.cv[i]] = 1;
     for (uint32_t v : next) needed[v] = 1;
-    auto markFacePoints = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
-                              const std::vector<StencilEntry>& entries) {
-        for (uint32_t i = 0; i < count; ++i)
-            if (needed[first + i])
-                for (uint32_t k = start[i]; k < start[i + 1]; ++k)
-                    if (entries[k].fromFacePoint) needed[entries[k].index] = 1;
-    };
-    markFacePoints(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
-    markFacePoints(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
-    std::vector<uint32_t> row(needed.size(), kNone);
-    uint32_t rows = 0;
-    for (size_t v = 0; v < needed.size(); ++v)
-        if (needed[v]) row[v] = rows++;
-    p = BasisProgram{};
-    auto in = [&](uint32_t v) {
-        if (inputOf[v] == kNone) throw std::logic_error("crease basis: a row reads outside the support");
-        return inputOf[v];
-    };
-    for (uint32_t i = 0; i < L.facePointCount; ++i) {
-        if (!needed[i]) continue;
-        for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) {
-            p.source.push_back(in(st.faceVertices[k]));
-            p.weight.push_back(1.0f);
-        }
-        p.start.push_back(uint32_t(p.source.size()));
-        p.averaged.push_back(1);
-    }
-    auto weighted = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
-                        const std::vector<StencilEntry>& stencil) {
-        for (uint32_t i = 0; i < count; ++i) {
-            if (!needed[first + i]) continue;
-            for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
-                const StencilEntry& e = stencil[k];
-                p.source.push_back(e.fromFacePoint ? uint32_t(M) + row[e.index] : in(e.index));
-                p.weight.push_back(static_cast<float>(e.weight));
-            }
-            p.start.push_back(uint32_t(p.source.size()));
-            p.averaged.push_back(0);
-        }
-    };
-    weighted(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
-    weighted(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    const std::vector<uint32_t> row = stencilRows(child, st, input, parentVertices, std::move(needed), p);
     // Phantom points are left to the evaluator (gatherControlPoints, from the kind's bits): a
     // phantom's row is kNone.
     controlRows.clear();
@@ -250,12 +227,23 @@ std::vector<glm::dvec3> runBandProgram(const BasisProgram& p, std::span<const gl
     return values;
 }
 
-bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference, double tolerance) {
+std::vector<glm::dvec3> bandProbe(const CreaseBand& band) {
+    // Arbitrary support values of size about 1, made once for the largest support a chain has.
+    static const std::vector<glm::dvec3> values = [] {
+        std::vector<glm::dvec3> in(2 * size_t(kMaxBasisValence) + 8);
+        for (size_t i = 0; i < in.size(); ++i)
+            in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
+        return in;
+    }();
+    if (band.support > values.size()) throw std::logic_error("crease basis: a band's support is too large");
+    return runBandProgram(band.program, std::span(values).first(band.support));
+}
+
+bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference, double tolerance,
+                      const std::vector<glm::dvec3>* xProbe) {
     if (x.support != y.support || x.program.nextSupport.size() != y.program.nextSupport.size()) return false;
-    std::vector<glm::dvec3> in(x.support);
-    for (size_t i = 0; i < in.size(); ++i)
-        in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
-    const std::vector<glm::dvec3> px = runBandProgram(x.program, in), py = runBandProgram(y.program, in);
+    const std::vector<glm::dvec3> own = xProbe ? std::vector<glm::dvec3>{} : bandProbe(x), py = bandProbe(y);
+    const std::vector<glm::dvec3>& px = xProbe ? *xProbe : own;
     auto same = [&](uint32_t r, uint32_t q) {
         if (r == kNone || q == kNone) return r == q;
         double most = 0;
@@ -273,7 +261,7 @@ bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* differen
 }
 
 bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const SchemeOptions& options,
-                      const TablesOptions& opts, CreaseChain& chain) {
+                      const TablesOptions& opts, CreaseChain& chain, bool sharedPrograms) {
     std::vector<uint32_t> support, faces, key;
     chain = CreaseChain{};
     if (K == 0 || !creaseSupport(L, f, corner, support, chain.key, &faces)) return false;
@@ -290,16 +278,23 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
     // Under uniform creasing, once two bands from refined levels have run the same program and
     // each key was the one before less 1 (the neighbourhood repeats itself, Stam's observation
     // with the sharpness counting down), the next bands are that program again, with keys and
-    // kinds' sharpness less 1 each, as long as no sharpness crosses 2 (below 2 a child's
-    // sharpness can reach 0: a kind or the chain's end changes): they are not refined. Then the last refined level is given the band's key
-    // (the same topology) and refined from there. bench_crease_bases checks the result against
-    // the quadtree, bit for bit.
+    // kinds' sharpness less 1 each, as long as every sharpness of the band's key is 0 or above 1
+    // (the rules read none of them, and no child's sharpness reaches 0: the kinds and the
+    // chain's end stay as they were; a sharpness of 1 or less changes the program, or a child's
+    // rule): they are not refined. Then the last refined level is given the band's key (the same
+    // topology) and refined from there. bench_crease_bases checks the result against the
+    // quadtree, bit for bit.
     const bool uniform = options.creaseMethod == CreaseMethod::Uniform;
     bool repeating = false;
     auto zeroSharpness = [](const std::vector<uint32_t>& k) { return mapSharpness(k, [](float) { return 0.0f; }); };
+    auto aboveOne = [](const std::vector<uint32_t>& k) {
+        bool above = true;
+        mapSharpness(k, [&above](float s) { return above = above && (s == 0 || s > 1.0f), s; });
+        return above;
+    };
     for (uint32_t j = 1; j <= K; ++j) {
         if (repeating) {
-            if (j < K && programKey(key, 2.0f) == programKey(chain.bands.back().key, 2.0f)) {
+            if (j < K && aboveOne(key) && programKey(key, 1.0f) == programKey(chain.bands.back().key, 1.0f)) {
                 CreaseBand band = chain.bands.back();
                 band.key = key;
                 for (CreaseBandKind& k : band.kind) k.sharpness = decrement(k.sharpness);
@@ -332,16 +327,12 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
         identity.resize(child.topo.vertexCount());
         for (uint32_t v = 0; v < identity.size(); ++v) identity[v] = v;
         const FaceFrame& pf = cur.frames[chainFace];
-        uint32_t centre = kNone;
+        const uint32_t centre = centreChild(child, chainFace, pf);
         std::vector<Patch> patches(3);
         for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) {
-            if (child.faceParent[cf] != chainFace) continue;
+            if (child.faceParent[cf] != chainFace || cf == centre) continue;
             const FaceFrame& c = child.frames[cf];
             const int q = (c.u0 > pf.u0 ? 1 : 0) | (c.v0 > pf.v0 ? 2 : 0);
-            if (q == 0) {
-                centre = cf;
-                continue;
-            }
             if (!r.faceRegular[cf]) return false;
             patches[q == 1 ? 0 : q == 3 ? 1 : 2] = gatherPatch(child, cf, 0, identity, r.faceCreaseEdge[cf]);
         }
@@ -382,198 +373,36 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
         cur = std::move(child);
         chainFace = centre;
         curSupport = std::move(next);
+        // With sharedPrograms, a second band whose key is the first's less 1 (and that repeats
+        // it, as above) is the first band again: its program is the first's by programKey, its
+        // kinds less 1. Its level is still made (without stencils), and the next key read there,
+        // so that the bands refined later are refined from the levels they were before (their
+        // rows in those levels' vertex order, the bytes of a program that is the first of its
+        // programKey) and the repetition rests on the same two keys.
+        if (sharedPrograms && uniform && b == 1 && j + 1 < K && key == decremented(chain.bands[0].key) &&
+            aboveOne(key) && programKey(key, 1.0f) == programKey(chain.bands[0].key, 1.0f)) {
+            std::vector<uint8_t> around(cur.topo.faceCount(), 0);
+            around[chainFace] = 1;
+            Level third = refineLevelTopology(cur, oneRing(cur.topo, around), options, ptexBase);
+            const uint32_t thirdFace = centreChild(third, chainFace, cur.frames[chainFace]);
+            std::vector<uint32_t> thirdSupport, thirdKey;
+            if (thirdFace != kNone && creaseSupport(third, thirdFace, 0, thirdSupport, thirdKey) &&
+                thirdKey == decremented(key)) {
+                CreaseBand second = chain.bands.back();
+                second.key = key;
+                second.borrowed = true;
+                for (CreaseBandKind& k : second.kind) k.sharpness = decrement(k.sharpness);
+                chain.bands.push_back(std::move(second));
+                key = std::move(thirdKey);
+                cur = std::move(third);
+                chainFace = thirdFace;
+                curSupport = std::move(thirdSupport);
+                repeating = true;
+                ++j;
+            }
+        }
     }
     return true;
-}
-
-namespace {
-
-// The key a band's program is shared by (TBLS stores it once): its programKey, and for a
-// chain's last band how the chain ends.
-std::vector<uint32_t> sharedProgramKey(const CreaseChain& chain, const CreaseBand& band) {
-    std::vector<uint32_t> shared = programKey(band.key, kProgramSharpness);
-    shared.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
-    return shared;
-}
-
-// Whether a configuration's chain costs fewer bytes than the quadtrees of the faces it draws. A
-// band program of its own (300-400 bytes) costs about what one face's quadtree node does (its
-// level's stencils and three sub-patches), so a chain pays off where faces share it, or where
-// most of its bands run programs shared with other chains or repeated (a long crease); a chain
-// of one face whose bands mostly need programs of their own does not (measured over the catmark
-// shapes at depths 1-3: docs/irregular-tables.md, "Chains that do not pay off").
-// `faces()`: how many faces draw the chain's configuration, asked only where its programs do
-// not decide.
-constexpr uint32_t kMinChainFaces = 2;
-template <class Shared, class Faces>
-bool paysOff(const CreaseChain& chain, const Shared& sharedBands, Faces faces) {
-    std::vector<std::vector<uint32_t>> own; // a few bands: a linear search
-    for (const CreaseBand& band : chain.bands) {
-        std::vector<uint32_t> shared = sharedProgramKey(chain, band);
-        if (std::find(own.begin(), own.end(), shared) == own.end() && !sharedBands.contains(shared))
-            own.push_back(std::move(shared));
-    }
-    // One band ending in a smooth face: its program is the rows of the quadtree's one level.
-    if (3 * own.size() <= chain.bands.size() || (chain.bands.size() == 1 && chain.end == CreaseEnd::Smooth))
-        return true;
-    return faces() >= kMinChainFaces;
-}
-
-// Each face's candidate corners' supports and keys (creaseSupport's), and how many faces each
-// key is met at over them: counted once, the first time a chain's programs do not decide, with
-// the supports kept for takeCreaseFaces' own loop (so that counting costs little).
-struct CreaseKeyCount {
-    bool counted = false;
-    std::unordered_map<uint64_t, uint32_t> faces; // by keyHash: a decision about bytes only
-    std::unordered_map<uint64_t, std::pair<std::vector<uint32_t>, std::vector<uint32_t>>> candidates; // f * 4 + c
-};
-
-// FNV-1a over a key's words.
-uint64_t keyHash(const std::vector<uint32_t>& key) {
-    uint64_t h = 14695981039346656037ull;
-    for (uint32_t x : key) h = (h ^ x) * 1099511628211ull;
-    return h;
-}
-
-template <class Order>
-void countCreaseKeys(const Level& L, const std::vector<uint8_t>& T, Order cornerOrder, CreaseKeyCount& out) {
-    out.counted = true;
-    std::vector<uint32_t> support, key;
-    for (uint32_t f = 0; f < L.topo.faceCount(); ++f) {
-        if (!T[f] || L.topo.faceSize(f) != 4) continue;
-        int order[4], ranks[4];
-        cornerOrder(f, order, ranks);
-        for (int c : order) {
-            if (ranks[c] == 2) break;
-            if (!creaseSupport(L, f, c, support, key)) continue;
-            ++out.faces[keyHash(key)];
-            out.candidates.emplace(uint64_t(f) * 4 + uint64_t(c), std::pair{support, key});
-        }
-    }
-}
-
-} // namespace
-
-void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesOptions& opts, uint32_t basisLevels,
-                     std::vector<uint8_t>& T, AdaptiveLevels& a) {
-    // A configuration's chain is the same for every face of its key (the study checks it), so
-    // it is built once; a key without one is remembered too.
-    std::map<std::vector<uint32_t>, int> chainOf;
-    std::map<int, int> basisOfChain; // TablesOptions::creaseChains: into a.bases, -1 for none
-    std::map<std::vector<uint32_t>, CreaseBand> sharedBands; // the first band of each programKey and end
-    std::vector<uint32_t> support, key;
-    const Topology& topo = L.topo;
-    // The feature corner is tried first: an extraordinary vertex, else a regular one with a
-    // sharp vertex, a dart, or a crease that does not go straight through with one sharpness. A
-    // straight crease of one sharpness through a regular vertex is no feature corner: faces along
-    // such a crease that are irregular elsewhere have such corners only, and trying them cost a
-    // refinement per key for nothing.
-    std::vector<uint32_t> ring;
-    auto rank = [&](uint32_t v) {
-        if (topo.vertexFaceCount(v) != (topo.vertexIsBoundary(v) ? 2u : 4u)) return 0;
-        if (L.vertexSharpness[v] != 0) return 1;
-        topo.vertexRing(v, ring);
-        int sharp = 0, first = -1, second = -1;
-        for (int k = 0; k < int(ring.size()); ++k)
-            if (L.edgeSharpness[topo.edge(ring[size_t(k)])] != 0) {
-                (sharp++ == 0 ? first : second) = k;
-            }
-        if (sharp == 0) return 2;
-        const bool straight = sharp == 2 && !topo.vertexIsBoundary(v) && second - first == 2 &&
-                              L.edgeSharpness[topo.edge(ring[size_t(first)])] ==
-                                  L.edgeSharpness[topo.edge(ring[size_t(second)])];
-        return straight ? 2 : 1;
-    };
-    auto cornerOrder = [&](uint32_t f, int order[4], int ranks[4]) {
-        for (int c = 0; c < 4; ++c) {
-            order[c] = c;
-            ranks[c] = rank(topo.vertex(topo.faceHalfedge(f) + (L.frames[f].rotation + c) % 4));
-        }
-        std::stable_sort(order, order + 4, [&](int x, int y) { return ranks[x] < ranks[y]; });
-    };
-    CreaseKeyCount count;
-    const std::vector<uint8_t> faceSet = T; // before any face is taken: what count counts over
-    for (uint32_t f = 0; f < topo.faceCount(); ++f) {
-        if (!T[f] || topo.faceSize(f) != 4) continue;
-        int order[4], ranks[4];
-        cornerOrder(f, order, ranks);
-        for (int c : order) {
-            if (ranks[c] == 2) break; // a smooth regular corner has no chain
-            if (count.counted) {
-                auto found = count.candidates.find(uint64_t(f) * 4 + uint64_t(c));
-                if (found == count.candidates.end()) continue;
-                support = std::move(found->second.first);
-                key = std::move(found->second.second);
-                count.candidates.erase(found);
-            } else if (!creaseSupport(L, f, c, support, key)) {
-                continue;
-            }
-            auto [it, added] = chainOf.try_emplace(key, -1);
-            if (added) {
-                CreaseChain chain;
-                if (buildCreaseChain(L, f, c, a.K, options, opts, chain)) {
-                    a.creaseChains.push_back(std::move(chain));
-                    it->second = int(a.creaseChains.size() - 1);
-                }
-            }
-            if (it->second < 0) continue;
-            if (opts.creaseChains) {
-                // The chain's surface as a basis of the face's own support (expandCreaseChain),
-                // once per chain; a face whose chain has none is refined.
-                auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
-                IrregularBasis basis;
-                auto faces = [&] {
-                    if (!count.counted) countCreaseKeys(L, faceSet, cornerOrder, count);
-                    return count.faces.at(keyHash(key));
-                };
-                if (fresh && paysOff(a.creaseChains[size_t(it->second)], sharedBands, faces)) {
-                    auto chain = std::make_shared<CreaseChain>(a.creaseChains[size_t(it->second)]);
-                    // Bands whose keys agree once every sharpness from 1 on is clamped, and that
-                    // end alike, run the same function (bench_crease_bases checks it: to 1e-16),
-                    // so they share one program, which TBLS then stores once; only their kinds'
-                    // sharpness differs.
-                    for (CreaseBand& band : chain->bands) {
-                        auto [other, first] = sharedBands.try_emplace(sharedProgramKey(*chain, band), band);
-                        double difference = 0;
-                        if (!first && sameBandFunction(other->second, band, &difference, 1e-12)) {
-                            band.program = other->second.program;
-                            band.centreRow = other->second.centreRow;
-                        }
-                    }
-                    // A smooth end goes on with its valence's basis, which the tables hold (TBLS
-                    // version 8 names it), even where no face of its own draws from it.
-                    int end = -1;
-                    if (chain->end == CreaseEnd::Smooth) {
-                        std::vector<int>& of = a.basisOfValence;
-                        if (of.size() <= chain->valence) of.resize(chain->valence + 1, -1);
-                        if (of[chain->valence] == -1) {
-                            try {
-                                a.bases.push_back(buildIrregularBasis(chain->valence, std::max(a.K, basisLevels)));
-                                of[chain->valence] = int(a.bases.size() - 1);
-                            } catch (const std::exception&) {
-                                of[chain->valence] = -2;
-                            }
-                        }
-                        end = of[chain->valence];
-                        chain->endBasis = uint32_t(end);
-                    }
-                    if ((chain->end != CreaseEnd::Smooth || end >= 0) &&
-                        expandCreaseChain(*chain, a.K, basis, end >= 0 ? &a.bases[size_t(end)] : nullptr)) {
-                        basis.chain = std::move(chain);
-                        a.bases.push_back(std::move(basis));
-                        b->second = int(a.bases.size() - 1);
-                    }
-                }
-                if (b->second < 0) continue;
-                a.smooth.push_back({f, uint32_t(b->second), uint32_t(c), support, L.depth});
-                T[f] = 0;
-                break;
-            }
-            a.creaseFaces.push_back({f, uint32_t(it->second), uint32_t(c), support, L.depth});
-            T[f] = 0;
-            break;
-        }
-    }
 }
 
 } // namespace limn

@@ -33,6 +33,9 @@ struct CreaseBand {
     // The last band of a chain that ends Regular: the corner quadrant's patch too.
     std::array<uint32_t, 16> centreRow{};
     CreaseBandKind centreKind;
+    // Builder only: the band holds the first band's program, not its own (buildCreaseChain's
+    // sharedPrograms), which the tables may keep only where sharing by programKey replaces it.
+    bool borrowed = false;
 };
 
 // How a chain ends: at level N + K with the corner's child still irregular (a leaf, as the
@@ -90,15 +93,23 @@ std::vector<glm::dvec3> runBandProgram(const BasisProgram& program, std::span<co
 // Whether two bands' programs are the same function: the same points to the bit from the same
 // (arbitrary) support values of size about 1 (`tolerance` > 0: within it); `difference`
 // (optional) gets the largest difference met.
-bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference = nullptr, double tolerance = 0);
+// `xProbe` (optional): bandProbe(x), computed once where x is compared with many bands.
+bool sameBandFunction(const CreaseBand& x, const CreaseBand& y, double* difference = nullptr, double tolerance = 0,
+                      const std::vector<glm::dvec3>* xProbe = nullptr);
+// A band's rows from sameBandFunction's support values.
+std::vector<glm::dvec3> bandProbe(const CreaseBand& band);
 
 // The chain of face f of level L with feature corner `corner` over `levels` bands, from a copy
 // of its support's faces (their sharpness; the copy's rim edges infinitely sharp, which no
 // stencil of the programs reads) refined band by band by the table builder's refineLevel, only
 // around the chain face (its isolation). False where some band's three other quadrants are not
 // all regular patches (the face is not of this kind: two feature corners, a bent crease).
+// `sharedPrograms`: the caller runs each band with the first program of its programKey and end
+// (takeCreaseFaces, for the tables), so a band need not hold its own program's bits: a second
+// band whose key is the first's less 1 repeats the first (`borrowed`; see buildCreaseChain),
+// where the study, which compares each face's own chain with its quadtree bit for bit, refines it.
 bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t levels, const SchemeOptions& options,
-                      const TablesOptions& opts, CreaseChain& chain);
+                      const TablesOptions& opts, CreaseChain& chain, bool sharedPrograms = false);
 
 // A chain's surface in the layout of a basis (IrregularBasis::weights, K bands of three
 // quadrants' 16 control points as weights of the face's own M level-N support points) with each

@@ -4,43 +4,74 @@
 #include "subdiv/crease_basis.h"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
 namespace limn {
 
 namespace {
 
-// Points as weights of the chain face's M level-N points: row r is [r * M, (r + 1) * M) of a
-// flat array (one allocation per band, not per point).
+// Rows of weights are summed two columns at a time (GCC's packed doubles: SSE2, NEON), each column
+// still its own products and sums in the program's order, so every bit is that of one column at
+// a time (expandIrregularBasis's arithmetic; the web runtime computes one at a time).
+using Pair = double __attribute__((vector_size(16)));
+Pair load(const double* x) {
+    Pair v;
+    std::memcpy(&v, x, sizeof v);
+    return v;
+}
+void store(double* x, Pair v) { std::memcpy(x, &v, sizeof v); }
+Pair splat(double w) { return Pair{w, w}; }
+
+// out += w * x over a row (W columns, even).
+void addScaled(double* out, double w, const double* x, size_t W) {
+    const Pair p = splat(w);
+    for (size_t i = 0; i < W; i += 2) store(out + i, load(out + i) + p * load(x + i));
+}
+
+// Points as weights of the chain face's M level-N points: row r is [r * W, r * W + M) of a
+// flat array, W being M rounded up to even (the pad column stays 0; one allocation per band,
+// not per point).
 struct WeightRows {
-    size_t M = 0;
+    size_t M = 0, W = 0;
     std::vector<double> w;
-    void assign(size_t rows, size_t m) { M = m, w.assign(rows * m, 0.0); }
-    double* row(size_t r) { return w.data() + r * M; }
-    const double* row(size_t r) const { return w.data() + r * M; }
-    size_t rows() const { return M ? w.size() / M : 0; }
+    // Zeroed rows (`zero` false: the caller writes every row).
+    void assign(size_t rows, size_t m, bool zero = true) {
+        M = m, W = (m + 1) & ~size_t(1);
+        if (zero)
+            w.assign(rows * W, 0.0);
+        else
+            w.resize(rows * W);
+    }
+    double* row(size_t r) { return w.data() + r * W; }
+    const double* row(size_t r) const { return w.data() + r * W; }
+    size_t rows() const { return W ? w.size() / W : 0; }
 };
 
-// a * x + b * y into out (the rows are M long).
-void combine(double* out, double a, const double* x, double b, const double* y, size_t M) {
-    for (size_t i = 0; i < M; ++i) out[i] = a * x[i] + b * y[i];
+// a * x + b * y into out.
+void combine(double* out, double a, const double* x, double b, const double* y, size_t W) {
+    const Pair pa = splat(a), pb = splat(b);
+    for (size_t i = 0; i < W; i += 2) store(out + i, pa * load(x + i) + pb * load(y + i));
 }
 
 // A patch's 16 control points (P[i + 4 j] = P_{i,j}) from a band's rows (kNone: a phantom),
 // then gatherControlPoints' phantoms (columns first, then rows over all columns).
 void patchWeights(const uint32_t* rows, uint8_t boundary, const WeightRows& values, WeightRows& P) {
-    const size_t M = values.M;
-    P.assign(16, M);
+    const size_t W = values.W;
+    P.assign(16, values.M, false);
     for (int j = 0; j < 16; ++j)
-        if (rows[j] != kNone) std::copy(values.row(rows[j]), values.row(rows[j]) + M, P.row(size_t(j)));
+        if (rows[j] != kNone)
+            std::copy(values.row(rows[j]), values.row(rows[j]) + W, P.row(size_t(j)));
+        else // a phantom, made below (a corner's from other phantoms, which start at 0)
+            std::fill(P.row(size_t(j)), P.row(size_t(j)) + W, 0.0);
     auto at = [&](int i, int j) { return P.row(size_t(i + 4 * j)); };
     for (int j = 0; j < 4; ++j) {
-        if (boundary & kBoundaryU0) combine(at(0, j), 2.0, at(1, j), -1.0, at(2, j), M);
-        if (boundary & kBoundaryU1) combine(at(3, j), 2.0, at(2, j), -1.0, at(1, j), M);
+        if (boundary & kBoundaryU0) combine(at(0, j), 2.0, at(1, j), -1.0, at(2, j), W);
+        if (boundary & kBoundaryU1) combine(at(3, j), 2.0, at(2, j), -1.0, at(1, j), W);
     }
     for (int i = 0; i < 4; ++i) {
-        if (boundary & kBoundaryV0) combine(at(i, 0), 2.0, at(i, 1), -1.0, at(i, 2), M);
-        if (boundary & kBoundaryV1) combine(at(i, 3), 2.0, at(i, 2), -1.0, at(i, 1), M);
+        if (boundary & kBoundaryV0) combine(at(i, 0), 2.0, at(i, 1), -1.0, at(i, 2), W);
+        if (boundary & kBoundaryV1) combine(at(i, 3), 2.0, at(i, 2), -1.0, at(i, 1), W);
     }
 }
 
@@ -49,27 +80,26 @@ constexpr double kHalf[2][4][4] = {
     {{0.5, 0.5, 0, 0}, {0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}},
     {{0.125, 0.75, 0.125, 0}, {0, 0.5, 0.5, 0}, {0, 0.125, 0.75, 0.125}, {0, 0, 0.5, 0.5}}};
 
-// Quadrant (hu, hv) of patch P, separably: along u, then along v.
-void splitPatch(const WeightRows& P, int hu, int hv, WeightRows& T, WeightRows& Q) {
-    const size_t M = P.M;
-    T.assign(16, M);
-    Q.assign(16, M);
+// Half hu of patch P along u (the same for both halves along v: splitAlongV).
+void splitAlongU(const WeightRows& P, int hu, WeightRows& T) {
+    const size_t W = P.W;
+    T.assign(16, P.M);
     for (int b = 0; b < 4; ++b)
         for (int i = 0; i < 4; ++i)
             for (int a = 0; a < 4; ++a)
-                if (const double w = kHalf[hu][i][a]; w != 0) {
-                    double* out = T.row(size_t(i + 4 * b));
-                    const double* x = P.row(size_t(a + 4 * b));
-                    for (size_t k = 0; k < M; ++k) out[k] += w * x[k];
-                }
+                if (const double w = kHalf[hu][i][a]; w != 0)
+                    addScaled(T.row(size_t(i + 4 * b)), w, P.row(size_t(a + 4 * b)), W);
+}
+
+// Quadrant (hu, hv) of patch P, separably: along u (T: splitAlongU(P, hu)), then along v.
+void splitAlongV(const WeightRows& T, int hv, WeightRows& Q) {
+    const size_t W = T.W;
+    Q.assign(16, T.M);
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i)
             for (int b = 0; b < 4; ++b)
-                if (const double w = kHalf[hv][j][b]; w != 0) {
-                    double* out = Q.row(size_t(i + 4 * j));
-                    const double* x = T.row(size_t(i + 4 * b));
-                    for (size_t k = 0; k < M; ++k) out[k] += w * x[k];
-                }
+                if (const double w = kHalf[hv][j][b]; w != 0)
+                    addScaled(Q.row(size_t(i + 4 * j)), w, T.row(size_t(i + 4 * b)), W);
 }
 
 } // namespace
@@ -85,11 +115,16 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
     const size_t M = chain.bands[0].support;
     out.levels = K;
     out.support = uint32_t(M);
-    out.weights.assign(size_t(K) * 3 * 16 * M, 0.0f);
+    // Every band's three patches are stored in order (band k, quadrant q at (3 (k - 1) + q) 16 M).
+    out.weights.reserve(size_t(K) * 3 * 16 * M);
     out.kinds.assign(size_t(K) * 3, CreaseBandKind{});
-    auto store = [&](uint32_t k, int q, const WeightRows& P) {
-        float* w = out.weights.data() + (size_t(k - 1) * 3 + size_t(q)) * 16 * M;
-        for (size_t x = 0; x < 16 * M; ++x) w[x] = static_cast<float>(P.w[x]);
+    auto storePatch = [&](uint32_t k, int q, const WeightRows& P) {
+        if (out.weights.size() != (size_t(k - 1) * 3 + size_t(q)) * 16 * M)
+            throw std::logic_error("crease chain: patches stored out of order");
+        out.weights.resize(out.weights.size() + 16 * M);
+        float* w = out.weights.data() + out.weights.size() - 16 * M;
+        for (size_t j = 0; j < 16; ++j)
+            for (size_t i = 0; i < M; ++i) w[j * M + i] = static_cast<float>(P.row(j)[i]);
     };
     WeightRows cur, rows, next, P, Q, T;
     cur.assign(M, M);
@@ -100,42 +135,57 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
         const BasisProgram& p = band.program;
         const size_t S = cur.rows();
         if (band.support != S) throw std::logic_error("crease chain: a band's support is not the last band's next");
-        rows.assign(p.rows(), M);
+        rows.assign(p.rows(), M, false);
+        const size_t W = rows.W;
         for (uint32_t r = 0; r < p.rows(); ++r) {
             double* sum = rows.row(r);
+            // The sums start at 0 (0 + w x, then + w x ...: the bits of summing into zeros).
+            if (p.start[r] == p.start[r + 1]) std::fill(sum, sum + W, 0.0);
             for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
                 const uint32_t src = p.source[e];
                 if (src >= S + r) throw std::logic_error("crease chain: a row reads a later row");
                 const double* x = src < S ? cur.row(src) : rows.row(src - S);
                 const double w = p.averaged[r] ? 1.0 : double(p.weight[e]);
-                for (size_t i = 0; i < M; ++i) sum[i] += w * x[i];
+                if (e == p.start[r]) {
+                    const Pair pw = splat(w), zero = splat(0.0);
+                    for (size_t i = 0; i < W; i += 2) store(sum + i, zero + pw * load(x + i));
+                } else {
+                    addScaled(sum, w, x, W);
+                }
             }
             if (p.averaged[r]) {
-                const double n = double(p.start[r + 1] - p.start[r]);
-                for (size_t i = 0; i < M; ++i) sum[i] /= n;
+                const Pair n = splat(double(p.start[r + 1] - p.start[r]));
+                for (size_t i = 0; i < W; i += 2) store(sum + i, load(sum + i) / n);
             }
         }
         for (int q = 0; q < 3; ++q) {
             patchWeights(p.controlRow.data() + 16 * q, band.kind[size_t(q)].boundary, rows, P);
-            store(k, q, P);
+            storePatch(k, q, P);
             out.kinds[size_t(k - 1) * 3 + size_t(q)] = {0, band.kind[size_t(q)].crease, band.kind[size_t(q)].sharpness};
         }
-        next.assign(p.nextSupport.size(), M);
+        next.assign(p.nextSupport.size(), M, false);
         for (size_t i = 0; i < p.nextSupport.size(); ++i)
-            std::copy(rows.row(p.nextSupport[i]), rows.row(p.nextSupport[i]) + M, next.row(i));
+            std::copy(rows.row(p.nextSupport[i]), rows.row(p.nextSupport[i]) + W, next.row(i));
         if (&band == &chain.bands.back() && chain.end == CreaseEnd::Regular)
             patchWeights(band.centreRow.data(), band.centreKind.boundary, rows, P);
         std::swap(cur, next);
     }
     if (chain.end == CreaseEnd::Regular) {
         // The corner's patch P, split: its quadrants 1..3 are band k's, its corner quadrant the next P.
+        // Quadrants 1 (hu 1, hv 0), 3 (1, 1) and 2 (0, 1) in that order, then the corner (0, 0);
+        // each half along u made once (T1, T0).
+        WeightRows T0;
         for (++k; k <= K; ++k) {
-            constexpr int half[3][2] = {{1, 0}, {1, 1}, {0, 1}};
-            for (int q = 0; q < 3; ++q) {
-                splitPatch(P, half[q][0], half[q][1], T, Q);
-                store(k, q, Q);
-            }
-            splitPatch(P, 0, 0, T, Q);
+            splitAlongU(P, 1, T);
+            splitAlongV(T, 0, Q);
+            storePatch(k, 0, Q);
+            splitAlongV(T, 1, Q);
+            storePatch(k, 1, Q);
+            splitAlongU(P, 0, T0);
+            splitAlongV(T0, 1, Q);
+            storePatch(k, 2, Q);
+            if (k == K) break; // no band below the last
+            splitAlongV(T0, 0, Q);
             std::swap(P, Q);
         }
     } else if (k < K) { // Smooth: the per-valence basis over the end's next support
@@ -152,15 +202,11 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
             for (int q = 0; q < 3; ++q) {
                 const float* w = b.weights.data() + (size_t(kb - 1) * 3 + size_t(q)) * 16 * m;
                 P.assign(16, M);
-                for (int j = 0; j < 16; ++j) {
-                    double* c = P.row(size_t(j));
+                for (int j = 0; j < 16; ++j)
                     for (size_t s = 0; s < m; ++s)
-                        if (const double x = double(w[size_t(j) * m + s]); x != 0) {
-                            const double* from = cur.row(s);
-                            for (size_t i = 0; i < M; ++i) c[i] += x * from[i];
-                        }
-                }
-                store(k + kb, q, P);
+                        if (const double x = double(w[size_t(j) * m + s]); x != 0)
+                            addScaled(P.row(size_t(j)), x, cur.row(s), P.W);
+                storePatch(k + kb, q, P);
             }
     }
     return true;

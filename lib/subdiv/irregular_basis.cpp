@@ -274,62 +274,19 @@ IrregularBasis basisFromMesh(const Mesh& m, const SchemeOptions& options, uint32
                                    " mesh has no support of its configuration at level " + std::to_string(l));
     const size_t M = supports[0].size();
     if (supports[1].size() != M) throw std::logic_error("irregular basis: supports of two sizes");
-    std::vector<uint32_t> inputOf(levels[0].topo.vertexCount(), kNone);
-    for (size_t i = 0; i < M; ++i) inputOf[supports[0][i]] = uint32_t(i);
-    // The level-1 vertices the sub-patches and the next support read, and the face points those
-    // read (level 1 holds face points, then edge points, then vertex points).
+    // The level-1 vertices the sub-patches and the next support read.
     std::vector<uint8_t> needed(L.topo.vertexCount(), 0);
     for (const SubPatch& sp : subPatches)
         for (int i = 0; i < 16; ++i)
             if (!isPhantom(sp.patch.boundary, i)) needed[sp.patch.cv[i]] = 1;
     for (uint32_t v : supports[1]) needed[v] = 1;
-    auto markFacePoints = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
-                              const std::vector<StencilEntry>& entries) {
-        for (uint32_t i = 0; i < count; ++i)
-            if (needed[first + i])
-                for (uint32_t k = start[i]; k < start[i + 1]; ++k)
-                    if (entries[k].fromFacePoint) needed[entries[k].index] = 1;
-    };
-    markFacePoints(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
-    markFacePoints(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
-    std::vector<uint32_t> row(needed.size(), kNone);
-    uint32_t rows = 0;
-    for (size_t v = 0; v < needed.size(); ++v)
-        if (needed[v]) row[v] = rows++;
-    // The program: the needed rows in vertex order, each entry as the tables' evaluation reads it
-    // (the float weight, in the stencil's order), reading face 0's support or an earlier row.
     IrregularBasis basis;
     basis.valence = n;
     basis.levels = K;
     BasisProgram& p = basis.program;
-    auto input = [&](uint32_t v) {
-        if (inputOf[v] == kNone) throw std::logic_error("irregular basis: a row reads outside the support");
-        return inputOf[v];
-    };
-    for (uint32_t i = 0; i < L.facePointCount; ++i) {
-        if (!needed[i]) continue;
-        for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) {
-            p.source.push_back(input(st.faceVertices[k]));
-            p.weight.push_back(1.0f);
-        }
-        p.start.push_back(uint32_t(p.source.size()));
-        p.averaged.push_back(1);
-    }
-    auto weighted = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
-                        const std::vector<StencilEntry>& stencil) {
-        for (uint32_t i = 0; i < count; ++i) {
-            if (!needed[first + i]) continue;
-            for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
-                const StencilEntry& e = stencil[k];
-                p.source.push_back(e.fromFacePoint ? uint32_t(M) + row[e.index] : input(e.index));
-                p.weight.push_back(static_cast<float>(e.weight));
-            }
-            p.start.push_back(uint32_t(p.source.size()));
-            p.averaged.push_back(0);
-        }
-    };
-    weighted(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
-    weighted(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    const std::vector<uint32_t> row =
+        stencilRows(L, st, supports[0], levels[0].topo.vertexCount(), std::move(needed), p);
+    uint32_t rows = p.rows();
     // A boundary sub-patch's phantom points, as gatherControlPoints makes them (columns first,
     // then rows over all columns): rows 2 a - b of earlier rows, the same double operations
     // (0 + 2 a + (-1) b is 2 a - b to the bit).
@@ -387,6 +344,64 @@ bool boundarySupportOf(const Level& L, uint32_t f, const void* context, std::vec
 }
 
 } // namespace
+
+bool sameProgramBytes(const BasisProgram& x, const BasisProgram& y) {
+    return x.start == y.start && x.source == y.source && x.averaged == y.averaged && x.controlRow == y.controlRow &&
+           x.nextSupport == y.nextSupport && x.weight.size() == y.weight.size() &&
+           std::memcmp(x.weight.data(), y.weight.data(), x.weight.size() * sizeof(float)) == 0;
+}
+
+std::vector<uint32_t> stencilRows(const Level& L, const LevelStencils& st, const std::vector<uint32_t>& input,
+                                  uint32_t parentVertices, std::vector<uint8_t> needed, BasisProgram& p) {
+    const size_t M = input.size();
+    std::vector<uint32_t> inputOf(parentVertices, kNone);
+    for (size_t i = 0; i < M; ++i) inputOf[input[i]] = uint32_t(i);
+    // The face points the needed edge and vertex points read (a level holds face points, then
+    // edge points, then vertex points).
+    auto markFacePoints = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
+                              const std::vector<StencilEntry>& entries) {
+        for (uint32_t i = 0; i < count; ++i)
+            if (needed[first + i])
+                for (uint32_t k = start[i]; k < start[i + 1]; ++k)
+                    if (entries[k].fromFacePoint) needed[entries[k].index] = 1;
+    };
+    markFacePoints(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+    markFacePoints(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    std::vector<uint32_t> row(needed.size(), kNone);
+    uint32_t rows = 0;
+    for (size_t v = 0; v < needed.size(); ++v)
+        if (needed[v]) row[v] = rows++;
+    p = BasisProgram{};
+    auto in = [&](uint32_t v) {
+        if (inputOf[v] == kNone) throw std::logic_error("basis program: a row reads outside the support");
+        return inputOf[v];
+    };
+    for (uint32_t i = 0; i < L.facePointCount; ++i) {
+        if (!needed[i]) continue;
+        for (uint32_t k = st.faceStart[i]; k < st.faceStart[i + 1]; ++k) {
+            p.source.push_back(in(st.faceVertices[k]));
+            p.weight.push_back(1.0f);
+        }
+        p.start.push_back(uint32_t(p.source.size()));
+        p.averaged.push_back(1);
+    }
+    auto weighted = [&](uint32_t first, uint32_t count, const std::vector<uint32_t>& start,
+                        const std::vector<StencilEntry>& stencil) {
+        for (uint32_t i = 0; i < count; ++i) {
+            if (!needed[first + i]) continue;
+            for (uint32_t k = start[i]; k < start[i + 1]; ++k) {
+                const StencilEntry& e = stencil[k];
+                p.source.push_back(e.fromFacePoint ? uint32_t(M) + row[e.index] : in(e.index));
+                p.weight.push_back(static_cast<float>(e.weight));
+            }
+            p.start.push_back(uint32_t(p.source.size()));
+            p.averaged.push_back(0);
+        }
+    };
+    weighted(L.facePointCount, L.edgePointCount, st.edgeStart, st.edgeEntries);
+    weighted(L.facePointCount + L.edgePointCount, L.vertexPointCount, st.vertexStart, st.vertexEntries);
+    return row;
+}
 
 IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
     if (n < 3 || n > kMaxBasisValence || K < 1 || K > uint32_t(kMaxDepth))

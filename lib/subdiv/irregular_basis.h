@@ -37,6 +37,9 @@ struct BasisProgram {
     uint32_t rows() const { return static_cast<uint32_t>(start.size() - 1); }
 };
 
+// Whether two programs are the same, entry for entry (weights compared as bits).
+bool sameProgramBytes(const BasisProgram& x, const BasisProgram& y);
+
 // Which faces a basis draws: those around one extraordinary vertex with `valence` faces, the other
 // vertices of the faces around their corners regular. Interior: Stam's setting, one basis per
 // valence (the faces around the vertex are alike up to rotation). On a boundary (a UV seam or a
@@ -113,6 +116,16 @@ IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);
 // one level down must be the same configuration) or a sub-patch is not regular.
 IrregularBasis buildBoundaryBasis(const BasisConfiguration& configuration, uint32_t levels,
                                   BoundaryRule rule = BoundaryRule::EdgeOnly);
+
+// The rows of one refined level that a basis's program keeps (basisFromMesh's, and each band of
+// a crease chain's, crease_basis.cpp): the child vertices marked `needed`, and the face points
+// their edge and vertex stencils read, in vertex order (face points, edge points, vertex points),
+// each row's entries in its stencil's order as the tables' evaluation reads them (float weights;
+// a face point averaged), reading the parent's support `input` (source i: input[i]'s point) or an
+// earlier row. `p` gets those rows (nothing else); the result is each child vertex's row (kNone
+// where none). Throws std::logic_error where a row reads a parent vertex outside `input`.
+std::vector<uint32_t> stencilRows(const Level& child, const LevelStencils& stencils, const std::vector<uint32_t>& input,
+                                  uint32_t parentVertices, std::vector<uint8_t> needed, BasisProgram& p);
 
 // The weights of K bands (IrregularBasis::weights' layout) from a program over `support` points
 // (2n + 8 for an interior basis), with the builder's own arithmetic (double sums in the program's order, each weight

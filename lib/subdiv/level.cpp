@@ -81,8 +81,13 @@ Level makeBaseLevel(Topology topo, Sharpness sharpness) {
     return L;
 }
 
-Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
-                  const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
+namespace {
+
+// refineLevel, and without the stencils (refineLevelTopology): one function for both, each
+// instantiation compiled on its own.
+template <bool kStencils>
+Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
+             const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
     const Topology& T = P.topo;
     const uint32_t F = T.faceCount(), E = T.edgeCount(), V = T.vertexCount();
     Crease crease(toSdcOptions(options));
@@ -222,6 +227,7 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
     OpenSubdiv::Sdc::Scheme<OpenSubdiv::Sdc::SCHEME_CATMARK> scheme(toSdcOptions(options));
     // Rows are appended in child vertex order (face, edge, vertex points by parent index).
     st = LevelStencils{};
+    if constexpr (!kStencils) return C;
     st.faceStart.reserve(C.facePointCount + 1);
     st.faceVertices.reserve(4 * size_t(C.facePointCount)); // quads after the first level
     for (uint32_t f = 0; f < F; ++f)
@@ -274,6 +280,19 @@ Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const Sc
         st.vertexStart.push_back(static_cast<uint32_t>(st.vertexEntries.size()));
     }
     return C;
+}
+
+} // namespace
+
+Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
+                  const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
+    return refine<true>(P, selected, options, ptexBase, st);
+}
+
+Level refineLevelTopology(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
+                          const std::vector<uint32_t>& ptexBase) {
+    LevelStencils none;
+    return refine<false>(P, selected, options, ptexBase, none);
 }
 
 } // namespace limn

@@ -68,6 +68,11 @@ Level refineLevel(const Level& parent, const std::vector<uint8_t>& selected,
                   const SchemeOptions& options, const std::vector<uint32_t>& ptexBase,
                   LevelStencils& stencils);
 
+// refineLevel's level without its stencils (topology, sharpness, rules, frames), where the
+// points are not needed.
+Level refineLevelTopology(const Level& parent, const std::vector<uint8_t>& selected,
+                          const SchemeOptions& options, const std::vector<uint32_t>& ptexBase);
+
 // Faces sharing a vertex with a marked face: what must be refined with the marked faces so that
 // their children have complete neighbourhoods (the isolation of tables.h).
 std::vector<uint8_t> oneRing(const Topology& topo, const std::vector<uint8_t>& marked);

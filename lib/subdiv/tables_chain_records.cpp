@@ -120,11 +120,20 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
     w.write<uint32_t>(c.end == CreaseEnd::Leaf ? 0u : c.end == CreaseEnd::Smooth ? 1u : 2u);
     if (c.end == CreaseEnd::Smooth) w.write<uint32_t>(c.endBasis);
     w.write<uint32_t>(static_cast<uint32_t>(c.bands.size()));
+    // A chain's bands that share a program hold copies of it, which need not be encoded again.
+    const CreaseBand* previous = nullptr;
+    uint32_t previousIndex = 0;
     for (const CreaseBand& band : c.bands) {
-        std::vector<uint8_t> bytes = programBytes(band.program, band.support);
-        const auto [it, added] = programs.try_emplace(std::move(bytes), static_cast<uint32_t>(programs.size()));
-        w.write<uint32_t>(it->second);
-        if (added) w.writeArray(it->first);
+        if (!previous || previous->support != band.support || !sameProgramBytes(previous->program, band.program)) {
+            std::vector<uint8_t> bytes = programBytes(band.program, band.support);
+            const auto [it, added] = programs.try_emplace(std::move(bytes), static_cast<uint32_t>(programs.size()));
+            previousIndex = it->second;
+            w.write<uint32_t>(previousIndex);
+            if (added) w.writeArray(it->first);
+        } else {
+            w.write<uint32_t>(previousIndex);
+        }
+        previous = &band;
         for (const CreaseBandKind& k : band.kind) writeKind(w, k);
     }
     if (c.end == CreaseEnd::Regular) {
