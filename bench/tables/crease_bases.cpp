@@ -77,14 +77,21 @@ int main(int argc, char** argv) {
                         "\"structure_mismatches\":%zu,\"level_n_mismatches\":%zu,\"program_bytes\":%zu,"
                         "\"face_bytes\":%zu,\"support_points\":%zu,\"key_seconds\":%.6f,\"chain_seconds\":%.6f,"
                         "\"study_seconds\":%.3f,\"shared_programs\":%zu,\"shared_mismatches\":%zu,\"repeated_bands\":%zu,"
-                        "\"shared_program_bytes\":%zu,\"band_kind_bytes\":%zu,\"shared_max_difference\":%.3g,\"failures\":\"%s\",\"leaf_corners\":%zu,\"leaf_max_difference\":%.3g}\n",
+                        "\"shared_program_bytes\":%zu,\"band_kind_bytes\":%zu,\"shared_max_difference\":%.3g,\"failures\":\"%s\",\"leaf_corners\":%zu,\"leaf_max_difference\":%.3g,"
+                        "\"tree_faces\":%zu,\"tree_nodes\":%zu,\"tree_level_nodes\":\"%s\",\"tree_node_keys\":%zu,\"tree_node_classes\":%zu,\"tree_turned_keys\":%zu,\"tree_turned_program_bytes\":%zu,"
+                        "\"tree_shared_programs\":%zu,\"tree_program_bytes\":%zu,\"tree_shared_program_bytes\":%zu,"
+                        "\"tree_face_bytes\":%zu,\"tree_points\":%zu,\"tree_bitwise\":%zu,"
+                        "\"tree_max_difference\":%.3g,\"tree_structure\":%zu,\"tree_seconds\":%.4f}\n",
                         name.c_str(), opts.depth, K, s.quadtreeFaces, s.qualifying, s.configurations, s.bandPrograms,
                         s.endLeaf, s.endSmooth, s.endRegular, s.bands, s.maxBands, s.kindsBSpline, s.kindsCrease,
                         s.kindsBoundary, s.pointsCompared, s.pointsBitwise, s.maxDifference, s.dedupedBitwise,
                         s.dedupedMaxDifference, s.structureMismatches, s.levelNMismatches, s.programBytes,
                         s.faceBytes, s.supportPoints, s.keySeconds, s.chainSeconds, total, s.sharedPrograms,
                         s.sharedMismatches, s.repeatedBands, s.sharedProgramBytes, s.bandKindBytes,
-                        s.sharedMaxDifference, s.failures.c_str(), s.leafCorners, s.leafMaxDifference);
+                        s.sharedMaxDifference, s.failures.c_str(), s.leafCorners, s.leafMaxDifference,
+                        s.treeFaces, s.treeNodes, s.treeLevelNodes.c_str(), s.treeNodeKeys, s.treeNodeClasses,
+                        s.treeTurnedKeys, s.treeTurnedProgramBytes, s.treeSharedPrograms, s.treeProgramBytes, s.treeSharedProgramBytes, s.treeFaceBytes, s.treePoints, s.treeBitwise,
+                        s.treeMaxDifference, s.treeStructure, s.treeSeconds);
             std::fprintf(stderr,
                          "%-24s d%d: %zu/%zu quadtree faces with a chain, %zu configurations, %zu band programs "
                          "(%zu B), ends leaf/smooth/regular %zu/%zu/%zu; points %zu, bitwise %zu (deduped %zu), "
@@ -92,6 +99,13 @@ int main(int argc, char** argv) {
                          name.c_str(), opts.depth, s.qualifying, s.quadtreeFaces, s.configurations, s.bandPrograms,
                          s.programBytes, s.endLeaf, s.endSmooth, s.endRegular, s.pointsCompared, s.pointsBitwise,
                          s.dedupedBitwise, s.maxDifference, s.dedupedMaxDifference, s.structureMismatches);
+            if (s.treeFaces > 0)
+                std::fprintf(stderr,
+                             "%-24s d%d: %zu of the others as crease trees, nodes %s, %zu node keys (%zu B; %zu turned (%zu B), %zu sharpness classes), %zu shared "
+                             "(%zu B), faces %zu B; points %zu, bitwise %zu, max %.3g, structure %zu\n",
+                             name.c_str(), opts.depth, s.treeFaces, s.treeLevelNodes.c_str(), s.treeNodeKeys,
+                             s.treeProgramBytes, s.treeTurnedKeys, s.treeTurnedProgramBytes, s.treeNodeClasses, s.treeSharedPrograms, s.treeSharedProgramBytes, s.treeFaceBytes,
+                             s.treePoints, s.treeBitwise, s.treeMaxDifference, s.treeStructure);
         } catch (const std::exception& e) {
             std::fprintf(stderr, "bench_crease_bases: %s: %s\n", arg.c_str(), e.what());
             return 1;

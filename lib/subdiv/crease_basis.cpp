@@ -132,7 +132,8 @@ std::vector<uint32_t> programKey(const std::vector<uint32_t>& key, float sharp) 
     return mapSharpness(key, [sharp](float s) { return s >= sharp ? sharp : s; });
 }
 
-namespace {
+// localLevel, kindOf and bandProgram are declared in crease_basis.h (the study's crease trees
+// build from them too).
 
 // A level of the faces in `faces` (sorted by index, so that every stencil's entries come in the
 // order of the level's own: vertex rings start at the lowest half-edge, edges at their first),
@@ -172,12 +173,16 @@ Level localLevel(const Level& L, const std::vector<uint32_t>& support, std::vect
 
 CreaseBandKind kindOf(const Patch& p) { return {p.boundary, p.crease, p.sharpness}; }
 
+namespace {
+
 // The child of face f (whose frame is pf) at its feature corner (the frame's (u0, v0)), or kNone.
 uint32_t centreChild(const Level& child, uint32_t f, const FaceFrame& pf) {
     for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf)
         if (child.faceParent[cf] == f && !(child.frames[cf].u0 > pf.u0) && !(child.frames[cf].v0 > pf.v0)) return cf;
     return kNone;
 }
+
+} // namespace
 
 // The program of one band: the rows of `child` (refined from `parent` with stencils `st`) that
 // the patches and the next support read, over the parent's support `input` (stencilRows, as
@@ -201,8 +206,6 @@ void bandProgram(const Level& child, const LevelStencils& st, const std::vector<
     }
     for (uint32_t v : next) p.nextSupport.push_back(row[v]);
 }
-
-} // namespace
 
 // The rows of a band's program over its support's values, with evaluateVertices' arithmetic
 // (double sums in the program's order of float weights times points; face points averaged).

@@ -73,6 +73,20 @@ std::vector<uint32_t> programKey(const std::vector<uint32_t>& key, float sharp);
 // The sharpness from which programKey clamps where programs are shared and bands repeated.
 inline constexpr float kProgramSharpness = 1.0f;
 
+// The pieces a chain is built from (tests/support's crease trees build from them too).
+// localLevel: a level of the faces in `faces` (sorted by index, so that every stencil's entries
+// come in the level's own order), vertex i being support[i], with their sharpness, the copy's rim
+// infinitely sharp; face f (`face0` in the copy) turned so that `corner` is at (0, 0).
+Level localLevel(const Level& L, const std::vector<uint32_t>& support, std::vector<uint32_t> faces, uint32_t f,
+                 int corner, uint32_t& face0);
+CreaseBandKind kindOf(const Patch& p);
+// The program of one band: the rows of `child` (refined from a level of `parentVertices`
+// vertices with stencils `st`) that `patches` and `next` read, over the parent's vertices
+// `input` (basisFromMesh's construction); throws std::logic_error where a row reads outside it.
+void bandProgram(const Level& child, const LevelStencils& st, const std::vector<uint32_t>& input,
+                 uint32_t parentVertices, const std::vector<Patch>& patches, const std::vector<uint32_t>& next,
+                 BasisProgram& p, std::vector<std::array<uint32_t, 16>>& controlRows);
+
 // A band's rows over its support's values (evaluateVertices' arithmetic: double sums in the
 // program's order of float weights times points, face points averaged).
 std::vector<glm::dvec3> runBandProgram(const BasisProgram& program, std::span<const glm::dvec3> support);

@@ -52,6 +52,25 @@ TEST(CreaseChains, GiveTheQuadtreesSubPatchesBitForBit) {
     }
 }
 
+// The faces a chain cannot take along Chaikin creases of varying sharpness (every child edge a
+// sharpness of its own, so every node along the crease stays irregular: chaikin1 d2 has
+// 108/228/324 irregular nodes at levels 2-4) as crease trees (tests/support/crease_tree.h),
+// every node's program over its own support made from the face's copy: every sub-patch point
+// and smooth support of the quadtree to the bit, the same shape and kinds.
+TEST(CreaseChains, TreesGiveTheChaikinQuadtreesBitForBit) {
+    for (const char* model : {"catmark_chaikin1.obj", "catmark_chaikin2.obj"}) {
+        SCOPED_TRACE(model);
+        const CreaseBasisStudy s = study(model, 2);
+        EXPECT_GT(s.treeFaces, 0u);
+        EXPECT_EQ(s.qualifying + s.treeFaces, s.quadtreeFaces);
+        EXPECT_EQ(s.treeStructure, 0u);
+        EXPECT_GT(s.treePoints, 16 * s.treeNodes);
+        EXPECT_EQ(s.treeBitwise, s.treePoints);
+        EXPECT_LE(s.treeSharedPrograms, s.treeNodeKeys);
+    }
+    EXPECT_EQ(study("catmark_chaikin1.obj", 2).treeLevelNodes, "108/228/324");
+}
+
 // The car's faces around its sharpness-6 creases at depth 3: 312 faces, 20 configurations; 304
 // chains end in a smooth face of the per-valence basis at level 6 (three crease bands), 8 (the
 // darts' ends) in a regular patch. (Its 4 faces around boundary vertices, which kept an irregular

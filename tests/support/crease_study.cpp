@@ -1,6 +1,7 @@
 // studyCreaseBases (crease_study.h): the chains against the tables' own quadtrees.
 #include "base/bytes.h"
 #include "crease_study.h"
+#include "crease_tree.h"
 #include "subdiv/evaluate.h"
 #include "subdiv/tables_build.h"
 #include "subdiv/tables_chunk.h"
@@ -8,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <list>
 #include <map>
 #include <set>
 #include <span>
@@ -173,6 +175,100 @@ std::vector<uint32_t> sharedKey(const CreaseChain& chain, const CreaseBand& band
     return key;
 }
 
+// A tree node's program with its control rows as next-support rows (a phantom as row 0), in
+// TBLS version 5's program encoding, plus 20 bytes of child codes and kinds.
+size_t treeNodeBytes(const CreaseTreeNode& n) {
+    BasisProgram p = n.program;
+    p.controlRow.fill(0);
+    std::vector<uint32_t> rows;
+    for (size_t q = 0; q < 4; ++q)
+        if (n.child[q] == CreaseTreeChild::Patch)
+            for (uint32_t r : n.rows[q]) rows.push_back(r == kNone ? 0 : r);
+    rows.insert(rows.end(), p.nextSupport.begin(), p.nextSupport.end());
+    p.nextSupport = rows;
+    ByteWriter w;
+    writeProgram(w, p);
+    return w.size() + 20;
+}
+
+// Whether two tree nodes are the same function: the same children and, from the same
+// (arbitrary) support values, their rows within 1e-12.
+bool sameTreeNode(const CreaseTreeNode& x, const CreaseTreeNode& y) {
+    if (x.support != y.support || x.child != y.child || x.nextCount != y.nextCount) return false;
+    std::vector<glm::dvec3> in(x.support);
+    for (size_t i = 0; i < in.size(); ++i)
+        in[i] = glm::dvec3(std::sin(1.0 + double(i)), std::cos(3.0 * double(i)), 0.1 * double(i));
+    const std::vector<glm::dvec3> px = runBandProgram(x.program, in), py = runBandProgram(y.program, in);
+    auto same = [&](uint32_t r, uint32_t q) {
+        if (r == kNone || q == kNone) return r == q;
+        for (int k = 0; k < 3; ++k)
+            if (std::abs(px[r][k] - py[q][k]) > 1e-12) return false;
+        return true;
+    };
+    for (size_t q = 0; q < 4; ++q)
+        if (x.child[q] == CreaseTreeChild::Patch)
+            for (size_t i = 0; i < 16; ++i)
+                if (!same(x.rows[q][i], y.rows[q][i])) return false;
+    for (size_t i = 0; i < x.program.nextSupport.size(); ++i)
+        if (!same(x.program.nextSupport[i], y.program.nextSupport[i])) return false;
+    return true;
+}
+
+// A face's tree run over its support values, against its quadtree from root `node` (ptex
+// frame: no turn).
+void compareTree(const CreaseTree& tree, uint32_t at, std::vector<glm::dvec3> input, const Tables& t, uint32_t node,
+                 std::span<const glm::dvec3> V, double diagonal, CreaseBasisStudy& s) {
+    const CreaseTreeNode& n = tree.nodes[at];
+    const std::vector<glm::dvec3> values = runBandProgram(n.program, input);
+    const std::array<uint32_t, 4>& codes = t.irregularNodes[node];
+    auto compare = [&](const glm::dvec3& mine, const glm::dvec3& theirs) {
+        ++s.treePoints;
+        if (mine == theirs) ++s.treeBitwise;
+        for (int k = 0; k < 3; ++k)
+            s.treeMaxDifference = std::max(s.treeMaxDifference, std::abs(mine[k] - theirs[k]) / diagonal);
+    };
+    for (size_t q = 0; q < 4; ++q) {
+        const uint32_t kind = codes[q] & ~kNodeIndexMask, index = codes[q] & kNodeIndexMask;
+        std::vector<glm::dvec3> next;
+        for (uint32_t i = 0; i < n.nextCount[q]; ++i) next.push_back(values[n.program.nextSupport[n.nextFirst[q] + i]]);
+        switch (n.child[q]) {
+        case CreaseTreeChild::Patch: {
+            if (kind != kNodeSubPatch) {
+                ++s.treeStructure;
+                break;
+            }
+            const Patch& p = t.subPatches[index];
+            if (p.boundary != n.kind[q].boundary || p.crease != n.kind[q].crease || p.sharpness != n.kind[q].sharpness) {
+                ++s.treeStructure;
+                break;
+            }
+            glm::dvec3 P[4][4];
+            gatherControlPoints(p, V, P);
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i)
+                    if (n.rows[q][size_t(4 * j + i)] != kNone) compare(values[n.rows[q][size_t(4 * j + i)]], P[i][j]);
+            break;
+        }
+        case CreaseTreeChild::Node:
+            if (kind != kNodeChild)
+                ++s.treeStructure;
+            else
+                compareTree(tree, n.next[q], std::move(next), t, index, V, diagonal, s);
+            break;
+        case CreaseTreeChild::Smooth:
+            if (kind != kNodeBasis || t.irregularBases[t.smoothIrregular[index].basis].valence != n.next[q]) {
+                ++s.treeStructure;
+                break;
+            }
+            for (size_t i = 0; i < next.size(); ++i) compare(next[i], V[t.smoothPoints[t.smoothIrregular[index].first + i]]);
+            break;
+        case CreaseTreeChild::Leaf:
+            s.treeStructure += kind != kNodeLeaf;
+            break;
+        }
+    }
+}
+
 double seconds(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -198,6 +294,11 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     std::map<std::vector<uint32_t>, const CreaseBand*> shared;
     std::map<std::string, size_t> failures;
     std::vector<uint32_t> support, key;
+    std::list<CreaseTree> trees; // every face's (their nodes outlive the maps)
+    std::map<std::vector<uint32_t>, const CreaseTreeNode*> treeKeys;
+    std::map<std::vector<uint32_t>, std::vector<const CreaseTreeNode*>> treeShared;
+    std::vector<size_t> treeLevels;
+    std::set<std::vector<uint32_t>> treeClasses, treeTurned;
     // Two bands' programs as functions: the points they give from the same (arbitrary) support
     // values. Rows come in each level's vertex order, which differs between the face's copy
     // (band 1) and its refined levels, so the arrays differ where the functions do not.
@@ -244,6 +345,47 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
                 }
             }
             ++failures["e" + std::to_string(e) + "s" + std::to_string(sharp) + "b" + std::to_string(best)];
+            const auto t2 = std::chrono::steady_clock::now();
+            trees.emplace_back();
+            if (!buildCreaseTree(L, f, a.K, options, opts, trees.back())) {
+                trees.pop_back();
+                continue;
+            }
+            const CreaseTree& tree = trees.back();
+            s.treeSeconds += seconds(t2);
+            ++s.treeFaces;
+            creaseSupport(L, f, 0, support, key);
+            s.treeFaceBytes += 2 + 2 * support.size();
+            // Nodes per level: the root's level N, then by depth (a node's children follow it).
+            std::vector<uint32_t> depthOf(tree.nodes.size(), 0);
+            for (size_t i = 0; i < tree.nodes.size(); ++i) {
+                const CreaseTreeNode& n = tree.nodes[i];
+                if (treeLevels.size() <= depthOf[i]) treeLevels.resize(depthOf[i] + 1, 0);
+                ++treeLevels[depthOf[i]];
+                for (size_t q = 0; q < 4; ++q)
+                    if (n.child[q] == CreaseTreeChild::Node) depthOf[n.next[q]] = depthOf[i] + 1;
+                // Its key with each sharpness as a class (0, below 1, from 1 on): a program
+                // whose weights were functions of the sharpness below 1 would be per class.
+                treeClasses.insert(programKey(programKey(n.key, kProgramSharpness), 0.5f));
+                if (treeTurned.insert(n.turnedKey).second) s.treeTurnedProgramBytes += treeNodeBytes(n);
+                auto [k, fresh] = treeKeys.try_emplace(n.key, &n);
+                if (!fresh) continue;
+                s.treeProgramBytes += treeNodeBytes(n);
+                std::vector<uint32_t> clamped = programKey(n.key, kProgramSharpness);
+                for (CreaseTreeChild c : n.child) clamped.push_back(uint32_t(c));
+                std::vector<const CreaseTreeNode*>& alike = treeShared[clamped];
+                bool found = false;
+                for (const CreaseTreeNode* other : alike) found = found || sameTreeNode(*other, n);
+                if (!found) {
+                    alike.push_back(k->second);
+                    s.treeSharedProgramBytes += treeNodeBytes(n);
+                    ++s.treeSharedPrograms;
+                }
+            }
+            s.treeNodes += tree.nodes.size();
+            std::vector<glm::dvec3> values;
+            for (uint32_t v : support) values.push_back(P[N][v]);
+            compareTree(tree, 0, values, t, node, V, diagonal, s);
             continue;
         }
         ++s.qualifying;
@@ -289,6 +431,10 @@ CreaseBasisStudy studyCreaseBases(const Mesh& mesh, const SchemeOptions& options
     s.bandPrograms = bandKeys.size();
     for (const auto& [why, n] : failures) s.failures += (s.failures.empty() ? "" : " ") + why + ":" + std::to_string(n);
     s.sharedPrograms = shared.size();
+    s.treeNodeKeys = treeKeys.size();
+    s.treeNodeClasses = treeClasses.size();
+    s.treeTurnedKeys = treeTurned.size();
+    for (size_t n : treeLevels) s.treeLevelNodes += (s.treeLevelNodes.empty() ? "" : "/") + std::to_string(n);
     s.sharedMaxDifference = sharedMax;
     s.leafCorners = own.leafCorners;
     s.leafMaxDifference = own.leafMaxDifference;

@@ -46,6 +46,26 @@ struct CreaseBasisStudy {
     size_t programBytes = 0, faceBytes = 0;
     size_t supportPoints = 0;
     double keySeconds = 0, chainSeconds = 0; // keys of every quadtree face; one chain per configuration
+    // The quadtree faces without a chain, as crease trees (crease_tree.h): how many have one,
+    // their irregular nodes ("nodes per level below N", summed over faces), each tree's control
+    // points and smooth supports against the quadtree (bit for bit; the largest difference
+    // relative to the box's diagonal; codes or kinds that differ), and what a format would hold:
+    // one program per distinct node key (treeNodeKeys; treeSharedPrograms once the keys'
+    // sharpness from 1 on is clamped and the programs give the same points to 1e-12) in TBLS
+    // version 5's encoding with 64 control rows and 20 bytes of child codes and kinds, and per
+    // face 2 bytes and 2 per support point.
+    size_t treeFaces = 0, treeNodes = 0, treeNodeKeys = 0, treeSharedPrograms = 0;
+    // Distinct node keys with every sharpness as its class (0, in (0, 1), from 1 on): what a
+    // program with weights as functions of the sharpness below 1 would be per.
+    size_t treeNodeClasses = 0;
+    // Distinct node keys, each the least of its four corners' (a program per such key and a
+    // corner per node would share across turns), and their programs' bytes (each key's first
+    // node's, from its corner 0: the same rows in another order).
+    size_t treeTurnedKeys = 0, treeTurnedProgramBytes = 0;
+    size_t treeProgramBytes = 0, treeSharedProgramBytes = 0, treeFaceBytes = 0;
+    size_t treePoints = 0, treeBitwise = 0, treeStructure = 0;
+    double treeMaxDifference = 0, treeSeconds = 0;
+    std::string treeLevelNodes;
 };
 
 // Builds `mesh`'s tables as buildTables does, and for every quadtree face of T_N with a chain:
