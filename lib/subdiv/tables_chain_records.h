@@ -1,4 +1,4 @@
-// TBLS version 8's decaying-crease chains (formats/limn.md, "Decaying-crease chains"): a basis
+// TBLS version 8's decaying-crease chains (formats/tbls.md, "Decaying-crease chains"): a basis
 // record of configuration code 2 holds a chain (crease_basis.h) as its bands' programs, kinds
 // and end; the reader runs expandCreaseChain on it, to the weights the builder expanded, bit for
 // bit. Programs are shared across the chunk's chains: a band names one read before or brings

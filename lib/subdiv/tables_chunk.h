@@ -17,19 +17,19 @@ inline constexpr FourCC kTablesChunk{"TBLS"};
 // weights) and the quadtree nodes, smooth faces and smooth points as varint streams
 // (tables_surface_records.h); and lets a quadtree node below a root name a smooth face (a
 // descendant whose semi-sharp creases have decayed, drawn from the per-valence basis; its
-// support points at its own level). formats/limn.md, "Smooth faces below level N". Version 6
+// support points at its own level). formats/tbls.md, "Smooth faces below level N". Version 6
 // stores a level whose stencil tables are the previous level's shifted one level (below a
 // decaying crease, each level is refined as the one before) as a bit instead of its tables, and
-// the sub-patches without their domains, which the quadtrees give (formats/limn.md, "Repeated
+// the sub-patches without their domains, which the quadtrees give (formats/tbls.md, "Repeated
 // levels", "Sub-patch domains"). Version 7 stores each basis with its configuration and support
 // size (FVSF version 3's layout), so that faces around one boundary vertex can take a basis per
-// configuration (formats/limn.md, "Boundary configurations").
+// configuration (formats/tbls.md, "Boundary configurations").
 inline constexpr uint32_t kTablesChunkVersion = 7;
 // Tables with decaying-crease chains (TablesOptions::creaseChains) are written as version 8,
 // which the readers also take.
 inline constexpr uint32_t kTablesChunkChainVersion = 8;
 // Tables with irregular bases are written as version 9, which stores the bases' and chains'
-// programs through one program dictionary per chunk (formats/limn.md, "Program dictionary").
+// programs through one program dictionary per chunk (formats/tbls.md, "Program dictionary").
 inline constexpr uint32_t kTablesChunkDictionaryVersion = 9;
 
 // Writes the current version (0: version 9 for tables with irregular bases, else 7); 3 (the

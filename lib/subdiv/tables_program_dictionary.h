@@ -1,4 +1,4 @@
-// TBLS version 9's program dictionary (formats/limn.md, "Program dictionary"): the bases' and
+// TBLS version 9's program dictionary (formats/tbls.md, "Program dictionary"): the bases' and
 // chains' one-level programs share their rows and weights across the chunk. A program's rows are
 // written in a canonical order (any order in which a row follows the rows it reads expands to the
 // same weights, bit for bit), each as a reference to a row the chunk wrote before or as a new row

@@ -24,7 +24,7 @@ void writeStream(ByteWriter& w, const std::vector<uint8_t>& stream) {
     w.padTo(4);
 }
 
-// Version 4's stencil table (formats/limn.md, "Compact encodings"): the weights as indices
+// Version 4's stencil table (formats/tbls.md, "Compact encodings"): the weights as indices
 // into the table's distinct values (Catmull-Clark's masks repeat a few hundred values), the
 // sources as varint differences from the previous source (a row's sources are neighbours), the
 // rows as varint lengths: about a third of the plain layout, with the same numbers once read.

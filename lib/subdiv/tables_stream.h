@@ -1,4 +1,4 @@
-// Version 4's compact encodings of the TBLS chunk (formats/limn.md, "Compact encodings"): byte
+// Version 4's compact encodings of the TBLS chunk (formats/tbls.md, "Compact encodings"): byte
 // streams of LEB128 varints for stencil tables (palette indices and index differences), patch
 // records and point lists; and the plain stencil tables of versions 1 to 3.
 #pragma once

@@ -1,4 +1,4 @@
-// TBLS version 5's records of the irregular faces' surface (formats/limn.md, "Per-valence bases
+// TBLS version 5's records of the irregular faces' surface (formats/tbls.md, "Per-valence bases
 // as programs, and compact per-face records"): each per-valence basis as its one-level program
 // (BasisProgram), which the reader expands to the same weights, bit for bit; the quadtree nodes,
 // the smooth faces and their points (in runs by level, for the smooth faces below level N) as
@@ -81,7 +81,7 @@ std::vector<uint32_t> readSmoothPoints(ByteReader& r, uint32_t count, const Tabl
 std::string checkSmoothFaceLevels(const Tables& t, uint32_t version);
 
 // Version 6's sub-patches hold no domain: a sub-patch is a quadrant of its node, whose square
-// is a quadrant of its parent's, down from the irregular face (formats/limn.md, "Sub-patch
+// is a quadrant of its parent's, down from the irregular face (formats/tbls.md, "Sub-patch
 // domains"). Sets every sub-patch's ptex face and domain from the quadtrees, or returns what is
 // wrong: a node or sub-patch named twice, a node below the roots or a sub-patch named by none, a
 // sub-patch whose level is not its node's plus one. Called by the TBLS reader once the nodes'

@@ -1,4 +1,4 @@
-// TBLS versions 6 and 7 (formats/limn.md, "Repeated levels", "Sub-patch domains", "Boundary
+// TBLS versions 6 and 7 (formats/tbls.md, "Repeated levels", "Sub-patch domains", "Boundary
 // configurations"): what version 6 leaves out of version 5 is read back as the builder's tables,
 // version 7's boundary bases and version 8's crease chains expand to the builder's weights, and
 // hostile input is refused by name.
@@ -60,7 +60,7 @@ std::string sameBases(const Tables& good, const Tables& back) {
 
 
 // Version 6 stores a level whose three stencil tables are the previous level's shifted one level
-// as a bit (formats/limn.md, "Repeated levels"): xord_boundary at depth 1 repeats levels 5 to 7
+// as a bit (formats/tbls.md, "Repeated levels"): xord_boundary at depth 1 repeats levels 5 to 7
 // below its boundary's extraordinary vertices (0xE0), the car at depth 3 level 6 below its
 // decaying sharpness-6 creases and 9 below its smooth corners (0x240). The tables read back are
 // the builder's, entry by entry (the builder refined every level; the reader copied them), and
@@ -129,7 +129,7 @@ TEST(TablesChunk, HostileRepeatedLevelsAreRefused) {
 }
 
 // Version 6's sub-patches hold no ptex face or domain: the reader takes each from its node's
-// quadrant (formats/limn.md, "Sub-patch domains"), and gets the builder's (compared here field by
+// quadrant (formats/tbls.md, "Sub-patch domains"), and gets the builder's (compared here field by
 // field on a mesh with boundary, crease and single-crease sub-patches). A sub-patch named twice
 // or by no node, a node below the roots named by none, and a sub-patch whose level is not its
 // node's plus one are refused by name.
@@ -251,7 +251,7 @@ Tables buildChains(const Mesh& m, int depth, bool chains = true) {
 
 } // namespace
 
-// TBLS version 8's decaying-crease chains (formats/limn.md, "Decaying-crease chains"): a damaged
+// TBLS version 8's decaying-crease chains (formats/tbls.md, "Decaying-crease chains"): a damaged
 // chain is refused naming what is wrong (a kind with two crease edges, more bands than levels, a
 // smooth end naming no basis or another valence's, or whose next support is not its basis's, a
 // control point or a regular end's row that names no row of its program), never expanded; and random bit flips are refused or read as

@@ -1,4 +1,4 @@
-// TBLS version 8's decaying-crease chains (formats/limn.md, "Decaying-crease chains";
+// TBLS version 8's decaying-crease chains (formats/tbls.md, "Decaying-crease chains";
 // lib/subdiv/tables_chain_records.cpp and crease_basis.cpp's expandCreaseChain): a basis record
 // of configuration code 2 holds a chain's bands (programs shared across the chunk's chains, three
 // quadrant kinds each) and its end, expanded here to the K x 48 x M weights limn-tables computes,

@@ -1,4 +1,4 @@
-// TBLS version 9's program dictionary (formats/limn.md, "Program dictionary";
+// TBLS version 9's program dictionary (formats/tbls.md, "Program dictionary";
 // lib/subdiv/tables_program_dictionary.cpp): the bases' and chains' programs share their rows and
 // weights across the chunk. Each row is a reference to a row written before (or a run of them)
 // or a new row, which joins the dictionary; weights come from one palette that new rows extend. Every reference,

@@ -1,4 +1,4 @@
-// TBLS version 4's compact encodings (formats/limn.md, "Compact encodings";
+// TBLS version 4's compact encodings (formats/tbls.md, "Compact encodings";
 // lib/subdiv/tables_stream.cpp): byte streams of LEB128 varints, and the stencil tables kept in
 // them, decoded with the C++ reader's checks.
 
@@ -51,7 +51,7 @@ export class Stream {
 
 // Version 4: the weights as indices into the table's palette of distinct values, the sources as
 // differences from the previous source (a row's first from the previous row's first), the rows
-// as lengths (formats/limn.md, "Compact stencil tables").
+// as lengths (formats/tbls.md, "Compact stencil tables").
 export function readCompactStencils(r, what, rows, entries, weights, paletteSize) {
   if (!weights && paletteSize !== 0) r.fail(`${what}: a palette without weights`);
   const palette = r.array(Float32Array, paletteSize, `${what} palette`);

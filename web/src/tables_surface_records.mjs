@@ -1,4 +1,4 @@
-// TBLS version 5's records of the irregular faces' surface (formats/limn.md, "Per-valence bases
+// TBLS version 5's records of the irregular faces' surface (formats/tbls.md, "Per-valence bases
 // as programs, and compact per-face records"; lib/subdiv/tables_surface_records.cpp): each basis
 // as its one-level program, expanded here to the weights limn-tables computes, bit for bit; the
 // quadtree nodes and the smooth faces as varint streams. Every count and index is checked as the

@@ -197,7 +197,7 @@ test('hostile TBLS v5 irregular-surface fields are refused by name, never a hang
   expectLimnError(patched((v) => v.setUint32(12, 15, true)), /chunk TBLS: .*irregular levels 15 out of range/);
 });
 
-// TBLS v7's bases carry their configuration and support size (formats/limn.md, "Boundary
+// TBLS v7's bases carry their configuration and support size (formats/tbls.md, "Boundary
 // configurations (version 7)"), as version 9's (limn-tables' output here) do: a place beyond the
 // vertex's fan, a code that is no configuration's and a level count of 0 are refused by name,
 // before the program is run.
@@ -224,7 +224,7 @@ test('hostile TBLS v7 and v9 basis configurations are refused by name', () => {
   expectLimnError(patched(first + 12, 0), bad);
 });
 
-// TBLS v8's decaying-crease chains (formats/limn.md, "Decaying-crease chains (version 8)"): the
+// TBLS v8's decaying-crease chains (formats/tbls.md, "Decaying-crease chains (version 8)"): the
 // seed's first chain (chaikin0 d1); an end that is none, more bands than levels, a smooth end
 // naming no basis or another valence's and a program index beyond those read are refused by
 // name before anything is expanded, and byte flips from the bases on are refused as LimnErrors
@@ -272,7 +272,7 @@ test('hostile TBLS v8 crease chains are refused by name', () => {
   assert.ok(refused > 50, `${refused} refused`);
 });
 
-// TBLS v9 (formats/limn.md, "Program dictionary (version 9)"): the seed's first chain (chaikin0
+// TBLS v9 (formats/tbls.md, "Program dictionary (version 9)"): the seed's first chain (chaikin0
 // d1), its fields varints of one stream after the record's header: an end that is none, more
 // bands than levels, a smooth end naming no basis, a program index beyond those read and a
 // program of no rows are refused by name before anything is expanded; byte flips from the
@@ -339,7 +339,7 @@ test('TBLS v5, v4 and v3 of the same tables read the same', () => {
 });
 
 // TBLS v6 stores a level whose stencil tables are the previous level's shifted one level as a bit
-// (formats/limn.md, "Repeated levels"), and sub-patches without their domains, which the reader
+// (formats/tbls.md, "Repeated levels"), and sub-patches without their domains, which the reader
 // takes from the quadtrees ("Sub-patch domains"): xord_boundary at depth 1 repeats levels 5 to 7
 // and has 18 faces on sub-patches. The v6 seed is limn-tables' output, the v5 one the same tables
 // written by limn's version-5 encoder, which stores every level and every domain: both read to
