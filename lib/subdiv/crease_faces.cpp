@@ -1,7 +1,7 @@
 // takeCreaseFaces (tables_build.h): at level N, the irregular faces with a decaying-crease chain
 // (crease_basis.h) taken out of T as smooth faces of their chain's basis, one chain per
-// configuration where it costs fewer bytes than the faces' quadtrees (paysOff), its bands sharing
-// programs by programKey (docs/irregular-tables.md, "Chains in the tables").
+// configuration, its bands sharing programs by programKey (docs/irregular-tables.md, "Chains in
+// the tables").
 #include "subdiv/crease_basis.h"
 
 #include "subdiv/tables_build.h"
@@ -10,19 +10,10 @@
 #include <map>
 #include <memory>
 #include <stdexcept>
-#include <unordered_map>
 
 namespace limn {
 
 namespace {
-
-// The key a band's program is shared by (TBLS stores it once): its programKey, and for a
-// chain's last band how the chain ends.
-std::vector<uint32_t> sharedProgramKey(const CreaseChain& chain, const CreaseBand& band) {
-    std::vector<uint32_t> shared = programKey(band.key, kProgramSharpness);
-    shared.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
-    return shared;
-}
 
 // The first band of each programKey and end, and its points from bandProbe (made when a later
 // band is first compared with it: most first bands never are).
@@ -44,7 +35,9 @@ bool shareBands(CreaseChain& chain, SharedBands& shared) {
     SharedBands::iterator previous = shared.end(); // the entry of the band before
     bool previousSame = false;
     for (CreaseBand& band : chain.bands) {
-        auto [other, first] = shared.try_emplace(sharedProgramKey(chain, band), band, std::vector<glm::dvec3>{});
+        std::vector<uint32_t> key = programKey(band.key, kProgramSharpness);
+        key.push_back(&band == &chain.bands.back() ? 1u + uint32_t(chain.end) : 0u);
+        auto [other, first] = shared.try_emplace(std::move(key), band, std::vector<glm::dvec3>{});
         if (first) added.push_back(other);
         auto compare = [&, &entry = other->second] {
             if (entry.second.empty()) entry.second = bandProbe(entry.first); // probed when first compared
@@ -64,63 +57,6 @@ bool shareBands(CreaseChain& chain, SharedBands& shared) {
         }
     }
     return true;
-}
-
-// Whether a configuration's chain costs fewer bytes than the quadtrees of the faces it draws. A
-// band program of its own (300-400 bytes) costs about what one face's quadtree node does (its
-// level's stencils and three sub-patches), so a chain pays off where faces share it, or where
-// most of its bands run programs shared with other chains or repeated (a long crease); a chain
-// of one face whose bands mostly need programs of their own does not (measured over the catmark
-// shapes at depths 1-3: docs/irregular-tables.md, "Chains that do not pay off"). It reads the
-// bands' keys only, so a borrowed band (buildCreaseChain's sharedPrograms) counts as its own.
-// `faces()`: how many faces draw the chain's configuration, asked only where its programs do
-// not decide.
-constexpr uint32_t kMinChainFaces = 2;
-template <class Shared, class Faces>
-bool paysOff(const CreaseChain& chain, const Shared& sharedBands, Faces faces) {
-    std::vector<std::vector<uint32_t>> own; // a few bands: a linear search
-    for (const CreaseBand& band : chain.bands) {
-        std::vector<uint32_t> shared = sharedProgramKey(chain, band);
-        if (std::find(own.begin(), own.end(), shared) == own.end() && !sharedBands.contains(shared))
-            own.push_back(std::move(shared));
-    }
-    // One band ending in a smooth face: its program is the rows of the quadtree's one level.
-    if (3 * own.size() <= chain.bands.size() || (chain.bands.size() == 1 && chain.end == CreaseEnd::Smooth))
-        return true;
-    return faces() >= kMinChainFaces;
-}
-
-// Each face's candidate corners' supports and keys (creaseSupport's), and how many faces each
-// key is met at over them: counted once, the first time a chain's programs do not decide, with
-// the supports kept for takeCreaseFaces' own loop (so that counting costs little).
-struct CreaseKeyCount {
-    bool counted = false;
-    std::unordered_map<uint64_t, uint32_t> faces; // by keyHash: a decision about bytes only
-    std::unordered_map<uint64_t, std::pair<std::vector<uint32_t>, std::vector<uint32_t>>> candidates; // f * 4 + c
-};
-
-// FNV-1a over a key's words.
-uint64_t keyHash(const std::vector<uint32_t>& key) {
-    uint64_t h = 14695981039346656037ull;
-    for (uint32_t x : key) h = (h ^ x) * 1099511628211ull;
-    return h;
-}
-
-template <class Order>
-void countCreaseKeys(const Level& L, const std::vector<uint8_t>& T, Order cornerOrder, CreaseKeyCount& out) {
-    out.counted = true;
-    std::vector<uint32_t> support, key;
-    for (uint32_t f = 0; f < L.topo.faceCount(); ++f) {
-        if (!T[f] || L.topo.faceSize(f) != 4) continue;
-        int order[4], ranks[4];
-        cornerOrder(f, order, ranks);
-        for (int c : order) {
-            if (ranks[c] == 2) break;
-            if (!creaseSupport(L, f, c, support, key)) continue;
-            ++out.faces[keyHash(key)];
-            out.candidates.emplace(uint64_t(f) * 4 + uint64_t(c), std::pair{support, key});
-        }
-    }
 }
 
 } // namespace
@@ -156,32 +92,18 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
         return straight ? 2 : 1;
     };
     std::vector<int8_t> rankOf(topo.vertexCount(), -1);
-    auto cornerOrder = [&](uint32_t f, int order[4], int ranks[4]) {
+    for (uint32_t f = 0; f < topo.faceCount(); ++f) {
+        if (!T[f] || topo.faceSize(f) != 4) continue;
+        int order[4] = {0, 1, 2, 3}, ranks[4];
         for (int c = 0; c < 4; ++c) {
-            order[c] = c;
             const uint32_t v = topo.vertex(topo.faceHalfedge(f) + (L.frames[f].rotation + c) % 4);
             if (rankOf[v] < 0) rankOf[v] = int8_t(rank(v)); // a vertex is met from each of its faces
             ranks[c] = rankOf[v];
         }
         std::stable_sort(order, order + 4, [&](int x, int y) { return ranks[x] < ranks[y]; });
-    };
-    CreaseKeyCount count;
-    const std::vector<uint8_t> faceSet = T; // before any face is taken: what count counts over
-    for (uint32_t f = 0; f < topo.faceCount(); ++f) {
-        if (!T[f] || topo.faceSize(f) != 4) continue;
-        int order[4], ranks[4];
-        cornerOrder(f, order, ranks);
         for (int c : order) {
             if (ranks[c] == 2) break; // a smooth regular corner has no chain
-            if (count.counted) {
-                auto found = count.candidates.find(uint64_t(f) * 4 + uint64_t(c));
-                if (found == count.candidates.end()) continue;
-                support = std::move(found->second.first);
-                key = std::move(found->second.second);
-                count.candidates.erase(found);
-            } else if (!creaseSupport(L, f, c, support, key)) {
-                continue;
-            }
+            if (!creaseSupport(L, f, c, support, key)) continue;
             auto [it, added] = chainOf.try_emplace(key, -1);
             if (added) {
                 CreaseChain chain;
@@ -196,13 +118,7 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                 // once per chain; a face whose chain has none is refined.
                 auto [b, fresh] = basisOfChain.try_emplace(it->second, -1);
                 IrregularBasis basis;
-                auto faces = [&] {
-                    if (!count.counted) countCreaseKeys(L, faceSet, cornerOrder, count);
-                    return count.faces.at(keyHash(key));
-                };
-                // A chain that does not pay off leaves its faces to be refined (paysOff reads
-                // the prototype's chain, before it moves).
-                if (fresh && paysOff(a.creaseChains[size_t(it->second)], sharedBands, faces)) {
+                if (fresh) {
                     // The chain moves into its basis (a.creaseChains are the prototype's).
                     auto chain = std::make_shared<CreaseChain>(std::move(a.creaseChains[size_t(it->second)]));
                     // Bands whose keys agree once every sharpness from 1 on is clamped, and that

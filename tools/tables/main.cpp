@@ -56,9 +56,8 @@ int main(int argc, char** argv) {
             .choice("--crease-chains", &creaseChains, {"on", "off"},
                     "faces at a semi-sharp crease that has not decayed at level N drawn from a "
                     "chain per configuration (one-level programs band by band until the crease "
-                    "has decayed) instead of K more levels, where that costs fewer bytes (a "
-                    "configuration one face draws with programs of its own is refined); written "
-                    "as TBLS version 9 (docs/irregular-tables.md) [default: on]")
+                    "has decayed) instead of K more levels; written as TBLS version 9 "
+                    "(docs/irregular-tables.md) [default: on]")
             .flag("--no-crease-patches", &noCreasePatches,
                   "isolate creases and sharp corners to level N like extraordinary vertices, "
                   "instead of drawing the regular faces along infinitely sharp ones as boundary "
