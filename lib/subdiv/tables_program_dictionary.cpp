@@ -148,11 +148,12 @@ BasisProgram readDictionaryProgram(StreamReader& in, uint32_t support, uint64_t 
         const uint64_t code = in.varint();
         const std::string at = "row " + std::to_string(row);
         if (code & 1) { // rows written before, `back` from the last: their sources checked here
-            const uint64_t back = code >> 2, extra = (code & 2) ? in.varint() : 0;
-            if (extra >= rows - row) in.fail(at + " has a bad run length");
+            const uint64_t back = code >> 2, extra = (code & 2) ? in.varint() : 0, left = rows - row;
+            // A run's length less 2 is stored (one row is h & 3 = 1): 2 rows or more, within the
+            // program's rows left and the dictionary's rows from the one named.
+            if ((code & 2) && (left < 2 || extra > left - 2)) in.fail(at + " has a bad run length");
             const uint64_t run = (code & 2) ? extra + 2 : 1;
-            if (back >= d.rows.rows() || run > back + 1 || run > rows - row)
-                in.fail(at + " names a missing dictionary row");
+            if (back >= d.rows.rows() || run > back + 1) in.fail(at + " names a missing dictionary row");
             const uint32_t ref = d.rows.rows() - 1 - static_cast<uint32_t>(back);
             for (uint32_t k = 0; k < run; ++k, ++row) {
                 const uint32_t from = d.rows.start[ref + k], to = d.rows.start[ref + k + 1];
