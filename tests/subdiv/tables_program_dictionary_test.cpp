@@ -133,6 +133,19 @@ TEST(TablesProgramDictionary, HostileRowsAndRunsAreRefused) {
     refused(StreamBytes().v(1).raw({0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x02}), "longer than 64 bits");
     refused(StreamBytes().v(1).raw({0x80}), "ends inside a number");
     {
+        // A named row brings its entries into this program's 16 a row: a row of 20 entries (from a
+        // program of 2 rows, 32 entries) cannot be the one row of another.
+        ProgramDictionary d20;
+        StreamBytes wide;
+        wide.v(2).v(20 << 2).v(0).v(0).f(0.05f);
+        for (int e = 1; e < 20; ++e) wide.v(0).v(0);
+        wide.v(4).v(1).v(0).packed(repeated(48, 1), 2);
+        readProgram(wide, d20);
+        expectRefused([&] { readProgram(StreamBytes().v(1).v(1 << 2 | 1).packed(repeated(48, 1), 2), d20); },
+                      "row 0 has a bad length");
+        readProgram(StreamBytes().v(1).v(0 << 2 | 1).packed(repeated(48, 1), 2), d20); // the 1-entry row is fine
+    }
+    {
         ProgramDictionary three = threeRows();
         StreamBytes run; // the three rows as one run, the control rows naming row 3
         run.v(3).v(2 << 2 | 3).v(1).packed(repeated(48, 3), 3); // bit_width(4) bits
@@ -207,8 +220,8 @@ TEST(TablesProgramDictionary, HostileCompactChainFieldsAreRefused) {
     for (float x : {std::nanf(""), std::numeric_limits<float>::infinity(), -0.5f, 10.5f})
         refused(StreamBytes(chainHead()).v(3 << 8).f(x).v(0).v(0), "bad patch kind");
     refused(StreamBytes(chainHead()).v(4 << 8).v(0).v(0), "bad patch kind");          // how 4
-    refused(StreamBytes(chainHead()).v(0x30).v(0).v(0), "bad patch kind");            // two crease edges
-    refused(StreamBytes(chainHead()).v(0x11).v(0).v(0), "bad patch kind");            // a crease on the boundary
+    refused(StreamBytes(chainHead()).v(0x30 | 3 << 8).f(2.0f).v(0).v(0), "bad patch kind"); // two crease edges
+    refused(StreamBytes(chainHead()).v(0x11 | 3 << 8).f(2.0f).v(0).v(0), "bad patch kind"); // a crease on the boundary
     // A regular end's kind starts from 0 again: "less 1" is -1 there, not band 1's 3 - 1.
     StreamBytes regular = StreamBytes(chainHead(2)).add(sharp3).v(0).v(0);
     StreamBytes centreRows;
