@@ -26,10 +26,12 @@ export function readDictionaryProgram(s, support, maxRows, next, phantoms, d) {
     const code = s.varint(), known = d.averaged.length;
     if (code % 2 === 1) { // rows written before, `back` from the last (a run of them when code & 2): sources checked here
       const back = Math.floor(code / 4), isRun = Math.floor(code / 2) % 2 === 1;
-      const extra = isRun ? s.varint() : 0;
-      if (extra >= rows - row) s.fail(`row ${row} has a bad run length`);
+      const extra = isRun ? s.varint() : 0, left = rows - row;
+      // A run's length less 2 is stored (one row is h & 3 = 1): 2 rows or more, within the
+      // program's rows left and the dictionary's rows from the one named.
+      if (isRun && (left < 2 || extra > left - 2)) s.fail(`row ${row} has a bad run length`);
       const run = isRun ? extra + 2 : 1;
-      if (back >= known || run > back + 1 || run > rows - row) s.fail(`row ${row} names a missing dictionary row`);
+      if (back >= known || run > back + 1) s.fail(`row ${row} names a missing dictionary row`);
       const ref = known - 1 - back;
       for (let k = 0; k < run; k++, row++) {
         const from = d.start[ref + k], to = d.start[ref + k + 1];
