@@ -238,3 +238,19 @@ TEST(TablesProgramDictionary, HostileCompactChainFieldsAreRefused) {
     refused(StreamBytes().v(0).v(1).v(0).v(0).v(13), "bad row count 13"); // 3 rows a support point
     refused(StreamBytes(chainHead()).v(0).v(0).v(0).v(0), "unexpected bytes after the last record");
 }
+
+// Version 9's level records: per level five counts as varints of one stream (each level's first
+// is where the previous ends): a count past 2^32 - 1, a stream cut short or one with bytes left.
+TEST(TablesProgramDictionary, HostileLevelStreamIsRefused) {
+    auto levels = [](const StreamBytes& s, uint32_t count) {
+        const std::vector<uint8_t> bytes = framed(s.b);
+        ByteReader r(bytes, "test");
+        return readLevels(r, count, true);
+    };
+    const std::vector<LevelInfo> two = levels(StreamBytes().v(0).v(0).v(9).v(0).v(1).v(1).v(2).v(3).v(4).v(5), 2);
+    EXPECT_EQ(two[1].first, 9u);
+    EXPECT_EQ(two[1].vertexPoints, 3u);
+    expectRefused([&] { levels(StreamBytes().v(0).v(0).v(uint64_t(1) << 32).v(0).v(0), 1); }, "a count out of range");
+    expectRefused([&] { levels(StreamBytes().v(0).v(0).v(9).v(0), 1); }, "ends inside a number");
+    expectRefused([&] { levels(StreamBytes().v(0).v(0).v(9).v(0).v(0).v(0), 1); }, "unexpected bytes");
+}

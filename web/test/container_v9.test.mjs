@@ -7,7 +7,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { ByteReader, LimnError } from '../src/container.mjs';
-import { Stream } from '../src/tables_stream.mjs';
+import { readLevels, Stream } from '../src/tables_stream.mjs';
 import { programDictionary, readDictionaryProgram } from '../src/tables_program_dictionary.mjs';
 import { readChainBasis } from '../src/tables_chain_records.mjs';
 
@@ -171,4 +171,16 @@ test('TBLS v9: hostile compact chain fields are refused by name', () => {
   bad(S().v(0).v(1).v(0).v(2 ** 40), 'bad support size');
   bad(S().v(0).v(1).v(0).v(0).v(13), 'bad row count 13'); // 3 rows a support point
   bad(chainHead().v(0).v(0).v(0).v(0), 'unexpected bytes after the last record');
+});
+
+// Version 9's level records: per level five counts as varints of one stream (each level's first
+// is where the previous ends): a count past 2^32 - 1, a stream cut short or one with bytes left.
+test('TBLS v9: a hostile level stream is refused by name', () => {
+  const levels = (s, count) => readLevels(new ByteReader(framed(s), 'chunk TBLS'), count, true);
+  const two = levels(new StreamBytes().v(0).v(0).v(9).v(0).v(1).v(1).v(2).v(3).v(4).v(5), 2);
+  assert.equal(two[1].first, 9);
+  assert.equal(two[1].vertexPoints, 3);
+  refused(() => levels(new StreamBytes().v(0).v(0).v(2 ** 32).v(0).v(0), 1), 'a count out of range');
+  refused(() => levels(new StreamBytes().v(0).v(0).v(9).v(0), 1), 'ends inside a number');
+  refused(() => levels(new StreamBytes().v(0).v(0).v(9).v(0).v(0).v(0), 1), 'unexpected bytes');
 });
