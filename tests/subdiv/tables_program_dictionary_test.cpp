@@ -253,4 +253,8 @@ TEST(TablesProgramDictionary, HostileLevelStreamIsRefused) {
     expectRefused([&] { levels(StreamBytes().v(0).v(0).v(uint64_t(1) << 32).v(0).v(0), 1); }, "a count out of range");
     expectRefused([&] { levels(StreamBytes().v(0).v(0).v(9).v(0), 1); }, "ends inside a number");
     expectRefused([&] { levels(StreamBytes().v(0).v(0).v(9).v(0).v(0).v(0), 1); }, "unexpected bytes");
+    // Every stream's padding to 4 bytes MUST be 0 (5 bytes of counts, 3 of padding).
+    std::vector<uint8_t> padded = framed(StreamBytes().v(0).v(0).v(9).v(0).v(0).b);
+    padded.back() = 1;
+    expectRefused([&] { ByteReader r(padded, "test"); readLevels(r, 1, true); }, "padding is not zero");
 }

@@ -183,4 +183,8 @@ test('TBLS v9: a hostile level stream is refused by name', () => {
   refused(() => levels(new StreamBytes().v(0).v(0).v(2 ** 32).v(0).v(0), 1), 'a count out of range');
   refused(() => levels(new StreamBytes().v(0).v(0).v(9).v(0), 1), 'ends inside a number');
   refused(() => levels(new StreamBytes().v(0).v(0).v(9).v(0).v(0).v(0), 1), 'unexpected bytes');
+  // Every stream's padding to 4 bytes MUST be 0 (5 bytes of counts, 3 of padding).
+  const padded = framed(new StreamBytes().v(0).v(0).v(9).v(0).v(0));
+  padded[padded.length - 1] = 1;
+  refused(() => readLevels(new ByteReader(padded, 'chunk TBLS'), 1, true), 'padding is not zero');
 });
