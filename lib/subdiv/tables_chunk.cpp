@@ -23,6 +23,9 @@ namespace limn {
 
 namespace {
 
+// WebGPU's storage-buffer limit, which the irregular bases' weights share (formats/tbls.md).
+constexpr uint64_t kMaxBasisWeightBytes = uint64_t(128) << 20;
+
 bool isDyadic(float x, uint32_t maxDepth) {
     float scaled = x * float(1u << maxDepth);
     return std::isfinite(x) && scaled == std::floor(scaled);
@@ -412,6 +415,10 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
         if (bases > r.remaining() / 8) r.fail("irregular basis count is too large");
         ChainPrograms chainPrograms;
         ProgramDictionary dictionary; // version 9
+        // The bases' K x 48 x M weights are drawn from one GPU storage buffer (WebGPU: 128 MiB at
+        // most), and a chain naming programs read before expands ~90 bytes to up to 1.6 MB (16
+        // bands over 528 points): a small damaged file must not ask for gigabytes.
+        uint64_t weights = 0;
         for (uint32_t i = 0; i < bases; ++i) {
             t.irregularBases.push_back(
                 chunk.version >= 7 ? readConfigurationBasis(r, "irregular basis " + std::to_string(i), t.irregularBases,
@@ -419,6 +426,9 @@ Tables decodeTablesChunk(const Chunk& chunk, const Mesh* mesh) {
                                                             chunk.version >= 9 ? &dictionary : nullptr)
                 : programs         ? readBasisProgram(r, i, t.irregularBases)
                                    : readBasisWeights(r, i, compact, t.irregularBases));
+            weights += t.irregularBases.back().weights.size();
+            if (weights * sizeof(float) > kMaxBasisWeightBytes)
+                r.fail("irregular bases 0 to " + std::to_string(i) + " expand to more than 128 MiB of weights");
         }
         const uint32_t smooth = r.read<uint32_t>();
         if (!programs && smooth > r.remaining() / 12) r.fail("smooth irregular face count is too large");

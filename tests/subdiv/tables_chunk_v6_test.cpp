@@ -393,3 +393,27 @@ TEST(TablesChunk, CreaseChainsTakeNoBytes) {
     EXPECT_LT(encodeTablesChunk(buildChains(m, 2)).payload.size(),
               encodeTablesChunk(buildChains(m, 2, false)).payload.size() * 6 / 10);
 }
+
+// A chain naming programs read before takes a few dozen bytes and expands to K x 48 x M weights:
+// copies of chaikin0 d2's largest chain past 128 MiB of weights (the bases' GPU buffer, WebGPU's
+// limit) are refused by name once past it, not read on into gigabytes.
+TEST(TablesChunk, BasesPastTheirGpuBufferAreRefused) {
+    const Mesh m = loadModel("osd/catmark/catmark_chaikin0.obj");
+    Tables t = buildChains(m, 2);
+    size_t largest = 0;
+    for (size_t b = 0; b < t.irregularBases.size(); ++b)
+        if (t.irregularBases[b].chain && t.irregularBases[b].weights.size() > t.irregularBases[largest].weights.size())
+            largest = b;
+    ASSERT_TRUE(t.irregularBases[largest].chain);
+    const size_t copies = (size_t(32) << 20) / t.irregularBases[largest].weights.size() + 1;
+    t.irregularBases.insert(t.irregularBases.end(), copies, t.irregularBases[largest]);
+    const Chunk c = encodeTablesChunk(t);
+    RecordProperty("bytes", int(c.payload.size()));
+    RecordProperty("copies", int(copies));
+    try {
+        decodeTablesChunk(c, &m);
+        ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("expand to more than 128 MiB of weights"), std::string::npos) << e.what();
+    }
+}
