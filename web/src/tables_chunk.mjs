@@ -10,6 +10,7 @@ import { programDictionary } from './tables_program_dictionary.mjs';
 const MAX_DEPTH = 16;
 const INFINITE_SHARPNESS = 10;
 const MAX_STENCIL_VALENCE = 32767;
+const MAX_BASIS_WEIGHT_BYTES = 128 * 2 ** 20; // WebGPU's storage-buffer limit, which the bases' weights share
 const MAX_BASIS_VALENCE = 64; // kMaxBasisValence: version 4 bases go no higher (lib/subdiv/tables.h)
 // An irregular face's quadtree node codes (lib/subdiv/tables.h): the kind in the top two bits.
 const NODE_SUBPATCH = 0, NODE_CHILD = 1 << 30, NODE_LEAF = (2 << 30) >>> 0, NODE_BASIS = (3 << 30) >>> 0;
@@ -314,8 +315,14 @@ function readIrregularSurface(r, o) {
   const bases = [], chainPrograms = [], dictionary = o.version >= 9 ? programDictionary() : null;
   // Version 7: each with its configuration (a boundary one's support size stored); version 8's
   // decaying-crease chains share their programs across the chunk.
+  // The bases' K x 48 x M weights share one GPU storage buffer (WebGPU: 128 MiB at most), and a
+  // chain naming programs read before expands a few dozen bytes to up to 1.6 MB: a small damaged
+  // file must not ask for gigabytes (lib/subdiv/tables_chunk.cpp).
+  let weightCount = 0;
   for (let i = 0; programs && i < baseCount; i++) {
     bases.push(o.version >= 7 ? readConfigurationBasis(r, `irregular basis ${i}`, bases, o.version >= 8 ? chainPrograms : null, dictionary) : readBasisProgram(r, i, bases));
+    weightCount += bases[i].weights.length;
+    if (weightCount * 4 > MAX_BASIS_WEIGHT_BYTES) r.fail(`irregular bases 0 to ${i} expand to more than 128 MiB of weights`);
   }
   for (let i = 0; !programs && i < baseCount; i++) {
     const valence = r.u32(), lv = r.u32();

@@ -7,29 +7,11 @@ import { loadLimn } from '../src/chunks.mjs';
 import { ByteReader, LimnError, parseContainer } from '../src/container.mjs';
 import { readBasisProgram, readNodeStream, readSmoothPoints } from '../src/tables_surface_records.mjs';
 import { join } from 'node:path';
-import { container, read, repo } from './support.mjs';
+import { build, container, irregularSectionOffset, read, repo } from './support.mjs';
 
 // With its boundary faces refined (no boundary bases): the hostile tests below need sub-patches
 // and quadtree nodes; TBLS v7's bases have their own test.
 const small = () => read(container('quad/osd_catmark_fvar_bound1.obj', { depth: 2, seams: true, tablesArgs: ['--boundary-bases', 'off', '--crease-chains', 'off'], name: 'fvar_bound1_refined_d2_s.limn' }));
-
-function build(chunks) {
-  const size = 24 + chunks.reduce((n, c) => n + 16 + Math.ceil(c.payload.length / 8) * 8, 0);
-  const out = new Uint8Array(size);
-  const view = new DataView(out.buffer);
-  out.set([0x4c, 0x49, 0x4d, 0x4e, 0x0d, 0x0a, 0x1a, 0x0a]);
-  view.setUint32(8, 1, true);
-  view.setBigUint64(16, BigInt(size), true);
-  let o = 24;
-  for (const c of chunks) {
-    out.set([...c.type].map((ch) => ch.charCodeAt(0)), o);
-    view.setUint32(o + 4, c.version, true);
-    view.setBigUint64(o + 8, BigInt(c.payload.length), true);
-    out.set(c.payload, o + 16);
-    o += 16 + Math.ceil(c.payload.length / 8) * 8;
-  }
-  return out;
-}
 
 function expectLimnError(bytes, where) {
   try {
@@ -123,24 +105,6 @@ test('BLND is refused clearly, a newer chunk version names itself', () => {
   assert.equal(loadLimn(build(unknown)).tables.depth, 2);
   expectLimnError(build(chunks.filter((c) => c.type !== 'TBLS')), /limn-tables/);
 });
-
-// Where TBLS v6's irregular-surface section starts (formats/limn.md): after the header, levels,
-// the repeated levels' bits, the stencil tables of the others (their palettes and streams), the
-// patch stream and the irregular faces, walked over the payload's own length fields. Version 9
-// (`version`): the levels a stream, no table of no rows.
-function irregularSectionOffset(t, payload, version = 6) {
-  const v = new DataView(payload.buffer, payload.byteOffset, payload.byteLength);
-  const stream = (o) => o + 4 + Math.ceil(v.getUint32(o, true) / 4) * 4;
-  let o = version >= 9 ? stream(40) : 40 + 24 * t.levels.length;
-  const repeats = v.getUint32(o, true);
-  o += 4;
-  for (let l = 1; l < t.levels.length; l++) {
-    if ((repeats >>> l) & 1) continue;
-    const L = t.levels[l], rows = [L.facePoints, L.edgePoints, L.vertexPoints];
-    for (let k = 0; k < 3; k++) if (version < 9 || rows[k] > 0) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
-  }
-  return { at: stream(o) + 32 * t.irregularCount, stream };
-}
 
 // TBLS v5's node stream (formats/limn.md): codes as varints from the last index of their kind.
 function nodeStream(codes) {

@@ -6,7 +6,10 @@
 // test starts from a stream the reader accepts, so a refusal is the damage's.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { ByteReader, LimnError } from '../src/container.mjs';
+import { ByteReader, LimnError, parseContainer } from '../src/container.mjs';
+import { loadLimn } from '../src/chunks.mjs';
+import { join } from 'node:path';
+import { build, irregularSectionOffset, read, repo } from './support.mjs';
 import { readLevels, Stream } from '../src/tables_stream.mjs';
 import { programDictionary, readDictionaryProgram } from '../src/tables_program_dictionary.mjs';
 import { readChainBasis } from '../src/tables_chain_records.mjs';
@@ -187,4 +190,34 @@ test('TBLS v9: a hostile level stream is refused by name', () => {
   const padded = framed(new StreamBytes().v(0).v(0).v(9).v(0).v(0));
   padded[padded.length - 1] = 1;
   refused(() => readLevels(new ByteReader(padded, 'chunk TBLS'), 1, true), 'padding is not zero');
+});
+
+// A chain naming programs read before takes a few dozen bytes and expands to K x 48 x M weights:
+// copies of one of the v9 seed's chains (chaikin0 d1) past 128 MiB of weights (the bases' GPU
+// buffer, WebGPU's limit) are refused by name once past it, not read on into gigabytes.
+test('TBLS v9: bases expanding past 128 MiB of weights are refused by name', () => {
+  const bytes = read(join(repo, 'fuzz/corpus/render_input/chaikin0_d1_crease_chains_v9.limn')), chunks = parseContainer(bytes);
+  const tbls = chunks.find((c) => c.type === 'TBLS'), p = tbls.payload;
+  const v = new DataView(p.buffer, p.byteOffset, p.byteLength), u = (o) => v.getUint32(o, true);
+  const { at, stream } = irregularSectionOffset(loadLimn(bytes).tables, p, tbls.version);
+  const nodes = stream(at + 4), leaves = stream(nodes + 4), count = leaves + 4 + 32 * u(leaves);
+  const records = []; // each v9 basis: 16 header bytes (valence, code, M, K) and a stream
+  let end = count + 4;
+  for (let i = 0; i < u(count); i++, end = stream(end + 16)) records.push(end);
+  // Copies of record `o` after the last basis (the smooth faces name none of them).
+  const copied = (o, copies) => {
+    const record = p.subarray(o, stream(o + 16)), payload = new Uint8Array(p.length + copies * record.length);
+    payload.set(p.subarray(0, end));
+    for (let k = 0; k < copies; k++) payload.set(record, end + k * record.length);
+    payload.set(p.subarray(end), end + copies * record.length);
+    new DataView(payload.buffer).setUint32(count, u(count) + copies, true);
+    return build(chunks.map((c) => (c.type === 'TBLS' ? { ...c, payload } : c)));
+  };
+  // The last chain that brings no program of its own reads as a copy.
+  const chain = records.filter((o) => u(o + 4) === 2).reverse().find((o) => {
+    try { loadLimn(copied(o, 1)); return true; } catch { return false; }
+  });
+  assert.ok(chain !== undefined, 'no chain reads as a copy');
+  const copies = Math.floor(32 * 2 ** 20 / (u(chain + 12) * 48 * u(chain + 8))) + 1;
+  assert.throws(() => loadLimn(copied(chain, copies)), (e) => e instanceof LimnError && /expand to more than 128 MiB of weights/.test(e.message));
 });

@@ -67,3 +67,39 @@ export function paperSphereObj() {
   return path;
 }
 
+// A container of `chunks` ({type, version, payload}), each padded to 8 bytes.
+export function build(chunks) {
+  const size = 24 + chunks.reduce((n, c) => n + 16 + Math.ceil(c.payload.length / 8) * 8, 0);
+  const out = new Uint8Array(size);
+  const view = new DataView(out.buffer);
+  out.set([0x4c, 0x49, 0x4d, 0x4e, 0x0d, 0x0a, 0x1a, 0x0a]);
+  view.setUint32(8, 1, true);
+  view.setBigUint64(16, BigInt(size), true);
+  let o = 24;
+  for (const c of chunks) {
+    out.set([...c.type].map((ch) => ch.charCodeAt(0)), o);
+    view.setUint32(o + 4, c.version, true);
+    view.setBigUint64(o + 8, BigInt(c.payload.length), true);
+    out.set(c.payload, o + 16);
+    o += 16 + Math.ceil(c.payload.length / 8) * 8;
+  }
+  return out;
+}
+
+// Where TBLS v6's irregular-surface section starts (formats/limn.md): after the header, levels,
+// the repeated levels' bits, the stencil tables of the others (their palettes and streams), the
+// patch stream and the irregular faces, walked over the payload's own length fields. Version 9
+// (`version`): the levels a stream, no table of no rows.
+export function irregularSectionOffset(t, payload, version = 6) {
+  const v = new DataView(payload.buffer, payload.byteOffset, payload.byteLength);
+  const stream = (o) => o + 4 + Math.ceil(v.getUint32(o, true) / 4) * 4;
+  let o = version >= 9 ? stream(40) : 40 + 24 * t.levels.length;
+  const repeats = v.getUint32(o, true);
+  o += 4;
+  for (let l = 1; l < t.levels.length; l++) {
+    if ((repeats >>> l) & 1) continue;
+    const L = t.levels[l], rows = [L.facePoints, L.edgePoints, L.vertexPoints];
+    for (let k = 0; k < 3; k++) if (version < 9 || rows[k] > 0) o = stream(o + 16 + 4 * v.getUint32(o + 12, true));
+  }
+  return { at: stream(o) + 32 * t.irregularCount, stream };
+}
