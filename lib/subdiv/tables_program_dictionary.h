@@ -16,6 +16,17 @@
 
 namespace limn {
 
+// The writers' hash of a sequence of words (rows, programs), folded in one at a time; equal
+// hashes are compared entry for entry, so it only spreads the keys (splitmix64's finaliser).
+inline uint64_t mixHash(uint64_t h, uint64_t x) {
+    h ^= x + 0x9E3779B97F4A7C15u + (h << 6) + (h >> 2);
+    h ^= h >> 30;
+    h *= 0xBF58476D1CE4E5B9u;
+    h ^= h >> 27;
+    h *= 0x94D049BB133111EBu;
+    return h ^ (h >> 31);
+}
+
 // `p` with its rows in a canonical order, and where each row went (`moved[old] = new`). Order:
 // in rounds, the rows whose read rows are all placed, sorted by their entries (sources as
 // support points or placed rows' new numbers, weights' bits); equal rows keep their order. A
@@ -27,9 +38,9 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
 struct ProgramDictionary {
     BasisProgram rows;          // the rows (start, source, weight, averaged) in the order first written
     std::vector<float> palette; // the weights in the order first written
-    // The writer's indices: a row's entries (averaged, then source and weight bits per entry, as
-    // bytes), and a weight's bits.
-    std::unordered_map<std::string, uint32_t> rowIndex;
+    // The writer's indices: rows by a hash of their entries (averaged, sources, weights' bits
+    // unless averaged), each candidate compared with the row in `rows`; a weight's bits.
+    std::unordered_multimap<uint64_t, uint32_t> rowIndex;
     std::unordered_map<uint32_t, uint32_t> slot;
 };
 
