@@ -9,6 +9,7 @@
 #include "subdiv/irregular_basis.h"
 #include "subdiv/tables_stream.h"
 
+#include <bit>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -17,15 +18,9 @@
 namespace limn {
 
 // The writers' hash of a sequence of words (rows, programs), folded in one at a time; equal
-// hashes are compared entry for entry, so it only spreads the keys (splitmix64's finaliser).
-inline uint64_t mixHash(uint64_t h, uint64_t x) {
-    h ^= x + 0x9E3779B97F4A7C15u + (h << 6) + (h >> 2);
-    h ^= h >> 30;
-    h *= 0xBF58476D1CE4E5B9u;
-    h ^= h >> 27;
-    h *= 0x94D049BB133111EBu;
-    return h ^ (h >> 31);
-}
+// hashes are compared entry for entry, so it only spreads the keys: one multiply a word
+// (FxHash's, as rustc's hash tables use).
+inline uint64_t mixHash(uint64_t h, uint64_t x) { return (std::rotl(h, 5) ^ x) * 0x517CC1B727220A95u; }
 
 // `p` with its rows in a canonical order, and where each row went (`moved[old] = new`). Order:
 // in rounds, the rows whose read rows are all placed, sorted by their entries (sources as
