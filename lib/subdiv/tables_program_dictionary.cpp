@@ -56,7 +56,12 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
                                                          : uint64_t(0xFFFFFF) << 32;
             key[*it] = uint64_t(p.averaged[*it]) << 56 | entry;
         }
-        for (auto it = first; it != last; ++it) std::rotate(std::upper_bound(first, it, *it, keyed), it, it + 1);
+        for (auto it = first; it != last; ++it) {
+            const uint32_t r = *it;
+            const auto to = std::upper_bound(first, it, r, keyed);
+            std::move_backward(to, it, it + 1);
+            *to = r;
+        }
         for (auto it = first; it != last; ++it) {
             moved[*it] = static_cast<uint32_t>(order.size());
             order.push_back(*it);
