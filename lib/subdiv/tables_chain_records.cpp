@@ -50,6 +50,31 @@ std::vector<uint8_t> programBytes(const BasisProgram& p, uint32_t support) {
     return w.take();
 }
 
+// Version 9's program index (ChainProgramIndex): the fields programBytes writes, as a hash, and
+// their comparison, weights as bits and only where a row is not averaged.
+uint64_t programHash(const BasisProgram& p, uint32_t support) {
+    uint64_t h = mixHash(support, p.nextSupport.size());
+    for (uint32_t r = 0; r < p.rows(); ++r) {
+        h = mixHash(h, uint64_t(p.start[r + 1] - p.start[r]) << 1 | p.averaged[r]);
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e)
+            h = mixHash(h, uint64_t(p.source[e]) << 32 | (p.averaged[r] ? 0u : std::bit_cast<uint32_t>(p.weight[e])));
+    }
+    for (uint32_t x : p.controlRow) h = mixHash(h, x);
+    for (uint32_t x : p.nextSupport) h = mixHash(h, x);
+    return h;
+}
+
+bool sameWrittenProgram(const BasisProgram& x, const BasisProgram& y) {
+    if (x.start != y.start || x.source != y.source || x.averaged != y.averaged || x.controlRow != y.controlRow ||
+        x.nextSupport != y.nextSupport)
+        return false;
+    for (uint32_t r = 0; r < x.rows(); ++r)
+        if (!x.averaged[r])
+            for (uint32_t e = x.start[r]; e < x.start[r + 1]; ++e)
+                if (std::bit_cast<uint32_t>(x.weight[e]) != std::bit_cast<uint32_t>(y.weight[e])) return false;
+    return true;
+}
+
 BasisProgram readChainProgram(ByteReader& r, const std::string& what, uint32_t& support) {
     support = r.read<uint32_t>();
     const uint32_t next = r.read<uint32_t>();
@@ -161,11 +186,10 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
     number(static_cast<uint32_t>(c.bands.size()));
     std::vector<uint32_t> moved;
     std::array<float, 3> previous{};
-    // A chain's bands often run one program (the sharpness clamped): the last band's canonical
-    // form and bytes are reused when its program is the same.
+    // A chain's bands often run one program (the sharpness clamped): a band whose program is the
+    // last band's names the same entry, neither canonicalised nor looked up again.
     const CreaseBand* last = nullptr;
     BasisProgram canonical;
-    std::vector<uint8_t> bytes;
     auto same = [](const CreaseBand& a, const CreaseBand& o) {
         return a.support == o.support && sameProgramBytes(a.program, o.program);
     };
@@ -174,15 +198,30 @@ void writeChainBasis(ByteWriter& w, const IrregularBasis& b, ChainProgramIndex& 
         // A band that runs the last band's program names the same entry without looking it up.
         if (!last || !same(*last, band)) {
             canonical = canonicalProgram(band.program, band.support, moved);
-            bytes = programBytes(canonical, band.support);
-            const auto [it, added] = programs.try_emplace(bytes, static_cast<uint32_t>(programs.size()));
-            index = it->second;
-            number(index);
-            if (added && dictionary) {
-                writeVarint(s, canonical.nextSupport.size());
-                writeDictionaryProgram(s, canonical, *dictionary);
-            } else if (added) {
-                w.writeArray(it->first);
+            if (dictionary) {
+                const uint64_t h = programHash(canonical, band.support);
+                index = kNone;
+                for (auto [it, end] = programs.hashed.equal_range(h); it != end && index == kNone; ++it) {
+                    const auto& [support, program] = programs.written[it->second];
+                    if (support == band.support && sameWrittenProgram(program, canonical)) index = it->second;
+                }
+                const bool added = index == kNone;
+                if (added) {
+                    index = static_cast<uint32_t>(programs.written.size());
+                    programs.hashed.emplace(h, index);
+                }
+                number(index);
+                if (added) {
+                    writeVarint(s, canonical.nextSupport.size());
+                    writeDictionaryProgram(s, canonical, *dictionary);
+                    programs.written.emplace_back(band.support, std::move(canonical));
+                }
+            } else {
+                const auto [it, added] = programs.bytes.try_emplace(programBytes(canonical, band.support),
+                                                                    static_cast<uint32_t>(programs.bytes.size()));
+                index = it->second;
+                number(index);
+                if (added) w.writeArray(it->first);
             }
         } else {
             number(index);

@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace limn {
@@ -19,9 +21,15 @@ namespace limn {
 // BasisConfiguration::code() is 0 or odd; 2 marks a chain.
 inline constexpr uint32_t kChainConfigurationCode = 2;
 
-// The programs written so far (their bytes -> their index), and read so far (with the support
-// each was written for).
-using ChainProgramIndex = std::map<std::vector<uint8_t>, uint32_t>;
+// The programs written so far, and read so far (with the support each was written for). The
+// writer's index: version 8 by the programs' bytes (which it writes); version 9 by a hash of the
+// canonical program and its support, each candidate compared entry for entry (what equal bytes
+// would say), without building the bytes.
+struct ChainProgramIndex {
+    std::map<std::vector<uint8_t>, uint32_t> bytes;
+    std::unordered_multimap<uint64_t, uint32_t> hashed;
+    std::vector<std::pair<uint32_t, BasisProgram>> written; // version 9: support, canonical program
+};
 struct ChainPrograms {
     std::vector<BasisProgram> programs;
     std::vector<uint32_t> support;

@@ -38,8 +38,65 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
         }
         return na < nb;
     };
-    std::vector<uint32_t> order, ready;
+    std::vector<uint32_t> order;
     order.reserve(n);
+    // Each row's first entry (averaged, source, weight bits) as one number ordered as `before`
+    // orders rows on it (a source from 2^24 on as 2^24 - 1 and its bits as 0, for `before` to
+    // settle): most comparisons end there.
+    std::vector<uint64_t> key(n);
+    auto keyed = [&](uint32_t a, uint32_t b) { return key[a] != key[b] ? key[a] < key[b] : before(a, b); };
+    // One round's rows, in row order, sorted stably (by binary insertion: a round has a few dozen
+    // rows, and std::stable_sort would allocate its buffer every round) and placed.
+    auto place = [&](std::vector<uint32_t>::iterator first, std::vector<uint32_t>::iterator last) {
+        for (auto it = first; it != last; ++it) {
+            const uint32_t e = p.start[*it];
+            const uint64_t x = e < p.start[*it + 1] ? source(e) : 0;
+            const uint64_t entry = e == p.start[*it + 1] ? 0 // an empty row first, as `before` has it
+                                   : x < 0xFFFFFF        ? x << 32 | bits(*it, e)
+                                                         : uint64_t(0xFFFFFF) << 32;
+            key[*it] = uint64_t(p.averaged[*it]) << 56 | entry;
+        }
+        for (auto it = first; it != last; ++it) {
+            const uint32_t r = *it;
+            const auto to = std::upper_bound(first, it, r, keyed);
+            std::move_backward(to, it, it + 1);
+            *to = r;
+        }
+        for (auto it = first; it != last; ++it) {
+            moved[*it] = static_cast<uint32_t>(order.size());
+            order.push_back(*it);
+        }
+    };
+    // Where every row reads only support points and earlier rows (as the builders write them), a
+    // row's round is 1 + the latest round of the rows it reads (0: support points only), found in
+    // one pass; the rows are bucketed by round, in row order.
+    std::vector<uint32_t> round(n), ready;
+    uint32_t rounds = 0;
+    bool forward = true;
+    for (uint32_t r = 0; r < n && forward; ++r) {
+        uint32_t k = 0;
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
+            const uint32_t x = p.source[e];
+            if (x < support) continue;
+            if (x - support >= r) {
+                forward = false;
+                break;
+            }
+            k = std::max(k, round[x - support] + 1);
+        }
+        round[r] = k;
+        rounds = std::max(rounds, k + 1);
+    }
+    if (forward) {
+        std::vector<uint32_t> at(rounds + 1, 0);
+        for (uint32_t r = 0; r < n; ++r) ++at[round[r] + 1];
+        for (uint32_t k = 0; k < rounds; ++k) at[k + 1] += at[k];
+        ready.resize(n);
+        std::vector<uint32_t> fill(at.begin(), at.end() - 1);
+        for (uint32_t r = 0; r < n; ++r) ready[fill[round[r]]++] = r;
+        for (uint32_t k = 0; k < rounds; ++k) place(ready.begin() + at[k], ready.begin() + at[k + 1]);
+    }
+    // Otherwise in rounds: the rows not placed whose read rows all are.
     ready.reserve(n);
     while (order.size() < n) {
         ready.clear();
@@ -54,13 +111,13 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
             for (uint32_t r = 0; r < n; ++r) moved[r] = r;
             return p;
         }
-        std::stable_sort(ready.begin(), ready.end(), before);
-        for (uint32_t r : ready) {
-            moved[r] = static_cast<uint32_t>(order.size());
-            order.push_back(r);
-        }
+        place(ready.begin(), ready.end());
     }
     BasisProgram c; // start holds its first 0
+    c.start.reserve(n + 1);
+    c.source.reserve(p.source.size());
+    c.weight.reserve(p.source.size());
+    c.averaged.reserve(n);
     for (uint32_t r : order) {
         for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
             const uint32_t s = p.source[e];
@@ -80,31 +137,45 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
 
 void writeDictionaryProgram(std::vector<uint8_t>& s, const BasisProgram& p, ProgramDictionary& d) {
     writeVarint(s, p.rows());
-    std::string key;
-    auto keyOf = [&](uint32_t r) -> const std::string& {
-        key.assign(1, char(p.averaged[r]));
-        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
-            const uint32_t x[2] = {p.source[e], p.averaged[r] ? 0u : std::bit_cast<uint32_t>(p.weight[e])};
-            key.append(reinterpret_cast<const char*>(x), sizeof x);
+    // Row r of `p` against dictionary row k: the same entries, weights compared as bits unless
+    // averaged (an averaged row's weights are not written).
+    auto sameRow = [&](uint32_t r, uint32_t k) {
+        const uint32_t n = p.start[r + 1] - p.start[r], from = d.rows.start[k];
+        if (p.averaged[r] != d.rows.averaged[k] || d.rows.start[k + 1] - from != n) return false;
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t e = p.start[r] + i;
+            if (p.source[e] != d.rows.source[from + i]) return false;
+            if (!p.averaged[r] && std::bit_cast<uint32_t>(p.weight[e]) != std::bit_cast<uint32_t>(d.rows.weight[from + i]))
+                return false;
         }
-        return key;
+        return true;
     };
-    auto known = [&](uint32_t r) {
-        const auto it = d.rowIndex.find(keyOf(r));
-        return it == d.rowIndex.end() ? kNone : it->second;
+    auto hashRow = [&](uint32_t r) {
+        uint64_t h = mixHash(0x9E3779B97F4A7C15u, p.averaged[r]);
+        for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e)
+            h = mixHash(h, uint64_t(p.source[e]) << 32 | (p.averaged[r] ? 0u : std::bit_cast<uint32_t>(p.weight[e])));
+        return h;
+    };
+    auto known = [&](uint32_t r, uint64_t h) {
+        for (auto [it, end] = d.rowIndex.equal_range(h); it != end; ++it)
+            if (sameRow(r, it->second)) return it->second;
+        return kNone;
     };
     for (uint32_t r = 0; r < p.rows();) {
-        if (const uint32_t first = known(r); first != kNone) {
-            // A run of rows written before, one after the other in the dictionary.
+        const uint64_t h = hashRow(r);
+        if (const uint32_t first = known(r, h); first != kNone) {
+            // A run of rows written before, one after the other in the dictionary (each row is
+            // there once: the next row continues the run exactly when it equals the next one).
             uint32_t length = 1;
-            while (r + length < p.rows() && known(r + length) == first + length) ++length;
+            while (r + length < p.rows() && first + length < d.rows.rows() && sameRow(r + length, first + length))
+                ++length;
             const uint64_t back = d.rows.rows() - 1 - first;
             writeVarint(s, back << 2 | (length > 1 ? 3 : 1));
             if (length > 1) writeVarint(s, length - 2);
             r += length;
             continue;
         }
-        d.rowIndex.emplace(keyOf(r), d.rows.rows());
+        d.rowIndex.emplace(h, d.rows.rows());
         writeVarint(s, (uint64_t(p.start[r + 1] - p.start[r]) << 1 | p.averaged[r]) << 1);
         for (uint32_t e = p.start[r]; e < p.start[r + 1]; ++e) {
             writeVarint(s, p.source[e]);

@@ -9,12 +9,18 @@
 #include "subdiv/irregular_basis.h"
 #include "subdiv/tables_stream.h"
 
+#include <bit>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 namespace limn {
+
+// The writers' hash of a sequence of words (rows, programs), folded in one at a time; equal
+// hashes are compared entry for entry, so it only spreads the keys: one multiply a word
+// (FxHash's, as rustc's hash tables use).
+inline uint64_t mixHash(uint64_t h, uint64_t x) { return (std::rotl(h, 5) ^ x) * 0x517CC1B727220A95u; }
 
 // `p` with its rows in a canonical order, and where each row went (`moved[old] = new`). Order:
 // in rounds, the rows whose read rows are all placed, sorted by their entries (sources as
@@ -27,9 +33,9 @@ BasisProgram canonicalProgram(const BasisProgram& p, uint32_t support, std::vect
 struct ProgramDictionary {
     BasisProgram rows;          // the rows (start, source, weight, averaged) in the order first written
     std::vector<float> palette; // the weights in the order first written
-    // The writer's indices: a row's entries (averaged, then source and weight bits per entry, as
-    // bytes), and a weight's bits.
-    std::unordered_map<std::string, uint32_t> rowIndex;
+    // The writer's indices: rows by a hash of their entries (averaged, sources, weights' bits
+    // unless averaged), each candidate compared with the row in `rows`; a weight's bits.
+    std::unordered_multimap<uint64_t, uint32_t> rowIndex;
     std::unordered_map<uint32_t, uint32_t> slot;
 };
 

@@ -10,14 +10,6 @@
 
 namespace limn {
 
-void writeVarint(std::vector<uint8_t>& out, uint64_t x) {
-    while (x >= 0x80) {
-        out.push_back(static_cast<uint8_t>(x | 0x80));
-        x >>= 7;
-    }
-    out.push_back(static_cast<uint8_t>(x));
-}
-
 void writeStream(ByteWriter& w, const std::vector<uint8_t>& stream) {
     w.write<uint32_t>(static_cast<uint32_t>(stream.size()));
     w.writeArray(stream);

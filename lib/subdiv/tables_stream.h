@@ -18,7 +18,12 @@ namespace limn {
 // 3e38 can only come from a damaged file, and the GPU's float sums would be NaN.
 inline constexpr float kMaxStencilWeight = 1e6f;
 
-void writeVarint(std::vector<uint8_t>& out, uint64_t x);
+// LEB128, 7 bits a byte, least significant first. Inline: the stencil tables and programs write
+// hundreds of thousands, most of them one byte.
+inline void writeVarint(std::vector<uint8_t>& out, uint64_t x) {
+    for (; x >= 0x80; x >>= 7) out.push_back(static_cast<uint8_t>(x | 0x80));
+    out.push_back(static_cast<uint8_t>(x));
+}
 // Signed differences as unsigned varints: 0, -1, 1, -2, ... -> 0, 1, 2, 3, ...
 inline uint64_t zigzag(int64_t d) { return d >= 0 ? uint64_t(d) * 2 : uint64_t(-(d + 1)) * 2 + 1; }
 inline int64_t unzigzag(uint64_t z) { return (z & 1) ? -int64_t(z >> 1) - 1 : int64_t(z >> 1); }

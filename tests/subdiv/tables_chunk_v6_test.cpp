@@ -7,6 +7,7 @@
 #include "subdiv/crease_basis.h"
 #include "subdiv/irregular_basis.h"
 #include "subdiv/tables_chunk.h"
+#include "subdiv/tables_program_dictionary.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -416,4 +417,54 @@ TEST(TablesChunk, BasesPastTheirGpuBufferAreRefused) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("expand to more than 128 MiB of weights"), std::string::npos) << e.what();
     }
+}
+
+// canonicalProgram's order (tables_program_dictionary.h) written out by hand for a three-row
+// program over four support points, given in row order (each row reads earlier rows) and with
+// its last row first (reading later rows: the general rounds); then the dictionary's run
+// (formats/tbls.md, "Program dictionary") for the same program written twice.
+TEST(TablesChunk, CanonicalProgramOrdersRowsAsWrittenDown) {
+    const uint32_t M = 4;
+    auto program = [](std::vector<uint32_t> start, std::vector<uint32_t> source, std::vector<float> weight,
+                      std::vector<uint8_t> averaged, uint32_t control, std::vector<uint32_t> next) {
+        BasisProgram p;
+        p.start = std::move(start);
+        p.source = std::move(source);
+        p.weight = std::move(weight);
+        p.averaged = std::move(averaged);
+        p.controlRow.fill(kNone);
+        p.controlRow[0] = control;
+        p.nextSupport = std::move(next);
+        return p;
+    };
+    // a = 0.5 x2 + 0.5 x3, b = the average of x0 and x1, c = 0.25 a + 0.75 b.
+    const BasisProgram forward = program({0, 2, 4, 6}, {2, 3, 0, 1, M + 0, M + 1}, {0.5f, 0.5f, 1, 1, 0.25f, 0.75f},
+                                         {0, 1, 0}, 2, {0, 1});
+    const BasisProgram backward = program({0, 2, 4, 6}, {M + 1, M + 2, 2, 3, 0, 1}, {0.25f, 0.75f, 0.5f, 0.5f, 1, 1},
+                                          {0, 0, 1}, 0, {1, 2});
+    // Round 0: a and b (a first: not averaged before averaged); round 1: c.
+    std::vector<uint32_t> moved;
+    for (const auto& [p, expectMoved] : {std::pair{forward, std::vector<uint32_t>{0, 1, 2}},
+                                         std::pair{backward, std::vector<uint32_t>{2, 0, 1}}}) {
+        const BasisProgram c = canonicalProgram(p, M, moved);
+        EXPECT_EQ(moved, expectMoved);
+        EXPECT_EQ(c.start, (std::vector<uint32_t>{0, 2, 4, 6}));
+        EXPECT_EQ(c.source, (std::vector<uint32_t>{2, 3, 0, 1, M + 0, M + 1}));
+        EXPECT_EQ(c.weight, (std::vector<float>{0.5f, 0.5f, 1, 1, 0.25f, 0.75f}));
+        EXPECT_EQ(c.averaged, (std::vector<uint8_t>{0, 1, 0}));
+        EXPECT_EQ(c.controlRow[0], 2u);
+        EXPECT_EQ(c.controlRow[1], kNone);
+        EXPECT_EQ(c.nextSupport, (std::vector<uint32_t>{0, 1}));
+    }
+    // Written twice: the second time the row count, then one run (h = 2 back << 2 | 3, count - 2
+    // = 1) and the 48 control and 2 support rows in bit_width(4) = 3 bits each (19 bytes).
+    ProgramDictionary d;
+    std::vector<uint8_t> first, second;
+    writeDictionaryProgram(first, canonicalProgram(forward, M, moved), d);
+    writeDictionaryProgram(second, canonicalProgram(backward, M, moved), d);
+    ASSERT_EQ(second.size(), 3u + 19u);
+    EXPECT_EQ(second[0], 3);
+    EXPECT_EQ(second[1], 11);
+    EXPECT_EQ(second[2], 1);
+    EXPECT_TRUE(std::equal(second.begin() + 3, second.end(), first.end() - 19));
 }
