@@ -9,13 +9,7 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
     : vertexCount_(vertexCount), faceOffsets_(faceOffsets.begin(), faceOffsets.end()),
       heVertex_(faceVertices.begin(), faceVertices.end()) {
     const uint32_t H = static_cast<uint32_t>(heVertex_.size());
-    const uint32_t F = faceCount();
-    heFace_.resize(H);
-    allQuads_ = true;
-    for (uint32_t f = 0; f < F; ++f) {
-        if (faceOffsets_[f + 1] - faceOffsets_[f] != 4) allQuads_ = false;
-        for (uint32_t h = faceOffsets_[f]; h < faceOffsets_[f + 1]; ++h) heFace_[h] = f;
-    }
+    setFaces();
 
     // Group half-edges by undirected edge in linear time: bucket them by their smaller vertex
     // (counting sort keeps half-edge order inside a bucket), then match larger vertices within
@@ -87,54 +81,128 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
         }
         edgeNonManifold_.push_back(nonManifold);
     }
-    const uint32_t E = static_cast<uint32_t>(edgeVertices_.size());
+    setVertices();
+}
+
+Topology Topology::withTwins(uint32_t vertexCount, std::vector<uint32_t> faceOffsets,
+                             std::vector<uint32_t> faceVertices, std::vector<uint32_t> twins) {
+    Topology t;
+    t.vertexCount_ = vertexCount;
+    t.faceOffsets_ = std::move(faceOffsets);
+    t.heVertex_ = std::move(faceVertices);
+    t.heTwin_ = std::move(twins);
+    t.setFaces();
+    // Edges numbered in order of their first half-edge, as the constructor numbers them: a
+    // half-edge starts an edge unless its twin comes before it (and then already named it).
+    const uint32_t H = t.halfedgeCount();
+    const uint32_t* twin = t.heTwin_.data();
+    uint32_t E = 0;
+    for (uint32_t h = 0; h < H; ++h) E += twin[h] == kNone || twin[h] > h;
+    t.heEdge_.resize(H);
+    t.edgeHalfedge_.resize(E);
+    t.edgeVertices_.resize(E);
+    t.edgeFaceCount_.resize(E);
+    t.edgeNonManifold_.assign(E, 0);
+    uint32_t* heEdge = t.heEdge_.data();
+    for (uint32_t h = 0, e = 0; h < H; ++h) {
+        const uint32_t tw = twin[h];
+        if (tw != kNone && tw < h) continue;
+        heEdge[h] = e;
+        if (tw != kNone) heEdge[tw] = e;
+        t.edgeHalfedge_[e] = h;
+        t.edgeVertices_[e] = {t.heVertex_[h], t.heVertex_[t.next(h)]};
+        t.edgeFaceCount_[e] = tw == kNone ? 1 : 2;
+        ++e;
+    }
+    t.setVertices();
+    return t;
+}
+
+// The loops below read and write through local pointers: the flag bytes they store could alias
+// the vectors' own pointers for the compiler, which would reload them at every step.
+void Topology::setFaces() {
+    const uint32_t F = faceCount();
+    heFace_.resize(heVertex_.size());
+    const uint32_t* offsets = faceOffsets_.data();
+    uint32_t* heFace = heFace_.data();
+    bool quads = true;
+    for (uint32_t f = 0; f < F; ++f) {
+        const uint32_t begin = offsets[f], end = offsets[f + 1];
+        quads &= end - begin == 4;
+        for (uint32_t h = begin; h < end; ++h) heFace[h] = f;
+    }
+    allQuads_ = quads;
+}
+
+void Topology::setVertices() {
+    const uint32_t H = halfedgeCount(), E = edgeCount(), V = vertexCount_;
+    const uint32_t* heVertex = heVertex_.data();
+    const uint32_t* heTwin = heTwin_.data();
+    const uint32_t* heFace = heFace_.data();
+    const uint32_t* faceOffsets = faceOffsets_.data();
+    const std::array<uint32_t, 2>* edgeVertices = edgeVertices_.data();
+    const uint32_t* edgeFaceCount = edgeFaceCount_.data();
+    const uint8_t* edgeNonManifold = edgeNonManifold_.data();
+    const bool quads = allQuads_;
+    auto prev = [&](uint32_t h) {
+        if (quads) return (h & ~3u) | ((h + 3) & 3u);
+        const uint32_t f = heFace[h];
+        return h == faceOffsets[f] ? faceOffsets[f + 1] - 1 : h - 1;
+    };
 
     // Vertex -> outgoing half-edges (CSR, in half-edge order).
-    vertexFaceOffsets_.assign(vertexCount_ + 1, 0);
-    for (uint32_t h = 0; h < H; ++h) ++vertexFaceOffsets_[heVertex_[h] + 1];
-    for (uint32_t v = 0; v < vertexCount_; ++v) vertexFaceOffsets_[v + 1] += vertexFaceOffsets_[v];
+    vertexFaceOffsets_.assign(V + 1, 0);
+    uint32_t* start = vertexFaceOffsets_.data();
+    for (uint32_t h = 0; h < H; ++h) ++start[heVertex[h] + 1];
+    for (uint32_t v = 0; v < V; ++v) start[v + 1] += start[v];
     vertexOutgoing_.resize(H);
+    uint32_t* outgoing = vertexOutgoing_.data();
     {
-        std::vector<uint32_t> fill(vertexFaceOffsets_.begin(), vertexFaceOffsets_.end() - 1);
-        for (uint32_t h = 0; h < H; ++h) vertexOutgoing_[fill[heVertex_[h]]++] = h;
+        std::vector<uint32_t> fill(start, start + V);
+        uint32_t* at = fill.data();
+        for (uint32_t h = 0; h < H; ++h) outgoing[at[heVertex[h]]++] = h;
     }
-    vertexEdgeCount_.assign(vertexCount_, 0);
+    vertexEdgeCount_.assign(V, 0);
+    uint32_t* edgeCount = vertexEdgeCount_.data();
     for (uint32_t e = 0; e < E; ++e) {
-        ++vertexEdgeCount_[edgeVertices_[e][0]];
-        ++vertexEdgeCount_[edgeVertices_[e][1]];
+        ++edgeCount[edgeVertices[e][0]];
+        ++edgeCount[edgeVertices[e][1]];
     }
 
     // Boundary / non-manifold flags and the start of each counter-clockwise fan.
-    vertexFlags_.assign(vertexCount_, 0);
-    vertexFirst_.assign(vertexCount_, kNone);
+    vertexFlags_.assign(V, 0);
+    vertexFirst_.assign(V, kNone);
+    uint8_t* flags = vertexFlags_.data();
+    uint32_t* first = vertexFirst_.data();
     for (uint32_t e = 0; e < E; ++e) {
-        uint8_t flag = edgeNonManifold_[e] ? kNonManifold : edgeFaceCount_[e] == 1 ? kBoundary : 0;
-        vertexFlags_[edgeVertices_[e][0]] |= flag;
-        vertexFlags_[edgeVertices_[e][1]] |= flag;
+        uint8_t flag = edgeNonManifold[e] ? kNonManifold : edgeFaceCount[e] == 1 ? kBoundary : 0;
+        flags[edgeVertices[e][0]] |= flag;
+        flags[edgeVertices[e][1]] |= flag;
     }
-    for (uint32_t v = 0; v < vertexCount_; ++v) {
-        auto out = vertexOutgoing(v);
-        if (out.empty() || (vertexFlags_[v] & kNonManifold)) continue;
+    for (uint32_t v = 0; v < V; ++v) {
+        const uint32_t* out = outgoing + start[v];
+        const uint32_t count = start[v + 1] - start[v];
+        if (count == 0 || (flags[v] & kNonManifold)) continue;
         // Start at a half-edge with no clockwise neighbour (a boundary half-edge leaving v), or
         // anywhere on a closed fan. A manifold vertex's fan must then reach every face once.
-        uint32_t start = out[0];
-        for (uint32_t h : out)
-            if (heTwin_[h] == kNone) {
-                start = h;
+        uint32_t begin = out[0];
+        for (uint32_t i = 0; i < count; ++i)
+            if (heTwin[out[i]] == kNone) {
+                begin = out[i];
                 break;
             }
-        uint32_t reached = 0, h = start;
+        uint32_t reached = 0, h = begin;
         do {
             ++reached;
-            h = rotateCCW(h);
-        } while (h != kNone && h != start && reached <= out.size());
-        bool closed = h == start;
-        bool boundary = vertexFlags_[v] & kBoundary;
-        if (reached != out.size() || closed == boundary) {
-            vertexFlags_[v] |= kNonManifold; // several fans meet here ("bow tie")
+            h = heTwin[prev(h)]; // rotateCCW
+        } while (h != kNone && h != begin && reached <= count);
+        bool closed = h == begin;
+        bool boundary = flags[v] & kBoundary;
+        if (reached != count || closed == boundary) {
+            flags[v] |= kNonManifold; // several fans meet here ("bow tie")
             continue;
         }
-        vertexFirst_[v] = start;
+        first[v] = begin;
     }
 }
 
