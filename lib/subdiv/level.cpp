@@ -181,8 +181,8 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
                 // corners' quads.
                 const uint32_t t = T.twin(h), tp = T.twin(T.prev(h)), q = firstChild[f];
                 twins.push_back(t == kNone ? kNone : across(t, T.next(t), 3));
-                twins.push_back(4 * (q + (k + 1) % n) + 2);
-                twins.push_back(4 * (q + (k + n - 1) % n) + 1);
+                twins.push_back(4 * (q + (k + 1 == n ? 0 : k + 1)) + 2);
+                twins.push_back(4 * (q + (k == 0 ? n - 1 : k - 1)) + 1);
                 twins.push_back(tp == kNone ? kNone : across(tp, tp, 0));
             }
             FaceFrame cf;

@@ -97,21 +97,23 @@ Topology Topology::withTwins(uint32_t vertexCount, std::vector<uint32_t> faceOff
     const uint32_t H = t.halfedgeCount();
     const uint32_t* twin = t.heTwin_.data();
     uint32_t E = 0;
-    for (uint32_t h = 0; h < H; ++h) E += twin[h] == kNone || twin[h] > h;
+    for (uint32_t h = 0; h < H; ++h) E += twin[h] > h; // kNone is above every half-edge
     t.heEdge_.resize(H);
     t.edgeHalfedge_.resize(E);
     t.edgeVertices_.resize(E);
     t.edgeFaceCount_.resize(E);
     t.edgeNonManifold_.assign(E, 0);
-    uint32_t* heEdge = t.heEdge_.data();
+    uint32_t *heEdge = t.heEdge_.data(), *edgeHalfedge = t.edgeHalfedge_.data(), *faceCount = t.edgeFaceCount_.data();
+    std::array<uint32_t, 2>* edgeVertices = t.edgeVertices_.data();
+    const uint32_t* heVertex = t.heVertex_.data();
     for (uint32_t h = 0, e = 0; h < H; ++h) {
         const uint32_t tw = twin[h];
-        if (tw != kNone && tw < h) continue;
+        if (tw < h) continue; // named by its twin
         heEdge[h] = e;
         if (tw != kNone) heEdge[tw] = e;
-        t.edgeHalfedge_[e] = h;
-        t.edgeVertices_[e] = {t.heVertex_[h], t.heVertex_[t.next(h)]};
-        t.edgeFaceCount_[e] = tw == kNone ? 1 : 2;
+        edgeHalfedge[e] = h;
+        edgeVertices[e] = {heVertex[h], heVertex[t.next(h)]};
+        faceCount[e] = tw == kNone ? 1 : 2;
         ++e;
     }
     t.setVertices();
@@ -126,12 +128,14 @@ void Topology::setFaces() {
     const uint32_t* offsets = faceOffsets_.data();
     uint32_t* heFace = heFace_.data();
     bool quads = true;
-    for (uint32_t f = 0; f < F; ++f) {
-        const uint32_t begin = offsets[f], end = offsets[f + 1];
-        quads &= end - begin == 4;
-        for (uint32_t h = begin; h < end; ++h) heFace[h] = f;
-    }
+    for (uint32_t f = 0; f <= F; ++f) quads &= offsets[f] == 4 * f;
     allQuads_ = quads;
+    if (quads) {
+        for (uint32_t h = 0; h < 4 * F; ++h) heFace[h] = h / 4;
+        return;
+    }
+    for (uint32_t f = 0; f < F; ++f)
+        for (uint32_t h = offsets[f]; h < offsets[f + 1]; ++h) heFace[h] = f;
 }
 
 void Topology::setVertices() {
@@ -144,11 +148,6 @@ void Topology::setVertices() {
     const uint32_t* edgeFaceCount = edgeFaceCount_.data();
     const uint8_t* edgeNonManifold = edgeNonManifold_.data();
     const bool quads = allQuads_;
-    auto prev = [&](uint32_t h) {
-        if (quads) return (h & ~3u) | ((h + 3) & 3u);
-        const uint32_t f = heFace[h];
-        return h == faceOffsets[f] ? faceOffsets[f + 1] - 1 : h - 1;
-    };
 
     // Vertex -> outgoing half-edges (CSR, in half-edge order).
     vertexFaceOffsets_.assign(V + 1, 0);
@@ -179,31 +178,43 @@ void Topology::setVertices() {
         flags[edgeVertices[e][0]] |= flag;
         flags[edgeVertices[e][1]] |= flag;
     }
-    for (uint32_t v = 0; v < V; ++v) {
-        const uint32_t* out = outgoing + start[v];
-        const uint32_t count = start[v + 1] - start[v];
-        if (count == 0 || (flags[v] & kNonManifold)) continue;
-        // Start at a half-edge with no clockwise neighbour (a boundary half-edge leaving v), or
-        // anywhere on a closed fan. A manifold vertex's fan must then reach every face once.
-        uint32_t begin = out[0];
-        for (uint32_t i = 0; i < count; ++i)
-            if (heTwin[out[i]] == kNone) {
-                begin = out[i];
-                break;
+    // Each vertex's outgoing half-edges fall into fans: cycles, or paths from a half-edge with
+    // no clockwise neighbour (its twin missing) to one with no counter-clockwise one. A manifold
+    // vertex has one fan, its start the path's first half-edge, or the first outgoing one (in
+    // half-edge order) on a cycle: walk counter-clockwise from that one, and on reaching the end
+    // of a path, clockwise back to its start.
+    auto fans = [&](auto prev) {
+        for (uint32_t v = 0; v < V; ++v) {
+            const uint32_t count = start[v + 1] - start[v];
+            if (count == 0 || (flags[v] & kNonManifold)) continue;
+            const uint32_t h0 = outgoing[start[v]];
+            uint32_t reached = 0, h = h0;
+            do {
+                ++reached;
+                h = heTwin[prev(h)]; // rotateCCW
+            } while (h != kNone && h != h0 && reached <= count);
+            const bool closed = h == h0;
+            uint32_t begin = h0;
+            if (!closed)
+                for (uint32_t t = heTwin[h0]; t != kNone && reached <= count; t = heTwin[begin]) {
+                    begin = quads ? (t & ~3u) | ((t + 1) & 3u) : next(t); // rotateCW
+                    ++reached;
+                }
+            const bool boundary = flags[v] & kBoundary;
+            if (reached != count || closed == boundary) {
+                flags[v] |= kNonManifold; // several fans meet here ("bow tie")
+                continue;
             }
-        uint32_t reached = 0, h = begin;
-        do {
-            ++reached;
-            h = heTwin[prev(h)]; // rotateCCW
-        } while (h != kNone && h != begin && reached <= count);
-        bool closed = h == begin;
-        bool boundary = flags[v] & kBoundary;
-        if (reached != count || closed == boundary) {
-            flags[v] |= kNonManifold; // several fans meet here ("bow tie")
-            continue;
+            first[v] = begin;
         }
-        first[v] = begin;
-    }
+    };
+    if (quads)
+        fans([](uint32_t h) { return (h & ~3u) | ((h + 3) & 3u); });
+    else
+        fans([&](uint32_t h) {
+            const uint32_t f = heFace[h];
+            return h == faceOffsets[f] ? faceOffsets[f + 1] - 1 : h - 1;
+        });
 }
 
 void Topology::vertexRing(uint32_t v, std::vector<uint32_t>& out) const {

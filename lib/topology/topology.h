@@ -59,7 +59,7 @@ class Topology {
     }
     uint32_t destination(uint32_t h) const { return heVertex_[next(h)]; }
     // Index of half-edge h among its face's corners.
-    uint32_t cornerIndex(uint32_t h) const { return h - faceOffsets_[heFace_[h]]; }
+    uint32_t cornerIndex(uint32_t h) const { return allQuads_ ? h & 3u : h - faceOffsets_[heFace_[h]]; }
     // The next outgoing half-edge counter-clockwise around vertex(h) (seen from outside, for
     // counter-clockwise faces): across the edge of prev(h). kNone at a boundary.
     uint32_t rotateCCW(uint32_t h) const {

@@ -26,6 +26,37 @@ Topology rebuilt(const Topology& t) {
     return Topology(t.vertexCount(), offsets, corners);
 }
 
+// The fans as topology.h describes them, found the plain way: a vertex none of whose edges is
+// non-manifold has one fan (walking counter-clockwise from its start reaches every outgoing
+// half-edge), starting at its outgoing half-edge without a twin, or at its first outgoing one
+// where none lacks a twin. Counts the vertices that disagree.
+uint32_t fanMismatches(const Topology& t) {
+    uint32_t bad = 0;
+    for (uint32_t v = 0; v < t.vertexCount(); ++v) {
+        auto out = t.vertexOutgoing(v);
+        if (out.empty()) continue;
+        bool edgesManifold = true;
+        for (uint32_t h : out)
+            edgesManifold &= !t.edgeIsNonManifold(t.edge(h)) && !t.edgeIsNonManifold(t.edge(t.prev(h)));
+        if (!edgesManifold) {
+            bad += !t.vertexIsNonManifold(v);
+            continue;
+        }
+        uint32_t start = out[0], open = 0;
+        for (auto it = out.rbegin(); it != out.rend(); ++it)
+            if (t.twin(*it) == kNone) start = *it, ++open;
+        uint32_t reached = 0, h = start;
+        do {
+            ++reached;
+            h = t.twin(t.prev(h));
+        } while (h != kNone && h != start && reached <= out.size());
+        const bool oneFan = reached == out.size() && open <= 1;
+        bad += t.vertexIsNonManifold(v) == oneFan || t.vertexIsBoundary(v) != (open > 0 || h == kNone);
+        if (oneFan) bad += t.vertexFirstOutgoing(v) != start;
+    }
+    return bad;
+}
+
 } // namespace
 
 // Every catmark shape that imports (non-manifold ones included: their levels take the constructor's path)
@@ -60,6 +91,7 @@ TEST(RefinedTopology, IsTheConstructorsForEveryCatmarkShape) {
             // withTwins given the constructor's own twins gives the constructor's topology
             // (level 0: faces of any size).
             const Topology& t = level.topo;
+            EXPECT_EQ(fanMismatches(t), 0u) << "depth " << depth - 1;
             if (t.nonManifoldEdgeCount() == 0) {
                 std::vector<uint32_t> offsets{0}, corners, twins;
                 for (uint32_t f = 0; f < t.faceCount(); ++f) {
