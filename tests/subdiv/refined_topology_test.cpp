@@ -2,6 +2,7 @@
 // by lib/subdiv/level.cpp) instead of matching edges: it must be the constructor's, array for
 // array, because the tables' bytes follow the constructor's numbering of edges and fans.
 #include "mesh/import.h"
+#include "subdiv/crease_basis.h"
 #include "subdiv/level.h"
 #include "test_support.h"
 #include "topology/features.h"
@@ -104,6 +105,18 @@ TEST(RefinedTopology, IsTheConstructorsForEveryCatmarkShape) {
             }
             Level child = refineLevelTopology(level, selected, options, ptexBase);
             ASSERT_TRUE(child.topo == rebuilt(child.topo)) << "depth " << depth;
+            // The chains' copies of a few faces' one-rings (localLevel) likewise.
+            for (uint32_t f = 0; f < child.topo.faceCount(); f += 1 + child.topo.faceCount() / 8) {
+                std::vector<uint32_t> faces, support;
+                for (uint32_t v : child.topo.faceVertices(f))
+                    for (uint32_t h : child.topo.vertexOutgoing(v)) faces.push_back(child.topo.face(h));
+                for (uint32_t g : faces)
+                    for (uint32_t v : child.topo.faceVertices(g))
+                        if (std::find(support.begin(), support.end(), v) == support.end()) support.push_back(v);
+                uint32_t face0 = 0;
+                const Level copy = localLevel(child, support, faces, f, 0, face0);
+                EXPECT_TRUE(copy.topo == rebuilt(copy.topo)) << "depth " << depth << " face " << f;
+            }
             ++levels;
             level = std::move(child);
         }
