@@ -20,6 +20,9 @@ class Topology {
     // records them (non-manifold edges and vertices, inconsistent orientation).
     Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
              std::span<const uint32_t> faceVertices);
+    // No vertices and no faces: the constructor's topology of an empty mesh, without its work
+    // (every Level starts with one).
+    Topology() : allQuads_(true), faceOffsets_{0}, vertexFaceOffsets_{0} {}
     // The same topology, array for array, for faces whose twins the caller already knows:
     // `twins[h]` is the half-edge opposite h, or kNone where h has none, and every edge is
     // manifold (one half-edge, or two in opposite directions). Catmull-Clark refinement knows
@@ -105,7 +108,6 @@ class Topology {
     uint32_t boundaryEdgeCount() const;
 
   private:
-    Topology() = default;
     void setFaces();    // heFace_ and allQuads_ from faceOffsets_
     void setVertices(); // every vertex array from the half-edges and edges
     enum : uint8_t { kBoundary = 1, kNonManifold = 2 };

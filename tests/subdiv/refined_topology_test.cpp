@@ -122,4 +122,5 @@ TEST(RefinedTopology, IsTheConstructorsForEveryCatmarkShape) {
         }
     }
     EXPECT_GT(levels, 3 * 50u);
+    EXPECT_TRUE(Topology() == Topology(0, std::vector<uint32_t>{0}, {}));
 }
