@@ -152,7 +152,21 @@ Level localLevel(const Level& L, const std::vector<uint32_t>& support, std::vect
         offsets.push_back(uint32_t(corners.size()));
     }
     const uint32_t M = uint32_t(support.size());
-    Topology topo(M, offsets, corners);
+    // The copy's twins are the level's between two copied faces (Topology::withTwins: the
+    // constructor's arrays without matching edges) where the faces' edges are manifold.
+    std::vector<uint32_t> twins;
+    twins.reserve(corners.size());
+    bool manifold = true;
+    for (uint32_t g : faces)
+        for (uint32_t k = 0; k < 4; ++k) {
+            const uint32_t rh = T.faceHalfedge(g) + k, t = T.twin(rh);
+            manifold = manifold && !T.edgeIsNonManifold(T.edge(rh));
+            auto at = t == kNone ? faces.end() : std::lower_bound(faces.begin(), faces.end(), T.face(t));
+            twins.push_back(at == faces.end() || *at != T.face(t) ? kNone
+                                                                  : 4 * uint32_t(at - faces.begin()) + T.cornerIndex(t));
+        }
+    Topology topo = manifold ? Topology::withTwins(M, std::move(offsets), std::move(corners), std::move(twins))
+                             : Topology(M, offsets, corners);
     Sharpness s;
     s.edge.assign(topo.edgeCount(), 0.0f);
     s.vertex.resize(M);

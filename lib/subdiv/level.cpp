@@ -94,13 +94,23 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
 
     // Which parent components get a child vertex.
     std::vector<uint8_t> edgeUsed(E, 0), vertexUsed(V, 0), faceCenter(F, 0);
+    // The children's twins follow from the parent's (below) where every parent edge is manifold
+    // and no selected face runs along an edge twice or along a loop (faces like (a, b, c, b)):
+    // then each child edge is half of one parent edge or joins an edge point to a face point
+    // inside one face, with exactly the half-edges named there.
+    bool twinsFromParent = T.nonManifoldEdgeCount() == 0;
+    std::vector<uint32_t> firstChild(F, kNone), edgeSeenIn(twinsFromParent ? E : 0, kNone);
     uint32_t childFaces = 0; // counted first so that every per-face array is allocated once
     for (uint32_t f = 0; f < F; ++f) {
         if (!selected[f]) continue;
+        firstChild[f] = childFaces;
         childFaces += T.faceSize(f);
         for (uint32_t h = T.faceHalfedge(f); h < T.faceHalfedge(f) + T.faceSize(f); ++h) {
             edgeUsed[T.edge(h)] = 1;
             vertexUsed[T.vertex(h)] = 1;
+            if (!twinsFromParent) continue;
+            if (edgeSeenIn[T.edge(h)] == f || T.vertex(h) == T.destination(h)) twinsFromParent = false;
+            else edgeSeenIn[T.edge(h)] = f;
         }
     }
     for (uint32_t v = 0; v < V; ++v)
@@ -141,9 +151,17 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
 
     // Child faces: corner k of a parent face gives the quad (v_k, e_k, f, e_{k-1}) with child
     // corner 0 at the parent's corner k (OpenSubdiv's child and ptex sub-face convention).
-    std::vector<uint32_t> offsets{0}, corners;
+    std::vector<uint32_t> offsets{0}, corners, twins;
     offsets.reserve(size_t(childFaces) + 1);
     corners.reserve(4 * size_t(childFaces));
+    if (twinsFromParent) twins.reserve(4 * size_t(childFaces));
+    // The child half-edge of a parent half-edge's end `at`, in the face across it: the quad at
+    // that face's corner `at` (slot 0 leaves the corner, slot 3 returns to it); none across a
+    // boundary or into a face that is not refined.
+    auto across = [&](uint32_t t, uint32_t corner, uint32_t slot) {
+        if (t == kNone || firstChild[T.face(t)] == kNone) return kNone;
+        return 4 * (firstChild[T.face(t)] + T.cornerIndex(corner)) + slot;
+    };
     C.frames.reserve(childFaces);
     C.noLimit.reserve(childFaces);
     C.faceParent.reserve(childFaces);
@@ -157,6 +175,16 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
                                edgeChild[T.edge(T.prev(h))]})
                 corners.push_back(c);
             offsets.push_back(static_cast<uint32_t>(corners.size()));
+            if (twinsFromParent) {
+                // Slot 0 is the first half of h, slot 3 the second half of prev(h); slots 1 and
+                // 2 join the edge points to the face point, shared with the next and previous
+                // corners' quads.
+                const uint32_t t = T.twin(h), tp = T.twin(T.prev(h)), q = firstChild[f];
+                twins.push_back(t == kNone ? kNone : across(t, T.next(t), 3));
+                twins.push_back(4 * (q + (k + 1 == n ? 0 : k + 1)) + 2);
+                twins.push_back(4 * (q + (k == 0 ? n - 1 : k - 1)) + 1);
+                twins.push_back(tp == kNone ? kNone : across(tp, tp, 0));
+            }
             FaceFrame cf;
             if (P.depth == 0 && n != 4) { // a non-quad's sub-faces are ptex faces of their own
                 cf.ptex = ptexBase[f] + k;
@@ -177,7 +205,8 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
             C.faceParent.push_back(f);
         }
     }
-    C.topo = Topology(childV, offsets, corners);
+    C.topo = twinsFromParent ? Topology::withTwins(childV, std::move(offsets), std::move(corners), std::move(twins))
+                             : Topology(childV, offsets, corners);
     C.complete.assign(C.topo.faceCount(), 0); // the caller marks the children of refined faces
 
     // Child sharpness (Vtr's subdivideEdgeSharpness / subdivideVertexSharpness) computed from

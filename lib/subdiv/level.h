@@ -26,7 +26,7 @@ enum class VertexOrigin : uint8_t { Base, Face, Edge, Vertex };
 
 struct Level {
     uint32_t depth = 0;
-    Topology topo{0, std::vector<uint32_t>{0}, {}};
+    Topology topo;
     std::vector<float> edgeSharpness;   // per topology edge
     std::vector<float> vertexSharpness; // per vertex
     std::vector<uint8_t> vertexRule;    // VertexRule, valid for complete vertices

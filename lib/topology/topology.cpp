@@ -9,13 +9,7 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
     : vertexCount_(vertexCount), faceOffsets_(faceOffsets.begin(), faceOffsets.end()),
       heVertex_(faceVertices.begin(), faceVertices.end()) {
     const uint32_t H = static_cast<uint32_t>(heVertex_.size());
-    const uint32_t F = faceCount();
-    heFace_.resize(H);
-    allQuads_ = true;
-    for (uint32_t f = 0; f < F; ++f) {
-        if (faceOffsets_[f + 1] - faceOffsets_[f] != 4) allQuads_ = false;
-        for (uint32_t h = faceOffsets_[f]; h < faceOffsets_[f + 1]; ++h) heFace_[h] = f;
-    }
+    setFaces();
 
     // Group half-edges by undirected edge in linear time: bucket them by their smaller vertex
     // (counting sort keeps half-edge order inside a bucket), then match larger vertices within
@@ -87,55 +81,140 @@ Topology::Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
         }
         edgeNonManifold_.push_back(nonManifold);
     }
-    const uint32_t E = static_cast<uint32_t>(edgeVertices_.size());
+    setVertices();
+}
+
+Topology Topology::withTwins(uint32_t vertexCount, std::vector<uint32_t> faceOffsets,
+                             std::vector<uint32_t> faceVertices, std::vector<uint32_t> twins) {
+    Topology t;
+    t.vertexCount_ = vertexCount;
+    t.faceOffsets_ = std::move(faceOffsets);
+    t.heVertex_ = std::move(faceVertices);
+    t.heTwin_ = std::move(twins);
+    t.setFaces();
+    // Edges numbered in order of their first half-edge, as the constructor numbers them: a
+    // half-edge starts an edge unless its twin comes before it (and then already named it).
+    const uint32_t H = t.halfedgeCount();
+    const uint32_t* twin = t.heTwin_.data();
+    uint32_t E = 0;
+    for (uint32_t h = 0; h < H; ++h) E += twin[h] > h; // kNone is above every half-edge
+    t.heEdge_.resize(H);
+    t.edgeHalfedge_.resize(E);
+    t.edgeVertices_.resize(E);
+    t.edgeFaceCount_.resize(E);
+    t.edgeNonManifold_.assign(E, 0);
+    uint32_t *heEdge = t.heEdge_.data(), *edgeHalfedge = t.edgeHalfedge_.data(), *faceCount = t.edgeFaceCount_.data();
+    std::array<uint32_t, 2>* edgeVertices = t.edgeVertices_.data();
+    const uint32_t* heVertex = t.heVertex_.data();
+    for (uint32_t h = 0, e = 0; h < H; ++h) {
+        const uint32_t tw = twin[h];
+        if (tw < h) continue; // named by its twin
+        heEdge[h] = e;
+        if (tw != kNone) heEdge[tw] = e;
+        edgeHalfedge[e] = h;
+        edgeVertices[e] = {heVertex[h], heVertex[t.next(h)]};
+        faceCount[e] = tw == kNone ? 1 : 2;
+        ++e;
+    }
+    t.setVertices();
+    return t;
+}
+
+// The loops below read and write through local pointers: the flag bytes they store could alias
+// the vectors' own pointers for the compiler, which would reload them at every step.
+void Topology::setFaces() {
+    const uint32_t F = faceCount();
+    heFace_.resize(heVertex_.size());
+    const uint32_t* offsets = faceOffsets_.data();
+    uint32_t* heFace = heFace_.data();
+    bool quads = true;
+    for (uint32_t f = 0; f <= F; ++f) quads &= offsets[f] == 4 * f;
+    allQuads_ = quads;
+    if (quads) {
+        for (uint32_t h = 0; h < 4 * F; ++h) heFace[h] = h / 4;
+        return;
+    }
+    for (uint32_t f = 0; f < F; ++f)
+        for (uint32_t h = offsets[f]; h < offsets[f + 1]; ++h) heFace[h] = f;
+}
+
+void Topology::setVertices() {
+    const uint32_t H = halfedgeCount(), E = edgeCount(), V = vertexCount_;
+    const uint32_t* heVertex = heVertex_.data();
+    const uint32_t* heTwin = heTwin_.data();
+    const uint32_t* heFace = heFace_.data();
+    const uint32_t* faceOffsets = faceOffsets_.data();
+    const std::array<uint32_t, 2>* edgeVertices = edgeVertices_.data();
+    const uint32_t* edgeFaceCount = edgeFaceCount_.data();
+    const uint8_t* edgeNonManifold = edgeNonManifold_.data();
+    const bool quads = allQuads_;
 
     // Vertex -> outgoing half-edges (CSR, in half-edge order).
-    vertexFaceOffsets_.assign(vertexCount_ + 1, 0);
-    for (uint32_t h = 0; h < H; ++h) ++vertexFaceOffsets_[heVertex_[h] + 1];
-    for (uint32_t v = 0; v < vertexCount_; ++v) vertexFaceOffsets_[v + 1] += vertexFaceOffsets_[v];
+    vertexFaceOffsets_.assign(V + 1, 0);
+    uint32_t* start = vertexFaceOffsets_.data();
+    for (uint32_t h = 0; h < H; ++h) ++start[heVertex[h] + 1];
+    for (uint32_t v = 0; v < V; ++v) start[v + 1] += start[v];
     vertexOutgoing_.resize(H);
+    uint32_t* outgoing = vertexOutgoing_.data();
     {
-        std::vector<uint32_t> fill(vertexFaceOffsets_.begin(), vertexFaceOffsets_.end() - 1);
-        for (uint32_t h = 0; h < H; ++h) vertexOutgoing_[fill[heVertex_[h]]++] = h;
+        std::vector<uint32_t> fill(start, start + V);
+        uint32_t* at = fill.data();
+        for (uint32_t h = 0; h < H; ++h) outgoing[at[heVertex[h]]++] = h;
     }
-    vertexEdgeCount_.assign(vertexCount_, 0);
+    vertexEdgeCount_.assign(V, 0);
+    uint32_t* edgeCount = vertexEdgeCount_.data();
     for (uint32_t e = 0; e < E; ++e) {
-        ++vertexEdgeCount_[edgeVertices_[e][0]];
-        ++vertexEdgeCount_[edgeVertices_[e][1]];
+        ++edgeCount[edgeVertices[e][0]];
+        ++edgeCount[edgeVertices[e][1]];
     }
 
     // Boundary / non-manifold flags and the start of each counter-clockwise fan.
-    vertexFlags_.assign(vertexCount_, 0);
-    vertexFirst_.assign(vertexCount_, kNone);
+    vertexFlags_.assign(V, 0);
+    vertexFirst_.assign(V, kNone);
+    uint8_t* flags = vertexFlags_.data();
+    uint32_t* first = vertexFirst_.data();
     for (uint32_t e = 0; e < E; ++e) {
-        uint8_t flag = edgeNonManifold_[e] ? kNonManifold : edgeFaceCount_[e] == 1 ? kBoundary : 0;
-        vertexFlags_[edgeVertices_[e][0]] |= flag;
-        vertexFlags_[edgeVertices_[e][1]] |= flag;
+        uint8_t flag = edgeNonManifold[e] ? kNonManifold : edgeFaceCount[e] == 1 ? kBoundary : 0;
+        flags[edgeVertices[e][0]] |= flag;
+        flags[edgeVertices[e][1]] |= flag;
     }
-    for (uint32_t v = 0; v < vertexCount_; ++v) {
-        auto out = vertexOutgoing(v);
-        if (out.empty() || (vertexFlags_[v] & kNonManifold)) continue;
-        // Start at a half-edge with no clockwise neighbour (a boundary half-edge leaving v), or
-        // anywhere on a closed fan. A manifold vertex's fan must then reach every face once.
-        uint32_t start = out[0];
-        for (uint32_t h : out)
-            if (heTwin_[h] == kNone) {
-                start = h;
-                break;
+    // Each vertex's outgoing half-edges fall into fans: cycles, or paths from a half-edge with
+    // no clockwise neighbour (its twin missing) to one with no counter-clockwise one. A manifold
+    // vertex has one fan, its start the path's first half-edge, or the first outgoing one (in
+    // half-edge order) on a cycle: walk counter-clockwise from that one, and on reaching the end
+    // of a path, clockwise back to its start.
+    auto fans = [&](auto prev) {
+        for (uint32_t v = 0; v < V; ++v) {
+            const uint32_t count = start[v + 1] - start[v];
+            if (count == 0 || (flags[v] & kNonManifold)) continue;
+            const uint32_t h0 = outgoing[start[v]];
+            uint32_t reached = 0, h = h0;
+            do {
+                ++reached;
+                h = heTwin[prev(h)]; // rotateCCW
+            } while (h != kNone && h != h0 && reached <= count);
+            const bool closed = h == h0;
+            uint32_t begin = h0;
+            if (!closed)
+                for (uint32_t t = heTwin[h0]; t != kNone && reached <= count; t = heTwin[begin]) {
+                    begin = quads ? (t & ~3u) | ((t + 1) & 3u) : next(t); // rotateCW
+                    ++reached;
+                }
+            const bool boundary = flags[v] & kBoundary;
+            if (reached != count || closed == boundary) {
+                flags[v] |= kNonManifold; // several fans meet here ("bow tie")
+                continue;
             }
-        uint32_t reached = 0, h = start;
-        do {
-            ++reached;
-            h = rotateCCW(h);
-        } while (h != kNone && h != start && reached <= out.size());
-        bool closed = h == start;
-        bool boundary = vertexFlags_[v] & kBoundary;
-        if (reached != out.size() || closed == boundary) {
-            vertexFlags_[v] |= kNonManifold; // several fans meet here ("bow tie")
-            continue;
+            first[v] = begin;
         }
-        vertexFirst_[v] = start;
-    }
+    };
+    if (quads)
+        fans([](uint32_t h) { return (h & ~3u) | ((h + 3) & 3u); });
+    else
+        fans([&](uint32_t h) {
+            const uint32_t f = heFace[h];
+            return h == faceOffsets[f] ? faceOffsets[f + 1] - 1 : h - 1;
+        });
 }
 
 void Topology::vertexRing(uint32_t v, std::vector<uint32_t>& out) const {

@@ -20,6 +20,18 @@ class Topology {
     // records them (non-manifold edges and vertices, inconsistent orientation).
     Topology(uint32_t vertexCount, std::span<const uint32_t> faceOffsets,
              std::span<const uint32_t> faceVertices);
+    // No vertices and no faces: the constructor's topology of an empty mesh, without its work
+    // (every Level starts with one).
+    Topology() : allQuads_(true), faceOffsets_{0}, vertexFaceOffsets_{0} {}
+    // The same topology, array for array, for faces whose twins the caller already knows:
+    // `twins[h]` is the half-edge opposite h, or kNone where h has none, and every edge is
+    // manifold (one half-edge, or two in opposite directions). Catmull-Clark refinement knows
+    // its children's twins from the parent's (level.cpp), which saves matching the edges, the
+    // costliest part of the constructor, on every refined level.
+    static Topology withTwins(uint32_t vertexCount, std::vector<uint32_t> faceOffsets,
+                              std::vector<uint32_t> faceVertices, std::vector<uint32_t> twins);
+
+    bool operator==(const Topology&) const = default;
 
     uint32_t vertexCount() const { return vertexCount_; }
     uint32_t faceCount() const { return static_cast<uint32_t>(faceOffsets_.size() - 1); }
@@ -50,7 +62,7 @@ class Topology {
     }
     uint32_t destination(uint32_t h) const { return heVertex_[next(h)]; }
     // Index of half-edge h among its face's corners.
-    uint32_t cornerIndex(uint32_t h) const { return h - faceOffsets_[heFace_[h]]; }
+    uint32_t cornerIndex(uint32_t h) const { return allQuads_ ? h & 3u : h - faceOffsets_[heFace_[h]]; }
     // The next outgoing half-edge counter-clockwise around vertex(h) (seen from outside, for
     // counter-clockwise faces): across the edge of prev(h). kNone at a boundary.
     uint32_t rotateCCW(uint32_t h) const {
@@ -96,8 +108,10 @@ class Topology {
     uint32_t boundaryEdgeCount() const;
 
   private:
+    void setFaces();    // heFace_ and allQuads_ from faceOffsets_
+    void setVertices(); // every vertex array from the half-edges and edges
     enum : uint8_t { kBoundary = 1, kNonManifold = 2 };
-    uint32_t vertexCount_;
+    uint32_t vertexCount_ = 0;
     bool allQuads_ = false; // every face has 4 corners, so face f's half-edges are 4f..4f+3
     std::vector<uint32_t> faceOffsets_;
     std::vector<uint32_t> heVertex_, heFace_, heEdge_, heTwin_;
