@@ -1,5 +1,6 @@
 #include "subdiv/crease_basis.h"
 
+#include "subdiv/support_index.h"
 #include "subdiv/tables_build.h"
 
 #include <algorithm>
@@ -46,22 +47,15 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
         key.push_back(value);
         if (sources) sources->push_back(source);
     };
-    // Support indices by vertex in a small open-addressing table (at most a quarter full): this
-    // runs for every corner tried of every irregular face at level N and for every band.
-    constexpr size_t kMaxSupport = 2 * size_t(kMaxBasisValence) + 8, kSlots = 1024;
-    static_assert(kSlots >= 4 * (kMaxSupport + 4));
-    std::array<uint32_t, kSlots> slotVertex, slotIndex;
-    slotVertex.fill(kNone);
-    auto index = [&](uint32_t v) -> uint32_t {
-        for (size_t i = (v * 0x9E3779B1u) >> 22;; i = (i + 1) & (kSlots - 1)) {
-            if (slotVertex[i] == v) return slotIndex[i];
-            if (slotVertex[i] == kNone) {
-                slotVertex[i] = v;
-                slotIndex[i] = uint32_t(support.size());
-                support.push_back(v);
-                return slotIndex[i];
-            }
-        }
+    // Support indices by vertex (SupportIndex): this runs for every corner tried of every
+    // irregular face at level N and for every band.
+    constexpr size_t kMaxSupport = 2 * size_t(kMaxBasisValence) + 8;
+    static_assert(kMaxSupport + 4 <= SupportIndex::kMaxVertices);
+    SupportIndex indexOf(kMaxSupport + 4); // a face past kMaxSupport adds at most 4 before the check
+    auto index = [&](uint32_t v) {
+        const auto [i, added] = indexOf.insert(v, uint32_t(support.size()));
+        if (added) support.push_back(v);
+        return i;
     };
     std::array<uint32_t, kMaxBasisValence + 1> fan;
     for (int j = 0; j < 4; ++j) {

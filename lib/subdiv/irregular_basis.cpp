@@ -4,6 +4,7 @@
 #include "base/warnings.h"
 #include "mesh/mesh.h"
 #include "subdiv/evaluate.h"
+#include "subdiv/support_index.h"
 #include "subdiv/tables_build.h"
 
 #include <algorithm>
@@ -41,26 +42,12 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence, s
     const uint32_t h0f = T.faceHalfedge(f);
     const uint32_t corners[4] = {T.vertex(h0f), T.vertex(h0f + 1), T.vertex(h0f + 2), T.vertex(h0f + 3)};
     auto atCorner = [&](uint32_t v) { return v == corners[0] || v == corners[1] || v == corners[2] || v == corners[3]; };
-    // This runs once per irregular face of the last level (hundreds of thousands on a scanned
-    // mesh), so it avoids searching: the support's vertices go into a small open-addressing set
-    // (at most half full), and faces met a second time are skipped, as they add no vertex. Fan j
-    // (j >= 1) starts with f and then the face across edge (j-1, j), the last face of fan j-1;
-    // fan 3 ends with the face across edge (3, 0), the second of fan 0.
+    // Faces met a second time are skipped, as they add no vertex (SupportIndex: this runs once
+    // per irregular face of the last level). Fan j (j >= 1) starts with f and then the face
+    // across edge (j-1, j), the last face of fan j-1; fan 3 ends with the face across edge
+    // (3, 0), the second of fan 0.
     const size_t M = 2 * size_t(valence) + 8;
-    size_t slots = 16;
-    while (slots < 2 * M) slots *= 2;
-    std::array<uint32_t, 512> set; // 2 M <= 272 for valences up to kMaxBasisValence
-    std::fill_n(set.begin(), slots, kNone);
-    const int bits = std::countr_zero(slots);
-    auto insert = [&](uint32_t v) { // false if already there
-        for (size_t i = (v * 0x9E3779B1u) >> (32 - bits);; i = (i + 1) & (slots - 1)) {
-            if (set[i] == v) return false;
-            if (set[i] == kNone) {
-                set[i] = v;
-                return true;
-            }
-        }
-    };
+    SupportIndex inSupport(M);
     for (int j = 0; j < 4; ++j) {
         const uint32_t h0 = T.faceHalfedge(f) + (fr.rotation + ev + j) % 4;
         uint32_t h = h0;
@@ -77,7 +64,7 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence, s
                     if (L.edgeSharpness[T.edge(x)] != 0 &&
                         (!featuresBeyondCorners || atCorner(v) || atCorner(T.vertex(T.next(x)))))
                         return false;
-                    if (!insert(v)) continue;
+                    if (!inSupport.insert(v, uint32_t(support.size())).second) continue;
                     if ((L.vertexSharpness[v] != 0 && (!featuresBeyondCorners || atCorner(v))) || support.size() == M)
                         return false;
                     support.push_back(v);
