@@ -116,13 +116,14 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t levels, c
 // band's kinds (IrregularBasis::kinds): its bands' programs run on weights instead of points
 // (double sums in each program's order, rounded to float once), boundary quadrants' phantom
 // points folded into the weights as gatherControlPoints makes them (so only a crease's bits and
-// sharpness remain of a kind), and then, to band K, a Smooth end's per-valence basis (`valence`
-// basis built for the bands left, composed with the end's next support) or a Regular end's
+// sharpness remain of a kind), and then, to band K, a Smooth end's per-valence basis (the
+// `valence` basis's one-level program run again from the end's next support, band after band,
+// as expandIrregularBasis runs it) or a Regular end's
 // B-spline patch split into its quadrants band by band (uniform knot insertion: (1, 1)/2 and
 // (1, 6, 1)/8); a Leaf end has its K bands already. False, and nothing usable, for a Regular
 // end whose patch has a crease: such faces are refined as before.
-// `endBasis` (a Smooth end's): the valence's basis, with at least the bands left (built here
-// where it is not given). Throws std::logic_error where it is not that valence's.
+// `endBasis` (a Smooth end's): the valence's basis with its program (built here where it is not
+// given or has none). Throws std::logic_error where it is not that valence's.
 bool expandCreaseChain(const CreaseChain& chain, uint32_t levels, IrregularBasis& out,
                        const IrregularBasis* endBasis = nullptr);
 

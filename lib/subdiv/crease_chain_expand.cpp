@@ -130,11 +130,11 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
     cur.assign(M, M);
     for (size_t i = 0; i < M; ++i) cur.row(i)[i] = 1.0;
     uint32_t k = 0;
-    for (const CreaseBand& band : chain.bands) {
+    // One band: program p over the support `cur` (as weights of the face's M points), its three
+    // quadrants' patches stored with `kinds`, and the next band's support into `cur`.
+    auto runBand = [&](const BasisProgram& p, const std::array<CreaseBandKind, 3>& kinds) {
         ++k;
-        const BasisProgram& p = band.program;
         const size_t S = cur.rows();
-        if (band.support != S) throw std::logic_error("crease chain: a band's support is not the last band's next");
         rows.assign(p.rows(), M, false);
         const size_t W = rows.W;
         for (uint32_t r = 0; r < p.rows(); ++r) {
@@ -159,16 +159,22 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
             }
         }
         for (int q = 0; q < 3; ++q) {
-            patchWeights(p.controlRow.data() + 16 * q, band.kind[size_t(q)].boundary, rows, P);
+            patchWeights(p.controlRow.data() + 16 * q, kinds[size_t(q)].boundary, rows, P);
             storePatch(k, q, P);
-            out.kinds[size_t(k - 1) * 3 + size_t(q)] = {0, band.kind[size_t(q)].crease, band.kind[size_t(q)].sharpness};
+            out.kinds[size_t(k - 1) * 3 + size_t(q)] = {0, kinds[size_t(q)].crease, kinds[size_t(q)].sharpness};
         }
         next.assign(p.nextSupport.size(), M, false);
         for (size_t i = 0; i < p.nextSupport.size(); ++i)
             std::copy(rows.row(p.nextSupport[i]), rows.row(p.nextSupport[i]) + W, next.row(i));
+        std::swap(cur, next);
+    };
+    for (const CreaseBand& band : chain.bands) {
+        if (band.support != cur.rows())
+            throw std::logic_error("crease chain: a band's support is not the last band's next");
+        runBand(band.program, band.kind);
+        // `rows` still holds this band's rows.
         if (&band == &chain.bands.back() && chain.end == CreaseEnd::Regular)
             patchWeights(band.centreRow.data(), band.centreKind.boundary, rows, P);
-        std::swap(cur, next);
     }
     if (chain.end == CreaseEnd::Regular) {
         // The corner's patch P, split: its quadrants 1..3 are band k's, its corner quadrant the next P.
@@ -188,26 +194,24 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
             splitAlongV(T0, 0, Q);
             std::swap(P, Q);
         }
-    } else if (k < K) { // Smooth: the per-valence basis over the end's next support
+    } else if (k < K) {
+        // Smooth: the crease has decayed and the corner's child is a smooth face of its valence,
+        // whose bands are that valence's one-level program run again and again
+        // (expandIrregularBasis) — here on the end's next support as weights of the face's own
+        // points, so each weight is still rounded to float once (the program, not the basis's
+        // float weights composed with the support: 4-5x fewer operations around a pole).
         IrregularBasis built;
-        if (!endBasis) built = buildIrregularBasis(chain.valence, K - k);
-        const IrregularBasis* found = endBasis ? endBasis : &built;
-        if (found->valence != chain.valence || found->configuration.boundary || found->levels < K - k ||
-            !found->kinds.empty())
+        const IrregularBasis* found = endBasis;
+        if (!found || found->program.rows() == 0) {
+            built = buildIrregularBasis(chain.valence, K - k);
+            found = &built;
+        }
+        if (found->valence != chain.valence || found->configuration.boundary || !found->kinds.empty())
             throw std::logic_error("crease chain: a smooth end's basis is not its valence's");
-        const IrregularBasis& b = *found;
-        const size_t m = b.supportSize();
-        if (cur.rows() != m) throw std::logic_error("crease chain: a smooth end's support is not the basis's");
-        for (uint32_t kb = 1; kb <= K - k; ++kb) // a basis's band kb is the same for any level count
-            for (int q = 0; q < 3; ++q) {
-                const float* w = b.weights.data() + (size_t(kb - 1) * 3 + size_t(q)) * 16 * m;
-                P.assign(16, M);
-                for (int j = 0; j < 16; ++j)
-                    for (size_t s = 0; s < m; ++s)
-                        if (const double x = double(w[size_t(j) * m + s]); x != 0)
-                            addScaled(P.row(size_t(j)), x, cur.row(s), P.W);
-                storePatch(k + kb, q, P);
-            }
+        if (cur.rows() != found->supportSize())
+            throw std::logic_error("crease chain: a smooth end's support is not the basis's");
+        const std::array<CreaseBandKind, 3> smooth{};
+        while (k < K) runBand(found->program, smooth);
     }
     return true;
 }

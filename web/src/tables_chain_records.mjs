@@ -3,9 +3,9 @@
 // of configuration code 2 holds a chain's bands (programs shared across the chunk's chains, three
 // quadrant kinds each) and its end, expanded here to the K x 48 x M weights limn-tables computes,
 // bit for bit (double sums in program order, phantoms 2 a - b, a regular end's patch split
-// band by band, a smooth end composed with its named per-valence basis, each weight rounded to
-// float once), plus per band and quadrant the crease bits and sharpness. Every field is checked
-// as the C++ reader checks it.
+// band by band, a smooth end's bands its named per-valence basis's program run again, each
+// weight rounded to float once), plus per band and quadrant the crease bits and sharpness. Every
+// field is checked as the C++ reader checks it.
 import { MAX_STENCIL_WEIGHT, Stream } from './tables_stream.mjs';
 import { readDictionaryProgram } from './tables_program_dictionary.mjs';
 
@@ -125,13 +125,14 @@ function expandChain(chain, K, M, endBasis) {
   const weights = new Float32Array(K * 48 * M);
   const crease = new Uint8Array(K * 3), sharpness = new Float32Array(K * 3);
   const store = (k, q, P) => weights.set(P, ((k - 1) * 3 + q) * 16 * M);
-  let cur = new Float64Array(M * M), S = M, P = null, k = 0;
+  let cur = new Float64Array(M * M), S = M, P = null, k = 0, values = null;
   for (let i = 0; i < M; i++) cur[i * M + i] = 1;
-  chain.bands.forEach((band, index) => {
+  // One band: program p over the support `cur`, its quadrants' patches stored with `kinds`, the
+  // next band's support into `cur` (`values` keeps the band's rows).
+  const runBand = (p, kinds) => {
     k++;
-    const p = band.program;
-    const values = new Float64Array(p.rows * M);
-    for (let r = 0; r < p.rows; r++) {
+    values = new Float64Array(p.averaged.length * M);
+    for (let r = 0; r < p.averaged.length; r++) {
       const o = r * M;
       for (let e = p.start[r]; e < p.start[r + 1]; e++) {
         const s = p.source[e], from = s < S ? cur : values, at = (s < S ? s : s - S) * M;
@@ -144,15 +145,18 @@ function expandChain(chain, K, M, endBasis) {
       }
     }
     for (let q = 0; q < 3; q++) {
-      store(k, q, patchWeights(p.controlRow.slice(16 * q, 16 * q + 16), band.kinds[q].boundary, values, M));
-      crease[(k - 1) * 3 + q] = band.kinds[q].crease;
-      sharpness[(k - 1) * 3 + q] = band.kinds[q].sharpness;
+      store(k, q, patchWeights(p.controlRow.slice(16 * q, 16 * q + 16), kinds[q].boundary, values, M));
+      crease[(k - 1) * 3 + q] = kinds[q].crease;
+      sharpness[(k - 1) * 3 + q] = kinds[q].sharpness;
     }
     const next = new Float64Array(p.nextSupport.length * M);
     p.nextSupport.forEach((row, i) => next.set(values.subarray(row * M, row * M + M), i * M));
-    if (index === chain.bands.length - 1 && chain.end === 2) P = patchWeights(chain.centreRow, chain.centreKind.boundary, values, M);
     cur = next;
     S = p.nextSupport.length;
+  };
+  chain.bands.forEach((band, index) => {
+    runBand(band.program, band.kinds);
+    if (index === chain.bands.length - 1 && chain.end === 2) P = patchWeights(chain.centreRow, chain.centreKind.boundary, values, M);
   });
   if (chain.end === 2) {
     for (++k; k <= K; k++) {
@@ -161,20 +165,11 @@ function expandChain(chain, K, M, endBasis) {
       store(k, 2, splitPatch(P, 0, 1, M));
       P = splitPatch(P, 0, 0, M);
     }
-  } else if (chain.end === 1 && k < K) {
-    const m = endBasis.support;
-    for (let kb = 1; kb <= K - k; kb++)
-      for (let q = 0; q < 3; q++) {
-        const base = ((kb - 1) * 3 + q) * 16 * m;
-        const C = new Float64Array(16 * M);
-        for (let j = 0; j < 16; j++)
-          for (let s = 0; s < m; s++) {
-            const x = endBasis.weights[base + j * m + s];
-            if (x === 0) continue;
-            for (let i = 0; i < M; i++) C[j * M + i] += x * cur[s * M + i];
-          }
-        store(k + kb, q, C);
-      }
+  } else if (chain.end === 1) {
+    // The crease has decayed: the smooth face's valence program again and again on the end's
+    // support (crease_chain_expand.cpp), each weight rounded to float once.
+    const smooth = [0, 1, 2].map(() => ({ boundary: 0, crease: 0, sharpness: 0 }));
+    while (k < K) runBand(endBasis.program, smooth);
   }
   return { weights, crease, sharpness };
 }

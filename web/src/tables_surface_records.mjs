@@ -97,7 +97,7 @@ export function readConfigurationBasis(r, what, earlier, chains = null, dictiona
   const weights = expandBasis(program, M, levels);
   const [lo, hi] = boundary ? [-4, 5] : [0, 1];
   for (const w of weights) if (!(w >= lo && w <= hi)) r.fail(`${what} has a weight outside [${lo}, ${hi}]`);
-  return { valence, code, boundary, levels, support: M, weights };
+  return { valence, code, boundary, levels, support: M, weights, program };
 }
 
 // A program alone (u32 palette size, the palette, the stream) over M support points, with
