@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <set>
+#include <stdexcept>
 
 namespace limn::render {
 
@@ -222,6 +223,8 @@ void packIrregularQuadtrees(const Tables& t, SubdivisionDraw& d) {
         next += 1 + (t.irregularBases[t.smoothIrregular[i].basis].supportSize() + 15) / 16;
     }
     for (size_t b = 0; b < t.irregularBases.size(); ++b) {
+        if (!t.irregularBases[b].hasWeights())
+            throw std::logic_error("tables built without their bases' weights (TablesOptions::basisWeights) drawn");
         basisFirst[b] = next;
         next += t.irregularBases[b].levels * 3 * t.irregularBases[b].supportSize();
     }

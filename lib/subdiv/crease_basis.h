@@ -124,7 +124,9 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t levels, c
 // end whose patch has a crease: such faces are refined as before.
 // `endBasis` (a Smooth end's): the valence's basis with its program (built here where it is not
 // given or has none). Throws std::logic_error where it is not that valence's.
+// `weights` false (TablesOptions::basisWeights): the same checks, levels, support and kinds,
+// without the weights.
 bool expandCreaseChain(const CreaseChain& chain, uint32_t levels, IrregularBasis& out,
-                       const IrregularBasis* endBasis = nullptr);
+                       const IrregularBasis* endBasis = nullptr, bool weights = true);
 
 } // namespace limn

@@ -104,7 +104,8 @@ void splitAlongV(const WeightRows& T, int hv, WeightRows& Q) {
 
 } // namespace
 
-bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out, const IrregularBasis* endBasis) {
+bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out, const IrregularBasis* endBasis,
+                       bool weights) {
     out = IrregularBasis{};
     // A leaf end's K bands are all there is: within 2^-K of the corner evaluateIrregular blends
     // the corner's limit point and band K's sub-patches at their corners, as the quadtree's leaf
@@ -118,6 +119,18 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
     // Every band's three patches are stored in order (band k, quadrant q at (3 (k - 1) + q) 16 M).
     out.weights.reserve(size_t(K) * 3 * 16 * M);
     out.kinds.assign(size_t(K) * 3, CreaseBandKind{});
+    if (!weights) { // the bands' kinds and the supports' sizes only
+        size_t S = M;
+        for (size_t b = 0; b < chain.bands.size(); ++b) {
+            const CreaseBand& band = chain.bands[b];
+            if (band.support != S) throw std::logic_error("crease chain: a band's support is not the last band's next");
+            for (size_t q = 0; q < 3; ++q) out.kinds[b * 3 + q] = {0, band.kind[q].crease, band.kind[q].sharpness};
+            S = band.program.nextSupport.size();
+        }
+        if (chain.end == CreaseEnd::Smooth && chain.bands.size() < K && S != 2 * size_t(chain.valence) + 8)
+            throw std::logic_error("crease chain: a smooth end's support is not the basis's");
+        return true;
+    }
     auto storePatch = [&](uint32_t k, int q, const WeightRows& P) {
         if (out.weights.size() != (size_t(k - 1) * 3 + size_t(q)) * 16 * M)
             throw std::logic_error("crease chain: patches stored out of order");

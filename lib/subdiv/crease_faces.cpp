@@ -141,8 +141,8 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                         if (of.size() <= chain->valence) of.resize(chain->valence + 1, -1);
                         if (of[chain->valence] == -1) {
                             try {
-                                a.bases.push_back(buildIrregularBasis(chain->valence, std::max(a.K, basisLevels)));
-                                of[chain->valence] = int(a.bases.size() - 1);
+                                of[chain->valence] = addBasis(
+                                    a, buildIrregularBasis(chain->valence, std::max(a.K, basisLevels), opts.basisWeights));
                             } catch (const std::exception&) {
                                 of[chain->valence] = -2;
                             }
@@ -151,10 +151,10 @@ void takeCreaseFaces(const Level& L, const SchemeOptions& options, const TablesO
                         chain->endBasis = uint32_t(end);
                     }
                     if ((chain->end != CreaseEnd::Smooth || end >= 0) &&
-                        expandCreaseChain(*chain, a.K, basis, end >= 0 ? &a.bases[size_t(end)] : nullptr)) {
+                        expandCreaseChain(*chain, a.K, basis, end >= 0 ? &a.bases[size_t(end)] : nullptr,
+                                          opts.basisWeights)) {
                         basis.chain = std::move(chain);
-                        a.bases.push_back(std::move(basis));
-                        b->second = int(a.bases.size() - 1);
+                        b->second = addBasis(a, std::move(basis));
                     }
                 }
                 if (b->second < 0) continue;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 namespace limn {
 
@@ -185,6 +186,8 @@ void smoothSubPatchControlPoints(const Tables& t, uint32_t smooth, std::span<con
                                  uint32_t q, glm::dvec3 P[4][4]) {
     const Tables::SmoothIrregular& f = t.smoothIrregular[smooth];
     const IrregularBasis& b = t.irregularBases[f.basis];
+    if (!b.hasWeights())
+        throw std::logic_error("tables built without their bases' weights (TablesOptions::basisWeights) evaluated");
     const uint32_t M = b.supportSize();
     const float* w = b.weights.data() + (size_t(k - 1) * 3 + (q - 1)) * 16 * M;
     // Relative to the first support point, as the shader's derivatives are: a row's float weights

@@ -192,9 +192,9 @@ namespace {
 using SupportOf = bool (*)(const Level& L, uint32_t f, const void* context, std::vector<uint32_t>& support);
 
 // One level of Catmull-Clark under face `face0` of `m` (its corner 0 the extraordinary vertex),
-// as a program over face0's support, and the weights of K bands expanded from it.
+// as a program over face0's support, and (`weights`) the weights of K bands expanded from it.
 IrregularBasis basisFromMesh(const Mesh& m, const SchemeOptions& options, uint32_t face0, uint32_t n, uint32_t K,
-                             SupportOf supportOf, const void* context, bool boundary) {
+                             SupportOf supportOf, const void* context, bool boundary, bool weights) {
     Warnings warnings;
     // The table builder's refinement under face 0, one level deep: it refines the faces around
     // face 0's corners (the builder's isolation, oneRing); three children of face 0 are band 1's
@@ -305,7 +305,7 @@ IrregularBasis basisFromMesh(const Mesh& m, const SchemeOptions& options, uint32
     }
     for (uint32_t v : supports[1]) p.nextSupport.push_back(row[v]);
     if (boundary) basis.support = uint32_t(M);
-    basis.weights = expandIrregularBasis(p, uint32_t(M), K);
+    if (weights) basis.weights = expandIrregularBasis(p, uint32_t(M), K);
     return basis;
 }
 
@@ -390,15 +390,15 @@ std::vector<uint32_t> stencilRows(const Level& L, const LevelStencils& st, const
     return row;
 }
 
-IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K) {
+IrregularBasis buildIrregularBasis(uint32_t n, uint32_t K, bool weights) {
     if (n < 3 || n > kMaxBasisValence || K < 1 || K > uint32_t(kMaxDepth))
         throw std::logic_error("irregular basis: valence or levels out of range");
-    IrregularBasis b = basisFromMesh(irregularBasisMesh(n), SchemeOptions{}, 0, n, K, interiorSupport, &n, false);
+    IrregularBasis b = basisFromMesh(irregularBasisMesh(n), SchemeOptions{}, 0, n, K, interiorSupport, &n, false, weights);
     b.configuration = {n, false, 0, false};
     return b;
 }
 
-IrregularBasis buildBoundaryBasis(const BasisConfiguration& c, uint32_t K, BoundaryRule rule) {
+IrregularBasis buildBoundaryBasis(const BasisConfiguration& c, uint32_t K, BoundaryRule rule, bool weights) {
     if (!c.boundary || c.valence < 1 || c.valence > kMaxBasisValence || c.position >= c.valence || K < 1 ||
         K > uint32_t(kMaxDepth))
         throw std::logic_error("boundary basis: configuration or levels out of range");
@@ -422,7 +422,7 @@ IrregularBasis buildBoundaryBasis(const BasisConfiguration& c, uint32_t K, Bound
         std::vector<uint32_t> support, signature;
         if (!boundarySupport(base, j * 9, corner, x, support, signature) || corner != 0 || !(x == c)) continue;
         context.signature = signature;
-        IrregularBasis b = basisFromMesh(m, options, j * 9, c.valence, K, boundarySupportOf, &context, true);
+        IrregularBasis b = basisFromMesh(m, options, j * 9, c.valence, K, boundarySupportOf, &context, true, weights);
         b.configuration = c;
         b.signature = std::move(context.signature);
         return b;

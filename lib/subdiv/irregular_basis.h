@@ -93,6 +93,11 @@ struct IrregularBasis {
     // boundarySupport's signature; a face whose signature differs is refined instead.
     std::vector<uint32_t> signature;
     uint32_t supportSize() const { return support ? support : 2 * valence + 8; }
+    // The weights' count: K bands of three sub-patches' 16 rows of supportSize().
+    size_t weightCount() const { return size_t(levels) * 48 * supportSize(); }
+    // Whether the weights are there (tables built with TablesOptions::basisWeights off, to be
+    // written only, have none: a renderer or evaluator refuses them).
+    bool hasWeights() const { return weights.size() == weightCount(); }
 };
 
 // The mesh a basis is refined from: three rings of quads around a valence-n vertex (vertex 0),
@@ -103,8 +108,8 @@ Mesh irregularBasisMesh(uint32_t valence);
 Mesh basisConfigurationMesh(uint32_t valence, bool boundary);
 
 // Builds the basis of valence n (3..kMaxBasisValence) for K levels (1..16): its program, and the
-// weights expanded from it. Throws on failure.
-IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);
+// weights expanded from it (`weights` false: none, TablesOptions::basisWeights). Throws on failure.
+IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels, bool weights = true);
 
 // The same for a boundary configuration (boundarySupport's), from a generated mesh of three rings
 // of quads around a boundary vertex with that many faces, refined one level with the builder's
@@ -115,7 +120,7 @@ IrregularBasis buildIrregularBasis(uint32_t valence, uint32_t levels);
 // evaluate them. Throws where the configuration is not self-similar (the sub-patch at the vertex
 // one level down must be the same configuration) or a sub-patch is not regular.
 IrregularBasis buildBoundaryBasis(const BasisConfiguration& configuration, uint32_t levels,
-                                  BoundaryRule rule = BoundaryRule::EdgeOnly);
+                                  BoundaryRule rule = BoundaryRule::EdgeOnly, bool weights = true);
 
 // The rows of one refined level that a basis's program keeps (basisFromMesh's, and each band of
 // a crease chain's, crease_basis.cpp): the child vertices marked `needed`, and the face points

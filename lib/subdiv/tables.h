@@ -78,6 +78,9 @@ inline constexpr int kMaxDepth = 16;
 // Irregular faces get their surface (per-valence bases, irregular_basis.h, or K more levels)
 // only where no corner has more faces than this; the others stay bilinear, and are counted.
 inline constexpr uint32_t kMaxBasisValence = 64;
+// The irregular bases' weights are drawn from one GPU storage buffer (WebGPU's limit): readers
+// refuse tables whose bases expand to more (formats/tbls.md), so the builder takes no basis past it.
+inline constexpr uint64_t kMaxBasisWeightBytes = uint64_t(128) << 20;
 // A level with more vertices than this is refused (about 10 GB of tables).
 inline constexpr uint64_t kMaxLevelVertices = 1ull << 28;
 
@@ -119,6 +122,11 @@ struct TablesOptions {
     // normals to the float coordinates of levels below N. The face-varying surface never takes
     // them (FVSF has no chains).
     bool creaseChains = true;
+    // The bases' weights expanded (IrregularBasis::weights), as a renderer and the CPU evaluator
+    // read them. Off: their programs and kinds only, for tables that are only written (TBLS
+    // version 9 stores the programs, and readers expand them): limn-tables. Such tables cannot
+    // be evaluated or drawn (IrregularBasis::hasWeights).
+    bool basisWeights = true;
     // Measurement only (bench_crease_bases; no tool sets it): faces of T_N with a decaying-crease
     // chain (crease_basis.h) are not refined below N and their roots get no codes, so the tables
     // lack those faces' surface; what the tables would hold without their extra levels.

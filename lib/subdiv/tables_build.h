@@ -57,6 +57,7 @@ struct AdaptiveLevels {
     std::vector<uint32_t> ptexBase;                  // per base face: its first ptex id
     std::vector<SmoothIrregularFace> smooth;         // by level: roots (T_N) first, then deeper
     std::vector<IrregularBasis> bases;               // their bases, one per valence or configuration met
+    uint64_t basisWeightCount = 0;                   // their weights (IrregularBasis::weightCount)
     std::vector<int> basisOfValence;                 // into bases; -1: not tried, -2: failed
     std::unordered_map<uint64_t, int> basisOfConfiguration; // boundary ones, by key (the same)
     // TablesOptions::creaseChainsPrototype: the faces of T_N taken with a chain (basis: the
@@ -64,6 +65,10 @@ struct AdaptiveLevels {
     std::vector<SmoothIrregularFace> creaseFaces;
     std::vector<CreaseChain> creaseChains;
 };
+
+// Adds b to a.bases where all their weights stay within kMaxBasisWeightBytes, returning its
+// index; -2 where it would pass it (its faces are refined instead, and the tables stay readable).
+int addBasis(AdaptiveLevels& a, IrregularBasis b);
 
 // TablesOptions::creaseChainsPrototype (crease_basis.cpp): takes the faces of T (level N) that
 // have a decaying-crease chain out of T, building one chain per configuration.

@@ -23,9 +23,6 @@ namespace limn {
 
 namespace {
 
-// WebGPU's storage-buffer limit, which the irregular bases' weights share (formats/tbls.md).
-constexpr uint64_t kMaxBasisWeightBytes = uint64_t(128) << 20;
-
 bool isDyadic(float x, uint32_t maxDepth) {
     float scaled = x * float(1u << maxDepth);
     return std::isfinite(x) && scaled == std::floor(scaled);
@@ -52,6 +49,9 @@ Chunk encodeTablesChunk(const Tables& t, uint32_t version) {
                     throw std::logic_error("TBLS: smooth faces below level N need version 5");
     const bool compact = version >= 4;
     const bool programs = version >= 5; // bases as programs, compact nodes and smooth faces
+    for (const IrregularBasis& b : t.irregularBases)
+        if (!programs && !b.hasWeights())
+            throw std::logic_error("TBLS: bases built without their weights need version 5 or later");
     ByteWriter w;
     // The size of the layout below, reserved so a large table is written in one pass.
     auto tableBytes = [](const StencilTable& table, bool weights) {

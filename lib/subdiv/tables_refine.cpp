@@ -81,8 +81,7 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, const TablesOptions& 
             auto [it, added] = a.basisOfConfiguration.try_emplace(configuration.key(), -1);
             if (added) {
                 try {
-                    a.bases.push_back(buildBoundaryBasis(configuration, basisLevels, rule));
-                    it->second = static_cast<int>(a.bases.size() - 1);
+                    it->second = addBasis(a, buildBoundaryBasis(configuration, basisLevels, rule, opts.basisWeights));
                 } catch (const std::exception&) {
                     it->second = -2; // refined like any other
                 }
@@ -96,8 +95,7 @@ void takeSmoothFaces(const Level& L, uint32_t basisLevels, const TablesOptions& 
         if (basisOfValence.size() <= valence) basisOfValence.resize(valence + 1, -1);
         if (basisOfValence[valence] == -1) {
             try {
-                a.bases.push_back(buildIrregularBasis(valence, basisLevels));
-                basisOfValence[valence] = static_cast<int>(a.bases.size() - 1);
+                basisOfValence[valence] = addBasis(a, buildIrregularBasis(valence, basisLevels, opts.basisWeights));
             } catch (const std::exception&) {
                 basisOfValence[valence] = -2; // refined like any other (never seen)
             }
@@ -198,6 +196,14 @@ void checkTablesTopology(const Topology& baseTopo, const TablesOptions& opts) {
                               " sides; depth 0 draws faces at their limit corners and needs an "
                               "all-quad mesh (non-quads are split at the first level: use "
                               "--depth 1 or more)");
+}
+
+int addBasis(AdaptiveLevels& a, IrregularBasis b) {
+    const uint64_t count = a.basisWeightCount + b.weightCount();
+    if (count * sizeof(float) > kMaxBasisWeightBytes) return -2;
+    a.basisWeightCount = count;
+    a.bases.push_back(std::move(b));
+    return static_cast<int>(a.bases.size() - 1);
 }
 
 AdaptiveLevels refineAdaptive(const Mesh& mesh, Topology baseTopo, const SchemeOptions& options,

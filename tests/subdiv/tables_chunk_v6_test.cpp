@@ -5,7 +5,9 @@
 #include "base/error.h"
 #include "mesh/import.h"
 #include "subdiv/crease_basis.h"
+#include "subdiv/evaluate.h"
 #include "subdiv/irregular_basis.h"
+#include "subdiv/tables_build.h"
 #include "subdiv/tables_chunk.h"
 #include "subdiv/tables_program_dictionary.h"
 #include "test_support.h"
@@ -242,11 +244,12 @@ TEST(TablesChunk, BoundaryBasesReadAsTheBuildersAndHostileOnesAreRefused) {
 
 namespace {
 
-Tables buildChains(const Mesh& m, int depth, bool chains = true) {
+Tables buildChains(const Mesh& m, int depth, bool chains = true, bool weights = true) {
     Warnings w;
     TablesOptions o;
     o.depth = depth;
     o.creaseChains = chains;
+    o.basisWeights = weights;
     return buildTables(m, resolveSchemeOptions(m.tags, {}), o, w);
 }
 
@@ -319,7 +322,9 @@ TEST(TablesChunk, HostileCreaseChainsAreRefused) {
 // 7 or 8 and 9 to the builder's weights and kinds, bit for bit, and the bytes read back write the
 // same bytes. catmark_bishop d2 (68 chains, sharpness-6 creases; smooth ends), chaikin0 d2
 // (regular ends) and xord_boundary d2 (boundary bases). LIMN_CHAIN_SWEEP=1 runs every catmark
-// shape limn accepts at depths 1-3.
+// shape limn accepts at depths 1-3. Tables built without the bases' weights (limn-tables:
+// TablesOptions::basisWeights) write the same bytes, so the weights read back from them are the
+// builder's too.
 TEST(TablesChunk, ProgramDictionaryExpandsToTheBuildersWeights) {
     std::vector<std::pair<std::string, int>> cases = {{"osd/catmark/catmark_bishop.obj", 2},
                                                       {"osd/catmark/catmark_chaikin0.obj", 2},
@@ -346,6 +351,7 @@ TEST(TablesChunk, ProgramDictionaryExpandsToTheBuildersWeights) {
         const Chunk c = encodeTablesChunk(good);
         const Tables back = decodeTablesChunk(c, &m);
         EXPECT_EQ(sameBases(good, back), "") << model << " d" << depth;
+        EXPECT_EQ(encodeTablesChunk(buildChains(m, depth, true, false)).payload, c.payload) << model << " d" << depth;
         const bool chained = std::any_of(good.irregularBases.begin(), good.irregularBases.end(),
                                          [](const IrregularBasis& b) { return b.chain != nullptr; });
         const Chunk older = encodeTablesChunk(good, chained ? kTablesChunkChainVersion : 7);
@@ -417,6 +423,37 @@ TEST(TablesChunk, BasesPastTheirGpuBufferAreRefused) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("expand to more than 128 MiB of weights"), std::string::npos) << e.what();
     }
+}
+
+// Tables built without their bases' weights (TablesOptions::basisWeights, for writing only) are
+// refused where the weights would be read: drawn records, CPU evaluation, and TBLS versions that
+// store weights (before 5). And the builder takes no basis whose weights would pass the 128 MiB
+// that readers accept (addBasis): such faces are refined instead.
+TEST(TablesChunk, TablesWithoutBasisWeightsAreOnlyWritten) {
+    const Mesh m = loadModel("osd/catmark/catmark_chaikin0.obj");
+    const Tables t = buildChains(m, 2, true, false);
+    ASSERT_FALSE(t.smoothIrregular.empty());
+    for (const IrregularBasis& b : t.irregularBases) {
+        EXPECT_FALSE(b.hasWeights());
+        EXPECT_GT(b.weightCount(), 0u);
+    }
+    const uint32_t smooth = 0;
+    std::vector<glm::dvec3> V(m.vertexCount(), glm::dvec3(0));
+    glm::dvec3 P[4][4];
+    EXPECT_THROW(smoothSubPatchControlPoints(t, smooth, V, 1, 1, P), std::logic_error);
+    EXPECT_THROW(encodeTablesChunk(t, 4), std::logic_error);
+    const Tables full = buildChains(m, 2);
+    for (size_t b = 0; b < full.irregularBases.size(); ++b)
+        EXPECT_EQ(full.irregularBases[b].weights.size(), t.irregularBases[b].weightCount()) << "basis " << b;
+
+    AdaptiveLevels a;
+    IrregularBasis basis = full.irregularBases[0];
+    const uint64_t cap = kMaxBasisWeightBytes / sizeof(float);
+    a.basisWeightCount = cap - basis.weightCount();
+    EXPECT_EQ(addBasis(a, basis), 0); // exactly at the cap
+    EXPECT_EQ(a.basisWeightCount, cap);
+    EXPECT_EQ(addBasis(a, basis), -2); // one more would pass it
+    EXPECT_EQ(a.bases.size(), 1u);
 }
 
 // canonicalProgram's order (tables_program_dictionary.h) written out by hand for a three-row

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
                     "faces at a semi-sharp crease that has not decayed at level N drawn from a "
                     "chain per configuration (one-level programs band by band until the crease "
                     "has decayed) instead of K more levels; written as TBLS version 9 "
-                    "(docs/irregular-tables.md) [default: on]")
+                    "(docs/irregular-tables.md)")
             .flag("--no-crease-patches", &noCreasePatches,
                   "isolate creases and sharp corners to level N like extraordinary vertices, "
                   "instead of drawing the regular faces along infinitely sharp ones as boundary "
@@ -113,6 +113,10 @@ int main(int argc, char** argv) {
             // at the face's corners only; docs/irregular.md).
             opts.boundaryBases = opts.basisRimFeatures = boundaryBases == "on";
             opts.creaseChains = creaseChains == "on";
+            // The tables are only written, and TBLS stores the bases as programs, which readers
+            // expand: their weights are not computed here (the bishop's chains took a quarter of
+            // the run).
+            opts.basisWeights = false;
             opts.maxMemoryBytes = maxMemory;
             tables = buildTables(mesh, c.options, opts, warnings);
             // Smooth face-varying UVs: their own surface, for runtimes that do not build it. Its
