@@ -348,6 +348,9 @@ function readIrregularSurface(r, o) {
     }
     for (const x of weights) if (!(Math.abs(x) <= MAX_STENCIL_WEIGHT)) r.fail(`irregular basis ${i} has a bad weight`);
     bases.push({ valence, levels: lv, support, weights });
+    // Stored weights take their bytes in the file, but the GPU buffer is the same one.
+    weightCount += weights.length;
+    if (weightCount * 4 > MAX_BASIS_WEIGHT_BYTES) r.fail(`irregular bases 0 to ${i} expand to more than 128 MiB of weights`);
   }
   const smoothCount = r.u32('smooth irregular face count');
   if (!programs && smoothCount > Math.floor(r.remaining / 12)) r.fail('smooth irregular face count is too large');
