@@ -262,15 +262,31 @@ int main(int argc, char** argv) {
                 const IrregularSurfaceCounts irr = irregularSurfaceCounts(*tables);
                 const std::string chains =
                     irr.creaseChain ? ", " + std::to_string(irr.creaseChain) + " from a decaying-crease chain" : "";
+                // The bilinear faces are exact at their corners only; the others everywhere but within
+                // 2^-K of an extraordinary corner (none without the extra levels, --irregular-levels 0).
+                const std::string exact =
+                    irr.exactLevels && irr.basis + irr.subPatches
+                        ? "; the others exact beyond 2^-" + std::to_string(irr.exactLevels) + " of their extraordinary corners"
+                        : "";
                 std::printf("  irregular surface      %zu from a basis (%zu around a boundary vertex%s), %zu on "
-                            "sub-patches (%zu smooth faces below level N from a basis), %zu bilinear (exact "
-                            "beyond 2^-%u of their extraordinary corners)\n",
+                            "sub-patches (%zu smooth faces below level N from a basis), %zu bilinear between their "
+                            "corners' limit points%s\n",
                             irr.basis, irr.boundaryBasis, chains.c_str(), irr.subPatches, irr.basisBelow, irr.bilinear,
-                            irr.exactLevels);
-                for (size_t l = 0; l < tables->levels.size(); ++l)
+                            exact.c_str());
+                // Levels below N hold only the irregular faces' sub-patch quadtrees: where every such
+                // face takes its surface from a basis they are empty, said once, not K times.
+                size_t shown = tables->levels.size();
+                while (shown > size_t(tables->depth) + 1 && tables->levels[shown - 1].count() == 0) --shown;
+                for (size_t l = 0; l < shown; ++l)
                     std::printf("    level %zu: %u vertices, %u regular patches, %u irregular faces\n", l,
                                 tables->levels[l].count(), tables->levels[l].regularPatches,
                                 tables->levels[l].irregularFaces);
+                if (shown < tables->levels.size())
+                    std::printf("    level%s %zu%s: no vertices (no irregular face is refined this deep)\n",
+                                shown + 1 < tables->levels.size() ? "s" : "", shown,
+                                shown + 1 < tables->levels.size()
+                                    ? ("-" + std::to_string(tables->levels.size() - 1)).c_str()
+                                    : "");
             }
             if (!container.chunks.empty()) {
                 std::printf("  chunks                ");
