@@ -79,7 +79,7 @@ export function watchDevice(device) {
  * dawn.node settles its promises (mapAsync, onSubmittedWorkDone, create*PipelineAsync) by calling
  * wgpuInstanceProcessEvents from setImmediate for as long as one is pending, so the event loop
  * spins while the GPU works. On a CPU device (lavapipe) that spin takes a core from the
- * rasterizer's threads: on 2 cores a frame took 1.4-2.2x limn-render's (docs/benchmarks.md). From
+ * rasterizer's threads: on 2 cores a frame took 1.4-2.2x limn-render's (docs/benchmarks-web.md). From
  * the first device on, every turn of the event loop first sleeps here: Dawn still polls once a
  * turn, and the thread is idle in between. The sleep grows with the wait, a twentieth of it so far
  * (0.1 to 1 ms): a settled promise is seen at most about 5% (or 1 ms) late, with few wake-ups on
