@@ -80,7 +80,7 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
         push(uint32_t(fanSize) << 1 | (closed ? 1u : 0u), kNone);
         for (uint32_t h : std::span(fan).first(fanSize)) {
             const uint32_t g = T.face(h);
-            if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
+            if (T.faceSize(g) != 4) return false; // a hole is no feature (smoothSupport)
             if (faces) faces->push_back(g);
             uint32_t x = h;
             for (int c = 0; c < 4; ++c, x = T.next(x)) {

@@ -57,7 +57,9 @@ bool smoothSupport(const Level& L, uint32_t f, int& corner, uint32_t& valence, s
             const bool seen = (j > 0 && step < 2) || (j == 3 && hn == h0);
             if (!seen) {
                 const uint32_t g = T.face(h);
-                if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
+                // A hole in the support is no feature: a hole only keeps its own face from being drawn,
+                // and the rules (so the support's points, band after band) are those of a face that is there.
+                if (T.faceSize(g) != 4) return false;
                 uint32_t x = h;
                 for (int c = 0; c < 4; ++c, x = T.next(x)) {
                     const uint32_t v = T.vertex(x);
@@ -150,7 +152,7 @@ bool boundarySupport(const Level& L, uint32_t f, int& corner, BasisConfiguration
         signature.push_back(uint32_t(fan.size()) << 1 | (closed ? 1u : 0u));
         for (uint32_t h : fan) {
             const uint32_t g = T.face(h);
-            if (T.faceSize(g) != 4 || L.noLimit[g]) return false;
+            if (T.faceSize(g) != 4) return false; // a hole is no feature (smoothSupport)
             uint32_t x = h;
             for (int c = 0; c < 4; ++c, x = T.next(x)) signature.push_back(index(T.vertex(x)));
             if (support.size() > 2 * size_t(kMaxBasisValence) + 8) return false;

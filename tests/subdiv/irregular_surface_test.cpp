@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <tuple>
 
@@ -24,6 +25,63 @@ using namespace limn;
 using namespace limn::test;
 
 namespace {
+
+// What the OpenSubdiv comparisons below measure over the irregular faces they pick.
+struct OsdComparison {
+    size_t compared = 0;           // points where evaluateIrregular says it is exact (corners left out)
+    double worstP = 0, worstN = 0; // of the diagonal; degrees
+    double outside = 0;            // a smooth root's surface beyond its support's box, of the diagonal
+};
+
+// Every irregular face q that `pick` takes, on an R x R grid: evaluateIrregular against
+// OpenSubdiv's limit (isolation 10) wherever it says it is exact, the corners left out (the
+// LimitPoints tests have them), OpenSubdiv's patch taken inside the face (its derivatives can
+// degenerate on an edge); and each smooth root's points against its support's box (the cull
+// pass's hull test: the rules are convex combinations, whatever phantom points' weights).
+OsdComparison compareWithOpenSubdiv(const Fixture& f, int R, const std::function<bool(uint32_t)>& pick) {
+    const limn::Tables& t = f.tables;
+    std::vector<int> smoothOf(t.irregular.size(), -1);
+    for (uint32_t q = 0; q < t.irregular.size() && q < t.irregularNodes.size(); ++q)
+        if (smoothRoot(t.irregularNodes[q])) smoothOf[q] = int(t.irregularNodes[q][0] & kNodeIndexMask);
+    test::OsdLimitSurface osd(f.mesh, f.options, 10);
+    const std::vector<LimitPoint> limits = evaluateLimitPoints(t, f.vertices);
+    OsdComparison c;
+    for (uint32_t q = 0; q < t.irregular.size(); ++q) {
+        if (!pick(q)) continue;
+        const IrregularFace& face = t.irregular[q];
+        glm::dvec3 lo(1e300), hi(-1e300);
+        if (smoothOf[q] >= 0) {
+            const auto& sm = t.smoothIrregular[size_t(smoothOf[q])];
+            for (uint32_t i = 0; i < t.irregularBases[sm.basis].supportSize(); ++i) {
+                lo = glm::min(lo, f.vertices[t.smoothPoints[sm.first + i]]);
+                hi = glm::max(hi, f.vertices[t.smoothPoints[sm.first + i]]);
+            }
+        }
+        for (int j = 0; j <= R; ++j)
+            for (int i = 0; i <= R; ++i) {
+                const double s = double(i) / R, tt = double(j) / R;
+                bool exact = false;
+                const SurfacePoint x = evaluateIrregular(t, f.vertices, limits, q, s, tt, &exact);
+                if (smoothOf[q] >= 0) {
+                    const glm::dvec3 below = glm::max(lo - x.position, glm::dvec3(0.0));
+                    const glm::dvec3 above = glm::max(x.position - hi, glm::dvec3(0.0));
+                    c.outside = std::max(c.outside, glm::length(below + above) / f.diag);
+                }
+                if (!exact || ((i == 0 || i == R) && (j == 0 || j == R))) continue;
+                const double u = face.u0 + s * face.size, v = face.v0 + tt * face.size;
+                const double iu = u + (i == R ? -1e-9 : 1e-9), iv = v + (j == R ? -1e-9 : 1e-9);
+                glm::dvec3 P, N;
+                if (!osd.evaluate(int(face.ptex), u, v, iu, iv, P, N)) {
+                    ADD_FAILURE() << "OpenSubdiv has no patch at ptex " << face.ptex << " (" << u << ", " << v << ")";
+                    return c;
+                }
+                c.worstP = std::max(c.worstP, glm::length(P - x.position) / f.diag);
+                c.worstN = std::max(c.worstN, std::acos(std::min(1.0, glm::dot(N, x.normal))) * 180 / M_PI);
+                ++c.compared;
+            }
+    }
+    return c;
+}
 
 // The per-valence weights of irregular_basis.h against the whole tables of the same mesh:
 // three rings of quads around a valence-n vertex (written here), built by buildTables with the
@@ -103,29 +161,10 @@ TEST(IrregularSurface, SmoothFacesBelowDepthMatchOpenSubdiv) {
         EXPECT_EQ(c.version, kTablesChunkDictionaryVersion);
         EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(c, &f.mesh)).payload, c.payload);
         EXPECT_THROW(encodeTablesChunk(f.tables, 4), std::logic_error);
-        test::OsdLimitSurface osd(f.mesh, f.options, 10);
-        const std::vector<LimitPoint> limits = evaluateLimitPoints(f.tables, f.vertices);
-        double worstP = 0, worstN = 0;
-        size_t compared = 0;
-        const int R = 32; // 1/32 of a face: inside the bands of faces 1 to 4 levels down
-        for (uint32_t q = 0; q < f.tables.irregular.size(); ++q) {
-            const IrregularFace& face = f.tables.irregular[q];
-            for (int j = 0; j <= R; ++j)
-                for (int i = 0; i <= R; ++i) {
-                    const double s = double(i) / R, t = double(j) / R;
-                    bool exact = false;
-                    const SurfacePoint x = evaluateIrregular(f.tables, f.vertices, limits, q, s, t, &exact);
-                    if (!exact || ((i == 0 || i == R) && (j == 0 || j == R))) continue; // corners: LimitPoints test
-                    const double u = face.u0 + s * face.size, v = face.v0 + t * face.size;
-                    // OpenSubdiv's patch inside this face (its derivatives can degenerate on an edge).
-                    const double iu = u + (i == R ? -1e-9 : 1e-9), iv = v + (j == R ? -1e-9 : 1e-9);
-                    glm::dvec3 P, N;
-                    ASSERT_TRUE(osd.evaluate(int(face.ptex), u, v, iu, iv, P, N));
-                    worstP = std::max(worstP, glm::length(P - x.position) / f.diag);
-                    worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, x.normal))) * 180 / M_PI);
-                    ++compared;
-                }
-        }
+        // 1/32 of a face: inside the bands of faces 1 to 4 levels down.
+        const OsdComparison c32 = compareWithOpenSubdiv(f, 32, [](uint32_t) { return true; });
+        const size_t compared = c32.compared;
+        const double worstP = c32.worstP, worstN = c32.worstN;
         EXPECT_GT(compared, 1000u);
         EXPECT_LE(worstP, 1e-6) << compared << " points";
         EXPECT_LE(worstN, 0.05) << compared << " points";
@@ -172,49 +211,13 @@ TEST(IrregularSurface, BoundaryBasesMatchOpenSubdiv) {
         EXPECT_EQ(c.version, kTablesChunkDictionaryVersion);
         EXPECT_EQ(encodeTablesChunk(decodeTablesChunk(c, &f.mesh)).payload, c.payload);
         EXPECT_THROW(encodeTablesChunk(t, 6), std::logic_error);
-        // Each smooth root's surface in its support's box.
-        std::vector<int> smoothOf(t.irregular.size(), -1);
-        for (uint32_t q = 0; q < t.irregular.size() && q < t.irregularNodes.size(); ++q)
-            if (smoothRoot(t.irregularNodes[q])) smoothOf[q] = int(t.irregularNodes[q][0] & kNodeIndexMask);
-        test::OsdLimitSurface osd(f.mesh, f.options, 10);
-        const std::vector<LimitPoint> limits = evaluateLimitPoints(t, f.vertices);
-        double worstP = 0, worstN = 0, outside = 0;
-        size_t compared = 0;
-        const int R = 32;
-        for (uint32_t q = 0; q < t.irregular.size(); ++q) {
-            const IrregularFace& face = t.irregular[q];
-            glm::dvec3 lo(1e300), hi(-1e300);
-            if (smoothOf[q] >= 0) {
-                const auto& sm = t.smoothIrregular[size_t(smoothOf[q])];
-                for (uint32_t i = 0; i < t.irregularBases[sm.basis].supportSize(); ++i) {
-                    lo = glm::min(lo, f.vertices[t.smoothPoints[sm.first + i]]);
-                    hi = glm::max(hi, f.vertices[t.smoothPoints[sm.first + i]]);
-                }
-            }
-            for (int j = 0; j <= R; ++j)
-                for (int i = 0; i <= R; ++i) {
-                    const double s = double(i) / R, tt = double(j) / R;
-                    bool exact = false;
-                    const SurfacePoint x = evaluateIrregular(t, f.vertices, limits, q, s, tt, &exact);
-                    if (smoothOf[q] >= 0) {
-                        const glm::dvec3 below = glm::max(lo - x.position, glm::dvec3(0.0));
-                        const glm::dvec3 above = glm::max(x.position - hi, glm::dvec3(0.0));
-                        outside = std::max(outside, glm::length(below + above) / f.diag);
-                    }
-                    if (!exact || ((i == 0 || i == R) && (j == 0 || j == R))) continue;
-                    const double u = face.u0 + s * face.size, v = face.v0 + tt * face.size;
-                    const double iu = u + (i == R ? -1e-9 : 1e-9), iv = v + (j == R ? -1e-9 : 1e-9);
-                    glm::dvec3 P, N;
-                    ASSERT_TRUE(osd.evaluate(int(face.ptex), u, v, iu, iv, P, N));
-                    worstP = std::max(worstP, glm::length(P - x.position) / f.diag);
-                    worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, x.normal))) * 180 / M_PI);
-                    ++compared;
-                }
-        }
+        const OsdComparison cmp = compareWithOpenSubdiv(f, 32, [](uint32_t) { return true; });
+        const size_t compared = cmp.compared;
+        const double worstP = cmp.worstP, worstN = cmp.worstN;
         EXPECT_GT(compared, 1000u);
         EXPECT_LE(worstP, 1e-6) << compared << " points";
         EXPECT_LE(worstN, 0.05) << compared << " points";
-        EXPECT_LE(outside, 1e-7);
+        EXPECT_LE(cmp.outside, 1e-7);
         std::printf("%s d%d: %zu boundary-basis faces, %zu quadtrees, %zu points, max %.3g of the diagonal, %.3g degrees\n",
                     model, depth, boundaryFaces, quadtreeRoots, compared, worstP, worstN);
     }
@@ -271,45 +274,46 @@ TEST(IrregularSurface, CreaseChainsMatchOpenSubdiv) {
             ++chainFaces;
         }
         EXPECT_GT(chainFaces, 0u) << "no face takes a chain";
-        test::OsdLimitSurface osd(f.mesh, f.options, 10);
-        const std::vector<LimitPoint> limits = evaluateLimitPoints(t, f.vertices);
-        double worstP = 0, worstN = 0, outside = 0;
-        size_t compared = 0;
-        const int R = 16;
-        for (uint32_t q = 0; q < t.irregular.size(); ++q) {
-            if (chainOf[q] < 0) continue;
-            const IrregularFace& face = t.irregular[q];
-            const auto& sm = t.smoothIrregular[size_t(chainOf[q])];
-            glm::dvec3 lo(1e300), hi(-1e300);
-            for (uint32_t i = 0; i < t.irregularBases[sm.basis].supportSize(); ++i) {
-                lo = glm::min(lo, f.vertices[t.smoothPoints[sm.first + i]]);
-                hi = glm::max(hi, f.vertices[t.smoothPoints[sm.first + i]]);
-            }
-            for (int j = 0; j <= R; ++j)
-                for (int i = 0; i <= R; ++i) {
-                    const double s = double(i) / R, tt = double(j) / R;
-                    bool exact = false;
-                    const SurfacePoint x = evaluateIrregular(t, f.vertices, limits, q, s, tt, &exact);
-                    const glm::dvec3 below = glm::max(lo - x.position, glm::dvec3(0.0));
-                    const glm::dvec3 above = glm::max(x.position - hi, glm::dvec3(0.0));
-                    outside = std::max(outside, glm::length(below + above) / f.diag);
-                    if (!exact || ((i == 0 || i == R) && (j == 0 || j == R))) continue;
-                    const double u = face.u0 + s * face.size, v = face.v0 + tt * face.size;
-                    const double iu = u + (i == R ? -1e-9 : 1e-9), iv = v + (j == R ? -1e-9 : 1e-9);
-                    glm::dvec3 P, N;
-                    ASSERT_TRUE(osd.evaluate(int(face.ptex), u, v, iu, iv, P, N));
-                    worstP = std::max(worstP, glm::length(P - x.position) / f.diag);
-                    worstN = std::max(worstN, std::acos(std::min(1.0, glm::dot(N, x.normal))) * 180 / M_PI);
-                    ++compared;
-                }
-        }
+        const OsdComparison cmp = compareWithOpenSubdiv(f, 16, [&](uint32_t q) { return chainOf[q] >= 0; });
+        const size_t compared = cmp.compared;
+        const double worstP = cmp.worstP, worstN = cmp.worstN;
         EXPECT_GT(compared, 1000u);
         EXPECT_LE(worstP, 1e-6) << compared << " points";
         EXPECT_LE(worstN, 0.05) << compared << " points";
-        EXPECT_LE(outside, 1e-7);
+        EXPECT_LE(cmp.outside, 1e-7);
         std::printf("%s d%d: %zu chain faces, %zu quadtrees, %zu points, max %.3g of the diagonal, %.3g degrees\n",
                     model, depth, chainFaces, quadtreeRoots, compared, worstP, worstN);
     }
+}
+
+// Faces beside holes (OpenSubdiv's hole tag). A hole only keeps its own face from being drawn;
+// the rules, and so the points of a support that holds it, are those of a face that is there. So
+// the faces whose support holds a hole take their per-valence basis, boundary basis or crease
+// chain like any other, where they were refined K more levels before (8, 5, 6 and 2 quadtrees on
+// catmark_hole_test1-4 at depths 1 and 2). Their surface is OpenSubdiv's limit wherever
+// evaluateIrregular says it is exact, on a 1/32 grid: within 1e-6 of the diagonal and 0.05
+// degrees.
+TEST(IrregularSurface, FacesBesideHolesTakeTheirBasisAndMatchOpenSubdiv) {
+    for (const char* model : {"osd/catmark/catmark_hole_test1.obj", "osd/catmark/catmark_hole_test2.obj",
+                              "osd/catmark/catmark_hole_test3.obj", "osd/catmark/catmark_hole_test4.obj"})
+        for (int depth : {1, 2}) {
+            SCOPED_TRACE(std::string(model) + " d" + std::to_string(depth));
+            const Fixture f = build({model, depth, false});
+            ASSERT_FALSE(f.mesh.tags.holes.empty());
+            const limn::Tables& t = f.tables;
+            size_t quadtreeRoots = 0;
+            for (uint32_t q = 0; q < t.irregular.size() && q < t.irregularNodes.size(); ++q)
+                quadtreeRoots += !smoothRoot(t.irregularNodes[q]);
+            EXPECT_FALSE(t.irregular.empty());
+            EXPECT_EQ(quadtreeRoots, 0u) << "faces refined K more levels";
+            const OsdComparison cmp = compareWithOpenSubdiv(f, 32, [](uint32_t) { return true; });
+            EXPECT_GT(cmp.compared, 500u);
+            EXPECT_LE(cmp.worstP, 1e-6) << cmp.compared << " points";
+            EXPECT_LE(cmp.worstN, 0.05) << cmp.compared << " points";
+            EXPECT_LE(cmp.outside, 1e-7);
+            std::printf("%s d%d: %zu irregular faces, %zu points, max %.3g of the diagonal, %.3g degrees\n", model,
+                        depth, t.irregular.size(), cmp.compared, cmp.worstP, cmp.worstN);
+        }
 }
 
 // limn's CPU reference of the irregular faces' surface barely depends on where the mesh is. A
