@@ -190,6 +190,20 @@ uint32_t centreChild(const Level& child, uint32_t f, const FaceFrame& pf) {
     return kNone;
 }
 
+// The corners of the chain face f (refineLevel's childCorners). A band reads, of the level it
+// refines, only the children at f's corners: the patches of f's quadrants (each child's one-ring
+// is children at one corner of f of the faces around it) and the next band's support and rows
+// (the faces around the centre child's corners, and the edges and faces around those, which
+// again are children at f's corners). So the other children of f's one-ring are not made: a
+// quarter of them around a pole of valence 24, and stencils for their vertices neither. The
+// rows read are the same, in the same order (child vertices are numbered as before; every edge
+// and face read keeps both its faces, so the edges keep their order).
+const std::vector<uint8_t>& chainCorners(const Level& L, uint32_t f, std::vector<uint8_t>& corners) {
+    corners.assign(L.topo.vertexCount(), 0);
+    for (uint32_t v : L.topo.faceVertices(f)) corners[v] = 1;
+    return corners;
+}
+
 } // namespace
 
 // The program of one band: the rows of `child` (refined from `parent` with stencils `st`) that
@@ -323,10 +337,11 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
             if (!creaseSupport(cur, chainFace, 0, probe, probeKey) || probeKey != key)
                 throw std::logic_error("crease basis: a repeated band's key did not take");
         }
-        std::vector<uint8_t> selected(cur.topo.faceCount(), 0);
+        std::vector<uint8_t> selected(cur.topo.faceCount(), 0), corners;
         selected[chainFace] = 1;
         LevelStencils st;
-        Level child = refineLevel(cur, oneRing(cur.topo, selected), options, ptexBase, st);
+        Level child = refineLevel(cur, oneRing(cur.topo, selected), options, ptexBase, st,
+                                  &chainCorners(cur, chainFace, corners));
         // Only the chain face's children are read.
         std::vector<uint8_t> children(child.topo.faceCount(), 0);
         for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) children[cf] = child.faceParent[cf] == chainFace;
@@ -391,7 +406,8 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
             aboveOne(key) && programKey(key, 1.0f) == programKey(chain.bands[0].key, 1.0f)) {
             std::vector<uint8_t> around(cur.topo.faceCount(), 0);
             around[chainFace] = 1;
-            Level third = refineLevelTopology(cur, oneRing(cur.topo, around), options, ptexBase);
+            Level third = refineLevelTopology(cur, oneRing(cur.topo, around), options, ptexBase,
+                                              &chainCorners(cur, chainFace, corners));
             const uint32_t thirdFace = centreChild(third, chainFace, cur.frames[chainFace]);
             std::vector<uint32_t> thirdSupport, thirdKey;
             if (thirdFace != kNone && creaseSupport(third, thirdFace, 0, thirdSupport, thirdKey) &&

@@ -83,11 +83,12 @@ Level makeBaseLevel(Topology topo, Sharpness sharpness) {
 
 namespace {
 
-// refineLevel, and without the stencils (refineLevelTopology): one function for both, each
-// instantiation compiled on its own.
-template <bool kStencils>
+// refineLevel, and without the stencils (refineLevelTopology), each with childCorners or without
+// (kCorners): one function for all, each instantiation compiled on its own (the checks for
+// childCorners cost the whole mesh's refinement a percent where they are not compiled out).
+template <bool kStencils, bool kCorners>
 Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
-             const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
+             const std::vector<uint32_t>& ptexBase, LevelStencils& st, const std::vector<uint8_t>* childCorners) {
     const Topology& T = P.topo;
     const uint32_t F = T.faceCount(), E = T.edgeCount(), V = T.vertexCount();
     Crease crease(toSdcOptions(options));
@@ -100,12 +101,16 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     // inside one face, with exactly the half-edges named there.
     bool twinsFromParent = T.nonManifoldEdgeCount() == 0;
     std::vector<uint32_t> firstChild(F, kNone), edgeSeenIn(twinsFromParent ? E : 0, kNone);
+    // childCorners: the child of each parent half-edge's corner, kNone where it is not made.
+    std::vector<uint32_t> childAt(kCorners ? T.halfedgeCount() : 0, kNone);
+    auto made = [&](uint32_t h) { return !kCorners || (*childCorners)[T.vertex(h)]; };
     uint32_t childFaces = 0; // counted first so that every per-face array is allocated once
     for (uint32_t f = 0; f < F; ++f) {
         if (!selected[f]) continue;
         firstChild[f] = childFaces;
-        childFaces += T.faceSize(f);
+        if constexpr (!kCorners) childFaces += T.faceSize(f);
         for (uint32_t h = T.faceHalfedge(f); h < T.faceHalfedge(f) + T.faceSize(f); ++h) {
+            if (kCorners && made(h)) childAt[h] = childFaces++;
             edgeUsed[T.edge(h)] = 1;
             vertexUsed[T.vertex(h)] = 1;
             if (!twinsFromParent) continue;
@@ -158,9 +163,13 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     // The child half-edge of a parent half-edge's end `at`, in the face across it: the quad at
     // that face's corner `at` (slot 0 leaves the corner, slot 3 returns to it); none across a
     // boundary or into a face that is not refined.
+    auto childOf = [&](uint32_t f, uint32_t k) {
+        return kCorners ? childAt[T.faceHalfedge(f) + k] : firstChild[f] + k;
+    };
     auto across = [&](uint32_t t, uint32_t corner, uint32_t slot) {
         if (t == kNone || firstChild[T.face(t)] == kNone) return kNone;
-        return 4 * (firstChild[T.face(t)] + T.cornerIndex(corner)) + slot;
+        const uint32_t c = childOf(T.face(t), T.cornerIndex(corner));
+        return kCorners && c == kNone ? kNone : 4 * c + slot;
     };
     C.frames.reserve(childFaces);
     C.noLimit.reserve(childFaces);
@@ -171,6 +180,7 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
         const FaceFrame& pf = P.frames[f];
         for (uint32_t k = 0; k < n; ++k) {
             uint32_t h = h0 + k;
+            if (!made(h)) continue;
             for (uint32_t c : {vertexChild[T.vertex(h)], edgeChild[T.edge(h)], faceChild[f],
                                edgeChild[T.edge(T.prev(h))]})
                 corners.push_back(c);
@@ -179,10 +189,11 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
                 // Slot 0 is the first half of h, slot 3 the second half of prev(h); slots 1 and
                 // 2 join the edge points to the face point, shared with the next and previous
                 // corners' quads.
-                const uint32_t t = T.twin(h), tp = T.twin(T.prev(h)), q = firstChild[f];
+                const uint32_t t = T.twin(h), tp = T.twin(T.prev(h));
+                const uint32_t cn = childOf(f, k + 1 == n ? 0 : k + 1), cp = childOf(f, k == 0 ? n - 1 : k - 1);
                 twins.push_back(t == kNone ? kNone : across(t, T.next(t), 3));
-                twins.push_back(4 * (q + (k + 1 == n ? 0 : k + 1)) + 2);
-                twins.push_back(4 * (q + (k == 0 ? n - 1 : k - 1)) + 1);
+                twins.push_back(kCorners && cn == kNone ? kNone : 4 * cn + 2);
+                twins.push_back(kCorners && cp == kNone ? kNone : 4 * cp + 1);
                 twins.push_back(tp == kNone ? kNone : across(tp, tp, 0));
             }
             FaceFrame cf;
@@ -265,6 +276,13 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
             st.faceVertices.insert(st.faceVertices.end(), fv.begin(), fv.end());
             st.faceStart.push_back(static_cast<uint32_t>(st.faceVertices.size()));
         }
+    // childCorners: rows only for the vertices of the children made (the others are in no face;
+    // nothing reads them), each other row empty.
+    std::vector<uint8_t> inFace;
+    if constexpr (kCorners) inFace.assign(childV, 0);
+    if constexpr (kCorners)
+        for (uint32_t h = 0; h < C.topo.halfedgeCount(); ++h) inFace[C.topo.vertex(h)] = 1;
+    auto wanted = [&](uint32_t cv) { return !kCorners || inFace[cv]; };
     uint32_t maxValence = 2;
     for (uint32_t v = 0; v < V; ++v) maxValence = std::max(maxValence, T.vertexEdgeCount(v));
     SdcMask mask(static_cast<int>(maxValence));
@@ -278,6 +296,10 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     for (uint32_t e = 0; e < E; ++e) {
         if (!edgeUsed[e]) continue;
         uint32_t cv = edgeChild[e];
+        if (!wanted(cv)) {
+            st.edgeStart.push_back(static_cast<uint32_t>(st.edgeEntries.size()));
+            continue;
+        }
         SdcEdge hood(T, e, P.edgeSharpness[e]);
         auto pRule = P.edgeSharpness[e] > 0 ? Crease::RULE_CREASE : Crease::RULE_SMOOTH;
         scheme.ComputeEdgeVertexMask(hood, mask, pRule, sdcRule(C.vertexRule[cv]));
@@ -296,6 +318,10 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     for (uint32_t v = 0; v < V; ++v) {
         if (!vertexUsed[v]) continue;
         uint32_t cv = vertexChild[v];
+        if (!wanted(cv)) {
+            st.vertexStart.push_back(static_cast<uint32_t>(st.vertexEntries.size()));
+            continue;
+        }
         gatherNeighborhood(T, v, hood);
         SdcVertex sv(hood, P.edgeSharpness, P.vertexSharpness[v], C.vertexSharpness[cv], ringSharpness);
         scheme.ComputeVertexVertexMask(sv, mask, sdcRule(P.vertexRule[v]), sdcRule(C.vertexRule[cv]));
@@ -314,14 +340,17 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
 } // namespace
 
 Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
-                  const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
-    return refine<true>(P, selected, options, ptexBase, st);
+                  const std::vector<uint32_t>& ptexBase, LevelStencils& st,
+                  const std::vector<uint8_t>* childCorners) {
+    return childCorners ? refine<true, true>(P, selected, options, ptexBase, st, childCorners)
+                        : refine<true, false>(P, selected, options, ptexBase, st, nullptr);
 }
 
 Level refineLevelTopology(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
-                          const std::vector<uint32_t>& ptexBase) {
+                          const std::vector<uint32_t>& ptexBase, const std::vector<uint8_t>* childCorners) {
     LevelStencils none;
-    return refine<false>(P, selected, options, ptexBase, none);
+    return childCorners ? refine<false, true>(P, selected, options, ptexBase, none, childCorners)
+                        : refine<false, false>(P, selected, options, ptexBase, none, nullptr);
 }
 
 } // namespace limn
