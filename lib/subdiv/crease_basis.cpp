@@ -197,10 +197,24 @@ uint32_t centreChild(const Level& child, uint32_t f, const FaceFrame& pf) {
 // again are children at f's corners). So the other children of f's one-ring are not made: a
 // quarter of them around a pole of valence 24, and stencils for their vertices neither. The
 // rows read are the same, in the same order (child vertices are numbered as before; every edge
-// and face read keeps both its faces, so the edges keep their order).
+// and face read keeps both its faces, so the edges keep their order). A face with two of f's
+// corners opposite each other, and neither between them, would leave its face point two children
+// that do not meet (a vertex the level would take for non-manifold): then every child is made.
 const std::vector<uint8_t>& chainCorners(const Level& L, uint32_t f, std::vector<uint8_t>& corners) {
-    corners.assign(L.topo.vertexCount(), 0);
-    for (uint32_t v : L.topo.faceVertices(f)) corners[v] = 1;
+    const Topology& T = L.topo;
+    corners.assign(T.vertexCount(), 0);
+    for (uint32_t v : T.faceVertices(f)) corners[v] = 1;
+    for (uint32_t v : T.faceVertices(f))
+        for (uint32_t h : T.vertexOutgoing(v)) {
+            const uint32_t g = T.face(h);
+            if (T.faceSize(g) != 4) continue; // a chain's faces are quads (creaseSupport)
+            unsigned at = 0;
+            for (uint32_t k = 0; k < 4; ++k) at |= unsigned(corners[T.vertex(T.faceHalfedge(g) + k)]) << k;
+            if (at == 0b0101 || at == 0b1010) {
+                corners.assign(T.vertexCount(), 1);
+                return corners;
+            }
+        }
     return corners;
 }
 
