@@ -195,9 +195,9 @@ uint32_t centreChild(const Level& child, uint32_t f, const FaceFrame& pf) {
 // is children at one corner of f of the faces around it) and the next band's support and rows
 // (the faces around the centre child's corners, and the edges and faces around those, which
 // again are children at f's corners). So the other children of f's one-ring are not made: a
-// quarter of them around a pole of valence 24, and stencils for their vertices neither. The
-// rows read are the same, in the same order (child vertices are numbered as before; every edge
-// and face read keeps both its faces, so the edges keep their order). A face with two of f's
+// quarter of them around a pole of valence 24, nor their points. The rows read are the same, in
+// the same order (the child vertices kept are numbered in the order they had; every edge and
+// face read keeps both its faces, so the edges keep their order). A face with two of f's
 // corners opposite each other, and neither between them, would leave its face point two children
 // that do not meet (a vertex the level would take for non-manifold): then every child is made.
 const std::vector<uint8_t>& chainCorners(const Level& L, uint32_t f, std::vector<uint8_t>& corners) {

@@ -121,6 +121,28 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     for (uint32_t v = 0; v < V; ++v)
         if (vertexUsed[v])
             for (uint32_t h : T.vertexOutgoing(v)) faceCenter[T.face(h)] = 1;
+    // childCorners: points only for the children made (their corners) and the face points their
+    // edge and vertex points read; the others are in no face and nothing reads them. Numbered
+    // in the same order as without childCorners (a subset of the same sequence).
+    std::vector<uint8_t> keepFace(kCorners ? F : 0, 0), keepEdge(kCorners ? E : 0, 0), keepVertex(kCorners ? V : 0, 0);
+    if constexpr (kCorners) {
+        for (uint32_t f = 0; f < F; ++f)
+            if (selected[f])
+                for (uint32_t h = T.faceHalfedge(f); h < T.faceHalfedge(f) + T.faceSize(f); ++h)
+                    if (made(h)) keepFace[f] = keepEdge[T.edge(h)] = keepEdge[T.edge(T.prev(h))] = keepVertex[T.vertex(h)] = 1;
+        for (uint32_t v = 0; v < V; ++v)
+            if (keepVertex[v])
+                for (uint32_t h : T.vertexOutgoing(v)) keepFace[T.face(h)] = 1;
+        for (uint32_t e = 0; e < E; ++e)
+            if (keepEdge[e]) {
+                const uint32_t h = T.edgeHalfedge(e);
+                keepFace[T.face(h)] = 1;
+                if (T.twin(h) != kNone) keepFace[T.face(T.twin(h))] = 1;
+            }
+    }
+    auto hasFacePoint = [&](uint32_t f) { return faceCenter[f] && (!kCorners || keepFace[f]); };
+    auto hasEdgePoint = [&](uint32_t e) { return edgeUsed[e] && (!kCorners || keepEdge[e]); };
+    auto hasVertexPoint = [&](uint32_t v) { return vertexUsed[v] && (!kCorners || keepVertex[v]); };
 
     Level C;
     C.depth = P.depth + 1;
@@ -132,21 +154,21 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     C.vertexParent.reserve(childVertices);
     uint32_t next = 0;
     for (uint32_t f = 0; f < F; ++f)
-        if (faceCenter[f]) {
+        if (hasFacePoint(f)) {
             faceChild[f] = next++;
             C.vertexOrigin.push_back(VertexOrigin::Face);
             C.vertexParent.push_back(f);
         }
     C.facePointCount = next;
     for (uint32_t e = 0; e < E; ++e)
-        if (edgeUsed[e]) {
+        if (hasEdgePoint(e)) {
             edgeChild[e] = next++;
             C.vertexOrigin.push_back(VertexOrigin::Edge);
             C.vertexParent.push_back(e);
         }
     C.edgePointCount = next - C.facePointCount;
     for (uint32_t v = 0; v < V; ++v)
-        if (vertexUsed[v]) {
+        if (hasVertexPoint(v)) {
             vertexChild[v] = next++;
             C.vertexOrigin.push_back(VertexOrigin::Vertex);
             C.vertexParent.push_back(v);
@@ -233,12 +255,12 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     C.vertexSharpness.assign(childV, 0.0f);
     C.vertexRule.assign(childV, static_cast<uint8_t>(VertexRule::Smooth));
     for (uint32_t e = 0; e < E; ++e)
-        if (edgeUsed[e]) {
+        if (hasEdgePoint(e)) {
             int sharp = (edgeChildSharp[2 * e] > 0) + (edgeChildSharp[2 * e + 1] > 0);
             C.vertexRule[edgeChild[e]] = static_cast<uint8_t>(ruleFrom(crease, 0.0f, sharp));
         }
     for (uint32_t v = 0; v < V; ++v) {
-        if (!vertexUsed[v]) continue;
+        if (!hasVertexPoint(v)) continue;
         float s = crease.SubdivideVertexSharpness(P.vertexSharpness[v]);
         int sharp = 0;
         for (uint32_t h : T.vertexOutgoing(v)) {
@@ -271,18 +293,11 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     st.faceStart.reserve(C.facePointCount + 1);
     st.faceVertices.reserve(4 * size_t(C.facePointCount)); // quads after the first level
     for (uint32_t f = 0; f < F; ++f)
-        if (faceCenter[f]) {
+        if (hasFacePoint(f)) {
             auto fv = T.faceVertices(f);
             st.faceVertices.insert(st.faceVertices.end(), fv.begin(), fv.end());
             st.faceStart.push_back(static_cast<uint32_t>(st.faceVertices.size()));
         }
-    // childCorners: rows only for the vertices of the children made (the others are in no face;
-    // nothing reads them), each other row empty.
-    std::vector<uint8_t> inFace;
-    if constexpr (kCorners) inFace.assign(childV, 0);
-    if constexpr (kCorners)
-        for (uint32_t h = 0; h < C.topo.halfedgeCount(); ++h) inFace[C.topo.vertex(h)] = 1;
-    auto wanted = [&](uint32_t cv) { return !kCorners || inFace[cv]; };
     uint32_t maxValence = 2;
     for (uint32_t v = 0; v < V; ++v) maxValence = std::max(maxValence, T.vertexEdgeCount(v));
     SdcMask mask(static_cast<int>(maxValence));
@@ -294,12 +309,8 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
         if (vertexUsed[v]) vertexEntries += 1 + 2 * size_t(T.vertexEdgeCount(v));
     st.vertexEntries.reserve(vertexEntries);
     for (uint32_t e = 0; e < E; ++e) {
-        if (!edgeUsed[e]) continue;
+        if (!hasEdgePoint(e)) continue;
         uint32_t cv = edgeChild[e];
-        if (!wanted(cv)) {
-            st.edgeStart.push_back(static_cast<uint32_t>(st.edgeEntries.size()));
-            continue;
-        }
         SdcEdge hood(T, e, P.edgeSharpness[e]);
         auto pRule = P.edgeSharpness[e] > 0 ? Crease::RULE_CREASE : Crease::RULE_SMOOTH;
         scheme.ComputeEdgeVertexMask(hood, mask, pRule, sdcRule(C.vertexRule[cv]));
@@ -316,12 +327,8 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     VertexNeighborhood hood;
     std::vector<float> ringSharpness;
     for (uint32_t v = 0; v < V; ++v) {
-        if (!vertexUsed[v]) continue;
+        if (!hasVertexPoint(v)) continue;
         uint32_t cv = vertexChild[v];
-        if (!wanted(cv)) {
-            st.vertexStart.push_back(static_cast<uint32_t>(st.vertexEntries.size()));
-            continue;
-        }
         gatherNeighborhood(T, v, hood);
         SdcVertex sv(hood, P.edgeSharpness, P.vertexSharpness[v], C.vertexSharpness[cv], ringSharpness);
         scheme.ComputeVertexVertexMask(sv, mask, sdcRule(P.vertexRule[v]), sdcRule(C.vertexRule[cv]));

@@ -65,9 +65,9 @@ Level makeBaseLevel(Topology topo, Sharpness sharpness);
 // face around a vertex of a selected face, because the edge and vertex rules read them.
 // `ptexBase` maps a base face to its first ptex id (used when refining level 0).
 // `childCorners` (optional, per parent vertex): only the children of the selected faces at the
-// marked vertices are made, and stencil rows only for their vertices (every other row empty);
-// the child vertices and their numbering are refineLevel's without it. For a caller that reads
-// nothing beyond those children and their stencils (the crease chains: crease_basis.cpp).
+// marked vertices are made, with only their vertices (and the face points those read), in the
+// order refineLevel without it gives them. For a caller that reads nothing beyond those
+// children and their stencils (the crease chains: crease_basis.cpp).
 Level refineLevel(const Level& parent, const std::vector<uint8_t>& selected,
                   const SchemeOptions& options, const std::vector<uint32_t>& ptexBase,
                   LevelStencils& stencils, const std::vector<uint8_t>* childCorners = nullptr);
