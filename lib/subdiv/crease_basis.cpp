@@ -50,7 +50,12 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
     // Support indices by vertex (SupportIndex): this runs for every corner tried of every
     // irregular face at level N and for every band.
     constexpr size_t kMaxSupport = 2 * size_t(kMaxBasisValence) + 8;
+    constexpr size_t kKeyRoom = 512; // a key around a pole of valence 24 has about 300 entries
     static_assert(kMaxSupport + 4 <= SupportIndex::kMaxVertices);
+    // Room for a pole's support and key at once (a fresh vector grew a dozen times per call).
+    support.reserve(kMaxSupport + 4);
+    key.reserve(kKeyRoom);
+    if (sources) sources->reserve(kKeyRoom);
     SupportIndex indexOf(kMaxSupport + 4); // a face past kMaxSupport adds at most 4 before the check
     auto index = [&](uint32_t v) {
         const auto [i, added] = indexOf.insert(v, uint32_t(support.size()));
@@ -83,10 +88,13 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
             if (T.faceSize(g) != 4) return false; // a hole is no feature (smoothSupport)
             if (faces) faces->push_back(g);
             uint32_t x = h;
+            // Which of the face's vertices are corners of f, each asked once.
+            bool isCorner[4];
+            for (int c = 0; c < 4; ++c, x = T.next(x)) isCorner[c] = atCorner(T.vertex(x));
             for (int c = 0; c < 4; ++c, x = T.next(x)) {
                 const uint32_t v = T.vertex(x);
                 push(index(v), kNone);
-                const bool read = atCorner(v) || atCorner(T.vertex(T.next(x)));
+                const bool read = isCorner[c] || isCorner[(c + 1) % 4];
                 push(read ? std::bit_cast<uint32_t>(L.edgeSharpness[T.edge(x)]) : 0u, read ? T.edge(x) : kNone);
             }
             if (support.size() > kMaxSupport) return false;
