@@ -190,8 +190,9 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     };
     auto across = [&](uint32_t t, uint32_t corner, uint32_t slot) {
         if (t == kNone || firstChild[T.face(t)] == kNone) return kNone;
+        if constexpr (!kCorners) return 4 * (firstChild[T.face(t)] + T.cornerIndex(corner)) + slot;
         const uint32_t c = childOf(T.face(t), T.cornerIndex(corner));
-        return kCorners && c == kNone ? kNone : 4 * c + slot;
+        return c == kNone ? kNone : 4 * c + slot;
     };
     C.frames.reserve(childFaces);
     C.noLimit.reserve(childFaces);
@@ -212,10 +213,16 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
                 // 2 join the edge points to the face point, shared with the next and previous
                 // corners' quads.
                 const uint32_t t = T.twin(h), tp = T.twin(T.prev(h));
-                const uint32_t cn = childOf(f, k + 1 == n ? 0 : k + 1), cp = childOf(f, k == 0 ? n - 1 : k - 1);
                 twins.push_back(t == kNone ? kNone : across(t, T.next(t), 3));
-                twins.push_back(kCorners && cn == kNone ? kNone : 4 * cn + 2);
-                twins.push_back(kCorners && cp == kNone ? kNone : 4 * cp + 1);
+                if constexpr (kCorners) {
+                    const uint32_t cn = childOf(f, k + 1 == n ? 0 : k + 1), cp = childOf(f, k == 0 ? n - 1 : k - 1);
+                    twins.push_back(cn == kNone ? kNone : 4 * cn + 2);
+                    twins.push_back(cp == kNone ? kNone : 4 * cp + 1);
+                } else {
+                    const uint32_t q = firstChild[f];
+                    twins.push_back(4 * (q + (k + 1 == n ? 0 : k + 1)) + 2);
+                    twins.push_back(4 * (q + (k == 0 ? n - 1 : k - 1)) + 1);
+                }
                 twins.push_back(tp == kNone ? kNone : across(tp, tp, 0));
             }
             FaceFrame cf;
@@ -324,7 +331,8 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
                 st.edgeEntries.push_back({faceChild[faces[i]], mask.FaceWeight(i), true});
         st.edgeStart.push_back(static_cast<uint32_t>(st.edgeEntries.size()));
     }
-    VertexNeighborhood hood;
+    VertexNeighborhood hood; // room for the largest ring at once
+    for (auto* x : {&hood.edges, &hood.ringVertex, &hood.faces, &hood.diagonal}) x->reserve(maxValence + 1);
     std::vector<float> ringSharpness;
     for (uint32_t v = 0; v < V; ++v) {
         if (!hasVertexPoint(v)) continue;
