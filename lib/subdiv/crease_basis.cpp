@@ -202,8 +202,8 @@ uint32_t centreChild(const Level& child, uint32_t f, const FaceFrame& pf) {
 // refines, only the children at f's corners: the patches of f's quadrants (each child's one-ring
 // is children at one corner of f of the faces around it) and the next band's support and rows
 // (the faces around the centre child's corners, and the edges and faces around those, which
-// again are children at f's corners). So the other children of f's one-ring are not made: a
-// quarter of them around a pole of valence 24, nor their points. The rows read are the same, in
+// again are children at f's corners). So the other children of f's one-ring are not made, nor
+// their points: around a pole of valence 24 about a quarter of them are. The rows read are the same, in
 // the same order (the child vertices kept are numbered in the order they had; every edge and
 // face read keeps both its faces, so the edges keep their order). A face with two of f's
 // corners opposite each other, and neither between them, would leave its face point two children
