@@ -50,7 +50,12 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
     // Support indices by vertex (SupportIndex): this runs for every corner tried of every
     // irregular face at level N and for every band.
     constexpr size_t kMaxSupport = 2 * size_t(kMaxBasisValence) + 8;
+    constexpr size_t kKeyRoom = 512; // a key around a pole of valence 24 has about 300 entries
     static_assert(kMaxSupport + 4 <= SupportIndex::kMaxVertices);
+    // Room for a pole's support and key at once (a fresh vector grew a dozen times per call).
+    support.reserve(kMaxSupport + 4);
+    key.reserve(kKeyRoom);
+    if (sources) sources->reserve(kKeyRoom);
     SupportIndex indexOf(kMaxSupport + 4); // a face past kMaxSupport adds at most 4 before the check
     auto index = [&](uint32_t v) {
         const auto [i, added] = indexOf.insert(v, uint32_t(support.size()));
@@ -83,10 +88,13 @@ bool supportOf(const Level& L, uint32_t f, int corner, std::vector<uint32_t>& su
             if (T.faceSize(g) != 4) return false; // a hole is no feature (smoothSupport)
             if (faces) faces->push_back(g);
             uint32_t x = h;
+            // Which of the face's vertices are corners of f, each asked once.
+            bool isCorner[4];
+            for (int c = 0; c < 4; ++c, x = T.next(x)) isCorner[c] = atCorner(T.vertex(x));
             for (int c = 0; c < 4; ++c, x = T.next(x)) {
                 const uint32_t v = T.vertex(x);
                 push(index(v), kNone);
-                const bool read = atCorner(v) || atCorner(T.vertex(T.next(x)));
+                const bool read = isCorner[c] || isCorner[(c + 1) % 4];
                 push(read ? std::bit_cast<uint32_t>(L.edgeSharpness[T.edge(x)]) : 0u, read ? T.edge(x) : kNone);
             }
             if (support.size() > kMaxSupport) return false;
@@ -188,6 +196,34 @@ uint32_t centreChild(const Level& child, uint32_t f, const FaceFrame& pf) {
     for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf)
         if (child.faceParent[cf] == f && !(child.frames[cf].u0 > pf.u0) && !(child.frames[cf].v0 > pf.v0)) return cf;
     return kNone;
+}
+
+// The corners of the chain face f (refineLevel's childCorners). A band reads, of the level it
+// refines, only the children at f's corners: the patches of f's quadrants (each child's one-ring
+// is children at one corner of f of the faces around it) and the next band's support and rows
+// (the faces around the centre child's corners, and the edges and faces around those, which
+// again are children at f's corners). So the other children of f's one-ring are not made, nor
+// their points: around a pole of valence 24 about a quarter of them are. The rows read are the same, in
+// the same order (the child vertices kept are numbered in the order they had; every edge and
+// face read keeps both its faces, so the edges keep their order). A face with two of f's
+// corners opposite each other, and neither between them, would leave its face point two children
+// that do not meet (a vertex the level would take for non-manifold): then every child is made.
+const std::vector<uint8_t>& chainCorners(const Level& L, uint32_t f, std::vector<uint8_t>& corners) {
+    const Topology& T = L.topo;
+    corners.assign(T.vertexCount(), 0);
+    for (uint32_t v : T.faceVertices(f)) corners[v] = 1;
+    for (uint32_t v : T.faceVertices(f))
+        for (uint32_t h : T.vertexOutgoing(v)) {
+            const uint32_t g = T.face(h);
+            if (T.faceSize(g) != 4) continue; // a chain's faces are quads (creaseSupport)
+            unsigned at = 0;
+            for (uint32_t k = 0; k < 4; ++k) at |= unsigned(corners[T.vertex(T.faceHalfedge(g) + k)]) << k;
+            if (at == 0b0101 || at == 0b1010) {
+                corners.assign(T.vertexCount(), 1);
+                return corners;
+            }
+        }
+    return corners;
 }
 
 } // namespace
@@ -323,10 +359,11 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
             if (!creaseSupport(cur, chainFace, 0, probe, probeKey) || probeKey != key)
                 throw std::logic_error("crease basis: a repeated band's key did not take");
         }
-        std::vector<uint8_t> selected(cur.topo.faceCount(), 0);
+        std::vector<uint8_t> selected(cur.topo.faceCount(), 0), corners;
         selected[chainFace] = 1;
         LevelStencils st;
-        Level child = refineLevel(cur, oneRing(cur.topo, selected), options, ptexBase, st);
+        Level child = refineLevel(cur, oneRing(cur.topo, selected), options, ptexBase, st,
+                                  &chainCorners(cur, chainFace, corners));
         // Only the chain face's children are read.
         std::vector<uint8_t> children(child.topo.faceCount(), 0);
         for (uint32_t cf = 0; cf < child.topo.faceCount(); ++cf) children[cf] = child.faceParent[cf] == chainFace;
@@ -391,7 +428,8 @@ bool buildCreaseChain(const Level& L, uint32_t f, int corner, uint32_t K, const 
             aboveOne(key) && programKey(key, 1.0f) == programKey(chain.bands[0].key, 1.0f)) {
             std::vector<uint8_t> around(cur.topo.faceCount(), 0);
             around[chainFace] = 1;
-            Level third = refineLevelTopology(cur, oneRing(cur.topo, around), options, ptexBase);
+            Level third = refineLevelTopology(cur, oneRing(cur.topo, around), options, ptexBase,
+                                              &chainCorners(cur, chainFace, corners));
             const uint32_t thirdFace = centreChild(third, chainFace, cur.frames[chainFace]);
             std::vector<uint32_t> thirdSupport, thirdKey;
             if (thirdFace != kNone && creaseSupport(third, thirdFace, 0, thirdSupport, thirdKey) &&

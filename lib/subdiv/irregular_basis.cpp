@@ -361,6 +361,18 @@ std::vector<uint32_t> stencilRows(const Level& L, const LevelStencils& st, const
     for (size_t v = 0; v < needed.size(); ++v)
         if (needed[v]) row[v] = rows++;
     p = BasisProgram{};
+    // Each array allocated once: the rows' and entries' counts first.
+    size_t entries = 0;
+    for (uint32_t i = 0; i < L.facePointCount; ++i)
+        if (needed[i]) entries += st.faceStart[i + 1] - st.faceStart[i];
+    for (uint32_t i = 0; i < L.edgePointCount; ++i)
+        if (needed[L.facePointCount + i]) entries += st.edgeStart[i + 1] - st.edgeStart[i];
+    for (uint32_t i = 0; i < L.vertexPointCount; ++i)
+        if (needed[L.facePointCount + L.edgePointCount + i]) entries += st.vertexStart[i + 1] - st.vertexStart[i];
+    p.source.reserve(entries);
+    p.weight.reserve(entries);
+    p.start.reserve(size_t(rows) + 1);
+    p.averaged.reserve(rows);
     auto in = [&](uint32_t v) {
         if (inputOf[v] == kNone) throw std::logic_error("basis program: a row reads outside the support");
         return inputOf[v];

@@ -83,11 +83,12 @@ Level makeBaseLevel(Topology topo, Sharpness sharpness) {
 
 namespace {
 
-// refineLevel, and without the stencils (refineLevelTopology): one function for both, each
-// instantiation compiled on its own.
-template <bool kStencils>
+// refineLevel, and without the stencils (refineLevelTopology), each with childCorners or without
+// (kCorners): one function for all, each instantiation compiled on its own (the checks for
+// childCorners cost the whole mesh's refinement a percent where they are not compiled out).
+template <bool kStencils, bool kCorners>
 Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
-             const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
+             const std::vector<uint32_t>& ptexBase, LevelStencils& st, const std::vector<uint8_t>* childCorners) {
     const Topology& T = P.topo;
     const uint32_t F = T.faceCount(), E = T.edgeCount(), V = T.vertexCount();
     Crease crease(toSdcOptions(options));
@@ -100,12 +101,16 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     // inside one face, with exactly the half-edges named there.
     bool twinsFromParent = T.nonManifoldEdgeCount() == 0;
     std::vector<uint32_t> firstChild(F, kNone), edgeSeenIn(twinsFromParent ? E : 0, kNone);
+    // childCorners: the child of each parent half-edge's corner, kNone where it is not made.
+    std::vector<uint32_t> childAt(kCorners ? T.halfedgeCount() : 0, kNone);
+    auto made = [&](uint32_t h) { return !kCorners || (*childCorners)[T.vertex(h)]; };
     uint32_t childFaces = 0; // counted first so that every per-face array is allocated once
     for (uint32_t f = 0; f < F; ++f) {
         if (!selected[f]) continue;
         firstChild[f] = childFaces;
-        childFaces += T.faceSize(f);
+        if constexpr (!kCorners) childFaces += T.faceSize(f);
         for (uint32_t h = T.faceHalfedge(f); h < T.faceHalfedge(f) + T.faceSize(f); ++h) {
+            if (kCorners && made(h)) childAt[h] = childFaces++;
             edgeUsed[T.edge(h)] = 1;
             vertexUsed[T.vertex(h)] = 1;
             if (!twinsFromParent) continue;
@@ -116,6 +121,28 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     for (uint32_t v = 0; v < V; ++v)
         if (vertexUsed[v])
             for (uint32_t h : T.vertexOutgoing(v)) faceCenter[T.face(h)] = 1;
+    // childCorners: points only for the children made (their corners) and the face points their
+    // edge and vertex points read; the others are in no face and nothing reads them. Numbered
+    // in the same order as without childCorners (a subset of the same sequence).
+    std::vector<uint8_t> keepFace(kCorners ? F : 0, 0), keepEdge(kCorners ? E : 0, 0), keepVertex(kCorners ? V : 0, 0);
+    if constexpr (kCorners) {
+        for (uint32_t f = 0; f < F; ++f)
+            if (selected[f])
+                for (uint32_t h = T.faceHalfedge(f); h < T.faceHalfedge(f) + T.faceSize(f); ++h)
+                    if (made(h)) keepFace[f] = keepEdge[T.edge(h)] = keepEdge[T.edge(T.prev(h))] = keepVertex[T.vertex(h)] = 1;
+        for (uint32_t v = 0; v < V; ++v)
+            if (keepVertex[v])
+                for (uint32_t h : T.vertexOutgoing(v)) keepFace[T.face(h)] = 1;
+        for (uint32_t e = 0; e < E; ++e)
+            if (keepEdge[e]) {
+                const uint32_t h = T.edgeHalfedge(e);
+                keepFace[T.face(h)] = 1;
+                if (T.twin(h) != kNone) keepFace[T.face(T.twin(h))] = 1;
+            }
+    }
+    auto hasFacePoint = [&](uint32_t f) { return faceCenter[f] && (!kCorners || keepFace[f]); };
+    auto hasEdgePoint = [&](uint32_t e) { return edgeUsed[e] && (!kCorners || keepEdge[e]); };
+    auto hasVertexPoint = [&](uint32_t v) { return vertexUsed[v] && (!kCorners || keepVertex[v]); };
 
     Level C;
     C.depth = P.depth + 1;
@@ -127,21 +154,21 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     C.vertexParent.reserve(childVertices);
     uint32_t next = 0;
     for (uint32_t f = 0; f < F; ++f)
-        if (faceCenter[f]) {
+        if (hasFacePoint(f)) {
             faceChild[f] = next++;
             C.vertexOrigin.push_back(VertexOrigin::Face);
             C.vertexParent.push_back(f);
         }
     C.facePointCount = next;
     for (uint32_t e = 0; e < E; ++e)
-        if (edgeUsed[e]) {
+        if (hasEdgePoint(e)) {
             edgeChild[e] = next++;
             C.vertexOrigin.push_back(VertexOrigin::Edge);
             C.vertexParent.push_back(e);
         }
     C.edgePointCount = next - C.facePointCount;
     for (uint32_t v = 0; v < V; ++v)
-        if (vertexUsed[v]) {
+        if (hasVertexPoint(v)) {
             vertexChild[v] = next++;
             C.vertexOrigin.push_back(VertexOrigin::Vertex);
             C.vertexParent.push_back(v);
@@ -158,9 +185,14 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     // The child half-edge of a parent half-edge's end `at`, in the face across it: the quad at
     // that face's corner `at` (slot 0 leaves the corner, slot 3 returns to it); none across a
     // boundary or into a face that is not refined.
+    auto childOf = [&](uint32_t f, uint32_t k) {
+        return kCorners ? childAt[T.faceHalfedge(f) + k] : firstChild[f] + k;
+    };
     auto across = [&](uint32_t t, uint32_t corner, uint32_t slot) {
         if (t == kNone || firstChild[T.face(t)] == kNone) return kNone;
-        return 4 * (firstChild[T.face(t)] + T.cornerIndex(corner)) + slot;
+        if constexpr (!kCorners) return 4 * (firstChild[T.face(t)] + T.cornerIndex(corner)) + slot;
+        const uint32_t c = childOf(T.face(t), T.cornerIndex(corner));
+        return c == kNone ? kNone : 4 * c + slot;
     };
     C.frames.reserve(childFaces);
     C.noLimit.reserve(childFaces);
@@ -171,6 +203,7 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
         const FaceFrame& pf = P.frames[f];
         for (uint32_t k = 0; k < n; ++k) {
             uint32_t h = h0 + k;
+            if (!made(h)) continue;
             for (uint32_t c : {vertexChild[T.vertex(h)], edgeChild[T.edge(h)], faceChild[f],
                                edgeChild[T.edge(T.prev(h))]})
                 corners.push_back(c);
@@ -179,10 +212,17 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
                 // Slot 0 is the first half of h, slot 3 the second half of prev(h); slots 1 and
                 // 2 join the edge points to the face point, shared with the next and previous
                 // corners' quads.
-                const uint32_t t = T.twin(h), tp = T.twin(T.prev(h)), q = firstChild[f];
+                const uint32_t t = T.twin(h), tp = T.twin(T.prev(h));
                 twins.push_back(t == kNone ? kNone : across(t, T.next(t), 3));
-                twins.push_back(4 * (q + (k + 1 == n ? 0 : k + 1)) + 2);
-                twins.push_back(4 * (q + (k == 0 ? n - 1 : k - 1)) + 1);
+                if constexpr (kCorners) {
+                    const uint32_t cn = childOf(f, k + 1 == n ? 0 : k + 1), cp = childOf(f, k == 0 ? n - 1 : k - 1);
+                    twins.push_back(cn == kNone ? kNone : 4 * cn + 2);
+                    twins.push_back(cp == kNone ? kNone : 4 * cp + 1);
+                } else {
+                    const uint32_t q = firstChild[f];
+                    twins.push_back(4 * (q + (k + 1 == n ? 0 : k + 1)) + 2);
+                    twins.push_back(4 * (q + (k == 0 ? n - 1 : k - 1)) + 1);
+                }
                 twins.push_back(tp == kNone ? kNone : across(tp, tp, 0));
             }
             FaceFrame cf;
@@ -222,12 +262,12 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     C.vertexSharpness.assign(childV, 0.0f);
     C.vertexRule.assign(childV, static_cast<uint8_t>(VertexRule::Smooth));
     for (uint32_t e = 0; e < E; ++e)
-        if (edgeUsed[e]) {
+        if (hasEdgePoint(e)) {
             int sharp = (edgeChildSharp[2 * e] > 0) + (edgeChildSharp[2 * e + 1] > 0);
             C.vertexRule[edgeChild[e]] = static_cast<uint8_t>(ruleFrom(crease, 0.0f, sharp));
         }
     for (uint32_t v = 0; v < V; ++v) {
-        if (!vertexUsed[v]) continue;
+        if (!hasVertexPoint(v)) continue;
         float s = crease.SubdivideVertexSharpness(P.vertexSharpness[v]);
         int sharp = 0;
         for (uint32_t h : T.vertexOutgoing(v)) {
@@ -260,7 +300,7 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
     st.faceStart.reserve(C.facePointCount + 1);
     st.faceVertices.reserve(4 * size_t(C.facePointCount)); // quads after the first level
     for (uint32_t f = 0; f < F; ++f)
-        if (faceCenter[f]) {
+        if (hasFacePoint(f)) {
             auto fv = T.faceVertices(f);
             st.faceVertices.insert(st.faceVertices.end(), fv.begin(), fv.end());
             st.faceStart.push_back(static_cast<uint32_t>(st.faceVertices.size()));
@@ -276,7 +316,7 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
         if (vertexUsed[v]) vertexEntries += 1 + 2 * size_t(T.vertexEdgeCount(v));
     st.vertexEntries.reserve(vertexEntries);
     for (uint32_t e = 0; e < E; ++e) {
-        if (!edgeUsed[e]) continue;
+        if (!hasEdgePoint(e)) continue;
         uint32_t cv = edgeChild[e];
         SdcEdge hood(T, e, P.edgeSharpness[e]);
         auto pRule = P.edgeSharpness[e] > 0 ? Crease::RULE_CREASE : Crease::RULE_SMOOTH;
@@ -291,10 +331,11 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
                 st.edgeEntries.push_back({faceChild[faces[i]], mask.FaceWeight(i), true});
         st.edgeStart.push_back(static_cast<uint32_t>(st.edgeEntries.size()));
     }
-    VertexNeighborhood hood;
+    VertexNeighborhood hood; // room for the largest ring at once
+    for (auto* x : {&hood.edges, &hood.ringVertex, &hood.faces, &hood.diagonal}) x->reserve(maxValence + 1);
     std::vector<float> ringSharpness;
     for (uint32_t v = 0; v < V; ++v) {
-        if (!vertexUsed[v]) continue;
+        if (!hasVertexPoint(v)) continue;
         uint32_t cv = vertexChild[v];
         gatherNeighborhood(T, v, hood);
         SdcVertex sv(hood, P.edgeSharpness, P.vertexSharpness[v], C.vertexSharpness[cv], ringSharpness);
@@ -314,14 +355,17 @@ Level refine(const Level& P, const std::vector<uint8_t>& selected, const SchemeO
 } // namespace
 
 Level refineLevel(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
-                  const std::vector<uint32_t>& ptexBase, LevelStencils& st) {
-    return refine<true>(P, selected, options, ptexBase, st);
+                  const std::vector<uint32_t>& ptexBase, LevelStencils& st,
+                  const std::vector<uint8_t>* childCorners) {
+    return childCorners ? refine<true, true>(P, selected, options, ptexBase, st, childCorners)
+                        : refine<true, false>(P, selected, options, ptexBase, st, nullptr);
 }
 
 Level refineLevelTopology(const Level& P, const std::vector<uint8_t>& selected, const SchemeOptions& options,
-                          const std::vector<uint32_t>& ptexBase) {
+                          const std::vector<uint32_t>& ptexBase, const std::vector<uint8_t>* childCorners) {
     LevelStencils none;
-    return refine<false>(P, selected, options, ptexBase, none);
+    return childCorners ? refine<false, true>(P, selected, options, ptexBase, none, childCorners)
+                        : refine<false, false>(P, selected, options, ptexBase, none, nullptr);
 }
 
 } // namespace limn

@@ -64,14 +64,19 @@ Level makeBaseLevel(Topology topo, Sharpness sharpness);
 // stencils of every new vertex with OpenSubdiv's Sdc masks. Face points are also made for every
 // face around a vertex of a selected face, because the edge and vertex rules read them.
 // `ptexBase` maps a base face to its first ptex id (used when refining level 0).
+// `childCorners` (optional, per parent vertex): only the children of the selected faces at the
+// marked vertices are made, with only their vertices (and the face points those read), in the
+// order refineLevel without it gives them. For a caller that reads nothing beyond those
+// children and their stencils (the crease chains: crease_basis.cpp).
 Level refineLevel(const Level& parent, const std::vector<uint8_t>& selected,
                   const SchemeOptions& options, const std::vector<uint32_t>& ptexBase,
-                  LevelStencils& stencils);
+                  LevelStencils& stencils, const std::vector<uint8_t>* childCorners = nullptr);
 
 // refineLevel's level without its stencils (topology, sharpness, rules, frames), where the
 // points are not needed.
 Level refineLevelTopology(const Level& parent, const std::vector<uint8_t>& selected,
-                          const SchemeOptions& options, const std::vector<uint32_t>& ptexBase);
+                          const SchemeOptions& options, const std::vector<uint32_t>& ptexBase,
+                          const std::vector<uint8_t>* childCorners = nullptr);
 
 // Faces sharing a vertex with a marked face: what must be refined with the marked faces so that
 // their children have complete neighbourhoods (the isolation of tables.h).
