@@ -386,7 +386,7 @@ TEST(TablesChunk, ProgramDictionaryExpandsToTheBuildersWeights) {
 // creases1 d2 11,728 bytes against 9,860, chaikin2 d3 18,748 against 13,416, tent_creases0 d1 5,056
 // against 3,740); version 9's program dictionary names their rows, so torus_creases1 is smaller
 // with chains and the other two within 6% (measured 5.0% and 2.4%), while shared chains still
-// halve chaikin0's (docs/irregular-tables.md, "Chains that do not pay off").
+// halve chaikin0's (docs/irregular-crease-trees.md, "Chains that do not pay off").
 TEST(TablesChunk, CreaseChainsTakeNoBytes) {
     for (const auto& [model, depth, slack] : {std::tuple{"catmark_torus_creases1.obj", 2, 1.0},
                                               std::tuple{"catmark_chaikin2.obj", 3, 1.06},
