@@ -43,10 +43,7 @@ std::vector<std::tuple<uint32_t, uint64_t, bool>> rowOf(const Level& L, const Le
 // Every catmark shape without non-manifold edges or vertices, refined once whole; then, for a few of its
 // faces, the faces around the face refined with and without childCorners at the face's corners.
 TEST(ChildCorners, AreTheWholeRefinementsChildrenInItsOrder) {
-    std::vector<std::filesystem::path> models;
-    for (const auto& entry : std::filesystem::directory_iterator(test::modelPath("osd/catmark")))
-        if (entry.path().extension() == ".obj") models.push_back(entry.path());
-    std::sort(models.begin(), models.end());
+    const std::vector<std::filesystem::path> models = test::objModelsIn("osd/catmark");
     uint32_t checked = 0;
     for (const auto& model : models) {
         SCOPED_TRACE(model.filename().string());

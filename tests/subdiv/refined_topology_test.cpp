@@ -64,10 +64,7 @@ uint32_t fanMismatches(const Topology& t) {
 // refined three times, the first level whole and then a scattered quarter of the faces, so that
 // refined faces border unrefined ones (boundaries of the sparse level) at every level.
 TEST(RefinedTopology, IsTheConstructorsForEveryCatmarkShape) {
-    std::vector<std::filesystem::path> models;
-    for (const auto& entry : std::filesystem::directory_iterator(test::modelPath("osd/catmark")))
-        if (entry.path().extension() == ".obj") models.push_back(entry.path());
-    std::sort(models.begin(), models.end());
+    const std::vector<std::filesystem::path> models = test::objModelsIn("osd/catmark");
     ASSERT_GT(models.size(), 50u);
     uint32_t levels = 0;
     for (const auto& model : models) {

@@ -107,6 +107,14 @@ std::vector<std::string> filesIn(const std::filesystem::path& dir) {
     return out;
 }
 
+std::vector<std::filesystem::path> objModelsIn(const std::string& folder) {
+    std::vector<std::filesystem::path> out;
+    for (const auto& e : std::filesystem::directory_iterator(modelPath(folder)))
+        if (e.path().extension() == ".obj") out.push_back(e.path());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
 std::string readFile(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error("cannot read " + path.string());

@@ -44,6 +44,8 @@ private:
 std::string readFile(const std::filesystem::path& path);
 // The names of the entries of `dir`, sorted.
 std::vector<std::string> filesIn(const std::filesystem::path& dir);
+// The .obj meshes of dataDir()/folder (e.g. "osd/catmark": every catmark shape), sorted.
+std::vector<std::filesystem::path> objModelsIn(const std::string& folder);
 std::vector<uint8_t> readBytes(const std::filesystem::path& path);
 void writeFile(const std::filesystem::path& path, const std::string& contents);
 
