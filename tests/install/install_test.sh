@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Install.PipelineRunsFromThePrefix: `cmake --install BUILD --prefix P` into an empty folder, then
 # a whole pipeline run from P alone: the tools in P/bin, the OpenImageIO reader in P/lib/limn
-# (found next to the tools, not in the build tree), the README and format spec in P/share/doc/limn,
-# and the tools' details the README links to (docs/tools.md, moved out of the README) in its docs/.
+# (found next to the tools, not in the build tree), the README in P/share/doc/limn with the docs and
+# format specs it links to in the same layout (docs/, formats/), so that every such link resolves.
 # Usage: install_test.sh BUILD_DIR
 set -euo pipefail
 build=$1
@@ -21,8 +21,12 @@ for t in $tools; do [ -x "$p/bin/limn-$t" ] || fail "bin/limn-$t not installed";
 [ "$(ls "$p/bin" | wc -l)" -eq 10 ] || fail "bin/ holds more than the 10 tools: $(ls "$p/bin")"
 [ -f "$p/lib/limn/limn_image_oiio.so" ] || fail "lib/limn/limn_image_oiio.so not installed"
 [ -f "$p/share/doc/limn/README.md" ] || fail "share/doc/limn/README.md not installed"
-[ -f "$p/share/doc/limn/limn.md" ] || fail "share/doc/limn/limn.md not installed"
+[ -f "$p/share/doc/limn/formats/limn.md" ] || fail "share/doc/limn/formats/limn.md not installed"
 [ -f "$p/share/doc/limn/docs/tools.md" ] || fail "share/doc/limn/docs/tools.md not installed"
+grep -o '](\(docs\|formats\)/[^)#]*' "$p/share/doc/limn/README.md" | sed 's/^](//' | sort -u |
+  while read -r f; do
+    [ -f "$p/share/doc/limn/$f" ] || fail "the installed README links to $f, which is not installed"
+  done
 "$p/bin/limn-render" --version | grep -q '^limn-render ' || fail "limn-render --version"
 
 "$p/bin/limn-examples" --only quad_sphere -o meshes
