@@ -116,8 +116,6 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
     const size_t M = chain.bands[0].support;
     out.levels = K;
     out.support = uint32_t(M);
-    // Every band's three patches are stored in order (band k, quadrant q at (3 (k - 1) + q) 16 M).
-    out.weights.reserve(size_t(K) * 3 * 16 * M);
     out.kinds.assign(size_t(K) * 3, CreaseBandKind{});
     if (!weights) { // the bands' kinds and the supports' sizes only
         size_t S = M;
@@ -131,6 +129,8 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
             throw std::logic_error("crease chain: a smooth end's support is not the basis's");
         return true;
     }
+    // Every band's three patches are stored in order (band k, quadrant q at (3 (k - 1) + q) 16 M).
+    out.weights.reserve(size_t(K) * 3 * 16 * M);
     auto storePatch = [&](uint32_t k, int q, const WeightRows& P) {
         if (out.weights.size() != (size_t(k - 1) * 3 + size_t(q)) * 16 * M)
             throw std::logic_error("crease chain: patches stored out of order");
@@ -216,7 +216,7 @@ bool expandCreaseChain(const CreaseChain& chain, uint32_t K, IrregularBasis& out
         IrregularBasis built;
         const IrregularBasis* found = endBasis;
         if (!found || found->program.rows() == 0) {
-            built = buildIrregularBasis(chain.valence, K - k);
+            built = buildIrregularBasis(chain.valence, K - k, false); // its program is what runs
             found = &built;
         }
         if (found->valence != chain.valence || found->configuration.boundary || !found->kinds.empty())
